@@ -1,0 +1,96 @@
+"""Input validation in one place.
+
+Every public constructor and function validates through these helpers so that bad
+input always raises a :class:`ValueError` that names the parameter, the value given
+and the valid range.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "require_positive",
+    "require_nonnegative",
+    "require_in_range",
+    "require_choice",
+    "require_finite",
+]
+
+
+def _describe(value) -> str:
+    array = np.asarray(value)
+    if array.ndim == 0:
+        return repr(value.item() if hasattr(value, "item") else value)
+    bad = array.ravel()
+    return f"array of shape {array.shape} (first values {bad[:3].tolist()})"
+
+
+def require_finite(name: str, value, unit: str = "") -> None:
+    """Raise ``ValueError`` unless every element of ``value`` is a finite real number."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a real number{_unit(unit)}") from None
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} = {_describe(value)} is invalid: must be finite{_unit(unit)}")
+
+
+def require_positive(name: str, value, unit: str = "") -> None:
+    """Raise ``ValueError`` unless every element of ``value`` is finite and > 0."""
+    require_finite(name, value, unit)
+    if np.any(np.asarray(value, dtype=float) <= 0):
+        raise ValueError(
+            f"{name} = {_describe(value)} is invalid: valid range is (0, inf){_unit(unit)}"
+        )
+
+
+def require_nonnegative(name: str, value, unit: str = "") -> None:
+    """Raise ``ValueError`` unless every element of ``value`` is finite and >= 0."""
+    require_finite(name, value, unit)
+    if np.any(np.asarray(value, dtype=float) < 0):
+        raise ValueError(
+            f"{name} = {_describe(value)} is invalid: valid range is [0, inf){_unit(unit)}"
+        )
+
+
+def require_in_range(
+    name: str,
+    value,
+    low: float,
+    high: float,
+    *,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+    unit: str = "",
+) -> None:
+    """Raise ``ValueError`` unless every element of ``value`` lies in the interval.
+
+    The interval is ``[low, high]`` with each end open or closed as requested;
+    ``low``/``high`` may be ``-inf``/``inf``.
+    """
+    require_finite(name, value, unit)
+    array = np.asarray(value, dtype=float)
+    below = array < low if low_inclusive else array <= low
+    above = array > high if high_inclusive else array >= high
+    if np.any(below) or np.any(above):
+        left = "[" if low_inclusive and math.isfinite(low) else "("
+        right = "]" if high_inclusive and math.isfinite(high) else ")"
+        raise ValueError(
+            f"{name} = {_describe(value)} is invalid: valid range is "
+            f"{left}{low:g}, {high:g}{right}{_unit(unit)}"
+        )
+
+
+def require_choice(name: str, value, choices) -> None:
+    """Raise ``ValueError`` unless ``value`` is one of ``choices``."""
+    choices = list(choices)
+    if value not in choices:
+        listed = ", ".join(repr(c) for c in choices)
+        raise ValueError(f"{name} = {value!r} is not known: valid values are {listed}")
+
+
+def _unit(unit: str) -> str:
+    return f" [{unit}]" if unit else ""

@@ -1,0 +1,230 @@
+"""The contact-law interface, the registry of laws, and contact geometry helpers.
+
+A contact law is a force–indentation relation ``F(α; α_max)`` whose only history is
+``α_max``, the largest indentation reached before the current evaluation:
+
+* ``α ≥ α_max`` — the virgin loading curve;
+* ``α < α_max`` — the elastic unloading/reloading curve that leaves ``α_max``, equal
+  to zero at and below the permanent indentation ``α_f(α_max)``;
+* ``α ≤ 0`` (or ``α ≤ α_f``) — no contact, ``F = 0`` (no tension).
+
+After each accepted evaluation the caller updates ``α_max ← max(α_max, α)``. This
+one convention covers loading, unloading, separation, reloading and re-impact.
+
+Each law is written once, as a scalar numba kernel
+``kernel(alpha, alpha_max, params) -> (force, stiffness)`` where ``params`` is the
+law's float64 parameter vector. The same kernel serves the vectorised NumPy methods of
+:class:`ContactLaw` (via :func:`evaluate_kernel`), the modal impact integrator and the
+finite-difference beam solver, so there is exactly one implementation of each law.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import ClassVar
+
+import numba
+import numpy as np
+
+from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
+
+__all__ = [
+    "ContactLaw",
+    "register_contact_law",
+    "contact_law",
+    "contact_law_class",
+    "available_contact_laws",
+    "effective_modulus",
+    "effective_radius",
+    "evaluate_kernel",
+]
+
+
+@numba.njit(cache=True)
+def _evaluate_many(kernel, alpha, alpha_max, params):
+    n = alpha.shape[0]
+    force = np.empty(n)
+    stiffness = np.empty(n)
+    for i in range(n):
+        f, s = kernel(alpha[i], alpha_max[i], params[i])
+        force[i] = f
+        stiffness[i] = s
+    return force, stiffness
+
+
+def evaluate_kernel(kernel, parameters, indentation, max_indentation):
+    """Evaluate a scalar contact kernel element-wise with NumPy broadcasting.
+
+    Parameters
+    ----------
+    kernel : numba dispatcher
+        ``kernel(alpha, alpha_max, params) -> (force, stiffness)``.
+    parameters : array_like, shape (n_params, ...)
+        Parameter vector; trailing dimensions broadcast against the indentations.
+    indentation, max_indentation : array_like
+        Indentation α and history α_max [m].
+
+    Returns
+    -------
+    force, stiffness : ndarray
+        Contact force [N] and tangent stiffness dF/dα [N/m], broadcast shape.
+    """
+    params = np.asarray(parameters, dtype=float)
+    alpha = np.asarray(indentation, dtype=float)
+    alpha_max = np.asarray(max_indentation, dtype=float)
+    shape = np.broadcast_shapes(alpha.shape, alpha_max.shape, params.shape[1:])
+    n_params = params.shape[0]
+    flat_params = np.ascontiguousarray(
+        np.broadcast_to(params, (n_params,) + shape).reshape(n_params, -1).T
+    )
+    flat_alpha = np.ascontiguousarray(np.broadcast_to(alpha, shape).ravel())
+    flat_alpha_max = np.ascontiguousarray(np.broadcast_to(alpha_max, shape).ravel())
+    force, stiffness = _evaluate_many(kernel, flat_alpha, flat_alpha_max, flat_params)
+    return force.reshape(shape), stiffness.reshape(shape)
+
+
+class ContactLaw(ABC):
+    """A stateful force–indentation law (see the module docstring for the convention).
+
+    Subclasses are frozen dataclasses holding the law's physical parameters (SI), set
+    the class attributes ``name`` (registry key) and ``elastic`` (no dissipation), and
+    provide ``kernel`` (a ``staticmethod`` wrapping a numba scalar kernel),
+    :attr:`kernel_parameters` and :meth:`permanent_indentation`. Parameters may be
+    arrays, so one law object describes a batch of cases.
+    """
+
+    name: ClassVar[str]
+    elastic: ClassVar[bool]
+    kernel: ClassVar  # staticmethod(numba dispatcher)
+
+    @property
+    @abstractmethod
+    def kernel_parameters(self) -> np.ndarray:
+        """Float parameter vector for :attr:`kernel`, shape ``(n_params, *batch)``."""
+
+    @abstractmethod
+    def permanent_indentation(self, max_indentation):
+        """Permanent indentation α_f [m] left after unloading from ``max_indentation`` [m]."""
+
+    # -- evaluation -------------------------------------------------------------
+    def force(self, indentation, max_indentation=0.0):
+        """Contact force [N] at indentation α [m] with history α_max [m] (default: virgin)."""
+        return evaluate_kernel(self.kernel, self.kernel_parameters, indentation, max_indentation)[0]
+
+    def tangent_stiffness(self, indentation, max_indentation=0.0):
+        """Tangent contact stiffness dF/dα [N/m] at α [m] with history α_max [m]."""
+        return evaluate_kernel(self.kernel, self.kernel_parameters, indentation, max_indentation)[1]
+
+    def loading_force(self, indentation):
+        """Force [N] on the virgin loading curve at indentation α ≥ 0 [m]."""
+        alpha = np.asarray(indentation, dtype=float)
+        return self.force(alpha, alpha)
+
+    # -- energies ---------------------------------------------------------------
+    def loading_energy(self, max_indentation, points: int = 2001):
+        """Work [J] done on the contact loading from 0 to α_max [m] (quadrature).
+
+        Subclasses with a closed form override this. ``points`` is the number of
+        Gauss-Legendre-free composite quadrature points (Simpson on a graded grid).
+        """
+        alpha_max = np.asarray(max_indentation, dtype=float)
+        s = _graded_grid(points)
+        alpha = alpha_max[..., None] * s
+        force = self.loading_force(alpha)
+        return _simpson(force, alpha)
+
+    def recovered_energy(self, max_indentation, points: int = 2001):
+        """Work [J] returned by the contact unloading from α_max to α_f [m] (quadrature)."""
+        alpha_max = np.asarray(max_indentation, dtype=float)
+        alpha_f = np.asarray(self.permanent_indentation(alpha_max), dtype=float)
+        s = _graded_grid(points)
+        alpha = alpha_f[..., None] + (alpha_max - alpha_f)[..., None] * s
+        force = self.force(alpha, alpha_max[..., None])
+        return _simpson(force, alpha)
+
+    def dissipated_energy(self, max_indentation):
+        """Energy [J] dissipated by a full load–unload cycle to α_max [m] (≥ 0)."""
+        if self.elastic:
+            return np.zeros_like(np.asarray(max_indentation, dtype=float))
+        return self.loading_energy(max_indentation) - self.recovered_energy(max_indentation)
+
+
+def _graded_grid(points: int) -> np.ndarray:
+    """Points on [0, 1] clustered at both ends (where the laws have their kinks)."""
+    if points % 2 == 0:
+        points += 1
+    theta = np.linspace(0.0, np.pi, points)
+    return 0.5 * (1.0 - np.cos(theta))
+
+
+def _simpson(values, abscissae):
+    from scipy.integrate import simpson
+
+    return simpson(values, x=abscissae, axis=-1)
+
+
+# -- registry -----------------------------------------------------------------------
+_REGISTRY: dict[str, type[ContactLaw]] = {}
+
+
+def register_contact_law(cls: type[ContactLaw]) -> type[ContactLaw]:
+    """Class decorator: add a contact law to the registry under ``cls.name``."""
+    if cls.name in _REGISTRY and _REGISTRY[cls.name] is not cls:
+        raise ValueError(f"contact law name {cls.name!r} is already registered")
+    _REGISTRY[cls.name] = cls
+    return cls
+
+
+def available_contact_laws() -> tuple[str, ...]:
+    """Names of all registered contact laws, sorted."""
+    return tuple(sorted(_REGISTRY))
+
+
+def contact_law_class(name: str) -> type[ContactLaw]:
+    """The contact-law class registered as ``name`` (``ValueError`` if unknown)."""
+    require_choice("contact law", name, available_contact_laws())
+    return _REGISTRY[name]
+
+
+def contact_law(name: str, **parameters) -> ContactLaw:
+    """Build the registered contact law ``name`` from keyword parameters (SI units)."""
+    return contact_law_class(name)(**parameters)
+
+
+# -- contact geometry ---------------------------------------------------------------
+def effective_modulus(
+    youngs_modulus_1, poisson_ratio_1, youngs_modulus_2=np.inf, poisson_ratio_2=0.0
+):
+    """Effective contact modulus E* [Pa], ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` (seed 001 eq 8).
+
+    Parameters
+    ----------
+    youngs_modulus_1, poisson_ratio_1 : float or array_like
+        Young's modulus [Pa] and Poisson ratio [-] of body 1 (the impactor).
+    youngs_modulus_2, poisson_ratio_2 : float or array_like
+        The same for body 2 (the target); ``inf`` means rigid.
+    """
+    require_positive("youngs_modulus_1", youngs_modulus_1, "Pa")
+    require_in_range("poisson_ratio_1", poisson_ratio_1, -1.0, 0.5,
+                     low_inclusive=False, high_inclusive=False)
+    e2 = np.asarray(youngs_modulus_2, dtype=float)
+    if np.any(np.isnan(e2)) or np.any(e2 <= 0):
+        raise ValueError(f"youngs_modulus_2 = {youngs_modulus_2!r} is invalid: valid range is (0, inf] [Pa]")
+    require_in_range("poisson_ratio_2", poisson_ratio_2, -1.0, 0.5,
+                     low_inclusive=False, high_inclusive=False)
+    compliance = (1 - np.asarray(poisson_ratio_1) ** 2) / np.asarray(youngs_modulus_1, float)
+    compliance = compliance + np.where(np.isinf(e2), 0.0, (1 - np.asarray(poisson_ratio_2) ** 2) / e2)
+    return 1.0 / compliance
+
+
+def effective_radius(radius_1, radius_2=np.inf):
+    """Effective contact radius R [m], ``1/R = 1/R1 + 1/R2``; ``radius_2 = inf`` is a flat."""
+    require_positive("radius_1", radius_1, "m")
+    r2 = np.asarray(radius_2, dtype=float)
+    if np.any(np.isnan(r2)) or np.any(r2 <= 0):
+        raise ValueError(f"radius_2 = {radius_2!r} is invalid: valid range is (0, inf] [m]")
+    return 1.0 / (1.0 / np.asarray(radius_1, float) + np.where(np.isinf(r2), 0.0, 1.0 / r2))
+
+
+def _nonnegative(name, value, unit=""):  # re-exported for law modules
+    require_nonnegative(name, value, unit)

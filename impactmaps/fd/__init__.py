@@ -1,0 +1,1 @@
+"""Finite-difference Rayleigh beam with a layered elastic-plastic cross-section."""

@@ -1,0 +1,1 @@
+"""The ζ–λ maps: sweeps, resumable stores, regimes, lookup tables."""

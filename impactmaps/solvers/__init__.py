@@ -1,0 +1,1 @@
+"""Impact solvers: modal, compact (half-space) and closed-form asymptotes."""

@@ -1,0 +1,115 @@
+"""What a target must supply to the impact solvers.
+
+A target is anything the sphere strikes. The modal solver needs only what the target
+looks like *from the impact point*: its natural frequencies, the mass-normalised mode
+shapes evaluated there, and the static compliance of the modes it leaves out
+(:class:`ModalBasis`). The dimensionless framework needs the static point stiffness
+(for λ) and the loss-factor formula of the structure type (for ζ).
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+__all__ = ["ModalBasis", "Target"]
+
+
+@dataclass(frozen=True)
+class ModalBasis:
+    """Modes of a target seen from the impact point.
+
+    Attributes
+    ----------
+    frequencies : ndarray, shape (n,)
+        Natural frequencies ω_j [rad/s], ascending; zero for rigid-body modes.
+    participation : ndarray, shape (n,)
+        Mass-normalised mode shapes at the impact point φ_j(x0) [kg^-1/2], so that the
+        target deflection there is ``w_t = Σ φ_j q_j`` and ``q̈_j + ω_j² q_j = φ_j F``.
+    residual_compliance : float
+        Static compliance [m/N] at the impact point of the modes *not* retained
+        (exact static compliance minus ``Σ φ_j²/ω_j²`` over retained elastic modes);
+        added in series with the contact (residual-flexibility correction, spec 3.4).
+    damping_ratios : ndarray, shape (n,)
+        Modal viscous damping ratios [-] (default zeros).
+    """
+
+    frequencies: np.ndarray
+    participation: np.ndarray
+    residual_compliance: float = 0.0
+    damping_ratios: np.ndarray | None = None
+
+    def __post_init__(self):
+        frequencies = np.ascontiguousarray(self.frequencies, dtype=float)
+        participation = np.ascontiguousarray(self.participation, dtype=float)
+        if frequencies.shape != participation.shape or frequencies.ndim != 1:
+            raise ValueError(
+                "frequencies and participation must be 1-D arrays of equal length, got "
+                f"shapes {frequencies.shape} and {participation.shape}"
+            )
+        if np.any(~np.isfinite(frequencies)) or np.any(frequencies < 0):
+            raise ValueError("frequencies must be finite and >= 0 [rad/s]")
+        if not np.all(np.isfinite(participation)):
+            raise ValueError("participation must be finite [kg^-1/2]")
+        if not (np.isfinite(self.residual_compliance) and self.residual_compliance >= 0):
+            raise ValueError(
+                f"residual_compliance = {self.residual_compliance!r} is invalid: "
+                "valid range is [0, inf) [m/N]"
+            )
+        damping = (
+            np.zeros_like(frequencies)
+            if self.damping_ratios is None
+            else np.broadcast_to(np.asarray(self.damping_ratios, dtype=float), frequencies.shape).copy()
+        )
+        if np.any(damping < 0) or np.any(damping >= 1):
+            raise ValueError("damping_ratios must lie in [0, 1)")
+        object.__setattr__(self, "frequencies", frequencies)
+        object.__setattr__(self, "participation", participation)
+        object.__setattr__(self, "damping_ratios", damping)
+
+    @property
+    def size(self) -> int:
+        """Number of retained modes."""
+        return int(self.frequencies.size)
+
+    @property
+    def retained_compliance(self) -> float:
+        """Static compliance [m/N] of the retained elastic modes, ``Σ φ_j²/ω_j²``."""
+        elastic = self.frequencies > 0
+        return float(np.sum(self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2))
+
+
+class Target(ABC):
+    """A struck structure: supplies modes at the impact point and its static stiffness.
+
+    Subclasses are frozen dataclasses (SI units) with ``structure`` set to ``"beam"``,
+    ``"plate"`` or ``"halfspace"``.
+    """
+
+    structure: ClassVar[str]
+
+    @abstractmethod
+    def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
+        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
+
+        The returned basis carries the residual compliance of the modes left out.
+        """
+
+    @abstractmethod
+    def static_compliance(self) -> float:
+        """Static point compliance 1/K_st [m/N] at the impact point, as used for λ."""
+
+    def static_stiffness(self) -> float:
+        """Static point stiffness K_st [N/m] at the impact point (spec 3.2, 3.3)."""
+        return 1.0 / self.static_compliance()
+
+    @abstractmethod
+    def loss_factor(self, impactor_mass, contact_stiffness):
+        """Loss factor ζ [-] of this structure type for impactor mass [kg] and K [N/m]."""
+
+    @abstractmethod
+    def impactor_mass_for(self, loss_factor, contact_stiffness):
+        """Impactor mass m_i [kg] giving ``loss_factor`` ζ with contact stiffness K [N/m]."""
