@@ -1,0 +1,108 @@
+"""Hertz contact ``F = K_h α^{3/2}`` of a sphere on a flat (seed 001 eqs 4, 7, 8).
+
+Elastic, no history: unloading retraces loading and nothing is dissipated.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numba
+import numpy as np
+
+from .._checks import require_positive
+from .base import ContactLaw, effective_modulus, register_contact_law
+
+__all__ = ["HertzContact", "hertz_stiffness"]
+
+
+def hertz_stiffness(effective_modulus, radius):
+    """Hertz contact stiffness ``K_h = (4/3) sqrt(R) E*`` [N/m^1.5] (seed 001 eq 7).
+
+    Parameters
+    ----------
+    effective_modulus : float or array_like
+        Effective contact modulus E* [Pa] (seed 001 eq 8, see
+        :func:`impactmaps.contact.effective_modulus`).
+    radius : float or array_like
+        Effective radius R [m] (the sphere radius for a sphere on a flat).
+
+    Returns
+    -------
+    ndarray
+        K_h [N/m^1.5].
+    """
+    require_positive("effective_modulus", effective_modulus, "Pa")
+    require_positive("radius", radius, "m")
+    return 4.0 / 3.0 * np.sqrt(np.asarray(radius, float)) * np.asarray(effective_modulus, float)
+
+
+@numba.njit(cache=True)
+def _hertz_kernel(alpha, alpha_max, params):
+    if alpha <= 0.0:
+        return 0.0, 0.0
+    stiffness = params[0]
+    root = math.sqrt(alpha)
+    return stiffness * alpha * root, 1.5 * stiffness * root
+
+
+@register_contact_law
+@dataclass(frozen=True)
+class HertzContact(ContactLaw):
+    """Hertz elastic contact, ``F = K_h α^{3/2}`` for α > 0, else 0 (seed 001 eq 4).
+
+    Parameters
+    ----------
+    stiffness : float or array_like
+        Hertz stiffness K_h [N/m^1.5], ``(4/3) sqrt(R) E*`` for a sphere of radius R on
+        a flat (seed 001 eq 7; Johnson, *Contact Mechanics*, 1985, §4.2).
+    """
+
+    stiffness: float
+
+    name: ClassVar[str] = "hertz"
+    elastic: ClassVar[bool] = True
+    kernel = staticmethod(_hertz_kernel)
+
+    def __post_init__(self):
+        require_positive("stiffness", self.stiffness, "N/m^1.5")
+
+    @classmethod
+    def from_geometry(cls, effective_modulus, radius) -> "HertzContact":
+        """Build from the effective modulus E* [Pa] and effective radius R [m]."""
+        return cls(hertz_stiffness(effective_modulus, radius))
+
+    @classmethod
+    def from_sphere(cls, radius, impactor_material, target_material) -> "HertzContact":
+        """Sphere of radius R [m] on a flat target; E* from both materials (eq 8).
+
+        ``impactor_material`` and ``target_material`` need ``youngs_modulus`` [Pa] and
+        ``poisson_ratio`` [-] attributes (for example
+        :class:`impactmaps.materials.IsotropicMaterial`).
+        """
+        modulus = effective_modulus(
+            impactor_material.youngs_modulus,
+            impactor_material.poisson_ratio,
+            target_material.youngs_modulus,
+            target_material.poisson_ratio,
+        )
+        return cls.from_geometry(modulus, radius)
+
+    @property
+    def kernel_parameters(self) -> np.ndarray:
+        return np.asarray(self.stiffness, dtype=float)[None, ...]
+
+    def permanent_indentation(self, max_indentation):
+        """Zero [m]: the Hertz law is elastic."""
+        return np.zeros_like(np.asarray(max_indentation, dtype=float))
+
+    def loading_energy(self, max_indentation, points: int = 0):
+        """Stored energy ``(2/5) K_h α_max^{5/2}`` [J] (closed form)."""
+        alpha_max = np.clip(np.asarray(max_indentation, dtype=float), 0.0, None)
+        return 0.4 * np.asarray(self.stiffness, float) * alpha_max**2.5
+
+    def recovered_energy(self, max_indentation, points: int = 0):
+        """Equal to :meth:`loading_energy` [J] (elastic)."""
+        return self.loading_energy(max_indentation)

@@ -1,0 +1,637 @@
+"""Target materials: isotropic solids, unidirectional plies, laminates, a small catalogue.
+
+Everything is in SI units (Pa, kg/m³, m). Three kinds of object:
+
+* :class:`IsotropicMaterial` — a homogeneous isotropic solid (metals; the impactor).
+* :class:`Ply` — one unidirectional, transversely isotropic lamina with its fibre angle.
+* :class:`Laminate` — a stack of plies, with the stiffness matrices of classical
+  lamination theory (CLT) that the beam and plate equations of seed 001 (13)–(17) need:
+  ``A``, ``B``, ``D`` (3×3) and the transverse-shear stiffnesses ``A44``, ``A55``.
+
+Conventions
+-----------
+* Plies are listed from the **struck face** to the back face. The thickness coordinate
+  ``z`` is measured from the mid-plane *in the direction of impact*: the struck face is
+  ``z = −h/2`` and ``plies[0]`` occupies ``[−h/2, −h/2 + t_0]`` (z positive "downward",
+  ply 1 at the top, as in Jones, *Mechanics of Composite Materials*, 2nd ed., 1999, §4.2).
+  Only the sign of ``B`` depends on this choice.
+* Ply angle θ is measured from the laminate x axis to the fibre direction 1, positive
+  anticlockwise seen from the struck face. Engineering shear strains (γ = 2ε).
+* Transverse shear: index 4 is the y–z plane, index 5 the x–z plane (A44 pairs with ψ_y
+  and A55 with ψ_x, seed 001 (13)–(15)). The shear correction factor k is *not* included;
+  the targets apply it.
+
+Contact with a sphere
+---------------------
+A laminate is transversely isotropic through the thickness only approximately; for the
+Hertz contact stiffness the usual engineering model (Yang & Sun 1982, ASTM STP 787;
+Tan & Sun, J. Appl. Mech. 52 (1985) 6–12) treats the laminate as a transversely isotropic
+half-space whose contact compliance is ``1/E_2`` (the transverse modulus of the ply),
+i.e. ``K_h = (4/3) sqrt(R) / [(1 − ν_s²)/E_s + 1/E_2]``. This is the isotropic formula
+(seed 001 eq 8) with ``E_t = E_2`` and ``ν_t = 0``, which is what
+:attr:`Laminate.youngs_modulus` and :attr:`Laminate.poisson_ratio` return.
+Independent support: Wu & Yen (J. Appl. Mech. 61 (1994) 60–66), from an exact 3-D
+anisotropic Green's function, find the force–indentation relation "approximately
+proportional to the out-of-plane Young's modulus" and insensitive to in-plane moduli
+and stacking sequence (abstract, https://acnpsearch.tweb-dev.unibo.it/singlejournalindex/40457165).
+(The Tan & Sun formula itself was not checked against a stored copy of the paper.)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from collections.abc import Iterable
+
+import numpy as np
+
+from ._checks import require_choice, require_finite, require_in_range, require_positive
+
+__all__ = [
+    "DEFAULT_PLY_THICKNESS",
+    "SPECIALLY_ORTHOTROPIC_RTOL",
+    "IsotropicMaterial",
+    "Ply",
+    "Laminate",
+    "CATALOGUE",
+    "material",
+    "available_materials",
+]
+
+#: Default cured ply thickness [m]: 0.125 mm, the nominal thickness of standard
+#: carbon/epoxy unidirectional prepreg (used e.g. with AS4/3501-6 in Anand, Kamrin &
+#: Govindjee, *Introduction to Mechanics of Solids*, OUP 2022, example 23.2, and in
+#: Barbero, *Introduction to Composite Materials Design*, example 7.9). A nominal value,
+#: not a property of a particular material batch: pass ``thickness`` for real laminates.
+DEFAULT_PLY_THICKNESS = 0.125e-3
+
+#: Relative tolerance of :attr:`Laminate.is_specially_orthotropic`.
+SPECIALLY_ORTHOTROPIC_RTOL = 1e-9
+
+
+def _scalar(name: str, value, unit: str = "") -> float:
+    """Return ``value`` as a Python float, or raise ``ValueError`` naming ``name``."""
+    require_finite(name, value, unit)
+    array = np.asarray(value, dtype=float)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be a scalar, got an array of shape {array.shape}")
+    return float(array)
+
+
+# ---------------------------------------------------------------------------------
+# Isotropic material
+# ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class IsotropicMaterial:
+    """A homogeneous, linearly elastic, isotropic material.
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa], > 0.
+    poisson_ratio : float
+        Poisson ratio ν [-], −1 < ν < 0.5.
+    density : float
+        Mass density ρ [kg/m³], > 0.
+    yield_strength : float, optional
+        Uniaxial yield strength S_y [Pa], > 0 (used by the elastic–plastic contact
+        laws, seed 001 eq 9). ``None`` if not known.
+    name : str, optional
+        Label.
+    """
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+    yield_strength: float | None = None
+    name: str = ""
+
+    def __post_init__(self):
+        youngs = _scalar("youngs_modulus", self.youngs_modulus, "Pa")
+        require_positive("youngs_modulus", youngs, "Pa")
+        poisson = _scalar("poisson_ratio", self.poisson_ratio)
+        require_in_range("poisson_ratio", poisson, -1.0, 0.5,
+                         low_inclusive=False, high_inclusive=False)
+        density = _scalar("density", self.density, "kg/m^3")
+        require_positive("density", density, "kg/m^3")
+        object.__setattr__(self, "youngs_modulus", youngs)
+        object.__setattr__(self, "poisson_ratio", poisson)
+        object.__setattr__(self, "density", density)
+        if self.yield_strength is not None:
+            strength = _scalar("yield_strength", self.yield_strength, "Pa")
+            require_positive("yield_strength", strength, "Pa")
+            object.__setattr__(self, "yield_strength", strength)
+
+    @property
+    def shear_modulus(self) -> float:
+        """Shear modulus G = E / (2(1 + ν)) [Pa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def plate_bending_modulus(self) -> float:
+        """Plane-stress (plate) modulus E / (1 − ν²) [Pa]; D = this × h³/12."""
+        return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
+
+    def as_ply(self, thickness: float, angle_deg: float = 0.0) -> "Ply":
+        """This material as an isotropic :class:`Ply` of the given thickness [m].
+
+        ``E1 = E2 = E``, ``G12 = G13 = G23 = G``, ``ν12 = ν``, so that CLT reproduces
+        the isotropic plate: ``D11 = E h³/(12(1 − ν²))``, ``A44 = A55 = G h``.
+        """
+        shear = self.shear_modulus
+        return Ply(
+            longitudinal_modulus=self.youngs_modulus,
+            transverse_modulus=self.youngs_modulus,
+            shear_modulus=shear,
+            poisson_ratio=self.poisson_ratio,
+            density=self.density,
+            thickness=thickness,
+            angle_deg=angle_deg,
+            transverse_shear_modulus_13=shear,
+            transverse_shear_modulus_23=shear,
+            name=self.name,
+        )
+
+
+# ---------------------------------------------------------------------------------
+# Ply
+# ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Ply:
+    """One unidirectional lamina (orthotropic in its plane, plane stress).
+
+    Parameters
+    ----------
+    longitudinal_modulus : float
+        E1, Young's modulus along the fibres [Pa], > 0.
+    transverse_modulus : float
+        E2, Young's modulus across the fibres in the ply plane [Pa], > 0. Also taken as
+        the out-of-plane modulus E3 (transverse isotropy) for contact.
+    shear_modulus : float
+        G12, in-plane shear modulus [Pa], > 0.
+    poisson_ratio : float
+        ν12, major Poisson ratio [-]; must satisfy ``ν12² < E1/E2`` (positive-definite
+        compliance, i.e. ``1 − ν12 ν21 > 0``).
+    density : float
+        ρ [kg/m³], > 0.
+    thickness : float, optional
+        Ply thickness t [m], > 0; default :data:`DEFAULT_PLY_THICKNESS` (0.125 mm).
+    angle_deg : float, optional
+        Fibre angle θ from the laminate x axis [degrees], default 0.
+    transverse_shear_modulus_13 : float, optional
+        G13 [Pa], > 0. Default ``G12`` — exact for a transversely isotropic ply
+        (the 1–3 plane is equivalent to the 1–2 plane).
+    transverse_shear_modulus_23 : float, optional
+        G23 [Pa], > 0. Default ``G12``. This is a **simplifying assumption**, common in
+        impact analyses of laminates, not a material law: for a transversely isotropic
+        ply ``G23 = E2 / (2(1 + ν23))``, typically 60–90 % of G12. It only enters the
+        transverse-shear stiffness (Mindlin/Timoshenko); give it when known.
+    name : str, optional
+        Label.
+
+    Notes
+    -----
+    The defaults of G13 and G23 are resolved in ``__post_init__``, so the attributes
+    always hold the values actually used.
+    """
+
+    longitudinal_modulus: float
+    transverse_modulus: float
+    shear_modulus: float
+    poisson_ratio: float
+    density: float
+    thickness: float = DEFAULT_PLY_THICKNESS
+    angle_deg: float = 0.0
+    transverse_shear_modulus_13: float | None = None
+    transverse_shear_modulus_23: float | None = None
+    name: str = ""
+
+    def __post_init__(self):
+        values = {}
+        for attribute, unit in (
+            ("longitudinal_modulus", "Pa"),
+            ("transverse_modulus", "Pa"),
+            ("shear_modulus", "Pa"),
+            ("density", "kg/m^3"),
+            ("thickness", "m"),
+        ):
+            value = _scalar(attribute, getattr(self, attribute), unit)
+            require_positive(attribute, value, unit)
+            values[attribute] = value
+        limit = math.sqrt(values["longitudinal_modulus"] / values["transverse_modulus"])
+        poisson = _scalar("poisson_ratio", self.poisson_ratio)
+        # 1 - ν12 ν21 > 0  <=>  |ν12| < sqrt(E1/E2)
+        require_in_range("poisson_ratio", poisson, -limit, limit,
+                         low_inclusive=False, high_inclusive=False)
+        values["poisson_ratio"] = poisson
+        values["angle_deg"] = _scalar("angle_deg", self.angle_deg, "deg")
+        for attribute in ("transverse_shear_modulus_13", "transverse_shear_modulus_23"):
+            given = getattr(self, attribute)
+            if given is None:
+                values[attribute] = values["shear_modulus"]
+            else:
+                value = _scalar(attribute, given, "Pa")
+                require_positive(attribute, value, "Pa")
+                values[attribute] = value
+        for attribute, value in values.items():
+            object.__setattr__(self, attribute, value)
+
+    # -- engineering constants --------------------------------------------------------
+    @property
+    def minor_poisson_ratio(self) -> float:
+        """ν21 = ν12 E2 / E1 [-] (reciprocity)."""
+        return self.poisson_ratio * self.transverse_modulus / self.longitudinal_modulus
+
+    @property
+    def mass_per_area(self) -> float:
+        """ρ t [kg/m²]."""
+        return self.density * self.thickness
+
+    @property
+    def is_isotropic(self) -> bool:
+        """True if E1 = E2, G12 = E1/(2(1 + ν12)) and G13 = G23 = G12 (to 1e-9 relative)."""
+        close = lambda a, b: math.isclose(a, b, rel_tol=1e-9)  # noqa: E731
+        return (
+            close(self.longitudinal_modulus, self.transverse_modulus)
+            and close(self.shear_modulus,
+                      self.longitudinal_modulus / (2.0 * (1.0 + self.poisson_ratio)))
+            and close(self.transverse_shear_modulus_13, self.shear_modulus)
+            and close(self.transverse_shear_modulus_23, self.shear_modulus)
+        )
+
+    # -- stiffness matrices -------------------------------------------------------------
+    @property
+    def reduced_stiffness(self) -> np.ndarray:
+        """Plane-stress reduced stiffness Q in the ply axes (1, 2, 12), 3×3 [Pa].
+
+        ``Q11 = E1/(1−ν12ν21)``, ``Q22 = E2/(1−ν12ν21)``, ``Q12 = ν12 E2/(1−ν12ν21)``,
+        ``Q66 = G12`` (Jones 1999, eq. 2.61).
+        """
+        e1, e2, nu12 = self.longitudinal_modulus, self.transverse_modulus, self.poisson_ratio
+        denominator = 1.0 - nu12 * self.minor_poisson_ratio
+        q11 = e1 / denominator
+        q22 = e2 / denominator
+        q12 = nu12 * e2 / denominator
+        return np.array([[q11, q12, 0.0], [q12, q22, 0.0], [0.0, 0.0, self.shear_modulus]])
+
+    @property
+    def transformed_reduced_stiffness(self) -> np.ndarray:
+        """Reduced stiffness Q̄ in the laminate axes (x, y, xy) for the ply angle, 3×3 [Pa].
+
+        Standard transformation (Jones 1999, eq. 2.85), with m = cos θ, n = sin θ.
+        """
+        q = self.reduced_stiffness
+        q11, q12, q22, q66 = q[0, 0], q[0, 1], q[1, 1], q[2, 2]
+        theta = math.radians(self.angle_deg)
+        m, n = math.cos(theta), math.sin(theta)
+        m2, n2 = m * m, n * n
+        qb11 = q11 * m2 * m2 + 2.0 * (q12 + 2.0 * q66) * m2 * n2 + q22 * n2 * n2
+        qb22 = q11 * n2 * n2 + 2.0 * (q12 + 2.0 * q66) * m2 * n2 + q22 * m2 * m2
+        qb12 = (q11 + q22 - 4.0 * q66) * m2 * n2 + q12 * (m2 * m2 + n2 * n2)
+        qb66 = (q11 + q22 - 2.0 * q12 - 2.0 * q66) * m2 * n2 + q66 * (m2 * m2 + n2 * n2)
+        qb16 = (q11 - q12 - 2.0 * q66) * m2 * m * n + (q12 - q22 + 2.0 * q66) * m * n2 * n
+        qb26 = (q11 - q12 - 2.0 * q66) * m * n2 * n + (q12 - q22 + 2.0 * q66) * m2 * m * n
+        return np.array([[qb11, qb12, qb16], [qb12, qb22, qb26], [qb16, qb26, qb66]])
+
+    @property
+    def transverse_shear_stiffness(self) -> np.ndarray:
+        """Transverse-shear stiffness [[Q̄44, Q̄45], [Q̄45, Q̄55]] in laminate axes [Pa].
+
+        ``Q̄44 = G23 m² + G13 n²`` (y–z), ``Q̄55 = G13 m² + G23 n²`` (x–z),
+        ``Q̄45 = (G13 − G23) m n`` (rotation of the shear strains γ13, γ23 by θ).
+        """
+        theta = math.radians(self.angle_deg)
+        m, n = math.cos(theta), math.sin(theta)
+        g13, g23 = self.transverse_shear_modulus_13, self.transverse_shear_modulus_23
+        q44 = g23 * m * m + g13 * n * n
+        q55 = g13 * m * m + g23 * n * n
+        q45 = (g13 - g23) * m * n
+        return np.array([[q44, q45], [q45, q55]])
+
+    def rotated(self, angle_deg: float) -> "Ply":
+        """A copy of this ply with fibre angle ``angle_deg`` [degrees]."""
+        return replace(self, angle_deg=angle_deg)
+
+
+# ---------------------------------------------------------------------------------
+# Laminate
+# ---------------------------------------------------------------------------------
+def _read_only(array: np.ndarray) -> np.ndarray:
+    array.setflags(write=False)
+    return array
+
+
+@dataclass(frozen=True)
+class Laminate:
+    """A stack of plies, described by classical lamination theory.
+
+    Parameters
+    ----------
+    plies : sequence of Ply
+        Plies from the struck face (z = −h/2) to the back face (z = +h/2); see the
+        module docstring for the sign conventions. An isotropic plate is a laminate of
+        one isotropic ply (:meth:`from_isotropic`).
+    name : str, optional
+        Label.
+    yield_strength : float, optional
+        Strength S_y [Pa] used by the elastic–plastic contact laws (for composites seed
+        001 takes ``S_y = 2 S_u``); ``None`` if not given.
+
+    Notes
+    -----
+    ``A = Σ Q̄_k (z_k − z_{k−1})``, ``B = ½ Σ Q̄_k (z_k² − z_{k−1}²)``,
+    ``D = ⅓ Σ Q̄_k (z_k³ − z_{k−1}³)`` (Jones 1999, eq. 4.28); transverse shear
+    ``A44 = Σ Q̄44_k t_k``, ``A55 = Σ Q̄55_k t_k`` (no shear correction factor).
+    """
+
+    plies: tuple
+    name: str = ""
+    yield_strength: float | None = None
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        plies = tuple(self.plies) if isinstance(self.plies, Iterable) else (self.plies,)
+        if len(plies) == 0:
+            raise ValueError("plies must contain at least one Ply, got an empty sequence")
+        for index, ply in enumerate(plies):
+            if not isinstance(ply, Ply):
+                raise ValueError(f"plies[{index}] = {ply!r} is not a Ply")
+        object.__setattr__(self, "plies", plies)
+        if self.yield_strength is not None:
+            strength = _scalar("yield_strength", self.yield_strength, "Pa")
+            require_positive("yield_strength", strength, "Pa")
+            object.__setattr__(self, "yield_strength", strength)
+
+    # -- constructors -------------------------------------------------------------------
+    @classmethod
+    def from_layup(cls, ply: Ply, angles_deg, symmetric: bool = True, name: str = "",
+                   yield_strength: float | None = None) -> "Laminate":
+        """Laminate of identical plies at the given angles.
+
+        Parameters
+        ----------
+        ply : Ply
+            The ply material and thickness (its own angle is ignored).
+        angles_deg : sequence of float
+            Fibre angles [degrees] from the struck face towards the mid-plane when
+            ``symmetric`` is true (then mirrored: ``[0, 90]`` gives ``[0/90/90/0]``),
+            or through the whole thickness when false.
+        symmetric : bool, optional
+            Mirror the angles about the mid-plane (default True).
+        name : str, optional
+            Label.
+        yield_strength : float, optional
+            See :class:`Laminate`.
+        """
+        if not isinstance(ply, Ply):
+            raise ValueError(f"ply = {ply!r} is not a Ply")
+        angles = [float(a) for a in np.atleast_1d(np.asarray(angles_deg, dtype=float))]
+        if not angles:
+            raise ValueError("angles_deg must contain at least one angle, got none")
+        require_finite("angles_deg", angles, "deg")
+        if symmetric:
+            angles = angles + angles[::-1]
+        return cls(tuple(ply.rotated(a) for a in angles), name=name,
+                   yield_strength=yield_strength)
+
+    @classmethod
+    def from_isotropic(cls, material: IsotropicMaterial, thickness: float,
+                       name: str = "") -> "Laminate":
+        """A homogeneous isotropic plate of thickness ``thickness`` [m] as a one-ply laminate.
+
+        The yield strength of ``material`` is carried over.
+        """
+        if not isinstance(material, IsotropicMaterial):
+            raise ValueError(f"material = {material!r} is not an IsotropicMaterial")
+        return cls((material.as_ply(thickness),), name=name or material.name,
+                   yield_strength=material.yield_strength)
+
+    # -- geometry and mass --------------------------------------------------------------
+    @property
+    def thickness(self) -> float:
+        """Total thickness h [m]."""
+        return float(sum(p.thickness for p in self.plies))
+
+    @property
+    def interfaces(self) -> np.ndarray:
+        """Ply interface coordinates z_0 = −h/2, …, z_n = +h/2 [m], shape (n+1,)."""
+        if "z" not in self._cache:
+            z = np.concatenate(([0.0], np.cumsum([p.thickness for p in self.plies])))
+            self._cache["z"] = _read_only(z - 0.5 * z[-1])
+        return self._cache["z"]
+
+    @property
+    def angles_deg(self) -> tuple:
+        """Fibre angles of the plies [degrees], struck face first."""
+        return tuple(p.angle_deg for p in self.plies)
+
+    @property
+    def mass_per_area(self) -> float:
+        """Mass per unit area ρh = Σ ρ_k t_k [kg/m²]."""
+        return float(sum(p.density * p.thickness for p in self.plies))
+
+    @property
+    def density(self) -> float:
+        """Thickness-averaged density (mass_per_area / thickness) [kg/m³]."""
+        return self.mass_per_area / self.thickness
+
+    @property
+    def rotary_inertia_per_area(self) -> float:
+        """Rotary inertia per unit area Σ ρ_k (z_k³ − z_{k−1}³)/3 [kg] (= ρh³/12 if homogeneous)."""
+        z = self.interfaces
+        return float(sum(p.density * (z[k + 1] ** 3 - z[k] ** 3) / 3.0
+                         for k, p in enumerate(self.plies)))
+
+    # -- stiffness ----------------------------------------------------------------------
+    def _stiffness(self):
+        if "A" not in self._cache:
+            z = self.interfaces
+            a = np.zeros((3, 3))
+            b = np.zeros((3, 3))
+            d = np.zeros((3, 3))
+            shear = np.zeros((2, 2))
+            for k, ply in enumerate(self.plies):
+                qbar = ply.transformed_reduced_stiffness
+                a += qbar * (z[k + 1] - z[k])
+                b += qbar * (z[k + 1] ** 2 - z[k] ** 2) / 2.0
+                d += qbar * (z[k + 1] ** 3 - z[k] ** 3) / 3.0
+                shear += ply.transverse_shear_stiffness * (z[k + 1] - z[k])
+            self._cache.update(A=_read_only(a), B=_read_only(b), D=_read_only(d),
+                               S=_read_only(shear))
+        return self._cache
+
+    @property
+    def A(self) -> np.ndarray:  # noqa: N802 (the standard CLT symbol)
+        """Extensional stiffness matrix A (x, y, xy), 3×3 [N/m]."""
+        return self._stiffness()["A"]
+
+    @property
+    def B(self) -> np.ndarray:  # noqa: N802
+        """Extension–bending coupling matrix B, 3×3 [N]."""
+        return self._stiffness()["B"]
+
+    @property
+    def D(self) -> np.ndarray:  # noqa: N802
+        """Bending stiffness matrix D, 3×3 [N·m]."""
+        return self._stiffness()["D"]
+
+    @property
+    def transverse_shear_stiffness(self) -> np.ndarray:
+        """[[A44, A45], [A45, A55]] [N/m], without the shear correction factor."""
+        return self._stiffness()["S"]
+
+    @property
+    def D11(self) -> float:  # noqa: N802
+        """Bending stiffness D11 [N·m]."""
+        return float(self.D[0, 0])
+
+    @property
+    def D22(self) -> float:  # noqa: N802
+        """Bending stiffness D22 [N·m]."""
+        return float(self.D[1, 1])
+
+    @property
+    def D12(self) -> float:  # noqa: N802
+        """Bending stiffness D12 [N·m]."""
+        return float(self.D[0, 1])
+
+    @property
+    def D66(self) -> float:  # noqa: N802
+        """Twisting stiffness D66 [N·m]."""
+        return float(self.D[2, 2])
+
+    @property
+    def A44(self) -> float:  # noqa: N802
+        """Transverse shear stiffness in the y–z plane, Σ Q̄44 t [N/m]."""
+        return float(self.transverse_shear_stiffness[0, 0])
+
+    @property
+    def A55(self) -> float:  # noqa: N802
+        """Transverse shear stiffness in the x–z plane, Σ Q̄55 t [N/m]."""
+        return float(self.transverse_shear_stiffness[1, 1])
+
+    @property
+    def A45(self) -> float:  # noqa: N802
+        """Transverse shear coupling Σ Q̄45 t [N/m] (zero for cross-ply or G13 = G23)."""
+        return float(self.transverse_shear_stiffness[0, 1])
+
+    @property
+    def effective_bending_stiffness(self) -> float:
+        """Effective plate stiffness D* = ½(D12 + 2 D66 + sqrt(D11 D22)) [N·m] (seed 001 eq 31)."""
+        return 0.5 * (self.D12 + 2.0 * self.D66 + math.sqrt(self.D11 * self.D22))
+
+    def coupling_ratios(self) -> dict:
+        """Relative size of the terms that a specially orthotropic model neglects.
+
+        Returns
+        -------
+        dict
+            ``"D16"``, ``"D26"``: ``|D16|/sqrt(D11 D22)`` etc.; ``"B"``:
+            ``max|B_ij| / sqrt(max|A_ij| · max|D_ij|)``; ``"A45"``:
+            ``|A45|/sqrt(A44 A55)``. All dimensionless.
+        """
+        d_scale = math.sqrt(self.D11 * self.D22)
+        b_scale = math.sqrt(np.max(np.abs(self.A)) * np.max(np.abs(self.D)))
+        return {
+            "D16": abs(float(self.D[0, 2])) / d_scale,
+            "D26": abs(float(self.D[1, 2])) / d_scale,
+            "B": float(np.max(np.abs(self.B))) / b_scale,
+            "A45": abs(self.A45) / math.sqrt(self.A44 * self.A55),
+        }
+
+    @property
+    def is_specially_orthotropic(self) -> bool:
+        """True if D16, D26, B and A45 vanish to :data:`SPECIALLY_ORTHOTROPIC_RTOL`.
+
+        This is the condition under which the plate and beam equations of seed 001
+        (13)–(17) are exact for the laminate. Use :meth:`coupling_ratios` to apply
+        another tolerance.
+        """
+        return all(v <= SPECIALLY_ORTHOTROPIC_RTOL for v in self.coupling_ratios().values())
+
+    # -- contact ------------------------------------------------------------------------
+    @property
+    def youngs_modulus(self) -> float:
+        """Contact modulus of the struck face [Pa]: E2 of ``plies[0]``.
+
+        The transverse modulus stands for the out-of-plane modulus of a transversely
+        isotropic ply (Yang & Sun 1982; Tan & Sun 1985; see the module docstring).
+        For an isotropic ply it is simply E.
+        """
+        return self.plies[0].transverse_modulus
+
+    @property
+    def poisson_ratio(self) -> float:
+        """Poisson ratio to use with :attr:`youngs_modulus` in ``1/E*`` (seed 001 eq 8).
+
+        ``0.0`` for a composite struck face: Tan & Sun's laminate contact compliance is
+        ``1/E2`` with no ``(1 − ν²)`` factor, which is the isotropic formula with ν = 0.
+        If the struck ply is isotropic (:attr:`Ply.is_isotropic`), its own ν.
+        """
+        top = self.plies[0]
+        return top.poisson_ratio if top.is_isotropic else 0.0
+
+
+# ---------------------------------------------------------------------------------
+# Catalogue
+# ---------------------------------------------------------------------------------
+#: Named materials. Sources (stored public copies consulted; see each entry):
+CATALOGUE: dict = {
+    # Eurocode 3 structural steel, grade S235 (EN 10025-2), all four numbers from one
+    # standard: EN 1993-1-1:2005 §3.2.6 gives E = 210 000 MPa, ν = 0.30, and the
+    # density 7850 kg/m³ (unit weight 78.5 kN/m³, EN 1991-1-1 Table A.4); yield
+    # f_y = 235 MPa for t ≤ 40 mm (EN 1993-1-1 Table 3.1). Checked against the design
+    # table "Eurocode 3 — Table of design material properties for structural steel"
+    # (eurocodeapplied.com, reproduced at https://it.scribd.com/document/470650995/stee116).
+    # (ASTM A36 would give E = 200 GPa, ν = 0.26, S_y = 250 MPa minimum.)
+    "structural-steel": IsotropicMaterial(
+        youngs_modulus=210e9, poisson_ratio=0.30, density=7850.0,
+        yield_strength=235e6, name="structural steel S235 (EN 1993-1-1)",
+    ),
+    # Aluminium 6061-T6: Aluminum Association typical values as listed by MatWeb/ASM:
+    # E = 68.9 GPa (average of tension and compression), ν = 0.33, ρ = 2.70 g/cm³,
+    # tensile yield 276 MPa. Checked against https://www.mfgproto.com/aluminum-6061-t6-data-sheet/
+    # and https://www.glemco.com/capabilities/material-expertise/aluminum-6061-t6/ (same AA data).
+    "aluminium-6061-t6": IsotropicMaterial(
+        youngs_modulus=68.9e9, poisson_ratio=0.33, density=2700.0,
+        yield_strength=276e6, name="aluminium 6061-T6",
+    ),
+    # T300/934 carbon/epoxy as used in the impact literature (Sun & Chen, J. Appl. Mech.
+    # 52 (1985); Qian & Swanson, Comput. Struct. 1990): E1 = 120 GPa, E2 = 7.9 GPa,
+    # G12 = 5.5 GPa, ν12 = 0.30, ρ = 1580 kg/m³.
+    # UNVERIFIED: no stored copy of either paper or of a table with these numbers could
+    # be found; other sources give rather different T300/934 data (e.g. E1 = 19 Msi =
+    # 131 GPa, E2 = 1.5 Msi = 10.3 GPa). G13 = G23 = G12 by default (see Ply).
+    "t300-934": Ply(
+        longitudinal_modulus=120e9, transverse_modulus=7.9e9, shear_modulus=5.5e9,
+        poisson_ratio=0.30, density=1580.0, name="T300/934 (unverified)",
+    ),
+    # AS4/3501-6 carbon/epoxy, lamina data of the World-Wide Failure Exercise (Soden,
+    # Hinton & Kaddour, Compos. Sci. Technol. 58 (1998) 1011–1022): E1 = 126 GPa,
+    # E2 = 11 GPa, G12 = 6.6 GPa, ν12 = 0.28. Verified against two independent stored
+    # copies: Anand, Kamrin & Govindjee, Introduction to Mechanics of Solids (OUP 2022),
+    # example 23.2 (github.com/sanjayg0/ims, MainBook/ex23_2.m), and Barbero, Introduction
+    # to Composite Materials Design, example 7.9. Density 1600 kg/m³ is UNVERIFIED
+    # (typical for Vf ≈ 0.6 carbon/epoxy; one secondary source lists 1580).
+    "as4-3501-6": Ply(
+        longitudinal_modulus=126e9, transverse_modulus=11e9, shear_modulus=6.6e9,
+        poisson_ratio=0.28, density=1600.0, name="AS4/3501-6",
+    ),
+}
+
+
+def available_materials() -> tuple:
+    """Names in :data:`CATALOGUE`, sorted."""
+    return tuple(sorted(CATALOGUE))
+
+
+def material(name: str):
+    """The catalogue material ``name`` (an :class:`IsotropicMaterial` or a :class:`Ply`).
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not in :data:`CATALOGUE`; the message lists the known names.
+    """
+    require_choice("material name", name, available_materials())
+    return CATALOGUE[name]

@@ -1,0 +1,431 @@
+"""The exact-step modal impact integrator (numba).
+
+Between two instants the contact force is taken to vary linearly. For such a force
+every modal coordinate ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j F(t)`` and the impactor
+``m ẅ_i = −F`` are advanced *exactly*, so the scheme is unconditionally stable and the
+step follows the contact force, not the highest mode. The force at the end of a step
+is found implicitly from the contact law (closed form for a linear law, safeguarded
+Newton otherwise), with the residual flexibility of the dropped modes in series with
+the contact. Contact start and separation are located inside the step by bisection on
+the sign of the predicted contact force, and the step is split there.
+
+Everything here is a plain function of arrays so one compiled kernel serves single
+runs, batches and sweeps; :mod:`impactmaps.solvers.modal` is the Python front end.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+__all__ = ["oscillator_step_coefficients", "integrate_impact"]
+
+_SERIES_LIMIT = 0.25
+
+
+@numba.njit(cache=True)
+def _trig_functions(x):
+    """S = sin x/x, C1 = (1−cos x)/x², S3 = (x−sin x)/x³, stable for small x."""
+    if x < _SERIES_LIMIT:
+        x2 = x * x
+        s = 0.0
+        c1 = 0.0
+        s3 = 0.0
+        term = 1.0  # (−1)^k x^{2k}
+        fact_s = 1.0  # (2k+1)!
+        fact_c = 2.0  # (2k+2)!
+        fact_3 = 6.0  # (2k+3)!
+        for k in range(8):
+            s += term / fact_s
+            c1 += term / fact_c
+            s3 += term / fact_3
+            term *= -x2
+            fact_s *= (2 * k + 2) * (2 * k + 3)
+            fact_c *= (2 * k + 3) * (2 * k + 4)
+            fact_3 *= (2 * k + 4) * (2 * k + 5)
+        return s, c1, s3
+    sx = math.sin(x)
+    return sx / x, (1.0 - math.cos(x)) / (x * x), (x - sx) / (x * x * x)
+
+
+@numba.njit(cache=True)
+def _expm4(a):
+    """Matrix exponential of a 4×4 matrix by scaling and squaring with Taylor terms."""
+    norm = 0.0
+    for i in range(4):
+        row = 0.0
+        for j in range(4):
+            row += abs(a[i, j])
+        norm = max(norm, row)
+    squarings = 0
+    if norm > 0.25:
+        squarings = int(math.ceil(math.log2(norm / 0.25)))
+    scale = 2.0 ** (-squarings)
+    scaled = a * scale
+    result = np.eye(4)
+    term = np.eye(4)
+    for k in range(1, 14):
+        term = term @ scaled / k
+        result = result + term
+    for _ in range(squarings):
+        result = result @ result
+    return result
+
+
+@numba.njit(cache=True)
+def oscillator_step_coefficients(omega, zeta, h, out):
+    """Exact one-step coefficients of ``q̈ + 2ζωq̇ + ω²q = f(t)``, f linear on [0, h].
+
+    ``q(h) = out[0] q0 + out[1] v0 + out[4] f0 + out[5] f1`` and
+    ``v(h) = out[2] q0 + out[3] v0 + out[6] f0 + out[7] f1``.
+    Works for ω = 0 (free mass) and 0 ≤ ζ < 1.
+    """
+    if zeta == 0.0:
+        x = omega * h
+        s, c1, s3 = _trig_functions(x)
+        cosx = 1.0 - x * x * c1
+        out[0] = cosx
+        out[1] = h * s
+        out[2] = -omega * omega * h * s
+        out[3] = cosx
+        out[4] = h * h * (c1 - s3)
+        out[5] = h * h * s3
+        out[6] = h * (s - c1)
+        out[7] = h * c1
+        return
+    # damped: exponential of the augmented system [q, v, f, ḟ]
+    m = np.zeros((4, 4))
+    m[0, 1] = h
+    m[1, 0] = -omega * omega * h
+    m[1, 1] = -2.0 * zeta * omega * h
+    m[1, 2] = h
+    m[2, 3] = h  # ḟ·h = f1 − f0 with the last state holding (f1 − f0)
+    e = _expm4(m)
+    out[0] = e[0, 0]
+    out[1] = e[0, 1]
+    out[2] = e[1, 0]
+    out[3] = e[1, 1]
+    out[4] = e[0, 2] - e[0, 3]
+    out[5] = e[0, 3]
+    out[6] = e[1, 2] - e[1, 3]
+    out[7] = e[1, 3]
+
+
+@numba.njit(cache=True)
+def _fill_coefficients(omega, zeta, phi, h, coef):
+    """Per-mode step coefficients; the force columns are pre-multiplied by φ_j."""
+    tmp = np.empty(8)
+    for j in range(omega.shape[0]):
+        oscillator_step_coefficients(omega[j], zeta[j], h, tmp)
+        for k in range(4):
+            coef[j, k] = tmp[k]
+        for k in range(4, 8):
+            coef[j, k] = tmp[k] * phi[j]
+
+
+@numba.njit(cache=True)
+def _solve_force(kernel, params, alpha_pred, compliance, alpha_max):
+    """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root)."""
+    f_trial, k_trial = kernel(alpha_pred, alpha_max, params)
+    if f_trial <= 0.0:
+        return 0.0
+    lo = 0.0
+    hi = f_trial
+    force = f_trial / (1.0 + k_trial * compliance)
+    for _ in range(100):
+        alpha = alpha_pred - compliance * force
+        f, k = kernel(alpha, alpha_max, params)
+        g = force - f
+        if g > 0.0:
+            hi = force
+        else:
+            lo = force
+        if abs(g) <= 1e-14 * f_trial:
+            return force
+        step = g / (1.0 + k * compliance)
+        candidate = force - step
+        if candidate <= lo or candidate >= hi:
+            candidate = 0.5 * (lo + hi)
+        if hi - lo <= 1e-15 * f_trial:
+            return candidate
+        force = candidate
+    return force
+
+
+@numba.njit(cache=True)
+def _predict(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
+    """Advance impactor and modes over h with force f0 → f1; return (wi, vi, w_target)."""
+    wt = 0.0
+    for j in range(q.shape[0]):
+        qj = coef[j, 0] * q[j] + coef[j, 1] * v[j] + coef[j, 4] * f0 + coef[j, 5] * f1
+        vn[j] = coef[j, 2] * q[j] + coef[j, 3] * v[j] + coef[j, 6] * f0 + coef[j, 7] * f1
+        qn[j] = qj
+        wt += phi[j] * qj
+    wi_new = wi + vi * h - h * h * (f0 / 3.0 + f1 / 6.0) / mass
+    vi_new = vi - 0.5 * h * (f0 + f1) / mass
+    return wi_new, vi_new, wt
+
+
+@numba.njit(cache=True)
+def _structure_energy(omega, q, v):
+    energy = 0.0
+    for j in range(q.shape[0]):
+        energy += 0.5 * (v[j] * v[j] + omega[j] * omega[j] * q[j] * q[j])
+    return energy
+
+
+@numba.njit(cache=True)
+def _damping_power(omega, zeta, v):
+    power = 0.0
+    for j in range(v.shape[0]):
+        power += 2.0 * zeta[j] * omega[j] * v[j] * v[j]
+    return power
+
+
+@numba.njit(cache=True, nogil=True)
+def integrate_impact(
+    kernel,
+    params,
+    omega,
+    phi,
+    zeta,
+    residual,
+    mass,
+    velocity,
+    h,
+    max_time,
+    record,
+    max_events,
+):
+    """Integrate one impact from first touch until re-impact is impossible.
+
+    Parameters
+    ----------
+    kernel, params : contact-law kernel and its parameter vector.
+    omega, phi, zeta : modal frequencies [rad/s], participations φ_j(x0), damping ratios.
+    residual : residual compliance of dropped modes [m/N].
+    mass, velocity : impactor mass [kg] and approach velocity [m/s].
+    h : time step [s]; max_time : time limit [s].
+    record : store the history at every step (otherwise only scalars).
+    max_events : capacity of the contact-interval table.
+
+    Returns
+    -------
+    history : (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure.
+    intervals : (n_intervals, 2) array of contact start/end times [s].
+    scalars : array — peak force, time of peak, α_max, final impactor velocity,
+        final structure energy, damping work, end time, hit_time_limit flag,
+        steps taken, interval-table overflow flag.
+    """
+    n = omega.shape[0]
+    coef = np.empty((n, 8))
+    _fill_coefficients(omega, zeta, phi, h, coef)
+    sub = np.empty((n, 8))
+    compliance_h = h * h / (6.0 * mass) + residual
+    for j in range(n):
+        compliance_h += phi[j] * coef[j, 5]
+    static = residual
+    for j in range(n):
+        if omega[j] > 0.0:
+            static += phi[j] * phi[j] / (omega[j] * omega[j])
+    damped = False
+    for j in range(n):
+        if zeta[j] > 0.0:
+            damped = True
+
+    q = np.zeros(n)
+    v = np.zeros(n)
+    qn = np.empty(n)
+    vn = np.empty(n)
+    q_try = np.empty(n)
+    v_try = np.empty(n)
+    t = 0.0
+    wi = 0.0
+    vi = velocity
+    force = 0.0
+    alpha_max = 0.0
+    in_contact = False
+    damping_work = 0.0
+
+    max_steps = int(math.ceil(max_time / h)) + 2
+    capacity = min(max_steps + 1, 4096) if record else 1
+    history = np.zeros((capacity, 8))
+    intervals = np.zeros((max_events, 2))
+    n_intervals = 0
+    overflow = 0.0
+    rec = 0
+    if record:
+        history[0, 4] = velocity
+        rec = 1
+
+    peak = 0.0
+    peak_time = 0.0
+    f_prev2 = -1.0
+    f_prev1 = -1.0
+    hit_limit = 0.0
+    steps = 0
+
+    while True:
+        remaining = h
+        uniform = True
+        starting = t == 0.0  # the sphere touches the surface at t = 0
+        guard = 0
+        while remaining > 0.0 and guard < 50:
+            guard += 1
+            t_sub = t + (h - remaining)
+            if remaining == h:
+                c = coef
+                comp = compliance_h
+            else:
+                _fill_coefficients(omega, zeta, phi, remaining, sub)
+                c = sub
+                comp = remaining * remaining / (6.0 * mass) + residual
+                for j in range(n):
+                    comp += phi[j] * sub[j, 5]
+            wi_p, vi_p, wt_p = _predict(c, remaining, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+            f_new = _solve_force(kernel, params, wi_p - wt_p, comp, alpha_max)
+            separation = force > 0.0 and f_new == 0.0
+            touchdown = force == 0.0 and f_new > 0.0 and not starting
+            if separation or touchdown:
+                uniform = False
+                # bisection on the sub-step length for the sign of the predicted force
+                lo = 0.0
+                hi = remaining
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    _fill_coefficients(omega, zeta, phi, mid, sub)
+                    wi_m, vi_m, wt_m = _predict(sub, mid, mass, wi, vi, q, v, phi, force, 0.0, q_try, v_try)
+                    f_mid, _k = kernel(wi_m - wt_m, alpha_max, params)
+                    if (f_mid > 0.0) == separation:
+                        lo = mid
+                    else:
+                        hi = mid
+                    if hi - lo <= 1e-13 * h:
+                        break
+                s = hi if separation else lo  # stay on the no-contact side
+                if s > 0.0:
+                    _fill_coefficients(omega, zeta, phi, s, sub)
+                    wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+                    if damped:
+                        damping_work += 0.5 * s * (
+                            _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
+                        )
+                    wi = wi_e
+                    vi = vi_e
+                    for j in range(n):
+                        q[j] = qn[j]
+                        v[j] = vn[j]
+                if separation:
+                    if n_intervals < max_events:
+                        intervals[n_intervals, 1] = t_sub + s
+                        n_intervals += 1
+                    else:
+                        overflow = 1.0
+                    in_contact = False
+                else:
+                    starting = True  # contact begins at the start of the next sub-step
+                force = 0.0
+                remaining -= s
+                continue
+            # no event: accept the (sub-)step with the implicit end force
+            if f_new > 0.0:
+                wi_p, vi_p, wt_p = _predict(c, remaining, mass, wi, vi, q, v, phi, force, f_new, qn, vn)
+            if damped:
+                damping_work += 0.5 * remaining * (
+                    _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
+                )
+            wi = wi_p
+            vi = vi_p
+            for j in range(n):
+                q[j] = qn[j]
+                v[j] = vn[j]
+            if f_new > 0.0:
+                if not in_contact:
+                    in_contact = True
+                    if n_intervals < max_events:
+                        intervals[n_intervals, 0] = t_sub
+                    else:
+                        overflow = 1.0
+                alpha = wi - wt_p - residual * f_new
+                if alpha > alpha_max:
+                    alpha_max = alpha
+            force = f_new
+            remaining = 0.0
+            starting = False
+        t += h
+        steps += 1
+
+        # peak tracking with parabolic refinement on uniform samples
+        if force > peak:
+            peak = force
+            peak_time = t
+        if uniform and f_prev1 > 0.0 and f_prev2 > 0.0 and f_prev1 >= f_prev2 and f_prev1 >= force and force > 0.0:
+            denom = f_prev2 - 2.0 * f_prev1 + force
+            if denom < 0.0:
+                shift = 0.5 * (f_prev2 - force) / denom
+                refined = f_prev1 - 0.25 * (f_prev2 - force) * shift
+                if refined > peak:
+                    peak = refined
+                    peak_time = t - h + shift * h
+        if uniform:
+            f_prev2 = f_prev1
+            f_prev1 = force
+        else:
+            f_prev2 = -1.0
+            f_prev1 = force
+
+        wt = residual * force
+        vt = 0.0
+        for j in range(n):
+            wt += phi[j] * q[j]
+            vt += phi[j] * v[j]
+        if record:
+            if rec == history.shape[0]:
+                grown = np.zeros((2 * history.shape[0], 8))
+                grown[:rec] = history
+                history = grown
+            history[rec, 0] = t
+            history[rec, 1] = force
+            history[rec, 2] = wi - wt
+            history[rec, 3] = wi
+            history[rec, 4] = vi
+            history[rec, 5] = wt
+            history[rec, 6] = vt
+            history[rec, 7] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
+            rec += 1
+
+        if force == 0.0:
+            # re-impact impossible once the gap exceeds the vibration amplitude bound
+            rigid_w = 0.0
+            rigid_v = 0.0
+            elastic_energy = 0.0
+            for j in range(n):
+                if omega[j] == 0.0:
+                    rigid_w += phi[j] * q[j]
+                    rigid_v += phi[j] * v[j]
+                else:
+                    elastic_energy += 0.5 * (v[j] * v[j] + omega[j] * omega[j] * q[j] * q[j])
+            bound = math.sqrt(2.0 * elastic_energy * static)
+            if vi - rigid_v <= 0.0 and wi - rigid_w < -bound:
+                break
+        if t >= max_time or steps >= max_steps:
+            hit_limit = 1.0
+            break
+
+    if in_contact and n_intervals < max_events:
+        intervals[n_intervals, 1] = t
+        n_intervals += 1
+    scalars = np.empty(10)
+    scalars[0] = peak
+    scalars[1] = peak_time
+    scalars[2] = alpha_max
+    scalars[3] = vi
+    scalars[4] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
+    scalars[5] = damping_work
+    scalars[6] = t
+    scalars[7] = hit_limit
+    scalars[8] = steps
+    scalars[9] = overflow
+    return history[:rec], intervals[:n_intervals], scalars
