@@ -136,11 +136,16 @@ def test_residual_flexibility_converges_with_few_modes():
 
 
 def test_heavy_impactor_tends_to_quasi_static():
-    """ζ → ∞ at fixed λ: F̄max → sqrt(λ/(1+λ)) (within 2% at ζ = 50)."""
+    """ζ → ∞ at fixed λ: F̄max → sqrt(λ/(1+λ)). Within 2% at ζ = 50 for λ ≥ 1 (beam and
+    plate); the approach is slower for soft structures (beam λ = 0.425: 2.5% at ζ = 50,
+    0.3% at ζ = 1000), so there the test checks the monotone approach."""
     for kind in ("beam", "plate"):
-        for lam in (0.425, 4.0):
+        for lam in (1.0, 4.0):
             result = _run(kind, 50.0, lam)
             assert result.fmax_normalised == pytest.approx(np.sqrt(lam / (1 + lam)), rel=0.02)
+        gaps = [_run(kind, zeta, 0.425).fmax_normalised - np.sqrt(0.425 / 1.425) for zeta in (50, 200, 1000)]
+        assert gaps[0] > gaps[1] > gaps[2] > 0
+        assert gaps[2] < 0.005
 
 
 def test_bad_input():
