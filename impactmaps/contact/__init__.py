@@ -10,16 +10,29 @@ from .base import (
     evaluate_kernel,
     register_contact_law,
 )
+from .hertz import HertzContact, hertz_stiffness
 from .linear import LinearContact
+from .sphere import Sphere, law_for_sphere, softer_yield_strength
+from .stronge import StrongeContact, stronge_continuity_coefficient
+from .yigit_christoforou import YigitChristoforouContact, yield_indentation
 
 __all__ = [
     "ContactLaw",
+    "HertzContact",
     "LinearContact",
+    "Sphere",
+    "StrongeContact",
+    "YigitChristoforouContact",
     "available_contact_laws",
     "contact_law",
     "contact_law_class",
     "effective_modulus",
     "effective_radius",
     "evaluate_kernel",
+    "hertz_stiffness",
+    "law_for_sphere",
     "register_contact_law",
+    "softer_yield_strength",
+    "stronge_continuity_coefficient",
+    "yield_indentation",
 ]

@@ -72,8 +72,11 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     params = np.asarray(parameters, dtype=float)
     alpha = np.asarray(indentation, dtype=float)
     alpha_max = np.asarray(max_indentation, dtype=float)
-    shape = np.broadcast_shapes(alpha.shape, alpha_max.shape, params.shape[1:])
+    batch = params.shape[1:]
+    shape = np.broadcast_shapes(alpha.shape, alpha_max.shape, batch)
     n_params = params.shape[0]
+    # align the batch dimensions with the trailing dimensions of ``shape`` (NumPy rule)
+    params = params.reshape((n_params,) + (1,) * (len(shape) - len(batch)) + batch)
     flat_params = np.ascontiguousarray(
         np.broadcast_to(params, (n_params,) + shape).reshape(n_params, -1).T
     )
@@ -130,7 +133,8 @@ class ContactLaw(ABC):
         alpha_max = np.asarray(max_indentation, dtype=float)
         s = _graded_grid(points)
         alpha = alpha_max[..., None] * s
-        force = self.loading_force(alpha)
+        # quadrature points on a trailing axis: give the parameter batch a matching one
+        force = evaluate_kernel(self.kernel, self._parameters_with_point_axis(), alpha, alpha)[0]
         return _simpson(force, alpha)
 
     def recovered_energy(self, max_indentation, points: int = 2001):
@@ -139,8 +143,14 @@ class ContactLaw(ABC):
         alpha_f = np.asarray(self.permanent_indentation(alpha_max), dtype=float)
         s = _graded_grid(points)
         alpha = alpha_f[..., None] + (alpha_max - alpha_f)[..., None] * s
-        force = self.force(alpha, alpha_max[..., None])
+        force = evaluate_kernel(
+            self.kernel, self._parameters_with_point_axis(), alpha, alpha_max[..., None]
+        )[0]
         return _simpson(force, alpha)
+
+    def _parameters_with_point_axis(self) -> np.ndarray:
+        params = np.asarray(self.kernel_parameters, dtype=float)
+        return params if params.ndim == 1 else params[..., None]
 
     def dissipated_energy(self, max_indentation):
         """Energy [J] dissipated by a full load–unload cycle to α_max [m] (≥ 0)."""

@@ -27,6 +27,7 @@ import numba
 import numpy as np
 
 from .._checks import require_positive
+from ..dimensionless import hertz_frequency, impact_number, velocity_for_impact_number
 from .base import ContactLaw, register_contact_law
 from .hertz import hertz_stiffness
 
@@ -137,9 +138,8 @@ class YigitChristoforouContact(ContactLaw):
         return np.asarray(self.hertz_stiffness, float) * np.asarray(self.yield_indentation, float) ** 1.5
 
     def contact_frequency(self, impactor_mass):
-        """``ω = sqrt(K_h α_y^{1/2} / m_i)`` [rad/s] (seed 001 eq 12)."""
-        require_positive("impactor_mass", impactor_mass, "kg")
-        return np.sqrt(self.linearised_stiffness / 1.5 / np.asarray(impactor_mass, float))
+        """``ω = sqrt(K_h α_y^{1/2} / m_i)`` [rad/s] (seed 001 eq 12) for m_i [kg]."""
+        return hertz_frequency(self.hertz_stiffness, self.yield_indentation, impactor_mass)
 
     def impact_number(self, impactor_mass, velocity):
         """Normalised impact velocity ``β = V0 / (ω α_y)`` [-] (seed 001 eq 11).
@@ -151,15 +151,12 @@ class YigitChristoforouContact(ContactLaw):
         velocity : float or array_like
             Impact velocity V0 [m/s].
         """
-        require_positive("velocity", velocity, "m/s")
-        omega = self.contact_frequency(impactor_mass)
-        return np.asarray(velocity, float) / (omega * np.asarray(self.yield_indentation, float))
+        return impact_number(velocity, self.hertz_stiffness, self.yield_indentation, impactor_mass)
 
     def velocity_for_impact_number(self, impactor_mass, impact_number):
         """Impact velocity V0 [m/s] giving the impact number β [-] for mass m_i [kg]."""
-        require_positive("impact_number", impact_number)
-        omega = self.contact_frequency(impactor_mass)
-        return np.asarray(impact_number, float) * omega * np.asarray(self.yield_indentation, float)
+        return velocity_for_impact_number(impact_number, self.hertz_stiffness, self.yield_indentation,
+                                          impactor_mass)
 
     # -- ContactLaw interface -----------------------------------------------------
     @property

@@ -1,1 +1,29 @@
-"""Finite-difference Rayleigh beam with a layered elastic-plastic cross-section."""
+"""Finite-difference Rayleigh beam with a layered elastic-plastic cross-section (seed 000).
+
+:mod:`.section` — the layered section (stress update, moment, moment–curvature);
+:mod:`.beam` — the beam grid, supports, the compiled time loop, the impact solver
+:func:`simulate_fd` and the prescribed-load solver :func:`simulate_fd_response`.
+"""
+
+from .beam import (
+    STANDARD_GRAVITY,
+    FDBeam,
+    FDImpactResult,
+    FDResponse,
+    simulate_fd,
+    simulate_fd_response,
+)
+from .section import LayeredSection, SectionState, rectangular_moment_curvature, stress_update
+
+__all__ = [
+    "FDBeam",
+    "FDImpactResult",
+    "FDResponse",
+    "LayeredSection",
+    "STANDARD_GRAVITY",
+    "SectionState",
+    "rectangular_moment_curvature",
+    "simulate_fd",
+    "simulate_fd_response",
+    "stress_update",
+]

@@ -36,8 +36,12 @@ Energy: per unit volume the strain energy is ``σ²/(2E)`` and the plastic work 
 is ``W_p += ½(σ_old + σ_new) Δε_p`` (trapezoidal rule). With that choice
 ``½(σ_old + σ_new) Δε = Δ(σ²/(2E)) + ΔW_p`` holds *exactly* for every increment, so the
 internal work splits into elastic energy and plastic work without discretisation error.
-With hardening, ``W_p`` includes the energy ``β²/(2H)`` locked in the back stress; the part
-truly dissipated is ``W_p − β²/(2H)``.
+The trapezoid is exact for an increment that is plastic throughout (σ is linear in ε_p);
+for one that starts elastic its error is ``½(σ_old − σ_Y) Δε_p`` (σ_Y: stress where
+yielding starts), second order in the increment. With hardening, ``W_p`` includes the
+energy ``β²/(2H)`` locked in the back stress (the part truly dissipated is
+``W_p − β²/(2H)``), and a reverse flow at a stress of the "wrong" sign (``|β| > σ_y``)
+legitimately gives ``ΔW_p < 0``; without hardening ``ΔW_p ≥ 0`` always.
 """
 
 from __future__ import annotations

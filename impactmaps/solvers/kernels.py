@@ -314,9 +314,8 @@ def integrate_impact(
                         )
                     wi = wi_e
                     vi = vi_e
-                    for j in range(n):
-                        q[j] = qn[j]
-                        v[j] = vn[j]
+                    q, qn = qn, q
+                    v, vn = vn, v
                 if separation:
                     if n_intervals < max_events:
                         intervals[n_intervals, 1] = t_sub + s
@@ -331,16 +330,20 @@ def integrate_impact(
                 continue
             # no event: accept the (sub-)step with the implicit end force
             if f_new > 0.0:
-                wi_p, vi_p, wt_p = _predict(c, remaining, mass, wi, vi, q, v, phi, force, f_new, qn, vn)
+                wt_p += f_new * (comp - remaining * remaining / (6.0 * mass) - residual)
+                wi_p -= remaining * remaining * f_new / (6.0 * mass)
+                vi_p -= 0.5 * remaining * f_new / mass
+                for j in range(n):
+                    qn[j] += c[j, 5] * f_new
+                    vn[j] += c[j, 7] * f_new
             if damped:
                 damping_work += 0.5 * remaining * (
                     _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
                 )
             wi = wi_p
             vi = vi_p
-            for j in range(n):
-                q[j] = qn[j]
-                v[j] = vn[j]
+            q, qn = qn, q
+            v, vn = vn, v
             if f_new > 0.0:
                 if not in_contact:
                     in_contact = True
@@ -376,12 +379,12 @@ def integrate_impact(
             f_prev2 = -1.0
             f_prev1 = force
 
-        wt = residual * force
-        vt = 0.0
-        for j in range(n):
-            wt += phi[j] * q[j]
-            vt += phi[j] * v[j]
         if record:
+            wt = residual * force
+            vt = 0.0
+            for j in range(n):
+                wt += phi[j] * q[j]
+                vt += phi[j] * v[j]
             if rec == history.shape[0]:
                 grown = np.zeros((2 * history.shape[0], 8))
                 grown[:rec] = history
@@ -396,7 +399,7 @@ def integrate_impact(
             history[rec, 7] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
             rec += 1
 
-        if force == 0.0:
+        if force == 0.0 and steps % 8 == 0:
             # re-impact impossible once the gap exceeds the vibration amplitude bound
             rigid_w = 0.0
             rigid_v = 0.0

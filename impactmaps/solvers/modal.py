@@ -326,10 +326,14 @@ def simulate_normalised(
     is 1 m/s (the linear problem scales with it). Use the normalised properties of
     the result (``fmax_normalised``, ``normalised_history()``).
     """
-    require_positive("loss_factor", loss_factor)
-    require_positive("relative_stiffness", relative_stiffness)
-    stiffness = target.static_stiffness() / relative_stiffness
-    mass = float(target.impactor_mass_for(loss_factor, stiffness))
+    from ..dimensionless import realise
+
+    impactor = realise(target, loss_factor, relative_stiffness)
     return simulate(
-        target, LinearContact(stiffness), mass, 1.0, settings=settings, record=record
+        target,
+        LinearContact(impactor.contact_stiffness),
+        impactor.impactor_mass,
+        1.0,
+        settings=settings,
+        record=record,
     )

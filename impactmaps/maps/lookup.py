@@ -1,0 +1,158 @@
+"""Design-rule lookups from the shipped maps: F̄max and regime without a simulation.
+
+The package ships precomputed maps (``impactmaps/maps/data/*.nc``, built by
+``validation/build_default_maps.py``) for simply supported structures struck at the
+centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
+plates (a/h = 20). :func:`lookup` interpolates F̄max linearly in (log ζ, log λ); the
+interpolation error against direct simulation is measured by
+``validation/lookup_error.py`` and quoted in the README.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from importlib import resources
+
+import numpy as np
+import xarray as xr
+from scipy.interpolate import RegularGridInterpolator
+
+from .._checks import require_choice, require_positive
+from .regimes import classify, quasi_static_peak
+
+__all__ = ["SHIPPED_MAPS", "LookupResult", "load_shipped_map", "lookup", "design_formula", "markdown_table"]
+
+SHIPPED_MAPS = {
+    ("beam", "euler"): "beam-ss-euler",
+    ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
+    ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
+    ("plate", "mindlin"): "plate-ssss-mindlin-s20",
+}
+
+
+@dataclass(frozen=True)
+class LookupResult:
+    """Outcome of a map lookup.
+
+    Attributes
+    ----------
+    fmax_normalised : float or ndarray
+        Interpolated F̄max [-].
+    regime : str or ndarray of str
+        Regime from :func:`impactmaps.maps.regimes.classify` on the interpolated values.
+    structure, theory : str
+    map_name : str
+        The shipped map used.
+    """
+
+    fmax_normalised: object
+    regime: object
+    structure: str
+    theory: str
+    map_name: str
+
+    def peak_force(self, impactor_mass, velocity, contact_stiffness):
+        """Dimensional peak force F̄max · m_i V0 ω [N] (m_i [kg], V0 [m/s], K [N/m])."""
+        require_positive("impactor_mass", impactor_mass, "kg")
+        require_positive("velocity", velocity, "m/s")
+        require_positive("contact_stiffness", contact_stiffness, "N/m")
+        omega = np.sqrt(np.asarray(contact_stiffness) / np.asarray(impactor_mass))
+        return np.asarray(self.fmax_normalised) * np.asarray(impactor_mass) * np.asarray(velocity) * omega
+
+
+@functools.lru_cache(maxsize=8)
+def load_shipped_map(structure: str, theory: str) -> xr.Dataset:
+    """The shipped map for ``structure`` in {"beam", "plate"} and its ``theory``."""
+    require_choice("structure", structure, ("beam", "plate"))
+    theories = [t for (s, t) in SHIPPED_MAPS if s == structure]
+    require_choice("theory", theory, theories)
+    name = SHIPPED_MAPS[(structure, theory)]
+    source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
+    if not source.is_file():
+        raise FileNotFoundError(
+            f"shipped map {name}.nc is missing from the installation; rebuild it with "
+            "`python validation/build_default_maps.py`"
+        )
+    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
+        return opened.load()
+
+
+@functools.lru_cache(maxsize=16)
+def _interpolator(structure: str, theory: str, variable: str):
+    dataset = load_shipped_map(structure, theory)
+    values = dataset[variable].isel(structure=0).values
+    grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
+    return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)
+
+
+def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
+           tolerance: float = 0.05, local_tolerance: float = 0.1) -> LookupResult:
+    """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
+
+    Parameters
+    ----------
+    loss_factor, relative_stiffness : float or array_like
+        ζ and λ [-], inside the map's range (else ``ValueError`` with the range).
+    structure : {"beam", "plate"}
+    theory : str
+        "euler" or "timoshenko" for beams, "kirchhoff" or "mindlin" for plates.
+    tolerance, local_tolerance : float
+        Regime criteria (see :func:`impactmaps.maps.regimes.classify`).
+
+    Returns
+    -------
+    LookupResult
+    """
+    dataset = load_shipped_map(structure, theory)
+    zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
+    require_positive("loss_factor", zeta)
+    require_positive("relative_stiffness", lam)
+    for name, values, axis in (("loss_factor", zeta, "zeta"), ("relative_stiffness", lam, "lambda_")):
+        low, high = float(dataset[axis].min()), float(dataset[axis].max())
+        if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
+            raise ValueError(
+                f"{name} = {values.tolist()!r} is outside the shipped map: valid range is "
+                f"[{low:g}, {high:g}]; run a simulation (impactmaps point) instead"
+            )
+    lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
+    zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
+    points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
+    fmax = _interpolator(structure, theory, "fmax_normalised")(points).reshape(zeta.shape)
+    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time")(points)).reshape(zeta.shape) \
+        if "log_peak_time" in dataset else None
+    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time")(points)).reshape(zeta.shape) \
+        if "log_reflection_time" in dataset else None
+    regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
+                      tolerance=tolerance, local_tolerance=local_tolerance)
+    if fmax.ndim == 0:
+        fmax, regime = float(fmax), str(regime)
+    return LookupResult(fmax, regime, structure, theory, SHIPPED_MAPS[(structure, theory)])
+
+
+def design_formula(loss_factor, relative_stiffness, structure: str):
+    """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
+
+    The larger of the infinite-structure peak (exact until waves return) and the
+    quasi-static peak. Exact in the local, infinite-structure and quasi-static regimes
+    by construction; in the transition it misses the re-impact peaks. Its error over
+    the shipped maps is tabulated by ``validation/lookup_error.py``.
+    """
+    from .regimes import infinite_structure_peak
+
+    return np.maximum(infinite_structure_peak(loss_factor, structure), quasi_static_peak(relative_stiffness))
+
+
+def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=None, digits: int = 3) -> str:
+    """F̄max of one structure as a Markdown table (rows λ, columns ζ), nearest grid values."""
+    data = dataset["fmax_normalised"].sel(structure=structure)
+    lambdas = data["lambda_"].values if lambdas is None else lambdas
+    zetas = data["zeta"].values if zetas is None else zetas
+    data = data.sel(lambda_=list(lambdas), zeta=list(zetas), method="nearest")
+    header = "| λ \\ ζ | " + " | ".join(f"{z:.3g}" for z in data["zeta"].values) + " |"
+    rule = "|---|" + "---|" * data.sizes["zeta"]
+    rows = [
+        f"| {lam:.3g} | " + " | ".join(f"{v:.{digits}f}" for v in row) + " |"
+        for lam, row in zip(data["lambda_"].values, data.values)
+    ]
+    return "\n".join([f"**{structure}** — F̄max", "", header, rule, *rows])

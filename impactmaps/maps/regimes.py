@@ -1,0 +1,108 @@
+"""Which regime an impact is in: local, infinite-structure, transition or quasi-static.
+
+Criteria (seed 001 §5, made quantitative here; every threshold is a parameter):
+
+1. **local** — the response is that of the half-space: ``F̄max ≥ 1 − local_tolerance``
+   (default 0.1; seed 001 calls ζ = 0.038, where F̄max ≈ 0.94, locally dominated).
+2. **infinite-structure** — not local, F̄max within ``tolerance`` (relative, default
+   5 %) of the infinite-plate or infinite-beam peak F̄∞(ζ), and the peak occurs before
+   the first wave returns from the supports (``peak_time < reflection_time``, when
+   those are known): the size of the structure does not matter, ζ alone governs.
+3. **quasi-static** — F̄max within ``tolerance`` of ``sqrt(λ/(1+λ))`` (eq 28): λ alone
+   governs.
+4. **transition** — none of the above: both ζ and λ matter.
+
+When both asymptotes are within tolerance the nearer one wins. The same function
+classifies a simulated result and, without simulating, a value looked up from a
+stored map (:func:`impactmaps.maps.lookup.lookup`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._checks import require_choice, require_in_range, require_positive
+
+__all__ = ["REGIMES", "classify", "infinite_structure_peak", "quasi_static_peak"]
+
+REGIMES = ("local", "infinite-structure", "transition", "quasi-static")
+
+
+def quasi_static_peak(relative_stiffness):
+    """Quasi-static normalised peak force sqrt(λ/(1+λ)) (eq 28) [-]."""
+    lam = np.asarray(relative_stiffness, dtype=float)
+    return np.sqrt(lam / (1.0 + lam))
+
+
+def infinite_structure_peak(loss_factor, structure: str):
+    """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-]."""
+    require_choice("structure", structure, ("beam", "plate"))
+    zeta = np.asarray(loss_factor, dtype=float)
+    if structure == "plate":
+        from ..solvers.asymptotes import infinite_plate_peak
+
+        return np.asarray(infinite_plate_peak(zeta), dtype=float)
+    from ..solvers.asymptotes import infinite_beam_peak
+
+    unique, inverse = np.unique(zeta, return_inverse=True)
+    peaks = np.asarray(infinite_beam_peak(unique), dtype=float)
+    return peaks[inverse].reshape(zeta.shape)
+
+
+def classify(
+    fmax,
+    loss_factor,
+    relative_stiffness,
+    structure: str,
+    *,
+    peak_time=None,
+    reflection_time=None,
+    tolerance: float = 0.05,
+    local_tolerance: float = 0.1,
+):
+    """Regime of each impact from its normalised peak force (vectorised).
+
+    Parameters
+    ----------
+    fmax : array_like
+        Normalised maximum force F̄max [-].
+    loss_factor, relative_stiffness : array_like
+        ζ and λ [-].
+    structure : {"beam", "plate"}
+        Which infinite-structure asymptote applies.
+    peak_time, reflection_time : array_like, optional
+        Normalised time of the peak and of the first wave return (ω d²/c); when
+        given, the infinite-structure regime also requires the peak to come first.
+    tolerance : float
+        Relative distance to an asymptote that counts as "on" it.
+    local_tolerance : float
+        ``1 − F̄max`` below which the response is local.
+
+    Returns
+    -------
+    ndarray of str
+        One of :data:`REGIMES` per point.
+    """
+    require_in_range("tolerance", tolerance, 0.0, 1.0, low_inclusive=False)
+    require_in_range("local_tolerance", local_tolerance, 0.0, 1.0, low_inclusive=False)
+    fmax, zeta, lam = np.broadcast_arrays(
+        np.asarray(fmax, dtype=float), np.asarray(loss_factor, dtype=float), np.asarray(relative_stiffness, dtype=float)
+    )
+    if np.any(~np.isfinite(fmax)):
+        raise ValueError("fmax contains NaN or inf: classify computed points only")
+    require_positive("loss_factor", zeta)
+    require_positive("relative_stiffness", lam)
+    infinite = infinite_structure_peak(zeta, structure)
+    quasi = quasi_static_peak(lam)
+    distance_infinite = np.abs(fmax - infinite) / infinite
+    distance_quasi = np.abs(fmax - quasi) / quasi
+    before_reflection = np.ones(fmax.shape, dtype=bool)
+    if peak_time is not None and reflection_time is not None:
+        before_reflection = np.broadcast_to(np.asarray(peak_time) < np.asarray(reflection_time), fmax.shape)
+    on_infinite = (distance_infinite <= tolerance) & before_reflection
+    on_quasi = distance_quasi <= tolerance
+    labels = np.full(fmax.shape, "transition", dtype=object)
+    labels[on_quasi] = "quasi-static"
+    labels[on_infinite & (~on_quasi | (distance_infinite <= distance_quasi))] = "infinite-structure"
+    labels[fmax >= 1.0 - local_tolerance] = "local"
+    return labels.astype(str)

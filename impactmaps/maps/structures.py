@@ -1,0 +1,200 @@
+"""Reference structures for normalised (ζ, λ) maps.
+
+A :class:`MapStructure` names a family of targets whose normalised response depends on
+(ζ, λ) and a few shape parameters only: the kind (beam or plate), the theory, the
+supports, the aspect ratio, the slenderness and the impact point as fractions. It
+builds one concrete target (steel-like, unit span) that stands for the family; the
+impactor for each (ζ, λ) is then realised on it (spec §4).
+
+For Euler beams and Kirchhoff plates the normalised response is independent of the
+slenderness; for Timoshenko beams and Mindlin plates it is not, so the slenderness is
+part of the key (default span/thickness = 20).
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .._checks import require_choice, require_in_range, require_positive
+from ..targets.base import ModalBasis, Target
+
+__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
+
+BEAM_THEORIES = ("euler", "rayleigh", "timoshenko")
+PLATE_THEORIES = ("kirchhoff", "mindlin")
+
+
+@dataclass(frozen=True)
+class _ReferenceMaterial:
+    """Steel-like isotropic material of the reference targets (E, ν, ρ in SI)."""
+
+    youngs_modulus: float = 210e9
+    poisson_ratio: float = 0.3
+    density: float = 7850.0
+    yield_strength: float | None = None
+
+
+@dataclass(frozen=True)
+class MapStructure:
+    """A family of targets for the normalised maps.
+
+    Parameters
+    ----------
+    kind : {"beam", "plate"}
+    theory : str
+        Beam: "euler", "rayleigh", "timoshenko"; plate: "kirchhoff", "mindlin".
+    supports : str
+        Beam: "ss", "cc", "cs", "cf", "ff"; plate: 4-letter edge code, e.g. "SSSS".
+    aspect_ratio : float
+        Plate b/a [-] (ignored for beams).
+    slenderness : float
+        Span over thickness, L/h or a/h [-].
+    impact_fraction : tuple of float
+        Impact point as a fraction of the span(s): (x0/L,) or (x0/a, y0/b).
+    poisson_ratio : float
+        Poisson ratio of the reference material [-].
+    """
+
+    kind: str = "plate"
+    theory: str = "kirchhoff"
+    supports: str = "SSSS"
+    aspect_ratio: float = 1.0
+    slenderness: float = 20.0
+    impact_fraction: tuple = (0.5, 0.5)
+    poisson_ratio: float = 0.3
+
+    def __post_init__(self):
+        require_choice("kind", self.kind, ("beam", "plate"))
+        require_choice("theory", self.theory, BEAM_THEORIES if self.kind == "beam" else PLATE_THEORIES)
+        require_positive("aspect_ratio", self.aspect_ratio)
+        require_in_range("slenderness", self.slenderness, 2.0, np.inf)
+        require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
+        fractions = tuple(float(f) for f in np.atleast_1d(self.impact_fraction))
+        expected = 1 if self.kind == "beam" else 2
+        if len(fractions) == 2 and self.kind == "beam":
+            fractions = fractions[:1]
+        if len(fractions) != expected:
+            raise ValueError(
+                f"impact_fraction = {self.impact_fraction!r} is invalid: a {self.kind} needs "
+                f"{expected} fraction(s) of the span in (0, 1)"
+            )
+        require_in_range("impact_fraction", fractions, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+        object.__setattr__(self, "impact_fraction", fractions)
+        if self.kind == "plate":
+            object.__setattr__(self, "supports", self.supports.upper())
+        else:
+            object.__setattr__(self, "supports", self.supports.lower())
+
+    @property
+    def name(self) -> str:
+        """Short label, e.g. ``beam-ss-euler`` or ``plate-ssss-kirchhoff``."""
+        base = f"{self.kind}-{self.supports.lower()}-{self.theory}"
+        extras = []
+        if self.kind == "plate" and self.aspect_ratio != 1.0:
+            extras.append(f"ar{self.aspect_ratio:g}")
+        if self.theory in ("timoshenko", "rayleigh", "mindlin"):
+            extras.append(f"s{self.slenderness:g}")
+        centre = (0.5,) if self.kind == "beam" else (0.5, 0.5)
+        if self.impact_fraction != centre:
+            extras.append("x" + "-".join(f"{f:g}" for f in self.impact_fraction))
+        return "-".join([base, *extras])
+
+    def as_dict(self) -> dict:
+        """Plain dict of the fields (for provenance attributes)."""
+        return asdict(self)
+
+    def build(self) -> Target:
+        """The concrete reference target: unit span, steel-like, thickness = span/slenderness."""
+        return _build_target(self)
+
+
+@functools.lru_cache(maxsize=32)
+def _build_target(structure: MapStructure) -> Target:
+    material = _ReferenceMaterial(poisson_ratio=structure.poisson_ratio)
+    span = 1.0
+    thickness = span / structure.slenderness
+    if structure.kind == "beam":
+        from ..targets.beam import Beam
+
+        return Beam.rectangular(
+            span,
+            thickness,
+            thickness,
+            material,
+            theory=structure.theory,
+            supports=structure.supports,
+            impact_position=structure.impact_fraction[0] * span,
+        )
+    from ..targets.plate import Plate
+
+    width = span * structure.aspect_ratio
+    return Plate.isotropic(
+        span,
+        width,
+        thickness,
+        material,
+        theory=structure.theory,
+        edges=structure.supports,
+        impact_point=(structure.impact_fraction[0] * span, structure.impact_fraction[1] * width),
+    )
+
+
+def structure_from_name(name: str) -> MapStructure:
+    """Parse the short names of the shipped maps (``beam-ss-euler`` …)."""
+    for structure in DEFAULT_STRUCTURES:
+        if structure.name == name:
+            return structure
+    parts = name.split("-")
+    if len(parts) == 3:
+        kind, supports, theory = parts
+        return MapStructure(kind=kind, supports=supports, theory=theory,
+                            impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5))
+    raise ValueError(
+        f"structure = {name!r} is not known: use kind-supports-theory, e.g. 'beam-ss-euler' "
+        "or 'plate-ssss-kirchhoff'"
+    )
+
+
+DEFAULT_STRUCTURES = (
+    MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
+    MapStructure(kind="beam", theory="timoshenko", supports="ss", impact_fraction=(0.5,)),
+    MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
+    MapStructure(kind="plate", theory="mindlin", supports="SSSS"),
+)
+
+
+class BasisTable:
+    """All modes of a target up to some frequency, truncatable without recomputation.
+
+    Sweeps realise many impactors on one target; each needs the modes below its own
+    cut-off. The table computes the modes once, at the largest cut-off, and
+    :meth:`truncate` slices them, adding the compliance of the sliced-off modes to
+    the target's residual (so the residual-flexibility correction stays exact).
+    """
+
+    def __init__(self, target: Target, max_frequency: float, min_modes: int = 1):
+        basis = target.modes(max_frequency, min_modes=min_modes)
+        significant = basis.participation**2 > 1e-24 * max(float(np.max(basis.participation**2, initial=0.0)), 1e-300)
+        self.frequencies = basis.frequencies[significant]
+        self.participation = basis.participation[significant]
+        self.damping_ratios = basis.damping_ratios[significant]
+        elastic = self.frequencies > 0
+        compliance = np.zeros_like(self.frequencies)
+        compliance[elastic] = self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2
+        # tail[k] = compliance of modes k, k+1, … plus the target's own residual
+        self._tail = np.concatenate([np.cumsum(compliance[::-1])[::-1], [0.0]]) + basis.residual_compliance
+        self.max_frequency = max_frequency
+
+    def truncate(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
+        """Modes with ω ≤ ``max_frequency`` (at least ``min_modes``), with exact residual."""
+        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
+        count = min(max(count, min_modes), self.frequencies.size)
+        return ModalBasis(
+            self.frequencies[:count],
+            self.participation[:count],
+            float(self._tail[count]),
+            self.damping_ratios[:count],
+        )

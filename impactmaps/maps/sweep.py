@@ -1,0 +1,319 @@
+"""Sweeps over (ζ, λ) and structure parameters → labelled xarray Datasets.
+
+Work is split into chunks of points sharing one structure and one λ; each chunk is
+solved by :func:`solve_points` in a worker (any :class:`concurrent.futures.Executor`:
+local processes by default, a Dask cluster through
+``dask.distributed.Client.get_executor()``). Finished chunks are written to the result
+file atomically as they complete, so an interrupted sweep resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from dataclasses import asdict
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+import xarray as xr
+
+from .._checks import require_positive
+from ..contact.linear import LinearContact
+from ..dimensionless import realise
+from ..solvers.modal import ModalSettings, simulate
+from .regimes import classify
+from .store import fingerprint, load_matching, save_atomic
+from .structures import BasisTable, MapStructure
+
+__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
+
+SOLVER_REVISION = 1  # bump when a numerical change invalidates stored results
+
+RESULT_VARIABLES = {
+    # name: (dtype, missing value, units, description)
+    "fmax_normalised": ("f8", np.nan, "1", "maximum contact force / (m_i V0 ω) over all impacts"),
+    "impacts": ("i4", -1, "1", "number of separate contacts"),
+    "contact_time_normalised": ("f8", np.nan, "1", "total contact time × ω"),
+    "first_contact_normalised": ("f8", np.nan, "1", "duration of the first contact × ω"),
+    "peak_time_normalised": ("f8", np.nan, "1", "time of the maximum force × ω"),
+    "energy_transferred_fraction": ("f8", np.nan, "1", "vibration energy left in the structure / impact energy"),
+    "reflection_time_normalised": ("f8", np.nan, "1", "ω d²/c: first wave return to the impact point (d: distance to nearest support/edge, c = sqrt(bending stiffness / mass per length or area))"),
+    "n_modes": ("i4", -1, "1", "number of modes integrated"),
+    "hit_time_limit": ("i1", -1, "1", "1 if the run stopped at its time limit"),
+}
+
+
+def log_grid(start: float, stop: float, count: int) -> np.ndarray:
+    """``count`` log-spaced values from ``start`` to ``stop`` (both > 0)."""
+    require_positive("start", start)
+    require_positive("stop", stop)
+    return np.geomspace(start, stop, int(count))
+
+
+# -- the worker ------------------------------------------------------------------------
+_TABLES: dict = {}
+
+
+def _basis_table(structure: MapStructure, target, max_frequency: float, min_modes: int) -> BasisTable:
+    table = _TABLES.get(structure)
+    if table is None or table.max_frequency < max_frequency:
+        table = BasisTable(target, max_frequency, min_modes)
+        _TABLES[structure] = table
+    return table
+
+
+def reflection_time(target, contact_frequency):
+    """Normalised wave-return time ω d²/c of ``target`` (see ``RESULT_VARIABLES``)."""
+    if target.structure == "beam":
+        distance = target.distance_to_nearest_support()
+        speed = math.sqrt(target.bending_stiffness / target.mass_per_length)
+    else:
+        distance = target.distance_to_nearest_edge()
+        speed = math.sqrt(target.effective_bending_stiffness / target.mass_per_area)
+    return np.asarray(contact_frequency) * distance**2 / speed
+
+
+def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings) -> list[dict]:
+    """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
+
+    Parameters
+    ----------
+    structure : MapStructure
+    points : sequence of (loss_factor, relative_stiffness)
+    settings : ModalSettings
+
+    Returns
+    -------
+    list of dict
+        One dict of normalised scalars per point (keys of ``RESULT_VARIABLES`` plus
+        ``zeta``, ``lambda_``, ``method``).
+    """
+    target = structure.build()
+    zetas = np.array([p[0] for p in points], dtype=float)
+    lambdas = np.array([p[1] for p in points], dtype=float)
+    impactors = realise(target, zetas, lambdas)
+    omegas = np.atleast_1d(impactors.contact_frequency)
+    table = _basis_table(structure, target, settings.cutoff_ratio * float(omegas.max()), settings.min_modes)
+    reflections = np.atleast_1d(reflection_time(target, omegas))
+    rows = []
+    for k in range(len(points)):
+        mass = float(np.atleast_1d(impactors.impactor_mass)[k])
+        stiffness = float(np.atleast_1d(impactors.contact_stiffness)[k])
+        basis = table.truncate(settings.cutoff_ratio * omegas[k], settings.min_modes)
+        result = simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
+        rows.append(
+            {
+                "zeta": zetas[k],
+                "lambda_": lambdas[k],
+                "fmax_normalised": result.fmax_normalised,
+                "impacts": result.impacts,
+                "contact_time_normalised": result.contact_time_normalised,
+                "first_contact_normalised": result.first_contact_duration_normalised,
+                "peak_time_normalised": result.peak_time_normalised,
+                "energy_transferred_fraction": result.energy_transferred_fraction,
+                "reflection_time_normalised": float(reflections[k]),
+                "n_modes": result.n_modes,
+                "hit_time_limit": int(result.hit_time_limit),
+                "method": result.method,
+            }
+        )
+    return rows
+
+
+# -- the orchestration ---------------------------------------------------------------------
+def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Dataset:
+    shape = (len(structures), len(lambdas), len(zetas))
+    data_vars = {}
+    for name, (dtype, missing, units, text) in RESULT_VARIABLES.items():
+        data_vars[name] = (("structure", "lambda_", "zeta"), np.full(shape, missing, dtype=dtype),
+                           {"units": units, "long_name": text})
+    data_vars["done"] = (("structure", "lambda_", "zeta"), np.zeros(shape, dtype="i1"),
+                         {"long_name": "1 where the point has been computed"})
+    coords = {
+        "structure": ("structure", [s.name for s in structures]),
+        "lambda_": ("lambda_", np.asarray(lambdas, float), {"long_name": "relative stiffness K_st/K", "units": "1"}),
+        "zeta": ("zeta", np.asarray(zetas, float), {"long_name": "loss factor", "units": "1"}),
+        "kind": ("structure", [s.kind for s in structures]),
+        "theory": ("structure", [s.theory for s in structures]),
+        "supports": ("structure", [s.supports for s in structures]),
+        "aspect_ratio": ("structure", [s.aspect_ratio for s in structures]),
+        "slenderness": ("structure", [s.slenderness for s in structures]),
+    }
+    from .. import __version__
+
+    attrs = {
+        "title": "impactmaps normalised impact map",
+        "fingerprint": digest,
+        "description": _json(description),
+        "impactmaps_version": __version__,
+        "solver_revision": SOLVER_REVISION,
+        "method": "modal impact solver (exact-step integrator, residual flexibility), linear contact",
+        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def _json(value) -> str:
+    import json
+
+    from .store import _jsonable
+
+    return json.dumps(value, sort_keys=True, default=_jsonable)
+
+
+def _chunks(structures, lambdas, zetas, done, chunk_size):
+    for s_index, structure in enumerate(structures):
+        for l_index, lam in enumerate(lambdas):
+            missing = [z_index for z_index in range(len(zetas)) if not done[s_index, l_index, z_index]]
+            for start in range(0, len(missing), chunk_size):
+                indices = missing[start:start + chunk_size]
+                yield structure, s_index, l_index, indices, [(float(zetas[z]), float(lam)) for z in indices]
+
+
+def sweep(
+    structures: Sequence[MapStructure],
+    loss_factors,
+    relative_stiffnesses,
+    *,
+    settings: ModalSettings | None = None,
+    path: str | os.PathLike | None = None,
+    executor: Executor | None = None,
+    max_workers: int | None = None,
+    progress: bool = True,
+    chunk_size: int = 10,
+    save_interval: float = 1.0,
+) -> xr.Dataset:
+    """Compute F̄max and companions over structures × λ × ζ.
+
+    Parameters
+    ----------
+    structures : sequence of MapStructure
+    loss_factors, relative_stiffnesses : array_like
+        The ζ and λ grids [-].
+    settings : ModalSettings, optional
+        Solver settings (part of the result's fingerprint).
+    path : path-like, optional
+        NetCDF result file. Finished points are saved there atomically as they
+        complete; re-running with the same path computes only the missing points.
+        A file made with other settings is refused (``ValueError``).
+    executor : concurrent.futures.Executor, optional
+        Where chunks run (e.g. ``dask.distributed.Client(...).get_executor()``).
+        Default: a local process pool over the machine's cores.
+    max_workers : int, optional
+        Size of the default process pool (default: ``os.cpu_count()``); 1 runs inline.
+    progress : bool
+        Show a tqdm progress bar.
+    chunk_size : int
+        Points per task.
+    save_interval : float
+        Minimum seconds between two saves of the result file (the final save always
+        happens).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``structure``, ``lambda_``, ``zeta``; variables of ``RESULT_VARIABLES``,
+        ``regime``, ``done``; units and provenance in attributes.
+    """
+    settings = settings or ModalSettings()
+    structures = list(structures)
+    if not structures:
+        raise ValueError("structures is empty: give at least one MapStructure")
+    zetas = np.asarray(loss_factors, dtype=float).ravel()
+    lambdas = np.asarray(relative_stiffnesses, dtype=float).ravel()
+    require_positive("loss_factors", zetas)
+    require_positive("relative_stiffnesses", lambdas)
+    description = {
+        "structures": [s.as_dict() for s in structures],
+        "zeta": zetas,
+        "lambda_": lambdas,
+        "settings": asdict(settings),
+        "solver_revision": SOLVER_REVISION,
+    }
+    digest = fingerprint(description)
+    dataset = None
+    if path is not None:
+        dataset = load_matching(path, digest)
+    if dataset is None:
+        dataset = _empty_dataset(structures, lambdas, zetas, description, digest)
+    done = dataset["done"].values.astype(bool)
+    tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
+    pending = sum(len(task[3]) for task in tasks)
+
+    arrays = {name: dataset[name].values.copy() for name in (*RESULT_VARIABLES, "done")}
+    methods = set(str(dataset.attrs.get("point_methods", "")).split(",")) - {""}
+
+    def absorb(task, rows):
+        _, s_index, l_index, indices, _ = task
+        for z_index, row in zip(indices, rows):
+            for name in RESULT_VARIABLES:
+                arrays[name][s_index, l_index, z_index] = row[name]
+            arrays["done"][s_index, l_index, z_index] = 1
+            methods.add(row["method"])
+
+    def snapshot() -> xr.Dataset:
+        out = dataset.copy()
+        for name, values in arrays.items():
+            out[name] = (out[name].dims, values, out[name].attrs)
+        out.attrs["point_methods"] = ",".join(sorted(methods))
+        out.attrs["complete"] = int(bool(arrays["done"].all()))
+        return out
+
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
+    own_executor = None
+    last_save = time.monotonic()
+    try:
+        if tasks:
+            workers = max_workers or os.cpu_count() or 1
+            if executor is None and (workers == 1 or len(tasks) == 1):
+                for task in tasks:
+                    absorb(task, solve_points(task[0], task[4], settings))
+                    bar.update(len(task[3]))
+                    if path is not None and time.monotonic() - last_save >= save_interval:
+                        save_atomic(snapshot(), path)
+                        last_save = time.monotonic()
+            else:
+                if executor is None:
+                    own_executor = ProcessPoolExecutor(max_workers=workers)
+                    executor = own_executor
+                futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
+                for future in as_completed(futures):
+                    task = futures[future]
+                    absorb(task, future.result())
+                    bar.update(len(task[3]))
+                    if path is not None and time.monotonic() - last_save >= save_interval:
+                        save_atomic(snapshot(), path)
+                        last_save = time.monotonic()
+    finally:
+        bar.close()
+        if own_executor is not None:
+            own_executor.shutdown(wait=False, cancel_futures=True)
+        if path is not None and tasks:
+            save_atomic(snapshot(), path)
+    result = snapshot()
+    result["regime"] = classify_dataset(result)
+    return result
+
+
+def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
+    """Regime label of every computed point of a sweep dataset (see :mod:`.regimes`)."""
+    labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
+    for s_index, kind in enumerate(dataset["kind"].values):
+        fmax = dataset["fmax_normalised"].values[s_index]
+        lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")
+        ok = dataset["done"].values[s_index].astype(bool)
+        if ok.any():
+            labels[s_index][ok] = classify(
+                fmax[ok], zeta[ok], lam[ok], str(kind),
+                peak_time=dataset["peak_time_normalised"].values[s_index][ok],
+                reflection_time=dataset["reflection_time_normalised"].values[s_index][ok],
+                **criteria,
+            )
+    return xr.DataArray(labels.astype(str), dims=("structure", "lambda_", "zeta"),
+                        attrs={"long_name": "impact regime (local / infinite-structure / transition / quasi-static)"})

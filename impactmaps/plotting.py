@@ -1,0 +1,232 @@
+"""Matplotlib charts. Every function takes ``ax=None`` (a new figure when missing)
+and returns the Axes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "plot_fmax_chart",
+    "plot_regime_map",
+    "plot_force_history",
+    "plot_scaling",
+    "plot_restitution",
+]
+
+REGIME_COLOURS = {
+    "local": "#cfe8cf",
+    "infinite-structure": "#cfe0f3",
+    "transition": "#f6e3c7",
+    "quasi-static": "#e6d5ef",
+}
+
+
+def _axes(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(8, 5.5))
+    return ax
+
+
+def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):
+    """Figure 2 of seed 001: F̄max against ζ (log axis) for several λ.
+
+    Plates are drawn solid, beams dashed; the quasi-static values sqrt(λ/(1+λ)) as
+    dotted horizontal lines, the infinite-plate and infinite-beam peaks as thick grey
+    curves, and the local band F̄max ≥ 0.9 shaded.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep result (dims structure, lambda_, zeta).
+    structures : list of str, optional
+        Structure names to draw (default all).
+    lambdas : list of float, optional
+        λ values to draw (default all in the dataset).
+    asymptotes : bool
+        Draw the quasi-static and infinite-structure asymptotes.
+    shade_regimes : bool
+        Shade the local band.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    import matplotlib.pyplot as plt
+
+    from .maps.regimes import infinite_structure_peak, quasi_static_peak
+
+    ax = _axes(ax)
+    structures = list(dataset["structure"].values) if structures is None else list(structures)
+    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
+    zeta = dataset["zeta"].values
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.9, len(lambda_values)))
+    if shade_regimes:
+        ax.axhspan(0.9, 1.05, color=REGIME_COLOURS["local"], alpha=0.6, lw=0, zorder=0)
+        ax.text(zeta[0] * 1.1, 0.985, "local", fontsize=9, va="top", color="#2f6f2f")
+    if asymptotes:
+        dense = np.geomspace(zeta[0], zeta[-1], 300)
+        kinds = {str(dataset["kind"].sel(structure=s).item()) for s in structures}
+        if "plate" in kinds:
+            ax.plot(dense, infinite_structure_peak(dense, "plate"), color="0.55", lw=3.0, alpha=0.6,
+                    label="infinite plate", zorder=1)
+        if "beam" in kinds:
+            ax.plot(dense, infinite_structure_peak(dense, "beam"), color="0.55", lw=3.0, alpha=0.6, ls="--",
+                    label="infinite beam", zorder=1)
+    for colour, lam in zip(colours, lambda_values):
+        if asymptotes:
+            ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.8, ls=":", zorder=1)
+        for name in structures:
+            kind = str(dataset["kind"].sel(structure=name).item())
+            values = dataset["fmax_normalised"].sel(structure=name, lambda_=lam, method="nearest").values
+            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6,
+                    label=f"λ = {lam:g}" if name == structures[0] else None, zorder=2)
+    ax.set_xscale("log")
+    ax.set_xlim(zeta[0], zeta[-1])
+    ax.set_ylim(0.0, 1.05)
+    ax.set_xlabel("loss factor ζ")
+    ax.set_ylabel("normalised maximum force F̄max = Fmax / (m_i V0 ω)")
+    ax.set_title("Normalised maximum impact force: plates solid, beams dashed; quasi-static dotted")
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=8, ncol=2, loc="lower left")
+    return ax
+
+
+def plot_regime_map(dataset, structure, *, ax=None):
+    """Regimes of one structure on the (ζ, λ) plane (log axes).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep result with a ``regime`` variable.
+    structure : str
+        Structure name.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from .maps.regimes import REGIMES
+
+    ax = _axes(ax)
+    regimes = dataset["regime"].sel(structure=structure).values
+    codes = np.full(regimes.shape, np.nan)
+    for index, name in enumerate(REGIMES):
+        codes[regimes == name] = index
+    cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
+    ax.pcolormesh(dataset["zeta"].values, dataset["lambda_"].values, codes, cmap=cmap, vmin=-0.5,
+                  vmax=len(REGIMES) - 0.5, shading="nearest")
+    contours = ax.contour(dataset["zeta"].values, dataset["lambda_"].values,
+                          dataset["fmax_normalised"].sel(structure=structure).values,
+                          levels=[0.3, 0.5, 0.7, 0.9], colors="k", linewidths=0.7)
+    ax.clabel(contours, fmt="F̄=%.1f", fontsize=7)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("loss factor ζ")
+    ax.set_ylabel("relative stiffness λ")
+    ax.set_title(f"Impact regimes: {structure}")
+    ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=8, loc="lower left")
+    return ax
+
+
+def plot_force_history(results, *, labels=None, normalised=True, quantity="force", ax=None, styles=None):
+    """Contact force (or target deflection) histories of one or more results.
+
+    Parameters
+    ----------
+    results : ImpactResult or sequence of them
+    labels : sequence of str, optional
+    normalised : bool
+        Plot F̄ against τ (else N against ms).
+    quantity : {"force", "deflection"}
+        ``deflection`` plots the target displacement at the impact point.
+    ax : matplotlib Axes, optional
+    styles : sequence of dict, optional
+        Matplotlib keyword arguments per result.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = _axes(ax)
+    if not isinstance(results, (list, tuple)):
+        results = [results]
+    labels = labels or [None] * len(results)
+    styles = styles or [{}] * len(results)
+    for result, label, style in zip(results, labels, styles):
+        if normalised:
+            history = result.normalised_history()
+            x = history["tau"]
+            y = history["force_normalised"] if quantity == "force" else history["target_displacement_normalised"]
+        else:
+            history = result.history
+            x = history["time_s"] * 1e3
+            y = history["force_N"] if quantity == "force" else history["target_displacement_m"] * 1e3
+        ax.plot(x, y, label=label, **style)
+    if normalised:
+        ax.set_xlabel("normalised time τ = ωt")
+        ax.set_ylabel("F̄ = F/(m_i V0 ω)" if quantity == "force" else "w̄ = w/α*")
+    else:
+        ax.set_xlabel("time [ms]")
+        ax.set_ylabel("contact force [N]" if quantity == "force" else "deflection [mm]")
+    ax.grid(True, alpha=0.3)
+    if any(labels):
+        ax.legend(fontsize=8)
+    return ax
+
+
+def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):
+    """Scaling figure (seed 001 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
+
+    Parameters
+    ----------
+    plate_result, beam_result : ImpactResult
+    quantity : {"force", "deflection"}
+    asymptote : tuple of (tau, values, label), optional
+        A reference curve (e.g. quasi-static eq 28) drawn dotted.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = plot_force_history([plate_result, beam_result], labels=["plate", "beam"], quantity=quantity,
+                            styles=[{"color": "k", "ls": "-"}, {"color": "k", "ls": "--"}], ax=ax)
+    if asymptote is not None:
+        tau, values, label = asymptote
+        ax.plot(tau, values, color="0.5", ls=":", label=label)
+        ax.legend(fontsize=8)
+    return ax
+
+
+def plot_restitution(beta, restitution, *, points=None, ax=None):
+    """Coefficient of restitution against the impact number β (seed 001 Figure 1).
+
+    Parameters
+    ----------
+    beta, restitution : array_like
+        The curve (closed form).
+    points : tuple of (beta, restitution), optional
+        Numerical results drawn as markers.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    ax = _axes(ax)
+    ax.semilogx(beta, restitution, "k-", label="closed form")
+    if points is not None:
+        ax.semilogx(points[0], points[1], "o", mfc="none", color="C3", label="numerical")
+    ax.set_xlabel("impact number β = V0/(ω α_y)")
+    ax.set_ylabel("coefficient of restitution e")
+    ax.set_ylim(0, 1.05)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    return ax
