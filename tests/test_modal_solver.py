@@ -155,3 +155,23 @@ def test_bad_input():
         simulate(HALF_SPACE, LinearContact(1.0), 1.0, 0.0)
     with pytest.raises(ValueError, match="cutoff_ratio"):
         ModalSettings(cutoff_ratio=0)
+
+
+@pytest.mark.parametrize("zeta", [0.01, 0.1, 0.3, 1.0])
+def test_long_beam_reproduces_infinite_beam(zeta):
+    """λ → 0 (reflections return after the peak): the SS Euler beam's F̄max equals the
+    infinite-beam asymptote (eq 36, closed form) within 0.5 % (observed ≤ 1e-5)."""
+    from impactmaps.solvers.asymptotes import infinite_beam_peak
+
+    result = _run("beam", zeta, 1e-3)
+    assert result.fmax_normalised == pytest.approx(float(infinite_beam_peak(zeta)), rel=5e-3)
+
+
+@pytest.mark.parametrize("zeta", [0.01, 0.1, 0.3, 1.0])
+def test_large_plate_reproduces_infinite_plate(zeta):
+    """λ → 0: the SS square Kirchhoff plate's F̄max equals the infinite-plate peak
+    (eqs 32–34, closed form) within 0.5 % (observed ≤ 4e-5)."""
+    from impactmaps.solvers.asymptotes import infinite_plate_peak
+
+    result = _run("plate", zeta, 1e-2)
+    assert result.fmax_normalised == pytest.approx(float(infinite_plate_peak(zeta)), rel=5e-3)

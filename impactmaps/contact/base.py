@@ -37,16 +37,27 @@ __all__ = [
     "effective_modulus",
     "effective_radius",
     "evaluate_kernel",
+    "KERNEL_TYPE",
 ]
 
 
-@numba.njit(cache=True)
+_F8 = numba.types.float64
+_VECTOR = numba.types.Array(_F8, 1, "C")
+_MATRIX = numba.types.Array(_F8, 2, "C")
+#: Numba type of every contact-law kernel ``(alpha, alpha_max, params) -> (force, stiffness)``.
+#: Compiled solvers take the kernel as this first-class *function type* (a function
+#: pointer), not as a dispatcher: one compiled solver then serves every law and numba's
+#: on-disk cache works (dispatcher-typed arguments break the cache across processes).
+KERNEL_TYPE = numba.types.FunctionType(numba.types.UniTuple(_F8, 2)(_F8, _F8, _VECTOR))
+
+
+@numba.njit(numba.types.UniTuple(_VECTOR, 2)(KERNEL_TYPE, _VECTOR, _VECTOR, _MATRIX), cache=True)
 def _evaluate_many(kernel, alpha, alpha_max, params):
     n = alpha.shape[0]
     force = np.empty(n)
     stiffness = np.empty(n)
     for i in range(n):
-        f, s = kernel(alpha[i], alpha_max[i], params[i])
+        f, s = kernel(alpha[i], alpha_max[i], np.ascontiguousarray(params[i]))
         force[i] = f
         stiffness[i] = s
     return force, stiffness
@@ -77,11 +88,10 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     n_params = params.shape[0]
     # align the batch dimensions with the trailing dimensions of ``shape`` (NumPy rule)
     params = params.reshape((n_params,) + (1,) * (len(shape) - len(batch)) + batch)
-    flat_params = np.ascontiguousarray(
-        np.broadcast_to(params, (n_params,) + shape).reshape(n_params, -1).T
-    )
-    flat_alpha = np.ascontiguousarray(np.broadcast_to(alpha, shape).ravel())
-    flat_alpha_max = np.ascontiguousarray(np.broadcast_to(alpha_max, shape).ravel())
+    # writeable C-contiguous copies (the compiled evaluator's signature requires them)
+    flat_params = np.array(np.broadcast_to(params, (n_params,) + shape).reshape(n_params, -1).T, order="C")
+    flat_alpha = np.array(np.broadcast_to(alpha, shape).ravel(), order="C")
+    flat_alpha_max = np.array(np.broadcast_to(alpha_max, shape).ravel(), order="C")
     force, stiffness = _evaluate_many(kernel, flat_alpha, flat_alpha_max, flat_params)
     return force.reshape(shape), stiffness.reshape(shape)
 

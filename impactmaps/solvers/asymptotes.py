@@ -36,6 +36,7 @@ from .infinite_beam import (
     infinite_beam_peak_time,
     recontact_beam_loss_factor,
 )
+from .infinite_beam import _scalar_or_array
 
 __all__ = [
     "halfspace_force",
@@ -64,10 +65,6 @@ __all__ = [
     "infinite_beam_peak_time",
     "recontact_beam_loss_factor",
 ]
-
-
-def _scalar_or_array(value: np.ndarray):
-    return value[()] if value.ndim == 0 else value
 
 
 # --------------------------------------------------------------------------- half-space

@@ -336,6 +336,11 @@ def infinite_beam_impact(
 # --------------------------------------------------------------------------- public API
 
 
+def _scalar_or_array(value: np.ndarray):
+    """0-d arrays become numpy scalars, anything else is returned as is."""
+    return value[()] if value.ndim == 0 else value
+
+
 def _validated(tau, loss_factor):
     require_nonnegative("tau", tau)
     require_positive("loss_factor", loss_factor)
@@ -349,7 +354,7 @@ def _per_loss_factor(tau, loss_factor, evaluate):
     for zeta in np.unique(loss_factor):
         chosen = loss_factor == zeta
         result[chosen] = evaluate(tau[chosen], float(zeta))
-    return result[()] if result.ndim == 0 else result
+    return _scalar_or_array(result)
 
 
 def infinite_beam_indentation(
@@ -455,7 +460,7 @@ def _over_loss_factors(loss_factor, index):
     require_positive("loss_factor", loss_factor)
     zeta = np.asarray(loss_factor, dtype=float)
     result = np.vectorize(lambda z: _first_contact(float(z))[index], otypes=[float])(zeta)
-    return result[()] if result.ndim == 0 else result
+    return _scalar_or_array(result)
 
 
 def infinite_beam_peak(loss_factor):
@@ -586,4 +591,4 @@ def infinite_beam_force(tau, loss_factor, *, time_step=DEFAULT_TIME_STEP):
             prescribed_force=lambda t: np.where(t <= contact, _moment(t, zeta, 1).real, -1.0),
         )
         force[later] = np.interp(tau[later], run.tau, run.force)
-    return force[()] if force.ndim == 0 else force
+    return _scalar_or_array(force)

@@ -20,6 +20,8 @@ import math
 import numba
 import numpy as np
 
+from ..contact.base import KERNEL_TYPE
+
 __all__ = ["oscillator_step_coefficients", "integrate_impact"]
 
 _SERIES_LIMIT = 0.25
@@ -125,7 +127,12 @@ def _fill_coefficients(omega, zeta, phi, h, coef):
             coef[j, k] = tmp[k] * phi[j]
 
 
-@numba.njit(cache=True)
+_F8 = numba.types.float64
+_VECTOR = numba.types.Array(_F8, 1, "C")
+_MATRIX = numba.types.Array(_F8, 2, "C")
+
+
+@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8), cache=True)
 def _solve_force(kernel, params, alpha_pred, compliance, alpha_max):
     """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root)."""
     f_trial, k_trial = kernel(alpha_pred, alpha_max, params)
@@ -184,7 +191,14 @@ def _damping_power(omega, zeta, v):
     return power
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(
+    numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
+        KERNEL_TYPE, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
+        numba.types.boolean, numba.types.int64,
+    ),
+    cache=True,
+    nogil=True,
+)
 def integrate_impact(
     kernel,
     params,
@@ -431,4 +445,4 @@ def integrate_impact(
     scalars[7] = hit_limit
     scalars[8] = steps
     scalars[9] = overflow
-    return history[:rec], intervals[:n_intervals], scalars
+    return history[:rec].copy(), intervals[:n_intervals].copy(), scalars

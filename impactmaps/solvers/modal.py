@@ -34,6 +34,7 @@ __all__ = [
     "ModalSettings",
     "simulate",
     "simulate_normalised",
+    "simulate_batch",
     "reference_contact_stiffness",
     "coupled_top_frequency",
     "ConvergenceWarning",
@@ -236,7 +237,7 @@ def simulate(
     require_positive("velocity", velocity, "m/s")
     if not isinstance(law, ContactLaw):
         raise ValueError(f"law = {law!r} is not a ContactLaw")
-    params = np.ascontiguousarray(np.asarray(law.kernel_parameters, dtype=float))
+    params = np.array(law.kernel_parameters, dtype=float, order="C")
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
@@ -337,3 +338,44 @@ def simulate_normalised(
         settings=settings,
         record=record,
     )
+
+
+def simulate_batch(
+    cases,
+    *,
+    settings: ModalSettings | None = None,
+    record: bool = False,
+    max_workers: int | None = None,
+) -> list[ImpactResult]:
+    """Simulate many independent impacts, in parallel threads (the kernel releases the GIL).
+
+    Parameters
+    ----------
+    cases : iterable of (target, law, impactor_mass, velocity)
+        Each entry as the positional arguments of :func:`simulate`.
+    settings : ModalSettings, optional
+        Shared by all cases.
+    record : bool
+        Keep histories (default: scalars only).
+    max_workers : int, optional
+        Threads (default: ``os.cpu_count()``); 1 runs sequentially.
+
+    Returns
+    -------
+    list of ImpactResult
+        In the order of ``cases``; identical to running :func:`simulate` one by one.
+    """
+    import os
+    from concurrent.futures import ThreadPoolExecutor
+
+    cases = list(cases)
+    workers = max_workers or os.cpu_count() or 1
+
+    def run(case):
+        target, law, mass, velocity = case
+        return simulate(target, law, mass, velocity, settings=settings, record=record)
+
+    if workers == 1 or len(cases) < 2:
+        return [run(case) for case in cases]
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(run, cases))

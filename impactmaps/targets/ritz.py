@@ -1,8 +1,8 @@
 """Rayleigh–Ritz modal basis of rectangular Kirchhoff plates with any S/C/F edges.
 
 The transverse deflection is expanded in products of one-dimensional
-*boundary-characteristic orthogonal polynomials* (Bhat, J. Sound Vib. 102 (1985)
-493–499):
+*boundary-characteristic orthogonal polynomials* (the idea of R. B. Bhat, J. Sound Vib. 102
+(1985) 493–499; here built from Legendre polynomials times an edge factor):
 
     w(x, y) = Σ_i Σ_l c_il X_i(x/a) Y_l(y/b),
     X_i(ξ) = Σ_k T_ki ξ^e0 (1 − ξ)^e1 P_k(2ξ − 1),

@@ -1,0 +1,139 @@
+"""Sweeps, the resumable store, regime classification and the Dask path."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from impactmaps.maps import sweep as sweep_module
+from impactmaps.maps.regimes import classify
+from impactmaps.maps.store import StoreMismatchError
+from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.sweep import solve_points, sweep
+from impactmaps.solvers.modal import ModalSettings
+
+PLATE = MapStructure(kind="plate", theory="kirchhoff", supports="SSSS")
+BEAM = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
+ZETAS = np.geomspace(0.03, 30, 7)
+LAMBDAS = [0.2, 2.0]
+
+
+@pytest.mark.parametrize("structure", [PLATE, BEAM], ids=lambda s: s.name)
+def test_published_cases_are_classified_as_in_seed_001(structure):
+    """Seed 001 §6: λ = 0.425 with ζ = 11.3 is fully global (quasi-static), ζ = 0.038
+    locally dominated, ζ = 1.198 in the transition — for the plate and for the beam."""
+    rows = solve_points(structure, [(11.3, 0.425), (0.038, 0.425), (1.198, 0.425)], ModalSettings())
+    regimes = classify(
+        [r["fmax_normalised"] for r in rows],
+        [r["zeta"] for r in rows],
+        [r["lambda_"] for r in rows],
+        structure.kind,
+        peak_time=[r["peak_time_normalised"] for r in rows],
+        reflection_time=[r["reflection_time_normalised"] for r in rows],
+    )
+    assert list(regimes) == ["quasi-static", "local", "transition"]
+
+
+def test_classify_limits_and_validation():
+    """Exact asymptote values classify as their regime; bad input is a ValueError."""
+    lam = 0.425
+    qs = np.sqrt(lam / (1 + lam))
+    assert classify(1.0, 0.01, lam, "plate") == "local"
+    assert classify(qs, 50.0, lam, "plate") == "quasi-static"
+    from impactmaps.solvers.asymptotes import infinite_plate_peak
+
+    assert classify(float(infinite_plate_peak(0.5)), 0.5, 0.05, "plate") == "infinite-structure"
+    assert classify(0.3, 1.0, 4.0, "plate") == "transition"
+    with pytest.raises(ValueError, match="structure"):
+        classify(0.5, 1.0, 1.0, "shell")
+    with pytest.raises(ValueError, match="tolerance"):
+        classify(0.5, 1.0, 1.0, "plate", tolerance=0)
+
+
+def _counting(monkeypatch, fail_after=None):
+    calls = {"n": 0}
+    original = sweep_module.simulate
+
+    def counted(*args, **kwargs):
+        calls["n"] += 1
+        if fail_after is not None and calls["n"] > fail_after:
+            raise KeyboardInterrupt
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(sweep_module, "simulate", counted)
+    return calls
+
+
+def test_resume_recomputes_nothing_finished(tmp_path, monkeypatch):
+    """Interrupt a sweep, resume it with the same path: the solver is called exactly
+    once per missing point, and the result equals an uninterrupted sweep."""
+    path = tmp_path / "map.nc"
+    total = 2 * len(LAMBDAS) * len(ZETAS)
+    calls = _counting(monkeypatch, fail_after=9)
+    with pytest.raises(KeyboardInterrupt):
+        sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, chunk_size=3,
+              save_interval=0.0)
+    stored = xr.open_dataset(path, engine="scipy").load()
+    finished = int(stored["done"].sum())
+    assert 0 < finished < total
+    assert not list(tmp_path.glob(".*.tmp"))  # atomic writes leave no temporaries
+
+    calls = _counting(monkeypatch)
+    resumed = sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, chunk_size=3)
+    assert calls["n"] == total - finished
+    assert bool(resumed["done"].all())
+
+    calls = _counting(monkeypatch)
+    again = sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False)
+    assert calls["n"] == 0
+
+    fresh = sweep([PLATE, BEAM], ZETAS, LAMBDAS, max_workers=1, progress=False)
+    np.testing.assert_array_equal(resumed["fmax_normalised"].values, fresh["fmax_normalised"].values)
+    np.testing.assert_array_equal(again["regime"].values, fresh["regime"].values)
+
+
+def test_foreign_or_corrupted_file_is_refused(tmp_path):
+    """A result file from other settings, or an unreadable one, is refused — not mixed in."""
+    path = tmp_path / "map.nc"
+    sweep([PLATE], ZETAS[:2], [1.0], path=path, max_workers=1, progress=False)
+    with pytest.raises(StoreMismatchError, match="different"):
+        sweep([PLATE], ZETAS[:2], [1.0], path=path, settings=ModalSettings(cutoff_ratio=20.0),
+              max_workers=1, progress=False)
+    with pytest.raises(ValueError, match="different"):
+        sweep([PLATE], ZETAS[:3], [1.0], path=path, max_workers=1, progress=False)
+    broken = tmp_path / "broken.nc"
+    broken.write_bytes(b"CDF\x02 this is not a sweep")
+    with pytest.raises(ValueError, match="cannot be read"):
+        sweep([PLATE], ZETAS[:2], [1.0], path=broken, max_workers=1, progress=False)
+    other = tmp_path / "other.nc"
+    xr.Dataset({"x": ("a", [1.0])}).to_netcdf(other, engine="scipy")
+    with pytest.raises(ValueError, match="not an impactmaps sweep"):
+        sweep([PLATE], ZETAS[:2], [1.0], path=other, max_workers=1, progress=False)
+
+
+def test_dataset_is_labelled():
+    """Dims, units and provenance attributes are present; the regime is filled in."""
+    dataset = sweep([PLATE], ZETAS[:3], [1.0], max_workers=1, progress=False)
+    assert dataset["fmax_normalised"].dims == ("structure", "lambda_", "zeta")
+    assert dataset["fmax_normalised"].attrs["units"] == "1"
+    assert "impactmaps_version" in dataset.attrs and "fingerprint" in dataset.attrs
+    assert '"cutoff_ratio"' in dataset.attrs["description"]
+    assert set(np.unique(dataset["regime"].values)) <= {"local", "infinite-structure", "transition", "quasi-static"}
+
+
+def test_dask_executor_gives_the_same_numbers():
+    """The same sweep on a local Dask cluster (threads) equals the local run exactly."""
+    distributed = pytest.importorskip("dask.distributed")
+    local = sweep([PLATE], ZETAS[:4], LAMBDAS, max_workers=1, progress=False)
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None) as client:
+        remote = sweep([PLATE], ZETAS[:4], LAMBDAS, executor=client.get_executor(), progress=False, chunk_size=2)
+    np.testing.assert_array_equal(local["fmax_normalised"].values, remote["fmax_normalised"].values)
+    np.testing.assert_array_equal(local["impacts"].values, remote["impacts"].values)
+
+
+def test_process_pool_gives_the_same_numbers():
+    """The default local process pool equals the inline run exactly."""
+    inline = sweep([PLATE], ZETAS[:4], [1.0], max_workers=1, progress=False)
+    pooled = sweep([PLATE], ZETAS[:4], [1.0], max_workers=2, progress=False, chunk_size=2)
+    np.testing.assert_array_equal(inline["fmax_normalised"].values, pooled["fmax_normalised"].values)

@@ -1,0 +1,266 @@
+"""Parametric study with the finite-difference elastic-plastic beam (seed 000's findings).
+
+Reproduces, qualitatively, the parametric findings stated in the abstract of seed 000
+("Transient impact response analysis of an elastic-plastic beam"): the effects of the
+impactor mass, impact velocity, beam plasticity and impact location on the peak force,
+the contact time, the energy loss and the Newton coefficient of restitution, and the
+*jump* of the energy loss / restitution caused by impact-induced waves (sub-impacts).
+Only the abstract and nomenclature of seed 000 are available, so there are no printed
+numbers to compare with; the figures show trends and mark the wave-return time.
+
+Case (what is and is not known)
+-------------------------------
+* Beam: simply supported, span 780 mm, section 60 mm × 27.8 mm, as in that group's drop
+  tests (task brief). Seed 000's nomenclature lists the width B and the height H but the
+  OCR text gives no values; **assumed**: width b = 60 mm, height h = 27.8 mm (the bar
+  lies flat and is struck on its 60 mm face).
+* Steel: E = 206 GPa, ρ = 7850 kg/m³, ν = 0.3 (typical structural-steel values, e.g.
+  EN 1993-1-1 §3.2.6 gives E = 210 GPa; 206 GPa is the other common value, the brief's
+  range 206–210 GPa). Yield stress σ_y = 235 MPa is **assumed** (nominal S235 of
+  EN 10025-2); seed 000's value is unknown here.
+* Sphere: steel, radius 12.5 mm (**assumed**), rigid body; its mass is varied
+  independently of its radius (a sphere-tipped drop weight), so that the mass study
+  changes the mass alone. Contact: refined Stronge law (PHYSICS.md §2, defaults), with
+  the beam's yield stress (the hardened sphere is taken not to yield).
+* Drop test: gravity on the sphere; the sphere touches the beam at t = 0 with V0.
+  Base case: m = 1 kg, V0 = 2 m/s, mid-span (velocity/plasticity study: m = 5 kg, so
+  that the beam yields). Record: 20 ms (≈ 2 periods of the first
+  beam mode); restitution e = (sphere velocity at its final separation in the record)/V0.
+
+Wave-return time
+----------------
+A flexural pulse of duration T_c has its energy near ω ≈ π/T_c (the half-sine
+convention used here); it travels with the Rayleigh-beam group velocity c_g(k) at the
+wavenumber k of that frequency and returns from the nearest support after
+``t_r = 2 d / c_g``, d = distance from the impact point to that support. When the first
+contact lasts longer than t_r, the reflection arrives while the sphere is still in
+contact; once the beam swings back into the sphere, sub-impacts appear, and the energy
+loss and e jump. The figures mark t_r (computed from each run's first-contact duration)
+and the runs with more than one contact.
+
+Output: ``figures/fd_force_histories.png``, ``figures/fd_mass_effect.png``,
+``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png``. Runtime about a
+minute on 2 cores.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import time
+import warnings
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+from scipy.optimize import brentq  # noqa: E402
+
+from impactmaps.contact import StrongeContact, effective_modulus  # noqa: E402
+from impactmaps.fd import FDBeam, simulate_fd  # noqa: E402
+
+FIGURES = pathlib.Path(__file__).resolve().parents[1] / "figures"
+
+LENGTH, WIDTH, HEIGHT = 0.78, 0.06, 0.0278  # m; width/height assignment assumed (docstring)
+MODULUS, DENSITY, POISSON = 206e9, 7850.0, 0.3  # typical steel
+YIELD = 235e6  # Pa, assumed (S235 nominal)
+SPHERE_RADIUS = 0.0125  # m, assumed
+BASE_MASS, BASE_VELOCITY = 1.0, 2.0  # kg, m/s
+PLASTICITY_MASS = 5.0  # kg: heavy enough for the beam to yield in the velocity study
+DURATION = 20e-3  # s
+
+
+def contact_law():
+    e_star = float(effective_modulus(MODULUS, POISSON, MODULUS, POISSON))
+    return StrongeContact(e_star, SPHERE_RADIUS, YIELD)
+
+
+def beam(plastic=True):
+    return FDBeam(LENGTH, WIDTH, HEIGHT, MODULUS, DENSITY, YIELD, poisson_ratio=POISSON,
+                  n_elements=200, n_half_layers=10, plastic=plastic)
+
+
+def wave_return_time(target: FDBeam, contact_duration, distance):
+    """t_r = 2 d / c_g(k) with ω(k) = π / T_c on the Rayleigh dispersion curve [s]."""
+    omega = np.pi / contact_duration
+    k_max = np.sqrt(target.mass_per_length / target.rotary_inertia_per_length) * 50
+    # Rayleigh beam: ω(k) increases monotonically to the bar limit c0 k... solve ω(k) = ω
+    k = brentq(lambda q: float(target.rayleigh_frequency(q)) - omega, 1e-9, k_max)
+    return 2.0 * distance / float(target.rayleigh_group_velocity(k))
+
+
+def run(mass=BASE_MASS, velocity=BASE_VELOCITY, position=LENGTH / 2, plastic=True, law=None,
+        stride=20):
+    target = beam(plastic)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = simulate_fd(target, law or contact_law(), mass, velocity, position,
+                             duration=DURATION, gravity=True, history_stride=stride)
+    distance = min(result.impact_node_position, LENGTH - result.impact_node_position)
+    return result, dict(
+        mass_kg=mass, velocity_m_s=velocity, position_m=result.impact_node_position,
+        plastic=plastic, peak_force_N=result.peak_force, impacts=result.impacts,
+        first_contact_s=result.first_contact_duration, contact_span_s=result.total_contact_span,
+        second_contact_start_s=(result.contact_intervals[1, 0] if result.impacts > 1 else np.nan),
+        contact_time_s=result.contact_time,
+        energy_loss_fraction=result.energy_loss / result.impact_energy,
+        restitution=result.restitution,
+        plastic_work_fraction=result.energy["beam_plastic_work"] / result.impact_energy,
+        contact_dissipation_fraction=result.energy["contact_dissipation"] / result.impact_energy,
+        permanent_deflection_m=result.permanent_beam_deflection,
+        permanent_indentation_m=result.permanent_indentation,
+        wave_return_s=wave_return_time(target, result.first_contact_duration, distance),
+        ledger_error=result.energy_balance_error,
+        still_in_contact=result.still_in_contact,
+    )
+
+
+def sweep(name, values, make):
+    rows = []
+    start = time.perf_counter()
+    for value in values:
+        rows.append(make(value)[1])
+    table = pd.DataFrame(rows)
+    print(f"{name}: {len(values)} runs in {time.perf_counter() - start:.1f} s; "
+          f"max |ledger error| {table['ledger_error'].abs().max():.1e}")
+    return table
+
+
+def _panels(axes, table, x, label, style="o-", name=None, color=None):
+    multi = table["impacts"] > 1
+    kw = dict(color=color, label=name)
+    ax = axes[0, 0]
+    ax.plot(table[x], table["peak_force_N"] / 1e3, style, ms=4, **kw)
+    ax.set_ylabel("peak force [kN]")
+    ax = axes[0, 1]
+    ax.plot(table[x], table["first_contact_s"] * 1e3, style, ms=4, **kw)
+    ax.plot(table[x], table["wave_return_s"] * 1e3, "--", color=color or "k", lw=1,
+            label=None if name else "wave-return time $t_r$")
+    ax.plot(table[x], table["second_contact_start_s"] * 1e3, "^", ms=4, mfc="none",
+            color=color or "C2", label=None if name else "start of 2nd contact")
+    ax.set_yscale("log")
+    ax.set_ylabel("first contact duration [ms]")
+    ax = axes[1, 0]
+    ax.plot(table[x], table["energy_loss_fraction"], style, ms=4, **kw)
+    ax.plot(table[x][multi], table["energy_loss_fraction"][multi], "s", mfc="none", ms=8,
+            color=color or "C3", label=None)
+    ax.set_ylabel("energy loss / impact energy")
+    ax = axes[1, 1]
+    ax.plot(table[x], table["restitution"], style, ms=4, **kw)
+    ax.plot(table[x][multi], table["restitution"][multi], "s", mfc="none", ms=8,
+            color=color or "C3", label=None)
+    ax.set_ylabel("Newton restitution e")
+    for ax in axes[1]:
+        ax.set_xlabel(label)
+    for ax in axes.ravel():
+        ax.grid(alpha=0.3)
+
+
+def _mark_jumps(axes, table, x):
+    """Vertical lines where the first contact outlasts the wave-return time."""
+    late = table["first_contact_s"] > table["wave_return_s"]
+    if late.any() and not late.all():
+        first = table[x][late].iloc[0]
+        for ax in axes.ravel():
+            ax.axvline(first, color="0.5", lw=0.8, ls=":")
+    multi = table["impacts"] > 1
+    if multi.any() and not multi.all():
+        first = table[x][multi].iloc[0]
+        for ax in axes.ravel():
+            ax.axvline(first, color="C3", lw=0.8, ls="-.")
+
+
+def main():
+    FIGURES.mkdir(exist_ok=True)
+    start = time.perf_counter()
+    law = contact_law()
+
+    # -- force histories -------------------------------------------------------------------
+    fig, (early, late) = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True,
+                                      gridspec_kw=dict(width_ratios=[1, 1.4]))
+    for i, mass in enumerate((0.3, 0.75, 3.0)):
+        result, row = run(mass=mass, law=law, stride=5)
+        h = result.history
+        label = (f"m = {mass} kg ({row['impacts']} contact{'s' if row['impacts'] > 1 else ''}, "
+                 f"e = {row['restitution']:.2f})")
+        for ax in (early, late):
+            ax.plot(h["time_s"] * 1e3, h["force_N"] / 1e3, color=f"C{i}", lw=1.2,
+                    label=label if ax is early else None)
+        early.axvline(row["wave_return_s"] * 1e3, color=f"C{i}", ls="--", lw=0.8)
+    early.set_xlim(0, 1.5)
+    late.set_xlim(0, DURATION * 1e3)
+    early.set_ylabel("contact force [kN]")
+    for ax in (early, late):
+        ax.set_xlabel("time [ms]")
+        ax.grid(alpha=0.3)
+    early.set_title("first 1.5 ms; dashed: wave-return time $t_r$", fontsize=9)
+    late.set_title("whole record: sub-impacts when the beam swings back", fontsize=9)
+    early.legend(fontsize=8)
+    fig.suptitle("SS steel beam 780 mm, V0 = 2 m/s at mid-span, refined Stronge contact", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "fd_force_histories.png", dpi=150)
+    plt.close(fig)
+
+    # -- impactor mass ---------------------------------------------------------------------
+    masses = np.geomspace(0.05, 5.0, 28)
+    table = sweep("mass", masses, lambda m: run(mass=m, law=law))
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    _panels(axes, table, "mass_kg", "impactor mass [kg]")
+    _mark_jumps(axes, table, "mass_kg")
+    for ax in axes.ravel():
+        ax.set_xscale("log")
+    axes[0, 1].legend(fontsize=8)
+    fig.suptitle("Effect of impactor mass (V0 = 2 m/s, mid-span). Squares: sub-impacts; "
+                 "dash-dot: first run with sub-impacts; dotted: first contact > $t_r$", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "fd_mass_effect.png", dpi=150)
+    plt.close(fig)
+    print(table[["mass_kg", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
+                 "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
+
+    # -- velocity and beam plasticity --------------------------------------------------------
+    velocities = np.linspace(0.5, 7.0, 22)
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    tables = {}
+    for plastic, color in ((True, "C0"), (False, "C1")):
+        tables[plastic] = sweep(f"velocity (plastic={plastic})", velocities,
+                                lambda v, p=plastic: run(mass=PLASTICITY_MASS, velocity=v, plastic=p, law=law))
+        _panels(axes, tables[plastic], "velocity_m_s", "impact velocity V0 [m/s]",
+                name="elastic-plastic beam" if plastic else "elastic beam", color=color)
+    ax = axes[0, 0].twinx()
+    ax.plot(velocities, tables[True]["plastic_work_fraction"], "k:", lw=1)
+    ax.set_ylabel("beam plastic work / impact energy (dotted)")
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle(f"Effect of impact velocity and beam plasticity (m = {PLASTICITY_MASS:g} kg, mid-span, Stronge "
+                 "contact in both); squares: sub-impacts; dashed: $t_r$", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "fd_velocity_effect.png", dpi=150)
+    plt.close(fig)
+    print(pd.DataFrame({
+        "V0": velocities,
+        "F_plastic": tables[True]["peak_force_N"], "F_elastic": tables[False]["peak_force_N"],
+        "e_plastic": tables[True]["restitution"], "e_elastic": tables[False]["restitution"],
+        "Wp/E": tables[True]["plastic_work_fraction"],
+        "impacts_pl": tables[True]["impacts"], "impacts_el": tables[False]["impacts"],
+    }).to_string(float_format=lambda v: f"{v:.4g}"))
+
+    # -- impact location ---------------------------------------------------------------------
+    positions = np.linspace(0.06, 0.5, 23) * LENGTH
+    table = sweep("location", positions, lambda x: run(position=x, law=law))
+    table["x_over_L"] = table["position_m"] / LENGTH
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    _panels(axes, table, "x_over_L", "impact position x0 / L")
+    axes[0, 1].legend(fontsize=8)
+    fig.suptitle("Effect of impact location (m = 1 kg, V0 = 2 m/s); $t_r$ = 2 d / $c_g$ with "
+                 "d the distance to the nearest support; squares: sub-impacts", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "fd_location_effect.png", dpi=150)
+    plt.close(fig)
+    print(table[["x_over_L", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
+                 "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
+    print(f"total runtime {time.perf_counter() - start:.1f} s")
+
+
+if __name__ == "__main__":
+    main()
