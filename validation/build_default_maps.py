@@ -32,9 +32,10 @@ LAMBDAS = np.geomspace(0.05, 20.0, 27)  # 10 per decade
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quiet", action="store_true")
+    parser.add_argument("--only", nargs="*", default=None, help="build only these map names")
     args = parser.parse_args()
     DATA.mkdir(parents=True, exist_ok=True)
-    wanted = set(SHIPPED_MAPS.values())
+    wanted = set(args.only or SHIPPED_MAPS.values())
     for structure in DEFAULT_STRUCTURES:
         if structure.name not in wanted:
             continue

@@ -39,8 +39,8 @@ loss and e jump. The figures mark t_r (computed from each run's first-contact du
 and the runs with more than one contact.
 
 Output: ``figures/fd_force_histories.png``, ``figures/fd_mass_effect.png``,
-``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png``. Runtime about a
-minute on 2 cores.
+``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png``. Runtime ≈ 30 s
+on 2 cores (98 runs of 20 ms at N_l = 200, 2N_h = 20).
 """
 
 from __future__ import annotations

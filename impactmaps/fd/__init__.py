@@ -10,8 +10,10 @@ from .beam import (
     FDBeam,
     FDImpactResult,
     FDResponse,
+    grid_frequency_bound,
     simulate_fd,
     simulate_fd_response,
+    stable_time_step,
 )
 from .section import LayeredSection, SectionState, rectangular_moment_curvature, stress_update
 
@@ -22,8 +24,10 @@ __all__ = [
     "LayeredSection",
     "STANDARD_GRAVITY",
     "SectionState",
+    "grid_frequency_bound",
     "rectangular_moment_curvature",
     "simulate_fd",
     "simulate_fd_response",
+    "stable_time_step",
     "stress_update",
 ]

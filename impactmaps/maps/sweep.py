@@ -31,7 +31,7 @@ from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
 
-SOLVER_REVISION = 1  # bump when a numerical change invalidates stored results
+SOLVER_REVISION = 2  # bump when a numerical change invalidates stored results
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)
@@ -44,7 +44,13 @@ RESULT_VARIABLES = {
     "reflection_time_normalised": ("f8", np.nan, "1", "ω d²/c: first wave return to the impact point (d: distance to nearest support/edge, c = sqrt(bending stiffness / mass per length or area))"),
     "n_modes": ("i4", -1, "1", "number of modes integrated"),
     "hit_time_limit": ("i1", -1, "1", "1 if the run stopped at its time limit"),
+    "method": ("i1", -1, "1", "which model produced the point: see flag_meanings"),
 }
+
+#: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
+METHODS = ("modal+residual", "modal+residual-capped", "infinite-structure-asymptote")
+MAX_MODES = 80_000  # cap on the modes (all, incl. non-participating) below the cut-off; see solve_points
+ASYMPTOTE_REFLECTION_FACTOR = 20.0
 
 
 def log_grid(start: float, stop: float, count: int) -> np.ndarray:
@@ -58,12 +64,56 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 _TABLES: dict = {}
 
 
+_CAPS: dict = {}
+
+
+def _frequency_cap(structure: MapStructure, target, max_modes: int) -> float:
+    """Largest frequency [rad/s] below which ``target`` has at most ~``max_modes`` modes."""
+    cap = _CAPS.get((structure, max_modes))
+    if cap is None:
+        import warnings
+
+        frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # probing only
+            while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
+                frequency *= 2.0
+        cap = _CAPS[(structure, max_modes)] = frequency
+    return cap
+
+
 def _basis_table(structure: MapStructure, target, max_frequency: float, min_modes: int) -> BasisTable:
     table = _TABLES.get(structure)
     if table is None or table.max_frequency < max_frequency:
         table = BasisTable(target, max_frequency, min_modes)
         _TABLES[structure] = table
     return table
+
+
+def _asymptote_row(kind: str, zeta: float) -> dict:
+    """Scalars of the infinite-structure solution (exact until waves return)."""
+    from ..solvers import asymptotes
+
+    if kind == "plate":
+        peak, peak_time = asymptotes.infinite_plate_peak(zeta), asymptotes.infinite_plate_peak_time(zeta)
+        contact = asymptotes.infinite_plate_contact_time(zeta)
+        rebound = asymptotes.infinite_plate_indentation_rate(contact, zeta) if np.isfinite(contact) else np.nan
+    else:
+        peak, peak_time = asymptotes.infinite_beam_peak(zeta), asymptotes.infinite_beam_peak_time(zeta)
+        contact = asymptotes.infinite_beam_contact_time(zeta)
+        rebound = asymptotes.infinite_beam_impactor_velocity(contact, zeta) if np.isfinite(contact) else np.nan
+    contact = float(contact) if np.isfinite(contact) else np.nan
+    return {
+        "fmax_normalised": float(peak),
+        "impacts": 1,
+        "contact_time_normalised": contact,
+        "first_contact_normalised": contact,
+        "peak_time_normalised": float(peak_time),
+        "energy_transferred_fraction": float(1.0 - float(rebound) ** 2) if np.isfinite(rebound) else np.nan,
+        "n_modes": 0,
+        "hit_time_limit": 0,
+        "method": METHODS.index("infinite-structure-asymptote"),
+    }
 
 
 def reflection_time(target, contact_frequency):
@@ -90,37 +140,57 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     -------
     list of dict
         One dict of normalised scalars per point (keys of ``RESULT_VARIABLES`` plus
-        ``zeta``, ``lambda_``, ``method``).
+        ``zeta``, ``lambda_``).
+
+    Notes
+    -----
+    Modes up to ``settings.cutoff_ratio · ω`` are integrated with the residual
+    flexibility of the rest. A point that would need more than ``MAX_MODES`` modes
+    (light impactors on flexible plates, spec §3.6) takes the infinite-structure
+    solution if the first wave returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its
+    peak time (it is then exact for the peak); otherwise it is integrated with the
+    first ``MAX_MODES`` modes plus residual flexibility, with a warning. The ``method``
+    variable records which model produced each point.
     """
+    import warnings
+
     target = structure.build()
     zetas = np.array([p[0] for p in points], dtype=float)
     lambdas = np.array([p[1] for p in points], dtype=float)
     impactors = realise(target, zetas, lambdas)
     omegas = np.atleast_1d(impactors.contact_frequency)
-    table = _basis_table(structure, target, settings.cutoff_ratio * float(omegas.max()), settings.min_modes)
+    masses = np.atleast_1d(impactors.impactor_mass)
+    stiffnesses = np.atleast_1d(impactors.contact_stiffness)
     reflections = np.atleast_1d(reflection_time(target, omegas))
+    cap = _frequency_cap(structure, target, MAX_MODES)
+    wanted = settings.cutoff_ratio * omegas
+    table = _basis_table(structure, target, min(float(wanted.max()), cap), settings.min_modes)
     rows = []
     for k in range(len(points)):
-        mass = float(np.atleast_1d(impactors.impactor_mass)[k])
-        stiffness = float(np.atleast_1d(impactors.contact_stiffness)[k])
-        basis = table.truncate(settings.cutoff_ratio * omegas[k], settings.min_modes)
-        result = simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
-        rows.append(
-            {
-                "zeta": zetas[k],
-                "lambda_": lambdas[k],
-                "fmax_normalised": result.fmax_normalised,
-                "impacts": result.impacts,
-                "contact_time_normalised": result.contact_time_normalised,
-                "first_contact_normalised": result.first_contact_duration_normalised,
-                "peak_time_normalised": result.peak_time_normalised,
-                "energy_transferred_fraction": result.energy_transferred_fraction,
-                "reflection_time_normalised": float(reflections[k]),
-                "n_modes": result.n_modes,
-                "hit_time_limit": int(result.hit_time_limit),
-                "method": result.method,
-            }
-        )
+        row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
+        if wanted[k] > cap:
+            asymptote = _asymptote_row(structure.kind, zetas[k])
+            if reflections[k] >= ASYMPTOTE_REFLECTION_FACTOR * asymptote["peak_time_normalised"]:
+                rows.append(row | asymptote)
+                continue
+            warnings.warn(
+                f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g} needs more than "
+                f"{MAX_MODES} modes; integrating the first {MAX_MODES} (residual flexibility for "
+                "the rest)", RuntimeWarning, stacklevel=2)
+        basis = table.truncate(min(wanted[k], cap), settings.min_modes)
+        result = simulate(basis, LinearContact(float(stiffnesses[k])), float(masses[k]), 1.0,
+                          settings=settings, record=False)
+        rows.append(row | {
+            "fmax_normalised": result.fmax_normalised,
+            "impacts": result.impacts,
+            "contact_time_normalised": result.contact_time_normalised,
+            "first_contact_normalised": result.first_contact_duration_normalised,
+            "peak_time_normalised": result.peak_time_normalised,
+            "energy_transferred_fraction": result.energy_transferred_fraction,
+            "n_modes": result.n_modes,
+            "hit_time_limit": int(result.hit_time_limit),
+            "method": METHODS.index("modal+residual-capped" if wanted[k] > cap else "modal+residual"),
+        })
     return rows
 
 
@@ -131,6 +201,8 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
     for name, (dtype, missing, units, text) in RESULT_VARIABLES.items():
         data_vars[name] = (("structure", "lambda_", "zeta"), np.full(shape, missing, dtype=dtype),
                            {"units": units, "long_name": text})
+    data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
+    data_vars["method"][2]["flag_meanings"] = " ".join(METHODS)
     data_vars["done"] = (("structure", "lambda_", "zeta"), np.zeros(shape, dtype="i1"),
                          {"long_name": "1 where the point has been computed"})
     coords = {
@@ -253,7 +325,7 @@ def sweep(
             for name in RESULT_VARIABLES:
                 arrays[name][s_index, l_index, z_index] = row[name]
             arrays["done"][s_index, l_index, z_index] = 1
-            methods.add(row["method"])
+            methods.add(METHODS[row["method"]])
 
     def snapshot() -> xr.Dataset:
         out = dataset.copy()
