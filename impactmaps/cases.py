@@ -448,9 +448,14 @@ def _beam(table, path, contact_material):
             if "height" in table:
                 raise ValueError(f"{path}.height is the laminate thickness for a laminated beam; "
                                  "remove it (the plies define it)")
-            return Beam.from_laminate(length, width, contact_material, **options)
-        height = _number(table, "height", path, "m", required=True)
-        return Beam.rectangular(length, width, height, contact_material, **options)
+            build, arguments = Beam.from_laminate, (length, width, contact_material)
+        else:
+            height = _number(table, "height", path, "m", required=True)
+            build, arguments = Beam.rectangular, (length, width, height, contact_material)
+        try:
+            return build(*arguments, **options)
+        except TypeError as error:  # an option this Beam does not take
+            raise ValueError(f"{sorted(options)} not all accepted by the beam target: {error}") from None
 
 
 def _plate(table, path, contact_material):
@@ -917,10 +922,11 @@ def parse_fd_case(text: str, *, name: str = "case", source: Path | None = None) 
     if kind != "beam":
         raise ValueError(f"target.type = {kind!r} is invalid for the finite-difference solver: "
                          "valid values are 'beam'")
-    _check_keys(table, path, _TARGET_KEYS["beam"], ("length", "width", "height", "material"))
+    _check_keys(table, path, _TARGET_KEYS["beam"])
     if "plies" in table or "layup" in table:
         raise ValueError("target.plies/target.layup are not supported by the finite-difference "
                          "beam: give an isotropic target.material")
+    _check_keys(table, path, _TARGET_KEYS["beam"], ("length", "width", "height", "material"))
     target_material = _isotropic_material(table["material"], "target.material")
     if target_material.yield_strength is None:
         raise ValueError("target.material.yield_strength is required by the finite-difference "

@@ -16,6 +16,7 @@ from impactmaps.solvers.modal import ModalSettings
 PLATE = MapStructure(kind="plate", theory="kirchhoff", supports="SSSS")
 BEAM = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
 ZETAS = np.geomspace(0.03, 30, 7)
+_SIMULATE = sweep_module.simulate  # the real solver, before any test patches it
 LAMBDAS = [0.2, 2.0]
 
 
@@ -53,7 +54,7 @@ def test_classify_limits_and_validation():
 
 def _counting(monkeypatch, fail_after=None):
     calls = {"n": 0}
-    original = sweep_module.simulate
+    original = _SIMULATE
 
     def counted(*args, **kwargs):
         calls["n"] += 1

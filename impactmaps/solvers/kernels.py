@@ -103,7 +103,7 @@ def oscillator_step_coefficients(omega, zeta, h, out):
     m[1, 0] = -omega * omega * h
     m[1, 1] = -2.0 * zeta * omega * h
     m[1, 2] = h
-    m[2, 3] = h  # ḟ·h = f1 − f0 with the last state holding (f1 − f0)
+    m[2, 3] = 1.0  # the last state holds d = f1 − f0, so ḟ = d/h and (ḟ)·h = d
     e = _expm4(m)
     out[0] = e[0, 0]
     out[1] = e[0, 1]

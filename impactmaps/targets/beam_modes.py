@@ -41,8 +41,11 @@ from collections import OrderedDict
 from dataclasses import dataclass
 from functools import lru_cache
 
+import numba
 import numpy as np
 import scipy.linalg
+import scipy.sparse
+import scipy.sparse.linalg
 from numpy.polynomial import legendre
 
 __all__ = [
@@ -576,36 +579,56 @@ def _c1_slope_scale(degree, h):
     return scale
 
 
-def _assemble(section: BeamSection, elements: int, degree: int):
-    """Dense global K, M [SI], element connectivity and free unknowns."""
-    L, EI = section.length, section.bending_stiffness
-    rA, rI = section.mass_per_length, section.rotary_inertia
-    h = L / elements
+def _bubbles_per_element(theory: str, degree: int) -> int:
+    return 2 * degree - 3 if theory == "timoshenko" else degree - 3
+
+
+def _layout(theory: str, elements: int, degree: int):
+    """Banded numbering: node e (2 unknowns), bubbles of element e, node e + 1, …
+
+    Returns the element connectivity (local order as in :func:`_assemble`), the global
+    numbers of the two nodal unknowns of every node (w and ψ, or w and w' for C1),
+    the number of unknowns and the half-bandwidth.
+    """
+    bubbles = _bubbles_per_element(theory, degree)
+    stride = 2 + bubbles
+    e = np.arange(elements)
+    base = e * stride
+    node_dofs = np.arange(elements + 1)[:, None] * stride + np.arange(2)
+    if theory == "timoshenko":
+        bubbles_w = degree - 1
+        connectivity = np.empty((elements, 2 * degree + 1), dtype=int)
+        connectivity[:, 0], connectivity[:, 1] = base, base + stride
+        connectivity[:, 2:degree + 1] = base[:, None] + 2 + np.arange(bubbles_w)
+        connectivity[:, degree + 1], connectivity[:, degree + 2] = base + 1, base + stride + 1
+        connectivity[:, degree + 3:] = base[:, None] + 2 + bubbles_w + np.arange(bubbles - bubbles_w)
+    else:
+        connectivity = np.empty((elements, degree + 1), dtype=int)
+        connectivity[:, 0], connectivity[:, 1] = base, base + 1
+        connectivity[:, 2], connectivity[:, 3] = base + stride, base + stride + 1
+        connectivity[:, 4:] = base[:, None] + 2 + np.arange(bubbles)
+    total = 2 * (elements + 1) + elements * bubbles
+    return connectivity, node_dofs, total, bubbles + 3
+
+
+def _element_matrices(section: BeamSection, h: float, degree: int):
+    """Element stiffness and mass matrices [SI] in the local order of :func:`_layout`."""
+    EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
     jac = 0.5 * h
     xi, weights = legendre.leggauss(degree + 2)
-    nodes = elements + 1
-    e = np.arange(elements)
     if section.theory == "timoshenko":
         S = section.shear_stiffness
         rows_w, rows_p = _c0_basis(degree), _c0_basis(degree - 1)
         Nw, dNw = _evaluate(rows_w, xi), _evaluate(rows_w, xi, 1) / jac
         Np, dNp = _evaluate(rows_p, xi), _evaluate(rows_p, xi, 1) / jac
         zw, zp = np.zeros_like(Nw), np.zeros_like(Np)
-        shear = np.concatenate([dNw, Np])
-        bending = np.concatenate([zw, dNp])
+        shear = np.concatenate([dNw, Np])  # ψ + w'
+        bending = np.concatenate([zw, dNp])  # ψ'
         deflection = np.concatenate([Nw, zp])
         rotation = np.concatenate([zw, Np])
         Ke = (EI * (bending * weights) @ bending.T + S * (shear * weights) @ shear.T) * jac
         Me = (rA * (deflection * weights) @ deflection.T
               + rI * (rotation * weights) @ rotation.T) * jac
-        bubbles_w, bubbles_p = degree - 1, degree - 2
-        per_element = bubbles_w + bubbles_p
-        connectivity = np.empty((elements, 2 * degree + 1), dtype=int)
-        connectivity[:, 0], connectivity[:, 1] = 2 * e, 2 * (e + 1)
-        connectivity[:, degree + 1], connectivity[:, degree + 2] = 2 * e + 1, 2 * (e + 1) + 1
-        base = 2 * nodes + e * per_element
-        connectivity[:, 2:degree + 1] = base[:, None] + np.arange(bubbles_w)
-        connectivity[:, degree + 3:] = base[:, None] + bubbles_w + np.arange(bubbles_p)
     else:
         rows = _c1_basis(degree)
         scale = _c1_slope_scale(degree, h)[:, None]
@@ -614,73 +637,187 @@ def _assemble(section: BeamSection, elements: int, degree: int):
         ddN = _evaluate(rows, xi, 2) * scale / jac**2
         Ke = EI * (ddN * weights) @ ddN.T * jac
         Me = (rA * (N * weights) @ N.T + rI * (dN * weights) @ dN.T) * jac
-        per_element = degree - 3
-        connectivity = np.empty((elements, degree + 1), dtype=int)
-        connectivity[:, 0], connectivity[:, 1] = 2 * e, 2 * e + 1
-        connectivity[:, 2], connectivity[:, 3] = 2 * e + 2, 2 * e + 3
-        connectivity[:, 4:] = 2 * nodes + e[:, None] * per_element + np.arange(per_element)
-    total = 2 * nodes + elements * per_element
-    K = np.zeros((total, total))
-    M = np.zeros((total, total))
-    rows_index = connectivity[:, :, None]
-    cols_index = connectivity[:, None, :]
-    np.add.at(K, (rows_index, cols_index), Ke)
-    np.add.at(M, (rows_index, cols_index), Me)
+    return Ke, Me
+
+
+def _assemble(section: BeamSection, elements: int, degree: int):
+    """Sparse global K, M [SI] (banded numbering), connectivity, free unknowns, nodes."""
+    connectivity, node_dofs, total, bandwidth = _layout(section.theory, elements, degree)
+    Ke, Me = _element_matrices(section, section.length / elements, degree)
+    local = connectivity.shape[1]
+    rows = np.repeat(connectivity, local, axis=1).ravel()
+    cols = np.tile(connectivity, (1, local)).ravel()
+    K = scipy.sparse.coo_matrix((np.tile(Ke.ravel(), elements), (rows, cols)),
+                                shape=(total, total)).tocsc()
+    M = scipy.sparse.coo_matrix((np.tile(Me.ravel(), elements), (rows, cols)),
+                                shape=(total, total)).tocsc()
     fixed = []
-    for end, node in ((section.supports[0], 0), (section.supports[1], nodes - 1)):
+    for end, node in ((section.supports[0], 0), (section.supports[1], elements)):
         if end in "cs":
-            fixed.append(2 * node)  # w = 0
+            fixed.append(node_dofs[node, 0])  # w = 0
         if end == "c":
-            fixed.append(2 * node + 1)  # ψ = 0 (Timoshenko) or w' = 0 (C1)
+            fixed.append(node_dofs[node, 1])  # ψ = 0 (Timoshenko) or w' = 0 (C1)
     free = np.setdiff1d(np.arange(total), fixed)
-    return K, M, connectivity, free
+    return K, M, connectivity, free, node_dofs, bandwidth
 
 
-def _rigid_vectors(section: BeamSection, elements: int, total: int) -> np.ndarray:
-    """FE coefficient vectors of translation and rotation (w = x − L/2, ψ = −1)."""
+def _rigid_vectors(section: BeamSection, elements: int, total: int, node_dofs) -> np.ndarray:
+    """FE coefficient vectors of translation (w = 1) and rotation (w = x − L/2, ψ = −1)."""
     L = section.length
     x = np.linspace(0.0, L, elements + 1)
     vectors = np.zeros((total, 2))
-    vectors[0::2][: elements + 1, 0] = 1.0
-    vectors[0::2][: elements + 1, 1] = x - 0.5 * L
-    # ψ = −1 (Timoshenko) and w' = 1 (C1 slope unknowns)
-    vectors[1::2][: elements + 1, 1] = -1.0 if section.theory == "timoshenko" else 1.0
+    vectors[node_dofs[:, 0], 0] = 1.0
+    vectors[node_dofs[:, 0], 1] = x - 0.5 * L
+    # ψ = −1 (Timoshenko) or w' = +1 (C1 slope unknowns)
+    vectors[node_dofs[:, 1], 1] = -1.0 if section.theory == "timoshenko" else 1.0
     return vectors
 
 
-def _fe_solve(section: BeamSection, elements: int, degree: int) -> _FiniteElementModes:
-    """Eigen-solution of the FE model, all modes up to its resolved frequency."""
-    K, M, connectivity, free = _assemble(section, elements, degree)
-    Kf, Mf = K[np.ix_(free, free)], M[np.ix_(free, free)]
-    L, EI, rA = section.length, section.bending_stiffness, section.mass_per_length
-    h = L / elements
-    k_resolved = FE_RESOLUTION * degree / h
-    resolved = _frequency_at_wavenumber(section, k_resolved)
-    # Flexibility form (K + σM)^{-1} M: the low modes are its largest eigenvalues and so
-    # keep full relative accuracy (the direct form K x = ω² M x loses about
-    # eps·ω_max²/ω_1² in the fundamental, 1e-5 and worse on fine meshes).
-    shift = EI * (math.pi / L) ** 4 / rA if section.supports == "ff" else 0.0
-    factor = scipy.linalg.cholesky(Kf + shift * Mf, lower=True)
-    half = scipy.linalg.solve_triangular(factor, Mf, lower=True)
+@numba.njit(cache=True)
+def _count_below(stiffness_band, mass_band, shift):  # pragma: no cover - numba
+    """Number of eigenvalues of ``K x = λ M x`` below ``shift`` (Sylvester's inertia).
+
+    LDLᵀ factorisation without pivoting of the banded ``K − shift·M`` (lower band
+    storage, ``band[d, j] = A[j + d, j]``); the count is the number of negative pivots
+    (Sturm-sequence property, as used by Wittrick–Williams and subspace-iteration codes).
+    """
+    width = stiffness_band.shape[0] - 1
+    n = stiffness_band.shape[1]
+    lower = np.zeros((width + 1, n))
+    pivots = np.zeros(n)
+    negatives = 0
+    tiny = 1e-300
+    for j in range(n):
+        value = stiffness_band[0, j] - shift * mass_band[0, j]
+        for k in range(max(0, j - width), j):
+            value -= lower[j - k, k] ** 2 * pivots[k]
+        if value == 0.0:
+            value = tiny
+        pivots[j] = value
+        if value < 0.0:
+            negatives += 1
+        for i in range(j + 1, min(n, j + width + 1)):
+            entry = stiffness_band[i - j, j] - shift * mass_band[i - j, j]
+            for k in range(max(0, i - width), j):
+                entry -= lower[i - k, k] * lower[j - k, k] * pivots[k]
+            lower[i - j, j] = entry / value
+    return negatives
+
+
+def _lower_band(matrix, width: int) -> np.ndarray:
+    n = matrix.shape[0]
+    band = np.zeros((width + 1, n))
+    for d in range(width + 1):
+        band[d, : n - d] = matrix.diagonal(-d)
+    return band
+
+
+#: FE models with at most this many unknowns are solved densely, larger ones by
+#: spectrum slicing (shift-invert Lanczos with Sturm-sequence checks).
+_DENSE_LIMIT = 1500
+#: Target number of eigenvalues per spectrum slice.
+_SLICE_SIZE = 48
+
+
+def _solve_dense(K, M, upper, shift):
+    """All eigenpairs with λ < ``upper`` in flexibility form (relative accuracy kept)."""
+    Kd, Md = K.toarray(), M.toarray()
+    factor = scipy.linalg.cholesky(Kd + shift * Md, lower=True)
+    half = scipy.linalg.solve_triangular(factor, Md, lower=True)
     flexibility = scipy.linalg.solve_triangular(factor, half.T, lower=True)
     flexibility = 0.5 * (flexibility + flexibility.T)
-    lowest = 1.0 / (resolved**2 * (1.0 + 1e-9) + shift)
+    lowest = 1.0 / (upper + shift)
     mu, y = scipy.linalg.eigh(flexibility, subset_by_value=(lowest, np.inf), driver="evr")
     mu, y = mu[::-1], y[:, ::-1]
-    eigenvalues = 1.0 / mu - shift
-    vectors_free = scipy.linalg.solve_triangular(factor, y, lower=True, trans="T") / np.sqrt(mu)
-    vectors = np.zeros((K.shape[0], mu.size))
+    vectors = scipy.linalg.solve_triangular(factor, y, lower=True, trans="T") / np.sqrt(mu)
+    return 1.0 / mu - shift, vectors
+
+
+def _solve_sliced(K, M, upper, start, width):
+    """All eigenpairs with ``start`` < λ < ``upper`` by spectrum slicing.
+
+    The interval is cut into slices of about :data:`_SLICE_SIZE` eigenvalues using
+    Sylvester inertia counts; each slice is solved by shift-invert Lanczos (ARPACK,
+    ``tol = 0``) at its centre; slice boundaries are moved into the gap between computed
+    eigenvalues and the count of every slice is checked against the inertia, so no
+    eigenvalue is missed or repeated (a failed check retries the slice with more vectors).
+    """
+    kband, mband = _lower_band(K, width), _lower_band(M, width)
+    n = K.shape[0]
+
+    def below(value):
+        return _count_below(kband, mband, value)
+
+    low = start
+    below_low = below(low)
+    remaining = below(upper) - below_low
+    span = (upper - start) * min(1.0, _SLICE_SIZE / max(remaining, 1))
+    values, vectors = [], []
+    while remaining > 0:
+        high = min(upper, low + span)
+        count = below(high) - below_low
+        while count > 2 * _SLICE_SIZE:
+            span *= 0.5
+            high = low + span
+            count = below(high) - below_low
+        while count == 0:
+            span *= 2.0
+            high = min(upper, low + span)
+            count = below(high) - below_low
+        extra = 8
+        for _attempt in range(5):
+            k = min(count + extra, n - 2)
+            lam, vec = scipy.sparse.linalg.eigsh(
+                K, k=k, M=M, sigma=0.5 * (low + high), which="LM", tol=0.0,
+                ncv=min(n - 1, max(2 * k + 1, 40)))
+            order = np.argsort(lam)
+            above = lam[order] > low
+            lam, vec = lam[order][above], vec[:, order][:, above]
+            boundary = 0.5 * (lam[count - 1] + lam[count]) if lam.size > count else high
+            if lam.size >= count and below(boundary) - below_low == count:
+                break
+            extra *= 2
+        else:
+            raise RuntimeError("spectrum slicing of the beam FE model failed: an eigenvalue "
+                               "count did not match the Sturm sequence")
+        values.append(lam[:count])
+        vectors.append(vec[:, :count])
+        low, below_low, remaining = boundary, below_low + count, remaining - count
+        span *= min(2.0, max(0.5, _SLICE_SIZE / count))
+    lam = np.concatenate(values) if values else np.zeros(0)
+    vec = np.concatenate(vectors, axis=1) if vectors else np.zeros((n, 0))
+    norms = np.sqrt(np.einsum("ij,ij->j", vec, M @ vec))
+    return lam, vec / norms
+
+
+def _fe_solve(section: BeamSection, elements: int, degree: int) -> _FiniteElementModes:
+    """Eigen-solution of the FE model: all modes up to its resolved frequency."""
+    K, M, connectivity, free, node_dofs, width = _assemble(section, elements, degree)
+    Kf, Mf = K[free][:, free], M[free][:, free]
+    L, EI, rA = section.length, section.bending_stiffness, section.mass_per_length
+    resolved = _frequency_at_wavenumber(section, FE_RESOLUTION * degree * elements / L)
+    upper = resolved**2 * (1.0 + 1e-9)
+    reference = EI * (math.pi / L) ** 4 / rA
+    free_free = section.supports == "ff"
+    if Kf.shape[0] <= _DENSE_LIMIT:
+        # Flexibility form (K + σM)^{-1} M: the low modes are its largest eigenvalues and
+        # keep full relative accuracy (K x = ω² M x directly loses about eps·ω_max²/ω_1²
+        # in the fundamental: 1e-5 and worse on fine meshes).
+        eigenvalues, vectors_free = _solve_dense(Kf, Mf, upper, reference if free_free else 0.0)
+    else:
+        eigenvalues, vectors_free = _solve_sliced(
+            Kf.tocsc(), Mf.tocsc(), upper, -1e-3 * reference if free_free else 0.0, width)
+    vectors = np.zeros((K.shape[0], eigenvalues.size))
     vectors[free] = vectors_free
-    if section.supports == "ff":
+    if free_free:
         # the two rigid-body modes are exact in the FE space: replace the computed
         # (degenerate, round-off-rotated) pair by translation and rotation, M-normalised
-        rigid = _rigid_vectors(section, elements, K.shape[0])
         if eigenvalues.size < 3 or not abs(eigenvalues[1]) < 1e-6 * eigenvalues[2]:
             raise RuntimeError("free-free FE model does not show exactly two rigid-body modes")
-        rigid = rigid / np.sqrt(np.einsum("ij,ik,kj->j", rigid, M, rigid))
+        rigid = _rigid_vectors(section, elements, K.shape[0], node_dofs)
+        rigid = rigid / np.sqrt(np.einsum("ij,ij->j", rigid, M @ rigid))
         elastic = vectors[:, 2:]
-        # remove the round-off rigid-body content of the elastic modes (M-orthogonality)
-        elastic -= rigid @ (rigid.T @ (M @ elastic))
+        elastic -= rigid @ (rigid.T @ (M @ elastic))  # round-off rigid content
         vectors[:, :2] = rigid
         eigenvalues[:2] = 0.0
     eigenvalues = np.maximum(eigenvalues, 0.0)
@@ -719,8 +856,7 @@ def _elements_needed(section: BeamSection, max_frequency: float, min_modes: int,
 
 
 def _dofs(section: BeamSection, elements: int, degree: int) -> int:
-    per_element = 2 * degree - 3 if section.theory == "timoshenko" else degree - 3
-    return 2 * (elements + 1) + elements * per_element
+    return 2 * (elements + 1) + elements * _bubbles_per_element(section.theory, degree)
 
 
 def finite_element_modes(section: BeamSection, max_frequency: float, min_modes: int = 1,

@@ -1,0 +1,70 @@
+"""Interpolation error of the shipped lookup maps and of the closed-form design formula.
+
+For each shipped map, N log-uniform random (ζ, λ) points inside its range are simulated
+directly (the same solver and settings as the map) and compared with
+``impactmaps.maps.lookup.lookup`` and with ``design_formula``. Prints a Markdown table
+(used in the README) and writes validation/lookup_error.csv.
+
+    python validation/lookup_error.py [--points 200] [--seed 1]
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
+from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.sweep import solve_points
+from impactmaps.solvers.modal import ModalSettings
+
+HERE = Path(__file__).resolve().parent
+
+
+def measure(structure: str, theory: str, points: int, seed: int) -> pd.DataFrame:
+    """Random-point comparison of lookup and design formula against direct simulation."""
+    dataset = load_shipped_map(structure, theory)
+    rng = np.random.default_rng(seed)
+    zeta_range = np.log([dataset["zeta"].min().item(), dataset["zeta"].max().item()])
+    lambda_range = np.log([dataset["lambda_"].min().item(), dataset["lambda_"].max().item()])
+    zetas = np.exp(rng.uniform(*zeta_range, points))
+    lambdas = np.exp(rng.uniform(*lambda_range, points))
+    name = SHIPPED_MAPS[(structure, theory)]
+    rows = solve_points(structure_from_name(name), list(zip(zetas, lambdas)), ModalSettings())
+    direct = np.array([r["fmax_normalised"] for r in rows])
+    looked = lookup(zetas, lambdas, structure=structure, theory=theory)
+    formula = design_formula(zetas, lambdas, structure)
+    return pd.DataFrame({
+        "map": name, "zeta": zetas, "lambda": lambdas, "direct": direct,
+        "lookup": looked.fmax_normalised, "formula": formula, "regime": looked.regime,
+    })
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--points", type=int, default=200)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--maps", nargs="*", default=None)
+    args = parser.parse_args()
+    frames = []
+    for (structure, theory), name in SHIPPED_MAPS.items():
+        if args.maps and name not in args.maps:
+            continue
+        frames.append(measure(structure, theory, args.points, args.seed))
+    table = pd.concat(frames, ignore_index=True)
+    table.to_csv(HERE / "lookup_error.csv", index=False)
+    print("| map | points | lookup: median abs error | 95th pct | max | design formula: median | 95th pct | max |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, group in table.groupby("map", sort=False):
+        lookup_error = np.abs(group["lookup"] - group["direct"])
+        formula_error = np.abs(group["formula"] - group["direct"])
+        print(f"| {name} | {len(group)} | {np.median(lookup_error):.4f} | {np.percentile(lookup_error, 95):.4f} | "
+              f"{lookup_error.max():.4f} | {np.median(formula_error):.4f} | {np.percentile(formula_error, 95):.4f} | "
+              f"{formula_error.max():.4f} |")
+
+
+if __name__ == "__main__":
+    main()
