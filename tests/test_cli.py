@@ -1,0 +1,90 @@
+"""The `impactmaps` command: JSON keys, values against the library, errors."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from impactmaps.cli import main
+
+
+def run(capsys, *argv):
+    status = main([*argv, "--json"])
+    out = capsys.readouterr().out
+    return status, json.loads(out)
+
+
+def test_restitution(capsys):
+    from impactmaps.solvers.compact import restitution
+
+    status, values = run(capsys, "restitution", "--beta", "10")
+    assert status == 0 and values["restitution"] == pytest.approx(float(restitution(10.0)))
+    status, values = run(capsys, "restitution", "--beta", "0.5")
+    assert values["restitution"] == pytest.approx(1.0)
+
+
+def test_halfspace_hertz_matches_closed_form(capsys):
+    """Hertz impact from the command line equals the classical closed forms."""
+    from impactmaps.contact import effective_modulus
+    from impactmaps.solvers.compact import hertz_contact_time, hertz_peak_force
+
+    status, values = run(capsys, "halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "2",
+                         "--youngs-modulus", "2e11", "--poisson-ratio", "0.3", "--density", "7800")
+    assert status == 0
+    mass = 7800 * 4 / 3 * np.pi * 0.01**3
+    stiffness = 4 / 3 * np.sqrt(0.01) * effective_modulus(2e11, 0.3, 2e11, 0.3)
+    assert values["impactor_mass_kg"] == pytest.approx(mass)
+    assert values["peak_force_N"] == pytest.approx(float(hertz_peak_force(mass, 2.0, stiffness)), rel=1e-6)
+    assert values["contact_time_s"] == pytest.approx(float(hertz_contact_time(mass, 2.0, stiffness)), rel=1e-6)
+    assert values["restitution"] == pytest.approx(1.0, abs=1e-6)
+
+
+def test_halfspace_with_catalogue_materials(capsys):
+    status, values = run(capsys, "halfspace", "--law", "yigit-christoforou", "--radius", "0.005",
+                         "--velocity", "3", "--material", "structural-steel", "--target-material",
+                         "aluminium-6061-t6")
+    assert status == 0 and 0 < values["restitution"] < 1 and values["permanent_indentation_m"] > 0
+
+
+def test_asymptotes(capsys):
+    from impactmaps.solvers.asymptotes import infinite_beam_peak, infinite_plate_peak
+
+    _, values = run(capsys, "asymptote", "infinite-beam", "--zeta", "0.3")
+    assert values["fmax_normalised"] == pytest.approx(float(infinite_beam_peak(0.3)))
+    _, values = run(capsys, "asymptote", "infinite-plate", "--zeta", "1")
+    assert values["fmax_normalised"] == pytest.approx(np.exp(-1))
+    _, values = run(capsys, "asymptote", "quasi-static", "--lambda", "0.425")
+    assert values["fmax_normalised"] == pytest.approx(np.sqrt(0.425 / 1.425))
+    assert set(values) >= {"fmax_normalised", "impacts", "contact_time_normalised"}
+
+
+def test_point_plate(capsys):
+    status, values = run(capsys, "point", "--target", "plate-ss", "--theory", "kirchhoff", "--zeta", "1.198",
+                         "--lambda", "0.425", "--no-check")
+    assert status == 0
+    assert values["regime"] == "transition"
+    assert set(values) >= {"fmax_normalised", "impacts", "contact_time_normalised"}
+    assert values["quasi_static_fmax"] == pytest.approx(np.sqrt(0.425 / 1.425))
+
+
+@pytest.mark.parametrize(
+    "argv, fragment",
+    [
+        (["point", "--target", "plate-ss", "--zeta", "-1", "--lambda", "1"], "loss_factor = -1"),
+        (["point", "--target", "shell-ss", "--zeta", "1", "--lambda", "1"], "--target"),
+        (["point", "--target", "plate-ss", "--zeta", "1", "--lambda", "1", "--aspect", "0"], "aspect_ratio"),
+        (["halfspace", "--law", "nope", "--radius", "0.01", "--velocity", "1", "--material", "structural-steel",
+          "--target-material", "structural-steel"], "contact law"),
+        (["halfspace", "--law", "hertz", "--radius", "-0.01", "--velocity", "1", "--material", "structural-steel",
+          "--target-material", "structural-steel"], "radius"),
+        (["halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "1", "--youngs-modulus", "2e11",
+          "--poisson-ratio", "0.5", "--density", "7800"], "poisson_ratio"),
+    ],
+)
+def test_bad_input_exits_2_with_message(capsys, argv, fragment):
+    status = main(argv)
+    captured = capsys.readouterr()
+    assert status == 2
+    assert fragment in captured.err
