@@ -586,3 +586,25 @@ def test_beam_serves_as_target_material_for_the_contact_law():
 
     law = law_for_sphere("stronge", Sphere(SPHERE_RADIUS, HardSteel()), _beam())
     np.testing.assert_allclose(law.kernel_parameters, STRONGE.kernel_parameters, rtol=1e-12)
+
+
+@pytest.mark.parametrize("law_name", ["stronge", "yigit-christoforou"])
+def test_elastic_plastic_contact_modal_equals_fd(law_name):
+    """Issue cross-check: an elastic-plastic contact law on an elastic beam gives the same
+    peak force (within 1 %) and first contact duration from the modal solver (closed-form
+    SS Rayleigh basis) and from the FD solver with plasticity off."""
+    from impactmaps.contact import StrongeContact, YigitChristoforouContact
+    from impactmaps.solvers.modal import simulate
+
+    if law_name == "stronge":
+        law = STRONGE
+    else:
+        law = YigitChristoforouContact.from_properties(STRONGE.effective_modulus, STRONGE.radius, YIELD)
+    position = LENGTH / 2
+    modal = simulate(_rayleigh_ss_basis(_beam(plastic=False), position), law, 1.0, 2.0)
+    fd = _checked(simulate_fd(_beam(plastic=False, n_elements=200), law, 1.0, 2.0, position,
+                              duration=max(modal.end_time, 1e-3)))
+    assert fd.peak_force == pytest.approx(modal.peak_force, rel=1e-2)
+    assert fd.contact_intervals[0, 1] - fd.contact_intervals[0, 0] == pytest.approx(
+        modal.first_contact_duration, rel=1e-2)
+    assert fd.permanent_indentation == pytest.approx(modal.permanent_indentation, rel=2e-2)
