@@ -86,6 +86,7 @@ from .._checks import (
 )
 from ..contact.base import KERNEL_TYPE, ContactLaw
 from ..contact.linear import _linear_kernel
+from ..solvers.result import ContactIntervals
 from .section import LayeredSection, return_map
 
 __all__ = [
@@ -757,7 +758,7 @@ def _integrate(kernel, params, has_impactor, impactor_mass, velocity, gravity, i
 # Results
 # =====================================================================================
 @dataclass(frozen=True)
-class FDImpactResult:
+class FDImpactResult(ContactIntervals):
     """Outcome of one sphere impact on an :class:`FDBeam` (SI units).
 
     Attributes
@@ -837,26 +838,6 @@ class FDImpactResult:
     settings: dict = field(default_factory=dict)
 
     method: ClassVar[str] = "finite-difference"
-
-    @property
-    def impacts(self) -> int:
-        """Number of separate contacts."""
-        return int(len(self.contact_intervals))
-
-    @property
-    def contact_durations(self) -> np.ndarray:
-        """Duration of each contact [s]."""
-        return np.diff(self.contact_intervals, axis=1).ravel()
-
-    @property
-    def contact_time(self) -> float:
-        """Total time in contact [s]."""
-        return float(np.nansum(self.contact_durations))
-
-    @property
-    def first_contact_duration(self) -> float:
-        """Duration of the first contact [s]."""
-        return float(self.contact_durations[0]) if self.impacts else 0.0
 
     @property
     def total_contact_span(self) -> float:

@@ -180,17 +180,8 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
         basis = table.truncate(min(wanted[k], cap), settings.min_modes)
         result = simulate(basis, LinearContact(float(stiffnesses[k])), float(masses[k]), 1.0,
                           settings=settings, record=False)
-        rows.append(row | {
-            "fmax_normalised": result.fmax_normalised,
-            "impacts": result.impacts,
-            "contact_time_normalised": result.contact_time_normalised,
-            "first_contact_normalised": result.first_contact_duration_normalised,
-            "peak_time_normalised": result.peak_time_normalised,
-            "energy_transferred_fraction": result.energy_transferred_fraction,
-            "n_modes": result.n_modes,
-            "hit_time_limit": int(result.hit_time_limit),
-            "method": METHODS.index("modal+residual-capped" if wanted[k] > cap else "modal+residual"),
-        })
+        capped = "modal+residual-capped" if wanted[k] > cap else "modal+residual"
+        rows.append(row | result.normalised_summary() | {"method": METHODS.index(capped)})
     return rows
 
 

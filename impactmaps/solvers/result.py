@@ -7,11 +7,37 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-__all__ = ["ImpactResult"]
+__all__ = ["ImpactResult", "ContactIntervals"]
+
+
+class ContactIntervals:
+    """Derived contact scalars of any result with a ``contact_intervals`` (k, 2) array [s]."""
+
+    contact_intervals: np.ndarray
+
+    @property
+    def impacts(self) -> int:
+        """Number of separate contacts (impacts)."""
+        return int(len(self.contact_intervals))
+
+    @property
+    def contact_durations(self) -> np.ndarray:
+        """Duration of each contact [s]."""
+        return np.diff(self.contact_intervals, axis=1).ravel()
+
+    @property
+    def contact_time(self) -> float:
+        """Total time in contact, summed over all impacts [s]."""
+        return float(np.nansum(self.contact_durations))
+
+    @property
+    def first_contact_duration(self) -> float:
+        """Duration of the first contact [s]."""
+        return float(self.contact_durations[0]) if self.impacts else 0.0
 
 
 @dataclass(frozen=True)
-class ImpactResult:
+class ImpactResult(ContactIntervals):
     """Outcome of one sphere impact on a target (SI units).
 
     Attributes
@@ -83,26 +109,6 @@ class ImpactResult:
 
     # -- derived scalars ------------------------------------------------------------
     @property
-    def impacts(self) -> int:
-        """Number of separate contacts (impacts)."""
-        return int(len(self.contact_intervals))
-
-    @property
-    def contact_durations(self) -> np.ndarray:
-        """Duration of each contact [s]."""
-        return np.diff(self.contact_intervals, axis=1).ravel()
-
-    @property
-    def contact_time(self) -> float:
-        """Total time in contact, summed over all impacts [s]."""
-        return float(np.sum(self.contact_durations))
-
-    @property
-    def first_contact_duration(self) -> float:
-        """Duration of the first contact [s]."""
-        return float(self.contact_durations[0]) if self.impacts else 0.0
-
-    @property
     def restitution(self) -> float:
         """Impactor rebound speed over approach speed [-]."""
         return self.rebound_velocity / self.velocity
@@ -164,6 +170,19 @@ class ImpactResult:
                 "target_displacement_normalised": h["target_displacement_m"] / alpha_star,
             }
         )
+
+    def normalised_summary(self) -> dict:
+        """The normalised scalars of the ζ–λ maps (keys as in the map datasets)."""
+        return {
+            "fmax_normalised": self.fmax_normalised,
+            "impacts": self.impacts,
+            "contact_time_normalised": self.contact_time_normalised,
+            "first_contact_normalised": self.first_contact_duration_normalised,
+            "peak_time_normalised": self.peak_time_normalised,
+            "energy_transferred_fraction": self.energy_transferred_fraction,
+            "n_modes": self.n_modes,
+            "hit_time_limit": int(self.hit_time_limit),
+        }
 
     def summary(self) -> dict:
         """The scalars as a flat dict with unit-suffixed keys (JSON-ready)."""
