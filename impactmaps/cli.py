@@ -269,7 +269,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--zeta", type=float, required=True)
     p.add_argument("--lambda", dest="lambda_", type=float, required=True)
     p.add_argument("--structure", choices=("beam", "plate"), required=True)
-    p.add_argument("--tolerance", type=float, default=0.05)
+    p.add_argument("--tolerance", type=float, default=0.1)
     p.add_argument("--from-map", action="store_true", help="interpolate the shipped map instead of simulating")
     _point_arguments(p, with_target=False)
 

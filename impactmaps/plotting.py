@@ -80,9 +80,12 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
             ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.8, ls=":", zorder=1)
         for name in structures:
             kind = str(dataset["kind"].sel(structure=name).item())
-            values = dataset["fmax_normalised"].sel(structure=name, lambda_=lam, method="nearest").values
-            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6,
-                    label=f"λ = {lam:g}" if name == structures[0] else None, zorder=2)
+            values = dataset["fmax_normalised"].sel(structure=name).sel(lambda_=lam, method="nearest").values
+            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2)
+        ax.plot([], [], color=colour, lw=2.5, label=f"λ = {lam:g}")
+    for kind, style in (("plate", "-"), ("beam", "--")):
+        if any(str(dataset["kind"].sel(structure=s).item()) == kind for s in structures):
+            ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     ax.set_ylim(0.0, 1.05)

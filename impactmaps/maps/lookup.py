@@ -87,7 +87,7 @@ def _interpolator(structure: str, theory: str, variable: str):
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
-           tolerance: float = 0.05, local_tolerance: float = 0.1) -> LookupResult:
+           tolerance: float = 0.1, local_tolerance: float = 0.1) -> LookupResult:
     """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
 
     Parameters
