@@ -7,7 +7,10 @@ step follows the contact force, not the highest mode. The force at the end of a 
 is found implicitly from the contact law (closed form for a linear law, safeguarded
 Newton otherwise), with the residual flexibility of the dropped modes in series with
 the contact. Contact start and separation are located inside the step by bisection on
-the sign of the predicted contact force, and the step is split there.
+the sign of the predicted contact force, and the step is split there. In free flight
+(scalars-only runs) the step doubles up to 64× as long as a bound on the closing speed
+proves that no touchdown fits inside it, and the run ends as soon as the gap exceeds the
+largest displacement the free vibration can reach at the impact point.
 
 Everything here is a plain function of arrays so one compiled kernel serves single
 runs, batches and sweeps; :mod:`impactmaps.solvers.modal` is the Python front end.
@@ -132,9 +135,16 @@ _VECTOR = numba.types.Array(_F8, 1, "C")
 _MATRIX = numba.types.Array(_F8, 2, "C")
 
 
-@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8), cache=True)
-def _solve_force(kernel, params, alpha_pred, compliance, alpha_max):
-    """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root)."""
+@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8, _F8), cache=True)
+def _solve_force(kernel, params, linear_stiffness, alpha_pred, compliance, alpha_max):
+    """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root).
+
+    ``linear_stiffness > 0`` marks a linear law: closed form, no kernel call.
+    """
+    if linear_stiffness > 0.0:
+        if alpha_pred <= 0.0:
+            return 0.0
+        return linear_stiffness * alpha_pred / (1.0 + linear_stiffness * compliance)
     f_trial, k_trial = kernel(alpha_pred, alpha_max, params)
     if f_trial <= 0.0:
         return 0.0
@@ -176,6 +186,24 @@ def _predict(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
 
 
 @numba.njit(cache=True)
+def _no_reimpact_possible(omega, phi, q, v, wi, vi):
+    """True once the impactor moves away and its gap exceeds the largest displacement the
+    free vibration can ever reach at x0: |w_t| ≤ Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (sum of
+    modal amplitudes; damping only shrinks them), relative to the rigid-body motion.
+    This bound is ≤ the spec's Cauchy–Schwarz bound sqrt(2 E_s Σφ²/ω²) (spec §3.6)."""
+    rigid_w = 0.0
+    rigid_v = 0.0
+    bound = 0.0
+    for j in range(q.shape[0]):
+        if omega[j] == 0.0:
+            rigid_w += phi[j] * q[j]
+            rigid_v += phi[j] * v[j]
+        else:
+            bound += abs(phi[j]) * math.sqrt(q[j] * q[j] + (v[j] / omega[j]) ** 2)
+    return vi - rigid_v <= 0.0 and wi - rigid_w < -bound
+
+
+@numba.njit(cache=True)
 def _structure_energy(omega, q, v):
     energy = 0.0
     for j in range(q.shape[0]):
@@ -193,7 +221,7 @@ def _damping_power(omega, zeta, v):
 
 @numba.njit(
     numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
-        KERNEL_TYPE, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
+        KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
         numba.types.boolean, numba.types.int64,
     ),
     cache=True,
@@ -202,6 +230,7 @@ def _damping_power(omega, zeta, v):
 def integrate_impact(
     kernel,
     params,
+    linear_stiffness,
     omega,
     phi,
     zeta,
@@ -218,6 +247,7 @@ def integrate_impact(
     Parameters
     ----------
     kernel, params : contact-law kernel and its parameter vector.
+    linear_stiffness : K [N/m] if the law is linear (closed-form contact solve), else 0.
     omega, phi, zeta : modal frequencies [rad/s], participations φ_j(x0), damping ratios.
     residual : residual compliance of dropped modes [m/N].
     mass, velocity : impactor mass [kg] and approach velocity [m/s].
@@ -240,10 +270,6 @@ def integrate_impact(
     compliance_h = h * h / (6.0 * mass) + residual
     for j in range(n):
         compliance_h += phi[j] * coef[j, 5]
-    static = residual
-    for j in range(n):
-        if omega[j] > 0.0:
-            static += phi[j] * phi[j] / (omega[j] * omega[j])
     damped = False
     for j in range(n):
         if zeta[j] > 0.0:
@@ -281,7 +307,49 @@ def integrate_impact(
     hit_limit = 0.0
     steps = 0
 
+    # Free flight: with no contact force every mode moves exactly over any step, so the
+    # step may grow as long as contact cannot start inside it: the gap −α shrinks at most
+    # at V = |v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²) (amplitudes are constant or decaying),
+    # hence a step of k·h with k·h·V < −α cannot contain a touchdown (k a power of 2).
+    powers = 7
+    free_coef = np.empty((powers, n, 8))
+    free_ready = np.zeros(powers, dtype=np.bool_)
+    speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     while True:
+        if force == 0.0 and t > 0.0:
+            if speed_bound < 0.0:
+                speed_bound = abs(vi)
+                for j in range(n):
+                    speed_bound += abs(phi[j]) * math.sqrt((omega[j] * q[j]) ** 2 + v[j] * v[j])
+            wt_now = 0.0
+            for j in range(n):
+                wt_now += phi[j] * q[j]
+            gap = wt_now - wi  # −α
+            k = 0
+            while k + 1 < powers and (2.0 ** (k + 1)) * h * speed_bound < gap:
+                k += 1
+            if k > 0 and not record:
+                big = (2.0 ** k) * h
+                if not free_ready[k]:
+                    _fill_coefficients(omega, zeta, phi, big, free_coef[k])
+                    free_ready[k] = True
+                wi, vi, _wt = _predict(free_coef[k], big, mass, wi, vi, q, v, phi, 0.0, 0.0, qn, vn)
+                if damped:
+                    damping_work += 0.5 * big * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
+                q, qn = qn, q
+                v, vn = vn, v
+                t += big
+                steps += 1
+                f_prev2 = -1.0
+                f_prev1 = 0.0
+                if _no_reimpact_possible(omega, phi, q, v, wi, vi):
+                    break
+                if t >= max_time or steps >= max_steps:
+                    hit_limit = 1.0
+                    break
+                continue
+        else:
+            speed_bound = -1.0
         remaining = h
         uniform = True
         starting = t == 0.0  # the sphere touches the surface at t = 0
@@ -299,7 +367,7 @@ def integrate_impact(
                 for j in range(n):
                     comp += phi[j] * sub[j, 5]
             wi_p, vi_p, wt_p = _predict(c, remaining, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
-            f_new = _solve_force(kernel, params, wi_p - wt_p, comp, alpha_max)
+            f_new = _solve_force(kernel, params, linear_stiffness, wi_p - wt_p, comp, alpha_max)
             separation = force > 0.0 and f_new == 0.0
             touchdown = force == 0.0 and f_new > 0.0 and not starting
             if separation or touchdown:
@@ -311,7 +379,10 @@ def integrate_impact(
                     mid = 0.5 * (lo + hi)
                     _fill_coefficients(omega, zeta, phi, mid, sub)
                     wi_m, vi_m, wt_m = _predict(sub, mid, mass, wi, vi, q, v, phi, force, 0.0, q_try, v_try)
-                    f_mid, _k = kernel(wi_m - wt_m, alpha_max, params)
+                    if linear_stiffness > 0.0:
+                        f_mid = max(linear_stiffness * (wi_m - wt_m), 0.0)
+                    else:
+                        f_mid, _k = kernel(wi_m - wt_m, alpha_max, params)
                     if (f_mid > 0.0) == separation:
                         lo = mid
                     else:
@@ -413,20 +484,8 @@ def integrate_impact(
             history[rec, 7] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
             rec += 1
 
-        if force == 0.0 and steps % 8 == 0:
-            # re-impact impossible once the gap exceeds the vibration amplitude bound
-            rigid_w = 0.0
-            rigid_v = 0.0
-            elastic_energy = 0.0
-            for j in range(n):
-                if omega[j] == 0.0:
-                    rigid_w += phi[j] * q[j]
-                    rigid_v += phi[j] * v[j]
-                else:
-                    elastic_energy += 0.5 * (v[j] * v[j] + omega[j] * omega[j] * q[j] * q[j])
-            bound = math.sqrt(2.0 * elastic_energy * static)
-            if vi - rigid_v <= 0.0 and wi - rigid_w < -bound:
-                break
+        if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
+            break
         if t >= max_time or steps >= max_steps:
             hit_limit = 1.0
             break

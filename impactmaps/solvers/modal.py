@@ -19,6 +19,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import asdict, dataclass, replace
 
+import numba
 import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
@@ -114,6 +115,18 @@ class ModalSettings:
         )
 
 
+DEFAULT_SETTINGS = ModalSettings()
+_SETTINGS_DICTS: dict = {}
+
+
+def _settings_dict(settings: ModalSettings) -> dict:
+    """``asdict(settings)``, cached (settings are frozen and hashable)."""
+    cached = _SETTINGS_DICTS.get(settings)
+    if cached is None:
+        cached = _SETTINGS_DICTS[settings] = asdict(settings)
+    return dict(cached)
+
+
 def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity: float) -> float:
     """Contact stiffness [N/m] that sets the contact frequency of a run.
 
@@ -150,19 +163,35 @@ def coupled_top_frequency(
     frequencies, and exactly one lies above the last one).
     """
     series = 1.0 / contact_stiffness + basis.residual_compliance
-    omega = basis.frequencies
-    phi2 = basis.participation**2
-    if omega.size == 0:
-        return float(np.sqrt(1.0 / (impactor_mass * series)))
+    return float(_top_root(basis.frequencies, basis.participation, series, float(impactor_mass)))
 
-    def receptance(omega2):
-        return series + np.sum(phi2 / (omega**2 - omega2)) - 1.0 / (impactor_mass * omega2)
 
-    low = omega[-1] ** 2 * (1 + 1e-12) + 1e-300
+@numba.njit(cache=True)
+def _receptance(omega2, frequencies, participation, series, mass):
+    total = series - 1.0 / (mass * omega2)
+    for j in range(frequencies.shape[0]):
+        total += participation[j] ** 2 / (frequencies[j] ** 2 - omega2)
+    return total
+
+
+@numba.njit(cache=True)
+def _top_root(frequencies, participation, series, mass):
+    if frequencies.shape[0] == 0:
+        return np.sqrt(1.0 / (mass * series))
+    low = frequencies[-1] ** 2 * (1.0 + 1e-12) + 1e-300
     high = max(4.0 * low, 1.0)
-    while receptance(high) < 0:
+    while _receptance(high, frequencies, participation, series, mass) < 0.0:
         high *= 4.0
-    return float(np.sqrt(brentq(receptance, low, high, rtol=1e-8)))
+    # bisection in log(ω²); the receptance increases monotonically above the last mode
+    for _ in range(200):
+        middle = np.sqrt(low * high)
+        if _receptance(middle, frequencies, participation, series, mass) < 0.0:
+            low = middle
+        else:
+            high = middle
+        if high - low <= 1e-10 * high:
+            break
+    return np.sqrt(0.5 * (low + high))
 
 
 def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
@@ -232,7 +261,7 @@ def simulate(
     -------
     ImpactResult
     """
-    settings = settings or ModalSettings()
+    settings = settings or DEFAULT_SETTINGS
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     if not isinstance(law, ContactLaw):
@@ -252,6 +281,7 @@ def simulate(
     history, intervals, scalars = integrate_impact(
         law.kernel,
         params,
+        float(law.stiffness) if isinstance(law, LinearContact) else 0.0,
         basis.frequencies,
         basis.participation,
         basis.damping_ratios,
@@ -290,7 +320,7 @@ def simulate(
         n_modes=basis.size,
         time_step=float(time_step),
         method="modal+residual" if settings.residual_flexibility else "modal",
-        settings=asdict(settings),
+        settings=_settings_dict(settings),
     )
     if result.hit_time_limit:
         warnings.warn(
