@@ -3,6 +3,74 @@
 Force histories for physical cases, the dimensionless (β, λ, ζ) picture of
 Christoforou & Yigit (1998), the normalised maximum-force maps, regimes and design
 lookups, all verified against exact solutions.
+
+The public API is re-exported here lazily (importing ``impactmaps`` stays cheap; each
+name loads its module on first use)::
+
+    import impactmaps
+    impactmaps.restitution(10.0)                     # e(β), Yigit–Christoforou law
+    impactmaps.lookup(1.198, 0.425, structure="plate", theory="kirchhoff")
+    impactmaps.simulate(target, law, mass, velocity)  # modal solver, any target
 """
 
+from __future__ import annotations
+
+import importlib
+
 __version__ = "0.1.0"
+
+_EXPORTS = {
+    # solvers
+    "simulate": "impactmaps.solvers.modal",
+    "simulate_normalised": "impactmaps.solvers.modal",
+    "simulate_batch": "impactmaps.solvers.modal",
+    "ModalSettings": "impactmaps.solvers.modal",
+    "ImpactResult": "impactmaps.solvers.result",
+    "halfspace_impact": "impactmaps.solvers.compact",
+    "restitution": "impactmaps.solvers.compact",
+    "simulate_fd": "impactmaps.fd",
+    "FDBeam": "impactmaps.fd",
+    # targets, materials, contact
+    "Beam": "impactmaps.targets.beam",
+    "Plate": "impactmaps.targets.plate",
+    "ModalBasis": "impactmaps.targets.base",
+    "IsotropicMaterial": "impactmaps.materials",
+    "Ply": "impactmaps.materials",
+    "Laminate": "impactmaps.materials",
+    "material": "impactmaps.materials",
+    "Sphere": "impactmaps.contact",
+    "law_for_sphere": "impactmaps.contact",
+    "contact_law": "impactmaps.contact",
+    "available_contact_laws": "impactmaps.contact",
+    # dimensionless framework
+    "realise": "impactmaps.dimensionless",
+    "loss_factor_plate": "impactmaps.dimensionless",
+    "loss_factor_beam": "impactmaps.dimensionless",
+    "relative_stiffness": "impactmaps.dimensionless",
+    "impact_number": "impactmaps.dimensionless",
+    # maps
+    "sweep": "impactmaps.maps.sweep",
+    "MapStructure": "impactmaps.maps.structures",
+    "classify": "impactmaps.maps.regimes",
+    "lookup": "impactmaps.maps.lookup",
+    "design_formula": "impactmaps.maps.lookup",
+    "make_chart": "impactmaps.maps.chart",
+    # cases
+    "load_case": "impactmaps.cases",
+    "run_case": "impactmaps.cases",
+}
+
+__all__ = ["__version__", *_EXPORTS]
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'impactmaps' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(__all__)

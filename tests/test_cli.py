@@ -88,3 +88,12 @@ def test_bad_input_exits_2_with_message(capsys, argv, fragment):
     captured = capsys.readouterr()
     assert status == 2
     assert fragment in captured.err
+
+
+def test_public_api_names_resolve():
+    """Every lazily re-exported name of the package resolves."""
+    import impactmaps
+
+    for name in impactmaps.__all__:
+        assert getattr(impactmaps, name) is not None
+    assert float(impactmaps.restitution(0.5)) == pytest.approx(1.0)
