@@ -72,3 +72,38 @@ def test_lookup_and_classify_commands(capsys):
     assert main(["classify", "--zeta", "0.038", "--lambda", "0.425", "--structure", "plate", "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["regime"] == "local" and values["fmax_normalised"] > 0.9
+
+
+def test_lookup_case_gives_newtons(capsys, tmp_path):
+    """`impactmaps lookup --case`: ζ, λ of a physical case (here λ ≈ 1 by choosing the
+    contact stiffness), F̄max from the map, and the peak force in newtons equal to
+    F̄max · m_i V0 sqrt(K/m_i) — and close to a direct simulation of the same case."""
+    if not _available("beam", "euler"):
+        pytest.skip("map not built")
+    case = tmp_path / "case.toml"
+    case.write_text(
+        '[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 2.0\n'
+        '[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.01\n'
+        'material = "aluminium-6061-t6"\ntheory = "euler"\nsupports = "ss"\nimpact_position = 0.25\n'
+        '[contact]\nlaw = "linear"\nstiffness = 44160.0\n'
+    )
+    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--case", str(case), "--json"]) == 0
+    values = json.loads(capsys.readouterr().out)
+    assert values["lambda"] == pytest.approx(1.0, rel=0.01)
+    found = lookup(values["zeta"], values["lambda"], structure="beam", theory="euler")
+    assert values["fmax_normalised"] == pytest.approx(found.fmax_normalised)
+    from impactmaps.cases import load_case, run_case
+
+    result, _ = run_case(load_case(case))
+    assert values["peak_force_N"] == pytest.approx(result.peak_force, rel=LOOKUP_TOLERANCE)
+
+
+def test_fd_command_json_keys(capsys):
+    import pathlib
+
+    example = pathlib.Path(__file__).resolve().parents[1] / "examples" / "steel_beam_fd_stronge.toml"
+    assert main(["fd", str(example), "--json"]) == 0
+    values = json.loads(capsys.readouterr().out)
+    assert set(values) >= {"peak_force_N", "contact_intervals_s", "restitution", "energy_loss_J",
+                           "permanent_indentation_m", "beam_plastic_work_J", "energy_balance_error"}
+    assert values["energy_balance_error"] < 0.01

@@ -138,3 +138,26 @@ def test_process_pool_gives_the_same_numbers():
     inline = sweep([PLATE], ZETAS[:4], [1.0], max_workers=1, progress=False)
     pooled = sweep([PLATE], ZETAS[:4], [1.0], max_workers=2, progress=False, chunk_size=2)
     np.testing.assert_array_equal(inline["fmax_normalised"].values, pooled["fmax_normalised"].values)
+
+
+def test_sweep_config_sweeps_structure_parameters(tmp_path):
+    """`impactmaps sweep CONFIG.toml`: a list-valued structure field (aspect ratio) is swept
+    too; results land in the output directory as NetCDF and tidy CSV."""
+    import pandas as pd
+
+    from impactmaps.cli import main
+
+    config = tmp_path / "study.toml"
+    config.write_text(
+        'output = "out"\n'
+        "[grid]\nzeta = [0.1, 1.0]\nlambda = { min = 0.5, max = 2.0, count = 2 }\n"
+        "[solver]\ncutoff_ratio = 40\n"
+        '[[structure]]\nkind = "plate"\ntheory = "kirchhoff"\nsupports = "SSSS"\naspect_ratio = [1.0, 2.0]\n'
+    )
+    assert main(["sweep", str(config), "--quiet"]) == 0
+    frame = pd.read_csv(tmp_path / "out" / "sweep.csv")
+    assert len(frame) == 2 * 2 * 2
+    assert set(frame["structure"]) == {"plate-ssss-kirchhoff", "plate-ssss-kirchhoff-ar2"}
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[grid]\nzeta = [1.0]\nlambda = [1.0]\n[[structure]]\nkind = \"plate\"\nthickness = 3\n")
+    assert main(["sweep", str(bad), "--quiet"]) == 2
