@@ -37,6 +37,7 @@ __all__ = [
     "effective_modulus",
     "effective_radius",
     "evaluate_kernel",
+    "kernel_pointer",
     "KERNEL_TYPE",
 ]
 
@@ -49,6 +50,47 @@ _MATRIX = numba.types.Array(_F8, 2, "C")
 #: pointer), not as a dispatcher: one compiled solver then serves every law and numba's
 #: on-disk cache works (dispatcher-typed arguments break the cache across processes).
 KERNEL_TYPE = numba.types.FunctionType(numba.types.UniTuple(_F8, 2)(_F8, _F8, _VECTOR))
+
+
+class _KernelPointer:
+    """A compiled kernel as a ready function pointer (numba's wrapper-address protocol).
+
+    Passing a dispatcher where a compiled solver expects :data:`KERNEL_TYPE` makes
+    numba look up the compiled wrapper's address on every call (≈ 20 µs, more than a
+    whole single-mode impact run); this object looks it up once. It keeps the
+    dispatcher alive, so the address stays valid.
+    """
+
+    __slots__ = ("dispatcher", "_address")
+    _numba_type_ = KERNEL_TYPE
+
+    def __init__(self, dispatcher):
+        from numba.experimental.function_type import _get_wrapper_address
+
+        self.dispatcher = dispatcher
+        self._address = _get_wrapper_address(dispatcher, KERNEL_TYPE.signature)
+
+    def __wrapper_address__(self) -> int:
+        return self._address
+
+
+_KERNEL_POINTERS: dict = {}
+
+
+def kernel_pointer(kernel) -> _KernelPointer:
+    """The function pointer of a contact-law kernel, for compiled solvers (cached).
+
+    Parameters
+    ----------
+    kernel : numba dispatcher or _KernelPointer
+        ``kernel(alpha, alpha_max, params) -> (force, stiffness)``.
+    """
+    if isinstance(kernel, _KernelPointer):
+        return kernel
+    pointer = _KERNEL_POINTERS.get(kernel)
+    if pointer is None:
+        pointer = _KERNEL_POINTERS[kernel] = _KernelPointer(kernel)
+    return pointer
 
 
 @numba.njit(numba.types.UniTuple(_VECTOR, 2)(KERNEL_TYPE, _VECTOR, _VECTOR, _MATRIX), cache=True)
@@ -92,7 +134,7 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     flat_params = np.array(np.broadcast_to(params, (n_params,) + shape).reshape(n_params, -1).T, order="C")
     flat_alpha = np.array(np.broadcast_to(alpha, shape).ravel(), order="C")
     flat_alpha_max = np.array(np.broadcast_to(alpha_max, shape).ravel(), order="C")
-    force, stiffness = _evaluate_many(kernel, flat_alpha, flat_alpha_max, flat_params)
+    force, stiffness = _evaluate_many(kernel_pointer(kernel), flat_alpha, flat_alpha_max, flat_params)
     return force.reshape(shape), stiffness.reshape(shape)
 
 

@@ -192,7 +192,7 @@ class BasisTable:
         """Modes with ω ≤ ``max_frequency`` (at least ``min_modes``), with exact residual."""
         count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
         count = min(max(count, min_modes), self.frequencies.size)
-        return ModalBasis(
+        return ModalBasis.from_validated(
             self.frequencies[:count],
             self.participation[:count],
             float(self._tail[count]),

@@ -185,6 +185,135 @@ def _predict(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
     return wi_new, vi_new, wt
 
 
+@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8), cache=True)
+def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loaded):
+    """Indentation α_f(α_max) at and below which the law gives no force [m].
+
+    0 for elastic laws; the permanent indentation for plastic ones. Found by bisection
+    on the kernel between α = 0 (never a force) and ``alpha_loaded`` (a force).
+    """
+    if linear_stiffness > 0.0:
+        return 0.0
+    lo = 0.0
+    hi = alpha_loaded
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        f, _k = kernel(mid, alpha_max, params)
+        if f > 0.0:
+            hi = mid
+        else:
+            lo = mid
+        if hi - lo <= 1e-15 * alpha_loaded:
+            break
+    return lo
+
+
+@numba.njit(cache=True)
+def _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, s, sub, q_try, v_try):
+    """Gap w_i − Σφ_j q_j after a sub-step s with the force ramped from ``force`` to 0."""
+    _fill_coefficients(omega, zeta, phi, s, sub)
+    wi_s, _vi_s, wt_s = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, q_try, v_try)
+    return wi_s - wt_s
+
+
+@numba.njit(cache=True)
+def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
+                  wi, vi, q, v, force, length, gap_end, separation, sub, q_try, v_try, h):
+    """Time s ∈ [0, length] into the step at which contact ends (``separation``) or starts.
+
+    The predicted gap g(s) (force ramped from its current value to 0 over s) crosses the
+    no-force threshold α_f of the law. The root is bracketed by s = 0 and s = ``length``
+    (gap ``gap_end``) and found by Brent's method (inverse quadratic interpolation,
+    secant and bisection steps; Brent 1973, the ``zeroin`` algorithm) to 1e-13 h: each
+    evaluation costs one pass over the modes, and a handful replace the sixty of plain
+    bisection. The returned s lies on the no-contact side (g ≤ α_f) of the root.
+    """
+    wt_now = 0.0
+    for j in range(q.shape[0]):
+        wt_now += phi[j] * q[j]
+    gap_now = wi - wt_now
+    loaded = gap_now if separation else gap_end
+    threshold = _no_force_threshold(kernel, params, linear_stiffness, alpha_max, loaded)
+    a = 0.0
+    fa = gap_now - threshold  # > 0 for a separation, ≤ 0 for a touchdown
+    b = length
+    fb = gap_end - threshold
+    if fa == 0.0 or fb == 0.0 or (fa > 0.0) == (fb > 0.0):
+        return length if separation else 0.0  # degenerate bracket: the step edge
+    tol = 1e-13 * h
+    eps = 2.220446049250313e-16
+    c = a
+    fc = fa
+    d = b - a
+    e = d
+    for _ in range(200):
+        if abs(fc) < abs(fb):
+            a, b, c = b, c, b
+            fa, fb, fc = fb, fc, fb
+        tol1 = 2.0 * eps * abs(b) + 0.5 * tol
+        xm = 0.5 * (c - b)
+        if abs(xm) <= tol1 or fb == 0.0:
+            break
+        if abs(e) >= tol1 and abs(fa) > abs(fb):
+            ratio = fb / fa
+            if a == c:  # secant
+                p = 2.0 * xm * ratio
+                qq = 1.0 - ratio
+            else:  # inverse quadratic interpolation
+                qa = fa / fc
+                rb = fb / fc
+                p = ratio * (2.0 * xm * qa * (qa - rb) - (b - a) * (rb - 1.0))
+                qq = (qa - 1.0) * (rb - 1.0) * (ratio - 1.0)
+            if p > 0.0:
+                qq = -qq
+            p = abs(p)
+            if 2.0 * p < min(3.0 * xm * qq - abs(tol1 * qq), abs(e * qq)):
+                e = d
+                d = p / qq
+            else:
+                d = xm
+                e = d
+        else:
+            d = xm
+            e = d
+        a = b
+        fa = fb
+        if abs(d) > tol1:
+            b += d
+        else:
+            b += tol1 if xm > 0.0 else -tol1
+        fb = _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, b, sub, q_try, v_try) - threshold
+        if (fb > 0.0) == (fc > 0.0):
+            c = a
+            fc = fa
+            d = b - a
+            e = d
+    # b and c bracket the root; return the end with no force
+    return b if fb <= 0.0 else c
+
+
+@numba.njit(cache=True)
+def _square_free_propagators(free_coef, free_ready, k):
+    """Free-vibration propagators over 2^k h from those over 2^(k−1) h, by squaring.
+
+    Each mode's homogeneous step map [[c0, c1], [c2, c3]] over 2t is the square of the
+    map over t (exact for damped modes too), so the doubled free-flight steps need no
+    trigonometric functions.
+    """
+    for p in range(1, k + 1):
+        if free_ready[p]:
+            continue
+        for j in range(free_coef.shape[1]):
+            a = free_coef[p - 1, j, 0]
+            b = free_coef[p - 1, j, 1]
+            c = free_coef[p - 1, j, 2]
+            d = free_coef[p - 1, j, 3]
+            free_coef[p, j, 0] = a * a + b * c
+            free_coef[p, j, 1] = a * b + b * d
+            free_coef[p, j, 2] = c * a + d * c
+            free_coef[p, j, 3] = c * b + d * d
+        free_ready[p] = True
+
 @numba.njit(cache=True)
 def _no_reimpact_possible(omega, phi, q, v, wi, vi):
     """True once the impactor moves away and its gap exceeds the largest displacement the
@@ -312,8 +441,10 @@ def integrate_impact(
     # at V = |v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²) (amplitudes are constant or decaying),
     # hence a step of k·h with k·h·V < −α cannot contain a touchdown (k a power of 2).
     powers = 7
-    free_coef = np.empty((powers, n, 8))
+    free_coef = np.zeros((powers, n, 8))  # force columns stay 0: no force in flight
     free_ready = np.zeros(powers, dtype=np.bool_)
+    free_coef[0, :, :4] = coef[:, :4]
+    free_ready[0] = True
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     while True:
         if force == 0.0 and t > 0.0:
@@ -331,8 +462,7 @@ def integrate_impact(
             if k > 0 and not record:
                 big = (2.0 ** k) * h
                 if not free_ready[k]:
-                    _fill_coefficients(omega, zeta, phi, big, free_coef[k])
-                    free_ready[k] = True
+                    _square_free_propagators(free_coef, free_ready, k)
                 wi, vi, _wt = _predict(free_coef[k], big, mass, wi, vi, q, v, phi, 0.0, 0.0, qn, vn)
                 if damped:
                     damping_work += 0.5 * big * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
@@ -372,24 +502,10 @@ def integrate_impact(
             touchdown = force == 0.0 and f_new > 0.0 and not starting
             if separation or touchdown:
                 uniform = False
-                # bisection on the sub-step length for the sign of the predicted force
-                lo = 0.0
-                hi = remaining
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    _fill_coefficients(omega, zeta, phi, mid, sub)
-                    wi_m, vi_m, wt_m = _predict(sub, mid, mass, wi, vi, q, v, phi, force, 0.0, q_try, v_try)
-                    if linear_stiffness > 0.0:
-                        f_mid = max(linear_stiffness * (wi_m - wt_m), 0.0)
-                    else:
-                        f_mid, _k = kernel(wi_m - wt_m, alpha_max, params)
-                    if (f_mid > 0.0) == separation:
-                        lo = mid
-                    else:
-                        hi = mid
-                    if hi - lo <= 1e-13 * h:
-                        break
-                s = hi if separation else lo  # stay on the no-contact side
+                s = _locate_event(
+                    kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
+                    wi, vi, q, v, force, remaining, wi_p - wt_p, separation, sub, q_try, v_try, h,
+                )
                 if s > 0.0:
                     _fill_coefficients(omega, zeta, phi, s, sub)
                     wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)

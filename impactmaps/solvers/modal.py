@@ -25,7 +25,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from .._checks import require_in_range, require_positive
-from ..contact.base import ContactLaw
+from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
 from .kernels import integrate_impact
@@ -197,14 +197,12 @@ def _top_root(frequencies, participation, series, mass):
 def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
     if isinstance(target, ModalBasis):
         basis = target
-        keep = basis.frequencies <= settings.cutoff_ratio * contact_frequency
-        count = max(int(np.count_nonzero(keep)), min(settings.min_modes, basis.size))
-        dropped = slice(count, None)
-        extra = np.sum(
-            basis.participation[dropped][basis.frequencies[dropped] > 0] ** 2
-            / basis.frequencies[dropped][basis.frequencies[dropped] > 0] ** 2
-        )
-        basis = ModalBasis(
+        count = int(np.count_nonzero(basis.frequencies <= settings.cutoff_ratio * contact_frequency))
+        count = max(count, min(settings.min_modes, basis.size))
+        dropped_frequencies = basis.frequencies[count:]
+        elastic = dropped_frequencies > 0
+        extra = float(np.sum(basis.participation[count:][elastic] ** 2 / dropped_frequencies[elastic] ** 2))
+        basis = ModalBasis.from_validated(
             basis.frequencies[:count],
             basis.participation[:count],
             basis.residual_compliance + extra,
@@ -217,9 +215,12 @@ def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis
             f"target = {target!r} is not a Target or a ModalBasis"
         )
     # modes with no participation at the impact point are never excited
-    significant = basis.participation**2 > 1e-24 * max(np.max(basis.participation**2, initial=0.0), 1e-300)
+    squares = basis.participation**2
+    significant = squares > 1e-24 * max(float(squares.max(initial=0.0)), 1e-300)
     residual = basis.residual_compliance if settings.residual_flexibility else 0.0
-    return ModalBasis(
+    if significant.all():
+        return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
+    return ModalBasis.from_validated(
         basis.frequencies[significant],
         basis.participation[significant],
         residual,
@@ -279,7 +280,7 @@ def simulate(
         require_positive("time_step", time_step, "s")
     max_time = settings.max_time_ratio / omega_c
     history, intervals, scalars = integrate_impact(
-        law.kernel,
+        kernel_pointer(law.kernel),
         params,
         float(law.stiffness) if isinstance(law, LinearContact) else 0.0,
         basis.frequencies,

@@ -70,6 +70,20 @@ class ModalBasis:
         object.__setattr__(self, "participation", participation)
         object.__setattr__(self, "damping_ratios", damping)
 
+    @classmethod
+    def from_validated(cls, frequencies, participation, residual_compliance, damping_ratios) -> "ModalBasis":
+        """A basis made of parts of an already validated one, without re-checking them.
+
+        For the solvers' hot paths (truncating or filtering a validated basis); the
+        arrays must be float64, 1-D, of equal length, and satisfy the class invariants.
+        """
+        basis = object.__new__(cls)
+        object.__setattr__(basis, "frequencies", np.ascontiguousarray(frequencies))
+        object.__setattr__(basis, "participation", np.ascontiguousarray(participation))
+        object.__setattr__(basis, "residual_compliance", float(residual_compliance))
+        object.__setattr__(basis, "damping_ratios", np.ascontiguousarray(damping_ratios))
+        return basis
+
     @property
     def size(self) -> int:
         """Number of retained modes."""
