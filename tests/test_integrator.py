@@ -26,6 +26,7 @@ from benchmarks.baseline_solve_ivp import baseline_like
 from impactmaps.contact import LinearContact
 from impactmaps.solvers.kernels import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
+from impactmaps.targets.base import ModalBasis
 
 from .analytic import (
     ss_beam_impactor,
@@ -235,3 +236,44 @@ def test_damped_run_matches_solve_ivp_and_is_second_order():
     assert abs(errors[0]) <= 1e-5
     orders = np.log2(np.abs(errors[:-1] / errors[1:]))
     assert np.all((orders >= 1.8) & (orders <= 2.2)), orders
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.05, 0.6])
+def test_free_flight_propagators_by_squaring_are_exact(zeta):
+    """The doubled free-flight steps square the one-step map instead of re-evaluating
+    trigonometric functions; after six squarings they still equal the direct
+    coefficients over 64 h (undamped and damped)."""
+    from impactmaps.solvers.kernels import _fill_coefficients, _square_free_propagators
+
+    omega = np.array([0.0, 0.3, 2.0, 17.0, 400.0])
+    damping = np.where(omega > 0, zeta, 0.0)
+    phi = np.ones_like(omega)
+    h = 0.01
+    powers = 7
+    free = np.zeros((powers, omega.size, 8))
+    one = np.empty((omega.size, 8))
+    _fill_coefficients(omega, damping, phi, h, one)
+    free[0, :, :4] = one[:, :4]
+    ready = np.zeros(powers, dtype=np.bool_)
+    ready[0] = True
+    _square_free_propagators(free, ready, powers - 1)
+    for k in range(powers):
+        direct = np.empty((omega.size, 8))
+        _fill_coefficients(omega, damping, phi, (2**k) * h, direct)
+        scale = 1.0 + np.abs(direct[:, :4])
+        assert np.all(np.abs(free[k, :, :4] - direct[:, :4]) <= 1e-12 * scale)
+        assert np.all(free[k, :, 4:] == 0.0)
+
+
+def test_contact_end_is_located_to_second_order():
+    """Separation is the root of the predicted gap inside the step (Brent's method), so
+    the half-space contact time π/ω converges at the scheme's order 2."""
+    half_space = ModalBasis(np.zeros(0), np.zeros(0), 0.0)
+    errors = []
+    for ratio in (0.04, 0.02, 0.01):
+        result = simulate(half_space, LinearContact(2.0e7), 0.05, 3.0, record=False,
+                          settings=ModalSettings(time_step_ratio=ratio))
+        errors.append(abs(result.contact_time_normalised - math.pi))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(orders - 2.0) < 0.1)
+    assert errors[1] < 1e-4  # default ωΔt = 0.02
