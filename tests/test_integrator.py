@@ -250,19 +250,19 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     phi = np.ones_like(omega)
     h = 0.01
     powers = 7
-    free = np.zeros((powers, omega.size, 8))
-    one = np.empty((omega.size, 8))
+    free = np.zeros((powers, 8, omega.size))
+    one = np.empty((8, omega.size))
     _fill_coefficients(omega, damping, phi, h, one)
-    free[0, :, :4] = one[:, :4]
+    free[0, :4] = one[:4]
     ready = np.zeros(powers, dtype=np.bool_)
     ready[0] = True
     _square_free_propagators(free, ready, powers - 1)
     for k in range(powers):
-        direct = np.empty((omega.size, 8))
+        direct = np.empty((8, omega.size))
         _fill_coefficients(omega, damping, phi, (2**k) * h, direct)
-        scale = 1.0 + np.abs(direct[:, :4])
-        assert np.all(np.abs(free[k, :, :4] - direct[:, :4]) <= 1e-12 * scale)
-        assert np.all(free[k, :, 4:] == 0.0)
+        scale = 1.0 + np.abs(direct[:4])
+        assert np.all(np.abs(free[k, :4] - direct[:4]) <= 1e-12 * scale)
+        assert np.all(free[k, 4:] == 0.0)
 
 
 def test_contact_end_is_located_to_second_order():
