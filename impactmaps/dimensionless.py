@@ -56,6 +56,7 @@ __all__ = [
     "impactor_mass_for_plate",
     "loss_factor_beam",
     "loss_factor_beam_paper",
+    "zeta_beam_paper",
     "impactor_mass_for_beam",
     "Realisation",
     "realise",
@@ -335,6 +336,17 @@ def loss_factor_beam_paper(impactor_mass, contact_stiffness, mass_per_length,
     """
     return 2.0 * loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length,
                                   bending_stiffness)
+
+
+def zeta_beam_paper(loss_factor):
+    """The paper's printed beam loss factor (seed 001 eq 38) for a corrected ζ_b: ``2 ζ_b`` [-].
+
+    Parameters
+    ----------
+    loss_factor : float or array_like
+        Corrected beam loss factor ζ_b of :func:`loss_factor_beam` [-].
+    """
+    return 2.0 * _array(loss_factor)
 
 
 def impactor_mass_for_beam(loss_factor, contact_stiffness, mass_per_length,

@@ -628,6 +628,18 @@ def available_materials() -> tuple:
 def material(name: str):
     """The catalogue material ``name`` (an :class:`IsotropicMaterial` or a :class:`Ply`).
 
+    Sources (full citations beside each entry in :data:`CATALOGUE`):
+
+    * ``structural-steel`` — S235, EN 1993-1-1:2005 §3.2.6 and Table 3.1
+      (E = 210 GPa, ν = 0.30, S_y = 235 MPa), EN 1991-1-1 Table A.4 (ρ = 7850 kg/m³);
+    * ``aluminium-6061-t6`` — Aluminum Association typical values (MatWeb/ASM):
+      E = 68.9 GPa, ν = 0.33, ρ = 2700 kg/m³, S_y = 276 MPa;
+    * ``t300-934`` — the values used by Sun & Chen (1985) and Qian & Swanson (1990) as
+      quoted in the impact literature; **unverified** against the papers (see the entry);
+    * ``as4-3501-6`` — World-Wide Failure Exercise lamina data (Soden, Hinton &
+      Kaddour, Compos. Sci. Technol. 58 (1998) 1011–1022): E1 = 126 GPa, E2 = 11 GPa,
+      G12 = 6.6 GPa, ν12 = 0.28; density 1600 kg/m³ **unverified**.
+
     Raises
     ------
     ValueError

@@ -175,3 +175,39 @@ def test_large_plate_reproduces_infinite_plate(zeta):
 
     result = _run("plate", zeta, 1e-2)
     assert result.fmax_normalised == pytest.approx(float(infinite_plate_peak(zeta)), rel=5e-3)
+
+
+def test_history_energies_balance_with_linear_contact():
+    """The history carries the impactor's kinetic energy; with linear contact and no
+    damping, kinetic + structure + contact energy ½Kα² equals ½ m V0² at every step."""
+    mass, stiffness = ss_plate_impactor(1.198, 0.425)
+    settings = ModalSettings(time_step_ratio=0.005, resolve_ratio=0.05)
+    omega = np.sqrt(stiffness / mass)
+    basis = ss_square_plate_basis(settings.cutoff_ratio * omega, settings.min_modes)
+    result = simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=True)
+    h = result.history
+    contact = 0.5 * stiffness * np.clip(h["indentation_m"], 0, None) ** 2
+    total = h["impactor_kinetic_energy_J"] + h["structure_energy_J"] + contact
+    assert np.max(np.abs(total - result.impact_energy)) < 1e-5 * result.impact_energy
+
+
+def test_convergence_warning_when_result_moves_with_refinement():
+    """``check_convergence`` re-runs with twice the cut-off and half the step and warns
+    when F̄max moves by more than the tolerance: a cut-off at 0.5 ω without residual
+    flexibility on a transition case is not converged (warning: 0.665 → 0.513); the
+    default settings are (no warning)."""
+    import warnings
+
+    from impactmaps.solvers.modal import ConvergenceWarning
+
+    mass, stiffness = ss_beam_impactor(1.0, 0.05)
+    basis = ss_euler_beam_basis(400.0 * np.sqrt(stiffness / mass))  # room to refine
+    law = LinearContact(stiffness)
+    coarse = ModalSettings(cutoff_ratio=0.5, min_modes=1, residual_flexibility=False,
+                           check_convergence=True, tolerance=1e-3)
+    with pytest.warns(ConvergenceWarning, match="not converged"):
+        simulate(basis, law, mass, 1.0, settings=coarse, record=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ConvergenceWarning)
+        simulate(basis, law, mass, 1.0, settings=ModalSettings(check_convergence=True, tolerance=1e-3),
+                 record=False)

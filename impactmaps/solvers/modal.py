@@ -53,6 +53,13 @@ HISTORY_COLUMNS = (
 )
 
 
+def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
+    """The kernel's history array as a DataFrame, with the impactor's kinetic energy."""
+    frame = pd.DataFrame(history, columns=HISTORY_COLUMNS)
+    frame["impactor_kinetic_energy_J"] = 0.5 * impactor_mass * frame["impactor_velocity_m_s"] ** 2
+    return frame
+
+
 class ConvergenceWarning(UserWarning):
     """A result moved by more than the tolerance when the model was refined."""
 
@@ -302,7 +309,7 @@ def simulate(
         )
     alpha_max = float(scalars[2])
     result = ImpactResult(
-        history=pd.DataFrame(history, columns=HISTORY_COLUMNS) if record else None,
+        history=_history_frame(history, impactor_mass) if record else None,
         peak_force=float(scalars[0]),
         peak_time=float(scalars[1]),
         contact_intervals=np.asarray(intervals),

@@ -45,8 +45,9 @@ class ImpactResult(ContactIntervals):
     history : pandas.DataFrame or None
         Time histories, one row per step: ``time_s, force_N, indentation_m,
         impactor_displacement_m, impactor_velocity_m_s, target_displacement_m,
-        target_velocity_m_s, structure_energy_J`` (displacements positive into the
-        target). ``None`` when the run kept scalars only.
+        target_velocity_m_s, structure_energy_J, impactor_kinetic_energy_J``
+        (displacements positive into the target; the energy the contact holds or has
+        dissipated is the impact energy minus the two energies). ``None`` when the run kept scalars only.
     peak_force : float
         Largest contact force over the whole event, all impacts [N].
     peak_time : float
