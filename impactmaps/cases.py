@@ -490,13 +490,15 @@ def _plate(table, path, contact_material):
         return Plate.isotropic(length_x, length_y, thickness, contact_material, **options)
 
 
-def _contact(data, sphere, target_material) -> tuple[ContactLaw, str, dict]:
+def _contact(data, sphere, target_material, default_law=None) -> tuple[ContactLaw, str, dict]:
+    """The contact law of a case; ``default_law`` (a registry name) when none is given."""
     path = "contact"
-    if path not in data:
+    if path not in data and default_law is None:
         raise ValueError("[contact] is required (law = one of "
                          + ", ".join(repr(n) for n in available_contact_laws()) + ")")
-    table = _table(data[path], path)
-    name = _string(table, "law", path, choices=available_contact_laws(), required=True)
+    table = _table(data.get(path, {}), path)
+    name = _string(table, "law", path, choices=available_contact_laws(),
+                   default=default_law, required=default_law is None)
     allowed = _CONTACT_OPTIONS.get(name)
     if allowed is None:
         raise ValueError(f"contact.law = {name!r} cannot be built from a case file: valid values "
@@ -908,7 +910,8 @@ def parse_fd_case(text: str, *, name: str = "case", source: Path | None = None) 
     ``[solver]`` keys are accepted (so that one file serves both solvers) but only
     ``duration`` is used; ``fd.time_step`` forces the step. The finite-difference beam
     is a Rayleigh beam whatever ``target.theory`` says (a warning is issued if it says
-    otherwise).
+    otherwise). Without a ``[contact]`` table (or without ``contact.law``) the contact
+    is seed 000's refined Stronge law (``law = "stronge"``).
     """
     from .fd import FDBeam
 
@@ -948,7 +951,7 @@ def parse_fd_case(text: str, *, name: str = "case", source: Path | None = None) 
     if "impact_position" in table:
         impact_position = _number(table, "impact_position", path, "m", high=length,
                                   high_inclusive=False)
-    law, law_name, _ = _contact(data, sphere, target_material)
+    law, law_name, _ = _contact(data, sphere, target_material, default_law="stronge")
     solver = _table(data.get("solver", {}), "solver")
     _check_keys(solver, "solver", _SOLVER_KEYS)
     duration = _number(solver, "duration", "solver", "s", required=True)

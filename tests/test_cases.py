@@ -576,3 +576,14 @@ def test_beam_cases_isotropic_and_laminated():
     assert laminated.target.static_stiffness() == pytest.approx(expected, rel=1e-9)
     with pytest.raises(ValueError, match=r"target\.height"):
         parse_case(text.replace('width = 0.02', 'width = 0.02\nheight = 0.0015'))
+
+
+def test_fd_case_defaults_to_refined_stronge():
+    """Issue: the FD beam's contact is the refined Stronge law by default. The shipped
+    FD example without its [contact] table builds the same law as with law = "stronge"."""
+    text = (EXAMPLES / "steel_beam_fd_stronge.toml").read_text()
+    assert '[contact]\nlaw = "stronge"\n' in text
+    default = parse_fd_case(text.replace('[contact]\nlaw = "stronge"\n', ""))
+    explicit = parse_fd_case(text)
+    assert default.law_name == "stronge"
+    np.testing.assert_array_equal(default.law.kernel_parameters, explicit.law.kernel_parameters)
