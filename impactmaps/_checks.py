@@ -40,6 +40,8 @@ def require_finite(name: str, value, unit: str = "") -> None:
 
 def require_positive(name: str, value, unit: str = "") -> None:
     """Raise ``ValueError`` unless every element of ``value`` is finite and > 0."""
+    if type(value) is float and 0.0 < value < math.inf:
+        return  # the common scalar case, without NumPy
     require_finite(name, value, unit)
     if np.any(np.asarray(value, dtype=float) <= 0):
         raise ValueError(

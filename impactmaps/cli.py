@@ -108,8 +108,9 @@ def _structure_from_args(args):
 def _settings_from_args(args):
     from .solvers.modal import ModalSettings
 
-    return ModalSettings(cutoff_ratio=args.cutoff_ratio, time_step_ratio=args.time_step_ratio,
-                         check_convergence=not getattr(args, "no_check", False))
+    options = {} if args.time_step_ratio is None else {"time_step_ratio": args.time_step_ratio}
+    return ModalSettings(cutoff_ratio=args.cutoff_ratio, check_convergence=not getattr(args, "no_check", False),
+                         **options)
 
 
 def _cmd_point(args) -> dict:
@@ -319,7 +320,8 @@ def _point_arguments(p, with_target=True):
     p.add_argument("--position", type=float, default=0.5, help="impact point x0/L (or x0/a)")
     p.add_argument("--position-y", type=float, default=0.5, help="impact point y0/b (plates)")
     p.add_argument("--cutoff-ratio", type=float, default=40.0, help="mode cut-off / contact frequency")
-    p.add_argument("--time-step-ratio", type=float, default=0.02, help="ω Δt")
+    p.add_argument("--time-step-ratio", type=float, default=None,
+                   help="upper bound of ω Δt (default: the solver's, ModalSettings)")
     p.add_argument("--no-check", action="store_true", help="skip the convergence re-run")
 
 

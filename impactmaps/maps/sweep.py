@@ -31,7 +31,7 @@ from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
 
-SOLVER_REVISION = 2  # bump when a numerical change invalidates stored results
+SOLVER_REVISION = 3  # bump when a numerical change invalidates stored results
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)

@@ -232,7 +232,9 @@ def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi,
     (gap ``gap_end``) and found by Brent's method (inverse quadratic interpolation,
     secant and bisection steps; Brent 1973, the ``zeroin`` algorithm) to 1e-13 h: each
     evaluation costs one pass over the modes, and a handful replace the sixty of plain
-    bisection. The returned s lies on the no-contact side (g ≤ α_f) of the root.
+    bisection. Returns s — on the no-contact side (g ≤ α_f) of the root, or where
+    |g − α_f| ≤ 1e-11 of the bracket's gaps — and whether ``sub`` holds the step
+    coefficients over s (the last point evaluated).
     """
     wt_now = 0.0
     for j in range(q.shape[0]):
@@ -245,9 +247,11 @@ def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi,
     b = length
     fb = gap_end - threshold
     if fa == 0.0 or fb == 0.0 or (fa > 0.0) == (fb > 0.0):
-        return length if separation else 0.0  # degenerate bracket: the step edge
+        return (length if separation else 0.0), False  # degenerate bracket: the step edge
     tol = 1e-13 * h
     eps = 2.220446049250313e-16
+    small = 1e-11 * max(abs(fa), abs(fb))  # a gap this close to the threshold is the root
+    last = -1.0  # the point whose coefficients ``sub`` holds
     c = a
     fc = fa
     d = b - a
@@ -258,7 +262,7 @@ def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi,
             fa, fb, fc = fb, fc, fb
         tol1 = 2.0 * eps * abs(b) + 0.5 * tol
         xm = 0.5 * (c - b)
-        if abs(xm) <= tol1 or fb == 0.0:
+        if abs(xm) <= tol1 or abs(fb) <= small:
             break
         if abs(e) >= tol1 and abs(fa) > abs(fb):
             ratio = fb / fa
@@ -289,13 +293,24 @@ def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi,
         else:
             b += tol1 if xm > 0.0 else -tol1
         fb = _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, b, sub, q_try, v_try) - threshold
+        last = b
         if (fb > 0.0) == (fc > 0.0):
             c = a
             fc = fa
             d = b - a
             e = d
-    # b and c bracket the root; return the end with no force
-    return b if fb <= 0.0 else c
+    # b and c bracket the root: the end with no force, or b if it is on the threshold
+    root = b if (fb <= 0.0 or abs(fb) <= small) else c
+    return root, root == last
+
+
+@numba.njit(cache=True, fastmath={"reassoc", "contract"})
+def _propagate_free(rows, h, wi, vi, q, v, qn, vn):
+    """Free flight over h (no contact force): impactor drifts, modes follow ``rows`` (4, n)."""
+    for j in range(q.shape[0]):
+        qn[j] = rows[0, j] * q[j] + rows[1, j] * v[j]
+        vn[j] = rows[2, j] * q[j] + rows[3, j] * v[j]
+    return wi + vi * h
 
 
 @numba.njit(cache=True)
@@ -304,7 +319,7 @@ def _square_free_propagators(free_coef, free_ready, k):
 
     Each mode's homogeneous step map [[c0, c1], [c2, c3]] over 2t is the square of the
     map over t (exact for damped modes too), so the doubled free-flight steps need no
-    trigonometric functions.
+    trigonometric functions. ``free_coef`` is (powers, 4, n).
     """
     for p in range(1, k + 1):
         if free_ready[p]:
@@ -447,13 +462,14 @@ def integrate_impact(
     # at V = |v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²) (amplitudes are constant or decaying),
     # hence a step of k·h with k·h·V < −α cannot contain a touchdown (k a power of 2).
     powers = 7
-    free_coef = np.zeros((powers, 8, n))  # force columns stay 0: no force in flight
+    free_coef = np.empty((powers, 4, n))  # homogeneous rows only: no force in flight
     free_ready = np.zeros(powers, dtype=np.bool_)
-    free_coef[0, :4, :] = coef[:4, :]
+    free_coef[0] = coef[:4]
     free_ready[0] = True
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
+    starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)
     while True:
-        if force == 0.0 and t > 0.0:
+        if force == 0.0 and not starting:
             if speed_bound < 0.0:
                 speed_bound = abs(vi)
                 for j in range(n):
@@ -469,7 +485,7 @@ def integrate_impact(
                 big = (2.0 ** k) * h
                 if not free_ready[k]:
                     _square_free_propagators(free_coef, free_ready, k)
-                wi, vi, _wt = _predict(free_coef[k], big, mass, wi, vi, q, v, phi, 0.0, 0.0, qn, vn)
+                wi = _propagate_free(free_coef[k], big, wi, vi, q, v, qn, vn)
                 if damped:
                     damping_work += 0.5 * big * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
                 q, qn = qn, q
@@ -488,7 +504,6 @@ def integrate_impact(
             speed_bound = -1.0
         remaining = h
         uniform = True
-        starting = t == 0.0  # the sphere touches the surface at t = 0
         guard = 0
         while remaining > 0.0 and guard < 50:
             guard += 1
@@ -508,12 +523,13 @@ def integrate_impact(
             touchdown = force == 0.0 and f_new > 0.0 and not starting
             if separation or touchdown:
                 uniform = False
-                s = _locate_event(
+                s, ready = _locate_event(
                     kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
                     wi, vi, q, v, force, remaining, wi_p - wt_p, separation, sub, q_try, v_try, h,
                 )
                 if s > 0.0:
-                    _fill_coefficients(omega, zeta, phi, s, sub)
+                    if not ready:
+                        _fill_coefficients(omega, zeta, phi, s, sub)
                     wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
                     if damped:
                         damping_work += 0.5 * s * (
@@ -531,10 +547,12 @@ def integrate_impact(
                         overflow = 1.0
                     in_contact = False
                 else:
-                    starting = True  # contact begins at the start of the next sub-step
+                    starting = True  # contact begins at the start of the next step
                 force = 0.0
                 remaining -= s
-                continue
+                # the next step starts at the event, with the full step h: no coefficients
+                # for the rest of this step are needed
+                break
             # no event: accept the (sub-)step with the implicit end force
             if f_new > 0.0:
                 wt_p += f_new * (comp - remaining * remaining / (6.0 * mass) - residual)
@@ -564,7 +582,7 @@ def integrate_impact(
             force = f_new
             remaining = 0.0
             starting = False
-        t += h
+        t += h - remaining  # a step cut short by an event ends at the event
         steps += 1
 
         # peak tracking with parabolic refinement on uniform samples
