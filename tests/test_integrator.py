@@ -320,3 +320,35 @@ def test_content_step_costs_no_accuracy(kind, zeta):
     resolved = simulate(basis, law, mass, 1.0, record=False, settings=ModalSettings(force_resolution=0.0))
     assert default.time_step >= resolved.time_step
     assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=2e-5)
+
+
+def test_sampled_loop_instability_is_avoided():
+    """A heavy impactor on a stiff plate (reference SS square plate, ζ = 95.6, λ = 14.4)
+    with four retained modes up to 45 000 ω: forcing ω_top·Δt ≈ 18.8, where the top mode
+    turns 2.99 times per step, makes the sampled contact loop unstable (F̄max > 1, the
+    energy bound broken); the default step keeps ω_top·Δt ≤ STABLE_TOP_STEP and gives the
+    resolved answer."""
+    from impactmaps.dimensionless import realise
+    from impactmaps.maps.structures import BasisTable, structure_from_name
+    from impactmaps.solvers.modal import STABLE_TOP_STEP, _basis_for, coupled_top_frequency
+
+    target = structure_from_name("plate-ssss-kirchhoff").build()
+    impactor = realise(target, 95.64154521062957, 14.38075986535519)
+    mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
+    omega = math.sqrt(stiffness / mass)
+    basis = _basis_for(BasisTable(target, 1e9, 4).truncate(40 * omega, 4), omega, ModalSettings())
+    assert basis.size == 4 and basis.frequencies.max() > 4e4 * omega
+    law = LinearContact(stiffness)
+    top = coupled_top_frequency(basis, stiffness, mass)
+    settings = ModalSettings(max_time_ratio=50)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the blow-up may also hit the time or event limits
+        unstable = simulate(basis, law, mass, 1.0, record=False, time_step=18.8 / top, settings=settings)
+    assert not unstable.fmax_normalised <= 1.0
+    default = simulate(basis, law, mass, 1.0, record=False)
+    resolved = simulate(basis, law, mass, 1.0, record=False, settings=ModalSettings(force_resolution=0.0))
+    assert default.time_step * top <= STABLE_TOP_STEP * (1 + 1e-9)
+    assert default.impacts == resolved.impacts == 1
+    assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)

@@ -2,15 +2,18 @@
 
 Between two instants the contact force is taken to vary linearly. For such a force
 every modal coordinate ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j F(t)`` and the impactor
-``m ẅ_i = −F`` are advanced *exactly*, so the scheme is unconditionally stable and the
-step follows the contact force, not the highest mode. The force at the end of a step
-is found implicitly from the contact law (closed form for a linear law, safeguarded
-Newton otherwise), with the residual flexibility of the dropped modes in series with
-the contact. Contact start and separation are located inside the step by bisection on
-the sign of the predicted contact force, and the step is split there. In free flight
-(scalars-only runs) the step doubles up to 64× as long as a bound on the closing speed
-proves that no touchdown fits inside it, and the run ends as soon as the gap exceeds the
-largest displacement the free vibration can reach at the impact point.
+``m ẅ_i = −F`` are advanced *exactly*, so no mode limits the step by its own stability
+and the step follows the contact force, not the highest mode. (The force is sampled
+once per step, and the sampled contact loop itself is stable only while the highest
+coupled frequency turns well under half a period per step:
+``modal.STABLE_TOP_STEP``.) The force at the end of a step is found implicitly from
+the contact law (closed form for a linear law, safeguarded Newton otherwise), with the
+residual flexibility of the dropped modes in series with the contact. Contact start
+and separation are roots of the predicted gap inside the step (Brent's method); the
+step is cut there and the next one starts at the event. In free flight (scalars-only
+runs) the step doubles up to 64× as long as a bound on the closing speed proves that
+no touchdown fits inside it, and the run ends as soon as the gap exceeds the largest
+displacement the free vibration can reach at the impact point.
 
 Everything here is a plain function of arrays so one compiled kernel serves single
 runs, batches and sweeps; :mod:`impactmaps.solvers.modal` is the Python front end.
