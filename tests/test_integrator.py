@@ -131,7 +131,7 @@ def _coefficients(omega, zeta, h):
     return out
 
 
-@pytest.mark.parametrize("omega_h", [0.0, 1e-12, 1e-8, 1e-4, 0.01, 0.2, 0.2499999, 0.2500001, 0.7, 3.0, 40.0, 1e3])
+@pytest.mark.parametrize("omega_h", [0.0, 1e-12, 1e-8, 1e-4, 0.01, 0.2, 0.2499999, 0.2500001, 0.7, 0.9999999, 1.0000001, 3.0, 40.0, 1e3])
 @pytest.mark.parametrize("h", [1e-6, 0.3])
 def test_undamped_coefficients_exact(omega_h, h):
     """ζ = 0 against the closed-form solution at 40 digits, across the series branch

@@ -30,7 +30,23 @@ from ..contact.base import KERNEL_TYPE
 
 __all__ = ["oscillator_step_coefficients", "integrate_impact"]
 
-_SERIES_LIMIT = 0.25
+_SERIES_LIMIT = 1.0
+
+
+# Taylor coefficients in x² of sin x/x, (1 − cos x)/x² and (x − sin x)/x³ (ten terms:
+# the first omitted one is below 3e-20 for x < 1), for Horner evaluation. Below
+# _SERIES_LIMIT they replace sin and cos (no cancellation there, and three times faster).
+_SINC = (1.0, -0.16666666666666666, 0.008333333333333333, -0.0001984126984126984, 2.7557319223985893e-06, -2.505210838544172e-08, 1.6059043836821613e-10, -7.647163731819816e-13, 2.8114572543455206e-15, -8.22063524662433e-18)
+_COSC = (0.5, -0.041666666666666664, 0.001388888888888889, -2.48015873015873e-05, 2.755731922398589e-07, -2.08767569878681e-09, 1.1470745597729725e-11, -4.779477332387385e-14, 1.5619206968586225e-16, -4.110317623312165e-19)
+_SIN3 = (0.16666666666666666, -0.008333333333333333, 0.0001984126984126984, -2.7557319223985893e-06, 2.505210838544172e-08, -1.6059043836821613e-10, 7.647163731819816e-13, -2.8114572543455206e-15, 8.22063524662433e-18, -1.9572941063391263e-20)
+
+
+@numba.njit(cache=True)
+def _horner10(c, x2):
+    total = c[9]
+    for k in range(8, -1, -1):
+        total = c[k] + x2 * total
+    return total
 
 
 @numba.njit(cache=True)
@@ -38,24 +54,11 @@ def _trig_functions(x):
     """S = sin x/x, C1 = (1−cos x)/x², S3 = (x−sin x)/x³, stable for small x."""
     if x < _SERIES_LIMIT:
         x2 = x * x
-        s = 0.0
-        c1 = 0.0
-        s3 = 0.0
-        term = 1.0  # (−1)^k x^{2k}
-        fact_s = 1.0  # (2k+1)!
-        fact_c = 2.0  # (2k+2)!
-        fact_3 = 6.0  # (2k+3)!
-        for k in range(8):
-            s += term / fact_s
-            c1 += term / fact_c
-            s3 += term / fact_3
-            term *= -x2
-            fact_s *= (2 * k + 2) * (2 * k + 3)
-            fact_c *= (2 * k + 3) * (2 * k + 4)
-            fact_3 *= (2 * k + 4) * (2 * k + 5)
-        return s, c1, s3
+        return _horner10(_SINC, x2), _horner10(_COSC, x2), _horner10(_SIN3, x2)
     sx = math.sin(x)
-    return sx / x, (1.0 - math.cos(x)) / (x * x), (x - sx) / (x * x * x)
+    inverse = 1.0 / x
+    inverse2 = inverse * inverse
+    return sx * inverse, (1.0 - math.cos(x)) * inverse2, (x - sx) * inverse2 * inverse
 
 
 @numba.njit(cache=True)
@@ -124,14 +127,36 @@ def oscillator_step_coefficients(omega, zeta, h, out):
 @numba.njit(cache=True)
 def _fill_coefficients(omega, zeta, phi, h, coef):
     """Per-mode step coefficients into ``coef[k, j]`` (k = 0…7 as in
-    :func:`oscillator_step_coefficients`); the force rows are pre-multiplied by φ_j."""
+    :func:`oscillator_step_coefficients`); the force rows are pre-multiplied by φ_j.
+
+    Undamped modes with ω_j h below ``_SERIES_LIMIT`` (all of them in a typical step)
+    go through one branch-free loop that the compiler vectorises; the others through
+    :func:`oscillator_step_coefficients`.
+    """
+    n = omega.shape[0]
+    for j in range(n):
+        x = omega[j] * h
+        x2 = x * x
+        sinc = _horner10(_SINC, x2)
+        cosc = _horner10(_COSC, x2)
+        sin3 = _horner10(_SIN3, x2)
+        cosx = 1.0 - x2 * cosc
+        coef[0, j] = cosx
+        coef[1, j] = h * sinc
+        coef[2, j] = -omega[j] * omega[j] * h * sinc
+        coef[3, j] = cosx
+        coef[4, j] = h * h * (cosc - sin3) * phi[j]
+        coef[5, j] = h * h * sin3 * phi[j]
+        coef[6, j] = h * (sinc - cosc) * phi[j]
+        coef[7, j] = h * cosc * phi[j]
     tmp = np.empty(8)
-    for j in range(omega.shape[0]):
-        oscillator_step_coefficients(omega[j], zeta[j], h, tmp)
-        for k in range(4):
-            coef[k, j] = tmp[k]
-        for k in range(4, 8):
-            coef[k, j] = tmp[k] * phi[j]
+    for j in range(n):
+        if zeta[j] != 0.0 or not omega[j] * h < _SERIES_LIMIT:
+            oscillator_step_coefficients(omega[j], zeta[j], h, tmp)
+            for k in range(4):
+                coef[k, j] = tmp[k]
+            for k in range(4, 8):
+                coef[k, j] = tmp[k] * phi[j]
 
 
 _F8 = numba.types.float64

@@ -227,16 +227,25 @@ def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass
     float
         Δt [s]; ``inf`` when no mode lies above 2ω.
     """
-    omega = np.sqrt(contact_stiffness / impactor_mass)
-    frequencies = basis.frequencies
-    high = frequencies > 2.0 * omega
-    if not high.any() or tolerance <= 0:
-        return np.inf if tolerance > 0 else 0.0
-    high_frequencies = frequencies[high]
-    amplitude = (impactor_mass * basis.participation[high] ** 2 * (omega / high_frequencies) ** 3
-                 / (1.0 + contact_stiffness * basis.residual_compliance) ** 2)
-    weight = float(np.sum(np.minimum(amplitude, 1.0) * high_frequencies**2))
-    return float(np.sqrt(8.0 * tolerance / weight))
+    if tolerance <= 0:
+        return 0.0
+    weight = _content_weight(basis.frequencies, basis.participation, float(contact_stiffness),
+                             float(impactor_mass), float(basis.residual_compliance))
+    return float(np.sqrt(8.0 * tolerance / weight)) if weight > 0 else np.inf
+
+
+@numba.njit(cache=True)
+def _content_weight(frequencies, participation, stiffness, mass, residual):
+    """Σ_{ω_j > 2ω} min(Â_j, 1) ω_j² of :func:`content_time_step` [1/s²]."""
+    omega = np.sqrt(stiffness / mass)
+    series = (1.0 + stiffness * residual) ** 2
+    weight = 0.0
+    for j in range(frequencies.shape[0]):
+        if frequencies[j] > 2.0 * omega:
+            ratio = omega / frequencies[j]
+            amplitude = mass * participation[j] ** 2 * ratio * ratio * ratio / series
+            weight += min(amplitude, 1.0) * frequencies[j] ** 2
+    return weight
 
 
 @numba.njit(cache=True)
@@ -267,14 +276,33 @@ def _top_root(frequencies, participation, series, mass, rtol):
     return np.sqrt(0.5 * (low + high))
 
 
+@numba.njit(cache=True)
+def _truncation(frequencies, participation, max_frequency, min_modes):
+    """(count, compliance of the rest): modes kept by the cut-off of a ModalBasis."""
+    count = 0
+    for j in range(frequencies.shape[0]):
+        if frequencies[j] <= max_frequency:
+            count += 1
+    count = max(count, min(min_modes, frequencies.shape[0]))
+    extra = 0.0
+    for j in range(count, frequencies.shape[0]):
+        if frequencies[j] > 0.0:
+            extra += participation[j] ** 2 / frequencies[j] ** 2
+    return count, extra
+
+
+def _significant(participation):
+    """Mask of the modes that participate at the impact point, or None if all do."""
+    squares = participation**2
+    significant = squares > 1e-24 * max(float(squares.max(initial=0.0)), 1e-300)
+    return None if significant.all() else significant
+
+
 def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
     if isinstance(target, ModalBasis):
         basis = target
-        count = int(np.count_nonzero(basis.frequencies <= settings.cutoff_ratio * contact_frequency))
-        count = max(count, min(settings.min_modes, basis.size))
-        dropped_frequencies = basis.frequencies[count:]
-        elastic = dropped_frequencies > 0
-        extra = float(np.sum(basis.participation[count:][elastic] ** 2 / dropped_frequencies[elastic] ** 2))
+        count, extra = _truncation(basis.frequencies, basis.participation,
+                                   float(settings.cutoff_ratio * contact_frequency), int(settings.min_modes))
         basis = ModalBasis.from_validated(
             basis.frequencies[:count],
             basis.participation[:count],
@@ -288,10 +316,9 @@ def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis
             f"target = {target!r} is not a Target or a ModalBasis"
         )
     # modes with no participation at the impact point are never excited
-    squares = basis.participation**2
-    significant = squares > 1e-24 * max(float(squares.max(initial=0.0)), 1e-300)
+    significant = _significant(basis.participation)
     residual = basis.residual_compliance if settings.residual_flexibility else 0.0
-    if significant.all():
+    if significant is None:
         return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
     return ModalBasis.from_validated(
         basis.frequencies[significant],
