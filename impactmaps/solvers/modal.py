@@ -293,9 +293,21 @@ def _truncation(frequencies, participation, max_frequency, min_modes):
 
 def _significant(participation):
     """Mask of the modes that participate at the impact point, or None if all do."""
-    squares = participation**2
-    significant = squares > 1e-24 * max(float(squares.max(initial=0.0)), 1e-300)
-    return None if significant.all() else significant
+    significant, every = _significant_mask(participation)
+    return None if every else significant
+
+
+@numba.njit(cache=True)
+def _significant_mask(participation):
+    largest = 1e-300
+    for value in participation:
+        largest = max(largest, value * value)
+    mask = np.empty(participation.shape[0], dtype=np.bool_)
+    every = True
+    for j in range(participation.shape[0]):
+        mask[j] = participation[j] ** 2 > 1e-24 * largest
+        every = every and mask[j]
+    return mask, every
 
 
 def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
@@ -409,10 +421,10 @@ def simulate(
         peak_time=float(scalars[1]),
         contact_intervals=np.asarray(intervals),
         max_indentation=alpha_max,
-        permanent_indentation=float(law.permanent_indentation(alpha_max)),
+        permanent_indentation=0.0 if law.elastic else float(law.permanent_indentation(alpha_max)),
         rebound_velocity=float(-scalars[3]),
         energy_transferred=float(scalars[4]),
-        contact_dissipation=float(law.dissipated_energy(alpha_max)),
+        contact_dissipation=0.0 if law.elastic else float(law.dissipated_energy(alpha_max)),
         damping_work=float(scalars[5]),
         impact_energy=0.5 * impactor_mass * velocity**2,
         end_time=float(scalars[6]),
