@@ -7,6 +7,7 @@ import numpy as np
 
 __all__ = [
     "plot_fmax_chart",
+    "plot_regime_strip",
     "plot_regime_map",
     "plot_force_history",
     "plot_scaling",
@@ -34,7 +35,10 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
 
     Plates are drawn solid, beams dashed; the quasi-static values sqrt(λ/(1+λ)) as
     dotted horizontal lines, the infinite-plate and infinite-beam peaks as thick grey
-    curves, and the local band F̄max ≥ 0.9 shaded.
+    curves. Regimes (``shade_regimes``): the local band F̄max ≥ 0.9 is shaded, and, when
+    the dataset has a ``regime`` variable, vertical bands mark the ζ ranges where every
+    drawn point is in one regime (local on the left, quasi-static on the right; between
+    them the regime depends on λ: see :func:`plot_regime_map`).
 
     Parameters
     ----------
@@ -47,7 +51,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     asymptotes : bool
         Draw the quasi-static and infinite-structure asymptotes.
     shade_regimes : bool
-        Shade the local band.
+        Shade the local band and the regime bands along ζ.
     ax : matplotlib Axes, optional
 
     Returns
@@ -65,7 +69,9 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.9, len(lambda_values)))
     if shade_regimes:
         ax.axhspan(0.9, 1.05, color=REGIME_COLOURS["local"], alpha=0.6, lw=0, zorder=0)
-        ax.text(zeta[0] * 1.1, 0.985, "local", fontsize=9, va="top", color="#2f6f2f")
+        ax.text(zeta[-1] / 1.1, 0.905, "F̄max ≥ 0.9", fontsize=8, ha="right", va="bottom", color="#2f6f2f")
+        if "regime" in dataset:
+            _shade_regime_bands(ax, dataset, structures, lambda_values)
     if asymptotes:
         dense = np.geomspace(zeta[0], zeta[-1], 300)
         kinds = {str(dataset["kind"].sel(structure=s).item()) for s in structures}
@@ -94,6 +100,89 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     ax.set_title("Normalised maximum impact force: plates solid, beams dashed; quasi-static dotted")
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, ncol=2, loc="lower left")
+    return ax
+
+
+def _shade_regime_bands(ax, dataset, structures, lambda_values):
+    """Vertical bands over the ζ ranges where every drawn point shares one regime."""
+    regimes = dataset["regime"].sel(structure=structures).sel(lambda_=lambda_values, method="nearest")
+    zeta = dataset["zeta"].values
+    columns = [set(np.asarray(regimes.isel(zeta=k).values).ravel()) for k in range(zeta.size)]
+    edges = np.sqrt(zeta[1:] * zeta[:-1])
+    edges = np.concatenate([[zeta[0]], edges, [zeta[-1]]])
+    for name, anchor in (("local", 0.5), ("quasi-static", 0.5)):
+        shared = np.array([column == {name} for column in columns])
+        if not shared.any():
+            continue
+        for start, stop in _runs(shared):
+            ax.axvspan(edges[start], edges[stop + 1], color=REGIME_COLOURS[name], alpha=0.5, lw=0, zorder=0)
+            middle = np.sqrt(edges[start] * edges[stop + 1])
+            ax.text(middle, anchor, f"{name}\n(every λ)", fontsize=8, ha="center", va="bottom", color="0.3")
+
+
+def _runs(mask):
+    """(first, last) index of each run of True in a boolean array."""
+    runs, start = [], None
+    for index, value in enumerate(mask):
+        if value and start is None:
+            start = index
+        if not value and start is not None:
+            runs.append((start, index - 1))
+            start = None
+    if start is not None:
+        runs.append((start, len(mask) - 1))
+    return runs
+
+
+def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
+    """The regime of every point of a chart: one row per (structure, λ), ζ along x.
+
+    Drawn under :func:`plot_fmax_chart` (same ζ axis) by ``impactmaps chart``, it shows
+    where each curve is local, follows the infinite structure, is in the transition or
+    is quasi-static (criteria: :mod:`impactmaps.maps.regimes`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A sweep result with a ``regime`` variable.
+    structures : list of str, optional
+        Structure names (default all).
+    lambdas : list of float, optional
+        λ values (default all).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from .maps.regimes import REGIMES
+
+    ax = _axes(ax)
+    structures = list(dataset["structure"].values) if structures is None else list(structures)
+    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
+    rows, labels = [], []
+    for name in structures:
+        kind = str(dataset["kind"].sel(structure=name).item())
+        for lam in lambda_values:
+            regimes = dataset["regime"].sel(structure=name).sel(lambda_=lam, method="nearest").values
+            codes = np.full(regimes.shape, np.nan)
+            for index, regime in enumerate(REGIMES):
+                codes[regimes == regime] = index
+            rows.append(codes)
+            labels.append(f"{kind} λ={lam:g}")
+    cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
+    ax.pcolormesh(dataset["zeta"].values, np.arange(len(rows)), np.array(rows), cmap=cmap, vmin=-0.5,
+                  vmax=len(REGIMES) - 0.5, shading="nearest")
+    ax.set_xscale("log")
+    ax.set_yticks(np.arange(len(rows)))
+    ax.set_yticklabels(labels, fontsize=6)
+    ax.invert_yaxis()
+    ax.set_xlabel("loss factor ζ")
+    ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=7, ncol=4,
+              loc="upper center", bbox_to_anchor=(0.5, -0.22), frameon=False)
     return ax
 
 

@@ -70,7 +70,7 @@ def make_chart(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_fmax_chart, plot_regime_map
+    from ..plotting import plot_fmax_chart, plot_regime_map, plot_regime_strip
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -83,8 +83,11 @@ def make_chart(
     paths["csv"] = out / "fmax_map.csv"
     tidy_frame(dataset).to_csv(paths["csv"], index=False)
 
-    figure, ax = plt.subplots(figsize=(9, 6))
+    figure, (ax, strip) = plt.subplots(2, 1, figsize=(9, 9), sharex=True,
+                                       gridspec_kw={"height_ratios": [3, 1.3]})
     plot_fmax_chart(dataset, ax=ax)
+    ax.set_xlabel("")
+    plot_regime_strip(dataset, ax=strip)
     figure.tight_layout()
     paths["png"] = out / "fmax_chart.png"
     paths["svg"] = out / "fmax_chart.svg"

@@ -1,0 +1,76 @@
+"""Plot functions (impactmaps.plotting): every one takes ``ax=None`` and returns the Axes
+it drew on, and draws what its docstring promises."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from impactmaps import plotting  # noqa: E402
+from impactmaps.contact import LinearContact  # noqa: E402
+from impactmaps.maps.structures import structure_from_name  # noqa: E402
+from impactmaps.maps.sweep import sweep  # noqa: E402
+from impactmaps.solvers.modal import simulate  # noqa: E402
+
+from .analytic import ss_plate_impactor, ss_square_plate_basis  # noqa: E402
+
+ZETAS = np.geomspace(0.01, 30.0, 8)
+LAMBDAS = np.array([0.1, 1.0])
+
+
+@pytest.fixture(scope="module")
+def dataset():
+    structures = [structure_from_name("beam-ss-euler"), structure_from_name("plate-ssss-kirchhoff")]
+    return sweep(structures, ZETAS, LAMBDAS, progress=False, max_workers=1)
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+def test_fmax_chart_draws_every_curve_and_returns_axes(dataset):
+    """One line per (structure, λ) with the data's values, plates solid, beams dashed."""
+    ax = plotting.plot_fmax_chart(dataset, asymptotes=False)
+    assert isinstance(ax, matplotlib.axes.Axes)
+    curves = [line for line in ax.lines if len(line.get_xdata()) == ZETAS.size]
+    assert len(curves) == 4
+    styles = sorted(line.get_linestyle() for line in curves)
+    assert styles == ["-", "-", "--", "--"]
+    plate = dataset["fmax_normalised"].sel(structure="plate-ssss-kirchhoff", lambda_=1.0).values
+    assert any(np.allclose(line.get_ydata(), plate) for line in curves)
+    _figure, given = plt.subplots()
+    assert plotting.plot_fmax_chart(dataset, ax=given) is given
+
+
+def test_regime_strip_has_one_row_per_curve(dataset):
+    ax = plotting.plot_regime_strip(dataset)
+    assert isinstance(ax, matplotlib.axes.Axes)
+    labels = [label.get_text() for label in ax.get_yticklabels()]
+    assert labels == ["beam λ=0.1", "beam λ=1", "plate λ=0.1", "plate λ=1"]
+
+
+def test_regime_map_returns_axes(dataset):
+    ax = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff")
+    assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+
+
+def test_history_scaling_and_restitution_plots():
+    mass, stiffness = ss_plate_impactor(1.198, 0.425)
+    basis = ss_square_plate_basis(40 * np.sqrt(stiffness / mass), 4)
+
+
+    result = simulate(basis, LinearContact(stiffness), mass, 1.0)
+    ax = plotting.plot_force_history(result)
+    assert isinstance(ax, matplotlib.axes.Axes)
+    np.testing.assert_allclose(ax.lines[0].get_ydata(), result.normalised_history()["force_normalised"])
+    ax = plotting.plot_scaling(result, result, quantity="deflection")
+    assert len(ax.lines) == 2
+    ax = plotting.plot_restitution([1.0, 10.0], [1.0, 0.5], points=([2.0], [0.8]))
+    assert ax.get_xscale() == "log" and len(ax.lines) == 2
