@@ -258,8 +258,8 @@ def test_history_stride_keeps_scalars():
     """Recording every 7th step changes only the history: the scalars (computed from every
     step) are identical and the recorded times are multiples of 7Δt."""
     beam = _beam(plastic=False, n_elements=50)
-    full = simulate_fd(beam, HERTZ, 1.0, 2.0, duration=6e-4)
-    thin = simulate_fd(beam, HERTZ, 1.0, 2.0, duration=6e-4, history_stride=7)
+    full = _checked(simulate_fd(beam, HERTZ, 1.0, 2.0, duration=6e-4))
+    thin = _checked(simulate_fd(beam, HERTZ, 1.0, 2.0, duration=6e-4, history_stride=7))
     assert thin.peak_force == full.peak_force
     np.testing.assert_array_equal(thin.contact_intervals, full.contact_intervals)
     np.testing.assert_allclose(np.diff(thin.history["time_s"]), 7 * full.time_step, rtol=1e-9)
@@ -391,8 +391,8 @@ def test_peak_force_converges_in_grid_spacing():
     order 2.02, 2.01. Plastic beam + Hertz (5 kg, 5 m/s, yields under the sphere):
     2089, 525, 139 N → order 1.99, 1.92. Asserted: every order in [1.6, 2.4]."""
     for mass, velocity, plastic in ((1.0, 2.0, False), (5.0, 5.0, True)):
-        peaks = [simulate_fd(_beam(n_elements=n, plastic=plastic), HERTZ, mass, velocity,
-                             duration=6e-4).peak_force for n in (25, 50, 100, 200)]
+        peaks = [_checked(simulate_fd(_beam(n_elements=n, plastic=plastic), HERTZ, mass, velocity,
+                                      duration=6e-4)).peak_force for n in (25, 50, 100, 200)]
         orders = _orders(peaks)
         assert np.all((orders > 1.6) & (orders < 2.4)), (plastic, peaks, orders)
 
@@ -401,7 +401,7 @@ def test_peak_force_converges_in_layers():
     """Plastic beam + Hertz (5 kg, 5 m/s), N_l = 100, N_h = 2, 4, 8, 16, 32: successive
     differences 678, 156, 35, 8.8 N → observed orders 2.12, 2.15, 2.00 (midpoint rule
     through the thickness, as in the section test). Asserted: orders in [1.7, 2.5]."""
-    peaks = [simulate_fd(_beam(n_half_layers=nh), HERTZ, 5.0, 5.0, duration=4e-4).peak_force
+    peaks = [_checked(simulate_fd(_beam(n_half_layers=nh), HERTZ, 5.0, 5.0, duration=4e-4)).peak_force
              for nh in (2, 4, 8, 16, 32)]
     orders = _orders(peaks)
     assert np.all((orders > 1.7) & (orders < 2.5)), (peaks, orders)
@@ -419,8 +419,8 @@ def test_peak_force_converges_in_time_step():
     for mass, velocity, plastic in ((1.0, 2.0, False), (5.0, 5.0, True)):
         beam = _beam(n_elements=50, plastic=plastic)
         limit = beam.stability_limit()
-        run = lambda f: simulate_fd(beam, HERTZ, mass, velocity, duration=3e-4,  # noqa: E731
-                                    time_step=f * limit).peak_force
+        run = lambda f: _checked(simulate_fd(beam, HERTZ, mass, velocity, duration=3e-4,  # noqa: E731
+                                             time_step=f * limit)).peak_force
         reference = run(0.0025)
         peaks = [run(f) for f in (0.8, 0.4, 0.2, 0.1, 0.05)]
         orders = _orders(peaks, reference)
