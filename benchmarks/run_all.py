@@ -29,16 +29,7 @@ import numpy as np  # noqa: E402
 import scipy  # noqa: E402
 
 from benchmarks import bench_chart, bench_memory, bench_modal  # noqa: E402
-
-
-def _cpu_model() -> str:
-    try:
-        for line in pathlib.Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
+from benchmarks.bench_fd import _cpu_model  # noqa: E402  (one machine description for both files)
 
 
 def _memory_gib() -> str:

@@ -63,8 +63,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     from .maps.regimes import infinite_structure_peak, quasi_static_peak
 
     ax = _axes(ax)
-    structures = list(dataset["structure"].values) if structures is None else list(structures)
-    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
+    structures, lambda_values = _selection(dataset, structures, lambdas)
     zeta = dataset["zeta"].values
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.9, len(lambda_values)))
     if shade_regimes:
@@ -101,6 +100,23 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, ncol=2, loc="lower left")
     return ax
+
+
+def _selection(dataset, structures, lambdas):
+    """The structures and λ values to draw (default: all of the dataset's)."""
+    structures = list(dataset["structure"].values) if structures is None else list(structures)
+    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
+    return structures, lambda_values
+
+
+def _regime_codes(regimes):
+    """Regime labels → their index in ``REGIMES`` (NaN where not computed)."""
+    from .maps.regimes import REGIMES
+
+    codes = np.full(np.shape(regimes), np.nan)
+    for index, name in enumerate(REGIMES):
+        codes[regimes == name] = index
+    return codes
 
 
 def _shade_regime_bands(ax, dataset, structures, lambda_values):
@@ -161,17 +177,13 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     from .maps.regimes import REGIMES
 
     ax = _axes(ax)
-    structures = list(dataset["structure"].values) if structures is None else list(structures)
-    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
+    structures, lambda_values = _selection(dataset, structures, lambdas)
     rows, labels = [], []
     for name in structures:
         kind = str(dataset["kind"].sel(structure=name).item())
         for lam in lambda_values:
             regimes = dataset["regime"].sel(structure=name).sel(lambda_=lam, method="nearest").values
-            codes = np.full(regimes.shape, np.nan)
-            for index, regime in enumerate(REGIMES):
-                codes[regimes == regime] = index
-            rows.append(codes)
+            rows.append(_regime_codes(regimes))
             labels.append(f"{kind} λ={lam:g}")
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     ax.pcolormesh(dataset["zeta"].values, np.arange(len(rows)), np.array(rows), cmap=cmap, vmin=-0.5,
@@ -208,9 +220,7 @@ def plot_regime_map(dataset, structure, *, ax=None):
 
     ax = _axes(ax)
     regimes = dataset["regime"].sel(structure=structure).values
-    codes = np.full(regimes.shape, np.nan)
-    for index, name in enumerate(REGIMES):
-        codes[regimes == name] = index
+    codes = _regime_codes(regimes)
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     ax.pcolormesh(dataset["zeta"].values, dataset["lambda_"].values, codes, cmap=cmap, vmin=-0.5,
                   vmax=len(REGIMES) - 0.5, shading="nearest")
