@@ -205,8 +205,9 @@ def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass
     oscillation at ω_j of amplitude (in units of m_i V0 ω)
     ``Â_j = m_i φ_j² (ω/ω_j)³ / (1 + K r)²`` — the residue of the force response
     ``V0/(s² D(s))``, ``D = 1/K + r + 1/(m_i s²) + Σ φ_j²/(s² + ω_j²)``, at the coupled
-    root next to ω_j (within a factor 2 of the exact residues on the benchmark cases,
-    and above them). A force linear within the step misses ``(ω_j Δt)²/8`` of each
+    root next to ω_j (within a factor 2 of the exact residue of the top coupled mode on
+    the benchmark cases, modes of equal frequency summed: ``tests/test_integrator.py``).
+    A force linear within the step misses ``(ω_j Δt)²/8`` of each
     oscillation; the step returned is the longest with
     ``Σ_{ω_j > 2ω} min(Â_j, 1) (ω_j Δt)²/8 ≤ tolerance`` (slower oscillations belong to
     the main contact pulse, resolved by ``time_step_ratio``).
@@ -299,6 +300,7 @@ def _significant(participation):
 
 @numba.njit(cache=True)
 def _significant_mask(participation):
+    """(φ_j² > 1e-24 max φ², whether every mode passes)."""
     largest = 1e-300
     for value in participation:
         largest = max(largest, value * value)
