@@ -546,3 +546,18 @@ def test_simply_supported_beam_reproduces_reference_peak_forces(theory, slendern
         result = simulate_normalised(target, float(row["zeta"]), float(row["lambda"]),
                                      record=False)
         assert abs(result.fmax_normalised - float(row["fmax_normalised"])) < 3e-3, row
+
+
+def test_modes_are_kept_per_cutoff_and_bounded():
+    """Repeated calls with one cut-off return the same basis object (no recomputation);
+    another cut-off gives another basis; the store holds at most 8 per beam."""
+    from impactmaps.maps.structures import structure_from_name
+
+    beam = structure_from_name("beam-ss-euler").build()
+    first = beam.modes(1e5, min_modes=4)
+    assert beam.modes(1e5, min_modes=4) is first
+    other = beam.modes(2e5, min_modes=4)
+    assert other is not first and other.size >= first.size
+    for k in range(20):
+        beam.modes(1e5 * (1 + k), min_modes=1)
+    assert len(beam._bases) <= 8

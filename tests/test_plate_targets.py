@@ -583,3 +583,16 @@ def test_mindlin_with_other_edges_not_implemented():
     """Scope: Mindlin is Navier (SSSS) only; other edges raise NotImplementedError."""
     with pytest.raises(NotImplementedError, match="SSSS"):
         orthotropic_plate(theory="mindlin", edges="CCCC")
+
+
+def test_plate_modes_are_kept_per_cutoff():
+    """Repeated calls with one cut-off return the same basis object; the store is bounded."""
+    from impactmaps.maps.structures import structure_from_name
+
+    plate = structure_from_name("plate-ssss-kirchhoff").build()
+    first = plate.modes(1e5, min_modes=4)
+    assert plate.modes(1e5, min_modes=4) is first
+    assert plate.modes(3e5, min_modes=4) is not first
+    for k in range(40):
+        plate.modes(1e5 * (1 + k), min_modes=1)
+    assert len(plate._cache) <= 20

@@ -29,7 +29,7 @@ printed eq. 38), from :mod:`impactmaps.dimensionless`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
@@ -119,6 +119,7 @@ class Beam(Target):
     damping_ratio: float = 0.0
     width: float | None = None
     height: float | None = None
+    _bases: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         require_choice("theory", self.theory, THEORIES)
@@ -327,8 +328,20 @@ class Beam(Target):
         (``∫ (ρA W_i W_j + ρI Ψ_i Ψ_j) dx = δ_ij``). ``residual_compliance`` is the exact
         static compliance at x0 minus ``Σ φ_j²/ω_j²`` over the retained elastic modes
         (round-off negatives clipped to 0). Free–free beams include their two rigid-body
-        modes (ω = 0, undamped).
+        modes (ω = 0, undamped). The basis is kept (a few per beam) for repeated calls
+        with the same cut-off, e.g. velocity sweeps on one physical target.
         """
+        key = (float(max_frequency), min_modes)
+        cached = self._bases.get(key)
+        if cached is not None:
+            return cached
+        basis = self._modes(max_frequency, min_modes)
+        if len(self._bases) >= 8:
+            self._bases.clear()
+        self._bases[key] = basis
+        return basis
+
+    def _modes(self, max_frequency, min_modes) -> ModalBasis:
         mode_set = self.mode_set(max_frequency, min_modes)
         frequencies = mode_set.frequencies
         participation = mode_set.deflection([self.impact_position])[0]

@@ -451,10 +451,15 @@ class Plate(Target):
         -------
         ModalBasis
         """
-        frequencies, participation, residual, _ = self._modal_solution(max_frequency, min_modes)
-        return ModalBasis(frequencies=frequencies, participation=participation,
-                          residual_compliance=residual,
-                          damping_ratios=np.full(frequencies.shape, float(self.damping_ratio)))
+        key = ("basis", float(max_frequency), min_modes)
+        basis = self._cache.get(key)
+        if basis is None:
+            frequencies, participation, residual, _ = self._modal_solution(max_frequency, min_modes)
+            basis = ModalBasis(frequencies=frequencies, participation=participation,
+                               residual_compliance=residual,
+                               damping_ratios=np.full(frequencies.shape, float(self.damping_ratio)))
+            self._cache[key] = basis  # beside the modal solution it is made of
+        return basis
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised transverse mode shapes w_j at ``points`` [kg^-1/2].
