@@ -161,3 +161,12 @@ def test_sweep_config_sweeps_structure_parameters(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[grid]\nzeta = [1.0]\nlambda = [1.0]\n[[structure]]\nkind = \"plate\"\nthickness = 3\n")
     assert main(["sweep", str(bad), "--quiet"]) == 2
+
+
+def test_progress_bar_is_shown_and_can_be_switched_off(capsys):
+    """A sweep reports its progress on stderr (tqdm) unless ``progress=False``."""
+    sweep([BEAM], ZETAS[:2], [1.0], max_workers=1, progress=True)
+    shown = capsys.readouterr().err
+    assert "impact map" in shown and "2/2" in shown
+    sweep([BEAM], ZETAS[:2], [1.0], max_workers=1, progress=False)
+    assert capsys.readouterr().err == ""
