@@ -83,7 +83,13 @@ def kernel_pointer(kernel) -> _KernelPointer:
     Parameters
     ----------
     kernel : numba dispatcher or _KernelPointer
-        ``kernel(alpha, alpha_max, params) -> (force, stiffness)``.
+        ``kernel(alpha, alpha_max, params) -> (force, stiffness)`` (α, α_max in m;
+        force in N, stiffness in N/m).
+
+    Returns
+    -------
+    _KernelPointer
+        Accepted wherever a compiled solver takes :data:`KERNEL_TYPE`.
     """
     if isinstance(kernel, _KernelPointer):
         return kernel

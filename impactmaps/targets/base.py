@@ -75,7 +75,9 @@ class ModalBasis:
         """A basis made of parts of an already validated one, without re-checking them.
 
         For the solvers' hot paths (truncating or filtering a validated basis); the
-        arrays must be float64, 1-D, of equal length, and satisfy the class invariants.
+        arrays — frequencies [rad/s], participations [kg^-1/2], damping ratios [-] — must
+        be float64, 1-D, of equal length, and satisfy the class invariants; the residual
+        compliance is in m/N.
         """
         basis = object.__new__(cls)
         object.__setattr__(basis, "frequencies", np.ascontiguousarray(frequencies))
