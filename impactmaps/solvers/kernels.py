@@ -541,67 +541,54 @@ def integrate_impact(
                     continue
         else:
             speed_bound = -1.0
-        remaining = h
+        # one step of h with the force going linearly from ``force`` to the implicit end
+        # force; a contact event inside it cuts the step short at the event
         uniform = True
-        guard = 0
-        while remaining > 0.0 and guard < 50:
-            guard += 1
-            t_sub = t + (h - remaining)
-            if remaining == h:
-                c = coef
-                comp = compliance_h
-            else:
-                _fill_coefficients(omega, zeta, phi, remaining, sub)
-                c = sub
-                comp = remaining * remaining / (6.0 * mass) + residual
-                for j in range(n):
-                    comp += phi[j] * sub[5, j]
-            wi_p, vi_p, wt_p = _predict(c, remaining, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
-            f_new = _solve_force(kernel, params, linear_stiffness, wi_p - wt_p, comp, alpha_max)
-            separation = force > 0.0 and f_new == 0.0
-            touchdown = force == 0.0 and f_new > 0.0 and not starting
-            if separation or touchdown:
-                uniform = False
-                s, ready = _locate_event(
-                    kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
-                    wi, vi, q, v, force, remaining, wi_p - wt_p, separation, sub, q_try, v_try, h,
-                )
-                if s > 0.0:
-                    if not ready:
-                        _fill_coefficients(omega, zeta, phi, s, sub)
-                    wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
-                    if damped:
-                        damping_work += 0.5 * s * (
-                            _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
-                        )
-                    wi = wi_e
-                    vi = vi_e
-                    q, qn = qn, q
-                    v, vn = vn, v
-                if separation:
-                    if n_intervals < max_events:
-                        intervals[n_intervals, 1] = t_sub + s
-                        n_intervals += 1
-                    else:
-                        overflow = 1.0
-                    in_contact = False
+        advanced = h
+        wi_p, vi_p, wt_p = _predict(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+        f_new = _solve_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
+        separation = force > 0.0 and f_new == 0.0
+        touchdown = force == 0.0 and f_new > 0.0 and not starting
+        if separation or touchdown:
+            uniform = False
+            s, ready = _locate_event(
+                kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
+                wi, vi, q, v, force, h, wi_p - wt_p, separation, sub, q_try, v_try, h,
+            )
+            if s > 0.0:
+                if not ready:
+                    _fill_coefficients(omega, zeta, phi, s, sub)
+                wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+                if damped:
+                    damping_work += 0.5 * s * (
+                        _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
+                    )
+                wi = wi_e
+                vi = vi_e
+                q, qn = qn, q
+                v, vn = vn, v
+            if separation:
+                if n_intervals < max_events:
+                    intervals[n_intervals, 1] = t + s
+                    n_intervals += 1
                 else:
-                    starting = True  # contact begins at the start of the next step
-                force = 0.0
-                remaining -= s
-                # the next step starts at the event, with the full step h: no coefficients
-                # for the rest of this step are needed
-                break
-            # no event: accept the (sub-)step with the implicit end force
+                    overflow = 1.0
+                in_contact = False
+            else:
+                starting = True  # contact begins at the start of the next step
+            force = 0.0
+            advanced = s  # the next step starts at the event, with the full step h
+        else:
+            # no event: accept the step with the implicit end force
             if f_new > 0.0:
-                wt_p += f_new * (comp - remaining * remaining / (6.0 * mass) - residual)
-                wi_p -= remaining * remaining * f_new / (6.0 * mass)
-                vi_p -= 0.5 * remaining * f_new / mass
+                wt_p += f_new * (compliance_h - h * h / (6.0 * mass) - residual)
+                wi_p -= h * h * f_new / (6.0 * mass)
+                vi_p -= 0.5 * h * f_new / mass
                 for j in range(n):
-                    qn[j] += c[5, j] * f_new
-                    vn[j] += c[7, j] * f_new
+                    qn[j] += coef[5, j] * f_new
+                    vn[j] += coef[7, j] * f_new
             if damped:
-                damping_work += 0.5 * remaining * (
+                damping_work += 0.5 * h * (
                     _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
                 )
             wi = wi_p
@@ -612,16 +599,15 @@ def integrate_impact(
                 if not in_contact:
                     in_contact = True
                     if n_intervals < max_events:
-                        intervals[n_intervals, 0] = t_sub
+                        intervals[n_intervals, 0] = t
                     else:
                         overflow = 1.0
                 alpha = wi - wt_p - residual * f_new
                 if alpha > alpha_max:
                     alpha_max = alpha
             force = f_new
-            remaining = 0.0
             starting = False
-        t += h - remaining  # a step cut short by an event ends at the event
+        t += advanced
         steps += 1
 
         # peak tracking with parabolic refinement on uniform samples
