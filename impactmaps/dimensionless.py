@@ -344,8 +344,9 @@ def zeta_beam_paper(loss_factor):
     Parameters
     ----------
     loss_factor : float or array_like
-        Corrected beam loss factor ζ_b of :func:`loss_factor_beam` [-].
+        Corrected beam loss factor ζ_b of :func:`loss_factor_beam` [-], > 0.
     """
+    require_positive("loss_factor", loss_factor)
     return 2.0 * _array(loss_factor)
 
 
