@@ -85,6 +85,14 @@ def _expm4(a):
     return result
 
 
+@numba.njit(cache=True, inline="always")
+def _undamped_coefficients(omega, h, s, c1, s3):
+    """The eight step coefficients of an undamped mode from S, C1, S3 of ``_trig_functions``."""
+    cosx = 1.0 - (omega * h) ** 2 * c1
+    return (cosx, h * s, -omega * omega * h * s, cosx,
+            h * h * (c1 - s3), h * h * s3, h * (s - c1), h * c1)
+
+
 @numba.njit(cache=True)
 def oscillator_step_coefficients(omega, zeta, h, out):
     """Exact one-step coefficients of ``q̈ + 2ζωq̇ + ω²q = f(t)``, f linear on [0, h].
@@ -94,17 +102,10 @@ def oscillator_step_coefficients(omega, zeta, h, out):
     Works for ω = 0 (free mass) and 0 ≤ ζ < 1.
     """
     if zeta == 0.0:
-        x = omega * h
-        s, c1, s3 = _trig_functions(x)
-        cosx = 1.0 - x * x * c1
-        out[0] = cosx
-        out[1] = h * s
-        out[2] = -omega * omega * h * s
-        out[3] = cosx
-        out[4] = h * h * (c1 - s3)
-        out[5] = h * h * s3
-        out[6] = h * (s - c1)
-        out[7] = h * c1
+        s, c1, s3 = _trig_functions(omega * h)
+        coefficients = _undamped_coefficients(omega, h, s, c1, s3)
+        for k in range(8):
+            out[k] = coefficients[k]
         return
     # damped: exponential of the augmented system [q, v, f, ḟ]
     m = np.zeros((4, 4))
@@ -135,20 +136,17 @@ def _fill_coefficients(omega, zeta, phi, h, coef):
     """
     n = omega.shape[0]
     for j in range(n):
-        x = omega[j] * h
-        x2 = x * x
-        sinc = _horner10(_SINC, x2)
-        cosc = _horner10(_COSC, x2)
-        sin3 = _horner10(_SIN3, x2)
-        cosx = 1.0 - x2 * cosc
-        coef[0, j] = cosx
-        coef[1, j] = h * sinc
-        coef[2, j] = -omega[j] * omega[j] * h * sinc
-        coef[3, j] = cosx
-        coef[4, j] = h * h * (cosc - sin3) * phi[j]
-        coef[5, j] = h * h * sin3 * phi[j]
-        coef[6, j] = h * (sinc - cosc) * phi[j]
-        coef[7, j] = h * cosc * phi[j]
+        x2 = (omega[j] * h) ** 2
+        c = _undamped_coefficients(omega[j], h, _horner10(_SINC, x2), _horner10(_COSC, x2),
+                                   _horner10(_SIN3, x2))
+        coef[0, j] = c[0]
+        coef[1, j] = c[1]
+        coef[2, j] = c[2]
+        coef[3, j] = c[3]
+        coef[4, j] = c[4] * phi[j]
+        coef[5, j] = c[5] * phi[j]
+        coef[6, j] = c[6] * phi[j]
+        coef[7, j] = c[7] * phi[j]
     tmp = np.empty(8)
     for j in range(n):
         if zeta[j] != 0.0 or not omega[j] * h < _SERIES_LIMIT:
@@ -252,11 +250,11 @@ def _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, s, sub, q_try, v_try)
 
 @numba.njit(cache=True)
 def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
-                  wi, vi, q, v, force, length, gap_end, separation, sub, q_try, v_try, h):
-    """Time s ∈ [0, length] into the step at which contact ends (``separation``) or starts.
+                  wi, vi, q, v, force, gap_end, separation, sub, q_try, v_try, h):
+    """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts.
 
     The predicted gap g(s) (force ramped from its current value to 0 over s) crosses the
-    no-force threshold α_f of the law. The root is bracketed by s = 0 and s = ``length``
+    no-force threshold α_f of the law. The root is bracketed by s = 0 and s = h
     (gap ``gap_end``) and found by Brent's method (inverse quadratic interpolation,
     secant and bisection steps; Brent 1973, the ``zeroin`` algorithm) to 1e-13 h: each
     evaluation costs one pass over the modes, and a handful replace the sixty of plain
@@ -272,10 +270,10 @@ def _locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi,
     threshold = _no_force_threshold(kernel, params, linear_stiffness, alpha_max, loaded)
     a = 0.0
     fa = gap_now - threshold  # > 0 for a separation, ≤ 0 for a touchdown
-    b = length
+    b = h
     fb = gap_end - threshold
     if fa == 0.0 or fb == 0.0 or (fa > 0.0) == (fb > 0.0):
-        return (length if separation else 0.0), False  # degenerate bracket: the step edge
+        return (h if separation else 0.0), False  # degenerate bracket: the step edge
     tol = 1e-13 * h
     eps = 2.220446049250313e-16
     small = 1e-11 * max(abs(fa), abs(fb))  # a gap this close to the threshold is the root
@@ -553,12 +551,12 @@ def integrate_impact(
             uniform = False
             s, ready = _locate_event(
                 kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
-                wi, vi, q, v, force, h, wi_p - wt_p, separation, sub, q_try, v_try, h,
+                wi, vi, q, v, force, wi_p - wt_p, separation, sub, q_try, v_try, h,
             )
             if s > 0.0:
                 if not ready:
                     _fill_coefficients(omega, zeta, phi, s, sub)
-                wi_e, vi_e, wt_e = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+                wi_e, vi_e, _wt = _predict(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
                 if damped:
                     damping_work += 0.5 * s * (
                         _damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn)
