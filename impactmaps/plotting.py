@@ -126,14 +126,14 @@ def _shade_regime_bands(ax, dataset, structures, lambda_values):
     columns = [set(np.asarray(regimes.isel(zeta=k).values).ravel()) for k in range(zeta.size)]
     edges = np.sqrt(zeta[1:] * zeta[:-1])
     edges = np.concatenate([[zeta[0]], edges, [zeta[-1]]])
-    for name, anchor in (("local", 0.5), ("quasi-static", 0.5)):
+    for name in ("local", "quasi-static"):
         shared = np.array([column == {name} for column in columns])
         if not shared.any():
             continue
         for start, stop in _runs(shared):
             ax.axvspan(edges[start], edges[stop + 1], color=REGIME_COLOURS[name], alpha=0.5, lw=0, zorder=0)
             middle = np.sqrt(edges[start] * edges[stop + 1])
-            ax.text(middle, anchor, f"{name}\n(every λ)", fontsize=8, ha="center", va="bottom", color="0.3")
+            ax.text(middle, 0.5, f"{name}\n(every λ)", fontsize=8, ha="center", va="bottom", color="0.3")
 
 
 def _runs(mask):
