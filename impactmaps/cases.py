@@ -81,7 +81,7 @@ Dimensionless numbers of a case (:func:`case_dimensionless`)
   a half-space.
 
 Outputs (:func:`write_case_outputs`): ``history.csv`` (``time_s, force_N,
-indentation_m, impactor_displacement_m, impactor_velocity_m_s, target_deflection_m,
+indentation_m, impactor_displacement_m, impactor_velocity_m_s, target_displacement_m,
 target_velocity_m_s, structure_energy_J`` — displacements positive into the target,
 the target deflection taken at the impact point), ``summary.json`` and a copy of the
 case file ``case.toml``.
@@ -109,6 +109,7 @@ from .contact.yigit_christoforou import YigitChristoforouContact, yield_indentat
 from .dimensionless import impact_number
 from .materials import IsotropicMaterial, Laminate, Ply, available_materials, material
 from .solvers.modal import ModalSettings, reference_contact_stiffness, simulate
+from .jsonio import dumps, plain
 from .solvers.result import ImpactResult
 from .targets.base import ModalBasis
 
@@ -174,8 +175,6 @@ _FD_KEYS = ("n_elements", "n_half_layers", "plastic", "hardening_modulus", "damp
 _FD_SUPPORTS = {"ss": ("ss", "ss"), "cc": ("cc", "cc"), "cs": ("cc", "ss"),
                 "cf": ("cc", "free"), "ff": ("free", "free")}
 
-#: History columns written to ``history.csv`` (renaming the solver's target column).
-_HISTORY_RENAME = {"target_displacement_m": "target_deflection_m"}
 
 
 # =====================================================================================
@@ -758,25 +757,10 @@ def case_dimensionless(case: Case) -> dict:
     }
 
 
-def _jsonable(value):
-    """Plain-Python, NaN-free copy of ``value`` (NaN/inf become ``None``)."""
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [_jsonable(v) for v in list(value)]
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value
-
-
 def case_summary(case: Case, result: ImpactResult) -> dict:
     """The JSON-ready summary of a modal run of ``case`` (keys carry their units).
 
-    ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``, ``contact_time_s``,
+    ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``, ``first_contact_duration_s``, ``total_contact_time_s``,
     ``impacts``, ``restitution``, ``energy_transferred_J``, …) plus
     ``max_deflection_m`` (largest |target deflection| at the impact point [m]), the
     dimensionless numbers of :func:`case_dimensionless` and the case identity.
@@ -795,7 +779,7 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
         "end_time_s": float(result.end_time),
         "time_step_s": float(result.time_step),
     })
-    return _jsonable(summary)
+    return plain(summary)
 
 
 def run_case(case: Case) -> tuple[ImpactResult, dict]:
@@ -1001,7 +985,7 @@ def run_fd_case(case: FDCase):
 
     Returns
     -------
-    result : FDImpactResult
+    result : ImpactResult
     summary : dict
         ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``, ``restitution``,
         ``energy_loss_J``, ``permanent_indentation_m``, ``beam_plastic_work_J``,
@@ -1030,7 +1014,7 @@ def write_case_outputs(case, result, out_dir) -> dict:
     ----------
     case : Case or FDCase
         The case that was run.
-    result : ImpactResult or FDImpactResult
+    result : ImpactResult
         Its result (with histories).
     out_dir : str or Path
         Output directory (created if needed).
@@ -1044,9 +1028,9 @@ def write_case_outputs(case, result, out_dir) -> dict:
     Notes
     -----
     ``history.csv``: modal — ``time_s, force_N, indentation_m, impactor_displacement_m,
-    impactor_velocity_m_s, target_deflection_m, target_velocity_m_s,
+    impactor_velocity_m_s, target_displacement_m, target_velocity_m_s,
     structure_energy_J``; finite difference — the columns of
-    :class:`impactmaps.fd.FDImpactResult`. ``summary.json``: :func:`case_summary` /
+    :class:`impactmaps.fd.FDDetails`. ``summary.json``: :func:`case_summary` /
     :func:`run_fd_case` summary.
     """
     out = Path(out_dir)
@@ -1060,7 +1044,7 @@ def write_case_outputs(case, result, out_dir) -> dict:
         if result.history is None:
             raise ValueError("result has no history (run with record=True)")
         stride = int(case.output.get("history_stride", 1))
-        history = result.history.iloc[::stride].rename(columns=_HISTORY_RENAME)
+        history = result.history.iloc[::stride]
         summary = case_summary(case, result)
         if case.output.get("normalised"):
             paths["history_normalised"] = out / "history_normalised.csv"
@@ -1069,7 +1053,7 @@ def write_case_outputs(case, result, out_dir) -> dict:
     else:
         raise ValueError(f"case = {case!r} is not a Case or an FDCase")
     history.to_csv(paths["history"], index=False)
-    paths["summary"].write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n",
+    paths["summary"].write_text(dumps(summary, indent=2) + "\n",
                                 encoding="utf-8")
     paths["case"].write_text(case.source_text, encoding="utf-8")
     return paths
@@ -1078,7 +1062,7 @@ def write_case_outputs(case, result, out_dir) -> dict:
 def fd_case_summary(case: FDCase, result) -> dict:
     """Summary dict of an existing finite-difference result (as :func:`run_fd_case`)."""
     summary = dict(result.summary())
-    deflection = result.history["beam_deflection_at_impact_m"].to_numpy()
+    deflection = result.history["target_displacement_m"].to_numpy()
     summary["max_deflection_m"] = float(np.max(np.abs(deflection))) if deflection.size else None
     summary.update({
         "case": case.name,
@@ -1086,10 +1070,9 @@ def fd_case_summary(case: FDCase, result) -> dict:
         "law": case.law_name,
         "impactor_mass_kg": case.impactor_mass,
         "velocity_m_s": case.velocity,
-        "still_in_contact": bool(result.still_in_contact),
         "method": result.method,
     })
-    return _jsonable(summary)
+    return plain(summary)
 
 
 def read_case_outputs(out_dir) -> tuple[pd.DataFrame, dict]:
