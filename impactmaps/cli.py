@@ -220,10 +220,10 @@ def _cmd_simulate(args) -> dict:
 
 
 def _cmd_fd(args) -> dict:
-    from .cases import load_fd_case, run_fd_case
+    from .cases import load_case, run_case
 
-    case = load_fd_case(args.case)
-    _, summary = run_fd_case(case)
+    case = load_case(args.case, solver="fd")
+    _, summary = run_case(case)
     return summary
 
 

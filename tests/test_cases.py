@@ -21,15 +21,11 @@ from scipy.integrate import quad
 
 from impactmaps.cases import (
     Case,
-    FDCase,
     case_dimensionless,
     load_case,
-    load_fd_case,
     parse_case,
-    parse_fd_case,
     read_case_outputs,
     run_case,
-    run_fd_case,
     write_case_outputs,
 )
 from impactmaps.materials import material
@@ -123,19 +119,20 @@ def test_fd_example_loads_runs_and_writes(tmp_path):
     ~1e-6, a wrong mass or force sign gives O(1)), and strict JSON output when the
     record ends in contact (restitution undefined → null, never NaN).
     """
-    case = load_fd_case(EXAMPLES / "steel_beam_fd_stronge.toml")
-    assert isinstance(case, FDCase)
-    assert case.beam.length == pytest.approx(0.78)
-    assert (case.beam.width, case.beam.height) == pytest.approx((0.060, 0.0278))
-    assert case.beam.supports == ("ss", "ss")
-    assert case.beam.yield_strength == pytest.approx(235e6)
+    case = load_case(EXAMPLES / "steel_beam_fd_stronge.toml", solver="fd")
+    assert isinstance(case, Case) and case.solver_kind == "fd"
+    assert case.fd_beam.length == pytest.approx(0.78)
+    assert (case.fd_beam.width, case.fd_beam.height) == pytest.approx((0.060, 0.0278))
+    assert case.fd_beam.supports == ("ss", "ss")
+    assert case.fd_beam.yield_strength == pytest.approx(235e6)
     assert case.sphere.mass == pytest.approx(7850.0 * 4.0 / 3.0 * math.pi * 0.07**3)
-    coarse = replace(case, beam=replace(case.beam, n_elements=60, n_half_layers=4),
+    coarse = replace(case, fd_settings={**case.fd_settings,
+                                        "beam": replace(case.fd_beam, n_elements=60, n_half_layers=4)},
                      duration=1.0e-3)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         warnings.simplefilter("ignore", UserWarning)
-        result, summary = run_fd_case(coarse)
+        result, summary = run_case(coarse)
     for key in FD_SUMMARY_KEYS:
         assert key in summary
     assert summary["peak_force_N"] > 0
@@ -463,18 +460,18 @@ FD_GOOD = textwrap.dedent("""
 )
 def test_bad_fd_cases_name_the_key(old, new, expected):
     """FD-specific requirements (beam target, duration, yield strength, [fd] keys)."""
-    assert parse_fd_case(FD_GOOD).beam.n_elements == 40
+    assert parse_case(FD_GOOD, solver="fd").fd_beam.n_elements == 40
     assert old in FD_GOOD
     with pytest.raises(ValueError) as info:
-        parse_fd_case(FD_GOOD.replace(old, new, 1))
+        parse_case(FD_GOOD.replace(old, new, 1), solver="fd")
     for fragment in expected:
         assert fragment in str(info.value), f"{fragment!r} not in {str(info.value)!r}"
 
 
 def test_fd_support_codes_map_to_beam_ends():
     """Modal support codes map to the (left, right) ends of the FD beam."""
-    case = parse_fd_case(FD_GOOD.replace("height = 0.01", 'height = 0.01\nsupports = "cf"'))
-    assert case.beam.supports == ("cc", "free")
+    case = parse_case(FD_GOOD.replace("height = 0.01", 'height = 0.01\nsupports = "cf"'), solver="fd")
+    assert case.fd_beam.supports == ("cc", "free")
 
 
 # -------------------------------------------------------------------------------------
@@ -583,7 +580,48 @@ def test_fd_case_defaults_to_refined_stronge():
     FD example without its [contact] table builds the same law as with law = "stronge"."""
     text = (EXAMPLES / "steel_beam_fd_stronge.toml").read_text()
     assert '[contact]\nlaw = "stronge"\n' in text
-    default = parse_fd_case(text.replace('[contact]\nlaw = "stronge"\n', ""))
-    explicit = parse_fd_case(text)
+    default = parse_case(text.replace('[contact]\nlaw = "stronge"\n', ""), solver="fd")
+    explicit = parse_case(text, solver="fd")
     assert default.law_name == "stronge"
     np.testing.assert_array_equal(default.law.kernel_parameters, explicit.law.kernel_parameters)
+
+
+def test_cantilever_tip_impact_is_a_valid_case():
+    """Bug fixed by deriving the schema from the constructors: the case reader refused
+    x0 = L, which :class:`Beam` accepts for a cantilever (a tip impact); the beam now
+    checks its own impact point, and a supported end stays refused with the key path."""
+    text = textwrap.dedent("""
+        [impactor]
+        radius = 0.005
+        material = "structural-steel"
+        velocity = 1.0
+        [target]
+        type = "beam"
+        length = 0.3
+        width = 0.02
+        height = 0.01
+        material = "structural-steel"
+        supports = "cf"
+        impact_position = 0.3
+        [contact]
+        law = "hertz"
+    """)
+    case = parse_case(text)
+    assert case.target.impact_position == pytest.approx(0.3)
+    with pytest.raises(ValueError, match=r"target\.impact_position = 0\.3"):
+        parse_case(text.replace('supports = "cf"', 'supports = "ss"'))
+
+
+def test_solver_keys_are_the_settings_fields():
+    """[solver] accepts exactly the ModalSettings fields (plus kind, duration, time_step):
+    a field added to the settings is a case key without another list to update."""
+    from dataclasses import fields
+
+    from impactmaps.solvers.modal import ModalSettings
+
+    for f in fields(ModalSettings):
+        value = str(f.default).lower() if isinstance(f.default, bool) else repr(f.default)
+        case = parse_case(GOOD.replace('law = "hertz"', f'law = "hertz"\n[solver]\n{f.name} = {value}', 1))
+        assert getattr(case.settings, f.name) == f.default
+    with pytest.raises(ValueError, match=r"solver\.kind = 'explicit'.*'modal', 'fd'"):
+        parse_case(GOOD.replace('law = "hertz"', 'law = "hertz"\n[solver]\nkind = "explicit"', 1))
