@@ -12,8 +12,8 @@ from __future__ import annotations
 import functools
 import math
 import os
-import warnings
 import time
+import warnings
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from dataclasses import asdict
 from datetime import datetime, timezone
@@ -25,15 +25,16 @@ import xarray as xr
 from .._checks import require_positive
 from ..contact.linear import LinearContact
 from ..dimensionless import realise
-from ..solvers.modal import ModalSettings, simulate
-from .regimes import classify
 from ..jsonio import dumps
+from ..solvers.modal import ModalSettings, simulate
+from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
+from .regimes import classify
 from .store import fingerprint, load_matching, save_atomic
 from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
 
-SOLVER_REVISION = 3  # bump when a numerical change invalidates stored results
+SOLVER_REVISION = 4  # bump when a numerical change invalidates stored results
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)
@@ -47,6 +48,10 @@ RESULT_VARIABLES = {
     "n_modes": ("i4", -1, "1", "number of modes integrated"),
     "time_limit_reached": ("i1", -1, "1", "1 if the run stopped at its time limit"),
     "method": ("i1", -1, "1", "which model produced the point: see flag_meanings"),
+    "fmax_error": ("f8", np.nan, "1", "error estimate of fmax_normalised (change under refinement, or half the spread of a sensitive point)"),
+    "fmax_low": ("f8", np.nan, "1", "lower end of the band that holds fmax_normalised"),
+    "fmax_high": ("f8", np.nan, "1", "upper end of the band that holds fmax_normalised"),
+    "status": ("i1", -1, "1", "converged, refined, sensitive or asymptotic: see flag_meanings"),
 }
 
 #: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
@@ -145,7 +150,7 @@ def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:
 
 
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
-                 table: BasisTable | None = None) -> list[dict]:
+                 table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
     """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
 
     Parameters
@@ -156,6 +161,8 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     table : BasisTable, optional
         The modes to truncate from; default :func:`basis_table` of ``structure`` (pass one
         to reuse it explicitly across calls).
+    control : AccuracyControl, optional
+        Tolerance and cost cap of the per-point refinement (:mod:`impactmaps.maps.accuracy`).
 
     Returns
     -------
@@ -192,18 +199,32 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
         if wanted[k] > cap:
             asymptote = _asymptote_row(structure.kind, zetas[k])
             if reflections[k] >= ASYMPTOTE_REFLECTION_FACTOR * asymptote["peak_time_normalised"]:
-                rows.append(row | asymptote)
+                rows.append(exact_point(row | asymptote))
                 continue
             warnings.warn(
                 f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g} needs more than "
                 f"{MAX_MODES} modes; integrating the first {MAX_MODES} (residual flexibility for "
                 "the rest)", RuntimeWarning, stacklevel=2)
-        basis = table.truncate(min(wanted[k], cap), settings.min_modes)
-        result = simulate(basis, LinearContact(float(stiffnesses[k])), float(masses[k]), 1.0,
-                          settings=settings, record=False)
         capped = "modal+residual-capped" if wanted[k] > cap else "modal+residual"
-        rows.append(row | result.normalised_summary() | {"method": METHODS.index(capped)})
+        run = _point_runner(target, table, cap, zetas[k], lambdas[k],
+                            (float(masses[k]), float(stiffnesses[k]), float(omegas[k])))
+        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index(capped)})
     return rows
+
+
+def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, impactor):
+    """``run(settings, zeta_factor)`` of one point: the realised impact on truncated modes."""
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        mass, stiffness, omega = impactor
+        if zeta_factor != 1.0:
+            moved = realise(target, zeta * zeta_factor, lambda_)
+            mass, stiffness, omega = (float(moved.impactor_mass), float(moved.contact_stiffness),
+                                      float(moved.contact_frequency))
+        basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
+        return simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
+
+    return run
 
 
 # -- the orchestration ---------------------------------------------------------------------
@@ -215,6 +236,8 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
                            {"units": units, "long_name": text})
     data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
     data_vars["method"][2]["flag_meanings"] = " ".join(METHODS)
+    data_vars["status"][2]["flag_values"] = np.arange(len(STATUSES), dtype="i1")
+    data_vars["status"][2]["flag_meanings"] = " ".join(STATUSES)
     data_vars["done"] = (("structure", "lambda_", "zeta"), np.zeros(shape, dtype="i1"),
                          {"long_name": "1 where the point has been computed"})
     coords = {
