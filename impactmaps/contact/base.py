@@ -212,17 +212,17 @@ class ContactLaw(ABC):
 
     # -- construction from a contact pair -------------------------------------------
     @classmethod
-    def options(cls) -> tuple[LawOption, ...]:
-        """Keyword options of :meth:`from_contact_pair`: the fields declared with :func:`law_option`."""
-        return tuple(
-            LawOption(f.name, f.metadata[_OPTION][0], f.default, f.metadata[_OPTION][1])
+    def options(cls) -> dict[str, LawOption]:
+        """Keyword options of :meth:`from_contact_pair` by name: the fields declared with :func:`law_option`."""
+        return {
+            f.name: LawOption(f.name, f.metadata[_OPTION][0], f.default, f.metadata[_OPTION][1])
             for f in fields(cls) if _OPTION in f.metadata
-        )
+        }
 
     @classmethod
     def check_options(cls, options, also_valid=()) -> None:
         """``ValueError`` if ``options`` holds a key that is neither an option nor in ``also_valid``."""
-        valid = {option.name for option in cls.options()} | set(also_valid)
+        valid = set(cls.options()) | set(also_valid)
         unknown = set(options) - valid
         if unknown:
             raise ValueError(f"options {sorted(unknown)} are not known for law {cls.name!r}: "
@@ -430,6 +430,14 @@ def contact_law(name: str, **parameters) -> ContactLaw:
 
 
 # -- contact geometry ---------------------------------------------------------------
+def require_positive_or_infinite(name: str, value, unit: str) -> np.ndarray:
+    """``value`` as a float array, or ``ValueError`` unless every element is in (0, inf]."""
+    array = np.asarray(value, dtype=float)
+    if np.any(np.isnan(array)) or np.any(array <= 0):
+        raise ValueError(f"{name} = {value!r} is invalid: valid range is (0, inf] [{unit}]")
+    return array
+
+
 def effective_modulus(
     youngs_modulus_1, poisson_ratio_1, youngs_modulus_2=np.inf, poisson_ratio_2=0.0
 ):
@@ -445,9 +453,7 @@ def effective_modulus(
     require_positive("youngs_modulus_1", youngs_modulus_1, "Pa")
     require_in_range("poisson_ratio_1", poisson_ratio_1, -1.0, 0.5,
                      low_inclusive=False, high_inclusive=False)
-    e2 = np.asarray(youngs_modulus_2, dtype=float)
-    if np.any(np.isnan(e2)) or np.any(e2 <= 0):
-        raise ValueError(f"youngs_modulus_2 = {youngs_modulus_2!r} is invalid: valid range is (0, inf] [Pa]")
+    e2 = require_positive_or_infinite("youngs_modulus_2", youngs_modulus_2, "Pa")
     require_in_range("poisson_ratio_2", poisson_ratio_2, -1.0, 0.5,
                      low_inclusive=False, high_inclusive=False)
     compliance = (1 - np.asarray(poisson_ratio_1) ** 2) / np.asarray(youngs_modulus_1, float)
@@ -458,7 +464,5 @@ def effective_modulus(
 def effective_radius(radius_1, radius_2=np.inf):
     """Effective contact radius R [m], ``1/R = 1/R1 + 1/R2``; ``radius_2 = inf`` is a flat."""
     require_positive("radius_1", radius_1, "m")
-    r2 = np.asarray(radius_2, dtype=float)
-    if np.any(np.isnan(r2)) or np.any(r2 <= 0):
-        raise ValueError(f"radius_2 = {radius_2!r} is invalid: valid range is (0, inf] [m]")
+    r2 = require_positive_or_infinite("radius_2", radius_2, "m")
     return 1.0 / (1.0 / np.asarray(radius_1, float) + np.where(np.isinf(r2), 0.0, 1.0 / r2))

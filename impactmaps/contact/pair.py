@@ -18,18 +18,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import require_in_range, require_positive
-from .base import LawOption, effective_modulus, effective_radius
+from .base import LawOption, effective_modulus, effective_radius, require_positive_or_infinite
 
 __all__ = ["ContactPair", "PAIR_OPTIONS", "softer_yield_strength"]
 
-#: Keyword options of :meth:`ContactPair.from_sphere` (and so of ``law_for_sphere``).
-PAIR_OPTIONS = (
-    LawOption("target_radius", "m", np.inf,
-              "radius of curvature of the target at the impact point, 1/R = 1/R_sphere + 1/R_target "
-              "(inf: a flat)"),
-    LawOption("yield_strength", "Pa", None,
-              "yield strength overriding the softer material's (e.g. 2 S_u for composites, seed 001)"),
-)
+#: Keyword options of :meth:`ContactPair.from_sphere` (and so of ``law_for_sphere``) by name.
+PAIR_OPTIONS = {
+    "target_radius": LawOption(
+        "target_radius", "m", np.inf,
+        "radius of curvature of the target at the impact point, 1/R = 1/R_sphere + 1/R_target (inf: a flat)"),
+    "yield_strength": LawOption(
+        "yield_strength", "Pa", None,
+        "yield strength overriding the softer material's (e.g. 2 S_u for composites, seed 001)"),
+}
 
 _MISSING_YIELD = (
     "yield_strength is missing: neither the sphere's nor the target's material defines "
@@ -145,6 +146,7 @@ class ContactPair:
             sphere.material.youngs_modulus, sphere.material.poisson_ratio,
             target_material.youngs_modulus, target_material.poisson_ratio,
         ))
+        require_positive_or_infinite("target_radius", target_radius, "m")
         radius = float(effective_radius(sphere.radius, target_radius))
         if yield_strength is None:
             defined = _defined_yield_strengths((sphere.material, target_material))

@@ -92,14 +92,13 @@ def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> Con
         missing yield strength, or invalid material data.
     """
     law_class = contact_law_class(name)  # ValueError listing the known laws
-    pair_names = [option.name for option in PAIR_OPTIONS]
-    pair_options = {key: options.pop(key) for key in pair_names if key in options}
+    pair_options = {key: options.pop(key) for key in PAIR_OPTIONS if key in options}
     pair = ContactPair.from_sphere(sphere, target_material, **pair_options)
-    law_class.check_options(options, also_valid=pair_names)
+    law_class.check_options(options, also_valid=PAIR_OPTIONS)
     return law_class.from_contact_pair(pair, **options)
 
 
-def law_options(name: str) -> tuple[LawOption, ...]:
+def law_options(name: str) -> dict[str, LawOption]:
     """The keyword options that matter to ``law_for_sphere(name, ...)``, each declared once.
 
     ``target_radius`` (every law), ``yield_strength`` (laws that need a yield strength),
@@ -112,8 +111,9 @@ def law_options(name: str) -> tuple[LawOption, ...]:
 
     Returns
     -------
-    tuple of LawOption
-        Name, unit (``""``: dimensionless), default and one-line meaning of each option.
+    dict of str to LawOption
+        In that order; iterating gives the names. Each LawOption has the unit (``""``:
+        dimensionless), the default and a one-line meaning.
 
     Raises
     ------
@@ -121,7 +121,6 @@ def law_options(name: str) -> tuple[LawOption, ...]:
         Unknown law.
     """
     law_class = contact_law_class(name)
-    pair = tuple(option for option in PAIR_OPTIONS
-                 if option.name != "yield_strength" or law_class.needs_yield_strength)
-    return pair + law_class.options()
-
+    pair = {key: option for key, option in PAIR_OPTIONS.items()
+            if key != "yield_strength" or law_class.needs_yield_strength}
+    return pair | law_class.options()
