@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -15,7 +14,6 @@ import pytest
 from impactmaps.contact import (
     ContactLaw,
     ContactPair,
-    Sphere,
     available_contact_laws,
     contact_law_class,
     effective_modulus,
@@ -29,20 +27,8 @@ from impactmaps.fd.beam import _contact_stiffness_bound, _kernel_curve
 from impactmaps.solvers.compact import energy_balance_restitution
 from impactmaps.solvers.modal import reference_contact_stiffness
 
+from .test_contact_laws import ALUMINIUM, BALL, Material  # the 12.7 mm steel ball on aluminium
 
-@dataclass(frozen=True)
-class Material:
-    """Stand-in for impactmaps.materials.IsotropicMaterial (duck-typed by the library)."""
-
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float
-    yield_strength: float | None = None
-
-
-STEEL = Material(210e9, 0.30, 7850.0, 1.2e9)
-ALUMINIUM = Material(70e9, 0.33, 2700.0, 2.8e8)
-BALL = Sphere(0.00635, STEEL)
 PAIR = ContactPair.from_sphere(BALL, ALUMINIUM)
 LAWS = available_contact_laws()
 #: Impact velocities [m/s] of the call-site comparisons: elastic to deep plastic indentation.

@@ -210,6 +210,15 @@ class ContactLaw(ABC):
     needs_yield_strength: ClassVar[bool]
     kernel: ClassVar  # staticmethod(numba dispatcher)
 
+    @property
+    @abstractmethod
+    def kernel_parameters(self) -> np.ndarray:
+        """Float parameter vector for :attr:`kernel`, shape ``(n_params, *batch)``."""
+
+    @abstractmethod
+    def permanent_indentation(self, max_indentation):
+        """Permanent indentation α_f [m] left after unloading from ``max_indentation`` [m]."""
+
     # -- construction from a contact pair -------------------------------------------
     @classmethod
     def options(cls) -> dict[str, LawOption]:
@@ -247,55 +256,6 @@ class ContactLaw(ABC):
         raise ValueError(
             f"contact law {cls.name!r} has no from_contact_pair builder: construct it directly"
         )
-
-    # -- derived numbers ---------------------------------------------------------------
-    @property
-    def linear_stiffness(self):
-        """Stiffness K [N/m] of a linear law ``F = K α``; ``None`` for a nonlinear law."""
-        return None
-
-    def impact_number(self, impactor_mass, velocity):
-        """Impact number β [-] (seed 001 eq 11) of an impact by mass m_i [kg] at V0 [m/s].
-
-        ``None`` for laws without a yield indentation scale (elastic laws).
-        """
-        return None
-
-    def indentation_for_energy(self, energy):
-        """Indentation α_m [m] at which the loading work equals ``energy`` [J].
-
-        The peak indentation of a rigid sphere of kinetic energy ``energy`` on a rigid
-        half-space. Laws with a closed-form inverse override this; the generic search
-        is Newton's method on ``loading_energy(α) = energy`` with the loading force as
-        the derivative, started above the root: ``loading_energy`` is convex (its
-        derivative, the virgin loading force, never decreases), so the iterates
-        decrease monotonically onto the root (to rounding).
-
-        Parameters
-        ----------
-        energy : float or array_like
-            Work done on the contact [J], ≥ 0; broadcasts against the law's batch.
-
-        Returns
-        -------
-        ndarray
-            α_m [m] (0 where ``energy`` is 0).
-
-        Raises
-        ------
-        ValueError
-            ``energy`` negative or not finite, or not absorbed within 1000 m of indentation.
-        """
-        return _invert_loading_energy(self, energy)
-
-    @property
-    @abstractmethod
-    def kernel_parameters(self) -> np.ndarray:
-        """Float parameter vector for :attr:`kernel`, shape ``(n_params, *batch)``."""
-
-    @abstractmethod
-    def permanent_indentation(self, max_indentation):
-        """Permanent indentation α_f [m] left after unloading from ``max_indentation`` [m]."""
 
     # -- evaluation -------------------------------------------------------------
     def force(self, indentation, max_indentation=0.0):
@@ -345,6 +305,46 @@ class ContactLaw(ABC):
         if self.elastic:
             return np.zeros_like(np.asarray(max_indentation, dtype=float))
         return self.loading_energy(max_indentation) - self.recovered_energy(max_indentation)
+
+    # -- derived numbers ---------------------------------------------------------------
+    @property
+    def linear_stiffness(self):
+        """Stiffness K [N/m] of a linear law ``F = K α``; ``None`` for a nonlinear law."""
+        return None
+
+    def impact_number(self, impactor_mass, velocity):
+        """Impact number β [-] (seed 001 eq 11) of an impact by mass m_i [kg] at V0 [m/s].
+
+        ``None`` for laws without a yield indentation scale (elastic laws).
+        """
+        return None
+
+    def indentation_for_energy(self, energy):
+        """Indentation α_m [m] at which the loading work equals ``energy`` [J].
+
+        The peak indentation of a rigid sphere of kinetic energy ``energy`` on a rigid
+        half-space. Laws with a closed-form inverse override this; the generic search
+        is Newton's method on ``loading_energy(α) = energy`` with the loading force as
+        the derivative, started above the root: ``loading_energy`` is convex (its
+        derivative, the virgin loading force, never decreases), so the iterates
+        decrease monotonically onto the root (to rounding).
+
+        Parameters
+        ----------
+        energy : float or array_like
+            Work done on the contact [J], ≥ 0; broadcasts against the law's batch.
+
+        Returns
+        -------
+        ndarray
+            α_m [m] (0 where ``energy`` is 0).
+
+        Raises
+        ------
+        ValueError
+            ``energy`` negative or not finite, or not absorbed within 1000 m of indentation.
+        """
+        return _invert_loading_energy(self, energy)
 
 
 #: First trial indentation of the generic energy inversion [m] (grown or shrunk ×4).
