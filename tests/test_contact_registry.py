@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ import pytest
 from impactmaps.contact import (
     ContactLaw,
     ContactPair,
+    HertzContact,
     available_contact_laws,
     contact_law_class,
     effective_modulus,
@@ -265,3 +267,27 @@ def test_fd_stiffness_bound(name, velocity):
     _f, unloading = _kernel_curve(law.kernel, params, grid * (1.0 - 1e-12), np.full(grid.size, alpha))
     bound = float(max(np.max(loading), np.max(unloading)))
     assert bound == _contact_stiffness_bound(law, params, BALL.mass, velocity)
+
+
+@dataclass(frozen=True)
+class QuadratureHertz(HertzContact):
+    """Hertz without its closed forms (not registered): the base class's quadrature
+    energies and generic inversion, as a new law without closed forms would have."""
+
+    loading_energy = ContactLaw.loading_energy
+    recovered_energy = ContactLaw.recovered_energy
+    indentation_for_energy = ContactLaw.indentation_for_energy
+
+
+def test_generic_inversion_of_a_quadrature_law():
+    """With Simpson loading work (2001 graded points), the generic Newton search still
+    lands on the closed-form Hertz inverse (rel. 1e-9, the quadrature's accuracy on
+    α^{3/2}); energies from µJ to kJ; an energy the law cannot absorb within 1000 m of
+    indentation is a ValueError naming the energy."""
+    closed = law_from_registry("hertz")
+    quadrature = QuadratureHertz(closed.stiffness)
+    energies = np.geomspace(1e-6, 1e3, 7)
+    np.testing.assert_allclose(quadrature.indentation_for_energy(energies),
+                               closed.indentation_for_energy(energies), rtol=1e-9)
+    with pytest.raises(ValueError, match=r"energy = 1.0 J is not absorbed within 1000 m"):
+        ContactLaw.indentation_for_energy(HertzContact(1e-30), 1.0)
