@@ -37,7 +37,7 @@ def test_halfspace_hertz_matches_closed_form(capsys):
     stiffness = 4 / 3 * np.sqrt(0.01) * effective_modulus(2e11, 0.3, 2e11, 0.3)
     assert values["impactor_mass_kg"] == pytest.approx(mass)
     assert values["peak_force_N"] == pytest.approx(float(hertz_peak_force(mass, 2.0, stiffness)), rel=1e-6)
-    assert values["contact_time_s"] == pytest.approx(float(hertz_contact_time(mass, 2.0, stiffness)), rel=1e-6)
+    assert values["first_contact_duration_s"] == pytest.approx(float(hertz_contact_time(mass, 2.0, stiffness)), rel=1e-6)
     assert values["restitution"] == pytest.approx(1.0, abs=1e-6)
 
 

@@ -42,15 +42,16 @@ def test_linear_law_is_a_half_sine():
     result = halfspace_impact(LinearContact(stiffness), MASS, velocity)
     omega = math.sqrt(stiffness / MASS)
     history = result.history
-    assert list(history.columns) == ["time_s", "indentation_m", "force_N", "velocity_m_s"]
+    assert list(history.columns) == ["time_s", "force_N", "indentation_m", "impactor_displacement_m",
+                                     "impactor_velocity_m_s", "target_displacement_m", "target_velocity_m_s"]
     tau = history["time_s"].to_numpy() * omega
     force_bar = history["force_N"].to_numpy() / (MASS * velocity * omega)
     assert np.max(np.abs(force_bar - np.sin(tau))) < 1e-8
-    assert result.contact_time * omega == pytest.approx(math.pi, rel=1e-8)
+    assert result.total_contact_time * omega == pytest.approx(math.pi, rel=1e-8)
     assert result.restitution == pytest.approx(1.0, abs=1e-8)
     assert result.peak_force == pytest.approx(MASS * velocity * omega, rel=1e-8)
     assert result.max_indentation == pytest.approx(velocity / omega, rel=1e-8)
-    assert result.energy_lost == pytest.approx(0.0, abs=1e-8 * result.impact_energy)
+    assert result.energy_loss == pytest.approx(0.0, abs=1e-8 * result.impact_energy)
 
 
 def test_hertz_contact_time_factor_is_the_beta_integral():
@@ -70,7 +71,7 @@ def test_hertz_matches_closed_forms(velocity):
     result = halfspace_impact(HertzContact(stiffness), MASS, velocity)
     assert result.max_indentation == pytest.approx(float(hertz_max_indentation(MASS, velocity, stiffness)), rel=1e-8)
     assert result.peak_force == pytest.approx(float(hertz_peak_force(MASS, velocity, stiffness)), rel=1e-8)
-    assert result.contact_time == pytest.approx(float(hertz_contact_time(MASS, velocity, stiffness)), rel=1e-8)
+    assert result.total_contact_time == pytest.approx(float(hertz_contact_time(MASS, velocity, stiffness)), rel=1e-8)
     assert result.restitution == pytest.approx(1.0, abs=1e-8)
     assert result.permanent_indentation == 0.0
 
@@ -112,9 +113,9 @@ def test_numerical_restitution_matches_closed_form():
     for beta in np.geomspace(0.5, 1000.0, 12):
         velocity = float(YC.velocity_for_impact_number(MASS, beta))
         result = halfspace_impact(YC, MASS, velocity)
-        assert result.separated
+        assert not result.time_limit_reached
         assert result.restitution == pytest.approx(float(restitution(beta)), rel=1e-8)
-        assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+        assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
         assert energy_balance_restitution(YC, MASS, velocity) == pytest.approx(float(restitution(beta)), rel=1e-10)
         if beta <= math.sqrt(0.8):
             assert result.restitution == pytest.approx(1.0, abs=1e-9)
@@ -145,7 +146,7 @@ def test_restitution_depends_on_beta_alone():
     # both histories are sampled on the same normalised grid (contact time / 1000), so the
     # interpolation error cancels; observed 1e-10
     assert np.max(np.abs(first - second)) < 1e-7 * np.max(first)
-    contact = [result.contact_time * float(law.contact_frequency(mass)) for law, mass, result in results]
+    contact = [result.total_contact_time * float(law.contact_frequency(mass)) for law, mass, result in results]
     assert contact[0] == pytest.approx(contact[1], rel=1e-9)
 
 
@@ -169,7 +170,7 @@ def test_stronge_restitution_matches_energy_balance(ratio):
     result = halfspace_impact(STRONGE, MASS, velocity)
     assert result.max_indentation == pytest.approx(peak, rel=1e-8)
     assert result.restitution == pytest.approx(energy_balance_restitution(STRONGE, MASS, velocity), rel=1e-8)
-    assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+    assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
     if ratio < 1:
         assert result.restitution == pytest.approx(1.0, abs=1e-9)
     if ratio == 2.0:
@@ -195,13 +196,13 @@ def test_every_registered_law_runs_on_the_half_space(name):
     energy lost equals the law's dissipation (rel. 1e-9 of the impact energy)."""
     law = _registry_law(name)
     result = halfspace_impact(law, MASS, 3.0, time_step=1e-6)
-    assert result.separated
+    assert not result.time_limit_reached
     assert 0.0 < result.restitution <= 1.0 + 1e-9
     history = result.history
     assert np.all(history["force_N"] >= 0.0) and history["force_N"].max() <= result.peak_force * (1 + 1e-12)
     assert np.all(np.diff(history["time_s"]) <= 1e-6 * (1 + 1e-9))
-    assert history["time_s"].iloc[-1] == pytest.approx(result.contact_time, rel=1e-14)
-    assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+    assert history["time_s"].iloc[-1] == pytest.approx(result.total_contact_time, rel=1e-14)
+    assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
     assert 0.0 <= result.permanent_indentation < result.max_indentation
 
 
@@ -211,7 +212,7 @@ def test_time_limit_warns_and_reports_no_separation():
         warnings.simplefilter("always")
         result = halfspace_impact(HertzContact(8e9), MASS, 1.0, max_time=1e-7)
     assert any(issubclass(w.category, RuntimeWarning) for w in caught)
-    assert not result.separated and math.isnan(result.restitution)
+    assert result.time_limit_reached and math.isnan(result.restitution)
 
 
 BAD_CALLS = [

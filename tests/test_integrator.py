@@ -62,7 +62,7 @@ def test_fmax_matches_solve_ivp_reference(kind, zeta):
     basis, law, mass = _case(kind, zeta)
     result = simulate(basis, law, mass, 1.0, record=False)
     reference = baseline_like(result, basis, rtol=1e-10, atol=1e-12)
-    assert not result.hit_time_limit
+    assert not result.time_limit_reached
     assert result.impacts == reference.impacts
     assert result.fmax_normalised == pytest.approx(reference.fmax_normalised, abs=1e-5)
     assert result.peak_time_normalised == pytest.approx(reference.peak_time_normalised, abs=2e-2)
@@ -97,7 +97,7 @@ def test_batch_equals_one_by_one():
     assert len(batched) == len(one_by_one)
     for single, batch in zip(one_by_one, batched):
         for name in ("peak_force", "peak_time", "max_indentation", "rebound_velocity",
-                     "energy_transferred", "end_time", "time_step", "n_modes", "hit_time_limit"):
+                     "energy_transferred", "end_time", "time_step", "n_modes", "time_limit_reached"):
             assert getattr(batch, name) == getattr(single, name), name
         np.testing.assert_array_equal(batch.contact_intervals, single.contact_intervals)
 

@@ -107,7 +107,7 @@ def test_linear_invariants(kind, zeta, lam):
     h = result.history
     impulse = np.trapezoid(h["force_N"], h["time_s"])
     assert impulse == pytest.approx(result.impactor_mass * (result.velocity + result.rebound_velocity), rel=1e-4)
-    assert not result.hit_time_limit
+    assert not result.time_limit_reached
 
 
 def test_convergence_in_cutoff():

@@ -42,7 +42,7 @@ def test_default_chart_grid_is_converged_and_bounded(name):
     coarse = np.array([row["fmax_normalised"] for row in default])
     fine = np.array([row["fmax_normalised"] for row in refined])
     assert np.all((coarse > 0.0) & (coarse <= 1.0))
-    assert not any(row["hit_time_limit"] == 1 for row in default)
+    assert not any(row["time_limit_reached"] == 1 for row in default)
     assert np.max(np.abs(coarse - fine)) < 4e-3
 
 

@@ -119,22 +119,22 @@ def run(mass=BASE_MASS, velocity=BASE_VELOCITY, position=LENGTH / 2, plastic=Tru
         warnings.simplefilter("ignore")
         result = simulate_fd(target, law or contact_law(), mass, velocity, position,
                              duration=size.duration, gravity=True, history_stride=stride)
-    distance = min(result.impact_node_position, LENGTH - result.impact_node_position)
+    distance = min(result.details.impact_node_position, LENGTH - result.details.impact_node_position)
     return result, dict(
-        mass_kg=mass, velocity_m_s=velocity, position_m=result.impact_node_position,
+        mass_kg=mass, velocity_m_s=velocity, position_m=result.details.impact_node_position,
         plastic=plastic, peak_force_N=result.peak_force, impacts=result.impacts,
-        first_contact_s=result.first_contact_duration, contact_span_s=result.total_contact_span,
+        first_contact_s=result.first_contact_duration, contact_span_s=result.contact_span,
         second_contact_start_s=(result.contact_intervals[1, 0] if result.impacts > 1 else np.nan),
-        contact_time_s=result.contact_time,
+        contact_time_s=result.total_contact_time,
         energy_loss_fraction=result.energy_loss / result.impact_energy,
         restitution=result.restitution,
-        plastic_work_fraction=result.energy["beam_plastic_work"] / result.impact_energy,
-        contact_dissipation_fraction=result.energy["contact_dissipation"] / result.impact_energy,
-        permanent_deflection_m=result.permanent_beam_deflection,
+        plastic_work_fraction=result.details.energy["beam_plastic_work"] / result.impact_energy,
+        contact_dissipation_fraction=result.details.energy["contact_dissipation"] / result.impact_energy,
+        permanent_deflection_m=result.details.permanent_beam_deflection,
         permanent_indentation_m=result.permanent_indentation,
         wave_return_s=wave_return_time(target, result.first_contact_duration, distance),
         ledger_error=result.energy_balance_error,
-        still_in_contact=result.still_in_contact,
+        time_limit_reached=result.time_limit_reached,
     )
 
 

@@ -8,7 +8,7 @@
 from .beam import (
     STANDARD_GRAVITY,
     FDBeam,
-    FDImpactResult,
+    FDDetails,
     FDResponse,
     grid_frequency_bound,
     simulate_fd,
@@ -19,7 +19,7 @@ from .section import LayeredSection, SectionState, rectangular_moment_curvature,
 
 __all__ = [
     "FDBeam",
-    "FDImpactResult",
+    "FDDetails",
     "FDResponse",
     "LayeredSection",
     "STANDARD_GRAVITY",

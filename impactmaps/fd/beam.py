@@ -70,7 +70,6 @@ import functools
 import math
 import warnings
 from dataclasses import dataclass, field
-from typing import ClassVar
 
 import numba
 import numpy as np
@@ -86,12 +85,13 @@ from .._checks import (
 )
 from ..contact.base import KERNEL_TYPE, ContactLaw
 from ..contact.linear import _linear_kernel
-from ..solvers.result import ContactIntervals
+from ..solvers.modal import reference_contact_stiffness
+from ..solvers.result import ImpactResult
 from .section import LayeredSection, return_map
 
 __all__ = [
     "FDBeam",
-    "FDImpactResult",
+    "FDDetails",
     "FDResponse",
     "simulate_fd",
     "simulate_fd_response",
@@ -758,30 +758,11 @@ def _integrate(kernel, params, has_impactor, impactor_mass, velocity, gravity, i
 # Results
 # =====================================================================================
 @dataclass(frozen=True)
-class FDImpactResult(ContactIntervals):
-    """Outcome of one sphere impact on an :class:`FDBeam` (SI units).
+class FDDetails:
+    """What only the finite-difference beam knows of an impact (``ImpactResult.details``).
 
     Attributes
     ----------
-    history : pandas.DataFrame
-        One row per recorded step: ``time_s, force_N, indentation_m,
-        impactor_velocity_m_s, impactor_displacement_m, beam_deflection_at_impact_m,
-        beam_velocity_at_impact_m_s`` and, for each gauge ``g`` (positions in
-        :attr:`gauge_positions`), ``gauge{g}_deflection_m`` and ``gauge{g}_strain`` (axial
-        strain of the far face ``z = +h/2``, ``−(h/2) w''``; tension positive).
-        Displacements and velocities are positive in the impact direction.
-    peak_force, peak_time : float
-        Largest contact force over all impacts [N] and its time [s].
-    contact_intervals : ndarray, shape (k, 2)
-        (start, end) of each contact [s], to the step: start is the first step with
-        F > 0, end the first step with F = 0 (end = ``nan`` if the record ends in contact).
-    max_indentation, permanent_indentation : float
-        α_max [m] and the permanent indentation after unloading from it [m] (where the
-        law's unloading curve from α_max starts; equals ``law.permanent_indentation``).
-    rebound_velocity : float
-        Sphere velocity *away* from the beam at its final separation [m/s] (the velocity
-        at the first step with zero force after the last contact; ``nan`` with a warning
-        if the record ends in contact).
     permanent_beam_deflection : float
         Permanent deflection at the impact node [m]: the static deflection of the
         unloaded beam computed from the final state by an elastic unloading step
@@ -796,80 +777,30 @@ class FDImpactResult(ContactIntervals):
         ``beam_elastic_energy``, ``beam_plastic_work``, ``contact_dissipation`` (the law's
         ``dissipated_energy(α_max)``, evaluated from its kernel — loading work minus the
         work recovered on the unloading curve), ``contact_stored_energy`` (non-zero only
-        if still in contact),
-        ``damping_work``, ``contact_work_discrete`` (diagnostic ``Σ F Δα``), and
-        ``energy_balance_error``: (sum of the final terms − input)/impact energy [-].
+        if still in contact), ``damping_work``, ``contact_work_discrete`` (diagnostic
+        ``Σ F Δα``), and ``energy_balance_error``: (sum of the final terms − input)/impact
+        energy [-].
     residual : pandas.DataFrame
         Per node: ``x_m, final_deflection_m, permanent_deflection_m,
         residual_curvature_1_m, max_plastic_strain, plastic_work_J_m``.
-    impactor_mass, velocity : float
-        m [kg], V0 [m/s].
     impact_position, impact_node_position : float
         Requested impact point and the node that carries the load [m].
-    time_step, stability_limit : float
-        Δt used and the estimated stability limit [s].
+    stability_limit : float
+        The estimated stability limit of the explicit scheme [s].
     gauge_positions : tuple of float
-        Gauge positions [m].
-    still_in_contact : bool
-        True if the record ended during a contact.
-    settings : dict
-        Provenance: beam, law name, duration, gravity, stride, safety factor.
+        Gauge positions [m] (history columns ``gauge{g}_deflection_m``,
+        ``gauge{g}_strain``: axial strain of the far face ``z = +h/2``, ``−(h/2) w''``,
+        tension positive).
     """
 
-    history: pd.DataFrame
-    peak_force: float
-    peak_time: float
-    contact_intervals: np.ndarray
-    max_indentation: float
-    permanent_indentation: float
-    rebound_velocity: float
     permanent_beam_deflection: float
     final_mean_deflection: float
     energy: dict
     residual: pd.DataFrame
-    impactor_mass: float
-    velocity: float
     impact_position: float
     impact_node_position: float
-    time_step: float
     stability_limit: float
     gauge_positions: tuple
-    still_in_contact: bool
-    settings: dict = field(default_factory=dict)
-
-    method: ClassVar[str] = "finite-difference"
-
-    @property
-    def total_contact_span(self) -> float:
-        """From the first contact's start to the last contact's end [s]."""
-        if not self.impacts:
-            return 0.0
-        return float(self.contact_intervals[-1, 1] - self.contact_intervals[0, 0])
-
-    @property
-    def restitution(self) -> float:
-        """Newton coefficient of restitution e = rebound velocity / V0 (seed 000) [-].
-
-        Sphere velocity at its final separation divided by its approach velocity; the
-        beam is at rest before the impact, so this is also the relative-velocity ratio
-        at the first contact. With gravity the rebound velocity is taken at separation.
-        """
-        return self.rebound_velocity / self.velocity
-
-    @property
-    def impact_energy(self) -> float:
-        """½ m V0² [J]."""
-        return self.energy["impact_kinetic_energy"]
-
-    @property
-    def energy_loss(self) -> float:
-        """E_in − E_rebound = ½ m (V0² − v_r²) [J] (seed 000's energy loss)."""
-        return self.energy["impact_kinetic_energy"] - self.energy["rebound_kinetic_energy"]
-
-    @property
-    def energy_balance_error(self) -> float:
-        """Signed ledger residual relative to the impact energy [-]."""
-        return self.energy["energy_balance_error"]
 
     @property
     def plastic_zone(self):
@@ -881,21 +812,8 @@ class FDImpactResult(ContactIntervals):
         return float(x.min()), float(x.max())
 
     def summary(self) -> dict:
-        """Scalars as a flat JSON-ready dict with unit-suffixed keys."""
-        out = {
-            "peak_force_N": float(self.peak_force),
-            "peak_time_s": float(self.peak_time),
-            "impacts": self.impacts,
-            "contact_intervals_s": self.contact_intervals.tolist(),
-            "contact_time_s": self.contact_time,
-            "max_indentation_m": float(self.max_indentation),
-            "permanent_indentation_m": float(self.permanent_indentation),
-            "rebound_velocity_m_s": float(self.rebound_velocity),
-            "restitution": float(self.restitution),
-            "energy_loss_J": float(self.energy_loss),
-            "permanent_beam_deflection_m": float(self.permanent_beam_deflection),
-            "time_step_s": float(self.time_step),
-        }
+        """The finite-difference scalars with unit-suffixed keys (the whole ledger)."""
+        out = {"permanent_beam_deflection_m": float(self.permanent_beam_deflection)}
         out.update({f"{k}_J" if k != "energy_balance_error" else k: float(v)
                     for k, v in self.energy.items()})
         return out
@@ -909,7 +827,7 @@ class FDResponse:
     ----------
     history : pandas.DataFrame
         ``time_s, load_N, deflection_at_load_m, velocity_at_load_m_s`` and the gauge
-        columns as in :class:`FDImpactResult`.
+        columns as in :class:`FDDetails`.
     final_deflection : ndarray
         Deflection of every node at the end of the run [m].
     energy : dict
@@ -1193,7 +1111,7 @@ def _residual_state(beam, grid, out):
 
 def simulate_fd(beam: FDBeam, law: ContactLaw, impactor_mass, velocity, impact_position=None, *,
                 duration, time_step=None, safety_factor=0.8, gauge_positions=(),
-                gravity=False, history_stride=1) -> FDImpactResult:
+                gravity=False, history_stride=1) -> ImpactResult:
     """Impact of a rigid sphere on a finite-difference Rayleigh beam.
 
     Parameters
@@ -1233,7 +1151,8 @@ def simulate_fd(beam: FDBeam, law: ContactLaw, impactor_mass, velocity, impact_p
 
     Returns
     -------
-    FDImpactResult
+    ImpactResult
+        ``method = "finite-difference"``; ``details`` is an :class:`FDDetails`.
 
     Notes
     -----
@@ -1283,8 +1202,8 @@ def simulate_fd(beam: FDBeam, law: ContactLaw, impactor_mass, velocity, impact_p
         "indentation_m": alpha,
         "impactor_velocity_m_s": vs,
         "impactor_displacement_m": u,
-        "beam_deflection_at_impact_m": wk,
-        "beam_velocity_at_impact_m_s": vk,
+        "target_displacement_m": wk,
+        "target_velocity_m_s": vk,
         **_gauge_columns(out, beam, n_rec),
     })
 
@@ -1326,7 +1245,7 @@ def simulate_fd(beam: FDBeam, law: ContactLaw, impactor_mass, velocity, impact_p
     residual = _residual_state(beam, grid, out)
     tail = time >= 0.8 * time[-1]
     contact_intervals = np.asarray(intervals, float).reshape(-1, 2)
-    return FDImpactResult(
+    return ImpactResult(
         history=history,
         peak_force=float(peak_force),
         peak_time=float(peak_time),
@@ -1334,21 +1253,31 @@ def simulate_fd(beam: FDBeam, law: ContactLaw, impactor_mass, velocity, impact_p
         max_indentation=float(alpha_max),
         permanent_indentation=contact["permanent_indentation"],
         rebound_velocity=float(rebound_velocity),
-        permanent_beam_deflection=float(residual["permanent_deflection_m"].iloc[node]),
-        final_mean_deflection=float(np.mean(wk[tail])),
-        energy=energy,
-        residual=residual,
+        energy_transferred=energy["beam_kinetic_energy"] + energy["beam_elastic_energy"],
+        contact_dissipation=dissipation,
+        damping_work=energy["damping_work"],
+        energy_balance_error=energy["energy_balance_error"],
         impactor_mass=impactor_mass,
         velocity=velocity,
-        impact_position=x0,
-        impact_node_position=node * grid.dx,
+        contact_frequency=float(np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity)
+                                        / impactor_mass)),
+        end_time=float(n_steps * dt),
+        time_limit_reached=still_in_contact,
         time_step=dt,
-        stability_limit=limit,
-        gauge_positions=positions,
-        still_in_contact=still_in_contact,
+        method="finite-difference",
         settings=dict(beam=beam, law=law.name, duration=float(duration), gravity=g,
                       history_stride=stride, safety_factor=float(safety_factor),
                       n_steps=n_steps, contact_stiffness_bound=contact_stiffness),
+        details=FDDetails(
+            permanent_beam_deflection=float(residual["permanent_deflection_m"].iloc[node]),
+            final_mean_deflection=float(np.mean(wk[tail])),
+            energy=energy,
+            residual=residual,
+            impact_position=x0,
+            impact_node_position=node * grid.dx,
+            stability_limit=limit,
+            gauge_positions=positions,
+        ),
     )
 
 

@@ -15,7 +15,6 @@ import time
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from dataclasses import asdict
 from datetime import datetime, timezone
-from pathlib import Path
 from typing import Sequence
 
 import numpy as np
@@ -26,6 +25,7 @@ from ..contact.linear import LinearContact
 from ..dimensionless import realise
 from ..solvers.modal import ModalSettings, simulate
 from .regimes import classify
+from ..jsonio import dumps
 from .store import fingerprint, load_matching, save_atomic
 from .structures import BasisTable, MapStructure
 
@@ -43,7 +43,7 @@ RESULT_VARIABLES = {
     "energy_transferred_fraction": ("f8", np.nan, "1", "vibration energy left in the structure / impact energy"),
     "reflection_time_normalised": ("f8", np.nan, "1", "ω d²/c: first wave return to the impact point (d: distance to nearest support/edge, c = sqrt(bending stiffness / mass per length or area))"),
     "n_modes": ("i4", -1, "1", "number of modes integrated"),
-    "hit_time_limit": ("i1", -1, "1", "1 if the run stopped at its time limit"),
+    "time_limit_reached": ("i1", -1, "1", "1 if the run stopped at its time limit"),
     "method": ("i1", -1, "1", "which model produced the point: see flag_meanings"),
 }
 
@@ -111,7 +111,7 @@ def _asymptote_row(kind: str, zeta: float) -> dict:
         "peak_time_normalised": float(peak_time),
         "energy_transferred_fraction": float(1.0 - float(rebound) ** 2) if np.isfinite(rebound) else np.nan,
         "n_modes": 0,
-        "hit_time_limit": 0,
+        "time_limit_reached": 0,
         "method": METHODS.index("infinite-structure-asymptote"),
     }
 
@@ -211,21 +211,13 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
     attrs = {
         "title": "impactmaps normalised impact map",
         "fingerprint": digest,
-        "description": _json(description),
+        "description": dumps(description, sort_keys=True),
         "impactmaps_version": __version__,
         "solver_revision": SOLVER_REVISION,
         "method": "modal impact solver (exact-step integrator, residual flexibility), linear contact",
         "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-def _json(value) -> str:
-    import json
-
-    from .store import _jsonable
-
-    return json.dumps(value, sort_keys=True, default=_jsonable)
 
 
 def _chunks(structures, lambdas, zetas, done, chunk_size):

@@ -442,7 +442,7 @@ def integrate_impact(
     history : (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure.
     intervals : (n_intervals, 2) array of contact start/end times [s].
     scalars : array — peak force, time of peak, α_max, final impactor velocity,
-        final structure energy, damping work, end time, hit_time_limit flag,
+        final structure energy, damping work, end time, time-limit-reached flag,
         steps taken, interval-table overflow flag.
     """
     n = omega.shape[0]

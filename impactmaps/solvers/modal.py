@@ -36,7 +36,7 @@ from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
 from .kernels import integrate_impact
-from .result import ImpactResult
+from .result import ImpactResult, energy_balance_error
 
 __all__ = [
     "ModalSettings",
@@ -417,6 +417,7 @@ def simulate(
             stacklevel=2,
         )
     alpha_max = float(scalars[2])
+    dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
     result = ImpactResult(
         history=_history_frame(history, impactor_mass) if record else None,
         peak_force=float(scalars[0]),
@@ -426,11 +427,12 @@ def simulate(
         permanent_indentation=0.0 if law.elastic else float(law.permanent_indentation(alpha_max)),
         rebound_velocity=float(-scalars[3]),
         energy_transferred=float(scalars[4]),
-        contact_dissipation=0.0 if law.elastic else float(law.dissipated_energy(alpha_max)),
+        contact_dissipation=dissipation,
         damping_work=float(scalars[5]),
-        impact_energy=0.5 * impactor_mass * velocity**2,
+        energy_balance_error=energy_balance_error(
+            impactor_mass, velocity, float(-scalars[3]), float(scalars[4]), dissipation, float(scalars[5])),
         end_time=float(scalars[6]),
-        hit_time_limit=bool(scalars[7]),
+        time_limit_reached=bool(scalars[7]),
         impactor_mass=float(impactor_mass),
         velocity=float(velocity),
         contact_frequency=omega_c,
@@ -439,7 +441,7 @@ def simulate(
         method="modal+residual" if settings.residual_flexibility else "modal",
         settings=_settings_dict(settings),
     )
-    if result.hit_time_limit:
+    if result.time_limit_reached:
         warnings.warn(
             f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
             "became impossible; scalars describe a truncated event",

@@ -266,7 +266,7 @@ class Plate(Target):
         try:
             x0, y0 = (float(v) for v in point)
         except (TypeError, ValueError):
-            raise ValueError(f"impact_point = {self.impact_point!r} is not a pair (x0, y0) [m]") from None
+            raise ValueError(f"impact_point = {self.impact_point!r} is invalid: must have 2 entries (x0, y0) [m]") from None
         require_in_range("impact_point[0] (x0)", x0, 0.0, self.length_x,
                          low_inclusive=False, high_inclusive=False, unit="m")
         require_in_range("impact_point[1] (y0)", y0, 0.0, self.length_y,
