@@ -16,10 +16,7 @@ import sys
 import warnings
 from pathlib import Path
 
-import matplotlib
 import pytest
-
-matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parents[1]
 VALIDATION = ROOT / "validation"
