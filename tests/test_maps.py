@@ -170,3 +170,31 @@ def test_progress_bar_is_shown_and_can_be_switched_off(capsys):
     assert "impact map" in shown and "2/2" in shown
     sweep([BEAM], ZETAS[:2], [1.0], max_workers=1, progress=False)
     assert capsys.readouterr().err == ""
+
+
+def test_a_point_is_a_pure_function_of_its_inputs():
+    """The result of a (ζ, λ) point does not depend on what else its worker computed:
+    one by one, in one chunk, or in shuffled chunks after a light-impactor point that
+    needs a high cut-off, every scalar is the same to the bit (the basis of every point
+    is a truncation of one canonical table, never of whatever a cache happened to hold)."""
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import solve_points
+    from impactmaps.solvers.modal import ModalSettings
+
+    rng = np.random.default_rng(12)
+    settings = ModalSettings()
+    for name in ("plate-ssss-kirchhoff", "beam-ss-euler"):
+        structure = structure_from_name(name)
+        points = list(zip(10 ** rng.uniform(-2, 1.5, 12), 10 ** rng.uniform(-1.2, 1.2, 12)))
+        alone = [solve_points(structure, [p], settings)[0] for p in points]
+        order = rng.permutation(len(points))
+        light = [(0.01, 20.0)]  # needs the most modes: would grow a history-dependent table
+        shuffled = {}
+        for chunk in np.array_split(order, 3):
+            rows = solve_points(structure, light + [points[k] for k in chunk], settings)[1:]
+            shuffled.update(zip(chunk.tolist(), rows))
+        together = solve_points(structure, points, settings)
+        for k, row in enumerate(alone):
+            for key, value in row.items():
+                assert shuffled[k][key] == value, (name, k, key)
+                assert together[k][key] == value, (name, k, key)

@@ -93,8 +93,21 @@ case file ``case.toml``.
 
 from __future__ import annotations
 
-from .case import SOLVER_KINDS, TARGET_TYPES, Case, OutputSettings, load_case, parse_case
-from .run import case_dimensionless, case_summary, read_case_outputs, run_case, write_case_outputs
+from .case import (
+    SOLVER_KINDS,
+    TARGET_TYPES,
+    Case,
+    OutputSettings,
+    load_case,
+    parse_case,
+)
+from .run import (
+    case_dimensionless,
+    case_summary,
+    read_case_outputs,
+    run_case,
+    write_case_outputs,
+)
 
 __all__ = [
     "Case",

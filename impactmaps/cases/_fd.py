@@ -57,7 +57,7 @@ def fd_settings(data, beam, material) -> dict:
     run_options = {k: v for k, v in keyword_options(simulate_fd).items() if k in FD_RUN_OPTIONS}
     check_keys(entries, path, tuple(beam_options) + tuple(run_options))
     if not hasattr(beam, "supports") or not hasattr(beam, "length"):  # TEMPORARY: a modal non-beam case
-        from ..materials import IsotropicMaterial                     # validates [fd] on a probe beam
+        from ..materials import IsotropicMaterial  # validates [fd] on a probe beam
         beam = type("Probe", (), dict(length=1.0, width=0.1, height=0.1, supports="ss"))()
         material = IsotropicMaterial(2e11, 0.3, 7800.0, 2e8)
     if getattr(material, "yield_strength", None) is None:

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 import tomllib
-import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -207,8 +206,9 @@ def _target(data):
     check_keys(entries, path, target_keys(kind))
     contact_material = target_material(entries, path)
     if kind == "halfspace":
-        from ..targets.base import ModalBasis  # replaced by the HalfSpace target
         import numpy as np
+
+        from ..targets.base import ModalBasis  # replaced by the HalfSpace target
 
         return ModalBasis(np.empty(0), np.empty(0), 0.0), kind, contact_material
     build, size = _target_builder(kind, contact_material)

@@ -9,8 +9,10 @@ file atomically as they complete, so an interrupted sweep resumes where it stopp
 
 from __future__ import annotations
 
+import functools
 import math
 import os
+import warnings
 import time
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from dataclasses import asdict
@@ -61,33 +63,36 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 
 
 # -- the worker ------------------------------------------------------------------------
-_TABLES: dict = {}
+@functools.lru_cache(maxsize=16)
+def frequency_cap(structure: MapStructure, max_modes: int = MAX_MODES) -> float:
+    """Largest frequency [rad/s] below which ``structure`` has at most ~``max_modes`` modes.
+
+    A pure function of its arguments (cached, bounded): the cut-off of every point of a
+    sweep on ``structure`` is clipped to it.
+    """
+    target = structure.build()
+    frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # probing only
+        while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
+            frequency *= 2.0
+    return frequency
 
 
-_CAPS: dict = {}
+@functools.lru_cache(maxsize=8)
+def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
+    """The one basis table every point on ``structure`` is truncated from.
 
-
-def _frequency_cap(structure: MapStructure, target, max_modes: int) -> float:
-    """Largest frequency [rad/s] below which ``target`` has at most ~``max_modes`` modes."""
-    cap = _CAPS.get((structure, max_modes))
-    if cap is None:
-        import warnings
-
-        frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # probing only
-            while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
-                frequency *= 2.0
-        cap = _CAPS[(structure, max_modes)] = frequency
-    return cap
-
-
-def _basis_table(structure: MapStructure, target, max_frequency: float, min_modes: int) -> BasisTable:
-    table = _TABLES.get(structure)
-    if table is None or table.max_frequency < max_frequency:
-        table = BasisTable(target, max_frequency, min_modes)
-        _TABLES[structure] = table
-    return table
+    Built once at :func:`frequency_cap` — never at a cut-off that depends on which
+    points a worker happened to compute before — so a point's modes, and therefore its
+    result, are a pure function of (structure, ζ, λ, settings): the same bits alone, in
+    any chunk, in any order, after a resume. Cached (bounded) as a pure function.
+    """
+    with warnings.catch_warnings():
+        # the table reaches past the Mindlin thickness-shear cut-off; a point whose own
+        # cut-off does is warned about in solve_points
+        warnings.simplefilter("ignore", UserWarning)
+        return BasisTable(structure.build(), frequency_cap(structure), min_modes)
 
 
 def _asymptote_row(kind: str, zeta: float) -> dict:
@@ -127,7 +132,20 @@ def reflection_time(target, contact_frequency):
     return np.asarray(contact_frequency) * distance**2 / speed
 
 
-def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings) -> list[dict]:
+def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:
+    """Warn, as the plate itself does, when a cut-off passes the Mindlin thickness-shear cut-off."""
+    if getattr(target, "theory", None) != "mindlin":
+        return
+    cutoff = math.sqrt(target.shear_correction * min(target.A44, target.A55) / target.rotary_inertia_per_area)
+    if max_frequency > cutoff:
+        warnings.warn(
+            f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear cut-off "
+            f"{cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which are omitted, have "
+            "modes below the cut-off frequency", UserWarning, stacklevel=3)
+
+
+def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
+                 table: BasisTable | None = None) -> list[dict]:
     """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
 
     Parameters
@@ -135,6 +153,9 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     structure : MapStructure
     points : sequence of (loss_factor, relative_stiffness)
     settings : ModalSettings
+    table : BasisTable, optional
+        The modes to truncate from; default :func:`basis_table` of ``structure`` (pass one
+        to reuse it explicitly across calls).
 
     Returns
     -------
@@ -152,8 +173,6 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     first ``MAX_MODES`` modes plus residual flexibility, with a warning. The ``method``
     variable records which model produced each point.
     """
-    import warnings
-
     target = structure.build()
     zetas = np.array([p[0] for p in points], dtype=float)
     lambdas = np.array([p[1] for p in points], dtype=float)
@@ -162,9 +181,11 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     masses = np.atleast_1d(impactors.impactor_mass)
     stiffnesses = np.atleast_1d(impactors.contact_stiffness)
     reflections = np.atleast_1d(reflection_time(target, omegas))
-    cap = _frequency_cap(structure, target, MAX_MODES)
+    cap = frequency_cap(structure)
     wanted = settings.cutoff_ratio * omegas
-    table = _basis_table(structure, target, min(float(wanted.max()), cap), settings.min_modes)
+    if table is None:
+        table = basis_table(structure, settings.min_modes)
+    _warn_beyond_shear_cutoff(target, min(float(wanted.max()), cap))
     rows = []
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
