@@ -526,10 +526,9 @@ def test_bad_section_properties_and_allowed_end_impacts():
         beam().modes(-1.0)
 
 
-REFERENCE = Path(__file__).resolve().parents[2] / "shared" / "reference" / "fmax_reference.csv"
+REFERENCE = Path(__file__).resolve().parent / "data" / "fmax_reference.csv"  # see tests/data/README.md
 
 
-@pytest.mark.skipif(not REFERENCE.exists(), reason="shared reference table not available")
 @pytest.mark.parametrize("theory,slenderness", [("euler", 20.0), ("timoshenko", 300.0)])
 def test_simply_supported_beam_reproduces_reference_peak_forces(theory, slenderness):
     """End to end (PHYSICS.md 6): the modal solver on Beam (SS, struck at mid-span,

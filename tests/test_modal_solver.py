@@ -6,6 +6,8 @@ Kirchhoff plate), so these tests do not depend on the target modules.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -21,7 +23,7 @@ from .analytic import (
     ss_square_plate_basis,
 )
 
-REFERENCE = "../shared/reference/fmax_reference.csv"
+REFERENCE = Path(__file__).resolve().parent / "data" / "fmax_reference.csv"  # see tests/data/README.md
 HALF_SPACE = ModalBasis(np.zeros(0), np.zeros(0))
 
 
@@ -76,12 +78,7 @@ def test_second_order_convergence_in_time_step():
 
 @pytest.fixture(scope="module")
 def reference():
-    import pathlib
-
-    path = pathlib.Path(__file__).resolve().parents[2] / "shared" / "reference" / "fmax_reference.csv"
-    if not path.exists():
-        pytest.skip("shared reference table not available")
-    return pd.read_csv(path, comment="#")
+    return pd.read_csv(REFERENCE, comment="#")
 
 
 def test_reference_fmax_table(reference):
