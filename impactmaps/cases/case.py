@@ -18,9 +18,8 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .._checks import require_in_range
-from ..contact.base import ContactLaw, available_contact_laws
-from ..contact.hertz import HertzContact
-from ..contact.linear import LinearContact
+from ..contact import law_options
+from ..contact.base import ContactLaw, available_contact_laws, contact_law
 from ..contact.sphere import Sphere, law_for_sphere
 from ..materials import IsotropicMaterial, Laminate
 from ..solvers.modal import ModalSettings, reference_contact_stiffness
@@ -223,13 +222,6 @@ def _target(data):
 
 
 def _law_option_names(name: str) -> tuple[str, ...]:
-    try:
-        from ..contact import law_options
-    except ImportError:  # TEMPORARY until the registry lands
-        return {"hertz": ("target_radius",), "linear": ("target_radius", "yield_strength"),
-                "yigit-christoforou": ("target_radius", "yield_strength"),
-                "stronge": ("target_radius", "yield_strength", "yield_pressure_factor",
-                            "plastic_pressure_factor", "plastic_indentation_ratio")}[name]
     return tuple(law_options(name))
 
 
@@ -245,11 +237,12 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     allowed = _law_option_names(name)
     stiffness_unit = {"hertz": "N/m^1.5", "linear": "N/m"}.get(name)
     check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
-    options = read_options(entries, path, dict.fromkeys(allowed, "number"), _UNITS)
+    units = {key: option.unit for key, option in law_options(name).items()}
+    options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)
     stiffness = number(entries, "stiffness", path, stiffness_unit or "")
     with key_path(path, allowed + ("stiffness",)):
         if stiffness is not None:
-            law = HertzContact(stiffness) if name == "hertz" else LinearContact(stiffness)
+            law = contact_law(name, stiffness=stiffness)
         else:
             law = law_for_sphere(name, sphere, contact_material, **options)
     return law, name, options

@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..contact.linear import LinearContact
 from ..contact.sphere import law_for_sphere
 from ..jsonio import dumps, plain
 from ..solvers.modal import reference_contact_stiffness, simulate
@@ -32,8 +31,8 @@ def case_dimensionless(case: Case) -> dict:
     """
     mass, velocity, law = case.impactor_mass, case.velocity, case.law
     reference = float(reference_contact_stiffness(law, mass, velocity))
-    if isinstance(law, LinearContact):
-        stiffness, basis = float(law.stiffness), "linear law stiffness K"
+    if law.linear_stiffness is not None:
+        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
     else:
         stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
         linear_options = {k: v for k, v in case.contact_options.items()
@@ -43,14 +42,8 @@ def case_dimensionless(case: Case) -> dict:
         except ValueError:
             pass  # no yield strength known: keep the reference stiffness
         else:
-            stiffness, basis = float(linear.stiffness), "linearised contact stiffness K_y (seed 001 eqs 9, 10)"
-    beta = law.impact_number(mass, velocity) if hasattr(law, "impact_number") else None  # TEMPORARY
-    if type(law).__name__ == "StrongeContact":  # TEMPORARY until the registry lands
-        from ..contact.hertz import hertz_stiffness
-        from ..contact.yigit_christoforou import yield_indentation
-        from ..dimensionless import impact_number
-        alpha_y = yield_indentation(law.yield_strength, law.radius, law.effective_modulus)
-        beta = float(impact_number(velocity, hertz_stiffness(law.effective_modulus, law.radius), alpha_y, mass))
+            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (seed 001 eqs 9, 10)"
+    beta = law.impact_number(mass, velocity)
     if case.target_type == "halfspace":
         static = lam = zeta = None
     else:
