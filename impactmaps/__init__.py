@@ -42,6 +42,8 @@ _EXPORTS = {
     "law_for_sphere": "impactmaps.contact",
     "contact_law": "impactmaps.contact",
     "available_contact_laws": "impactmaps.contact",
+    "law_options": "impactmaps.contact",
+    "ContactPair": "impactmaps.contact",
     # dimensionless framework
     "realise": "impactmaps.dimensionless",
     "loss_factor_plate": "impactmaps.dimensionless",
@@ -57,7 +59,11 @@ _EXPORTS = {
     "make_chart": "impactmaps.maps.chart",
     # cases
     "load_case": "impactmaps.cases",
+    "parse_case": "impactmaps.cases",
     "run_case": "impactmaps.cases",
+    "Case": "impactmaps.cases",
+    # accuracy of map points
+    "AccuracyControl": "impactmaps.maps.accuracy",
 }
 
 __all__ = ["__version__", *_EXPORTS]
