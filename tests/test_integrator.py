@@ -1,4 +1,4 @@
-"""Verification of the exact-step impact integrator (impactmaps.solvers.kernels).
+"""Verification of the exact-step impact integrator (impactmaps.solvers.exact_step).
 
 Independent references:
 
@@ -24,7 +24,7 @@ import scipy.linalg
 
 from benchmarks.baseline_solve_ivp import baseline_like
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.kernels import oscillator_step_coefficients
+from impactmaps.solvers.oscillator_step import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
 from impactmaps.targets.base import ModalBasis
 
@@ -243,7 +243,7 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     """The doubled free-flight steps square the one-step map instead of re-evaluating
     trigonometric functions; after six squarings they still equal the direct
     coefficients over 64 h (undamped and damped)."""
-    from impactmaps.solvers.kernels import _fill_coefficients, _square_free_propagators
+    from impactmaps.solvers.oscillator_step import fill_step_coefficients, square_free_propagators
 
     omega = np.array([0.0, 0.3, 2.0, 17.0, 400.0])
     damping = np.where(omega > 0, zeta, 0.0)
@@ -252,14 +252,14 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     powers = 7
     free = np.zeros((powers, 8, omega.size))
     one = np.empty((8, omega.size))
-    _fill_coefficients(omega, damping, phi, h, one)
+    fill_step_coefficients(omega, damping, phi, h, one)
     free[0, :4] = one[:4]
     ready = np.zeros(powers, dtype=np.bool_)
     ready[0] = True
-    _square_free_propagators(free, ready, powers - 1)
+    square_free_propagators(free, ready, powers - 1)
     for k in range(powers):
         direct = np.empty((8, omega.size))
-        _fill_coefficients(omega, damping, phi, (2**k) * h, direct)
+        fill_step_coefficients(omega, damping, phi, (2**k) * h, direct)
         scale = 1.0 + np.abs(direct[:4])
         assert np.all(np.abs(free[k, :4] - direct[:4]) <= 1e-12 * scale)
         assert np.all(free[k, 4:] == 0.0)

@@ -4,7 +4,7 @@ Equations (spec §3.4): ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j(x0) F``,
 ``m_i ẅ_i = −F``, ``α = w_i − Σ φ_j q_j − r F``, ``F = F(α; α_max)`` from any registered
 contact law, with ``r`` the residual static compliance of the dropped modes in series
 with the contact (mode-acceleration correction). The integrator is the exact-step
-kernel of :mod:`impactmaps.solvers.kernels`.
+integrator of :mod:`impactmaps.solvers.exact_step`.
 
 Mode cut-off rule: every participating mode with ``ω_j ≤ cutoff_ratio · ω`` is
 integrated (at least ``min_modes`` of them), where ``ω`` is the contact frequency; the
@@ -35,7 +35,7 @@ from .._checks import require_in_range, require_positive
 from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
-from .kernels import integrate_impact
+from .exact_step import integrate_impact
 from .result import ImpactResult, energy_balance_error
 
 __all__ = [
