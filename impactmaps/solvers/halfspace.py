@@ -1,6 +1,6 @@
-"""Compact-body impact: a rigid sphere on a fixed half-space, and closed forms.
+"""A rigid sphere on a fixed half-space (compact-body impact), and its closed forms.
 
-The target does not move, so the indentation α is the impactor displacement and
+The target (:class:`impactmaps.targets.halfspace.HalfSpace`) does not move, so the indentation α is the impactor displacement and
 
     m α'' = −F(α; α_max),   α(0) = 0,   α'(0) = V0,
 
