@@ -14,7 +14,7 @@ import numba
 from ..contact.base import KERNEL_TYPE
 from .oscillator_step import fill_step_coefficients, predict_step
 
-__all__ = ["solve_end_force", "locate_event"]
+__all__ = ["locate_event", "solve_end_force"]
 
 _F8 = numba.types.float64
 _VECTOR = numba.types.Array(_F8, 1, "C")

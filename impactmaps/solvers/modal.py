@@ -23,6 +23,7 @@ plate couples only weakly to the modes near the cut-off, their share of the forc
 
 from __future__ import annotations
 
+import functools
 import warnings
 from dataclasses import asdict, dataclass, replace
 
@@ -145,15 +146,23 @@ DEFAULT_SETTINGS = ModalSettings()
 #: an integer number of times per step), none at ω_top·Δt ≤ 3.5 over 600 random chart
 #: points and forced steps (tests/test_integrator.py keeps the failing case).
 STABLE_TOP_STEP = 2.0
-_SETTINGS_DICTS: dict = {}
 
 
 def _settings_dict(settings: ModalSettings) -> dict:
-    """``asdict(settings)``, cached (settings are frozen and hashable)."""
-    cached = _SETTINGS_DICTS.get(settings)
-    if cached is None:
-        cached = _SETTINGS_DICTS[settings] = asdict(settings)
-    return dict(cached)
+    """``asdict(settings)`` as a fresh dict (its items are cached per settings value)."""
+    return dict(_settings_items(settings))
+
+
+@functools.lru_cache(maxsize=64)
+def _settings_items(settings: ModalSettings) -> tuple:
+    """The fields of frozen, hashable ``settings`` as (name, value) pairs."""
+    return tuple(asdict(settings).items())
+
+
+def _linear_stiffness(law: ContactLaw) -> float:
+    """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
+    form), else 0. The one place that asks whether a law is linear."""
+    return float(law.stiffness) if isinstance(law, LinearContact) else 0.0
 
 
 def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity: float) -> float:
@@ -163,8 +172,9 @@ def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity:
     curve at the half-space peak indentation (where ``loading_energy = ½ m V0²``),
     the stiffest the contact gets in a rigid-target impact.
     """
-    if isinstance(law, LinearContact):
-        return float(law.stiffness)
+    linear = _linear_stiffness(law)
+    if linear > 0.0:
+        return linear
     energy = 0.5 * impactor_mass * velocity**2
 
     def excess(alpha):
@@ -357,8 +367,9 @@ def simulate(
     Parameters
     ----------
     target : Target or ModalBasis
-        The struck structure (beam, plate, …) or directly its modes at the impact
-        point. An empty :class:`ModalBasis` with zero residual is a half-space.
+        The struck structure (beam, plate, half-space, …) or directly its modes at the
+        impact point (:class:`impactmaps.targets.halfspace.HalfSpace` is the same as an
+        empty :class:`ModalBasis` with zero residual).
     law : ContactLaw
         Any registered contact law with scalar parameters.
     impactor_mass : float
@@ -398,7 +409,7 @@ def simulate(
     history, intervals, scalars = integrate_impact(
         kernel_pointer(law.kernel),
         params,
-        float(law.stiffness) if isinstance(law, LinearContact) else 0.0,
+        _linear_stiffness(law),
         basis.frequencies,
         basis.participation,
         basis.damping_ratios,

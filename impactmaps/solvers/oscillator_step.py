@@ -17,11 +17,11 @@ import numba
 import numpy as np
 
 __all__ = [
-    "oscillator_step_coefficients",
     "fill_step_coefficients",
-    "square_free_propagators",
+    "oscillator_step_coefficients",
     "predict_step",
     "propagate_free",
+    "square_free_propagators",
 ]
 
 _SERIES_LIMIT = 1.0
