@@ -352,3 +352,17 @@ def test_sampled_loop_instability_is_avoided():
     assert default.time_step * top <= STABLE_TOP_STEP * (1 + 1e-9)
     assert default.impacts == resolved.impacts == 1
     assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)
+
+
+def test_parabolic_peak_recovers_the_vertex_of_a_parabola():
+    """Three samples of F(t) = 2 − 3(t − 0.3)², h = 1 apart around t = 0: the refinement
+    returns the vertex (2 at offset 0.3) to round-off (exact for a parabola), and the
+    middle sample with offset 0 when the samples do not curve downwards."""
+    from impactmaps.solvers._peak import parabolic_peak
+
+    def force(t):
+        return 2.0 - 3.0 * (t - 0.3) ** 2
+
+    value, offset = parabolic_peak(force(-1.0), force(0.0), force(1.0))
+    assert value == pytest.approx(2.0, abs=1e-14) and offset == pytest.approx(0.3, abs=1e-14)
+    assert parabolic_peak(1.0, 2.0, 3.0) == (2.0, 0.0)
