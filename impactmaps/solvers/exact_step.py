@@ -58,7 +58,7 @@ _HISTORY_WIDTH = 8
 
 # The stages below are plain compiled calls, not ``inline="always"``: numba's IR inlining
 # adds reference-count operations on every array argument, which cost up to 1.5× per step
-# (measured); only the scalar-only peak tracking is inlined.
+# (measured); only the helpers on scalars are inlined.
 
 
 @numba.njit(cache=True)
@@ -165,6 +165,19 @@ def _mark_contact(intervals, n_intervals, column, time):
         intervals[n_intervals, column] = time
         return n_intervals + column, 0.0
     return n_intervals, 1.0
+
+
+@numba.njit(cache=True, inline="always")
+def _contact_event(force, f_new, starting):
+    """(separation, touchdown) in a step whose force goes from ``force`` to ``f_new``;
+    no touchdown is sought in the step that starts at a contact (``starting``)."""
+    return force > 0.0 and f_new == 0.0, force == 0.0 and f_new > 0.0 and not starting
+
+
+@numba.njit(cache=True, inline="always")
+def _out_of_time(t, steps, max_time, max_steps):
+    """Whether the run has reached its time limit or its step budget."""
+    return t >= max_time or steps >= max_steps
 
 
 @numba.njit(cache=True, inline="always")
@@ -340,7 +353,7 @@ def integrate_impact(
                 f_prev1 = 0.0
                 if (k > 0 or steps % 8 == 0) and _no_reimpact_possible(omega, phi, q, v, wi, vi):
                     break
-                if t >= max_time or steps >= max_steps:
+                if _out_of_time(t, steps, max_time, max_steps):
                     hit_limit = 1.0
                     break
                 continue
@@ -348,8 +361,7 @@ def integrate_impact(
         # force; a contact event inside it cuts the step short at the event
         wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
         f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
-        separation = force > 0.0 and f_new == 0.0
-        touchdown = force == 0.0 and f_new > 0.0 and not starting
+        separation, touchdown = _contact_event(force, f_new, starting)
         uniform = not (separation or touchdown)
         if uniform:
             wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
@@ -396,7 +408,7 @@ def integrate_impact(
             rec += 1
         if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
-        if t >= max_time or steps >= max_steps:
+        if _out_of_time(t, steps, max_time, max_steps):
             hit_limit = 1.0
             break
 
