@@ -55,14 +55,14 @@ def _material_from_args(args, prefix: str, role: str):
 
 # -- subcommands -----------------------------------------------------------------------------
 def _cmd_restitution(args) -> dict:
-    from .solvers.compact import restitution
+    from .solvers.halfspace import restitution
 
     return {"beta": args.beta, "restitution": float(restitution(args.beta))}
 
 
 def _cmd_halfspace(args) -> dict:
     from .contact import Sphere, law_for_sphere
-    from .solvers.compact import halfspace_impact
+    from .solvers.halfspace import halfspace_impact
 
     impactor_material = _material_from_args(args, "", "impactor")
     target_material = _material_from_args(args, "target_", "target")

@@ -22,7 +22,6 @@ from impactmaps.materials import IsotropicMaterial
 from impactmaps.solvers.modal import simulate_normalised
 from impactmaps.targets import beam_modes
 from impactmaps.targets.beam import Beam
-from impactmaps.targets.beam_modes import BeamSection
 
 STEEL = IsotropicMaterial(youngs_modulus=2.1e11, poisson_ratio=0.3, density=7850.0)
 

@@ -26,7 +26,7 @@ from impactmaps.contact import (
 )
 from impactmaps.dimensionless import impact_number
 from impactmaps.fd.beam import _contact_stiffness_bound, _kernel_curve
-from impactmaps.solvers.compact import energy_balance_restitution
+from impactmaps.solvers.halfspace import energy_balance_restitution
 from impactmaps.solvers.modal import reference_contact_stiffness
 
 from .test_contact_laws import ALUMINIUM, BALL, Material  # the 12.7 mm steel ball on aluminium
@@ -226,7 +226,7 @@ def test_modal_reference_stiffness(name, velocity):
 @pytest.mark.parametrize("name", LAWS)
 @pytest.mark.parametrize("velocity", VELOCITIES)
 def test_compact_energy_balance(name, velocity):
-    """solvers.compact.energy_balance_restitution = sqrt(recovered_energy(α_m)/(½ m V0²))
+    """solvers.halfspace.energy_balance_restitution = sqrt(recovered_energy(α_m)/(½ m V0²))
     with α_m = indentation_for_energy(½ m V0²): rel. 1e-12 (its Brent search stops at
     rtol 1e-14 on α_m)."""
     law = law_from_registry(name)

@@ -596,7 +596,7 @@ def test_elastic_plastic_contact_modal_equals_fd(law_name):
     """Issue cross-check: an elastic-plastic contact law on an elastic beam gives the same
     peak force (within 1 %) and first contact duration from the modal solver (closed-form
     SS Rayleigh basis) and from the FD solver with plasticity off."""
-    from impactmaps.contact import StrongeContact, YigitChristoforouContact
+    from impactmaps.contact import YigitChristoforouContact
     from impactmaps.solvers.modal import simulate
 
     if law_name == "stronge":

@@ -1,4 +1,4 @@
-"""Verification of the exact-step impact integrator (impactmaps.solvers.kernels).
+"""Verification of the exact-step impact integrator (impactmaps.solvers.exact_step).
 
 Independent references:
 
@@ -24,7 +24,7 @@ import scipy.linalg
 
 from benchmarks.baseline_solve_ivp import baseline_like
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.kernels import oscillator_step_coefficients
+from impactmaps.solvers.oscillator_step import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
 from impactmaps.targets.base import ModalBasis
 
@@ -243,7 +243,7 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     """The doubled free-flight steps square the one-step map instead of re-evaluating
     trigonometric functions; after six squarings they still equal the direct
     coefficients over 64 h (undamped and damped)."""
-    from impactmaps.solvers.kernels import _fill_coefficients, _square_free_propagators
+    from impactmaps.solvers.oscillator_step import fill_step_coefficients, square_free_propagators
 
     omega = np.array([0.0, 0.3, 2.0, 17.0, 400.0])
     damping = np.where(omega > 0, zeta, 0.0)
@@ -252,14 +252,14 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     powers = 7
     free = np.zeros((powers, 8, omega.size))
     one = np.empty((8, omega.size))
-    _fill_coefficients(omega, damping, phi, h, one)
+    fill_step_coefficients(omega, damping, phi, h, one)
     free[0, :4] = one[:4]
     ready = np.zeros(powers, dtype=np.bool_)
     ready[0] = True
-    _square_free_propagators(free, ready, powers - 1)
+    square_free_propagators(free, ready, powers - 1)
     for k in range(powers):
         direct = np.empty((8, omega.size))
-        _fill_coefficients(omega, damping, phi, (2**k) * h, direct)
+        fill_step_coefficients(omega, damping, phi, (2**k) * h, direct)
         scale = 1.0 + np.abs(direct[:4])
         assert np.all(np.abs(free[k, :4] - direct[:4]) <= 1e-12 * scale)
         assert np.all(free[k, 4:] == 0.0)
@@ -352,3 +352,17 @@ def test_sampled_loop_instability_is_avoided():
     assert default.time_step * top <= STABLE_TOP_STEP * (1 + 1e-9)
     assert default.impacts == resolved.impacts == 1
     assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)
+
+
+def test_parabolic_peak_recovers_the_vertex_of_a_parabola():
+    """Three samples of F(t) = 2 − 3(t − 0.3)², h = 1 apart around t = 0: the refinement
+    returns the vertex (2 at offset 0.3) to round-off (exact for a parabola), and the
+    middle sample with offset 0 when the samples do not curve downwards."""
+    from impactmaps.solvers._peak import parabolic_peak
+
+    def force(t):
+        return 2.0 - 3.0 * (t - 0.3) ** 2
+
+    value, offset = parabolic_peak(force(-1.0), force(0.0), force(1.0))
+    assert value == pytest.approx(2.0, abs=1e-14) and offset == pytest.approx(0.3, abs=1e-14)
+    assert parabolic_peak(1.0, 2.0, 3.0) == (2.0, 0.0)

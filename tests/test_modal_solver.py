@@ -15,6 +15,7 @@ import pytest
 from impactmaps.contact import LinearContact
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
+from impactmaps.targets.halfspace import HalfSpace
 
 from .analytic import (
     ss_beam_impactor,
@@ -24,7 +25,7 @@ from .analytic import (
 )
 
 REFERENCE = Path(__file__).resolve().parent / "data" / "fmax_reference.csv"  # see tests/data/README.md
-HALF_SPACE = ModalBasis(np.zeros(0), np.zeros(0))
+HALF_SPACE = HalfSpace()
 
 
 def _run(kind, loss_factor, relative_stiffness, settings=None, record=False):

@@ -18,7 +18,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 
 from impactmaps.maps.lookup import SHIPPED_MAPS
 from impactmaps.maps.store import save_atomic

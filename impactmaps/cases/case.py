@@ -23,6 +23,7 @@ from ..contact.base import ContactLaw, available_contact_laws, contact_law
 from ..contact.sphere import Sphere, law_for_sphere
 from ..materials import IsotropicMaterial, Laminate
 from ..solvers.modal import ModalSettings, reference_contact_stiffness
+from ..targets.halfspace import HalfSpace
 from ._materials import isotropic_material, target_material
 from ._toml import (
     check_keys,
@@ -205,11 +206,7 @@ def _target(data):
     check_keys(entries, path, target_keys(kind))
     contact_material = target_material(entries, path)
     if kind == "halfspace":
-        import numpy as np
-
-        from ..targets.base import ModalBasis  # replaced by the HalfSpace target
-
-        return ModalBasis(np.empty(0), np.empty(0), 0.0), kind, contact_material
+        return HalfSpace(), kind, contact_material
     build, size = _target_builder(kind, contact_material)
     for key in set(_BEAM_SIZE + _PLATE_SIZE) - set(size):
         if key in entries and key in (_BEAM_SIZE if kind == "beam" else _PLATE_SIZE):

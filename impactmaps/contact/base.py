@@ -28,7 +28,12 @@ from typing import ClassVar
 import numba
 import numpy as np
 
-from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
+from .._checks import (
+    require_choice,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
 
 __all__ = [
     "ContactLaw",

@@ -18,7 +18,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import require_in_range, require_positive
-from .base import LawOption, effective_modulus, effective_radius, require_positive_or_infinite
+from .base import (
+    LawOption,
+    effective_modulus,
+    effective_radius,
+    require_positive_or_infinite,
+)
 
 __all__ = ["ContactPair", "PAIR_OPTIONS", "softer_yield_strength"]
 
@@ -137,7 +142,9 @@ class ContactPair:
         -------
         ContactPair
         """
-        from .sphere import Sphere  # sphere.py builds laws from pairs: import here, not at the top
+        from .sphere import (
+            Sphere,  # sphere.py builds laws from pairs: import here, not at the top
+        )
 
         if not isinstance(sphere, Sphere):
             raise ValueError(f"sphere = {sphere!r} is not a Sphere")

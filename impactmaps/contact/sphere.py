@@ -15,7 +15,13 @@ import numpy as np
 
 from .._checks import require_positive
 from .base import ContactLaw, LawOption, contact_law_class
-from .pair import PAIR_OPTIONS, ContactPair, check_elastic_material, material_attribute, softer_yield_strength
+from .pair import (
+    PAIR_OPTIONS,
+    ContactPair,
+    check_elastic_material,
+    material_attribute,
+    softer_yield_strength,
+)
 
 __all__ = ["Sphere", "law_for_sphere", "law_options", "softer_yield_strength"]
 

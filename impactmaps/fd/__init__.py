@@ -15,7 +15,12 @@ from .beam import (
     simulate_fd_response,
     stable_time_step,
 )
-from .section import LayeredSection, SectionState, rectangular_moment_curvature, stress_update
+from .section import (
+    LayeredSection,
+    SectionState,
+    rectangular_moment_curvature,
+    stress_update,
+)
 
 __all__ = [
     "FDBeam",

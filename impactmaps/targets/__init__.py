@@ -2,6 +2,7 @@
 
 from .base import ModalBasis, Target
 from .beam import Beam
+from .halfspace import HalfSpace
 from .plate import Plate
 
-__all__ = ["Beam", "ModalBasis", "Plate", "Target"]
+__all__ = ["Beam", "HalfSpace", "ModalBasis", "Plate", "Target"]

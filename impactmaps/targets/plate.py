@@ -25,8 +25,17 @@ from typing import ClassVar
 import numpy as np
 import scipy.special
 
-from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
-from ..dimensionless import effective_plate_stiffness, impactor_mass_for_plate, loss_factor_plate
+from .._checks import (
+    require_choice,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
+from ..dimensionless import (
+    effective_plate_stiffness,
+    impactor_mass_for_plate,
+    loss_factor_plate,
+)
 from . import ritz
 from .base import ModalBasis, Target
 

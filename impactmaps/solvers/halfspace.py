@@ -1,6 +1,6 @@
-"""Compact-body impact: a rigid sphere on a fixed half-space, and closed forms.
+"""A rigid sphere on a fixed half-space (compact-body impact), and its closed forms.
 
-The target does not move, so the indentation α is the impactor displacement and
+The target (:class:`impactmaps.targets.halfspace.HalfSpace`) does not move, so the indentation α is the impactor displacement and
 
     m α'' = −F(α; α_max),   α(0) = 0,   α'(0) = V0,
 
@@ -28,7 +28,6 @@ import warnings
 import numpy as np
 import pandas as pd
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 from scipy.special import beta as beta_function
 
 from .._checks import require_positive
@@ -150,10 +149,7 @@ def energy_balance_restitution(law: ContactLaw, impactor_mass, velocity):
     require_positive("velocity", velocity, "m/s")
     _single_parameters(law)
     energy = 0.5 * float(impactor_mass) * float(velocity) ** 2
-    upper = _indentation_scale(law, energy)
-    while float(law.loading_energy(upper)) < energy:
-        upper *= 2.0
-    alpha_max = brentq(lambda a: float(law.loading_energy(a)) - energy, 0.0, upper, xtol=1e-300, rtol=1e-14)
+    alpha_max = float(law.indentation_for_energy(energy))
     return float(np.sqrt(float(law.recovered_energy(alpha_max)) / energy))
 
 

@@ -19,7 +19,7 @@ from impactmaps.contact import (
     available_contact_laws,
     contact_law,
 )
-from impactmaps.solvers.compact import (
+from impactmaps.solvers.halfspace import (
     HERTZ_CONTACT_TIME_FACTOR,
     energy_balance_restitution,
     halfspace_impact,
@@ -185,7 +185,7 @@ def _registry_law(name):
         "stronge": dict(effective_modulus=1.1e11, radius=0.01, yield_strength=4e8),
     }
     if name not in params:
-        pytest.fail(f"registered law {name!r} has no example in test_compact.py: add one")
+        pytest.fail(f"registered law {name!r} has no example in test_halfspace.py: add one")
     return contact_law(name, **params[name])
 
 
@@ -234,3 +234,38 @@ def test_bad_input(call, parameter, detail):
     with pytest.raises(ValueError) as info:
         call()
     assert parameter in str(info.value) and detail in str(info.value)
+
+
+# -- the HalfSpace target ---------------------------------------------------------------------
+def test_halfspace_target_has_no_modes_and_infinite_stiffness():
+    """The Target protocol of a fixed half-space: no modes below any cut-off, no residual
+    compliance, K_st = ∞ (λ = ∞) and ζ = 0 for every impactor (exact values)."""
+    from impactmaps.targets.base import Target
+    from impactmaps.targets.halfspace import HalfSpace
+
+    target = HalfSpace()
+    assert isinstance(target, Target) and target.structure == "halfspace"
+    basis = target.modes(1e9, min_modes=10)
+    assert basis.size == 0 and basis.residual_compliance == 0.0
+    assert target.static_compliance() == 0.0 and target.static_stiffness() == math.inf
+    assert np.all(target.loss_factor(np.array([0.01, 1.0]), 1e6) == 0.0)
+    with pytest.raises(ValueError, match="loss_factor"):
+        target.impactor_mass_for(0.5, 1e6)
+    with pytest.raises(ValueError, match="max_frequency"):
+        target.modes(-1.0)
+
+
+def test_modal_solver_on_halfspace_target_equals_empty_basis():
+    """The modal solver on a HalfSpace target integrates the contact alone: the run is
+    bit-identical to the same run on an empty ModalBasis with zero residual (the two are
+    one target; tests/test_modal_solver.py checks that run against F̄ = sin τ)."""
+    from impactmaps.solvers.modal import simulate
+    from impactmaps.targets.base import ModalBasis
+    from impactmaps.targets.halfspace import HalfSpace
+
+    law = LinearContact(2.0e7)
+    result = simulate(HalfSpace(), law, MASS, 3.0, record=True)
+    assert result.n_modes == 0
+    empty = simulate(ModalBasis(np.zeros(0), np.zeros(0)), law, MASS, 3.0, record=True)
+    assert result.peak_force == empty.peak_force
+    assert np.array_equal(result.history.to_numpy(), empty.history.to_numpy())
