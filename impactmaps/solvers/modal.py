@@ -36,6 +36,7 @@ from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
 from .exact_step import integrate_impact
+from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
@@ -50,16 +51,8 @@ __all__ = [
     "ConvergenceWarning",
 ]
 
-HISTORY_COLUMNS = (
-    "time_s",
-    "force_N",
-    "indentation_m",
-    "impactor_displacement_m",
-    "impactor_velocity_m_s",
-    "target_displacement_m",
-    "target_velocity_m_s",
-    "structure_energy_J",
-)
+#: Columns of the integrator's history array: the common ones, then the structure energy.
+HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
 
 
 def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
