@@ -1,4 +1,4 @@
-"""Verification of the finite-difference Rayleigh beam (impactmaps.fd.beam).
+"""Verification of the finite-difference Rayleigh beam (impactmaps.fd).
 
 Exact references used: the static deflection PL³/(48EI) of a simply supported (SS) beam
 (Rayleigh = Euler statics, no shear deflection), the exact elastic-plastic static
@@ -171,12 +171,12 @@ def test_stability_bound_is_safe_and_tight(n):
     (< 1.3 % for N ≥ 50)."""
     from scipy.linalg import eigh
 
-    from impactmaps.fd.beam import _grid
+    from impactmaps.fd.grid import beam_grid
 
     dx = LENGTH / n
     for supports in ("ss", "cc", "free", ("cc", "free"), ("ss", "free")):
         beam = _beam(plastic=False, n_elements=n, supports=supports)
-        grid = _grid(beam)
+        grid = beam_grid(beam)
         free = grid.free
         top = eigh(grid.stiffness_dense()[np.ix_(free, free)], grid.mass_dense()[np.ix_(free, free)],
                    eigvals_only=True)[-1]
@@ -517,22 +517,20 @@ def test_batched_law_is_rejected():
 
 @pytest.mark.parametrize("ratio", [0.5, 2.0, 10.0, 200.0])
 def test_contact_energies_match_the_law(ratio):
-    """The solver evaluates the contact dissipation and permanent indentation from the
-    law's kernel (the curve the time loop actually used); they must equal the law's own
+    """The ledger's contact dissipation and permanent indentation are the law's own
     ``dissipated_energy`` / ``permanent_indentation`` (closed forms for Stronge) at
     α_max = ratio × δ_y — elastic, near yield (where the specified law returns more work
     than it absorbed, dissipation < 0), elastic-plastic and fully plastic. Tolerance 1e-6
-    relative to the loading work (20001-point trapezoid)."""
-    from impactmaps.fd.beam import _contact_energies
+    relative to the loading work (the bound the earlier kernel quadrature met)."""
+    from impactmaps.fd.energy import contact_energies
 
-    params = np.ascontiguousarray(STRONGE.kernel_parameters, dtype=float)
     alpha_max = ratio * float(STRONGE.yield_indentation)
-    mine = _contact_energies(STRONGE.kernel, params, alpha_max)
+    mine = contact_energies(STRONGE, alpha_max)
     scale = float(STRONGE.loading_energy(alpha_max))
     assert mine["dissipation"] == pytest.approx(float(STRONGE.dissipated_energy(alpha_max)), abs=1e-6 * scale)
     assert mine["permanent_indentation"] == pytest.approx(
         float(STRONGE.permanent_indentation(alpha_max)), abs=1e-9 * alpha_max)
-    linear = _contact_energies(LinearContact(2e8).kernel, np.array([2e8]), 1e-5)
+    linear = contact_energies(LinearContact(2e8), 1e-5)
     assert linear["dissipation"] == pytest.approx(0.0, abs=1e-12) and linear["permanent_indentation"] == 0.0
 
 
