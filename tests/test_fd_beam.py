@@ -20,11 +20,16 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from impactmaps.contact import HertzContact, LinearContact, StrongeContact, effective_modulus
+from impactmaps.contact import (
+    HertzContact,
+    LinearContact,
+    StrongeContact,
+    effective_modulus,
+)
 from impactmaps.fd import (
     FDBeam,
-    grid_frequency_bound,
     LayeredSection,
+    grid_frequency_bound,
     simulate_fd,
     simulate_fd_response,
     stable_time_step,
@@ -594,7 +599,7 @@ def test_elastic_plastic_contact_modal_equals_fd(law_name):
     """Issue cross-check: an elastic-plastic contact law on an elastic beam gives the same
     peak force (within 1 %) and first contact duration from the modal solver (closed-form
     SS Rayleigh basis) and from the FD solver with plasticity off."""
-    from impactmaps.contact import StrongeContact, YigitChristoforouContact
+    from impactmaps.contact import YigitChristoforouContact
     from impactmaps.solvers.modal import simulate
 
     if law_name == "stronge":
@@ -642,3 +647,59 @@ def test_matches_modal_rayleigh_in_every_regime(law_kind, regime, loss_factor):
     first_fd = fd.contact_intervals[0, 1] - fd.contact_intervals[0, 0]
     assert first_fd == pytest.approx(modal.first_contact_duration, rel=1e-2)
     assert fd.impacts == modal.impacts
+
+
+# =====================================================================================
+# front end: a toolkit Beam plus FDSettings
+# =====================================================================================
+@pytest.mark.parametrize("code, ends", [("ss", ("ss", "ss")), ("cc", ("cc", "cc")),
+                                        ("cs", ("cc", "ss")), ("cf", ("cc", "free")),
+                                        ("ff", ("free", "free"))])
+def test_from_beam_maps_the_support_codes(code, ends):
+    """FDBeam.from_beam takes geometry and supports from a rectangular toolkit Beam
+    (``"cs"``: clamped at x = 0, simply supported at x = L; ``"cf"``: cantilever) and the
+    grid options from FDSettings; the material values are copied, not recomputed."""
+    from impactmaps.fd import FDSettings
+    from impactmaps.materials import IsotropicMaterial
+    from impactmaps.targets.beam import Beam
+
+    steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
+    beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports=code)
+    fd = FDBeam.from_beam(beam, steel, FDSettings(n_elements=40, damping_per_length=3.0))
+    assert fd == FDBeam(LENGTH, WIDTH, HEIGHT, MODULUS, DENSITY, YIELD, supports=ends,
+                        n_elements=40, damping_per_length=3.0)
+
+
+def test_simulate_fd_accepts_a_toolkit_beam_and_settings():
+    """simulate_fd(Beam, law, m, V, material=..., settings=FDSettings(...)) is the same run
+    as the FDBeam with keywords (identical histories and scalars); run options given both
+    ways, a missing material, and a non-rectangular beam are ValueErrors."""
+    from impactmaps.fd import FDSettings
+    from impactmaps.materials import IsotropicMaterial
+    from impactmaps.targets.beam import Beam
+
+    steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
+    beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports="cs",
+                            impact_position=0.3)
+    settings = FDSettings(n_elements=40, duration=2e-3, history_stride=2, gauge_positions=(0.2,))
+    result = simulate_fd(beam, STRONGE, 1.0, 2.0, material=steel, settings=settings)
+    reference = simulate_fd(_beam(n_elements=40, supports=("cc", "ss")), STRONGE, 1.0, 2.0, 0.3,
+                            duration=2e-3, history_stride=2, gauge_positions=(0.2,))
+    _checked(result)
+    assert result.history.equals(reference.history)
+    assert result.summary() == reference.summary()
+    # the settings' grid options replace those of an FDBeam
+    again = simulate_fd(_beam(supports=("cc", "ss")), STRONGE, 1.0, 2.0, 0.3, settings=settings)
+    assert again.history.equals(reference.history)
+    with pytest.raises(ValueError, match="duration"):
+        simulate_fd(beam, STRONGE, 1.0, 2.0, material=steel, settings=settings, duration=1e-3)
+    with pytest.raises(ValueError, match="material"):
+        simulate_fd(beam, STRONGE, 1.0, 2.0, settings=settings)
+    with pytest.raises(ValueError, match="material"):
+        simulate_fd(_beam(), STRONGE, 1.0, 2.0, material=steel, duration=1e-3)
+    stiffer = Beam(LENGTH, 2 * beam.bending_stiffness, np.inf, beam.mass_per_length,
+                   beam.rotary_inertia, theory="rayleigh", width=WIDTH, height=HEIGHT)
+    with pytest.raises(ValueError, match="bending_stiffness"):
+        FDBeam.from_beam(stiffer, steel)
+    with pytest.raises(ValueError, match="history_stride"):
+        FDSettings(history_stride=0)

@@ -14,7 +14,12 @@ from .beam import FDBeam, FDSettings
 from .grid import grid_frequency_bound
 from .impact import STANDARD_GRAVITY, FDDetails, simulate_fd
 from .response import FDResponse, simulate_fd_response
-from .section import LayeredSection, SectionState, rectangular_moment_curvature, stress_update
+from .section import (
+    LayeredSection,
+    SectionState,
+    rectangular_moment_curvature,
+    stress_update,
+)
 from .timestep import stable_time_step
 
 __all__ = [

@@ -138,7 +138,7 @@ class FDBeam:
         object.__setattr__(self, "plastic", bool(self.plastic))
 
     @classmethod
-    def from_material(cls, length, width, height, material, **options) -> "FDBeam":
+    def from_material(cls, length, width, height, material, **options) -> FDBeam:
         """Build from a material object.
 
         Parameters

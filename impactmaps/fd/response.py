@@ -18,7 +18,14 @@ from ..contact.linear import _linear_kernel
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, require_stride
 from .energy import beam_energies, kinetic_energy
-from .grid import beam_grid, factorise, gauge_columns, gauge_weights, node_for, tridiagonal_solve
+from .grid import (
+    beam_grid,
+    factorise,
+    gauge_columns,
+    gauge_weights,
+    node_for,
+    tridiagonal_solve,
+)
 from .timestep import choose_time_step
 
 __all__ = ["FDResponse", "simulate_fd_response"]

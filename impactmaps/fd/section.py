@@ -51,7 +51,12 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from .._checks import require_finite, require_in_range, require_nonnegative, require_positive
+from .._checks import (
+    require_finite,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
 
 __all__ = [
     "LayeredSection",
