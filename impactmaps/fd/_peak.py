@@ -18,7 +18,7 @@ import numba
 __all__ = ["parabolic_peak"]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def parabolic_peak(before, peak, after, peak_time, time_step):
     """Refine a sampled maximum with the parabola through its two neighbours.
 
