@@ -157,6 +157,9 @@ class key_path:
 
 def _kind(annotation, default) -> str:
     """The TOML value kind of an option, from its annotation or, failing that, its default."""
+    members = [a for a in typing.get_args(annotation) if a is not type(None)]
+    if len(members) == 1:  # ``X | None``: an optional X
+        annotation = members[0]
     text = str(annotation)
     if annotation is bool or isinstance(default, bool):
         return _BOOLEAN

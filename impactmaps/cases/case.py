@@ -16,6 +16,7 @@ import math
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .._checks import require_in_range
 from ..contact import law_options
@@ -34,6 +35,9 @@ from ._toml import (
     string,
     table,
 )
+
+if TYPE_CHECKING:
+    from ..fd import FDSettings
 
 __all__ = ["Case", "OutputSettings", "SOLVER_KINDS", "TARGET_TYPES", "parse_case", "load_case"]
 
@@ -103,9 +107,9 @@ class Case:
     settings : ModalSettings
         Modal solver settings (``solver.duration`` already converted to
         ``max_time_ratio``).
-    fd_settings : dict
-        Finite-difference settings (``[fd]``): ``beam`` options of the FD beam and
-        ``run`` options of :func:`impactmaps.fd.simulate_fd`.
+    fd_settings : FDSettings or None
+        Finite-difference settings (``[fd]``; ``None`` when the file has none and the
+        solver is modal).
     duration : float or None
         Requested time limit [s] (``None``: the solver default; required by ``fd``).
     time_step : float or None
@@ -131,7 +135,7 @@ class Case:
     contact_options: dict = field(default_factory=dict)
     solver_kind: str = "modal"
     settings: ModalSettings = field(default_factory=ModalSettings)
-    fd_settings: dict = field(default_factory=dict)
+    fd_settings: FDSettings | None = None
     duration: float | None = None
     time_step: float | None = None
     output: OutputSettings = field(default_factory=OutputSettings)
@@ -147,7 +151,11 @@ class Case:
     @property
     def fd_beam(self):
         """The finite-difference beam of a ``kind = "fd"`` case (``None`` otherwise)."""
-        return self.fd_settings.get("beam")
+        if self.solver_kind != "fd":
+            return None
+        from ..fd import FDBeam
+
+        return FDBeam.from_beam(self.target, self.target_material, self.fd_settings)
 
 
 # -- sections ---------------------------------------------------------------------------
@@ -327,9 +335,9 @@ def parse_case(text: str, *, name: str = "case", source: Path | None = None,
                                       default_law="stronge" if kind == "fd" else None)
     settings, duration, time_step = _solver(data, law, sphere, velocity, kind)
     output = _output(data)
-    fd = fd_settings(data, target, contact_material) if kind == "fd" or "fd" in data else {}
+    fd = fd_settings(data, contact_material, required=kind == "fd") if kind == "fd" or "fd" in data else None
     if kind == "fd":
-        time_step = fd["run"]["time_step"]
+        time_step = fd.time_step
     return Case(
         name=data.get("name", name), sphere=sphere, velocity=velocity, target=target,
         target_type=target_type, target_material=contact_material, law=law, law_name=law_name,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -94,9 +95,9 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
 def _run_fd(case: Case) -> ImpactResult:
     from ..fd import simulate_fd
 
-    run = case.fd_settings["run"]
-    return simulate_fd(case.fd_settings["beam"], case.law, case.impactor_mass, case.velocity,
-                       case.target.impact_position, duration=case.duration, **run)
+    settings = replace(case.fd_settings, duration=case.duration)
+    return simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,
+                       settings=settings, material=case.target_material)
 
 
 def run_case(case: Case) -> tuple[ImpactResult, dict]:
