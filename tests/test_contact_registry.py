@@ -25,7 +25,8 @@ from impactmaps.contact import (
     yield_indentation,
 )
 from impactmaps.dimensionless import impact_number
-from impactmaps.fd.beam import _contact_stiffness_bound, _kernel_curve
+from impactmaps.fd.energy import kernel_curve as _kernel_curve
+from impactmaps.fd.timestep import contact_stiffness_bound as _contact_stiffness_bound
 from impactmaps.solvers.halfspace import energy_balance_restitution
 from impactmaps.solvers.modal import reference_contact_stiffness
 
@@ -237,7 +238,7 @@ def test_compact_energy_balance(name, velocity):
 
 
 def _fd_bracket(law: ContactLaw, energy: float) -> float:
-    """The indentation fd.beam._contact_stiffness_bound doubles up to (1e-12 m × 2^k, the
+    """The indentation fd.timestep.contact_stiffness_bound doubles up to (1e-12 m × 2^k, the
     first whose loading work reaches ``energy``), from indentation_for_energy."""
     return 1e-12 * 2.0 ** max(0, math.ceil(math.log2(float(law.indentation_for_energy(energy)) / 1e-12)))
 
@@ -245,7 +246,7 @@ def _fd_bracket(law: ContactLaw, energy: float) -> float:
 @pytest.mark.parametrize("name", LAWS)
 @pytest.mark.parametrize("velocity", VELOCITIES)
 def test_fd_stiffness_bound(name, velocity):
-    """fd.beam._contact_stiffness_bound is unchanged, bit for bit, when its doubling loop
+    """fd.timestep.contact_stiffness_bound is unchanged, bit for bit, when its doubling loop
     (trapezoid work on 4096 points, α = 1e-12 m × 2^k) is replaced by rounding
     indentation_for_energy(2 × ½ m V0²) up to the next 1e-12 m × 2^k: at that α the
     trapezoid work reaches the target and at α/2 it does not (the loop's stopping rule),
