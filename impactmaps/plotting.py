@@ -10,6 +10,8 @@ __all__ = [
     "plot_regime_strip",
     "plot_regime_map",
     "plot_force_history",
+    "plot_impact_history",
+    "save_impact_history",
     "plot_scaling",
     "plot_restitution",
 ]
@@ -281,6 +283,77 @@ def plot_force_history(results, *, labels=None, normalised=True, quantity="force
     if any(labels):
         ax.legend(fontsize=8)
     return ax
+
+
+def plot_impact_history(result, *, normalised=False, figure=None):
+    """Force, indentation and target deflection of one run against time, contacts marked.
+
+    Three stacked panels sharing the time axis; each contact interval is shaded, and
+    the peak force is marked.
+
+    Parameters
+    ----------
+    result : ImpactResult
+        A result with its history (``record=True``).
+    normalised : bool
+        Plot τ = ωt, F̄ = F/(m_i V0 ω), α/α*, w/α* (else ms, N, µm, µm).
+    figure : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    if result.history is None:
+        raise ValueError("result has no history: run the solver with record=True")
+    if figure is None:
+        figure = plt.figure(figsize=(7.5, 7.5))
+    axes = figure.subplots(3, 1, sharex=True)
+    if normalised:
+        history = result.normalised_history()
+        time, scale = history["tau"], result.contact_frequency
+        columns = ("force_normalised", "indentation_normalised", "target_displacement_normalised")
+        factors, labels = (1.0, 1.0, 1.0), ("F̄ = F/(m$_i$ V$_0$ ω)", "indentation α/α*", "deflection w/α*")
+        xlabel = "normalised time τ = ωt"
+    else:
+        history = result.history
+        time, scale = history["time_s"] * 1e3, 1e3
+        columns = ("force_N", "indentation_m", "target_displacement_m")
+        factors, labels = (1.0, 1e6, 1e6), ("contact force [N]", "indentation [µm]", "deflection at impact [µm]")
+        xlabel = "time [ms]"
+    for ax, column, factor, label in zip(axes, columns, factors, labels):
+        ax.plot(time, history[column] * factor, color="C0", lw=1.3)
+        for start, end in np.asarray(result.contact_intervals, dtype=float).reshape(-1, 2):
+            end = end if np.isfinite(end) else float(np.max(time)) / scale
+            ax.axvspan(start * scale, end * scale, color="#f6e3c7", alpha=0.7, lw=0, zorder=0)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    peak = result.peak_force / result.force_scale if normalised else result.peak_force
+    axes[0].plot([result.peak_time * scale], [peak], "o", color="C3", ms=5,
+                 label=f"peak {peak:.4g}{'' if normalised else ' N'}")
+    axes[0].plot([], [], color="#f6e3c7", lw=8, label=f"contact ({result.impacts} impact{'s' * (result.impacts != 1)})")
+    axes[0].legend(fontsize=8, loc="upper right")
+    axes[-1].set_xlabel(xlabel)
+    figure.tight_layout()
+    return figure
+
+
+def save_impact_history(result, path, *, normalised=False):
+    """Draw :func:`plot_impact_history` into the image file ``path`` (format from its suffix); return the path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plot_impact_history(result, normalised=normalised)
+    try:
+        figure.savefig(path, dpi=120)
+    finally:
+        plt.close(figure)
+    return path
 
 
 def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):
