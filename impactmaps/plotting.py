@@ -315,13 +315,13 @@ def plot_impact_history(result, *, normalised=False, figure=None):
         history = result.normalised_history()
         time, scale = history["tau"], result.contact_frequency
         columns = ("force_normalised", "indentation_normalised", "target_displacement_normalised")
-        factors, labels = (1.0, 1.0, 1.0), ("F̄ = F/(m$_i$ V$_0$ ω)", "indentation α/α*", "deflection w/α*")
+        factors, labels = (1.0, 1.0, 1.0), ("F̄ = F/(m$_i$ V$_0$ ω)", "indentation α/α* (< 0: gap)", "deflection w/α*")
         xlabel = "normalised time τ = ωt"
     else:
         history = result.history
         time, scale = history["time_s"] * 1e3, 1e3
         columns = ("force_N", "indentation_m", "target_displacement_m")
-        factors, labels = (1.0, 1e6, 1e6), ("contact force [N]", "indentation [µm]", "deflection at impact [µm]")
+        factors, labels = (1.0, 1e6, 1e6), ("contact force [N]", "indentation [µm] (< 0: gap)", "deflection at impact [µm]")
         xlabel = "time [ms]"
     for ax, column, factor, label in zip(axes, columns, factors, labels):
         ax.plot(time, history[column] * factor, color="C0", lw=1.3)
