@@ -22,6 +22,8 @@ __all__ = ["main", "build_parser"]
 
 #: Largest β for which the closed form of e(β) keeps ~9 significant digits.
 MAX_RESTITUTION_BETA = 1e8
+#: Seconds to wait for a Dask scheduler (``sweep --scheduler``).
+SCHEDULER_TIMEOUT_S = 5.0
 
 
 # -- helpers -------------------------------------------------------------------------------
@@ -355,7 +357,7 @@ def _cmd_sweep(args) -> dict:
     except ImportError:
         raise ValueError("--scheduler needs dask.distributed: pip install 'impactmaps[dask]'") from None
     try:
-        client = Client(args.scheduler, timeout=10)
+        client = Client(args.scheduler, timeout=SCHEDULER_TIMEOUT_S)
     except (OSError, TimeoutError) as error:
         raise ValueError(f"--scheduler = {args.scheduler!r} cannot be reached: {error}") from None
     with client:

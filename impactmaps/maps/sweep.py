@@ -12,8 +12,9 @@ from __future__ import annotations
 import math
 import os
 import signal
+import threading
 import time
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
 from dataclasses import asdict
 from datetime import datetime, timezone
 from typing import Sequence
@@ -349,10 +350,23 @@ def sweep(
     bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
     own_executor = None
     last_save = time.monotonic()
+    stop = []  # Ctrl-C: finish the chunk in hand, save, raise SweepInterrupted
+
+    def on_interrupt(signum, frame):
+        if stop:  # a second Ctrl-C stops at once
+            raise KeyboardInterrupt
+        stop.append(signum)
+
+    previous = None
+    if threading.current_thread() is threading.main_thread() and \
+            signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous = signal.signal(signal.SIGINT, on_interrupt)
     try:
         workers = max_workers or os.cpu_count() or 1
         if executor is None and (workers == 1 or len(tasks) <= 1):
             for task in tasks:
+                if stop:
+                    break
                 absorb(task, solve_points(task[0], task[4], settings))
                 save()
         elif tasks:
@@ -361,22 +375,30 @@ def sweep(
                 own_executor = executor = ProcessPoolExecutor(
                     max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
             futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
-            for future in as_completed(futures):
-                absorb(futures[future], future.result())
+            running = set(futures)
+            while running and not stop:
+                finished, running = wait(running, timeout=0.25, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    absorb(futures[future], future.result())
                 save()
+            for future in running:
+                future.cancel()
     except KeyboardInterrupt:
-        interrupted = True
-    else:
-        interrupted = False
+        stop.append(signal.SIGINT)
     finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
         bar.close()
         if own_executor is not None:
             own_executor.shutdown(wait=False, cancel_futures=True)
         save(final=True)
-    if interrupted:
+    if stop:
         raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
     result = snapshot()
-    result["regime"] = classify_dataset(result)
+    try:
+        result["regime"] = classify_dataset(result)
+    except KeyboardInterrupt:
+        raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
     return result
 
 
