@@ -45,7 +45,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     Parameters
     ----------
     dataset : xarray.Dataset
-        A sweep result (dims structure, lambda_, zeta).
+        A sweep result (dims ``structure``, ``lambda_``, ``zeta``).
     structures : list of str, optional
         Structure names to draw (default all).
     lambdas : list of float, optional
