@@ -421,11 +421,20 @@ def _cmd_laws(args) -> dict:
 
 
 # -- parser ------------------------------------------------------------------------------------
+class _UsageError(Exception):
+    """A command line argparse cannot parse (reported by :func:`main` as one line, exit 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise _UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from . import __version__
 
-    parser = argparse.ArgumentParser(prog="impactmaps", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="impactmaps", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -538,8 +547,15 @@ def main(argv=None) -> int:
     """
     from .maps.store import SweepInterrupted
 
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except _UsageError as error:
+        if "--json" in argv:
+            print(dumps({"error": str(error)}))
+        print(error, file=sys.stderr)
+        return 2
     caught = []
     try:
         with warnings.catch_warnings(record=True) as caught:

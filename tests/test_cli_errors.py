@@ -135,3 +135,13 @@ def test_simulate_writes_a_history_figure(tmp_path, capsys):
     values = json.loads(capsys.readouterr().out)
     assert Path(values["outputs"]["figure"]) == out / "history.png"
     assert (out / "history.png").stat().st_size > 1000 and (out / "history.csv").exists()
+
+
+@pytest.mark.parametrize("argv", [[], ["point", "--zeta", "abc"], ["nope"], ["asymptote", "infinite-shell"],
+                                  ["restitution", "--beta", "2", "--json", "--extra"]])
+def test_unparsable_command_lines_are_one_line_and_exit_2(argv, capsys):
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert len(captured.err.strip().splitlines()) == 1 and "usage" not in captured.err
+    if "--json" in argv:
+        assert "error" in json.loads(captured.out)
