@@ -216,7 +216,7 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     return ax
 
 
-def plot_regime_map(dataset, structure, *, ax=None):
+def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     """Regimes of one structure on the (ζ, λ) plane (log axes).
 
     Parameters
@@ -225,6 +225,10 @@ def plot_regime_map(dataset, structure, *, ax=None):
         A sweep result with a ``regime`` variable.
     structure : str
         Structure name.
+    smooth : bool
+        Classify on a dense grid (F̄max, peak and wave-return times interpolated
+        linearly in log ζ, log λ, as :func:`impactmaps.maps.lookup.lookup` does) instead
+        of drawing one block per computed point; used when every point is computed.
     ax : matplotlib Axes, optional
 
     Returns
@@ -237,11 +241,23 @@ def plot_regime_map(dataset, structure, *, ax=None):
     from .maps.regimes import REGIMES
 
     ax = _axes(ax)
-    regimes = dataset["regime"].sel(structure=structure).values
-    codes = _regime_codes(regimes)
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
-    ax.pcolormesh(zeta, lam, codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5, shading="nearest")
+    one = dataset.sel(structure=structure)
+    complete = bool(one["done"].values.all()) if "done" in one else False
+    if smooth and complete and len(zeta) > 1 and len(lam) > 1:
+        from .maps.regimes import classify
+
+        dense = [_log_dense(zeta, lam, one[name].values)
+                 for name in ("fmax_normalised", "peak_time_normalised", "reflection_time_normalised")]
+        grid_lam, grid_zeta = np.meshgrid(dense[0][1], dense[0][0], indexing="ij")
+        codes = _regime_codes(classify(dense[0][2], grid_zeta, grid_lam, str(one["kind"].item()),
+                                       peak_time=dense[1][2], reflection_time=dense[2][2]))
+        ax.pcolormesh(dense[0][0], dense[0][1], codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5,
+                      shading="nearest", rasterized=True)
+    else:
+        codes = _regime_codes(one["regime"].values)
+        ax.pcolormesh(zeta, lam, codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5, shading="nearest")
     # contours of F̄max interpolated linearly in (log ζ, log λ) on a dense grid: the lines
     # have enough vertices for the labels to sit on them (a coarse grid's inline gaps
     # cut whole segments and left the labels floating)

@@ -93,3 +93,16 @@ def test_fmax_chart_legend_names_the_dotted_lines_and_sits_outside(dataset):
     assert any("quasi-static" in text for text in texts)
     assert ax.get_legend().get_bbox_to_anchor().x0 > ax.get_window_extent().x1 - 1
     assert "$" in ax.get_ylabel()  # m_i, V_0 typeset as subscripts
+
+
+def test_regime_map_is_classified_on_a_dense_grid_when_complete(dataset):
+    from matplotlib.collections import QuadMesh
+
+    ax = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff")
+    mesh = next(c for c in ax.collections if isinstance(c, QuadMesh))
+    cells = dataset.sizes["zeta"] * dataset.sizes["lambda_"]
+    if bool(dataset["done"].values.all()):
+        assert mesh.get_array().size > cells
+    coarse = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff", smooth=False)
+    mesh = next(c for c in coarse.collections if isinstance(c, QuadMesh))
+    assert mesh.get_array().size == cells
