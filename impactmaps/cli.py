@@ -539,6 +539,17 @@ def _error_text(error: BaseException) -> str:
     return str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
 
 
+def _interrupted(error: BaseException) -> bool:
+    """True if a KeyboardInterrupt is among the causes of ``error``."""
+    seen = set()
+    while error is not None and id(error) not in seen:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        seen.add(id(error))
+        error = error.__cause__ or error.__context__
+    return False
+
+
 def main(argv=None) -> int:
     """Entry point of the ``impactmaps`` command; returns the exit status.
 
@@ -566,6 +577,11 @@ def main(argv=None) -> int:
               "run the same command to resume", file=sys.stderr)
         return 130
     except KeyboardInterrupt:
+        print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except SystemError as error:  # Ctrl-C while compiled (numba) code returns reaches Python as this
+        if not _interrupted(error):
+            raise
         print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
         return 130
     except (ValueError, OSError, MemoryError) as error:

@@ -145,3 +145,18 @@ def test_unparsable_command_lines_are_one_line_and_exit_2(argv, capsys):
     assert len(captured.err.strip().splitlines()) == 1 and "usage" not in captured.err
     if "--json" in argv:
         assert "error" in json.loads(captured.out)
+
+
+def test_ctrl_c_inside_compiled_code_exits_130(monkeypatch, capsys):
+    """numba turns a KeyboardInterrupt into a SystemError; the command still exits 130."""
+    import impactmaps.solvers.compact as compact
+
+    def interrupted(*args, **kwargs):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as stop:
+            raise SystemError("returned a result with an exception set") from stop
+
+    monkeypatch.setattr(compact, "restitution", interrupted)
+    assert main(["restitution", "--beta", "2"]) == 130
+    assert capsys.readouterr().err.strip() == "impactmaps restitution: interrupted"
