@@ -93,6 +93,8 @@ def test_materials_and_laws_list_the_registries(capsys):
     materials = json.loads(capsys.readouterr().out)["materials"]
     assert set(materials) == set(available_materials())
     assert materials["structural-steel"]["youngs_modulus"] == 210e9
+    assert all(entry["source"] for entry in materials.values()), "every catalogue entry names its source"
+    assert "EN 1993-1-1" in materials["structural-steel"]["source"]
     assert main(["laws", "--json"]) == 0
     laws = json.loads(capsys.readouterr().out)["laws"]
     assert set(laws) == set(available_contact_laws())
