@@ -23,7 +23,7 @@ extensions = [
     "numpydoc",
     "impactmaps_docs",
 ]
-exclude_patterns = ["_build", "physics_contract.md"]
+exclude_patterns = ["_build", "_generated", "physics_contract.md", "case-files.md"]
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
