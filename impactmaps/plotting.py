@@ -10,6 +10,8 @@ __all__ = [
     "plot_regime_strip",
     "plot_regime_map",
     "plot_force_history",
+    "plot_impact_history",
+    "save_impact_history",
     "plot_scaling",
     "plot_restitution",
 ]
@@ -43,7 +45,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     Parameters
     ----------
     dataset : xarray.Dataset
-        A sweep result (dims structure, lambda_, zeta).
+        A sweep result (dims ``structure``, ``lambda_``, ``zeta``).
     structures : list of str, optional
         Structure names to draw (default all).
     lambdas : list of float, optional
@@ -65,10 +67,12 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     ax = _axes(ax)
     structures, lambda_values = _selection(dataset, structures, lambdas)
     zeta = dataset["zeta"].values
-    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.9, len(lambda_values)))
+    colours, markers = _lambda_styles(len(lambda_values))
     if shade_regimes:
         ax.axhspan(0.9, 1.05, color=REGIME_COLOURS["local"], alpha=0.6, lw=0, zorder=0)
-        ax.text(zeta[-1] / 1.1, 0.905, "F̄max ≥ 0.9", fontsize=8, ha="right", va="bottom", color="#2f6f2f")
+        # above every curve (F̄max ≤ 1 with a linear law), in the middle of the ζ range
+        ax.text(np.sqrt(zeta[0] * zeta[-1]), 1.025, r"local band: $\bar{F}_{max} \geq 0.9$", fontsize=8,
+                ha="center", va="center", color="#2f6f2f")
         if "regime" in dataset:
             _shade_regime_bands(ax, dataset, structures, lambda_values)
     if asymptotes:
@@ -80,26 +84,40 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
         if "beam" in kinds:
             ax.plot(dense, infinite_structure_peak(dense, "beam"), color="0.55", lw=3.0, alpha=0.6, ls="--",
                     label="infinite beam", zorder=1)
-    for colour, lam in zip(colours, lambda_values):
+    marks = max(1, zeta.size // 8)
+    for colour, marker, lam in zip(colours, markers, lambda_values):
         if asymptotes:
-            ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.8, ls=":", zorder=1)
+            ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.9, ls=":", zorder=1)
         for name in structures:
             kind = str(dataset["kind"].sel(structure=name).item())
             values = dataset["fmax_normalised"].sel(structure=name).sel(lambda_=lam, method="nearest").values
-            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2)
-        ax.plot([], [], color=colour, lw=2.5, label=f"λ = {lam:g}")
+            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2,
+                    marker=marker, markevery=marks, ms=4, mfc="white" if kind == "beam" else colour)
+        ax.plot([], [], color=colour, lw=2.0, marker=marker, ms=4, label=f"λ = {lam:g}")
     for kind, style in (("plate", "-"), ("beam", "--")):
         if any(str(dataset["kind"].sel(structure=s).item()) == kind for s in structures):
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
+    if asymptotes:
+        ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     ax.set_ylim(0.0, 1.05)
     ax.set_xlabel("loss factor ζ")
-    ax.set_ylabel("normalised maximum force F̄max = Fmax / (m_i V0 ω)")
+    ax.set_ylabel(r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$")
     ax.set_title("Normalised maximum impact force: plates solid, beams dashed; quasi-static dotted")
     ax.grid(True, which="both", alpha=0.25)
-    ax.legend(fontsize=8, ncol=2, loc="lower left")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
+
+
+def _lambda_styles(count):
+    """Distinct colours and markers for ``count`` λ curves (neighbouring λ differ in both)."""
+    import matplotlib.pyplot as plt
+
+    palette = plt.get_cmap("tab10").colors
+    colours = [palette[k % len(palette)] for k in range(count)]
+    symbols = ("o", "s", "^", "D", "v", "P", "X", "*")
+    return colours, [symbols[k % len(symbols)] for k in range(count)]
 
 
 def _selection(dataset, structures, lambdas):
@@ -198,7 +216,7 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     return ax
 
 
-def plot_regime_map(dataset, structure, *, ax=None):
+def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     """Regimes of one structure on the (ζ, λ) plane (log axes).
 
     Parameters
@@ -207,6 +225,10 @@ def plot_regime_map(dataset, structure, *, ax=None):
         A sweep result with a ``regime`` variable.
     structure : str
         Structure name.
+    smooth : bool
+        Classify on a dense grid (F̄max, peak and wave-return times interpolated
+        linearly in log ζ, log λ, as :func:`impactmaps.maps.lookup.lookup` does) instead
+        of drawing one block per computed point; used when every point is computed.
     ax : matplotlib Axes, optional
 
     Returns
@@ -219,15 +241,29 @@ def plot_regime_map(dataset, structure, *, ax=None):
     from .maps.regimes import REGIMES
 
     ax = _axes(ax)
-    regimes = dataset["regime"].sel(structure=structure).values
-    codes = _regime_codes(regimes)
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
-    ax.pcolormesh(dataset["zeta"].values, dataset["lambda_"].values, codes, cmap=cmap, vmin=-0.5,
-                  vmax=len(REGIMES) - 0.5, shading="nearest")
-    contours = ax.contour(dataset["zeta"].values, dataset["lambda_"].values,
-                          dataset["fmax_normalised"].sel(structure=structure).values,
-                          levels=[0.3, 0.5, 0.7, 0.9], colors="k", linewidths=0.7)
-    ax.clabel(contours, fmt="F̄=%.1f", fontsize=7)
+    zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
+    one = dataset.sel(structure=structure)
+    complete = bool(one["done"].values.all()) if "done" in one else False
+    if smooth and complete and len(zeta) > 1 and len(lam) > 1:
+        from .maps.regimes import classify
+
+        dense = [_log_dense(zeta, lam, one[name].values)
+                 for name in ("fmax_normalised", "peak_time_normalised", "reflection_time_normalised")]
+        grid_lam, grid_zeta = np.meshgrid(dense[0][1], dense[0][0], indexing="ij")
+        codes = _regime_codes(classify(dense[0][2], grid_zeta, grid_lam, str(one["kind"].item()),
+                                       peak_time=dense[1][2], reflection_time=dense[2][2]))
+        ax.pcolormesh(dense[0][0], dense[0][1], codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5,
+                      shading="nearest", rasterized=True)
+    else:
+        codes = _regime_codes(one["regime"].values)
+        ax.pcolormesh(zeta, lam, codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5, shading="nearest")
+    # contours of F̄max interpolated linearly in (log ζ, log λ) on a dense grid: the lines
+    # have enough vertices for the labels to sit on them (a coarse grid's inline gaps
+    # cut whole segments and left the labels floating)
+    dense_zeta, dense_lam, fmax = _log_dense(zeta, lam, dataset["fmax_normalised"].sel(structure=structure).values)
+    contours = ax.contour(dense_zeta, dense_lam, fmax, levels=[0.3, 0.5, 0.7, 0.9], colors="k", linewidths=0.7)
+    ax.clabel(contours, fmt=r"$\bar{F}$=%.1f", fontsize=7, inline=True, inline_spacing=2)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("loss factor ζ")
@@ -235,6 +271,18 @@ def plot_regime_map(dataset, structure, *, ax=None):
     ax.set_title(f"Impact regimes: {structure}")
     ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=8, loc="lower left")
     return ax
+
+
+def _log_dense(zeta, lam, values, points=200):
+    """``values`` on (λ, ζ) interpolated linearly in (log λ, log ζ) onto a dense grid."""
+    from scipy.interpolate import RegularGridInterpolator
+
+    if len(zeta) < 2 or len(lam) < 2:
+        return zeta, lam, values
+    dense_zeta, dense_lam = np.geomspace(zeta[0], zeta[-1], points), np.geomspace(lam[0], lam[-1], points)
+    interpolate = RegularGridInterpolator((np.log(lam), np.log(zeta)), values)
+    grid_lam, grid_zeta = np.meshgrid(np.log(dense_lam), np.log(dense_zeta), indexing="ij")
+    return dense_zeta, dense_lam, interpolate(np.stack([grid_lam, grid_zeta], axis=-1))
 
 
 def plot_force_history(results, *, labels=None, normalised=True, quantity="force", ax=None, styles=None):
@@ -281,6 +329,77 @@ def plot_force_history(results, *, labels=None, normalised=True, quantity="force
     if any(labels):
         ax.legend(fontsize=8)
     return ax
+
+
+def plot_impact_history(result, *, normalised=False, figure=None):
+    """Force, indentation and target deflection of one run against time, contacts marked.
+
+    Three stacked panels sharing the time axis; each contact interval is shaded, and
+    the peak force is marked.
+
+    Parameters
+    ----------
+    result : ImpactResult
+        A result with its history (``record=True``).
+    normalised : bool
+        Plot τ = ωt, F̄ = F/(m_i V0 ω), α/α*, w/α* (else ms, N, µm, µm).
+    figure : matplotlib Figure, optional
+        Figure to draw into (default: a new one).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    if result.history is None:
+        raise ValueError("result has no history: run the solver with record=True")
+    if figure is None:
+        figure = plt.figure(figsize=(7.5, 7.5))
+    axes = figure.subplots(3, 1, sharex=True)
+    if normalised:
+        history = result.normalised_history()
+        time, scale = history["tau"], result.contact_frequency
+        columns = ("force_normalised", "indentation_normalised", "target_displacement_normalised")
+        factors, labels = (1.0, 1.0, 1.0), ("F̄ = F/(m$_i$ V$_0$ ω)", "indentation α/α* (< 0: gap)", "deflection w/α*")
+        xlabel = "normalised time τ = ωt"
+    else:
+        history = result.history
+        time, scale = history["time_s"] * 1e3, 1e3
+        columns = ("force_N", "indentation_m", "target_displacement_m")
+        factors, labels = (1.0, 1e6, 1e6), ("contact force [N]", "indentation [µm] (< 0: gap)", "deflection at impact [µm]")
+        xlabel = "time [ms]"
+    for ax, column, factor, label in zip(axes, columns, factors, labels):
+        ax.plot(time, history[column] * factor, color="C0", lw=1.3)
+        for start, end in np.asarray(result.contact_intervals, dtype=float).reshape(-1, 2):
+            end = end if np.isfinite(end) else float(np.max(time)) / scale
+            ax.axvspan(start * scale, end * scale, color="#f6e3c7", alpha=0.7, lw=0, zorder=0)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    peak = result.peak_force / result.force_scale if normalised else result.peak_force
+    axes[0].plot([result.peak_time * scale], [peak], "o", color="C3", ms=5,
+                 label=f"peak {peak:.4g}{'' if normalised else ' N'}")
+    axes[0].plot([], [], color="#f6e3c7", lw=8, label=f"contact ({result.impacts} impact{'s' * (result.impacts != 1)})")
+    axes[0].legend(fontsize=8, loc="upper right")
+    axes[-1].set_xlabel(xlabel)
+    figure.tight_layout()
+    return figure
+
+
+def save_impact_history(result, path, *, normalised=False):
+    """Draw :func:`plot_impact_history` into the image file ``path`` (format from its suffix); return the path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plot_impact_history(result, normalised=normalised)
+    try:
+        figure.savefig(path, dpi=120)
+    finally:
+        plt.close(figure)
+    return path
 
 
 def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):

@@ -72,9 +72,9 @@ def test_point_plate(capsys):
 @pytest.mark.parametrize(
     "argv, fragment",
     [
-        (["point", "--target", "plate-ss", "--zeta", "-1", "--lambda", "1"], "loss_factor = -1"),
+        (["point", "--target", "plate-ss", "--zeta", "-1", "--lambda", "1"], "--zeta = -1"),
         (["point", "--target", "shell-ss", "--zeta", "1", "--lambda", "1"], "--target"),
-        (["point", "--target", "plate-ss", "--zeta", "1", "--lambda", "1", "--aspect", "0"], "aspect_ratio"),
+        (["point", "--target", "plate-ss", "--zeta", "1", "--lambda", "1", "--aspect", "0"], "--aspect = 0"),
         (["halfspace", "--law", "nope", "--radius", "0.01", "--velocity", "1", "--material", "structural-steel",
           "--target-material", "structural-steel"], "contact law"),
         (["halfspace", "--law", "hertz", "--radius", "-0.01", "--velocity", "1", "--material", "structural-steel",

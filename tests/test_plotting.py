@@ -74,3 +74,35 @@ def test_history_scaling_and_restitution_plots():
     assert len(ax.lines) == 2
     ax = plotting.plot_restitution([1.0, 10.0], [1.0, 0.5], points=([2.0], [0.8]))
     assert ax.get_xscale() == "log" and len(ax.lines) == 2
+
+
+def test_impact_history_figure_has_three_panels_and_marks_contacts(tmp_path):
+    mass, stiffness = ss_plate_impactor(1.198, 0.425)
+    basis = ss_square_plate_basis(40 * np.sqrt(stiffness / mass), 4)
+    result = simulate(basis, LinearContact(stiffness), mass, 1.0)
+    figure = plotting.plot_impact_history(result, normalised=True)
+    assert len(figure.axes) == 3
+    assert all(len(ax.patches) >= result.impacts for ax in figure.axes)  # one shaded span per contact
+    path = plotting.save_impact_history(result, tmp_path / "history.png")
+    assert path.stat().st_size > 1000
+
+
+def test_fmax_chart_legend_names_the_dotted_lines_and_sits_outside(dataset):
+    ax = plotting.plot_fmax_chart(dataset)
+    texts = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert any("quasi-static" in text for text in texts)
+    assert ax.get_legend().get_bbox_to_anchor().x0 > ax.get_window_extent().x1 - 1
+    assert "$" in ax.get_ylabel()  # m_i, V_0 typeset as subscripts
+
+
+def test_regime_map_is_classified_on_a_dense_grid_when_complete(dataset):
+    from matplotlib.collections import QuadMesh
+
+    ax = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff")
+    mesh = next(c for c in ax.collections if isinstance(c, QuadMesh))
+    cells = dataset.sizes["zeta"] * dataset.sizes["lambda_"]
+    if bool(dataset["done"].values.all()):
+        assert mesh.get_array().size > cells
+    coarse = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff", smooth=False)
+    mesh = next(c for c in coarse.collections if isinstance(c, QuadMesh))
+    assert mesh.get_array().size == cells

@@ -11,7 +11,7 @@ from .lookup import markdown_table
 from .structures import MapStructure
 from .sweep import log_grid, sweep
 
-__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "make_chart", "tidy_frame"]
+__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "check_chart_grid", "make_chart", "tidy_frame"]
 
 CHART_STRUCTURES = (
     MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
@@ -21,10 +21,38 @@ DEFAULT_CHART_LAMBDAS = (0.05, 0.1, 0.2, 0.425, 1.0, 2.0, 5.0, 20.0)
 
 
 def tidy_frame(dataset):
-    """A sweep dataset as a tidy pandas DataFrame (one row per computed point)."""
+    """A sweep dataset as a tidy pandas DataFrame (one row per computed point).
+
+    The ``method`` column holds the model's name (``modal+residual``,
+    ``modal+residual-capped``, ``infinite-structure-asymptote``), not its code.
+    """
+    from .sweep import METHODS
+
     frame = dataset.drop_vars(["kind", "theory", "supports", "aspect_ratio", "slenderness"]).to_dataframe().reset_index()
     frame = frame[frame["done"] == 1].drop(columns="done")
+    if "method" in frame:
+        frame["method"] = [METHODS[int(code)] for code in frame["method"]]
     return frame.rename(columns={"lambda_": "lambda"})
+
+
+def check_chart_grid(zeta_range, zeta_count, lambdas) -> None:
+    """Refuse a chart grid that cannot be drawn, before anything is computed.
+
+    The names in the messages are the command-line options (``--zeta-count``, …).
+    """
+    low, high = (float(v) for v in zeta_range)
+    if not (0.0 < low < high < np.inf):
+        raise ValueError(f"--zeta-range = {low:g} {high:g} is invalid: need 0 < A < B")
+    if isinstance(zeta_count, bool) or int(zeta_count) != zeta_count or zeta_count < 2:
+        raise ValueError(f"--zeta-count = {zeta_count!r} is invalid: valid range is [2, inf) (a chart needs "
+                         "at least two ζ values)")
+    if lambdas is not None:
+        values = np.asarray(lambdas, dtype=float).ravel()
+        if values.size < 2 or len(np.unique(values)) != values.size:
+            raise ValueError(f"--lambdas = {' '.join(f'{v:g}' for v in values)} is invalid: give at least two "
+                             "distinct values (the regime maps need two λ rows)")
+        if np.any(~np.isfinite(values) | (values <= 0)):
+            raise ValueError(f"--lambdas = {' '.join(f'{v:g}' for v in values)} is invalid: valid range is (0, inf)")
 
 
 def make_chart(
@@ -37,6 +65,7 @@ def make_chart(
     settings: ModalSettings | None = None,
     progress: bool = True,
     max_workers: int | None = None,
+    overwrite: bool = False,
 ) -> dict:
     """Compute and draw the F̄max(ζ, λ) chart for SS beams and square plates.
 
@@ -59,6 +88,8 @@ def make_chart(
         Show a progress bar.
     max_workers : int, optional
         Local worker processes (default: all cores).
+    overwrite : bool
+        Replace an ``fmax_map.nc`` made with another grid instead of refusing it.
 
     Returns
     -------
@@ -72,13 +103,16 @@ def make_chart(
 
     from ..plotting import plot_fmax_chart, plot_regime_map, plot_regime_strip
 
+    check_chart_grid(zeta_range, zeta_count, lambdas)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out = {str(out)!r} is a file, not a directory")
     zetas = log_grid(zeta_range[0], zeta_range[1], zeta_count)
     lambdas = np.asarray(DEFAULT_CHART_LAMBDAS if lambdas is None else lambdas, dtype=float)
     paths = {"netcdf": out / "fmax_map.nc"}
     dataset = sweep(structures, zetas, lambdas, settings=settings, path=paths["netcdf"], progress=progress,
-                    max_workers=max_workers)
+                    max_workers=max_workers, overwrite=overwrite)
+    out.mkdir(parents=True, exist_ok=True)
 
     paths["csv"] = out / "fmax_map.csv"
     tidy_frame(dataset).to_csv(paths["csv"], index=False)

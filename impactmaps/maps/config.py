@@ -14,11 +14,17 @@ Example::
     supports = "SSSS"
     aspect_ratio = [1.0, 2.0]           # a list sweeps that parameter too
     slenderness = 20
+
+Every key, its unit and its default are documented in the user guide
+(``docs/sweeps.rst``). The defaults of ``theory``, ``supports`` and
+``impact_fraction`` follow ``kind``: a beam is ``euler``, ``ss``, struck at mid-span;
+a plate ``kirchhoff``, ``SSSS``, struck at the centre.
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 import tomllib
 from dataclasses import fields
 from pathlib import Path
@@ -28,73 +34,165 @@ import numpy as np
 from ..solvers.modal import ModalSettings
 from .structures import MapStructure
 
-__all__ = ["load_sweep_config", "run_sweep_config"]
+__all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
 _TOP_KEYS = {"output", "grid", "solver", "structure"}
 _STRUCTURE_KEYS = {f.name for f in fields(MapStructure)}
 _SOLVER_KEYS = {f.name for f in fields(ModalSettings)}
 
+#: Defaults of a ``[[structure]]`` table that depend on its ``kind``.
+KIND_DEFAULTS = {
+    "beam": {"theory": "euler", "supports": "ss", "impact_fraction": (0.5,)},
+    "plate": {"theory": "kirchhoff", "supports": "SSSS", "impact_fraction": (0.5, 0.5)},
+}
+
+
+def _number(name, value, *, integer=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{name} = {value!r} is invalid: give a finite number")
+    if integer and value != int(value):
+        raise ValueError(f"{name} = {value!r} is invalid: give a whole number ≥ 1")
+    return int(value) if integer else float(value)
+
 
 def _grid(name, value):
+    path = f"grid.{name}"
     if isinstance(value, dict):
         unknown = set(value) - {"min", "max", "count"}
         if unknown or not {"min", "max", "count"} <= set(value):
-            raise ValueError(f"grid.{name} = {value!r} is invalid: give min, max and count, or a list of values")
-        return np.geomspace(float(value["min"]), float(value["max"]), int(value["count"]))
-    if isinstance(value, (list, tuple)) and value:
-        return np.asarray(value, dtype=float)
-    raise ValueError(f"grid.{name} = {value!r} is invalid: give min, max and count, or a list of values")
+            raise ValueError(f"{path} = {value!r} is invalid: give min, max and count, or a list of values")
+        low, high = _number(f"{path}.min", value["min"]), _number(f"{path}.max", value["max"])
+        count = _number(f"{path}.count", value["count"], integer=True)
+        if count < 1:
+            raise ValueError(f"{path}.count = {value['count']!r} is invalid: valid range is [1, inf)")
+        if low <= 0 or high < low:
+            raise ValueError(f"{path} = {{min = {low:g}, max = {high:g}}} is invalid: need 0 < min ≤ max")
+        return np.geomspace(low, high, count)
+    if isinstance(value, list) and value:
+        values = np.array([_number(f"{path}[{k}]", v) for k, v in enumerate(value)])
+        if np.any(values <= 0):
+            raise ValueError(f"{path} = {value!r} is invalid: every value must be > 0")
+        return values
+    raise ValueError(f"{path} = {value!r} is invalid: give min, max and count, or a non-empty list of values")
+
+
+def _impact_fractions(value, where):
+    """The impact points of a table: a number, one point [x, y], or a list of points."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return [(float(value),)]
+    if isinstance(value, list) and value and all(isinstance(v, list) for v in value):
+        return [tuple(v) for v in value]
+    if isinstance(value, list) and value and not any(isinstance(v, (list, dict)) for v in value):
+        return [tuple(value)]
+    raise ValueError(f"{where}.impact_fraction = {value!r} is invalid: give a fraction x0/L, a point "
+                     "[x0/a, y0/b] or a list of points")
+
+
+def _structures(table, index):
+    where = f"[[structure]] #{index + 1}"
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} = {table!r} is invalid: give a table of MapStructure keys")
+    unknown = set(table) - _STRUCTURE_KEYS
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}: allowed keys are {sorted(_STRUCTURE_KEYS)}")
+    swept = {k: (v if isinstance(v, list) else [v]) for k, v in table.items() if k != "impact_fraction"}
+    if "impact_fraction" in table:
+        swept["impact_fraction"] = _impact_fractions(table["impact_fraction"], where)
+    out = []
+    for combination in itertools.product(*swept.values()):
+        values = dict(zip(swept, combination))
+        kind = values.get("kind", "plate")
+        if kind not in KIND_DEFAULTS:
+            raise ValueError(f"{where}.kind = {kind!r} is invalid: choose 'beam' or 'plate'")
+        values = KIND_DEFAULTS[kind] | values
+        try:
+            structure = MapStructure(**values)
+            structure.build()  # supports and theory are checked by the target: fail before any output
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"{where}: {error}") from None
+        out.append(structure)
+    return out
 
 
 def load_sweep_config(path):
-    """Parse a sweep TOML file into (structures, zetas, lambdas, settings, output dir)."""
+    """Parse a sweep TOML file.
+
+    Parameters
+    ----------
+    path : path-like
+        The TOML file (format: module docstring and the user guide).
+
+    Returns
+    -------
+    tuple
+        ``(structures, zetas, lambdas, settings, output_dir)``.
+    """
     path = Path(path)
     with open(path, "rb") as handle:
-        config = tomllib.load(handle)
+        try:
+            config = tomllib.load(handle)
+        except tomllib.TOMLDecodeError as error:
+            raise ValueError(f"{path} is not valid TOML: {error}") from None
     unknown = set(config) - _TOP_KEYS
     if unknown:
         raise ValueError(f"unknown key(s) {sorted(unknown)} in {path}: allowed keys are {sorted(_TOP_KEYS)}")
     grid = config.get("grid", {})
-    if "zeta" not in grid or "lambda" not in grid:
+    if not isinstance(grid, dict) or "zeta" not in grid or "lambda" not in grid:
         raise ValueError(f"{path}: [grid] needs 'zeta' and 'lambda'")
     zetas, lambdas = _grid("zeta", grid["zeta"]), _grid("lambda", grid["lambda"])
     solver = config.get("solver", {})
+    if not isinstance(solver, dict):
+        raise ValueError(f"solver = {solver!r} is invalid: give a [solver] table")
     unknown = set(solver) - _SOLVER_KEYS
     if unknown:
         raise ValueError(f"unknown key(s) {sorted(unknown)} in [solver]: allowed keys are {sorted(_SOLVER_KEYS)}")
-    settings = ModalSettings(**solver)
-    structures = []
-    for index, table in enumerate(config.get("structure", [])):
-        unknown = set(table) - _STRUCTURE_KEYS
-        if unknown:
-            raise ValueError(
-                f"unknown key(s) {sorted(unknown)} in [[structure]] #{index + 1}: allowed keys are "
-                f"{sorted(_STRUCTURE_KEYS)}"
-            )
-        swept = {k: (v if isinstance(v, list) and k != "impact_fraction" else [v]) for k, v in table.items()}
-        if "impact_fraction" in table and table["impact_fraction"] and isinstance(table["impact_fraction"][0], list):
-            swept["impact_fraction"] = [tuple(v) for v in table["impact_fraction"]]
-        keys = list(swept)
-        for combination in itertools.product(*(swept[k] for k in keys)):
-            values = dict(zip(keys, combination))
-            if "impact_fraction" not in values:
-                values["impact_fraction"] = (0.5,) if values.get("kind", "plate") == "beam" else (0.5, 0.5)
-            structures.append(MapStructure(**values))
+    try:
+        settings = ModalSettings(**solver)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"[solver]: {error}") from None
+    tables = config.get("structure", [])
+    if not isinstance(tables, list):
+        tables = [tables]
+    structures = [s for index, table in enumerate(tables) for s in _structures(table, index)]
     if not structures:
         raise ValueError(f"{path}: give at least one [[structure]] table")
-    output = path.parent / config.get("output", path.stem + "-output")
-    return structures, zetas, lambdas, settings, output
+    output = config.get("output", path.stem + "-output")
+    if not isinstance(output, str) or not output:
+        raise ValueError(f"output = {output!r} is invalid: give a directory name")
+    return structures, zetas, lambdas, settings, path.parent / output
 
 
-def run_sweep_config(path, *, progress: bool = True) -> dict:
-    """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory."""
+def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
+                     executor=None) -> dict:
+    """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory.
+
+    Parameters
+    ----------
+    path : path-like
+        The sweep TOML file.
+    progress : bool
+        Show a progress bar.
+    overwrite : bool
+        Replace an existing ``sweep.nc`` made by another configuration.
+    max_workers : int, optional
+        Local worker processes (default: all cores).
+    executor : concurrent.futures.Executor, optional
+        Where the points run (e.g. a Dask client's ``get_executor()``).
+
+    Returns
+    -------
+    dict
+        ``{"netcdf": Path, "csv": Path}``.
+    """
     from .chart import tidy_frame
     from .sweep import sweep
 
     structures, zetas, lambdas, settings, output = load_sweep_config(path)
-    output.mkdir(parents=True, exist_ok=True)
+    if output.exists() and not output.is_dir():
+        raise ValueError(f"output = {str(output)!r} is a file, not a directory")
     netcdf = output / "sweep.nc"
-    dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress)
+    dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
+                    overwrite=overwrite, max_workers=max_workers, executor=executor)
     csv = output / "sweep.csv"
     tidy_frame(dataset).to_csv(csv, index=False)
     return {"netcdf": netcdf, "csv": csv}

@@ -12,9 +12,11 @@ from __future__ import annotations
 import functools
 import math
 import os
+import signal
+import threading
 import time
 import warnings
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
 from dataclasses import asdict
 from datetime import datetime, timezone
 from typing import Sequence
@@ -29,7 +31,7 @@ from ..jsonio import dumps
 from ..solvers.modal import ModalSettings, simulate
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .regimes import classify
-from .store import fingerprint, load_matching, save_atomic
+from .store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
@@ -285,6 +287,7 @@ def sweep(
     progress: bool = True,
     chunk_size: int = 10,
     save_interval: float = 1.0,
+    overwrite: bool = False,
 ) -> xr.Dataset:
     """Compute F̄max and companions over structures × λ × ζ.
 
@@ -297,8 +300,10 @@ def sweep(
         Solver settings (part of the result's fingerprint).
     path : path-like, optional
         NetCDF result file. Finished points are saved there atomically as they
-        complete; re-running with the same path computes only the missing points.
-        A file made with other settings is refused (``ValueError``).
+        complete (nothing is written before the first point is done); re-running with
+        the same path computes only the missing points. A file made with other
+        settings is refused (``ValueError`` naming the keys that changed) unless
+        ``overwrite``. Temporaries of an interrupted save are removed.
     executor : concurrent.futures.Executor, optional
         Where chunks run (e.g. ``dask.distributed.Client(...).get_executor()``).
         Default: a local process pool over the machine's cores.
@@ -311,12 +316,21 @@ def sweep(
     save_interval : float
         Minimum seconds between two saves of the result file (the final save always
         happens).
+    overwrite : bool
+        Replace an existing result file instead of resuming it (it is replaced when
+        the first point is saved).
 
     Returns
     -------
     xarray.Dataset
         Dims ``structure``, ``lambda_``, ``zeta``; variables of ``RESULT_VARIABLES``,
         ``regime``, ``done``; units and provenance in attributes.
+
+    Raises
+    ------
+    SweepInterrupted
+        (a ``KeyboardInterrupt``) on Ctrl-C, after saving the finished points; it
+        carries how many of the grid's points are saved.
     """
     settings = settings or ModalSettings()
     structures = list(structures)
@@ -326,6 +340,8 @@ def sweep(
     lambdas = np.asarray(relative_stiffnesses, dtype=float).ravel()
     require_positive("loss_factors", zetas)
     require_positive("relative_stiffnesses", lambdas)
+    if zetas.size == 0 or lambdas.size == 0:
+        raise ValueError(f"the grid is empty ({zetas.size} ζ × {lambdas.size} λ values): give at least one of each")
     description = {
         "structures": [s.as_dict() for s in structures],
         "zeta": zetas,
@@ -336,7 +352,9 @@ def sweep(
     digest = fingerprint(description)
     dataset = None
     if path is not None:
-        dataset = load_matching(path, digest)
+        remove_stale_temporaries(path)
+        if not overwrite:
+            dataset = load_matching(path, digest, description)
     if dataset is None:
         dataset = _empty_dataset(structures, lambdas, zetas, description, digest)
     done = dataset["done"].values.astype(bool)
@@ -345,6 +363,7 @@ def sweep(
 
     arrays = {name: dataset[name].values.copy() for name in (*RESULT_VARIABLES, "done")}
     methods = set(str(dataset.attrs.get("point_methods", "")).split(",")) - {""}
+    absorbed = [0]
 
     def absorb(task, rows):
         _, s_index, l_index, indices, _ = task
@@ -353,6 +372,8 @@ def sweep(
                 arrays[name][s_index, l_index, z_index] = row[name]
             arrays["done"][s_index, l_index, z_index] = 1
             methods.add(METHODS[row["method"]])
+        absorbed[0] += len(indices)
+        bar.update(len(indices))
 
     def snapshot() -> xr.Dataset:
         out = dataset.copy()
@@ -362,41 +383,66 @@ def sweep(
         out.attrs["complete"] = int(bool(arrays["done"].all()))
         return out
 
+    def save(final=False):
+        nonlocal last_save
+        if path is not None and absorbed[0] and (final or time.monotonic() - last_save >= save_interval):
+            save_atomic(snapshot(), path)
+            last_save = time.monotonic()
+
     from tqdm.auto import tqdm
 
     bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
     own_executor = None
     last_save = time.monotonic()
+    stop = []  # Ctrl-C: finish the chunk in hand, save, raise SweepInterrupted
+
+    def on_interrupt(signum, frame):
+        if stop:  # a second Ctrl-C stops at once
+            raise KeyboardInterrupt
+        stop.append(signum)
+
+    previous = None
+    if threading.current_thread() is threading.main_thread() and \
+            signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous = signal.signal(signal.SIGINT, on_interrupt)
     try:
-        if tasks:
-            workers = max_workers or os.cpu_count() or 1
-            if executor is None and (workers == 1 or len(tasks) == 1):
-                for task in tasks:
-                    absorb(task, solve_points(task[0], task[4], settings))
-                    bar.update(len(task[3]))
-                    if path is not None and time.monotonic() - last_save >= save_interval:
-                        save_atomic(snapshot(), path)
-                        last_save = time.monotonic()
-            else:
-                if executor is None:
-                    own_executor = ProcessPoolExecutor(max_workers=workers)
-                    executor = own_executor
-                futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
-                for future in as_completed(futures):
-                    task = futures[future]
-                    absorb(task, future.result())
-                    bar.update(len(task[3]))
-                    if path is not None and time.monotonic() - last_save >= save_interval:
-                        save_atomic(snapshot(), path)
-                        last_save = time.monotonic()
+        workers = max_workers or os.cpu_count() or 1
+        if executor is None and (workers == 1 or len(tasks) <= 1):
+            for task in tasks:
+                if stop:
+                    break
+                absorb(task, solve_points(task[0], task[4], settings))
+                save()
+        elif tasks:
+            if executor is None:
+                # workers ignore Ctrl-C: the parent saves and stops them
+                own_executor = executor = ProcessPoolExecutor(
+                    max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
+            futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
+            running = set(futures)
+            while running and not stop:
+                finished, running = wait(running, timeout=0.25, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    absorb(futures[future], future.result())
+                save()
+            for future in running:
+                future.cancel()
+    except KeyboardInterrupt:
+        stop.append(signal.SIGINT)
     finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
         bar.close()
         if own_executor is not None:
             own_executor.shutdown(wait=False, cancel_futures=True)
-        if path is not None and tasks:
-            save_atomic(snapshot(), path)
+        save(final=True)
+    if stop:
+        raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
     result = snapshot()
-    result["regime"] = classify_dataset(result)
+    try:
+        result["regime"] = classify_dataset(result)
+    except KeyboardInterrupt:
+        raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
     return result
 
 

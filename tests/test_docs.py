@@ -1,0 +1,67 @@
+"""The documentation site builds without warnings, and documents every key of the
+case-file and sweep formats (the keys the code accepts, read from the code)."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from dataclasses import fields
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    pytest.importorskip("sphinx")
+    pytest.importorskip("numpydoc")
+    out = tmp_path_factory.mktemp("site")
+    run = subprocess.run([sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-q", "-b", "html",
+                          "-d", str(out / "doctrees"), str(ROOT / "docs"), str(out / "html")],
+                         cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    return out / "html"
+
+
+def _text(site, page):
+    return re.sub(r"<[^>]+>", " ", (site / page).read_text(encoding="utf-8"))
+
+
+def test_site_builds_without_warnings(site):
+    for page in ("index.html", "cases.html", "sweeps.html", "cli.html", "api/solvers.html",
+                 "gallery/steel_plate_hertz.html"):
+        assert (site / page).exists(), page
+    assert list((site / "_images").glob("steel_beam_fd_stronge*.png")), "the gallery runs the examples"
+
+
+def test_every_case_key_is_documented(site):
+    from impactmaps.cases import case as case_module
+    from impactmaps.cases import _materials
+    from impactmaps.fd import FDSettings
+    from impactmaps.contact.stronge import StrongeContact  # noqa: F401 (its options are listed)
+
+    text = _text(site, "cases.html")
+    keys = set(case_module._TOP_KEYS) | set(case_module._IMPACTOR_KEYS) | set(case_module._SOLVER_EXTRA)
+    keys |= set(case_module.target_keys("beam")) | set(case_module.target_keys("plate"))
+    keys |= set(_materials._ISOTROPIC_KEYS) | set(_materials._PLY_KEYS) | set(_materials._LAYUP_KEYS)
+    keys |= {f.name for f in fields(FDSettings)} - {"duration"}
+    keys |= {"target_radius", "stiffness", "yield_pressure_factor", "plastic_pressure_factor",
+             "plastic_indentation_ratio"}
+    keys |= {f.name for f in fields(case_module.OutputSettings)}
+    missing = sorted(key for key in keys if key not in text)
+    assert not missing, f"case keys not documented: {missing}"
+
+
+def test_every_sweep_key_is_documented(site):
+    from impactmaps.maps import config
+    from impactmaps.maps.structures import MapStructure
+    from impactmaps.solvers.modal import ModalSettings
+
+    text = _text(site, "sweeps.html")
+    keys = set(config._TOP_KEYS) | {"zeta", "lambda", "min", "max", "count"}
+    keys |= {f.name for f in fields(MapStructure)} | {f.name for f in fields(ModalSettings)}
+    missing = sorted(key for key in keys if key not in text)
+    assert not missing, f"sweep keys not documented: {missing}"
