@@ -46,7 +46,7 @@ __all__ = ["infinite_plate_impact", "plate_impedance", "quasi_static_impact", "h
 _RELATIVE_TOLERANCE = 1e-12
 _ABSOLUTE_TOLERANCE = 1e-14  # on scaled states of order 1
 _SCALED_TIME_LIMIT = 1e4  # in units α_scale/V0; a contact lasts O(1) of them
-_REST_SPEED = 1e-6  # impactor speed / V0 below which it is taken to be at rest
+_REST_SPEED = 1e-10  # impactor speed / V0 below which it is taken to be at rest
 
 
 def plate_impedance(plate) -> float:
@@ -201,7 +201,7 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
     separated = unloading.t_events[0].size > 0
     end_state = unloading.y_events[0][0] if separated else unloading.y[:, -1]
     tau_end = float(unloading.t_events[0][0]) if separated else float(unloading.t[-1])
-    # the impactor at rest (|v| < 1e-6 V0) while α decays to rounding: the linear ζ_p ≥ 1
+    # the impactor at rest (|v| < 1e-10 V0) while α decays to rounding: the linear ζ_p ≥ 1
     # plate, where the contact never ends (a "separation" found there is round-off)
     settled = abs(float(end_state[1])) < _REST_SPEED
     separated = separated and not settled
