@@ -62,8 +62,14 @@ from ._checks import require_positive
 from .contact.hertz import HertzContact
 from .solvers.compact import hertz_max_indentation
 
-__all__ = ["HertzNumbers", "HertzRealisation", "hertz_numbers", "realise_hertz",
-           "zener_parameter", "ZENER_TO_LOSS_FACTOR"]
+__all__ = [
+    "ZENER_TO_LOSS_FACTOR",
+    "HertzNumbers",
+    "HertzRealisation",
+    "hertz_numbers",
+    "realise_hertz",
+    "zener_parameter",
+]
 
 #: μ/ζ_h: the normalised dashpot coefficient of Zener's model over the Hertz loss factor.
 ZENER_TO_LOSS_FACTOR = 2.5

@@ -39,9 +39,16 @@ import numpy as np
 
 from .contact.base import effective_modulus
 
-__all__ = ["ModelValidityWarning", "validity_warnings", "warn_if_invalid",
-           "YIELD_PRESSURE_FACTOR", "INDENTATION_RATIO_LIMIT", "SPEED_RATIO_LIMIT",
-           "DEFLECTION_RATIO_LIMIT", "hertz_peak_pressure"]
+__all__ = [
+    "DEFLECTION_RATIO_LIMIT",
+    "INDENTATION_RATIO_LIMIT",
+    "SPEED_RATIO_LIMIT",
+    "YIELD_PRESSURE_FACTOR",
+    "ModelValidityWarning",
+    "hertz_peak_pressure",
+    "validity_warnings",
+    "warn_if_invalid",
+]
 
 YIELD_PRESSURE_FACTOR = 1.6  # mean contact pressure at yield / S_y of the softer body
 INDENTATION_RATIO_LIMIT = 0.1  # α_max / R

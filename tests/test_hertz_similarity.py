@@ -14,7 +14,12 @@ import pytest
 
 import impactmaps as im
 from impactmaps.contact import HertzContact, LinearContact
-from impactmaps.hertz_similarity import ZENER_TO_LOSS_FACTOR, hertz_numbers, realise_hertz, zener_parameter
+from impactmaps.hertz_similarity import (
+    ZENER_TO_LOSS_FACTOR,
+    hertz_numbers,
+    realise_hertz,
+    zener_parameter,
+)
 from impactmaps.law_asymptotes import infinite_plate_impact
 
 STEEL = im.IsotropicMaterial(210e9, 0.3, 7800.0)

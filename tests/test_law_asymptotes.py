@@ -8,18 +8,29 @@
 
 import math
 
-import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 import impactmaps as im
 from impactmaps.contact import HertzContact, LinearContact, YigitChristoforouContact
 from impactmaps.hertz_similarity import hertz_numbers, zener_parameter
-from impactmaps.law_asymptotes import (asymptote, halfspace_asymptote, infinite_beam_impact_any_law,
-                                       infinite_plate_impact, quasi_static_impact)
-from impactmaps.solvers.asymptotes import infinite_plate_contact_time, infinite_plate_peak, quasi_static_peak
-from impactmaps.solvers.infinite_beam import (infinite_beam_contact_time, infinite_beam_peak,
-                                              recontact_beam_loss_factor)
+from impactmaps.law_asymptotes import (
+    asymptote,
+    halfspace_asymptote,
+    infinite_beam_impact_any_law,
+    infinite_plate_impact,
+    quasi_static_impact,
+)
+from impactmaps.solvers.asymptotes import (
+    infinite_plate_contact_time,
+    infinite_plate_peak,
+    quasi_static_peak,
+)
+from impactmaps.solvers.infinite_beam import (
+    infinite_beam_contact_time,
+    infinite_beam_peak,
+    recontact_beam_loss_factor,
+)
 
 STEEL = im.IsotropicMaterial(210e9, 0.3, 7800.0)
 PLATE = im.Plate.isotropic(0.3, 0.3, 0.004, STEEL)

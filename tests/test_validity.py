@@ -8,7 +8,12 @@ import pytest
 import impactmaps as im
 from impactmaps.contact import Sphere, law_for_sphere
 from impactmaps.law_asymptotes import infinite_plate_impact, quasi_static_impact
-from impactmaps.validity import ModelValidityWarning, hertz_peak_pressure, validity_warnings, warn_if_invalid
+from impactmaps.validity import (
+    ModelValidityWarning,
+    hertz_peak_pressure,
+    validity_warnings,
+    warn_if_invalid,
+)
 
 STEEL = im.IsotropicMaterial(210e9, 0.3, 7800.0, yield_strength=1.5e9)
 RUBBERY = im.IsotropicMaterial(210e9, 0.3, 7800.0)  # no yield strength: the pressure check is skipped

@@ -19,7 +19,12 @@ from __future__ import annotations
 
 from .._checks import require_choice
 from .beam import beam_mobility_constant, infinite_beam_impact_any_law
-from .local import halfspace_asymptote, infinite_plate_impact, plate_impedance, quasi_static_impact
+from .local import (
+    halfspace_asymptote,
+    infinite_plate_impact,
+    plate_impedance,
+    quasi_static_impact,
+)
 from .result import AsymptoteResult, contact_frequency_of
 
 __all__ = [

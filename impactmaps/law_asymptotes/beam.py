@@ -43,7 +43,11 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..solvers.compact import _single_parameters
 from ..solvers.infinite_beam import _bdf2_weights
-from .result import AsymptoteResult, contact_frequency_of, contact_intervals_from_samples
+from .result import (
+    AsymptoteResult,
+    contact_frequency_of,
+    contact_intervals_from_samples,
+)
 
 __all__ = ["beam_mobility_constant", "infinite_beam_impact_any_law"]
 
@@ -103,7 +107,7 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     mass, speed = float(impactor_mass), float(velocity)
     omega = contact_frequency_of(law, mass, speed)
     step = float(time_step) / omega
-    count = max(int(math.ceil(float(duration) / float(time_step))), 2)
+    count = max(math.ceil(float(duration) / float(time_step)), 2)
     mobility = beam_mobility_constant(beam.mass_per_length, beam.bending_stiffness)
     beam_weights = mobility * _bdf2_weights(1.5, step, count + 1)
     weights = _bdf2_weights(2.0, step, count + 1) / mass + beam_weights

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from scipy.integrate import solve_ivp
 
 from .._checks import require_positive
@@ -41,7 +40,7 @@ from ..contact.base import ContactLaw
 from ..solvers.compact import _single_parameters, halfspace_impact
 from .result import AsymptoteResult, contact_frequency_of
 
-__all__ = ["infinite_plate_impact", "plate_impedance", "quasi_static_impact", "halfspace_asymptote"]
+__all__ = ["halfspace_asymptote", "infinite_plate_impact", "plate_impedance", "quasi_static_impact"]
 
 _RELATIVE_TOLERANCE = 1e-12
 _ABSOLUTE_TOLERANCE = 1e-14  # on scaled states of order 1
@@ -180,7 +179,7 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
         return rates(state, None)[0]
 
     turning.terminal, turning.direction = True, -1.0
-    options = dict(method="DOP853", rtol=_RELATIVE_TOLERANCE, atol=_ABSOLUTE_TOLERANCE)
+    options = {"method": "DOP853", "rtol": _RELATIVE_TOLERANCE, "atol": _ABSOLUTE_TOLERANCE}
     loading = solve_ivp(lambda _t, s: rates(s, None), (0.0, _SCALED_TIME_LIMIT), (0.0, 1.0, 0.0),
                         events=turning, **options)
     _raise_on_failure(loading, method)
