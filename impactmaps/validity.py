@@ -1,0 +1,215 @@
+r"""Where the impact model's assumptions fail, said out loud.
+
+The solvers model an elastic sphere on a linear structure through a point contact law.
+:func:`validity_warnings` checks a finished run against the assumptions behind that
+picture and returns one sentence per violated assumption (empty: none found);
+:func:`warn_if_invalid` issues them as :class:`ModelValidityWarning` (a ``UserWarning``).
+
+Checks (each sentence starts with its tag):
+
+``contact pressure``
+    Elastic law only. Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` (Johnson,
+    *Contact Mechanics*, 1985, §4.2) above the mean pressure at full plasticity, taken as
+    ``1.6 S_y`` of the softer body (the yield-pressure factor of seed 001 eq 9's
+    derivation): the contact yields, a plastic law should be used.
+``indentation``
+    ``α_max > 0.1 R``: Hertz theory assumes a contact radius small against R
+    (``a = sqrt(Rα)``, so ``a/R = sqrt(α/R) > 0.3``).
+``impact speed``
+    ``V0 > 0.01 c_0`` with ``c_0 = sqrt(E/ρ)`` the target's bar wave speed: the quasi-static
+    contact and the slender-structure theories need impact speeds small against the
+    wave speeds (stress-wave effects, plastic waves, penetration).
+``plate deflection``
+    Plate deflection above half the thickness: membrane stretching (large deflection)
+    stiffens the plate, which linear plate theory ignores.
+``reflections``
+    An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
+    is exact only until flexural waves reflected from the nearest edge return. Their
+    group velocity ``2 sqrt(ω) (D*/ρh)^{1/4}`` (plate) or ``2 sqrt(ω) (EI/m')^{1/4}``
+    (Euler beam) is evaluated at ``ω = 2π/t_c``, the upper end of the force pulse's main
+    lobe, and the round trip ``2d/c_g`` compared with the contact time.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from .contact.base import effective_modulus
+
+__all__ = [
+    "DEFLECTION_RATIO_LIMIT",
+    "INDENTATION_RATIO_LIMIT",
+    "SPEED_RATIO_LIMIT",
+    "YIELD_PRESSURE_FACTOR",
+    "ModelValidityWarning",
+    "hertz_peak_pressure",
+    "validity_warnings",
+    "warn_if_invalid",
+]
+
+YIELD_PRESSURE_FACTOR = 1.6  # mean contact pressure at yield / S_y of the softer body
+INDENTATION_RATIO_LIMIT = 0.1  # α_max / R
+SPEED_RATIO_LIMIT = 0.01  # V0 / sqrt(E/ρ) of the target
+DEFLECTION_RATIO_LIMIT = 0.5  # plate deflection / thickness
+INFINITE_STRUCTURE_METHODS = ("infinite-plate", "infinite-beam")
+
+
+class ModelValidityWarning(UserWarning):
+    """A physical case lies outside the assumptions of the impact model."""
+
+
+def hertz_peak_pressure(force, effective_modulus, radius):
+    """Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` [Pa].
+
+    Parameters
+    ----------
+    force : float or array_like
+        Contact force F ≥ 0 [N].
+    effective_modulus : float
+        E* [Pa].
+    radius : float
+        Effective radius R [m].
+    """
+    force = np.asarray(force, dtype=float)
+    return np.cbrt(6.0 * force * effective_modulus**2 / (math.pi**3 * radius**2))
+
+
+def validity_warnings(sphere, target_material, law, target, result) -> list[str]:
+    """The model assumptions a finished run violates, one sentence each.
+
+    Parameters
+    ----------
+    sphere : Sphere
+        The impactor (radius R [m], material with E [Pa], ν, optional S_y [Pa]).
+    target_material : material-like
+        ``youngs_modulus`` [Pa], ``poisson_ratio``, optional ``density`` [kg/m³] and
+        ``yield_strength`` [Pa].
+    law : ContactLaw
+        The law the run used (the pressure check applies to elastic laws).
+    target : Plate, Beam or None
+        The structure (None for a half-space).
+    result : ImpactResult or AsymptoteResult
+        Needs ``peak_force`` [N], ``max_indentation`` [m], ``velocity`` [m/s],
+        ``method``; optionally a ``history`` with ``target_displacement_m``,
+        ``max_target_displacement`` [m], ``contact_time`` or ``contact_intervals`` [s].
+
+    Returns
+    -------
+    list of str
+        Empty when no check fails.
+    """
+    checks = (_pressure(sphere, target_material, law, result), _indentation(sphere, result),
+              _speed(target_material, result), _deflection(target, result),
+              _reflections(target, result))
+    return [message for message in checks if message]
+
+
+def warn_if_invalid(sphere, target_material, law, target, result, *, stacklevel=2) -> list[str]:
+    """Issue each of :func:`validity_warnings` as a :class:`ModelValidityWarning`; return them.
+
+    Parameters are those of :func:`validity_warnings`; ``stacklevel`` as in
+    :func:`warnings.warn` (2: the caller's line).
+    """
+    messages = validity_warnings(sphere, target_material, law, target, result)
+    for message in messages:
+        warnings.warn(message, ModelValidityWarning, stacklevel=stacklevel + 1)
+    return messages
+
+
+def _yield_strength(*materials):
+    values = [getattr(m, "yield_strength", None) for m in materials]
+    values = [float(v) for v in values if v is not None]
+    return min(values) if values else None
+
+
+def _pressure(sphere, target_material, law, result):
+    strength = _yield_strength(sphere.material, target_material)
+    if not law.elastic or strength is None:
+        return None
+    modulus = float(effective_modulus(sphere.material.youngs_modulus, sphere.material.poisson_ratio,
+                                      target_material.youngs_modulus, target_material.poisson_ratio))
+    pressure = float(hertz_peak_pressure(result.peak_force, modulus, float(sphere.radius)))
+    limit = YIELD_PRESSURE_FACTOR * strength
+    if pressure <= limit:
+        return None
+    return (f"contact pressure: the elastic Hertz peak pressure {pressure:.4g} Pa exceeds the "
+            f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} × S_y = {strength:.4g} Pa of the "
+            "softer body): the contact yields; use a plastic law ('yigit-christoforou' or 'stronge')")
+
+
+def _indentation(sphere, result):
+    ratio = float(result.max_indentation) / float(sphere.radius)
+    if not ratio > INDENTATION_RATIO_LIMIT:
+        return None
+    return (f"indentation: the largest indentation {float(result.max_indentation):.4g} m is "
+            f"{ratio:.3g} sphere radii (limit {INDENTATION_RATIO_LIMIT}): Hertz-type contact "
+            "laws assume a contact radius small against the sphere radius")
+
+
+def _speed(target_material, result):
+    density = getattr(target_material, "density", None)
+    if density is None:
+        return None
+    wave_speed = math.sqrt(float(target_material.youngs_modulus) / float(density))
+    ratio = float(result.velocity) / wave_speed
+    if not ratio > SPEED_RATIO_LIMIT:
+        return None
+    return (f"impact speed: V0 = {float(result.velocity):.4g} m/s is {ratio:.3g} of the target's "
+            f"bar wave speed sqrt(E/ρ) = {wave_speed:.4g} m/s (limit {SPEED_RATIO_LIMIT}): the "
+            "model assumes impact speeds small against the wave speeds (no stress-wave, "
+            "plastic-wave or penetration effects)")
+
+
+def _target_displacement(target, result):
+    history = getattr(result, "history", None)
+    if history is not None and "target_displacement_m" in history:
+        return float(np.max(np.abs(history["target_displacement_m"])))
+    if getattr(result, "max_target_displacement", None) is not None:
+        return float(result.max_target_displacement)
+    return float(result.peak_force) * float(target.static_compliance())  # quasi-static estimate
+
+
+def _deflection(target, result):
+    if getattr(target, "structure", None) != "plate":
+        return None
+    deflection = _target_displacement(target, result)
+    ratio = deflection / float(target.thickness)
+    if not ratio > DEFLECTION_RATIO_LIMIT:
+        return None
+    return (f"plate deflection: the struck point moves {deflection:.4g} m, {ratio:.3g} plate "
+            f"thicknesses (limit {DEFLECTION_RATIO_LIMIT}): large deflection, membrane "
+            "stiffening is not modelled")
+
+
+def _contact_time(result):
+    value = getattr(result, "contact_time", None)
+    if value is None:
+        intervals = np.asarray(result.contact_intervals, dtype=float)
+        value = float(intervals[-1, 1] - intervals[0, 0]) if intervals.size else 0.0
+    return float(value)
+
+
+def _reflections(target, result):
+    if getattr(result, "method", None) not in INFINITE_STRUCTURE_METHODS or target is None:
+        return None
+    if target.structure == "plate":
+        distance = float(target.distance_to_nearest_edge())
+        stiffness = float(target.effective_bending_stiffness) / float(target.mass_per_area)
+    else:
+        distance = float(target.distance_to_nearest_end())
+        stiffness = float(target.bending_stiffness) / float(target.mass_per_length)
+    contact = _contact_time(result)
+    if math.isinf(contact):
+        return (f"reflections: the contact never ends on the infinite {target.structure}, so waves "
+                f"reflected {distance:.4g} m away always return during it: simulate the finite "
+                f"{target.structure}")
+    group_velocity = 2.0 * math.sqrt(2.0 * math.pi / contact) * stiffness**0.25
+    round_trip = 2.0 * distance / group_velocity
+    if round_trip >= contact:
+        return None
+    return (f"reflections: flexural waves reflected {distance:.4g} m away return after "
+            f"{round_trip:.4g} s, before the contact ends ({contact:.4g} s): the infinite-"
+            f"{target.structure} asymptote does not hold; simulate the finite {target.structure}")

@@ -1,0 +1,96 @@
+"""Model-validity warnings (impactmaps.validity): each check fires on a case built to
+violate its assumption and stays silent on one that does not."""
+
+import warnings
+
+import pytest
+
+import impactmaps as im
+from impactmaps.contact import Sphere, law_for_sphere
+from impactmaps.law_asymptotes import infinite_plate_impact, quasi_static_impact
+from impactmaps.validity import (
+    ModelValidityWarning,
+    hertz_peak_pressure,
+    validity_warnings,
+    warn_if_invalid,
+)
+
+STEEL = im.IsotropicMaterial(210e9, 0.3, 7800.0, yield_strength=1.5e9)
+RUBBERY = im.IsotropicMaterial(210e9, 0.3, 7800.0)  # no yield strength: the pressure check is skipped
+SPHERE = Sphere(0.01, STEEL)
+PLATE = im.Plate.isotropic(0.3, 0.3, 0.004, STEEL)
+
+
+def _tags(messages):
+    return {message.split(":")[0] for message in messages}
+
+
+def _halfspace(law_name, velocity, material=STEEL):
+    sphere = Sphere(0.01, material)
+    law = law_for_sphere(law_name, sphere, material)
+    return sphere, law, im.halfspace_impact(law, sphere.mass, velocity)
+
+
+def test_a_million_metres_per_second_warns():
+    sphere, law, run = _halfspace("hertz", 1e6)
+    with pytest.warns(ModelValidityWarning):
+        messages = warn_if_invalid(sphere, STEEL, law, None, run)
+    assert {"contact pressure", "indentation", "impact speed"} <= _tags(messages)
+    assert issubclass(ModelValidityWarning, UserWarning)
+
+
+def test_a_gentle_impact_is_silent():
+    sphere, law, run = _halfspace("hertz", 0.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert warn_if_invalid(sphere, STEEL, law, None, run) == []
+
+
+def test_pressure_check_fires_for_elastic_laws_only():
+    sphere, law, run = _halfspace("hertz", 3.0)
+    assert "contact pressure" in _tags(validity_warnings(sphere, STEEL, law, None, run))
+    plastic = law_for_sphere("yigit-christoforou", sphere, STEEL)
+    yielded = im.halfspace_impact(plastic, sphere.mass, 3.0)
+    assert "contact pressure" not in _tags(validity_warnings(sphere, STEEL, plastic, None, yielded))
+    assert validity_warnings(Sphere(0.01, RUBBERY), RUBBERY, law, None, run) == []  # no S_y known
+
+
+def test_hertz_peak_pressure_formula():
+    # p0 = 3F/(2πa²) with a = (3FR/(4E*))^{1/3} (Johnson 1985 §4.2)
+    force, modulus, radius = 100.0, 1.1e11, 0.01
+    contact_radius = (3 * force * radius / (4 * modulus)) ** (1 / 3)
+    assert hertz_peak_pressure(force, modulus, radius) == pytest.approx(
+        3 * force / (2 * 3.141592653589793 * contact_radius**2), rel=1e-12)
+
+
+def test_indentation_and_speed_thresholds():
+    sphere, law, slow = _halfspace("hertz", 20.0, RUBBERY)
+    assert validity_warnings(sphere, RUBBERY, law, None, slow) == []  # 20 m/s < 0.01 × 5189 m/s
+    _, _, fast = _halfspace("hertz", 60.0, RUBBERY)
+    assert _tags(validity_warnings(sphere, RUBBERY, law, None, fast)) == {"impact speed"}
+    _, _, deep = _halfspace("hertz", 2000.0, RUBBERY)
+    assert "indentation" in _tags(validity_warnings(sphere, RUBBERY, law, None, deep))
+
+
+def test_plate_deflection_check():
+    sphere = Sphere(0.01, RUBBERY, mass=2.0)
+    law = law_for_sphere("hertz", sphere, RUBBERY)
+    thin = im.Plate.isotropic(0.3, 0.3, 0.002, RUBBERY)
+    heavy = quasi_static_impact(thin, law, sphere.mass, 2.0)
+    assert "plate deflection" in _tags(validity_warnings(sphere, RUBBERY, law, thin, heavy))
+    light = quasi_static_impact(thin, law, sphere.mass, 0.01)
+    assert "plate deflection" not in _tags(validity_warnings(sphere, RUBBERY, law, thin, light))
+
+
+def test_reflections_check_for_infinite_structure_asymptotes():
+    law = law_for_sphere("hertz", SPHERE, RUBBERY)
+    small = im.Plate.isotropic(0.04, 0.04, 0.004, RUBBERY)
+    large = im.Plate.isotropic(4.0, 4.0, 0.004, RUBBERY)
+    run = infinite_plate_impact(small, law, SPHERE.mass, 0.1)
+    assert "reflections" in _tags(validity_warnings(SPHERE, RUBBERY, law, small, run))
+    run = infinite_plate_impact(large, law, SPHERE.mass, 0.1)
+    assert "reflections" not in _tags(validity_warnings(SPHERE, RUBBERY, law, large, run))
+    beam = im.Beam.rectangular(0.1, 0.02, 0.02, RUBBERY, theory="euler")
+    from impactmaps.law_asymptotes import infinite_beam_impact_any_law
+    run = infinite_beam_impact_any_law(beam, law, 0.5, 0.1)
+    assert "reflections" in _tags(validity_warnings(SPHERE, RUBBERY, law, beam, run))
