@@ -63,6 +63,13 @@ _EXPORTS = {
     "parse_case": "impactmaps.cases",
     "run_case": "impactmaps.cases",
     "Case": "impactmaps.cases",
+    # any-law asymptotes, Hertz similarity, model validity
+    "asymptote": "impactmaps.law_asymptotes",
+    "AsymptoteResult": "impactmaps.law_asymptotes",
+    "hertz_numbers": "impactmaps.hertz_similarity",
+    "realise_hertz": "impactmaps.hertz_similarity",
+    "validity_warnings": "impactmaps.validity",
+    "warn_if_invalid": "impactmaps.validity",
     # accuracy of map points
     "AccuracyControl": "impactmaps.maps.accuracy",
 }

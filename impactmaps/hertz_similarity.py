@@ -60,7 +60,7 @@ from dataclasses import dataclass
 
 from ._checks import require_positive
 from .contact.hertz import HertzContact
-from .solvers.compact import hertz_max_indentation
+from .solvers.halfspace import hertz_max_indentation
 
 __all__ = [
     "ZENER_TO_LOSS_FACTOR",

@@ -60,7 +60,6 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     -------
     matplotlib.axes.Axes
     """
-    import matplotlib.pyplot as plt
 
     from .maps.regimes import infinite_structure_peak, quasi_static_peak
 

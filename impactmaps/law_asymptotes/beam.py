@@ -41,8 +41,8 @@ import numpy as np
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.compact import _single_parameters
-from ..solvers.infinite_beam import _bdf2_weights
+from ..solvers.halfspace import single_law_parameters
+from ..solvers.infinite_beam_cq import bdf2_weights
 from .result import (
     AsymptoteResult,
     contact_frequency_of,
@@ -103,14 +103,14 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     require_positive("velocity", velocity, "m/s")
     require_positive("time_step", time_step)
     require_positive("duration", duration)
-    params = _single_parameters(law)
+    params = single_law_parameters(law)
     mass, speed = float(impactor_mass), float(velocity)
     omega = contact_frequency_of(law, mass, speed)
     step = float(time_step) / omega
     count = max(math.ceil(float(duration) / float(time_step)), 2)
     mobility = beam_mobility_constant(beam.mass_per_length, beam.bending_stiffness)
-    beam_weights = mobility * _bdf2_weights(1.5, step, count + 1)
-    weights = _bdf2_weights(2.0, step, count + 1) / mass + beam_weights
+    beam_weights = mobility * bdf2_weights(1.5, step, count + 1)
+    weights = bdf2_weights(2.0, step, count + 1) / mass + beam_weights
     force, alpha, last = _march(law.kernel, params, weights, step, speed, mass, count)
     time = step * np.arange(last + 1)
     force, alpha = force[: last + 1], alpha[: last + 1]

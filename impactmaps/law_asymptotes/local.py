@@ -10,7 +10,7 @@ For any registered contact law ``F(α; α_max)`` the impactor (mass m, speed V0)
   1941, 669; see :mod:`impactmaps.hertz_similarity` for its parameter);
 * **quasi-static** — a massless spring, the structure's static point stiffness K_st in
   series with the contact: ``w = F/K_st`` (seed 001 eq 28 for linear contact);
-* **half-space** — ``w = 0``, delegated to :func:`impactmaps.solvers.compact.halfspace_impact`.
+* **half-space** — ``w = 0``, delegated to :func:`impactmaps.solvers.halfspace.halfspace_impact`.
 
 For the dashpot and the spring ``α̇`` is a function of the impactor velocity and the
 contact state alone, ``α̇ = v − F/Z`` and ``α̇ = v/(1 + k_t/K_st)`` (``k_t = dF/dα``).
@@ -37,7 +37,7 @@ from scipy.integrate import solve_ivp
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.compact import _single_parameters, halfspace_impact
+from ..solvers.halfspace import single_law_parameters, halfspace_impact
 from .result import AsymptoteResult, contact_frequency_of
 
 __all__ = ["halfspace_asymptote", "infinite_plate_impact", "plate_impedance", "quasi_static_impact"]
@@ -131,7 +131,7 @@ def halfspace_asymptote(law: ContactLaw, impactor_mass, velocity) -> AsymptoteRe
     Returns
     -------
     AsymptoteResult
-        ``method = "half-space"``, from :func:`impactmaps.solvers.compact.halfspace_impact`.
+        ``method = "half-space"``, from :func:`impactmaps.solvers.halfspace.halfspace_impact`.
     """
     run = halfspace_impact(law, impactor_mass, velocity)
     separated = not run.time_limit_reached
@@ -162,7 +162,7 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
-    params = _single_parameters(law)
+    params = single_law_parameters(law)
     kernel = law.kernel
     mass, speed = float(impactor_mass), float(velocity)
     scale = float(law.indentation_for_energy(0.5 * mass * speed**2))  # α_scale [m]

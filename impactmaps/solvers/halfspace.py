@@ -39,6 +39,7 @@ __all__ = [
     "HERTZ_CONTACT_TIME_FACTOR",
     "energy_balance_restitution",
     "halfspace_impact",
+    "single_law_parameters",
     "hertz_contact_time",
     "hertz_max_indentation",
     "hertz_peak_force",
@@ -147,14 +148,21 @@ def energy_balance_restitution(law: ContactLaw, impactor_mass, velocity):
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
-    _single_parameters(law)
+    single_law_parameters(law)
     energy = 0.5 * float(impactor_mass) * float(velocity) ** 2
     alpha_max = float(law.indentation_for_energy(energy))
     return float(np.sqrt(float(law.recovered_energy(alpha_max)) / energy))
 
 
 # -- time integration --------------------------------------------------------------------
-def _single_parameters(law: ContactLaw) -> np.ndarray:
+def single_law_parameters(law: ContactLaw) -> np.ndarray:
+    """The kernel parameters of one (non-batched) contact law, as a flat float array.
+
+    Raises
+    ------
+    ValueError
+        ``law`` is not a ContactLaw, or a batch of laws.
+    """
     if not isinstance(law, ContactLaw):
         raise ValueError(f"law = {law!r} is not a ContactLaw")
     params = np.asarray(law.kernel_parameters, dtype=float)
@@ -168,7 +176,7 @@ def _single_parameters(law: ContactLaw) -> np.ndarray:
 
 def _indentation_scale(law: ContactLaw, energy: float) -> float:
     """Indentation [m] at which the loading work reaches ``energy`` (±4 %)."""
-    params = _single_parameters(law)
+    params = single_law_parameters(law)
     alpha = np.geomspace(1e-18, 1e3, 1300)
     force = evaluate_kernel(law.kernel, params, alpha, alpha)[0]
     work = np.concatenate(([0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(alpha))))
@@ -210,7 +218,7 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
         require_positive("time_step", time_step, "s")
     if max_time is not None:
         require_positive("max_time", max_time, "s")
-    params = _single_parameters(law)
+    params = single_law_parameters(law)
     kernel = law.kernel
     mass = float(impactor_mass)
     speed = float(velocity)

@@ -22,14 +22,14 @@ import numpy as np
 
 from .._checks import require_positive
 
-__all__ = ["DEFAULT_TIME_STEP", "MAX_CQ_STEPS", "InfiniteBeamImpact", "infinite_beam_impact"]
+__all__ = ["DEFAULT_TIME_STEP", "MAX_CQ_STEPS", "InfiniteBeamImpact", "bdf2_weights", "infinite_beam_impact"]
 
 DEFAULT_TIME_STEP = 0.01  # normalised CQ step; max error ≈ 1.3e-4 on τ ≤ 10 (tests)
 MAX_CQ_STEPS = 100_000  # O(N²) convolution; beyond this the step is coarsened (warning)
 
 
 @numba.njit(cache=True)
-def _bdf2_weights(exponent, step, count):
+def bdf2_weights(exponent, step, count):
     """BDF2 convolution-quadrature weights of K(s) = s^{-exponent} (Lubich 1988).
 
     Taylor coefficients of ``(δ(ξ)/h)^{-exponent}``, ``δ(ξ) = 3/2 − 2ξ + ξ²/2 = (3/2)g(ξ)``,
@@ -78,7 +78,7 @@ def _cq_march(loss_factor: float, step: float, count: int, unilateral: bool, pre
     replaces the solve there.
     """
     c = math.sqrt(math.pi) * loss_factor
-    weights = _bdf2_weights(2.0, step, count + 1) + 2.0 * c * _bdf2_weights(1.5, step, count + 1)
+    weights = bdf2_weights(2.0, step, count + 1) + 2.0 * c * bdf2_weights(1.5, step, count + 1)
     tau = step * np.arange(count + 1)
     given = np.zeros(0) if prescribed is None else np.asarray(prescribed, dtype=float)
     force, indentation = _march_kernel(weights, tau, given, unilateral)
