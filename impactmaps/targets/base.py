@@ -15,7 +15,13 @@ from typing import ClassVar
 
 import numpy as np
 
-__all__ = ["ModalBasis", "Target"]
+__all__ = ["ModalBasis", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
+
+#: Relative size (of the static compliance) of a negative residual compliance that is
+#: treated as round-off and clipped to zero; anything more negative means wrong modes.
+RESIDUAL_ROUND_OFF = 1e-9
+#: Modes with ``φ_j² ≤ PARTICIPATION_THRESHOLD · max φ²`` do not take part in an impact.
+PARTICIPATION_THRESHOLD = 1e-24
 
 
 @dataclass(frozen=True)
@@ -85,6 +91,82 @@ class ModalBasis:
         object.__setattr__(basis, "residual_compliance", float(residual_compliance))
         object.__setattr__(basis, "damping_ratios", np.ascontiguousarray(damping_ratios))
         return basis
+
+    @classmethod
+    def from_modes(cls, frequencies, participation, static_compliance: float,
+                   damping_ratios=None, *, retained_compliance: float | None = None) -> "ModalBasis":
+        """The basis of some modes of a target whose exact static compliance is known.
+
+        The residual compliance is ``static_compliance − retained`` [m/N], with
+        ``retained = Σ φ_j²/ω_j²`` over the elastic modes given (:attr:`retained_compliance`)
+        unless ``retained_compliance`` is passed (a Mindlin plate counts the classical
+        compliance of its retained half-wave pairs). A negative residual smaller than
+        :data:`RESIDUAL_ROUND_OFF` times the static compliance is round-off and set to 0.
+
+        Parameters
+        ----------
+        frequencies, participation, damping_ratios
+            As the attributes of :class:`ModalBasis` [rad/s], [kg^-1/2], [-].
+        static_compliance : float
+            Exact static point compliance [m/N] of the target at the impact point.
+        retained_compliance : float, optional
+            Static compliance [m/N] counted as carried by the given modes.
+
+        Raises
+        ------
+        RuntimeError
+            When the retained compliance exceeds the static one by more than round-off
+            (the modes are wrong).
+        """
+        basis = cls(frequencies, participation, 0.0, damping_ratios)
+        retained = basis.retained_compliance if retained_compliance is None else float(retained_compliance)
+        residual = static_compliance - retained
+        if residual < 0:
+            if residual < -RESIDUAL_ROUND_OFF * static_compliance:
+                raise RuntimeError(
+                    f"retained modal compliance {retained:.12e} m/N exceeds the static "
+                    f"compliance {static_compliance:.12e} m/N: the modes are wrong")
+            residual = 0.0
+        return cls.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
+
+    def truncate(self, max_frequency: float, min_modes: int = 1) -> "ModalBasis":
+        """The modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``, if present).
+
+        The static compliance ``φ_j²/ω_j²`` of the elastic modes left out is added to the
+        residual compliance, so retained + residual stays the target's static compliance
+        (residual-flexibility correction). The frequencies must be ascending. The left-out
+        compliances are summed from the highest mode down (smallest terms first).
+        """
+        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
+        count = min(max(count, int(min_modes)), self.size)
+        if count == self.size:
+            return self
+        frequencies = self.frequencies[count:]
+        dropped = np.zeros_like(frequencies)
+        elastic = frequencies > 0
+        dropped[elastic] = self.participation[count:][elastic] ** 2 / frequencies[elastic] ** 2
+        residual = float(np.cumsum(dropped[::-1])[-1]) + self.residual_compliance
+        return ModalBasis.from_validated(self.frequencies[:count], self.participation[:count],
+                                         residual, self.damping_ratios[:count])
+
+    def participating(self) -> "ModalBasis":
+        """The modes that take part in an impact at the impact point (same residual).
+
+        A mode with ``φ_j² ≤`` :data:`PARTICIPATION_THRESHOLD` ``· max φ²`` is never
+        excited by the contact force (e.g. antisymmetric modes at a centre impact); it is
+        dropped and its (negligible) compliance is not moved to the residual.
+        """
+        squares = self.participation**2
+        significant = squares > PARTICIPATION_THRESHOLD * max(float(np.max(squares, initial=0.0)), 1e-300)
+        if np.all(significant):
+            return self
+        return ModalBasis.from_validated(self.frequencies[significant], self.participation[significant],
+                                         self.residual_compliance, self.damping_ratios[significant])
+
+    def with_residual(self, residual_compliance: float) -> "ModalBasis":
+        """The same modes with another residual compliance [m/N] (e.g. 0 to switch it off)."""
+        return ModalBasis.from_validated(self.frequencies, self.participation,
+                                         residual_compliance, self.damping_ratios)
 
     @property
     def size(self) -> int:
