@@ -613,7 +613,7 @@ def test_plate_modes_do_not_depend_on_earlier_requests(edges):
     plate_module._plate_modes.cache_clear()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        plate.modes(4e5, min_modes=3)
+        plate.modes(1.5e5, min_modes=3)
     again = plate.modes(2e4, min_modes=3)
     np.testing.assert_array_equal(again.frequencies, fresh.frequencies)
     np.testing.assert_array_equal(again.participation, fresh.participation)

@@ -1,7 +1,15 @@
 """Targets: anything that supplies modes at the impact point (beams, plates)."""
 
-from .base import ModalBasis, Target
+from .._checks import require_choice
+from .base import InfiniteImpact, ModalBasis, Target
 from .beam import Beam
+from .options import STRUCTURE_KINDS
 from .plate import Plate
 
-__all__ = ["Beam", "ModalBasis", "Plate", "Target"]
+__all__ = ["Beam", "InfiniteImpact", "ModalBasis", "Plate", "Target", "target_class"]
+
+
+def target_class(kind: str) -> type[Target]:
+    """The target class of a structure kind: ``"beam"`` → :class:`Beam`, ``"plate"`` → :class:`Plate`."""
+    require_choice("kind", kind, STRUCTURE_KINDS)
+    return {"beam": Beam, "plate": Plate}[kind]

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-__all__ = ["ModalBasis", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
+__all__ = ["InfiniteImpact", "ModalBasis", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
 
 #: Relative size (of the static compliance) of a negative residual compliance that is
 #: treated as round-off and clipped to zero; anything more negative means wrong modes.
@@ -180,6 +180,30 @@ class ModalBasis:
         return float(np.sum(self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2))
 
 
+class InfiniteImpact(NamedTuple):
+    """Linear-contact impact on the infinite structure of a target's kind (normalised).
+
+    Forces by ``m_i V0 ω``, times by ``1/ω`` and velocities by ``V0`` (ω the contact
+    frequency sqrt(K/m_i)); exact until the first wave returns from a boundary.
+
+    Attributes
+    ----------
+    peak_force : float
+        F̄max [-].
+    peak_time : float
+        ω t of the peak [-].
+    contact_time : float
+        ω t_c of the separation [-] (NaN if the impactor never separates).
+    rebound_velocity : float
+        Impactor velocity at separation over V0 [-] (NaN if there is no separation).
+    """
+
+    peak_force: float
+    peak_time: float
+    contact_time: float
+    rebound_velocity: float
+
+
 class Target(ABC):
     """A struck structure: supplies modes at the impact point and its static stiffness.
 
@@ -211,3 +235,25 @@ class Target(ABC):
     @abstractmethod
     def impactor_mass_for(self, loss_factor, contact_stiffness):
         """Impactor mass m_i [kg] giving ``loss_factor`` ζ with contact stiffness K [N/m]."""
+
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] to the
+        boundary whose reflection comes back first and ``c = sqrt(bending stiffness /
+        mass per length or area)`` [m²/s]. Finite structures (beams, plates) override it.
+        """
+        raise NotImplementedError(f"{type(self).__name__} has no wave-return time")
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force F̄∞(ζ) [-] on the infinite structure of this kind.
+
+        ``loss_factor`` ζ [-] may be an array. Finite structures override it.
+        """
+        raise NotImplementedError(f"{cls.__name__} has no infinite-structure asymptote")
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """The whole infinite-structure impact at one loss factor ζ [-] (:class:`InfiniteImpact`)."""
+        raise NotImplementedError(f"{cls.__name__} has no infinite-structure asymptote")

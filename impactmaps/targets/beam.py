@@ -42,8 +42,9 @@ from .._checks import (
     require_positive,
 )
 from ..dimensionless import impactor_mass_for_beam, loss_factor_beam
+from ..solvers import asymptotes
 from . import beam_modes
-from .base import ModalBasis, Target
+from .base import InfiniteImpact, ModalBasis, Target
 from .beam_modes import BeamSection
 from .options import BEAM_SUPPORTS as SUPPORTS
 from .options import BEAM_THEORIES as THEORIES
@@ -290,6 +291,39 @@ class Beam(Target):
         first return of a reflection to the impact point.
         """
         return min(self.impact_position, self.length - self.impact_position)
+
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] from x0 to
+        the nearest clamped or simply supported end (:meth:`distance_to_nearest_support`),
+        ``c = sqrt(bD11/m')`` [m²/s] (so that ``ω d²/c`` is d² over the flexural
+        wavelength scale at ω).
+        """
+        distance = self.distance_to_nearest_support()
+        speed = math.sqrt(self.bending_stiffness / self.mass_per_length)
+        return np.asarray(contact_frequency) * distance**2 / speed
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force on the infinite beam F̄∞(ζ) [-] (seed 001 eq 36).
+
+        From :func:`impactmaps.solvers.asymptotes.infinite_beam_peak`, evaluated once per
+        distinct value of ``loss_factor`` ζ [-] (scalar or array; result of its shape).
+        """
+        zeta = np.asarray(loss_factor, dtype=float)
+        unique, inverse = np.unique(zeta, return_inverse=True)
+        peaks = np.asarray(asymptotes.infinite_beam_peak(unique), dtype=float)
+        return peaks[inverse].reshape(zeta.shape)
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """Impact on the infinite beam at loss factor ζ [-] (normalised; :class:`InfiniteImpact`)."""
+        contact = asymptotes.infinite_beam_contact_time(loss_factor)
+        rebound = (asymptotes.infinite_beam_impactor_velocity(contact, loss_factor)
+                   if np.isfinite(contact) else np.nan)
+        return InfiniteImpact(asymptotes.infinite_beam_peak(loss_factor),
+                              asymptotes.infinite_beam_peak_time(loss_factor), contact, rebound)
 
     def flexural_wave_speed(self, angular_frequency):
         """Euler flexural phase speed ``c_B = (bD11/m')^{1/4} sqrt(ω)`` [m/s] at ω [rad/s]."""

@@ -29,7 +29,8 @@ import scipy.special
 from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
 from ..dimensionless import effective_plate_stiffness, impactor_mass_for_plate, loss_factor_plate
 from . import ritz
-from .base import ModalBasis, Target
+from ..solvers import asymptotes
+from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES
 
 __all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "PLATE_THEORIES",
@@ -339,6 +340,39 @@ class Plate(Target):
         """Shortest distance [m] from the impact point to an edge (first wave return)."""
         x0, y0 = self.impact_point
         return min(x0, self.length_x - x0, y0, self.length_y - y0)
+
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] to the
+        nearest edge (:meth:`distance_to_nearest_edge`), ``c = sqrt(D*/ρh)`` [m²/s].
+        """
+        distance = self.distance_to_nearest_edge()
+        speed = math.sqrt(self.effective_bending_stiffness / self.mass_per_area)
+        return np.asarray(contact_frequency) * distance**2 / speed
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force on the infinite plate F̄∞(ζ) [-] (seed 001 eq 32).
+
+        From :func:`impactmaps.solvers.asymptotes.infinite_plate_peak`; ``loss_factor``
+        ζ [-] scalar or array.
+        """
+        return np.asarray(asymptotes.infinite_plate_peak(np.asarray(loss_factor, dtype=float)),
+                          dtype=float)
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """Impact on the infinite plate at loss factor ζ [-] (normalised; :class:`InfiniteImpact`).
+
+        On the infinite plate the plate velocity under the load is proportional to the
+        force, zero at separation, so the rebound velocity is the indentation rate then.
+        """
+        contact = asymptotes.infinite_plate_contact_time(loss_factor)
+        rebound = (asymptotes.infinite_plate_indentation_rate(contact, loss_factor)
+                   if np.isfinite(contact) else np.nan)
+        return InfiniteImpact(asymptotes.infinite_plate_peak(loss_factor),
+                              asymptotes.infinite_plate_peak_time(loss_factor), contact, rebound)
 
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
