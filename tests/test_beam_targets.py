@@ -590,3 +590,31 @@ def test_modes_do_not_depend_on_earlier_requests(theory, supports):
 def _clear_mode_caches(beam_module):
     beam_module._beam_basis.cache_clear()
     beam_fe_modes._fe_solution.cache_clear()
+
+
+def test_modal_basis_owns_residual_bookkeeping():
+    """ModalBasis.from_modes: residual = static − retained, round-off negatives clipped
+    once, real excess an error; truncate moves the compliance of the dropped modes to the
+    residual; participating drops modes with no motion at the impact point."""
+    from impactmaps.targets.base import ModalBasis
+
+    frequencies = np.array([0.0, 10.0, 20.0, 40.0])
+    participation = np.array([0.5, 1.0, 0.0, 2.0])
+    retained = 1.0 / 100.0 + 4.0 / 1600.0
+    basis = ModalBasis.from_modes(frequencies, participation, 0.02)
+    assert basis.residual_compliance == 0.02 - retained
+    assert ModalBasis.from_modes(frequencies, participation, retained * (1 - 1e-12)).residual_compliance == 0.0
+    with pytest.raises(RuntimeError, match="exceeds the static compliance"):
+        ModalBasis.from_modes(frequencies, participation, 0.9 * retained)
+    assert ModalBasis.from_modes(frequencies, participation, 0.02,
+                                 retained_compliance=0.005).residual_compliance == 0.015
+    truncated = basis.truncate(15.0)
+    np.testing.assert_array_equal(truncated.frequencies, [0.0, 10.0])
+    assert truncated.residual_compliance == 4.0 / 1600.0 + basis.residual_compliance
+    assert truncated.retained_compliance + truncated.residual_compliance == approx(0.02, rel=1e-15)
+    assert basis.truncate(0.0, min_modes=3).size == 3
+    assert basis.truncate(100.0) is basis
+    participating = basis.participating()
+    np.testing.assert_array_equal(participating.frequencies, [0.0, 10.0, 40.0])
+    assert participating.residual_compliance == basis.residual_compliance
+    assert participating.participating() is participating

@@ -163,11 +163,6 @@ class ModalBasis:
         return ModalBasis.from_validated(self.frequencies[significant], self.participation[significant],
                                          self.residual_compliance, self.damping_ratios[significant])
 
-    def with_residual(self, residual_compliance: float) -> "ModalBasis":
-        """The same modes with another residual compliance [m/N] (e.g. 0 to switch it off)."""
-        return ModalBasis.from_validated(self.frequencies, self.participation,
-                                         residual_compliance, self.damping_ratios)
-
     @property
     def size(self) -> int:
         """Number of retained modes."""
