@@ -7,7 +7,13 @@ import math
 
 import numpy as np
 
-from .beam_section import BeamSection, ModeSet, as_points, cutoff_with_min_modes, largest_wavenumber
+from .beam_section import (
+    BeamSection,
+    ModeSet,
+    as_points,
+    cutoff_with_min_modes,
+    largest_wavenumber,
+)
 
 __all__ = ["euler_roots", "classical_euler_modes"]
 

@@ -123,7 +123,6 @@ class ModeSet:
         raise NotImplementedError
 
 
-
 def as_points(points) -> np.ndarray:
     """Points x [m] as a flat float array."""
     return np.atleast_1d(np.asarray(points, dtype=float)).ravel()

@@ -6,7 +6,13 @@ import math
 
 import numpy as np
 
-from .beam_section import BeamSection, ModeSet, as_points, cutoff_with_min_modes, largest_wavenumber
+from .beam_section import (
+    BeamSection,
+    ModeSet,
+    as_points,
+    cutoff_with_min_modes,
+    largest_wavenumber,
+)
 
 __all__ = ["simply_supported_modes"]
 

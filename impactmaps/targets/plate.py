@@ -28,8 +28,8 @@ import scipy.special
 
 from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
 from ..dimensionless import effective_plate_stiffness, impactor_mass_for_plate, loss_factor_plate
-from . import ritz
 from ..solvers import asymptotes
+from . import ritz
 from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES
 
