@@ -244,7 +244,7 @@ def _rigid_vectors(section: BeamSection, elements: int, total: int, node_dofs) -
     return vectors
 
 
-@lru_cache(maxsize=8)
+@lru_cache(maxsize=4)  # near FE_MAX_DOFS one solution holds ~150 MB of vectors
 def _fe_solution(section: BeamSection, elements: int, degree: int) -> _FiniteElementModes:
     """Eigen-solution of the FE model: all modes up to its resolved frequency.
 
