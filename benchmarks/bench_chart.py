@@ -105,7 +105,7 @@ def count_points(dataset) -> tuple[int, int]:
 
     done = dataset["done"].values.astype(bool)
     finite = np.isfinite(dataset["fmax_normalised"].values)
-    limited = dataset["hit_time_limit"].values == 1
+    limited = dataset["time_limit_reached"].values == 1
     return int(done.sum()), int((done & finite & ~limited).sum())
 
 

@@ -26,14 +26,15 @@ _EXPORTS = {
     "simulate_batch": "impactmaps.solvers.modal",
     "ModalSettings": "impactmaps.solvers.modal",
     "ImpactResult": "impactmaps.solvers.result",
-    "halfspace_impact": "impactmaps.solvers.compact",
-    "restitution": "impactmaps.solvers.compact",
+    "halfspace_impact": "impactmaps.solvers.halfspace",
+    "restitution": "impactmaps.solvers.halfspace",
     "simulate_fd": "impactmaps.fd",
     "FDBeam": "impactmaps.fd",
     # targets, materials, contact
     "Beam": "impactmaps.targets.beam",
     "Plate": "impactmaps.targets.plate",
     "ModalBasis": "impactmaps.targets.base",
+    "HalfSpace": "impactmaps.targets.halfspace",
     "IsotropicMaterial": "impactmaps.materials",
     "Ply": "impactmaps.materials",
     "Laminate": "impactmaps.materials",
@@ -42,6 +43,8 @@ _EXPORTS = {
     "law_for_sphere": "impactmaps.contact",
     "contact_law": "impactmaps.contact",
     "available_contact_laws": "impactmaps.contact",
+    "law_options": "impactmaps.contact",
+    "ContactPair": "impactmaps.contact",
     # dimensionless framework
     "realise": "impactmaps.dimensionless",
     "loss_factor_plate": "impactmaps.dimensionless",
@@ -57,7 +60,11 @@ _EXPORTS = {
     "make_chart": "impactmaps.maps.chart",
     # cases
     "load_case": "impactmaps.cases",
+    "parse_case": "impactmaps.cases",
     "run_case": "impactmaps.cases",
+    "Case": "impactmaps.cases",
+    # accuracy of map points
+    "AccuracyControl": "impactmaps.maps.accuracy",
 }
 
 __all__ = ["__version__", *_EXPORTS]

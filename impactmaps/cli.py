@@ -7,12 +7,11 @@ simulate, fd, halfspace, restitution. ``impactmaps SUBCOMMAND --help`` documents
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import warnings
 from pathlib import Path
 
-import numpy as np
+from .jsonio import dumps
 
 __all__ = ["main", "build_parser"]
 
@@ -20,7 +19,7 @@ __all__ = ["main", "build_parser"]
 # -- helpers -------------------------------------------------------------------------------
 def _emit(values: dict, as_json: bool, units: dict | None = None) -> None:
     if as_json:
-        print(json.dumps(values, default=_plain))
+        print(dumps(values))
         return
     units = units or {}
     width = max(len(k) for k in values)
@@ -30,14 +29,6 @@ def _emit(values: dict, as_json: bool, units: dict | None = None) -> None:
         else:
             text = str(value)
         print(f"{key:<{width}}  {text}{(' ' + units[key]) if key in units else ''}")
-
-
-def _plain(value):
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    return str(value)
 
 
 def _material_from_args(args, prefix: str, role: str):
@@ -64,29 +55,26 @@ def _material_from_args(args, prefix: str, role: str):
 
 # -- subcommands -----------------------------------------------------------------------------
 def _cmd_restitution(args) -> dict:
-    from .solvers.compact import restitution
+    from .solvers.halfspace import restitution
 
     return {"beta": args.beta, "restitution": float(restitution(args.beta))}
 
 
 def _cmd_halfspace(args) -> dict:
     from .contact import Sphere, law_for_sphere
-    from .solvers.compact import halfspace_impact
+    from .solvers.halfspace import halfspace_impact
 
     impactor_material = _material_from_args(args, "", "impactor")
     target_material = _material_from_args(args, "target_", "target")
     sphere = Sphere(args.radius, impactor_material, args.mass)
     law = law_for_sphere(args.law, sphere, target_material)
     result = halfspace_impact(law, sphere.mass, args.velocity)
+    summary = result.summary()
     return {
         "law": args.law,
         "impactor_mass_kg": float(sphere.mass),
-        "peak_force_N": float(result.peak_force),
-        "contact_time_s": float(result.contact_time),
-        "max_indentation_m": float(result.max_indentation),
-        "permanent_indentation_m": float(result.permanent_indentation),
-        "restitution": float(result.restitution),
-        "energy_lost_J": float(result.energy_lost),
+        **{key: summary[key] for key in ("peak_force_N", "first_contact_duration_s", "max_indentation_m",
+                                         "permanent_indentation_m", "restitution", "energy_loss_J")},
     }
 
 
@@ -232,10 +220,10 @@ def _cmd_simulate(args) -> dict:
 
 
 def _cmd_fd(args) -> dict:
-    from .cases import load_fd_case, run_fd_case
+    from .cases import load_case, run_case
 
-    case = load_fd_case(args.case)
-    _, summary = run_fd_case(case)
+    case = load_case(args.case, solver="fd")
+    _, summary = run_case(case)
     return summary
 
 
@@ -337,7 +325,7 @@ def main(argv=None) -> int:
             print(f"warning: {warning.message}", file=sys.stderr)
     except (ValueError, FileNotFoundError) as error:
         if args.json:
-            print(json.dumps({"error": str(error)}))
+            print(dumps({"error": str(error)}))
         print(f"impactmaps {args.command}: error: {error}", file=sys.stderr)
         return 2
     _emit(values, args.json)

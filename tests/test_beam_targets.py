@@ -22,7 +22,6 @@ from impactmaps.materials import IsotropicMaterial
 from impactmaps.solvers.modal import simulate_normalised
 from impactmaps.targets import beam_fe_eigen, beam_fe_modes, beam_modes
 from impactmaps.targets.beam import Beam
-from impactmaps.targets.beam_modes import BeamSection
 
 STEEL = IsotropicMaterial(youngs_modulus=2.1e11, poisson_ratio=0.3, density=7850.0)
 
@@ -528,10 +527,9 @@ def test_bad_section_properties_and_allowed_end_impacts():
         beam().modes(-1.0)
 
 
-REFERENCE = Path(__file__).resolve().parents[2] / "shared" / "reference" / "fmax_reference.csv"
+REFERENCE = Path(__file__).resolve().parent / "data" / "fmax_reference.csv"  # see tests/data/README.md
 
 
-@pytest.mark.skipif(not REFERENCE.exists(), reason="shared reference table not available")
 @pytest.mark.parametrize("theory,slenderness", [("euler", 20.0), ("timoshenko", 300.0)])
 def test_simply_supported_beam_reproduces_reference_peak_forces(theory, slenderness):
     """End to end (PHYSICS.md 6): the modal solver on Beam (SS, struck at mid-span,

@@ -21,15 +21,11 @@ from scipy.integrate import quad
 
 from impactmaps.cases import (
     Case,
-    FDCase,
     case_dimensionless,
     load_case,
-    load_fd_case,
     parse_case,
-    parse_fd_case,
     read_case_outputs,
     run_case,
-    run_fd_case,
     write_case_outputs,
 )
 from impactmaps.materials import material
@@ -39,7 +35,7 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 MODAL_EXAMPLES = ["steel_plate_hertz.toml", "aluminium_beam_linear.toml",
                   "composite_plate_sun_chen.toml"]
 
-SUMMARY_KEYS = ("peak_force_N", "contact_intervals_s", "contact_time_s", "max_deflection_m",
+SUMMARY_KEYS = ("peak_force_N", "contact_intervals_s", "first_contact_duration_s", "total_contact_time_s", "max_deflection_m",
                 "impacts", "restitution", "energy_transferred_J", "beta", "lambda", "zeta",
                 "lambda_basis", "contact_stiffness_N_m")
 FD_SUMMARY_KEYS = ("peak_force_N", "contact_intervals_s", "restitution", "energy_loss_J",
@@ -105,7 +101,7 @@ def test_modal_example_loads_runs_and_round_trips(name, tmp_path):
     assert read_summary == summary
     assert list(history.columns[:5]) == ["time_s", "force_N", "indentation_m",
                                          "impactor_displacement_m", "impactor_velocity_m_s"]
-    assert "target_deflection_m" in history.columns
+    assert "target_displacement_m" in history.columns
     assert len(history) == len(result.history)
     np.testing.assert_allclose(history["force_N"].to_numpy(), result.history["force_N"].to_numpy(),
                                rtol=1e-12, atol=0.0)
@@ -123,19 +119,19 @@ def test_fd_example_loads_runs_and_writes(tmp_path):
     ~1e-6, a wrong mass or force sign gives O(1)), and strict JSON output when the
     record ends in contact (restitution undefined → null, never NaN).
     """
-    case = load_fd_case(EXAMPLES / "steel_beam_fd_stronge.toml")
-    assert isinstance(case, FDCase)
-    assert case.beam.length == pytest.approx(0.78)
-    assert (case.beam.width, case.beam.height) == pytest.approx((0.060, 0.0278))
-    assert case.beam.supports == ("ss", "ss")
-    assert case.beam.yield_strength == pytest.approx(235e6)
+    case = load_case(EXAMPLES / "steel_beam_fd_stronge.toml", solver="fd")
+    assert isinstance(case, Case) and case.solver_kind == "fd"
+    assert case.fd_beam.length == pytest.approx(0.78)
+    assert (case.fd_beam.width, case.fd_beam.height) == pytest.approx((0.060, 0.0278))
+    assert case.fd_beam.supports == ("ss", "ss")
+    assert case.fd_beam.yield_strength == pytest.approx(235e6)
     assert case.sphere.mass == pytest.approx(7850.0 * 4.0 / 3.0 * math.pi * 0.07**3)
-    coarse = replace(case, beam=replace(case.beam, n_elements=60, n_half_layers=4),
+    coarse = replace(case, fd_settings=replace(case.fd_settings, n_elements=60, n_half_layers=4),
                      duration=1.0e-3)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         warnings.simplefilter("ignore", UserWarning)
-        result, summary = run_fd_case(coarse)
+        result, summary = run_case(coarse)
     for key in FD_SUMMARY_KEYS:
         assert key in summary
     assert summary["peak_force_N"] > 0
@@ -143,7 +139,7 @@ def test_fd_example_loads_runs_and_writes(tmp_path):
     paths = write_case_outputs(coarse, result, tmp_path)
     assert _strict_json(paths["summary"].read_text()) == summary
     history, _ = read_case_outputs(tmp_path)
-    assert "beam_deflection_at_impact_m" in history.columns
+    assert "target_displacement_m" in history.columns
 
 
 # -------------------------------------------------------------------------------------
@@ -175,7 +171,7 @@ def test_halfspace_linear_case_matches_exact_solution():
     mass = 8000.0 * 4.0 / 3.0 * math.pi * 0.01**3
     omega = math.sqrt(2.0e7 / mass)
     assert summary["peak_force_N"] == pytest.approx(mass * 2.0 * omega, rel=1e-4)
-    assert summary["contact_time_s"] == pytest.approx(math.pi / omega, rel=1e-4)
+    assert summary["first_contact_duration_s"] == pytest.approx(math.pi / omega, rel=1e-4)
     assert summary["restitution"] == pytest.approx(1.0, rel=1e-4)
     assert summary["lambda"] is None and summary["zeta"] is None and summary["beta"] is None
     assert summary["lambda_basis"] == "linear law stiffness K"
@@ -197,7 +193,7 @@ def test_halfspace_hertz_case_matches_hertz_theory():
     alpha_m = (5.0 * mass * 2.0**2 / (4.0 * k_h)) ** 0.4
     integral, _ = quad(lambda x: 1.0 / math.sqrt(1.0 - x**2.5), 0.0, 1.0)
     assert summary["peak_force_N"] == pytest.approx(k_h * alpha_m**1.5, rel=2e-4)
-    assert summary["contact_time_s"] == pytest.approx(2.0 * alpha_m / 2.0 * integral, rel=2e-4)
+    assert summary["first_contact_duration_s"] == pytest.approx(2.0 * alpha_m / 2.0 * integral, rel=2e-4)
 
 
 PLATE = """
@@ -276,7 +272,7 @@ def test_solver_duration_is_the_time_limit():
     case = parse_case(text)
     with pytest.warns(ConvergenceWarning):
         result, summary = run_case(case)
-    assert summary["hit_time_limit"] is True
+    assert summary["time_limit_reached"] is True
     assert 1e-5 <= summary["end_time_s"] < 1e-5 + summary["time_step_s"] * (1 + 1e-9)
 
 
@@ -463,18 +459,18 @@ FD_GOOD = textwrap.dedent("""
 )
 def test_bad_fd_cases_name_the_key(old, new, expected):
     """FD-specific requirements (beam target, duration, yield strength, [fd] keys)."""
-    assert parse_fd_case(FD_GOOD).beam.n_elements == 40
+    assert parse_case(FD_GOOD, solver="fd").fd_beam.n_elements == 40
     assert old in FD_GOOD
     with pytest.raises(ValueError) as info:
-        parse_fd_case(FD_GOOD.replace(old, new, 1))
+        parse_case(FD_GOOD.replace(old, new, 1), solver="fd")
     for fragment in expected:
         assert fragment in str(info.value), f"{fragment!r} not in {str(info.value)!r}"
 
 
 def test_fd_support_codes_map_to_beam_ends():
     """Modal support codes map to the (left, right) ends of the FD beam."""
-    case = parse_fd_case(FD_GOOD.replace("height = 0.01", 'height = 0.01\nsupports = "cf"'))
-    assert case.beam.supports == ("cc", "free")
+    case = parse_case(FD_GOOD.replace("height = 0.01", 'height = 0.01\nsupports = "cf"'), solver="fd")
+    assert case.fd_beam.supports == ("cc", "free")
 
 
 # -------------------------------------------------------------------------------------
@@ -583,7 +579,48 @@ def test_fd_case_defaults_to_refined_stronge():
     FD example without its [contact] table builds the same law as with law = "stronge"."""
     text = (EXAMPLES / "steel_beam_fd_stronge.toml").read_text()
     assert '[contact]\nlaw = "stronge"\n' in text
-    default = parse_fd_case(text.replace('[contact]\nlaw = "stronge"\n', ""))
-    explicit = parse_fd_case(text)
+    default = parse_case(text.replace('[contact]\nlaw = "stronge"\n', ""), solver="fd")
+    explicit = parse_case(text, solver="fd")
     assert default.law_name == "stronge"
     np.testing.assert_array_equal(default.law.kernel_parameters, explicit.law.kernel_parameters)
+
+
+def test_cantilever_tip_impact_is_a_valid_case():
+    """Bug fixed by deriving the schema from the constructors: the case reader refused
+    x0 = L, which :class:`Beam` accepts for a cantilever (a tip impact); the beam now
+    checks its own impact point, and a supported end stays refused with the key path."""
+    text = textwrap.dedent("""
+        [impactor]
+        radius = 0.005
+        material = "structural-steel"
+        velocity = 1.0
+        [target]
+        type = "beam"
+        length = 0.3
+        width = 0.02
+        height = 0.01
+        material = "structural-steel"
+        supports = "cf"
+        impact_position = 0.3
+        [contact]
+        law = "hertz"
+    """)
+    case = parse_case(text)
+    assert case.target.impact_position == pytest.approx(0.3)
+    with pytest.raises(ValueError, match=r"target\.impact_position = 0\.3"):
+        parse_case(text.replace('supports = "cf"', 'supports = "ss"'))
+
+
+def test_solver_keys_are_the_settings_fields():
+    """[solver] accepts exactly the ModalSettings fields (plus kind, duration, time_step):
+    a field added to the settings is a case key without another list to update."""
+    from dataclasses import fields
+
+    from impactmaps.solvers.modal import ModalSettings
+
+    for f in fields(ModalSettings):
+        value = str(f.default).lower() if isinstance(f.default, bool) else repr(f.default)
+        case = parse_case(GOOD.replace('law = "hertz"', f'law = "hertz"\n[solver]\n{f.name} = {value}', 1))
+        assert getattr(case.settings, f.name) == f.default
+    with pytest.raises(ValueError, match=r"solver\.kind = 'explicit'.*'modal', 'fd'"):
+        parse_case(GOOD.replace('law = "hertz"', 'law = "hertz"\n[solver]\nkind = "explicit"', 1))

@@ -17,7 +17,7 @@ def run(capsys, *argv):
 
 
 def test_restitution(capsys):
-    from impactmaps.solvers.compact import restitution
+    from impactmaps.solvers.halfspace import restitution
 
     status, values = run(capsys, "restitution", "--beta", "10")
     assert status == 0 and values["restitution"] == pytest.approx(float(restitution(10.0)))
@@ -28,7 +28,7 @@ def test_restitution(capsys):
 def test_halfspace_hertz_matches_closed_form(capsys):
     """Hertz impact from the command line equals the classical closed forms."""
     from impactmaps.contact import effective_modulus
-    from impactmaps.solvers.compact import hertz_contact_time, hertz_peak_force
+    from impactmaps.solvers.halfspace import hertz_contact_time, hertz_peak_force
 
     status, values = run(capsys, "halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "2",
                          "--youngs-modulus", "2e11", "--poisson-ratio", "0.3", "--density", "7800")
@@ -37,7 +37,7 @@ def test_halfspace_hertz_matches_closed_form(capsys):
     stiffness = 4 / 3 * np.sqrt(0.01) * effective_modulus(2e11, 0.3, 2e11, 0.3)
     assert values["impactor_mass_kg"] == pytest.approx(mass)
     assert values["peak_force_N"] == pytest.approx(float(hertz_peak_force(mass, 2.0, stiffness)), rel=1e-6)
-    assert values["contact_time_s"] == pytest.approx(float(hertz_contact_time(mass, 2.0, stiffness)), rel=1e-6)
+    assert values["first_contact_duration_s"] == pytest.approx(float(hertz_contact_time(mass, 2.0, stiffness)), rel=1e-6)
     assert values["restitution"] == pytest.approx(1.0, abs=1e-6)
 
 
@@ -49,7 +49,7 @@ def test_halfspace_with_catalogue_materials(capsys):
 
 
 def test_asymptotes(capsys):
-    from impactmaps.solvers.asymptotes import infinite_beam_peak, infinite_plate_peak
+    from impactmaps.solvers.asymptotes import infinite_beam_peak
 
     _, values = run(capsys, "asymptote", "infinite-beam", "--zeta", "0.3")
     assert values["fmax_normalised"] == pytest.approx(float(infinite_beam_peak(0.3)))

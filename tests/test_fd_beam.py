@@ -1,4 +1,4 @@
-"""Verification of the finite-difference Rayleigh beam (impactmaps.fd.beam).
+"""Verification of the finite-difference Rayleigh beam (impactmaps.fd).
 
 Exact references used: the static deflection PL³/(48EI) of a simply supported (SS) beam
 (Rayleigh = Euler statics, no shear deflection), the exact elastic-plastic static
@@ -20,11 +20,16 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from impactmaps.contact import HertzContact, LinearContact, StrongeContact, effective_modulus
+from impactmaps.contact import (
+    HertzContact,
+    LinearContact,
+    StrongeContact,
+    effective_modulus,
+)
 from impactmaps.fd import (
     FDBeam,
-    grid_frequency_bound,
     LayeredSection,
+    grid_frequency_bound,
     simulate_fd,
     simulate_fd_response,
     stable_time_step,
@@ -54,7 +59,7 @@ def _damping(ratio, beam=None):
 
 def _checked(result, tolerance=1e-2):
     """Every impact case: the ledger closes within 1 % of the impact energy."""
-    assert abs(result.energy_balance_error) < tolerance, result.energy
+    assert abs(result.energy_balance_error) < tolerance, result.details.energy
     return result
 
 
@@ -171,12 +176,12 @@ def test_stability_bound_is_safe_and_tight(n):
     (< 1.3 % for N ≥ 50)."""
     from scipy.linalg import eigh
 
-    from impactmaps.fd.beam import _grid
+    from impactmaps.fd.grid import beam_grid
 
     dx = LENGTH / n
     for supports in ("ss", "cc", "free", ("cc", "free"), ("ss", "free")):
         beam = _beam(plastic=False, n_elements=n, supports=supports)
-        grid = _grid(beam)
+        grid = beam_grid(beam)
         free = grid.free
         top = eigh(grid.stiffness_dense()[np.ix_(free, free)], grid.mass_dense()[np.ix_(free, free)],
                    eigvals_only=True)[-1]
@@ -208,7 +213,7 @@ def test_rigid_target_limit_linear_contact():
     assert result.peak_force / (mass * velocity * omega) == pytest.approx(1.0, abs=5e-4)
     assert result.restitution == pytest.approx(1.0, abs=5e-4)
     assert result.impacts == 1
-    assert result.contact_time * omega == pytest.approx(np.pi, abs=1.01 * result.time_step * omega)
+    assert result.total_contact_time * omega == pytest.approx(np.pi, abs=1.01 * result.time_step * omega)
 
 
 @pytest.fixture(scope="module")
@@ -240,7 +245,7 @@ def test_symmetric_gauges_and_mirror_impact(elastic_linear):
     h = elastic_linear.history
     np.testing.assert_allclose(h["gauge0_deflection_m"], h["gauge1_deflection_m"], rtol=1e-9, atol=1e-15)
     np.testing.assert_allclose(h["gauge0_strain"], h["gauge1_strain"], rtol=1e-9, atol=1e-15)
-    np.testing.assert_allclose(h["gauge2_deflection_m"], h["beam_deflection_at_impact_m"], rtol=1e-12)
+    np.testing.assert_allclose(h["gauge2_deflection_m"], h["target_displacement_m"], rtol=1e-12)
     assert h["gauge2_strain"].max() > 0
 
 
@@ -297,7 +302,7 @@ def test_energy_ledger_closes(case):
         warnings.simplefilter("ignore")  # records that end in contact are fine here
         result = simulate_fd(_beam(**options), law, mass, velocity, duration=3e-3, **kwargs)
     _checked(result, tolerance=2e-4)
-    e = result.energy
+    e = result.details.energy
     assert all(np.isfinite(v) for k, v in e.items() if k != "rebound_kinetic_energy")
     assert e["contact_work_discrete"] == pytest.approx(e["contact_dissipation"] + e["contact_stored_energy"],
                                                        abs=2e-4 * e["impact_kinetic_energy"])
@@ -328,15 +333,15 @@ def test_plasticity_gives_plastic_work_and_permanent_deflection(hard_impact):
     contains the impact point. With plasticity off the plastic work is exactly 0 and the
     unloaded beam returns to w = 0 (roundoff)."""
     plastic, elastic = hard_impact
-    assert plastic.energy["beam_plastic_work"] > 0.1 * plastic.impact_energy
-    assert plastic.permanent_beam_deflection > 1e-4
-    zone = plastic.plastic_zone
+    assert plastic.details.energy["beam_plastic_work"] > 0.1 * plastic.impact_energy
+    assert plastic.details.permanent_beam_deflection > 1e-4
+    zone = plastic.details.plastic_zone
     assert zone is not None and zone[0] <= LENGTH / 2 <= zone[1]
-    assert elastic.energy["beam_plastic_work"] == 0.0
-    assert elastic.plastic_zone is None
-    assert abs(elastic.permanent_beam_deflection) < 1e-10
+    assert elastic.details.energy["beam_plastic_work"] == 0.0
+    assert elastic.details.plastic_zone is None
+    assert abs(elastic.details.permanent_beam_deflection) < 1e-10
     # Hertz contact is elastic: nothing dissipated there
-    assert plastic.energy["contact_dissipation"] == 0.0
+    assert plastic.details.energy["contact_dissipation"] == 0.0
     # yielding limits the moment, so the beam is softer: lower (or equal) peak force
     assert plastic.peak_force <= elastic.peak_force * (1 + 1e-6)
 
@@ -346,7 +351,7 @@ def test_residual_curvature_vanishes_where_the_beam_stayed_elastic(hard_impact):
     residual curvature must be zero (roundoff) at every node that never yielded, and the
     permanent deflection must vanish at the supports."""
     plastic, _elastic = hard_impact
-    res = plastic.residual
+    res = plastic.details.residual
     w = res["permanent_deflection_m"].to_numpy()
     kappa = res["residual_curvature_1_m"].to_numpy()
     assert w[0] == 0.0 and w[-1] == 0.0
@@ -517,22 +522,20 @@ def test_batched_law_is_rejected():
 
 @pytest.mark.parametrize("ratio", [0.5, 2.0, 10.0, 200.0])
 def test_contact_energies_match_the_law(ratio):
-    """The solver evaluates the contact dissipation and permanent indentation from the
-    law's kernel (the curve the time loop actually used); they must equal the law's own
+    """The ledger's contact dissipation and permanent indentation are the law's own
     ``dissipated_energy`` / ``permanent_indentation`` (closed forms for Stronge) at
     α_max = ratio × δ_y — elastic, near yield (where the specified law returns more work
     than it absorbed, dissipation < 0), elastic-plastic and fully plastic. Tolerance 1e-6
-    relative to the loading work (20001-point trapezoid)."""
-    from impactmaps.fd.beam import _contact_energies
+    relative to the loading work (the bound the earlier kernel quadrature met)."""
+    from impactmaps.fd.energy import contact_energies
 
-    params = np.ascontiguousarray(STRONGE.kernel_parameters, dtype=float)
     alpha_max = ratio * float(STRONGE.yield_indentation)
-    mine = _contact_energies(STRONGE.kernel, params, alpha_max)
+    mine = contact_energies(STRONGE, alpha_max)
     scale = float(STRONGE.loading_energy(alpha_max))
     assert mine["dissipation"] == pytest.approx(float(STRONGE.dissipated_energy(alpha_max)), abs=1e-6 * scale)
     assert mine["permanent_indentation"] == pytest.approx(
         float(STRONGE.permanent_indentation(alpha_max)), abs=1e-9 * alpha_max)
-    linear = _contact_energies(LinearContact(2e8).kernel, np.array([2e8]), 1e-5)
+    linear = contact_energies(LinearContact(2e8), 1e-5)
     assert linear["dissipation"] == pytest.approx(0.0, abs=1e-12) and linear["permanent_indentation"] == 0.0
 
 
@@ -596,7 +599,7 @@ def test_elastic_plastic_contact_modal_equals_fd(law_name):
     """Issue cross-check: an elastic-plastic contact law on an elastic beam gives the same
     peak force (within 1 %) and first contact duration from the modal solver (closed-form
     SS Rayleigh basis) and from the FD solver with plasticity off."""
-    from impactmaps.contact import StrongeContact, YigitChristoforouContact
+    from impactmaps.contact import YigitChristoforouContact
     from impactmaps.solvers.modal import simulate
 
     if law_name == "stronge":
@@ -644,3 +647,59 @@ def test_matches_modal_rayleigh_in_every_regime(law_kind, regime, loss_factor):
     first_fd = fd.contact_intervals[0, 1] - fd.contact_intervals[0, 0]
     assert first_fd == pytest.approx(modal.first_contact_duration, rel=1e-2)
     assert fd.impacts == modal.impacts
+
+
+# =====================================================================================
+# front end: a toolkit Beam plus FDSettings
+# =====================================================================================
+@pytest.mark.parametrize("code, ends", [("ss", ("ss", "ss")), ("cc", ("cc", "cc")),
+                                        ("cs", ("cc", "ss")), ("cf", ("cc", "free")),
+                                        ("ff", ("free", "free"))])
+def test_from_beam_maps_the_support_codes(code, ends):
+    """FDBeam.from_beam takes geometry and supports from a rectangular toolkit Beam
+    (``"cs"``: clamped at x = 0, simply supported at x = L; ``"cf"``: cantilever) and the
+    grid options from FDSettings; the material values are copied, not recomputed."""
+    from impactmaps.fd import FDSettings
+    from impactmaps.materials import IsotropicMaterial
+    from impactmaps.targets.beam import Beam
+
+    steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
+    beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports=code)
+    fd = FDBeam.from_beam(beam, steel, FDSettings(n_elements=40, damping_per_length=3.0))
+    assert fd == FDBeam(LENGTH, WIDTH, HEIGHT, MODULUS, DENSITY, YIELD, supports=ends,
+                        n_elements=40, damping_per_length=3.0)
+
+
+def test_simulate_fd_accepts_a_toolkit_beam_and_settings():
+    """simulate_fd(Beam, law, m, V, material=..., settings=FDSettings(...)) is the same run
+    as the FDBeam with keywords (identical histories and scalars); run options given both
+    ways, a missing material, and a non-rectangular beam are ValueErrors."""
+    from impactmaps.fd import FDSettings
+    from impactmaps.materials import IsotropicMaterial
+    from impactmaps.targets.beam import Beam
+
+    steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
+    beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports="cs",
+                            impact_position=0.3)
+    settings = FDSettings(n_elements=40, duration=2e-3, history_stride=2, gauge_positions=(0.2,))
+    result = simulate_fd(beam, STRONGE, 1.0, 2.0, material=steel, settings=settings)
+    reference = simulate_fd(_beam(n_elements=40, supports=("cc", "ss")), STRONGE, 1.0, 2.0, 0.3,
+                            duration=2e-3, history_stride=2, gauge_positions=(0.2,))
+    _checked(result)
+    assert result.history.equals(reference.history)
+    assert result.summary() == reference.summary()
+    # the settings' grid options replace those of an FDBeam
+    again = simulate_fd(_beam(supports=("cc", "ss")), STRONGE, 1.0, 2.0, 0.3, settings=settings)
+    assert again.history.equals(reference.history)
+    with pytest.raises(ValueError, match="duration"):
+        simulate_fd(beam, STRONGE, 1.0, 2.0, material=steel, settings=settings, duration=1e-3)
+    with pytest.raises(ValueError, match="material"):
+        simulate_fd(beam, STRONGE, 1.0, 2.0, settings=settings)
+    with pytest.raises(ValueError, match="material"):
+        simulate_fd(_beam(), STRONGE, 1.0, 2.0, material=steel, duration=1e-3)
+    stiffer = Beam(LENGTH, 2 * beam.bending_stiffness, np.inf, beam.mass_per_length,
+                   beam.rotary_inertia, theory="rayleigh", width=WIDTH, height=HEIGHT)
+    with pytest.raises(ValueError, match="bending_stiffness"):
+        FDBeam.from_beam(stiffer, steel)
+    with pytest.raises(ValueError, match="history_stride"):
+        FDSettings(history_stride=0)

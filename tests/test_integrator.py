@@ -1,4 +1,4 @@
-"""Verification of the exact-step impact integrator (impactmaps.solvers.kernels).
+"""Verification of the exact-step impact integrator (impactmaps.solvers.exact_step).
 
 Independent references:
 
@@ -24,7 +24,7 @@ import scipy.linalg
 
 from benchmarks.baseline_solve_ivp import baseline_like
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.kernels import oscillator_step_coefficients
+from impactmaps.solvers.oscillator_step import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
 from impactmaps.targets.base import ModalBasis
 
@@ -62,7 +62,7 @@ def test_fmax_matches_solve_ivp_reference(kind, zeta):
     basis, law, mass = _case(kind, zeta)
     result = simulate(basis, law, mass, 1.0, record=False)
     reference = baseline_like(result, basis, rtol=1e-10, atol=1e-12)
-    assert not result.hit_time_limit
+    assert not result.time_limit_reached
     assert result.impacts == reference.impacts
     assert result.fmax_normalised == pytest.approx(reference.fmax_normalised, abs=1e-5)
     assert result.peak_time_normalised == pytest.approx(reference.peak_time_normalised, abs=2e-2)
@@ -97,7 +97,7 @@ def test_batch_equals_one_by_one():
     assert len(batched) == len(one_by_one)
     for single, batch in zip(one_by_one, batched):
         for name in ("peak_force", "peak_time", "max_indentation", "rebound_velocity",
-                     "energy_transferred", "end_time", "time_step", "n_modes", "hit_time_limit"):
+                     "energy_transferred", "end_time", "time_step", "n_modes", "time_limit_reached"):
             assert getattr(batch, name) == getattr(single, name), name
         np.testing.assert_array_equal(batch.contact_intervals, single.contact_intervals)
 
@@ -243,7 +243,7 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     """The doubled free-flight steps square the one-step map instead of re-evaluating
     trigonometric functions; after six squarings they still equal the direct
     coefficients over 64 h (undamped and damped)."""
-    from impactmaps.solvers.kernels import _fill_coefficients, _square_free_propagators
+    from impactmaps.solvers.oscillator_step import fill_step_coefficients, square_free_propagators
 
     omega = np.array([0.0, 0.3, 2.0, 17.0, 400.0])
     damping = np.where(omega > 0, zeta, 0.0)
@@ -252,14 +252,14 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     powers = 7
     free = np.zeros((powers, 8, omega.size))
     one = np.empty((8, omega.size))
-    _fill_coefficients(omega, damping, phi, h, one)
+    fill_step_coefficients(omega, damping, phi, h, one)
     free[0, :4] = one[:4]
     ready = np.zeros(powers, dtype=np.bool_)
     ready[0] = True
-    _square_free_propagators(free, ready, powers - 1)
+    square_free_propagators(free, ready, powers - 1)
     for k in range(powers):
         direct = np.empty((8, omega.size))
-        _fill_coefficients(omega, damping, phi, (2**k) * h, direct)
+        fill_step_coefficients(omega, damping, phi, (2**k) * h, direct)
         scale = 1.0 + np.abs(direct[:4])
         assert np.all(np.abs(free[k, :4] - direct[:4]) <= 1e-12 * scale)
         assert np.all(free[k, 4:] == 0.0)
@@ -352,3 +352,17 @@ def test_sampled_loop_instability_is_avoided():
     assert default.time_step * top <= STABLE_TOP_STEP * (1 + 1e-9)
     assert default.impacts == resolved.impacts == 1
     assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)
+
+
+def test_parabolic_peak_recovers_the_vertex_of_a_parabola():
+    """Three samples of F(t) = 2 − 3(t − 0.3)², h = 1 apart around t = 0: the refinement
+    returns the vertex (2 at offset 0.3) to round-off (exact for a parabola), and the
+    middle sample with offset 0 when the samples do not curve downwards."""
+    from impactmaps.solvers._peak import parabolic_peak
+
+    def force(t):
+        return 2.0 - 3.0 * (t - 0.3) ** 2
+
+    value, offset = parabolic_peak(force(-1.0), force(0.0), force(1.0))
+    assert value == pytest.approx(2.0, abs=1e-14) and offset == pytest.approx(0.3, abs=1e-14)
+    assert parabolic_peak(1.0, 2.0, 3.0) == (2.0, 0.0)

@@ -107,3 +107,16 @@ def test_fd_command_json_keys(capsys):
     assert set(values) >= {"peak_force_N", "contact_intervals_s", "restitution", "energy_loss_J",
                            "permanent_indentation_m", "beam_plastic_work_J", "energy_balance_error"}
     assert values["energy_balance_error"] < 0.01
+
+
+def test_lookup_carries_the_maps_error_and_status():
+    """A lookup answers with the error band and status of the map points around it: the
+    re-impact-sensitive plate corner (λ = 0.05, ζ ≈ 16–22, two or three impacts whose
+    order flips with the cut-off) is `sensitive` with its spread; a smooth beam point is
+    `converged` with an error far below the 1e-3 tolerance."""
+    plate = lookup(17.0, 0.05, structure="plate", theory="kirchhoff")
+    assert plate.status == "sensitive" and 5e-4 < plate.fmax_error < 5e-3
+    beam = lookup(0.1, 1.0, structure="beam", theory="euler")
+    assert beam.status == "converged" and beam.fmax_error < 1e-4
+    many = lookup([0.1, 17.0], [1.0, 0.05], structure="plate", theory="kirchhoff")
+    assert list(many.status) == ["converged", "sensitive"]

@@ -1,8 +1,11 @@
-"""Slow verification studies (``python -m pytest -m slow``; excluded from the default run).
+"""Whole-chart verification studies.
 
-They repeat, at full size, what the default suite checks on samples: the whole default
+They repeat, at full size, what the other tests check on samples: the whole default
 chart grid (8 λ × 60 ζ, beams and plates) is converged and bounded, and the shipped
 lookup maps agree with direct simulation over many random points.
+
+They used to carry the ``slow`` marker; measured with ``--durations=0`` on 2 cores each
+takes under 2 s (1.7 s the longest, 3.7 s all eight), so they run by default.
 """
 
 from __future__ import annotations
@@ -17,8 +20,6 @@ from impactmaps.maps.lookup import SHIPPED_MAPS, lookup
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
-
-pytestmark = pytest.mark.slow
 
 CHART_STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
 
@@ -41,7 +42,7 @@ def test_default_chart_grid_is_converged_and_bounded(name):
     coarse = np.array([row["fmax_normalised"] for row in default])
     fine = np.array([row["fmax_normalised"] for row in refined])
     assert np.all((coarse > 0.0) & (coarse <= 1.0))
-    assert not any(row["hit_time_limit"] == 1 for row in default)
+    assert not any(row["time_limit_reached"] == 1 for row in default)
     assert np.max(np.abs(coarse - fine)) < 4e-3
 
 

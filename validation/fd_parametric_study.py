@@ -41,6 +41,9 @@ and the runs with more than one contact.
 Output: ``figures/fd_force_histories.png``, ``figures/fd_mass_effect.png``,
 ``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png``. Runtime ≈ 30 s
 on 2 cores (98 runs of 20 ms at N_l = 200, 2N_h = 20).
+
+    python validation/fd_parametric_study.py [--out-dir DIR]
+    python validation/fd_parametric_study.py --smoke    # 11 runs of 4 ms on a coarse grid (seconds)
 """
 
 from __future__ import annotations
@@ -48,6 +51,7 @@ from __future__ import annotations
 import pathlib
 import time
 import warnings
+from dataclasses import dataclass
 
 import matplotlib
 
@@ -60,6 +64,8 @@ from scipy.optimize import brentq  # noqa: E402
 from impactmaps.contact import StrongeContact, effective_modulus  # noqa: E402
 from impactmaps.fd import FDBeam, simulate_fd  # noqa: E402
 
+from _script_options import parse  # noqa: E402
+
 FIGURES = pathlib.Path(__file__).resolve().parents[1] / "figures"
 
 LENGTH, WIDTH, HEIGHT = 0.78, 0.06, 0.0278  # m; width/height assignment assumed (docstring)
@@ -71,14 +77,30 @@ PLASTICITY_MASS = 5.0  # kg: heavy enough for the beam to yield in the velocity 
 DURATION = 20e-3  # s
 
 
+@dataclass(frozen=True)
+class Size:
+    """Resolution and extent of the study: record length [s], grid, runs per sweep."""
+
+    duration: float = DURATION
+    n_elements: int = 200
+    n_half_layers: int = 10
+    masses: int = 28
+    velocities: int = 22
+    positions: int = 23
+
+
+FULL = Size()
+SMOKE = Size(duration=4e-3, n_elements=40, n_half_layers=4, masses=2, velocities=2, positions=2)
+
+
 def contact_law():
     e_star = float(effective_modulus(MODULUS, POISSON, MODULUS, POISSON))
     return StrongeContact(e_star, SPHERE_RADIUS, YIELD)
 
 
-def beam(plastic=True):
+def beam(plastic=True, size=FULL):
     return FDBeam(LENGTH, WIDTH, HEIGHT, MODULUS, DENSITY, YIELD, poisson_ratio=POISSON,
-                  n_elements=200, n_half_layers=10, plastic=plastic)
+                  n_elements=size.n_elements, n_half_layers=size.n_half_layers, plastic=plastic)
 
 
 def wave_return_time(target: FDBeam, contact_duration, distance):
@@ -91,28 +113,28 @@ def wave_return_time(target: FDBeam, contact_duration, distance):
 
 
 def run(mass=BASE_MASS, velocity=BASE_VELOCITY, position=LENGTH / 2, plastic=True, law=None,
-        stride=20):
-    target = beam(plastic)
+        stride=20, size=FULL):
+    target = beam(plastic, size)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         result = simulate_fd(target, law or contact_law(), mass, velocity, position,
-                             duration=DURATION, gravity=True, history_stride=stride)
-    distance = min(result.impact_node_position, LENGTH - result.impact_node_position)
+                             duration=size.duration, gravity=True, history_stride=stride)
+    distance = min(result.details.impact_node_position, LENGTH - result.details.impact_node_position)
     return result, dict(
-        mass_kg=mass, velocity_m_s=velocity, position_m=result.impact_node_position,
+        mass_kg=mass, velocity_m_s=velocity, position_m=result.details.impact_node_position,
         plastic=plastic, peak_force_N=result.peak_force, impacts=result.impacts,
-        first_contact_s=result.first_contact_duration, contact_span_s=result.total_contact_span,
+        first_contact_s=result.first_contact_duration, contact_span_s=result.contact_span,
         second_contact_start_s=(result.contact_intervals[1, 0] if result.impacts > 1 else np.nan),
-        contact_time_s=result.contact_time,
+        contact_time_s=result.total_contact_time,
         energy_loss_fraction=result.energy_loss / result.impact_energy,
         restitution=result.restitution,
-        plastic_work_fraction=result.energy["beam_plastic_work"] / result.impact_energy,
-        contact_dissipation_fraction=result.energy["contact_dissipation"] / result.impact_energy,
-        permanent_deflection_m=result.permanent_beam_deflection,
+        plastic_work_fraction=result.details.energy["beam_plastic_work"] / result.impact_energy,
+        contact_dissipation_fraction=result.details.energy["contact_dissipation"] / result.impact_energy,
+        permanent_deflection_m=result.details.permanent_beam_deflection,
         permanent_indentation_m=result.permanent_indentation,
         wave_return_s=wave_return_time(target, result.first_contact_duration, distance),
         ledger_error=result.energy_balance_error,
-        still_in_contact=result.still_in_contact,
+        time_limit_reached=result.time_limit_reached,
     )
 
 
@@ -171,8 +193,10 @@ def _mark_jumps(axes, table, x):
             ax.axvline(first, color="C3", lw=0.8, ls="-.")
 
 
-def main():
-    FIGURES.mkdir(exist_ok=True)
+def main(argv=None):
+    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES)
+    size = SMOKE if args.smoke else FULL
+    out = args.out_dir
     start = time.perf_counter()
     law = contact_law()
 
@@ -180,7 +204,7 @@ def main():
     fig, (early, late) = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True,
                                       gridspec_kw=dict(width_ratios=[1, 1.4]))
     for i, mass in enumerate((0.3, 0.75, 3.0)):
-        result, row = run(mass=mass, law=law, stride=5)
+        result, row = run(mass=mass, law=law, stride=5, size=size)
         h = result.history
         label = (f"m = {mass} kg ({row['impacts']} contact{'s' if row['impacts'] > 1 else ''}, "
                  f"e = {row['restitution']:.2f})")
@@ -189,7 +213,7 @@ def main():
                     label=label if ax is early else None)
         early.axvline(row["wave_return_s"] * 1e3, color=f"C{i}", ls="--", lw=0.8)
     early.set_xlim(0, 1.5)
-    late.set_xlim(0, DURATION * 1e3)
+    late.set_xlim(0, size.duration * 1e3)
     early.set_ylabel("contact force [kN]")
     for ax in (early, late):
         ax.set_xlabel("time [ms]")
@@ -199,12 +223,12 @@ def main():
     early.legend(fontsize=8)
     fig.suptitle("SS steel beam 780 mm, V0 = 2 m/s at mid-span, refined Stronge contact", fontsize=10)
     fig.tight_layout()
-    fig.savefig(FIGURES / "fd_force_histories.png", dpi=150)
+    fig.savefig(out / "fd_force_histories.png", dpi=150)
     plt.close(fig)
 
     # -- impactor mass ---------------------------------------------------------------------
-    masses = np.geomspace(0.05, 5.0, 28)
-    table = sweep("mass", masses, lambda m: run(mass=m, law=law))
+    masses = np.geomspace(0.05, 5.0, size.masses)
+    table = sweep("mass", masses, lambda m: run(mass=m, law=law, size=size))
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     _panels(axes, table, "mass_kg", "impactor mass [kg]")
     _mark_jumps(axes, table, "mass_kg")
@@ -214,18 +238,19 @@ def main():
     fig.suptitle("Effect of impactor mass (V0 = 2 m/s, mid-span). Squares: sub-impacts; "
                  "dash-dot: first run with sub-impacts; dotted: first contact > $t_r$", fontsize=9)
     fig.tight_layout()
-    fig.savefig(FIGURES / "fd_mass_effect.png", dpi=150)
+    fig.savefig(out / "fd_mass_effect.png", dpi=150)
     plt.close(fig)
     print(table[["mass_kg", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
                  "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
 
     # -- velocity and beam plasticity --------------------------------------------------------
-    velocities = np.linspace(0.5, 7.0, 22)
+    velocities = np.linspace(0.5, 7.0, size.velocities)
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     tables = {}
     for plastic, color in ((True, "C0"), (False, "C1")):
         tables[plastic] = sweep(f"velocity (plastic={plastic})", velocities,
-                                lambda v, p=plastic: run(mass=PLASTICITY_MASS, velocity=v, plastic=p, law=law))
+                                lambda v, p=plastic: run(mass=PLASTICITY_MASS, velocity=v, plastic=p,
+                                                         law=law, size=size))
         _panels(axes, tables[plastic], "velocity_m_s", "impact velocity V0 [m/s]",
                 name="elastic-plastic beam" if plastic else "elastic beam", color=color)
     ax = axes[0, 0].twinx()
@@ -235,7 +260,7 @@ def main():
     fig.suptitle(f"Effect of impact velocity and beam plasticity (m = {PLASTICITY_MASS:g} kg, mid-span, Stronge "
                  "contact in both); squares: sub-impacts; dashed: $t_r$", fontsize=9)
     fig.tight_layout()
-    fig.savefig(FIGURES / "fd_velocity_effect.png", dpi=150)
+    fig.savefig(out / "fd_velocity_effect.png", dpi=150)
     plt.close(fig)
     print(pd.DataFrame({
         "V0": velocities,
@@ -246,8 +271,8 @@ def main():
     }).to_string(float_format=lambda v: f"{v:.4g}"))
 
     # -- impact location ---------------------------------------------------------------------
-    positions = np.linspace(0.06, 0.5, 23) * LENGTH
-    table = sweep("location", positions, lambda x: run(position=x, law=law))
+    positions = np.linspace(0.06, 0.5, size.positions) * LENGTH
+    table = sweep("location", positions, lambda x: run(position=x, law=law, size=size))
     table["x_over_L"] = table["position_m"] / LENGTH
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     _panels(axes, table, "x_over_L", "impact position x0 / L")
@@ -255,7 +280,7 @@ def main():
     fig.suptitle("Effect of impact location (m = 1 kg, V0 = 2 m/s); $t_r$ = 2 d / $c_g$ with "
                  "d the distance to the nearest support; squares: sub-impacts", fontsize=9)
     fig.tight_layout()
-    fig.savefig(FIGURES / "fd_location_effect.png", dpi=150)
+    fig.savefig(out / "fd_location_effect.png", dpi=150)
     plt.close(fig)
     print(table[["x_over_L", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
                  "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))

@@ -6,14 +6,15 @@ coefficient of restitution depends only on the normalised impact velocity
 
     β = V0 / (ω α_y),   ω² = K_h α_y^{1/2} / m_i        (seed 001 eqs 11–12).
 
-The curve is the closed-form energy balance (``impactmaps.solvers.compact.restitution``):
+The curve is the closed-form energy balance (``impactmaps.solvers.halfspace.restitution``):
 e = 1 for β ≤ sqrt(4/5); above, ½β² = 2/5 + (a_m − 1) + ¾(a_m − 1)² fixes a_m and e² is
 the work recovered on the unloading branch over ½β². The markers are time integrations
 (``halfspace_impact``) for two physically different impacts — a 12.7 mm steel ball on
 aluminium and a 50 mm steel ball on a soft steel — which must fall on the same curve.
 
-Run ``python validation/figure1_restitution.py``; writes ``figures/figure1_restitution.png``
-and prints the largest difference between the integrations and the closed form.
+Run ``python validation/figure1_restitution.py [--out-dir DIR]``; writes
+``figures/figure1_restitution.png`` and prints the largest difference between the
+integrations and the closed form. ``--smoke``: 3 integrated impacts per series (seconds).
 """
 
 from __future__ import annotations
@@ -28,9 +29,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from impactmaps.contact import Sphere, law_for_sphere  # noqa: E402
-from impactmaps.solvers.compact import halfspace_impact, restitution  # noqa: E402
+from impactmaps.solvers.halfspace import halfspace_impact, restitution  # noqa: E402
 
-OUTPUT = Path(__file__).resolve().parents[1] / "figures" / "figure1_restitution.png"
+from _script_options import parse  # noqa: E402
+
+FIGURES = Path(__file__).resolve().parents[1] / "figures"
+FIGURE_NAME = "figure1_restitution.png"
 
 # Nominal handbook-style properties, only to make two different impacts (β is all that matters).
 STEEL_BALL = SimpleNamespace(youngs_modulus=210e9, poisson_ratio=0.30, density=7850.0, yield_strength=1.5e9)
@@ -85,16 +89,19 @@ def plot_restitution(ax=None, *, points: int = 14):
     return ax
 
 
-def main():
+def main(argv=None):
+    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES)
+    points = 3 if args.smoke else 25
     worst = 0.0
     for _label, sphere, target, _marker in IMPACTS:
-        beta = np.geomspace(0.1, 1000.0, 25)
+        beta = np.geomspace(0.1, 1000.0, points)
         worst = max(worst, float(np.max(np.abs(numerical_restitution(sphere, target, beta) - restitution(beta)))))
     print(f"largest |e_integrated − e_closed_form| over β ∈ [0.1, 1000]: {worst:.2e}")
-    ax = plot_restitution()
-    OUTPUT.parent.mkdir(parents=True, exist_ok=True)
-    ax.figure.savefig(OUTPUT, dpi=150)
-    print(f"wrote {OUTPUT}")
+    ax = plot_restitution(points=3 if args.smoke else 14)
+    output = args.out_dir / FIGURE_NAME
+    ax.figure.savefig(output, dpi=150)
+    plt.close(ax.figure)
+    print(f"wrote {output}")
 
 
 if __name__ == "__main__":

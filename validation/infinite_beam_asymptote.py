@@ -15,7 +15,8 @@ oscillator ᾱ'' + 2ζᾱ' + ᾱ = 0. This script
    re-impact band ζ_r < ζ < ζ_crit;
 4. prints the peaks at ζ = 0.1, 0.3, 1, 3, ζ_crit and ζ_r.
 
-Run: ``python validation/infinite_beam_asymptote.py`` → ``figures/infinite_beam_asymptote.png``.
+Run: ``python validation/infinite_beam_asymptote.py [--out-dir DIR]`` →
+``figures/infinite_beam_asymptote.png``. ``--smoke``: two loss factors, short records.
 """
 
 from __future__ import annotations
@@ -30,7 +31,10 @@ import numpy as np  # noqa: E402
 
 from impactmaps.solvers import asymptotes as asy  # noqa: E402
 
-FIGURE = pathlib.Path(__file__).resolve().parents[1] / "figures" / "infinite_beam_asymptote.png"
+from _script_options import parse  # noqa: E402
+
+FIGURES = pathlib.Path(__file__).resolve().parents[1] / "figures"
+FIGURE_NAME = "infinite_beam_asymptote.png"
 LOSS_FACTORS = (0.1, 0.3, 1.0, 3.0)
 CQ_STEP = 0.02
 
@@ -94,17 +98,23 @@ def plot_recontact(loss_factors=(0.2, 0.5, 0.8), tau_end=30.0, ax=None):
     return ax
 
 
-def main():
+def main(argv=None):
+    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES)
+    loss_factors = LOSS_FACTORS[1:3] if args.smoke else LOSS_FACTORS
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.8), constrained_layout=True)
-    _, worst_talbot, worst_cq = plot_beam_methods(ax=axes[0])
+    _, worst_talbot, worst_cq = plot_beam_methods(loss_factors, tau_end=2.0 if args.smoke else 8.0, ax=axes[0])
     plot_peak_force(ax=axes[1])
-    plot_recontact(ax=axes[2])
-    FIGURE.parent.mkdir(exist_ok=True)
-    fig.savefig(FIGURE, dpi=130)
+    if args.smoke:
+        plot_recontact((0.5,), tau_end=5.0, ax=axes[2])
+    else:
+        plot_recontact(ax=axes[2])
+    figure = args.out_dir / FIGURE_NAME
+    fig.savefig(figure, dpi=130)
+    plt.close(fig)
     print(f"max |closed form − Talbot| = {worst_talbot:.2e}")
     print(f"max |closed form − CQ(Δτ={CQ_STEP})| = {worst_cq:.2e}")
     print(f"{'ζ':>6} {'F̄max beam':>14} {'F̄max plate':>14} {'τ_c beam':>10} {'τ_c plate':>10}")
-    zeta = np.array(LOSS_FACTORS)
+    zeta = np.array(loss_factors)
     rows = zip(
         zeta,
         asy.infinite_beam_peak(zeta),
@@ -116,7 +126,7 @@ def main():
         print("{:>6g} {:>14.10f} {:>14.10f} {:>10.5f} {:>10.5f}".format(*row))
     print(f"critical beam loss factor ζ_crit = {asy.critical_beam_loss_factor():.13f}")
     print(f"re-impact threshold          ζ_r = {asy.recontact_beam_loss_factor():.13f}")
-    print(f"saved {FIGURE}")
+    print(f"saved {figure}")
 
 
 if __name__ == "__main__":

@@ -6,12 +6,12 @@ directly (the same solver and settings as the map) and compared with
 tables (used in the README: errors per map, and the design formula's error per regime,
 i.e. where it holds) and writes validation/lookup_error.csv.
 
-    python validation/lookup_error.py [--points 200] [--seed 1]
+    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR]
+    python validation/lookup_error.py --smoke    # 3 points per map (seconds)
 """
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +21,8 @@ from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_ma
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
+
+from _script_options import parse
 
 HERE = Path(__file__).resolve().parent
 
@@ -44,19 +46,23 @@ def measure(structure: str, theory: str, points: int, seed: int) -> pd.DataFrame
     })
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--points", type=int, default=200)
+def _options(parser) -> None:
+    parser.add_argument("--points", type=int, default=None, help="random points per map (default 200; smoke 3)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--maps", nargs="*", default=None)
-    args = parser.parse_args()
+
+
+def main(argv=None) -> None:
+    args = parse(__doc__.splitlines()[0], argv, default_out=HERE, add_arguments=_options)
+    if args.points is None:
+        args.points = 3 if args.smoke else 200
     frames = []
     for (structure, theory), name in SHIPPED_MAPS.items():
         if args.maps and name not in args.maps:
             continue
         frames.append(measure(structure, theory, args.points, args.seed))
     table = pd.concat(frames, ignore_index=True)
-    table.to_csv(HERE / "lookup_error.csv", index=False)
+    table.to_csv(args.out_dir / "lookup_error.csv", index=False)
     print("| map | points | lookup: median abs error | 95th pct | max | design formula: median | 95th pct | max |")
     print("|---|---|---|---|---|---|---|---|")
     for name, group in table.groupby("map", sort=False):

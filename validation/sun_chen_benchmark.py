@@ -30,8 +30,9 @@ at the peak force, ``a = sqrt(R α_max)``, and the equivalent shortest half-wave
 retained modes (:func:`shortest_half_wavelength`), so that the physically meaningful cut-off
 (shortest half-wavelength comparable to the contact diameter 2a) can be judged.
 
-Run ``python validation/sun_chen_benchmark.py``; writes ``figures/sun_chen_force_history.png``
-and ``figures/sun_chen_cutoff.png`` and prints a Markdown table (used in BENCHMARKS.md).
+Run ``python validation/sun_chen_benchmark.py [--out-dir DIR]``; writes
+``figures/sun_chen_force_history.png`` and ``figures/sun_chen_cutoff.png`` and prints a
+Markdown table (used in BENCHMARKS.md). ``--smoke``: cut-offs 20 and 40 only (no 80).
 """
 
 from __future__ import annotations
@@ -49,6 +50,8 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 from impactmaps.cases import load_case, run_case  # noqa: E402
+
+from _script_options import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 CASE_FILE = ROOT / "examples" / "composite_plate_sun_chen.toml"
@@ -98,10 +101,11 @@ def contact_radius(case, result):
     return math.sqrt(case.sphere.radius * result.max_indentation)
 
 
-def runs(case):
-    """All runs of the study, keyed by label."""
+def runs(case, cutoffs=CUTOFFS):
+    """All runs of the study (Mindlin at each of ``cutoffs``, which must hold
+    :data:`REFERENCE_CUTOFF`), keyed by label."""
     out = {}
-    for cutoff in CUTOFFS:
+    for cutoff in cutoffs:
         out[f"Mindlin, cut-off {cutoff:g}ω"] = run(case, theory="mindlin", cutoff=cutoff) + (cutoff,)
     out[f"Mindlin, cut-off {REFERENCE_CUTOFF:g}ω, Δt/2"] = run(
         case, theory="mindlin", cutoff=REFERENCE_CUTOFF, refine_step=True) + (REFERENCE_CUTOFF,)
@@ -201,19 +205,19 @@ def published_table(results) -> str:
     return "\n".join(rows)
 
 
-def main():
+def main(argv=None):
+    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES)
     case = load_case(CASE_FILE)
-    results = runs(case)
-    FIGURES.mkdir(exist_ok=True)
+    results = runs(case, CUTOFFS[:2] if args.smoke else CUTOFFS)
     fig, ax = plt.subplots(figsize=(7.5, 4.5))
     plot_force_history(case, results, ax=ax)
     fig.tight_layout()
-    fig.savefig(FIGURES / "sun_chen_force_history.png", dpi=150)
+    fig.savefig(args.out_dir / "sun_chen_force_history.png", dpi=150)
     plt.close(fig)
     fig, ax = plt.subplots(figsize=(5.5, 4.0))
     plot_cutoff_study(case, results, ax=ax)
     fig.tight_layout()
-    fig.savefig(FIGURES / "sun_chen_cutoff.png", dpi=150)
+    fig.savefig(args.out_dir / "sun_chen_cutoff.png", dpi=150)
     plt.close(fig)
     dims = results[f"Mindlin, cut-off {REFERENCE_CUTOFF:g}ω"][1]
     print(f"impactor mass {case.impactor_mass * 1e3:.3f} g, K_h = {case.law.stiffness:.4g} N/m^1.5, "

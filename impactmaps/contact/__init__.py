@@ -2,6 +2,7 @@
 
 from .base import (
     ContactLaw,
+    LawOption,
     available_contact_laws,
     contact_law,
     contact_law_class,
@@ -12,13 +13,16 @@ from .base import (
 )
 from .hertz import HertzContact, hertz_stiffness
 from .linear import LinearContact
-from .sphere import Sphere, law_for_sphere, softer_yield_strength
+from .pair import ContactPair
+from .sphere import Sphere, law_for_sphere, law_options, softer_yield_strength
 from .stronge import StrongeContact, stronge_continuity_coefficient
 from .yigit_christoforou import YigitChristoforouContact, yield_indentation
 
 __all__ = [
     "ContactLaw",
+    "ContactPair",
     "HertzContact",
+    "LawOption",
     "LinearContact",
     "Sphere",
     "StrongeContact",
@@ -31,6 +35,7 @@ __all__ = [
     "evaluate_kernel",
     "hertz_stiffness",
     "law_for_sphere",
+    "law_options",
     "register_contact_law",
     "softer_yield_strength",
     "stronge_continuity_coefficient",

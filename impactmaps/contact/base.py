@@ -20,13 +20,20 @@ finite-difference beam solver, so there is exactly one implementation of each la
 
 from __future__ import annotations
 
+import functools
 from abc import ABC, abstractmethod
+from dataclasses import dataclass, field, fields
 from typing import ClassVar
 
 import numba
 import numpy as np
 
-from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
+from .._checks import (
+    require_choice,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
 
 __all__ = [
     "ContactLaw",
@@ -74,11 +81,17 @@ class _KernelPointer:
         return self._address
 
 
-_KERNEL_POINTERS: dict = {}
+@functools.lru_cache(maxsize=64)
+def _pointer_of(dispatcher) -> _KernelPointer:
+    # A bounded memo of a pure function: the wrapper address of a compiled dispatcher
+    # never changes while the process lives. Kernels are module-level dispatchers, one
+    # per registered law, so 64 entries never evict in practice; the memo exists because
+    # the look-up (≈ 20 µs) costs more than a whole single-mode impact run.
+    return _KernelPointer(dispatcher)
 
 
 def kernel_pointer(kernel) -> _KernelPointer:
-    """The function pointer of a contact-law kernel, for compiled solvers (cached).
+    """The function pointer of a contact-law kernel, for compiled solvers (memoised).
 
     Parameters
     ----------
@@ -93,10 +106,7 @@ def kernel_pointer(kernel) -> _KernelPointer:
     """
     if isinstance(kernel, _KernelPointer):
         return kernel
-    pointer = _KERNEL_POINTERS.get(kernel)
-    if pointer is None:
-        pointer = _KERNEL_POINTERS[kernel] = _KernelPointer(kernel)
-    return pointer
+    return _pointer_of(kernel)
 
 
 @numba.njit(numba.types.UniTuple(_VECTOR, 2)(KERNEL_TYPE, _VECTOR, _VECTOR, _MATRIX), cache=True)
@@ -144,18 +154,65 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     return force.reshape(shape), stiffness.reshape(shape)
 
 
+@dataclass(frozen=True)
+class LawOption:
+    """One keyword option of a law's contact-pair constructor.
+
+    Attributes
+    ----------
+    name : str
+        Keyword name.
+    unit : str
+        SI unit (``""`` for a dimensionless number).
+    default : object
+        Value used when the option is not given.
+    meaning : str
+        One line saying what it is.
+    """
+
+    name: str
+    unit: str
+    default: object
+    meaning: str
+
+
+_OPTION = "contact law option"  # dataclass-field metadata key of law_option
+
+
+def law_option(default, unit: str, meaning: str):
+    """Declare a law parameter that is also a keyword option of ``from_contact_pair``.
+
+    Used as the default of a law's dataclass field, e.g.
+    ``yield_pressure_factor: float = law_option(1.6, "", "c_y: ...")``; this one
+    declaration gives the field its default and :meth:`ContactLaw.options` its entry.
+
+    Parameters
+    ----------
+    default : float
+        The field's default value.
+    unit : str
+        SI unit (``""`` for a dimensionless number).
+    meaning : str
+        One line saying what it is.
+    """
+    return field(default=default, metadata={_OPTION: (unit, meaning)})
+
+
 class ContactLaw(ABC):
     """A stateful force–indentation law (see the module docstring for the convention).
 
     Subclasses are frozen dataclasses holding the law's physical parameters (SI), set
-    the class attributes ``name`` (registry key) and ``elastic`` (no dissipation), and
-    provide ``kernel`` (a ``staticmethod`` wrapping a numba scalar kernel),
-    :attr:`kernel_parameters` and :meth:`permanent_indentation`. Parameters may be
-    arrays, so one law object describes a batch of cases.
+    the class attributes ``name`` (registry key), ``elastic`` (no dissipation) and
+    ``needs_yield_strength`` (whether :meth:`from_contact_pair` needs the pair's yield
+    strength), and provide ``kernel`` (a ``staticmethod`` wrapping a numba scalar
+    kernel), :attr:`kernel_parameters`, :meth:`permanent_indentation` and
+    :meth:`from_contact_pair`. Parameters may be arrays, so one law object describes a
+    batch of cases.
     """
 
     name: ClassVar[str]
     elastic: ClassVar[bool]
+    needs_yield_strength: ClassVar[bool]
     kernel: ClassVar  # staticmethod(numba dispatcher)
 
     @property
@@ -166,6 +223,44 @@ class ContactLaw(ABC):
     @abstractmethod
     def permanent_indentation(self, max_indentation):
         """Permanent indentation α_f [m] left after unloading from ``max_indentation`` [m]."""
+
+    # -- construction from a contact pair -------------------------------------------
+    @classmethod
+    def options(cls) -> dict[str, LawOption]:
+        """Keyword options of :meth:`from_contact_pair` by name: the fields declared with :func:`law_option`."""
+        return {
+            f.name: LawOption(f.name, f.metadata[_OPTION][0], f.default, f.metadata[_OPTION][1])
+            for f in fields(cls) if _OPTION in f.metadata
+        }
+
+    @classmethod
+    def check_options(cls, options, also_valid=()) -> None:
+        """``ValueError`` if ``options`` holds a key that is neither an option nor in ``also_valid``."""
+        valid = set(cls.options()) | set(also_valid)
+        unknown = set(options) - valid
+        if unknown:
+            raise ValueError(f"options {sorted(unknown)} are not known for law {cls.name!r}: "
+                             f"valid options are {sorted(valid)}")
+
+    @classmethod
+    def from_contact_pair(cls, pair, **options) -> "ContactLaw":
+        """Build the law for a :class:`~impactmaps.contact.pair.ContactPair`.
+
+        Parameters
+        ----------
+        pair : ContactPair
+            Effective modulus E* [Pa], effective radius R [m], yield strength [Pa] or None.
+        **options
+            The law's :meth:`options`.
+
+        Raises
+        ------
+        ValueError
+            An unknown option, or (laws with ``needs_yield_strength``) no yield strength.
+        """
+        raise ValueError(
+            f"contact law {cls.name!r} has no from_contact_pair builder: construct it directly"
+        )
 
     # -- evaluation -------------------------------------------------------------
     def force(self, indentation, max_indentation=0.0):
@@ -216,6 +311,86 @@ class ContactLaw(ABC):
             return np.zeros_like(np.asarray(max_indentation, dtype=float))
         return self.loading_energy(max_indentation) - self.recovered_energy(max_indentation)
 
+    # -- derived numbers ---------------------------------------------------------------
+    @property
+    def linear_stiffness(self):
+        """Stiffness K [N/m] of a linear law ``F = K α``; ``None`` for a nonlinear law."""
+        return None
+
+    def impact_number(self, impactor_mass, velocity):
+        """Impact number β [-] (seed 001 eq 11) of an impact by mass m_i [kg] at V0 [m/s].
+
+        ``None`` for laws without a yield indentation scale (elastic laws).
+        """
+        return None
+
+    def indentation_for_energy(self, energy):
+        """Indentation α_m [m] at which the loading work equals ``energy`` [J].
+
+        The peak indentation of a rigid sphere of kinetic energy ``energy`` on a rigid
+        half-space. Laws with a closed-form inverse override this; the generic search
+        is Newton's method on ``loading_energy(α) = energy`` with the loading force as
+        the derivative, started above the root: ``loading_energy`` is convex (its
+        derivative, the virgin loading force, never decreases), so the iterates
+        decrease monotonically onto the root (to rounding).
+
+        Parameters
+        ----------
+        energy : float or array_like
+            Work done on the contact [J], ≥ 0; broadcasts against the law's batch.
+
+        Returns
+        -------
+        ndarray
+            α_m [m] (0 where ``energy`` is 0).
+
+        Raises
+        ------
+        ValueError
+            ``energy`` negative or not finite, or not absorbed within 1000 m of indentation.
+        """
+        return _invert_loading_energy(self, energy)
+
+
+#: First trial indentation of the generic energy inversion [m] (grown or shrunk ×4).
+_TRIAL_INDENTATION = 1e-6
+#: Largest indentation the generic inversion looks at [m] (beyond: the law's units are wrong).
+_LARGEST_INDENTATION = 1e3
+
+
+def check_energy(energy) -> np.ndarray:
+    """``energy`` [J] as a float array, or ``ValueError`` if negative or not finite."""
+    require_nonnegative("energy", energy, "J")
+    return np.asarray(energy, dtype=float)
+
+
+def _invert_loading_energy(law: ContactLaw, energy) -> np.ndarray:
+    """α_m [m] with ``law.loading_energy(α_m) = energy`` (see ContactLaw.indentation_for_energy)."""
+    target = check_energy(energy)
+    batch = np.shape(law.kernel_parameters)[1:]
+    target = np.broadcast_to(target, np.broadcast_shapes(target.shape, batch))
+    active = target > 0.0
+    # bracket: grow α ×4 until the work reaches the target, shrink it while α/4 still does
+    alpha = np.where(active, _TRIAL_INDENTATION, 0.0)
+    while np.any(short := active & (law.loading_energy(alpha) < target)):
+        alpha = np.where(short, 4.0 * alpha, alpha)
+        if np.any(alpha > _LARGEST_INDENTATION):
+            raise ValueError(
+                f"energy = {energy!r} J is not absorbed within {_LARGEST_INDENTATION:g} m of "
+                "indentation by this law (check the units of the law's parameters)"
+            )
+    while np.any(long := active & (alpha > 1e-150) & (law.loading_energy(alpha / 4.0) >= target)):
+        alpha = np.where(long, alpha / 4.0, alpha)
+    # Newton from above; stops when no step moves α by more than a few ulps
+    for _ in range(100):
+        excess = np.where(active, law.loading_energy(alpha) - target, 0.0)
+        force = np.where(active, law.loading_force(alpha), 1.0)
+        step = np.where(excess > 0.0, excess / force, 0.0)
+        alpha = alpha - step
+        if np.all(step <= 4.0 * np.finfo(float).eps * alpha):
+            break
+    return alpha
+
 
 def _graded_grid(points: int) -> np.ndarray:
     """Points on [0, 1] clustered at both ends (where the laws have their kinks)."""
@@ -260,6 +435,14 @@ def contact_law(name: str, **parameters) -> ContactLaw:
 
 
 # -- contact geometry ---------------------------------------------------------------
+def require_positive_or_infinite(name: str, value, unit: str) -> np.ndarray:
+    """``value`` as a float array, or ``ValueError`` unless every element is in (0, inf]."""
+    array = np.asarray(value, dtype=float)
+    if np.any(np.isnan(array)) or np.any(array <= 0):
+        raise ValueError(f"{name} = {value!r} is invalid: valid range is (0, inf] [{unit}]")
+    return array
+
+
 def effective_modulus(
     youngs_modulus_1, poisson_ratio_1, youngs_modulus_2=np.inf, poisson_ratio_2=0.0
 ):
@@ -275,9 +458,7 @@ def effective_modulus(
     require_positive("youngs_modulus_1", youngs_modulus_1, "Pa")
     require_in_range("poisson_ratio_1", poisson_ratio_1, -1.0, 0.5,
                      low_inclusive=False, high_inclusive=False)
-    e2 = np.asarray(youngs_modulus_2, dtype=float)
-    if np.any(np.isnan(e2)) or np.any(e2 <= 0):
-        raise ValueError(f"youngs_modulus_2 = {youngs_modulus_2!r} is invalid: valid range is (0, inf] [Pa]")
+    e2 = require_positive_or_infinite("youngs_modulus_2", youngs_modulus_2, "Pa")
     require_in_range("poisson_ratio_2", poisson_ratio_2, -1.0, 0.5,
                      low_inclusive=False, high_inclusive=False)
     compliance = (1 - np.asarray(poisson_ratio_1) ** 2) / np.asarray(youngs_modulus_1, float)
@@ -288,11 +469,5 @@ def effective_modulus(
 def effective_radius(radius_1, radius_2=np.inf):
     """Effective contact radius R [m], ``1/R = 1/R1 + 1/R2``; ``radius_2 = inf`` is a flat."""
     require_positive("radius_1", radius_1, "m")
-    r2 = np.asarray(radius_2, dtype=float)
-    if np.any(np.isnan(r2)) or np.any(r2 <= 0):
-        raise ValueError(f"radius_2 = {radius_2!r} is invalid: valid range is (0, inf] [m]")
+    r2 = require_positive_or_infinite("radius_2", radius_2, "m")
     return 1.0 / (1.0 / np.asarray(radius_1, float) + np.where(np.isinf(r2), 0.0, 1.0 / r2))
-
-
-def _nonnegative(name, value, unit=""):  # re-exported for law modules
-    require_nonnegative(name, value, unit)

@@ -13,7 +13,7 @@ import numba
 import numpy as np
 
 from .._checks import require_positive
-from .base import ContactLaw, effective_modulus, register_contact_law
+from .base import ContactLaw, check_energy, effective_modulus, register_contact_law
 
 __all__ = ["HertzContact", "hertz_stiffness"]
 
@@ -64,10 +64,17 @@ class HertzContact(ContactLaw):
 
     name: ClassVar[str] = "hertz"
     elastic: ClassVar[bool] = True
+    needs_yield_strength: ClassVar[bool] = False
     kernel = staticmethod(_hertz_kernel)
 
     def __post_init__(self):
         require_positive("stiffness", self.stiffness, "N/m^1.5")
+
+    @classmethod
+    def from_contact_pair(cls, pair, **options) -> "HertzContact":
+        """``K_h = (4/3) sqrt(R) E*`` of the pair (seed 001 eqs 7–8); no options."""
+        cls.check_options(options)
+        return cls(float(hertz_stiffness(pair.effective_modulus, pair.effective_radius)))
 
     @classmethod
     def from_geometry(cls, effective_modulus, radius) -> "HertzContact":
@@ -106,3 +113,7 @@ class HertzContact(ContactLaw):
     def recovered_energy(self, max_indentation, points: int = 0):
         """Equal to :meth:`loading_energy` [J] (elastic)."""
         return self.loading_energy(max_indentation)
+
+    def indentation_for_energy(self, energy):
+        """``α_m = (5 W / (2 K_h))^{2/5}`` [m], the inverse of :meth:`loading_energy` at W [J]."""
+        return (2.5 * check_energy(energy) / np.asarray(self.stiffness, float)) ** 0.4

@@ -9,7 +9,8 @@ import numba
 import numpy as np
 
 from .._checks import require_positive
-from .base import ContactLaw, register_contact_law
+from .base import ContactLaw, check_energy, register_contact_law
+from .yigit_christoforou import YigitChristoforouContact
 
 __all__ = ["LinearContact"]
 
@@ -37,10 +38,27 @@ class LinearContact(ContactLaw):
 
     name: ClassVar[str] = "linear"
     elastic: ClassVar[bool] = True
+    needs_yield_strength: ClassVar[bool] = True
     kernel = staticmethod(_linear_kernel)
 
     def __post_init__(self):
         require_positive("stiffness", self.stiffness, "N/m")
+
+    @classmethod
+    def from_contact_pair(cls, pair, **options) -> "LinearContact":
+        """``K = K_y = 1.5 K_h sqrt(α_y)`` of the pair (seed 001 eqs 10, 18); no options.
+
+        The linearised Yigit–Christoforou law: it needs the pair's yield strength.
+        """
+        cls.check_options(options)
+        plastic = YigitChristoforouContact.from_contact_pair(pair)
+        return cls(float(plastic.linearised_stiffness))
+
+    @property
+    def linear_stiffness(self):
+        """K [N/m] (a float for a single law, an array for a batch)."""
+        stiffness = np.asarray(self.stiffness, float)
+        return float(stiffness) if stiffness.ndim == 0 else stiffness
 
     @property
     def kernel_parameters(self) -> np.ndarray:
@@ -55,4 +73,9 @@ class LinearContact(ContactLaw):
         return 0.5 * np.asarray(self.stiffness, float) * np.clip(alpha_max, 0, None) ** 2
 
     def recovered_energy(self, max_indentation, points: int = 0):
+        """Equal to :meth:`loading_energy` [J] (elastic)."""
         return self.loading_energy(max_indentation)
+
+    def indentation_for_energy(self, energy):
+        """``α_m = sqrt(2 W / K)`` [m], the inverse of :meth:`loading_energy` at W [J]."""
+        return np.sqrt(2.0 * check_energy(energy) / np.asarray(self.stiffness, float))

@@ -3,7 +3,8 @@
 Materials are duck-typed: an object with ``youngs_modulus`` [Pa], ``poisson_ratio``
 [-], ``density`` [kg/m³] and optionally ``yield_strength`` [Pa] (``None`` or missing:
 the body is taken not to yield), for example
-:class:`impactmaps.materials.IsotropicMaterial`.
+:class:`impactmaps.materials.IsotropicMaterial`. The checks of the materials and the
+contact geometry are in :mod:`impactmaps.contact.pair`.
 """
 
 from __future__ import annotations
@@ -12,34 +13,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import require_in_range, require_positive
-from .base import ContactLaw, contact_law_class, effective_modulus, effective_radius
-from .hertz import HertzContact, hertz_stiffness
-from .linear import LinearContact
-from .stronge import StrongeContact
-from .yigit_christoforou import YigitChristoforouContact
+from .._checks import require_positive
+from .base import ContactLaw, LawOption, contact_law_class
+from .pair import (
+    PAIR_OPTIONS,
+    ContactPair,
+    check_elastic_material,
+    material_attribute,
+    softer_yield_strength,
+)
 
-__all__ = ["Sphere", "law_for_sphere", "softer_yield_strength"]
-
-
-def _attribute(material, attribute, role):
-    try:
-        return getattr(material, attribute)
-    except AttributeError:
-        raise ValueError(
-            f"{role} = {material!r} has no attribute {attribute!r}: a material needs "
-            "youngs_modulus [Pa], poisson_ratio [-], density [kg/m^3] and optionally yield_strength [Pa]"
-        ) from None
-
-
-def _check_elastic_material(material, role, allow_rigid=False):
-    modulus = _attribute(material, "youngs_modulus", role)
-    if allow_rigid and np.all(np.asarray(modulus, dtype=float) == np.inf):
-        pass  # a rigid body
-    else:
-        require_positive(f"{role}.youngs_modulus", modulus, "Pa")
-    require_in_range(f"{role}.poisson_ratio", _attribute(material, "poisson_ratio", role), -1.0, 0.5,
-                     low_inclusive=False, high_inclusive=False)
+__all__ = ["Sphere", "law_for_sphere", "law_options", "softer_yield_strength"]
 
 
 @dataclass(frozen=True)
@@ -64,9 +48,9 @@ class Sphere:
 
     def __post_init__(self):
         require_positive("radius", self.radius, "m")
-        _check_elastic_material(self.material, "material")
+        check_elastic_material(self.material, "material")
         if self.mass is None:
-            density = _attribute(self.material, "density", "material")
+            density = material_attribute(self.material, "density", "material")
             require_positive("material.density", density, "kg/m^3")
             object.__setattr__(self, "mass", float(density) * 4.0 / 3.0 * np.pi * float(self.radius) ** 3)
         else:
@@ -76,25 +60,6 @@ class Sphere:
     def yield_strength(self):
         """Yield strength of the sphere's material [Pa], or ``None``."""
         return getattr(self.material, "yield_strength", None)
-
-
-def softer_yield_strength(*materials):
-    """Smallest yield strength [Pa] among materials that define one (seed 001 eq 9).
-
-    Materials whose ``yield_strength`` is ``None`` or missing are taken not to yield.
-    Raises ``ValueError`` if none of them defines a yield strength.
-    """
-    values = [getattr(m, "yield_strength", None) for m in materials]
-    values = [v for v in values if v is not None]
-    if not values:
-        raise ValueError(
-            "yield_strength is missing: neither the sphere's nor the target's material defines "
-            "a yield_strength [Pa] (valid range (0, inf)); set it on a material or pass "
-            "yield_strength=... to law_for_sphere"
-        )
-    for value in values:
-        require_positive("yield_strength", value, "Pa")
-    return float(min(values))
 
 
 def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> ContactLaw:
@@ -113,8 +78,9 @@ def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> Con
         ``target_radius`` [m] (default ``inf``, a flat: the target's curvature at the
         impact point, ``1/R = 1/R_sphere + 1/R_target``); ``yield_strength`` [Pa]
         overriding the softer material's (e.g. ``2 S_u`` for composites, seed 001);
-        for ``"stronge"`` also ``yield_pressure_factor``, ``plastic_pressure_factor``,
-        ``plastic_indentation_ratio``.
+        then the law's own options, e.g. for ``"stronge"`` ``yield_pressure_factor``,
+        ``plastic_pressure_factor``, ``plastic_indentation_ratio``
+        (:func:`law_options` lists them with units, defaults and meanings).
 
     Returns
     -------
@@ -128,45 +94,39 @@ def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> Con
     Raises
     ------
     ValueError
-        Unknown law, a law with no sphere builder, an unknown option, a missing yield
-        strength, or invalid material data.
+        Unknown law, a law with no contact-pair builder, an unknown option, a
+        missing yield strength, or invalid material data.
     """
     law_class = contact_law_class(name)  # ValueError listing the known laws
-    if not isinstance(sphere, Sphere):
-        raise ValueError(f"sphere = {sphere!r} is not a Sphere")
-    _check_elastic_material(target_material, "target_material", allow_rigid=True)
-    options = dict(options)
-    target_radius = options.pop("target_radius", np.inf)
-    yield_override = options.pop("yield_strength", None)
-    allowed = {"stronge": {"yield_pressure_factor", "plastic_pressure_factor", "plastic_indentation_ratio"}}
-    unknown = set(options) - allowed.get(name, set())
-    if unknown:
-        valid = sorted({"target_radius", "yield_strength"} | allowed.get(name, set()))
-        raise ValueError(f"options {sorted(unknown)} are not known for law {name!r}: valid options are {valid}")
+    pair_options = {key: options.pop(key) for key in PAIR_OPTIONS if key in options}
+    pair = ContactPair.from_sphere(sphere, target_material, **pair_options)
+    law_class.check_options(options, also_valid=PAIR_OPTIONS)
+    return law_class.from_contact_pair(pair, **options)
 
-    modulus = float(effective_modulus(
-        sphere.material.youngs_modulus, sphere.material.poisson_ratio,
-        target_material.youngs_modulus, target_material.poisson_ratio,
-    ))
-    radius = float(effective_radius(sphere.radius, target_radius))
 
-    def strength():
-        if yield_override is not None:
-            require_positive("yield_strength", yield_override, "Pa")
-            return float(yield_override)
-        return softer_yield_strength(sphere.material, target_material)
+def law_options(name: str) -> dict[str, LawOption]:
+    """The keyword options that matter to ``law_for_sphere(name, ...)``, each declared once.
 
-    if law_class is HertzContact:
-        return HertzContact(float(hertz_stiffness(modulus, radius)))
-    if law_class is YigitChristoforouContact:
-        return YigitChristoforouContact.from_properties(modulus, radius, strength())
-    if law_class is LinearContact:
-        plastic = YigitChristoforouContact.from_properties(modulus, radius, strength())
-        return LinearContact(float(plastic.linearised_stiffness))
-    if law_class is StrongeContact:
-        return StrongeContact(modulus, radius, strength(), **options)
-    raise ValueError(
-        f"contact law {name!r} has no sphere builder in law_for_sphere: valid values are "
-        "'hertz', 'linear', 'stronge', 'yigit-christoforou' (construct other laws directly)"
-    )
+    ``target_radius`` (every law), ``yield_strength`` (laws that need a yield strength),
+    then the law's own options (:meth:`ContactLaw.options`).
 
+    Parameters
+    ----------
+    name : str
+        A registered law (``impactmaps.contact.available_contact_laws()``).
+
+    Returns
+    -------
+    dict of str to LawOption
+        In that order; iterating gives the names. Each LawOption has the unit (``""``:
+        dimensionless), the default and a one-line meaning.
+
+    Raises
+    ------
+    ValueError
+        Unknown law.
+    """
+    law_class = contact_law_class(name)
+    pair = {key: option for key, option in PAIR_OPTIONS.items()
+            if key != "yield_strength" or law_class.needs_yield_strength}
+    return pair | law_class.options()

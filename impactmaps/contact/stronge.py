@@ -50,7 +50,8 @@ import numba
 import numpy as np
 
 from .._checks import require_in_range, require_positive
-from .base import ContactLaw, register_contact_law
+from .base import ContactLaw, law_option, register_contact_law
+from .yigit_christoforou import YigitChristoforouContact
 
 __all__ = ["StrongeContact", "stronge_continuity_coefficient"]
 
@@ -154,12 +155,16 @@ class StrongeContact(ContactLaw):
     effective_modulus: float
     radius: float
     yield_strength: float
-    yield_pressure_factor: float = DEFAULT_YIELD_PRESSURE_FACTOR
-    plastic_pressure_factor: float = DEFAULT_PLASTIC_PRESSURE_FACTOR
-    plastic_indentation_ratio: float = DEFAULT_PLASTIC_INDENTATION_RATIO
+    yield_pressure_factor: float = law_option(
+        DEFAULT_YIELD_PRESSURE_FACTOR, "", "c_y: the Hertz peak pressure at first yield is c_y Y")
+    plastic_pressure_factor: float = law_option(
+        DEFAULT_PLASTIC_PRESSURE_FACTOR, "", "c_p: the fully plastic mean contact pressure is c_p Y (> 2 c_y/3)")
+    plastic_indentation_ratio: float = law_option(
+        DEFAULT_PLASTIC_INDENTATION_RATIO, "", "δ_p/δ_y: onset of the fully plastic regime (> 1)")
 
     name: ClassVar[str] = "stronge"
     elastic: ClassVar[bool] = False
+    needs_yield_strength: ClassVar[bool] = True
     kernel = staticmethod(_stronge_kernel)
 
     def __post_init__(self):
@@ -173,7 +178,32 @@ class StrongeContact(ContactLaw):
         require_in_range("plastic_pressure_factor", self.plastic_pressure_factor, minimum, np.inf,
                          low_inclusive=False)
 
+    @classmethod
+    def from_contact_pair(cls, pair, **options) -> "StrongeContact":
+        """E*, R and Y of the pair; ``options`` are the three constants (:meth:`options`)."""
+        cls.check_options(options)
+        return cls(pair.effective_modulus, pair.effective_radius, pair.required_yield_strength(),
+                   **options)
+
     # -- derived quantities -------------------------------------------------------
+    def impact_number(self, impactor_mass, velocity):
+        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11).
+
+        ``β = V0/(ω α_y)`` with ``α_y = 0.68 π² Y² R/E*²`` (eq 9) and
+        ``ω = sqrt(K_h α_y^{1/2}/m_i)`` — not this law's own δ_y — so that one β places
+        an impact on the restitution chart whichever plastic law is used.
+
+        Parameters
+        ----------
+        impactor_mass : float or array_like
+            m_i [kg].
+        velocity : float or array_like
+            Impact velocity V0 [m/s].
+        """
+        reference = YigitChristoforouContact.from_properties(self.effective_modulus, self.radius,
+                                                             self.yield_strength)
+        return reference.impact_number(impactor_mass, velocity)
+
     @property
     def yield_indentation(self):
         """``δ_y = R (π c_y Y / (2E*))²`` [m]."""

@@ -28,7 +28,7 @@ import numpy as np
 
 from .._checks import require_positive
 from ..dimensionless import hertz_frequency, impact_number, velocity_for_impact_number
-from .base import ContactLaw, register_contact_law
+from .base import ContactLaw, check_energy, register_contact_law
 from .hertz import hertz_stiffness
 
 __all__ = ["YigitChristoforouContact", "yield_indentation"]
@@ -112,6 +112,7 @@ class YigitChristoforouContact(ContactLaw):
 
     name: ClassVar[str] = "yigit-christoforou"
     elastic: ClassVar[bool] = False
+    needs_yield_strength: ClassVar[bool] = True
     kernel = staticmethod(_yigit_christoforou_kernel)
 
     def __post_init__(self):
@@ -125,6 +126,13 @@ class YigitChristoforouContact(ContactLaw):
             hertz_stiffness(effective_modulus, radius),
             yield_indentation(yield_strength, radius, effective_modulus),
         )
+
+    @classmethod
+    def from_contact_pair(cls, pair, **options) -> "YigitChristoforouContact":
+        """K_h and α_y of the pair (eqs 7, 9), α_y from its yield strength; no options."""
+        cls.check_options(options)
+        return cls.from_properties(pair.effective_modulus, pair.effective_radius,
+                                   pair.required_yield_strength())
 
     # -- derived quantities -------------------------------------------------------
     @property
@@ -192,6 +200,20 @@ class YigitChristoforouContact(ContactLaw):
         elastic = 0.4 * hertz * np.minimum(alpha_max, yield_alpha) ** 2.5
         plastic = hertz * yield_alpha**2.5 * (excess + 0.75 * excess**2)
         return elastic + plastic
+
+    def indentation_for_energy(self, energy):
+        """α_m [m] at which the loading work equals W [J] (closed-form inverse).
+
+        ``(5 W/(2 K_h))^{2/5}`` up to the yield energy ``(2/5) K_h α_y^{5/2}``; above,
+        in units of :meth:`loading_energy`, ``¾x² + x = w − 2/5`` with ``x = a_m − 1``,
+        solved without cancellation as ``x = 2(w − 2/5)/(1 + sqrt(1 + 3(w − 2/5)))``.
+        """
+        work = check_energy(energy)
+        hertz = np.asarray(self.hertz_stiffness, float)
+        yield_alpha = np.asarray(self.yield_indentation, float)
+        excess = np.clip(work / (hertz * yield_alpha**2.5) - 0.4, 0.0, None)
+        plastic = yield_alpha * (1.0 + 2.0 * excess / (1.0 + np.sqrt(1.0 + 3.0 * excess)))
+        return np.where(excess > 0.0, plastic, (2.5 * work / hertz) ** 0.4)
 
     def recovered_energy(self, max_indentation, points: int = 0):
         """Work [J] returned unloading from α_max to α_f (closed form).

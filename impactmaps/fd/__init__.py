@@ -1,26 +1,32 @@
 """Finite-difference Rayleigh beam with a layered elastic-plastic cross-section (seed 000).
 
+:mod:`.beam` — the beam (:class:`FDBeam`) and the run options (:class:`FDSettings`);
 :mod:`.section` — the layered section (stress update, moment, moment–curvature);
-:mod:`.beam` — the beam grid, supports, the compiled time loop, the impact solver
-:func:`simulate_fd` and the prescribed-load solver :func:`simulate_fd_response`.
+:mod:`.grid` — grid operators, supports, factorisation, the stability bound;
+:mod:`._loop` — the compiled time loop (peak refinement shared with the modal solver, :mod:`impactmaps.solvers._peak`);
+:mod:`.energy` — the energy ledger; :mod:`.residual` — the permanent deflection;
+:mod:`.timestep` — stability limit and default step (:func:`stable_time_step`);
+:mod:`.impact` — the impact solver :func:`simulate_fd`;
+:mod:`.response` — the prescribed-load solver :func:`simulate_fd_response`.
 """
 
-from .beam import (
-    STANDARD_GRAVITY,
-    FDBeam,
-    FDImpactResult,
-    FDResponse,
-    grid_frequency_bound,
-    simulate_fd,
-    simulate_fd_response,
-    stable_time_step,
+from .beam import FDBeam, FDSettings
+from .grid import grid_frequency_bound
+from .impact import STANDARD_GRAVITY, FDDetails, simulate_fd
+from .response import FDResponse, simulate_fd_response
+from .section import (
+    LayeredSection,
+    SectionState,
+    rectangular_moment_curvature,
+    stress_update,
 )
-from .section import LayeredSection, SectionState, rectangular_moment_curvature, stress_update
+from .timestep import stable_time_step
 
 __all__ = [
     "FDBeam",
-    "FDImpactResult",
+    "FDDetails",
     "FDResponse",
+    "FDSettings",
     "LayeredSection",
     "STANDARD_GRAVITY",
     "SectionState",

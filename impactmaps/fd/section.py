@@ -51,7 +51,12 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from .._checks import require_finite, require_in_range, require_nonnegative, require_positive
+from .._checks import (
+    require_finite,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
 
 __all__ = [
     "LayeredSection",
@@ -300,12 +305,6 @@ class LayeredSection:
         state.plastic_work[...] += self.width * self.layer_thickness * work.sum(axis=-1)
         state.curvature[...] = curvature
         return self.moment(stress)
-
-    def elastic_energy(self, state: SectionState) -> np.ndarray:
-        """Strain energy per unit length b Σ σ_i²/(2E) Δz [J/m] of each section."""
-        return self.width * self.layer_thickness * np.sum(state.stress**2, axis=-1) / (
-            2.0 * self.youngs_modulus
-        )
 
     def moment_curvature(self, curvatures) -> np.ndarray:
         """Moments [N m] along a curvature path starting from the virgin state.

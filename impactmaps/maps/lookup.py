@@ -44,6 +44,15 @@ class LookupResult:
     structure, theory : str
     map_name : str
         The shipped map used.
+    fmax_error : float or ndarray
+        Error band half-width of ``fmax_normalised`` [-]: the largest ``fmax_error`` of
+        the four map points around (ζ, λ) (their own refinement error, or half the
+        spread of a sensitive point). Interpolation adds to it between grid points:
+        its measured size is in the README ("Lookup accuracy").
+    status : str or ndarray of str
+        The worst status of those four points (``sensitive`` > ``refined`` >
+        ``converged``/``asymptotic``; :mod:`impactmaps.maps.accuracy`): a
+        ``sensitive`` answer has no converged value, only the band.
     """
 
     fmax_normalised: object
@@ -51,6 +60,8 @@ class LookupResult:
     structure: str
     theory: str
     map_name: str
+    fmax_error: object = None
+    status: object = None
 
     def peak_force(self, impactor_mass, velocity, contact_stiffness):
         """Dimensional peak force F̄max · m_i V0 ω [N] (m_i [kg], V0 [m/s], K [N/m])."""
@@ -125,9 +136,41 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         if "log_reflection_time" in dataset else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance)
+    error, status = _corner_accuracy(dataset, lam_c, zeta_c)
     if fmax.ndim == 0:
-        fmax, regime = float(fmax), str(regime)
-    return LookupResult(fmax, regime, structure, theory, SHIPPED_MAPS[(structure, theory)])
+        fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
+    return LookupResult(fmax, regime, structure, theory, SHIPPED_MAPS[(structure, theory)], error, status)
+
+
+#: Severity of a status when four map points are combined (worst wins).
+_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "sensitive": 2}
+
+
+def _corner_accuracy(dataset: xr.Dataset, lam, zeta):
+    """Largest error and worst status of the grid points around each (λ, ζ)."""
+    from .accuracy import STATUSES
+
+    errors = dataset["fmax_error"].isel(structure=0).values
+    codes = dataset["status"].isel(structure=0).values
+    severity = np.array([_SEVERITY[name] for name in STATUSES])
+    rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
+    cols = _bracket(np.log(dataset["zeta"].values), np.log(zeta))
+    error = np.zeros(lam.shape)
+    worst = np.zeros(lam.shape, dtype=int)
+    for r in rows:
+        for c in cols:
+            error = np.maximum(error, errors[r, c])
+            worst = np.maximum(worst, severity[codes[r, c]])
+    names = np.array(["converged", "refined", "sensitive"])
+    return error, names[worst]
+
+
+def _bracket(grid: np.ndarray, values: np.ndarray):
+    """Indices of the grid points just below and just above each value."""
+    upper = np.clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
+    lower = np.clip(upper - 1, 0, grid.size - 1)
+    exact = np.isclose(grid[upper], values, rtol=0, atol=1e-12)
+    return np.where(exact, upper, lower), upper
 
 
 def design_formula(loss_factor, relative_stiffness, structure: str):

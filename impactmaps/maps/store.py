@@ -11,13 +11,13 @@ resuming with different settings is refused rather than mixing results.
 from __future__ import annotations
 
 import hashlib
-import json
 import os
 import tempfile
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
+
+from ..jsonio import dumps
 
 __all__ = ["fingerprint", "save_atomic", "load_matching", "StoreMismatchError"]
 
@@ -28,18 +28,8 @@ class StoreMismatchError(ValueError):
 
 def fingerprint(description: dict) -> str:
     """SHA-256 of a JSON-serialisable description (sorted keys)."""
-    text = json.dumps(description, sort_keys=True, default=_jsonable)
+    text = dumps(description, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _jsonable(value):
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    if isinstance(value, tuple):
-        return list(value)
-    raise TypeError(f"not JSON-serialisable: {value!r}")
 
 
 def save_atomic(dataset: xr.Dataset, path: str | os.PathLike) -> Path:

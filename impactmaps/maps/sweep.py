@@ -9,12 +9,14 @@ file atomically as they complete, so an interrupted sweep resumes where it stopp
 
 from __future__ import annotations
 
+import functools
+import math
 import os
 import time
+import warnings
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from dataclasses import asdict
 from datetime import datetime, timezone
-from pathlib import Path
 from typing import Sequence
 
 import numpy as np
@@ -23,14 +25,16 @@ import xarray as xr
 from .._checks import require_positive
 from ..contact.linear import LinearContact
 from ..dimensionless import realise
+from ..jsonio import dumps
 from ..solvers.modal import ModalSettings, simulate
+from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .regimes import classify
 from .store import fingerprint, load_matching, save_atomic
 from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
 
-SOLVER_REVISION = 3  # bump when a numerical change invalidates stored results
+SOLVER_REVISION = 4  # bump when a numerical change invalidates stored results
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)
@@ -42,8 +46,12 @@ RESULT_VARIABLES = {
     "energy_transferred_fraction": ("f8", np.nan, "1", "vibration energy left in the structure / impact energy"),
     "reflection_time_normalised": ("f8", np.nan, "1", "ω d²/c: first wave return to the impact point (d: distance to nearest support/edge, c = sqrt(bending stiffness / mass per length or area))"),
     "n_modes": ("i4", -1, "1", "number of modes integrated"),
-    "hit_time_limit": ("i1", -1, "1", "1 if the run stopped at its time limit"),
+    "time_limit_reached": ("i1", -1, "1", "1 if the run stopped at its time limit"),
     "method": ("i1", -1, "1", "which model produced the point: see flag_meanings"),
+    "fmax_error": ("f8", np.nan, "1", "error estimate of fmax_normalised (change under refinement, or half the spread of a sensitive point)"),
+    "fmax_low": ("f8", np.nan, "1", "lower end of the band that holds fmax_normalised"),
+    "fmax_high": ("f8", np.nan, "1", "upper end of the band that holds fmax_normalised"),
+    "status": ("i1", -1, "1", "converged, refined, sensitive or asymptotic: see flag_meanings"),
 }
 
 #: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
@@ -60,33 +68,36 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 
 
 # -- the worker ------------------------------------------------------------------------
-_TABLES: dict = {}
+@functools.lru_cache(maxsize=16)
+def frequency_cap(structure: MapStructure, max_modes: int = MAX_MODES) -> float:
+    """Largest frequency [rad/s] below which ``structure`` has at most ~``max_modes`` modes.
+
+    A pure function of its arguments (cached, bounded): the cut-off of every point of a
+    sweep on ``structure`` is clipped to it.
+    """
+    target = structure.build()
+    frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # probing only
+        while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
+            frequency *= 2.0
+    return frequency
 
 
-_CAPS: dict = {}
+@functools.lru_cache(maxsize=8)
+def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
+    """The one basis table every point on ``structure`` is truncated from.
 
-
-def _frequency_cap(structure: MapStructure, target, max_modes: int) -> float:
-    """Largest frequency [rad/s] below which ``target`` has at most ~``max_modes`` modes."""
-    cap = _CAPS.get((structure, max_modes))
-    if cap is None:
-        import warnings
-
-        frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # probing only
-            while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
-                frequency *= 2.0
-        cap = _CAPS[(structure, max_modes)] = frequency
-    return cap
-
-
-def _basis_table(structure: MapStructure, target, max_frequency: float, min_modes: int) -> BasisTable:
-    table = _TABLES.get(structure)
-    if table is None or table.max_frequency < max_frequency:
-        table = BasisTable(target, max_frequency, min_modes)
-        _TABLES[structure] = table
-    return table
+    Built once at :func:`frequency_cap` — never at a cut-off that depends on which
+    points a worker happened to compute before — so a point's modes, and therefore its
+    result, are a pure function of (structure, ζ, λ, settings): the same bits alone, in
+    any chunk, in any order, after a resume. Cached (bounded) as a pure function.
+    """
+    with warnings.catch_warnings():
+        # the table reaches past the Mindlin thickness-shear cut-off; a point whose own
+        # cut-off does is warned about in solve_points
+        warnings.simplefilter("ignore", UserWarning)
+        return BasisTable(structure.build(), frequency_cap(structure), min_modes)
 
 
 def _asymptote_row(target, zeta: float) -> dict:
@@ -102,7 +113,7 @@ def _asymptote_row(target, zeta: float) -> dict:
         "peak_time_normalised": float(impact.peak_time),
         "energy_transferred_fraction": float(1.0 - float(rebound) ** 2) if np.isfinite(rebound) else np.nan,
         "n_modes": 0,
-        "hit_time_limit": 0,
+        "time_limit_reached": 0,
         "method": METHODS.index("infinite-structure-asymptote"),
     }
 
@@ -112,7 +123,20 @@ def reflection_time(target, contact_frequency):
     return target.reflection_time(contact_frequency)
 
 
-def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings) -> list[dict]:
+def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:
+    """Warn, as the plate itself does, when a cut-off passes the Mindlin thickness-shear cut-off."""
+    if getattr(target, "theory", None) != "mindlin":
+        return
+    cutoff = math.sqrt(target.shear_correction * min(target.A44, target.A55) / target.rotary_inertia_per_area)
+    if max_frequency > cutoff:
+        warnings.warn(
+            f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear cut-off "
+            f"{cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which are omitted, have "
+            "modes below the cut-off frequency", UserWarning, stacklevel=3)
+
+
+def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
+                 table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
     """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
 
     Parameters
@@ -120,6 +144,11 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     structure : MapStructure
     points : sequence of (loss_factor, relative_stiffness)
     settings : ModalSettings
+    table : BasisTable, optional
+        The modes to truncate from; default :func:`basis_table` of ``structure`` (pass one
+        to reuse it explicitly across calls).
+    control : AccuracyControl, optional
+        Tolerance and cost cap of the per-point refinement (:mod:`impactmaps.maps.accuracy`).
 
     Returns
     -------
@@ -137,8 +166,6 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     first ``MAX_MODES`` modes plus residual flexibility, with a warning. The ``method``
     variable records which model produced each point.
     """
-    import warnings
-
     target = structure.build()
     zetas = np.array([p[0] for p in points], dtype=float)
     lambdas = np.array([p[1] for p in points], dtype=float)
@@ -147,27 +174,43 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     masses = np.atleast_1d(impactors.impactor_mass)
     stiffnesses = np.atleast_1d(impactors.contact_stiffness)
     reflections = np.atleast_1d(target.reflection_time(omegas))
-    cap = _frequency_cap(structure, target, MAX_MODES)
+    cap = frequency_cap(structure)
     wanted = settings.cutoff_ratio * omegas
-    table = _basis_table(structure, target, min(float(wanted.max()), cap), settings.min_modes)
+    if table is None:
+        table = basis_table(structure, settings.min_modes)
+    _warn_beyond_shear_cutoff(target, min(float(wanted.max()), cap))
     rows = []
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
         if wanted[k] > cap:
             asymptote = _asymptote_row(target, zetas[k])
             if reflections[k] >= ASYMPTOTE_REFLECTION_FACTOR * asymptote["peak_time_normalised"]:
-                rows.append(row | asymptote)
+                rows.append(exact_point(row | asymptote))
                 continue
             warnings.warn(
                 f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g} needs more than "
                 f"{MAX_MODES} modes; integrating the first {MAX_MODES} (residual flexibility for "
                 "the rest)", RuntimeWarning, stacklevel=2)
-        basis = table.truncate(min(wanted[k], cap), settings.min_modes)
-        result = simulate(basis, LinearContact(float(stiffnesses[k])), float(masses[k]), 1.0,
-                          settings=settings, record=False)
         capped = "modal+residual-capped" if wanted[k] > cap else "modal+residual"
-        rows.append(row | result.normalised_summary() | {"method": METHODS.index(capped)})
+        run = _point_runner(target, table, cap, zetas[k], lambdas[k],
+                            (float(masses[k]), float(stiffnesses[k]), float(omegas[k])))
+        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index(capped)})
     return rows
+
+
+def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, impactor):
+    """``run(settings, zeta_factor)`` of one point: the realised impact on truncated modes."""
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        mass, stiffness, omega = impactor
+        if zeta_factor != 1.0:
+            moved = realise(target, zeta * zeta_factor, lambda_)
+            mass, stiffness, omega = (float(moved.impactor_mass), float(moved.contact_stiffness),
+                                      float(moved.contact_frequency))
+        basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
+        return simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
+
+    return run
 
 
 # -- the orchestration ---------------------------------------------------------------------
@@ -179,6 +222,8 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
                            {"units": units, "long_name": text})
     data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
     data_vars["method"][2]["flag_meanings"] = " ".join(METHODS)
+    data_vars["status"][2]["flag_values"] = np.arange(len(STATUSES), dtype="i1")
+    data_vars["status"][2]["flag_meanings"] = " ".join(STATUSES)
     data_vars["done"] = (("structure", "lambda_", "zeta"), np.zeros(shape, dtype="i1"),
                          {"long_name": "1 where the point has been computed"})
     coords = {
@@ -196,21 +241,13 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
     attrs = {
         "title": "impactmaps normalised impact map",
         "fingerprint": digest,
-        "description": _json(description),
+        "description": dumps(description, sort_keys=True),
         "impactmaps_version": __version__,
         "solver_revision": SOLVER_REVISION,
         "method": "modal impact solver (exact-step integrator, residual flexibility), linear contact",
         "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-def _json(value) -> str:
-    import json
-
-    from .store import _jsonable
-
-    return json.dumps(value, sort_keys=True, default=_jsonable)
 
 
 def _chunks(structures, lambdas, zetas, done, chunk_size):

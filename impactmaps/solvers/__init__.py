@@ -1,1 +1,1 @@
-"""Impact solvers: modal, compact (half-space) and closed-form asymptotes."""
+"""Impact solvers: modal (exact-step integrator), half-space, and closed-form asymptotes."""

@@ -25,6 +25,7 @@ from .._checks import require_nonnegative, require_positive
 from .infinite_beam import (
     INFINITE_BEAM_METHODS,
     InfiniteBeamImpact,
+    _scalar_or_array,
     critical_beam_loss_factor,
     infinite_beam_contact_time,
     infinite_beam_force,
@@ -36,7 +37,6 @@ from .infinite_beam import (
     infinite_beam_peak_time,
     recontact_beam_loss_factor,
 )
-from .infinite_beam import _scalar_or_array
 
 __all__ = [
     "halfspace_force",

@@ -3,8 +3,8 @@
 Equations (spec §3.4): ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j(x0) F``,
 ``m_i ẅ_i = −F``, ``α = w_i − Σ φ_j q_j − r F``, ``F = F(α; α_max)`` from any registered
 contact law, with ``r`` the residual static compliance of the dropped modes in series
-with the contact (mode-acceleration correction). The integrator is the exact-step
-kernel of :mod:`impactmaps.solvers.kernels`.
+with the contact (mode-acceleration correction). The integrator is
+:mod:`impactmaps.solvers.exact_step`.
 
 Mode cut-off rule: every participating mode with ``ω_j ≤ cutoff_ratio · ω`` is
 integrated (at least ``min_modes`` of them), where ``ω`` is the contact frequency; the
@@ -14,7 +14,7 @@ Time step: ``Δt = min(time_step_ratio/ω, max(resolve_ratio/ω_top, Δt_content
 ``ω_top`` is the highest natural frequency of the coupled impactor–contact–structure
 system in contact (it lies above the highest retained mode by the interlacing of the
 point receptance); resolving it resolves every oscillation of the contact force.
-``Δt_content`` (:func:`content_time_step`, capped at ``STABLE_TOP_STEP/ω_top``) is the
+``Δt_content`` (:func:`~impactmaps.solvers.time_step.content_time_step`, capped at ``STABLE_TOP_STEP/ω_top``) is the
 step that resolves the oscillations the force actually carries: a light impactor on a
 plate couples only weakly to the modes near the cut-off, their share of the force is
 ~1e-7, and the step need not follow them (the local plate case of the benchmarks takes
@@ -23,20 +23,22 @@ plate couples only weakly to the modes near the cut-off, their share of the forc
 
 from __future__ import annotations
 
+import functools
 import warnings
 from dataclasses import asdict, dataclass, replace
 
 import numba
 import numpy as np
 import pandas as pd
-from scipy.optimize import brentq
 
 from .._checks import require_in_range, require_positive
 from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
-from .kernels import integrate_impact
-from .result import ImpactResult
+from .exact_step import integrate_impact
+from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
+from .result import ImpactResult, energy_balance_error
+from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
     "ModalSettings",
@@ -49,16 +51,8 @@ __all__ = [
     "ConvergenceWarning",
 ]
 
-HISTORY_COLUMNS = (
-    "time_s",
-    "force_N",
-    "indentation_m",
-    "impactor_displacement_m",
-    "impactor_velocity_m_s",
-    "target_displacement_m",
-    "target_velocity_m_s",
-    "structure_energy_J",
-)
+#: Columns of the integrator's history array: the common ones, then the structure energy.
+HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
 
 
 def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
@@ -101,6 +95,10 @@ class ModalSettings:
         (:class:`ConvergenceWarning`) if F̄max moves by more than ``tolerance``.
     tolerance : float
         Convergence tolerance on F̄max.
+    step_scale : float
+        Factor in (0, 1] applied to the automatically chosen time step after every rule,
+        the stability cap included, so that a refinement really shortens the step also
+        where the stability limit sets it (:meth:`refined` halves it).
     """
 
     cutoff_ratio: float = 40.0
@@ -113,6 +111,7 @@ class ModalSettings:
     max_events: int = 1000
     check_convergence: bool = False
     tolerance: float = 1e-3
+    step_scale: float = 1.0
 
     def __post_init__(self):
         require_positive("cutoff_ratio", self.cutoff_ratio)
@@ -123,37 +122,41 @@ class ModalSettings:
         require_positive("max_time_ratio", self.max_time_ratio)
         require_in_range("max_events", self.max_events, 1, np.inf)
         require_positive("tolerance", self.tolerance)
+        require_in_range("step_scale", self.step_scale, 0.0, 1.0, low_inclusive=False)
 
     def refined(self) -> "ModalSettings":
-        """Settings with twice the cut-off, twice the modes and half the steps."""
+        """Settings with twice the cut-off, twice the modes and half the time step.
+
+        The step rules are applied to the larger basis and the step they give is then
+        halved (:attr:`step_scale`), so the step is really halved even where the
+        stability limit sets it.
+        """
         return replace(
             self,
             cutoff_ratio=2 * self.cutoff_ratio,
             min_modes=2 * self.min_modes,
-            time_step_ratio=self.time_step_ratio / 2,
-            resolve_ratio=self.resolve_ratio / 2,
-            force_resolution=self.force_resolution / 4,
+            step_scale=self.step_scale / 2,
             check_convergence=False,
         )
 
 
 DEFAULT_SETTINGS = ModalSettings()
 
-#: Largest ω_top·Δt the content rule may use. The exact-step scheme advances each mode
-#: exactly, but the contact force is sampled once per step, and the sampled loop is not
-#: unconditionally stable: runs blew up at ω_top·Δt ≈ 4 and ≈ 19 (a mode turning almost
-#: an integer number of times per step), none at ω_top·Δt ≤ 3.5 over 600 random chart
-#: points and forced steps (tests/test_integrator.py keeps the failing case).
-STABLE_TOP_STEP = 2.0
-_SETTINGS_DICTS: dict = {}
-
-
 def _settings_dict(settings: ModalSettings) -> dict:
-    """``asdict(settings)``, cached (settings are frozen and hashable)."""
-    cached = _SETTINGS_DICTS.get(settings)
-    if cached is None:
-        cached = _SETTINGS_DICTS[settings] = asdict(settings)
-    return dict(cached)
+    """``asdict(settings)`` as a fresh dict (its items are cached per settings value)."""
+    return dict(_settings_items(settings))
+
+
+@functools.lru_cache(maxsize=64)
+def _settings_items(settings: ModalSettings) -> tuple:
+    """The fields of frozen, hashable ``settings`` as (name, value) pairs."""
+    return tuple(asdict(settings).items())
+
+
+def _linear_stiffness(law: ContactLaw) -> float:
+    """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
+    form), else 0. The one place that asks whether a law is linear."""
+    return law.linear_stiffness or 0.0
 
 
 def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity: float) -> float:
@@ -163,118 +166,14 @@ def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity:
     curve at the half-space peak indentation (where ``loading_energy = ½ m V0²``),
     the stiffest the contact gets in a rigid-target impact.
     """
-    if isinstance(law, LinearContact):
-        return float(law.stiffness)
-    energy = 0.5 * impactor_mass * velocity**2
-
-    def excess(alpha):
-        return float(law.loading_energy(alpha)) - energy
-
-    upper = 1e-9
-    while excess(upper) < 0:
-        upper *= 4.0
-        if upper > 10.0:
-            raise ValueError("could not bracket the half-space peak indentation (law too soft?)")
-    alpha_peak = brentq(excess, upper / 4.0 if upper > 1e-9 else 0.0, upper, xtol=1e-16, rtol=1e-10)
+    linear = _linear_stiffness(law)
+    if linear > 0.0:
+        return linear
+    alpha_peak = float(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
     stiffness = float(law.tangent_stiffness(alpha_peak, alpha_peak))
     if not stiffness > 0:
         raise ValueError("contact law has zero stiffness at the half-space peak indentation")
     return stiffness
-
-
-def coupled_top_frequency(
-    basis: ModalBasis, contact_stiffness: float, impactor_mass: float, rtol: float = 1e-10
-) -> float:
-    """Highest natural frequency [rad/s] of impactor + contact spring + retained modes.
-
-    Root above the highest retained mode of the point-receptance equation
-    ``1/K + r + Σ φ_j²/(ω_j² − ω²) − 1/(m_i ω²) = 0`` (the roots interlace the modal
-    frequencies, and exactly one lies above the last one), to relative tolerance
-    ``rtol`` in ω².
-    """
-    series = 1.0 / contact_stiffness + basis.residual_compliance
-    return float(_top_root(basis.frequencies, basis.participation, series, float(impactor_mass),
-                           float(rtol)))
-
-
-def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass: float,
-                      tolerance: float) -> float:
-    """Longest step [s] that resolves the structural oscillations of the contact force.
-
-    To first order in the coupling, structural mode j puts into the contact force an
-    oscillation at ω_j of amplitude (in units of m_i V0 ω)
-    ``Â_j = m_i φ_j² (ω/ω_j)³ / (1 + K r)²`` — the residue of the force response
-    ``V0/(s² D(s))``, ``D = 1/K + r + 1/(m_i s²) + Σ φ_j²/(s² + ω_j²)``, at the coupled
-    root next to ω_j (within a factor 2 of the exact residue of the top coupled mode on
-    the benchmark cases, modes of equal frequency summed: ``tests/test_integrator.py``).
-    A force linear within the step misses ``(ω_j Δt)²/8`` of each
-    oscillation; the step returned is the longest with
-    ``Σ_{ω_j > 2ω} min(Â_j, 1) (ω_j Δt)²/8 ≤ tolerance`` (slower oscillations belong to
-    the main contact pulse, resolved by ``time_step_ratio``).
-
-    Parameters
-    ----------
-    basis : ModalBasis
-        Retained modes and residual compliance r [m/N].
-    contact_stiffness : float
-        Linear(ised) contact stiffness K [N/m].
-    impactor_mass : float
-        m_i [kg].
-    tolerance : float
-        Tolerated error, in units of m_i V0 ω [-].
-
-    Returns
-    -------
-    float
-        Δt [s]; ``inf`` when no mode lies above 2ω.
-    """
-    if tolerance <= 0:
-        return 0.0
-    weight = _content_weight(basis.frequencies, basis.participation, float(contact_stiffness),
-                             float(impactor_mass), float(basis.residual_compliance))
-    return float(np.sqrt(8.0 * tolerance / weight)) if weight > 0 else np.inf
-
-
-@numba.njit(cache=True)
-def _content_weight(frequencies, participation, stiffness, mass, residual):
-    """Σ_{ω_j > 2ω} min(Â_j, 1) ω_j² of :func:`content_time_step` [1/s²]."""
-    omega = np.sqrt(stiffness / mass)
-    series = (1.0 + stiffness * residual) ** 2
-    weight = 0.0
-    for j in range(frequencies.shape[0]):
-        if frequencies[j] > 2.0 * omega:
-            ratio = omega / frequencies[j]
-            amplitude = mass * participation[j] ** 2 * ratio * ratio * ratio / series
-            weight += min(amplitude, 1.0) * frequencies[j] ** 2
-    return weight
-
-
-@numba.njit(cache=True)
-def _receptance(omega2, frequencies, participation, series, mass):
-    total = series - 1.0 / (mass * omega2)
-    for j in range(frequencies.shape[0]):
-        total += participation[j] ** 2 / (frequencies[j] ** 2 - omega2)
-    return total
-
-
-@numba.njit(cache=True)
-def _top_root(frequencies, participation, series, mass, rtol):
-    if frequencies.shape[0] == 0:
-        return np.sqrt(1.0 / (mass * series))
-    low = np.max(frequencies) ** 2 * (1.0 + 1e-12) + 1e-300
-    high = max(4.0 * low, 1.0)
-    while _receptance(high, frequencies, participation, series, mass) < 0.0:
-        high *= 4.0
-    # bisection in log(ω²); the receptance increases monotonically above the last mode
-    for _ in range(200):
-        middle = np.sqrt(low * high)
-        if _receptance(middle, frequencies, participation, series, mass) < 0.0:
-            low = middle
-        else:
-            high = middle
-        if high - low <= rtol * high:
-            break
-    return np.sqrt(0.5 * (low + high))
 
 
 @numba.njit(cache=True)
@@ -357,8 +256,9 @@ def simulate(
     Parameters
     ----------
     target : Target or ModalBasis
-        The struck structure (beam, plate, …) or directly its modes at the impact
-        point. An empty :class:`ModalBasis` with zero residual is a half-space.
+        The struck structure (beam, plate, half-space, …) or directly its modes at the
+        impact point (:class:`impactmaps.targets.halfspace.HalfSpace` is the same as an
+        empty :class:`ModalBasis` with zero residual).
     law : ContactLaw
         Any registered contact law with scalar parameters.
     impactor_mass : float
@@ -391,14 +291,15 @@ def simulate(
         omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
         content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
         content = min(content, STABLE_TOP_STEP / omega_top)
-        time_step = min(settings.time_step_ratio / omega_c, max(settings.resolve_ratio / omega_top, content))
+        time_step = settings.step_scale * min(settings.time_step_ratio / omega_c,
+                                              max(settings.resolve_ratio / omega_top, content))
     else:
         require_positive("time_step", time_step, "s")
     max_time = settings.max_time_ratio / omega_c
     history, intervals, scalars = integrate_impact(
         kernel_pointer(law.kernel),
         params,
-        float(law.stiffness) if isinstance(law, LinearContact) else 0.0,
+        _linear_stiffness(law),
         basis.frequencies,
         basis.participation,
         basis.damping_ratios,
@@ -417,6 +318,7 @@ def simulate(
             stacklevel=2,
         )
     alpha_max = float(scalars[2])
+    dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
     result = ImpactResult(
         history=_history_frame(history, impactor_mass) if record else None,
         peak_force=float(scalars[0]),
@@ -426,11 +328,12 @@ def simulate(
         permanent_indentation=0.0 if law.elastic else float(law.permanent_indentation(alpha_max)),
         rebound_velocity=float(-scalars[3]),
         energy_transferred=float(scalars[4]),
-        contact_dissipation=0.0 if law.elastic else float(law.dissipated_energy(alpha_max)),
+        contact_dissipation=dissipation,
         damping_work=float(scalars[5]),
-        impact_energy=0.5 * impactor_mass * velocity**2,
+        energy_balance_error=energy_balance_error(
+            impactor_mass, velocity, float(-scalars[3]), float(scalars[4]), dissipation, float(scalars[5])),
         end_time=float(scalars[6]),
-        hit_time_limit=bool(scalars[7]),
+        time_limit_reached=bool(scalars[7]),
         impactor_mass=float(impactor_mass),
         velocity=float(velocity),
         contact_frequency=omega_c,
@@ -439,7 +342,7 @@ def simulate(
         method="modal+residual" if settings.residual_flexibility else "modal",
         settings=_settings_dict(settings),
     )
-    if result.hit_time_limit:
+    if result.time_limit_reached:
         warnings.warn(
             f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
             "became impossible; scalars describe a truncated event",

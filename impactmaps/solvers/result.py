@@ -1,53 +1,72 @@
-"""The result of one impact simulation: labelled histories plus scalars."""
+"""The result of one impact, whichever solver produced it: labelled histories plus scalars.
+
+One type, one vocabulary. The modal solver, the half-space solver and the
+finite-difference beam all return :class:`ImpactResult`; what only one solver knows
+(the finite-difference beam's residual state and full energy ledger) travels in
+``details``.
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-__all__ = ["ImpactResult", "ContactIntervals"]
+__all__ = ["ImpactResult", "HISTORY_COLUMNS", "energy_balance_error"]
+
+#: History columns every solver writes (SI units, displacements positive into the
+#: target). Solvers may add their own after these (the modal solver's energies, the
+#: finite-difference beam's gauges).
+HISTORY_COLUMNS = (
+    "time_s",
+    "force_N",
+    "indentation_m",
+    "impactor_displacement_m",
+    "impactor_velocity_m_s",
+    "target_displacement_m",
+    "target_velocity_m_s",
+)
 
 
-class ContactIntervals:
-    """Derived contact scalars of any result with a ``contact_intervals`` (k, 2) array [s]."""
+def energy_balance_error(impactor_mass, velocity, rebound_velocity, *sinks) -> float:
+    """|E_in − (E_rebound + Σ sinks)| / E_in [-] of one impact.
 
-    contact_intervals: np.ndarray
+    Parameters
+    ----------
+    impactor_mass : float
+        m_i [kg].
+    velocity : float
+        Approach velocity V0 [m/s].
+    rebound_velocity : float
+        Rebound velocity [m/s].
+    *sinks : float
+        The other energies at the end of the run [J] (structure, contact, damping).
 
-    @property
-    def impacts(self) -> int:
-        """Number of separate contacts (impacts)."""
-        return int(len(self.contact_intervals))
-
-    @property
-    def contact_durations(self) -> np.ndarray:
-        """Duration of each contact [s]."""
-        return np.diff(self.contact_intervals, axis=1).ravel()
-
-    @property
-    def contact_time(self) -> float:
-        """Total time in contact, summed over all impacts [s]."""
-        return float(np.nansum(self.contact_durations))
-
-    @property
-    def first_contact_duration(self) -> float:
-        """Duration of the first contact [s]."""
-        return float(self.contact_durations[0]) if self.impacts else 0.0
+    Returns
+    -------
+    float
+    """
+    impact = 0.5 * impactor_mass * velocity**2
+    out = 0.5 * impactor_mass * rebound_velocity**2 + sum(sinks)
+    return abs(impact - out) / impact
 
 
 @dataclass(frozen=True)
-class ImpactResult(ContactIntervals):
-    """Outcome of one sphere impact on a target (SI units).
+class ImpactResult:
+    """Outcome of one sphere impact (SI units).
 
     Attributes
     ----------
     history : pandas.DataFrame or None
-        Time histories, one row per step: ``time_s, force_N, indentation_m,
-        impactor_displacement_m, impactor_velocity_m_s, target_displacement_m,
-        target_velocity_m_s, structure_energy_J, impactor_kinetic_energy_J``
-        (displacements positive into the target; the energy the contact holds or has
-        dissipated is the impact energy minus the two energies). ``None`` when the run kept scalars only.
+        Time histories, one row per recorded step, columns :data:`HISTORY_COLUMNS`
+        (``time_s, force_N, indentation_m, impactor_displacement_m,
+        impactor_velocity_m_s, target_displacement_m, target_velocity_m_s``; the target
+        displacement is that of the struck point, zero for a half-space) and solver
+        extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``; finite
+        difference: ``gauge{g}_deflection_m, gauge{g}_strain``). ``None`` when the run
+        kept scalars only.
     peak_force : float
         Largest contact force over the whole event, all impacts [N].
     peak_time : float
@@ -55,36 +74,47 @@ class ImpactResult(ContactIntervals):
     contact_intervals : ndarray, shape (k, 2)
         Start and end time of each contact [s]; ``k`` is the number of impacts.
     max_indentation : float
-        Largest indentation reached [m].
+        Largest indentation reached α_max [m].
     permanent_indentation : float
-        Permanent indentation left by the contact law [m] (0 for elastic laws).
+        Permanent indentation the contact law leaves after unloading from α_max [m]
+        (0 for elastic laws).
     rebound_velocity : float
-        Impactor velocity away from the target at the end of the run [m/s].
+        Impactor velocity away from the target after its last separation [m/s];
+        ``nan`` when the run ended before the sphere separated (a warning says so).
     energy_transferred : float
-        Vibration energy left in the structure at the end [J].
+        Energy left in the structure at the end: vibration (kinetic + elastic) [J].
     contact_dissipation : float
-        Energy dissipated in the contact zone [J].
+        Energy dissipated in the contact zone, the law's own
+        ``dissipated_energy(α_max)`` [J].
     damping_work : float
-        Energy dissipated by modal damping [J].
-    impact_energy : float
-        Impactor kinetic energy before impact ½ m V0² [J].
+        Energy dissipated by structural damping [J].
+    energy_balance_error : float
+        Residual of the energy ledger relative to the impact energy [-]: impact
+        energy against rebound, structure, contact, damping (and, for the
+        finite-difference beam, plastic bending work and gravity work).
+    impactor_mass, velocity : float
+        m_i [kg] and V0 [m/s].
+    contact_frequency : float
+        ω [rad/s] used to normalise: ``sqrt(K/m_i)`` for a linear law, the loading
+        tangent at the half-space peak indentation for a nonlinear law.
     end_time : float
-        Time at which the run stopped [s] (re-impact impossible, or the limit).
-    hit_time_limit : bool
-        True if the run stopped at its time limit rather than because re-impact had
-        become impossible; the scalars then describe a truncated event.
-    impactor_mass, velocity, contact_frequency : float
-        m_i [kg], V0 [m/s], and the contact frequency ω [rad/s] used to normalise
-        (``sqrt(K/m_i)`` for a linear law; the tangent-stiffness value at the
-        half-space peak indentation for a nonlinear law).
-    n_modes : int
-        Number of modes integrated (0 for a half-space).
+        Time at which the run stopped [s].
+    time_limit_reached : bool
+        True when the run stopped at its time limit while the event could still go on
+        (in contact, or with a re-impact still possible); the scalars then describe a
+        truncated event.
     time_step : float
-        Integration time step [s].
+        Integration (or sampling, for the adaptive half-space solver) time step [s].
     method : str
-        Which model produced the result (e.g. ``"modal"``, ``"modal+residual"``).
+        The model that produced the result: ``"modal"``, ``"modal+residual"``,
+        ``"half-space"`` or ``"finite-difference"``.
+    n_modes : int
+        Number of modes integrated (0 for the half-space and finite-difference solvers).
     settings : dict
-        Solver settings used (for provenance).
+        Solver settings used (provenance).
+    details : object or None
+        Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
+        finite-difference beam, ``None`` otherwise.
     """
 
     history: pd.DataFrame | None
@@ -97,35 +127,68 @@ class ImpactResult(ContactIntervals):
     energy_transferred: float
     contact_dissipation: float
     damping_work: float
-    impact_energy: float
-    end_time: float
-    hit_time_limit: bool
+    energy_balance_error: float
     impactor_mass: float
     velocity: float
     contact_frequency: float
-    n_modes: int
+    end_time: float
+    time_limit_reached: bool
     time_step: float
     method: str
+    n_modes: int = 0
     settings: dict = field(default_factory=dict)
+    details: Any = None
 
-    # -- derived scalars ------------------------------------------------------------
+    # -- contacts -----------------------------------------------------------------------
+    @property
+    def impacts(self) -> int:
+        """Number of separate contacts (impacts)."""
+        return int(len(self.contact_intervals))
+
+    @property
+    def contact_durations(self) -> np.ndarray:
+        """Duration of each contact [s] (``nan`` for a contact still open at the end)."""
+        return np.diff(self.contact_intervals, axis=1).ravel()
+
+    @property
+    def total_contact_time(self) -> float:
+        """Total time in contact, summed over all impacts [s]."""
+        return float(np.nansum(self.contact_durations))
+
+    @property
+    def first_contact_duration(self) -> float:
+        """Duration of the first contact [s] (0 when the sphere never touched)."""
+        return float(self.contact_durations[0]) if self.impacts else 0.0
+
+    @property
+    def contact_span(self) -> float:
+        """From the first contact's start to the last contact's end [s]."""
+        if not self.impacts:
+            return 0.0
+        return float(self.contact_intervals[-1, 1] - self.contact_intervals[0, 0])
+
+    # -- energies -------------------------------------------------------------------------
+    @property
+    def impact_energy(self) -> float:
+        """Impactor kinetic energy before impact ½ m_i V0² [J]."""
+        return 0.5 * self.impactor_mass * self.velocity**2
+
     @property
     def restitution(self) -> float:
-        """Impactor rebound speed over approach speed [-]."""
+        """Impactor rebound speed over approach speed [-] (``nan`` if not separated)."""
         return self.rebound_velocity / self.velocity
 
     @property
-    def energy_balance_error(self) -> float:
-        """|E_in − (E_rebound + E_structure + E_contact + E_damping)| / E_in [-]."""
-        out = (
-            0.5 * self.impactor_mass * self.rebound_velocity**2
-            + self.energy_transferred
-            + self.contact_dissipation
-            + self.damping_work
-        )
-        return abs(self.impact_energy - out) / self.impact_energy
+    def energy_loss(self) -> float:
+        """Kinetic energy the impactor lost, ½ m_i (V0² − V_r²) [J] (``nan`` if not separated)."""
+        return self.impact_energy - 0.5 * self.impactor_mass * self.rebound_velocity**2
 
-    # -- normalised view (seed 001 eqs 20, 26) ---------------------------------------
+    @property
+    def energy_transferred_fraction(self) -> float:
+        """Fraction of the impact energy left in the structure [-]."""
+        return self.energy_transferred / self.impact_energy
+
+    # -- normalised view (seed 001 eqs 20, 26) ---------------------------------------------
     @property
     def force_scale(self) -> float:
         """m_i V0 ω [N], the half-space peak force of the linear law."""
@@ -139,7 +202,7 @@ class ImpactResult(ContactIntervals):
     @property
     def contact_time_normalised(self) -> float:
         """Total contact time in units of 1/ω [-]."""
-        return self.contact_time * self.contact_frequency
+        return self.total_contact_time * self.contact_frequency
 
     @property
     def first_contact_duration_normalised(self) -> float:
@@ -150,11 +213,6 @@ class ImpactResult(ContactIntervals):
     def peak_time_normalised(self) -> float:
         """Time of the peak in units of 1/ω [-]."""
         return self.peak_time * self.contact_frequency
-
-    @property
-    def energy_transferred_fraction(self) -> float:
-        """Fraction of the impact energy left in the structure [-]."""
-        return self.energy_transferred / self.impact_energy
 
     def normalised_history(self) -> pd.DataFrame:
         """Histories in the normalised variables τ = ωt, F̄ = F/(m_iV0ω), x̄ = x/α*."""
@@ -182,29 +240,40 @@ class ImpactResult(ContactIntervals):
             "peak_time_normalised": self.peak_time_normalised,
             "energy_transferred_fraction": self.energy_transferred_fraction,
             "n_modes": self.n_modes,
-            "hit_time_limit": int(self.hit_time_limit),
+            "time_limit_reached": int(self.time_limit_reached),
         }
 
     def summary(self) -> dict:
-        """The scalars as a flat dict with unit-suffixed keys (JSON-ready)."""
-        return {
+        """The scalars as a flat dict with unit-suffixed keys (JSON-ready).
+
+        ``nan`` values (quantities that do not exist for this run, such as the
+        restitution of a run that ended in contact) are kept as ``nan`` here; the
+        writers turn them into ``null`` (:func:`impactmaps.jsonio.dumps`).
+        """
+        out = {
             "peak_force_N": float(self.peak_force),
             "peak_time_s": float(self.peak_time),
             "impacts": self.impacts,
             "contact_intervals_s": self.contact_intervals.tolist(),
-            "contact_time_s": self.contact_time,
+            "first_contact_duration_s": self.first_contact_duration,
+            "total_contact_time_s": self.total_contact_time,
             "max_indentation_m": float(self.max_indentation),
             "permanent_indentation_m": float(self.permanent_indentation),
             "rebound_velocity_m_s": float(self.rebound_velocity),
             "restitution": float(self.restitution),
+            "impact_energy_J": float(self.impact_energy),
+            "energy_loss_J": float(self.energy_loss),
             "energy_transferred_J": float(self.energy_transferred),
             "contact_dissipation_J": float(self.contact_dissipation),
             "damping_work_J": float(self.damping_work),
-            "impact_energy_J": float(self.impact_energy),
             "energy_balance_error": float(self.energy_balance_error),
             "fmax_normalised": float(self.fmax_normalised),
             "contact_time_normalised": float(self.contact_time_normalised),
-            "hit_time_limit": bool(self.hit_time_limit),
+            "time_limit_reached": bool(self.time_limit_reached),
+            "time_step_s": float(self.time_step),
             "n_modes": int(self.n_modes),
             "method": self.method,
         }
+        if self.details is not None:
+            out.update(self.details.summary())
+        return out

@@ -26,8 +26,17 @@ from typing import ClassVar
 import numpy as np
 import scipy.special
 
-from .._checks import require_choice, require_in_range, require_nonnegative, require_positive
-from ..dimensionless import effective_plate_stiffness, impactor_mass_for_plate, loss_factor_plate
+from .._checks import (
+    require_choice,
+    require_in_range,
+    require_nonnegative,
+    require_positive,
+)
+from ..dimensionless import (
+    effective_plate_stiffness,
+    impactor_mass_for_plate,
+    loss_factor_plate,
+)
 from ..solvers import asymptotes
 from . import ritz
 from .base import InfiniteImpact, ModalBasis, Target
@@ -266,7 +275,7 @@ class Plate(Target):
         try:
             x0, y0 = (float(v) for v in point)
         except (TypeError, ValueError):
-            raise ValueError(f"impact_point = {self.impact_point!r} is not a pair (x0, y0) [m]") from None
+            raise ValueError(f"impact_point = {self.impact_point!r} is invalid: must have 2 entries (x0, y0) [m]") from None
         require_in_range("impact_point[0] (x0)", x0, 0.0, self.length_x,
                          low_inclusive=False, high_inclusive=False, unit="m")
         require_in_range("impact_point[1] (y0)", y0, 0.0, self.length_y,

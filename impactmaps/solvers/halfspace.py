@@ -1,6 +1,6 @@
-"""Compact-body impact: a rigid sphere on a fixed half-space, and closed forms.
+"""A rigid sphere on a fixed half-space (compact-body impact), and its closed forms.
 
-The target does not move, so the indentation α is the impactor displacement and
+The target (:class:`impactmaps.targets.halfspace.HalfSpace`) does not move, so the indentation α is the impactor displacement and
 
     m α'' = −F(α; α_max),   α(0) = 0,   α'(0) = V0,
 
@@ -24,19 +24,18 @@ Closed forms
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 from scipy.special import beta as beta_function
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw, evaluate_kernel
+from .modal import reference_contact_stiffness
+from .result import ImpactResult, energy_balance_error
 
 __all__ = [
-    "CompactImpactResult",
     "HERTZ_CONTACT_TIME_FACTOR",
     "energy_balance_restitution",
     "halfspace_impact",
@@ -150,67 +149,11 @@ def energy_balance_restitution(law: ContactLaw, impactor_mass, velocity):
     require_positive("velocity", velocity, "m/s")
     _single_parameters(law)
     energy = 0.5 * float(impactor_mass) * float(velocity) ** 2
-    upper = _indentation_scale(law, energy)
-    while float(law.loading_energy(upper)) < energy:
-        upper *= 2.0
-    alpha_max = brentq(lambda a: float(law.loading_energy(a)) - energy, 0.0, upper, xtol=1e-300, rtol=1e-14)
+    alpha_max = float(law.indentation_for_energy(energy))
     return float(np.sqrt(float(law.recovered_energy(alpha_max)) / energy))
 
 
 # -- time integration --------------------------------------------------------------------
-@dataclass(frozen=True)
-class CompactImpactResult:
-    """Rigid sphere on a fixed half-space: one impact (SI units).
-
-    Attributes
-    ----------
-    history : pandas.DataFrame
-        ``time_s, indentation_m, force_N, velocity_m_s`` (velocity of the impactor
-        towards the target), from first touch to separation.
-    peak_force : float
-        Largest contact force [N].
-    contact_time : float
-        Duration of contact [s].
-    max_indentation : float
-        α_m [m].
-    time_of_max_indentation : float
-        When α_m is reached [s].
-    permanent_indentation : float
-        α_f left by the law after unloading from α_m [m].
-    restitution : float
-        Rebound speed / V0 [-].
-    rebound_velocity : float
-        Impactor speed away from the target after separation [m/s].
-    energy_lost : float
-        ``½ m V0² − ½ m V_r²`` from the integration [J].
-    dissipated_energy : float
-        The law's own ``dissipated_energy(α_m)`` [J]; equals ``energy_lost`` up to the
-        integration error.
-    impact_energy : float
-        ``½ m V0²`` [J].
-    impactor_mass, velocity : float
-        m [kg] and V0 [m/s].
-    separated : bool
-        False if the time limit was reached first (then ``restitution`` and
-        ``rebound_velocity`` are NaN and a warning was issued).
-    """
-
-    history: pd.DataFrame
-    peak_force: float
-    contact_time: float
-    max_indentation: float
-    time_of_max_indentation: float
-    permanent_indentation: float
-    restitution: float
-    rebound_velocity: float
-    energy_lost: float
-    dissipated_energy: float
-    impact_energy: float
-    impactor_mass: float
-    velocity: float
-    separated: bool
-
-
 def _single_parameters(law: ContactLaw) -> np.ndarray:
     if not isinstance(law, ContactLaw):
         raise ValueError(f"law = {law!r} is not a ContactLaw")
@@ -258,7 +201,8 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
 
     Returns
     -------
-    CompactImpactResult
+    ImpactResult
+        ``method = "half-space"``: one contact, no structure energy, ``n_modes = 0``.
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
@@ -338,22 +282,26 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
         time_step if time_step is not None else contact_time / _HISTORY_SAMPLES,
     )
     peak_force = max(float(kernel(alpha_max, alpha_max, params)[0]), float(history["force_N"].max()))
-    energy_lost = energy - 0.5 * mass * rebound**2 if separated else np.nan
-    return CompactImpactResult(
+    dissipation = float(law.dissipated_energy(alpha_max))
+    return ImpactResult(
         history=history,
         peak_force=peak_force,
-        contact_time=contact_time,
+        peak_time=time_of_max,
+        contact_intervals=np.array([[0.0, contact_time]]),
         max_indentation=alpha_max,
-        time_of_max_indentation=time_of_max,
         permanent_indentation=final,
-        restitution=rebound / speed if separated else np.nan,
         rebound_velocity=rebound,
-        energy_lost=energy_lost,
-        dissipated_energy=float(law.dissipated_energy(alpha_max)),
-        impact_energy=energy,
+        energy_transferred=0.0,
+        contact_dissipation=dissipation,
+        damping_work=0.0,
+        energy_balance_error=energy_balance_error(mass, speed, rebound, dissipation),
         impactor_mass=mass,
         velocity=speed,
-        separated=separated,
+        contact_frequency=float(np.sqrt(reference_contact_stiffness(law, mass, speed) / mass)),
+        end_time=contact_time,
+        time_limit_reached=not separated,
+        time_step=float(time_step if time_step is not None else contact_time / _HISTORY_SAMPLES),
+        method="half-space",
     )
 
 
@@ -376,7 +324,10 @@ def _sample_history(first, second, kernel, params, scale, speed, time_unit, tau_
     force = evaluate_kernel(kernel, params, alpha, history_max)[0]
     return pd.DataFrame({
         "time_s": tau * time_unit,
-        "indentation_m": alpha,
         "force_N": force,
-        "velocity_m_s": state[1] * speed,
+        "indentation_m": alpha,
+        "impactor_displacement_m": alpha,
+        "impactor_velocity_m_s": state[1] * speed,
+        "target_displacement_m": np.zeros_like(alpha),
+        "target_velocity_m_s": np.zeros_like(alpha),
     })

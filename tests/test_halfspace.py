@@ -19,7 +19,7 @@ from impactmaps.contact import (
     available_contact_laws,
     contact_law,
 )
-from impactmaps.solvers.compact import (
+from impactmaps.solvers.halfspace import (
     HERTZ_CONTACT_TIME_FACTOR,
     energy_balance_restitution,
     halfspace_impact,
@@ -42,15 +42,16 @@ def test_linear_law_is_a_half_sine():
     result = halfspace_impact(LinearContact(stiffness), MASS, velocity)
     omega = math.sqrt(stiffness / MASS)
     history = result.history
-    assert list(history.columns) == ["time_s", "indentation_m", "force_N", "velocity_m_s"]
+    assert list(history.columns) == ["time_s", "force_N", "indentation_m", "impactor_displacement_m",
+                                     "impactor_velocity_m_s", "target_displacement_m", "target_velocity_m_s"]
     tau = history["time_s"].to_numpy() * omega
     force_bar = history["force_N"].to_numpy() / (MASS * velocity * omega)
     assert np.max(np.abs(force_bar - np.sin(tau))) < 1e-8
-    assert result.contact_time * omega == pytest.approx(math.pi, rel=1e-8)
+    assert result.total_contact_time * omega == pytest.approx(math.pi, rel=1e-8)
     assert result.restitution == pytest.approx(1.0, abs=1e-8)
     assert result.peak_force == pytest.approx(MASS * velocity * omega, rel=1e-8)
     assert result.max_indentation == pytest.approx(velocity / omega, rel=1e-8)
-    assert result.energy_lost == pytest.approx(0.0, abs=1e-8 * result.impact_energy)
+    assert result.energy_loss == pytest.approx(0.0, abs=1e-8 * result.impact_energy)
 
 
 def test_hertz_contact_time_factor_is_the_beta_integral():
@@ -70,7 +71,7 @@ def test_hertz_matches_closed_forms(velocity):
     result = halfspace_impact(HertzContact(stiffness), MASS, velocity)
     assert result.max_indentation == pytest.approx(float(hertz_max_indentation(MASS, velocity, stiffness)), rel=1e-8)
     assert result.peak_force == pytest.approx(float(hertz_peak_force(MASS, velocity, stiffness)), rel=1e-8)
-    assert result.contact_time == pytest.approx(float(hertz_contact_time(MASS, velocity, stiffness)), rel=1e-8)
+    assert result.total_contact_time == pytest.approx(float(hertz_contact_time(MASS, velocity, stiffness)), rel=1e-8)
     assert result.restitution == pytest.approx(1.0, abs=1e-8)
     assert result.permanent_indentation == 0.0
 
@@ -112,9 +113,9 @@ def test_numerical_restitution_matches_closed_form():
     for beta in np.geomspace(0.5, 1000.0, 12):
         velocity = float(YC.velocity_for_impact_number(MASS, beta))
         result = halfspace_impact(YC, MASS, velocity)
-        assert result.separated
+        assert not result.time_limit_reached
         assert result.restitution == pytest.approx(float(restitution(beta)), rel=1e-8)
-        assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+        assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
         assert energy_balance_restitution(YC, MASS, velocity) == pytest.approx(float(restitution(beta)), rel=1e-10)
         if beta <= math.sqrt(0.8):
             assert result.restitution == pytest.approx(1.0, abs=1e-9)
@@ -145,7 +146,7 @@ def test_restitution_depends_on_beta_alone():
     # both histories are sampled on the same normalised grid (contact time / 1000), so the
     # interpolation error cancels; observed 1e-10
     assert np.max(np.abs(first - second)) < 1e-7 * np.max(first)
-    contact = [result.contact_time * float(law.contact_frequency(mass)) for law, mass, result in results]
+    contact = [result.total_contact_time * float(law.contact_frequency(mass)) for law, mass, result in results]
     assert contact[0] == pytest.approx(contact[1], rel=1e-9)
 
 
@@ -169,7 +170,7 @@ def test_stronge_restitution_matches_energy_balance(ratio):
     result = halfspace_impact(STRONGE, MASS, velocity)
     assert result.max_indentation == pytest.approx(peak, rel=1e-8)
     assert result.restitution == pytest.approx(energy_balance_restitution(STRONGE, MASS, velocity), rel=1e-8)
-    assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+    assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
     if ratio < 1:
         assert result.restitution == pytest.approx(1.0, abs=1e-9)
     if ratio == 2.0:
@@ -184,7 +185,7 @@ def _registry_law(name):
         "stronge": dict(effective_modulus=1.1e11, radius=0.01, yield_strength=4e8),
     }
     if name not in params:
-        pytest.fail(f"registered law {name!r} has no example in test_compact.py: add one")
+        pytest.fail(f"registered law {name!r} has no example in test_halfspace.py: add one")
     return contact_law(name, **params[name])
 
 
@@ -195,13 +196,13 @@ def test_every_registered_law_runs_on_the_half_space(name):
     energy lost equals the law's dissipation (rel. 1e-9 of the impact energy)."""
     law = _registry_law(name)
     result = halfspace_impact(law, MASS, 3.0, time_step=1e-6)
-    assert result.separated
+    assert not result.time_limit_reached
     assert 0.0 < result.restitution <= 1.0 + 1e-9
     history = result.history
     assert np.all(history["force_N"] >= 0.0) and history["force_N"].max() <= result.peak_force * (1 + 1e-12)
     assert np.all(np.diff(history["time_s"]) <= 1e-6 * (1 + 1e-9))
-    assert history["time_s"].iloc[-1] == pytest.approx(result.contact_time, rel=1e-14)
-    assert result.energy_lost == pytest.approx(result.dissipated_energy, abs=1e-9 * result.impact_energy)
+    assert history["time_s"].iloc[-1] == pytest.approx(result.total_contact_time, rel=1e-14)
+    assert result.energy_loss == pytest.approx(result.contact_dissipation, abs=1e-9 * result.impact_energy)
     assert 0.0 <= result.permanent_indentation < result.max_indentation
 
 
@@ -211,7 +212,7 @@ def test_time_limit_warns_and_reports_no_separation():
         warnings.simplefilter("always")
         result = halfspace_impact(HertzContact(8e9), MASS, 1.0, max_time=1e-7)
     assert any(issubclass(w.category, RuntimeWarning) for w in caught)
-    assert not result.separated and math.isnan(result.restitution)
+    assert result.time_limit_reached and math.isnan(result.restitution)
 
 
 BAD_CALLS = [
@@ -233,3 +234,38 @@ def test_bad_input(call, parameter, detail):
     with pytest.raises(ValueError) as info:
         call()
     assert parameter in str(info.value) and detail in str(info.value)
+
+
+# -- the HalfSpace target ---------------------------------------------------------------------
+def test_halfspace_target_has_no_modes_and_infinite_stiffness():
+    """The Target protocol of a fixed half-space: no modes below any cut-off, no residual
+    compliance, K_st = ∞ (λ = ∞) and ζ = 0 for every impactor (exact values)."""
+    from impactmaps.targets.base import Target
+    from impactmaps.targets.halfspace import HalfSpace
+
+    target = HalfSpace()
+    assert isinstance(target, Target) and target.structure == "halfspace"
+    basis = target.modes(1e9, min_modes=10)
+    assert basis.size == 0 and basis.residual_compliance == 0.0
+    assert target.static_compliance() == 0.0 and target.static_stiffness() == math.inf
+    assert np.all(target.loss_factor(np.array([0.01, 1.0]), 1e6) == 0.0)
+    with pytest.raises(ValueError, match="loss_factor"):
+        target.impactor_mass_for(0.5, 1e6)
+    with pytest.raises(ValueError, match="max_frequency"):
+        target.modes(-1.0)
+
+
+def test_modal_solver_on_halfspace_target_equals_empty_basis():
+    """The modal solver on a HalfSpace target integrates the contact alone: the run is
+    bit-identical to the same run on an empty ModalBasis with zero residual (the two are
+    one target; tests/test_modal_solver.py checks that run against F̄ = sin τ)."""
+    from impactmaps.solvers.modal import simulate
+    from impactmaps.targets.base import ModalBasis
+    from impactmaps.targets.halfspace import HalfSpace
+
+    law = LinearContact(2.0e7)
+    result = simulate(HalfSpace(), law, MASS, 3.0, record=True)
+    assert result.n_modes == 0
+    empty = simulate(ModalBasis(np.zeros(0), np.zeros(0)), law, MASS, 3.0, record=True)
+    assert result.peak_force == empty.peak_force
+    assert np.array_equal(result.history.to_numpy(), empty.history.to_numpy())

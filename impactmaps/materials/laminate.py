@@ -1,160 +1,23 @@
-"""Target materials: isotropic solids, unidirectional plies, laminates, a small catalogue.
+"""Unidirectional plies and laminates with the stiffness matrices of classical lamination theory.
 
-Everything is in SI units (Pa, kg/m³, m). Three kinds of object:
-
-* :class:`IsotropicMaterial` — a homogeneous isotropic solid (metals; the impactor).
-* :class:`Ply` — one unidirectional, transversely isotropic lamina with its fibre angle.
-* :class:`Laminate` — a stack of plies, with the stiffness matrices of classical
-  lamination theory (CLT) that the beam and plate equations of seed 001 (13)–(17) need:
-  ``A``, ``B``, ``D`` (3×3) and the transverse-shear stiffnesses ``A44``, ``A55``.
-
-Conventions
------------
-* Plies are listed from the **struck face** to the back face. The thickness coordinate
-  ``z`` is measured from the mid-plane *in the direction of impact*: the struck face is
-  ``z = −h/2`` and ``plies[0]`` occupies ``[−h/2, −h/2 + t_0]`` (z positive "downward",
-  ply 1 at the top, as in Jones, *Mechanics of Composite Materials*, 2nd ed., 1999, §4.2).
-  Only the sign of ``B`` depends on this choice.
-* Ply angle θ is measured from the laminate x axis to the fibre direction 1, positive
-  anticlockwise seen from the struck face. Engineering shear strains (γ = 2ε).
-* Transverse shear: index 4 is the y–z plane, index 5 the x–z plane (A44 pairs with ψ_y
-  and A55 with ψ_x, seed 001 (13)–(15)). The shear correction factor k is *not* included;
-  the targets apply it.
-
-Contact with a sphere
----------------------
-A laminate is transversely isotropic through the thickness only approximately; for the
-Hertz contact stiffness the usual engineering model (Yang & Sun 1982, ASTM STP 787;
-Tan & Sun, J. Appl. Mech. 52 (1985) 6–12) treats the laminate as a transversely isotropic
-half-space whose contact compliance is ``1/E_2`` (the transverse modulus of the ply),
-i.e. ``K_h = (4/3) sqrt(R) / [(1 − ν_s²)/E_s + 1/E_2]``. This is the isotropic formula
-(seed 001 eq 8) with ``E_t = E_2`` and ``ν_t = 0``, which is what
-:attr:`Laminate.youngs_modulus` and :attr:`Laminate.poisson_ratio` return.
-Independent support: Wu & Yen (J. Appl. Mech. 61 (1994) 60–66), from an exact 3-D
-anisotropic Green's function, find the force–indentation relation "approximately
-proportional to the out-of-plane Young's modulus" and insensitive to in-plane moduli
-and stacking sequence (abstract, https://acnpsearch.tweb-dev.unibo.it/singlejournalindex/40457165).
-(The Tan & Sun formula itself was not checked against a stored copy of the paper.)
+Conventions: see :mod:`impactmaps.materials`.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
 from collections.abc import Iterable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ._checks import require_choice, require_finite, require_in_range, require_positive
+from .._checks import require_finite, require_in_range, require_positive
+from ._common import DEFAULT_PLY_THICKNESS, SPECIALLY_ORTHOTROPIC_RTOL, _scalar
+from .isotropic import IsotropicMaterial
 
-__all__ = [
-    "DEFAULT_PLY_THICKNESS",
-    "SPECIALLY_ORTHOTROPIC_RTOL",
-    "IsotropicMaterial",
-    "Ply",
-    "Laminate",
-    "CATALOGUE",
-    "material",
-    "available_materials",
-]
-
-#: Default cured ply thickness [m]: 0.125 mm, the nominal thickness of standard
-#: carbon/epoxy unidirectional prepreg (used e.g. with AS4/3501-6 in Anand, Kamrin &
-#: Govindjee, *Introduction to Mechanics of Solids*, OUP 2022, example 23.2, and in
-#: Barbero, *Introduction to Composite Materials Design*, example 7.9). A nominal value,
-#: not a property of a particular material batch: pass ``thickness`` for real laminates.
-DEFAULT_PLY_THICKNESS = 0.125e-3
-
-#: Relative tolerance of :attr:`Laminate.is_specially_orthotropic`.
-SPECIALLY_ORTHOTROPIC_RTOL = 1e-9
+__all__ = ["Ply", "Laminate"]
 
 
-def _scalar(name: str, value, unit: str = "") -> float:
-    """Return ``value`` as a Python float, or raise ``ValueError`` naming ``name``."""
-    require_finite(name, value, unit)
-    array = np.asarray(value, dtype=float)
-    if array.ndim != 0:
-        raise ValueError(f"{name} must be a scalar, got an array of shape {array.shape}")
-    return float(array)
-
-
-# ---------------------------------------------------------------------------------
-# Isotropic material
-# ---------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class IsotropicMaterial:
-    """A homogeneous, linearly elastic, isotropic material.
-
-    Parameters
-    ----------
-    youngs_modulus : float
-        Young's modulus E [Pa], > 0.
-    poisson_ratio : float
-        Poisson ratio ν [-], −1 < ν < 0.5.
-    density : float
-        Mass density ρ [kg/m³], > 0.
-    yield_strength : float, optional
-        Uniaxial yield strength S_y [Pa], > 0 (used by the elastic–plastic contact
-        laws, seed 001 eq 9). ``None`` if not known.
-    name : str, optional
-        Label.
-    """
-
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float
-    yield_strength: float | None = None
-    name: str = ""
-
-    def __post_init__(self):
-        youngs = _scalar("youngs_modulus", self.youngs_modulus, "Pa")
-        require_positive("youngs_modulus", youngs, "Pa")
-        poisson = _scalar("poisson_ratio", self.poisson_ratio)
-        require_in_range("poisson_ratio", poisson, -1.0, 0.5,
-                         low_inclusive=False, high_inclusive=False)
-        density = _scalar("density", self.density, "kg/m^3")
-        require_positive("density", density, "kg/m^3")
-        object.__setattr__(self, "youngs_modulus", youngs)
-        object.__setattr__(self, "poisson_ratio", poisson)
-        object.__setattr__(self, "density", density)
-        if self.yield_strength is not None:
-            strength = _scalar("yield_strength", self.yield_strength, "Pa")
-            require_positive("yield_strength", strength, "Pa")
-            object.__setattr__(self, "yield_strength", strength)
-
-    @property
-    def shear_modulus(self) -> float:
-        """Shear modulus G = E / (2(1 + ν)) [Pa]."""
-        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
-
-    @property
-    def plate_bending_modulus(self) -> float:
-        """Plane-stress (plate) modulus E / (1 − ν²) [Pa]; D = this × h³/12."""
-        return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
-
-    def as_ply(self, thickness: float, angle_deg: float = 0.0) -> "Ply":
-        """This material as an isotropic :class:`Ply` of the given thickness [m].
-
-        ``E1 = E2 = E``, ``G12 = G13 = G23 = G``, ``ν12 = ν``, so that CLT reproduces
-        the isotropic plate: ``D11 = E h³/(12(1 − ν²))``, ``A44 = A55 = G h``.
-        """
-        shear = self.shear_modulus
-        return Ply(
-            longitudinal_modulus=self.youngs_modulus,
-            transverse_modulus=self.youngs_modulus,
-            shear_modulus=shear,
-            poisson_ratio=self.poisson_ratio,
-            density=self.density,
-            thickness=thickness,
-            angle_deg=angle_deg,
-            transverse_shear_modulus_13=shear,
-            transverse_shear_modulus_23=shear,
-            name=self.name,
-        )
-
-
-# ---------------------------------------------------------------------------------
-# Ply
 # ---------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Ply:
@@ -574,76 +437,3 @@ class Laminate:
 
 # ---------------------------------------------------------------------------------
 # Catalogue
-# ---------------------------------------------------------------------------------
-#: Named materials. Sources (stored public copies consulted; see each entry):
-CATALOGUE: dict = {
-    # Eurocode 3 structural steel, grade S235 (EN 10025-2), all four numbers from one
-    # standard: EN 1993-1-1:2005 §3.2.6 gives E = 210 000 MPa, ν = 0.30, and the
-    # density 7850 kg/m³ (unit weight 78.5 kN/m³, EN 1991-1-1 Table A.4); yield
-    # f_y = 235 MPa for t ≤ 40 mm (EN 1993-1-1 Table 3.1). Checked against the design
-    # table "Eurocode 3 — Table of design material properties for structural steel"
-    # (eurocodeapplied.com, reproduced at https://it.scribd.com/document/470650995/stee116).
-    # (ASTM A36 would give E = 200 GPa, ν = 0.26, S_y = 250 MPa minimum.)
-    "structural-steel": IsotropicMaterial(
-        youngs_modulus=210e9, poisson_ratio=0.30, density=7850.0,
-        yield_strength=235e6, name="structural steel S235 (EN 1993-1-1)",
-    ),
-    # Aluminium 6061-T6: Aluminum Association typical values as listed by MatWeb/ASM:
-    # E = 68.9 GPa (average of tension and compression), ν = 0.33, ρ = 2.70 g/cm³,
-    # tensile yield 276 MPa. Checked against https://www.mfgproto.com/aluminum-6061-t6-data-sheet/
-    # and https://www.glemco.com/capabilities/material-expertise/aluminum-6061-t6/ (same AA data).
-    "aluminium-6061-t6": IsotropicMaterial(
-        youngs_modulus=68.9e9, poisson_ratio=0.33, density=2700.0,
-        yield_strength=276e6, name="aluminium 6061-T6",
-    ),
-    # T300/934 carbon/epoxy as used in the impact literature (Sun & Chen, J. Appl. Mech.
-    # 52 (1985); Qian & Swanson, Comput. Struct. 1990): E1 = 120 GPa, E2 = 7.9 GPa,
-    # G12 = 5.5 GPa, ν12 = 0.30, ρ = 1580 kg/m³.
-    # UNVERIFIED: no stored copy of either paper or of a table with these numbers could
-    # be found; other sources give rather different T300/934 data (e.g. E1 = 19 Msi =
-    # 131 GPa, E2 = 1.5 Msi = 10.3 GPa). G13 = G23 = G12 by default (see Ply).
-    "t300-934": Ply(
-        longitudinal_modulus=120e9, transverse_modulus=7.9e9, shear_modulus=5.5e9,
-        poisson_ratio=0.30, density=1580.0, name="T300/934 (unverified)",
-    ),
-    # AS4/3501-6 carbon/epoxy, lamina data of the World-Wide Failure Exercise (Soden,
-    # Hinton & Kaddour, Compos. Sci. Technol. 58 (1998) 1011–1022): E1 = 126 GPa,
-    # E2 = 11 GPa, G12 = 6.6 GPa, ν12 = 0.28. Verified against two independent stored
-    # copies: Anand, Kamrin & Govindjee, Introduction to Mechanics of Solids (OUP 2022),
-    # example 23.2 (github.com/sanjayg0/ims, MainBook/ex23_2.m), and Barbero, Introduction
-    # to Composite Materials Design, example 7.9. Density 1600 kg/m³ is UNVERIFIED
-    # (typical for Vf ≈ 0.6 carbon/epoxy; one secondary source lists 1580).
-    "as4-3501-6": Ply(
-        longitudinal_modulus=126e9, transverse_modulus=11e9, shear_modulus=6.6e9,
-        poisson_ratio=0.28, density=1600.0, name="AS4/3501-6",
-    ),
-}
-
-
-def available_materials() -> tuple:
-    """Names in :data:`CATALOGUE`, sorted."""
-    return tuple(sorted(CATALOGUE))
-
-
-def material(name: str):
-    """The catalogue material ``name`` (an :class:`IsotropicMaterial` or a :class:`Ply`).
-
-    Sources (full citations beside each entry in :data:`CATALOGUE`):
-
-    * ``structural-steel`` — S235, EN 1993-1-1:2005 §3.2.6 and Table 3.1
-      (E = 210 GPa, ν = 0.30, S_y = 235 MPa), EN 1991-1-1 Table A.4 (ρ = 7850 kg/m³);
-    * ``aluminium-6061-t6`` — Aluminum Association typical values (MatWeb/ASM):
-      E = 68.9 GPa, ν = 0.33, ρ = 2700 kg/m³, S_y = 276 MPa;
-    * ``t300-934`` — the values used by Sun & Chen (1985) and Qian & Swanson (1990) as
-      quoted in the impact literature; **unverified** against the papers (see the entry);
-    * ``as4-3501-6`` — World-Wide Failure Exercise lamina data (Soden, Hinton &
-      Kaddour, Compos. Sci. Technol. 58 (1998) 1011–1022): E1 = 126 GPa, E2 = 11 GPa,
-      G12 = 6.6 GPa, ν12 = 0.28; density 1600 kg/m³ **unverified**.
-
-    Raises
-    ------
-    ValueError
-        If ``name`` is not in :data:`CATALOGUE`; the message lists the known names.
-    """
-    require_choice("material name", name, available_materials())
-    return CATALOGUE[name]

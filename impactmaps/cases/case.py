@@ -1,0 +1,378 @@
+"""One case: a physical impact read from a case file and built into impactmaps objects.
+
+The format (every key, unit and default) is documented in ``docs/case-files.md`` and
+the module docstring of :mod:`impactmaps.cases`. Each section maps onto a dataclass or
+constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal.ModalSettings` (``kind
+= "modal"``) or the finite-difference settings (``kind = "fd"``), ``[target]`` onto
+:meth:`Beam.rectangular <impactmaps.targets.beam.Beam.rectangular>` /
+:meth:`Plate.isotropic <impactmaps.targets.plate.Plate.isotropic>`, ``[contact]`` onto
+the law's own options, ``[output]`` onto :class:`OutputSettings`. The valid keys of a
+section are the options of its constructor, and the constructor checks the ranges.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .._checks import require_in_range
+from ..contact import law_options
+from ..contact.base import ContactLaw, available_contact_laws, contact_law
+from ..contact.sphere import Sphere, law_for_sphere
+from ..materials import IsotropicMaterial, Laminate
+from ..solvers.modal import ModalSettings, reference_contact_stiffness
+from ..targets.halfspace import HalfSpace
+from ._materials import isotropic_material, target_material
+from ._toml import (
+    check_keys,
+    key_path,
+    keyword_options,
+    number,
+    read_options,
+    string,
+    table,
+)
+
+if TYPE_CHECKING:
+    from ..fd import FDSettings
+
+__all__ = ["Case", "OutputSettings", "SOLVER_KINDS", "TARGET_TYPES", "parse_case", "load_case"]
+
+#: Target types a case file may describe.
+TARGET_TYPES = ("beam", "plate", "halfspace")
+#: Solvers a case may ask for (``[solver] kind``).
+SOLVER_KINDS = ("modal", "fd")
+
+_TOP_KEYS = ("name", "description", "impactor", "target", "contact", "solver", "output", "fd")
+_IMPACTOR_KEYS = ("radius", "material", "mass", "density", "velocity")
+_TARGET_COMMON = ("type", "material", "plies", "layup", "yield_strength")
+_BEAM_SIZE = ("length", "width", "height")
+_PLATE_SIZE = ("length_x", "length_y", "thickness")
+_UNITS = {"impact_position": "m", "impact_point": "m", "target_radius": "m",
+          "yield_strength": "Pa", "duration": "s", "time_step": "s"}
+#: ``[solver]`` keys that are not ModalSettings fields.
+_SOLVER_EXTRA = ("kind", "duration", "time_step")
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    """What ``impactmaps simulate`` writes besides the summary.
+
+    Attributes
+    ----------
+    history_stride : int
+        Write every n-th history row (≥ 1).
+    normalised : bool
+        Also write the history in normalised variables (``history_normalised.csv``).
+    """
+
+    history_stride: int = 1
+    normalised: bool = False
+
+    def __post_init__(self):
+        require_in_range("history_stride", self.history_stride, 1, math.inf)
+
+
+@dataclass(frozen=True)
+class Case:
+    """A physical impact case built from a case file (SI units).
+
+    Attributes
+    ----------
+    name : str
+        Label (``name`` key, default the file stem).
+    sphere : Sphere
+        The impactor (radius [m], material, mass [kg]).
+    velocity : float
+        Approach velocity V0 [m/s].
+    target : Target
+        The struck structure (:class:`~impactmaps.targets.beam.Beam`,
+        :class:`~impactmaps.targets.plate.Plate` or a half-space).
+    target_type : str
+        ``"beam"``, ``"plate"`` or ``"halfspace"``.
+    target_material : IsotropicMaterial or Laminate
+        The target's material as seen by the contact law.
+    law : ContactLaw
+        The contact law (built from the contact pair unless a stiffness was given).
+    law_name : str
+        Registered name of the law.
+    contact_options : dict
+        Options passed to the law builder (``target_radius`` [m], ``yield_strength``
+        [Pa], Stronge constants).
+    solver_kind : str
+        ``"modal"`` or ``"fd"`` (finite-difference Rayleigh beam).
+    settings : ModalSettings
+        Modal solver settings (``solver.duration`` already converted to
+        ``max_time_ratio``).
+    fd_settings : FDSettings or None
+        Finite-difference settings (``[fd]``; ``None`` when the file has none and the
+        solver is modal).
+    duration : float or None
+        Requested time limit [s] (``None``: the solver default; required by ``fd``).
+    time_step : float or None
+        Forced time step [s] (``None``: automatic).
+    output : OutputSettings
+        What to write besides the summary.
+    description : str
+        Free text from the file.
+    source : Path or None
+        The case file.
+    source_text : str
+        The case file's text (copied to the outputs).
+    """
+
+    name: str
+    sphere: Sphere
+    velocity: float
+    target: object
+    target_type: str
+    target_material: object
+    law: ContactLaw
+    law_name: str
+    contact_options: dict = field(default_factory=dict)
+    solver_kind: str = "modal"
+    settings: ModalSettings = field(default_factory=ModalSettings)
+    fd_settings: FDSettings | None = None
+    duration: float | None = None
+    time_step: float | None = None
+    output: OutputSettings = field(default_factory=OutputSettings)
+    description: str = ""
+    source: Path | None = None
+    source_text: str = ""
+
+    @property
+    def impactor_mass(self) -> float:
+        """Impactor mass m_i [kg]."""
+        return float(self.sphere.mass)
+
+    @property
+    def fd_beam(self):
+        """The finite-difference beam of a ``kind = "fd"`` case (``None`` otherwise)."""
+        if self.solver_kind != "fd":
+            return None
+        from ..fd import FDBeam
+
+        return FDBeam.from_beam(self.target, self.target_material, self.fd_settings)
+
+
+# -- sections ---------------------------------------------------------------------------
+def _impactor(data) -> tuple[Sphere, float]:
+    path = "impactor"
+    if path not in data:
+        raise ValueError("[impactor] is required (radius, material, velocity)")
+    entries = table(data[path], path)
+    check_keys(entries, path, _IMPACTOR_KEYS, ("radius", "material", "velocity"))
+    radius = number(entries, "radius", path, "m")
+    velocity = number(entries, "velocity", path, "m/s")
+    material = isotropic_material(entries["material"], f"{path}.material")
+    mass = number(entries, "mass", path, "kg")
+    density = number(entries, "density", path, "kg/m^3")
+    if mass is not None and density is not None:
+        raise ValueError("impactor.mass and impactor.density are exclusive: give one of them "
+                         "(density sets the mass of a solid sphere)")
+    if density is not None:
+        material = replace(material, density=density)
+    with key_path(path, ("radius", "mass", "material")):
+        sphere = Sphere(radius, material, mass)
+    return sphere, velocity
+
+
+def _target_builder(kind, contact_material):
+    """The constructor a target table maps onto, and its positional size keys."""
+    from ..targets.beam import Beam
+    from ..targets.plate import Plate
+
+    laminated = isinstance(contact_material, Laminate)
+    if kind == "beam":
+        if laminated:
+            return Beam.from_laminate, ("length", "width")
+        return Beam.rectangular, _BEAM_SIZE
+    if laminated:
+        return Plate.from_laminate, ("length_x", "length_y")
+    return Plate.isotropic, _PLATE_SIZE
+
+
+def target_keys(kind: str) -> tuple[str, ...]:
+    """Every key ``[target]`` accepts for a target type (derived from the constructors)."""
+    if kind == "halfspace":
+        return _TARGET_COMMON
+    isotropic = IsotropicMaterial(1.0, 0.3, 1.0)
+    build, size = _target_builder(kind, isotropic)
+    sizes = _BEAM_SIZE if kind == "beam" else _PLATE_SIZE
+    return _TARGET_COMMON + sizes + tuple(keyword_options(build))
+
+
+def _target(data):
+    path = "target"
+    if path not in data:
+        raise ValueError("[target] is required (type = 'beam', 'plate' or 'halfspace')")
+    entries = table(data[path], path)
+    kind = string(entries, "type", path, choices=TARGET_TYPES, required=True)
+    check_keys(entries, path, target_keys(kind))
+    contact_material = target_material(entries, path)
+    if kind == "halfspace":
+        return HalfSpace(), kind, contact_material
+    build, size = _target_builder(kind, contact_material)
+    for key in set(_BEAM_SIZE + _PLATE_SIZE) - set(size):
+        if key in entries and key in (_BEAM_SIZE if kind == "beam" else _PLATE_SIZE):
+            raise ValueError(f"{path}.{key} is derived from the plies for a laminated {kind}; "
+                             "remove it")
+    sizes = [number(entries, key, path, "m", required=True) for key in size]
+    options = read_options(entries, path, keyword_options(build), _UNITS)
+    with key_path(path, tuple(entries) + ("material",)):
+        return build(*sizes, contact_material, **options), kind, contact_material
+
+
+def _law_option_names(name: str) -> tuple[str, ...]:
+    return tuple(law_options(name))
+
+
+def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactLaw, str, dict]:
+    """The contact law of a case; ``default_law`` (a registry name) when none is given."""
+    path = "contact"
+    if path not in data and default_law is None:
+        raise ValueError("[contact] is required (law = one of "
+                         + ", ".join(repr(n) for n in available_contact_laws()) + ")")
+    entries = table(data.get(path, {}), path)
+    name = string(entries, "law", path, choices=available_contact_laws(),
+                  default=default_law, required=default_law is None)
+    allowed = _law_option_names(name)
+    stiffness_unit = {"hertz": "N/m^1.5", "linear": "N/m"}.get(name)
+    check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
+    units = {key: option.unit for key, option in law_options(name).items()}
+    options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)
+    stiffness = number(entries, "stiffness", path, stiffness_unit or "")
+    with key_path(path, allowed + ("stiffness",)):
+        if stiffness is not None:
+            law = contact_law(name, stiffness=stiffness)
+        else:
+            law = law_for_sphere(name, sphere, contact_material, **options)
+    return law, name, options
+
+
+def _solver(data, law, sphere, velocity, kind):
+    path = "solver"
+    entries = table(data.get(path, {}), path)
+    modal_options = keyword_options(ModalSettings)
+    check_keys(entries, path, _SOLVER_EXTRA + tuple(modal_options))
+    duration = number(entries, "duration", path, "s", required=kind == "fd")
+    time_step = number(entries, "time_step", path, "s")
+    fields = read_options(entries, path, modal_options)
+    if duration is not None:
+        if "max_time_ratio" in fields:
+            raise ValueError("solver.duration and solver.max_time_ratio are exclusive: give one")
+        omega = math.sqrt(reference_contact_stiffness(law, sphere.mass, velocity) / sphere.mass)
+        fields["max_time_ratio"] = duration * omega
+    with key_path(path, tuple(modal_options)):
+        settings = ModalSettings(**fields)
+    return settings, duration, time_step
+
+
+def _output(data) -> OutputSettings:
+    path = "output"
+    entries = table(data.get(path, {}), path)
+    options = keyword_options(OutputSettings)
+    check_keys(entries, path, tuple(options))
+    with key_path(path, tuple(options)):
+        return OutputSettings(**read_options(entries, path, options))
+
+
+def _solver_kind(data, override):
+    if override is not None:
+        return override
+    entries = table(data.get("solver", {}), "solver")
+    return string(entries, "kind", "solver", choices=SOLVER_KINDS, default="modal")
+
+
+def _parse_toml(text: str, label: str) -> dict:
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{label}: not valid TOML: {error}") from None
+    check_keys(data, "", _TOP_KEYS)
+    for key in ("name", "description"):
+        string(data, key, "")
+    return data
+
+
+def parse_case(text: str, *, name: str = "case", source: Path | None = None,
+               solver: str | None = None) -> Case:
+    """Build a :class:`Case` from the text of a case file.
+
+    Parameters
+    ----------
+    text : str
+        TOML text.
+    name : str, optional
+        Default label when the file has no ``name`` key.
+    source : Path, optional
+        Where the text came from (provenance only).
+    solver : {"modal", "fd"}, optional
+        Override ``[solver] kind`` (``impactmaps fd`` passes ``"fd"``).
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    ValueError
+        Invalid TOML, an unknown key, or a missing/invalid value; the message names the
+        key path, the value and the valid range.
+    """
+    from ._fd import check_fd_target, fd_settings
+
+    data = _parse_toml(text, str(source) if source else name)
+    kind = _solver_kind(data, solver)
+    sphere, velocity = _impactor(data)
+    if kind == "fd":
+        check_fd_target(data)
+    target, target_type, contact_material = _target(data)
+    law, law_name, options = _contact(data, sphere, contact_material,
+                                      default_law="stronge" if kind == "fd" else None)
+    settings, duration, time_step = _solver(data, law, sphere, velocity, kind)
+    output = _output(data)
+    fd = fd_settings(data, contact_material, required=kind == "fd") if kind == "fd" or "fd" in data else None
+    if kind == "fd":
+        time_step = fd.time_step
+    return Case(
+        name=data.get("name", name), sphere=sphere, velocity=velocity, target=target,
+        target_type=target_type, target_material=contact_material, law=law, law_name=law_name,
+        contact_options=options, solver_kind=kind, settings=settings, fd_settings=fd,
+        duration=duration, time_step=time_step, output=output,
+        description=data.get("description", ""), source=source, source_text=text,
+    )
+
+
+def load_case(path, *, solver: str | None = None) -> Case:
+    """Read and validate a case file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML case file.
+    solver : {"modal", "fd"}, optional
+        Override ``[solver] kind``.
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    ValueError
+        Missing file, invalid TOML, unknown keys or invalid values; the message starts
+        with the file name and names the key path.
+    """
+    source = Path(path)
+    try:
+        text = source.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ValueError(f"case file {str(source)!r} does not exist") from None
+    try:
+        return parse_case(text, name=source.stem, source=source, solver=solver)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from error

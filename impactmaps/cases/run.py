@@ -1,0 +1,174 @@
+"""Run a case with the solver it asks for, summarise it, write and read its outputs."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..contact.sphere import law_for_sphere
+from ..jsonio import dumps, plain
+from ..solvers.modal import reference_contact_stiffness, simulate
+from ..solvers.result import ImpactResult
+from .case import Case
+
+__all__ = ["run_case", "case_dimensionless", "case_summary", "write_case_outputs",
+           "read_case_outputs"]
+
+
+def case_dimensionless(case: Case) -> dict:
+    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
+
+    Returns
+    -------
+    dict
+        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
+        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
+        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
+        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
+    """
+    mass, velocity, law = case.impactor_mass, case.velocity, case.law
+    reference = float(reference_contact_stiffness(law, mass, velocity))
+    if law.linear_stiffness is not None:
+        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
+    else:
+        stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
+        linear_options = {k: v for k, v in case.contact_options.items()
+                          if k in ("target_radius", "yield_strength")}
+        try:
+            linear = law_for_sphere("linear", case.sphere, case.target_material, **linear_options)
+        except ValueError:
+            pass  # no yield strength known: keep the reference stiffness
+        else:
+            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (seed 001 eqs 9, 10)"
+    beta = law.impact_number(mass, velocity)
+    if case.target_type == "halfspace":
+        static = lam = zeta = None
+    else:
+        static = float(case.target.static_stiffness())
+        lam = static / stiffness
+        zeta = float(case.target.loss_factor(mass, stiffness))
+    return {
+        "beta": None if beta is None else float(beta),
+        "lambda": lam,
+        "zeta": zeta,
+        "lambda_basis": basis,
+        "contact_stiffness_N_m": stiffness,
+        "reference_contact_stiffness_N_m": reference,
+        "static_stiffness_N_m": static,
+        "impactor_mass_kg": mass,
+        "velocity_m_s": velocity,
+    }
+
+
+def case_summary(case: Case, result: ImpactResult) -> dict:
+    """The JSON-ready summary of a run of ``case`` (keys carry their units).
+
+    ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``,
+    ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
+    ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
+    |target displacement| at the impact point [m]), the dimensionless numbers of
+    :func:`case_dimensionless` and the case identity; NaN (a quantity that does not
+    exist for this run, e.g. the restitution of a record that ends in contact) becomes
+    ``None``.
+    """
+    summary = dict(result.summary())
+    if result.history is not None and len(result.history):
+        deflection = result.history["target_displacement_m"].to_numpy()
+        summary["max_deflection_m"] = float(np.max(np.abs(deflection)))
+    else:
+        summary["max_deflection_m"] = None
+    summary.update(case_dimensionless(case))
+    summary.update({
+        "case": case.name,
+        "target_type": case.target_type,
+        "law": case.law_name,
+        "solver": case.solver_kind,
+        "end_time_s": float(result.end_time),
+    })
+    return plain(summary)
+
+
+def _run_fd(case: Case) -> ImpactResult:
+    from ..fd import simulate_fd
+
+    settings = replace(case.fd_settings, duration=case.duration)
+    return simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,
+                       settings=settings, material=case.target_material)
+
+
+def run_case(case: Case) -> tuple[ImpactResult, dict]:
+    """Run the solver a case asks for (``case.solver_kind``).
+
+    Parameters
+    ----------
+    case : Case
+
+    Returns
+    -------
+    result : ImpactResult
+        Full result with histories.
+    summary : dict
+        :func:`case_summary` of the run (JSON-ready).
+    """
+    if not isinstance(case, Case):
+        raise ValueError(f"case = {case!r} is not a Case (build one with load_case or parse_case)")
+    if case.solver_kind == "fd":
+        result = _run_fd(case)
+    else:
+        result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
+                          settings=case.settings, record=True, time_step=case.time_step)
+    return result, case_summary(case, result)
+
+
+def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
+    """Write the histories, the summary and a copy of the case file to ``out_dir``.
+
+    Parameters
+    ----------
+    case : Case
+        The case that was run.
+    result : ImpactResult
+        Its result (with histories).
+    out_dir : str or Path
+        Output directory (created if needed).
+
+    Returns
+    -------
+    dict
+        ``{"history": Path, "summary": Path, "case": Path}`` and, with
+        ``output.normalised = true``, ``"history_normalised": Path``.
+
+    Notes
+    -----
+    ``history.csv`` has the columns of :data:`impactmaps.solvers.result.HISTORY_COLUMNS`
+    and the solver's extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``;
+    finite difference: the gauges). ``summary.json`` is :func:`case_summary`.
+    """
+    if not isinstance(case, Case):
+        raise ValueError(f"case = {case!r} is not a Case")
+    if result.history is None:
+        raise ValueError("result has no history (run with record=True)")
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = {"history": out / "history.csv", "summary": out / "summary.json",
+             "case": out / "case.toml"}
+    stride = case.output.history_stride
+    result.history.iloc[::stride].to_csv(paths["history"], index=False)
+    if case.output.normalised:
+        paths["history_normalised"] = out / "history_normalised.csv"
+        result.normalised_history().iloc[::stride].to_csv(paths["history_normalised"], index=False)
+    paths["summary"].write_text(dumps(case_summary(case, result), indent=2) + "\n", encoding="utf-8")
+    paths["case"].write_text(case.source_text, encoding="utf-8")
+    return paths
+
+
+def read_case_outputs(out_dir) -> tuple[pd.DataFrame, dict]:
+    """Read back ``history.csv`` and ``summary.json`` written by :func:`write_case_outputs`."""
+    out = Path(out_dir)
+    history = pd.read_csv(out / "history.csv")
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    return history, summary

@@ -1,0 +1,283 @@
+"""Impact of a rigid sphere on the finite-difference Rayleigh beam: :func:`simulate_fd`.
+
+Gravity (``gravity=True``) acts on the sphere only, ``g = 9.80665 m/s²`` (standard gravity,
+CGPM 1901). The beam's self-weight is *not* included: deflections are measured from the
+beam's static equilibrium under its own weight (exact by superposition for the elastic
+beam; for the plastic beam the self-weight stresses — peak ρAgL²/8 ≈ 0.5 % of M_y for
+the seed-000 steel beam — are neglected).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .._checks import require_positive
+from ..contact.base import ContactLaw
+from ..solvers.modal import reference_contact_stiffness
+from ..solvers.result import ImpactResult
+from ._loop import Drive, Stepping, run_loop
+from .beam import FDBeam, FDSettings
+from .energy import impact_ledger
+from .grid import beam_grid, gauge_columns, gauge_weights, node_for
+from .residual import residual_state
+from .timestep import choose_time_step, contact_rate, single_case_parameters
+
+__all__ = ["FDDetails", "STANDARD_GRAVITY", "simulate_fd"]
+
+#: Standard acceleration of gravity [m/s²] (3rd CGPM, 1901).
+STANDARD_GRAVITY = 9.80665
+
+@dataclass(frozen=True)
+class FDDetails:
+    """What only the finite-difference beam knows of an impact (``ImpactResult.details``).
+
+    Attributes
+    ----------
+    permanent_beam_deflection : float
+        Permanent deflection at the impact node [m]: the static deflection of the
+        unloaded beam computed from the final state by an elastic unloading step
+        (``w_res = w − K_e⁻¹ f_int(w)``, the residual curvature's deflection), *not* a
+        time average, so residual vibration does not affect it.
+    final_mean_deflection : float
+        Diagnostic: mean deflection at the impact node over the last 20 % of the record [m].
+    energy : dict
+        The ledger [J]: ``impact_kinetic_energy`` (½ m V0²), ``gravity_work``,
+        ``impactor_kinetic_energy`` (end of record), ``rebound_kinetic_energy`` (at the
+        final separation, not part of the balance), ``beam_kinetic_energy``,
+        ``beam_elastic_energy``, ``beam_plastic_work``, ``contact_dissipation`` (the law's
+        ``dissipated_energy(α_max)`` — loading work minus the
+        work recovered on the unloading curve), ``contact_stored_energy`` (non-zero only
+        if still in contact), ``damping_work``, ``contact_work_discrete`` (diagnostic
+        ``Σ F Δα``), and ``energy_balance_error``: (sum of the final terms − input)/impact
+        energy [-].
+    residual : pandas.DataFrame
+        Per node: ``x_m, final_deflection_m, permanent_deflection_m,
+        residual_curvature_1_m, max_plastic_strain, plastic_work_J_m``.
+    impact_position, impact_node_position : float
+        Requested impact point and the node that carries the load [m].
+    stability_limit : float
+        The estimated stability limit of the explicit scheme [s].
+    gauge_positions : tuple of float
+        Gauge positions [m] (history columns ``gauge{g}_deflection_m``,
+        ``gauge{g}_strain``: axial strain of the far face ``z = +h/2``, ``−(h/2) w''``,
+        tension positive).
+    """
+
+    permanent_beam_deflection: float
+    final_mean_deflection: float
+    energy: dict
+    residual: pd.DataFrame
+    impact_position: float
+    impact_node_position: float
+    stability_limit: float
+    gauge_positions: tuple
+
+    @property
+    def plastic_zone(self):
+        """(x_min, x_max) [m] of the nodes that have yielded, or ``None``."""
+        plastic = self.residual["max_plastic_strain"].to_numpy() > 0
+        if not plastic.any():
+            return None
+        x = self.residual["x_m"].to_numpy()[plastic]
+        return float(x.min()), float(x.max())
+
+    def summary(self) -> dict:
+        """The finite-difference scalars with unit-suffixed keys (the whole ledger)."""
+        out = {"permanent_beam_deflection_m": float(self.permanent_beam_deflection)}
+        out.update({f"{k}_J" if k != "energy_balance_error" else k: float(v)
+                    for k, v in self.energy.items()})
+        return out
+
+
+def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=None, *,
+                settings: FDSettings | None = None, material=None, duration=None,
+                time_step=None, safety_factor=None, gauge_positions=None, gravity=None,
+                history_stride=None) -> ImpactResult:
+    """Impact of a rigid sphere on a finite-difference Rayleigh beam.
+
+    Parameters
+    ----------
+    beam : FDBeam or impactmaps.targets.beam.Beam
+        The beam: an :class:`FDBeam` (grid, section, supports, damping), or a toolkit
+        rectangular isotropic ``Beam`` together with its ``material``
+        (:meth:`FDBeam.from_beam`; its ``impact_position`` is the default impact point).
+    law : ContactLaw
+        Contact law of a single case (``kernel_parameters`` one-dimensional). The
+        seed-000 model is the refined Stronge law with the beam's yield stress,
+        ``impactmaps.contact.law_for_sphere("stronge", sphere, beam)``; a linear or Hertz
+        law with ``plastic=False`` is the model that the modal Rayleigh-beam solver
+        reproduces. The loop uses ``law.kernel``; the ledger takes the contact energies
+        from the law (``dissipated_energy``, ``permanent_indentation``).
+    impactor_mass : float
+        Sphere mass m [kg] (> 0).
+    velocity : float
+        Impact velocity V0 [m/s] (> 0), in the +w direction; the sphere touches the
+        beam (α = 0) at t = 0.
+    impact_position : float, optional
+        x0 [m] (default mid-span, or the toolkit beam's ``impact_position``); the load
+        goes to the nearest node, which must not be a supported node (valid range
+        (Δx/2, L − Δx/2) with supported ends).
+    settings : FDSettings, optional
+        All numerical options in one object; then the keywords below must be left out.
+        Its grid and section fields (when not ``None``) replace those of an FDBeam.
+    material : material-like, optional
+        The material of a toolkit ``Beam`` (required with one, refused with an FDBeam).
+    duration : float
+        Simulated time [s] (> 0, required here or in ``settings``); the run always
+        covers it (sub-impacts may occur late).
+    time_step : float, optional
+        Forced Δt [s]; must not exceed the stability limit (``ValueError`` naming both).
+        Default: ``safety_factor × limit``, capped at 0.1/ω_c (ω_c the contact–node
+        frequency at the expected peak stiffness) for accuracy.
+    safety_factor : float, optional
+        Fraction (0, 1] of the stability limit used by the default step (0.8).
+    gauge_positions : sequence of float, optional
+        Positions [m] where deflection and far-face strain are recorded.
+    gravity : bool, optional
+        Standard gravity on the sphere (drop tests); the beam's self-weight is not
+        included (module notes). Default False.
+    history_stride : int, optional
+        Record every ``history_stride``-th step (≥ 1, default 1). Scalars always use
+        every step.
+
+    Returns
+    -------
+    ImpactResult
+        ``method = "finite-difference"``; ``details`` is an :class:`FDDetails`.
+
+    Notes
+    -----
+    Stability limit and default step: :mod:`impactmaps.fd.timestep`.
+    """
+    settings = _run_settings(settings, duration=duration, time_step=time_step,
+                             safety_factor=safety_factor, gauge_positions=gauge_positions,
+                             gravity=gravity, history_stride=history_stride)
+    beam, impact_position = _fd_beam(beam, material, settings, impact_position)
+    if not isinstance(law, ContactLaw):
+        raise ValueError(f"law = {law!r} is not a ContactLaw")
+    require_positive("impactor_mass", impactor_mass, "kg")
+    require_positive("velocity", velocity, "m/s")
+    if settings.duration is None:
+        raise ValueError("duration is required (simulated time [s], valid range (0, inf))")
+    params = single_case_parameters(law, "simulate_fd")
+    impactor_mass = float(impactor_mass)
+    velocity = float(velocity)
+    grid = beam_grid(beam)
+    x0, node = node_for(beam, grid, impact_position, "impact_position")
+    positions, gauge_left, gauge_weight = gauge_weights(beam, settings.gauge_positions)
+    contact_stiffness, rate = contact_rate(grid, node, law, params, impactor_mass, velocity)
+    dt, limit = choose_time_step(grid, settings.time_step, settings.safety_factor, rate)
+    n_steps = int(math.ceil(float(settings.duration) / dt))
+    g = STANDARD_GRAVITY if settings.gravity else 0.0
+
+    n = grid.n_nodes
+    drive = Drive(True, impactor_mass, velocity, g, node, np.zeros(0))
+    result, state = run_loop(beam, grid, law.kernel, params, drive,
+                             Stepping(dt, n_steps, settings.history_stride), np.zeros(n),
+                             np.zeros(n), gauge_left, gauge_weight)
+    n_rec = result.records
+    rec = state["records"]
+    time, wk = rec.time[:n_rec], rec.wk[:n_rec]
+    history = pd.DataFrame({
+        "time_s": time,
+        "force_N": rec.force[:n_rec],
+        "indentation_m": rec.alpha[:n_rec],
+        "impactor_velocity_m_s": rec.vs[:n_rec],
+        "impactor_displacement_m": rec.u[:n_rec],
+        "target_displacement_m": wk,
+        "target_velocity_m_s": rec.vk[:n_rec],
+        **gauge_columns(rec, beam.height, n_rec),
+    })
+    separation_velocity = _separation_velocity(result, state["intervals"], n_steps * dt)
+    energy, contact = impact_ledger(law, grid, result, state["v"], impactor_mass, velocity,
+                                    separation_velocity)
+    residual = residual_state(beam, grid, result.curvature, state)
+    tail = time >= 0.8 * time[-1]
+    return ImpactResult(
+        history=history,
+        peak_force=float(result.peak_force),
+        peak_time=float(result.peak_time),
+        contact_intervals=np.asarray(state["intervals"], float).reshape(-1, 2),
+        max_indentation=float(result.alpha_max),
+        permanent_indentation=contact["permanent_indentation"],
+        rebound_velocity=float(-separation_velocity),
+        energy_transferred=energy["beam_kinetic_energy"] + energy["beam_elastic_energy"],
+        contact_dissipation=energy["contact_dissipation"],
+        damping_work=energy["damping_work"],
+        energy_balance_error=energy["energy_balance_error"],
+        impactor_mass=impactor_mass,
+        velocity=velocity,
+        contact_frequency=float(np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity)
+                                        / impactor_mass)),
+        end_time=float(n_steps * dt),
+        time_limit_reached=bool(result.in_contact),
+        time_step=dt,
+        method="finite-difference",
+        settings=dict(beam=beam, law=law.name, duration=float(settings.duration), gravity=g,
+                      history_stride=settings.history_stride,
+                      safety_factor=float(settings.safety_factor), n_steps=n_steps,
+                      contact_stiffness_bound=contact_stiffness),
+        details=FDDetails(
+            permanent_beam_deflection=float(residual["permanent_deflection_m"].iloc[node]),
+            final_mean_deflection=float(np.mean(wk[tail])),
+            energy=energy,
+            residual=residual,
+            impact_position=x0,
+            impact_node_position=node * grid.dx,
+            stability_limit=limit,
+            gauge_positions=positions,
+        ),
+    )
+
+
+def _run_settings(settings, **keywords) -> FDSettings:
+    """The run's FDSettings: ``settings`` as given, or built from the keywords."""
+    given = {name: value for name, value in keywords.items() if value is not None}
+    if settings is None:
+        return FDSettings(**given)
+    if not isinstance(settings, FDSettings):
+        raise ValueError(f"settings = {settings!r} is not an FDSettings")
+    if given:
+        raise ValueError(f"{', '.join(sorted(given))} given both as keyword(s) and through "
+                         "settings: give the run options in one place")
+    return settings
+
+
+def _fd_beam(beam, material, settings, impact_position):
+    """(FDBeam, impact position) of the run from an FDBeam or a toolkit Beam."""
+    if isinstance(beam, FDBeam):
+        if material is not None:
+            raise ValueError(f"material = {material!r} is only used with a toolkit Beam: an "
+                             "FDBeam carries its own material")
+        options = settings.beam_options()
+        return (dataclasses.replace(beam, **options) if options else beam), impact_position
+    from ..targets.beam import Beam
+
+    if isinstance(beam, Beam):
+        if material is None:
+            raise ValueError("material is required with a toolkit Beam (youngs_modulus [Pa], "
+                             "density [kg/m^3], yield_strength [Pa], poisson_ratio [-])")
+        position = beam.impact_position if impact_position is None else impact_position
+        return FDBeam.from_beam(beam, material, settings), position
+    raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beam.Beam")
+
+
+def _separation_velocity(result, intervals, end_time) -> float:
+    """Sphere velocity at the last separation [m/s]; nan (with a warning) if the sphere
+    never touched the beam or the record ends in contact."""
+    if result.in_contact or intervals.shape[0] == 0:
+        if intervals.shape[0] == 0:
+            warnings.warn("the sphere never touched the beam", stacklevel=3)
+        else:
+            warnings.warn(
+                f"the record ends in contact at t = {end_time:g} s: rebound velocity, "
+                "restitution and energy loss are undefined (nan); increase duration",
+                stacklevel=3)
+        return np.nan
+    return float(result.separation_velocity)

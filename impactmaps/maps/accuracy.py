@@ -1,0 +1,121 @@
+"""Every map point with its error: refinement, an error estimate and a status.
+
+A point of a map is solved at the sweep's settings and again with the mode cut-off
+doubled and the time step really halved (:meth:`ModalSettings.refined
+<impactmaps.solvers.modal.ModalSettings.refined>`). The difference is the point's error
+estimate. When it exceeds the tolerance the point is refined again, within a cost cap;
+a point that still does not settle has no converged value, and the map says so with the
+spread of F̄max over small perturbations of cut-off, step and ζ instead of one number.
+
+Statuses (the ``status`` variable of a map; ``STATUSES[code]``):
+
+``converged``
+    The first refinement moved F̄max by at most the tolerance; the stored value is the
+    refined one and ``fmax_error`` is that move.
+``refined``
+    It took more refinements (cut-off ×2ᵏ, step /2ᵏ) to settle; the stored value is the
+    finest and ``fmax_error`` the last move.
+``sensitive``
+    No converged value within the cost cap (many re-impacts whose order flips with any
+    change of the model): ``fmax_low``/``fmax_high`` bound every value seen, the stored
+    value is the finest, ``fmax_error`` half the spread.
+``asymptotic``
+    Answered by an exact asymptote (the ``method`` variable says which); error 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+from .._checks import require_in_range, require_positive
+
+__all__ = ["STATUSES", "AccuracyControl", "controlled_point", "exact_point"]
+
+#: Status codes of a map point (the ``status`` variable; CF flag_values/flag_meanings).
+STATUSES = ("converged", "refined", "sensitive", "asymptotic")
+
+
+@dataclass(frozen=True)
+class AccuracyControl:
+    """How hard a sweep works for each point's accuracy.
+
+    Attributes
+    ----------
+    tolerance : float
+        Largest accepted change of F̄max between two refinement levels [-].
+    max_refinements : int
+        Cost cap: refinement levels beyond the base run (level k costs about 4ᵏ base
+        runs: 2ᵏ the modes, 1/2ᵏ the step). 1 gives the plain check.
+    perturbation : float
+        Relative size of the perturbations of cut-off, step and ζ that measure the
+        spread of a sensitive point [-].
+    """
+
+    tolerance: float = 1e-3
+    max_refinements: int = 2
+    perturbation: float = 0.01
+
+    def __post_init__(self):
+        require_positive("tolerance", self.tolerance)
+        require_in_range("max_refinements", self.max_refinements, 1, 6)
+        if int(self.max_refinements) != self.max_refinements:
+            raise ValueError(f"max_refinements = {self.max_refinements!r} is invalid: must be an integer")
+        require_in_range("perturbation", self.perturbation, 0.0, 0.2, low_inclusive=False)
+
+
+def _row(result, status: str, error: float, low: float, high: float) -> dict:
+    return result.normalised_summary() | {
+        "fmax_error": float(error),
+        "fmax_low": float(low),
+        "fmax_high": float(high),
+        "status": STATUSES.index(status),
+    }
+
+
+def exact_point(row: dict) -> dict:
+    """The error columns of a point answered exactly (an asymptote): error 0."""
+    value = float(row["fmax_normalised"])
+    return row | {"fmax_error": 0.0, "fmax_low": value, "fmax_high": value,
+                  "status": STATUSES.index("asymptotic")}
+
+
+def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
+    """Solve one point to the tolerance, or mark it, with its error.
+
+    Parameters
+    ----------
+    run : callable
+        ``run(settings, zeta_factor) -> ImpactResult``: the point solved with the given
+        :class:`~impactmaps.solvers.modal.ModalSettings` at ζ × ``zeta_factor``.
+    settings : ModalSettings
+        The base settings of the sweep.
+    control : AccuracyControl
+
+    Returns
+    -------
+    dict
+        The normalised scalars of the retained run (``normalised_summary``) plus
+        ``fmax_error``, ``fmax_low``, ``fmax_high`` and the ``status`` code.
+    """
+    results = [run(settings, 1.0)]
+    level = settings
+    for count in range(1, int(control.max_refinements) + 1):
+        level = level.refined()
+        results.append(run(level, 1.0))
+        fine = results[-1].fmax_normalised
+        change = abs(fine - results[-2].fmax_normalised)
+        if change <= control.tolerance:
+            return _row(results[-1], "converged" if count == 1 else "refined",
+                        change, fine - change, fine + change)
+    p = control.perturbation
+    perturbed = [
+        run(replace(level, cutoff_ratio=level.cutoff_ratio * (1.0 + p)), 1.0),
+        run(replace(level, cutoff_ratio=level.cutoff_ratio * (1.0 - p)), 1.0),
+        run(replace(level, step_scale=level.step_scale * (1.0 - p)), 1.0),
+        run(level, 1.0 + p),
+        run(level, 1.0 - p),
+    ]
+    values = [r.fmax_normalised for r in results[1:] + perturbed]
+    low, high = min(values), max(values)
+    return _row(results[-1], "sensitive", 0.5 * (high - low), low, high)

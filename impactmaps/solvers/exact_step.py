@@ -1,0 +1,428 @@
+"""The exact-step modal impact integrator (numba).
+
+Between two instants the contact force is taken to vary linearly. For such a force
+every modal coordinate ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j F(t)`` and the impactor
+``m ẅ_i = −F`` are advanced *exactly* (:mod:`impactmaps.solvers.oscillator_step`), so no
+mode limits the step by its own stability and the step follows the contact force, not
+the highest mode. (The force is sampled once per step, and the sampled contact loop
+itself is stable only while the highest coupled frequency turns well under half a
+period per step: ``modal.STABLE_TOP_STEP``.)
+
+One impact is a loop over four stages:
+
+* **free flight** (scalars-only runs, no contact force): the step doubles up to 64× as
+  long as a bound on the closing speed proves that no touchdown fits inside it, and the
+  run ends as soon as the gap exceeds the largest displacement the free vibration can
+  reach at the impact point (:func:`_free_doublings`, :func:`_closing_speed_bound`);
+* **event location**: contact start and separation are roots of the predicted gap
+  inside the step (Brent's method); the step is cut there and the next one starts at the
+  event (:mod:`impactmaps.solvers.contact_events`, :func:`_advance_to_event`);
+* **step acceptance**: otherwise the force at the end of the step is found implicitly
+  from the contact law (closed form for a linear law, safeguarded Newton otherwise), with
+  the residual flexibility of the dropped modes in series with the contact, and the
+  step is completed with it (:func:`_accept_step`);
+* **peak tracking**: the largest force, refined by a parabola through three uniform
+  samples (:func:`_track_peak`, :mod:`impactmaps.solvers._peak`).
+
+Everything here is a plain function of arrays so one compiled kernel serves single
+runs, batches and sweeps; :mod:`impactmaps.solvers.modal` is the Python front end.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..contact.base import KERNEL_TYPE
+from ._peak import parabolic_peak
+from .contact_events import locate_event, solve_end_force
+from .oscillator_step import (
+    fill_step_coefficients,
+    predict_step,
+    propagate_free,
+    square_free_propagators,
+)
+
+__all__ = ["integrate_impact"]
+
+_F8 = numba.types.float64
+_VECTOR = numba.types.Array(_F8, 1, "C")
+_MATRIX = numba.types.Array(_F8, 2, "C")
+
+#: Longest free-flight step: 2^(_FREE_POWERS − 1) = 64 steps h.
+_FREE_POWERS = 7
+#: Columns of the recorded history (see :func:`integrate_impact`).
+_HISTORY_WIDTH = 8
+
+# The stages below are plain compiled calls, not ``inline="always"``: numba's IR inlining
+# adds reference-count operations on every array argument, which cost up to 1.5× per step
+# (measured); only the helpers on scalars are inlined.
+
+
+@numba.njit(cache=True)
+def _no_reimpact_possible(omega, phi, q, v, wi, vi):
+    """True once the impactor moves away and its gap exceeds the largest displacement the
+    free vibration can ever reach at x0: |w_t| ≤ Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (sum of
+    modal amplitudes; damping only shrinks them), relative to the rigid-body motion.
+    This bound is ≤ the spec's Cauchy–Schwarz bound sqrt(2 E_s Σφ²/ω²) (spec §3.6)."""
+    rigid_w = 0.0
+    rigid_v = 0.0
+    bound = 0.0
+    for j in range(q.shape[0]):
+        if omega[j] == 0.0:
+            rigid_w += phi[j] * q[j]
+            rigid_v += phi[j] * v[j]
+        else:
+            bound += abs(phi[j]) * math.sqrt(q[j] * q[j] + (v[j] / omega[j]) ** 2)
+    return vi - rigid_v <= 0.0 and wi - rigid_w < -bound
+
+
+@numba.njit(cache=True)
+def _structure_energy(omega, q, v):
+    energy = 0.0
+    for j in range(q.shape[0]):
+        energy += 0.5 * (v[j] * v[j] + omega[j] * omega[j] * q[j] * q[j])
+    return energy
+
+
+@numba.njit(cache=True)
+def _damping_power(omega, zeta, v):
+    power = 0.0
+    for j in range(v.shape[0]):
+        power += 2.0 * zeta[j] * omega[j] * v[j] * v[j]
+    return power
+
+
+@numba.njit(cache=True)
+def _damping_work(omega, zeta, v, vn, length):
+    """Work of the modal damping over a step of ``length`` [s] (trapezoidal rule)."""
+    return 0.5 * length * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
+
+
+@numba.njit(cache=True)
+def _closing_speed_bound(omega, phi, q, v, vi):
+    """Bound on the speed at which the gap can close in free flight [m/s]:
+    ``|v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²)`` (modal amplitudes are constant or decay)."""
+    speed_bound = abs(vi)
+    for j in range(q.shape[0]):
+        speed_bound += abs(phi[j]) * math.sqrt((omega[j] * q[j]) ** 2 + v[j] * v[j])
+    return speed_bound
+
+
+@numba.njit(cache=True)
+def _free_doublings(phi, q, wi, h, speed_bound):
+    """Free-flight stage: how many times the step h may double, k < ``_FREE_POWERS``.
+
+    With no contact force every mode moves exactly over any step, so the step may grow
+    as long as contact cannot start inside it: the gap −α shrinks at most at
+    ``speed_bound`` V (:func:`_closing_speed_bound`), hence a step of 2^k h with
+    2^k h V < −α cannot contain a touchdown.
+    """
+    wt_now = 0.0
+    for j in range(q.shape[0]):
+        wt_now += phi[j] * q[j]
+    gap = wt_now - wi  # −α
+    k = 0
+    while k + 1 < _FREE_POWERS and (2.0 ** (k + 1)) * h * speed_bound < gap:
+        k += 1
+    return k
+
+
+@numba.njit(cache=True)
+def _advance_to_event(omega, zeta, phi, mass, wi, vi, q, v, force, s, ready, sub, qn, vn):
+    """Event stage: advance over s with the force ramped to 0; modes into (qn, vn).
+
+    ``ready`` says that ``sub`` already holds the step coefficients over s (left there by
+    the event search). Returns the impactor displacement and velocity at the event.
+    """
+    if not ready:
+        fill_step_coefficients(omega, zeta, phi, s, sub)
+    wi_e, vi_e, _wt = predict_step(sub, s, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+    return wi_e, vi_e
+
+
+@numba.njit(cache=True)
+def _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn):
+    """Step-acceptance stage: add the implicit end force ``f_new`` to the prediction made
+    with the force ramped to 0 (modes in qn, vn); returns (w_i, v_i, w_t) at the end."""
+    if f_new > 0.0:
+        wt_p += f_new * (compliance_h - h * h / (6.0 * mass) - residual)
+        wi_p -= h * h * f_new / (6.0 * mass)
+        vi_p -= 0.5 * h * f_new / mass
+        for j in range(qn.shape[0]):
+            qn[j] += coef[5, j] * f_new
+            vn[j] += coef[7, j] * f_new
+    return wi_p, vi_p, wt_p
+
+
+@numba.njit(cache=True)
+def _mark_contact(intervals, n_intervals, column, time):
+    """Write a contact start (column 0) or end (column 1, which closes the interval) at
+    ``time`` [s]; returns the interval count and 1.0 if the table was full (else 0.0)."""
+    if n_intervals < intervals.shape[0]:
+        intervals[n_intervals, column] = time
+        return n_intervals + column, 0.0
+    return n_intervals, 1.0
+
+
+@numba.njit(cache=True, inline="always")
+def _contact_event(force, f_new, starting):
+    """(separation, touchdown) in a step whose force goes from ``force`` to ``f_new``;
+    no touchdown is sought in the step that starts at a contact (``starting``)."""
+    return force > 0.0 and f_new == 0.0, force == 0.0 and f_new > 0.0 and not starting
+
+
+@numba.njit(cache=True, inline="always")
+def _out_of_time(t, steps, max_time, max_steps):
+    """Whether the run has reached its time limit or its step budget."""
+    return t >= max_time or steps >= max_steps
+
+
+@numba.njit(cache=True, inline="always")
+def _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform):
+    """Peak-tracking stage after a step ending at t with ``force``.
+
+    The largest sample, or the vertex of the parabola through the last three samples
+    when they are uniform (h apart) and the middle one is a local maximum. Returns
+    (peak, peak_time, f_prev2, f_prev1); the previous samples are reset across an event
+    (−1 marks “no uniform sample”).
+    """
+    if force > peak:
+        peak = force
+        peak_time = t
+    if uniform and f_prev1 > 0.0 and f_prev2 > 0.0 and f_prev1 >= f_prev2 and f_prev1 >= force and force > 0.0:
+        refined, shift = parabolic_peak(f_prev2, f_prev1, force)
+        if refined > peak:
+            peak = refined
+            peak_time = t - h + shift * h
+    if uniform:
+        return peak, peak_time, f_prev1, force
+    return peak, peak_time, -1.0, force
+
+
+@numba.njit(cache=True)
+def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
+    """Write the state at time t [s] into row ``rec`` of the history."""
+    wt = residual * force
+    vt = 0.0
+    for j in range(q.shape[0]):
+        wt += phi[j] * q[j]
+        vt += phi[j] * v[j]
+    history[rec, 0] = t
+    history[rec, 1] = force
+    history[rec, 2] = wi - wt
+    history[rec, 3] = wi
+    history[rec, 4] = vi
+    history[rec, 5] = wt
+    history[rec, 6] = vt
+    history[rec, 7] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
+
+
+@numba.njit(cache=True)
+def _grown(history):
+    """The history array with twice the rows (the new ones zero)."""
+    grown = np.zeros((2 * history.shape[0], _HISTORY_WIDTH))
+    grown[:history.shape[0]] = history
+    return grown
+
+
+@numba.njit(cache=True)
+def _step_compliance(coef, phi, h, mass, residual):
+    """Compliance C [m/N] through which the end force of a step takes back indentation:
+    impactor ``h²/(6m)``, residual flexibility and the retained modes ``Σ φ_j coef[5, j]``."""
+    compliance = h * h / (6.0 * mass) + residual
+    for j in range(phi.shape[0]):
+        compliance += phi[j] * coef[5, j]
+    return compliance
+
+
+@numba.njit(
+    numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
+        KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
+        numba.types.boolean, numba.types.int64,
+    ),
+    cache=True,
+    nogil=True,
+)
+def integrate_impact(
+    kernel,
+    params,
+    linear_stiffness,
+    omega,
+    phi,
+    zeta,
+    residual,
+    mass,
+    velocity,
+    h,
+    max_time,
+    record,
+    max_events,
+):
+    """Integrate one impact from first touch until re-impact is impossible.
+
+    Parameters
+    ----------
+    kernel, params : contact-law kernel and its parameter vector.
+    linear_stiffness : K [N/m] if the law is linear (closed-form contact solve), else 0.
+    omega, phi, zeta : modal frequencies [rad/s], participations φ_j(x0), damping ratios.
+    residual : residual compliance of dropped modes [m/N].
+    mass, velocity : impactor mass [kg] and approach velocity [m/s].
+    h : time step [s]; max_time : time limit [s].
+    record : store the history at every step (otherwise only scalars).
+    max_events : capacity of the contact-interval table.
+
+    Returns
+    -------
+    history : (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure.
+    intervals : (n_intervals, 2) array of contact start/end times [s].
+    scalars : array — peak force, time of peak, α_max, final impactor velocity,
+        final structure energy, damping work, end time, time-limit-reached flag,
+        steps taken, interval-table overflow flag.
+    """
+    n = omega.shape[0]
+    coef = np.empty((8, n))
+    fill_step_coefficients(omega, zeta, phi, h, coef)
+    sub = np.empty((8, n))
+    compliance_h = _step_compliance(coef, phi, h, mass, residual)
+    damped = np.any(zeta > 0.0)
+
+    q = np.zeros(n)
+    v = np.zeros(n)
+    qn = np.empty(n)
+    vn = np.empty(n)
+    q_try = np.empty(n)
+    v_try = np.empty(n)
+    t = 0.0
+    wi = 0.0
+    vi = velocity
+    force = 0.0
+    alpha_max = 0.0
+    in_contact = False
+    damping_work = 0.0
+
+    max_steps = int(math.ceil(max_time / h)) + 2
+    capacity = min(max_steps + 1, 4096) if record else 1
+    history = np.zeros((capacity, _HISTORY_WIDTH))
+    intervals = np.zeros((max_events, 2))
+    n_intervals = 0
+    overflow = 0.0
+    rec = 0
+    if record:
+        history[0, 4] = velocity
+        rec = 1
+
+    peak = 0.0
+    peak_time = 0.0
+    f_prev2 = -1.0
+    f_prev1 = -1.0
+    hit_limit = 0.0
+    steps = 0
+
+    free_coef = np.empty((_FREE_POWERS, 4, n))  # homogeneous rows only: no force in flight
+    free_ready = np.zeros(_FREE_POWERS, dtype=np.bool_)
+    free_coef[0] = coef[:4]
+    free_ready[0] = True
+    speed_bound = -1.0  # < 0: to be computed at the next free-flight step
+    starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)
+    while True:
+        if force != 0.0 or starting:
+            speed_bound = -1.0
+        elif not record:
+            if speed_bound < 0.0:
+                speed_bound = _closing_speed_bound(omega, phi, q, v, vi)
+            # k > 0: the speed bound proves the long step free; k = 0: a free step whose
+            # end shows no contact (the test the full step below would make)
+            k = _free_doublings(phi, q, wi, h, speed_bound)
+            length = (2.0 ** k) * h
+            if not free_ready[k]:
+                square_free_propagators(free_coef, free_ready, k)
+            wi_free, wt_free = propagate_free(free_coef[k], length, wi, vi, q, v, phi, qn, vn)
+            if k > 0 or solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free,
+                                        compliance_h, alpha_max) == 0.0:
+                if damped:
+                    damping_work += _damping_work(omega, zeta, v, vn, length)
+                wi = wi_free
+                q, qn = qn, q
+                v, vn = vn, v
+                t += length
+                steps += 1
+                f_prev2 = -1.0
+                f_prev1 = 0.0
+                if (k > 0 or steps % 8 == 0) and _no_reimpact_possible(omega, phi, q, v, wi, vi):
+                    break
+                if _out_of_time(t, steps, max_time, max_steps):
+                    hit_limit = 1.0
+                    break
+                continue
+        # one step of h with the force going linearly from ``force`` to the implicit end
+        # force; a contact event inside it cuts the step short at the event
+        wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+        f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
+        separation, touchdown = _contact_event(force, f_new, starting)
+        uniform = not (separation or touchdown)
+        if uniform:
+            wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
+            if damped:
+                damping_work += _damping_work(omega, zeta, v, vn, h)
+            q, qn = qn, q
+            v, vn = vn, v
+            if f_new > 0.0:
+                if not in_contact:
+                    in_contact = True
+                    n_intervals, full = _mark_contact(intervals, n_intervals, 0, t)
+                    overflow = max(overflow, full)
+                alpha = wi - wt - residual * f_new
+                if alpha > alpha_max:
+                    alpha_max = alpha
+            force = f_new
+            starting = False
+            t += h
+        else:
+            s, ready = locate_event(
+                kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
+                wi, vi, q, v, force, wi_p - wt_p, separation, sub, q_try, v_try, h,
+            )
+            if s > 0.0:
+                wi, vi = _advance_to_event(omega, zeta, phi, mass, wi, vi, q, v, force, s, ready, sub, qn, vn)
+                if damped:
+                    damping_work += _damping_work(omega, zeta, v, vn, s)
+                q, qn = qn, q
+                v, vn = vn, v
+            if separation:
+                n_intervals, full = _mark_contact(intervals, n_intervals, 1, t + s)
+                overflow = max(overflow, full)
+                in_contact = False
+            else:
+                starting = True  # contact begins at the start of the next step
+            force = 0.0
+            t += s  # the next step starts at the event, with the full step h
+        steps += 1
+        peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform)
+        if record:
+            if rec == history.shape[0]:
+                history = _grown(history)
+            _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+            rec += 1
+        if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
+            break
+        if _out_of_time(t, steps, max_time, max_steps):
+            hit_limit = 1.0
+            break
+
+    if in_contact:
+        n_intervals, _full = _mark_contact(intervals, n_intervals, 1, t)
+    scalars = np.empty(10)
+    scalars[0] = peak
+    scalars[1] = peak_time
+    scalars[2] = alpha_max
+    scalars[3] = vi
+    scalars[4] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
+    scalars[5] = damping_work
+    scalars[6] = t
+    scalars[7] = hit_limit
+    scalars[8] = steps
+    scalars[9] = overflow
+    return history[:rec].copy(), intervals[:n_intervals].copy(), scalars
