@@ -20,7 +20,7 @@ from numpy.polynomial import legendre
 from impactmaps.dimensionless import realise
 from impactmaps.materials import IsotropicMaterial
 from impactmaps.solvers.modal import simulate_normalised
-from impactmaps.targets import beam_modes
+from impactmaps.targets import beam_fe_eigen, beam_fe_modes, beam_modes
 from impactmaps.targets.beam import Beam
 
 STEEL = IsotropicMaterial(youngs_modulus=2.1e11, poisson_ratio=0.3, density=7850.0)
@@ -214,7 +214,7 @@ def test_finite_elements_reproduce_euler_roots(supports):
     error ≤ 3e-10; the flexibility-form eigen-solution adds round-off
     ≈ eps·ω_j²/ω_1², 4e-9 for the 40th cantilever mode. Free–free rigid modes: ω = 0."""
     section = beam("euler", supports).section
-    beam_modes._FE_CACHE.pop(section, None)
+    beam_fe_modes._fe_solution.cache_clear()
     exact = beam_modes.classical_euler_modes(section, 0.0, min_modes=40).frequencies
     numerical = beam_modes.finite_element_modes(section, exact[-1], min_modes=40).frequencies
     assert numerical.size >= 40
@@ -227,7 +227,7 @@ def test_finite_elements_reproduce_simply_supported_closed_form(theory):
     mode (both Timoshenko branches and the n = 0 thickness-shear mode) to 1e-9, and
     |W_j(x0)| to 1e-7 of the mode scale (participation; signs are arbitrary)."""
     section = beam(theory, "ss", slenderness=8.0).section
-    beam_modes._FE_CACHE.pop(section, None)
+    beam_fe_modes._fe_solution.cache_clear()
     exact = beam_modes.simply_supported_modes(section, 0.0, min_modes=60)
     limit = exact.frequencies[-1]
     numerical = beam_modes.finite_element_modes(section, limit)
@@ -243,14 +243,14 @@ def test_spectrum_slicing_path_matches_closed_form(monkeypatch):
     """Large FE models are solved by spectrum slicing (shift-invert Lanczos + Sturm
     counts). Forcing that path on a small model must give every SS Timoshenko mode up to
     the limit exactly once (no gaps/duplicates across slices) to 1e-9."""
-    monkeypatch.setattr(beam_modes, "_DENSE_LIMIT", 50)
-    monkeypatch.setattr(beam_modes, "_SLICE_SIZE", 12)
+    monkeypatch.setattr(beam_fe_eigen, "_DENSE_LIMIT", 50)
+    monkeypatch.setattr(beam_fe_eigen, "_SLICE_SIZE", 12)
     section = beam("timoshenko", "ss", slenderness=8.0).section
-    beam_modes._FE_CACHE.pop(section, None)
+    beam_fe_modes._fe_solution.cache_clear()
     exact = beam_modes.simply_supported_modes(section, 0.0, min_modes=80)
     limit = exact.frequencies[-1]
     numerical = beam_modes.finite_element_modes(section, limit)
-    beam_modes._FE_CACHE.pop(section, None)
+    beam_fe_modes._fe_solution.cache_clear()
     n = len(exact) - 1
     np.testing.assert_allclose(numerical.frequencies[:n], exact.frequencies[:n], rtol=1e-9)
 
@@ -401,12 +401,14 @@ def test_residual_plus_retained_is_static_and_nonnegative(supports):
 def test_finite_element_cap_warns_and_keeps_residual(monkeypatch):
     """Above FE_MAX_DOFS unknowns the solver warns and returns only resolved modes; the
     residual compliance then carries the rest (still ≥ 0, retained + residual = static)."""
-    monkeypatch.setattr(beam_modes, "FE_MAX_DOFS", 200)
+    monkeypatch.setattr(beam_fe_modes, "FE_MAX_DOFS", 200)
+    from impactmaps.targets import beam as beam_module
+
     target = beam("timoshenko", "cf", slenderness=7.0, position=0.9)
-    beam_modes._FE_CACHE.pop(target.section, None)
+    _clear_mode_caches(beam_module)
     with pytest.warns(UserWarning, match="FE_MAX_DOFS"):
         basis = target.modes(1e9)
-    beam_modes._FE_CACHE.pop(target.section, None)
+    _clear_mode_caches(beam_module)
     assert basis.frequencies.max() < 1e9
     assert basis.residual_compliance > 0
     assert basis.retained_compliance + basis.residual_compliance == approx(
@@ -558,4 +560,59 @@ def test_modes_are_kept_per_cutoff_and_bounded():
     assert other is not first and other.size >= first.size
     for k in range(20):
         beam.modes(1e5 * (1 + k), min_modes=1)
-    assert len(beam._bases) <= 8
+    from impactmaps.targets import beam as beam_module
+
+    cache = beam_module._beam_basis.cache_info()
+    assert cache.maxsize is not None and cache.currsize <= cache.maxsize <= 8
+
+
+@pytest.mark.parametrize("theory, supports", [("timoshenko", "cf"), ("rayleigh", "ff"),
+                                              ("euler", "cc"), ("timoshenko", "ss")])
+def test_modes_do_not_depend_on_earlier_requests(theory, supports):
+    """The basis for one (cut-off, min_modes) is the same whatever was asked before: a
+    finer finite-element solution computed first (and cached) for a larger cut-off does
+    not leak into a smaller request (it used to: the FE cache kept the finest mesh)."""
+    from impactmaps.targets import beam as beam_module
+
+    target = beam(theory, supports, slenderness=10.0, position=0.37)
+    _clear_mode_caches(beam_module)
+    fresh = target.modes(2e4, min_modes=3)
+    _clear_mode_caches(beam_module)
+    target.modes(1e6, min_modes=3)
+    again = target.modes(2e4, min_modes=3)
+    np.testing.assert_array_equal(again.frequencies, fresh.frequencies)
+    np.testing.assert_array_equal(again.participation, fresh.participation)
+    assert again.residual_compliance == fresh.residual_compliance
+
+
+def _clear_mode_caches(beam_module):
+    beam_module._beam_basis.cache_clear()
+    beam_fe_modes._fe_solution.cache_clear()
+
+
+def test_modal_basis_owns_residual_bookkeeping():
+    """ModalBasis.from_modes: residual = static − retained, round-off negatives clipped
+    once, real excess an error; truncate moves the compliance of the dropped modes to the
+    residual; participating drops modes with no motion at the impact point."""
+    from impactmaps.targets.base import ModalBasis
+
+    frequencies = np.array([0.0, 10.0, 20.0, 40.0])
+    participation = np.array([0.5, 1.0, 0.0, 2.0])
+    retained = 1.0 / 100.0 + 4.0 / 1600.0
+    basis = ModalBasis.from_modes(frequencies, participation, 0.02)
+    assert basis.residual_compliance == 0.02 - retained
+    assert ModalBasis.from_modes(frequencies, participation, retained * (1 - 1e-12)).residual_compliance == 0.0
+    with pytest.raises(RuntimeError, match="exceeds the static compliance"):
+        ModalBasis.from_modes(frequencies, participation, 0.9 * retained)
+    assert ModalBasis.from_modes(frequencies, participation, 0.02,
+                                 retained_compliance=0.005).residual_compliance == 0.015
+    truncated = basis.truncate(15.0)
+    np.testing.assert_array_equal(truncated.frequencies, [0.0, 10.0])
+    assert truncated.residual_compliance == 4.0 / 1600.0 + basis.residual_compliance
+    assert truncated.retained_compliance + truncated.residual_compliance == approx(0.02, rel=1e-15)
+    assert basis.truncate(0.0, min_modes=3).size == 3
+    assert basis.truncate(100.0) is basis
+    participating = basis.participating()
+    np.testing.assert_array_equal(participating.frequencies, [0.0, 10.0, 40.0])
+    assert participating.residual_compliance == basis.residual_compliance
+    assert participating.participating() is participating

@@ -173,6 +173,62 @@ def test_progress_bar_is_shown_and_can_be_switched_off(capsys):
     assert capsys.readouterr().err == ""
 
 
+@pytest.mark.parametrize("structure", [PLATE, BEAM], ids=lambda s: s.name)
+def test_targets_answer_the_physics_of_their_kind(structure):
+    """Wave-return time and infinite-structure asymptote come from the target: the
+    reflection time is ω d²/c of its nearest support or edge, the peak the asymptote of
+    its kind (also through the string-keyed regimes helper), and an asymptote row of a
+    sweep is made of the target's InfiniteImpact."""
+    import math
+
+    from impactmaps.maps.regimes import infinite_structure_peak
+    from impactmaps.solvers import asymptotes
+
+    target = structure.build()
+    omega = np.array([1e3, 2e4])
+    if structure.kind == "beam":
+        distance = target.distance_to_nearest_support()
+        speed = math.sqrt(target.bending_stiffness / target.mass_per_length)
+        peak = asymptotes.infinite_beam_peak
+    else:
+        distance = target.distance_to_nearest_edge()
+        speed = math.sqrt(target.effective_bending_stiffness / target.mass_per_area)
+        peak = asymptotes.infinite_plate_peak
+    np.testing.assert_array_equal(target.reflection_time(omega), omega * distance**2 / speed)
+    np.testing.assert_array_equal(sweep_module.reflection_time(target, omega), target.reflection_time(omega))
+    zetas = np.array([0.05, 0.3, 0.3, 2.0])
+    expected = np.array([float(peak(z)) for z in zetas])
+    np.testing.assert_array_equal(type(target).infinite_structure_peak(zetas), expected)
+    np.testing.assert_array_equal(infinite_structure_peak(zetas, structure.kind), expected)
+    row = sweep_module._asymptote_row(target, 0.3)
+    impact = target.infinite_structure_impact(0.3)
+    assert row["fmax_normalised"] == float(impact.peak_force) == expected[1]
+    assert row["peak_time_normalised"] == float(impact.peak_time)
+    assert row["contact_time_normalised"] == float(impact.contact_time)
+    assert row["energy_transferred_fraction"] == 1.0 - float(impact.rebound_velocity) ** 2
+    assert row["method"] == sweep_module.METHODS.index("infinite-structure-asymptote")
+
+
+def test_basis_table_truncates_like_the_basis_it_holds():
+    """A basis table is an explicit participating ModalBasis: truncating it keeps
+    retained + residual equal to the target's static compliance, and a table asked for
+    after a larger one holds the same modes as a fresh one (no hidden state)."""
+    from impactmaps.maps.structures import BasisTable
+
+    target = BEAM.build()
+    table = BasisTable(target, 1e6, 4)
+    for cutoff in (1e3, 1e4, 1e5, 1e6):
+        basis = table.truncate(cutoff, 4)
+        assert basis.size >= 4
+        assert basis.retained_compliance + basis.residual_compliance == pytest.approx(
+            target.static_compliance(), rel=1e-12)
+    BasisTable(target, 1e7, 4)
+    again = BasisTable(target, 1e6, 4).basis
+    np.testing.assert_array_equal(again.frequencies, table.basis.frequencies)
+    np.testing.assert_array_equal(again.participation, table.basis.participation)
+    assert again.residual_compliance == table.basis.residual_compliance
+
+
 def test_a_point_is_a_pure_function_of_its_inputs():
     """The result of a (ζ, λ) point does not depend on what else its worker computed:
     one by one, in one chunk, or in shuffled chunks after a light-impactor point that

@@ -595,4 +595,26 @@ def test_plate_modes_are_kept_per_cutoff():
     assert plate.modes(3e5, min_modes=4) is not first
     for k in range(40):
         plate.modes(1e5 * (1 + k), min_modes=1)
-    assert len(plate._cache) <= 20
+    from impactmaps.targets import plate as plate_module
+
+    cache = plate_module._plate_modes.cache_info()
+    assert cache.maxsize is not None and cache.currsize <= cache.maxsize <= 20
+
+
+@pytest.mark.parametrize("edges", ["SSSS", "CCCC"])
+def test_plate_modes_do_not_depend_on_earlier_requests(edges):
+    """The basis for one (cut-off, min_modes) is the same whatever was asked before: a
+    larger basis computed first (and cached) does not leak into a smaller request."""
+    from impactmaps.targets import plate as plate_module
+
+    plate = orthotropic_plate(edges=edges)
+    plate_module._plate_modes.cache_clear()
+    fresh = plate.modes(2e4, min_modes=3)
+    plate_module._plate_modes.cache_clear()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plate.modes(1.5e5, min_modes=3)
+    again = plate.modes(2e4, min_modes=3)
+    np.testing.assert_array_equal(again.frequencies, fresh.frequencies)
+    np.testing.assert_array_equal(again.participation, fresh.participation)
+    assert again.residual_compliance == fresh.residual_compliance

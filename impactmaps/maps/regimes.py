@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
+from ..targets.options import STRUCTURE_KINDS
 
 __all__ = ["REGIMES", "classify", "infinite_structure_peak", "quasi_static_peak"]
 
@@ -38,18 +39,15 @@ def quasi_static_peak(relative_stiffness):
 
 
 def infinite_structure_peak(loss_factor, structure: str):
-    """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-]."""
-    require_choice("structure", structure, ("beam", "plate"))
-    zeta = np.asarray(loss_factor, dtype=float)
-    if structure == "plate":
-        from ..solvers.asymptotes import infinite_plate_peak
+    """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-].
 
-        return np.asarray(infinite_plate_peak(zeta), dtype=float)
-    from ..solvers.asymptotes import infinite_beam_peak
+    ``structure``: ``"beam"`` or ``"plate"``; the asymptote is the target class's
+    (:meth:`impactmaps.targets.Target.infinite_structure_peak`).
+    """
+    from ..targets import target_class
 
-    unique, inverse = np.unique(zeta, return_inverse=True)
-    peaks = np.asarray(infinite_beam_peak(unique), dtype=float)
-    return peaks[inverse].reshape(zeta.shape)
+    require_choice("structure", structure, STRUCTURE_KINDS)
+    return target_class(structure).infinite_structure_peak(loss_factor)
 
 
 def classify(

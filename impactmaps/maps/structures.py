@@ -13,18 +13,16 @@ part of the key (default span/thickness = 20).
 
 from __future__ import annotations
 
-import functools
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
 from ..targets.base import ModalBasis, Target
+from ..targets.beam import MIN_SLENDERNESS
+from ..targets.options import BEAM_THEORIES, PLATE_THEORIES, STRUCTURE_KINDS
 
 __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
-
-BEAM_THEORIES = ("euler", "rayleigh", "timoshenko")
-PLATE_THEORIES = ("kirchhoff", "mindlin")
 
 
 @dataclass(frozen=True)
@@ -45,9 +43,11 @@ class MapStructure:
     ----------
     kind : {"beam", "plate"}
     theory : str
-        Beam: "euler", "rayleigh", "timoshenko"; plate: "kirchhoff", "mindlin".
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES`; plate: one of
+        :data:`~impactmaps.targets.options.PLATE_THEORIES`.
     supports : str
-        Beam: "ss", "cc", "cs", "cf", "ff"; plate: 4-letter edge code, e.g. "SSSS".
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: 4-letter
+        edge code, e.g. "SSSS".
     aspect_ratio : float
         Plate b/a [-] (ignored for beams).
     slenderness : float
@@ -67,10 +67,10 @@ class MapStructure:
     poisson_ratio: float = 0.3
 
     def __post_init__(self):
-        require_choice("kind", self.kind, ("beam", "plate"))
+        require_choice("kind", self.kind, STRUCTURE_KINDS)
         require_choice("theory", self.theory, BEAM_THEORIES if self.kind == "beam" else PLATE_THEORIES)
         require_positive("aspect_ratio", self.aspect_ratio)
-        require_in_range("slenderness", self.slenderness, 2.0, np.inf)
+        require_in_range("slenderness", self.slenderness, MIN_SLENDERNESS, np.inf)
         require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
         fractions = tuple(float(f) for f in np.atleast_1d(self.impact_fraction))
         expected = 1 if self.kind == "beam" else 2
@@ -107,11 +107,14 @@ class MapStructure:
         return asdict(self)
 
     def build(self) -> Target:
-        """The concrete reference target: unit span, steel-like, thickness = span/slenderness."""
+        """The concrete reference target: unit span, steel-like, thickness = span/slenderness.
+
+        A new (equal) target each call: targets hold no state, their modes are cached by
+        value (:mod:`impactmaps.targets`).
+        """
         return _build_target(self)
 
 
-@functools.lru_cache(maxsize=32)
 def _build_target(structure: MapStructure) -> Target:
     material = _ReferenceMaterial(poisson_ratio=structure.poisson_ratio)
     span = 1.0
@@ -170,31 +173,23 @@ class BasisTable:
     """All modes of a target up to some frequency, truncatable without recomputation.
 
     Sweeps realise many impactors on one target; each needs the modes below its own
-    cut-off. The table computes the modes once, at the largest cut-off, and
-    :meth:`truncate` slices them, adding the compliance of the sliced-off modes to
-    the target's residual (so the residual-flexibility correction stays exact).
+    cut-off. The table computes the modes once, at the largest cut-off, keeps those
+    that participate (:meth:`ModalBasis.participating`), and :meth:`truncate` slices
+    them (:meth:`ModalBasis.truncate`: the compliance of the sliced-off modes joins the
+    residual, so the residual-flexibility correction stays exact).
+
+    Attributes
+    ----------
+    basis : ModalBasis
+        The participating modes up to ``max_frequency`` [rad/s].
+    max_frequency : float
+        Cut-off [rad/s] the table was computed for.
     """
 
     def __init__(self, target: Target, max_frequency: float, min_modes: int = 1):
-        basis = target.modes(max_frequency, min_modes=min_modes)
-        significant = basis.participation**2 > 1e-24 * max(float(np.max(basis.participation**2, initial=0.0)), 1e-300)
-        self.frequencies = basis.frequencies[significant]
-        self.participation = basis.participation[significant]
-        self.damping_ratios = basis.damping_ratios[significant]
-        elastic = self.frequencies > 0
-        compliance = np.zeros_like(self.frequencies)
-        compliance[elastic] = self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2
-        # tail[k] = compliance of modes k, k+1, … plus the target's own residual
-        self._tail = np.concatenate([np.cumsum(compliance[::-1])[::-1], [0.0]]) + basis.residual_compliance
+        self.basis = target.modes(max_frequency, min_modes=min_modes).participating()
         self.max_frequency = max_frequency
 
     def truncate(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
-        """Modes with ω ≤ ``max_frequency`` (at least ``min_modes``), with exact residual."""
-        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
-        count = min(max(count, min_modes), self.frequencies.size)
-        return ModalBasis.from_validated(
-            self.frequencies[:count],
-            self.participation[:count],
-            float(self._tail[count]),
-            self.damping_ratios[:count],
-        )
+        """Modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), with exact residual."""
+        return self.basis.truncate(max_frequency, min_modes)

@@ -102,25 +102,17 @@ def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
         return BasisTable(structure.build(), frequency_cap(structure), min_modes)
 
 
-def _asymptote_row(kind: str, zeta: float) -> dict:
+def _asymptote_row(target, zeta: float) -> dict:
     """Scalars of the infinite-structure solution (exact until waves return)."""
-    from ..solvers import asymptotes
-
-    if kind == "plate":
-        peak, peak_time = asymptotes.infinite_plate_peak(zeta), asymptotes.infinite_plate_peak_time(zeta)
-        contact = asymptotes.infinite_plate_contact_time(zeta)
-        rebound = asymptotes.infinite_plate_indentation_rate(contact, zeta) if np.isfinite(contact) else np.nan
-    else:
-        peak, peak_time = asymptotes.infinite_beam_peak(zeta), asymptotes.infinite_beam_peak_time(zeta)
-        contact = asymptotes.infinite_beam_contact_time(zeta)
-        rebound = asymptotes.infinite_beam_impactor_velocity(contact, zeta) if np.isfinite(contact) else np.nan
+    impact = target.infinite_structure_impact(zeta)
+    contact, rebound = impact.contact_time, impact.rebound_velocity
     contact = float(contact) if np.isfinite(contact) else np.nan
     return {
-        "fmax_normalised": float(peak),
+        "fmax_normalised": float(impact.peak_force),
         "impacts": 1,
         "contact_time_normalised": contact,
         "first_contact_normalised": contact,
-        "peak_time_normalised": float(peak_time),
+        "peak_time_normalised": float(impact.peak_time),
         "energy_transferred_fraction": float(1.0 - float(rebound) ** 2) if np.isfinite(rebound) else np.nan,
         "n_modes": 0,
         "time_limit_reached": 0,
@@ -129,14 +121,8 @@ def _asymptote_row(kind: str, zeta: float) -> dict:
 
 
 def reflection_time(target, contact_frequency):
-    """Normalised wave-return time ω d²/c of ``target`` (see ``RESULT_VARIABLES``)."""
-    if target.structure == "beam":
-        distance = target.distance_to_nearest_support()
-        speed = math.sqrt(target.bending_stiffness / target.mass_per_length)
-    else:
-        distance = target.distance_to_nearest_edge()
-        speed = math.sqrt(target.effective_bending_stiffness / target.mass_per_area)
-    return np.asarray(contact_frequency) * distance**2 / speed
+    """Normalised wave-return time ω d²/c of ``target``: ``target.reflection_time(contact_frequency)``."""
+    return target.reflection_time(contact_frequency)
 
 
 def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:
@@ -189,7 +175,7 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     omegas = np.atleast_1d(impactors.contact_frequency)
     masses = np.atleast_1d(impactors.impactor_mass)
     stiffnesses = np.atleast_1d(impactors.contact_stiffness)
-    reflections = np.atleast_1d(reflection_time(target, omegas))
+    reflections = np.atleast_1d(target.reflection_time(omegas))
     cap = frequency_cap(structure)
     wanted = settings.cutoff_ratio * omegas
     if table is None:
@@ -199,7 +185,7 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
         if wanted[k] > cap:
-            asymptote = _asymptote_row(structure.kind, zetas[k])
+            asymptote = _asymptote_row(target, zetas[k])
             if reflections[k] >= ASYMPTOTE_REFLECTION_FACTOR * asymptote["peak_time_normalised"]:
                 rows.append(exact_point(row | asymptote))
                 continue

@@ -11,11 +11,17 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-__all__ = ["ModalBasis", "Target"]
+__all__ = ["InfiniteImpact", "ModalBasis", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
+
+#: Relative size (of the static compliance) of a negative residual compliance that is
+#: treated as round-off and clipped to zero; anything more negative means wrong modes.
+RESIDUAL_ROUND_OFF = 1e-9
+#: Modes with ``φ_j² ≤ PARTICIPATION_THRESHOLD · max φ²`` do not take part in an impact.
+PARTICIPATION_THRESHOLD = 1e-24
 
 
 @dataclass(frozen=True)
@@ -86,6 +92,77 @@ class ModalBasis:
         object.__setattr__(basis, "damping_ratios", np.ascontiguousarray(damping_ratios))
         return basis
 
+    @classmethod
+    def from_modes(cls, frequencies, participation, static_compliance: float,
+                   damping_ratios=None, *, retained_compliance: float | None = None) -> "ModalBasis":
+        """The basis of some modes of a target whose exact static compliance is known.
+
+        The residual compliance is ``static_compliance − retained`` [m/N], with
+        ``retained = Σ φ_j²/ω_j²`` over the elastic modes given (:attr:`retained_compliance`)
+        unless ``retained_compliance`` is passed (a Mindlin plate counts the classical
+        compliance of its retained half-wave pairs). A negative residual smaller than
+        :data:`RESIDUAL_ROUND_OFF` times the static compliance is round-off and set to 0.
+
+        Parameters
+        ----------
+        frequencies, participation, damping_ratios
+            As the attributes of :class:`ModalBasis` [rad/s], [kg^-1/2], [-].
+        static_compliance : float
+            Exact static point compliance [m/N] of the target at the impact point.
+        retained_compliance : float, optional
+            Static compliance [m/N] counted as carried by the given modes.
+
+        Raises
+        ------
+        RuntimeError
+            When the retained compliance exceeds the static one by more than round-off
+            (the modes are wrong).
+        """
+        basis = cls(frequencies, participation, 0.0, damping_ratios)
+        retained = basis.retained_compliance if retained_compliance is None else float(retained_compliance)
+        residual = static_compliance - retained
+        if residual < 0:
+            if residual < -RESIDUAL_ROUND_OFF * static_compliance:
+                raise RuntimeError(
+                    f"retained modal compliance {retained:.12e} m/N exceeds the static "
+                    f"compliance {static_compliance:.12e} m/N: the modes are wrong")
+            residual = 0.0
+        return cls.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
+
+    def truncate(self, max_frequency: float, min_modes: int = 1) -> "ModalBasis":
+        """The modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``, if present).
+
+        The static compliance ``φ_j²/ω_j²`` of the elastic modes left out is added to the
+        residual compliance, so retained + residual stays the target's static compliance
+        (residual-flexibility correction). The frequencies must be ascending. The left-out
+        compliances are summed from the highest mode down (smallest terms first).
+        """
+        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
+        count = min(max(count, int(min_modes)), self.size)
+        if count == self.size:
+            return self
+        frequencies = self.frequencies[count:]
+        dropped = np.zeros_like(frequencies)
+        elastic = frequencies > 0
+        dropped[elastic] = self.participation[count:][elastic] ** 2 / frequencies[elastic] ** 2
+        residual = float(np.cumsum(dropped[::-1])[-1]) + self.residual_compliance
+        return ModalBasis.from_validated(self.frequencies[:count], self.participation[:count],
+                                         residual, self.damping_ratios[:count])
+
+    def participating(self) -> "ModalBasis":
+        """The modes that take part in an impact at the impact point (same residual).
+
+        A mode with ``φ_j² ≤`` :data:`PARTICIPATION_THRESHOLD` ``· max φ²`` is never
+        excited by the contact force (e.g. antisymmetric modes at a centre impact); it is
+        dropped and its (negligible) compliance is not moved to the residual.
+        """
+        squares = self.participation**2
+        significant = squares > PARTICIPATION_THRESHOLD * max(float(np.max(squares, initial=0.0)), 1e-300)
+        if np.all(significant):
+            return self
+        return ModalBasis.from_validated(self.frequencies[significant], self.participation[significant],
+                                         self.residual_compliance, self.damping_ratios[significant])
+
     @property
     def size(self) -> int:
         """Number of retained modes."""
@@ -96,6 +173,30 @@ class ModalBasis:
         """Static compliance [m/N] of the retained elastic modes, ``Σ φ_j²/ω_j²``."""
         elastic = self.frequencies > 0
         return float(np.sum(self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2))
+
+
+class InfiniteImpact(NamedTuple):
+    """Linear-contact impact on the infinite structure of a target's kind (normalised).
+
+    Forces by ``m_i V0 ω``, times by ``1/ω`` and velocities by ``V0`` (ω the contact
+    frequency sqrt(K/m_i)); exact until the first wave returns from a boundary.
+
+    Attributes
+    ----------
+    peak_force : float
+        F̄max [-].
+    peak_time : float
+        ω t of the peak [-].
+    contact_time : float
+        ω t_c of the separation [-] (NaN if the impactor never separates).
+    rebound_velocity : float
+        Impactor velocity at separation over V0 [-] (NaN if there is no separation).
+    """
+
+    peak_force: float
+    peak_time: float
+    contact_time: float
+    rebound_velocity: float
 
 
 class Target(ABC):
@@ -129,3 +230,25 @@ class Target(ABC):
     @abstractmethod
     def impactor_mass_for(self, loss_factor, contact_stiffness):
         """Impactor mass m_i [kg] giving ``loss_factor`` ζ with contact stiffness K [N/m]."""
+
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] to the
+        boundary whose reflection comes back first and ``c = sqrt(bending stiffness /
+        mass per length or area)`` [m²/s]. Finite structures (beams, plates) override it.
+        """
+        raise NotImplementedError(f"{type(self).__name__} has no wave-return time")
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force F̄∞(ζ) [-] on the infinite structure of this kind.
+
+        ``loss_factor`` ζ [-] may be an array. Finite structures override it.
+        """
+        raise NotImplementedError(f"{cls.__name__} has no infinite-structure asymptote")
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """The whole infinite-structure impact at one loss factor ζ [-] (:class:`InfiniteImpact`)."""
+        raise NotImplementedError(f"{cls.__name__} has no infinite-structure asymptote")

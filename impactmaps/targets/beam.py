@@ -28,8 +28,9 @@ printed eq. 38), from :mod:`impactmaps.dimensionless`.
 
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -41,17 +42,17 @@ from .._checks import (
     require_positive,
 )
 from ..dimensionless import impactor_mass_for_beam, loss_factor_beam
+from ..solvers import asymptotes
 from . import beam_modes
-from .base import ModalBasis, Target
-from .beam_modes import SUPPORTS, THEORIES, BeamSection
+from .base import InfiniteImpact, ModalBasis, Target
+from .beam_modes import BeamSection
+from .options import BEAM_SUPPORTS as SUPPORTS
+from .options import BEAM_THEORIES as THEORIES
 
 __all__ = ["Beam", "SUPPORTS", "THEORIES", "MIN_SLENDERNESS"]
 
 #: Smallest length-to-height ratio accepted (beam theory is meaningless below it).
 MIN_SLENDERNESS = 2.0
-
-#: Relative size of a negative residual compliance treated as round-off and clipped.
-_RESIDUAL_ROUND_OFF = 1e-9
 
 
 def _scalar(name: str, value, unit: str = "") -> float:
@@ -103,7 +104,8 @@ class Beam(Target):
     -----
     Build beams of a material with :meth:`rectangular` or of a laminate with
     :meth:`from_laminate`. The dataclass is frozen and hashable; finite-element modal
-    solutions are cached per section (not per impact point).
+    solutions are cached per section and mesh (not per impact point), the bases of
+    :meth:`modes` per beam and cut-off (bounded caches of pure functions).
     """
 
     structure: ClassVar[str] = "beam"
@@ -119,7 +121,6 @@ class Beam(Target):
     damping_ratio: float = 0.0
     width: float | None = None
     height: float | None = None
-    _bases: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         require_choice("theory", self.theory, THEORIES)
@@ -291,6 +292,39 @@ class Beam(Target):
         """
         return min(self.impact_position, self.length - self.impact_position)
 
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] from x0 to
+        the nearest clamped or simply supported end (:meth:`distance_to_nearest_support`),
+        ``c = sqrt(bD11/m')`` [m²/s] (so that ``ω d²/c`` is d² over the flexural
+        wavelength scale at ω).
+        """
+        distance = self.distance_to_nearest_support()
+        speed = math.sqrt(self.bending_stiffness / self.mass_per_length)
+        return np.asarray(contact_frequency) * distance**2 / speed
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force on the infinite beam F̄∞(ζ) [-] (seed 001 eq 36).
+
+        From :func:`impactmaps.solvers.asymptotes.infinite_beam_peak`, evaluated once per
+        distinct value of ``loss_factor`` ζ [-] (scalar or array; result of its shape).
+        """
+        zeta = np.asarray(loss_factor, dtype=float)
+        unique, inverse = np.unique(zeta, return_inverse=True)
+        peaks = np.asarray(asymptotes.infinite_beam_peak(unique), dtype=float)
+        return peaks[inverse].reshape(zeta.shape)
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """Impact on the infinite beam at loss factor ζ [-] (normalised; :class:`InfiniteImpact`)."""
+        contact = asymptotes.infinite_beam_contact_time(loss_factor)
+        rebound = (asymptotes.infinite_beam_impactor_velocity(contact, loss_factor)
+                   if np.isfinite(contact) else np.nan)
+        return InfiniteImpact(asymptotes.infinite_beam_peak(loss_factor),
+                              asymptotes.infinite_beam_peak_time(loss_factor), contact, rebound)
+
     def flexural_wave_speed(self, angular_frequency):
         """Euler flexural phase speed ``c_B = (bD11/m')^{1/4} sqrt(ω)`` [m/s] at ω [rad/s]."""
         require_nonnegative("angular_frequency", angular_frequency, "rad/s")
@@ -327,36 +361,12 @@ class Beam(Target):
         Participation ``φ_j = W_j(x0)`` of the mass-normalised modes
         (``∫ (ρA W_i W_j + ρI Ψ_i Ψ_j) dx = δ_ij``). ``residual_compliance`` is the exact
         static compliance at x0 minus ``Σ φ_j²/ω_j²`` over the retained elastic modes
-        (round-off negatives clipped to 0). Free–free beams include their two rigid-body
-        modes (ω = 0, undamped). The basis is kept (a few per beam) for repeated calls
-        with the same cut-off, e.g. velocity sweeps on one physical target.
+        (:meth:`ModalBasis.from_modes`). Free–free beams include their two rigid-body
+        modes (ω = 0, undamped). The basis depends on the arguments only; the last few
+        are kept (bounded cache) for repeated calls with the same cut-off, e.g. velocity
+        sweeps on one physical target.
         """
-        key = (float(max_frequency), min_modes)
-        cached = self._bases.get(key)
-        if cached is not None:
-            return cached
-        basis = self._modes(max_frequency, min_modes)
-        if len(self._bases) >= 8:
-            self._bases.clear()
-        self._bases[key] = basis
-        return basis
-
-    def _modes(self, max_frequency, min_modes) -> ModalBasis:
-        mode_set = self.mode_set(max_frequency, min_modes)
-        frequencies = mode_set.frequencies
-        participation = mode_set.deflection([self.impact_position])[0]
-        elastic = frequencies > 0
-        retained = float(np.sum(participation[elastic] ** 2 / frequencies[elastic] ** 2))
-        static = self.static_compliance()
-        residual = static - retained
-        if residual < 0:
-            if residual < -_RESIDUAL_ROUND_OFF * static:
-                raise RuntimeError(
-                    f"retained modal compliance {retained!r} exceeds the static compliance "
-                    f"{static!r} m/N of {self!r}: the modes are wrong")
-            residual = 0.0
-        damping = np.where(elastic, self.damping_ratio, 0.0)
-        return ModalBasis(frequencies, participation, residual, damping)
+        return _beam_basis(self, float(max_frequency), min_modes)
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes).
@@ -397,3 +407,13 @@ class Beam(Target):
         """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (bD11/K)^{1/3}`` [kg] (PHYSICS.md 4)."""
         return impactor_mass_for_beam(loss_factor, contact_stiffness, self.mass_per_length,
                                       self.bending_stiffness)
+
+
+@functools.lru_cache(maxsize=8)
+def _beam_basis(beam: Beam, max_frequency: float, min_modes) -> ModalBasis:
+    """:meth:`Beam.modes` (a pure function of its arguments, cached)."""
+    mode_set = beam.mode_set(max_frequency, min_modes)
+    frequencies = mode_set.frequencies
+    damping = np.where(frequencies > 0, beam.damping_ratio, 0.0)
+    return ModalBasis.from_modes(frequencies, mode_set.deflection([beam.impact_position])[0],
+                                 beam.static_compliance(), damping)

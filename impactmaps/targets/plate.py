@@ -17,9 +17,10 @@ under a point load diverges logarithmically, so the Mindlin point stiffness is z
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -36,13 +37,13 @@ from ..dimensionless import (
     impactor_mass_for_plate,
     loss_factor_plate,
 )
+from ..solvers import asymptotes
 from . import ritz
-from .base import ModalBasis, Target
+from .base import InfiniteImpact, ModalBasis, Target
+from .options import PLATE_THEORIES
 
-__all__ = ["Plate", "navier_static_compliance", "PLATE_THEORIES", "STATIC_RITZ_FUNCTIONS"]
-
-#: Plate theories: classical (shear-rigid, no rotary inertia) and Mindlin (first-order shear).
-PLATE_THEORIES = ("kirchhoff", "mindlin")
+__all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "PLATE_THEORIES",
+           "STATIC_RITZ_FUNCTIONS"]
 
 #: Ritz functions per direction for the static point compliance of non-SSSS plates.
 #: Must be ≥ :data:`impactmaps.targets.ritz.MAX_FUNCTIONS` so that the static basis
@@ -230,7 +231,6 @@ class Plate(Target):
     impact_point: tuple | None = None
     shear_correction: float = 5.0 / 6.0
     damping_ratio: float = 0.0
-    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         require_positive("length_x", self.length_x, "m")
@@ -281,6 +281,9 @@ class Plate(Target):
         require_in_range("impact_point[1] (y0)", y0, 0.0, self.length_y,
                          low_inclusive=False, high_inclusive=False, unit="m")
         object.__setattr__(self, "impact_point", (x0, y0))
+        for name in ("length_x", "length_y", "thickness", "D11", "D22", "D12", "D66", "A44", "A55",
+                     "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio"):
+            object.__setattr__(self, name, float(getattr(self, name)))  # hashable plain numbers
 
     # -- constructors -------------------------------------------------------------
     @classmethod
@@ -347,6 +350,39 @@ class Plate(Target):
         x0, y0 = self.impact_point
         return min(x0, self.length_x - x0, y0, self.length_y - y0)
 
+    def reflection_time(self, contact_frequency):
+        """Normalised time ω d²/c [-] of the first wave return to the impact point.
+
+        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] to the
+        nearest edge (:meth:`distance_to_nearest_edge`), ``c = sqrt(D*/ρh)`` [m²/s].
+        """
+        distance = self.distance_to_nearest_edge()
+        speed = math.sqrt(self.effective_bending_stiffness / self.mass_per_area)
+        return np.asarray(contact_frequency) * distance**2 / speed
+
+    @classmethod
+    def infinite_structure_peak(cls, loss_factor):
+        """Normalised peak force on the infinite plate F̄∞(ζ) [-] (seed 001 eq 32).
+
+        From :func:`impactmaps.solvers.asymptotes.infinite_plate_peak`; ``loss_factor``
+        ζ [-] scalar or array.
+        """
+        return np.asarray(asymptotes.infinite_plate_peak(np.asarray(loss_factor, dtype=float)),
+                          dtype=float)
+
+    @classmethod
+    def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
+        """Impact on the infinite plate at loss factor ζ [-] (normalised; :class:`InfiniteImpact`).
+
+        On the infinite plate the plate velocity under the load is proportional to the
+        force, zero at separation, so the rebound velocity is the indentation rate then.
+        """
+        contact = asymptotes.infinite_plate_contact_time(loss_factor)
+        rebound = (asymptotes.infinite_plate_indentation_rate(contact, loss_factor)
+                   if np.isfinite(contact) else np.nan)
+        return InfiniteImpact(asymptotes.infinite_plate_peak(loss_factor),
+                              asymptotes.infinite_plate_peak_time(loss_factor), contact, rebound)
+
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
         if self.edges == "SSSS":
@@ -371,9 +407,8 @@ class Plate(Target):
         CFCF/CCSS/CFFF), against 2e-3 – 5e-3 for the plain Ritz value. Used for λ also when
         ``theory="mindlin"`` (the Mindlin point-load deflection is infinite).
         """
-        if "static" not in self._cache:
-            self._cache["static"] = self._classical_static_compliance()
-        return self._cache["static"]
+        return classical_static_compliance(self.length_x, self.length_y, self.D11, self.D22,
+                                           self.D12, self.D66, self.edges, self.impact_point)
 
     def loss_factor(self, impactor_mass, contact_stiffness):
         """Plate loss factor ζ = (1/16) sqrt(m_i K/(ρh D*)) [-] (seed 001 eq 34).
@@ -460,15 +495,7 @@ class Plate(Target):
         -------
         ModalBasis
         """
-        key = ("basis", float(max_frequency), min_modes)
-        basis = self._cache.get(key)
-        if basis is None:
-            frequencies, participation, residual, _ = self._modal_solution(max_frequency, min_modes)
-            basis = ModalBasis(frequencies=frequencies, participation=participation,
-                               residual_compliance=residual,
-                               damping_ratios=np.full(frequencies.shape, float(self.damping_ratio)))
-            self._cache[key] = basis  # beside the modal solution it is made of
-        return basis
+        return _plate_modes(self, *_checked_request(max_frequency, min_modes))[0]
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised transverse mode shapes w_j at ``points`` [kg^-1/2].
@@ -490,37 +517,9 @@ class Plate(Target):
             raise ValueError(f"points must have shape (n_points, 2), got {points.shape}")
         require_in_range("points x", points[:, 0], 0.0, self.length_x, unit="m")
         require_in_range("points y", points[:, 1], 0.0, self.length_y, unit="m")
-        _, _, _, shape_function = self._modal_solution(max_frequency, min_modes)
-        return shape_function(points)
+        return _plate_modes(self, *_checked_request(max_frequency, min_modes))[1](points)
 
     # -- implementation -----------------------------------------------------------------
-    def _classical_static_compliance(self) -> float:
-        navier = navier_static_compliance(self.length_x, self.length_y, self.D11, self.D22,
-                                          self.D12, self.D66, self.impact_point)
-        if self.edges == "SSSS":
-            return navier
-        args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66)
-        n = max(STATIC_RITZ_FUNCTIONS, ritz.MAX_FUNCTIONS)  # must contain every modal basis
-        ritz_edges = ritz.ritz_static_compliance(*args, self.edges, self.impact_point, n, n)
-        ritz_ssss = ritz.ritz_static_compliance(*args, "SSSS", self.impact_point, n, n)
-        return ritz_edges + (navier - ritz_ssss)
-
-    def _modal_solution(self, max_frequency, min_modes):
-        require_nonnegative("max_frequency", max_frequency, "rad/s")
-        require_in_range("min_modes", min_modes, 1, math.inf)
-        if int(min_modes) != min_modes:
-            raise ValueError(f"min_modes = {min_modes!r} is invalid: must be an integer >= 1")
-        key = ("modes", float(max_frequency), int(min_modes))
-        if key not in self._cache:
-            if self.edges == "SSSS":
-                result = self._navier_modes(float(max_frequency), int(min_modes))
-            else:
-                result = self._ritz_modes(float(max_frequency), int(min_modes))
-            if len(self._cache) > 8:
-                self._cache.clear()
-            self._cache[key] = result
-        return self._cache[key]
-
     # Navier ------------------------------------------------------------------------
     def _kirchhoff_eigenvalues(self, m, n):
         """ω² [rad²/s²] of the classical SSSS plate for half-wave numbers m, n."""
@@ -657,19 +656,18 @@ class Plate(Target):
         a, b = self.length_x, self.length_y
         participation = amplitude * _sin_pi(m * x0 / a) * _sin_pi(n * y0 / b)
 
-        static = self.static_compliance()
-        if self.theory == "kirchhoff":
-            retained = float(np.sum(participation**2 / omega**2))
-        else:
+        retained = None  # Kirchhoff: Σ φ²/ω² of the modes themselves
+        if self.theory == "mindlin":
             classical = (4.0 / self.mass) * (_sin_pi(m * x0 / a) * _sin_pi(n * y0 / b)) ** 2
             retained = float(np.sum(classical / self._kirchhoff_eigenvalues(m.astype(float), n.astype(float))))
-        residual = _checked_residual(static, retained)
+        basis = ModalBasis.from_modes(omega, participation, self.static_compliance(),
+                                      self._damping_ratios(omega), retained_compliance=retained)
 
         def shape_function(points):
             return amplitude[None, :] * _sin_pi(points[:, :1] * m[None, :] / a) * _sin_pi(
                 points[:, 1:] * n[None, :] / b)
 
-        return omega, participation, residual, shape_function
+        return basis, shape_function
 
     # Ritz ----------------------------------------------------------------------------
     def _ritz_modes(self, max_frequency, min_modes):
@@ -697,13 +695,16 @@ class Plate(Target):
                 "basis resolves; the higher modes returned are not converged", stacklevel=4)
         omega = np.asarray(solution.frequencies[:count])
         participation = solution.mode_shapes(np.array([self.impact_point]), count)[0]
-        static = self.static_compliance()
-        residual = _checked_residual(static, float(np.sum(participation**2 / omega**2)))
+        basis = ModalBasis.from_modes(omega, participation, self.static_compliance(),
+                                      self._damping_ratios(omega))
 
         def shape_function(points):
             return solution.mode_shapes(points, count)
 
-        return omega, participation, residual, shape_function
+        return basis, shape_function
+
+    def _damping_ratios(self, frequencies):
+        return np.full(frequencies.shape, float(self.damping_ratio))
 
 
 def _last_index_within(frequency_of_index, size, limit):
@@ -728,13 +729,35 @@ def _last_index_within(frequency_of_index, size, limit):
     return low
 
 
-def _checked_residual(static, retained) -> float:
-    """``static − retained`` [m/N], ≥ 0; tiny negative rounding is set to zero."""
-    residual = static - retained
-    if residual < 0:
-        if residual < -1e-9 * static:
-            raise RuntimeError(
-                f"retained modal compliance {retained:.12e} m/N exceeds the static compliance "
-                f"{static:.12e} m/N: the modal basis is inconsistent")
-        residual = 0.0
-    return residual
+def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
+    """(cut-off [rad/s], mode count) of a request for modes, validated."""
+    require_nonnegative("max_frequency", max_frequency, "rad/s")
+    require_in_range("min_modes", min_modes, 1, math.inf)
+    if int(min_modes) != min_modes:
+        raise ValueError(f"min_modes = {min_modes!r} is invalid: must be an integer >= 1")
+    return float(max_frequency), int(min_modes)
+
+
+@functools.lru_cache(maxsize=8)
+def _plate_modes(plate: Plate, max_frequency: float, min_modes: int):
+    """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
+    if plate.edges == "SSSS":
+        return plate._navier_modes(max_frequency, min_modes)
+    return plate._ritz_modes(max_frequency, min_modes)
+
+
+@functools.lru_cache(maxsize=32)
+def classical_static_compliance(length_x, length_y, D11, D22, D12, D66, edges, impact_point) -> float:
+    """Classical point compliance [m/N] of a plate with any edges (:meth:`Plate.static_compliance`).
+
+    Parameters as the fields of :class:`Plate` (sides [m], bending stiffnesses [N·m], the
+    edge code and the impact point (x0, y0) [m]); cached (a pure function of numbers).
+    """
+    navier = navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_point)
+    if edges == "SSSS":
+        return navier
+    args = (length_x, length_y, D11, D22, D12, D66)
+    n = max(STATIC_RITZ_FUNCTIONS, ritz.MAX_FUNCTIONS)  # must contain every modal basis
+    ritz_edges = ritz.ritz_static_compliance(*args, edges, impact_point, n, n)
+    ritz_ssss = ritz.ritz_static_compliance(*args, "SSSS", impact_point, n, n)
+    return ritz_edges + (navier - ritz_ssss)

@@ -1,0 +1,99 @@
+"""Simply supported beams, every theory: closed-form modes (PHYSICS.md 3.2)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .beam_section import (
+    BeamSection,
+    ModeSet,
+    as_points,
+    cutoff_with_min_modes,
+    largest_wavenumber,
+)
+
+__all__ = ["simply_supported_modes"]
+
+
+class _SineModes(ModeSet):
+    """W_j(x) = A_j sin(k_j x), Ψ_j(x) = B_j cos(k_j x)."""
+
+    def __init__(self, frequencies, wavenumbers, deflection_amplitudes, rotation_amplitudes):
+        order = np.argsort(frequencies, kind="stable")
+        self.frequencies = np.asarray(frequencies, dtype=float)[order]
+        self.wavenumbers = np.asarray(wavenumbers, dtype=float)[order]
+        self.deflection_amplitudes = np.asarray(deflection_amplitudes, dtype=float)[order]
+        self.rotation_amplitudes = np.asarray(rotation_amplitudes, dtype=float)[order]
+
+    def deflection(self, points, count=None):
+        n = self._count(count)
+        x = as_points(points)[:, None]
+        return self.deflection_amplitudes[:n] * np.sin(self.wavenumbers[:n] * x)
+
+    def rotation(self, points, count=None):
+        n = self._count(count)
+        x = as_points(points)[:, None]
+        return self.rotation_amplitudes[:n] * np.cos(self.wavenumbers[:n] * x)
+
+
+def simply_supported_modes(section: BeamSection, max_frequency: float,
+                           min_modes: int = 1) -> ModeSet:
+    """All modes of a simply supported beam with ω ≤ ``max_frequency`` (≥ ``min_modes``).
+
+    ``w = W sin(k_n x)``, ``ψ = Ψ cos(k_n x)``, ``k_n = nπ/L`` (PHYSICS.md 3.2).
+
+    * Euler: ``ω_n = k_n² sqrt(EI/ρA)``, ``W = sqrt(2/(ρA L))``, ``Ψ = −k_n W``.
+    * Rayleigh: ``ω_n² = EI k_n⁴/(ρA + ρI k_n²)``, ``Ψ = −k_n W``,
+      ``(ρA + ρI k_n²) W² L/2 = 1``.
+    * Timoshenko: per n the 2×2 problem ``(K_n − ω² M_n)[Ψ, W] = 0`` solved in closed
+      form in the symmetric form ``M_n^{-1/2} K_n M_n^{-1/2}`` (rotation by the angle θ,
+      ``tan 2θ = 2 a12/(a11 − a22)``), the lower eigenvalue from the determinant
+      ``EI S k⁴/(ρI ρA)`` divided by the upper one (no cancellation for slender beams).
+      Both branches (flexural and shear) are returned, plus the n = 0 thickness-shear
+      mode ``w ≡ 0``, ``ψ = const``, ``ω² = S/ρI`` (it satisfies w = 0 and M = 0 at both
+      ends; its deflection is zero everywhere, so it never takes part in an impact).
+
+    The number of half-waves is fixed from :func:`largest_wavenumber` — no Python loop
+    over modes.
+    """
+    L = section.length
+    EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
+    k_max = float(largest_wavenumber(section, max_frequency))
+    n_count = max(int(math.floor(k_max * L / math.pi * (1.0 + 1e-12))), int(min_modes), 1)
+    n = np.arange(1, n_count + 1, dtype=float)
+    k = n * math.pi / L
+    if section.theory in ("euler", "rayleigh"):
+        inertia = rA + rI * k**2
+        omega = np.sqrt(EI / inertia) * k**2
+        W = np.sqrt(2.0 / (L * inertia))
+        modes = _SineModes(omega, k, W, -k * W)
+    else:
+        S = section.shear_stiffness
+        a11 = (EI * k**2 + S) / rI
+        a22 = S * k**2 / rA
+        a12 = S * k / math.sqrt(rI * rA)
+        half_difference = 0.5 * (a11 - a22)
+        radius = np.hypot(half_difference, a12)
+        upper = 0.5 * (a11 + a22) + radius
+        lower = (EI * S * k**4 / (rI * rA)) / upper
+        theta = 0.5 * np.arctan2(a12, half_difference)
+        c, s = np.cos(theta), np.sin(theta)
+        scale = math.sqrt(2.0 / L)
+        # upper (shear) branch: v = (cos θ, sin θ); lower (flexural): v = (−sin θ, cos θ)
+        frequencies = np.concatenate([np.sqrt(lower), np.sqrt(upper), [math.sqrt(S / rI)]])
+        wavenumbers = np.concatenate([k, k, [0.0]])
+        W = np.concatenate([c, s, [0.0]]) * scale / math.sqrt(rA)
+        Psi = np.concatenate([-s, c, [math.sqrt(0.5)]]) * scale / math.sqrt(rI)
+        modes = _SineModes(frequencies, wavenumbers, W, Psi)
+    return _trim(modes, max_frequency, min_modes)
+
+
+def _trim(modes: _SineModes, max_frequency, min_modes) -> _SineModes:
+    """Keep the modes with ω ≤ max(max_frequency, ω of the min_modes-th mode)."""
+    cutoff = cutoff_with_min_modes(modes.frequencies, max_frequency, min_modes)
+    keep = int(np.searchsorted(modes.frequencies, cutoff, side="right"))
+    return _SineModes(modes.frequencies[:keep], modes.wavenumbers[:keep],
+                      modes.deflection_amplitudes[:keep], modes.rotation_amplitudes[:keep])
+
