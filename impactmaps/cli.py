@@ -168,9 +168,10 @@ def _point_defaults(args) -> None:
 
 def _structure_from_args(args):
     from .maps.structures import MapStructure
+    from .targets.options import STRUCTURE_KINDS
 
     kind, _, supports = args.target.partition("-")
-    if kind not in ("beam", "plate") or not supports:
+    if kind not in STRUCTURE_KINDS or not supports:
         raise ValueError(f"--target = {args.target!r} is not known: use beam-SUPPORTS (e.g. beam-ss, beam-cc) "
                          "or plate-EDGES (e.g. plate-ss, plate-ssss, plate-cccc)")
     if kind == "beam":
@@ -199,7 +200,6 @@ def _settings_from_args(args):
 
 def _cmd_point(args) -> dict:
     from .maps.regimes import classify, infinite_structure_peak, quasi_static_peak
-    from .maps.sweep import reflection_time
     from .solvers.modal import simulate_normalised
 
     structure = _structure_from_args(args)
@@ -208,7 +208,7 @@ def _cmd_point(args) -> dict:
     plot = getattr(args, "plot", None)
     result, converged = _run_checked(simulate_normalised, target, args.zeta, args.lambda_, settings=settings,
                                      record=plot is not None)
-    reflection = float(reflection_time(target, result.contact_frequency))
+    reflection = float(target.reflection_time(result.contact_frequency))
     regime = str(classify(result.fmax_normalised, args.zeta, args.lambda_, structure.kind,
                           peak_time=result.peak_time_normalised, reflection_time=reflection,
                           tolerance=getattr(args, "tolerance", 0.1)))
@@ -443,6 +443,8 @@ class _Parser(argparse.ArgumentParser):
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from . import __version__
+    from .maps.lookup import SHIPPED_MAPS
+    from .targets.options import STRUCTURE_KINDS
 
     parser = _Parser(prog="impactmaps", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
@@ -475,15 +477,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("classify", "regime of an impact at (ζ, λ)", _cmd_classify)
     p.add_argument("--zeta", type=float, required=True)
     p.add_argument("--lambda", dest="lambda_", type=float, required=True)
-    p.add_argument("--structure", choices=("beam", "plate"), required=True)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
     p.add_argument("--tolerance", type=float, default=0.1,
                    help="relative distance to an asymptote that counts as on it, in (0, 1] (default 0.1)")
     p.add_argument("--from-map", action="store_true", help="interpolate the shipped map instead of simulating")
     _point_arguments(p, with_target=False)
 
     p = add("lookup", "F̄max and regime from the shipped maps (no simulation)", _cmd_lookup)
-    p.add_argument("--structure", choices=("beam", "plate"), required=True)
-    p.add_argument("--theory", choices=("euler", "timoshenko", "kirchhoff", "mindlin"), required=True)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
+    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}), required=True)
     p.add_argument("--zeta", type=float)
     p.add_argument("--lambda", dest="lambda_", type=float)
     p.add_argument("--case", type=Path, help="a physical case file: gives the peak force in newtons too")

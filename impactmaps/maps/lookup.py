@@ -19,6 +19,7 @@ import xarray as xr
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_choice, require_positive
+from ..targets.options import STRUCTURE_KINDS
 from .regimes import classify, quasi_static_peak
 
 __all__ = ["SHIPPED_MAPS", "LookupResult", "load_shipped_map", "lookup", "design_formula", "markdown_table"]
@@ -75,7 +76,7 @@ class LookupResult:
 @functools.lru_cache(maxsize=8)
 def load_shipped_map(structure: str, theory: str) -> xr.Dataset:
     """The shipped map for ``structure`` in {"beam", "plate"} and its ``theory``."""
-    require_choice("structure", structure, ("beam", "plate"))
+    require_choice("structure", structure, STRUCTURE_KINDS)
     theories = [t for (s, t) in SHIPPED_MAPS if s == structure]
     require_choice("theory", theory, theories)
     name = SHIPPED_MAPS[(structure, theory)]

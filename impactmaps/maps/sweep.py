@@ -79,11 +79,16 @@ def frequency_cap(structure: MapStructure, max_modes: int = MAX_MODES) -> float:
     """
     target = structure.build()
     frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
+    count = 0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # probing only
-        while target.modes(2.0 * frequency, min_modes=1).size <= max_modes:
-            frequency *= 2.0
-    return frequency
+        while True:
+            more = target.modes(2.0 * frequency, min_modes=1).size
+            # stop at the cap, or where the target has no more modes to give (a
+            # finite-element beam stops at its largest model): the probe would not end
+            if more > max_modes or more <= count:
+                return frequency
+            count, frequency = more, 2.0 * frequency
 
 
 @functools.lru_cache(maxsize=8)
@@ -118,11 +123,6 @@ def _asymptote_row(target, zeta: float) -> dict:
         "time_limit_reached": 0,
         "method": METHODS.index("infinite-structure-asymptote"),
     }
-
-
-def reflection_time(target, contact_frequency):
-    """Normalised wave-return time ω d²/c of ``target``: ``target.reflection_time(contact_frequency)``."""
-    return target.reflection_time(contact_frequency)
 
 
 def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:

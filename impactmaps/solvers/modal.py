@@ -27,7 +27,6 @@ import functools
 import warnings
 from dataclasses import asdict, dataclass, replace
 
-import numba
 import numpy as np
 import pandas as pd
 
@@ -176,69 +175,18 @@ def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity:
     return stiffness
 
 
-@numba.njit(cache=True)
-def _truncation(frequencies, participation, max_frequency, min_modes):
-    """(count, compliance of the rest): modes kept by the cut-off of a ModalBasis."""
-    count = 0
-    for j in range(frequencies.shape[0]):
-        if frequencies[j] <= max_frequency:
-            count += 1
-    count = max(count, min(min_modes, frequencies.shape[0]))
-    extra = 0.0
-    for j in range(count, frequencies.shape[0]):
-        if frequencies[j] > 0.0:
-            extra += participation[j] ** 2 / frequencies[j] ** 2
-    return count, extra
-
-
-def _significant(participation):
-    """Mask of the modes that participate at the impact point, or None if all do."""
-    significant, every = _significant_mask(participation)
-    return None if every else significant
-
-
-@numba.njit(cache=True)
-def _significant_mask(participation):
-    """(φ_j² > 1e-24 max φ², whether every mode passes)."""
-    largest = 1e-300
-    for value in participation:
-        largest = max(largest, value * value)
-    mask = np.empty(participation.shape[0], dtype=np.bool_)
-    every = True
-    for j in range(participation.shape[0]):
-        mask[j] = participation[j] ** 2 > 1e-24 * largest
-        every = every and mask[j]
-    return mask, every
-
-
 def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
+    """The participating modes below the cut-off, with the residual the settings ask for."""
+    max_frequency = float(settings.cutoff_ratio * contact_frequency)
     if isinstance(target, ModalBasis):
-        basis = target
-        count, extra = _truncation(basis.frequencies, basis.participation,
-                                   float(settings.cutoff_ratio * contact_frequency), int(settings.min_modes))
-        basis = ModalBasis.from_validated(
-            basis.frequencies[:count],
-            basis.participation[:count],
-            basis.residual_compliance + extra,
-            basis.damping_ratios[:count],
-        )
+        basis = target.truncate(max_frequency, int(settings.min_modes))
     elif isinstance(target, Target):
-        basis = target.modes(settings.cutoff_ratio * contact_frequency, min_modes=settings.min_modes)
+        basis = target.modes(max_frequency, min_modes=settings.min_modes)
     else:
-        raise ValueError(
-            f"target = {target!r} is not a Target or a ModalBasis"
-        )
-    # modes with no participation at the impact point are never excited
-    significant = _significant(basis.participation)
+        raise ValueError(f"target = {target!r} is not a Target or a ModalBasis")
+    basis = basis.participating()  # modes with no motion at the impact point are never excited
     residual = basis.residual_compliance if settings.residual_flexibility else 0.0
-    if significant is None:
-        return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
-    return ModalBasis.from_validated(
-        basis.frequencies[significant],
-        basis.participation[significant],
-        residual,
-        basis.damping_ratios[significant],
-    )
+    return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
 
 
 def simulate(
