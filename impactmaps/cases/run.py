@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 from dataclasses import replace
 from pathlib import Path
 
@@ -13,6 +14,7 @@ from ..contact.sphere import law_for_sphere
 from ..jsonio import dumps, plain
 from ..solvers.modal import reference_contact_stiffness, simulate
 from ..solvers.result import ImpactResult
+from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
 
 __all__ = ["run_case", "case_dimensionless", "case_summary", "write_case_outputs",
@@ -71,7 +73,8 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
     ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
     |target displacement| at the impact point [m]), the dimensionless numbers of
-    :func:`case_dimensionless` and the case identity; NaN (a quantity that does not
+    :func:`case_dimensionless`, ``model_warnings`` (the assumptions of the model the run
+    violates, :func:`impactmaps.validity.validity_warnings`) and the case identity; NaN (a quantity that does not
     exist for this run, e.g. the restitution of a record that ends in contact) becomes
     ``None``.
     """
@@ -82,6 +85,8 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     else:
         summary["max_deflection_m"] = None
     summary.update(case_dimensionless(case))
+    summary["model_warnings"] = validity_warnings(case.sphere, case.target_material, case.law,
+                                                  case.target, result)
     summary.update({
         "case": case.name,
         "target_type": case.target_type,
@@ -112,7 +117,8 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
     result : ImpactResult
         Full result with histories.
     summary : dict
-        :func:`case_summary` of the run (JSON-ready).
+        :func:`case_summary` of the run (JSON-ready); each of its ``model_warnings`` is
+        also issued as a :class:`~impactmaps.validity.ModelValidityWarning`.
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case (build one with load_case or parse_case)")
@@ -121,7 +127,10 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
     else:
         result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
                           settings=case.settings, record=True, time_step=case.time_step)
-    return result, case_summary(case, result)
+    summary = case_summary(case, result)
+    for message in summary["model_warnings"]:
+        warnings.warn(message, ModelValidityWarning, stacklevel=2)
+    return result, summary
 
 
 def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
