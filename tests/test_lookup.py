@@ -110,13 +110,32 @@ def test_fd_command_json_keys(capsys):
 
 
 def test_lookup_carries_the_maps_error_and_status():
-    """A lookup answers with the error band and status of the map points around it: the
+    """A lookup answers with an error band and the status of the map points around it: the
     re-impact-sensitive plate corner (λ = 0.05, ζ ≈ 16–22, two or three impacts whose
-    order flips with the cut-off) is `sensitive` with its spread; a smooth beam point is
-    `converged` with an error far below the 1e-3 tolerance."""
+    order flips with the cut-off) is `sensitive`, its band at least the points' own
+    spread; a smooth beam point is `converged` with a band of a few 1e-3 at most."""
     plate = lookup(17.0, 0.05, structure="plate", theory="kirchhoff")
-    assert plate.status == "sensitive" and 5e-4 < plate.fmax_error < 5e-3
+    assert plate.status == "sensitive" and plate.fmax_error > 5e-4
     beam = lookup(0.1, 1.0, structure="beam", theory="euler")
-    assert beam.status == "converged" and beam.fmax_error < 1e-4
+    assert beam.status == "converged" and beam.fmax_error < 5e-3
     many = lookup([0.1, 17.0], [1.0, 0.05], structure="plate", theory="kirchhoff")
     assert list(many.status) == ["converged", "sensitive"]
+
+
+@pytest.mark.parametrize("structure, theory", [("plate", "kirchhoff"), ("beam", "euler")])
+def test_lookup_band_covers_the_direct_simulation(structure, theory):
+    """The band is the answer: at 25 random points the looked-up F̄max lies within
+    lookup.fmax_error (+ the direct run's own error) of a direct simulation. With the plain
+    h²|f''|/8 interpolation estimate the band missed 16 % of 80 random points on the beam
+    map, hence its safety factor of 4 (lookup.interpolation_error)."""
+    from impactmaps.maps.lookup import SHIPPED_MAPS
+
+    rng = np.random.default_rng(3)
+    zetas = np.exp(rng.uniform(np.log(0.005), np.log(100.0), 25))
+    lambdas = np.exp(rng.uniform(np.log(0.05), np.log(20.0), 25))
+    rows = solve_points(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
+                        list(zip(zetas, lambdas)), ModalSettings())
+    found = lookup(zetas, lambdas, structure=structure, theory=theory)
+    direct = np.array([r["fmax_normalised"] for r in rows])
+    own = np.array([r["fmax_error"] for r in rows])
+    assert np.all(np.abs(found.fmax_normalised - direct) <= found.fmax_error + own)
