@@ -167,7 +167,7 @@ def test_sweep_on_a_local_dask_cluster(tmp_path, capsys):
 
 def test_scheduler_that_cannot_be_reached_exits_2(tmp_path, capsys, monkeypatch):
     pytest.importorskip("distributed")
-    monkeypatch.setattr("impactmaps.cli.SCHEDULER_TIMEOUT_S", 1.0)
+    monkeypatch.setattr("impactmaps.cli.commands_maps.SCHEDULER_TIMEOUT_S", 1.0)
     status = main(["sweep", str(write_config(tmp_path)), "--quiet", "--scheduler", "tcp://127.0.0.1:9"])
     assert status == 2 and "--scheduler" in capsys.readouterr().err
 

@@ -319,6 +319,18 @@ def sweep(
         carries how many of the grid's points are saved.
     """
     settings = settings or ModalSettings()
+    structures, zetas, lambdas, description, digest = _prepare(structures, loss_factors, relative_stiffnesses, settings)
+    dataset = _resume(path, overwrite, digest, description, structures, lambdas, zetas)
+    done = dataset["done"].values.astype(bool)
+    tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
+    results = _Results(dataset, path, save_interval, sum(len(task[3]) for task in tasks), progress)
+    stopped = _run(tasks, settings, executor, max_workers, results)
+    return _finish(results, stopped)
+
+
+# -- the stages of a sweep -------------------------------------------------------------------
+def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSettings):
+    """Check the grid; return it with its description and fingerprint (what a stored result must match)."""
     structures = list(structures)
     if not structures:
         raise ValueError("structures is empty: give at least one MapStructure")
@@ -335,100 +347,138 @@ def sweep(
         "settings": asdict(settings),
         "solver_revision": SOLVER_REVISION,
     }
-    digest = fingerprint(description)
+    return structures, zetas, lambdas, description, fingerprint(description)
+
+
+def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas) -> xr.Dataset:
+    """The stored result at ``path`` if it matches ``digest`` (and not ``overwrite``), else an empty one."""
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
-        if not overwrite:
-            dataset = load_matching(path, digest, description)
-    if dataset is None:
-        dataset = _empty_dataset(structures, lambdas, zetas, description, digest)
-    done = dataset["done"].values.astype(bool)
-    tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
-    pending = sum(len(task[3]) for task in tasks)
+        dataset = None if overwrite else load_matching(path, digest, description)
+    return _empty_dataset(structures, lambdas, zetas, description, digest) if dataset is None else dataset
 
-    arrays = {name: dataset[name].values.copy() for name in (*RESULT_VARIABLES, "done")}
-    methods = set(str(dataset.attrs.get("point_methods", "")).split(",")) - {""}
-    absorbed = [0]
 
-    def absorb(task, rows):
+class _Results:
+    """The arrays of a running sweep: absorbs finished chunks, shows the progress, saves the file."""
+
+    def __init__(self, dataset: xr.Dataset, path, save_interval: float, pending: int, progress: bool):
+        self.dataset, self.path, self.save_interval = dataset, path, save_interval
+        self.arrays = {name: dataset[name].values.copy() for name in (*RESULT_VARIABLES, "done")}
+        self.methods = set(str(dataset.attrs.get("point_methods", "")).split(",")) - {""}
+        self.absorbed = 0
+        from tqdm.auto import tqdm  # imported when a sweep runs, not with the module
+        self.bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
+        self.last_save = time.monotonic()
+
+    def absorb(self, task, rows) -> None:
+        """Store the rows of a finished chunk."""
         _, s_index, l_index, indices, _ = task
         for z_index, row in zip(indices, rows):
             for name in RESULT_VARIABLES:
-                arrays[name][s_index, l_index, z_index] = row[name]
-            arrays["done"][s_index, l_index, z_index] = 1
-            methods.add(METHODS[row["method"]])
-        absorbed[0] += len(indices)
-        bar.update(len(indices))
+                self.arrays[name][s_index, l_index, z_index] = row[name]
+            self.arrays["done"][s_index, l_index, z_index] = 1
+            self.methods.add(METHODS[row["method"]])
+        self.absorbed += len(indices)
+        self.bar.update(len(indices))
 
-    def snapshot() -> xr.Dataset:
-        out = dataset.copy()
-        for name, values in arrays.items():
+    def snapshot(self) -> xr.Dataset:
+        """The dataset with every point absorbed so far."""
+        out = self.dataset.copy()
+        for name, values in self.arrays.items():
             out[name] = (out[name].dims, values, out[name].attrs)
-        out.attrs["point_methods"] = ",".join(sorted(methods))
-        out.attrs["complete"] = int(bool(arrays["done"].all()))
+        out.attrs["point_methods"] = ",".join(sorted(self.methods))
+        out.attrs["complete"] = int(bool(self.arrays["done"].all()))
         return out
 
-    def save(final=False):
-        nonlocal last_save
-        if path is not None and absorbed[0] and (final or time.monotonic() - last_save >= save_interval):
-            save_atomic(snapshot(), path)
-            last_save = time.monotonic()
+    def save(self, final: bool = False) -> None:
+        """Write the file atomically, at most every ``save_interval`` seconds unless ``final``."""
+        if self.path is not None and self.absorbed and (
+                final or time.monotonic() - self.last_save >= self.save_interval):
+            save_atomic(self.snapshot(), self.path)
+            self.last_save = time.monotonic()
 
-    from tqdm.auto import tqdm
+    def interrupted(self) -> SweepInterrupted:
+        """The exception saying how many of the grid's points are saved."""
+        done = self.arrays["done"]
+        return SweepInterrupted(int(done.sum()), done.size, self.path)
 
-    bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
+
+def _run(tasks, settings: ModalSettings, executor: Executor | None, max_workers: int | None,
+         results: _Results) -> bool:
+    """Solve the chunks, absorbing and saving as they finish (and at the end, even if a chunk
+    fails); True if Ctrl-C stopped the run (the chunk in hand finishes first)."""
     own_executor = None
-    last_save = time.monotonic()
-    stop = []  # Ctrl-C: finish the chunk in hand, save, raise SweepInterrupted
+    stop = []
+    previous = _defer_interrupts(stop)
+    try:
+        workers = max_workers or os.cpu_count() or 1
+        if executor is None and (workers == 1 or len(tasks) <= 1):
+            _run_inline(tasks, settings, results, stop)
+        elif tasks:
+            if executor is None:
+                # workers ignore Ctrl-C: the parent saves and stops them
+                own_executor = executor = ProcessPoolExecutor(
+                    max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
+            _run_on_executor(executor, tasks, settings, results, stop)
+    except KeyboardInterrupt:
+        stop.append(signal.SIGINT)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
+        results.bar.close()
+        if own_executor is not None:
+            own_executor.shutdown(wait=False, cancel_futures=True)
+        results.save(final=True)
+    return bool(stop)
+
+
+def _defer_interrupts(stop: list):
+    """Make a first Ctrl-C append to ``stop`` (a second raises); the replaced handler, or None (not
+    installed outside the main thread or over a custom handler)."""
 
     def on_interrupt(signum, frame):
         if stop:  # a second Ctrl-C stops at once
             raise KeyboardInterrupt
         stop.append(signum)
 
-    previous = None
     if threading.current_thread() is threading.main_thread() and \
             signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-        previous = signal.signal(signal.SIGINT, on_interrupt)
-    try:
-        workers = max_workers or os.cpu_count() or 1
-        if executor is None and (workers == 1 or len(tasks) <= 1):
-            for task in tasks:
-                if stop:
-                    break
-                absorb(task, solve_points(task[0], task[4], settings))
-                save()
-        elif tasks:
-            if executor is None:
-                # workers ignore Ctrl-C: the parent saves and stops them
-                own_executor = executor = ProcessPoolExecutor(
-                    max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
-            futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
-            running = set(futures)
-            while running and not stop:
-                finished, running = wait(running, timeout=0.25, return_when=FIRST_COMPLETED)
-                for future in finished:
-                    absorb(futures[future], future.result())
-                save()
-            for future in running:
-                future.cancel()
-    except KeyboardInterrupt:
-        stop.append(signal.SIGINT)
-    finally:
-        if previous is not None:
-            signal.signal(signal.SIGINT, previous)
-        bar.close()
-        if own_executor is not None:
-            own_executor.shutdown(wait=False, cancel_futures=True)
-        save(final=True)
-    if stop:
-        raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
-    result = snapshot()
+        return signal.signal(signal.SIGINT, on_interrupt)
+    return None
+
+
+def _run_inline(tasks, settings: ModalSettings, results: _Results, stop: list) -> None:
+    """Solve the chunks one after the other in this process, until ``stop``."""
+    for task in tasks:
+        if stop:
+            break
+        results.absorb(task, solve_points(task[0], task[4], settings))
+        results.save()
+
+
+def _run_on_executor(executor: Executor, tasks, settings: ModalSettings, results: _Results, stop: list) -> None:
+    """Submit every chunk to ``executor``; absorb them as they complete, until ``stop``."""
+    futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
+    running = set(futures)
+    while running and not stop:
+        finished, running = wait(running, timeout=0.25, return_when=FIRST_COMPLETED)
+        for future in finished:
+            results.absorb(futures[future], future.result())
+        results.save()
+    for future in running:
+        future.cancel()
+
+
+def _finish(results: _Results, stopped: bool) -> xr.Dataset:
+    """The finished dataset with its regimes; ``SweepInterrupted`` if Ctrl-C stopped the run."""
+    if stopped:
+        raise results.interrupted() from None
+    result = results.snapshot()
     try:
         result["regime"] = classify_dataset(result)
     except KeyboardInterrupt:
-        raise SweepInterrupted(int(arrays["done"].sum()), arrays["done"].size, path) from None
+        raise results.interrupted() from None
     return result
 
 

@@ -1,0 +1,182 @@
+"""The ``impactmaps`` command line. Every subcommand accepts ``--json``.
+
+Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
+simulate, fd, halfspace, restitution, materials, laws. ``impactmaps SUBCOMMAND --help``
+documents each. Bad input exits with status 2 and one line naming the option as typed,
+its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
+first). With ``--json`` the output is strict JSON: a quantity that does not exist
+(NaN, inf) is ``null`` and a companion ``…_note`` key says why.
+
+The subcommands live in :mod:`.commands_maps` (the normalised maps) and
+:mod:`.commands_cases` (physical cases and catalogues); what they share (output, option
+checks, errors, exit codes) in :mod:`._common`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from pathlib import Path
+
+from ..jsonio import dumps
+from ._common import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, Parser, UsageError, emit, error_text, interrupted
+from .commands_cases import (MAX_RESTITUTION_BETA, cmd_fd, cmd_halfspace, cmd_laws, cmd_materials,
+                             cmd_restitution, cmd_simulate)
+from .commands_maps import (SCHEDULER_TIMEOUT_S, cmd_asymptote, cmd_chart, cmd_classify, cmd_lookup, cmd_point,
+                            cmd_sweep)
+
+__all__ = ["main", "build_parser", "MAX_RESTITUTION_BETA", "SCHEDULER_TIMEOUT_S"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``impactmaps`` command."""
+    from .. import __version__
+    from ..maps.lookup import SHIPPED_MAPS
+    from ..targets.options import STRUCTURE_KINDS
+
+    parser = Parser(prog="impactmaps", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    def add(name, help_text, handler):
+        p = sub.add_parser(name, help=help_text, description=help_text)
+        p.add_argument("--json", action="store_true", help="print one JSON object")
+        p.set_defaults(handler=handler)
+        return p
+
+    p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
+    p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
+    p.add_argument("--zeta-range", nargs=2, type=float, default=(0.005, 100.0), metavar=("A", "B"))
+    p.add_argument("--zeta-count", type=int, default=60, help="log-spaced ζ values (≥ 2, default 60)")
+    p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
+    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
+    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+    p = add("point", "simulate one (ζ, λ) point on a beam or plate", cmd_point)
+    _point_arguments(p)
+    p.add_argument("--plot", default=None, metavar="FILE", help="write the normalised histories to an image file")
+
+    p = add("asymptote", "closed-form asymptote: infinite beam, infinite plate or quasi-static", cmd_asymptote)
+    p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static"))
+    p.add_argument("--zeta", type=float, help="loss factor ζ (infinite-beam, infinite-plate)")
+    p.add_argument("--lambda", dest="lambda_", type=float, help="relative stiffness λ (quasi-static)")
+
+    p = add("classify", "regime of an impact at (ζ, λ)", cmd_classify)
+    p.add_argument("--zeta", type=float, required=True)
+    p.add_argument("--lambda", dest="lambda_", type=float, required=True)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
+    p.add_argument("--tolerance", type=float, default=0.1,
+                   help="relative distance to an asymptote that counts as on it, in (0, 1] (default 0.1)")
+    p.add_argument("--from-map", action="store_true", help="interpolate the shipped map instead of simulating")
+    _point_arguments(p, with_target=False)
+
+    p = add("lookup", "F̄max and regime from the shipped maps (no simulation)", cmd_lookup)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
+    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}), required=True)
+    p.add_argument("--zeta", type=float)
+    p.add_argument("--lambda", dest="lambda_", type=float)
+    p.add_argument("--case", type=Path, help="a physical case file: gives the peak force in newtons too")
+
+    p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
+    p.add_argument("config", type=Path)
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run on a Dask cluster, e.g. tcp://host:8786 (needs the dask extra)")
+    p.add_argument("--overwrite", action="store_true", help="replace a sweep.nc made by another configuration")
+    p.add_argument("--quiet", action="store_true")
+
+    for name, text, handler in (
+            ("simulate", "simulate a physical case file (TOML) with the modal solver", cmd_simulate),
+            ("fd", "simulate a beam case file with the finite-difference elastic-plastic solver", cmd_fd)):
+        p = add(name, text, handler)
+        p.add_argument("case", type=Path)
+        p.add_argument("--out", default="impactmaps-output",
+                       help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
+
+    p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
+    p.add_argument("--law", required=True, help="a contact law (impactmaps laws lists them)")
+    p.add_argument("--radius", type=float, required=True, help="sphere radius [m]")
+    p.add_argument("--velocity", type=float, required=True, help="impact velocity [m/s]")
+    p.add_argument("--mass", type=float, default=None, help="impactor mass [kg] (default: the solid sphere's)")
+    p.add_argument("--material", default=None, help="impactor catalogue material (impactmaps materials)")
+    p.add_argument("--target-material", default=None, help="target catalogue material")
+    p.add_argument("--youngs-modulus", type=float, default=None, help="E [Pa] of the body without a --…material")
+    p.add_argument("--poisson-ratio", type=float, default=None, help="ν of the body without a --…material")
+    p.add_argument("--density", type=float, default=None, help="ρ [kg/m³] of the body without a --…material")
+    p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
+
+    p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
+    p.add_argument("--beta", type=float, required=True, help=f"impact number β in (0, {MAX_RESTITUTION_BETA:g}]")
+
+    add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
+    add("laws", "the registered contact laws with their options and sources", cmd_laws)
+    return parser
+
+
+def _point_arguments(p, with_target=True):
+    if with_target:
+        p.add_argument("--target", required=True, help="beam-ss, beam-cc, beam-cs, beam-cf, beam-ff, plate-ss, …")
+        p.add_argument("--theory", default=None, help="euler|rayleigh|timoshenko or kirchhoff|mindlin")
+        p.add_argument("--zeta", type=float, required=True)
+        p.add_argument("--lambda", dest="lambda_", type=float, required=True)
+    p.add_argument("--aspect", type=float, default=None, help="plate aspect ratio b/a (default 1)")
+    p.add_argument("--slenderness", type=float, default=None, help="span/thickness (default 20)")
+    p.add_argument("--position", type=float, default=None, help="impact point x0/L (or x0/a) (default 0.5)")
+    p.add_argument("--position-y", type=float, default=None, help="impact point y0/b, plates (default 0.5)")
+    p.add_argument("--cutoff-ratio", type=float, default=None, help="mode cut-off / contact frequency (default 40)")
+    p.add_argument("--time-step-ratio", type=float, default=None,
+                   help="upper bound of ω Δt (default: the solver's, ModalSettings)")
+    p.add_argument("--no-check", action="store_true", help="skip the convergence re-run")
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``impactmaps`` command; returns the exit status.
+
+    0 on success, 2 on bad input (one line on stderr; with ``--json`` also
+    ``{"error": …}`` on stdout), 130 when interrupted (Ctrl-C).
+    """
+    from ..maps.store import SweepInterrupted
+
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as error:
+        if "--json" in argv:
+            print(dumps({"error": str(error)}))
+        print(error, file=sys.stderr)
+        return EXIT_BAD_INPUT
+    caught = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            values = args.handler(args)
+    except SweepInterrupted as stop:
+        print(f"impactmaps {args.command}: interrupted: {stop.saved} of {stop.total} points saved; "
+              "run the same command to resume", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except KeyboardInterrupt:
+        print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except SystemError as error:  # Ctrl-C while compiled (numba) code returns reaches Python as this
+        if not interrupted(error):
+            raise
+        print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except (ValueError, OSError, MemoryError) as error:
+        if args.json:
+            print(dumps({"error": error_text(error)}))
+        print(f"impactmaps {args.command}: error: {error_text(error)}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    finally:
+        seen = set()
+        for warning in caught:
+            text = str(warning.message)
+            if text not in seen:
+                seen.add(text)
+                print(f"warning: {text}", file=sys.stderr)
+    emit(values, args.json)
+    return EXIT_OK
+

@@ -1,0 +1,7 @@
+"""``python -m impactmaps.cli``: the ``impactmaps`` command."""
+
+import sys
+
+from . import main
+
+sys.exit(main())

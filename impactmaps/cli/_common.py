@@ -1,0 +1,148 @@
+"""What every ``impactmaps`` subcommand shares: output, option checks, errors, exit codes.
+
+Imports of the physics stay inside the functions, so ``impactmaps --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import warnings
+from pathlib import Path
+
+from ..jsonio import dumps
+
+#: Exit status of a successful run.
+EXIT_OK = 0
+#: Exit status of bad input (a command line argparse refuses, or a ``ValueError``).
+EXIT_BAD_INPUT = 2
+#: Exit status after Ctrl-C (128 + SIGINT, as a shell reports it).
+EXIT_INTERRUPTED = 130
+
+
+# -- output --------------------------------------------------------------------------------
+def emit(values: dict, as_json: bool, indent: str = "") -> None:
+    """Print ``values`` as one JSON object, or as aligned ``key  value`` lines."""
+    if as_json:
+        print(dumps(values))
+        return
+    width = max((len(str(k)) for k in values), default=0)
+    for key, value in values.items():
+        if isinstance(value, dict):
+            print(f"{indent}{key}")
+            emit(value, False, indent + "  ")
+            continue
+        text = f"{value:.6g}" if isinstance(value, float) else ("-" if value is None else str(value))
+        print(f"{indent}{key:<{width}}  {text}")
+
+
+# -- option checks -------------------------------------------------------------------------
+def check(option: str, value, low: float = 0.0, high: float = math.inf, what: str = "",
+          low_inclusive: bool = False, high_inclusive: bool = False, note: str = "") -> None:
+    """Refuse ``value`` of the command-line ``option`` outside its range (NaN too); ``None`` passes."""
+    if value is None:
+        return
+    above = value >= low if low_inclusive else value > low
+    below = value <= high if high_inclusive else value < high
+    if not (above and below):
+        interval = f"{'[' if low_inclusive else '('}{low:g}, {high:g}{']' if high_inclusive else ')'}"
+        raise ValueError(f"{option} = {value:g} is invalid: {what + ' ' if what else 'it '}must be in {interval}"
+                         f"{'; ' + note if note else ''}")
+
+
+def refuse(args, options: dict, reason: str) -> None:
+    """Refuse the options (``{"--flag": attribute}``) that were given but would be ignored."""
+    given = [flag for flag, attribute in options.items() if getattr(args, attribute, None) not in (None, False)]
+    if given:
+        raise ValueError(f"{', '.join(given)} cannot be used {reason}")
+
+
+def out_dir(option: str, value) -> Path:
+    """The output directory of ``option``; refused if it names an existing file."""
+    out = Path(value)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{option} = {str(out)!r} is a file, not a directory")
+    return out
+
+
+def material_from_args(args, prefix: str, role: str):
+    """Catalogue name or explicit E, ν, ρ (+ yield) for the impactor or the target."""
+    from ..materials import IsotropicMaterial, material
+
+    name = getattr(args, f"{prefix}material")
+    if name is not None:
+        chosen = material(name)
+        if args.yield_strength is not None and isinstance(chosen, IsotropicMaterial):
+            chosen = IsotropicMaterial(chosen.youngs_modulus, chosen.poisson_ratio, chosen.density,
+                                       args.yield_strength, chosen.name)
+        return chosen
+    missing = [flag for flag, value in (("--youngs-modulus", args.youngs_modulus),
+                                        ("--poisson-ratio", args.poisson_ratio),
+                                        ("--density", args.density)) if value is None]
+    if missing:
+        raise ValueError(
+            f"the {role} material is not given: use --{prefix.replace('_', '-')}material NAME "
+            f"or {', '.join(missing)} (explicit values apply to both bodies)"
+        )
+    return IsotropicMaterial(args.youngs_modulus, args.poisson_ratio, args.density, args.yield_strength)
+
+
+# -- running -------------------------------------------------------------------------------
+def _converged(caught) -> bool:
+    """False if the convergence re-run warned that the result moved."""
+    from ..solvers.modal import ConvergenceWarning
+
+    return not any(issubclass(w.category, ConvergenceWarning) and "not converged" in str(w.message) for w in caught)
+
+
+def run_checked(function, *args, **kwargs):
+    """Call ``function``; return (its value, converged flag); warnings are passed on."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        value = function(*args, **kwargs)
+    for warning in caught:
+        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    return value, _converged(caught)
+
+
+def save_figure(result, path: Path, normalised: bool) -> str:
+    """Write the force/displacement histories of ``result`` to the image file ``path``."""
+    from ..plotting import save_impact_history
+
+    if path.exists() and path.is_dir():
+        raise ValueError(f"--plot = {str(path)!r} is a directory: give an image file name (e.g. history.png)")
+    save_impact_history(result, path, normalised=normalised)
+    return str(path)
+
+
+# -- errors --------------------------------------------------------------------------------
+class UsageError(Exception):
+    """A command line argparse cannot parse (reported by ``main`` as one line, exit 2)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser that raises :class:`UsageError` instead of exiting."""
+
+    def error(self, message):
+        raise UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
+
+
+def error_text(error: BaseException) -> str:
+    """One line saying what went wrong, for stderr and the ``{"error": …}`` JSON."""
+    if isinstance(error, MemoryError):
+        return "out of memory: the run needs more memory than this machine has (reduce its size or duration)"
+    if isinstance(error, OSError) and error.strerror:
+        where = f": {error.filename}" if error.filename else ""
+        return f"{error.strerror}{where}"
+    return str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+
+
+def interrupted(error: BaseException) -> bool:
+    """True if a KeyboardInterrupt is among the causes of ``error``."""
+    seen = set()
+    while error is not None and id(error) not in seen:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        seen.add(id(error))
+        error = error.__cause__ or error.__context__
+    return False

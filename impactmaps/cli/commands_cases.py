@@ -1,0 +1,116 @@
+"""Subcommands on physical cases and the catalogues: simulate, fd, halfspace, restitution,
+materials, laws.
+
+Each ``cmd_*`` takes the parsed arguments and returns the dict that ``main`` prints.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from ._common import check, material_from_args, out_dir, refuse, run_checked, save_figure
+
+__all__ = ["cmd_simulate", "cmd_fd", "cmd_halfspace", "cmd_restitution", "cmd_materials", "cmd_laws",
+           "MAX_RESTITUTION_BETA"]
+
+#: Largest β for which the closed form of e(β) keeps ~9 significant digits.
+MAX_RESTITUTION_BETA = 1e8
+
+
+def _run_case_command(args, solver) -> dict:
+    from ..cases import load_case, run_case, write_case_outputs
+
+    out = out_dir("--out", args.out)
+    case = load_case(args.case, solver=solver)
+    (result, summary), converged = run_checked(run_case, case)
+    paths = write_case_outputs(case, result, out)
+    paths["figure"] = out / "history.png"
+    save_figure(result, paths["figure"], normalised=False)
+    summary = dict(summary)
+    summary["converged"] = converged if case.settings is not None and case.settings.check_convergence else None
+    summary["outputs"] = {key: str(value) for key, value in paths.items()}
+    return summary
+
+
+def cmd_simulate(args) -> dict:
+    return _run_case_command(args, None)
+
+
+def cmd_fd(args) -> dict:
+    return _run_case_command(args, "fd")
+
+
+def cmd_halfspace(args) -> dict:
+    from ..contact import Sphere, law_for_sphere
+    from ..solvers.halfspace import halfspace_impact
+
+    if args.material is not None and args.target_material is not None:
+        refuse(args, {"--youngs-modulus": "youngs_modulus", "--poisson-ratio": "poisson_ratio",
+                       "--density": "density"},
+                "with both --material and --target-material (explicit values stand for a body without a name)")
+    check("--radius", args.radius, what="the sphere radius [m]")
+    check("--velocity", args.velocity, what="the impact velocity [m/s]")
+    check("--mass", args.mass, what="the impactor mass [kg]")
+    impactor_material = material_from_args(args, "", "impactor")
+    target_material = material_from_args(args, "target_", "target")
+    sphere = Sphere(args.radius, impactor_material, args.mass)
+    law = law_for_sphere(args.law, sphere, target_material)
+    result = halfspace_impact(law, sphere.mass, args.velocity)
+    summary = result.summary()
+    return {
+        "law": args.law,
+        "impactor_mass_kg": float(sphere.mass),
+        **{key: summary[key] for key in ("peak_force_N", "first_contact_duration_s", "max_indentation_m",
+                                         "permanent_indentation_m", "restitution", "energy_loss_J")},
+    }
+
+
+def cmd_restitution(args) -> dict:
+    from ..solvers.halfspace import restitution
+
+    check("--beta", args.beta, 0.0, MAX_RESTITUTION_BETA, "the impact number β", high_inclusive=True,
+           note="beyond it the closed form loses accuracy")
+    return {"beta": args.beta, "restitution": float(restitution(args.beta))}
+
+
+def cmd_materials(args) -> dict:
+    from dataclasses import fields
+
+    from ..materials import CATALOGUE, material
+
+    sources = _catalogue_sources(material.__doc__ or "")
+    out = {}
+    for name, entry in sorted(CATALOGUE.items()):
+        values = {"kind": type(entry).__name__}
+        values |= {f.name: getattr(entry, f.name) for f in fields(entry) if f.init and not f.name.startswith("_")}
+        out[name] = values | {"source": sources.get(name)}
+    return {"materials": out, "units": "SI: moduli and strengths [Pa], density [kg/m³]",
+            "sources_note": "full citations beside each entry of impactmaps.materials.CATALOGUE"}
+
+
+def _catalogue_sources(doc: str) -> dict:
+    """``{name: source}`` from the bullets ``* ``name`` — source`` of a docstring."""
+    import re
+
+    text = " ".join(line.strip() for line in doc.splitlines())
+    found = re.findall(r"\* ``([\w-]+)`` — (.*?)(?=\* ``|Raises|$)", text)
+    return {name: source.strip().rstrip(";.").replace("**", "") for name, source in found}
+
+
+def cmd_laws(args) -> dict:
+    import inspect
+
+    from ..contact import available_contact_laws, contact_law_class
+
+    out = {}
+    for name in available_contact_laws():
+        cls = contact_law_class(name)
+        module = sys.modules[cls.__module__]
+        options = {p.name: (None if p.default is inspect.Parameter.empty else p.default)
+                   for p in inspect.signature(cls).parameters.values()}
+        out[name] = {"class": f"{cls.__module__}.{cls.__name__}",
+                     "description": (module.__doc__ or cls.__doc__ or "").strip().splitlines()[0],
+                     "options": options}
+    return {"laws": out, "options_note": "null: required (SI units); case files build them from the materials"}
+
+

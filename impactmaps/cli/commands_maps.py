@@ -1,0 +1,236 @@
+"""Subcommands on the normalised (ζ, λ) maps: chart, sweep, point, classify, lookup, asymptote.
+
+Each ``cmd_*`` takes the parsed arguments and returns the dict that ``main`` prints.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from ._common import check, out_dir, refuse, run_checked, save_figure
+
+__all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
+           "SCHEDULER_TIMEOUT_S"]
+
+#: Seconds to wait for a Dask scheduler (``sweep --scheduler``).
+SCHEDULER_TIMEOUT_S = 5.0
+
+
+def cmd_chart(args) -> dict:
+    from ..maps.chart import check_chart_grid, make_chart
+
+    check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
+           low_inclusive=True)
+    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
+    paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
+                       zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
+                       max_workers=args.workers, overwrite=args.overwrite)
+    return {key: str(value) for key, value in paths.items()}
+
+
+def cmd_sweep(args) -> dict:
+    from ..maps.config import run_sweep_config
+
+    check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
+           low_inclusive=True)
+    if args.scheduler is None:
+        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+                                 max_workers=args.workers)
+        return {key: str(value) for key, value in paths.items()}
+    refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise ValueError("--scheduler needs dask.distributed: pip install 'impactmaps[dask]'") from None
+    try:
+        client = Client(args.scheduler, timeout=SCHEDULER_TIMEOUT_S)
+    except (OSError, TimeoutError) as error:
+        raise ValueError(f"--scheduler = {args.scheduler!r} cannot be reached: {error}") from None
+    with client:
+        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+                                 executor=client.get_executor())
+    return {key: str(value) for key, value in paths.items()} | {"scheduler": args.scheduler}
+
+
+
+def _point_defaults(args) -> None:
+    """Check the point options as typed, then fill in their defaults."""
+    check("--zeta", args.zeta, what="the loss factor ζ")
+    check("--lambda", args.lambda_, what="the relative stiffness λ")
+    check("--aspect", args.aspect, what="the plate aspect ratio b/a")
+    check("--slenderness", args.slenderness, 2.0, what="span/thickness", low_inclusive=True)
+    check("--position", args.position, 0.0, 1.0, "the impact point x0/L")
+    check("--position-y", args.position_y, 0.0, 1.0, "the impact point y0/b")
+    check("--cutoff-ratio", args.cutoff_ratio, what="the mode cut-off / contact frequency")
+    check("--time-step-ratio", args.time_step_ratio, what="the bound of ω Δt")
+    for name, default in (("aspect", 1.0), ("slenderness", 20.0), ("position", 0.5), ("position_y", 0.5),
+                          ("cutoff_ratio", 40.0)):
+        if getattr(args, name) is None:
+            setattr(args, name, default)
+
+
+def _structure_from_args(args):
+    from ..maps.structures import MapStructure
+    from ..targets.options import STRUCTURE_KINDS
+
+    kind, _, supports = args.target.partition("-")
+    if kind not in STRUCTURE_KINDS or not supports:
+        raise ValueError(f"--target = {args.target!r} is not known: use beam-SUPPORTS (e.g. beam-ss, beam-cc) "
+                         "or plate-EDGES (e.g. plate-ss, plate-ssss, plate-cccc)")
+    if kind == "beam":
+        refuse(args, {"--aspect": "aspect", "--position-y": "position_y"}, "with a beam --target")
+    if kind == "plate" and supports.lower() == "ss":
+        supports = "SSSS"
+    _point_defaults(args)
+    theory = args.theory or ("euler" if kind == "beam" else "kirchhoff")
+    fractions = (args.position,) if kind == "beam" else (args.position, args.position_y)
+    try:
+        structure = MapStructure(kind=kind, theory=theory, supports=supports, aspect_ratio=args.aspect,
+                                 slenderness=args.slenderness, impact_fraction=fractions)
+        structure.build()
+    except ValueError as error:
+        raise ValueError(f"--target {args.target} --theory {theory}: {error}") from None
+    return structure
+
+
+def _settings_from_args(args):
+    from ..solvers.modal import ModalSettings
+
+    options = {} if args.time_step_ratio is None else {"time_step_ratio": args.time_step_ratio}
+    return ModalSettings(cutoff_ratio=args.cutoff_ratio, check_convergence=not getattr(args, "no_check", False),
+                         **options)
+
+
+def cmd_point(args) -> dict:
+    from ..maps.regimes import classify, infinite_structure_peak, quasi_static_peak
+    from ..solvers.modal import simulate_normalised
+
+    structure = _structure_from_args(args)
+    target = structure.build()
+    settings = _settings_from_args(args)
+    plot = getattr(args, "plot", None)
+    result, converged = run_checked(simulate_normalised, target, args.zeta, args.lambda_, settings=settings,
+                                     record=plot is not None)
+    reflection = float(target.reflection_time(result.contact_frequency))
+    regime = str(classify(result.fmax_normalised, args.zeta, args.lambda_, structure.kind,
+                          peak_time=result.peak_time_normalised, reflection_time=reflection,
+                          tolerance=getattr(args, "tolerance", 0.1)))
+    values = {
+        "structure": structure.name,
+        "zeta": args.zeta,
+        "lambda": args.lambda_,
+        **result.normalised_summary(),
+        "regime": regime,
+        "halfspace_fmax": 1.0,
+        "quasi_static_fmax": float(quasi_static_peak(args.lambda_)),
+        "infinite_structure_fmax": float(infinite_structure_peak(args.zeta, structure.kind)),
+        "reflection_time_normalised": reflection,
+        "method": result.method,
+        "converged": converged if settings.check_convergence else None,
+    }
+    if not math.isfinite(reflection):
+        values["reflection_time_note"] = "no support or edge reflects waves back to the impact point"
+    if not settings.check_convergence:
+        values["converged_note"] = "not checked (--no-check)"
+    if plot is not None:
+        values["plot"] = save_figure(result, Path(plot), normalised=True)
+    return values
+
+
+def cmd_asymptote(args) -> dict:
+    from ..solvers import asymptotes
+
+    if args.which == "quasi-static":
+        refuse(args, {"--zeta": "zeta"}, "with the quasi-static asymptote (it depends on λ only)")
+        if args.lambda_ is None:
+            raise ValueError("--lambda is required for the quasi-static asymptote (valid range (0, inf))")
+        check("--lambda", args.lambda_, what="the relative stiffness λ")
+        return {
+            "asymptote": args.which,
+            "lambda": args.lambda_,
+            "fmax_normalised": float(asymptotes.quasi_static_peak(args.lambda_)),
+            "contact_time_normalised": float(asymptotes.quasi_static_contact_time(args.lambda_)),
+            "impacts": 1,
+        }
+    refuse(args, {"--lambda": "lambda_"}, f"with the {args.which} asymptote (it depends on ζ only)")
+    if args.zeta is None:
+        raise ValueError(f"--zeta is required for the {args.which} asymptote (valid range (0, inf))")
+    check("--zeta", args.zeta, what="the loss factor ζ")
+    if args.which == "infinite-plate":
+        peak, contact = asymptotes.infinite_plate_peak(args.zeta), asymptotes.infinite_plate_contact_time(args.zeta)
+    else:
+        peak, contact = asymptotes.infinite_beam_peak(args.zeta), asymptotes.infinite_beam_contact_time(args.zeta)
+    values = {"asymptote": args.which, "zeta": args.zeta, "fmax_normalised": float(peak),
+              "contact_time_normalised": float(contact), "impacts": 1}
+    if not math.isfinite(float(contact)):
+        values["contact_time_note"] = "the sphere never separates from the infinite structure at this ζ"
+    if args.which == "infinite-beam":
+        values.update(_beam_impacts(args.zeta))
+    return values
+
+
+def _beam_impacts(zeta: float) -> dict:
+    """How often the infinite beam is struck: once, or again after the first separation."""
+    from ..solvers.infinite_beam import critical_beam_loss_factor, recontact_beam_loss_factor
+
+    recontact, critical = recontact_beam_loss_factor(), critical_beam_loss_factor()
+    if recontact < zeta < critical:
+        return {"impacts": None, "repeated_impacts": True,
+                "impacts_note": f"{recontact:.6g} < ζ < {critical:.6g}: the sphere still moves towards the beam "
+                                "when it first separates and strikes again (at least 2 impacts; the later "
+                                "ones: impactmaps.solvers.infinite_beam.infinite_beam_force); "
+                                "contact_time_normalised is the first contact's"}
+    return {"impacts": 1, "repeated_impacts": False}
+
+
+def cmd_classify(args) -> dict:
+    check("--tolerance", args.tolerance, 0.0, 1.0, "the relative distance to an asymptote",
+           high_inclusive=True)
+    if args.from_map:
+        from ..maps.lookup import lookup
+
+        refuse(args, {"--aspect": "aspect", "--slenderness": "slenderness", "--position": "position",
+                       "--position-y": "position_y", "--cutoff-ratio": "cutoff_ratio",
+                       "--time-step-ratio": "time_step_ratio", "--no-check": "no_check"},
+                "with --from-map (the shipped maps are for centre impacts on SS beams and square plates)")
+        check("--zeta", args.zeta, what="the loss factor ζ")
+        check("--lambda", args.lambda_, what="the relative stiffness λ")
+        theory = "euler" if args.structure == "beam" else "kirchhoff"
+        found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=theory,
+                       tolerance=args.tolerance)
+        return {"regime": found.regime, "fmax_normalised": found.fmax_normalised, "source": f"map {found.map_name}"}
+    args.target = "beam-ss" if args.structure == "beam" else "plate-ss"
+    args.theory = None
+    point = cmd_point(args)
+    return {"regime": point["regime"], "fmax_normalised": point["fmax_normalised"],
+            "source": f"simulation {point['structure']}", "converged": point["converged"]}
+
+
+def cmd_lookup(args) -> dict:
+    from ..maps.lookup import lookup
+
+    if args.case is not None:
+        from ..cases import case_dimensionless, load_case
+
+        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
+        case = load_case(args.case)
+        numbers = case_dimensionless(case)
+        found = lookup(numbers["zeta"], numbers["lambda"], structure=args.structure, theory=args.theory)
+        return {
+            "fmax_normalised": found.fmax_normalised,
+            "regime": found.regime,
+            "zeta": numbers["zeta"],
+            "lambda": numbers["lambda"],
+            "peak_force_N": float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
+                                                   numbers["contact_stiffness_N_m"])),
+            "map": found.map_name,
+        }
+    if args.zeta is None or args.lambda_ is None:
+        raise ValueError("give --zeta and --lambda, or --case CASE.toml")
+    check("--zeta", args.zeta, what="the loss factor ζ")
+    check("--lambda", args.lambda_, what="the relative stiffness λ")
+    found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory)
+    return {"fmax_normalised": found.fmax_normalised, "regime": found.regime, "map": found.map_name}
+
+
