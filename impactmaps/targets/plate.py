@@ -4,7 +4,10 @@ Simply supported plates (``edges="SSSS"``) use the Navier solution (PHYSICS.md 3
 closed-form Kirchhoff frequencies, or per half-wave pair (m, n) the 3×3 Mindlin
 eigenproblem of seed 001 eqs (13)–(15). Any other combination of simply supported (S),
 clamped (C) and free (F) edges uses the Rayleigh–Ritz basis of
-:mod:`impactmaps.targets.ritz` (Kirchhoff only).
+:mod:`impactmaps.targets.ritz` (Kirchhoff only). The Navier modes are in
+:mod:`impactmaps.targets.plate_navier`, the Navier static series in
+:mod:`impactmaps.targets.plate_static`; this module holds the :class:`Plate` dataclass,
+its constructors and the choice between Navier and Ritz.
 
 Conventions: the plate occupies ``0 ≤ x ≤ a``, ``0 ≤ y ≤ b``; the edge code lists the
 edges x = 0, y = 0, x = a, y = b in that order; ``s_m(x) = sin(mπx/a)``,
@@ -24,7 +27,6 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
-import scipy.special
 
 from .._checks import (
     require_choice,
@@ -38,9 +40,10 @@ from ..dimensionless import (
     loss_factor_plate,
 )
 from ..solvers import asymptotes
-from . import ritz
+from . import plate_navier, ritz
 from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES
+from .plate_static import navier_static_compliance
 
 __all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "PLATE_THEORIES",
            "STATIC_RITZ_FUNCTIONS"]
@@ -49,124 +52,6 @@ __all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "
 #: Must be ≥ :data:`impactmaps.targets.ritz.MAX_FUNCTIONS` so that the static basis
 #: contains every modal basis (then the residual compliance is never negative).
 STATIC_RITZ_FUNCTIONS = 40
-
-#: Terms of the outer (single) series of :func:`navier_static_compliance`.
-_NAVIER_STATIC_TERMS = 20000
-
-
-# ---------------------------------------------------------------------------------
-# Navier (SSSS) helpers
-# ---------------------------------------------------------------------------------
-def _sin_pi(t):
-    """sin(π t) with exact zeros at integer t and argument reduction (mod 2) first."""
-    t = np.asarray(t, dtype=float)
-    reduced = np.remainder(t, 2.0)
-    result = np.sin(np.pi * reduced)
-    return np.where(reduced == np.round(reduced), 0.0, result)
-
-
-def _sum_sin_squared_over(c, theta):
-    """Σ_{n≥1} sin²(nθ)/(n² + c²) for complex c (Re c > 0) and 0 ≤ θ ≤ π.
-
-    From Σ cos(nx)/(n² + c²) = π cosh(c(π − x))/(2c sinh(cπ)) − 1/(2c²), 0 ≤ x ≤ 2π:
-    ``(π/(4c)) (1 − u)(1 − v)/(1 − uv)``, ``u = e^{−2cθ}``, ``v = e^{−2c(π−θ)}``
-    (overflow-free and without cancellation).
-    """
-    one_minus_u = -np.expm1(-2.0 * c * theta)
-    one_minus_v = -np.expm1(-2.0 * c * (np.pi - theta))
-    one_minus_uv = -np.expm1(-2.0 * c * np.pi)
-    return np.pi / (4.0 * c) * one_minus_u * one_minus_v / one_minus_uv
-
-
-def _derivative_sum_sin_squared_over(c, theta):
-    """d/d(c²) of :func:`_sum_sin_squared_over` = −Σ sin²(nθ)/(n² + c²)²."""
-    u = np.exp(-2.0 * c * theta)
-    v = np.exp(-2.0 * c * (np.pi - theta))
-    one_minus_u = -np.expm1(-2.0 * c * theta)
-    one_minus_v = -np.expm1(-2.0 * c * (np.pi - theta))
-    one_minus_uv = -np.expm1(-2.0 * c * np.pi)
-    ratio = one_minus_u * one_minus_v / one_minus_uv
-    d_ratio = (
-        (2.0 * theta * u * one_minus_v + 2.0 * (np.pi - theta) * v * one_minus_u) / one_minus_uv
-        - ratio * 2.0 * np.pi * u * v / one_minus_uv
-    )
-    d_sum_dc = -np.pi / (4.0 * c**2) * ratio + np.pi / (4.0 * c) * d_ratio
-    return d_sum_dc / (2.0 * c)
-
-
-def _inner_series(p, length_y, y0, D11, D22, H):
-    """Σ_{n≥1} s_n(y0)² / (D11 p⁴ + 2H p² q_n² + D22 q_n⁴), q_n = nπ/b, in closed form.
-
-    The denominator factorises as ``D22 (q² + ρ1)(q² + ρ2)`` with
-    ``ρ1,2 = p² (H ± sqrt(H² − D11 D22))/D22`` (complex conjugates when H² < D11 D22);
-    partial fractions reduce the sum to :func:`_sum_sin_squared_over`. Near the isotropic
-    double root (``|H² − D11 D22| < 1e-10 D11 D22``) the divided difference is replaced
-    by the derivative at the mean root; the two branches balance truncation against
-    cancellation and are accurate to ≲ 5e-11 relative at the switch.
-    """
-    p = np.asarray(p, dtype=float)
-    theta = math.pi * y0 / length_y
-    scale = (length_y / math.pi) ** 2  # q_n² + ρ = (π/b)² (n² + ρ b²/π²)
-    root = np.sqrt(complex(H * H - D11 * D22))
-    separation = abs(root) / math.sqrt(D11 * D22)
-    p2 = p**2
-    if separation < 1e-5:
-        rho_mean = p2 * H / D22
-        c = np.sqrt(rho_mean * scale + 0j)
-        # Σ s²/((q²+ρ)²) = −dG/dρ with G(ρ) = scale Σ s²/(n² + ρ scale)
-        value = -scale**2 * _derivative_sum_sin_squared_over(c, theta)
-        return np.real(value) / D22
-    rho1 = p2 * (H + root) / D22
-    rho2 = p2 * (H - root) / D22
-    c1 = np.sqrt(rho1 * scale)
-    c2 = np.sqrt(rho2 * scale)
-    g1 = scale * _sum_sin_squared_over(c1, theta)
-    g2 = scale * _sum_sin_squared_over(c2, theta)
-    return np.real((g1 - g2) / (rho2 - rho1)) / D22
-
-
-def navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_point,
-                             terms: int = _NAVIER_STATIC_TERMS) -> float:
-    """Classical point compliance 1/K_st [m/N] of a simply supported orthotropic plate.
-
-    Sums the Navier double series of PHYSICS.md 3.3,
-    ``Σ_m Σ_n (4/(ab)) s_m(x0)² s_n(y0)² / (π⁴[D11 (m/a)⁴ + 2(D12+2D66)(m/a)²(n/b)² + D22 (n/b)⁴])``,
-    with the inner series over n in closed form (hyperbolic functions, in the manner of
-    Timoshenko & Woinowsky-Krieger, *Theory of Plates and Shells*, §30, extended to
-    orthotropy by partial fractions) and the outer series over m summed to ``terms``
-    terms plus an asymptotic tail ``½ κ Σ_{m>M} m⁻³`` (the inner sum behaves as
-    ``κ/m³``). Relative accuracy ≈ 1e-11 for the default ``terms`` at interior points
-    (≈ 1e-10 close to a corner; ≲ 5e-11 within
-    ``|H² − D11 D22| ≈ 1e-10 D11 D22`` of isotropy).
-
-    Parameters
-    ----------
-    length_x, length_y : float
-        Plate sides a, b [m].
-    D11, D22, D12, D66 : float
-        Bending stiffnesses [N·m].
-    impact_point : tuple of float
-        Load and observation point (x0, y0) [m], inside the plate.
-    terms : int, optional
-        Terms of the outer series.
-
-    Returns
-    -------
-    float
-        Static compliance [m/N]. Isotropic square plate, centre: ``0.0116008 a²/D``.
-    """
-    a, b = float(length_x), float(length_y)
-    x0, y0 = (float(v) for v in impact_point)
-    H = D12 + 2.0 * D66
-    m = np.arange(1, int(terms) + 1, dtype=float)
-    p = m * np.pi / a
-    inner = _inner_series(p, b, y0, D11, D22, H)
-    weights = _sin_pi(m * x0 / a) ** 2
-    total = math.fsum(weights * inner)
-    # tail: inner ≈ κ/m³ and s_m² averages to ½
-    kappa = inner[-1] * m[-1] ** 3
-    tail = 0.5 * kappa * float(scipy.special.zeta(3.0, m[-1] + 1.0))
-    return 4.0 / (a * b) * (total + tail)
 
 
 # ---------------------------------------------------------------------------------
@@ -396,7 +281,7 @@ class Plate(Target):
         """Classical (shear-rigid) static point compliance 1/K_st [m/N] at the impact point.
 
         SSSS: Navier series with the inner sum in closed form
-        (:func:`navier_static_compliance`, ≈ 1e-11 relative). Other edges: Ritz static
+        (:func:`~impactmaps.targets.plate_static.navier_static_compliance`, ≈ 1e-11 relative). Other edges: Ritz static
         solve with :data:`STATIC_RITZ_FUNCTIONS` functions per direction plus a
         singularity correction, ``C = C_Ritz(edges) + [C_Navier(SSSS) − C_Ritz(SSSS)]``
         (same stiffnesses, point and basis size): the slowly converging part of a Ritz
@@ -520,154 +405,10 @@ class Plate(Target):
         return _plate_modes(self, *_checked_request(max_frequency, min_modes))[1](points)
 
     # -- implementation -----------------------------------------------------------------
-    # Navier ------------------------------------------------------------------------
-    def _kirchhoff_eigenvalues(self, m, n):
-        """ω² [rad²/s²] of the classical SSSS plate for half-wave numbers m, n."""
-        p2 = (np.pi * m / self.length_x) ** 2
-        q2 = (np.pi * n / self.length_y) ** 2
-        H = self.D12 + 2.0 * self.D66
-        return (self.D11 * p2**2 + 2.0 * H * p2 * q2 + self.D22 * q2**2) / self.mass_per_area
-
-    def _mindlin_blocks(self, p, q):
-        """Bending block B (…, 2, 2) and shear stiffnesses kA55, kA44."""
-        B = np.empty(p.shape + (2, 2))
-        B[..., 0, 0] = self.D11 * p**2 + self.D66 * q**2
-        B[..., 1, 1] = self.D66 * p**2 + self.D22 * q**2
-        B[..., 0, 1] = B[..., 1, 0] = (self.D12 + self.D66) * p * q
-        return B, self.shear_correction * self.A55, self.shear_correction * self.A44
-
-    def _mindlin_matrices(self, m, n):
-        """Stacked 3×3 stiffness matrices K (…, 3, 3) and the mass diagonal (3,)."""
-        p = np.pi * np.asarray(m, dtype=float) / self.length_x
-        q = np.pi * np.asarray(n, dtype=float) / self.length_y
-        B, s55, s44 = self._mindlin_blocks(p, q)
-        K = np.zeros(p.shape + (3, 3))
-        K[..., 0, 0] = s55 * p**2 + s44 * q**2
-        K[..., 0, 1] = K[..., 1, 0] = s55 * p
-        K[..., 0, 2] = K[..., 2, 0] = s44 * q
-        K[..., 1:, 1:] = B
-        K[..., 1, 1] += s55
-        K[..., 2, 2] += s44
-        mass = np.array([self.mass_per_area, self.rotary_inertia_per_area, self.rotary_inertia_per_area])
-        return K, mass
-
-    def _mindlin_flexural(self, m, n):
-        """Flexural Mindlin branch: ω (…,) and the normalised amplitude W (…,)."""
-        m = np.asarray(m, dtype=float)
-        n = np.asarray(n, dtype=float)
-        p = np.pi * m / self.length_x
-        q = np.pi * n / self.length_y
-        B, s55, s44 = self._mindlin_blocks(p, q)
-        rho_h, inertia = self.mass_per_area, self.rotary_inertia_per_area
-        K, mass = self._mindlin_matrices(m, n)
-        inv_sqrt = 1.0 / np.sqrt(mass)
-        estimate = np.linalg.eigvalsh(K * inv_sqrt[:, None] * inv_sqrt[None, :])[..., 0]
-        # Kirchhoff with rotary inertia: an upper bound (ψ = −∇w is admissible)
-        upper = (self._kirchhoff_eigenvalues(m, n) * rho_h) / (rho_h + inertia * (p**2 + q**2))
-        # lowest eigenvalue of (B + S)/I: the pole of the condensed equation
-        d0 = B[..., 0, 0] + s55
-        d1 = B[..., 1, 1] + s44
-        pole = 0.5 * (d0 + d1 - np.hypot(d0 - d1, 2.0 * B[..., 0, 1])) / inertia
-        low = np.zeros_like(upper)
-        high = np.minimum(upper, pole * (1.0 - 1e-12))
-        lam = np.where((estimate > 0) & (estimate < high), estimate, 0.5 * high)
-        sg0, sg1 = s55 * p, s44 * q
-
-        def condensed(lam):
-            c00 = B[..., 0, 0] + s55 - lam * inertia
-            c11 = B[..., 1, 1] + s44 - lam * inertia
-            c01 = B[..., 0, 1]
-            det = c00 * c11 - c01**2
-            u0 = (c11 * sg0 - c01 * sg1) / det
-            u1 = (c00 * sg1 - c01 * sg0) / det
-            bg0 = (B[..., 0, 0] - lam * inertia) * p + B[..., 0, 1] * q
-            bg1 = B[..., 1, 0] * p + (B[..., 1, 1] - lam * inertia) * q
-            value = u0 * bg0 + u1 * bg1 - lam * rho_h
-            slope = -rho_h - inertia * (u0**2 + u1**2)
-            return value, slope, u0, u1
-
-        # safeguarded Newton (f decreasing and concave on (0, pole), root bracketed)
-        for _ in range(200):
-            value, slope, _, _ = condensed(lam)
-            low = np.where(value > 0, lam, low)
-            high = np.where(value <= 0, lam, high)
-            new = lam - value / slope
-            outside = ~((new > low) & (new < high)) & (value != 0)
-            new = np.where(outside, 0.5 * (low + high), new)
-            done = np.abs(new - lam) <= 2e-15 * np.abs(lam)
-            lam = new
-            if np.all(done):
-                break
-        else:
-            warnings.warn("Mindlin flexural frequencies: the Newton polish did not converge to "
-                          "machine precision", RuntimeWarning, stacklevel=3)
-        _, _, u0, u1 = condensed(lam)
-        amplitude = 2.0 / np.sqrt(self.length_x * self.length_y * (rho_h + inertia * (u0**2 + u1**2)))
-        return np.sqrt(lam), amplitude
-
+    # Navier (plate_navier) -----------------------------------------------------------
     def _navier_frequencies(self, m, n):
-        if self.theory == "kirchhoff":
-            return np.sqrt(self._kirchhoff_eigenvalues(np.asarray(m, float), np.asarray(n, float)))
-        return self._mindlin_flexural(m, n)[0]
-
-    def _navier_pairs(self, max_frequency):
-        """All (m, n) with ω_mn ≤ max_frequency, as two int arrays.
-
-        Relies on ω_mn increasing in m and in n (true for D12 + 2D66 > 0; checked against
-        brute-force enumeration in the tests): the largest m at n = 1 and then, for every
-        m at once, the largest n are found by vectorised doubling and bisection.
-        """
-        def frequency(m, n):
-            return self._navier_frequencies(np.asarray(m, float), np.asarray(n, float))
-
-        if frequency(1, 1) > max_frequency:
-            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-        m_count = int(_last_index_within(lambda k: frequency(k, np.ones_like(k)), 1, max_frequency)[0])
-        m_values = np.arange(1, m_count + 1, dtype=np.int64)
-        n_counts = _last_index_within(lambda k: frequency(m_values, k), m_count, max_frequency)
-        m_pairs = np.repeat(m_values, n_counts)
-        offsets = np.repeat(np.cumsum(n_counts) - n_counts, n_counts)
-        n_pairs = np.arange(m_pairs.size, dtype=np.int64) - offsets + 1
-        return m_pairs, n_pairs
-
-    def _navier_modes(self, max_frequency, min_modes):
-        if self.theory == "mindlin":
-            cutoff = math.sqrt(self.shear_correction * min(self.A44, self.A55)
-                               / self.rotary_inertia_per_area)
-            if max_frequency > cutoff:
-                warnings.warn(
-                    f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
-                    f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "
-                    "are omitted, have modes below the cut-off frequency", stacklevel=4)
-        cutoff_frequency = max_frequency
-        m, n = self._navier_pairs(cutoff_frequency)
-        while m.size < min_modes:
-            cutoff_frequency = max(2.0 * cutoff_frequency, 1.5 * float(self._navier_frequencies(1, 1)))
-            m, n = self._navier_pairs(cutoff_frequency)
-        if self.theory == "kirchhoff":
-            omega = np.sqrt(self._kirchhoff_eigenvalues(m.astype(float), n.astype(float)))
-            amplitude = np.full(omega.shape, 2.0 / math.sqrt(self.mass))
-        else:
-            omega, amplitude = self._mindlin_flexural(m, n)
-        order = np.lexsort((n, m, omega))
-        keep = order[: max(int(np.sum(omega <= max_frequency)), min_modes)]
-        m, n, omega, amplitude = m[keep], n[keep], omega[keep], amplitude[keep]
-        x0, y0 = self.impact_point
-        a, b = self.length_x, self.length_y
-        participation = amplitude * _sin_pi(m * x0 / a) * _sin_pi(n * y0 / b)
-
-        retained = None  # Kirchhoff: Σ φ²/ω² of the modes themselves
-        if self.theory == "mindlin":
-            classical = (4.0 / self.mass) * (_sin_pi(m * x0 / a) * _sin_pi(n * y0 / b)) ** 2
-            retained = float(np.sum(classical / self._kirchhoff_eigenvalues(m.astype(float), n.astype(float))))
-        basis = ModalBasis.from_modes(omega, participation, self.static_compliance(),
-                                      self._damping_ratios(omega), retained_compliance=retained)
-
-        def shape_function(points):
-            return amplitude[None, :] * _sin_pi(points[:, :1] * m[None, :] / a) * _sin_pi(
-                points[:, 1:] * n[None, :] / b)
-
-        return basis, shape_function
+        """ω_mn [rad/s] of the SSSS plate (:func:`plate_navier.navier_frequencies`)."""
+        return plate_navier.navier_frequencies(self, m, n)
 
     # Ritz ----------------------------------------------------------------------------
     def _ritz_modes(self, max_frequency, min_modes):
@@ -696,37 +437,12 @@ class Plate(Target):
         omega = np.asarray(solution.frequencies[:count])
         participation = solution.mode_shapes(np.array([self.impact_point]), count)[0]
         basis = ModalBasis.from_modes(omega, participation, self.static_compliance(),
-                                      self._damping_ratios(omega))
+                                      np.full(omega.shape, float(self.damping_ratio)))
 
         def shape_function(points):
             return solution.mode_shapes(points, count)
 
         return basis, shape_function
-
-    def _damping_ratios(self, frequencies):
-        return np.full(frequencies.shape, float(self.damping_ratio))
-
-
-def _last_index_within(frequency_of_index, size, limit):
-    """Largest k ≥ 1 (array of ``size``) with ``frequency_of_index(k) ≤ limit``.
-
-    ``frequency_of_index`` maps an int array of shape (size,) to frequencies and must be
-    increasing in k, with ``frequency_of_index(1) ≤ limit``.
-    """
-    low = np.ones(size, dtype=np.int64)
-    high = np.full(size, 2, dtype=np.int64)
-    while True:
-        inside = frequency_of_index(high) <= limit
-        if not np.any(inside):
-            break
-        low = np.where(inside, high, low)
-        high = np.where(inside, 2 * high, high)
-    while np.any(high - low > 1):
-        middle = (low + high) // 2
-        inside = frequency_of_index(middle) <= limit
-        low = np.where(inside, middle, low)
-        high = np.where(inside, high, middle)
-    return low
 
 
 def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
@@ -742,7 +458,7 @@ def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
 def _plate_modes(plate: Plate, max_frequency: float, min_modes: int):
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
     if plate.edges == "SSSS":
-        return plate._navier_modes(max_frequency, min_modes)
+        return plate_navier.navier_modes(plate, max_frequency, min_modes)
     return plate._ritz_modes(max_frequency, min_modes)
 
 
