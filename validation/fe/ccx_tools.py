@@ -183,6 +183,13 @@ def parse_node_prints(dat_text: str, nset: str):
     return blocks
 
 
+def parse_node_print_times(dat_text: str, nset: str) -> np.ndarray:
+    """Times of the ``displacements`` blocks of ``nset`` (same order as
+    :func:`parse_node_prints`)."""
+    return np.array([_fortran_float(m.group(2)) for m in _HEADER.finditer(dat_text)
+                     if m.group(1).upper() == nset.upper()])
+
+
 def _fortran_float(text: str) -> float:
     """Parse ccx numbers, including three-digit exponents written without ``E``."""
     try:

@@ -38,7 +38,7 @@ STEEL = impactmaps.material("structural-steel")
 LENGTH, WIDTH, HEIGHT = 0.5, 0.02, 0.02
 RADIUS, VELOCITY = 0.01, 1.0
 SOLID_MASS = impactmaps.Sphere(RADIUS, STEEL).mass
-MASS_FACTORS = (0.1, 1.0, 10.0, 100.0)
+MASS_FACTORS = (0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0)
 REFERENCE = "a070_fine"
 PATCHES = {"a035_coarse": 0.35e-3, "a070_coarse": 0.7e-3, "a140_coarse": 1.4e-3}
 
@@ -66,6 +66,9 @@ def toolkit(mass):
                                 STEEL.yield_strength, plastic=False)
     fd = impactmaps.simulate_fd(fd_beam, law, mass, VELOCITY, duration=res.end_time)
     summary = lambda r: dict(peak_force_N=float(r.peak_force),
+                             first_peak_N=_first_peak(r.history["time_s"].to_numpy(),
+                                                      r.history["force_N"].to_numpy(),
+                                                      r.contact_intervals),
                              first_contact_s=float(r.contact_intervals[0, 1]
                                                    - r.contact_intervals[0, 0]),
                              impacts=int(len(r.contact_intervals)),
@@ -75,6 +78,12 @@ def toolkit(mass):
                                      n_modes=int(res.n_modes), wall_time_s=wall,
                                      first_call_s=t1 - t0),
                           fd=dict(**summary(fd), n_elements=200, theory="rayleigh (FD)"))
+
+
+def _first_peak(times, force, intervals):
+    """Largest force of the first contact [N]."""
+    inside = (times >= intervals[0, 0]) & (times <= intervals[0, 1])
+    return float(np.max(force[inside]))
 
 
 def fe_run(tag, law, mass, duration, step, n_modes=None, patch_radius=None):
@@ -92,11 +101,20 @@ def fe_run(tag, law, mass, duration, step, n_modes=None, patch_radius=None):
                      residual_compliance_m_per_N=residual,
                      local_compliance_c_m_per_N=spring.local, patch_radius_m=a_c,
                      peak_force_N=run.peak_force,
+                     first_peak_N=_first_peak(run.time, run.force, iv),
                      first_contact_s=float(iv[0, 1] - iv[0, 0]), impacts=int(len(iv)),
                      restitution=run.restitution, integrator_wall_time_s=wall)
 
 
 def main():
+    import argparse
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--reference", default=REFERENCE, help="modes tag of the reference")
+    parser.add_argument("--out", default=str(ct.RESULTS / "level3_dynamics.json"))
+    parser.add_argument("--masses", type=float, nargs="*", default=list(MASS_FACTORS),
+                        help="sphere masses as multiples of the solid sphere's")
+    args = parser.parse_args()
+    reference = args.reference
     out = {"inputs": dict(length_m=LENGTH, width_m=WIDTH, height_m=HEIGHT,
                           sphere_radius_m=RADIUS, velocity_m_s=VELOCITY,
                           solid_sphere_mass_kg=SOLID_MASS,
@@ -104,11 +122,12 @@ def main():
                                         rho_kg_m3=STEEL.density),
                           spring="alpha_s(F) = (F/K_h)^(2/3) - c F, c = 16(1-nu^2)/(3 pi^2 a_c E)",
                           supports="3D: end faces held in z (diaphragm); toolkit: ss"),
-           "command": "python validation/fe/level3_dynamics.py",
-           "modes": {tag: load_modes(tag)[3] for tag in [REFERENCE, *PATCHES]
+           "command": "python validation/fe/level3_dynamics.py " + " ".join(sys.argv[1:]),
+           "reference": reference,
+           "modes": {tag: load_modes(tag)[3] for tag in dict.fromkeys([reference, *PATCHES])
                      if (ct.RESULTS / f"level3_modes_{tag}.npz").exists()},
            "cases": []}
-    for factor in MASS_FACTORS:
+    for factor in args.masses:
         mass = factor * SOLID_MASS
         law, res, entry = toolkit(mass)
         t_c = entry["modal"]["first_contact_s"]
@@ -116,10 +135,10 @@ def main():
         step = t_c / 1000
         entry.update(mass_kg=mass, mass_factor=factor, fe={})
         fe = entry["fe"]
-        run, fe["reference"] = fe_run(REFERENCE, law, mass, duration, step)
-        _, fe["half_step"] = fe_run(REFERENCE, law, mass, duration, step / 2)
+        run, fe["reference"] = fe_run(reference, law, mass, duration, step)
+        _, fe["half_step"] = fe_run(reference, law, mass, duration, step / 2)
         n_all = fe["reference"]["n_modes"]
-        _, fe["half_modes"] = fe_run(REFERENCE, law, mass, duration, step, n_modes=n_all // 2)
+        _, fe["half_modes"] = fe_run(reference, law, mass, duration, step, n_modes=n_all // 2)
         for tag in PATCHES:
             if (ct.RESULTS / f"level3_modes_{tag}.npz").exists():
                 _, fe[tag] = fe_run(tag, law, mass, duration, step)
@@ -128,9 +147,9 @@ def main():
             print("  ", k, {q: v[q] for q in ("peak_force_N", "first_contact_s", "impacts",
                                                "restitution")}, flush=True)
         out["cases"].append(entry)
-        if factor == 1.0:
+        if factor == 1.0 and reference == REFERENCE:
             _write_history(run, res, law, mass)
-    (ct.RESULTS / "level3_dynamics.json").write_text(json.dumps(out, indent=1))
+        Path(args.out).write_text(json.dumps(out, indent=1))
 
 
 def _write_history(run, res, law, mass):

@@ -1,0 +1,129 @@
+"""The current toolkit against the committed 3D finite-element results (CalculiX).
+
+No ``ccx`` needed: the FE numbers are read from ``validation/fe/results/`` (produced
+by the scripts of ``validation/fe/``, see its README for the commands), the toolkit
+side is recomputed now, so a change of the solvers that moves them away from 3D
+elasticity fails here.  Tolerances, per level:
+
+* Level 1 (modes): the FE frequencies are mesh-converged to ≤ 0.3 % (two finest
+  meshes, checked below for every case used).  The Timoshenko beam / Mindlin plate
+  carry a theory error that grows with the thickness; the issue's requirement is
+  1 % for the first three symmetric bending modes at span/height ≥ 10, which is what
+  is asserted.  At span/height 5 (outside the requirement) the observed difference is
+  asserted not to grow beyond its measured value plus a margin (see the constants).
+* Level 3 (spring-coupled dynamics): modal peak force within 3 % and first-contact
+  duration within 5 % of the FE spring model at every committed (ζ, λ) point whose FE
+  value is converged (mesh, modes, step) to ≤ 1 %.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import impactmaps
+
+RESULTS = Path(__file__).resolve().parents[1] / "validation" / "fe" / "results"
+STEEL = impactmaps.material("structural-steel")
+
+LEVEL1 = RESULTS / "level1_modes.json"
+LEVEL3 = RESULTS / "level3_dynamics.json"
+
+# FE mesh convergence: the two finest meshes of a case (2/4 or 4/8 20-node hexahedra
+# through the depth) differ by at most this for the modes compared, i.e. the FE value
+# is known several times better than the tolerance on the toolkit.
+MESH_CONVERGED = 3e-3
+MODE_TOLERANCE = 1e-2           # the issue's requirement at span/height ≥ 10
+# Span/height 5 (outside the requirement): observed worst difference of the first
+# three symmetric modes (n = 1, 3, 5) 1.0 % (ends held in z) and 2.1 % (clamped);
+# asserted with a margin so that a drift is caught.
+THICK_TOLERANCE = {"face": 0.015, "clamped": 0.03}
+
+
+def _level1():
+    if not LEVEL1.exists():
+        pytest.skip(f"{LEVEL1} not committed")
+    return json.loads(LEVEL1.read_text())["cases"]
+
+
+def _beam_cases():
+    if not LEVEL1.exists():
+        return []
+    cases = json.loads(LEVEL1.read_text())["cases"]
+    return [k for k in cases if k.startswith("beam-") and "-edge-" not in k]
+
+
+def _plate_cases():
+    if not LEVEL1.exists():
+        return []
+    cases = json.loads(LEVEL1.read_text())["cases"]
+    return [k for k in cases if k.startswith("plate-face-")]
+
+
+@pytest.mark.parametrize("key", _beam_cases())
+def test_timoshenko_beam_modes_match_3d(key):
+    """First three symmetric bending modes (1, 3, 5 half-waves) of the Timoshenko beam
+    against the 3D solid (ends: whole end faces held in z for "ss", end faces fully
+    held for "cc")."""
+    case = _level1()[key]
+    _, support, ratio = key.split("-")
+    ratio = int(ratio)
+    best = case.get("best_mesh", "fine")
+    fine = np.array(case[best]["fe_bending_hz"])
+    assert case[best]["fe_half_waves"] == [1, 2, 3, 4, 5]
+    symmetric = [0, 2, 4]
+    assert np.abs(np.array(case["mesh_difference"])[symmetric]).max() <= MESH_CONVERGED
+    beam = impactmaps.Beam.rectangular(ratio * 0.02, 0.02, 0.02, STEEL,
+                                       supports="cc" if support == "clamped" else "ss")
+    toolkit = np.asarray(beam.mode_set(0.0, min_modes=5).frequencies[:5]) / (2 * np.pi)
+    tol = MODE_TOLERANCE if ratio >= 10 else THICK_TOLERANCE[support]
+    np.testing.assert_allclose(toolkit[symmetric], fine[symmetric], rtol=tol)
+
+
+@pytest.mark.parametrize("key", _plate_cases())
+def test_mindlin_plate_modes_match_3d(key):
+    """First five bending modes of the SSSS Mindlin plate against the 3D plate with its
+    side faces held in z and tangentially (the hard simple support)."""
+    case = _level1()[key]
+    ratio = int(key.split("-")[2])
+    fine = np.array(case["fine"]["fe_bending_hz"])
+    assert np.abs(case["mesh_difference"]).max() <= MESH_CONVERGED
+    a = ratio * 0.01
+    plate = impactmaps.Plate.isotropic(a, a, 0.01, STEEL, theory="mindlin")
+    toolkit = np.asarray(plate.modes(0.0, min_modes=5).frequencies[:5]) / (2 * np.pi)
+    np.testing.assert_allclose(toolkit, fine, rtol=MODE_TOLERANCE)
+
+
+def _level3_cases():
+    if not LEVEL3.exists():
+        return []
+    return json.loads(LEVEL3.read_text())["cases"]
+
+
+def _fe_spread(fe, quantity):
+    """Largest relative change of ``quantity`` over the convergence variants."""
+    ref = fe["reference"][quantity]
+    variants = ["half_step", "half_modes", "a070_coarse"]
+    return max(abs(fe[v][quantity] - ref) / ref for v in variants if v in fe)
+
+
+@pytest.mark.parametrize("case", _level3_cases(),
+                         ids=lambda c: f"mass×{c['mass_factor']:g}")
+def test_modal_solver_matches_spring_coupled_3d(case):
+    """Peak force within 3 % and first-contact duration within 5 % of the FE spring
+    model (SS beam 500 × 20 × 20 mm, span/height 25), at every point where the FE
+    value is converged to ≤ 1 % (mesh, modes, step)."""
+    fe = case["fe"]
+    if max(_fe_spread(fe, "peak_force_N"), _fe_spread(fe, "first_contact_s")) > 0.01:
+        pytest.skip("FE spring model not converged to 1 % at this point")
+    sphere = impactmaps.Sphere(0.01, STEEL, mass=case["mass_kg"])
+    law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
+    beam = impactmaps.Beam.rectangular(0.5, 0.02, 0.02, STEEL)
+    res = impactmaps.simulate(beam, law, case["mass_kg"], 1.0)
+    first = res.contact_intervals[0, 1] - res.contact_intervals[0, 0]
+    ref = fe["reference"]
+    assert res.peak_force == pytest.approx(ref["peak_force_N"], rel=0.03)
+    assert first == pytest.approx(ref["first_contact_s"], rel=0.05)

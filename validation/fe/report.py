@@ -1,0 +1,126 @@
+"""Tables (markdown, printed) and figures (figures/fe_*.png) from the committed results.
+
+Run: ``python validation/fe/report.py > /tmp/tables.md`` from the repository root; the
+tables of ``validation/fe/README.md`` were pasted from its output.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import ccx_tools as ct  # noqa: E402
+
+FIGURES = ct.HERE.parents[1] / "figures"
+
+
+def level1_tables():
+    data = json.loads((ct.RESULTS / "level1_modes.json").read_text())["cases"]
+    rows = ["| case | mode | FE fine [Hz] | FE coarse−fine | Timoshenko/Mindlin [Hz] | diff | "
+            "Euler/Kirchhoff [Hz] | diff | FE wall fine [s] |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for key, case in data.items():
+        fine = np.array(case["fine"]["fe_bending_hz"])
+        thick = np.array(case.get("toolkit_timoshenko_hz", case.get("toolkit_mindlin_hz")))
+        thin = np.array(case.get("toolkit_euler_hz", case.get("toolkit_kirchhoff_hz")))
+        labels = case["fine"]["fe_half_waves"] or ["(1,1)", "(1,2)", "(2,1)", "(2,2)", "(1,3)"]
+        for j in range(5):
+            rows.append(f"| {key} | {labels[j]} | {fine[j]:.2f} | "
+                        f"{100 * case['mesh_difference'][j]:+.3f} % | {thick[j]:.2f} | "
+                        f"{100 * (thick[j] / fine[j] - 1):+.2f} % | {thin[j]:.2f} | "
+                        f"{100 * (thin[j] / fine[j] - 1):+.2f} % | "
+                        f"{case['fine']['wall_time_s']:.1f} |")
+    return "\n".join(rows)
+
+
+def level3_tables():
+    data = json.loads((ct.RESULTS / "level3_dynamics.json").read_text())
+    out = ["| mass [kg] | ζ | λ | quantity | FE spring (ref) | FE mesh coarse | FE half step | "
+           "FE half modes | modal (Timoshenko) | diff | FD (Rayleigh) | diff |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for case in data["cases"]:
+        fe = case["fe"]
+        for q, label, scale, fmt in (("peak_force_N", "peak force [N]", 1, ".1f"),
+                                     ("first_contact_s", "first contact [µs]", 1e6, ".2f"),
+                                     ("impacts", "impacts", 1, "d"),
+                                     ("restitution", "restitution", 1, ".3f")):
+            ref = fe["reference"][q]
+
+            def cell(v):
+                return format(v * scale if scale != 1 else v, fmt)
+
+            def diff(v):
+                if q in ("impacts",):
+                    return f"{v - ref:+d}"
+                if q == "restitution":
+                    return f"{v - ref:+.3f}"
+                return f"{100 * (v / ref - 1):+.2f} %"
+            variants = [cell(fe[k][q]) + (f" ({diff(fe[k][q])})" if k in fe else "")
+                        if k in fe else "–" for k in ("a070_coarse", "half_step", "half_modes")]
+            out.append(f"| {case['mass_kg']:.4g} | {case['zeta']:.3g} | {case['lambda_']:.3g} | "
+                       f"{label} | {cell(ref)} | " + " | ".join(variants) + " | "
+                       f"{cell(case['modal'][q])} | {diff(case['modal'][q])} | "
+                       f"{cell(case['fd'][q])} | {diff(case['fd'][q])} |")
+    patch = ["| mass [kg] | a_c [mm] | peak force [N] | first contact [µs] | restitution |",
+             "|---|---|---|---|---|"]
+    for case in data["cases"]:
+        for tag in ("a035_coarse", "a070_coarse", "a140_coarse"):
+            if tag in case["fe"]:
+                r = case["fe"][tag]
+                patch.append(f"| {case['mass_kg']:.4g} | {1e3 * r['patch_radius_m']:.2f} | "
+                             f"{r['peak_force_N']:.1f} | {1e6 * r['first_contact_s']:.2f} | "
+                             f"{r['restitution']:.3f} |")
+    return "\n".join(out) + "\n\nPatch radius (coarse meshes):\n\n" + "\n".join(patch)
+
+
+def figures():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    hist = ct.RESULTS / "level3_history.csv"
+    if hist.exists():
+        d = np.loadtxt(hist, delimiter=",", skiprows=1)
+        fig, ax = plt.subplots(figsize=(6, 3.6))
+        ax.plot(1e6 * d[:, 0], d[:, 1], "k-", lw=2, label="3D FE modes + Hertz spring (CalculiX)")
+        ax.plot(1e6 * d[:, 0], d[:, 2], "C1--", label="modal, Timoshenko + Hertz")
+        ax.plot(1e6 * d[:, 0], d[:, 3], "C0:", label="FD, Rayleigh + Hertz")
+        ax.set_xlabel("time [µs]")
+        ax.set_ylabel("contact force [N]")
+        ax.set_title("Steel sphere R 10 mm, 1 m/s, on SS steel beam 500×20×20 mm", fontsize=9)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(FIGURES / "fe_level3_force_history.png", dpi=130)
+    data = json.loads((ct.RESULTS / "level1_modes.json").read_text())["cases"]
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for support, marker in (("face", "o"), ("edge", "s"), ("clamped", "^")):
+        keys = [k for k in data if k.startswith(f"beam-{support}-")]
+        if not keys:
+            continue
+        ratios = [int(k.split("-")[2]) for k in keys]
+        for j, color in ((0, "C0"), (2, "C1"), (4, "C2")):
+            diffs = []
+            for k in keys:
+                fe = data[k]["fine"]["fe_bending_hz"][j]
+                diffs.append(100 * (data[k]["toolkit_timoshenko_hz"][j] / fe - 1))
+            ax.plot(ratios, diffs, marker=marker, color=color, ls="-",
+                    label=f"{support}, mode {j + 1}")
+    ax.axhspan(-1, 1, color="0.9")
+    ax.set_xscale("log")
+    ax.set_xlabel("span / height")
+    ax.set_ylabel("Timoshenko − 3D FE [%]")
+    ax.legend(fontsize=6, ncol=3)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "fe_modes_beam.png", dpi=130)
+
+
+if __name__ == "__main__":
+    print("## Level 1\n")
+    print(level1_tables())
+    if (ct.RESULTS / "level3_dynamics.json").exists():
+        print("\n## Level 3\n")
+        print(level3_tables())
+    figures()
