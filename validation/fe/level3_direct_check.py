@@ -25,6 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import ccx_tools as ct  # noqa: E402
 import level3_dynamics as l3d  # noqa: E402
 import level3_modes as l3m  # noqa: E402
+from spring_integrator import step_coefficients  # noqa: E402
 
 
 def modal_patch_deflection(omega, phi, residual, times, force):
@@ -35,10 +36,7 @@ def modal_patch_deflection(omega, phi, residual, times, force):
     for k in range(len(times) - 1):
         h = times[k + 1] - times[k]
         f0, f1 = force[k], force[k + 1]
-        c, s = np.cos(omega * h), np.sin(omega * h)
-        g0 = (1 - c) / omega ** 2
-        g1 = (omega * h - s) / (omega ** 3 * h)
-        d0, d1 = s / omega, (1 - c) / (omega ** 2 * h)
+        c, s, g0, g1, d0, d1 = step_coefficients(omega, h)
         q, qd = (q * c + qd * s / omega + phi * (f0 * (g0 - g1) + f1 * g1),
                  -q * omega * s + qd * c + phi * (f0 * (d0 - d1) + f1 * d1))
         out.append(float(np.dot(phi, q) + residual * f1))

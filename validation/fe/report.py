@@ -20,20 +20,26 @@ FIGURES = ct.HERE.parents[1] / "figures"
 
 def level1_tables():
     data = json.loads((ct.RESULTS / "level1_modes.json").read_text())["cases"]
-    rows = ["| case | mode | FE fine [Hz] | FE coarse−fine | Timoshenko/Mindlin [Hz] | diff | "
-            "Euler/Kirchhoff [Hz] | diff | FE wall fine [s] |",
-            "|---|---|---|---|---|---|---|---|---|"]
-    for key, case in data.items():
-        fine = np.array(case["fine"]["fe_bending_hz"])
+    rows = ["| case | FE bending modes 1–5 [Hz] (best mesh) | mesh Δ, modes 1–5 [%] | "
+            "Timoshenko/Mindlin − FE [%] | Euler/Kirchhoff − FE [%] | best mesh: elements "
+            "(depth), element, ccx wall [s] |",
+            "|---|---|---|---|---|---|"]
+    order = sorted(data, key=lambda k: (k.split("-")[0], ["face", "clampxz", "clamped",
+                                                          "edge"].index(k.split("-")[1]),
+                                        int(k.split("-")[2])))
+    for key in order:
+        case = data[key]
+        best = case.get("best_mesh", "fine")
+        fe = np.array(case[best]["fe_bending_hz"])
         thick = np.array(case.get("toolkit_timoshenko_hz", case.get("toolkit_mindlin_hz")))
         thin = np.array(case.get("toolkit_euler_hz", case.get("toolkit_kirchhoff_hz")))
-        labels = case["fine"]["fe_half_waves"] or ["(1,1)", "(1,2)", "(2,1)", "(2,2)", "(1,3)"]
-        for j in range(5):
-            rows.append(f"| {key} | {labels[j]} | {fine[j]:.2f} | "
-                        f"{100 * case['mesh_difference'][j]:+.3f} % | {thick[j]:.2f} | "
-                        f"{100 * (thick[j] / fine[j] - 1):+.2f} % | {thin[j]:.2f} | "
-                        f"{100 * (thin[j] / fine[j] - 1):+.2f} % | "
-                        f"{case['fine']['wall_time_s']:.1f} |")
+        fmt = lambda v: " / ".join(f"{x:+.2f}" for x in v)
+        mesh = case[best]
+        rows.append(f"| {key} | " + " / ".join(f"{x:.1f}" for x in fe) + " | "
+                    + fmt(100 * np.array(case["mesh_difference"])) + " | "
+                    + fmt(100 * (thick / fe - 1)) + " | " + fmt(100 * (thin / fe - 1)) + " | "
+                    + f"{'×'.join(map(str, mesh['elements']))} ({mesh['elements'][-1]}), "
+                    f"{mesh['element_type']}, {mesh['wall_time_s']:.0f} |")
     return "\n".join(rows)
 
 
@@ -96,15 +102,16 @@ def figures():
         fig.savefig(FIGURES / "fe_level3_force_history.png", dpi=130)
     data = json.loads((ct.RESULTS / "level1_modes.json").read_text())["cases"]
     fig, ax = plt.subplots(figsize=(6, 3.6))
-    for support, marker in (("face", "o"), ("edge", "s"), ("clamped", "^")):
+    for support, marker in (("face", "o"), ("edge", "s"), ("clamped", "^"), ("clampxz", "v")):
         keys = [k for k in data if k.startswith(f"beam-{support}-")]
         if not keys:
             continue
         ratios = [int(k.split("-")[2]) for k in keys]
-        for j, color in ((0, "C0"), (2, "C1"), (4, "C2")):
+        modes = ((0, "C0"),) if support == "edge" else ((0, "C0"), (2, "C1"), (4, "C2"))
+        for j, color in modes:
             diffs = []
             for k in keys:
-                fe = data[k]["fine"]["fe_bending_hz"][j]
+                fe = data[k][data[k].get("best_mesh", "fine")]["fe_bending_hz"][j]
                 diffs.append(100 * (data[k]["toolkit_timoshenko_hz"][j] / fe - 1))
             ax.plot(ratios, diffs, marker=marker, color=color, ls="-",
                     label=f"{support}, mode {j + 1}")

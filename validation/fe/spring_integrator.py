@@ -71,12 +71,7 @@ def integrate(omega, participation, residual, law: SpringLaw, mass, velocity,
     w = np.asarray(omega, float)
     p = np.asarray(participation, float)
     h = float(time_step)
-    cw, sw = np.cos(w * h), np.sin(w * h)
-    # response of q to F0 (constant) and to the ramp (F1 - F0) t / h
-    g0 = (1 - cw) / w ** 2
-    g1 = (w * h - sw) / (w ** 3 * h)
-    d0 = sw / w
-    d1 = (1 - cw) / (w ** 2 * h)
+    cw, sw, g0, g1, d0, d1 = step_coefficients(w, h)
     b_coef = h * h / (6 * mass) + np.dot(p * p, g1) + residual
     n_steps = int(np.ceil(duration / h))
     q = np.zeros_like(w)
@@ -106,6 +101,17 @@ def integrate(omega, participation, residual, law: SpringLaw, mass, velocity,
     return SpringRun(time=times, force=forces, sphere_velocity=vels,
                      peak_force=float(forces.max()), contact_intervals=intervals,
                      restitution=float(-v / velocity))
+
+
+def step_coefficients(w, h):
+    """Exact one-step response of ``q'' + w² q = f`` with f linear over the step.
+
+    Returns ``cos wh, sin wh, g0, g1, d0, d1``: q and q' gain ``g0 f0 + g1 (f1 − f0)``
+    and ``d0 f0 + d1 (f1 − f0)`` from the force (values f0, f1 at the step's ends).
+    """
+    cw, sw = np.cos(w * h), np.sin(w * h)
+    return (cw, sw, (1 - cw) / w ** 2, (w * h - sw) / (w ** 3 * h), sw / w,
+            (1 - cw) / (w ** 2 * h))
 
 
 def _solve(law, a, b):
