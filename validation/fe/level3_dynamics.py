@@ -40,6 +40,7 @@ RADIUS, VELOCITY = 0.01, 1.0
 SOLID_MASS = impactmaps.Sphere(RADIUS, STEEL).mass
 MASS_FACTORS = (0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0)
 REFERENCE = "a070_fine"
+HISTORY_MASSES = {1.0: "level3_history.csv", 30.0: "level3_history_mass30.csv"}
 PATCHES = {"a035_coarse": 0.35e-3, "a070_coarse": 0.7e-3, "a140_coarse": 1.4e-3}
 
 
@@ -147,21 +148,22 @@ def main():
             print("  ", k, {q: v[q] for q in ("peak_force_N", "first_contact_s", "impacts",
                                                "restitution")}, flush=True)
         out["cases"].append(entry)
-        if factor == 1.0 and reference == REFERENCE:
-            _write_history(run, res, law, mass)
+        if factor in HISTORY_MASSES and reference == REFERENCE:
+            _write_history(run, res, law, mass, HISTORY_MASSES[factor])
         Path(args.out).write_text(json.dumps(out, indent=1))
 
 
-def _write_history(run, res, law, mass):
-    """Force histories of the base case (FE spring model, modal, FD) on one CSV."""
+def _write_history(run, res, law, mass, name):
+    """Force histories of one case (FE spring model, modal, FD) on one CSV."""
     fd_beam = impactmaps.FDBeam(LENGTH, WIDTH, HEIGHT, STEEL.youngs_modulus, STEEL.density,
                                 STEEL.yield_strength, plastic=False)
     fd = impactmaps.simulate_fd(fd_beam, law, mass, VELOCITY, duration=res.end_time)
-    t = run.time[::5]
+    stride = max(1, len(run.time) // 4000)
+    t = run.time[::stride]
     modal = np.interp(t, res.history["time_s"], res.history["force_N"])
     fdf = np.interp(t, fd.history["time_s"], fd.history["force_N"])
-    data = np.column_stack([t, run.force[::5], modal, fdf])
-    np.savetxt(ct.RESULTS / "level3_history.csv", data, delimiter=",", fmt="%.6e",
+    data = np.column_stack([t, run.force[::stride], modal, fdf])
+    np.savetxt(ct.RESULTS / name, data, delimiter=",", fmt="%.6e",
                header="time_s,fe_spring_force_N,modal_timoshenko_force_N,fd_rayleigh_force_N",
                comments="")
 

@@ -87,17 +87,23 @@ def figures():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    hist = ct.RESULTS / "level3_history.csv"
-    if hist.exists():
-        d = np.loadtxt(hist, delimiter=",", skiprows=1)
-        fig, ax = plt.subplots(figsize=(6, 3.6))
-        ax.plot(1e6 * d[:, 0], d[:, 1], "k-", lw=2, label="3D FE modes + Hertz spring (CalculiX)")
-        ax.plot(1e6 * d[:, 0], d[:, 2], "C1--", label="modal, Timoshenko + Hertz")
-        ax.plot(1e6 * d[:, 0], d[:, 3], "C0:", label="FD, Rayleigh + Hertz")
-        ax.set_xlabel("time [µs]")
-        ax.set_ylabel("contact force [N]")
-        ax.set_title("Steel sphere R 10 mm, 1 m/s, on SS steel beam 500×20×20 mm", fontsize=9)
-        ax.legend(fontsize=8)
+    panels = [(ct.RESULTS / "level3_history.csv", "solid sphere (32.9 g): one impact"),
+              (ct.RESULTS / "level3_history_mass30.csv",
+               "30 × the sphere mass (0.99 kg): three impacts")]
+    panels = [(p, t) for p, t in panels if p.exists()]
+    if panels:
+        fig, axes = plt.subplots(len(panels), 1, figsize=(6.4, 3.2 * len(panels)))
+        for ax, (path, title) in zip(np.atleast_1d(axes), panels):
+            d = np.loadtxt(path, delimiter=",", skiprows=1)
+            ax.plot(1e6 * d[:, 0], d[:, 1], "k-", lw=2,
+                    label="3D FE modes + Hertz spring (CalculiX)")
+            ax.plot(1e6 * d[:, 0], d[:, 2], "C1--", label="modal, Timoshenko + Hertz")
+            ax.plot(1e6 * d[:, 0], d[:, 3], "C0:", label="FD, Rayleigh + Hertz")
+            ax.set_xlabel("time [µs]")
+            ax.set_ylabel("contact force [N]")
+            ax.set_title("R 10 mm steel sphere, 1 m/s, SS steel beam 500×20×20 mm — " + title,
+                         fontsize=8)
+            ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(FIGURES / "fe_level3_force_history.png", dpi=130)
     data = json.loads((ct.RESULTS / "level1_modes.json").read_text())["cases"]
