@@ -87,13 +87,15 @@ def _first_peak(times, force, intervals):
     return float(np.max(force[inside]))
 
 
-def fe_run(tag, law, mass, duration, step, n_modes=None, patch_radius=None):
+def fe_run(tag, law, mass, duration, step, n_modes=None, patch_radius=None,
+           whole_law=False):
     omega, phi, compliance, meta = load_modes(tag)
     if n_modes is not None:
         omega, phi = omega[:n_modes], phi[:n_modes]
     residual = compliance - float(np.sum(phi ** 2 / omega ** 2))
     a_c = patch_radius if patch_radius is not None else meta["patch_radius_m"]
-    spring = SpringLaw("hertz", law.stiffness, halfspace_patch_compliance(a_c, STEEL))
+    local = 0.0 if whole_law else halfspace_patch_compliance(a_c, STEEL)
+    spring = SpringLaw("hertz", law.stiffness, local)
     t0 = time.perf_counter()
     run = integrate(omega, phi, residual, spring, mass, VELOCITY, step, duration)
     wall = time.perf_counter() - t0
@@ -140,6 +142,9 @@ def main():
         _, fe["half_step"] = fe_run(reference, law, mass, duration, step / 2)
         n_all = fe["reference"]["n_modes"]
         _, fe["half_modes"] = fe_run(reference, law, mass, duration, step, n_modes=n_all // 2)
+        # the trap of the issue: the whole Hertz law on the spring (c = 0)
+        _, fe["whole_law_on_spring"] = fe_run(reference, law, mass, duration, step,
+                                              whole_law=True)
         for tag in PATCHES:
             if (ct.RESULTS / f"level3_modes_{tag}.npz").exists():
                 _, fe[tag] = fe_run(tag, law, mass, duration, step)
