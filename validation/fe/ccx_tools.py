@@ -11,6 +11,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,6 +19,10 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
+# The scripts run as ``python validation/fe/<script>.py``: put the repository root
+# first on the path so that ``import impactmaps`` is this checkout's package.
+if str(HERE.parents[1]) not in sys.path:
+    sys.path.insert(0, str(HERE.parents[1]))
 RESULTS = HERE / "results"
 WORK = HERE.parent / "work" / "fe"          # git-ignored (validation/work/)
 

@@ -50,9 +50,11 @@ def load_modes(tag):
     return d["omega"], d["participation"], float(d["static_compliance"]), meta
 
 
-def toolkit(mass):
+def toolkit(mass, linear_stiffness=None):
+    """Toolkit modal (Timoshenko) and FD (Rayleigh) runs; Hertz law, or linear law."""
     sphere = impactmaps.Sphere(RADIUS, STEEL, mass=mass)
-    law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
+    law = (impactmaps.law_for_sphere("hertz", sphere, STEEL) if linear_stiffness is None
+           else impactmaps.contact_law("linear", stiffness=linear_stiffness))
     beam = impactmaps.Beam.rectangular(LENGTH, WIDTH, HEIGHT, STEEL)
     t0 = time.perf_counter()
     impactmaps.simulate(beam, law, mass, VELOCITY)       # compile / cache
@@ -89,13 +91,15 @@ def _first_peak(times, force, intervals):
 
 def fe_run(tag, law, mass, duration, step, n_modes=None, patch_radius=None,
            whole_law=False):
+    """The FE spring model with the 3D modes ``tag``; ``law`` Hertz or linear."""
     omega, phi, compliance, meta = load_modes(tag)
     if n_modes is not None:
         omega, phi = omega[:n_modes], phi[:n_modes]
     residual = compliance - float(np.sum(phi ** 2 / omega ** 2))
     a_c = patch_radius if patch_radius is not None else meta["patch_radius_m"]
     local = 0.0 if whole_law else halfspace_patch_compliance(a_c, STEEL)
-    spring = SpringLaw("hertz", law.stiffness, local)
+    kind = "linear" if law.name == "linear" else "hertz"
+    spring = SpringLaw(kind, law.stiffness, local)
     t0 = time.perf_counter()
     run = integrate(omega, phi, residual, spring, mass, VELOCITY, step, duration)
     wall = time.perf_counter() - t0
@@ -152,10 +156,30 @@ def main():
         for k, v in fe.items():
             print("  ", k, {q: v[q] for q in ("peak_force_N", "first_contact_s", "impacts",
                                                "restitution")}, flush=True)
+        entry["linear"] = _linear_variant(mass, mass * entry["contact_frequency"] ** 2,
+                                          reference)
         out["cases"].append(entry)
         if factor in HISTORY_MASSES and reference == REFERENCE:
             _write_history(run, res, law, mass, HISTORY_MASSES[factor])
         Path(args.out).write_text(json.dumps(out, indent=1))
+
+
+def _linear_variant(mass, stiffness, reference):
+    """The same point with a linear contact law of the Hertz law's linearised stiffness."""
+    law, res, entry = toolkit(mass, linear_stiffness=stiffness)
+    t_c = entry["modal"]["first_contact_s"]
+    duration, step = 1.05 * entry["modal"]["end_time_s"], t_c / 1000
+    fe = {"reference": fe_run(reference, law, mass, duration, step)[1],
+          "half_step": fe_run(reference, law, mass, duration, step / 2)[1]}
+    for tag in PATCHES:
+        if (ct.RESULTS / f"level3_modes_{tag}.npz").exists():
+            fe[tag] = fe_run(tag, law, mass, duration, step)[1]
+    entry.update(stiffness_N_m=stiffness, fe=fe)
+    print("   linear", {k: (round(v["peak_force_N"], 1), round(1e6 * v["first_contact_s"], 2))
+                        for k, v in fe.items()},
+          "modal", round(entry["modal"]["peak_force_N"], 1),
+          round(1e6 * entry["modal"]["first_contact_s"], 2), flush=True)
+    return entry
 
 
 def _write_history(run, res, law, mass, name):

@@ -125,7 +125,13 @@ def patch_weights(tri_ids, tri_xyz):
     return ids, w / w.sum(), float(area.sum())
 
 
-def build_deck(mesh, length, height, patch_ids, patch_w, n_modes):
+def build_deck(mesh, length, height, patch_ids, patch_w, n_modes, plate_width=None):
+    """Quarter-model deck: static patch load step + *FREQUENCY step.
+
+    Beam (``plate_width`` None): end face x = L/2 held in z.  Plate (square, side
+    ``length`` = ``plate_width``): the side faces x = a/2 and y = a/2 held in z and in
+    their tangential direction (the hard simple support of level 1).
+    """
     x, y, z = mesh.coords.T
     tol = 1e-9
     parts = []
@@ -139,6 +145,9 @@ def build_deck(mesh, length, height, patch_ids, patch_w, n_modes):
     ct.write_nset(F, "END", mesh.nodes_where(np.isclose(x, length / 2, atol=tol)))
     ct.write_nset(F, "PATCH", patch_ids)
     w("*BOUNDARY\nXSYM,1,1\nYSYM,2,2\nEND,3,3\n")
+    if plate_width is not None:
+        ct.write_nset(F, "YEND", mesh.nodes_where(np.isclose(y, plate_width / 2, atol=tol)))
+        w("*BOUNDARY\nEND,2,2\nYEND,1,1\nYEND,3,3\n")
     w("*STEP\n*STATIC\n*CLOAD\n")
     for node, weight in zip(patch_ids, patch_w):
         w(f"{node},3,{-weight:.12e}\n")
@@ -147,13 +156,14 @@ def build_deck(mesh, length, height, patch_ids, patch_w, n_modes):
     return "*HEADING\nlevel 3 quarter beam modes\n" + "".join(parts)
 
 
-def run(tag, length, width, height, patch_radius, refine, far_size, n_modes):
+def run(tag, length, width, height, patch_radius, refine, far_size, n_modes, plate=False):
     t0 = time.perf_counter()
     mesh, tri_ids, tri_xyz = quarter_beam_mesh(length, width, height, patch_radius,
                                                refine, far_size)
     mesh_time = time.perf_counter() - t0
     patch_ids, patch_w, patch_area = patch_weights(tri_ids, tri_xyz)
-    deck = build_deck(mesh, length, height, patch_ids, patch_w, n_modes)
+    deck = build_deck(mesh, length, height, patch_ids, patch_w, n_modes,
+                      plate_width=width if plate else None)
     dat, wall = ct.run_ccx(deck, tag, ct.WORK / "level3")
     text = dat.read_text()
     blocks = ct.parse_node_prints(text, "PATCH")
@@ -164,7 +174,7 @@ def run(tag, length, width, height, patch_radius, refine, far_size, n_modes):
     phi_patch = np.array([mean(b) for b in modes]) / 2.0
     out = ct.RESULTS / f"level3_modes_{tag}.npz"
     np.savez(out, omega=omega, participation=phi_patch, static_compliance=compliance)
-    meta = dict(tag=tag, length_m=length, width_m=width, height_m=height,
+    meta = dict(tag=tag, structure="plate SSSS" if plate else "beam SS", length_m=length, width_m=width, height_m=height,
                 patch_radius_m=patch_radius, patch_area_quarter_m2=patch_area,
                 patch_area_exact_quarter_m2=np.pi * patch_radius ** 2 / 4,
                 element_type=mesh.element_type, size_on_patch_m=patch_radius / refine,
@@ -193,8 +203,11 @@ def main():
                    help="elements across the patch radius")
     p.add_argument("--far-size", type=float, default=0.005)
     p.add_argument("--modes", type=int, default=60)
+    p.add_argument("--plate", action="store_true",
+                   help="square SSSS plate of side --length (= --width), thickness --height")
     a = p.parse_args()
-    run(a.tag, a.length, a.width, a.height, a.patch_radius, a.refine, a.far_size, a.modes)
+    run(a.tag, a.length, a.width, a.height, a.patch_radius, a.refine, a.far_size, a.modes,
+        plate=a.plate)
 
 
 if __name__ == "__main__":
