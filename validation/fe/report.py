@@ -83,6 +83,55 @@ def level3_tables():
     return "\n".join(out) + "\n\nPatch radius (coarse meshes):\n\n" + "\n".join(patch)
 
 
+def _pct(a, b):
+    return f"{100 * (a / b - 1):+.2f} %"
+
+
+def linear_table():
+    data = json.loads((ct.RESULTS / "level3_dynamics.json").read_text())
+    rows = ["| mass [kg] | k [N/m] | FE first peak [N] (mesh Δ, step Δ) | modal | diff | FD | diff | "
+            "FE first contact [µs] | modal | diff | impacts FE / modal / FD |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for case in data["cases"]:
+        lin = case.get("linear")
+        if lin is None:
+            continue
+        fe = lin["fe"]
+        ref = fe["reference"]
+        rows.append(
+            f"| {case['mass_kg']:.4g} | {lin['stiffness_N_m']:.3g} | {ref['first_peak_N']:.1f} "
+            f"({_pct(fe['a070_coarse']['first_peak_N'], ref['first_peak_N'])}, "
+            f"{_pct(fe['half_step']['first_peak_N'], ref['first_peak_N'])}) | "
+            f"{lin['modal']['first_peak_N']:.1f} | "
+            f"{_pct(lin['modal']['first_peak_N'], ref['first_peak_N'])} | "
+            f"{lin['fd']['first_peak_N']:.1f} | {_pct(lin['fd']['first_peak_N'], ref['first_peak_N'])} | "
+            f"{1e6 * ref['first_contact_s']:.2f} | {1e6 * lin['modal']['first_contact_s']:.2f} | "
+            f"{_pct(lin['modal']['first_contact_s'], ref['first_contact_s'])} | "
+            f"{ref['impacts']} / {lin['modal']['impacts']} / {lin['fd']['impacts']} |")
+    return "\n".join(rows)
+
+
+def plate_table():
+    data = json.loads((ct.RESULTS / "level3_plate.json").read_text())
+    rows = ["| mass [kg] | ζ | λ | FE peak [N] (mesh Δ, step Δ, half modes Δ) | Mindlin modal | diff | "
+            "FE contact [µs] | modal | diff | restitution FE / modal |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
+    for case in data["cases"]:
+        fe = case["fe"]
+        ref = fe["reference"]
+        m = case["modal"]
+        rows.append(
+            f"| {case['mass_kg']:.4g} | {case['zeta']:.3g} | {case['lambda_']:.3g} | "
+            f"{ref['peak_force_N']:.1f} ({_pct(fe['plate_a070_coarse']['peak_force_N'], ref['peak_force_N'])}, "
+            f"{_pct(fe['half_step']['peak_force_N'], ref['peak_force_N'])}, "
+            f"{_pct(fe['half_modes']['peak_force_N'], ref['peak_force_N'])}) | "
+            f"{m['peak_force_N']:.1f} | {_pct(m['peak_force_N'], ref['peak_force_N'])} | "
+            f"{1e6 * ref['first_contact_s']:.2f} | {1e6 * m['first_contact_s']:.2f} | "
+            f"{_pct(m['first_contact_s'], ref['first_contact_s'])} | "
+            f"{ref['restitution']:.3f} / {m['restitution']:.3f} |")
+    return "\n".join(rows)
+
+
 def figures():
     import matplotlib
     matplotlib.use("Agg")
@@ -136,4 +185,9 @@ if __name__ == "__main__":
     if (ct.RESULTS / "level3_dynamics.json").exists():
         print("\n## Level 3\n")
         print(level3_tables())
+        print("\n## Level 3, linear law\n")
+        print(linear_table())
+    if (ct.RESULTS / "level3_plate.json").exists():
+        print("\n## Level 3, plate\n")
+        print(plate_table())
     figures()
