@@ -50,12 +50,12 @@ def load_modes(tag):
     return d["omega"], d["participation"], float(d["static_compliance"]), meta
 
 
-def toolkit(mass, linear_stiffness=None):
+def toolkit(mass, linear_stiffness=None, length=LENGTH):
     """Toolkit modal (Timoshenko) and FD (Rayleigh) runs; Hertz law, or linear law."""
     sphere = impactmaps.Sphere(RADIUS, STEEL, mass=mass)
     law = (impactmaps.law_for_sphere("hertz", sphere, STEEL) if linear_stiffness is None
            else impactmaps.contact_law("linear", stiffness=linear_stiffness))
-    beam = impactmaps.Beam.rectangular(LENGTH, WIDTH, HEIGHT, STEEL)
+    beam = impactmaps.Beam.rectangular(length, WIDTH, HEIGHT, STEEL)
     t0 = time.perf_counter()
     impactmaps.simulate(beam, law, mass, VELOCITY)       # compile / cache
     t1 = time.perf_counter()
@@ -65,7 +65,7 @@ def toolkit(mass, linear_stiffness=None):
     zeta = float(impactmaps.loss_factor_beam(mass, k_lin, beam.mass_per_length,
                                              beam.bending_stiffness))
     lam = float(impactmaps.relative_stiffness(beam.static_stiffness(), k_lin))
-    fd_beam = impactmaps.FDBeam(LENGTH, WIDTH, HEIGHT, STEEL.youngs_modulus, STEEL.density,
+    fd_beam = impactmaps.FDBeam(length, WIDTH, HEIGHT, STEEL.youngs_modulus, STEEL.density,
                                 STEEL.yield_strength, plastic=False)
     fd = impactmaps.simulate_fd(fd_beam, law, mass, VELOCITY, duration=res.end_time)
     summary = lambda r: dict(peak_force_N=float(r.peak_force),
@@ -120,9 +120,14 @@ def main():
     parser.add_argument("--out", default=str(ct.RESULTS / "level3_dynamics.json"))
     parser.add_argument("--masses", type=float, nargs="*", default=list(MASS_FACTORS),
                         help="sphere masses as multiples of the solid sphere's")
+    parser.add_argument("--length", type=float, default=LENGTH, help="beam span [m]")
+    parser.add_argument("--prefix", default="",
+                        help="prefix of the modes tags (e.g. short_ for the 200 mm beam); "
+                             "variants are stored under the unprefixed tag names")
     args = parser.parse_args()
-    reference = args.reference
-    out = {"inputs": dict(length_m=LENGTH, width_m=WIDTH, height_m=HEIGHT,
+    prefix = args.prefix
+    reference = prefix + args.reference
+    out = {"inputs": dict(length_m=args.length, width_m=WIDTH, height_m=HEIGHT,
                           sphere_radius_m=RADIUS, velocity_m_s=VELOCITY,
                           solid_sphere_mass_kg=SOLID_MASS,
                           material=dict(E_Pa=STEEL.youngs_modulus, nu=STEEL.poisson_ratio,
@@ -131,12 +136,13 @@ def main():
                           supports="3D: end faces held in z (diaphragm); toolkit: ss"),
            "command": "python validation/fe/level3_dynamics.py " + " ".join(sys.argv[1:]),
            "reference": reference,
-           "modes": {tag: load_modes(tag)[3] for tag in dict.fromkeys([reference, *PATCHES])
+           "modes": {tag: load_modes(tag)[3]
+                     for tag in dict.fromkeys([reference, *(prefix + t for t in PATCHES)])
                      if (ct.RESULTS / f"level3_modes_{tag}.npz").exists()},
            "cases": []}
     for factor in args.masses:
         mass = factor * SOLID_MASS
-        law, res, entry = toolkit(mass)
+        law, res, entry = toolkit(mass, length=args.length)
         t_c = entry["modal"]["first_contact_s"]
         duration = 1.05 * entry["modal"]["end_time_s"]
         step = t_c / 1000
@@ -150,30 +156,30 @@ def main():
         _, fe["whole_law_on_spring"] = fe_run(reference, law, mass, duration, step,
                                               whole_law=True)
         for tag in PATCHES:
-            if (ct.RESULTS / f"level3_modes_{tag}.npz").exists():
-                _, fe[tag] = fe_run(tag, law, mass, duration, step)
+            if (ct.RESULTS / f"level3_modes_{prefix + tag}.npz").exists():
+                _, fe[tag] = fe_run(prefix + tag, law, mass, duration, step)
         print(json.dumps({k: v for k, v in entry.items() if k != "fe"}), flush=True)
         for k, v in fe.items():
             print("  ", k, {q: v[q] for q in ("peak_force_N", "first_contact_s", "impacts",
                                                "restitution")}, flush=True)
         entry["linear"] = _linear_variant(mass, mass * entry["contact_frequency"] ** 2,
-                                          reference)
+                                          reference, prefix, args.length)
         out["cases"].append(entry)
-        if factor in HISTORY_MASSES and reference == REFERENCE:
+        if factor in HISTORY_MASSES and reference == REFERENCE and args.length == LENGTH:
             _write_history(run, res, law, mass, HISTORY_MASSES[factor])
         Path(args.out).write_text(json.dumps(out, indent=1))
 
 
-def _linear_variant(mass, stiffness, reference):
+def _linear_variant(mass, stiffness, reference, prefix, length):
     """The same point with a linear contact law of the Hertz law's linearised stiffness."""
-    law, res, entry = toolkit(mass, linear_stiffness=stiffness)
+    law, res, entry = toolkit(mass, linear_stiffness=stiffness, length=length)
     t_c = entry["modal"]["first_contact_s"]
     duration, step = 1.05 * entry["modal"]["end_time_s"], t_c / 1000
     fe = {"reference": fe_run(reference, law, mass, duration, step)[1],
           "half_step": fe_run(reference, law, mass, duration, step / 2)[1]}
     for tag in PATCHES:
-        if (ct.RESULTS / f"level3_modes_{tag}.npz").exists():
-            fe[tag] = fe_run(tag, law, mass, duration, step)[1]
+        if (ct.RESULTS / f"level3_modes_{prefix + tag}.npz").exists():
+            fe[tag] = fe_run(prefix + tag, law, mass, duration, step)[1]
     entry.update(stiffness_N_m=stiffness, fe=fe)
     print("   linear", {k: (round(v["peak_force_N"], 1), round(1e6 * v["first_contact_s"], 2))
                         for k, v in fe.items()},
