@@ -36,6 +36,7 @@ STEEL = impactmaps.material("structural-steel")
 LEVEL1 = RESULTS / "level1_modes.json"
 LATE_PEAK_TOLERANCE = 0.08      # level 3, events with three or more impacts (see test)
 LEVEL3 = RESULTS / "level3_dynamics.json"
+LEVEL3_SHORT = RESULTS / "level3_dynamics_short.json"     # 200 mm span, if committed
 
 # FE mesh convergence: the two finest meshes of a case (2/4 or 4/8 20-node hexahedra
 # through the depth) differ by at most this for the modes compared, i.e. the FE value
@@ -120,9 +121,14 @@ def test_mindlin_plate_modes_match_3d(key):
 
 
 def _level3_cases():
-    if not LEVEL3.exists():
-        return []
-    return json.loads(LEVEL3.read_text())["cases"]
+    """Beam cases of every committed level-3 file, each with its span ``length_m``."""
+    cases = []
+    for path in (LEVEL3, LEVEL3_SHORT):
+        if path.exists():
+            data = json.loads(path.read_text())
+            for case in data["cases"]:
+                cases.append(dict(case, length_m=data["inputs"]["length_m"]))
+    return cases
 
 
 def _fe_spread(fe, quantity):
@@ -133,7 +139,7 @@ def _fe_spread(fe, quantity):
 
 
 @pytest.mark.parametrize("case", _level3_cases(),
-                         ids=lambda c: f"mass×{c['mass_factor']:g}")
+                         ids=lambda c: f"L{c['length_m']:g}-mass×{c['mass_factor']:g}")
 def test_modal_solver_matches_spring_coupled_3d(case):
     """SS beam 500 × 20 × 20 mm (span/height 25), steel sphere R 10 mm at 1 m/s, several
     sphere masses (ζ from local to multiple impacts).  At every point whose FE value is
@@ -149,7 +155,7 @@ def test_modal_solver_matches_spring_coupled_3d(case):
         pytest.skip("FE spring model not converged to 1 % at this point")
     sphere = impactmaps.Sphere(0.01, STEEL, mass=case["mass_kg"])
     law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
-    beam = impactmaps.Beam.rectangular(0.5, 0.02, 0.02, STEEL)
+    beam = impactmaps.Beam.rectangular(case["length_m"], 0.02, 0.02, STEEL)
     res = impactmaps.simulate(beam, law, case["mass_kg"], 1.0)
     start, end = res.contact_intervals[0]
     first = res.history[(res.history["time_s"] >= start) & (res.history["time_s"] <= end)]
@@ -164,7 +170,7 @@ LINEAR_LATE_TOLERANCE = (0.055, 0.065)   # first peak, first contact; ≥ 2 impa
 
 
 @pytest.mark.parametrize("case", _level3_cases(),
-                         ids=lambda c: f"linear-mass×{c['mass_factor']:g}")
+                         ids=lambda c: f"linear-L{c['length_m']:g}-mass×{c['mass_factor']:g}")
 def test_modal_solver_matches_spring_coupled_3d_linear_law(case):
     """The same points with a linear contact law (stiffness: the Hertz law's linearised
     K).  Single-impact events: first-contact peak within 3 % and duration within 5 %
@@ -180,7 +186,7 @@ def test_modal_solver_matches_spring_coupled_3d_linear_law(case):
     if max(_fe_spread(fe, q) for q in ("first_peak_N", "first_contact_s")) > 0.01:
         pytest.skip("FE spring model not converged to 1 % at this point")
     law = impactmaps.contact_law("linear", stiffness=linear["stiffness_N_m"])
-    beam = impactmaps.Beam.rectangular(0.5, 0.02, 0.02, STEEL)
+    beam = impactmaps.Beam.rectangular(case["length_m"], 0.02, 0.02, STEEL)
     res = impactmaps.simulate(beam, law, case["mass_kg"], 1.0)
     start, end = res.contact_intervals[0]
     first = res.history[(res.history["time_s"] >= start) & (res.history["time_s"] <= end)]

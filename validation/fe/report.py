@@ -43,8 +43,8 @@ def level1_tables():
     return "\n".join(rows)
 
 
-def level3_tables():
-    data = json.loads((ct.RESULTS / "level3_dynamics.json").read_text())
+def level3_tables(name="level3_dynamics.json"):
+    data = json.loads((ct.RESULTS / name).read_text())
     out = ["| mass [kg] | ζ | λ | quantity | FE spring (ref) | FE mesh coarse | FE half step | "
            "FE half modes | modal (Timoshenko) | diff | FD (Rayleigh) | diff |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -87,8 +87,8 @@ def _pct(a, b):
     return f"{100 * (a / b - 1):+.2f} %"
 
 
-def linear_table():
-    data = json.loads((ct.RESULTS / "level3_dynamics.json").read_text())
+def linear_table(name="level3_dynamics.json"):
+    data = json.loads((ct.RESULTS / name).read_text())
     rows = ["| mass [kg] | k [N/m] | FE first peak [N] (mesh Δ, step Δ) | modal | diff | FD | diff | "
             "FE first contact [µs] | modal | diff | impacts FE / modal / FD |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -187,6 +187,11 @@ if __name__ == "__main__":
         print(level3_tables())
         print("\n## Level 3, linear law\n")
         print(linear_table())
+    if (ct.RESULTS / "level3_dynamics_short.json").exists():
+        print("\n## Level 3, short beam\n")
+        print(level3_tables("level3_dynamics_short.json").split("\n\nPatch radius")[0])
+        print("\n## Level 3, short beam, linear law\n")
+        print(linear_table("level3_dynamics_short.json"))
     if (ct.RESULTS / "level3_plate.json").exists():
         print("\n## Level 3, plate\n")
         print(plate_table())
