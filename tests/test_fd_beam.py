@@ -271,6 +271,21 @@ def test_history_stride_keeps_scalars():
     np.testing.assert_array_equal(thin.history["force_N"], full.history["force_N"].iloc[::7])
 
 
+def test_memory_is_bounded_and_long_runs_are_announced(monkeypatch):
+    """Issue 'What a user meets': duration = 100 s ran out of memory (MemoryError, or
+    minutes at 4.7 GB). The history's size is known before the run: over 1 GiB the run is
+    refused with the estimate and the stride that would fit, before any allocation; a run
+    estimated above a minute is announced with its estimated time."""
+    import impactmaps.fd.impact as impact
+
+    beam = _beam(plastic=False, n_elements=50)
+    with pytest.raises(ValueError, match=r"duration = 100 s is \d+ steps .* GiB .* history_stride ≥ \d+"):
+        simulate_fd(beam, HERTZ, 1.0, 2.0, duration=100.0)
+    monkeypatch.setattr(impact, "NODE_LAYER_STEPS_PER_SECOND", 1.0)  # pretend the machine is slow
+    with pytest.warns(UserWarning, match=r"about \d+ s on a 2-core machine"):
+        simulate_fd(beam, HERTZ, 1.0, 2.0, duration=1e-4)
+
+
 # =====================================================================================
 # energy ledger
 # =====================================================================================

@@ -1,0 +1,214 @@
+"""Shared helpers of the CalculiX cross-checks: gmsh meshes, ccx decks, .dat parsing.
+
+Nothing here is part of the toolkit: these scripts only produce reference numbers
+(committed under ``validation/fe/results/``) that the default test suite compares
+with the current toolkit.  Units are SI throughout (m, kg, s, N, Pa).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+# The scripts run as ``python validation/fe/<script>.py``: put the repository root
+# first on the path so that ``import impactmaps`` is this checkout's package.
+if str(HERE.parents[1]) not in sys.path:
+    sys.path.insert(0, str(HERE.parents[1]))
+RESULTS = HERE / "results"
+WORK = HERE.parent / "work" / "fe"          # git-ignored (validation/work/)
+
+# gmsh 20-node hexahedron -> Abaqus/CalculiX C3D20 node order (corners identical;
+# gmsh lists the edges (0,1),(0,3),(0,4),(1,2),(1,5),(2,3),(2,6),(3,7),(4,5),(4,7),
+# (5,6),(6,7); Abaqus (0,1),(1,2),(2,3),(3,0),(4,5),(5,6),(6,7),(7,4),(0,4),(1,5),
+# (2,6),(3,7)).
+HEX20_GMSH_TO_CCX = np.array([0, 1, 2, 3, 4, 5, 6, 7,
+                              8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15])
+# gmsh 10-node tetrahedron: corners, then edges (0,1),(1,2),(2,0),(0,3),(2,3),(1,3);
+# Abaqus C3D10: corners, then (0,1),(1,2),(2,0),(0,3),(1,3),(2,3).
+TET10_GMSH_TO_CCX = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
+
+
+def ccx_version() -> str:
+    """Version string printed by ``ccx -v`` (e.g. ``"2.20"``)."""
+    out = subprocess.run(["ccx", "-v"], capture_output=True, text=True).stdout
+    match = re.search(r"Version\s+(\S+)", out)
+    return match.group(1) if match else out.strip()
+
+
+def gmsh_version() -> str:
+    import gmsh
+    return gmsh.__version__
+
+
+@dataclass
+class Mesh:
+    """Nodes (ids 1..n, coordinates [m]) and solid elements in CalculiX order."""
+
+    coords: np.ndarray          # (n, 3)
+    elements: np.ndarray        # (e, nodes per element), 1-based node ids
+    element_type: str           # "C3D20R", "C3D20", "C3D10"
+
+    def nodes_where(self, mask) -> np.ndarray:
+        """1-based ids of the nodes selected by a boolean mask over ``coords``."""
+        return np.flatnonzero(mask) + 1
+
+
+def structured_box(lx, ly, lz, nx, ny, nz, element_type="C3D20R") -> Mesh:
+    """Structured 20-node hexahedral mesh of the box [0,lx]×[0,ly]×[0,lz] made by gmsh.
+
+    ``nx, ny, nz`` elements along each side (transfinite, recombined, serendipity
+    second order).
+    """
+    import gmsh
+    gmsh.initialize(["-noenv"])
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("box")
+        gmsh.model.occ.addBox(0, 0, 0, lx, ly, lz)
+        gmsh.model.occ.synchronize()
+        for dim, tag in gmsh.model.getEntities(1):
+            xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(dim, tag)
+            spans = np.array([xmax - xmin, ymax - ymin, zmax - zmin])
+            n = (nx, ny, nz)[int(np.argmax(spans))]
+            gmsh.model.mesh.setTransfiniteCurve(tag, n + 1)
+        for dim, tag in gmsh.model.getEntities(2):
+            gmsh.model.mesh.setTransfiniteSurface(tag)
+            gmsh.model.mesh.setRecombine(dim, tag)
+        for dim, tag in gmsh.model.getEntities(3):
+            gmsh.model.mesh.setTransfiniteVolume(tag)
+        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 1)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.model.mesh.generate(3)
+        return _collect(gmsh, 17, HEX20_GMSH_TO_CCX, element_type)
+    finally:
+        gmsh.finalize()
+
+
+def _collect(gmsh, gmsh_type, order, element_type) -> Mesh:
+    """Renumber the gmsh nodes 1..n and return the elements of ``gmsh_type``."""
+    tags, xyz, _ = gmsh.model.mesh.getNodes()
+    xyz = xyz.reshape(-1, 3)
+    etypes, _, enodes = gmsh.model.mesh.getElements(3)
+    k = list(etypes).index(gmsh_type)
+    conn = np.asarray(enodes[k], dtype=np.int64).reshape(-1, len(order))[:, order]
+    used = np.unique(conn)
+    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    index[used] = np.arange(1, used.size + 1)
+    lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    lookup[tags.astype(np.int64)] = np.arange(tags.size)
+    coords = xyz[lookup[used]]
+    return Mesh(coords=coords, elements=index[conn], element_type=element_type)
+
+
+def write_mesh(f, mesh: Mesh, material, elset="SOLID"):
+    """Write *NODE, *ELEMENT, *MATERIAL and *SOLID SECTION blocks."""
+    f.write("*NODE, NSET=NALL\n")
+    for i, (x, y, z) in enumerate(mesh.coords, start=1):
+        f.write(f"{i},{x:.10e},{y:.10e},{z:.10e}\n")
+    f.write(f"*ELEMENT, TYPE={mesh.element_type}, ELSET={elset}\n")
+    for i, row in enumerate(mesh.elements, start=1):
+        ids = [str(i)] + [str(v) for v in row]
+        # at most 16 entries per line in Abaqus format
+        lines = [ids[j:j + 16] for j in range(0, len(ids), 16)]
+        f.write(",\n".join(",".join(chunk) for chunk in lines) + "\n")
+    f.write("*MATERIAL, NAME=MAT\n*ELASTIC\n"
+            f"{material.youngs_modulus:.6e},{material.poisson_ratio}\n"
+            f"*DENSITY\n{material.density}\n")
+    f.write(f"*SOLID SECTION, ELSET={elset}, MATERIAL=MAT\n")
+
+
+def write_nset(f, name, ids):
+    f.write(f"*NSET, NSET={name}\n")
+    ids = [str(int(i)) for i in ids]
+    for j in range(0, len(ids), 16):
+        f.write(",".join(ids[j:j + 16]) + "\n")
+
+
+def run_ccx(deck_text: str, job: str, workdir: Path) -> tuple[Path, float]:
+    """Write ``job.inp`` in ``workdir``, run ccx on it, return (.dat path, wall time [s])."""
+    workdir.mkdir(parents=True, exist_ok=True)
+    (workdir / f"{job}.inp").write_text(deck_text)
+    env = dict(os.environ, OMP_NUM_THREADS=os.environ.get("FE_THREADS", "2"))
+    start = time.perf_counter()
+    proc = subprocess.run(["ccx", "-i", job], cwd=workdir, capture_output=True,
+                          text=True, env=env)
+    wall = time.perf_counter() - start
+    (workdir / f"{job}.log").write_text(proc.stdout + proc.stderr)
+    dat = workdir / f"{job}.dat"
+    if proc.returncode != 0 or "*ERROR" in proc.stdout or not dat.exists():
+        tail = "\n".join((proc.stdout + proc.stderr).splitlines()[-25:])
+        raise RuntimeError(f"ccx failed on {workdir / job}.inp:\n{tail}")
+    return dat, wall
+
+
+def parse_eigenvalues(dat_text: str) -> np.ndarray:
+    """Angular frequencies ω [rad/s] of the EIGENVALUE OUTPUT table of a .dat file."""
+    block = dat_text.split("E I G E N V A L U E   O U T P U T", 1)[1]
+    block = block.split("P A R T I C I P A T I O N", 1)[0]
+    omegas = []
+    for line in block.splitlines():
+        parts = line.split()
+        if len(parts) == 5 and parts[0].isdigit():
+            omegas.append(float(parts[2]))
+    return np.array(omegas)
+
+
+_HEADER = re.compile(r"displacements \(vx,vy,vz\) for set (\S+) and time\s+(\S+)")
+
+
+def parse_node_prints(dat_text: str, nset: str):
+    """All ``displacements`` blocks of ``nset``: list of dicts node -> (ux, uy, uz).
+
+    In a *FREQUENCY step there is one block per mode, in mode order.
+    """
+    blocks = []
+    current = None
+    for line in dat_text.splitlines():
+        m = _HEADER.search(line)
+        if m:
+            current = {} if m.group(1).upper() == nset.upper() else None
+            if current is not None:
+                blocks.append(current)
+            continue
+        if " for set " in line or "E I G E N" in line or "S T E P" in line:
+            current = None
+            continue
+        parts = line.split()
+        if current is not None and len(parts) == 4 and parts[0].isdigit():
+            current[int(parts[0])] = tuple(_fortran_float(v) for v in parts[1:])
+    return blocks
+
+
+def parse_node_print_times(dat_text: str, nset: str) -> np.ndarray:
+    """Times of the ``displacements`` blocks of ``nset`` (same order as
+    :func:`parse_node_prints`)."""
+    return np.array([_fortran_float(m.group(2)) for m in _HEADER.finditer(dat_text)
+                     if m.group(1).upper() == nset.upper()])
+
+
+def _fortran_float(text: str) -> float:
+    """Parse ccx numbers, including three-digit exponents written without ``E``."""
+    try:
+        return float(text)
+    except ValueError:
+        return float(re.sub(r"(\d)([+-]\d{3})$", r"\1E\2", text))
+
+
+def have_fe_tools() -> tuple[bool, str]:
+    """(available, reason) for the ``ccx`` executable and the ``gmsh`` Python module."""
+    if shutil.which("ccx") is None:
+        return False, "CalculiX `ccx` not on PATH (apt-get install calculix-ccx)"
+    try:
+        import gmsh  # noqa: F401
+    except ImportError:
+        return False, "Python module `gmsh` missing (pip install -e '.[fe]')"
+    return True, ""
