@@ -624,3 +624,16 @@ def test_solver_keys_are_the_settings_fields():
         assert getattr(case.settings, f.name) == f.default
     with pytest.raises(ValueError, match=r"solver\.kind = 'explicit'.*'modal', 'fd'"):
         parse_case(GOOD.replace('law = "hertz"', 'law = "hertz"\n[solver]\nkind = "explicit"', 1))
+
+
+def test_summary_says_whether_the_run_converged(tmp_path):
+    """summary.json flags the convergence check (issue 'What a user meets'): True when the
+    re-run with twice the cut-off and half the step moved F̄max by ≤ the tolerance, None
+    when no check was asked for (never a silent claim)."""
+    checked = parse_case(GOOD.replace('law = "hertz"', 'law = "hertz"\n[solver]\ncheck_convergence = true', 1))
+    result, summary = run_case(checked)
+    assert summary["converged"] is True and result.converged is True
+    paths = write_case_outputs(checked, result, tmp_path)
+    assert _strict_json(paths["summary"].read_text())["converged"] is True
+    _, unchecked = run_case(parse_case(GOOD))
+    assert unchecked["converged"] is None

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import warnings
 from pathlib import Path
 
 from ..jsonio import dumps
@@ -88,23 +87,6 @@ def material_from_args(args, prefix: str, role: str):
 
 
 # -- running -------------------------------------------------------------------------------
-def _converged(caught) -> bool:
-    """False if the convergence re-run warned that the result moved."""
-    from ..solvers.modal import ConvergenceWarning
-
-    return not any(issubclass(w.category, ConvergenceWarning) and "not converged" in str(w.message) for w in caught)
-
-
-def run_checked(function, *args, **kwargs):
-    """Call ``function``; return (its value, converged flag); warnings are passed on."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        value = function(*args, **kwargs)
-    for warning in caught:
-        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-    return value, _converged(caught)
-
-
 def save_figure(result, path: Path, normalised: bool) -> str:
     """Write the force/displacement histories of ``result`` to the image file ``path``."""
     from ..plotting import save_impact_history

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ._common import check, out_dir, refuse, run_checked, save_figure
+from ._common import check, out_dir, refuse, save_figure
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -110,8 +110,7 @@ def cmd_point(args) -> dict:
     target = structure.build()
     settings = _settings_from_args(args)
     plot = getattr(args, "plot", None)
-    result, converged = run_checked(simulate_normalised, target, args.zeta, args.lambda_, settings=settings,
-                                     record=plot is not None)
+    result = simulate_normalised(target, args.zeta, args.lambda_, settings=settings, record=plot is not None)
     reflection = float(target.reflection_time(result.contact_frequency))
     regime = str(classify(result.fmax_normalised, args.zeta, args.lambda_, structure.kind,
                           peak_time=result.peak_time_normalised, reflection_time=reflection,
@@ -127,7 +126,7 @@ def cmd_point(args) -> dict:
         "infinite_structure_fmax": float(infinite_structure_peak(args.zeta, structure.kind)),
         "reflection_time_normalised": reflection,
         "method": result.method,
-        "converged": converged if settings.check_convergence else None,
+        "converged": result.converged,
     }
     if not math.isfinite(reflection):
         values["reflection_time_note"] = "no support or edge reflects waves back to the impact point"

@@ -300,6 +300,7 @@ def simulate(
     if settings.check_convergence:
         fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False)
         change = abs(fine.fmax_normalised - result.fmax_normalised)
+        result = replace(result, converged=bool(change <= settings.tolerance))
         if change > settings.tolerance:
             warnings.warn(
                 f"F̄max changed by {change:.2e} (> tolerance {settings.tolerance:g}) when the "

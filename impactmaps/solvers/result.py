@@ -115,6 +115,9 @@ class ImpactResult:
     details : object or None
         Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
         finite-difference beam, ``None`` otherwise.
+    converged : bool or None
+        Whether F̄max moved by at most the tolerance when the cut-off was doubled and the
+        step halved (``ModalSettings.check_convergence``); ``None``: not checked.
     """
 
     history: pd.DataFrame | None
@@ -138,6 +141,7 @@ class ImpactResult:
     n_modes: int = 0
     settings: dict = field(default_factory=dict)
     details: Any = None
+    converged: bool | None = None
 
     # -- contacts -----------------------------------------------------------------------
     @property
@@ -273,6 +277,7 @@ class ImpactResult:
             "time_step_s": float(self.time_step),
             "n_modes": int(self.n_modes),
             "method": self.method,
+            "converged": self.converged,
         }
         if self.details is not None:
             out.update(self.details.summary())
