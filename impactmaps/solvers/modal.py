@@ -30,7 +30,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 import pandas as pd
 
-from .._checks import require_in_range, require_positive
+from .._checks import require_choice, require_in_range, require_positive
 from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
@@ -48,7 +48,17 @@ __all__ = [
     "coupled_top_frequency",
     "content_time_step",
     "ConvergenceWarning",
+    "CONTACT_PATCHES",
+    "contact_radius_function",
 ]
+
+#: Loads the modal solver can apply: at the impact point, or as a Hertz pressure over the
+#: contact disc at the peak indentation (targets with ``supports_contact_patch``).
+CONTACT_PATCHES = ("point", "hertz-peak")
+#: The peak-indentation patch radius is iterated until it moves by less than this (relative).
+PATCH_TOLERANCE = 1e-4
+#: At most this many runs of the peak-indentation iteration.
+PATCH_PASSES = 8
 
 #: Columns of the integrator's history array: the common ones, then the structure energy.
 HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
@@ -98,6 +108,15 @@ class ModalSettings:
         Factor in (0, 1] applied to the automatically chosen time step after every rule,
         the stability cap included, so that a refinement really shortens the step also
         where the stability limit sets it (:meth:`refined` halves it).
+    contact_patch : {"point", "hertz-peak"}
+        ``"point"``: the force acts at the impact point. ``"hertz-peak"``: on targets
+        that support it (``target.supports_contact_patch``, SSSS plates) and with a
+        contact law that has a geometry (:func:`contact_radius_function`), the force is
+        a Hertz pressure over the contact disc of the peak indentation,
+        ``a = sqrt(R α_max)``, found by fixed-point iteration (run → α_max → a → run,
+        from the half-space α_max, until a moves by < :data:`PATCH_TOLERANCE`); each
+        mode's participation is multiplied by the patch's modal transform and the
+        residual is the static compliance under the patch. Otherwise the point load.
     """
 
     cutoff_ratio: float = 40.0
@@ -111,6 +130,7 @@ class ModalSettings:
     check_convergence: bool = False
     tolerance: float = 1e-3
     step_scale: float = 1.0
+    contact_patch: str = "point"
 
     def __post_init__(self):
         require_positive("cutoff_ratio", self.cutoff_ratio)
@@ -122,6 +142,7 @@ class ModalSettings:
         require_in_range("max_events", self.max_events, 1, np.inf)
         require_positive("tolerance", self.tolerance)
         require_in_range("step_scale", self.step_scale, 0.0, 1.0, low_inclusive=False)
+        require_choice("contact_patch", self.contact_patch, CONTACT_PATCHES)
 
     def refined(self) -> "ModalSettings":
         """Settings with twice the cut-off, twice the modes and half the time step.
@@ -175,11 +196,30 @@ def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity:
     return stiffness
 
 
-def _basis_for(target, contact_frequency, settings: ModalSettings) -> ModalBasis:
+def contact_radius_function(law: ContactLaw, effective_radius: float | None = None):
+    """α [m] → contact radius a [m] of ``law``, or ``None`` when the law has no geometry.
+
+    A law with ``loading_contact_radius`` (Stronge) uses it; otherwise
+    ``a = sqrt(R α)`` with R the ``effective_radius`` given [m], else the law's own
+    ``effective_radius`` attribute when it has one. Laws without either (a linear law,
+    or a Hertz law built from its stiffness alone) give ``None``: the point load.
+    """
+    if hasattr(law, "loading_contact_radius"):
+        return lambda alpha: float(law.loading_contact_radius(alpha))
+    radius = effective_radius if effective_radius is not None else getattr(law, "effective_radius", None)
+    if radius is None:
+        return None
+    require_positive("effective_radius", radius, "m")
+    return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))
+
+
+def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None) -> ModalBasis:
     """The participating modes below the cut-off, with the residual the settings ask for."""
     max_frequency = float(settings.cutoff_ratio * contact_frequency)
     if isinstance(target, ModalBasis):
         basis = target.truncate(max_frequency, int(settings.min_modes))
+    elif isinstance(target, Target) and contact_radius is not None:
+        basis = target.modes(max_frequency, min_modes=settings.min_modes, contact_radius=contact_radius)
     elif isinstance(target, Target):
         basis = target.modes(max_frequency, min_modes=settings.min_modes)
     else:
@@ -198,6 +238,7 @@ def simulate(
     settings: ModalSettings | None = None,
     record: bool = True,
     time_step: float | None = None,
+    effective_radius: float | None = None,
 ) -> ImpactResult:
     """Simulate a sphere striking a modal target, through every re-impact.
 
@@ -219,10 +260,16 @@ def simulate(
         Keep full time histories (``False`` keeps scalars only, for sweeps).
     time_step : float, optional
         Force this time step [s] instead of the automatic choice.
+    effective_radius : float, optional
+        Effective radius R [m] of the sphere–target contact for
+        ``settings.contact_patch = "hertz-peak"`` when the law carries none
+        (:func:`contact_radius_function`); ignored for point loads.
 
     Returns
     -------
     ImpactResult
+        With ``settings.contact_patch = "hertz-peak"`` applied, ``result.settings``
+        also holds ``contact_radius_m``, the converged patch radius [m].
     """
     settings = settings or DEFAULT_SETTINGS
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -232,9 +279,46 @@ def simulate(
     params = np.array(law.kernel_parameters, dtype=float, order="C")
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
+    radius_of = None
+    if settings.contact_patch == "hertz-peak" and getattr(target, "supports_contact_patch", False):
+        radius_of = contact_radius_function(law, effective_radius)
+    if radius_of is None:
+        result = _run(target, law, params, impactor_mass, velocity, settings, record, time_step)
+    else:
+        radius = radius_of(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
+        for _ in range(PATCH_PASSES):
+            result = _run(target, law, params, impactor_mass, velocity, settings, record, time_step, radius)
+            new_radius = radius_of(result.max_indentation)
+            if abs(new_radius - radius) <= PATCH_TOLERANCE * radius:
+                break
+            radius = new_radius
+        else:
+            warnings.warn(
+                f"the contact-patch radius did not settle to {PATCH_TOLERANCE:g} in "
+                f"{PATCH_PASSES} runs (last {radius:.6g} m → {new_radius:.6g} m)",
+                ConvergenceWarning, stacklevel=2)
+        result.settings["contact_radius_m"] = float(radius)
+    if settings.check_convergence:
+        fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
+                        effective_radius=effective_radius)
+        change = abs(fine.fmax_normalised - result.fmax_normalised)
+        result = replace(result, converged=bool(change <= settings.tolerance))
+        if change > settings.tolerance:
+            warnings.warn(
+                f"F̄max changed by {change:.2e} (> tolerance {settings.tolerance:g}) when the "
+                "cut-off was doubled and the step halved; the result is not converged",
+                ConvergenceWarning,
+                stacklevel=2,
+            )
+    return result
+
+
+def _run(target, law, params, impactor_mass, velocity, settings, record, time_step,
+         contact_radius=None) -> ImpactResult:
+    """One run of :func:`simulate` (validated inputs) with a point load or a patch [m]."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega_c = float(np.sqrt(stiffness / impactor_mass))
-    basis = _basis_for(target, omega_c, settings)
+    basis = _basis_for(target, omega_c, settings, contact_radius)
     if time_step is None:
         omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
         content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
@@ -263,7 +347,7 @@ def simulate(
         warnings.warn(
             f"more than max_events = {settings.max_events} contacts; intervals truncated",
             RuntimeWarning,
-            stacklevel=2,
+            stacklevel=3,
         )
     alpha_max = float(scalars[2])
     dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
@@ -295,19 +379,8 @@ def simulate(
             f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
             "became impossible; scalars describe a truncated event",
             ConvergenceWarning,
-            stacklevel=2,
+            stacklevel=3,
         )
-    if settings.check_convergence:
-        fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False)
-        change = abs(fine.fmax_normalised - result.fmax_normalised)
-        result = replace(result, converged=bool(change <= settings.tolerance))
-        if change > settings.tolerance:
-            warnings.warn(
-                f"F̄max changed by {change:.2e} (> tolerance {settings.tolerance:g}) when the "
-                "cut-off was doubled and the step halved; the result is not converged",
-                ConvergenceWarning,
-                stacklevel=2,
-            )
     return result
 
 

@@ -321,7 +321,13 @@ class Plate(Target):
         return impactor_mass_for_plate(loss_factor, contact_stiffness, self.mass_per_area,
                                        self.effective_bending_stiffness)
 
-    def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
+    @property
+    def supports_contact_patch(self) -> bool:
+        """True when :meth:`modes` can spread the load over a contact patch (SSSS plates)."""
+        return self.edges == "SSSS"
+
+    def modes(self, max_frequency: float, min_modes: int = 1,
+              contact_radius: float | None = None) -> ModalBasis:
         """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
 
         SSSS, Kirchhoff: ``ω_mn² = π⁴[D11 (m/a)⁴ + 2(D12+2D66)(m/a)²(n/b)² + D22 (n/b)⁴]/ρh``,
@@ -369,18 +375,44 @@ class Plate(Target):
         what the largest allowed basis resolves, a warning is issued and the
         unresolved modes are represented by the residual compliance only.
 
+        Contact patch (``contact_radius`` a_c > 0, SSSS only): the force is a Hertz
+        pressure ``∝ sqrt(1 − r²/a_c²)`` over the disc of radius a_c around the impact
+        point, and the deflection the contact sees is its pressure-weighted mean. Each
+        participation is multiplied by ``T(k a_c) = 3(sin x − x cos x)/x³``,
+        ``k = hypot(mπ/a, nπ/b)`` (:mod:`impactmaps.targets.patch`), and the residual is
+        the static compliance under the same patch of the pairs not retained, Mindlin
+        shear included (finite: the patch removes the point-load divergence). ``None``
+        or 0 is the point load (results unchanged).
+
         Parameters
         ----------
         max_frequency : float
             Cut-off frequency [rad/s], ≥ 0.
         min_modes : int, optional
             Minimum number of modes returned (the lowest ones), ≥ 1.
+        contact_radius : float, optional
+            Contact-patch radius [m], ≥ 0 and smaller than the distance from the impact
+            point to the nearest edge; SSSS plates only (``NotImplementedError`` for
+            Ritz plates when > 0).
 
         Returns
         -------
         ModalBasis
         """
-        return _plate_modes(self, *_checked_request(max_frequency, min_modes))[0]
+        return _plate_modes(self, *_checked_request(max_frequency, min_modes),
+                            self._checked_contact_radius(contact_radius))[0]
+
+    def _checked_contact_radius(self, contact_radius) -> float:
+        """``contact_radius`` [m] validated (0.0 for a point load)."""
+        if contact_radius is None:
+            return 0.0
+        require_in_range("contact_radius", contact_radius, 0.0, self.distance_to_nearest_edge(),
+                         high_inclusive=False, unit="m")
+        if contact_radius > 0.0 and not self.supports_contact_patch:
+            raise NotImplementedError(
+                f"contact_radius = {contact_radius!r}: the contact patch is implemented for "
+                f"edges = 'SSSS' only (got {self.edges!r})")
+        return float(contact_radius)
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised transverse mode shapes w_j at ``points`` [kg^-1/2].
@@ -402,7 +434,7 @@ class Plate(Target):
             raise ValueError(f"points must have shape (n_points, 2), got {points.shape}")
         require_in_range("points x", points[:, 0], 0.0, self.length_x, unit="m")
         require_in_range("points y", points[:, 1], 0.0, self.length_y, unit="m")
-        return _plate_modes(self, *_checked_request(max_frequency, min_modes))[1](points)
+        return _plate_modes(self, *_checked_request(max_frequency, min_modes), 0.0)[1](points)
 
     # -- implementation -----------------------------------------------------------------
     # Navier (plate_navier) -----------------------------------------------------------
@@ -455,10 +487,10 @@ def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
 
 
 @functools.lru_cache(maxsize=8)
-def _plate_modes(plate: Plate, max_frequency: float, min_modes: int):
+def _plate_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float):
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
     if plate.edges == "SSSS":
-        return plate_navier.navier_modes(plate, max_frequency, min_modes)
+        return plate_navier.navier_modes(plate, max_frequency, min_modes, contact_radius)
     return plate._ritz_modes(max_frequency, min_modes)
 
 

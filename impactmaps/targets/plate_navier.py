@@ -16,7 +16,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .base import ModalBasis
-from .plate_static import sin_pi
+from .patch import hertz_transform, mean_square_transform
+from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
 
 if TYPE_CHECKING:
     from .plate import Plate
@@ -182,14 +183,18 @@ def navier_pairs(plate: Plate, max_frequency):
     return m_pairs, n_pairs
 
 
-def navier_modes(plate: Plate, max_frequency: float, min_modes: int):
+def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float = 0.0):
     """(:class:`ModalBasis`, mode-shape function of points) of an SSSS plate.
 
     The modes with ω ≤ ``max_frequency`` [rad/s], at least ``min_modes``, ascending (ties
     by m, then n); the residual compliance as documented in
     :meth:`impactmaps.targets.plate.Plate.modes`. Warns when a Mindlin ``max_frequency``
-    exceeds the thickness-shear cut-off (the omitted branches have modes below it).
+    exceeds the thickness-shear cut-off (the omitted branches have modes below it). A
+    ``contact_radius`` [m] > 0 spreads the load as a Hertz pressure over that disc
+    (:func:`_patch_basis`); 0 is the point load.
     """
+    if contact_radius > 0.0:
+        return _patch_basis(plate, max_frequency, min_modes, contact_radius)
     if plate.theory == "mindlin":
         cutoff = math.sqrt(plate.shear_correction * min(plate.A44, plate.A55)
                            / plate.rotary_inertia_per_area)
@@ -198,6 +203,62 @@ def navier_modes(plate: Plate, max_frequency: float, min_modes: int):
                 f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
                 f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "
                 "are omitted, have modes below the cut-off frequency", stacklevel=4)
+    m, n, omega, amplitude = _lowest_modes(plate, max_frequency, min_modes)
+    x0, y0 = plate.impact_point
+    a, b = plate.length_x, plate.length_y
+    participation = amplitude * sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
+
+    retained = None  # Kirchhoff: Σ φ²/ω² of the modes themselves
+    if plate.theory == "mindlin":
+        classical = (4.0 / plate.mass) * (sin_pi(m * x0 / a) * sin_pi(n * y0 / b)) ** 2
+        retained = float(np.sum(classical / kirchhoff_eigenvalues(plate, m.astype(float), n.astype(float))))
+    damping_ratios = np.full(omega.shape, float(plate.damping_ratio))
+    basis = ModalBasis.from_modes(omega, participation, plate.static_compliance(),
+                                  damping_ratios, retained_compliance=retained)
+    return basis, _shape_function(plate, m, n, amplitude)
+
+
+def _patch_basis(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float):
+    """The SSSS basis seen by a Hertz pressure over a disc of ``contact_radius`` [m].
+
+    Each participation is multiplied by the modal transform ``T(k a)`` of the Hertz
+    pressure (:func:`impactmaps.targets.patch.hertz_transform`, ``k = hypot(mπ/a, nπ/b)``);
+    the residual is the static compliance under the same patch of the half-wave pairs
+    not retained (:func:`~impactmaps.targets.plate_static.navier_patch_residual`, for
+    Mindlin with the shear flexibility, which now converges), plus for Mindlin the
+    part of each retained pair's static compliance its flexural mode does not carry
+    (that of the omitted thickness-shear branches, ``C_pair − φ²/ω² ≥ 0``), so that
+    retained + residual is the exact static patch compliance. Mindlin: instead of the
+    thickness-shear cut-off warning of the point load (the patch suppresses the modes
+    with k a ≫ 1), a warning when the contact radius exceeds half the thickness.
+    """
+    if plate.theory == "mindlin" and contact_radius > 0.5 * plate.thickness:
+        warnings.warn(
+            f"contact radius {contact_radius:.4g} m exceeds half the plate thickness "
+            f"{plate.thickness:.4g} m: Mindlin theory and its omitted thickness-shear branches "
+            "are not reliable under such a load", stacklevel=4)
+    m, n, omega, amplitude = _lowest_modes(plate, max_frequency, min_modes)
+    x0, y0 = plate.impact_point
+    a, b = plate.length_x, plate.length_y
+    wavenumber = np.hypot(m * math.pi / a, n * math.pi / b)
+    participation = (amplitude * sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
+                     * hertz_transform(wavenumber * contact_radius))
+    stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
+    residual = 0.0
+    if plate.theory == "mindlin":
+        stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
+        static = (4.0 / (a * b)) * (sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
+                                    * hertz_transform(wavenumber * contact_radius)) ** 2 * pair_static_compliance(
+            m * math.pi / a, n * math.pi / b, *stiffnesses)
+        residual = max(float(np.sum(static - participation**2 / omega**2)), 0.0)
+    residual += navier_patch_residual(a, b, stiffnesses, plate.impact_point, contact_radius,
+                                      hertz_transform, m, n, mean_square=mean_square_transform)
+    basis = ModalBasis(omega, participation, residual, np.full(omega.shape, float(plate.damping_ratio)))
+    return basis, _shape_function(plate, m, n, amplitude)
+
+
+def _lowest_modes(plate: Plate, max_frequency: float, min_modes: int):
+    """(m, n, ω, W) of the modes with ω ≤ ``max_frequency`` (at least ``min_modes``), ascending."""
     cutoff_frequency = max_frequency
     m, n = navier_pairs(plate, cutoff_frequency)
     while m.size < min_modes:
@@ -210,24 +271,18 @@ def navier_modes(plate: Plate, max_frequency: float, min_modes: int):
         omega, amplitude = mindlin_flexural(plate, m, n)
     order = np.lexsort((n, m, omega))
     keep = order[: max(int(np.sum(omega <= max_frequency)), min_modes)]
-    m, n, omega, amplitude = m[keep], n[keep], omega[keep], amplitude[keep]
-    x0, y0 = plate.impact_point
-    a, b = plate.length_x, plate.length_y
-    participation = amplitude * sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
+    return m[keep], n[keep], omega[keep], amplitude[keep]
 
-    retained = None  # Kirchhoff: Σ φ²/ω² of the modes themselves
-    if plate.theory == "mindlin":
-        classical = (4.0 / plate.mass) * (sin_pi(m * x0 / a) * sin_pi(n * y0 / b)) ** 2
-        retained = float(np.sum(classical / kirchhoff_eigenvalues(plate, m.astype(float), n.astype(float))))
-    damping_ratios = np.full(omega.shape, float(plate.damping_ratio))
-    basis = ModalBasis.from_modes(omega, participation, plate.static_compliance(),
-                                  damping_ratios, retained_compliance=retained)
+
+def _shape_function(plate: Plate, m, n, amplitude):
+    """Mode shapes w_j(points) [kg^-1/2] of the half-wave pairs (m, n) with amplitudes W."""
+    a, b = plate.length_x, plate.length_y
 
     def shape_function(points):
         return amplitude[None, :] * sin_pi(points[:, :1] * m[None, :] / a) * sin_pi(
             points[:, 1:] * n[None, :] / b)
 
-    return basis, shape_function
+    return shape_function
 
 
 def _last_index_within(frequency_of_index, size, limit):

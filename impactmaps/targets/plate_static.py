@@ -143,3 +143,148 @@ def navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_poin
     tail = 0.5 * kappa * float(scipy.special.zeta(3.0, m[-1] + 1.0))
     return 4.0 / (a * b) * (total + tail)
 
+
+
+# ---------------------------------------------------------------------------------
+# Static compliance of the Navier pairs under a contact patch
+# ---------------------------------------------------------------------------------
+#: The patch residual sums the lattice of half-wave pairs up to k a = this, then integrates.
+_PATCH_LATTICE_KA = 8.0
+#: At most this many half-waves per direction in the lattice part of the patch residual.
+_PATCH_LATTICE_TERMS = 1000
+#: Beyond k a = this the patch residual uses the oscillation average of T².
+_PATCH_AVERAGE_KA = 200.0
+_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(8)
+_ANGLE_NODES, _ANGLE_WEIGHTS = np.polynomial.legendre.leggauss(24)
+
+
+def pair_static_compliance(p, q, D11, D22, D12, D66, shear_xz=math.inf, shear_yz=math.inf):
+    """Static compliance ``1/(g·(S⁻¹ + B⁻¹)⁻¹ g)`` [m²·m/N·…] of the half-wave pair (p, q).
+
+    The load ``F s_m(x) s_n(y)`` on an SSSS plate gives ``w = W s_m s_n`` with
+    ``W = F · compliance``; ``g = (p, q)``, B the 2×2 bending block
+    ``[[D11 p² + D66 q², (D12 + D66) p q], [(D12 + D66) p q, D66 p² + D22 q²]]`` and
+    ``S = diag(kA55, kA44)`` (Mindlin; the static condensation of the 3×3 problem of
+    :meth:`impactmaps.targets.plate.Plate.modes`, written without cancellation). With
+    infinite shear stiffnesses it is the Kirchhoff
+    ``1/(D11 p⁴ + 2(D12 + 2D66) p²q² + D22 q⁴)``.
+
+    Parameters
+    ----------
+    p, q : array_like
+        mπ/a and nπ/b [1/m], > 0 (broadcast together).
+    D11, D22, D12, D66 : float
+        Bending stiffnesses [N·m].
+    shear_xz, shear_yz : float, optional
+        Corrected transverse shear stiffnesses kA55 and kA44 [N/m] (default inf: Kirchhoff).
+
+    Returns
+    -------
+    ndarray
+        Compliance per unit modal load amplitude [m/(N/m²)] = [m³/N].
+    """
+    p = np.asarray(p, dtype=float)
+    q = np.asarray(q, dtype=float)
+    b00 = D11 * p**2 + D66 * q**2
+    b11 = D66 * p**2 + D22 * q**2
+    b01 = (D12 + D66) * p * q
+    det_b = b00 * b11 - b01**2
+    m00 = 1.0 / shear_xz + b11 / det_b
+    m11 = 1.0 / shear_yz + b00 / det_b
+    m01 = -b01 / det_b
+    return (m00 * m11 - m01**2) / (m11 * p**2 - 2.0 * m01 * p * q + m00 * q**2)
+
+
+def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact_radius,
+                          transform, retained_m=(), retained_n=(), *, mean_square=None) -> float:
+    """Static compliance [m/N] of the half-wave pairs *not* retained, under a contact patch.
+
+    ``Σ_{(m,n) not retained} (4/(ab)) s_m(x0)² s_n(y0)² T(k a)² C(p, q)`` with
+    ``C`` of :func:`pair_static_compliance` (Kirchhoff or Mindlin), ``k² = p² + q²``,
+    ``T`` the modal transform of the patch pressure: the deflection of the
+    pressure-weighted mean under the patch load, minus the retained pairs. The pairs with
+    ``k ≤ K`` are summed (K from k a = 8, at most 1000 half-waves per direction, and
+    beyond every retained pair); the rest is the integral
+    ``(1/π²) ∫∫_{k>K} T² C dp dq`` (``s²`` averages ½), by Gauss–Legendre quadrature in
+    angle and in k a (T² averaged over its oscillation beyond k a = 200). For a → 0 the
+    Kirchhoff value tends to the point residual; the Mindlin one diverges as ln(1/a).
+
+    Parameters
+    ----------
+    length_x, length_y : float
+        Plate sides a, b [m].
+    stiffnesses : tuple of float
+        (D11, D22, D12, D66) [N·m] and optionally (kA55, kA44) [N/m] (Mindlin).
+    impact_point : tuple of float
+        Centre of the patch (x0, y0) [m].
+    contact_radius : float
+        Patch radius [m], > 0.
+    transform : callable
+        T(k a) [-], vectorised (:mod:`impactmaps.targets.patch`).
+    retained_m, retained_n : array_like of int
+        The retained half-wave pairs (left out of the sum).
+    mean_square : callable, optional
+        ⟨T²⟩(k a) for large k a (default: T² itself).
+
+    Returns
+    -------
+    float
+        Residual compliance [m/N], ≥ 0.
+    """
+    a, b = float(length_x), float(length_y)
+    x0, y0 = (float(v) for v in impact_point)
+    radius = float(contact_radius)
+    retained_m = np.asarray(retained_m, dtype=np.int64)
+    retained_n = np.asarray(retained_n, dtype=np.int64)
+
+    def compliance(p, q):
+        return pair_static_compliance(p, q, *stiffnesses)
+
+    cap = _PATCH_LATTICE_TERMS * math.pi / max(a, b)
+    k_lattice = min(_PATCH_LATTICE_KA / radius, cap)
+    if retained_m.size:
+        k_lattice = max(k_lattice, 1.25 * float(np.max(np.hypot(retained_m * math.pi / a,
+                                                                 retained_n * math.pi / b))))
+    m_count = int(k_lattice * a / math.pi)
+    n_count = int(k_lattice * b / math.pi)
+    n = np.arange(1, n_count + 1, dtype=np.int64)
+    q = n * math.pi / b
+    weight_n = sin_pi(n * y0 / b) ** 2
+    retained_keys = np.sort(retained_m * (n_count + 1) + retained_n)
+    total = 0.0
+    for start in range(1, m_count + 1, 256):
+        m = np.arange(start, min(start + 256, m_count + 1), dtype=np.int64)[:, None]
+        p = m * math.pi / a
+        k = np.hypot(p, q[None, :])
+        keep = (k <= k_lattice) & ~np.isin(m * (n_count + 1) + n[None, :], retained_keys)
+        terms = sin_pi(m * x0 / a) ** 2 * weight_n[None, :] * transform(k * radius) ** 2 * compliance(
+            np.broadcast_to(p, k.shape), np.broadcast_to(q[None, :], k.shape))
+        total += float(np.sum(np.where(keep, terms, 0.0)))
+    tail = _patch_tail(k_lattice * radius, radius, compliance, transform, mean_square or transform)
+    return 4.0 / (a * b) * total + tail
+
+
+def _patch_tail(x_start, radius, compliance, transform, mean_square):
+    """``(1/π²) ∫_0^{π/2} dθ ∫_{x_start/r}^∞ k C(k cos θ, k sin θ) T(k r)² dk`` [m/N]."""
+    edges = []
+    if x_start < 1.0:
+        edges.append(np.geomspace(x_start, 1.0, int(math.ceil(math.log(1.0 / x_start) / math.log(1.5))) + 1))
+    low = max(x_start, 1.0)
+    if low < _PATCH_AVERAGE_KA:
+        edges.append(np.linspace(low, _PATCH_AVERAGE_KA, int(math.ceil(2.0 * (_PATCH_AVERAGE_KA - low))) + 1))
+    oscillating = np.unique(np.concatenate(edges)) if edges else np.zeros(0)
+    high = max(x_start, _PATCH_AVERAGE_KA)
+    averaged = np.geomspace(high, high * 1e8, 60)
+    theta = 0.25 * math.pi * (_ANGLE_NODES + 1.0)
+    total = 0.0
+    for panel_edges, squared in ((oscillating, lambda x: transform(x) ** 2), (averaged, mean_square)):
+        if panel_edges.size < 2:
+            continue
+        left, right = panel_edges[:-1, None], panel_edges[1:, None]
+        x = (0.5 * (left + right) + 0.5 * (right - left) * _GAUSS_NODES[None, :]).ravel()
+        wx = (0.5 * (right - left) * _GAUSS_WEIGHTS[None, :]).ravel()
+        k = x / radius
+        c = compliance(k[None, :] * np.cos(theta)[:, None], k[None, :] * np.sin(theta)[:, None])
+        inner = np.sum(c * (k * squared(x) * wx / radius)[None, :], axis=1)
+        total += 0.25 * math.pi * float(np.sum(_ANGLE_WEIGHTS * inner))
+    return total / math.pi**2
