@@ -22,8 +22,8 @@ import scipy.special
 
 from .._checks import require_choice
 
-__all__ = ["PRESSURES", "hertz_transform", "uniform_transform", "patch_transform",
-           "mean_square_transform"]
+__all__ = ["PRESSURES", "hertz_transform", "mean_square_transform", "patch_transform",
+           "uniform_transform"]
 
 #: Pressure distributions over the contact disc with a modal transform.
 PRESSURES = ("hertz", "uniform")

@@ -203,11 +203,9 @@ def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_rad
                 f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
                 f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "
                 "are omitted, have modes below the cut-off frequency", stacklevel=4)
-    m, n, omega, amplitude = _lowest_modes(plate, max_frequency, min_modes)
+    m, n, omega, amplitude, participation = _lowest_modes(plate, max_frequency, min_modes)
     x0, y0 = plate.impact_point
     a, b = plate.length_x, plate.length_y
-    participation = amplitude * sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
-
     retained = None  # Kirchhoff: Σ φ²/ω² of the modes themselves
     if plate.theory == "mindlin":
         classical = (4.0 / plate.mass) * (sin_pi(m * x0 / a) * sin_pi(n * y0 / b)) ** 2
@@ -237,18 +235,15 @@ def _patch_basis(plate: Plate, max_frequency: float, min_modes: int, contact_rad
             f"contact radius {contact_radius:.4g} m exceeds half the plate thickness "
             f"{plate.thickness:.4g} m: Mindlin theory and its omitted thickness-shear branches "
             "are not reliable under such a load", stacklevel=4)
-    m, n, omega, amplitude = _lowest_modes(plate, max_frequency, min_modes)
-    x0, y0 = plate.impact_point
+    m, n, omega, amplitude, participation = _lowest_modes(plate, max_frequency, min_modes)
     a, b = plate.length_x, plate.length_y
-    wavenumber = np.hypot(m * math.pi / a, n * math.pi / b)
-    participation = (amplitude * sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
-                     * hertz_transform(wavenumber * contact_radius))
+    participation = participation * hertz_transform(np.hypot(m * math.pi / a, n * math.pi / b) * contact_radius)
     stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
     residual = 0.0
     if plate.theory == "mindlin":
         stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
-        static = (4.0 / (a * b)) * (sin_pi(m * x0 / a) * sin_pi(n * y0 / b)
-                                    * hertz_transform(wavenumber * contact_radius)) ** 2 * pair_static_compliance(
+        # φ = W s_m s_n T, so (4/(ab)) s_m² s_n² T² = φ² (4/(ab W²))
+        static = participation**2 * 4.0 / (a * b * amplitude**2) * pair_static_compliance(
             m * math.pi / a, n * math.pi / b, *stiffnesses)
         residual = max(float(np.sum(static - participation**2 / omega**2)), 0.0)
     residual += navier_patch_residual(a, b, stiffnesses, plate.impact_point, contact_radius,
@@ -258,7 +253,8 @@ def _patch_basis(plate: Plate, max_frequency: float, min_modes: int, contact_rad
 
 
 def _lowest_modes(plate: Plate, max_frequency: float, min_modes: int):
-    """(m, n, ω, W) of the modes with ω ≤ ``max_frequency`` (at least ``min_modes``), ascending."""
+    """(m, n, ω, W, φ) of the modes with ω ≤ ``max_frequency`` (at least ``min_modes``),
+    ascending; φ = W s_m(x0) s_n(y0) the point-load participation."""
     cutoff_frequency = max_frequency
     m, n = navier_pairs(plate, cutoff_frequency)
     while m.size < min_modes:
@@ -271,7 +267,10 @@ def _lowest_modes(plate: Plate, max_frequency: float, min_modes: int):
         omega, amplitude = mindlin_flexural(plate, m, n)
     order = np.lexsort((n, m, omega))
     keep = order[: max(int(np.sum(omega <= max_frequency)), min_modes)]
-    return m[keep], n[keep], omega[keep], amplitude[keep]
+    m, n, amplitude = m[keep], n[keep], amplitude[keep]
+    x0, y0 = plate.impact_point
+    participation = amplitude * sin_pi(m * x0 / plate.length_x) * sin_pi(n * y0 / plate.length_y)
+    return m, n, omega[keep], amplitude, participation
 
 
 def _shape_function(plate: Plate, m, n, amplitude):

@@ -268,10 +268,10 @@ def _patch_tail(x_start, radius, compliance, transform, mean_square):
     """``(1/π²) ∫_0^{π/2} dθ ∫_{x_start/r}^∞ k C(k cos θ, k sin θ) T(k r)² dk`` [m/N]."""
     edges = []
     if x_start < 1.0:
-        edges.append(np.geomspace(x_start, 1.0, int(math.ceil(math.log(1.0 / x_start) / math.log(1.5))) + 1))
+        edges.append(np.geomspace(x_start, 1.0, math.ceil(math.log(1.0 / x_start) / math.log(1.5)) + 1))
     low = max(x_start, 1.0)
     if low < _PATCH_AVERAGE_KA:
-        edges.append(np.linspace(low, _PATCH_AVERAGE_KA, int(math.ceil(2.0 * (_PATCH_AVERAGE_KA - low))) + 1))
+        edges.append(np.linspace(low, _PATCH_AVERAGE_KA, math.ceil(2.0 * (_PATCH_AVERAGE_KA - low)) + 1))
     oscillating = np.unique(np.concatenate(edges)) if edges else np.zeros(0)
     high = max(x_start, _PATCH_AVERAGE_KA)
     averaged = np.geomspace(high, high * 1e8, 60)
