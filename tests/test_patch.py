@@ -283,3 +283,22 @@ def test_laws_and_targets_without_a_patch_keep_the_point_load():
         assert same.peak_force == point.peak_force
         assert same.max_indentation == point.max_indentation
         assert "contact_radius_m" not in same.settings
+
+
+def test_shear_part_under_a_uniform_disc_has_the_membrane_logarithm():
+    """Independent check of the Mindlin shear flexibility under a patch: with rigid bending
+    (D → ∞) the pair compliance is 1/(kGh k²), and the series is the Dirichlet Green's
+    function of the square membrane; under a uniform disc of radius c its mean deflection
+    is (1/(2π kGh)) [ln(r_c/c) + 1/4] for c ≪ L (r_c the conformal radius), so between
+    two radii it changes by exactly ln(c1/c2)/(2π kGh). Tolerance 1e-4: measured 1.5e-5,
+    the lattice–integral junction of the sum, larger for the uniform pressure (T² ~ x⁻³)
+    than for the Hertz one (x⁻⁴) the solver uses."""
+    from functools import partial
+
+    big, shear = 1e30, 2.0
+    stiffnesses = (big, big, 0.3 * big, 0.35 * big, shear, shear)
+    square = partial(navier_patch_residual, 1.0, 1.0, stiffnesses, (0.5, 0.5),
+                     transform=uniform_transform, mean_square=partial(mean_square_transform, pressure="uniform"))
+    values = [square(c) for c in (1e-3, 1e-4, 1e-5)]
+    for wide, narrow in zip(values, values[1:]):
+        assert 2 * math.pi * shear * (narrow - wide) == pytest.approx(math.log(10.0), rel=1e-4)
