@@ -302,3 +302,15 @@ def test_shear_part_under_a_uniform_disc_has_the_membrane_logarithm():
     values = [square(c) for c in (1e-3, 1e-4, 1e-5)]
     for wide, narrow in zip(values, values[1:]):
         assert 2 * math.pi * shear * (narrow - wide) == pytest.approx(math.log(10.0), rel=1e-4)
+
+
+def test_auto_patch_is_the_patch_on_mindlin_and_the_point_load_on_kirchhoff():
+    """The default ("auto"): the Hertz patch on a Mindlin plate, the point load (bit for
+    bit) on a Kirchhoff plate, when the contact radius is known."""
+    assert ModalSettings().contact_patch == "auto"
+    mindlin, kirchhoff = readme_plate(), readme_plate(theory="kirchhoff")
+    auto = simulate(mindlin, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius)
+    assert auto.peak_force == patch_run(mindlin, 40).peak_force
+    auto = simulate(kirchhoff, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius)
+    assert auto.peak_force == patch_run(kirchhoff, 40, patch="point").peak_force
+    assert "contact_radius_m" not in auto.settings

@@ -52,9 +52,10 @@ __all__ = [
     "contact_radius_function",
 ]
 
-#: Loads the modal solver can apply: at the impact point, or as a Hertz pressure over the
-#: contact disc at the peak indentation (targets with ``supports_contact_patch``).
-CONTACT_PATCHES = ("point", "hertz-peak")
+#: Loads the modal solver can apply: at the impact point, as a Hertz pressure over the
+#: contact disc at the peak indentation (targets with ``supports_contact_patch``), or
+#: "auto": the patch on shear-deformable targets (Mindlin plates), the point load elsewhere.
+CONTACT_PATCHES = ("auto", "point", "hertz-peak")
 #: The peak-indentation patch radius is iterated until it moves by less than this (relative).
 PATCH_TOLERANCE = 1e-4
 #: At most this many runs of the peak-indentation iteration.
@@ -108,7 +109,7 @@ class ModalSettings:
         Factor in (0, 1] applied to the automatically chosen time step after every rule,
         the stability cap included, so that a refinement really shortens the step also
         where the stability limit sets it (:meth:`refined` halves it).
-    contact_patch : {"point", "hertz-peak"}
+    contact_patch : {"auto", "point", "hertz-peak"}
         ``"point"``: the force acts at the impact point. ``"hertz-peak"``: on targets
         that support it (``target.supports_contact_patch``, SSSS plates) and with a
         contact law that has a geometry (:func:`contact_radius_function`), the force is
@@ -117,6 +118,11 @@ class ModalSettings:
         from the half-space α_max, until a moves by < :data:`PATCH_TOLERANCE`); each
         mode's participation is multiplied by the patch's modal transform and the
         residual is the static compliance under the patch. Otherwise the point load.
+        ``"auto"`` (default): ``"hertz-peak"`` on shear-deformable targets
+        (``theory = "mindlin"``), whose point-load deflection diverges so that the point
+        load never converges in the cut-off; ``"point"`` on the others (Kirchhoff plates
+        and all beams keep their results; there the patch moves the peak force by
+        O((k a)²) only).
     """
 
     cutoff_ratio: float = 40.0
@@ -130,7 +136,7 @@ class ModalSettings:
     check_convergence: bool = False
     tolerance: float = 1e-3
     step_scale: float = 1.0
-    contact_patch: str = "point"
+    contact_patch: str = "auto"
 
     def __post_init__(self):
         require_positive("cutoff_ratio", self.cutoff_ratio)
@@ -213,6 +219,15 @@ def contact_radius_function(law: ContactLaw, effective_radius: float | None = No
     return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))
 
 
+def _uses_patch(target, contact_patch: str) -> bool:
+    """Whether ``contact_patch`` asks for the Hertz patch on ``target`` and it supports one."""
+    if not getattr(target, "supports_contact_patch", False):
+        return False
+    if contact_patch == "auto":
+        return getattr(target, "theory", None) == "mindlin"
+    return contact_patch == "hertz-peak"
+
+
 def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None) -> ModalBasis:
     """The participating modes below the cut-off, with the residual the settings ask for."""
     max_frequency = float(settings.cutoff_ratio * contact_frequency)
@@ -280,7 +295,7 @@ def simulate(
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
     radius_of = None
-    if settings.contact_patch == "hertz-peak" and getattr(target, "supports_contact_patch", False):
+    if _uses_patch(target, settings.contact_patch):
         radius_of = contact_radius_function(law, effective_radius)
     if radius_of is None:
         result = _run(target, law, params, impactor_mass, velocity, settings, record, time_step)
