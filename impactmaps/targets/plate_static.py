@@ -151,7 +151,7 @@ def navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_poin
 #: The patch residual sums the lattice of half-wave pairs up to k a = this, then integrates.
 _PATCH_LATTICE_KA = 8.0
 #: At most this many half-waves per direction in the lattice part of the patch residual.
-_PATCH_LATTICE_TERMS = 1000
+_PATCH_LATTICE_TERMS = 500
 #: Beyond k a = this the patch residual uses the oscillation average of T².
 _PATCH_AVERAGE_KA = 200.0
 _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(8)
@@ -203,7 +203,7 @@ def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact
     ``C`` of :func:`pair_static_compliance` (Kirchhoff or Mindlin), ``k² = p² + q²``,
     ``T`` the modal transform of the patch pressure: the deflection of the
     pressure-weighted mean under the patch load, minus the retained pairs. The pairs with
-    ``k ≤ K`` are summed (K from k a = 8, at most 1000 half-waves per direction, and
+    ``k ≤ K`` are summed (K from k a = 8, at most 500 half-waves per direction, and
     beyond every retained pair); the rest is the integral
     ``(1/π²) ∫∫_{k>K} T² C dp dq`` (``s²`` averages ½), by Gauss–Legendre quadrature in
     angle and in k a (T² averaged over its oscillation beyond k a = 200). For a → 0 the
