@@ -39,12 +39,15 @@ _UNIFORM_SERIES = (1.0, -1.0 / 8.0, 1.0 / 192.0, -1.0 / 9216.0, 1.0 / 737280.0,
                    -1.0 / 88473600.0, 1.0 / 14863564800.0)
 
 
-def _series(x2, coefficients):
-    """Σ c_k (x²)^k by Horner's rule."""
-    total = np.zeros_like(x2)
+def _even_function(x, closed_form, coefficients):
+    """``closed_form(|x|)``, or the series ``Σ c_k x^{2k}`` (Horner) where |x| is small."""
+    x = np.abs(np.asarray(x, dtype=float))
+    small = x < _SERIES_LIMIT
+    closed = closed_form(np.where(small, 1.0, x))
+    series = np.zeros_like(x)
     for c in reversed(coefficients):
-        total = total * x2 + c
-    return total
+        series = series * (x * x) + c
+    return np.where(small, series, closed)
 
 
 def hertz_transform(x):
@@ -60,11 +63,7 @@ def hertz_transform(x):
     ndarray
         T(x) [-]; 1 at x = 0, ``1 − x²/10 + O(x⁴)``, ``≈ −3 cos x/x²`` for large x.
     """
-    x = np.abs(np.asarray(x, dtype=float))
-    small = x < _SERIES_LIMIT
-    safe = np.where(small, 1.0, x)
-    closed = 3.0 * (np.sin(safe) - safe * np.cos(safe)) / safe**3
-    return np.where(small, _series(x * x, _HERTZ_SERIES), closed)
+    return _even_function(x, lambda y: 3.0 * (np.sin(y) - y * np.cos(y)) / y**3, _HERTZ_SERIES)
 
 
 def uniform_transform(x):
@@ -80,11 +79,7 @@ def uniform_transform(x):
     ndarray
         T(x) [-]; 1 at x = 0, ``1 − x²/8 + O(x⁴)``.
     """
-    x = np.abs(np.asarray(x, dtype=float))
-    small = x < _SERIES_LIMIT
-    safe = np.where(small, 1.0, x)
-    closed = 2.0 * scipy.special.j1(safe) / safe
-    return np.where(small, _series(x * x, _UNIFORM_SERIES), closed)
+    return _even_function(x, lambda y: 2.0 * scipy.special.j1(y) / y, _UNIFORM_SERIES)
 
 
 def patch_transform(x, pressure: str = "hertz"):
