@@ -171,7 +171,10 @@ def cmd_asymptote(args) -> dict:
 
 def _beam_impacts(zeta: float) -> dict:
     """How often the infinite beam is struck: once, or again after the first separation."""
-    from ..solvers.infinite_beam import critical_beam_loss_factor, recontact_beam_loss_factor
+    from ..solvers.infinite_beam import (
+        critical_beam_loss_factor,
+        recontact_beam_loss_factor,
+    )
 
     recontact, critical = recontact_beam_loss_factor(), critical_beam_loss_factor()
     if recontact < zeta < critical:
