@@ -95,11 +95,12 @@ def build_parser() -> argparse.ArgumentParser:
     _point_arguments(p, with_target=False)
 
     p = add("lookup", "F̄max and regime from the shipped maps (no simulation)", cmd_lookup)
-    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
-    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}), required=True)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS)
+    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
     p.add_argument("--zeta", type=float)
     p.add_argument("--lambda", dest="lambda_", type=float)
-    p.add_argument("--case", type=Path, help="a physical case file: gives the peak force in newtons too")
+    p.add_argument("--case", type=Path, help="a physical case file: the map that describes it (or a refusal), "
+                   "the peak force in newtons with its error band")
 
     p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
     p.add_argument("config", type=Path)

@@ -213,23 +213,21 @@ def cmd_lookup(args) -> dict:
     from ..maps.lookup import lookup
 
     if args.case is not None:
-        from ..cases import case_dimensionless, load_case
+        from ..cases import load_case
+        from ..maps.lookup import lookup_case
+
+        from ..maps.lookup import map_for_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
         case = load_case(args.case)
-        numbers = case_dimensionless(case)
-        found = lookup(numbers["zeta"], numbers["lambda"], structure=args.structure, theory=args.theory)
-        return {
-            "fmax_normalised": found.fmax_normalised,
-            "regime": found.regime,
-            "zeta": numbers["zeta"],
-            "lambda": numbers["lambda"],
-            "peak_force_N": float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
-                                                   numbers["contact_stiffness_N_m"])),
-            "map": found.map_name,
-        }
-    if args.zeta is None or args.lambda_ is None:
-        raise ValueError("give --zeta and --lambda, or --case CASE.toml")
+        structure, theory = map_for_case(case)
+        for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory)):
+            if given is not None and given != wanted:
+                raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
+                                 "the case says which map describes it")
+        return lookup_case(case)
+    if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
+        raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory)
