@@ -43,6 +43,7 @@ def cmd_fd(args) -> dict:
 def cmd_halfspace(args) -> dict:
     from ..contact import Sphere, law_for_sphere
     from ..solvers.halfspace import halfspace_impact
+    from ..validity import warn_if_invalid
 
     if args.material is not None and args.target_material is not None:
         refuse(args, {"--youngs-modulus": "youngs_modulus", "--poisson-ratio": "poisson_ratio",
@@ -62,6 +63,7 @@ def cmd_halfspace(args) -> dict:
         "impactor_mass_kg": float(sphere.mass),
         **{key: summary[key] for key in ("peak_force_N", "first_contact_duration_s", "max_indentation_m",
                                          "permanent_indentation_m", "restitution", "energy_loss_J")},
+        "model_warnings": warn_if_invalid(sphere, target_material, law, None, result),
     }
 
 
