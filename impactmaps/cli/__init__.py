@@ -80,8 +80,11 @@ def build_parser() -> argparse.ArgumentParser:
     _point_arguments(p)
     p.add_argument("--plot", default=None, metavar="FILE", help="write the normalised histories to an image file")
 
-    p = add("asymptote", "closed-form asymptote: infinite beam, infinite plate or quasi-static", cmd_asymptote)
-    p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static"))
+    p = add("asymptote", "asymptote: infinite beam, infinite plate, quasi-static or half-space "
+            "(normalised closed forms, or a case with its own contact law)", cmd_asymptote)
+    p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static", "half-space"))
+    p.add_argument("--case", type=Path, help="a physical case file: the asymptote with the case's contact law, "
+                   "in newtons and seconds")
     p.add_argument("--zeta", type=float, help="loss factor ζ (infinite-beam, infinite-plate)")
     p.add_argument("--lambda", dest="lambda_", type=float, help="relative stiffness λ (quasi-static)")
 

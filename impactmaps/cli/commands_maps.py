@@ -140,6 +140,11 @@ def cmd_point(args) -> dict:
 def cmd_asymptote(args) -> dict:
     from ..solvers import asymptotes
 
+    if getattr(args, "case", None) is not None:
+        return _case_asymptote(args)
+    if args.which == "half-space":
+        raise ValueError("the half-space asymptote needs a physical case: give --case CASE.toml "
+                         "(in normalised form it is F̄max = 1, contact time π)")
     if args.which == "quasi-static":
         refuse(args, {"--zeta": "zeta"}, "with the quasi-static asymptote (it depends on λ only)")
         if args.lambda_ is None:
@@ -166,6 +171,23 @@ def cmd_asymptote(args) -> dict:
         values["contact_time_note"] = "the sphere never separates from the infinite structure at this ζ"
     if args.which == "infinite-beam":
         values.update(_beam_impacts(args.zeta))
+    return values
+
+
+def _case_asymptote(args) -> dict:
+    """The asymptote of a physical case, for its own contact law (``--case``)."""
+    from ..cases import load_case
+    from ..law_asymptotes import asymptote
+    from ..validity import warn_if_invalid
+
+    refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives them)")
+    case = load_case(args.case)
+    target = None if args.which == "half-space" else case.target
+    result = asymptote(args.which, target, case.law, case.impactor_mass, case.velocity)
+    values = {"asymptote": args.which, "case": case.name, "law": case.law_name, **result.summary()}
+    if not math.isfinite(result.contact_time):
+        values["contact_time_note"] = "the sphere does not separate within the run"
+    values["model_warnings"] = warn_if_invalid(case.sphere, case.target_material, case.law, case.target, result)
     return values
 
 
