@@ -136,7 +136,7 @@ def _pressure(sphere, target_material, law, result):
     if pressure <= limit:
         return None
     return (f"contact pressure: the elastic Hertz peak pressure {pressure:.4g} Pa exceeds the "
-            f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} × S_y = {strength:.4g} Pa of the "
+            f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} S_y, with S_y = {strength:.4g} Pa of the "
             "softer body): the contact yields; use a plastic law ('yigit-christoforou' or 'stronge')")
 
 

@@ -97,3 +97,25 @@ def test_public_api_names_resolve():
     for name in impactmaps.__all__:
         assert getattr(impactmaps, name) is not None
     assert float(impactmaps.restitution(0.5)) == pytest.approx(1.0)
+
+
+def test_asymptote_of_a_case_uses_its_own_law(capsys):
+    """`impactmaps asymptote infinite-plate --case CASE.toml --json` (issue 'Maps and lookups
+    for the contact a user really has'): the infinite-plate solution with the case's Hertz
+    law, in newtons and seconds, the same numbers as the library call, strict JSON, the
+    model's violated assumptions listed; a limit that does not fit the case is refused."""
+    from pathlib import Path
+
+    from impactmaps.cases import load_case
+    from impactmaps.law_asymptotes import asymptote
+
+    path = Path(__file__).resolve().parent.parent / "examples" / "steel_plate_hertz.toml"
+    assert main(["asymptote", "infinite-plate", "--case", str(path), "--json"]) == 0
+    values = json.loads(capsys.readouterr().out, parse_constant=lambda c: pytest.fail(c))
+    case = load_case(path)
+    direct = asymptote("infinite-plate", case.target, case.law, case.impactor_mass, case.velocity)
+    assert values["peak_force_N"] == pytest.approx(direct.peak_force, rel=1e-12)
+    assert values["contact_time_s"] == pytest.approx(direct.contact_time, rel=1e-12)
+    assert values["impacts"] == 1 and isinstance(values["model_warnings"], list)
+    assert main(["asymptote", "infinite-beam", "--case", str(path)]) == 2
+    assert main(["asymptote", "half-space", "--zeta", "1"]) == 2

@@ -292,3 +292,18 @@ def test_generic_inversion_of_a_quadrature_law():
                                closed.indentation_for_energy(energies), rtol=1e-9)
     with pytest.raises(ValueError, match=r"energy = 1.0 J is not absorbed within 1000 m"):
         ContactLaw.indentation_for_energy(HertzContact(1e-30), 1.0)
+
+
+def test_hertz_law_from_a_pair_knows_its_radius():
+    """The Hertz law built from a sphere and a target carries the pair's effective radius
+    (the contact patch radius is sqrt(R α)); a law given by its stiffness alone does not,
+    and the radius is not part of the force law (same kernel parameters)."""
+    from impactmaps.contact import HertzContact, Sphere, law_for_sphere
+    from impactmaps.materials import material
+
+    steel = material("structural-steel")
+    law = law_for_sphere("hertz", Sphere(0.01, steel), steel, target_radius=0.03)
+    assert law.contact_radius_scale == pytest.approx(1.0 / (1.0 / 0.01 + 1.0 / 0.03), rel=1e-15)
+    bare = HertzContact(law.stiffness)
+    assert bare.contact_radius_scale is None
+    np.testing.assert_array_equal(bare.kernel_parameters, law.kernel_parameters)

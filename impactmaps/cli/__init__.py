@@ -20,13 +20,35 @@ import warnings
 from pathlib import Path
 
 from ..jsonio import dumps
-from ._common import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, Parser, UsageError, emit, error_text, interrupted
-from .commands_cases import (MAX_RESTITUTION_BETA, cmd_fd, cmd_halfspace, cmd_laws, cmd_materials,
-                             cmd_restitution, cmd_simulate)
-from .commands_maps import (SCHEDULER_TIMEOUT_S, cmd_asymptote, cmd_chart, cmd_classify, cmd_lookup, cmd_point,
-                            cmd_sweep)
+from ._common import (
+    EXIT_BAD_INPUT,
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    Parser,
+    UsageError,
+    emit,
+    error_text,
+    interrupted,
+)
+from .commands_cases import (
+    cmd_fd,
+    cmd_halfspace,
+    cmd_laws,
+    cmd_materials,
+    cmd_restitution,
+    cmd_simulate,
+)
+from .commands_maps import (
+    SCHEDULER_TIMEOUT_S,
+    cmd_asymptote,
+    cmd_chart,
+    cmd_classify,
+    cmd_lookup,
+    cmd_point,
+    cmd_sweep,
+)
 
-__all__ = ["main", "build_parser", "MAX_RESTITUTION_BETA", "SCHEDULER_TIMEOUT_S"]
+__all__ = ["main", "build_parser", "SCHEDULER_TIMEOUT_S"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -58,8 +80,11 @@ def build_parser() -> argparse.ArgumentParser:
     _point_arguments(p)
     p.add_argument("--plot", default=None, metavar="FILE", help="write the normalised histories to an image file")
 
-    p = add("asymptote", "closed-form asymptote: infinite beam, infinite plate or quasi-static", cmd_asymptote)
-    p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static"))
+    p = add("asymptote", "asymptote: infinite beam, infinite plate, quasi-static or half-space "
+            "(normalised closed forms, or a case with its own contact law)", cmd_asymptote)
+    p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static", "half-space"))
+    p.add_argument("--case", type=Path, help="a physical case file: the asymptote with the case's contact law, "
+                   "in newtons and seconds")
     p.add_argument("--zeta", type=float, help="loss factor ζ (infinite-beam, infinite-plate)")
     p.add_argument("--lambda", dest="lambda_", type=float, help="relative stiffness λ (quasi-static)")
 
@@ -73,11 +98,12 @@ def build_parser() -> argparse.ArgumentParser:
     _point_arguments(p, with_target=False)
 
     p = add("lookup", "F̄max and regime from the shipped maps (no simulation)", cmd_lookup)
-    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
-    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}), required=True)
+    p.add_argument("--structure", choices=STRUCTURE_KINDS)
+    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
     p.add_argument("--zeta", type=float)
     p.add_argument("--lambda", dest="lambda_", type=float)
-    p.add_argument("--case", type=Path, help="a physical case file: gives the peak force in newtons too")
+    p.add_argument("--case", type=Path, help="a physical case file: the map that describes it (or a refusal), "
+                   "the peak force in newtons with its error band")
 
     p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
     p.add_argument("config", type=Path)
@@ -108,7 +134,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
-    p.add_argument("--beta", type=float, required=True, help=f"impact number β in (0, {MAX_RESTITUTION_BETA:g}]")
+    p.add_argument("--beta", type=float, required=True, help="impact number β > 0 (seed 001 eq 11)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)

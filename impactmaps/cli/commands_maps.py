@@ -140,6 +140,11 @@ def cmd_point(args) -> dict:
 def cmd_asymptote(args) -> dict:
     from ..solvers import asymptotes
 
+    if getattr(args, "case", None) is not None:
+        return _case_asymptote(args)
+    if args.which == "half-space":
+        raise ValueError("the half-space asymptote needs a physical case: give --case CASE.toml "
+                         "(in normalised form it is F̄max = 1, contact time π)")
     if args.which == "quasi-static":
         refuse(args, {"--zeta": "zeta"}, "with the quasi-static asymptote (it depends on λ only)")
         if args.lambda_ is None:
@@ -169,9 +174,29 @@ def cmd_asymptote(args) -> dict:
     return values
 
 
+def _case_asymptote(args) -> dict:
+    """The asymptote of a physical case, for its own contact law (``--case``)."""
+    from ..cases import load_case
+    from ..law_asymptotes import asymptote
+    from ..validity import warn_if_invalid
+
+    refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives them)")
+    case = load_case(args.case)
+    target = None if args.which == "half-space" else case.target
+    result = asymptote(args.which, target, case.law, case.impactor_mass, case.velocity)
+    values = {"asymptote": args.which, "case": case.name, "law": case.law_name, **result.summary()}
+    if not math.isfinite(result.contact_time):
+        values["contact_time_note"] = "the sphere does not separate within the run"
+    values["model_warnings"] = warn_if_invalid(case.sphere, case.target_material, case.law, case.target, result)
+    return values
+
+
 def _beam_impacts(zeta: float) -> dict:
     """How often the infinite beam is struck: once, or again after the first separation."""
-    from ..solvers.infinite_beam import critical_beam_loss_factor, recontact_beam_loss_factor
+    from ..solvers.infinite_beam import (
+        critical_beam_loss_factor,
+        recontact_beam_loss_factor,
+    )
 
     recontact, critical = recontact_beam_loss_factor(), critical_beam_loss_factor()
     if recontact < zeta < critical:
@@ -210,23 +235,21 @@ def cmd_lookup(args) -> dict:
     from ..maps.lookup import lookup
 
     if args.case is not None:
-        from ..cases import case_dimensionless, load_case
+        from ..cases import load_case
+        from ..maps.lookup import lookup_case
+
+        from ..maps.lookup import map_for_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
         case = load_case(args.case)
-        numbers = case_dimensionless(case)
-        found = lookup(numbers["zeta"], numbers["lambda"], structure=args.structure, theory=args.theory)
-        return {
-            "fmax_normalised": found.fmax_normalised,
-            "regime": found.regime,
-            "zeta": numbers["zeta"],
-            "lambda": numbers["lambda"],
-            "peak_force_N": float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
-                                                   numbers["contact_stiffness_N_m"])),
-            "map": found.map_name,
-        }
-    if args.zeta is None or args.lambda_ is None:
-        raise ValueError("give --zeta and --lambda, or --case CASE.toml")
+        structure, theory = map_for_case(case)
+        for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory)):
+            if given is not None and given != wanted:
+                raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
+                                 "the case says which map describes it")
+        return lookup_case(case)
+    if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
+        raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory)

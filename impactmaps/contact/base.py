@@ -317,6 +317,16 @@ class ContactLaw(ABC):
         """Stiffness K [N/m] of a linear law ``F = K α``; ``None`` for a nonlinear law."""
         return None
 
+    @property
+    def contact_radius_scale(self):
+        """Effective radius R [m] of the sphere–target pair when the law knows it, else ``None``.
+
+        It sets the radius of the contact patch, ``a = sqrt(R α)`` (Hertz), over which a
+        solver may spread the contact force (:mod:`impactmaps.targets.patch`). Laws built
+        from a contact pair carry it; a law given only by its stiffness does not.
+        """
+        return getattr(self, "effective_radius", None)
+
     def impact_number(self, impactor_mass, velocity):
         """Impact number β [-] (seed 001 eq 11) of an impact by mass m_i [kg] at V0 [m/s].
 

@@ -58,9 +58,13 @@ class HertzContact(ContactLaw):
     stiffness : float or array_like
         Hertz stiffness K_h [N/m^1.5], ``(4/3) sqrt(R) E*`` for a sphere of radius R on
         a flat (seed 001 eq 7; Johnson, *Contact Mechanics*, 1985, §4.2).
+    effective_radius : float, optional
+        R [m] of the pair, when known (set by the pair and geometry constructors): the
+        contact radius is ``sqrt(R α)``. Not part of the force law.
     """
 
     stiffness: float
+    effective_radius: float | None = None
 
     name: ClassVar[str] = "hertz"
     elastic: ClassVar[bool] = True
@@ -69,17 +73,20 @@ class HertzContact(ContactLaw):
 
     def __post_init__(self):
         require_positive("stiffness", self.stiffness, "N/m^1.5")
+        if self.effective_radius is not None:
+            require_positive("effective_radius", self.effective_radius, "m")
 
     @classmethod
     def from_contact_pair(cls, pair, **options) -> "HertzContact":
         """``K_h = (4/3) sqrt(R) E*`` of the pair (seed 001 eqs 7–8); no options."""
         cls.check_options(options)
-        return cls(float(hertz_stiffness(pair.effective_modulus, pair.effective_radius)))
+        return cls(float(hertz_stiffness(pair.effective_modulus, pair.effective_radius)),
+                   effective_radius=float(pair.effective_radius))
 
     @classmethod
     def from_geometry(cls, effective_modulus, radius) -> "HertzContact":
         """Build from the effective modulus E* [Pa] and effective radius R [m]."""
-        return cls(hertz_stiffness(effective_modulus, radius))
+        return cls(hertz_stiffness(effective_modulus, radius), effective_radius=radius)
 
     @classmethod
     def from_sphere(cls, radius, impactor_material, target_material) -> "HertzContact":

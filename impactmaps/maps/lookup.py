@@ -22,7 +22,8 @@ from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .regimes import classify, quasi_static_peak
 
-__all__ = ["SHIPPED_MAPS", "LookupResult", "load_shipped_map", "lookup", "design_formula", "markdown_table"]
+__all__ = ["SHIPPED_MAPS", "LookupResult", "load_shipped_map", "lookup", "lookup_case", "map_for_case",
+           "design_formula", "markdown_table"]
 
 SHIPPED_MAPS = {
     ("beam", "euler"): "beam-ss-euler",
@@ -233,3 +234,118 @@ def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=N
         for lam, row in zip(data["lambda_"].values, data.values)
     ]
     return "\n".join([f"**{structure}** — F̄max", "", header, rule, *rows])
+
+
+#: Relative tolerance within which a case "is" a shipped map's structure (impact point,
+#: aspect ratio, slenderness): beyond it the map does not describe the case.
+CASE_MATCH_RTOL = 1e-6
+#: Slenderness of the shipped shear-deformable maps (span/height, span/thickness).
+SHIPPED_SLENDERNESS = 20.0
+
+
+def map_for_case(case) -> tuple[str, str]:
+    """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
+
+    A shipped map is a family of normalised structures with a linear contact law: simply
+    supported beams and SSSS square plates struck at the centre, Euler and Kirchhoff
+    theory (any size: the normalised response depends on ζ and λ only) or Timoshenko and
+    Mindlin at span/thickness 20. A case outside every family is refused, never looked
+    up in the nearest map.
+
+    Parameters
+    ----------
+    case : impactmaps.cases.Case
+
+    Returns
+    -------
+    (str, str)
+        ``structure`` and ``theory`` for :func:`lookup`.
+
+    Raises
+    ------
+    ValueError
+        Naming what no shipped map covers (contact law, supports, impact point, aspect,
+        theory, slenderness) and suggesting ``impactmaps simulate``.
+    """
+    def refuse(what: str):
+        raise ValueError(f"no shipped map covers this case: {what}; run `impactmaps simulate "
+                         f"{case.source or 'CASE.toml'}` instead")
+
+    def same(value, wanted) -> bool:
+        return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
+
+    if case.law.linear_stiffness is None:
+        refuse(f"contact law {case.law_name!r} (the shipped maps are for the linear law; "
+               "linearising a nonlinear law with K_y would be an unconservative guess)")
+    target = case.target
+    if case.target_type == "beam":
+        if target.supports != "ss":
+            refuse(f"beam supports {target.supports!r} (maps: simply supported 'ss')")
+        if not same(target.impact_position, 0.5 * target.length):
+            refuse(f"impact at x0 = {target.impact_position:g} m of a {target.length:g} m span "
+                   "(maps: mid-span)")
+        theory = target.theory
+    elif case.target_type == "plate":
+        if target.edges != "SSSS":
+            refuse(f"plate edges {target.edges!r} (maps: 'SSSS')")
+        if not same(target.length_y, target.length_x):
+            refuse(f"plate aspect ratio {target.length_y / target.length_x:g} (maps: square)")
+        if not (same(target.impact_point[0], 0.5 * target.length_x)
+                and same(target.impact_point[1], 0.5 * target.length_y)):
+            refuse(f"impact at {target.impact_point} m (maps: the plate centre)")
+        theory = target.theory
+    else:
+        refuse(f"target type {case.target_type!r} (maps: beams and plates)")
+    structure = case.target_type
+    if (structure, theory) not in SHIPPED_MAPS:
+        refuse(f"{structure} theory {theory!r} (maps: "
+               + ", ".join(t for s, t in SHIPPED_MAPS if s == structure) + ")")
+    if theory in ("timoshenko", "mindlin"):
+        if structure == "beam":
+            slenderness = target.slenderness
+        else:
+            slenderness = target.length_x / target.thickness
+        if slenderness is None or not same(slenderness, SHIPPED_SLENDERNESS):
+            refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
+                   f"{SHIPPED_SLENDERNESS:g}; the thin limit is the "
+                   f"{'euler' if structure == 'beam' else 'kirchhoff'} map)")
+    return structure, theory
+
+
+def lookup_case(case) -> dict:
+    """Peak force of a physical case from the shipped map that describes it, or refuse.
+
+    Parameters
+    ----------
+    case : impactmaps.cases.Case
+
+    Returns
+    -------
+    dict
+        ``peak_force_N`` with its band ``peak_force_error_N``, ``fmax_normalised`` and
+        ``fmax_error``, ``status``, ``regime``, ``zeta``, ``lambda``, ``map``.
+
+    Raises
+    ------
+    ValueError
+        When no shipped map describes the case (:func:`map_for_case`), or ζ, λ lie outside
+        the map.
+    """
+    from ..cases import case_dimensionless
+
+    structure, theory = map_for_case(case)
+    numbers = case_dimensionless(case)
+    found = lookup(numbers["zeta"], numbers["lambda"], structure=structure, theory=theory)
+    scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
+                                   numbers["contact_stiffness_N_m"])) / found.fmax_normalised
+    return {
+        "peak_force_N": found.fmax_normalised * scale,
+        "peak_force_error_N": found.fmax_error * scale,
+        "fmax_normalised": found.fmax_normalised,
+        "fmax_error": found.fmax_error,
+        "status": found.status,
+        "regime": found.regime,
+        "zeta": numbers["zeta"],
+        "lambda": numbers["lambda"],
+        "map": found.map_name,
+    }
