@@ -215,11 +215,13 @@ def test_contact_patch_setting_is_validated():
 
 
 def test_contact_radius_function_of_the_laws():
-    """Stronge: its own loading contact radius; R given: sqrt(R α); none: point load."""
+    """Stronge: its own loading contact radius; R given or the law's contact_radius_scale:
+    sqrt(R α); none (a law given by its stiffness alone): point load."""
     stronge = law_for_sphere("stronge", SPHERE, ALUMINIUM)
     assert contact_radius_function(stronge)(1e-5) == pytest.approx(float(stronge.loading_contact_radius(1e-5)))
     assert contact_radius_function(HERTZ, 0.01)(4e-6) == pytest.approx(2e-4)
-    assert contact_radius_function(HERTZ) is None
+    assert contact_radius_function(HERTZ)(4e-6) == pytest.approx(math.sqrt(SPHERE.radius * 4e-6))
+    assert contact_radius_function(HertzContact(HERTZ.stiffness)) is None
     assert contact_radius_function(LinearContact(1e7)) is None
 
 
@@ -305,12 +307,13 @@ def test_shear_part_under_a_uniform_disc_has_the_membrane_logarithm():
 
 
 def test_auto_patch_is_the_patch_on_mindlin_and_the_point_load_on_kirchhoff():
-    """The default ("auto"): the Hertz patch on a Mindlin plate, the point load (bit for
-    bit) on a Kirchhoff plate, when the contact radius is known."""
-    assert ModalSettings().contact_patch == "auto"
+    """"auto": the Hertz patch on a Mindlin plate, the point load (bit for bit) on a
+    Kirchhoff plate, when the contact radius is known; the default is the point load."""
+    assert ModalSettings().contact_patch == "point"
+    auto_settings = ModalSettings(contact_patch="auto")
     mindlin, kirchhoff = readme_plate(), readme_plate(theory="kirchhoff")
-    auto = simulate(mindlin, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius)
+    auto = simulate(mindlin, HERTZ, SPHERE.mass, 3.0, record=False, settings=auto_settings)
     assert auto.peak_force == patch_run(mindlin, 40).peak_force
-    auto = simulate(kirchhoff, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius)
+    auto = simulate(kirchhoff, HERTZ, SPHERE.mass, 3.0, record=False, settings=auto_settings)
     assert auto.peak_force == patch_run(kirchhoff, 40, patch="point").peak_force
     assert "contact_radius_m" not in auto.settings
