@@ -72,7 +72,7 @@ def _solve(task) -> dict:
         return {"fmax_normalised": result.fmax_normalised, "n_modes": result.n_modes}
 
 
-def _worker(tasks, results, wid) -> None:
+def _worker(tasks, results, stop, wid) -> None:
     for os_name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(os_name, "1")
     while True:
@@ -80,6 +80,9 @@ def _worker(tasks, results, wid) -> None:
         if item is None:
             return
         index, task = item
+        if stop.is_set():  # over the budget: the task is not run
+            results.put(("skip", wid, index))
+            continue
         results.put(("start", wid, index, time.time()))
         start = time.perf_counter()
         try:
@@ -95,7 +98,7 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
     its worker (which is replaced); after ``budget`` s no task starts. One outcome per task:
     ``{"state": "done"|"timeout"|"fail"|"budget", "row", "seconds", "error"}``."""
     context = multiprocessing.get_context("fork")
-    task_queue, result_queue = context.Queue(), context.Queue()
+    task_queue, result_queue, stop = context.Queue(), context.Queue(), context.Event()
     for index, task in enumerate(tasks):
         task_queue.put((index, task))
     outcomes = [{"state": "budget"} for _ in tasks]
@@ -104,7 +107,7 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
 
     def spawn():
         nonlocal next_id
-        process = context.Process(target=_worker, args=(task_queue, result_queue, next_id), daemon=True)
+        process = context.Process(target=_worker, args=(task_queue, result_queue, stop, next_id), daemon=True)
         process.start()
         processes[next_id] = process
         next_id += 1
@@ -117,14 +120,7 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
     while remaining > 0 and processes:
         if not stopping and time.time() - started > budget:
             stopping = True
-            while True:  # drop the tasks nobody took: they stay "budget"
-                try:
-                    task_queue.get_nowait()
-                    remaining -= 1
-                except queue.Empty:
-                    break
-            if remaining <= 0:
-                break
+            stop.set()  # the workers skip the tasks still queued: they stay "budget"
         try:
             message = result_queue.get(timeout=0.2)
         except queue.Empty:
@@ -133,6 +129,8 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
             kind, wid, index = message[:3]
             if kind == "start":
                 running[wid] = (index, message[3])
+            elif kind == "skip":
+                remaining -= 1
             else:
                 running.pop(wid, None)
                 remaining -= 1
@@ -147,8 +145,7 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
                 running.pop(wid)
                 outcomes[index] = {"state": "timeout", "seconds": now - since}
                 remaining -= 1
-                if not stopping:
-                    spawn()
+                spawn()
     for _ in processes:
         task_queue.put(None)
     for process in processes.values():
