@@ -24,6 +24,10 @@ REGIME_COLOURS = {
 }
 
 
+#: Opacity of the band drawn over sensitive stretches of a curve.
+SENSITIVE_ALPHA = 0.3
+
+
 def _axes(ax):
     if ax is None:
         import matplotlib.pyplot as plt
@@ -40,7 +44,10 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     curves. Regimes (``shade_regimes``): the local band F̄max ≥ 0.9 is shaded, and, when
     the dataset has a ``regime`` variable, vertical bands mark the ζ ranges where every
     drawn point is in one regime (local on the left, quasi-static on the right; between
-    them the regime depends on λ: see :func:`plot_regime_map`).
+    them the regime depends on λ: see :func:`plot_regime_map`). Where the dataset has
+    a ``status`` variable, stretches of ``sensitive`` points (no converged value) are
+    drawn as a band between ``fmax_low`` and ``fmax_high`` in the curve's colour, not as
+    a line, with a legend entry saying what the band means.
 
     Parameters
     ----------
@@ -89,7 +96,8 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
             ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.9, ls=":", zorder=1)
         for name in structures:
             kind = str(dataset["kind"].sel(structure=name).item())
-            values = dataset["fmax_normalised"].sel(structure=name).sel(lambda_=lam, method="nearest").values
+            curve = dataset.sel(structure=name).sel(lambda_=lam, method="nearest")
+            values = _draw_sensitive_bands(ax, zeta, curve, colour)
             ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2,
                     marker=marker, markevery=marks, ms=4, mfc="white" if kind == "beam" else colour)
         ax.plot([], [], color=colour, lw=2.0, marker=marker, ms=4, label=f"λ = {lam:g}")
@@ -98,6 +106,9 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
     if asymptotes:
         ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
+    if _has_sensitive(dataset, structures, lambda_values):
+        ax.fill_between([], [], [], color="0.5", alpha=SENSITIVE_ALPHA, lw=0,
+                        label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$")
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     ax.set_ylim(0.0, 1.05)
@@ -107,6 +118,44 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
+
+
+def _sensitive_mask(curve):
+    """True at the points of one curve whose status is ``sensitive`` (no converged value)."""
+    from .maps.accuracy import STATUSES
+
+    if "status" not in curve:
+        return np.zeros(curve["zeta"].size, dtype=bool)
+    return np.asarray(curve["status"].values) == STATUSES.index("sensitive")
+
+
+def _has_sensitive(dataset, structures, lambda_values):
+    """Whether any drawn curve has a sensitive point (the band then gets a legend entry)."""
+    if "status" not in dataset:
+        return False
+    return any(_sensitive_mask(dataset.sel(structure=name).sel(lambda_=lam, method="nearest")).any()
+               for name in structures for lam in lambda_values)
+
+
+def _draw_sensitive_bands(ax, zeta, curve, colour):
+    """Fill between ``fmax_low`` and ``fmax_high`` over each run of sensitive points of one
+    curve (widened to its neighbours, so band and line join), in the curve's colour.
+
+    Returns the curve's F̄max with NaN at the sensitive points: the line is not drawn where
+    the band stands for it (it would print one number where no converged value exists).
+    """
+    values = np.array(curve["fmax_normalised"].values, dtype=float)
+    sensitive = _sensitive_mask(curve)
+    if not sensitive.any():
+        return values
+    low = np.asarray(curve["fmax_low"].values, dtype=float)
+    high = np.asarray(curve["fmax_high"].values, dtype=float)
+    for start, stop in _runs(sensitive):
+        first, last = max(start - 1, 0), min(stop + 1, zeta.size - 1)
+        span = slice(first, last + 1)
+        ax.fill_between(zeta[span], low[span], high[span], color=colour, alpha=SENSITIVE_ALPHA, lw=0, zorder=1.5)
+    values[sensitive] = np.nan
+    return values
 
 
 def _lambda_styles(count):

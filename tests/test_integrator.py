@@ -366,3 +366,47 @@ def test_parabolic_peak_recovers_the_vertex_of_a_parabola():
     value, offset = parabolic_peak(force(-1.0), force(0.0), force(1.0))
     assert value == pytest.approx(2.0, abs=1e-14) and offset == pytest.approx(0.3, abs=1e-14)
     assert parabolic_peak(1.0, 2.0, 3.0) == (2.0, 0.0)
+
+
+# -- recording costs no accuracy and little time ------------------------------------------
+SCALARS = ("peak_force", "peak_time", "max_indentation", "rebound_velocity", "energy_transferred",
+           "damping_work", "end_time", "time_limit_reached", "time_step", "n_modes")
+
+
+@pytest.mark.parametrize("kind, zeta, relative_stiffness",
+                         [("beam", 1.198, 0.01), ("beam", 11.3, 0.01), ("plate", 1.198, 0.01), ("plate", 0.038, 0.425)])
+def test_record_leaves_the_scalars_bit_identical(kind, zeta, relative_stiffness):
+    """record=True takes the same steps as record=False (free flight doubles its step in
+    both), so every scalar is the same to the bit."""
+    basis, law, mass = _case(kind, zeta, relative_stiffness)
+    recorded = simulate(basis, law, mass, 1.0, record=True)
+    plain = simulate(basis, law, mass, 1.0, record=False)
+    for name in SCALARS:
+        assert getattr(recorded, name) == getattr(plain, name), name
+    assert np.array_equal(recorded.contact_intervals, plain.contact_intervals)
+    assert recorded.history["time_s"].iloc[-1] == plain.end_time
+
+
+def test_history_is_full_resolution_in_contact_and_sparse_in_long_free_flights():
+    """Plate ζ = 1.198, λ = 0.01: six impacts separated by long free flights (≈ 19 000
+    steps h of flight). In contact the rows are every step h (or closer, at events); in
+    flight they are the doubled steps (≤ 64 h apart), at most one row per 8 h of flight.
+    Every row is an exact state: the impactor moves at constant speed in flight."""
+    basis, law, mass = _case("plate", 1.198, 0.01)
+    result = simulate(basis, law, mass, 1.0, record=True)
+    history, h = result.history, result.time_step
+    time_s, force = history["time_s"].to_numpy(), history["force_N"].to_numpy()
+    spacing = np.diff(time_s)
+    assert result.impacts >= 4
+    touching = (force[1:] > 0.0) & (force[:-1] > 0.0)
+    assert touching.sum() > 1000 and np.all(spacing[touching] <= h * (1 + 1e-9))
+    assert spacing.max() <= 64 * h * (1 + 1e-9) and spacing.max() > 8 * h
+    contact = float(np.sum(np.diff(result.contact_intervals, axis=1)))
+    flight = time_s[-1] - contact
+    assert flight / h > 10_000
+    flight_rows = int(np.sum((force[1:] == 0.0) & (force[:-1] == 0.0)))
+    assert flight_rows <= flight / (8 * h)
+    assert len(time_s) <= contact / h + flight / (8 * h) + 4 * result.impacts + 2
+    free = (force[1:] == 0.0) & (force[:-1] == 0.0)
+    speed = history["impactor_velocity_m_s"].to_numpy()
+    assert np.all(speed[1:][free] == speed[:-1][free])

@@ -106,3 +106,51 @@ def test_regime_map_is_classified_on_a_dense_grid_when_complete(dataset):
     coarse = plotting.plot_regime_map(dataset, "plate-ssss-kirchhoff", smooth=False)
     mesh = next(c for c in coarse.collections if isinstance(c, QuadMesh))
     assert mesh.get_array().size == cells
+
+
+def test_fmax_chart_draws_sensitive_stretches_as_a_band(dataset):
+    """Where the dataset marks points sensitive, the curve is a filled band between
+    fmax_low and fmax_high (its colour), the line is not drawn there, and the legend
+    says what the band means."""
+    from impactmaps.maps.accuracy import STATUSES
+
+    marked = dataset.copy(deep=True)
+    name, lam = "beam-ss-euler", 0.1
+    cell = {"structure": name, "lambda_": lam}
+    status = marked["status"].loc[cell].values.copy()
+    status[:] = STATUSES.index("converged")
+    status[2:5] = STATUSES.index("sensitive")
+    marked["status"].loc[cell] = status
+    values = marked["fmax_normalised"].loc[cell].values
+    marked["fmax_low"].loc[cell] = values - 0.05
+    marked["fmax_high"].loc[cell] = values + 0.05
+    for other in ("plate-ssss-kirchhoff",):
+        marked["status"].loc[{"structure": other}] = STATUSES.index("converged")
+    marked["status"].loc[{"structure": name, "lambda_": 1.0}] = STATUSES.index("converged")
+
+    ax = plotting.plot_fmax_chart(marked, asymptotes=False, shade_regimes=False)
+    bands = [patch for patch in ax.collections if len(patch.get_paths()) and patch.get_paths()[0].vertices.size]
+    assert len(bands) == 1
+    vertices = bands[0].get_paths()[0].vertices
+    # the band spans the run widened to its neighbours (indices 1..5), between low and high
+    assert np.isclose(vertices[:, 0].min(), ZETAS[1]) and np.isclose(vertices[:, 0].max(), ZETAS[5])
+    assert np.isclose(vertices[:, 1].max(), np.max(values[1:6] + 0.05))
+    assert np.isclose(vertices[:, 1].min(), np.min(values[1:6] - 0.05))
+    curves = [line for line in ax.lines if len(line.get_xdata()) == ZETAS.size]
+    beam = [line for line in curves if np.isnan(np.asarray(line.get_ydata(), float)).any()]
+    assert len(beam) == 1
+    drawn = np.asarray(beam[0].get_ydata(), float)
+    assert np.all(np.isnan(drawn[2:5])) and np.allclose(drawn[[0, 1, 5, 6, 7]], values[[0, 1, 5, 6, 7]])
+    assert matplotlib.colors.same_color(bands[0].get_facecolor()[0][:3], beam[0].get_color())
+    labels = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert any(label.startswith("sensitive") for label in labels)
+
+
+def test_fmax_chart_without_sensitive_points_has_no_band(dataset):
+    from impactmaps.maps.accuracy import STATUSES
+
+    clean = dataset.copy(deep=True)
+    clean["status"][:] = STATUSES.index("converged")
+    ax = plotting.plot_fmax_chart(clean, asymptotes=False, shade_regimes=False)
+    labels = [text.get_text() for text in ax.get_legend().get_texts()]
+    assert not any(label.startswith("sensitive") for label in labels)

@@ -70,7 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
     p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
     p.add_argument("--zeta-range", nargs=2, type=float, default=(0.005, 100.0), metavar=("A", "B"))
-    p.add_argument("--zeta-count", type=int, default=60, help="log-spaced ζ values (≥ 2, default 60)")
+    p.add_argument("--zeta-count", type=int, default=200, help="log-spaced ζ values per curve (≥ 2, default 200)")
     p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
     p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid")

@@ -11,13 +11,16 @@ from .lookup import markdown_table
 from .structures import MapStructure
 from .sweep import log_grid, sweep
 
-__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "check_chart_grid", "make_chart", "tidy_frame"]
+__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_COUNT", "check_chart_grid", "make_chart", "tidy_frame"]
 
 CHART_STRUCTURES = (
     MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
     MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
 )
 DEFAULT_CHART_LAMBDAS = (0.05, 0.1, 0.2, 0.425, 1.0, 2.0, 5.0, 20.0)
+#: ζ points per curve of the default chart: enough that the re-impact peaks of F̄max(ζ)
+#: are resolved, not jagged (issue 12).
+DEFAULT_ZETA_COUNT = 200
 
 
 def tidy_frame(dataset):
@@ -59,7 +62,7 @@ def make_chart(
     out_dir: Path | str = "impactmaps-output",
     *,
     zeta_range=(0.005, 100.0),
-    zeta_count: int = 60,
+    zeta_count: int = DEFAULT_ZETA_COUNT,
     lambdas=None,
     structures=CHART_STRUCTURES,
     settings: ModalSettings | None = None,
@@ -79,7 +82,7 @@ def make_chart(
     zeta_range : (float, float)
         Smallest and largest loss factor ζ.
     zeta_count : int
-        Number of log-spaced ζ values.
+        Number of log-spaced ζ values per curve (default :data:`DEFAULT_ZETA_COUNT`, 200).
     lambdas : sequence of float, optional
         Relative stiffnesses λ (default :data:`DEFAULT_CHART_LAMBDAS`).
     structures : sequence of MapStructure

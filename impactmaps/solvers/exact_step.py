@@ -10,10 +10,13 @@ period per step: ``modal.STABLE_TOP_STEP``.)
 
 One impact is a loop over four stages:
 
-* **free flight** (scalars-only runs, no contact force): the step doubles up to 64× as
-  long as a bound on the closing speed proves that no touchdown fits inside it, and the
-  run ends as soon as the gap exceeds the largest displacement the free vibration can
-  reach at the impact point (:func:`_free_doublings`, :func:`_closing_speed_bound`);
+* **free flight** (no contact force): the step doubles up to 64× as long as a bound on
+  the closing speed proves that no touchdown fits inside it, and the run ends as soon as
+  the gap exceeds the largest displacement the free vibration can reach at the impact
+  point (:func:`_free_doublings`, :func:`_closing_speed_bound`). A recorded run takes the
+  same steps and records the exact state at the end of each, so its history rows are
+  spaced up to 64 h apart in free flight (every step h in contact) and its scalars are
+  those of the run without a record;
 * **event location**: contact start and separation are roots of the predicted gap
   inside the step (Brent's method); the step is cut there and the next one starts at the
   event (:mod:`impactmaps.solvers.contact_events`, :func:`_advance_to_event`);
@@ -229,6 +232,16 @@ def _grown(history):
 
 
 @numba.njit(cache=True)
+def _record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
+    """Append the state at time t [s] as row ``rec`` (growing the array when full);
+    returns the history array and the next row index."""
+    if rec == history.shape[0]:
+        history = _grown(history)
+    _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+    return history, rec + 1
+
+
+@numba.njit(cache=True)
 def _step_compliance(coef, phi, h, mass, residual):
     """Compliance C [m/N] through which the end force of a step takes back indentation:
     impactor ``h²/(6m)``, residual flexibility and the retained modes ``Σ φ_j coef[5, j]``."""
@@ -271,7 +284,8 @@ def integrate_impact(
     residual : residual compliance of dropped modes [m/N].
     mass, velocity : impactor mass [kg] and approach velocity [m/s].
     h : time step [s]; max_time : time limit [s].
-    record : store the history at every step (otherwise only scalars).
+    record : store the history at the end of every step (free-flight steps are the
+        doubled ones, so rows are not uniformly spaced there); otherwise only scalars.
     max_events : capacity of the contact-interval table.
 
     Returns
@@ -330,7 +344,7 @@ def integrate_impact(
     while True:
         if force != 0.0 or starting:
             speed_bound = -1.0
-        elif not record:
+        else:
             if speed_bound < 0.0:
                 speed_bound = _closing_speed_bound(omega, phi, q, v, vi)
             # k > 0: the speed bound proves the long step free; k = 0: a free step whose
@@ -351,6 +365,8 @@ def integrate_impact(
                 steps += 1
                 f_prev2 = -1.0
                 f_prev1 = 0.0
+                if record:
+                    history, rec = _record_row(history, rec, t, 0.0, wi, vi, residual, omega, phi, q, v)
                 if (k > 0 or steps % 8 == 0) and _no_reimpact_possible(omega, phi, q, v, wi, vi):
                     break
                 if _out_of_time(t, steps, max_time, max_steps):
@@ -402,10 +418,7 @@ def integrate_impact(
         steps += 1
         peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform)
         if record:
-            if rec == history.shape[0]:
-                history = _grown(history)
-            _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
-            rec += 1
+            history, rec = _record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
         if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
         if _out_of_time(t, steps, max_time, max_steps):

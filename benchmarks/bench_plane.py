@@ -1,0 +1,307 @@
+"""The whole (ζ, λ) plane: cost, statuses and accuracy of every map point (issue 12).
+
+Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler`` and
+``plate-ssss-kirchhoff``, each point solved as a sweep solves it
+(:func:`impactmaps.maps.sweep.solve_points`: default ``ModalSettings``, per-point error
+control), one point per task on a pool of worker processes (all cores).
+
+Guards (the corners of the plane are known to blow up; that is the rest of issue 12):
+
+* a point whose finest refinement level would integrate more than ``--max-modes`` modes
+  (counted in the sweep's basis table at 4× the cut-off: the two refinement levels of the
+  default ``AccuracyControl``) is not run: "skipped (modes)";
+* a point still running after ``--point-cap`` seconds is killed with its worker: "timed
+  out";
+* after ``--budget`` seconds no new point starts: "not run (budget)".
+
+Reported (``benchmarks/RESULTS_plane.md``): wall time of each structure and in total,
+per-point wall percentiles and the slowest point, the share of points per status, and,
+at ``--reference N`` random finished points, |F̄max − reference| where the reference is
+one run at 8× the cut-off and 1/8 of the step (``ModalSettings(cutoff_ratio=8·40,
+step_scale=1/8)``), max over non-sensitive points.
+
+Run: ``python benchmarks/bench_plane.py [--quick] [--reference N]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import multiprocessing
+import os
+import pathlib
+import queue
+import sys
+import time
+import warnings
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # this checkout's impactmaps, not an installed one
+STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
+REFERENCE_CUTOFF_FACTOR = 8
+#: Refinement levels of the default AccuracyControl multiply the cut-off by 2 each.
+FINEST_CUTOFF_FACTOR = 4
+
+
+# -- worker side ---------------------------------------------------------------------------
+def _solve(task) -> dict:
+    """One point: ``("map", structure, ζ, λ)`` as a sweep solves it, or ``("reference", …)``:
+    one run at 8× the cut-off and 1/8 of the step."""
+    from impactmaps.dimensionless import realise
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import _point_runner, basis_table, frequency_cap, solve_points
+    from impactmaps.solvers.modal import ModalSettings
+
+    kind, name, zeta, lambda_ = task
+    structure = structure_from_name(name)
+    settings = ModalSettings()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if kind == "map":
+            return solve_points(structure, [(zeta, lambda_)], settings)[0]
+        fine = ModalSettings(cutoff_ratio=REFERENCE_CUTOFF_FACTOR * settings.cutoff_ratio,
+                             step_scale=settings.step_scale / REFERENCE_CUTOFF_FACTOR, check_convergence=False)
+        target = structure.build()
+        moved = realise(target, zeta, lambda_)
+        impactor = (float(moved.impactor_mass), float(moved.contact_stiffness), float(moved.contact_frequency))
+        run = _point_runner(target, basis_table(structure, fine.min_modes), frequency_cap(structure), zeta,
+                            lambda_, impactor)
+        result = run(fine, 1.0)
+        return {"fmax_normalised": result.fmax_normalised, "n_modes": result.n_modes}
+
+
+def _worker(tasks, results, stop, wid) -> None:
+    for os_name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(os_name, "1")
+    while True:
+        item = tasks.get()
+        if item is None:
+            return
+        index, task = item
+        if stop.is_set():  # over the budget: the task is not run
+            results.put(("skip", wid, index))
+            continue
+        results.put(("start", wid, index, time.time()))
+        start = time.perf_counter()
+        try:
+            row = _solve(task)
+            results.put(("done", wid, index, row, time.perf_counter() - start))
+        except Exception as error:  # reported as a failed point, the run goes on
+            results.put(("fail", wid, index, f"{type(error).__name__}: {error}", time.perf_counter() - start))
+
+
+# -- driver side ---------------------------------------------------------------------------
+def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict]:
+    """Run every task on ``workers`` processes; a task over ``point_cap`` s is killed with
+    its worker (which is replaced); after ``budget`` s no task starts. One outcome per task:
+    ``{"state": "done"|"timeout"|"fail"|"budget", "row", "seconds", "error"}``."""
+    context = multiprocessing.get_context("fork")
+    task_queue, result_queue, stop = context.Queue(), context.Queue(), context.Event()
+    for index, task in enumerate(tasks):
+        task_queue.put((index, task))
+    outcomes = [{"state": "budget"} for _ in tasks]
+    processes, running = {}, {}
+    next_id = 0
+
+    def spawn():
+        nonlocal next_id
+        process = context.Process(target=_worker, args=(task_queue, result_queue, stop, next_id), daemon=True)
+        process.start()
+        processes[next_id] = process
+        next_id += 1
+
+    for _ in range(workers):
+        spawn()
+    started = time.time()
+    remaining = len(tasks)
+    stopping = False
+    while remaining > 0 and processes:
+        if not stopping and time.time() - started > budget:
+            stopping = True
+            stop.set()  # the workers skip the tasks still queued: they stay "budget"
+        try:
+            message = result_queue.get(timeout=0.2)
+        except queue.Empty:
+            message = None
+        if message is not None:
+            kind, wid, index = message[:3]
+            if kind == "start":
+                running[wid] = (index, message[3])
+            elif kind == "skip":
+                remaining -= 1
+            else:
+                running.pop(wid, None)
+                remaining -= 1
+                if kind == "done":
+                    outcomes[index] = {"state": "done", "row": message[3], "seconds": message[4]}
+                else:
+                    outcomes[index] = {"state": "fail", "error": message[3], "seconds": message[4]}
+        now = time.time()
+        for wid, (index, since) in list(running.items()):
+            if now - since > point_cap:
+                processes.pop(wid).kill()
+                running.pop(wid)
+                outcomes[index] = {"state": "timeout", "seconds": now - since}
+                remaining -= 1
+                spawn()
+    for _ in processes:
+        task_queue.put(None)
+    for process in processes.values():
+        process.join(timeout=5)
+        if process.is_alive():
+            process.kill()
+    return outcomes
+
+
+def finest_mode_counts(name: str, zetas, lambdas) -> np.ndarray:
+    """Modes the finest refinement level of each point would integrate (sweep's table)."""
+    from impactmaps.dimensionless import realise
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import basis_table, frequency_cap
+    from impactmaps.solvers.modal import ModalSettings
+
+    structure = structure_from_name(name)
+    settings = ModalSettings()
+    zz, ll = np.meshgrid(zetas, lambdas, indexing="ij")
+    omegas = np.atleast_1d(realise(structure.build(), zz.ravel(), ll.ravel()).contact_frequency)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        table = basis_table(structure, FINEST_CUTOFF_FACTOR * settings.min_modes)
+    cutoffs = np.minimum(FINEST_CUTOFF_FACTOR * settings.cutoff_ratio * omegas, frequency_cap(structure))
+    counts = np.searchsorted(np.sort(table.basis.frequencies), cutoffs, side="right")
+    return np.maximum(counts, FINEST_CUTOFF_FACTOR * settings.min_modes).reshape(zz.shape)
+
+
+def percentile_row(seconds) -> str:
+    p = np.percentile(seconds, [50, 90, 99, 100]) * 1e3
+    return " / ".join(f"{v:.1f}" for v in p)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="coarse 20 × 10 grid")
+    parser.add_argument("--reference", type=int, default=200, help="random points checked (default 200)")
+    parser.add_argument("--max-modes", type=int, default=20_000, help="skip points needing more modes")
+    parser.add_argument("--point-cap", type=float, default=10.0, help="per-point wall cap [s]")
+    parser.add_argument("--budget", type=float, default=330.0, help="wall budget of each structure's points [s]")
+    parser.add_argument("--reference-budget", type=float, default=150.0, help="wall budget of the references [s]")
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--seed", type=int, default=12)
+    parser.add_argument("--out", default=str(ROOT / "benchmarks" / "RESULTS_plane.md"))
+    args = parser.parse_args(argv)
+    if args.reference < 0:
+        raise ValueError(f"--reference = {args.reference} is invalid: valid range is [0, inf)")
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.sweep import METHODS
+
+    n_zeta, n_lambda = (20, 10) if args.quick else (200, 50)
+    zetas, lambdas = np.geomspace(1e-3, 1e3, n_zeta), np.geomspace(1e-3, 1e3, n_lambda)
+    lines = [f"# The whole (ζ, λ) plane: {n_zeta} × {n_lambda} log grid over [1e-3, 1e3]²",
+             "", f"`python benchmarks/bench_plane.py {' '.join(sys.argv[1:] if argv is None else argv)}`"
+             .replace(" `", "`"),
+             f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {args.workers} workers, "
+             f"guards: > {args.max_modes} modes skipped, {args.point_cap:g} s per point, "
+             f"{args.budget:g} s budget per structure", ""]
+    finished = []  # (name, ζ, λ, row)
+    total_wall = 0.0
+    lines += ["| structure | wall [s] | done | skipped (modes) | timed out | failed | not run (budget) "
+              "| per point p50 / p90 / p99 / max [ms] | slowest point | CPU [s] of the points done |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+    status_lines = []
+    for name in STRUCTURES:
+        counts = finest_mode_counts(name, zetas, lambdas)
+        tasks, skipped = [], []
+        for i, zeta in enumerate(zetas):
+            for j, lam in enumerate(lambdas):
+                if counts[i, j] > args.max_modes:
+                    skipped.append((zeta, lam, counts[i, j]))
+                else:
+                    tasks.append(("map", name, float(zeta), float(lam)))
+        # random order: if the budget stops the run, the points done are a fair sample
+        order = np.random.default_rng(args.seed).permutation(len(tasks))
+        tasks = [tasks[k] for k in order]
+        start = time.perf_counter()
+        outcomes = run_tasks(tasks, args.workers, args.point_cap, args.budget)
+        wall = time.perf_counter() - start
+        total_wall += wall
+        done = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "done"]
+        timed = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "timeout"]
+        failed = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "fail"]
+        budget = sum(o["state"] == "budget" for o in outcomes)
+        seconds = np.array([o["seconds"] for _, o in done]) if done else np.array([np.nan])
+        slow_t, slow_o = max(done, key=lambda item: item[1]["seconds"]) if done else ((None,) * 4, {})
+        slowest = (f"ζ = {slow_t[2]:.3g}, λ = {slow_t[3]:.3g}: {slow_o['seconds']:.2f} s, "
+                   f"{slow_o['row']['n_modes']} modes" if done else "–")
+        lines.append(f"| {name} | {wall:.1f} | {len(done)} | {len(skipped)} | {len(timed)} | {len(failed)} | "
+                     f"{budget} | {percentile_row(seconds)} | {slowest} | {np.nansum(seconds):.1f} |")
+        for t, o in done:
+            finished.append((name, t[2], t[3], o["row"]))
+        total = counts.size
+        shares = {s: sum(STATUSES[o["row"]["status"]] == s for _, o in done) for s in STATUSES}
+        methods = {m: sum(METHODS[o["row"]["method"]] == m for _, o in done) for m in METHODS}
+        status_lines.append(
+            f"| {name} | " + " | ".join(f"{100 * shares[s] / total:.1f} %" for s in STATUSES)
+            + f" | {100 * (len(skipped) + len(timed) + len(failed) + budget) / total:.1f} % | "
+            + ", ".join(f"{m}: {c}" for m, c in methods.items() if c) + " |")
+        if skipped:
+            fewest = min(c for _, _, c in skipped)
+            zeta_max = max(z for z, _, _ in skipped)
+            status_lines.append(f"| ↳ {name} skipped | {len(skipped)} points need > {args.max_modes} modes at the "
+                                f"finest level (fewest {fewest}); all at ζ ≤ {zeta_max:.3g} | | | | | |")
+        for t, o in timed:
+            status_lines.append(f"| ↳ {name} timed out | ζ = {t[2]:.3g}, λ = {t[3]:.3g} (> {args.point_cap:g} s, "
+                                f"{counts[list(zetas).index(t[2]), list(lambdas).index(t[3])]} modes) | | | | | |")
+        for t, o in failed[:5]:
+            status_lines.append(f"| ↳ {name} failed | ζ = {t[2]:.3g}, λ = {t[3]:.3g}: {o['error'][:120]} | | | | | |")
+    lines += ["", f"Total wall: **{total_wall:.1f} s** (issue 12 goal: ≤ 20 s for both together).", "",
+              "Share of all grid points per status:", "",
+              "| structure | " + " | ".join(STATUSES) + " | not computed | methods of the computed points |",
+              "|---|" + "---|" * (len(STATUSES) + 2)] + status_lines
+    lines += reference_section(finished, args, STATUSES)
+    text = "\n".join(lines) + "\n"
+    pathlib.Path(args.out).write_text(text)
+    print(text)
+
+
+def reference_section(finished, args, statuses) -> list[str]:
+    """|F̄max − reference| at random finished points (reference: 8× cut-off, 1/8 step)."""
+    if not finished or args.reference == 0:
+        return []
+    rng = np.random.default_rng(args.seed)
+    picks = rng.choice(len(finished), size=min(args.reference, len(finished)), replace=False)
+    chosen = [finished[k] for k in picks]
+    tasks = [("reference", name, zeta, lam) for name, zeta, lam, _ in chosen]
+    start = time.perf_counter()
+    outcomes = run_tasks(tasks, args.workers, 4 * args.point_cap, args.reference_budget)
+    wall = time.perf_counter() - start
+    rows = []
+    for (name, zeta, lam, row), outcome in zip(chosen, outcomes):
+        if outcome["state"] == "done":
+            error = abs(row["fmax_normalised"] - outcome["row"]["fmax_normalised"])
+            rows.append((name, zeta, lam, statuses[row["status"]], error, row["fmax_error"]))
+    lines = ["", f"## Against the reference (8× cut-off, 1/8 step) at {len(chosen)} random computed points",
+             "", f"{len(rows)} references finished in {wall:.1f} s "
+             f"({len(chosen) - len(rows)} not: over {4 * args.point_cap:g} s or the budget).", ""]
+    plain = [r for r in rows if r[3] != "sensitive"]
+    if plain:
+        worst = max(plain, key=lambda r: r[4])
+        over = [r for r in plain if r[4] > 1e-3]
+        uncovered = [r for r in plain if r[4] > max(r[5], 1e-3)]
+        lines += [f"- max |F̄max − reference| over {len(plain)} non-sensitive points: **{worst[4]:.2e}** "
+                  f"({worst[0]}, ζ = {worst[1]:.3g}, λ = {worst[2]:.3g}, {worst[3]}); issue goal ≤ 1e-3",
+                  f"- non-sensitive points above 1e-3: {len(over)}; above both 1e-3 and their own "
+                  f"`fmax_error`: {len(uncovered)}"]
+        for r in sorted(over, key=lambda r: -r[4])[:10]:
+            lines.append(f"  - {r[0]} ζ = {r[1]:.3g}, λ = {r[2]:.3g} ({r[3]}): {r[4]:.2e} (fmax_error {r[5]:.1e})")
+    sensitive = [r for r in rows if r[3] == "sensitive"]
+    if sensitive:
+        lines.append(f"- sensitive points checked: {len(sensitive)}; max |F̄max − reference| "
+                     f"{max(r[4] for r in sensitive):.2e} (their band half-width: up to "
+                     f"{max(r[5] for r in sensitive):.2e})")
+    return lines
+
+
+if __name__ == "__main__":
+    main()

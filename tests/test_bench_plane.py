@@ -1,0 +1,31 @@
+"""Smoke test of benchmarks/bench_plane.py: its guarded pool solves points exactly as a
+sweep does (same bits), and a point over the per-point cap is killed and reported."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from benchmarks import bench_plane
+from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.sweep import solve_points
+from impactmaps.solvers.modal import ModalSettings
+
+
+def test_pool_points_equal_solve_points_and_the_cap_kills_a_slow_point():
+    tasks = [("map", "beam-ss-euler", 1.0, 1.0), ("map", "beam-ss-euler", 0.1, 0.2)]
+    outcomes = bench_plane.run_tasks(tasks, workers=2, point_cap=60.0, budget=60.0)
+    assert [o["state"] for o in outcomes] == ["done", "done"]
+    direct = solve_points(structure_from_name("beam-ss-euler"), [(1.0, 1.0), (0.1, 0.2)], ModalSettings())
+    for outcome, row in zip(outcomes, direct):
+        assert outcome["row"]["fmax_normalised"] == row["fmax_normalised"]
+        assert outcome["row"]["status"] == row["status"]
+    # the beam's quasi-static corner takes seconds: a 0.05 s cap kills it, the pool goes on
+    slow = bench_plane.run_tasks([("map", "beam-ss-euler", 1e3, 1e3), ("map", "beam-ss-euler", 1.0, 1.0)],
+                                 workers=1, point_cap=0.05, budget=60.0)
+    assert slow[0]["state"] == "timeout"
+    assert slow[1]["state"] in ("done", "timeout")
+
+
+def test_finest_mode_counts_cover_the_grid():
+    counts = bench_plane.finest_mode_counts("beam-ss-euler", np.array([0.01, 1.0, 100.0]), np.array([0.1, 10.0]))
+    assert counts.shape == (3, 2) and np.all(counts >= 16)
