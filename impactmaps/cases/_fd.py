@@ -31,7 +31,6 @@ def check_fd_target(data) -> None:
     if "plies" in entries or "layup" in entries:
         raise ValueError("target.plies/target.layup are not supported by the finite-difference "
                          "beam: give an isotropic target.material")
-    check_keys(entries, path, entries, ("length", "width", "height", "material"))
     theory = entries.get("theory")
     if theory is not None and theory != "rayleigh":
         warnings.warn(f"target.theory = {theory!r}: the finite-difference beam is a Rayleigh beam "

@@ -22,7 +22,7 @@ from .._checks import require_in_range
 from ..contact import law_options
 from ..contact.base import ContactLaw, available_contact_laws, contact_law
 from ..contact.sphere import Sphere, law_for_sphere
-from ..materials import IsotropicMaterial, Laminate
+from ..materials import Laminate
 from ..solvers.modal import ModalSettings, reference_contact_stiffness
 from ..targets.halfspace import HalfSpace
 from ._materials import isotropic_material, target_material
@@ -51,8 +51,7 @@ _IMPACTOR_KEYS = ("radius", "material", "mass", "density", "velocity")
 _TARGET_COMMON = ("type", "material", "plies", "layup", "yield_strength")
 _BEAM_SIZE = ("length", "width", "height")
 _PLATE_SIZE = ("length_x", "length_y", "thickness")
-_UNITS = {"impact_position": "m", "impact_point": "m", "target_radius": "m",
-          "yield_strength": "Pa", "duration": "s", "time_step": "s"}
+_TARGET_UNITS = {"impact_position": "m", "impact_point": "m"}
 #: ``[solver]`` keys that are not ModalSettings fields.
 _SOLVER_EXTRA = ("kind", "duration", "time_step")
 
@@ -180,12 +179,11 @@ def _impactor(data) -> tuple[Sphere, float]:
     return sphere, velocity
 
 
-def _target_builder(kind, contact_material):
+def _target_builder(kind: str, laminated: bool):
     """The constructor a target table maps onto, and its positional size keys."""
     from ..targets.beam import Beam
     from ..targets.plate import Plate
 
-    laminated = isinstance(contact_material, Laminate)
     if kind == "beam":
         if laminated:
             return Beam.from_laminate, ("length", "width")
@@ -199,9 +197,7 @@ def target_keys(kind: str) -> tuple[str, ...]:
     """Every key ``[target]`` accepts for a target type (derived from the constructors)."""
     if kind == "halfspace":
         return _TARGET_COMMON
-    isotropic = IsotropicMaterial(1.0, 0.3, 1.0)
-    build, size = _target_builder(kind, isotropic)
-    sizes = _BEAM_SIZE if kind == "beam" else _PLATE_SIZE
+    build, sizes = _target_builder(kind, laminated=False)
     return _TARGET_COMMON + sizes + tuple(keyword_options(build))
 
 
@@ -215,19 +211,15 @@ def _target(data):
     contact_material = target_material(entries, path)
     if kind == "halfspace":
         return HalfSpace(), kind, contact_material
-    build, size = _target_builder(kind, contact_material)
-    for key in set(_BEAM_SIZE + _PLATE_SIZE) - set(size):
-        if key in entries and key in (_BEAM_SIZE if kind == "beam" else _PLATE_SIZE):
+    build, size = _target_builder(kind, isinstance(contact_material, Laminate))
+    for key in (_BEAM_SIZE if kind == "beam" else _PLATE_SIZE):
+        if key not in size and key in entries:
             raise ValueError(f"{path}.{key} is derived from the plies for a laminated {kind}; "
                              "remove it")
     sizes = [number(entries, key, path, "m", required=True) for key in size]
-    options = read_options(entries, path, keyword_options(build), _UNITS)
+    options = read_options(entries, path, keyword_options(build), _TARGET_UNITS)
     with key_path(path, tuple(entries) + ("material",)):
         return build(*sizes, contact_material, **options), kind, contact_material
-
-
-def _law_option_names(name: str) -> tuple[str, ...]:
-    return tuple(law_options(name))
 
 
 def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactLaw, str, dict]:
@@ -239,7 +231,7 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     entries = table(data.get(path, {}), path)
     name = string(entries, "law", path, choices=available_contact_laws(),
                   default=default_law, required=default_law is None)
-    allowed = _law_option_names(name)
+    allowed = tuple(law_options(name))
     stiffness_unit = {"hertz": "N/m^1.5", "linear": "N/m"}.get(name)
     check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
     units = {key: option.unit for key, option in law_options(name).items()}

@@ -10,7 +10,6 @@ file atomically as they complete, so an interrupted sweep resumes where it stopp
 from __future__ import annotations
 
 import functools
-import math
 import os
 import signal
 import threading
@@ -29,9 +28,16 @@ from ..contact.linear import LinearContact
 from ..dimensionless import realise
 from ..jsonio import dumps
 from ..solvers.modal import ModalSettings, simulate
+from ..targets.plate_navier import warn_beyond_thickness_shear
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .regimes import classify
-from .store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
+from .store import (
+    SweepInterrupted,
+    fingerprint,
+    load_matching,
+    remove_stale_temporaries,
+    save_atomic,
+)
 from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
@@ -125,18 +131,6 @@ def _asymptote_row(target, zeta: float) -> dict:
     }
 
 
-def _warn_beyond_shear_cutoff(target, max_frequency: float) -> None:
-    """Warn, as the plate itself does, when a cut-off passes the Mindlin thickness-shear cut-off."""
-    if getattr(target, "theory", None) != "mindlin":
-        return
-    cutoff = math.sqrt(target.shear_correction * min(target.A44, target.A55) / target.rotary_inertia_per_area)
-    if max_frequency > cutoff:
-        warnings.warn(
-            f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear cut-off "
-            f"{cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which are omitted, have "
-            "modes below the cut-off frequency", UserWarning, stacklevel=3)
-
-
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                  table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
     """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
@@ -180,7 +174,7 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     wanted = settings.cutoff_ratio * omegas
     if table is None:
         table = basis_table(structure, settings.min_modes)
-    _warn_beyond_shear_cutoff(target, min(float(wanted.max()), cap))
+    warn_beyond_thickness_shear(target, min(float(wanted.max()), cap), stacklevel=3)
     rows = []
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}

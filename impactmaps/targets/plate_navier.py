@@ -183,6 +183,22 @@ def navier_pairs(plate: Plate, max_frequency):
     return m_pairs, n_pairs
 
 
+def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2) -> None:
+    """Warn when a cut-off [rad/s] passes a Mindlin plate's thickness-shear cut-off.
+
+    ``sqrt(k min(A44, A55)/(ρh³/12))`` [rad/s]: the omitted thickness-shear branches
+    have modes below it. Kirchhoff plates (and other targets) never warn.
+    """
+    if getattr(plate, "theory", None) != "mindlin":
+        return
+    cutoff = math.sqrt(plate.shear_correction * min(plate.A44, plate.A55) / plate.rotary_inertia_per_area)
+    if max_frequency > cutoff:
+        warnings.warn(
+            f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
+            f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "
+            "are omitted, have modes below the cut-off frequency", UserWarning, stacklevel=stacklevel)
+
+
 def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float = 0.0):
     """(:class:`ModalBasis`, mode-shape function of points) of an SSSS plate.
 
@@ -195,14 +211,7 @@ def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_rad
     """
     if contact_radius > 0.0:
         return _patch_basis(plate, max_frequency, min_modes, contact_radius)
-    if plate.theory == "mindlin":
-        cutoff = math.sqrt(plate.shear_correction * min(plate.A44, plate.A55)
-                           / plate.rotary_inertia_per_area)
-        if max_frequency > cutoff:
-            warnings.warn(
-                f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
-                f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "
-                "are omitted, have modes below the cut-off frequency", stacklevel=4)
+    warn_beyond_thickness_shear(plate, max_frequency, stacklevel=5)
     m, n, omega, amplitude, participation = _lowest_modes(plate, max_frequency, min_modes)
     x0, y0 = plate.impact_point
     a, b = plate.length_x, plate.length_y
