@@ -1,7 +1,7 @@
 """Chart throughput: converged (ζ, λ) points per second of the default chart.
 
 Workload: ``impactmaps.maps.chart.make_chart`` with its defaults (SS Euler beam and SS
-square Kirchhoff plate struck at the centre, 8 λ from 0.05 to 20, 60 log-spaced ζ from
+square Kirchhoff plate struck at the centre, 8 λ from 0.05 to 20, DEFAULT_ZETA_COUNT (200) log-spaced ζ from
 0.005 to 100, default ``ModalSettings``, a local process pool over all cores), written
 into a temporary directory; and, separately, the ``sweep`` of the same grid alone (no
 files except its NetCDF, no figures).
@@ -114,7 +114,7 @@ def _child(kind: str, out_dir: str) -> dict:
     import numpy as np
     import xarray as xr
 
-    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, make_chart
+    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, make_chart
     from impactmaps.maps.sweep import log_grid, sweep
 
     structures, notes = buildable_structures(CHART_STRUCTURES)
@@ -128,7 +128,7 @@ def _child(kind: str, out_dir: str) -> dict:
             computed, converged = count_points(dataset.load())
             max_modes = int(dataset["n_modes"].values.max())
     else:
-        dataset = sweep(structures, log_grid(0.005, 100.0, 60), np.asarray(DEFAULT_CHART_LAMBDAS),
+        dataset = sweep(structures, log_grid(0.005, 100.0, DEFAULT_ZETA_COUNT), np.asarray(DEFAULT_CHART_LAMBDAS),
                         path=pathlib.Path(out_dir) / "sweep.nc", progress=False)
         reap_pool_workers()
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
@@ -147,7 +147,7 @@ def profile_points(top: int = 10) -> dict:
     return the CPU time per point: total, median, and the most expensive points."""
     import numpy as np
 
-    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS
+    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT
     from impactmaps.maps.sweep import log_grid, solve_points
     from impactmaps.solvers.modal import ModalSettings
 
@@ -157,7 +157,7 @@ def profile_points(top: int = 10) -> dict:
     for structure in structures:
         solve_points(structure, [(1.0, 1.0)], settings)  # warm-up: compile/cache load, target build
         for lam in DEFAULT_CHART_LAMBDAS:
-            for zeta in log_grid(0.005, 100.0, 60):
+            for zeta in log_grid(0.005, 100.0, DEFAULT_ZETA_COUNT):
                 start = time.process_time()
                 row = solve_points(structure, [(float(zeta), float(lam))], settings)[0]
                 records.append((time.process_time() - start, structure.name, float(zeta), float(lam),
@@ -200,8 +200,10 @@ def run() -> list[dict]:
 
 def markdown(reports: list[dict]) -> str:
     """The reports as a Markdown table with the verdict against the targets."""
+    from impactmaps.maps.chart import DEFAULT_ZETA_COUNT
+
     lines = [
-        "Default chart grid (8 λ × 60 ζ per structure), default `ModalSettings`, process pool over "
+        f"Default chart grid (8 λ × {DEFAULT_ZETA_COUNT} ζ per structure), default `ModalSettings`, process pool over "
         f"all cores. CPU = call's own process + its pool workers. Targets: ≥ {TARGET_POINTS_PER_SECOND:g} "
         f"points/s, chart < {TARGET_CHART_SECONDS:g} s.",
         "",
