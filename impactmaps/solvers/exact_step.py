@@ -41,6 +41,8 @@ import numpy as np
 from ..contact.base import KERNEL_TYPE
 from ._peak import parabolic_peak
 from .contact_events import locate_event, solve_end_force
+from .coupled_contact import contact_phase
+from .history_rows import HISTORY_WIDTH, record_row, structure_energy
 from .oscillator_step import (
     fill_step_coefficients,
     predict_step,
@@ -56,8 +58,6 @@ _MATRIX = numba.types.Array(_F8, 2, "C")
 
 #: Longest free-flight step: 2^(_FREE_POWERS − 1) = 64 steps h.
 _FREE_POWERS = 7
-#: Columns of the recorded history (see :func:`integrate_impact`).
-_HISTORY_WIDTH = 8
 
 # The stages below are plain compiled calls, not ``inline="always"``: numba's IR inlining
 # adds reference-count operations on every array argument, which cost up to 1.5× per step
@@ -80,14 +80,6 @@ def _no_reimpact_possible(omega, phi, q, v, wi, vi):
         else:
             bound += abs(phi[j]) * math.sqrt(q[j] * q[j] + (v[j] / omega[j]) ** 2)
     return vi - rigid_v <= 0.0 and wi - rigid_w < -bound
-
-
-@numba.njit(cache=True)
-def _structure_energy(omega, q, v):
-    energy = 0.0
-    for j in range(q.shape[0]):
-        energy += 0.5 * (v[j] * v[j] + omega[j] * omega[j] * q[j] * q[j])
-    return energy
 
 
 @numba.njit(cache=True)
@@ -206,42 +198,6 @@ def _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform):
 
 
 @numba.njit(cache=True)
-def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
-    """Write the state at time t [s] into row ``rec`` of the history."""
-    wt = residual * force
-    vt = 0.0
-    for j in range(q.shape[0]):
-        wt += phi[j] * q[j]
-        vt += phi[j] * v[j]
-    history[rec, 0] = t
-    history[rec, 1] = force
-    history[rec, 2] = wi - wt
-    history[rec, 3] = wi
-    history[rec, 4] = vi
-    history[rec, 5] = wt
-    history[rec, 6] = vt
-    history[rec, 7] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
-
-
-@numba.njit(cache=True)
-def _grown(history):
-    """The history array with twice the rows (the new ones zero)."""
-    grown = np.zeros((2 * history.shape[0], _HISTORY_WIDTH))
-    grown[:history.shape[0]] = history
-    return grown
-
-
-@numba.njit(cache=True)
-def _record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
-    """Append the state at time t [s] as row ``rec`` (growing the array when full);
-    returns the history array and the next row index."""
-    if rec == history.shape[0]:
-        history = _grown(history)
-    _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
-    return history, rec + 1
-
-
-@numba.njit(cache=True)
 def _step_compliance(coef, phi, h, mass, residual):
     """Compliance C [m/N] through which the end force of a step takes back indentation:
     impactor ``h²/(6m)``, residual flexibility and the retained modes ``Σ φ_j coef[5, j]``."""
@@ -254,7 +210,7 @@ def _step_compliance(coef, phi, h, mass, residual):
 @numba.njit(
     numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
         KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
-        numba.types.boolean, numba.types.int64,
+        numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
     ),
     cache=True,
     nogil=True,
@@ -273,6 +229,12 @@ def integrate_impact(
     max_time,
     record,
     max_events,
+    coupled_frequencies,
+    coupled_force,
+    from_coupled,
+    to_coupled,
+    contact_step_cap,
+    step_scale,
 ):
     """Integrate one impact from first touch until re-impact is impossible.
 
@@ -287,6 +249,11 @@ def integrate_impact(
     record : store the history at the end of every step (free-flight steps are the
         doubled ones, so rows are not uniformly spaced there); otherwise only scalars.
     max_events : capacity of the contact-interval table.
+    coupled_frequencies, coupled_force, from_coupled, to_coupled : the coupled modes of a
+        linear contact (:class:`~impactmaps.solvers.coupled_contact.CoupledModes`); when
+        given (non-empty), every contact phase is propagated exactly through them
+        (:func:`~impactmaps.solvers.coupled_contact.contact_phase`) and h serves free flight.
+    contact_step_cap, step_scale : longest contact-phase step [s] and the factor on it.
 
     Returns
     -------
@@ -319,7 +286,7 @@ def integrate_impact(
 
     max_steps = int(math.ceil(max_time / h)) + 2
     capacity = min(max_steps + 1, 4096) if record else 1
-    history = np.zeros((capacity, _HISTORY_WIDTH))
+    history = np.zeros((capacity, HISTORY_WIDTH))
     intervals = np.zeros((max_events, 2))
     n_intervals = 0
     overflow = 0.0
@@ -341,7 +308,31 @@ def integrate_impact(
     free_ready[0] = True
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)
+    coupled = coupled_frequencies.shape[0] > 0
     while True:
+        if coupled and starting:
+            touchdown = t
+            before = steps
+            t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
+                coupled_frequencies, coupled_force, from_coupled, to_coupled, contact_step_cap, step_scale,
+                omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
+                record, history, rec)
+            starting = False
+            speed_bound = -1.0
+            f_prev2 = -1.0
+            f_prev1 = 0.0
+            if steps > before:
+                n_intervals, full = _mark_contact(intervals, n_intervals, 0, touchdown)
+                overflow = max(overflow, full)
+                alpha_max = max(alpha_max, peak / linear_stiffness)
+                in_contact = not separated
+                if separated:
+                    n_intervals, full = _mark_contact(intervals, n_intervals, 1, t)
+                    overflow = max(overflow, full)
+            if _out_of_time(t, steps, max_time, max_steps):
+                hit_limit = 1.0
+                break
+            continue
         if force != 0.0 or starting:
             speed_bound = -1.0
         else:
@@ -366,7 +357,7 @@ def integrate_impact(
                 f_prev2 = -1.0
                 f_prev1 = 0.0
                 if record:
-                    history, rec = _record_row(history, rec, t, 0.0, wi, vi, residual, omega, phi, q, v)
+                    history, rec = record_row(history, rec, t, 0.0, wi, vi, residual, omega, phi, q, v)
                 if (k > 0 or steps % 8 == 0) and _no_reimpact_possible(omega, phi, q, v, wi, vi):
                     break
                 if _out_of_time(t, steps, max_time, max_steps):
@@ -418,7 +409,7 @@ def integrate_impact(
         steps += 1
         peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform)
         if record:
-            history, rec = _record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+            history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
         if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
         if _out_of_time(t, steps, max_time, max_steps):
@@ -432,7 +423,7 @@ def integrate_impact(
     scalars[1] = peak_time
     scalars[2] = alpha_max
     scalars[3] = vi
-    scalars[4] = _structure_energy(omega, q, v) + 0.5 * residual * force * force
+    scalars[4] = structure_energy(omega, q, v) + 0.5 * residual * force * force
     scalars[5] = damping_work
     scalars[6] = t
     scalars[7] = hit_limit

@@ -34,6 +34,7 @@ from .._checks import require_choice, require_in_range, require_positive
 from ..contact.base import ContactLaw, kernel_pointer
 from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
+from .coupled_contact import CoupledModes, coupled_modes
 from .exact_step import integrate_impact
 from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
@@ -41,6 +42,7 @@ from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
     "ModalSettings",
+    "ModalDetails",
     "simulate",
     "simulate_normalised",
     "simulate_batch",
@@ -49,6 +51,7 @@ __all__ = [
     "content_time_step",
     "ConvergenceWarning",
     "CONTACT_PATCHES",
+    "CONTACT_PHASES",
     "contact_radius_function",
 ]
 
@@ -56,10 +59,21 @@ __all__ = [
 #: contact disc at the peak indentation (targets with ``supports_contact_patch``), or
 #: "auto": the patch on shear-deformable targets (Mindlin plates), the point load elsewhere.
 CONTACT_PATCHES = ("auto", "point", "hertz-peak")
+#: How the modal solver integrates a contact (:attr:`ModalSettings.contact_phase`).
+CONTACT_PHASES = ("auto", "exact", "sampled")
 #: The peak-indentation patch radius is iterated until it moves by less than this (relative).
 PATCH_TOLERANCE = 1e-4
 #: At most this many runs of the peak-indentation iteration.
 PATCH_PASSES = 8
+
+#: The exact linear contact phase replaces the sampled one when the sampled scheme would
+#: take more than this many times (n + 1)² steps per contact of π/ω (n retained modes):
+#: its set-up, an (n + 1)² eigenproblem, then costs less than the steps it saves
+#: (see :func:`_coupled_phase`) …
+COUPLED_COST_RATIO = 1.0
+#: … and the retained modes are at most this many.
+COUPLED_MAX_MODES = 400
+_NO_COUPLED_MODES = CoupledModes(np.zeros(0), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)))
 
 #: Columns of the integrator's history array: the common ones, then the structure energy.
 HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
@@ -70,6 +84,29 @@ def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
     frame = pd.DataFrame(history, columns=HISTORY_COLUMNS)
     frame["impactor_kinetic_energy_J"] = 0.5 * impactor_mass * frame["impactor_velocity_m_s"] ** 2
     return frame
+
+
+@dataclass(frozen=True)
+class ModalDetails:
+    """Extras of a modal run (``ImpactResult.details``).
+
+    Attributes
+    ----------
+    steps : int
+        Steps the integrator took (contact and free flight) [-].
+    contact_phase : {"exact", "sampled"}
+        How contacts were integrated: ``"exact"`` through the coupled modes of a linear
+        contact (:mod:`~impactmaps.solvers.coupled_contact`), ``"sampled"`` by the
+        exact-step scheme with the force sampled once per step
+        (:mod:`~impactmaps.solvers.exact_step`).
+    """
+
+    steps: int
+    contact_phase: str
+
+    def summary(self) -> dict:
+        """The details as JSON-ready scalars."""
+        return {"steps": int(self.steps), "contact_phase": self.contact_phase}
 
 
 class ConvergenceWarning(UserWarning):
@@ -125,6 +162,13 @@ class ModalSettings:
         of a Mindlin plate lies further from 3D elasticity (``tests/test_fe_results.py``,
         −4.5 … −5.9 % against −2.7 … −3.4 % for the point load at the default cut-off),
         whose local deformation under the sphere the Hertz law already carries.
+    contact_phase : {"auto", "exact", "sampled"}
+        How a contact is integrated. ``"exact"``: through the coupled modes of a linear
+        contact (:mod:`~impactmaps.solvers.coupled_contact`; linear laws on undamped
+        modes without rigid-body modes, otherwise sampled); ``"sampled"``: the exact-step
+        scheme with the force sampled once per step; ``"auto"``: the exact phase where it
+        costs less (:data:`COUPLED_COST_RATIO`, :data:`COUPLED_MAX_MODES`). A forced
+        ``time_step`` always runs the sampled scheme.
     """
 
     cutoff_ratio: float = 40.0
@@ -139,6 +183,7 @@ class ModalSettings:
     tolerance: float = 1e-3
     step_scale: float = 1.0
     contact_patch: str = "point"
+    contact_phase: str = "auto"
 
     def __post_init__(self):
         require_positive("cutoff_ratio", self.cutoff_ratio)
@@ -151,6 +196,7 @@ class ModalSettings:
         require_positive("tolerance", self.tolerance)
         require_in_range("step_scale", self.step_scale, 0.0, 1.0, low_inclusive=False)
         require_choice("contact_patch", self.contact_patch, CONTACT_PATCHES)
+        require_choice("contact_phase", self.contact_phase, CONTACT_PHASES)
 
     def refined(self) -> "ModalSettings":
         """Settings with twice the cut-off, twice the modes and half the time step.
@@ -277,7 +323,8 @@ def simulate(
     record : bool
         Keep full time histories (``False`` keeps scalars only, for sweeps).
     time_step : float, optional
-        Force this time step [s] instead of the automatic choice.
+        Force this time step [s] instead of the automatic choice (every phase then runs
+        the sampled scheme, also a linear contact that would take the exact phase).
     effective_radius : float, optional
         Effective radius R [m] of the sphere–target contact for
         ``settings.contact_patch = "hertz-peak"`` when the law carries none
@@ -331,13 +378,35 @@ def simulate(
     return result
 
 
+def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, time_step: float,
+                   contact_frequency: float, choice: str) -> CoupledModes:
+    """The coupled modes for the exact contact phase, or empty arrays for the sampled one.
+
+    ``choice`` is :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
+    (:mod:`~impactmaps.solvers.coupled_contact`) serves linear laws on undamped modes
+    when the sampled scheme's step ``time_step`` would cost more than the set-up
+    (:data:`COUPLED_COST_RATIO`): in the quasi-static corner the modes the mode
+    floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
+    to ~1/ω_top and a contact took ~10⁷ steps; the exact phase takes ~10².
+    """
+    stiffness = _linear_stiffness(law)
+    sampled_steps = np.pi / (contact_frequency * time_step)
+    cheaper = basis.size <= COUPLED_MAX_MODES and sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
+    if stiffness > 0.0 and (choice == "exact" or (choice == "auto" and cheaper)):
+        coupled = coupled_modes(basis, stiffness, impactor_mass)
+        if coupled is not None:
+            return coupled
+    return _NO_COUPLED_MODES
+
+
 def _run(target, law, params, impactor_mass, velocity, settings, record, time_step,
          contact_radius=None) -> ImpactResult:
     """One run of :func:`simulate` (validated inputs) with a point load or a patch [m]."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega_c = float(np.sqrt(stiffness / impactor_mass))
     basis = _basis_for(target, omega_c, settings, contact_radius)
-    if time_step is None:
+    automatic = time_step is None
+    if automatic:
         omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
         content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
         content = min(content, STABLE_TOP_STEP / omega_top)
@@ -346,6 +415,8 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
     else:
         require_positive("time_step", time_step, "s")
     max_time = settings.max_time_ratio / omega_c
+    coupled = _coupled_phase(basis, law, impactor_mass, time_step, omega_c, settings.contact_phase) if automatic \
+        else _NO_COUPLED_MODES
     history, intervals, scalars = integrate_impact(
         kernel_pointer(law.kernel),
         params,
@@ -360,6 +431,12 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
         float(max_time),
         bool(record),
         int(settings.max_events),
+        coupled.frequencies,
+        coupled.force_row,
+        coupled.from_coupled,
+        coupled.to_coupled,
+        float(settings.time_step_ratio / omega_c),
+        float(settings.step_scale),
     )
     if scalars[9]:
         warnings.warn(
@@ -391,6 +468,7 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
         time_step=float(time_step),
         method="modal+residual" if settings.residual_flexibility else "modal",
         settings=_settings_dict(settings),
+        details=ModalDetails(int(scalars[8]), "exact" if coupled.frequencies.size else "sampled"),
     )
     if result.time_limit_reached:
         warnings.warn(

@@ -114,7 +114,8 @@ class ImpactResult:
         Solver settings used (provenance).
     details : object or None
         Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
-        finite-difference beam, ``None`` otherwise.
+        finite-difference beam, :class:`impactmaps.solvers.modal.ModalDetails` for the
+        modal solver, ``None`` otherwise.
     converged : bool or None
         Whether F̄max moved by at most the tolerance when the cut-off was doubled and the
         step halved (``ModalSettings.check_convergence``); ``None``: not checked.

@@ -1,0 +1,328 @@
+"""Exact propagation of a linear contact phase through the coupled modes (numba).
+
+While a *linear* contact ``F = K α`` is closed, impactor, contact spring (in series with
+the residual compliance r of the dropped modes, ``K_e = K/(1 + K r)``) and the retained
+undamped modes form one linear system,
+
+    M ẍ + K_c x = 0,   x = (w_i, q_1 … q_n),   M = diag(m_i, 1 … 1),
+    K_c = diag(0, ω_1² … ω_n²) + K_e g gᵀ,   g = (1, −φ_1 … −φ_n),
+
+with the contact force ``F = K_e gᵀ x``. ``K_c`` is positive definite (every ω_j > 0 and
+``g`` has a component on the impactor), so with ``M^{-1/2} K_c M^{-1/2} = U Ω² Uᵀ`` the
+coupled coordinates ``η = Uᵀ M^{1/2} x`` move as independent undamped oscillators and
+
+    F(t) = Σ_k c_k (η_k cos Ω_k t + (η̇_k/Ω_k) sin Ω_k t),   c = K_e gᵀ M^{-1/2} U,
+
+exactly, for any step. The contact phase then needs no stability limit and no force
+interpolation: the step only has to *sample* F(t) finely enough to see its peak and its
+end, which are then located on the closed form (the root of F' by the Illinois method
+for the peak, the root of F for the separation). The step follows the content of the
+force at the start of each contact, amplitude ``A_k = |c_k| sqrt(η_k² + (η̇_k/Ω_k)²)`` per
+coupled mode: the fastest modes whose amplitudes sum to at most ε/2 of ``Σ A_k``
+(:data:`CONTACT_RESOLUTION` ε) are left unsampled, every other mode is sampled at
+``Ω_k h ≤ 1`` and the mode of largest amplitude at ``Ω_k h ≤`` :data:`SAMPLED_PHASE`
+(and at most the settings' ``time_step_ratio/ω``, times their step scale). The peak is located on
+the sampled modes and evaluated with all of them, so what the unsampled ripple can move
+the peak by is at most ``2 Σ_unsampled A_k ≤ ε Σ A_k``. This is what answers the quasi-static corner (heavy impactor, soft contact): there
+the modes the mode floor keeps lie far above the contact frequency and forced the
+sampled scheme of :mod:`impactmaps.solvers.exact_step` to ~10⁷ steps per contact.
+
+Free flight between contacts stays with :mod:`impactmaps.solvers.exact_step` (exact
+there already); :func:`coupled_modes` says when this phase applies (undamped modes, all
+ω_j > 0, linear law).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from ..targets.base import ModalBasis
+from .history_rows import record_row
+
+__all__ = ["CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes", "coupled_modes", "contact_phase"]
+
+#: ε of the contact-phase step rule: coupled modes whose force amplitudes sum to at most
+#: ε/2 of the force content are not sampled (module docstring) [-].
+CONTACT_RESOLUTION = 1e-5
+#: Largest Ω_k h of the coupled mode that carries the most force (25 samples per period) [rad].
+SAMPLED_PHASE = 0.25
+#: Iterations of the Illinois root searches (each halves the bracket at least every
+#: third iteration; 200 reach round-off from any bracket).
+_ROOT_ITERATIONS = 200
+
+
+@dataclass(frozen=True)
+class CoupledModes:
+    """The coupled modes of impactor + linear contact + retained modes.
+
+    Attributes
+    ----------
+    frequencies : ndarray, shape (n + 1,)
+        Ω_k [rad/s], ascending.
+    force_row : ndarray, shape (n + 1,)
+        c_k [N/m·sqrt(kg)]: ``F = Σ c_k η_k``.
+    from_coupled : ndarray, shape (n + 1, n + 1)
+        ``x = from_coupled @ η`` (x = (w_i, q_1 … q_n)).
+    to_coupled : ndarray, shape (n + 1, n + 1)
+        ``η = to_coupled @ x``.
+    """
+
+    frequencies: np.ndarray
+    force_row: np.ndarray
+    from_coupled: np.ndarray
+    to_coupled: np.ndarray
+
+
+def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: float) -> CoupledModes | None:
+    """The coupled modes of a linear contact phase, or ``None`` where they do not apply.
+
+    Parameters
+    ----------
+    basis : ModalBasis
+        Retained modes (mass-normalised participations φ_j [1/sqrt(kg)]) and residual
+        compliance r [m/N].
+    contact_stiffness : float
+        K [N/m] of the linear law.
+    impactor_mass : float
+        m_i [kg].
+
+    Returns
+    -------
+    CoupledModes or None
+        ``None`` for damped modes or rigid-body modes (ω_j = 0): the phase is then left
+        to the sampled scheme.
+    """
+    if np.any(basis.damping_ratios > 0.0) or np.any(basis.frequencies <= 0.0):
+        return None
+    effective = contact_stiffness / (1.0 + contact_stiffness * basis.residual_compliance)
+    gvec = np.concatenate(([1.0], -basis.participation))
+    scale = np.concatenate(([1.0 / np.sqrt(impactor_mass)], np.ones(basis.size)))
+    scaled = (scale * gvec)  # M^{-1/2} g
+    stiffness = effective * np.outer(scaled, scaled)
+    stiffness[np.diag_indices(basis.size + 1)] += np.concatenate(([0.0], basis.frequencies**2))
+    eigenvalues, vectors = np.linalg.eigh(stiffness)
+    if not eigenvalues[0] > 0.0:
+        return None
+    from_coupled = scale[:, None] * vectors
+    to_coupled = np.ascontiguousarray(vectors.T / scale[None, :])
+    force_row = effective * (gvec @ from_coupled)
+    return CoupledModes(np.sqrt(eigenvalues), np.ascontiguousarray(force_row),
+                        np.ascontiguousarray(from_coupled), to_coupled)
+
+
+@numba.njit(cache=True)
+def _force(frequencies, force_row, eta, rate, s):
+    """F(s) [N] a time s [s] after the state (η, η̇)."""
+    total = 0.0
+    for k in range(eta.shape[0]):
+        x = frequencies[k] * s
+        total += force_row[k] * (eta[k] * math.cos(x) + rate[k] / frequencies[k] * math.sin(x))
+    return total
+
+
+@numba.njit(cache=True)
+def _force_rate(frequencies, force_row, eta, rate, s, count):
+    """dF/dt(s) [N/s] a time s [s] after the state (η, η̇), of the first ``count``
+    coupled modes (the sampled ones: the peak search leaves out the ripple of modes the
+    step does not resolve, whose derivative would dominate)."""
+    total = 0.0
+    for k in range(count):
+        x = frequencies[k] * s
+        total += force_row[k] * (rate[k] * math.cos(x) - eta[k] * frequencies[k] * math.sin(x))
+    return total
+
+
+@numba.njit(cache=True)
+def _root(frequencies, force_row, eta, rate, length, derivative, count):
+    """Root in (0, length) of F (or, if ``derivative``, of the rate of its first ``count``
+    coupled modes) from the state (η, η̇), given a sign change over the interval
+    (Illinois method) [s]."""
+    a = 0.0
+    b = length
+    if derivative:
+        fa = _force_rate(frequencies, force_row, eta, rate, a, count)
+        fb = _force_rate(frequencies, force_row, eta, rate, b, count)
+    else:
+        fa = _force(frequencies, force_row, eta, rate, a)
+        fb = _force(frequencies, force_row, eta, rate, b)
+    side = 0
+    for _ in range(_ROOT_ITERATIONS):
+        if fa == fb:
+            break
+        c = (a * fb - b * fa) / (fb - fa)
+        if not (a < c < b):
+            c = 0.5 * (a + b)
+        fc = _force_rate(frequencies, force_row, eta, rate, c, count) if derivative else \
+            _force(frequencies, force_row, eta, rate, c)
+        if (fc > 0.0) == (fa > 0.0):
+            a, fa = c, fc
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = c, fc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+        if b - a <= 1e-14 * length or fc == 0.0:
+            break
+    # F: the end of the bracket where F ≤ 0 (the state after a separation has no force);
+    # F': its middle
+    return 0.5 * (a + b) if derivative else b
+
+
+@numba.njit(cache=True)
+def _advance(frequencies, eta, rate, s, eta_out, rate_out):
+    """Exact propagation of every coupled oscillator over s [s]."""
+    for k in range(eta.shape[0]):
+        x = frequencies[k] * s
+        cx = math.cos(x)
+        sx = math.sin(x)
+        eta_out[k] = eta[k] * cx + rate[k] / frequencies[k] * sx
+        rate_out[k] = rate[k] * cx - eta[k] * frequencies[k] * sx
+
+
+@numba.njit(cache=True)
+def _content_step(frequencies, force_row, eta, rate, resolution):
+    """The contact step [s] for the state (η, η̇): :data:`SAMPLED_PHASE`/Ω of the coupled
+    mode of largest amplitude, and at most 1/Ω of the fastest mode that must be sampled
+    (the fastest modes whose amplitudes sum to at most ``resolution``/2 of the total are
+    left unsampled; module docstring); 0 when the state carries no force at all."""
+    n = eta.shape[0]
+    total = 0.0
+    largest = 0.0
+    dominant = 0
+    for k in range(n):
+        amplitude = abs(force_row[k]) * math.sqrt(eta[k] ** 2 + (rate[k] / frequencies[k]) ** 2)
+        total += amplitude
+        if amplitude > largest:
+            largest = amplitude
+            dominant = k
+    if total == 0.0:
+        return 0.0
+    tail = 0.0
+    fastest = 0
+    for k in range(n - 1, -1, -1):
+        tail += abs(force_row[k]) * math.sqrt(eta[k] ** 2 + (rate[k] / frequencies[k]) ** 2)
+        if 2.0 * tail > resolution * total:
+            fastest = k
+            break
+    return min(SAMPLED_PHASE / frequencies[dominant], 1.0 / frequencies[fastest])
+
+
+@numba.njit(cache=True)
+def _to_physical(from_coupled, eta, rate, q, v):
+    """(w_i, v_i) and the modal state (q, v) of the coupled state (η, η̇)."""
+    n = eta.shape[0]
+    wi = 0.0
+    vi = 0.0
+    for k in range(n):
+        wi += from_coupled[0, k] * eta[k]
+        vi += from_coupled[0, k] * rate[k]
+    for j in range(1, n):
+        qj = 0.0
+        vj = 0.0
+        for k in range(n):
+            qj += from_coupled[j, k] * eta[k]
+            vj += from_coupled[j, k] * rate[k]
+        q[j - 1] = qj
+        v[j - 1] = vj
+    return wi, vi
+
+
+@numba.njit(cache=True)
+def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, step_scale,
+                  omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
+                  record, history, rec):
+    """One contact, from touchdown (α = 0) to separation or the run's limits.
+
+    Parameters
+    ----------
+    frequencies, force_row, from_coupled, to_coupled : arrays of :class:`CoupledModes`.
+    step_cap : float
+        Longest contact step [s] (the settings' ``time_step_ratio/ω``).
+    step_scale : float
+        Factor on the step (the settings' ``step_scale``).
+    omega, phi, residual : retained modes [rad/s], participations, residual [m/N].
+    t, wi, vi, q, v : time [s] and state at touchdown; q and v are overwritten with the
+        state at the end.
+    peak, peak_time : largest force so far [N] and its time [s].
+    steps, max_time, max_steps : steps taken so far, the run's time limit [s] and budget.
+    record, history, rec : history array and next row (:mod:`history_rows`).
+
+    Returns
+    -------
+    tuple
+        (t, wi, vi, force, peak, peak_time, steps, separated, history, rec): the state
+        at the end of the phase, with ``force`` 0 after a separation. A touchdown with
+        no closing speed (grazing) returns at once, with ``steps`` unchanged.
+    """
+    n = frequencies.shape[0]
+    eta = np.empty(n)
+    rate = np.empty(n)
+    for k in range(n):
+        eta[k] = to_coupled[k, 0] * wi
+        rate[k] = to_coupled[k, 0] * vi
+        for j in range(1, n):
+            eta[k] += to_coupled[k, j] * q[j - 1]
+            rate[k] += to_coupled[k, j] * v[j - 1]
+    h = step_scale * min(_content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION), step_cap)
+    if h == 0.0 or _force_rate(frequencies, force_row, eta, rate, 0.0, n) <= 0.0:
+        return t, wi, vi, 0.0, peak, peak_time, steps, True, history, rec  # grazing: no contact
+    resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
+    while resolved < n and frequencies[resolved] * h <= 1.0:
+        resolved += 1
+    cos_h = np.cos(frequencies * h)
+    sin_h = np.sin(frequencies * h)
+    eta_next = np.empty(n)
+    rate_next = np.empty(n)
+    eta_prev = np.empty(n)
+    rate_prev = np.empty(n)
+    f_prev = -1.0  # force one step back (< 0: none yet)
+    force = 0.0
+    separated = False
+    while True:
+        for k in range(n):
+            eta_next[k] = eta[k] * cos_h[k] + rate[k] / frequencies[k] * sin_h[k]
+            rate_next[k] = rate[k] * cos_h[k] - eta[k] * frequencies[k] * sin_h[k]
+        f_next = 0.0
+        for k in range(n):
+            f_next += force_row[k] * eta_next[k]
+        steps += 1
+        if f_next <= 0.0:
+            s = _root(frequencies, force_row, eta, rate, h, False, n)
+            _advance(frequencies, eta, rate, s, eta_next, rate_next)
+            t += s
+            force = 0.0
+            separated = True
+        else:
+            if f_prev >= 0.0 and force >= f_prev and force >= f_next:
+                # a sampled maximum: the peak is where the rate of the sampled coupled modes
+                # vanishes over the two steps around it (the force there, ripple included)
+                if (_force_rate(frequencies, force_row, eta_prev, rate_prev, 0.0, resolved) > 0.0
+                        and _force_rate(frequencies, force_row, eta_prev, rate_prev, 2.0 * h, resolved) < 0.0):
+                    s = _root(frequencies, force_row, eta_prev, rate_prev, 2.0 * h, True, resolved)
+                    value = _force(frequencies, force_row, eta_prev, rate_prev, s)
+                    if value > peak:
+                        peak = value
+                        peak_time = t - h + s
+            f_prev = force
+            eta_prev[:] = eta
+            rate_prev[:] = rate
+            t += h
+            force = f_next
+            if force > peak:
+                peak = force
+                peak_time = t
+        eta, eta_next = eta_next, eta
+        rate, rate_next = rate_next, rate
+        if record or separated or t >= max_time or steps >= max_steps:
+            wi, vi = _to_physical(from_coupled, eta, rate, q, v)
+            if record:
+                history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+        if separated or t >= max_time or steps >= max_steps:
+            return t, wi, vi, force, peak, peak_time, steps, separated, history, rec
