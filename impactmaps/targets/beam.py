@@ -368,6 +368,31 @@ class Beam(Target):
         """
         return _beam_basis(self, float(max_frequency), min_modes)
 
+    def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
+        """Number of modes with ω ≤ ``max_frequency`` [rad/s] (rigid-body modes included).
+
+        Every support has at least ``floor(k L/π) − 1`` elastic modes below ω, k the
+        flexural wavenumber at ω (:func:`~impactmaps.targets.beam_modes.largest_wavenumber`;
+        the roots βL of every frequency equation lie within π of nπ): when that
+        exceeds ``limit`` it is returned as is. Otherwise the count is exact: the
+        frequencies of the closed forms (simply supported; Euler with any support, from
+        the roots alone), or the modes of the bounded finite-element model.
+        """
+        require_nonnegative("max_frequency", max_frequency, "rad/s")
+        section = self.section
+        wavenumber = float(beam_modes.largest_wavenumber(section, float(max_frequency)))
+        bound = max(math.floor(wavenumber * self.length / math.pi) - 1, 0)
+        if limit is not None and bound > limit:
+            return bound
+        if self.supports == "ss":
+            return len(beam_modes.simply_supported_modes(section, float(max_frequency), 0))
+        if self.theory == "euler":
+            roots = beam_modes.euler_roots(self.supports, int(wavenumber * self.length / math.pi) + 2)
+            scale = math.sqrt(section.bending_stiffness / (section.mass_per_length * self.length**4))
+            rigid = 2 if self.supports == "ff" else 0
+            return rigid + int(np.searchsorted(roots**2 * scale, float(max_frequency), side="right"))
+        return super().mode_count(max_frequency, limit)
+
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes).
 
