@@ -133,7 +133,7 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
             point = "impact_point" if case.target_type == "plate" else "impact_position"
             raise ValueError(
                 f"impactor.mass = {case.impactor_mass:.6g} kg is invalid for this target: {error.reason}; "
-                f"valid range: impactor.mass ≥ {error.lightest_mass:.4g} kg (contact frequency ≤ "
+                f"valid range: impactor.mass ≥ about {error.lightest_mass:.4g} kg (contact frequency ≤ "
                 f"{error.highest_frequency:.4g} rad/s), or a target.{point} farther from the boundary"
             ) from None
     summary = case_summary(case, result)

@@ -177,11 +177,20 @@ def frequency_cap(target, max_modes: int = MAX_MODES) -> float:
 
 def budget_cutoff(target, max_frequency: float, max_modes: int = MAX_MODES) -> float:
     """The cut-off [rad/s] to build ``target``'s basis at: ``max_frequency``, or
-    :func:`frequency_cap` when more than ``max_modes`` modes lie below it (counted by
-    :meth:`~impactmaps.targets.base.Target.mode_count`, not built)."""
-    if target.mode_count(max_frequency, limit=int(max_modes)) <= max_modes:
-        return float(max_frequency)
-    return min(float(max_frequency), frequency_cap(target, int(max_modes)))
+    :func:`frequency_cap` when more than ``max_modes`` modes lie below it.
+
+    A target of bounded size (``target.bounded_modes``: Ritz plates, finite-element
+    beams) keeps its cut-off. Otherwise a cut-off below the (cached) cap holds at most
+    ``max_modes`` modes; one above it is counted
+    (:meth:`~impactmaps.targets.base.Target.mode_count`, no mode built).
+    """
+    max_frequency = float(max_frequency)
+    if getattr(target, "bounded_modes", False):
+        return max_frequency
+    cap = frequency_cap(target, int(max_modes))
+    if max_frequency <= cap or target.mode_count(max_frequency, limit=int(max_modes)) <= max_modes:
+        return max_frequency
+    return cap
 
 
 def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency: float, *,

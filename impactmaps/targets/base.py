@@ -215,6 +215,13 @@ class Target(ABC):
         The returned basis carries the residual compliance of the modes left out.
         """
 
+    @property
+    def bounded_modes(self) -> bool:
+        """True when the target's modes come from a model of bounded size (a Ritz plate, a
+        finite-element beam, the half-space): no cut-off can make it build more than that
+        model. False here (targets whose mode count grows without bound override nothing)."""
+        return False
+
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
         """Number of modes with ω_j ≤ ``max_frequency`` [rad/s], participating or not.
 

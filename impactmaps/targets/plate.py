@@ -414,6 +414,11 @@ class Plate(Target):
             return plate_navier.navier_mode_count(self, float(max_frequency), limit)
         return super().mode_count(max_frequency, limit)
 
+    @property
+    def bounded_modes(self) -> bool:
+        """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
+        return self.edges != "SSSS"
+
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
         if contact_radius is None:

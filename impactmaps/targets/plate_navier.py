@@ -192,8 +192,9 @@ def navier_mode_count(plate: Plate, max_frequency: float, limit: int | None = No
     The count of :func:`navier_pairs` by the same searches, without forming the pairs:
     the largest n for :data:`COUNT_CHUNK` values of m at a time, summed. Memory stays
     below ~10 MB whatever the count. Once the count exceeds ``limit`` it stops and
-    returns a lower bound above ``limit`` (the pairs (m, 1) and (1, n) alone bound it from
-    below, so a cut-off far beyond the limit costs only two scalar searches).
+    returns a lower bound above ``limit`` (the pairs (m, 1) and (1, n), or the square of
+    pairs up to the largest (k, k), alone bound it from below, so a cut-off far beyond the
+    limit costs only three scalar searches).
     """
     def frequency(m, n):
         return navier_frequencies(plate, np.asarray(m, float), np.asarray(n, float))
@@ -202,8 +203,10 @@ def navier_mode_count(plate: Plate, max_frequency: float, limit: int | None = No
         return 0
     m_count = int(_last_index_within(lambda k: frequency(k, np.ones_like(k)), 1, max_frequency)[0])
     n_count = int(_last_index_within(lambda k: frequency(np.ones_like(k), k), 1, max_frequency)[0])
-    if limit is not None and m_count + n_count - 1 > limit:
-        return m_count + n_count - 1
+    diagonal = int(_last_index_within(lambda k: frequency(k, k), 1, max_frequency)[0])
+    bound = max(m_count + n_count - 1, diagonal**2)
+    if limit is not None and bound > limit:
+        return bound
     total = 0
     for start in range(1, m_count + 1, COUNT_CHUNK):
         m_values = np.arange(start, min(start + COUNT_CHUNK, m_count + 1), dtype=np.int64)
