@@ -218,8 +218,10 @@ class Target(ABC):
     @property
     def bounded_modes(self) -> bool:
         """True when the target's modes come from a model of bounded size (a Ritz plate, a
-        finite-element beam, the half-space): no cut-off can make it build more than that
-        model. False here (targets whose mode count grows without bound override nothing)."""
+        finite-element beam, the half-space): no cut-off makes it build more than that
+        model. False by default: the mode count grows without bound with the cut-off
+        (Navier plates, closed-form beams) and :mod:`impactmaps.solvers.mode_budget`
+        guards it."""
         return False
 
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
