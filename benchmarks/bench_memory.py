@@ -20,7 +20,14 @@ The sweep runs in a fresh Python process. Reported:
 
 Target of the issue: < 1 GiB.
 
-Run: ``python benchmarks/bench_memory.py [--zetas 100 --lambdas 50]``.
+``--corners`` measures instead the light-impactor corners of issue 12 ("Corners blow
+up"), each as the ``impactmaps`` command a user types, in a fresh process: wall time,
+peak RSS (``ru_maxrss`` of that process, from ``os.wait4``), exit status and which
+method answered (:data:`CORNERS`; the case files are the tests' data). Target: each
+answers or refuses within 1 GiB and 30 s.
+
+Run: ``python benchmarks/bench_memory.py [--zetas 100 --lambdas 50]`` or
+``python benchmarks/bench_memory.py --corners``.
 """
 
 from __future__ import annotations
@@ -30,6 +37,7 @@ import json
 import os
 import pathlib
 import resource
+import subprocess
 import sys
 import tempfile
 import threading
@@ -40,6 +48,20 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
 from benchmarks.bench_chart import buildable_structures, count_points, reap_pool_workers, run_child  # noqa: E402
 
 TARGET_BYTES = 1024**3
+#: Wall-time target of one corner [s].
+CORNER_TARGET_S = 30.0
+_DATA = pathlib.Path(__file__).resolve().parents[1] / "tests" / "data"
+#: The corners: (label, ``impactmaps`` arguments; ``{out}`` is a temporary directory).
+CORNERS = (
+    ("point plate-ss, ζ = 1e-6, λ = 1",
+     ["point", "--target", "plate-ss", "--zeta", "1e-6", "--lambda", "1", "--json"]),
+    ("case: 1e-9 kg steel sphere, 4 mm steel Mindlin plate, Hertz",
+     ["simulate", str(_DATA / "light_sphere_1e-9kg.toml"), "--out", "{out}", "--json"]),
+    ("case: 1e-12 kg steel sphere, same plate",
+     ["simulate", str(_DATA / "light_sphere_1e-12kg.toml"), "--out", "{out}", "--json"]),
+    ("case: 1e-9 kg sphere 1 mm from an edge (refused)",
+     ["simulate", str(_DATA / "light_sphere_near_edge.toml"), "--out", "{out}", "--json"]),
+)
 
 
 class TreeMemorySampler:
@@ -154,13 +176,56 @@ def markdown(report: dict) -> str:
     return "\n".join(lines)
 
 
+def corner(arguments) -> dict:
+    """Run ``python -m impactmaps.cli ARGUMENTS`` in a fresh process: wall time [s], peak
+    RSS [B] (its own ``ru_maxrss``), exit status and the method and F̄max it printed."""
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(__file__).resolve().parents[1]))
+    with tempfile.TemporaryDirectory(prefix="impactmaps-corner-") as out_dir, \
+            tempfile.TemporaryFile("w+") as stdout, tempfile.TemporaryFile("w+") as stderr:
+        argv = [a.replace("{out}", out_dir) for a in arguments]
+        start = time.perf_counter()
+        process = subprocess.Popen([sys.executable, "-m", "impactmaps.cli", *argv], stdout=stdout,
+                                   stderr=stderr, env=env, cwd=str(pathlib.Path(__file__).resolve().parents[1]))
+        _, status, usage = os.wait4(process.pid, 0)
+        wall = time.perf_counter() - start
+        process.returncode = os.waitstatus_to_exitcode(status)
+        stdout.seek(0)
+        stderr.seek(0)
+        lines = stdout.read().strip().splitlines()
+        values = json.loads(lines[-1]) if lines else {}
+        errors = [line for line in stderr.read().splitlines() if not line.startswith("warning:")]
+    return {"wall_s": wall, "peak_rss_bytes": usage.ru_maxrss * 1024, "exit": process.returncode,
+            "method": values.get("method"), "fmax_normalised": values.get("fmax_normalised"),
+            "asymptote": values.get("asymptote"), "error": errors[0] if errors else None}
+
+
+def corners_markdown(reports) -> str:
+    """The corner measurements as a Markdown table with the verdict against the targets."""
+    mib = 1024**2
+    lines = [f"Light-impactor corners (issue 12), each a fresh `impactmaps` process. Targets: < 1 GiB, "
+             f"< {CORNER_TARGET_S:g} s.", "",
+             "| corner | wall [s] | peak RSS [MiB] | exit | answered by | F̄max | target |",
+             "|---|---|---|---|---|---|---|"]
+    for label, report in reports:
+        met = report["peak_rss_bytes"] < TARGET_BYTES and report["wall_s"] < CORNER_TARGET_S
+        how = report["asymptote"] or report["method"] or f"refused: {report['error']}"
+        fmax = "-" if report["fmax_normalised"] is None else f"{report['fmax_normalised']:.7f}"
+        lines.append(f"| {label} | {report['wall_s']:.1f} | {report['peak_rss_bytes'] / mib:.0f} | "
+                     f"{report['exit']} | {how} | {fmax} | {'met' if met else '**missed**'} |")
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--child", action="store_true")
     parser.add_argument("--out")
     parser.add_argument("--zetas", type=int, default=100)
     parser.add_argument("--lambdas", type=int, default=50)
+    parser.add_argument("--corners", action="store_true", help="measure the light-impactor corners instead")
     args = parser.parse_args()
+    if args.corners:
+        print(corners_markdown([(label, corner(arguments)) for label, arguments in CORNERS]))
+        return
     if args.child:
         print(json.dumps(_child(args.out, args.zetas, args.lambdas)))
         return

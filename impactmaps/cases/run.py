@@ -13,6 +13,7 @@ import pandas as pd
 from ..contact.sphere import law_for_sphere
 from ..jsonio import dumps, plain
 from ..solvers.modal import reference_contact_stiffness, simulate
+from ..solvers.mode_budget import ModeBudgetError
 from ..solvers.result import ImpactResult
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
@@ -125,8 +126,16 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
     if case.solver_kind == "fd":
         result = _run_fd(case)
     else:
-        result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
-                          settings=case.settings, record=True, time_step=case.time_step)
+        try:
+            result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
+                              settings=case.settings, record=True, time_step=case.time_step)
+        except ModeBudgetError as error:
+            point = "impact_point" if case.target_type == "plate" else "impact_position"
+            raise ValueError(
+                f"impactor.mass = {case.impactor_mass:.6g} kg is invalid for this target: {error.reason}; "
+                f"valid range: impactor.mass ≥ about {error.lightest_mass:.4g} kg (contact frequency ≤ "
+                f"{error.highest_frequency:.4g} rad/s), or a target.{point} farther from the boundary"
+            ) from None
     summary = case_summary(case, result)
     for message in summary["model_warnings"]:
         warnings.warn(message, ModelValidityWarning, stacklevel=2)
@@ -149,25 +158,30 @@ def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
     -------
     dict
         ``{"history": Path, "summary": Path, "case": Path}`` and, with
-        ``output.normalised = true``, ``"history_normalised": Path``.
+        ``output.normalised = true``, ``"history_normalised": Path``; without
+        ``"history"`` (and its normalised twin) when the result has none.
 
     Notes
     -----
     ``history.csv`` has the columns of :data:`impactmaps.solvers.result.HISTORY_COLUMNS`
     and the solver's extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``;
-    finite difference: the gauges). ``summary.json`` is :func:`case_summary`.
+    finite difference: the gauges). ``summary.json`` is :func:`case_summary`. A result
+    without history is one the solver answered by an any-law infinite-structure
+    asymptote (:mod:`impactmaps.solvers.mode_budget`, scalars only): only the summary
+    and the case are written.
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case")
-    if result.history is None:
-        raise ValueError("result has no history (run with record=True)")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = {"history": out / "history.csv", "summary": out / "summary.json",
              "case": out / "case.toml"}
     stride = case.output.history_stride
-    result.history.iloc[::stride].to_csv(paths["history"], index=False)
-    if case.output.normalised:
+    if result.history is None:
+        del paths["history"]
+    else:
+        result.history.iloc[::stride].to_csv(paths["history"], index=False)
+    if case.output.normalised and result.history is not None:
         paths["history_normalised"] = out / "history_normalised.csv"
         result.normalised_history().iloc[::stride].to_csv(paths["history_normalised"], index=False)
     paths["summary"].write_text(dumps(case_summary(case, result), indent=2) + "\n", encoding="utf-8")

@@ -23,10 +23,16 @@ def _run_case_command(args, solver) -> dict:
     case = load_case(args.case, solver=solver)
     result, summary = run_case(case)
     paths = write_case_outputs(case, result, out)
-    paths["figure"] = out / "history.png"
-    save_figure(result, paths["figure"], normalised=False)
     summary = dict(summary)
-    if summary["converged"] is None:
+    if result.history is not None:
+        paths["figure"] = out / "history.png"
+        save_figure(result, paths["figure"], normalised=False)
+    else:
+        summary["history_note"] = f"no history: answered by the {result.details.asymptote} asymptote (scalars only)"
+    if result.method == "infinite-structure-asymptote":
+        summary["converged_note"] = ("not checked: answered by the infinite-structure asymptote, exact "
+                                     "until the first reflection returns")
+    elif summary["converged"] is None:
         summary["converged_note"] = "not checked ([solver] check_convergence = false)"
     summary["outputs"] = {key: str(value) for key, value in paths.items()}
     return summary

@@ -102,15 +102,29 @@ def _settings_from_args(args):
                          **options)
 
 
+def _simulate_point(structure, target, args, settings, record: bool):
+    """The impact realising (--zeta, --lambda) on ``target``; a point no method answers
+    within the mode cap is refused naming the options."""
+    from ..solvers.modal import simulate_normalised
+    from ..solvers.mode_budget import ModeBudgetError
+
+    try:
+        return simulate_normalised(target, args.zeta, args.lambda_, settings=settings, record=record)
+    except ModeBudgetError as error:
+        raise ValueError(
+            f"--zeta = {args.zeta:g} with --lambda = {args.lambda_:g} is invalid on {structure.name}: "
+            f"{error.reason}; valid range: a contact frequency ≤ {error.highest_frequency:.4g} rad/s "
+            "(a larger --zeta or --lambda), or an impact --position farther from the boundary") from None
+
+
 def cmd_point(args) -> dict:
     from ..maps.regimes import classify, infinite_structure_peak, quasi_static_peak
-    from ..solvers.modal import simulate_normalised
 
     structure = _structure_from_args(args)
     target = structure.build()
     settings = _settings_from_args(args)
     plot = getattr(args, "plot", None)
-    result = simulate_normalised(target, args.zeta, args.lambda_, settings=settings, record=plot is not None)
+    result = _simulate_point(structure, target, args, settings, record=plot is not None)
     reflection = float(target.reflection_time(result.contact_frequency))
     regime = str(classify(result.fmax_normalised, args.zeta, args.lambda_, structure.kind,
                           peak_time=result.peak_time_normalised, reflection_time=reflection,
@@ -130,7 +144,11 @@ def cmd_point(args) -> dict:
     }
     if not math.isfinite(reflection):
         values["reflection_time_note"] = "no support or edge reflects waves back to the impact point"
-    if not settings.check_convergence:
+    if result.method == "infinite-structure-asymptote":
+        values["asymptote"] = result.details.asymptote
+        values["converged_note"] = ("not checked: answered by the infinite-structure asymptote, exact until "
+                                    "the first reflection returns")
+    elif not settings.check_convergence:
         values["converged_note"] = "not checked (--no-check)"
     if plot is not None:
         values["plot"] = save_figure(result, Path(plot), normalised=True)

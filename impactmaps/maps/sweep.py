@@ -28,6 +28,10 @@ from ..contact.linear import LinearContact
 from ..dimensionless import realise
 from ..jsonio import dumps
 from ..solvers.modal import ModalSettings, simulate
+from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
+from ..solvers.mode_budget import METHODS as BUDGET_METHODS
+from ..solvers.mode_budget import frequency_cap as budget_frequency_cap
+from ..solvers.mode_budget import plan_basis
 from ..targets.plate_navier import warn_beyond_thickness_shear
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .regimes import classify
@@ -63,9 +67,8 @@ RESULT_VARIABLES = {
 }
 
 #: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
-METHODS = ("modal+residual", "modal+residual-capped", "infinite-structure-asymptote")
-MAX_MODES = 80_000  # cap on the modes (all, incl. non-participating) below the cut-off; see solve_points
-ASYMPTOTE_REFLECTION_FACTOR = 20.0
+METHODS = BUDGET_METHODS
+MAX_MODES = 80_000  # cost cap on the modes (all, incl. non-participating) below the cut-off; see solve_points
 
 
 def log_grid(start: float, stop: float, count: int) -> np.ndarray:
@@ -80,21 +83,11 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 def frequency_cap(structure: MapStructure, max_modes: int = MAX_MODES) -> float:
     """Largest frequency [rad/s] below which ``structure`` has at most ~``max_modes`` modes.
 
-    A pure function of its arguments (cached, bounded): the cut-off of every point of a
-    sweep on ``structure`` is clipped to it.
+    :func:`impactmaps.solvers.mode_budget.frequency_cap` of the built target (modes
+    counted, not built). A pure function of its arguments (cached, bounded): the cut-off
+    of every point of a sweep on ``structure`` is clipped to it.
     """
-    target = structure.build()
-    frequency = float(target.modes(0.0, min_modes=1).frequencies[0]) * 1.5 + 1e-30
-    count = 0
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # probing only
-        while True:
-            more = target.modes(2.0 * frequency, min_modes=1).size
-            # stop at the cap, or where the target has no more modes to give (a
-            # finite-element beam stops at its largest model): the probe would not end
-            if more > max_modes or more <= count:
-                return frequency
-            count, frequency = more, 2.0 * frequency
+    return budget_frequency_cap(structure.build(), max_modes)
 
 
 @functools.lru_cache(maxsize=8)
@@ -155,11 +148,13 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     Notes
     -----
     Modes up to ``settings.cutoff_ratio · ω`` are integrated with the residual
-    flexibility of the rest. A point that would need more than ``MAX_MODES`` modes
-    (light impactors on flexible plates, spec §3.6) takes the infinite-structure
-    solution if the first wave returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its
-    peak time (it is then exact for the peak); otherwise it is integrated with the
-    first ``MAX_MODES`` modes plus residual flexibility, with a warning. The ``method``
+    flexibility of the rest. A point whose cut-off lies above :func:`frequency_cap`
+    (more than ``MAX_MODES`` modes: light impactors on flexible plates, spec §3.6) is
+    answered as :func:`impactmaps.solvers.mode_budget.plan_basis` decides: the
+    infinite-structure solution if the first wave returns after
+    ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (it is then exact for the peak);
+    otherwise the modes up to the cap plus residual flexibility, with a warning (a
+    ``ValueError`` if the cap lies below a few contact frequencies). The ``method``
     variable records which model produced each point.
     """
     target = structure.build()
@@ -178,19 +173,17 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     rows = []
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
-        if wanted[k] > cap:
-            asymptote = _asymptote_row(target, zetas[k])
-            if reflections[k] >= ASYMPTOTE_REFLECTION_FACTOR * asymptote["peak_time_normalised"]:
-                rows.append(exact_point(row | asymptote))
-                continue
-            warnings.warn(
-                f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g} needs more than "
-                f"{MAX_MODES} modes; integrating the first {MAX_MODES} (residual flexibility for "
-                "the rest)", RuntimeWarning, stacklevel=2)
-        capped = "modal+residual-capped" if wanted[k] > cap else "modal+residual"
+        plan = plan_basis(target, LinearContact(stiffnesses[k]), masses[k], 1.0, wanted[k], max_modes=MAX_MODES,
+                          cap_frequency=cap, loss_factor=zetas[k])
+        if plan.method == "infinite-structure-asymptote":
+            rows.append(exact_point(row | _asymptote_row(target, zetas[k])))
+            continue
+        if plan.method == "modal+residual-capped":
+            warnings.warn(f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g}: {plan.message}",
+                          RuntimeWarning, stacklevel=2)
         run = _point_runner(target, table, cap, zetas[k], lambdas[k],
                             (float(masses[k]), float(stiffnesses[k]), float(omegas[k])))
-        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index(capped)})
+        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index(plan.method)})
     return rows
 
 

@@ -36,6 +36,7 @@ from ..contact.linear import LinearContact
 from ..targets.base import ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
 from .exact_step import integrate_impact
+from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, budget_cutoff, plan_basis
 from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
@@ -280,6 +281,8 @@ def _uses_patch(target, contact_patch: str) -> bool:
 def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None) -> ModalBasis:
     """The participating modes below the cut-off, with the residual the settings ask for."""
     max_frequency = float(settings.cutoff_ratio * contact_frequency)
+    if isinstance(target, Target):  # never more modes than memory allows (simulate's plan)
+        max_frequency = budget_cutoff(target, max_frequency)
     if isinstance(target, ModalBasis):
         basis = target.truncate(max_frequency, int(settings.min_modes))
     elif isinstance(target, Target) and contact_radius is not None:
@@ -335,6 +338,23 @@ def simulate(
     ImpactResult
         With ``settings.contact_patch = "hertz-peak"`` applied, ``result.settings``
         also holds ``contact_radius_m``, the converged patch radius [m].
+        ``method`` says what answered: ``"modal+residual"`` (or ``"modal"`` without
+        the residual), ``"modal+residual-capped"`` or ``"infinite-structure-asymptote"``.
+
+    Raises
+    ------
+    ValueError
+        Bad input, or an impact no method answers within the memory cap.
+
+    Notes
+    -----
+    Memory is bounded for every input: when the cut-off of a :class:`Target` lies above
+    more than :data:`~impactmaps.solvers.mode_budget.MAX_MODES` modes (counted, not
+    built), :func:`~impactmaps.solvers.mode_budget.plan_basis` decides — the
+    infinite-structure solution if no reflection returns before the contact is over,
+    else the modes up to the cap plus residual compliance (a
+    :class:`~impactmaps.solvers.mode_budget.ModeBudgetWarning`), else a ``ValueError``.
+    A :class:`ModalBasis` target is integrated as given.
     """
     settings = settings or DEFAULT_SETTINGS
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -344,6 +364,16 @@ def simulate(
     params = np.array(law.kernel_parameters, dtype=float, order="C")
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
+    plan = None
+    if isinstance(target, Target):
+        contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
+        plan = plan_basis(target, law, impactor_mass, velocity, float(settings.cutoff_ratio * contact_frequency))
+        if plan.method == METHODS[2]:
+            warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
+            return asymptote_result(plan, target, law, impactor_mass, velocity, record,
+                                    _settings_dict(settings))
+        if plan.method == METHODS[1]:
+            warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
     radius_of = None
     if _uses_patch(target, settings.contact_patch):
         radius_of = contact_radius_function(law, effective_radius)
@@ -363,6 +393,8 @@ def simulate(
                 f"{PATCH_PASSES} runs (last {radius:.6g} m → {new_radius:.6g} m)",
                 ConvergenceWarning, stacklevel=2)
         result.settings["contact_radius_m"] = float(radius)
+    if plan is not None and plan.method == METHODS[1]:
+        result = replace(result, method=METHODS[1])
     if settings.check_convergence:
         fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
                         effective_radius=effective_radius)

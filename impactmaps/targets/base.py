@@ -215,6 +215,39 @@ class Target(ABC):
         The returned basis carries the residual compliance of the modes left out.
         """
 
+    @property
+    def bounded_modes(self) -> bool:
+        """True when the target's modes come from a model of bounded size (a Ritz plate, a
+        finite-element beam, the half-space): no cut-off makes it build more than that
+        model. False by default: the mode count grows without bound with the cut-off
+        (Navier plates, closed-form beams) and :mod:`impactmaps.solvers.mode_budget`
+        guards it."""
+        return False
+
+    def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
+        """Number of modes with ω_j ≤ ``max_frequency`` [rad/s], participating or not.
+
+        The modes :meth:`modes` returns at that cut-off (when it lies above the
+        fundamental). Exact; once the count is certain to exceed ``limit``, counting may
+        stop early and return a lower bound that exceeds ``limit``. This default builds
+        the modes, which suits targets whose model has a bounded size (Ritz plates,
+        finite-element beams, the half-space); targets whose mode count grows without
+        bound (Navier plates, closed-form beams) count without building them.
+
+        Parameters
+        ----------
+        max_frequency : float
+            Cut-off ω_max [rad/s], ≥ 0.
+        limit : int, optional
+            Counting may stop once the count exceeds it (default: count everything).
+
+        Returns
+        -------
+        int
+        """
+        basis = self.modes(float(max_frequency), min_modes=1)
+        return int(np.searchsorted(basis.frequencies, float(max_frequency), side="right"))
+
     @abstractmethod
     def static_compliance(self) -> float:
         """Static point compliance 1/K_st [m/N] at the impact point, as used for λ."""

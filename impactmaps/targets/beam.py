@@ -368,6 +368,40 @@ class Beam(Target):
         """
         return _beam_basis(self, float(max_frequency), min_modes)
 
+    def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
+        """Number of modes with ω ≤ ``max_frequency`` [rad/s] (rigid-body modes included).
+
+        Every support has at least ``floor(k L/π) − 1`` elastic modes below ω, k the
+        flexural wavenumber at ω (:func:`~impactmaps.targets.beam_modes.largest_wavenumber`;
+        the roots βL of every frequency equation lie within π of nπ): when that
+        exceeds ``limit`` it is returned as is. Otherwise the count is exact, without
+        building the modes: simply supported, the closed-form frequency of each branch
+        searched for its last half-wave number below ω; Euler with other supports, the
+        few roots βL next to the cut-off; Rayleigh and Timoshenko with other supports,
+        the modes of the bounded finite-element model.
+        """
+        require_nonnegative("max_frequency", max_frequency, "rad/s")
+        section, frequency = self.section, float(max_frequency)
+        wavenumber = float(beam_modes.largest_wavenumber(section, frequency))
+        bound = max(math.floor(wavenumber * self.length / math.pi) - 1, 0)
+        if limit is not None and bound > limit:
+            return bound
+        if self.supports == "ss":
+            return beam_modes.simply_supported_count(section, frequency)
+        if self.theory == "euler":
+            last = int(wavenumber * self.length / math.pi) + 2  # the roots beyond lie above the cut-off
+            first = max(last - 3, 1)  # the roots before lie below it
+            roots = beam_modes.euler_roots(self.supports, last, first)
+            scale = math.sqrt(section.bending_stiffness / (section.mass_per_length * self.length**4))
+            rigid = 2 if self.supports == "ff" else 0
+            return rigid + first - 1 + int(np.searchsorted(roots**2 * scale, frequency, side="right"))
+        return super().mode_count(max_frequency, limit)
+
+    @property
+    def bounded_modes(self) -> bool:
+        """True when the modes come from a model of bounded size (the finite-element beams)."""
+        return self.supports != "ss" and self.theory != "euler"
+
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes).
 

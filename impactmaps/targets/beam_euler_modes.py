@@ -43,8 +43,9 @@ def _bisect(function, low, high, iterations: int = 80):
     return 0.5 * (low + high)
 
 
-def euler_roots(supports: str, count: int) -> np.ndarray:
-    """First ``count`` roots βL of the Euler frequency equation (elastic modes).
+def euler_roots(supports: str, count: int, first: int = 1) -> np.ndarray:
+    """Roots βL number ``first`` … ``count`` of the Euler frequency equation (elastic modes;
+    default the first ``count``).
 
     Frequency equations (Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979,
     Table 8-1), written overflow-free by dividing by cosh βL:
@@ -59,8 +60,8 @@ def euler_roots(supports: str, count: int) -> np.ndarray:
     Each root is found by 80 bisection steps (to the last bit), so high modes (βL
     approaching (2n+1)π/2 or (4n+1)π/4 to within e^{−βL}) are exact too.
     """
-    n = np.arange(1, int(count) + 1, dtype=float)
-    if count <= 0:
+    n = np.arange(max(int(first), 1), int(count) + 1, dtype=float)
+    if n.size == 0:
         return np.zeros(0)
     if supports == "ss":
         return n * math.pi

@@ -44,7 +44,7 @@ from __future__ import annotations
 from .beam_euler_modes import classical_euler_modes, euler_roots
 from .beam_fe_modes import FE_DEGREE, FE_MAX_DOFS, FE_RESOLUTION, finite_element_modes
 from .beam_section import BeamSection, ModeSet, largest_wavenumber
-from .beam_sine_modes import simply_supported_modes
+from .beam_sine_modes import simply_supported_count, simply_supported_modes
 from .beam_static import static_compliance
 from .options import BEAM_SUPPORTS as SUPPORTS
 from .options import BEAM_THEORIES as THEORIES
@@ -57,6 +57,7 @@ __all__ = [
     "largest_wavenumber",
     "euler_roots",
     "simply_supported_modes",
+    "simply_supported_count",
     "classical_euler_modes",
     "finite_element_modes",
     "static_compliance",

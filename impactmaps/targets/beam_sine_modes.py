@@ -14,7 +14,7 @@ from .beam_section import (
     largest_wavenumber,
 )
 
-__all__ = ["simply_supported_modes"]
+__all__ = ["simply_supported_modes", "simply_supported_count"]
 
 
 class _SineModes(ModeSet):
@@ -60,8 +60,7 @@ def simply_supported_modes(section: BeamSection, max_frequency: float,
     """
     L = section.length
     EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
-    k_max = float(largest_wavenumber(section, max_frequency))
-    n_count = max(int(math.floor(k_max * L / math.pi * (1.0 + 1e-12))), int(min_modes), 1)
+    n_count = max(_half_wave_count(section, max_frequency), int(min_modes), 1)
     n = np.arange(1, n_count + 1, dtype=float)
     k = n * math.pi / L
     if section.theory in ("euler", "rayleigh"):
@@ -71,13 +70,7 @@ def simply_supported_modes(section: BeamSection, max_frequency: float,
         modes = _SineModes(omega, k, W, -k * W)
     else:
         S = section.shear_stiffness
-        a11 = (EI * k**2 + S) / rI
-        a22 = S * k**2 / rA
-        a12 = S * k / math.sqrt(rI * rA)
-        half_difference = 0.5 * (a11 - a22)
-        radius = np.hypot(half_difference, a12)
-        upper = 0.5 * (a11 + a22) + radius
-        lower = (EI * S * k**4 / (rI * rA)) / upper
+        lower, upper, a12, half_difference = _timoshenko_eigenvalues(section, k)
         theta = 0.5 * np.arctan2(a12, half_difference)
         c, s = np.cos(theta), np.sin(theta)
         scale = math.sqrt(2.0 / L)
@@ -88,6 +81,54 @@ def simply_supported_modes(section: BeamSection, max_frequency: float,
         Psi = np.concatenate([-s, c, [math.sqrt(0.5)]]) * scale / math.sqrt(rI)
         modes = _SineModes(frequencies, wavenumbers, W, Psi)
     return _trim(modes, max_frequency, min_modes)
+
+
+def _half_wave_count(section: BeamSection, max_frequency: float) -> int:
+    """Half-wave numbers n whose flexural wavenumber nπ/L is within that of ``max_frequency``."""
+    k_max = float(largest_wavenumber(section, max_frequency))
+    return int(math.floor(k_max * section.length / math.pi * (1.0 + 1e-12)))
+
+
+def _timoshenko_eigenvalues(section: BeamSection, k):
+    """(ω² flexural, ω² shear, a12, (a11 − a22)/2) of the SS Timoshenko beam at wavenumbers k."""
+    EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
+    S = section.shear_stiffness
+    a11 = (EI * k**2 + S) / rI
+    a22 = S * k**2 / rA
+    a12 = S * k / math.sqrt(rI * rA)
+    half_difference = 0.5 * (a11 - a22)
+    radius = np.hypot(half_difference, a12)
+    upper = 0.5 * (a11 + a22) + radius
+    lower = (EI * S * k**4 / (rI * rA)) / upper
+    return lower, upper, a12, half_difference
+
+
+def simply_supported_count(section: BeamSection, max_frequency: float) -> int:
+    """Number of modes of :func:`simply_supported_modes` with ω ≤ ``max_frequency`` [rad/s].
+
+    Without building them: per branch, a bisection over the half-wave numbers
+    1 … n (n from :func:`largest_wavenumber`, as the modes use) on the same closed-form
+    frequencies, each increasing in n; plus the n = 0 thickness-shear mode (Timoshenko).
+    """
+    L, frequency = section.length, float(max_frequency)
+    EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
+    n_count = max(_half_wave_count(section, frequency), 1)
+
+    def last_within(omega_of_k) -> int:
+        low, high = 0, n_count + 1  # ω(low) ≤ f (n = 0: none), ω(high) > f (beyond the modes)
+        while high - low > 1:
+            middle = (low + high) // 2
+            if float(omega_of_k(np.array([middle * math.pi / L]))[0]) <= frequency:
+                low = middle
+            else:
+                high = middle
+        return low
+
+    if section.theory in ("euler", "rayleigh"):
+        return last_within(lambda k: np.sqrt(EI / (rA + rI * k**2)) * k**2)
+    flexural = last_within(lambda k: np.sqrt(_timoshenko_eigenvalues(section, k)[0]))
+    shear = last_within(lambda k: np.sqrt(_timoshenko_eigenvalues(section, k)[1]))
+    return flexural + shear + int(math.sqrt(section.shear_stiffness / rI) <= frequency)
 
 
 def _trim(modes: _SineModes, max_frequency, min_modes) -> _SineModes:

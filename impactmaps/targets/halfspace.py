@@ -33,6 +33,11 @@ class HalfSpace(Target):
 
     structure: ClassVar[str] = "halfspace"
 
+    @property
+    def bounded_modes(self) -> bool:
+        """True: a half-space has no modes at all."""
+        return True
+
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
         """No modes at any frequency: an empty basis with zero residual compliance.
 

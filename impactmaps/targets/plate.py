@@ -402,6 +402,23 @@ class Plate(Target):
         return _plate_modes(self, *_checked_request(max_frequency, min_modes),
                             self._checked_contact_radius(contact_radius))[0]
 
+    def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
+        """Number of modes with ω ≤ ``max_frequency`` [rad/s], participating or not.
+
+        SSSS: counted without building them (:func:`plate_navier.navier_mode_count`; a
+        lower bound above ``limit`` once the count exceeds it). Other edges: the Ritz
+        modes :meth:`modes` resolves (a bounded model, built).
+        """
+        require_nonnegative("max_frequency", max_frequency, "rad/s")
+        if self.edges == "SSSS":
+            return plate_navier.navier_mode_count(self, float(max_frequency), limit)
+        return super().mode_count(max_frequency, limit)
+
+    @property
+    def bounded_modes(self) -> bool:
+        """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
+        return self.edges != "SSSS"
+
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
         if contact_radius is None:

@@ -22,8 +22,11 @@ from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
 if TYPE_CHECKING:
     from .plate import Plate
 
-__all__ = ["kirchhoff_eigenvalues", "mindlin_flexural", "navier_frequencies", "navier_modes",
-           "navier_pairs"]
+__all__ = ["kirchhoff_eigenvalues", "mindlin_flexural", "navier_frequencies", "navier_mode_count",
+           "navier_modes", "navier_pairs"]
+
+#: Half-wave numbers m counted at once by :func:`navier_mode_count` (bounds its memory).
+COUNT_CHUNK = 65536
 
 
 def kirchhoff_eigenvalues(plate: Plate, m, n):
@@ -181,6 +184,37 @@ def navier_pairs(plate: Plate, max_frequency):
     offsets = np.repeat(np.cumsum(n_counts) - n_counts, n_counts)
     n_pairs = np.arange(m_pairs.size, dtype=np.int64) - offsets + 1
     return m_pairs, n_pairs
+
+
+def navier_mode_count(plate: Plate, max_frequency: float, limit: int | None = None) -> int:
+    """Number of half-wave pairs (m, n) with ω_mn ≤ ``max_frequency`` [rad/s], unbuilt.
+
+    The count of :func:`navier_pairs` by the same searches, without forming the pairs:
+    the largest n for :data:`COUNT_CHUNK` values of m at a time, summed. Memory stays
+    below ~10 MB whatever the count. Once the count exceeds ``limit`` it stops and
+    returns a lower bound above ``limit`` (the pairs (m, 1) and (1, n), or the square of
+    pairs up to the largest (k, k), alone bound it from below, so a cut-off far beyond the
+    limit costs only three scalar searches).
+    """
+    def frequency(m, n):
+        return navier_frequencies(plate, np.asarray(m, float), np.asarray(n, float))
+
+    if frequency(1, 1) > max_frequency:
+        return 0
+    m_count = int(_last_index_within(lambda k: frequency(k, np.ones_like(k)), 1, max_frequency)[0])
+    n_count = int(_last_index_within(lambda k: frequency(np.ones_like(k), k), 1, max_frequency)[0])
+    diagonal = int(_last_index_within(lambda k: frequency(k, k), 1, max_frequency)[0])
+    bound = max(m_count + n_count - 1, diagonal**2)
+    if limit is not None and bound > limit:
+        return bound
+    total = 0
+    for start in range(1, m_count + 1, COUNT_CHUNK):
+        m_values = np.arange(start, min(start + COUNT_CHUNK, m_count + 1), dtype=np.int64)
+        total += int(np.sum(_last_index_within(lambda k: frequency(m_values, k), m_values.size,
+                                               max_frequency)))
+        if limit is not None and total > limit:
+            break
+    return total
 
 
 def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2) -> None:
