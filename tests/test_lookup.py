@@ -196,7 +196,7 @@ def test_lookup_case_is_right_or_refuses(kind):
 
 
 @pytest.mark.parametrize("old, new, expected", [
-    ('law = "linear"\nstiffness = 1e7', 'law = "hertz"', "contact law 'hertz'"),
+    ('law = "linear"\nstiffness = 1e7', 'law = "yigit-christoforou"', "contact law 'yigit-christoforou'"),
     ('theory = "euler"', 'theory = "euler"\nsupports = "cc"', "supports 'cc'"),
     ('theory = "euler"', 'theory = "euler"\nimpact_position = 0.1', "mid-span"),
     ('theory = "euler"', 'theory = "timoshenko"', "slenderness 25"),
