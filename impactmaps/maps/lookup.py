@@ -25,6 +25,7 @@ from scipy.interpolate import RegularGridInterpolator
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .regimes import classify, quasi_static_peak
+from .structures import structure_from_name
 from .sweep import MAP_LAWS, map_law
 
 __all__ = ["SHIPPED_MAPS", "map_file_stem", "LookupResult", "load_shipped_map", "require_map_law", "lookup",
@@ -369,7 +370,38 @@ def map_for_case(case) -> tuple[str, str]:
             refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
                    f"{SHIPPED_SLENDERNESS:g}; the thin limit is the "
                    f"{'euler' if structure == 'beam' else 'kirchhoff'} map)")
+    reference = _family_groups(structure_from_name(SHIPPED_MAPS[(structure, theory)]).build())
+    for name, value in _family_groups(target).items():
+        if not (same(value, reference[name]) if reference[name] else value == 0.0):
+            refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
+                   "another Poisson ratio of a shear-deformable target or structural damping is another family)")
     return structure, theory
+
+
+def _family_groups(target) -> dict:
+    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
+
+    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
+    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
+    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
+    undamped).
+    """
+    groups = {"damping_ratio": float(target.damping_ratio)}
+    if target.structure == "beam":
+        if target.theory != "euler":
+            span = target.length
+            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
+            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
+        return groups
+    groups["D22/D11"] = target.D22 / target.D11
+    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
+    if target.theory == "mindlin":
+        side = target.length_x
+        groups["D12/D11"] = target.D12 / target.D11
+        for name in ("A44", "A55"):
+            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
+        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
+    return groups
 
 
 def lookup_case(case) -> dict:
