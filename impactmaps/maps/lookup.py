@@ -254,17 +254,20 @@ def _bracket(grid: np.ndarray, values: np.ndarray):
     return np.where(exact, upper, lower), upper
 
 
-def design_formula(loss_factor, relative_stiffness, structure: str):
+def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
     The larger of the infinite-structure peak (exact until waves return) and the
     quasi-static peak. Exact in the local, infinite-structure and quasi-static regimes
     by construction; in the transition it misses the re-impact peaks. Its error over
-    the shipped maps is tabulated by ``validation/lookup_error.py``.
+    the shipped maps is tabulated by ``validation/lookup_error.py``. With
+    ``law="hertz"`` the same with the Hertz asymptotes over (ζ_h, λ_h), in F_max/F_hs
+    (not closed forms: each is an asymptote run, :mod:`impactmaps.maps.hertz_points`).
     """
     from .regimes import infinite_structure_peak
 
-    return np.maximum(infinite_structure_peak(loss_factor, structure), quasi_static_peak(relative_stiffness))
+    return np.maximum(infinite_structure_peak(loss_factor, structure, law),
+                      quasi_static_peak(relative_stiffness, law))
 
 
 def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=None, digits: int = 3) -> str:
