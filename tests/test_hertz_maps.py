@@ -21,7 +21,7 @@ from impactmaps.cli import main
 from impactmaps.contact import HertzContact
 from impactmaps.hertz_similarity import realise_hertz, unit_speed_stiffness
 from impactmaps.maps.hertz_points import hertz_asymptote_peak, solve_hertz_points
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup, lookup_case, require_map_law
+from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, require_map_law
 from impactmaps.maps.regimes import classify
 from impactmaps.maps.store import StoreMismatchError
 from impactmaps.maps.structures import MapStructure, structure_from_name
@@ -133,62 +133,6 @@ def test_the_sweep_point_runs_at_unit_speed():
     assert row["peak_time_normalised"] == pytest.approx(1.47, rel=0.05)  # half-space: 1.4716 t*
 
 
-def _hertz_case(rng, kind):
-    """A random physical Hertz case on a shipped family: random size and aluminium or steel
-    target (ν = 0.3 both: the Kirchhoff/Euler families do not depend on ν anyway), a steel
-    sphere, (ζ_h, λ_h) drawn over slightly more than the map's range and realised as the
-    impactor mass and speed (so some cases fall outside the map)."""
-    from impactmaps.cases import parse_case
-    from impactmaps.materials import material
-
-    metal = rng.choice(["structural-steel", "aluminium-6061-t6"])
-    if kind == "beam":
-        length, width, height = rng.uniform(0.2, 1.0), rng.uniform(0.01, 0.05), rng.uniform(0.005, 0.03)
-        target = im.Beam.rectangular(length, width, height, material(metal), theory="euler")
-        table = (f'type = "beam"\nlength = {length}\nwidth = {width}\nheight = {height}\n'
-                 f'material = "{metal}"\ntheory = "euler"\nsupports = "ss"')
-    else:
-        side, thickness = rng.uniform(0.1, 0.6), rng.uniform(0.001, 0.01)
-        target = im.Plate.isotropic(side, side, thickness, material(metal))
-        table = (f'type = "plate"\nlength_x = {side}\nlength_y = {side}\nthickness = {thickness}\n'
-                 f'material = "{metal}"\ntheory = "kirchhoff"')
-    sphere = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nmass = 1.0\nvelocity = 1.0\n'
-              f'[target]\n{table}\n[contact]\nlaw = "hertz"\n')
-    law = parse_case(sphere).law
-    zeta_h, lambda_h = 10 ** rng.uniform(-2.5, 2.2), 10 ** rng.uniform(-1.5, 1.5)
-    realised = realise_hertz(target, zeta_h, lambda_h, law)
-    return parse_case(sphere.replace("mass = 1.0", f"mass = {realised.mass!r}")
-                      .replace("velocity = 1.0", f"velocity = {realised.velocity!r}"))
-
-
-@pytest.mark.parametrize("kind", ["beam", "plate"])
-def test_lookup_case_with_hertz_contact_is_right_or_refuses(kind):
-    """`lookup --case` on random physical Hertz cases of the shipped families gives the peak
-    force of `simulate` within its stated band (plus the direct run's own ≤ 1e-3 normalised
-    error), or refuses a case whose ζ_h or λ_h lies outside the map."""
-    import warnings
-
-    from impactmaps.cases import run_case
-
-    rng = np.random.default_rng(21 if kind == "beam" else 22)
-    answered = 0
-    for _ in range(12):
-        case = _hertz_case(rng, kind)
-        try:
-            found = lookup_case(case)
-        except ValueError as error:
-            assert "outside the shipped map" in str(error)
-            continue
-        answered += 1
-        assert found["law"] == "hertz" and found["map"].endswith("-hertz")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # validity warnings of the absurd speeds some draws need
-            _, summary = run_case(case)
-        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= \
-            found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]
-    assert answered >= 5
-
-
 def test_lookup_case_on_the_steel_plate_hertz_example(capsys):
     """examples/steel_plate_hertz.toml (Mindlin plate, a/h = 62.5, λ_h = 0.043): no shipped
     map describes it (the Mindlin map is for a/h = 20; the Kirchhoff map would answer for
@@ -252,3 +196,21 @@ def test_chart_command_with_the_hertz_law(capsys, tmp_path):
         assert map_law(stored) == "hertz"
     assert main(args) == 2
     assert "changed: law" in capsys.readouterr().err
+
+
+def test_sweep_config_with_the_hertz_law(capsys, tmp_path):
+    """`impactmaps sweep` takes ``law = "hertz"`` at the top of the TOML file; another law
+    exits 2 with one line naming the key."""
+    config = tmp_path / "hertz.toml"
+    config.write_text('output = "out"\nlaw = "hertz"\n[grid]\nzeta = [0.1, 1.0]\nlambda = [1.0]\n'
+                      '[[structure]]\nkind = "beam"\n')
+    assert main(["sweep", str(config), "--quiet", "--workers", "1", "--json"]) == 0
+    import xarray as xr
+
+    with xr.open_dataset(json.loads(capsys.readouterr().out)["netcdf"], engine="scipy") as stored:
+        assert map_law(stored) == "hertz"
+        assert np.all(stored["fmax_normalised"].values <= 1.0)
+    config.write_text(config.read_text().replace('"hertz"', '"stronge"'))
+    assert main(["sweep", str(config), "--quiet", "--json"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "law = 'stronge' is invalid" in err[0]

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import functools
 import warnings
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -30,10 +30,22 @@ from ..targets.plate_navier import warn_beyond_thickness_shear
 from .accuracy import AccuracyControl, controlled_point, exact_point
 from .structures import BasisTable, MapStructure
 
-__all__ = ["HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_summary", "solve_hertz_points"]
+__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_summary", "solve_hertz_points"]
 
 #: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).
 HERTZ_TIME_KEYS = ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised")
+
+#: What the scaled variables of a Hertz map mean (the ``long_name`` of its variables).
+HERTZ_DESCRIPTIONS = {
+    "fmax_normalised": "maximum contact force / F_hs over all impacts (F_hs = K_h α_m^1.5, the Hertz half-space peak)",
+    "contact_time_normalised": "total contact time / t* (t* = α_m/V0)",
+    "first_contact_normalised": "duration of the first contact / t*",
+    "peak_time_normalised": "time of the maximum force / t*",
+    "reflection_time_normalised": "d²/(c t*): first wave return to the impact point (d: distance to nearest "
+                                  "support/edge, c = sqrt(bending stiffness / mass per length or area))",
+}
+#: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
+HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")
 
 #: The structure whose target stands for each kind in the Hertz asymptotes (the infinite
 #: plate needs ρh and D*, the infinite beam m' and EI; the loss factor is defined on them).
@@ -170,7 +182,7 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
         plus ``zeta``, ``lambda_``.
     """
-    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, METHODS, MAX_MODES, basis_table, frequency_cap
+    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, MAX_MODES, METHODS, basis_table, frequency_cap
 
     target = structure.build()
     cap = frequency_cap(structure)

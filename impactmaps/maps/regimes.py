@@ -35,8 +35,8 @@ from ..targets.options import STRUCTURE_KINDS
 
 __all__ = ["REGIMES", "classify", "infinite_structure_peak", "quasi_static_peak"]
 
-#: The contact laws whose asymptotes :func:`classify` knows (the map laws).
-REGIME_LAWS = ("linear", "hertz")
+#: The contact laws a map can be swept with and whose asymptotes :func:`classify` knows.
+MAP_LAWS = ("linear", "hertz")
 
 REGIMES = ("local", "infinite-structure", "transition", "quasi-static")
 
@@ -47,7 +47,7 @@ def quasi_static_peak(relative_stiffness, law: str = "linear"):
     With ``law="hertz"``, F_max/F_hs of the Hertz law in series with the static
     stiffness at λ_h (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
     """
-    require_choice("law", law, REGIME_LAWS)
+    require_choice("law", law, MAP_LAWS)
     if law == "hertz":
         from .hertz_points import hertz_asymptote_peak
 
@@ -67,7 +67,7 @@ def infinite_structure_peak(loss_factor, structure: str, law: str = "linear"):
     from ..targets import target_class
 
     require_choice("structure", structure, STRUCTURE_KINDS)
-    require_choice("law", law, REGIME_LAWS)
+    require_choice("law", law, MAP_LAWS)
     if law == "hertz":
         from .hertz_points import hertz_asymptote_peak
 

@@ -30,7 +30,8 @@ from ..jsonio import dumps
 from ..solvers.modal import ModalSettings, simulate
 from ..targets.plate_navier import warn_beyond_thickness_shear
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
-from .regimes import classify
+from .hertz_points import HERTZ_AXES, HERTZ_DESCRIPTIONS, solve_hertz_points
+from .regimes import MAP_LAWS, classify
 from .store import (
     SweepInterrupted,
     fingerprint,
@@ -62,27 +63,17 @@ RESULT_VARIABLES = {
     "status": ("i1", -1, "1", "converged, refined, sensitive or asymptotic: see flag_meanings"),
 }
 
-#: Contact laws a map can be swept with. The law is part of a map's identity: it is in
-#: the fingerprint (for every law but the linear one, whose fingerprints predate it), in
-#: the ``contact_law`` attribute and in the variables' descriptions; :func:`map_law` reads it.
-MAP_LAWS = ("linear", "hertz")
-
-#: What the scaled variables of a Hertz map mean (its force and time scales differ).
-_HERTZ_DESCRIPTIONS = {
-    "fmax_normalised": "maximum contact force / F_hs over all impacts (F_hs = K_h α_m^1.5, the Hertz half-space peak)",
-    "contact_time_normalised": "total contact time / t* (t* = α_m/V0)",
-    "first_contact_normalised": "duration of the first contact / t*",
-    "peak_time_normalised": "time of the maximum force / t*",
-    "reflection_time_normalised": "d²/(c t*): first wave return to the impact point (d: distance to nearest support/edge, c = sqrt(bending stiffness / mass per length or area))",
-}
-_AXES = {
-    "linear": ("relative stiffness K_st/K", "loss factor"),
-    "hertz": ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)"),
-}
+#: The (λ, ζ) axis descriptions of a map of each law.
+_AXES = {"linear": ("relative stiffness K_st/K", "loss factor"), "hertz": HERTZ_AXES}
 
 
 def map_law(dataset: xr.Dataset) -> str:
-    """The contact law a map dataset was swept with (a map without the attribute is linear)."""
+    """The contact law a map dataset was swept with (a map without the attribute is linear).
+
+    The law is part of a map's identity: it is in the fingerprint (for every law of
+    :data:`MAP_LAWS` but the linear one, whose fingerprints predate it), in the
+    ``contact_law`` attribute and in the variables' descriptions.
+    """
     return str(dataset.attrs.get("contact_law", "linear"))
 
 
@@ -233,16 +224,9 @@ def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: f
     return run
 
 
-def _solve_hertz_points(structure, points, settings):
-    """:func:`~impactmaps.maps.hertz_points.solve_hertz_points` (imported in the worker)."""
-    from .hertz_points import solve_hertz_points
-
-    return solve_hertz_points(structure, points, settings)
-
-
 def _point_solver(law: str):
     """The per-chunk worker of a map law (a module-level function: it pickles for processes)."""
-    return solve_points if law == "linear" else _solve_hertz_points
+    return solve_points if law == "linear" else solve_hertz_points
 
 
 # -- the orchestration ---------------------------------------------------------------------
@@ -250,7 +234,7 @@ def _empty_dataset(structures, lambdas, zetas, description, digest, law: str = "
     shape = (len(structures), len(lambdas), len(zetas))
     data_vars = {}
     for name, (dtype, missing, units, text) in RESULT_VARIABLES.items():
-        text = _HERTZ_DESCRIPTIONS.get(name, text) if law == "hertz" else text
+        text = HERTZ_DESCRIPTIONS.get(name, text) if law == "hertz" else text
         data_vars[name] = (("structure", "lambda_", "zeta"), np.full(shape, missing, dtype=dtype),
                            {"units": units, "long_name": text})
     data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
