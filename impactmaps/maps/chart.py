@@ -179,8 +179,9 @@ _HERTZ_LABELS = {
     "lambda": "Hertz relative stiffness λ_h = K_st/K_eq",
     "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
 }
-#: ζ_h points of the drawn Hertz asymptotes (each one an ODE or convolution run).
-HERTZ_ASYMPTOTE_POINTS = 40
+#: Most ζ_h points of a drawn Hertz asymptote (each one an ODE or convolution run; taken
+#: from the chart's grid, whose asymptote values the regime classification has cached).
+HERTZ_ASYMPTOTE_POINTS = 50
 
 
 def _hertz_axes(ax, strip, dataset) -> None:
@@ -188,7 +189,7 @@ def _hertz_axes(ax, strip, dataset) -> None:
     from .hertz_points import hertz_asymptote_peak
 
     zeta = dataset["zeta"].values
-    dense = np.geomspace(zeta[0], zeta[-1], HERTZ_ASYMPTOTE_POINTS)
+    dense = zeta[np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))]
     kinds = sorted({str(kind) for kind in dataset["kind"].values}, reverse=True)
     for kind in kinds:
         ax.plot(dense, hertz_asymptote_peak("infinite", kind, dense), color="0.55", lw=3.0, alpha=0.6,
