@@ -33,8 +33,8 @@ from pathlib import Path
 import numpy as np
 
 from ..solvers.modal import ModalSettings
-from .structures import MapStructure
 from .regimes import MAP_LAWS
+from .structures import MapStructure
 
 __all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
