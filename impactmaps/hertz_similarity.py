@@ -68,6 +68,7 @@ __all__ = [
     "HertzRealisation",
     "hertz_numbers",
     "realise_hertz",
+    "unit_speed_stiffness",
     "zener_parameter",
 ]
 
@@ -197,6 +198,32 @@ def realise_hertz(target, zeta_h, lambda_h, law) -> HertzRealisation:
     mass = float(target.impactor_mass_for(float(zeta_h), equivalent))
     velocity = (equivalent / (mass**0.2 * (0.8 * stiffness) ** 0.8)) ** 2.5
     return HertzRealisation(mass, velocity, hertz_numbers(target, stiffness, mass, velocity))
+
+
+def unit_speed_stiffness(target, zeta_h, lambda_h) -> float:
+    """The Hertz stiffness K_h [N/m^1.5] for which (ζ_h, λ_h) on ``target`` is struck at 1 m/s.
+
+    Any K_h realises the numbers (similarity); the map sweeps take this one so that every
+    point runs at V0 = 1 m/s, whatever ζ_h and λ_h (a fixed K_h would need speeds from
+    1e-9 to 1e6 m/s over the map range). From :func:`realise_hertz`, V0 = 1 is
+    ``(4K_h/5)^{4/5} = K_eq m^{-1/5}``, i.e. ``K_h = (5/4) (K_eq m^{-1/5})^{5/4}``.
+
+    Parameters
+    ----------
+    target : Plate or Beam
+        Needs ``impactor_mass_for(ζ, K)`` and ``static_compliance()``.
+    zeta_h, lambda_h : float
+        Hertz loss factor and relative stiffness, > 0 [-].
+
+    Returns
+    -------
+    float
+    """
+    require_positive("zeta_h", zeta_h)
+    require_positive("lambda_h", lambda_h)
+    equivalent = 1.0 / (float(target.static_compliance()) * float(lambda_h))
+    mass = float(target.impactor_mass_for(float(zeta_h), equivalent))
+    return 1.25 * (equivalent * mass**-0.2) ** 1.25
 
 
 def zener_parameter(plate, law, mass, velocity) -> float:

@@ -5,11 +5,12 @@ square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ from 0.005 to 100 at 20
 per decade, λ from 0.05 to 20 at 10 points per decade; default solver settings.
 Resumable: re-running continues an interrupted build.
 
-    python validation/build_default_maps.py [--quiet] [--only NAME …] [--out-dir DIR]
+    python validation/build_default_maps.py [--quiet] [--only NAME …] [--out-dir DIR] [--law hertz]
     python validation/build_default_maps.py --smoke    # 3 ζ × 2 λ per map, inline, into a temporary directory
 
 With ``--out-dir`` the maps go there (and the resumable sweep stores into its ``work/``),
-not into the package.
+not into the package. ``--law hertz`` builds the Hertz maps over the Hertz numbers
+(ζ_h, λ_h) on the same grid (files ``NAME-hertz.nc``, :mod:`impactmaps.maps.hertz_points`).
 """
 
 from __future__ import annotations
@@ -19,10 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
-from impactmaps.maps.lookup import SHIPPED_MAPS
+from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import DEFAULT_STRUCTURES
-from impactmaps.maps.sweep import sweep
+from impactmaps.maps.sweep import MAP_LAWS, sweep
 
 from _script_options import parse
 
@@ -36,6 +37,7 @@ LAMBDAS = np.geomspace(0.05, 20.0, 27)  # 10 per decade
 def _options(parser) -> None:
     parser.add_argument("--quiet", action="store_true")
     parser.add_argument("--only", nargs="*", default=None, help="build only these map names")
+    parser.add_argument("--law", choices=MAP_LAWS, default="linear", help="contact law of the maps (default linear)")
 
 
 def main(argv=None) -> None:
@@ -46,17 +48,19 @@ def main(argv=None) -> None:
     for structure in DEFAULT_STRUCTURES:
         if structure.name not in wanted:
             continue
+        stem = map_file_stem(structure.name, args.law)
         start = time.perf_counter()
-        dataset = sweep([structure], zetas, lambdas, path=work / f"{structure.name}.sweep.nc",
-                        progress=not (args.quiet or args.smoke), max_workers=1 if args.smoke else None)
+        dataset = sweep([structure], zetas, lambdas, path=work / f"{stem}.sweep.nc",
+                        progress=not (args.quiet or args.smoke), max_workers=1 if args.smoke else None,
+                        law=args.law)
         elapsed = time.perf_counter() - start
         # log-times for interpolation of the regime criteria
         dataset["log_peak_time"] = np.log(dataset["peak_time_normalised"])
         dataset["log_reflection_time"] = np.log(dataset["reflection_time_normalised"])
         dataset.attrs["build_seconds"] = round(elapsed, 1)
         shipped = dataset.drop_vars("regime")
-        save_atomic(shipped, args.out_dir / f"{structure.name}.nc")
-        print(f"{structure.name}: {dataset['done'].sum().item()} points in {elapsed:.1f} s")
+        save_atomic(shipped, args.out_dir / f"{stem}.nc")
+        print(f"{stem}: {dataset['done'].sum().item()} points in {elapsed:.1f} s")
 
 
 if __name__ == "__main__":

@@ -6,7 +6,12 @@ directly (the same solver and settings as the map) and compared with
 tables (used in the README: errors per map, and the design formula's error per regime,
 i.e. where it holds) and writes validation/lookup_error.csv.
 
-    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR]
+With ``--law hertz`` the same for the shipped Hertz maps over (ζ_h, λ_h)
+(:mod:`impactmaps.maps.hertz_points`; the design formula is then the larger of the
+Hertz infinite-structure and quasi-static peaks), written to
+validation/lookup_error_hertz.csv.
+
+    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR] [--law hertz]
     python validation/lookup_error.py --smoke    # 3 points per map (seconds)
 """
 
@@ -17,9 +22,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
+from impactmaps.maps.hertz_points import solve_hertz_points
+from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
 from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.sweep import MAP_LAWS, solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -27,20 +33,22 @@ from _script_options import parse
 HERE = Path(__file__).resolve().parent
 
 
-def measure(structure: str, theory: str, points: int, seed: int) -> pd.DataFrame:
+def measure(structure: str, theory: str, points: int, seed: int, law: str = "linear") -> pd.DataFrame:
     """Random-point comparison of lookup and design formula against direct simulation."""
-    dataset = load_shipped_map(structure, theory)
+    dataset = load_shipped_map(structure, theory, law)
     rng = np.random.default_rng(seed)
     zeta_range = np.log([dataset["zeta"].min().item(), dataset["zeta"].max().item()])
     lambda_range = np.log([dataset["lambda_"].min().item(), dataset["lambda_"].max().item()])
     zetas = np.exp(rng.uniform(*zeta_range, points))
     lambdas = np.exp(rng.uniform(*lambda_range, points))
     name = SHIPPED_MAPS[(structure, theory)]
-    rows = solve_points(structure_from_name(name), list(zip(zetas, lambdas)), ModalSettings())
+    solve = solve_points if law == "linear" else solve_hertz_points
+    rows = solve(structure_from_name(name), list(zip(zetas, lambdas)), ModalSettings())
     direct = np.array([r["fmax_normalised"] for r in rows])
     direct_error = np.array([r["fmax_error"] for r in rows])
-    looked = lookup(zetas, lambdas, structure=structure, theory=theory)
-    formula = design_formula(zetas, lambdas, structure)
+    looked = lookup(zetas, lambdas, structure=structure, theory=theory, law=law)
+    formula = design_formula(zetas, lambdas, structure, law)
+    name = map_file_stem(name, law)
     return pd.DataFrame({
         "map": name, "zeta": zetas, "lambda": lambdas, "direct": direct,
         "lookup": looked.fmax_normalised, "formula": formula, "regime": looked.regime,
@@ -52,6 +60,7 @@ def _options(parser) -> None:
     parser.add_argument("--points", type=int, default=None, help="random points per map (default 200; smoke 3)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--maps", nargs="*", default=None)
+    parser.add_argument("--law", choices=MAP_LAWS, default="linear", help="contact law of the maps (default linear)")
 
 
 def main(argv=None) -> None:
@@ -60,11 +69,12 @@ def main(argv=None) -> None:
         args.points = 3 if args.smoke else 200
     frames = []
     for (structure, theory), name in SHIPPED_MAPS.items():
-        if args.maps and name not in args.maps:
+        if args.maps and name not in args.maps and map_file_stem(name, args.law) not in args.maps:
             continue
-        frames.append(measure(structure, theory, args.points, args.seed))
+        frames.append(measure(structure, theory, args.points, args.seed, args.law))
     table = pd.concat(frames, ignore_index=True)
-    table.to_csv(args.out_dir / "lookup_error.csv", index=False)
+    table.to_csv(args.out_dir / ("lookup_error.csv" if args.law == "linear" else f"lookup_error_{args.law}.csv"),
+                 index=False)
     print("| map | points | lookup: median abs error | 95th pct | max | band covers error | median band | "
           "design formula: median | 95th pct | max |")
     print("|---|---|---|---|---|---|---|---|---|---|")

@@ -55,6 +55,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
     from ..maps.lookup import SHIPPED_MAPS
+    from ..maps.sweep import MAP_LAWS
     from ..targets.options import STRUCTURE_KINDS
 
     parser = Parser(prog="impactmaps", description=__doc__.splitlines()[0])
@@ -73,8 +74,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--zeta-count", type=int, default=200, help="log-spaced ζ values per curve (≥ 2, default 200)")
     p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
-    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid")
+    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--law", choices=MAP_LAWS, default="linear",
+                   help="contact law: linear (axes ζ, λ, F/(m V0 ω)) or hertz (axes ζ_h, λ_h, F/F_hs); default linear")
 
     p = add("point", "simulate one (ζ, λ) point on a beam or plate", cmd_point)
     _point_arguments(p)
@@ -102,6 +105,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
     p.add_argument("--zeta", type=float)
     p.add_argument("--lambda", dest="lambda_", type=float)
+    p.add_argument("--law", choices=MAP_LAWS, default=None,
+                   help="contact law of the map: linear (default; ζ, λ) or hertz (the Hertz numbers ζ_h, λ_h)")
     p.add_argument("--case", type=Path, help="a physical case file: the map that describes it (or a refusal), "
                    "the peak force in newtons with its error band")
 

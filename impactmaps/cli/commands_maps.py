@@ -25,7 +25,7 @@ def cmd_chart(args) -> dict:
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
     paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
                        zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
-                       max_workers=args.workers, overwrite=args.overwrite)
+                       max_workers=args.workers, overwrite=args.overwrite, law=args.law)
     return {key: str(value) for key, value in paths.items()}
 
 
@@ -256,12 +256,13 @@ def cmd_lookup(args) -> dict:
         from ..cases import load_case
         from ..maps.lookup import lookup_case
 
-        from ..maps.lookup import map_for_case
+        from ..maps.lookup import case_map_law, map_for_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
         case = load_case(args.case)
         structure, theory = map_for_case(case)
-        for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory)):
+        for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory),
+                                      ("--law", args.law, case_map_law(case))):
             if given is not None and given != wanted:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
@@ -270,7 +271,9 @@ def cmd_lookup(args) -> dict:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
-    found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory)
-    return {"fmax_normalised": found.fmax_normalised, "regime": found.regime, "map": found.map_name}
+    law = args.law or "linear"
+    found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=law)
+    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
+            "regime": found.regime, "map": found.map_name, "law": law}
 
 

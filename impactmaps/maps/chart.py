@@ -1,4 +1,10 @@
-"""The main job: the normalised maximum-force chart (seed 001 Figure 2) with its data."""
+"""The main job: the normalised maximum-force chart (seed 001 Figure 2) with its data.
+
+``law="hertz"`` draws the same chart for the Hertz law: axes ζ_h, λ_h and
+F̄max = F_max/F_hs (:mod:`impactmaps.hertz_similarity`), with the Hertz asymptotes
+(Zener's infinite plate, the infinite beam, the quasi-static spring) of
+:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`.
+"""
 
 from __future__ import annotations
 
@@ -69,6 +75,7 @@ def make_chart(
     progress: bool = True,
     max_workers: int | None = None,
     overwrite: bool = False,
+    law: str = "linear",
 ) -> dict:
     """Compute and draw the F̄max(ζ, λ) chart for SS beams and square plates.
 
@@ -92,7 +99,11 @@ def make_chart(
     max_workers : int, optional
         Local worker processes (default: all cores).
     overwrite : bool
-        Replace an ``fmax_map.nc`` made with another grid instead of refusing it.
+        Replace an ``fmax_map.nc`` made with another grid (or another law) instead of
+        refusing it.
+    law : {"linear", "hertz"}
+        Contact law (:data:`impactmaps.maps.sweep.MAP_LAWS`): the linear chart over (ζ, λ)
+        or the Hertz chart over (ζ_h, λ_h) with F̄max = F_max/F_hs.
 
     Returns
     -------
@@ -114,7 +125,7 @@ def make_chart(
     lambdas = np.asarray(DEFAULT_CHART_LAMBDAS if lambdas is None else lambdas, dtype=float)
     paths = {"netcdf": out / "fmax_map.nc"}
     dataset = sweep(structures, zetas, lambdas, settings=settings, path=paths["netcdf"], progress=progress,
-                    max_workers=max_workers, overwrite=overwrite)
+                    max_workers=max_workers, overwrite=overwrite, law=law)
     out.mkdir(parents=True, exist_ok=True)
 
     paths["csv"] = out / "fmax_map.csv"
@@ -122,9 +133,11 @@ def make_chart(
 
     figure, (ax, strip) = plt.subplots(2, 1, figsize=(9, 9), sharex=True,
                                        gridspec_kw={"height_ratios": [3, 1.3]})
-    plot_fmax_chart(dataset, ax=ax)
-    ax.set_xlabel("")
+    plot_fmax_chart(dataset, ax=ax, asymptotes=law == "linear")
     plot_regime_strip(dataset, ax=strip)
+    if law == "hertz":
+        _hertz_axes(ax, strip, dataset)
+    ax.set_xlabel("")
     figure.tight_layout()
     paths["png"] = out / "fmax_chart.png"
     paths["svg"] = out / "fmax_chart.svg"
@@ -134,7 +147,12 @@ def make_chart(
 
     for name in dataset["structure"].values:
         figure, ax = plt.subplots(figsize=(7, 5))
-        plot_regime_map(dataset, str(name), ax=ax)
+        # the smooth map re-classifies with the linear criteria: Hertz maps show their points
+        plot_regime_map(dataset, str(name), ax=ax, smooth=law == "linear")
+        if law == "hertz":
+            ax.set_xlabel(_HERTZ_LABELS["zeta"])
+            ax.set_ylabel(_HERTZ_LABELS["lambda"])
+            ax.set_title(f"Impact regimes, Hertz contact: {name}")
         figure.tight_layout()
         paths[f"regime_map_{name}"] = out / f"regime_map_{name}.png"
         figure.savefig(paths[f"regime_map_{name}"], dpi=120)
@@ -143,9 +161,48 @@ def make_chart(
     coarse_zetas = [z for z in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100) if zetas[0] <= z <= zetas[-1]]
     tables = [markdown_table(dataset, str(name), zetas=coarse_zetas) for name in dataset["structure"].values]
     paths["markdown"] = out / "lookup_table.md"
-    paths["markdown"].write_text(
-        "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
-        "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
-        "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n" + "\n\n".join(tables) + "\n"
-    )
+    paths["markdown"].write_text(_TABLE_HEADERS[law] + "\n\n".join(tables) + "\n")
     return paths
+
+
+_TABLE_HEADERS = {
+    "linear": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
+              "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
+              "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n",
+    "hertz": "# Normalised maximum force F̄max = Fmax/F_hs, Hertz contact\n\n"
+             "Hertz contact F = K_h α^1.5, impact at the centre, simply supported; rows λ_h, columns ζ_h "
+             "(impactmaps.hertz_similarity); nearest computed grid point.\n"
+             "Peak force in newtons: F̄max · K_h α_m^1.5 with α_m = (5 m_i V0²/(4 K_h))^0.4.\n\n",
+}
+_HERTZ_LABELS = {
+    "zeta": "Hertz loss factor ζ_h = ζ(m, K_eq), K_eq = m V0²/α_m²",
+    "lambda": "Hertz relative stiffness λ_h = K_st/K_eq",
+    "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
+}
+#: Most ζ_h points of a drawn Hertz asymptote (each one an ODE or convolution run; taken
+#: from the chart's grid, whose asymptote values the regime classification has cached).
+HERTZ_ASYMPTOTE_POINTS = 50
+
+
+def _hertz_axes(ax, strip, dataset) -> None:
+    """The Hertz asymptotes and labels on a chart drawn by ``plot_fmax_chart(asymptotes=False)``."""
+    from .hertz_points import hertz_asymptote_peak
+
+    zeta = dataset["zeta"].values
+    dense = zeta[np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))]
+    kinds = sorted({str(kind) for kind in dataset["kind"].values}, reverse=True)
+    for kind in kinds:
+        ax.plot(dense, hertz_asymptote_peak("infinite", kind, dense), color="0.55", lw=3.0, alpha=0.6,
+                ls="-" if kind == "plate" else "--", zorder=1,
+                label="infinite plate (Zener)" if kind == "plate" else "infinite beam")
+    # each λ in the colour of its curve (plot_fmax_chart labels one line per λ)
+    colours = {line.get_label(): line.get_color() for line in ax.get_lines()}
+    for lam in dataset["lambda_"].values:
+        colour = colours.get(f"λ = {lam:g}", "0.3")
+        ax.axhline(hertz_asymptote_peak("quasi-static", "plate", lambda_h=float(lam)), color=colour, lw=0.9,
+                   ls=":", zorder=1)
+    ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\bar{F}^{5/3} + (25/16)\bar{F}^2/\lambda_h = 1$")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    ax.set_ylabel(_HERTZ_LABELS["fmax"])
+    ax.set_title("Normalised maximum force, Hertz contact: plates solid, beams dashed")
+    strip.set_xlabel(_HERTZ_LABELS["zeta"])

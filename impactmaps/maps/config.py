@@ -3,6 +3,7 @@
 Example::
 
     output = "my-sweep"                 # directory (relative to the config file)
+    law = "linear"                      # or "hertz": axes ζ_h, λ_h, F_max/F_hs
     [grid]
     zeta = { min = 0.01, max = 10, count = 30 }      # or an explicit list
     lambda = [0.1, 1.0, 10.0]
@@ -32,11 +33,12 @@ from pathlib import Path
 import numpy as np
 
 from ..solvers.modal import ModalSettings
+from .regimes import MAP_LAWS
 from .structures import MapStructure
 
 __all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
-_TOP_KEYS = {"output", "grid", "solver", "structure"}
+_TOP_KEYS = {"output", "law", "grid", "solver", "structure"}
 _STRUCTURE_KEYS = {f.name for f in fields(MapStructure)}
 _SOLVER_KEYS = {f.name for f in fields(ModalSettings)}
 
@@ -125,7 +127,7 @@ def load_sweep_config(path):
     Returns
     -------
     tuple
-        ``(structures, zetas, lambdas, settings, output_dir)``.
+        ``(structures, zetas, lambdas, settings, output_dir, law)``.
     """
     path = Path(path)
     with open(path, "rb") as handle:
@@ -159,7 +161,10 @@ def load_sweep_config(path):
     output = config.get("output", path.stem + "-output")
     if not isinstance(output, str) or not output:
         raise ValueError(f"output = {output!r} is invalid: give a directory name")
-    return structures, zetas, lambdas, settings, path.parent / output
+    law = config.get("law", "linear")
+    if law not in MAP_LAWS:
+        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(MAP_LAWS)}")
+    return structures, zetas, lambdas, settings, path.parent / output, law
 
 
 def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
@@ -187,12 +192,12 @@ def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, ma
     from .chart import tidy_frame
     from .sweep import sweep
 
-    structures, zetas, lambdas, settings, output = load_sweep_config(path)
+    structures, zetas, lambdas, settings, output, law = load_sweep_config(path)
     if output.exists() and not output.is_dir():
         raise ValueError(f"output = {str(output)!r} is a file, not a directory")
     netcdf = output / "sweep.nc"
     dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
-                    overwrite=overwrite, max_workers=max_workers, executor=executor)
+                    overwrite=overwrite, max_workers=max_workers, executor=executor, law=law)
     csv = output / "sweep.csv"
     tidy_frame(dataset).to_csv(csv, index=False)
     return {"netcdf": netcdf, "csv": csv}

@@ -3,9 +3,13 @@
 The package ships precomputed maps (``impactmaps/maps/data/*.nc``, built by
 ``validation/build_default_maps.py``) for simply supported structures struck at the
 centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
-plates (a/h = 20). :func:`lookup` interpolates F̄max linearly in (log ζ, log λ); the
-interpolation error against direct simulation is measured by
-``validation/lookup_error.py`` and quoted in the README.
+plates (a/h = 20), each for the linear contact law (``NAME.nc``, axes ζ, λ) and for the
+Hertz law (``NAME-hertz.nc``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
+:mod:`impactmaps.hertz_similarity`). :func:`lookup` interpolates F̄max linearly in
+(log ζ, log λ); the interpolation error against direct simulation is measured by
+``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
+it was swept with (:func:`impactmaps.maps.sweep.map_law`): a Hertz map is never read as
+a linear one, nor the reverse.
 """
 
 from __future__ import annotations
@@ -21,8 +25,11 @@ from scipy.interpolate import RegularGridInterpolator
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .regimes import classify, quasi_static_peak
+from .structures import structure_from_name
+from .sweep import MAP_LAWS, map_law
 
-__all__ = ["SHIPPED_MAPS", "LookupResult", "load_shipped_map", "lookup", "lookup_case", "map_for_case",
+__all__ = ["SHIPPED_MAPS", "map_file_stem", "LookupResult", "load_shipped_map", "require_map_law", "lookup",
+           "lookup_case", "map_for_case", "case_map_law",
            "design_formula", "markdown_table"]
 
 SHIPPED_MAPS = {
@@ -31,6 +38,16 @@ SHIPPED_MAPS = {
     ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
     ("plate", "mindlin"): "plate-ssss-mindlin-s20",
 }
+
+
+def map_file_stem(structure_name: str, law: str = "linear") -> str:
+    """File name (without ``.nc``) of the shipped map of a structure for a contact law.
+
+    The linear maps keep the structure's name (``plate-ssss-kirchhoff``); a map of
+    another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
+    """
+    require_choice("law", law, MAP_LAWS)
+    return structure_name if law == "linear" else f"{structure_name}-{law}"
 
 
 @dataclass(frozen=True)
@@ -56,6 +73,9 @@ class LookupResult:
         The worst status of those four points (``sensitive`` > ``refined`` >
         ``converged``/``asymptotic``; :mod:`impactmaps.maps.accuracy`): a
         ``sensitive`` answer has no converged value, only the band.
+    law : str
+        Contact law of the map: ``"linear"`` (F̄max = F_max/(m_i V0 ω)) or ``"hertz"``
+        (F̄max = F_max/F_hs, :mod:`impactmaps.hertz_similarity`).
     """
 
     fmax_normalised: object
@@ -65,9 +85,17 @@ class LookupResult:
     map_name: str
     fmax_error: object = None
     status: object = None
+    law: str = "linear"
 
     def peak_force(self, impactor_mass, velocity, contact_stiffness):
-        """Dimensional peak force F̄max · m_i V0 ω [N] (m_i [kg], V0 [m/s], K [N/m])."""
+        """Dimensional peak force F̄max · m_i V0 ω [N] (m_i [kg], V0 [m/s], K [N/m]) of a linear map.
+
+        A Hertz map's F̄max is scaled by F_hs instead
+        (:func:`impactmaps.hertz_similarity.hertz_numbers`, ``force_scale``).
+        """
+        if self.law != "linear":
+            raise ValueError(f"peak_force scales a linear map; this lookup is from the {self.law} map "
+                             f"{self.map_name}: multiply fmax_normalised by hertz_numbers(...).force_scale")
         require_positive("impactor_mass", impactor_mass, "kg")
         require_positive("velocity", velocity, "m/s")
         require_positive("contact_stiffness", contact_stiffness, "N/m")
@@ -75,50 +103,67 @@ class LookupResult:
         return np.asarray(self.fmax_normalised) * np.asarray(impactor_mass) * np.asarray(velocity) * omega
 
 
-@functools.lru_cache(maxsize=8)
-def load_shipped_map(structure: str, theory: str) -> xr.Dataset:
-    """The shipped map for ``structure`` in {"beam", "plate"} and its ``theory``."""
+def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.Dataset:
+    """``dataset`` if it was swept with the contact law ``law``, else ``ValueError``.
+
+    A Hertz map read as a linear one (or the reverse) would give a number with the wrong
+    force scale and the wrong axes: it is refused, naming both laws.
+    """
+    require_choice("law", law, MAP_LAWS)
+    found = map_law(dataset)
+    if found != law:
+        raise ValueError(f"{name} is a map for the {found} contact law, not the {law} law: its axes and "
+                         f"force scale differ (refusing to read it as a {law} map)")
+    return dataset
+
+
+@functools.lru_cache(maxsize=16)
+def load_shipped_map(structure: str, theory: str, law: str = "linear") -> xr.Dataset:
+    """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact ``law``."""
     require_choice("structure", structure, STRUCTURE_KINDS)
     theories = [t for (s, t) in SHIPPED_MAPS if s == structure]
     require_choice("theory", theory, theories)
-    name = SHIPPED_MAPS[(structure, theory)]
+    name = map_file_stem(SHIPPED_MAPS[(structure, theory)], law)
     source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
     if not source.is_file():
         raise FileNotFoundError(
             f"shipped map {name}.nc is missing from the installation; rebuild it with "
-            "`python validation/build_default_maps.py`"
+            f"`python validation/build_default_maps.py --law {law}`"
         )
     with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return opened.load()
+        return require_map_law(opened.load(), law, f"shipped map {name}.nc")
 
 
-@functools.lru_cache(maxsize=16)
-def _interpolator(structure: str, theory: str, variable: str):
-    dataset = load_shipped_map(structure, theory)
+@functools.lru_cache(maxsize=32)
+def _interpolator(structure: str, theory: str, variable: str, law: str = "linear"):
+    dataset = load_shipped_map(structure, theory, law)
     values = dataset[variable].isel(structure=0).values
     grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
     return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
-           tolerance: float = 0.1, local_tolerance: float = 0.1) -> LookupResult:
+           tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear") -> LookupResult:
     """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
 
     Parameters
     ----------
     loss_factor, relative_stiffness : float or array_like
-        ζ and λ [-], inside the map's range (else ``ValueError`` with the range).
+        ζ and λ [-] (the Hertz numbers ζ_h, λ_h for ``law="hertz"``), inside the map's
+        range (else ``ValueError`` with the range).
     structure : {"beam", "plate"}
     theory : str
         "euler" or "timoshenko" for beams, "kirchhoff" or "mindlin" for plates.
     tolerance, local_tolerance : float
         Regime criteria (see :func:`impactmaps.maps.regimes.classify`).
+    law : {"linear", "hertz"}
+        Contact law of the map (F̄max = F_max/(m_i V0 ω), or F_max/F_hs for Hertz).
 
     Returns
     -------
     LookupResult
     """
-    dataset = load_shipped_map(structure, theory)
+    dataset = load_shipped_map(structure, theory, law)
     zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
@@ -132,17 +177,18 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
     zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
     points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
-    fmax = _interpolator(structure, theory, "fmax_normalised")(points).reshape(zeta.shape)
-    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time")(points)).reshape(zeta.shape) \
+    fmax = _interpolator(structure, theory, "fmax_normalised", law)(points).reshape(zeta.shape)
+    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time", law)(points)).reshape(zeta.shape) \
         if "log_peak_time" in dataset else None
-    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time")(points)).reshape(zeta.shape) \
+    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time", law)(points)).reshape(zeta.shape) \
         if "log_reflection_time" in dataset else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
-                      tolerance=tolerance, local_tolerance=local_tolerance)
-    error, status = _corner_accuracy(dataset, lam_c, zeta_c, structure, theory)
+                      tolerance=tolerance, local_tolerance=local_tolerance, law=law)
+    error, status = _corner_accuracy(dataset, lam_c, zeta_c, structure, theory, law)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
-    return LookupResult(fmax, regime, structure, theory, SHIPPED_MAPS[(structure, theory)], error, status)
+    return LookupResult(fmax, regime, structure, theory, map_file_stem(SHIPPED_MAPS[(structure, theory)], law),
+                        error, status, law)
 
 
 #: Severity of a status when four map points are combined (worst wins).
@@ -175,17 +221,17 @@ def interpolation_error(values: np.ndarray) -> np.ndarray:
     return second / 2.0
 
 
-@functools.lru_cache(maxsize=8)
-def _interpolation_error_grid(structure: str, theory: str) -> np.ndarray:
-    dataset = load_shipped_map(structure, theory)
+@functools.lru_cache(maxsize=16)
+def _interpolation_error_grid(structure: str, theory: str, law: str = "linear") -> np.ndarray:
+    dataset = load_shipped_map(structure, theory, law)
     return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
-def _corner_accuracy(dataset: xr.Dataset, lam, zeta, structure: str, theory: str):
+def _corner_accuracy(dataset: xr.Dataset, lam, zeta, structure: str, theory: str, law: str = "linear"):
     """Largest error (points' own + interpolation) and worst status around each (λ, ζ)."""
     from .accuracy import STATUSES
 
-    errors = dataset["fmax_error"].isel(structure=0).values + _interpolation_error_grid(structure, theory)
+    errors = dataset["fmax_error"].isel(structure=0).values + _interpolation_error_grid(structure, theory, law)
     codes = dataset["status"].isel(structure=0).values
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
@@ -208,17 +254,20 @@ def _bracket(grid: np.ndarray, values: np.ndarray):
     return np.where(exact, upper, lower), upper
 
 
-def design_formula(loss_factor, relative_stiffness, structure: str):
+def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
     The larger of the infinite-structure peak (exact until waves return) and the
     quasi-static peak. Exact in the local, infinite-structure and quasi-static regimes
     by construction; in the transition it misses the re-impact peaks. Its error over
-    the shipped maps is tabulated by ``validation/lookup_error.py``.
+    the shipped maps is tabulated by ``validation/lookup_error.py``. With
+    ``law="hertz"`` the same with the Hertz asymptotes over (ζ_h, λ_h), in F_max/F_hs
+    (not closed forms: each is an asymptote run, :mod:`impactmaps.maps.hertz_points`).
     """
     from .regimes import infinite_structure_peak
 
-    return np.maximum(infinite_structure_peak(loss_factor, structure), quasi_static_peak(relative_stiffness))
+    return np.maximum(infinite_structure_peak(loss_factor, structure, law),
+                      quasi_static_peak(relative_stiffness, law))
 
 
 def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=None, digits: int = 3) -> str:
@@ -243,14 +292,31 @@ CASE_MATCH_RTOL = 1e-6
 SHIPPED_SLENDERNESS = 20.0
 
 
+def case_map_law(case) -> str:
+    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, or ``ValueError``.
+
+    Only laws that a shipped map describes exactly are named; any other law (one with a
+    yield indentation adds the impact number β as a third parameter) is refused.
+    """
+    from ..contact.hertz import HertzContact
+
+    if case.law.linear_stiffness is not None:
+        return "linear"
+    if isinstance(case.law, HertzContact):
+        return "hertz"
+    raise ValueError(f"no shipped map covers this case: contact law {case.law_name!r} (the shipped maps are "
+                     "for the linear and the Hertz laws; linearising another law with K_y would be an "
+                     f"unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` instead")
+
+
 def map_for_case(case) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
 
-    A shipped map is a family of normalised structures with a linear contact law: simply
-    supported beams and SSSS square plates struck at the centre, Euler and Kirchhoff
-    theory (any size: the normalised response depends on ζ and λ only) or Timoshenko and
-    Mindlin at span/thickness 20. A case outside every family is refused, never looked
-    up in the nearest map.
+    A shipped map is a family of normalised structures with a linear or a Hertz contact
+    law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
+    the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
+    ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. A case outside every
+    family is refused, never looked up in the nearest map.
 
     Parameters
     ----------
@@ -274,9 +340,7 @@ def map_for_case(case) -> tuple[str, str]:
     def same(value, wanted) -> bool:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
 
-    if case.law.linear_stiffness is None:
-        refuse(f"contact law {case.law_name!r} (the shipped maps are for the linear law; "
-               "linearising a nonlinear law with K_y would be an unconservative guess)")
+    case_map_law(case)
     target = case.target
     if case.target_type == "beam":
         if target.supports != "ss":
@@ -309,7 +373,38 @@ def map_for_case(case) -> tuple[str, str]:
             refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
                    f"{SHIPPED_SLENDERNESS:g}; the thin limit is the "
                    f"{'euler' if structure == 'beam' else 'kirchhoff'} map)")
+    reference = _family_groups(structure_from_name(SHIPPED_MAPS[(structure, theory)]).build())
+    for name, value in _family_groups(target).items():
+        if not (same(value, reference[name]) if reference[name] else value == 0.0):
+            refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
+                   "another Poisson ratio of a shear-deformable target or structural damping is another family)")
     return structure, theory
+
+
+def _family_groups(target) -> dict:
+    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
+
+    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
+    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
+    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
+    undamped).
+    """
+    groups = {"damping_ratio": float(target.damping_ratio)}
+    if target.structure == "beam":
+        if target.theory != "euler":
+            span = target.length
+            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
+            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
+        return groups
+    groups["D22/D11"] = target.D22 / target.D11
+    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
+    if target.theory == "mindlin":
+        side = target.length_x
+        groups["D12/D11"] = target.D12 / target.D11
+        for name in ("A44", "A55"):
+            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
+        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
+    return groups
 
 
 def lookup_case(case) -> dict:
@@ -323,7 +418,9 @@ def lookup_case(case) -> dict:
     -------
     dict
         ``peak_force_N`` with its band ``peak_force_error_N``, ``fmax_normalised`` and
-        ``fmax_error``, ``status``, ``regime``, ``zeta``, ``lambda``, ``map``.
+        ``fmax_error``, ``status``, ``regime``, ``zeta``, ``lambda``, ``map``, ``law``.
+        For a Hertz case ``zeta`` and ``lambda`` are the Hertz numbers ζ_h, λ_h and
+        ``fmax_normalised`` is F_max/F_hs (``force_scale_N`` = F_hs).
 
     Raises
     ------
@@ -331,13 +428,23 @@ def lookup_case(case) -> dict:
         When no shipped map describes the case (:func:`map_for_case`), or ζ, λ lie outside
         the map.
     """
-    from ..cases import case_dimensionless
-
     structure, theory = map_for_case(case)
-    numbers = case_dimensionless(case)
-    found = lookup(numbers["zeta"], numbers["lambda"], structure=structure, theory=theory)
-    scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
-                                   numbers["contact_stiffness_N_m"])) / found.fmax_normalised
+    law = case_map_law(case)
+    if law == "hertz":
+        from ..hertz_similarity import hertz_numbers
+
+        hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+        zeta, lam = hertz.loss_factor, hertz.relative_stiffness
+        found = lookup(zeta, lam, structure=structure, theory=theory, law=law)
+        scale = hertz.force_scale
+    else:
+        from ..cases import case_dimensionless
+
+        numbers = case_dimensionless(case)
+        zeta, lam = numbers["zeta"], numbers["lambda"]
+        found = lookup(zeta, lam, structure=structure, theory=theory)
+        scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
+                                       numbers["contact_stiffness_N_m"])) / found.fmax_normalised
     return {
         "peak_force_N": found.fmax_normalised * scale,
         "peak_force_error_N": found.fmax_error * scale,
@@ -345,7 +452,9 @@ def lookup_case(case) -> dict:
         "fmax_error": found.fmax_error,
         "status": found.status,
         "regime": found.regime,
-        "zeta": numbers["zeta"],
-        "lambda": numbers["lambda"],
+        "zeta": zeta,
+        "lambda": lam,
         "map": found.map_name,
+        "law": law,
+        "force_scale_N": scale,
     }

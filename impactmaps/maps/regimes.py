@@ -18,6 +18,12 @@ Criteria (seed 001 §5, made quantitative here; every threshold is a parameter):
 When both asymptotes are within tolerance the nearer one wins. The same function
 classifies a simulated result and, without simulating, a value looked up from a
 stored map (:func:`impactmaps.maps.lookup.lookup`).
+
+With ``law="hertz"`` the point is a Hertz map point (ζ_h, λ_h, F̄max = F_max/F_hs,
+times over t*; :mod:`impactmaps.hertz_similarity`) and the asymptotes are those of the
+Hertz law (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`): the half-space
+is again F̄max = 1, the infinite plate is Zener's model, the infinite beam the
+``t^{-1/2}`` mobility and the quasi-static peak solves ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``.
 """
 
 from __future__ import annotations
@@ -29,24 +35,43 @@ from ..targets.options import STRUCTURE_KINDS
 
 __all__ = ["REGIMES", "classify", "infinite_structure_peak", "quasi_static_peak"]
 
+#: The contact laws a map can be swept with and whose asymptotes :func:`classify` knows.
+MAP_LAWS = ("linear", "hertz")
+
 REGIMES = ("local", "infinite-structure", "transition", "quasi-static")
 
 
-def quasi_static_peak(relative_stiffness):
-    """Quasi-static normalised peak force sqrt(λ/(1+λ)) (eq 28) [-]."""
+def quasi_static_peak(relative_stiffness, law: str = "linear"):
+    """Quasi-static normalised peak force [-]: sqrt(λ/(1+λ)) (eq 28) for the linear law.
+
+    With ``law="hertz"``, F_max/F_hs of the Hertz law in series with the static
+    stiffness at λ_h (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
+    """
+    require_choice("law", law, MAP_LAWS)
+    if law == "hertz":
+        from .hertz_points import hertz_asymptote_peak
+
+        return hertz_asymptote_peak("quasi-static", "plate", lambda_h=relative_stiffness)
     lam = np.asarray(relative_stiffness, dtype=float)
     return np.sqrt(lam / (1.0 + lam))
 
 
-def infinite_structure_peak(loss_factor, structure: str):
+def infinite_structure_peak(loss_factor, structure: str, law: str = "linear"):
     """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-].
 
     ``structure``: ``"beam"`` or ``"plate"``; the asymptote is the target class's
-    (:meth:`impactmaps.targets.Target.infinite_structure_peak`).
+    (:meth:`impactmaps.targets.Target.infinite_structure_peak`). With ``law="hertz"``,
+    F_max/F_hs of the Hertz law on the infinite structure at ζ_h
+    (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
     """
     from ..targets import target_class
 
     require_choice("structure", structure, STRUCTURE_KINDS)
+    require_choice("law", law, MAP_LAWS)
+    if law == "hertz":
+        from .hertz_points import hertz_asymptote_peak
+
+        return hertz_asymptote_peak("infinite", structure, zeta_h=loss_factor)
     return target_class(structure).infinite_structure_peak(loss_factor)
 
 
@@ -60,6 +85,7 @@ def classify(
     reflection_time=None,
     tolerance: float = 0.1,
     local_tolerance: float = 0.1,
+    law: str = "linear",
 ):
     """Regime of each impact from its normalised peak force (vectorised).
 
@@ -78,6 +104,9 @@ def classify(
         Relative distance to an asymptote that counts as "on" it.
     local_tolerance : float
         ``1 − F̄max`` below which the response is local.
+    law : {"linear", "hertz"}
+        Whose asymptotes: the linear law's (ζ, λ, F̄max = F_max/(m V0 ω)) or the Hertz
+        law's (ζ_h, λ_h, F̄max = F_max/F_hs).
 
     Returns
     -------
@@ -93,8 +122,8 @@ def classify(
         raise ValueError("fmax contains NaN or inf: classify computed points only")
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
-    infinite = infinite_structure_peak(zeta, structure)
-    quasi = quasi_static_peak(lam)
+    infinite = infinite_structure_peak(zeta, structure, law)
+    quasi = quasi_static_peak(lam, law)
     distance_infinite = np.abs(fmax - infinite) / infinite
     distance_quasi = np.abs(fmax - quasi) / quasi
     before_reflection = np.ones(fmax.shape, dtype=bool)

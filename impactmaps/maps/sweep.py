@@ -23,7 +23,7 @@ from typing import Sequence
 import numpy as np
 import xarray as xr
 
-from .._checks import require_positive
+from .._checks import require_choice, require_positive
 from ..contact.linear import LinearContact
 from ..dimensionless import realise
 from ..jsonio import dumps
@@ -34,7 +34,8 @@ from ..solvers.mode_budget import frequency_cap as budget_frequency_cap
 from ..solvers.mode_budget import plan_basis
 from ..targets.plate_navier import warn_beyond_thickness_shear
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
-from .regimes import classify
+from .hertz_points import HERTZ_AXES, HERTZ_DESCRIPTIONS, solve_hertz_points
+from .regimes import MAP_LAWS, classify
 from .store import (
     SweepInterrupted,
     fingerprint,
@@ -44,7 +45,7 @@ from .store import (
 )
 from .structures import BasisTable, MapStructure
 
-__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "log_grid"]
+__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid"]
 
 SOLVER_REVISION = 4  # bump when a numerical change invalidates stored results
 
@@ -65,6 +66,20 @@ RESULT_VARIABLES = {
     "fmax_high": ("f8", np.nan, "1", "upper end of the band that holds fmax_normalised"),
     "status": ("i1", -1, "1", "converged, refined, sensitive or asymptotic: see flag_meanings"),
 }
+
+#: The (λ, ζ) axis descriptions of a map of each law.
+_AXES = {"linear": ("relative stiffness K_st/K", "loss factor"), "hertz": HERTZ_AXES}
+
+
+def map_law(dataset: xr.Dataset) -> str:
+    """The contact law a map dataset was swept with (a map without the attribute is linear).
+
+    The law is part of a map's identity: it is in the fingerprint (for every law of
+    :data:`MAP_LAWS` but the linear one, whose fingerprints predate it), in the
+    ``contact_law`` attribute and in the variables' descriptions.
+    """
+    return str(dataset.attrs.get("contact_law", "linear"))
+
 
 #: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
 METHODS = BUDGET_METHODS
@@ -202,11 +217,17 @@ def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: f
     return run
 
 
+def _point_solver(law: str):
+    """The per-chunk worker of a map law (a module-level function: it pickles for processes)."""
+    return solve_points if law == "linear" else solve_hertz_points
+
+
 # -- the orchestration ---------------------------------------------------------------------
-def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Dataset:
+def _empty_dataset(structures, lambdas, zetas, description, digest, law: str = "linear") -> xr.Dataset:
     shape = (len(structures), len(lambdas), len(zetas))
     data_vars = {}
     for name, (dtype, missing, units, text) in RESULT_VARIABLES.items():
+        text = HERTZ_DESCRIPTIONS.get(name, text) if law == "hertz" else text
         data_vars[name] = (("structure", "lambda_", "zeta"), np.full(shape, missing, dtype=dtype),
                            {"units": units, "long_name": text})
     data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
@@ -217,8 +238,8 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
                          {"long_name": "1 where the point has been computed"})
     coords = {
         "structure": ("structure", [s.name for s in structures]),
-        "lambda_": ("lambda_", np.asarray(lambdas, float), {"long_name": "relative stiffness K_st/K", "units": "1"}),
-        "zeta": ("zeta", np.asarray(zetas, float), {"long_name": "loss factor", "units": "1"}),
+        "lambda_": ("lambda_", np.asarray(lambdas, float), {"long_name": _AXES[law][0], "units": "1"}),
+        "zeta": ("zeta", np.asarray(zetas, float), {"long_name": _AXES[law][1], "units": "1"}),
         "kind": ("structure", [s.kind for s in structures]),
         "theory": ("structure", [s.theory for s in structures]),
         "supports": ("structure", [s.supports for s in structures]),
@@ -233,7 +254,8 @@ def _empty_dataset(structures, lambdas, zetas, description, digest) -> xr.Datase
         "description": dumps(description, sort_keys=True),
         "impactmaps_version": __version__,
         "solver_revision": SOLVER_REVISION,
-        "method": "modal impact solver (exact-step integrator, residual flexibility), linear contact",
+        "method": f"modal impact solver (exact-step integrator, residual flexibility), {law} contact",
+        "contact_law": law,
         "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
@@ -261,6 +283,7 @@ def sweep(
     chunk_size: int = 10,
     save_interval: float = 1.0,
     overwrite: bool = False,
+    law: str = "linear",
 ) -> xr.Dataset:
     """Compute F̄max and companions over structures × λ × ζ.
 
@@ -292,6 +315,11 @@ def sweep(
     overwrite : bool
         Replace an existing result file instead of resuming it (it is replaced when
         the first point is saved).
+    law : {"linear", "hertz"}
+        Contact law of the map (:data:`MAP_LAWS`). ``"linear"``: ζ, λ of PHYSICS.md and
+        F̄max = F_max/(m V0 ω), times × ω (:func:`solve_points`). ``"hertz"``: the Hertz
+        numbers ζ_h, λ_h (:mod:`impactmaps.hertz_similarity`), F̄max = F_max/F_hs, times
+        / t* (:func:`~impactmaps.maps.hertz_points.solve_hertz_points`).
 
     Returns
     -------
@@ -306,18 +334,20 @@ def sweep(
         carries how many of the grid's points are saved.
     """
     settings = settings or ModalSettings()
-    structures, zetas, lambdas, description, digest = _prepare(structures, loss_factors, relative_stiffnesses, settings)
-    dataset = _resume(path, overwrite, digest, description, structures, lambdas, zetas)
+    structures, zetas, lambdas, description, digest = _prepare(structures, loss_factors, relative_stiffnesses,
+                                                               settings, law)
+    dataset = _resume(path, overwrite, digest, description, structures, lambdas, zetas, law)
     done = dataset["done"].values.astype(bool)
     tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
     results = _Results(dataset, path, save_interval, sum(len(task[3]) for task in tasks), progress)
-    stopped = _run(tasks, settings, executor, max_workers, results)
+    stopped = _run(tasks, settings, executor, max_workers, results, _point_solver(law))
     return _finish(results, stopped)
 
 
 # -- the stages of a sweep -------------------------------------------------------------------
-def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSettings):
+def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSettings, law: str = "linear"):
     """Check the grid; return it with its description and fingerprint (what a stored result must match)."""
+    require_choice("law", law, MAP_LAWS)
     structures = list(structures)
     if not structures:
         raise ValueError("structures is empty: give at least one MapStructure")
@@ -334,16 +364,19 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
         "settings": asdict(settings),
         "solver_revision": SOLVER_REVISION,
     }
+    if law != "linear":  # a linear description has no law key: its fingerprints stay those of the shipped maps
+        description["law"] = law
     return structures, zetas, lambdas, description, fingerprint(description)
 
 
-def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas) -> xr.Dataset:
+def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas,
+            law: str = "linear") -> xr.Dataset:
     """The stored result at ``path`` if it matches ``digest`` (and not ``overwrite``), else an empty one."""
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
         dataset = None if overwrite else load_matching(path, digest, description)
-    return _empty_dataset(structures, lambdas, zetas, description, digest) if dataset is None else dataset
+    return _empty_dataset(structures, lambdas, zetas, description, digest, law) if dataset is None else dataset
 
 
 class _Results:
@@ -392,7 +425,7 @@ class _Results:
 
 
 def _run(tasks, settings: ModalSettings, executor: Executor | None, max_workers: int | None,
-         results: _Results) -> bool:
+         results: _Results, solver) -> bool:
     """Solve the chunks, absorbing and saving as they finish (and at the end, even if a chunk
     fails); True if Ctrl-C stopped the run (the chunk in hand finishes first)."""
     own_executor = None
@@ -401,13 +434,13 @@ def _run(tasks, settings: ModalSettings, executor: Executor | None, max_workers:
     try:
         workers = max_workers or os.cpu_count() or 1
         if executor is None and (workers == 1 or len(tasks) <= 1):
-            _run_inline(tasks, settings, results, stop)
+            _run_inline(tasks, settings, results, stop, solver)
         elif tasks:
             if executor is None:
                 # workers ignore Ctrl-C: the parent saves and stops them
                 own_executor = executor = ProcessPoolExecutor(
                     max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
-            _run_on_executor(executor, tasks, settings, results, stop)
+            _run_on_executor(executor, tasks, settings, results, stop, solver)
     except KeyboardInterrupt:
         stop.append(signal.SIGINT)
     finally:
@@ -435,18 +468,19 @@ def _defer_interrupts(stop: list):
     return None
 
 
-def _run_inline(tasks, settings: ModalSettings, results: _Results, stop: list) -> None:
+def _run_inline(tasks, settings: ModalSettings, results: _Results, stop: list, solver) -> None:
     """Solve the chunks one after the other in this process, until ``stop``."""
     for task in tasks:
         if stop:
             break
-        results.absorb(task, solve_points(task[0], task[4], settings))
+        results.absorb(task, solver(task[0], task[4], settings))
         results.save()
 
 
-def _run_on_executor(executor: Executor, tasks, settings: ModalSettings, results: _Results, stop: list) -> None:
+def _run_on_executor(executor: Executor, tasks, settings: ModalSettings, results: _Results, stop: list,
+                     solver) -> None:
     """Submit every chunk to ``executor``; absorb them as they complete, until ``stop``."""
-    futures = {executor.submit(solve_points, task[0], task[4], settings): task for task in tasks}
+    futures = {executor.submit(solver, task[0], task[4], settings): task for task in tasks}
     running = set(futures)
     while running and not stop:
         finished, running = wait(running, timeout=0.25, return_when=FIRST_COMPLETED)
@@ -472,6 +506,7 @@ def _finish(results: _Results, stopped: bool) -> xr.Dataset:
 def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
     """Regime label of every computed point of a sweep dataset (see :mod:`.regimes`)."""
     labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
+    criteria.setdefault("law", map_law(dataset))
     for s_index, kind in enumerate(dataset["kind"].values):
         fmax = dataset["fmax_normalised"].values[s_index]
         lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")

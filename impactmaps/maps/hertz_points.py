@@ -1,0 +1,223 @@
+"""Map points with the Hertz law: (ζ_h, λ_h) realised, simulated and scaled by the Hertz half-space.
+
+A Hertz map point is the impact that realises the Hertz loss factor ζ_h and relative
+stiffness λ_h on the structure's reference target (:func:`impactmaps.hertz_similarity.
+realise_hertz`, struck at 1 m/s: :func:`~impactmaps.hertz_similarity.unit_speed_stiffness`),
+solved by the modal solver with the Hertz law under the same accuracy control as the
+linear maps (:mod:`.accuracy`), and stored in the Hertz half-space scales: forces over
+``F_hs = K_h α_m^{3/2}`` (the half-space value is exactly 1), times over ``t* = α_m/V0``.
+By the similarity of Hertz impacts (module :mod:`impactmaps.hertz_similarity`) one such
+point holds for every physical case of the family with the same (ζ_h, λ_h).
+
+The asymptotes of the Hertz regimes — infinite plate (Zener's model), infinite beam,
+quasi-static — are those of :mod:`impactmaps.law_asymptotes`, run on a realisation of
+(ζ_h, λ_h) and scaled the same way: :func:`hertz_asymptote_peak`.
+"""
+
+from __future__ import annotations
+
+import functools
+import warnings
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..contact.hertz import HertzContact
+from ..hertz_similarity import realise_hertz, unit_speed_stiffness
+from ..law_asymptotes import asymptote
+from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
+from ..targets.plate_navier import warn_beyond_thickness_shear
+from .accuracy import AccuracyControl, controlled_point, exact_point
+from .structures import BasisTable, MapStructure
+
+__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_summary", "solve_hertz_points"]
+
+#: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).
+HERTZ_TIME_KEYS = ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised")
+
+#: What the scaled variables of a Hertz map mean (the ``long_name`` of its variables).
+HERTZ_DESCRIPTIONS = {
+    "fmax_normalised": "maximum contact force / F_hs over all impacts (F_hs = K_h α_m^1.5, the Hertz half-space peak)",
+    "contact_time_normalised": "total contact time / t* (t* = α_m/V0)",
+    "first_contact_normalised": "duration of the first contact / t*",
+    "peak_time_normalised": "time of the maximum force / t*",
+    "reflection_time_normalised": "d²/(c t*): first wave return to the impact point (d: distance to nearest "
+                                  "support/edge, c = sqrt(bending stiffness / mass per length or area))",
+}
+#: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
+HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")
+
+#: The structure whose target stands for each kind in the Hertz asymptotes (the infinite
+#: plate needs ρh and D*, the infinite beam m' and EI; the loss factor is defined on them).
+_ASYMPTOTE_STRUCTURES = {
+    "plate": MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
+    "beam": MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
+}
+_INFINITE = {"plate": "infinite-plate", "beam": "infinite-beam"}
+
+
+class _Realised:
+    """The impact realising (ζ_h, λ_h) on a target at 1 m/s: law, mass, speed, scales."""
+
+    def __init__(self, target, zeta_h: float, lambda_h: float):
+        self.law = HertzContact(unit_speed_stiffness(target, zeta_h, lambda_h))
+        realisation = realise_hertz(target, zeta_h, lambda_h, self.law)
+        self.mass, self.velocity, self.numbers = realisation.mass, realisation.velocity, realisation.numbers
+        self.omega = float(np.sqrt(reference_contact_stiffness(self.law, self.mass, self.velocity) / self.mass))
+
+
+class _HertzScaled:
+    """A modal :class:`~impactmaps.solvers.result.ImpactResult` read in the Hertz scales."""
+
+    def __init__(self, result, numbers):
+        self.result, self.numbers = result, numbers
+
+    @property
+    def fmax_normalised(self) -> float:
+        """F_max / F_hs [-]."""
+        return self.result.peak_force / self.numbers.force_scale
+
+    def normalised_summary(self) -> dict:
+        """The map scalars of the run, forces over F_hs and times over t*."""
+        return hertz_summary(self.result, self.numbers)
+
+
+def hertz_summary(result, numbers) -> dict:
+    """The normalised scalars of a modal Hertz run in the Hertz scales (keys of the map variables).
+
+    Parameters
+    ----------
+    result : ImpactResult
+        A modal run with the Hertz law.
+    numbers : HertzNumbers
+        Its scales (:func:`impactmaps.hertz_similarity.hertz_numbers`).
+
+    Returns
+    -------
+    dict
+        ``result.normalised_summary()`` with F̄max = F_max/F_hs and the times
+        (:data:`HERTZ_TIME_KEYS`) in units of t* instead of 1/ω.
+    """
+    summary = result.normalised_summary()
+    to_hertz_time = 1.0 / (result.contact_frequency * numbers.time_scale)
+    for key in HERTZ_TIME_KEYS:
+        summary[key] = summary[key] * to_hertz_time
+    summary["fmax_normalised"] = result.peak_force / numbers.force_scale
+    return summary
+
+
+def _asymptote_row(which: str, target, zeta_h: float, lambda_h: float) -> dict:
+    """The map scalars of an any-law asymptote of the realised Hertz impact."""
+    realised = _Realised(target, zeta_h, lambda_h)
+    impact = asymptote(which, target, realised.law, realised.mass, realised.velocity)
+    scale = realised.numbers.time_scale
+    durations = [(end - start) / scale for start, end in impact.contact_intervals]
+    contact = float(sum(durations)) if np.isfinite(impact.contact_time) else np.nan  # total, as the modal runs
+    return {
+        "fmax_normalised": impact.peak_force / realised.numbers.force_scale,
+        "impacts": int(impact.impacts),
+        "contact_time_normalised": contact,
+        "first_contact_normalised": durations[0] if np.isfinite(durations[0]) else np.nan,
+        "peak_time_normalised": impact.peak_time / scale,
+        "energy_transferred_fraction": 1.0 - impact.restitution**2 if np.isfinite(contact) else np.nan,
+        "n_modes": 0,
+        "time_limit_reached": int(impact.time_limit_reached),
+    }
+
+
+@functools.lru_cache(maxsize=4096)
+def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> float:
+    target = _ASYMPTOTE_STRUCTURES[kind].build()
+    return float(_asymptote_row(which, target, zeta_h, lambda_h)["fmax_normalised"])
+
+
+def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
+    """F_max/F_hs of a Hertz asymptote at (ζ_h, λ_h) [-] (vectorised; cached per value).
+
+    Parameters
+    ----------
+    which : {"infinite", "quasi-static"}
+        The infinite plate or beam (a function of ζ_h alone) or the quasi-static spring
+        (of λ_h alone: ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``).
+    kind : {"beam", "plate"}
+        Which infinite structure.
+    zeta_h, lambda_h : float or array_like
+        Hertz numbers, > 0 [-]; the one the asymptote does not depend on is ignored.
+
+    Returns
+    -------
+    float or ndarray
+    """
+    if which not in ("infinite", "quasi-static"):
+        raise ValueError(f"which = {which!r} is invalid: choose 'infinite' or 'quasi-static'")
+    if kind not in _ASYMPTOTE_STRUCTURES:
+        raise ValueError(f"kind = {kind!r} is invalid: choose 'beam' or 'plate'")
+    zeta, lam = np.broadcast_arrays(np.asarray(zeta_h, float), np.asarray(lambda_h, float))
+    if np.any(~(zeta > 0)) or np.any(~(lam > 0)):
+        raise ValueError(f"zeta_h = {zeta_h!r}, lambda_h = {lambda_h!r} are invalid: valid range is (0, inf)")
+    name = _INFINITE[kind] if which == "infinite" else "quasi-static"
+    # the asymptote depends on one number: pin the other, so the cache sees few keys
+    keys = np.stack([zeta, np.ones_like(zeta)] if which == "infinite" else [np.ones_like(lam), lam], axis=-1)
+    unique, inverse = np.unique(keys.reshape(-1, 2), axis=0, return_inverse=True)
+    peaks = np.array([_asymptote_peak(name, kind, float(z), float(l)) for z, l in unique])
+    out = peaks[np.ravel(inverse)].reshape(zeta.shape)
+    return float(out) if out.ndim == 0 else out
+
+
+def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
+                       table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
+    """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``.
+
+    The Hertz counterpart of :func:`impactmaps.maps.sweep.solve_points`, with the same
+    parameters, the same cut-off rule (modes up to ``settings.cutoff_ratio`` times the
+    contact frequency, clipped to :func:`~impactmaps.maps.sweep.frequency_cap`, plus
+    residual flexibility) and the same accuracy control. Where the cut-off would pass the
+    cap, the infinite-structure asymptote of the Hertz law answers if the first wave
+    returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time; otherwise the
+    capped modes are integrated, with a warning.
+
+    Returns
+    -------
+    list of dict
+        One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
+        plus ``zeta``, ``lambda_``.
+    """
+    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, MAX_MODES, METHODS, basis_table, frequency_cap
+
+    target = structure.build()
+    cap = frequency_cap(structure)
+    table = basis_table(structure, settings.min_modes) if table is None else table
+    impacts = [_Realised(target, float(zeta), float(lam)) for zeta, lam in points]
+    wanted = max(settings.cutoff_ratio * impact.omega for impact in impacts)
+    warn_beyond_thickness_shear(target, min(wanted, cap), stacklevel=3)
+    rows = []
+    for (zeta, lam), realised in zip(points, impacts):
+        zeta, lam = float(zeta), float(lam)
+        reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
+        row = {"zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
+        capped = settings.cutoff_ratio * realised.omega > cap
+        if capped:
+            infinite = _asymptote_row(_INFINITE[structure.kind], target, zeta, lam)
+            if reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
+                rows.append(exact_point(row | infinite | {"method": METHODS.index("infinite-structure-asymptote")}))
+                continue
+            warnings.warn(
+                f"{structure.name} (Hertz) at ζ_h = {zeta:g}, λ_h = {lam:g} needs more than {MAX_MODES} "
+                f"modes; integrating the first {MAX_MODES} (residual flexibility for the rest)",
+                RuntimeWarning, stacklevel=2)
+        run = _hertz_runner(target, table, cap, zeta, lam, realised)
+        method = METHODS.index("modal+residual-capped" if capped else "modal+residual")
+        rows.append(row | controlled_point(run, settings, control) | {"method": method})
+    return rows
+
+
+def _hertz_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, realised: _Realised):
+    """``run(settings, zeta_factor)`` of one Hertz point, read in the Hertz scales."""
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_)
+        basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
+        result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+        return _HertzScaled(result, impact.numbers)
+
+    return run
