@@ -6,6 +6,8 @@ Each ``cmd_*`` takes the parsed arguments and returns the dict that ``main`` pri
 from __future__ import annotations
 
 import math
+import warnings
+from dataclasses import replace
 from pathlib import Path
 
 from ._common import check, out_dir, refuse, save_figure
@@ -117,6 +119,33 @@ def _simulate_point(structure, target, args, settings, record: bool):
             "(a larger --zeta or --lambda), or an impact --position farther from the boundary") from None
 
 
+def _map_point(structure, args, settings) -> dict:
+    """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
+    from ..maps.accuracy import STATUSES, AccuracyControl
+    from ..maps.sweep import METHODS, solve_points
+    from ..solvers.modal import ConvergenceWarning
+
+    control = AccuracyControl(tolerance=settings.tolerance)
+    with warnings.catch_warnings():  # the status says what the refinement found
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        row = solve_points(structure, [(args.zeta, args.lambda_)], replace(settings, check_convergence=False),
+                           control=control)[0]
+    return {
+        "fmax_normalised": row["fmax_normalised"],
+        "fmax_error": row["fmax_error"],
+        "fmax_low": row["fmax_low"],
+        "fmax_high": row["fmax_high"],
+        "status": STATUSES[int(row["status"])],
+        "impacts": int(row["impacts"]),
+        "contact_time_normalised": row["contact_time_normalised"],
+        "first_contact_normalised": row["first_contact_normalised"],
+        "peak_time_normalised": row["peak_time_normalised"],
+        "energy_transferred_fraction": row["energy_transferred_fraction"],
+        "n_modes": int(row["n_modes"]),
+        "method": METHODS[int(row["method"])],
+    }
+
+
 def cmd_point(args) -> dict:
     from ..maps.regimes import classify, infinite_structure_peak, quasi_static_peak
 
@@ -124,34 +153,41 @@ def cmd_point(args) -> dict:
     target = structure.build()
     settings = _settings_from_args(args)
     plot = getattr(args, "plot", None)
-    result = _simulate_point(structure, target, args, settings, record=plot is not None)
+    checked = settings.check_convergence
+    result = _simulate_point(structure, target, args, replace(settings, check_convergence=False),
+                             record=plot is not None)
     reflection = float(target.reflection_time(result.contact_frequency))
-    regime = str(classify(result.fmax_normalised, args.zeta, args.lambda_, structure.kind,
-                          peak_time=result.peak_time_normalised, reflection_time=reflection,
-                          tolerance=getattr(args, "tolerance", 0.1)))
     values = {
         "structure": structure.name,
         "zeta": args.zeta,
         "lambda": args.lambda_,
         **result.normalised_summary(),
-        "regime": regime,
+        "method": result.method,
+    }
+    if checked:
+        # the value a sweep stores for this point, with its error and status (the same bits)
+        values.update(_map_point(structure, args, settings))
+        values["converged"] = values["status"] != "sensitive"
+    else:
+        values["converged"] = None
+        values["status"] = "unchecked"
+        values["converged_note"] = "not checked (--no-check)"
+    values["regime"] = str(classify(values["fmax_normalised"], args.zeta, args.lambda_, structure.kind,
+                                    peak_time=values["peak_time_normalised"], reflection_time=reflection,
+                                    tolerance=getattr(args, "tolerance", 0.1)))
+    values.update({
         "halfspace_fmax": 1.0,
         "quasi_static_fmax": float(quasi_static_peak(args.lambda_)),
         "infinite_structure_fmax": float(infinite_structure_peak(args.zeta, structure.kind)),
         "reflection_time_normalised": reflection,
-        "method": result.method,
-        "converged": result.converged,
-    }
+    })
     if not math.isfinite(reflection):
         values["reflection_time_note"] = "no support or edge reflects waves back to the impact point"
     if result.method == "infinite-structure-asymptote":
         values["asymptote"] = result.details.asymptote
-        values["converged_note"] = ("not checked: answered by the infinite-structure asymptote, exact until "
-                                    "the first reflection returns")
-    elif not settings.check_convergence:
-        values["converged_note"] = "not checked (--no-check)"
     if plot is not None:
         values["plot"] = save_figure(result, Path(plot), normalised=True)
+        values["plot_note"] = "the history of the run at the given settings (the value above is the refined one)"
     return values
 
 
