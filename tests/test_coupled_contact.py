@@ -147,3 +147,19 @@ def test_damped_or_rigid_modes_keep_the_sampled_phase():
     rigid = ModalBasis(np.concatenate(([0.0], basis.frequencies)), np.concatenate(([1.0], basis.participation)),
                        basis.residual_compliance)
     assert coupled_modes(rigid, law.stiffness, mass) is None
+
+
+def test_record_adds_rows_but_leaves_the_scalars_bit_identical():
+    """A recorded exact phase writes exact rows inside its steps (≤ time_step_ratio/ω
+    apart, as fine as the sampled scheme's history) without changing its steps."""
+    basis, law, mass = _case("beam", 1.0, 0.05)
+    plain = simulate(basis, law, mass, 1.0, record=False, settings=EXACT)
+    recorded = simulate(basis, law, mass, 1.0, record=True, settings=EXACT)
+    assert recorded.peak_force == plain.peak_force
+    assert np.array_equal(recorded.contact_intervals, plain.contact_intervals)
+    assert recorded.rebound_velocity == plain.rebound_velocity
+    history = recorded.history
+    force = history["force_N"].to_numpy()
+    touching = (force[1:] > 0.0) & (force[:-1] > 0.0)
+    spacing = np.diff(history["time_s"].to_numpy())[touching]
+    assert spacing.max() <= EXACT.time_step_ratio / recorded.contact_frequency * (1 + 1e-9)

@@ -21,7 +21,7 @@ force at the start of each contact, amplitude ``A_k = |c_k| sqrt(η_k² + (η̇_
 coupled mode: the fastest modes whose amplitudes sum to at most ε/2 of ``Σ A_k``
 (:data:`CONTACT_RESOLUTION` ε) are left unsampled, every other mode is sampled at
 ``Ω_k h ≤ 1`` and the mode of largest amplitude at ``Ω_k h ≤`` :data:`SAMPLED_PHASE`
-(and at most the settings' ``time_step_ratio/ω``, times their step scale). The peak is located on
+(times the settings' step scale; a recorded run adds exact rows inside the steps). The peak is located on
 the sampled modes and evaluated with all of them, so what the unsampled ripple can move
 the peak by is at most ``2 Σ_unsampled A_k ≤ ε Σ A_k``. This is what answers the quasi-static corner (heavy impactor, soft contact): there
 the modes the mode floor keeps lie far above the contact frequency and forced the
@@ -235,7 +235,30 @@ def _to_physical(from_coupled, eta, rate, q, v):
 
 
 @numba.njit(cache=True)
-def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, step_scale,
+def _record_inside(from_coupled, frequencies, force_row, eta, rate, t, length, spacing,
+                   omega, phi, residual, q, v, history, rec):
+    """Record exact rows inside a step of ``length`` [s] from time t [s] and state (η, η̇),
+    at most ``spacing`` [s] apart (the step's end row is written by the caller); q and v
+    serve as scratch. Returns the history and the next row."""
+    count = int(math.ceil(length / spacing))
+    if count <= 1:
+        return history, rec
+    n = eta.shape[0]
+    eta_s = np.empty(n)
+    rate_s = np.empty(n)
+    for i in range(1, count):
+        s = length * i / count
+        _advance(frequencies, eta, rate, s, eta_s, rate_s)
+        force = 0.0
+        for k in range(n):
+            force += force_row[k] * eta_s[k]
+        wi, vi = _to_physical(from_coupled, eta_s, rate_s, q, v)
+        history, rec = record_row(history, rec, t + s, max(force, 0.0), wi, vi, residual, omega, phi, q, v)
+    return history, rec
+
+
+@numba.njit(cache=True)
+def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing, step_scale,
                   omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
                   record, history, rec):
     """One contact, from touchdown (α = 0) to separation or the run's limits.
@@ -243,8 +266,11 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, st
     Parameters
     ----------
     frequencies, force_row, from_coupled, to_coupled : arrays of :class:`CoupledModes`.
-    step_cap : float
-        Longest contact step [s] (the settings' ``time_step_ratio/ω``).
+    row_spacing : float
+        Longest spacing of the recorded rows in contact [s] (the settings'
+        ``time_step_ratio/ω``): a recorded run adds exact rows inside its steps, so its
+        history is as fine as the sampled scheme's and its scalars are those of the run
+        without a record.
     step_scale : float
         Factor on the step (the settings' ``step_scale``).
     omega, phi, residual : retained modes [rad/s], participations, residual [m/N].
@@ -270,7 +296,7 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, st
         for j in range(1, n):
             eta[k] += to_coupled[k, j] * q[j - 1]
             rate[k] += to_coupled[k, j] * v[j - 1]
-    h = step_scale * min(_content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION), step_cap)
+    h = step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
     if h == 0.0 or _force_rate(frequencies, force_row, eta, rate, 0.0, n) <= 0.0:
         return t, wi, vi, 0.0, peak, peak_time, steps, True, history, rec  # grazing: no contact
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
@@ -295,6 +321,9 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, st
         steps += 1
         if f_next <= 0.0:
             s = _root(frequencies, force_row, eta, rate, h, False, n)
+            if record:
+                history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, s,
+                                              row_spacing, omega, phi, residual, q, v, history, rec)
             _advance(frequencies, eta, rate, s, eta_next, rate_next)
             t += s
             force = 0.0
@@ -313,6 +342,9 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, step_cap, st
             f_prev = force
             eta_prev[:] = eta
             rate_prev[:] = rate
+            if record:
+                history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, h,
+                                              row_spacing, omega, phi, residual, q, v, history, rec)
             t += h
             force = f_next
             if force > peak:

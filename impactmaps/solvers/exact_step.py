@@ -233,7 +233,7 @@ def integrate_impact(
     coupled_force,
     from_coupled,
     to_coupled,
-    contact_step_cap,
+    contact_row_spacing,
     step_scale,
 ):
     """Integrate one impact from first touch until re-impact is impossible.
@@ -253,7 +253,8 @@ def integrate_impact(
         linear contact (:class:`~impactmaps.solvers.coupled_contact.CoupledModes`); when
         given (non-empty), every contact phase is propagated exactly through them
         (:func:`~impactmaps.solvers.coupled_contact.contact_phase`) and h serves free flight.
-    contact_step_cap, step_scale : longest contact-phase step [s] and the factor on it.
+    contact_row_spacing, step_scale : longest spacing of recorded rows in an exact contact
+        phase [s], and the factor on its step.
 
     Returns
     -------
@@ -314,7 +315,7 @@ def integrate_impact(
             touchdown = t
             before = steps
             t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
-                coupled_frequencies, coupled_force, from_coupled, to_coupled, contact_step_cap, step_scale,
+                coupled_frequencies, coupled_force, from_coupled, to_coupled, contact_row_spacing, step_scale,
                 omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
                 record, history, rec)
             starting = False

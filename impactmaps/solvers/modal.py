@@ -72,8 +72,11 @@ PATCH_PASSES = 8
 #: its set-up, an (n + 1)² eigenproblem, then costs less than the steps it saves
 #: (see :func:`_coupled_phase`) …
 COUPLED_COST_RATIO = 1.0
-#: … and the retained modes are at most this many.
+#: … and the retained modes are at most this many; below this many modes the set-up costs
+#: microseconds and the exact phase is always taken (a contact then takes ~10–10² steps
+#: instead of ≥ 250).
 COUPLED_MAX_MODES = 400
+COUPLED_ALWAYS_MODES = 32
 _NO_COUPLED_MODES = CoupledModes(np.zeros(0), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)))
 
 #: Columns of the integrator's history array: the common ones, then the structure energy.
@@ -423,7 +426,8 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
     """
     stiffness = _linear_stiffness(law)
     sampled_steps = np.pi / (contact_frequency * time_step)
-    cheaper = basis.size <= COUPLED_MAX_MODES and sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
+    cheaper = basis.size < COUPLED_ALWAYS_MODES or (
+        basis.size <= COUPLED_MAX_MODES and sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2)
     if stiffness > 0.0 and (choice == "exact" or (choice == "auto" and cheaper)):
         coupled = coupled_modes(basis, stiffness, impactor_mass)
         if coupled is not None:
