@@ -47,7 +47,7 @@ from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid"]
 
-SOLVER_REVISION = 4  # bump when a numerical change invalidates stored results
+SOLVER_REVISION = 5  # bump when a numerical change invalidates stored results (5: exact linear contact phase)
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)

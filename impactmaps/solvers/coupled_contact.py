@@ -297,8 +297,12 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
             eta[k] += to_coupled[k, j] * q[j - 1]
             rate[k] += to_coupled[k, j] * v[j - 1]
     h = step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
-    if h == 0.0 or _force_rate(frequencies, force_row, eta, rate, 0.0, n) <= 0.0:
-        return t, wi, vi, 0.0, peak, peak_time, steps, True, history, rec  # grazing: no contact
+    if h == 0.0 or (_force_rate(frequencies, force_row, eta, rate, 0.0, n) <= 0.0
+                    and _force(frequencies, force_row, eta, rate, h) <= 0.0):
+        # grazing: no closing speed and no force a step later (a touchdown at zero closing
+        # speed whose force grows at second order, e.g. a sphere resting on a structure
+        # that accelerates into it, is a contact)
+        return t, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
     while resolved < n and frequencies[resolved] * h <= 1.0:
         resolved += 1
