@@ -10,8 +10,8 @@ spread of F̄max over small perturbations of cut-off, step and ζ instead of one
 Statuses (the ``status`` variable of a map; ``STATUSES[code]``):
 
 ``converged``
-    The first refinement moved F̄max by at most the tolerance; the stored value is the
-    refined one and ``fmax_error`` is that move.
+    The first refinement moved F̄max by at most the tolerance and kept the number of
+    impacts; the stored value is the refined one and ``fmax_error`` is that move.
 ``refined``
     It took more refinements (cut-off ×2ᵏ, step /2ᵏ) to settle; the stored value is the
     finest and ``fmax_error`` the last move.
@@ -86,7 +86,7 @@ def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
     Parameters
     ----------
     run : callable
-        ``run(settings, zeta_factor) -> ImpactResult``: the point solved with the given
+        ``run(settings, zeta_factor) -> result`` (an ImpactResult, or any object with ``fmax_normalised``, ``impacts`` and ``normalised_summary()``): the point solved with the given
         :class:`~impactmaps.solvers.modal.ModalSettings` at ζ × ``zeta_factor``.
     settings : ModalSettings
         The base settings of the sweep.
@@ -105,7 +105,10 @@ def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
         results.append(run(level, 1.0))
         fine = results[-1].fmax_normalised
         change = abs(fine - results[-2].fmax_normalised)
-        if change <= control.tolerance:
+        # an agreement between runs with different impact sequences is a coincidence
+        # (measured: plate ζ = 108, λ = 0.0095 agreed to 3.2e-4 at 3 and 5 impacts while
+        # the converged value lay 1.2e-3 away), so it does not count
+        if change <= control.tolerance and results[-1].impacts == results[-2].impacts:
             return _row(results[-1], "converged" if count == 1 else "refined",
                         change, fine - change, fine + change)
     p = control.perturbation

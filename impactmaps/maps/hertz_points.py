@@ -77,6 +77,11 @@ class _HertzScaled:
         """F_max / F_hs [-]."""
         return self.result.peak_force / self.numbers.force_scale
 
+    @property
+    def impacts(self) -> int:
+        """Number of separate contacts [-]."""
+        return self.result.impacts
+
     def normalised_summary(self) -> dict:
         """The map scalars of the run, forces over F_hs and times over t*."""
         return hertz_summary(self.result, self.numbers)
