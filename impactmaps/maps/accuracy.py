@@ -86,8 +86,10 @@ def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
     Parameters
     ----------
     run : callable
-        ``run(settings, zeta_factor) -> result`` (an ImpactResult, or any object with ``fmax_normalised``, ``impacts`` and ``normalised_summary()``): the point solved with the given
-        :class:`~impactmaps.solvers.modal.ModalSettings` at ζ × ``zeta_factor``.
+        ``run(settings, zeta_factor) -> result``: the point solved with the given
+        :class:`~impactmaps.solvers.modal.ModalSettings` at ζ × ``zeta_factor`` (an
+        ImpactResult, or any object with ``fmax_normalised``, ``impacts`` and
+        ``normalised_summary()``).
     settings : ModalSettings
         The base settings of the sweep.
     control : AccuracyControl

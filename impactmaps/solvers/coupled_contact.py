@@ -137,11 +137,11 @@ def _force_rate(frequencies, force_row, eta, rate, s, count):
 
 
 @numba.njit(cache=True)
-def _root(frequencies, force_row, eta, rate, length, derivative, count):
-    """Root in (0, length) of F (or, if ``derivative``, of the rate of its first ``count``
-    coupled modes) from the state (η, η̇), given a sign change over the interval
+def _root(frequencies, force_row, eta, rate, start, length, derivative, count):
+    """Root in (start, length) of F (or, if ``derivative``, of the rate of its first
+    ``count`` coupled modes) from the state (η, η̇), given a sign change over the interval
     (Illinois method) [s]."""
-    a = 0.0
+    a = start
     b = length
     if derivative:
         fa = _force_rate(frequencies, force_row, eta, rate, a, count)
@@ -173,6 +173,46 @@ def _root(frequencies, force_row, eta, rate, length, derivative, count):
     # F: the end of the bracket where F ≤ 0 (the state after a separation has no force);
     # F': its middle
     return 0.5 * (a + b) if derivative else b
+
+
+@numba.njit(cache=True)
+def _first_positive(frequencies, force_row, eta, rate, length):
+    """An instant in (0, length] [s] where F > 0, by halving from ``length``; 0 if none
+    is found down to length/2⁶⁰ (the force of a contact that begins tangentially grows
+    as ½ F''(0) s²)."""
+    s = length
+    for _ in range(60):
+        if _force(frequencies, force_row, eta, rate, s) > 0.0:
+            return s
+        s *= 0.5
+    return 0.0
+
+
+@numba.njit(cache=True)
+def _clear_gap(from_coupled, frequencies, eta, rate, phi, s, length, eta_s, rate_s, q, v):
+    """The separation instant ``s`` [s], moved later by the least round-off amount that
+    makes the physical gap w_i − Σ φ_j q_j strictly open; returns it with w_i [m] and
+    v_i [m/s] there (the modes' state in q, v; the coupled state in η_s, η̇_s).
+
+    F(s) ≤ 0 on the closed form does not guarantee it in the physical coordinates, whose
+    difference cancels; a gap left at +0 would make the free flight's touchdown search
+    find the same instant again (a degenerate bracket) and the run would ping-pong
+    between contact and flight without advancing.
+    """
+    shift = 1e-14 * length
+    wi = 0.0
+    vi = 0.0
+    for _ in range(60):
+        _advance(frequencies, eta, rate, s, eta_s, rate_s)
+        wi, vi = _to_physical(from_coupled, eta_s, rate_s, q, v)
+        gap = wi
+        for j in range(q.shape[0]):
+            gap -= phi[j] * q[j]
+        if gap < 0.0:
+            break
+        s += shift
+        shift *= 2.0
+    return s, wi, vi
 
 
 @numba.njit(cache=True)
@@ -297,12 +337,15 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
             eta[k] += to_coupled[k, j] * q[j - 1]
             rate[k] += to_coupled[k, j] * v[j - 1]
     h = step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
-    if h == 0.0 or (_force_rate(frequencies, force_row, eta, rate, 0.0, n) <= 0.0
-                    and _force(frequencies, force_row, eta, rate, h) <= 0.0):
-        # grazing: no closing speed and no force a step later (a touchdown at zero closing
-        # speed whose force grows at second order, e.g. a sphere resting on a structure
-        # that accelerates into it, is a contact)
-        return t, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
+    if h == 0.0 or _first_positive(frequencies, force_row, eta, rate, h) == 0.0:
+        # grazing: no force anywhere in the first step (a touchdown at zero closing speed
+        # whose force grows at second order — a sphere resting on a structure that
+        # accelerates into it — is a contact: its force is positive just after touchdown);
+        # leave with the gap strictly open, or flight would find this touchdown again
+        if h == 0.0:
+            h = 1e-9 / frequencies[n - 1]
+        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, 0.0, h, np.empty(n), np.empty(n), q, v)
+        return t + s, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
     while resolved < n and frequencies[resolved] * h <= 1.0:
         resolved += 1
@@ -324,7 +367,10 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
             f_next += force_row[k] * eta_next[k]
         steps += 1
         if f_next <= 0.0:
-            s = _root(frequencies, force_row, eta, rate, h, False, n)
+            # the bracket starts where F > 0: at the step's start, or inside the first step
+            start = 0.0 if force > 0.0 else _first_positive(frequencies, force_row, eta, rate, h)
+            s = _root(frequencies, force_row, eta, rate, start, h, False, n)
+            s, _wi, _vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, s, h, eta_next, rate_next, q, v)
             if record:
                 history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, s,
                                               row_spacing, omega, phi, residual, q, v, history, rec)
@@ -338,7 +384,7 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
                 # vanishes over the two steps around it (the force there, ripple included)
                 if (_force_rate(frequencies, force_row, eta_prev, rate_prev, 0.0, resolved) > 0.0
                         and _force_rate(frequencies, force_row, eta_prev, rate_prev, 2.0 * h, resolved) < 0.0):
-                    s = _root(frequencies, force_row, eta_prev, rate_prev, 2.0 * h, True, resolved)
+                    s = _root(frequencies, force_row, eta_prev, rate_prev, 0.0, 2.0 * h, True, resolved)
                     value = _force(frequencies, force_row, eta_prev, rate_prev, s)
                     if value > peak:
                         peak = value

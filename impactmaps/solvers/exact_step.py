@@ -248,7 +248,9 @@ def integrate_impact(
     h : time step [s]; max_time : time limit [s].
     record : store the history at the end of every step (free-flight steps are the
         doubled ones, so rows are not uniformly spaced there); otherwise only scalars.
-    max_events : capacity of the contact-interval table.
+    max_events : capacity of the contact-interval table; a run with more contacts stops
+        there, flagged like a run at its time limit (a sphere resting on a structure can
+        otherwise chatter through millions of contacts of no force).
     coupled_frequencies, coupled_force, from_coupled, to_coupled : the coupled modes of a
         linear contact (:class:`~impactmaps.solvers.coupled_contact.CoupledModes`); when
         given (non-empty), every contact phase is propagated exactly through them
@@ -330,7 +332,7 @@ def integrate_impact(
                 if separated:
                     n_intervals, full = _mark_contact(intervals, n_intervals, 1, t)
                     overflow = max(overflow, full)
-            if _out_of_time(t, steps, max_time, max_steps):
+            if _out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
                 hit_limit = 1.0
                 break
             continue
@@ -413,7 +415,7 @@ def integrate_impact(
             history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
         if force == 0.0 and steps % 8 == 0 and _no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
-        if _out_of_time(t, steps, max_time, max_steps):
+        if _out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
             hit_limit = 1.0
             break
 

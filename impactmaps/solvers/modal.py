@@ -140,7 +140,9 @@ class ModalSettings:
     max_time_ratio : float
         Time limit in units of 1/ω.
     max_events : int
-        Capacity of the contact-interval table.
+        Most contacts a run follows; a run with more stops there, with a warning and
+        ``time_limit_reached`` set (a sphere resting on a structure can chatter through
+        millions of contacts that carry no force).
     check_convergence : bool
         Re-run with twice the cut-off and half the step and warn
         (:class:`ConvergenceWarning`) if F̄max moves by more than ``tolerance``.
@@ -483,7 +485,7 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
     )
     if scalars[9]:
         warnings.warn(
-            f"more than max_events = {settings.max_events} contacts; intervals truncated",
+            f"more than max_events = {settings.max_events} contacts: the run stopped there (time_limit_reached)",
             RuntimeWarning,
             stacklevel=3,
         )
