@@ -22,6 +22,7 @@ elasticity fails here.  Tolerances, per level:
 from __future__ import annotations
 
 import json
+import sys
 import warnings
 from pathlib import Path
 
@@ -31,6 +32,10 @@ import pytest
 import impactmaps
 
 RESULTS = Path(__file__).resolve().parents[1] / "validation" / "fe" / "results"
+sys.path.insert(0, str(RESULTS.parent))
+import ccx_tools  # noqa: E402  (validation/fe: the level-2 smoke test's availability check)
+
+_FE_AVAILABLE, _FE_REASON = ccx_tools.have_fe_tools()
 STEEL = impactmaps.material("structural-steel")
 
 LEVEL1 = RESULTS / "level1_modes.json"
@@ -231,3 +236,52 @@ def test_mindlin_plate_matches_spring_coupled_3d(case):
     ref = fe["reference"]
     assert first["force_N"].max() == pytest.approx(ref["first_peak_N"], rel=PLATE_PEAK_TOLERANCE)
     assert end - start == pytest.approx(ref["first_contact_s"], rel=0.05)
+
+
+LEVEL2 = RESULTS / "level2_static_hertz.json"
+
+
+def _level2_pair(case):
+    """(coarse, fine) runs of a level-2 case, skipping when not committed."""
+    if not LEVEL2.exists():
+        pytest.skip(f"{LEVEL2} not committed")
+    runs = json.loads(LEVEL2.read_text())["runs"]
+    if f"{case}_coarse" not in runs or f"{case}_fine" not in runs:
+        pytest.skip(f"level-2 case {case!r}: coarse and fine runs not both committed")
+    return runs[f"{case}_coarse"], runs[f"{case}_fine"]
+
+
+def _mesh_spread(coarse, fine, key):
+    return abs(coarse[key] / fine[key] - 1)
+
+
+def test_hertz_constant_matches_3d_static_contact_on_block():
+    """Steel sphere R = 10 mm pressed on a thick steel block (half-space proxy), F up to
+    2 kN (Hertz radius 0.51 mm): the contact constant fitted to the 3D force–approach
+    curve (approach = (F/K)^{2/3} + c F, c the linear far-field remainder of the finite
+    bodies) against the toolkit's K_h = (4/3) E* √R.  Tolerance: the FE's own mesh
+    convergence (coarse vs fine near the contact, ``LEVEL2_MESH_FACTOR`` times it) plus
+    ``LEVEL2_K_MARGIN`` for the penalty overclosure and the fit."""
+    coarse, fine = _level2_pair("block")
+    spread = _mesh_spread(coarse, fine, "K_fit")
+    sphere = impactmaps.Sphere(0.01, STEEL)
+    k_h = impactmaps.law_for_sphere("hertz", sphere, STEEL).stiffness
+    tolerance = LEVEL2_MESH_FACTOR * spread + LEVEL2_K_MARGIN
+    assert spread <= LEVEL2_K_CONVERGED, spread
+    assert k_h == pytest.approx(fine["K_fit"], rel=tolerance)
+
+
+
+@pytest.mark.fe
+@pytest.mark.skipif(not _FE_AVAILABLE, reason=_FE_REASON or "ccx and gmsh available")
+def test_level2_static_hertz_smoke_end_to_end(tmp_path):
+    """``level2_static_hertz.py --smoke`` (a coarse quarter block, 3 increments, ≈ 10 s):
+    mesh → deck with the contact pair → ccx → .dat parsing → fit.  The coarse contact
+    mesh (a_max / h0 = 2) still gives K within 1.4 % of K_h; held to 5 %."""
+    import level2_static_hertz
+
+    record = level2_static_hertz.main(["--smoke", "--out-dir", str(tmp_path)])
+    assert (tmp_path / "level2_static_hertz.json").exists()
+    assert (tmp_path / record["csv"]).exists()
+    assert record["increments"] == 3 and record["element_type"] == "C3D10"
+    assert abs(record["K_fit_vs_K_h"]) < 0.05, record["K_fit_vs_K_h"]

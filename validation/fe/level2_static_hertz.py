@@ -66,7 +66,8 @@ BEAM = dict(length=0.5, width=0.02, height=0.02)
 GROWTH = 0.3                        # element size growth per unit distance [-]
 PENALTY = 50.0                      # contact slope = PENALTY × E / h0 [Pa/m]
 FINE_ZONE = 1.5                     # size h0 up to FINE_ZONE × a_max from the contact
-MESHES = {"coarse": 6.0, "fine": 10.0, "smoke": 2.0}   # a_max / h0
+BEAM_PRELOAD = 0.5e-6               # initial overclosure on the beam [m] (see docstring)
+MESHES = {"coarse": 6.0, "fine": 8.0, "smoke": 2.0}   # a_max / h0
 
 
 def toolkit_values():
@@ -85,16 +86,16 @@ def hertz_radius(force, stiffness):
     return float(np.sqrt(RADIUS * (force / stiffness) ** (2 / 3)))
 
 
-def build_mesh(case, h0, r_fine, far_size, block_side):
-    """C3D10 mesh of the quarter sphere + target, contact surfaces, node sets."""
+def build_mesh(case, h0, r_fine, far_size, block_side, preload=0.0):
+    """C3D10 mesh of the quarter sphere (centre lowered by ``preload``) + target."""
     import gmsh
     gmsh.initialize(["-noenv"])
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("level2")
         occ = gmsh.model.occ
-        ball = occ.addSphere(0, 0, RADIUS, RADIUS)
-        cut = occ.addBox(0, 0, 0, RADIUS, RADIUS, RADIUS)
+        ball = occ.addSphere(0, 0, RADIUS - preload, RADIUS)
+        cut = occ.addBox(0, 0, -preload, RADIUS, RADIUS, RADIUS)
         (sphere_vol,), _ = occ.intersect([(3, ball)], [(3, cut)])
         if case == "beam":
             target = occ.addBox(0, 0, -BEAM["height"], BEAM["length"] / 2,
@@ -158,7 +159,7 @@ def ramp(toolkit, case, f_max, n):
     return np.arange(1, n + 1) / n, delta, forces
 
 
-def build_deck(case, mesh, faces, h0, times, delta, block_side):
+def build_deck(case, mesh, faces, h0, times, delta, block_side, preload=0.0):
     """The ccx deck: mesh, sets, contact pair, one *STATIC step of len(times) increments."""
     x, y, z = mesh.coords.T
     tol = 1e-9
@@ -170,10 +171,10 @@ def build_deck(case, mesh, faces, h0, times, delta, block_side):
     ct.write_mesh(F, mesh, STEEL)
     ct.write_nset(F, "XSYM", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
     ct.write_nset(F, "YSYM", mesh.nodes_where(np.isclose(y, 0, atol=tol)))
-    ct.write_nset(F, "STOP", mesh.nodes_where(np.isclose(z, RADIUS, atol=tol)))
+    ct.write_nset(F, "STOP", mesh.nodes_where(np.isclose(z, RADIUS - preload, atol=tol)))
     target = np.zeros(len(z), dtype=bool)
     corners = mesh.elements[:, :4] - 1
-    target[mesh.elements[z[corners].mean(axis=1) < 0].ravel() - 1] = True
+    target[mesh.elements[z[corners].mean(axis=1) < -preload].ravel() - 1] = True
     ct.write_nset(F, "AXIS", mesh.nodes_where(np.isclose(x, 0, atol=tol)
                                               & np.isclose(y, 0, atol=tol) & target))
     if case == "beam":
@@ -232,17 +233,17 @@ def axis_deflection(blocks, mesh, depth):
                      for b in blocks])
 
 
-def run(case, mesh_name, f_max, n_inc, far_size, block_side, out_dir, workdir):
+def run(case, mesh_name, f_max, n_inc, far_size, block_side, out_dir, workdir, preload=0.0):
     """Mesh, run ccx, parse, fit; returns the JSON record of this run."""
     toolkit = toolkit_values()
     a_max = hertz_radius(f_max, toolkit["K_h"])
     h0 = a_max / MESHES[mesh_name]
     t0 = time.perf_counter()
-    mesh, tris = build_mesh(case, h0, FINE_ZONE * a_max, far_size, block_side)
+    mesh, tris = build_mesh(case, h0, FINE_ZONE * a_max, far_size, block_side, preload)
     faces = contact_faces(mesh, tris, 3.0 * a_max)
     mesh_time = time.perf_counter() - t0
     times, delta, nominal = ramp(toolkit, case, f_max, n_inc)
-    deck = build_deck(case, mesh, faces, h0, times, delta, block_side)
+    deck = build_deck(case, mesh, faces, h0, times, delta - preload, block_side, preload)
     job = f"level2_{case}_{mesh_name}"
     dat, wall = ct.run_ccx(deck, job, workdir)
     text = dat.read_text()
@@ -259,6 +260,7 @@ def run(case, mesh_name, f_max, n_inc, far_size, block_side, out_dir, workdir):
                   n_elements=len(mesh.elements), element_type=mesh.element_type,
                   penalty_slope_Pa_per_m=PENALTY * STEEL.youngs_modulus / h0,
                   increments=n_inc, f_max_nominal_N=f_max, a_max_m=a_max,
+                  initial_overclosure_m=preload,
                   mesh_time_s=mesh_time, ccx_wall_time_s=wall,
                   newton_iterations=_iterations(dat.with_suffix(".sta")))
     if case == "beam":
@@ -310,6 +312,9 @@ def main(argv=None):
     p.add_argument("--increments", type=int, default=8)
     p.add_argument("--far-size", type=float, default=0.005, help="target far size [m]")
     p.add_argument("--block", type=float, default=0.03, help="quarter block side [m]")
+    p.add_argument("--preload", type=float, default=None,
+                   help="initial overclosure of the sphere [m] (default: beam 0.5 µm, "
+                   "block 0)")
     p.add_argument("--threads", default="1", help="ccx threads (FE_THREADS)")
     p.add_argument("--smoke", action="store_true", help="coarse block, 3 increments")
     p.add_argument("--out-dir", type=Path, default=None)
@@ -323,8 +328,10 @@ def main(argv=None):
         out_dir = a.out_dir or ct.RESULTS
     out_dir.mkdir(parents=True, exist_ok=True)
     workdir = out_dir / "work" if a.smoke else ct.WORK / "level2"
+    if a.preload is None:
+        a.preload = BEAM_PRELOAD if a.case == "beam" else 0.0
     record, toolkit = run(a.case, a.mesh, a.force, a.increments, a.far_size, a.block,
-                          out_dir, workdir)
+                          out_dir, workdir, a.preload)
     record.update(block_side_m=a.block if a.case == "block" else None,
                   command="python validation/fe/level2_static_hertz.py "
                   + " ".join(argv if argv is not None else sys.argv[1:]),
