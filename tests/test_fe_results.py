@@ -239,6 +239,14 @@ def test_mindlin_plate_matches_spring_coupled_3d(case):
 
 
 LEVEL2 = RESULTS / "level2_static_hertz.json"
+# Level 2: the fine contact mesh's own error, estimated by Richardson extrapolation at
+# second order from the coarse/fine pair (contact size a_max/6 and a_max/8, ratio 4/3:
+# error ≈ spread / ((4/3)² − 1) ≈ 1.3 × spread), taken as 2 × the coarse–fine spread;
+# plus a margin for the penalty overclosure (≈ 0.1 % of the approach at the peak
+# pressure) and the least-squares fit (rms residual ≈ 0.03 % of the approach).
+LEVEL2_MESH_FACTOR = 2.0
+LEVEL2_K_MARGIN = 0.005
+LEVEL2_K_CONVERGED = 0.01       # the FE contact constant must be mesh-converged to 1 %
 
 
 def _level2_pair(case):

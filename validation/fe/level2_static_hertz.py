@@ -67,7 +67,7 @@ GROWTH = 0.3                        # element size growth per unit distance [-]
 PENALTY = 50.0                      # contact slope = PENALTY × E / h0 [Pa/m]
 FINE_ZONE = 1.5                     # size h0 up to FINE_ZONE × a_max from the contact
 BEAM_PRELOAD = 0.5e-6               # initial overclosure on the beam [m] (see docstring)
-MESHES = {"coarse": 6.0, "fine": 8.0, "smoke": 2.0}   # a_max / h0
+MESHES = {"medium": 4.5, "coarse": 6.0, "fine": 8.0, "smoke": 2.0}   # a_max / h0
 
 
 def toolkit_values():
@@ -242,7 +242,7 @@ def run(case, mesh_name, f_max, n_inc, far_size, block_side, out_dir, workdir, p
     mesh, tris = build_mesh(case, h0, FINE_ZONE * a_max, far_size, block_side, preload)
     faces = contact_faces(mesh, tris, 3.0 * a_max)
     mesh_time = time.perf_counter() - t0
-    times, delta, nominal = ramp(toolkit, case, f_max, n_inc)
+    times, delta, _ = ramp(toolkit, case, f_max, n_inc)
     deck = build_deck(case, mesh, faces, h0, times, delta - preload, block_side, preload)
     job = f"level2_{case}_{mesh_name}"
     dat, wall = ct.run_ccx(deck, job, workdir)
@@ -304,10 +304,48 @@ def _iterations(sta: Path):
     return total
 
 
+def _pct(value):
+    return f"{100 * value:+.2f} %"
+
+
+def table(data):
+    """Markdown rows (case, FE value with its mesh convergence, toolkit, difference)
+    from the summary JSON: the two finest meshes of each case."""
+    runs, tk = data["runs"], data["toolkit"]
+    rows = ["| case | quantity | FE (finest mesh) | FE mesh Δ (coarser − finer) | toolkit | "
+            "toolkit − FE |", "|---|---|---|---|---|---|"]
+    for case in ("block", "beam"):
+        meshes = [m for m in ("fine", "coarse", "medium") if f"{case}_{m}" in runs][:2]
+        if len(meshes) < 2:
+            continue
+        fine, coarse = runs[f"{case}_{meshes[0]}"], runs[f"{case}_{meshes[1]}"]
+        label = f"{case} (a_max/h0 {coarse['a_max_over_h0']:g} → {fine['a_max_over_h0']:g})"
+        items = [("K [N/m^1.5], 2-term fit", "K_fit", tk["K_h"]),
+                 ("K, pure F = K α^1.5", "K_pure_fit", tk["K_h"])]
+        if case == "beam":
+            items = [("K [N/m^1.5], fit of the total approach", "K_fit_total", tk["K_h"]),
+                     ("linear part c [m/N] of the total approach", "c_fit_total_m_per_N",
+                      tk["C_timoshenko"]),
+                     ("neutral-axis deflection / F [m/N]", "neutral_axis_compliance_m_per_N",
+                      tk["C_timoshenko"]),
+                     ("bottom-face deflection / F [m/N]", "bottom_compliance_m_per_N",
+                      tk["C_timoshenko"]),
+                     ("K, local fit (approach to the neutral axis)", "K_fit", tk["K_h"])]
+        for name, key, ref in items:
+            rows.append(f"| {label} | {name} | {fine[key]:.5g} | "
+                        f"{_pct(coarse[key] / fine[key] - 1)} | {ref:.5g} | "
+                        f"{_pct(ref / fine[key] - 1)} |")
+        if case == "beam":
+            rows.append(f"| {label} | sphere approach at F_max: toolkit C_st F + (F/K_h)^(2/3)"
+                        f" vs FE | — | {_pct(coarse['total_vs_toolkit_at_max'] - fine['total_vs_toolkit_at_max'])}"
+                        f" | — | {_pct(1 / (1 + fine['total_vs_toolkit_at_max']) - 1)} |")
+    return "\n".join(rows)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--case", choices=("block", "beam"), default="block")
-    p.add_argument("--mesh", choices=("coarse", "fine"), default="coarse")
+    p.add_argument("--mesh", choices=("medium", "coarse", "fine"), default="coarse")
     p.add_argument("--force", type=float, default=2000.0, help="largest force F_max [N]")
     p.add_argument("--increments", type=int, default=8)
     p.add_argument("--far-size", type=float, default=0.005, help="target far size [m]")
@@ -318,7 +356,12 @@ def main(argv=None):
     p.add_argument("--threads", default="1", help="ccx threads (FE_THREADS)")
     p.add_argument("--smoke", action="store_true", help="coarse block, 3 increments")
     p.add_argument("--out-dir", type=Path, default=None)
+    p.add_argument("--table", action="store_true",
+                   help="print the README table from results/level2_static_hertz.json")
     a = p.parse_args(argv)
+    if a.table:
+        print(table(json.loads((ct.RESULTS / "level2_static_hertz.json").read_text())))
+        return None
     os.environ["FE_THREADS"] = a.threads
     os.environ.setdefault("CCX_NPROC_EQUATION_SOLVER", a.threads)
     if a.smoke:
