@@ -326,3 +326,21 @@ def test_beam_static_approach_matches_3d_static_contact():
     force, approach = np.loadtxt(RESULTS / fine["csv"], delimiter=",", skiprows=1)[-1, :2]
     toolkit = c_st * force + (force / k_h) ** (2 / 3)
     assert toolkit == pytest.approx(approach, rel=LEVEL2_MESH_FACTOR * spread + LEVEL2_K_MARGIN)
+
+
+LEVEL2_BEAM_K_TOLERANCE = 0.012     # observed +0.82 % (see test)
+
+
+def test_hertz_constant_on_the_beam_matches_3d():
+    """The contact constant fitted to the sphere's total approach on the beam
+    (δ = (F/K)^{2/3} + c F) is 0.82 % under K_h, against 0.43 % on the block, the FE
+    meshes 0.07 % apart: the 20 mm deep beam's local field under the sphere is not
+    exactly linear in F (its deviation from the half-space ends up in K), beyond the
+    2 × spread + 0.5 % of the block test.  Held at ``LEVEL2_BEAM_K_TOLERANCE`` so that a
+    drift is caught; the approach itself (what the impact model uses) is within 0.2 %
+    (previous test)."""
+    coarse, fine = _level2_pair("beam")
+    assert _mesh_spread(coarse, fine, "K_fit_total") <= LEVEL2_K_CONVERGED
+    sphere = impactmaps.Sphere(0.01, STEEL)
+    k_h = impactmaps.law_for_sphere("hertz", sphere, STEEL).stiffness
+    assert k_h == pytest.approx(fine["K_fit_total"], rel=LEVEL2_BEAM_K_TOLERANCE)
