@@ -12,9 +12,13 @@ Quarter models (symmetry planes x = 0 and y = 0, the contact point at the origin
   (x ∈ [0, L/2], end face x = L/2 held in z, the diaphragm support of level 1).
 
 Both bodies are 10-node tetrahedra (C3D10) from one gmsh model, graded with the
-distance r from the contact point: size ``h0`` for r < 1.5 a_max (a_max the Hertz
-contact radius at the largest force), growing by ``GROWTH`` per unit distance
-beyond, up to R/3 in the sphere and ``--far-size`` in the target.  Contact:
+distance r from the contact point: size h0 = a_max / ``MESHES[--mesh]`` for
+r < 1.5 a_max (a_max the Hertz contact radius at the largest force), growing by
+``GROWTH`` per unit distance beyond, up to R/3 in the sphere and ``--far-size`` in the
+target.  On the beam the sphere starts ``BEAM_PRELOAD`` into the target (counted in the
+approach): with no contact at the start of the first increment, the first Newton
+iteration would push the sphere the whole first increment (mostly beam deflection,
+0.24 mm) into the undeformed beam, and ccx does not recover from that.  Contact:
 ``*CONTACT PAIR, TYPE=SURFACE TO SURFACE``, frictionless, the sphere's surface near
 the pole the slave, the target's top face near the origin the master, linear
 penalty (slope ``PENALTY`` × E / h0; the overclosure at the Hertz peak pressure is
@@ -37,9 +41,10 @@ Derived:
 
 Run (full, niced, single-threaded):
 ``OMP_NUM_THREADS=1 CCX_NPROC_EQUATION_SOLVER=1 nice -n 19 python
-validation/fe/level2_static_hertz.py --case block --mesh coarse`` (and ``fine``,
-then ``--case beam``); each run adds its entry to ``results/level2_static_hertz.json``
-and writes ``results/level2_<case>_<mesh>.csv``.  ``--smoke``: a coarse block with
+validation/fe/level2_static_hertz.py --case block --mesh medium`` (and ``coarse``,
+then ``--case beam``; ``--mesh fine`` is the next density); each run adds its entry to
+``results/level2_static_hertz.json`` and writes ``results/level2_<case>_<mesh>.csv``.
+``--table`` prints the README table from that file.  ``--smoke``: a coarse block with
 3 increments (≈ 10 s), written to ``--out-dir`` (a temporary directory by default).
 """
 
