@@ -22,6 +22,7 @@ elasticity fails here.  Tolerances, per level:
 from __future__ import annotations
 
 import json
+import sys
 import warnings
 from pathlib import Path
 
@@ -31,6 +32,10 @@ import pytest
 import impactmaps
 
 RESULTS = Path(__file__).resolve().parents[1] / "validation" / "fe" / "results"
+sys.path.insert(0, str(RESULTS.parent))
+import ccx_tools  # noqa: E402  (validation/fe: the level-2 smoke test's availability check)
+
+_FE_AVAILABLE, _FE_REASON = ccx_tools.have_fe_tools()
 STEEL = impactmaps.material("structural-steel")
 
 LEVEL1 = RESULTS / "level1_modes.json"
@@ -231,3 +236,111 @@ def test_mindlin_plate_matches_spring_coupled_3d(case):
     ref = fe["reference"]
     assert first["force_N"].max() == pytest.approx(ref["first_peak_N"], rel=PLATE_PEAK_TOLERANCE)
     assert end - start == pytest.approx(ref["first_contact_s"], rel=0.05)
+
+
+LEVEL2 = RESULTS / "level2_static_hertz.json"
+# Level 2: the finer contact mesh's own error, estimated by Richardson extrapolation at
+# second order from the two finest meshes (contact size a_max/4.5, /6, /8: ratio 4/3;
+# error ≈ spread / ((4/3)² − 1) ≈ 1.3 × spread), taken as 2 × the coarse–fine spread;
+# plus a margin for the penalty overclosure (≈ 0.1 % of the approach at the peak
+# pressure) and the least-squares fit (rms residual ≈ 0.03 % of the approach).
+LEVEL2_MESH_FACTOR = 2.0
+LEVEL2_K_MARGIN = 0.005
+LEVEL2_K_CONVERGED = 0.01       # the FE contact constant must be mesh-converged to 1 %
+
+
+def _level2_pair(case):
+    """(coarser, finer) runs of a level-2 case: its two finest committed contact meshes
+    (a_max/h0 = 8 "fine", 6 "coarse", 4.5 "medium"), skipping when fewer are committed."""
+    if not LEVEL2.exists():
+        pytest.skip(f"{LEVEL2} not committed")
+    runs = json.loads(LEVEL2.read_text())["runs"]
+    meshes = [m for m in ("fine", "coarse", "medium") if f"{case}_{m}" in runs][:2]
+    if len(meshes) < 2:
+        pytest.skip(f"level-2 case {case!r}: fewer than two contact meshes committed")
+    return runs[f"{case}_{meshes[1]}"], runs[f"{case}_{meshes[0]}"]
+
+
+def _mesh_spread(coarse, fine, key):
+    return abs(coarse[key] / fine[key] - 1)
+
+
+def test_hertz_constant_matches_3d_static_contact_on_block():
+    """Steel sphere R = 10 mm pressed on a thick steel block (half-space proxy), F up to
+    2 kN (Hertz radius 0.51 mm): the contact constant fitted to the 3D force–approach
+    curve (approach = (F/K)^{2/3} + c F, c the linear far-field remainder of the finite
+    bodies) against the toolkit's K_h = (4/3) E* √R.  Tolerance: the FE's own mesh
+    convergence (the two finest contact meshes, ``LEVEL2_MESH_FACTOR`` times their
+    difference) plus ``LEVEL2_K_MARGIN`` for the penalty overclosure and the fit.
+    Observed: K_h 0.33 % above the FE constant (finest mesh, a_max/8), meshes a_max/6
+    and a_max/8 0.10 % apart (a_max/4.5, /6, /8: −0.30, −0.42, −0.32 %).  (The pure F = K α^{3/2} fit, which lets K absorb the finite bodies' linear
+    far field, gives K_h 1.5 % low.)"""
+    coarse, fine = _level2_pair("block")
+    spread = _mesh_spread(coarse, fine, "K_fit")
+    sphere = impactmaps.Sphere(0.01, STEEL)
+    k_h = impactmaps.law_for_sphere("hertz", sphere, STEEL).stiffness
+    tolerance = LEVEL2_MESH_FACTOR * spread + LEVEL2_K_MARGIN
+    assert spread <= LEVEL2_K_CONVERGED, spread
+    assert k_h == pytest.approx(fine["K_fit"], rel=tolerance)
+
+
+
+@pytest.mark.fe
+@pytest.mark.skipif(not _FE_AVAILABLE, reason=_FE_REASON or "ccx and gmsh available")
+def test_level2_static_hertz_smoke_end_to_end(tmp_path):
+    """``level2_static_hertz.py --smoke`` (a coarse quarter block, 3 increments, ≈ 10 s):
+    mesh → deck with the contact pair → ccx → .dat parsing → fit.  The coarse contact
+    mesh (a_max / h0 = 2) still gives K within 1.4 % of K_h; held to 5 %."""
+    import level2_static_hertz
+
+    record = level2_static_hertz.main(["--smoke", "--out-dir", str(tmp_path)])
+    assert (tmp_path / "level2_static_hertz.json").exists()
+    assert (tmp_path / record["csv"]).exists()
+    assert record["increments"] == 3 and record["element_type"] == "C3D10"
+    assert abs(record["K_fit_vs_K_h"]) < 0.05, record["K_fit_vs_K_h"]
+
+
+def test_beam_static_approach_matches_3d_static_contact():
+    """The same sphere pressed on the simply supported 500 × 20 × 20 mm steel beam (end
+    faces held in z), F up to 2 kN: the approach δ of the sphere's centre against the
+    toolkit's static model δ = C_st F + (F/K_h)^{2/3} (Timoshenko point compliance C_st
+    plus Hertz).  Three checks, each within ``LEVEL2_MESH_FACTOR`` × the FE mesh
+    spread + ``LEVEL2_K_MARGIN``: δ at the largest force (observed: toolkit 0.20 %
+    above FE); the linear part c of the fit δ = (F/K)^{2/3} + c F against C_st
+    (observed: C_st 0.21 % above c, i.e. 1.9 × 10⁻⁹ m/N — the Timoshenko beam's excess
+    point-load shear compliance that level 3 measured as 1.8 × 10⁻⁹ m/N); the beam's
+    neutral-axis deflection under the sphere against C_st F (observed +0.10 %)."""
+    coarse, fine = _level2_pair("beam")
+    c_st = impactmaps.Beam.rectangular(0.5, 0.02, 0.02, STEEL).static_compliance()
+    tolerance = {}
+    for key in ("c_fit_total_m_per_N", "neutral_axis_compliance_m_per_N"):
+        spread = _mesh_spread(coarse, fine, key)
+        assert spread <= LEVEL2_K_CONVERGED, (key, spread)
+        tolerance[key] = LEVEL2_MESH_FACTOR * spread + LEVEL2_K_MARGIN
+        assert c_st == pytest.approx(fine[key], rel=tolerance[key]), key
+    # the approach at the largest force: the toolkit side recomputed at the FE force
+    spread = abs(coarse["total_vs_toolkit_at_max"] - fine["total_vs_toolkit_at_max"])
+    assert spread <= LEVEL2_K_CONVERGED, spread
+    sphere = impactmaps.Sphere(0.01, STEEL)
+    k_h = impactmaps.law_for_sphere("hertz", sphere, STEEL).stiffness
+    force, approach = np.loadtxt(RESULTS / fine["csv"], delimiter=",", skiprows=1)[-1, :2]
+    toolkit = c_st * force + (force / k_h) ** (2 / 3)
+    assert toolkit == pytest.approx(approach, rel=LEVEL2_MESH_FACTOR * spread + LEVEL2_K_MARGIN)
+
+
+LEVEL2_BEAM_K_TOLERANCE = 0.012     # observed +0.80 % (see test)
+
+
+def test_hertz_constant_on_the_beam_matches_3d():
+    """The contact constant fitted to the sphere's total approach on the beam
+    (δ = (F/K)^{2/3} + c F) is 0.80 % under K_h, against 0.33 % on the block, the FE
+    meshes a_max/6 and a_max/8 0.01 % apart: the 20 mm deep beam's local field under the sphere is not
+    exactly linear in F (its deviation from the half-space ends up in K), beyond the
+    2 × spread + 0.5 % of the block test.  Held at ``LEVEL2_BEAM_K_TOLERANCE`` so that a
+    drift is caught; the approach itself (what the impact model uses) is within 0.2 %
+    (previous test)."""
+    coarse, fine = _level2_pair("beam")
+    assert _mesh_spread(coarse, fine, "K_fit_total") <= LEVEL2_K_CONVERGED
+    sphere = impactmaps.Sphere(0.01, STEEL)
+    k_h = impactmaps.law_for_sphere("hertz", sphere, STEEL).stiffness
+    assert k_h == pytest.approx(fine["K_fit_total"], rel=LEVEL2_BEAM_K_TOLERANCE)

@@ -95,6 +95,12 @@ def structured_box(lx, ly, lz, nx, ny, nz, element_type="C3D20R") -> Mesh:
 
 def _collect(gmsh, gmsh_type, order, element_type) -> Mesh:
     """Renumber the gmsh nodes 1..n and return the elements of ``gmsh_type``."""
+    return collect_indexed(gmsh, gmsh_type, order, element_type)[0]
+
+
+def collect_indexed(gmsh, gmsh_type, order, element_type) -> tuple[Mesh, np.ndarray]:
+    """As :func:`_collect`, also returning ``index``: gmsh node tag -> mesh node id
+    (0 for a tag used by no element of ``gmsh_type``)."""
     tags, xyz, _ = gmsh.model.mesh.getNodes()
     xyz = xyz.reshape(-1, 3)
     etypes, _, enodes = gmsh.model.mesh.getElements(3)
@@ -106,7 +112,37 @@ def _collect(gmsh, gmsh_type, order, element_type) -> Mesh:
     lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     lookup[tags.astype(np.int64)] = np.arange(tags.size)
     coords = xyz[lookup[used]]
-    return Mesh(coords=coords, elements=index[conn], element_type=element_type)
+    return Mesh(coords=coords, elements=index[conn], element_type=element_type), index
+
+
+# Faces of a C3D10 element (Abaqus labels S1..S4) by their corner nodes (0-based).
+TET_FACES = {"S1": (0, 1, 2), "S2": (0, 3, 1), "S3": (1, 3, 2), "S4": (2, 3, 0)}
+
+
+def tet_faces_on(mesh: Mesh, triangles) -> list[tuple[int, str]]:
+    """(element id, face label) of the tetrahedron faces whose corners are ``triangles``.
+
+    ``triangles``: (t, >=3) mesh node ids, corners first (e.g. the 6-node boundary
+    triangles of a gmsh surface, renumbered).  Raises if a triangle is no element face.
+    """
+    lookup = {}
+    for e, row in enumerate(mesh.elements, start=1):
+        for label, corners in TET_FACES.items():
+            lookup[frozenset(int(row[c]) for c in corners)] = (e, label)
+    faces = []
+    for tri in np.asarray(triangles)[:, :3]:
+        key = frozenset(int(v) for v in tri)
+        if key not in lookup:
+            raise RuntimeError(f"surface triangle {tuple(tri)} is not an element face")
+        faces.append(lookup[key])
+    return faces
+
+
+def write_element_surface(f, name, faces):
+    """``*SURFACE, TYPE=ELEMENT`` from (element id, face label) pairs."""
+    f.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
+    for element, label in faces:
+        f.write(f"{element},{label}\n")
 
 
 def write_mesh(f, mesh: Mesh, material, elset="SOLID"):
