@@ -18,7 +18,7 @@ from impactmaps.solvers.coupled_contact import CONTACT_RESOLUTION, coupled_modes
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 
-from .analytic import ss_beam_impactor, ss_euler_beam_basis, ss_plate_impactor, ss_square_plate_basis
+from .test_integrator import _case  # (basis, law, mass) realising (ζ, λ) on the closed-form structures
 
 #: (kind, ζ, λ) where solve_ivp is affordable: a re-impact-free transition point, four
 #: impacts on a beam, six impacts separated by long flights on a plate.
@@ -28,15 +28,6 @@ IVP_CASES = [("plate", 11.3, 0.425), ("beam", 1.0, 0.05), ("plate", 1.198, 0.01)
 CORNER_CASES = [("plate", 100.0, 30.0), ("beam", 100.0, 30.0), ("plate", 300.0, 3.0)]
 CASES = IVP_CASES + CORNER_CASES
 EXACT = ModalSettings(contact_phase="exact")
-
-
-def _case(kind, zeta, lam, settings=None):
-    settings = settings or ModalSettings()
-    impactor = ss_beam_impactor if kind == "beam" else ss_plate_impactor
-    bases = ss_euler_beam_basis if kind == "beam" else ss_square_plate_basis
-    mass, stiffness = impactor(zeta, lam)
-    omega = math.sqrt(stiffness / mass)
-    return bases(settings.cutoff_ratio * omega, settings.min_modes), LinearContact(stiffness), mass
 
 
 @pytest.mark.parametrize("kind, zeta, lam", IVP_CASES)
