@@ -112,7 +112,6 @@ class TreeMemorySampler:
 
 
 def _child(out_dir: str, zeta_count: int, lambda_count: int) -> dict:
-    import numpy as np
 
     from impactmaps.maps.chart import CHART_STRUCTURES
     from impactmaps.maps.structures import MapStructure
