@@ -51,8 +51,8 @@ def test_a_map_point_is_a_direct_simulation_of_another_case(structure, theory):
     dataset = load_shipped_map(structure, theory, "hertz")
     target = _physical_target(structure)
     law = HertzContact(7.3e9)
-    for l_index, z_index in ((3, 20), (12, 45), (20, 70)):
-        point = dataset.isel(structure=0, lambda_=l_index, zeta=z_index)
+    for lambda_h, z_index in ((0.0998, 20), (0.792, 45), (5.0, 70)):
+        point = dataset.isel(structure=0, zeta=z_index).sel(lambda_=lambda_h, method="nearest")
         assert int(point["status"]) == 0  # converged: stored = first refinement
         zeta_h, lambda_h = float(point["zeta"]), float(point["lambda_"])
         case = realise_hertz(target, zeta_h, lambda_h, law)
@@ -78,11 +78,13 @@ def test_shipped_hertz_maps_are_complete_hertz_maps_below_the_half_space(key):
     assert np.all(fmax <= 1.0 + 1e-3)
     assert np.all(dataset["fmax_low"].values <= fmax + 1e-15) and np.all(fmax <= dataset["fmax_high"].values + 1e-15)
     assert np.all(dataset["time_limit_reached"].values == 0)
-    # the Hertz grid (ζ_h ∈ [0.005, 100], λ_h ∈ [0.05, 20], 20 and 10 per decade) lies
-    # inside the linear map's range (the whole plane for beams and the Kirchhoff plate)
+    # the Hertz grid (ζ_h ∈ [0.005, 100], λ_h ∈ [1e-3, 20] — Mindlin [0.05, 20] —, 20 and
+    # 10 per decade) lies inside the linear map's range
     linear = load_shipped_map(*key)
     zetas, lambdas = dataset["zeta"].values, dataset["lambda_"].values
-    assert np.allclose(zetas, np.geomspace(0.005, 100.0, 87)) and np.allclose(lambdas, np.geomspace(0.05, 20.0, 27))
+    smallest = 0.05 if key[1] == "mindlin" else 1e-3
+    assert np.allclose(zetas, np.geomspace(0.005, 100.0, 87))
+    assert np.allclose(lambdas, np.geomspace(smallest, 20.0, 44 if smallest == 1e-3 else 27))
     assert linear["zeta"].values.min() <= zetas.min() and zetas.max() <= linear["zeta"].values.max() * (1 + 1e-12)
     assert linear["lambda_"].values.min() <= lambdas.min() and lambdas.max() <= linear["lambda_"].values.max() * (1 + 1e-12)
 
