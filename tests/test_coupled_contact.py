@@ -154,3 +154,11 @@ def test_record_adds_rows_but_leaves_the_scalars_bit_identical():
     touching = (force[1:] > 0.0) & (force[:-1] > 0.0)
     spacing = np.diff(history["time_s"].to_numpy())[touching]
     assert spacing.max() <= EXACT.time_step_ratio / recorded.contact_frequency * (1 + 1e-9)
+
+
+def test_coupled_modes_refuse_bad_input():
+    basis, law, mass = _case("beam", 1.0, 0.05)
+    with pytest.raises(ValueError, match="contact_stiffness"):
+        coupled_modes(basis, -1.0, mass)
+    with pytest.raises(ValueError, match="impactor_mass"):
+        coupled_modes(basis, law.stiffness, 0.0)

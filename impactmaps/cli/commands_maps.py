@@ -122,7 +122,7 @@ def _simulate_point(structure, target, args, settings, record: bool):
 def _map_point(structure, args, settings) -> dict:
     """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
     from ..maps.accuracy import STATUSES, AccuracyControl
-    from ..maps.sweep import METHODS, solve_points
+    from ..maps.sweep import METHODS, RESULT_VARIABLES, solve_points
     from ..solvers.modal import ConvergenceWarning
 
     control = AccuracyControl(tolerance=settings.tolerance)
@@ -130,20 +130,11 @@ def _map_point(structure, args, settings) -> dict:
         warnings.simplefilter("ignore", ConvergenceWarning)
         row = solve_points(structure, [(args.zeta, args.lambda_)], replace(settings, check_convergence=False),
                            control=control)[0]
-    return {
-        "fmax_normalised": row["fmax_normalised"],
-        "fmax_error": row["fmax_error"],
-        "fmax_low": row["fmax_low"],
-        "fmax_high": row["fmax_high"],
-        "status": STATUSES[int(row["status"])],
-        "impacts": int(row["impacts"]),
-        "contact_time_normalised": row["contact_time_normalised"],
-        "first_contact_normalised": row["first_contact_normalised"],
-        "peak_time_normalised": row["peak_time_normalised"],
-        "energy_transferred_fraction": row["energy_transferred_fraction"],
-        "n_modes": int(row["n_modes"]),
-        "method": METHODS[int(row["method"])],
-    }
+    values = {name: (int(row[name]) if dtype.startswith("i") else float(row[name]))
+              for name, (dtype, *_rest) in RESULT_VARIABLES.items() if name in row}
+    values["status"] = STATUSES[values["status"]]
+    values["method"] = METHODS[values["method"]]
+    return values
 
 
 def cmd_point(args) -> dict:

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from .._checks import require_positive
 from ..targets.base import ModalBasis
 from .history_rows import record_row
 
@@ -96,6 +97,8 @@ def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: fl
         ``None`` for damped modes or rigid-body modes (ω_j = 0): the phase is then left
         to the sampled scheme.
     """
+    require_positive("contact_stiffness", contact_stiffness, "N/m")
+    require_positive("impactor_mass", impactor_mass, "kg")
     if np.any(basis.damping_ratios > 0.0) or np.any(basis.frequencies <= 0.0):
         return None
     effective = contact_stiffness / (1.0 + contact_stiffness * basis.residual_compliance)
@@ -232,22 +235,18 @@ def _content_step(frequencies, force_row, eta, rate, resolution):
     mode of largest amplitude, and at most 1/Ω of the fastest mode that must be sampled
     (the fastest modes whose amplitudes sum to at most ``resolution``/2 of the total are
     left unsampled; module docstring); 0 when the state carries no force at all."""
-    n = eta.shape[0]
+    amplitude = np.empty(eta.shape[0])  # A_k [N]
     total = 0.0
-    largest = 0.0
-    dominant = 0
-    for k in range(n):
-        amplitude = abs(force_row[k]) * math.sqrt(eta[k] ** 2 + (rate[k] / frequencies[k]) ** 2)
-        total += amplitude
-        if amplitude > largest:
-            largest = amplitude
-            dominant = k
+    for k in range(eta.shape[0]):
+        amplitude[k] = abs(force_row[k]) * math.sqrt(eta[k] ** 2 + (rate[k] / frequencies[k]) ** 2)
+        total += amplitude[k]
     if total == 0.0:
         return 0.0
+    dominant = np.argmax(amplitude)
     tail = 0.0
     fastest = 0
-    for k in range(n - 1, -1, -1):
-        tail += abs(force_row[k]) * math.sqrt(eta[k] ** 2 + (rate[k] / frequencies[k]) ** 2)
+    for k in range(eta.shape[0] - 1, -1, -1):
+        tail += amplitude[k]
         if 2.0 * tail > resolution * total:
             fastest = k
             break
@@ -324,8 +323,9 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
     -------
     tuple
         (t, wi, vi, force, peak, peak_time, steps, separated, history, rec): the state
-        at the end of the phase, with ``force`` 0 after a separation. A touchdown with
-        no closing speed (grazing) returns at once, with ``steps`` unchanged.
+        at the end of the phase, with ``force`` 0 after a separation. A graze (no force
+        anywhere in the first step) returns with ``steps`` unchanged, a round-off moment
+        later, where the gap is strictly open.
     """
     n = frequencies.shape[0]
     eta = np.empty(n)
@@ -370,11 +370,11 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
             # the bracket starts where F > 0: at the step's start, or inside the first step
             start = 0.0 if force > 0.0 else _first_positive(frequencies, force_row, eta, rate, h)
             s = _root(frequencies, force_row, eta, rate, start, h, False, n)
+            # (η, η̇) at the separation land in eta_next, rate_next
             s, _wi, _vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, s, h, eta_next, rate_next, q, v)
             if record:
                 history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, s,
                                               row_spacing, omega, phi, residual, q, v, history, rec)
-            _advance(frequencies, eta, rate, s, eta_next, rate_next)
             t += s
             force = 0.0
             separated = True

@@ -170,8 +170,9 @@ class ModalSettings:
         whose local deformation under the sphere the Hertz law already carries.
     contact_phase : {"auto", "exact", "sampled"}
         How a contact is integrated. ``"exact"``: through the coupled modes of a linear
-        contact (:mod:`~impactmaps.solvers.coupled_contact`; linear laws on undamped
-        modes without rigid-body modes, otherwise sampled); ``"sampled"``: the exact-step
+        contact (:mod:`~impactmaps.solvers.coupled_contact`; linear laws on at most
+        :data:`COUPLED_MAX_MODES` undamped modes without rigid-body modes, otherwise
+        sampled); ``"sampled"``: the exact-step
         scheme with the force sampled once per step; ``"auto"``: the exact phase where it
         costs less (:data:`COUPLED_COST_RATIO`, :data:`COUPLED_MAX_MODES`). A forced
         ``time_step`` always runs the sampled scheme.
@@ -428,9 +429,10 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
     """
     stiffness = _linear_stiffness(law)
     sampled_steps = np.pi / (contact_frequency * time_step)
-    cheaper = basis.size < COUPLED_ALWAYS_MODES or (
-        basis.size <= COUPLED_MAX_MODES and sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2)
-    if stiffness > 0.0 and (choice == "exact" or (choice == "auto" and cheaper)):
+    cheaper = basis.size < COUPLED_ALWAYS_MODES or sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
+    wanted = choice == "exact" or (choice == "auto" and cheaper)
+    # never beyond COUPLED_MAX_MODES: the set-up holds (n + 1)² matrices
+    if stiffness > 0.0 and wanted and basis.size <= COUPLED_MAX_MODES:
         coupled = coupled_modes(basis, stiffness, impactor_mass)
         if coupled is not None:
             return coupled
