@@ -306,14 +306,73 @@ def test_shear_part_under_a_uniform_disc_has_the_membrane_logarithm():
         assert 2 * math.pi * shear * (narrow - wide) == pytest.approx(math.log(10.0), rel=1e-4)
 
 
-def test_auto_patch_is_the_patch_on_mindlin_and_the_point_load_on_kirchhoff():
-    """"auto": the Hertz patch on a Mindlin plate, the point load (bit for bit) on a
-    Kirchhoff plate, when the contact radius is known; the default is the point load."""
-    assert ModalSettings().contact_patch == "point"
-    auto_settings = ModalSettings(contact_patch="auto")
+def test_auto_patch_is_the_default_patch_on_mindlin_and_the_point_load_on_kirchhoff():
+    """"auto" is the default: the Hertz patch on a Mindlin plate (bit for bit the
+    "hertz-peak" run), the point load (bit for bit) on a Kirchhoff plate."""
+    assert ModalSettings().contact_patch == "auto"
     mindlin, kirchhoff = readme_plate(), readme_plate(theory="kirchhoff")
-    auto = simulate(mindlin, HERTZ, SPHERE.mass, 3.0, record=False, settings=auto_settings)
+    auto = simulate(mindlin, HERTZ, SPHERE.mass, 3.0, record=False)
     assert auto.peak_force == patch_run(mindlin, 40).peak_force
-    auto = simulate(kirchhoff, HERTZ, SPHERE.mass, 3.0, record=False, settings=auto_settings)
+    assert auto.settings["contact_radius_m"] > 0
+    auto = simulate(kirchhoff, HERTZ, SPHERE.mass, 3.0, record=False)
     assert auto.peak_force == patch_run(kirchhoff, 40, patch="point").peak_force
     assert "contact_radius_m" not in auto.settings
+
+
+def _run_fields(result):
+    """Every scalar of a run and its force history (for bit-for-bit comparisons)."""
+    scalars = {k: v for k, v in vars(result).items() if k not in ("history", "contact_intervals", "settings",
+                                                                   "details")}
+    return scalars, result.contact_intervals.tolist(), result.history["force_N"].to_numpy().tolist()
+
+
+@pytest.mark.parametrize("theory", ["euler", "rayleigh", "timoshenko"])
+def test_default_leaves_beams_bit_for_bit_on_the_point_load(theory):
+    """Beams (Euler, Rayleigh, Timoshenko) keep the point load under the default "auto":
+    the whole run, history included, is bit for bit the "point" run."""
+    from impactmaps.targets.beam import Beam
+
+    steel = material("structural-steel")
+    beam = Beam.rectangular(0.5, 0.02, 0.02, steel, theory=theory)
+    sphere = Sphere(0.01, steel)
+    law = law_for_sphere("hertz", sphere, steel)
+    default = simulate(beam, law, sphere.mass, 1.0)
+    point = simulate(beam, law, sphere.mass, 1.0, settings=ModalSettings(contact_patch="point"))
+    assert _run_fields(default) == _run_fields(point)
+    assert "contact_radius_m" not in default.settings
+
+
+def test_default_leaves_kirchhoff_plates_bit_for_bit_on_the_point_load():
+    """A Kirchhoff plate under the default: the whole run is bit for bit the point load."""
+    plate = readme_plate(theory="kirchhoff")
+    default = simulate(plate, HERTZ, SPHERE.mass, 3.0)
+    point = simulate(plate, HERTZ, SPHERE.mass, 3.0, settings=ModalSettings(contact_patch="point"))
+    assert _run_fields(default) == _run_fields(point)
+
+
+def test_readme_example_runs_without_warnings_with_the_default():
+    """The README example (Mindlin, a/h = 75, contact radius 0.41 mm = 0.10 h): no
+    thickness-shear warning, no warning at all, with the default settings."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = simulate(readme_plate(), HERTZ, SPHERE.mass, 3.0)
+    assert result.settings["contact_radius_m"] / 0.004 == pytest.approx(0.103, abs=1e-3)
+
+
+def test_contact_radius_comparable_to_the_thickness_still_warns():
+    """A 40 mm steel ball at 3 m/s on a 0.5 mm aluminium Mindlin plate: the converged
+    contact radius (0.29 mm) exceeds half the thickness and the run warns, once; the
+    iteration's first guess (the rigid target's radius) on a plate where the converged
+    radius is below h/2 does not (1 mm plate: first guess 0.55 mm, converged 0.20 mm)."""
+    steel = material("structural-steel")
+    big = Sphere(0.02, steel)
+    with pytest.warns(UserWarning, match="half the plate thickness") as record:
+        result = simulate(readme_plate(0.0005), law_for_sphere("hertz", big, ALUMINIUM), big.mass, 3.0,
+                          record=False)
+    assert result.settings["contact_radius_m"] > 0.5 * 0.0005
+    assert sum("half the plate thickness" in str(w.message) for w in record) == 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        thin = simulate(readme_plate(0.001), HERTZ, SPHERE.mass, 3.0, record=False)
+    assert thin.settings["contact_radius_m"] < 0.5 * 0.001 < math.sqrt(
+        SPHERE.radius * HERTZ.indentation_for_energy(0.5 * SPHERE.mass * 9.0))
