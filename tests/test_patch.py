@@ -456,7 +456,7 @@ def test_mindlin_minus_kirchhoff_under_a_disc_is_the_membrane_closed_form(radius
     D = E * thickness**3 / (12 * (1 - nu**2))
     shear = 5 / 6 * E / (2 * (1 + nu)) * thickness
     bending = (D, D, nu * D, 0.5 * (1 - nu) * D)
-    uniform = dict(transform=uniform_transform, mean_square=lambda x: mean_square_transform(x, "uniform"))
+    uniform = {"transform": uniform_transform, "mean_square": lambda x: mean_square_transform(x, "uniform")}
     centre = (0.5 * length, 0.5 * length)
     mindlin = navier_patch_residual(length, length, bending + (shear, shear), centre, radius, **uniform)
     kirchhoff = navier_patch_residual(length, length, bending, centre, radius, **uniform)
