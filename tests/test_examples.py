@@ -14,8 +14,9 @@ contact patch became the default on Mindlin plates (issue 14): README example
 Tolerance: relative 1e-6 for all of them. Measured, a relative perturbation of 1e-12 of
 an input (velocity or thickness) moves each stored number by at most 2e-12 relative (the
 runs are deterministic; platform round-off is of that order), so 1e-6 leaves a margin
-of about 10⁵; and it is a thousand times below the discretisation error of the solvers (≈1e-3: time step, mode cut-off,
-FD grid), so any change of behaviour, even a small one, is caught.
+of about 10⁵; and it is a thousand times below the discretisation error of the solvers
+(≈1e-3: time step, mode cut-off, FD grid), so any change of behaviour, even a small one,
+is caught.
 """
 
 from __future__ import annotations
