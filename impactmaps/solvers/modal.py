@@ -6,6 +6,12 @@ contact law, with ``r`` the residual static compliance of the dropped modes in s
 with the contact (mode-acceleration correction). The integrator is
 :mod:`impactmaps.solvers.exact_step`.
 
+Load: on Mindlin (shear-deformable) SSSS plates the force is, by default, the Hertz
+pressure over the contact disc of the peak indentation (participations times the
+patch's modal transform, residual under the same patch; :attr:`ModalSettings.contact_patch`,
+``docs/contact_patch.rst``): their point-load deflection diverges, so a point load never
+converges in the cut-off. Every other target takes the point load.
+
 Mode cut-off rule: every participating mode with ``ω_j ≤ cutoff_ratio · ω`` is
 integrated (at least ``min_modes`` of them), where ``ω`` is the contact frequency; the
 rest enter through ``r``.
