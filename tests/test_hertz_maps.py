@@ -20,6 +20,7 @@ import impactmaps as im
 from impactmaps.cli import main
 from impactmaps.contact import HertzContact
 from impactmaps.hertz_similarity import realise_hertz, unit_speed_stiffness
+from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.hertz_points import hertz_asymptote_peak, solve_hertz_points
 from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, require_map_law
 from impactmaps.maps.regimes import classify
@@ -69,15 +70,22 @@ def test_a_map_point_is_a_direct_simulation_of_another_case(structure, theory):
 @pytest.mark.parametrize("key", list(SHIPPED_MAPS), ids=list(SHIPPED_MAPS.values()))
 def test_shipped_hertz_maps_are_complete_hertz_maps_below_the_half_space(key):
     """Every point computed, marked as a Hertz map, F_max/F_hs ≤ 1 (the half-space is the
-    stiffest target: no structure makes the contact force larger) and its band holds it."""
+    stiffest target: no structure makes the contact force larger) and its band holds it;
+    a point without a value is exactly an ``unresolved`` one (a Timoshenko/Mindlin
+    light-impactor corner beyond the theory), and only shear-deformable maps have them."""
     dataset = load_shipped_map(*key, "hertz")
     assert map_law(dataset) == "hertz" and dataset.attrs["complete"] == 1
     assert dataset["done"].values.all()
+    unresolved = dataset["status"].values == STATUSES.index("unresolved")
+    assert (key[1] in ("timoshenko", "mindlin")) or not unresolved.any()
     fmax = dataset["fmax_normalised"].values
-    assert np.all(np.isfinite(fmax)) and np.all(fmax > 0.0)
+    assert np.array_equal(~np.isfinite(fmax), unresolved)
+    fmax, resolved = fmax[~unresolved], ~unresolved
+    assert np.all(fmax > 0.0)
     assert np.all(fmax <= 1.0 + 1e-3)
-    assert np.all(dataset["fmax_low"].values <= fmax + 1e-15) and np.all(fmax <= dataset["fmax_high"].values + 1e-15)
-    assert np.all(dataset["time_limit_reached"].values == 0)
+    assert np.all(dataset["fmax_low"].values[resolved] <= fmax + 1e-15)
+    assert np.all(fmax <= dataset["fmax_high"].values[resolved] + 1e-15)
+    assert np.all(dataset["time_limit_reached"].values[resolved] == 0)
     # the Hertz grid (ζ_h ∈ [0.005, 100], λ_h ∈ [1e-3, 20] — Mindlin [0.05, 20] —, 20 and
     # 10 per decade) lies inside the linear map's range
     linear = load_shipped_map(*key)
@@ -141,7 +149,7 @@ def test_the_sweep_point_runs_at_unit_speed():
 def test_lookup_case_on_the_steel_plate_hertz_example(capsys):
     """examples/steel_plate_hertz.toml (Mindlin plate, a/h = 62.5, λ_h = 0.043): no shipped
     map describes it (the Mindlin map is for a/h = 20; the Kirchhoff map would answer for
-    another family, +3.6 % against simulate's 751 N), so lookup refuses and points to
+    another family, +6.4 % against simulate's 731 N), so lookup refuses and points to
     simulate instead of the 293 N it used to answer."""
     example = ROOT / "examples" / "steel_plate_hertz.toml"
     assert main(["lookup", "--case", str(example), "--json"]) == 2

@@ -16,10 +16,11 @@ import numpy as np
 import pytest
 
 from impactmaps.maps.chart import DEFAULT_CHART_LAMBDAS
-from impactmaps.maps.lookup import SHIPPED_MAPS, lookup
+from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
+from tests.test_lookup import assert_lookup_or_refusal
 
 CHART_STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
 
@@ -58,8 +59,7 @@ def test_shipped_maps_match_direct_simulation(structure, theory):
         warnings.simplefilter("ignore", UserWarning)  # Mindlin thickness-shear notice
         rows = solve_points(structure_from_name(name), list(zip(zetas, lambdas)), ModalSettings())
     direct = np.array([row["fmax_normalised"] for row in rows])
-    looked = lookup(zetas, lambdas, structure=structure, theory=theory).fmax_normalised
-    assert np.max(np.abs(looked - direct)) < 0.03
+    assert_lookup_or_refusal(load_shipped_map(structure, theory), zetas, lambdas, direct, structure, theory, 0.03)
 
 
 @pytest.mark.parametrize("name", CHART_STRUCTURES)

@@ -220,12 +220,16 @@ def navier_mode_count(plate: Plate, max_frequency: float, limit: int | None = No
 def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2) -> None:
     """Warn when a cut-off [rad/s] passes a Mindlin plate's thickness-shear cut-off.
 
-    ``sqrt(k min(A44, A55)/(ρh³/12))`` [rad/s]: the omitted thickness-shear branches
-    have modes below it. Kirchhoff plates (and other targets) never warn.
+    ``sqrt(k min(A44, A55)/(ρh³/12))`` [rad/s]
+    (:func:`impactmaps.solvers.shear_range.thickness_shear_frequency`): the omitted
+    thickness-shear branches have modes below it. Kirchhoff plates (and other targets)
+    never warn.
     """
+    from ..solvers.shear_range import thickness_shear_frequency
+
     if getattr(plate, "theory", None) != "mindlin":
         return
-    cutoff = math.sqrt(plate.shear_correction * min(plate.A44, plate.A55) / plate.rotary_inertia_per_area)
+    cutoff = thickness_shear_frequency(plate)
     if max_frequency > cutoff:
         warnings.warn(
             f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
