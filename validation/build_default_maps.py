@@ -4,7 +4,11 @@ Simply supported, impact at the centre: SS Euler and Timoshenko beams (L/h = 20)
 square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ and λ from 1e-3 to 1e3 at 20 ζ and
 10 λ per decade (the Mindlin plate: ζ from 0.005 to 100, λ from 0.05 to 20; the Hertz
 maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the Mindlin one from 0.05; same
-densities); default solver settings.
+densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
+theories are stored ``unresolved``. The shear-deformable families add slendernesses 10 and
+50 on the same grids (``impactmaps.maps.structures.FAMILY_STRUCTURES``): Timoshenko beams
+for both laws, Mindlin plates for the linear law (a Hertz impact on a Mindlin plate loads
+the contact patch, whose radius is a third parameter).
 Resumable: re-running continues an interrupted build.
 
     python validation/build_default_maps.py [--quiet] [--only NAME …] [--out-dir DIR] [--law hertz]
@@ -24,7 +28,7 @@ import numpy as np
 
 from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem
 from impactmaps.maps.store import save_atomic
-from impactmaps.maps.structures import DEFAULT_STRUCTURES
+from impactmaps.maps.structures import DEFAULT_STRUCTURES, FAMILY_STRUCTURES
 from impactmaps.maps.sweep import MAP_LAWS, sweep
 
 from _script_options import parse
@@ -60,8 +64,9 @@ def _options(parser) -> None:
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
     work = WORK if args.out_dir == DATA else args.out_dir / "work"
-    wanted = set(args.only or SHIPPED_MAPS.values())
-    for structure in DEFAULT_STRUCTURES:
+    families = [s for s in FAMILY_STRUCTURES if args.law == "linear" or s.theory == "timoshenko"]
+    wanted = set(args.only or [*SHIPPED_MAPS.values(), *(s.name for s in families)])
+    for structure in (*DEFAULT_STRUCTURES, *families):
         if structure.name not in wanted:
             continue
         if args.law != "linear":

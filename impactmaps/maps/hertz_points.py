@@ -17,7 +17,6 @@ quasi-static — are those of :mod:`impactmaps.law_asymptotes`, run on a realisa
 from __future__ import annotations
 
 import functools
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -179,8 +178,8 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
     residual flexibility) and the same accuracy control. Where the cut-off would pass the
     cap, the infinite-structure asymptote of the Hertz law answers if the first wave
     returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (Euler beams and
-    Kirchhoff plates); otherwise the capped modes are integrated, with a warning. A point
-    whose contact frequency lies beyond what a Timoshenko/Mindlin theory holds is
+    Kirchhoff plates); otherwise — the cut-off could not be refined — and where the contact
+    frequency lies beyond what a Timoshenko/Mindlin theory holds, the point is
     ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`).
 
     Returns
@@ -189,7 +188,7 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
         plus ``zeta``, ``lambda_``.
     """
-    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, MAX_MODES, METHODS, basis_table, frequency_cap, unresolved_point
+    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, METHODS, basis_table, frequency_cap, unresolved_point
 
     target = structure.build()
     cap = frequency_cap(structure)
@@ -209,14 +208,11 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
             if reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
                 rows.append(exact_point(row | infinite | {"method": METHODS.index("infinite-structure-asymptote")}))
                 continue
-        if capped:
-            warnings.warn(
-                f"{structure.name} (Hertz) at ζ_h = {zeta:g}, λ_h = {lam:g} needs more than {MAX_MODES} "
-                f"modes; integrating the first {MAX_MODES} (residual flexibility for the rest)",
-                RuntimeWarning, stacklevel=2)
+        if capped:  # its cut-off could not be refined: the map does not vouch for it
+            rows.append(unresolved_point(row))
+            continue
         run = _hertz_runner(target, table, cap, zeta, lam, realised)
-        method = METHODS.index("modal+residual-capped" if capped else "modal+residual")
-        rows.append(row | controlled_point(run, settings, control) | {"method": method})
+        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index("modal+residual")})
     return rows
 
 

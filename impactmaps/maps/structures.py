@@ -150,14 +150,25 @@ def structure_from_name(name: str) -> MapStructure:
     for structure in DEFAULT_STRUCTURES:
         if structure.name == name:
             return structure
+    for structure in FAMILY_STRUCTURES:
+        if structure.name == name:
+            return structure
     parts = name.split("-")
+    slenderness = {}
+    if len(parts) == 4 and parts[3].startswith("s"):
+        try:
+            slenderness = {"slenderness": float(parts[3][1:])}
+        except ValueError:
+            pass
+        else:
+            parts = parts[:3]
     if len(parts) == 3:
         kind, supports, theory = parts
         return MapStructure(kind=kind, supports=supports, theory=theory,
-                            impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5))
+                            impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5), **slenderness)
     raise ValueError(
-        f"structure = {name!r} is not known: use kind-supports-theory, e.g. 'beam-ss-euler' "
-        "or 'plate-ssss-kirchhoff'"
+        f"structure = {name!r} is not known: use kind-supports-theory[-sSLENDERNESS], e.g. "
+        "'beam-ss-euler', 'plate-ssss-kirchhoff' or 'plate-ssss-mindlin-s50'"
     )
 
 
@@ -166,6 +177,18 @@ DEFAULT_STRUCTURES = (
     MapStructure(kind="beam", theory="timoshenko", supports="ss", impact_fraction=(0.5,)),
     MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
     MapStructure(kind="plate", theory="mindlin", supports="SSSS"),
+)
+
+#: Slendernesses (span/thickness) of the shipped shear-deformable map families; the
+#: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.
+FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
+
+#: The shear-deformable family members besides the default slenderness 20.
+FAMILY_STRUCTURES = tuple(
+    MapStructure(kind=kind, theory=theory, supports=supports, slenderness=slenderness,
+                 impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5))
+    for kind, theory, supports in (("beam", "timoshenko", "ss"), ("plate", "mindlin", "SSSS"))
+    for slenderness in FAMILY_SLENDERNESSES if slenderness != 20.0
 )
 
 

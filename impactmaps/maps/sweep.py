@@ -151,15 +151,18 @@ def _map_plan(target, law, mass: float, omega: float, wanted: float, cap: float,
 
     None — the point is ``unresolved`` — when its contact frequency ``omega`` [rad/s] lies
     beyond what the target's shear-deformable theory holds
-    (:func:`~impactmaps.solvers.shear_range.beyond_shear_theory`), or when no method the
-    mode budget knows answers it (too many modes, no asymptote).
+    (:func:`~impactmaps.solvers.shear_range.beyond_shear_theory`), or when the mode budget
+    answers it only by capping the modes (the cut-off could not be refined) or not at all.
     """
     if beyond_shear_theory(target, omega):
         return None
     try:
-        return plan_basis(target, law, mass, 1.0, wanted, max_modes=MAX_MODES, cap_frequency=cap, loss_factor=zeta)
+        plan = plan_basis(target, law, mass, 1.0, wanted, max_modes=MAX_MODES, cap_frequency=cap, loss_factor=zeta)
     except ModeBudgetError:
         return None
+    # a capped run cannot have its cut-off doubled, so its refinement would only halve the
+    # step and call it converged: the map does not vouch for it
+    return None if plan.method == "modal+residual-capped" else plan
 
 
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
@@ -191,11 +194,10 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     answered as :func:`impactmaps.solvers.mode_budget.plan_basis` decides: the
     infinite-structure solution if the first wave returns after
     ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (it is then exact for the peak;
-    Euler beams and Kirchhoff plates only); otherwise the modes up to the cap plus
-    residual flexibility, with a warning. A point that neither answers (the cap lies
-    below a few contact frequencies), or whose contact frequency lies beyond what a
-    Timoshenko/Mindlin theory holds (:mod:`impactmaps.solvers.shear_range`), is
-    ``unresolved``: status only, every result missing. The ``method`` variable records
+    Euler beams and Kirchhoff plates only). Otherwise — the modes could only be capped,
+    so the cut-off could not be refined — and where the contact frequency lies beyond
+    what a Timoshenko/Mindlin theory holds (:mod:`impactmaps.solvers.shear_range`), the
+    point is ``unresolved``: status only, every result missing. The ``method`` variable records
     which model produced each point.
     """
     target = structure.build()
@@ -220,9 +222,6 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
         if plan.method == "infinite-structure-asymptote":
             rows.append(exact_point(row | _asymptote_row(target, zetas[k])))
             continue
-        if plan.method == "modal+residual-capped":
-            warnings.warn(f"{structure.name} at ζ = {zetas[k]:g}, λ = {lambdas[k]:g}: {plan.message}",
-                          RuntimeWarning, stacklevel=2)
         run = _point_runner(target, table, cap, zetas[k], lambdas[k],
                             (float(masses[k]), float(stiffnesses[k]), float(omegas[k])))
         rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index(plan.method)})
