@@ -21,13 +21,32 @@ SCHEDULER_TIMEOUT_S = 5.0
 
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
+    from ..maps.plastic_points import PLASTIC_LAWS
 
+    if args.law in PLASTIC_LAWS:
+        return _plastic_chart(args)
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
     paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
                        zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
                        max_workers=args.workers, overwrite=args.overwrite, law=args.law)
+    return {key: str(value) for key, value in paths.items()}
+
+
+def _plastic_chart(args) -> dict:
+    """``chart --law yc|stronge``: F̄max, restitution, absorbed energy vs ζ at a few β for one λ,
+    drawn from the shipped elastic-plastic maps (``--lambdas``: one λ; ``--betas``: the β)."""
+    from ..maps.chart import DEFAULT_PLASTIC_BETAS, DEFAULT_PLASTIC_LAMBDA, make_plastic_chart
+
+    refuse(args, {"--workers": "workers", "--overwrite": "overwrite"},
+           "with an elastic-plastic --law (the chart is drawn from the shipped maps, nothing is swept)")
+    lambdas = args.lambdas or [DEFAULT_PLASTIC_LAMBDA]
+    if len(lambdas) != 1:
+        raise ValueError(f"--lambdas = {' '.join(f'{v:g}' for v in lambdas)} is invalid with --law {args.law}: "
+                         "give one λ (the curves are β at one λ)")
+    betas = getattr(args, "betas", None) or DEFAULT_PLASTIC_BETAS
+    paths = make_plastic_chart(out_dir("--out", args.out), law=args.law, lambda_=lambdas[0], betas=betas)
     return {key: str(value) for key, value in paths.items()}
 
 
