@@ -583,12 +583,14 @@ def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
                         markevery=max(1, zeta.size // 8), ms=4, mfc="white" if kind == "beam" else colour,
                         label=f"β = {float(curve['beta']):.3g}, {name}")
     law = str(first.attrs.get("contact_law", ""))
-    lam = float(first["lambda_"].sel(lambda_=lambda_, method="nearest"))
+    grid = ", ".join(f"{str(d['kind'].values[0])} {float(d['lambda_'].sel(lambda_=lambda_, method='nearest')):.3g}"
+                     for d in maps)
     for ax, (_variable, label) in zip(axes, PLASTIC_PANELS):
         ax.set_xscale("log")
         ax.set_ylabel(label, fontsize=9)
         ax.grid(True, which="both", alpha=0.25)
-    axes[0].set_title(f"Elastic-plastic contact ({law}), λ = K_st/K_y = {lam:.3g}: plates solid, beams dashed")
+    axes[0].set_title(f"Elastic-plastic contact ({law}), λ = K_st/K_y ≈ {float(lambda_):g} (nearest grid λ: {grid})\n"
+                      "plates solid, beams dashed", fontsize=10)
     axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     axes[-1].set_xlabel(FMAX_LABELS["plastic"][0])
     return list(axes)

@@ -95,3 +95,132 @@ def test_numbers_refuse_other_laws():
         plastic_law_of(StrongeContact(1e11, 0.01, 3e8, plastic_pressure_factor=3.0))
     with pytest.raises(ValueError, match="not an elastic-plastic law"):
         plastic_law_of(HertzContact(1e10))
+
+
+# -- the shipped maps ---------------------------------------------------------------------------
+def _shipped():
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+
+    return [load_plastic_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
+
+
+def test_shipped_plastic_maps_are_complete_and_consistent():
+    """Every shipped plastic map: every point solved, with a status and finite errors of all
+    three quantities, the energy ledger closed (e² + absorbed + transferred = 1 wherever the
+    sphere separated), and its law recorded (it cannot be read as a linear or Hertz map)."""
+    from impactmaps.maps.lookup import require_map_law
+
+    for dataset in _shipped():
+        law = dataset.attrs["contact_law"]
+        assert law in ("yc", "stronge") and int(dataset.attrs["complete"]) == 1
+        assert set(dataset["fmax_normalised"].dims) == {"structure", "beta", "lambda_", "zeta"}
+        assert np.all(dataset["done"].values == 1) and np.all(dataset["status"].values >= 0)
+        for name in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
+            assert np.all(np.isfinite(dataset[name].values)), name
+        separated = np.isfinite(dataset["restitution"].values)
+        ledger = (dataset["restitution"] ** 2 + dataset["absorbed_energy_fraction"]
+                  + dataset["energy_transferred_fraction"]).values[separated]
+        assert separated.mean() > 0.99 and np.allclose(ledger, 1.0, atol=5e-3)
+        with pytest.raises(ValueError, match="not the linear law"):
+            require_map_law(dataset, "linear")
+
+
+def test_a_map_point_is_the_direct_solution():
+    """A grid point of a shipped map is what solve_plastic_points gives for it (same bits)."""
+    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.plastic_points import solve_plastic_points
+    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+    dataset = load_plastic_map("beam", "euler", "yc")
+    beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in (("beta", 4), ("lambda_", 9), ("zeta", 12)))
+    row = solve_plastic_points(DEFAULT_STRUCTURES[0], "yc", [(beta, zeta, lam)])[0]
+    stored = dataset.isel(structure=0).sel(beta=beta, lambda_=lam, zeta=zeta)
+    for name in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "fmax_error"):
+        assert float(stored[name]) == row[name], name
+    found = lookup_plastic(beta, zeta, lam, structure="beam", theory="euler", law="yc")
+    assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
+
+
+def test_lookup_plastic_refuses_outside_the_map():
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
+        lookup_plastic(5000.0, 0.1, 0.1, structure="beam", theory="euler")
+    with pytest.raises(ValueError, match="relative_stiffness .* outside the shipped map: valid range is"):
+        lookup_plastic(10.0, 0.1, 0.005, structure="plate", theory="kirchhoff")
+    with pytest.raises(ValueError, match="structure, theory"):
+        lookup_plastic(10.0, 0.1, 0.1, structure="plate", theory="mindlin")
+
+
+_YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 1.0\n'
+            '[target]\ntype = "beam"\nlength = 0.6\nwidth = 0.02\nheight = 0.02\n'
+            'material = "structural-steel"\ntheory = "euler"\n[contact]\nlaw = "yigit-christoforou"\n')
+
+
+def test_lookup_command_answers_a_plastic_case(tmp_path, capsys):
+    """`impactmaps lookup --case` on a Yigit–Christoforou case prints the peak force with its
+    band and the status, the restitution and the absorbed energy; outside the map it exits 2
+    with one line naming the number and suggesting simulate."""
+    import json
+
+    from impactmaps.cli import main
+
+    case = tmp_path / "yc.toml"
+    case.write_text(_YC_BEAM)
+    assert main(["lookup", "--case", str(case), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["law"] == "yc" and out["map"] == "beam-ss-euler-yc"
+    for key in ("peak_force_N", "peak_force_error_N", "status", "restitution", "restitution_error",
+                "absorbed_energy_J", "absorbed_energy_error_J", "beta", "zeta", "lambda"):
+        assert key in out, key
+    assert 0 < out["restitution"] < 1 and out["absorbed_energy_J"] > 0 and out["peak_force_error_N"] >= 0
+    case.write_text(_YC_BEAM.replace("velocity = 1.0", "velocity = 80.0"))
+    assert main(["lookup", "--case", str(case)]) == 2
+    error = capsys.readouterr().err.strip()
+    assert len(error.splitlines()) == 1
+    assert "no shipped map covers this case: beta" in error and "impactmaps simulate" in error
+
+
+# -- the chart ------------------------------------------------------------------------------------
+def test_plastic_chart_from_the_maps(tmp_path):
+    """`chart --law yc` (make_plastic_chart): F̄max, restitution and absorbed energy against ζ
+    at a few β for one λ, drawn from the shipped maps; the data drawn in a CSV."""
+    import argparse
+
+    import pandas as pd
+
+    from impactmaps.cli.commands_maps import cmd_chart
+
+    args = argparse.Namespace(law="yc", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,
+                              overwrite=False, betas=[3.0, 300.0], zeta_range=(0.005, 100.0), zeta_count=200,
+                              quiet=True)
+    paths = cmd_chart(args)
+    for key in ("png", "svg", "csv"):
+        assert (tmp_path / "chart" / f"fmax_chart_yc.{key}").exists() and key in paths
+    frame = pd.read_csv(paths["csv"])
+    assert set(frame["structure"]) == {"beam-ss-euler", "plate-ssss-kirchhoff"}
+    assert frame["beta"].nunique() == 2 and frame.groupby("structure")["lambda"].nunique().eq(1).all()
+    with pytest.raises(ValueError, match=r"--lambdas = 0.001 is invalid: valid range is \[0.01"):
+        cmd_chart(argparse.Namespace(**{**vars(args), "lambdas": [0.001]}))
+    with pytest.raises(ValueError, match="give one λ"):
+        cmd_chart(argparse.Namespace(**{**vars(args), "lambdas": [0.1, 1.0]}))
+
+
+def test_fmax_chart_labels_follow_the_maps_law():
+    """plot_fmax_chart labels its axes for the law of the map it draws (linear, Hertz, plastic)
+    and refuses a plastic map over β (one β at a time, or plot_plastic_chart)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from impactmaps.maps.plastic_lookup import load_plastic_map
+    from impactmaps.plotting import FMAX_LABELS, plot_fmax_chart
+
+    dataset = load_plastic_map("beam", "euler", "stronge")
+    with pytest.raises(ValueError, match="select one β"):
+        plot_fmax_chart(dataset)
+    ax = plot_fmax_chart(dataset.sel(beta=100.0, method="nearest"), lambdas=[0.1, 1.0])
+    assert ax.get_xlabel() == FMAX_LABELS["plastic"][0] and ax.get_ylabel() == FMAX_LABELS["plastic"][1]
+    assert ax.get_ylim()[1] > 1.5  # the Stronge law's F̄max exceeds 1 (its plastic branch is stiffer than K_y)
+    plt.close("all")
