@@ -223,4 +223,9 @@ def test_fmax_chart_labels_follow_the_maps_law():
     ax = plot_fmax_chart(dataset.sel(beta=100.0, method="nearest"), lambdas=[0.1, 1.0])
     assert ax.get_xlabel() == FMAX_LABELS["plastic"][0] and ax.get_ylabel() == FMAX_LABELS["plastic"][1]
     assert ax.get_ylim()[1] > 1.5  # the Stronge law's F̄max exceeds 1 (its plastic branch is stiffer than K_y)
+    from impactmaps.maps.lookup import load_shipped_map
+
+    for law in ("linear", "hertz"):
+        ax = plot_fmax_chart(load_shipped_map("beam", "euler", law), lambdas=[0.1, 1.0], asymptotes=False)
+        assert (ax.get_xlabel(), ax.get_ylabel()) == FMAX_LABELS[law]
     plt.close("all")

@@ -455,7 +455,9 @@ def lookup_case(case) -> dict:
     structure, theory = map_for_case(case)
     law = case_map_law(case)
     if law in PLASTIC_LAWS:
-        return _lookup_plastic_case(case, structure, theory, law)
+        from .plastic_lookup import lookup_plastic_case
+
+        return lookup_plastic_case(case, structure, theory, law)
     if law == "hertz":
         from ..hertz_similarity import hertz_numbers
 
@@ -471,52 +473,20 @@ def lookup_case(case) -> dict:
         found = lookup(zeta, lam, structure=structure, theory=theory)
         scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
                                        numbers["contact_stiffness_N_m"])) / found.fmax_normalised
+    return _answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
+
+
+def _answer(found, scale: float, law: str, details: dict) -> dict:
+    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
     return {
         "peak_force_N": found.fmax_normalised * scale,
         "peak_force_error_N": found.fmax_error * scale,
         "fmax_normalised": found.fmax_normalised,
         "fmax_error": found.fmax_error,
         "status": found.status,
-        "regime": found.regime,
-        "zeta": zeta,
-        "lambda": lam,
+        **details,
         "map": found.map_name,
         "law": law,
         "force_scale_N": scale,
     }
 
-
-def _lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
-    """:func:`lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law."""
-    from .plastic_lookup import lookup_plastic
-    from .plastic_points import plastic_numbers
-
-    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
-    try:
-        found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
-                               structure=structure, theory=theory, law=law)
-    except ValueError as error:
-        if "outside the shipped map" not in str(error) and "has no value" not in str(error):
-            raise
-        raise ValueError(f"no shipped map covers this case: {str(error).split('; run')[0]}; run "
-                         f"`impactmaps simulate {case.source or 'CASE.toml'}` instead") from None
-    scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
-    return {
-        "peak_force_N": found.fmax_normalised * scale,
-        "peak_force_error_N": found.fmax_error * scale,
-        "fmax_normalised": found.fmax_normalised,
-        "fmax_error": found.fmax_error,
-        "status": found.status,
-        "restitution": found.restitution,
-        "restitution_error": found.restitution_error,
-        "absorbed_energy_J": found.absorbed_energy_fraction * energy,
-        "absorbed_energy_error_J": found.absorbed_energy_error * energy,
-        "absorbed_energy_fraction": found.absorbed_energy_fraction,
-        "absorbed_energy_error": found.absorbed_energy_error,
-        "beta": numbers.impact_number,
-        "zeta": numbers.loss_factor,
-        "lambda": numbers.relative_stiffness,
-        "map": found.map_name,
-        "law": law,
-        "force_scale_N": scale,
-    }

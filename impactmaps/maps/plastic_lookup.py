@@ -25,7 +25,7 @@ from scipy.interpolate import RegularGridInterpolator
 from .._checks import require_choice, require_positive
 from .plastic_points import ERROR_OF, PLASTIC_LAWS
 
-__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic"]
+__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "lookup_plastic_case"]
 
 #: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
 #: patch depends on the sphere radius, a fourth number).
@@ -177,3 +177,45 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         status = status.reshape(shape)
     return PlasticLookup(status=status, map_name=map_file_stem(PLASTIC_MAPS[(structure, theory)], law), law=law,
                          **values)
+
+
+def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
+    """:func:`impactmaps.maps.lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
+
+    Parameters
+    ----------
+    case : impactmaps.cases.Case
+        With a Yigit–Christoforou or default refined Stronge law.
+    structure, theory : str
+        The family (:func:`impactmaps.maps.lookup.map_for_case`).
+    law : {"yc", "stronge"}
+
+    Returns
+    -------
+    dict
+        See :func:`impactmaps.maps.lookup.lookup_case`.
+    """
+    from .lookup import _answer
+    from .plastic_points import plastic_numbers
+
+    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+    try:
+        found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
+                               structure=structure, theory=theory, law=law)
+    except ValueError as error:
+        if "outside the shipped map" not in str(error) and "has no value" not in str(error):
+            raise
+        raise ValueError(f"no shipped map covers this case: {str(error).split('; run')[0]}; run "
+                         f"`impactmaps simulate {case.source or 'CASE.toml'}` instead") from None
+    scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
+    return _answer(found, scale, law, {
+        "restitution": found.restitution,
+        "restitution_error": found.restitution_error,
+        "absorbed_energy_J": found.absorbed_energy_fraction * energy,
+        "absorbed_energy_error_J": found.absorbed_energy_error * energy,
+        "absorbed_energy_fraction": found.absorbed_energy_fraction,
+        "absorbed_energy_error": found.absorbed_energy_error,
+        "beta": numbers.impact_number,
+        "zeta": numbers.loss_factor,
+        "lambda": numbers.relative_stiffness,
+    })
