@@ -229,3 +229,20 @@ def test_fmax_chart_labels_follow_the_maps_law():
         ax = plot_fmax_chart(load_shipped_map("beam", "euler", law), lambdas=[0.1, 1.0], asymptotes=False)
         assert (ax.get_xlabel(), ax.get_ylabel()) == FMAX_LABELS[law]
     plt.close("all")
+
+
+def test_lookup_command_at_given_numbers():
+    """cmd_lookup with an elastic-plastic --law reads the plastic map at (--beta, --zeta,
+    --lambda) (the parser's --law choices and --beta option are the lead's to add)."""
+    import argparse
+
+    from impactmaps.cli.commands_maps import cmd_lookup
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+                              theory="euler")
+    out = cmd_lookup(args)
+    assert out["fmax_normalised"] == lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler").fmax_normalised
+    assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
+    with pytest.raises(ValueError, match="--beta is required with --law yc"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))

@@ -315,6 +315,10 @@ def cmd_lookup(args) -> dict:
         return lookup_case(case)
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
+    from ..maps.plastic_points import PLASTIC_LAWS
+
+    if args.law in PLASTIC_LAWS:
+        return _lookup_plastic_numbers(args)
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"
@@ -323,3 +327,19 @@ def cmd_lookup(args) -> dict:
             "regime": found.regime, "map": found.map_name, "law": law}
 
 
+def _lookup_plastic_numbers(args) -> dict:
+    """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
+    from ..maps.plastic_lookup import lookup_plastic
+
+    beta = getattr(args, "beta", None)
+    if beta is None:
+        raise ValueError(f"--beta is required with --law {args.law} (the impact number; valid range (0, inf))")
+    check("--beta", beta, what="the impact number β")
+    check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
+    check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
+    found = lookup_plastic(beta, args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=args.law)
+    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
+            "restitution": found.restitution, "restitution_error": found.restitution_error,
+            "absorbed_energy_fraction": found.absorbed_energy_fraction,
+            "absorbed_energy_error": found.absorbed_energy_error, "status": found.status,
+            "map": found.map_name, "law": args.law}
