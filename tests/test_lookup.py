@@ -319,3 +319,19 @@ def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
         'law = "yigit-christoforou"', 'law = "stronge"\nplastic_pressure_factor = 3.0')
     with pytest.raises(ValueError, match="no shipped map covers this case.*plastic_pressure_factor.*simulate"):
         lookup_case(parse_case(stronge))
+
+
+def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
+    """A case that asks for the finite-difference elastic-plastic beam (solver.kind = "fd")
+    is not looked up in a map of elastic structures, whatever its contact law."""
+    from pathlib import Path
+
+    from impactmaps.cases import load_case
+    from impactmaps.maps.lookup import lookup_case
+
+    text = (Path(__file__).resolve().parents[1] / "examples" / "steel_beam_fd_stronge.toml").read_text()
+    assert "[solver]\n" in text
+    path = tmp_path / "fd.toml"
+    path.write_text(text.replace("[solver]\n", '[solver]\nkind = "fd"\n', 1))
+    with pytest.raises(ValueError, match="no shipped map covers this case: solver.kind = 'fd'.*impactmaps simulate"):
+        lookup_case(load_case(path))

@@ -359,6 +359,9 @@ def map_for_case(case) -> tuple[str, str]:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
 
     law = case_map_law(case)
+    if case.solver_kind != "modal":
+        refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
+               "and Rayleigh theory; the maps are of elastic structures solved modally)")
     target = case.target
     if case.target_type == "beam":
         if target.supports != "ss":
