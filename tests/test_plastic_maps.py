@@ -246,3 +246,7 @@ def test_lookup_command_at_given_numbers():
     assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
     with pytest.raises(ValueError, match="--beta is required with --law yc"):
         cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))
+    with pytest.raises(ValueError, match="--beta cannot be used with the hertz law"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "law": "hertz"}))
+    with pytest.raises(ValueError, match="--zeta, --lambda, --beta cannot be used with --case"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "case": "case.toml"}))

@@ -304,7 +304,8 @@ def cmd_lookup(args) -> dict:
 
         from ..maps.lookup import case_map_law, map_for_case
 
-        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
+        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta"},
+               "with --case (the case gives its numbers)")
         case = load_case(args.case)
         structure, theory = map_for_case(case)
         for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory),
@@ -319,6 +320,7 @@ def cmd_lookup(args) -> dict:
 
     if args.law in PLASTIC_LAWS:
         return _lookup_plastic_numbers(args)
+    refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the yc and stronge maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"
