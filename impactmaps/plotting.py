@@ -583,7 +583,7 @@ def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
                         markevery=max(1, zeta.size // 8), ms=4, mfc="white" if kind == "beam" else colour,
                         label=f"β = {float(curve['beta']):.3g}, {name}")
     law = str(first.attrs.get("contact_law", ""))
-    grid = ", ".join(f"{str(d['kind'].values[0])} {float(d['lambda_'].sel(lambda_=lambda_, method='nearest')):.3g}"
+    grid = ", ".join(f"{d['kind'].values[0]!s} {float(d['lambda_'].sel(lambda_=lambda_, method='nearest')):.3g}"
                      for d in maps)
     for ax, (_variable, label) in zip(axes, PLASTIC_PANELS):
         ax.set_xscale("log")

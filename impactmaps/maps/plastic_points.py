@@ -54,6 +54,7 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
+import xarray as xr
 
 from .._checks import require_choice, require_positive
 from ..contact.stronge import StrongeContact
@@ -406,7 +407,7 @@ def _plastic_runner(target, table: BasisTable, cap: float, map_law: str, numbers
 
 
 def plastic_map(structure: MapStructure, map_law: str, betas, zetas, lambdas, rows: Sequence[dict],
-                settings: ModalSettings | None = None) -> "xr.Dataset":
+                settings: ModalSettings | None = None) -> xr.Dataset:
     """The map dataset of solved plastic points (dims ``structure``, ``beta``, ``lambda_``, ``zeta``).
 
     Parameters
@@ -428,8 +429,6 @@ def plastic_map(structure: MapStructure, map_law: str, betas, zetas, lambdas, ro
         :data:`PLASTIC_VARIABLES`, ``done``; attributes ``contact_law`` (the map law),
         ``fingerprint``, ``description``, ``solver_revision``, ``point_methods``.
     """
-    import xarray as xr
-
     from .. import __version__
     from ..jsonio import dumps
     from .store import fingerprint
