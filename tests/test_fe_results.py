@@ -202,7 +202,9 @@ def test_modal_solver_matches_spring_coupled_3d_linear_law(case):
 
 
 LEVEL3_PLATE = RESULTS / "level3_plate.json"
-PLATE_PEAK_TOLERANCE = 0.045     # observed −2.7 … −3.4 % (see test)
+PLATE_PEAK_TOLERANCE = 0.045     # point load at 40 ω: observed −2.7 … −3.4 % (see test)
+# The default (converged contact patch): observed −3.8 … −5.9 % (see test); band below.
+PLATE_PATCH_PEAK_BAND = (-0.065, -0.030)
 
 
 def _level3_plate_cases():
@@ -211,31 +213,53 @@ def _level3_plate_cases():
     return json.loads(LEVEL3_PLATE.read_text())["cases"]
 
 
+def _first_contact(res):
+    """(peak force [N], duration [s]) of the first contact of a recorded run."""
+    start, end = res.contact_intervals[0]
+    first = res.history[(res.history["time_s"] >= start) & (res.history["time_s"] <= end)]
+    return first["force_N"].max(), end - start
+
+
 @pytest.mark.parametrize("case", _level3_plate_cases(),
                          ids=lambda c: f"plate-mass×{c['mass_factor']:g}")
 def test_mindlin_plate_matches_spring_coupled_3d(case):
     """SSSS steel plate 200 × 200 × 10 mm (span/thickness 20), Hertz law, sphere mass
-    0.1–100 × the solid sphere: first-contact duration within 5 % of the FE spring model
-    (observed ≤ +2.7 %).  The peak force is 2.7–3.4 % under FE (over 3 % at 0.1× and 1×,
-    the issue's limit): the point-loaded Mindlin plate is too compliant under the load
-    (its point-load shear deflection diverges and is cut by the modal truncation), the
-    plate analogue of the Timoshenko beam's excess (README of validation/fe); held at
-    ``PLATE_PEAK_TOLERANCE`` until a patch load closes it."""
+    0.1–100 × the solid sphere, against the FE spring model (converged ≤ 0.5 %).
+
+    Default settings (the Hertz contact patch of the peak indentation, converged in the
+    cut-off, issue 14): first-contact duration within 5 % (observed +2.7 … +4.0 %); peak
+    force −3.8 / −4.8 / −4.5 / −5.9 % at 0.1 / 1 / 10 / 100 × the sphere mass, asserted in
+    ``PLATE_PATCH_PEAK_BAND`` (−6.5 … −3.0 %: the observed values plus a margin of 0.6 %,
+    two-sided so that a change closing or widening the gap is seen).  This band is wider
+    than the 4.5 % the point load was held to before, and that is not a loosening of the
+    same quantity: the point load's −2.7 … −3.4 % is a value at one arbitrary cut-off
+    (40 ω) of a result that falls ≈ 1 % per doubling of the cut-off (at 320 ω it is below
+    the patch value), whereas the patch value is the converged Mindlin + Hertz answer.
+    What remains is a modelling difference, not truncation: the Mindlin plate's shear
+    flexibility under a patch of radius a ≈ 0.3–1 mm, ≪ h = 10 mm, grows like
+    ln(h/a)/(2π kGh) where the 3D solid's near field under the sphere is the half-space
+    field that the Hertz law already carries (docs/contact_patch.rst).  The point load at
+    40 ω is still asserted at ``PLATE_PEAK_TOLERANCE`` (observed −2.7 … −3.4 %) so that a
+    drift of the point-load path is caught too."""
     fe = case["fe"]
     if max(_fe_spread(fe, q) for q in ("first_peak_N", "first_contact_s")) > 0.01:
         pytest.skip("FE spring model not converged to 1 % at this point")
     sphere = impactmaps.Sphere(0.01, STEEL, mass=case["mass_kg"])
     law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
     plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.01, STEEL, theory="mindlin")
+    ref = fe["reference"]
+    peak, duration = _first_contact(impactmaps.simulate(plate, law, case["mass_kg"], 1.0))
+    low, high = PLATE_PATCH_PEAK_BAND
+    assert low < peak / ref["first_peak_N"] - 1.0 < high
+    assert duration == pytest.approx(ref["first_contact_s"], rel=0.05)
     with warnings.catch_warnings():
         # the Mindlin thickness-shear notice of a high cut-off (documented, harmless here)
         warnings.simplefilter("ignore", UserWarning)
-        res = impactmaps.simulate(plate, law, case["mass_kg"], 1.0)
-    start, end = res.contact_intervals[0]
-    first = res.history[(res.history["time_s"] >= start) & (res.history["time_s"] <= end)]
-    ref = fe["reference"]
-    assert first["force_N"].max() == pytest.approx(ref["first_peak_N"], rel=PLATE_PEAK_TOLERANCE)
-    assert end - start == pytest.approx(ref["first_contact_s"], rel=0.05)
+        point = impactmaps.simulate(plate, law, case["mass_kg"], 1.0,
+                                    settings=impactmaps.ModalSettings(contact_patch="point"))
+    peak, duration = _first_contact(point)
+    assert peak == pytest.approx(ref["first_peak_N"], rel=PLATE_PEAK_TOLERANCE)
+    assert duration == pytest.approx(ref["first_contact_s"], rel=0.05)
 
 
 LEVEL2 = RESULTS / "level2_static_hertz.json"

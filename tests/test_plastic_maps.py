@@ -105,9 +105,12 @@ def _shipped():
 
 
 def test_shipped_plastic_maps_are_complete_and_consistent():
-    """Every shipped plastic map: every point solved, with a status and finite errors of all
-    three quantities, the energy ledger closed (e² + absorbed + transferred = 1 wherever the
-    sphere separated), and its law recorded (it cannot be read as a linear or Hertz map)."""
+    """Every shipped plastic map: every point solved, with a status; finite values and errors
+    of all three quantities except at ``unresolved`` points (beyond what the Timoshenko
+    theory holds: no value at all); the energy ledger closed (e² + absorbed + transferred
+    = 1 wherever the sphere separated); its law recorded (it cannot be read as a linear or
+    Hertz map)."""
+    from impactmaps.maps.accuracy import STATUSES
     from impactmaps.maps.lookup import require_map_law
 
     for dataset in _shipped():
@@ -115,12 +118,15 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
         assert law in ("yc", "stronge") and int(dataset.attrs["complete"]) == 1
         assert set(dataset["fmax_normalised"].dims) == {"structure", "beta", "lambda_", "zeta"}
         assert np.all(dataset["done"].values == 1) and np.all(dataset["status"].values >= 0)
+        resolved = dataset["status"].values != STATUSES.index("unresolved")
+        assert resolved.mean() > 0.9
         for name in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
-            assert np.all(np.isfinite(dataset[name].values)), name
+            assert np.all(np.isfinite(dataset[name].values[resolved])), name
+            assert np.all(np.isnan(dataset[name].values[~resolved])), name
         separated = np.isfinite(dataset["restitution"].values)
         ledger = (dataset["restitution"] ** 2 + dataset["absorbed_energy_fraction"]
                   + dataset["energy_transferred_fraction"]).values[separated]
-        assert separated.mean() > 0.99 and np.allclose(ledger, 1.0, atol=5e-3)
+        assert separated.sum() > 0.99 * resolved.sum() and np.allclose(ledger, 1.0, atol=5e-3)
         with pytest.raises(ValueError, match="not the linear law"):
             require_map_law(dataset, "linear")
 

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import map_file_stem
 from impactmaps.maps.plastic_points import PLASTIC_LAWS, plastic_map, solve_plastic_points
 from impactmaps.maps.store import save_atomic
@@ -87,10 +88,9 @@ def main(argv=None) -> None:
             stem = map_file_stem(structure.name, law)
             save_atomic(dataset, args.out_dir / f"{stem}.nc")
             total += cpu
-            statuses = dataset["status"].values.ravel()
-            print(f"{stem}: {int(dataset['done'].sum())} points, {cpu:.1f} s CPU ({wall:.1f} s wall); "
-                  f"status counts {np.bincount(statuses[statuses >= 0], minlength=4).tolist()} "
-                  f"(converged, refined, sensitive, asymptotic), {int(np.sum(statuses < 0))} missing")
+            counts = np.bincount(dataset["status"].values.ravel(), minlength=len(STATUSES))
+            print(f"{stem}: {int(dataset['done'].sum())} points, {cpu:.1f} s CPU ({wall:.1f} s wall); status "
+                  + ", ".join(f"{name} {count}" for name, count in zip(STATUSES, counts)))
     print(f"all plastic maps: {total:.1f} s CPU")
 
 

@@ -152,7 +152,7 @@ def _map_point(structure, args, settings) -> dict:
     values = {name: (int(row[name]) if dtype.startswith("i") else float(row[name]))
               for name, (dtype, *_rest) in RESULT_VARIABLES.items() if name in row}
     values["status"] = STATUSES[values["status"]]
-    values["method"] = METHODS[values["method"]]
+    values["method"] = METHODS[values["method"]] if values["method"] >= 0 else "none"
     return values
 
 
@@ -176,8 +176,15 @@ def cmd_point(args) -> dict:
     }
     if checked:
         # the value a sweep stores for this point, with its error and status (the same bits)
-        values.update(_map_point(structure, args, settings))
-        values["converged"] = values["status"] != "sensitive"
+        mapped = _map_point(structure, args, settings)
+        if mapped["status"] == "unresolved":  # no map value: keep this run's, say why it is not vouched for
+            values.update(status="unresolved", status_note=(
+                "the toolkit does not vouch for this value: the contact frequency lies beyond the range of the "
+                f"{structure.theory} theory (or the point needs more modes than the cap); see "
+                "impactmaps.solvers.shear_range"))
+        else:
+            values.update(mapped)
+        values["converged"] = values["status"] not in ("sensitive", "unresolved")
     else:
         values["converged"] = None
         values["status"] = "unchecked"

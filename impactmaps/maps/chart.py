@@ -38,14 +38,19 @@ def tidy_frame(dataset):
     """A sweep dataset as a tidy pandas DataFrame (one row per computed point).
 
     The ``method`` column holds the model's name (``modal+residual``,
-    ``modal+residual-capped``, ``infinite-structure-asymptote``), not its code.
+    ``modal+residual-capped``, ``infinite-structure-asymptote``; empty for an
+    ``unresolved`` point) and ``status`` the status's name
+    (:data:`impactmaps.maps.accuracy.STATUSES`), not their codes.
     """
+    from .accuracy import STATUSES
     from .sweep import METHODS
 
     frame = dataset.drop_vars(["kind", "theory", "supports", "aspect_ratio", "slenderness"]).to_dataframe().reset_index()
     frame = frame[frame["done"] == 1].drop(columns="done")
     if "method" in frame:
-        frame["method"] = [METHODS[int(code)] for code in frame["method"]]
+        frame["method"] = [METHODS[int(code)] if code >= 0 else "" for code in frame["method"]]
+    if "status" in frame:
+        frame["status"] = [STATUSES[int(code)] for code in frame["status"]]
     return frame.rename(columns={"lambda_": "lambda"})
 
 

@@ -26,7 +26,7 @@ from ..contact.hertz import HertzContact
 from ..hertz_similarity import realise_hertz, unit_speed_stiffness
 from ..law_asymptotes import asymptote
 from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
-from ..targets.plate_navier import warn_beyond_thickness_shear
+from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, controlled_point, exact_point
 from .structures import BasisTable, MapStructure
 
@@ -178,8 +178,10 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
     contact frequency, clipped to :func:`~impactmaps.maps.sweep.frequency_cap`, plus
     residual flexibility) and the same accuracy control. Where the cut-off would pass the
     cap, the infinite-structure asymptote of the Hertz law answers if the first wave
-    returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time; otherwise the
-    capped modes are integrated, with a warning.
+    returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (Euler beams and
+    Kirchhoff plates); otherwise the capped modes are integrated, with a warning. A point
+    whose contact frequency lies beyond what a Timoshenko/Mindlin theory holds is
+    ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`).
 
     Returns
     -------
@@ -187,25 +189,27 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
         plus ``zeta``, ``lambda_``.
     """
-    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, MAX_MODES, METHODS, basis_table, frequency_cap
+    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, MAX_MODES, METHODS, basis_table, frequency_cap, unresolved_point
 
     target = structure.build()
     cap = frequency_cap(structure)
     table = basis_table(structure, settings.min_modes) if table is None else table
     impacts = [_Realised(target, float(zeta), float(lam)) for zeta, lam in points]
-    wanted = max(settings.cutoff_ratio * impact.omega for impact in impacts)
-    warn_beyond_thickness_shear(target, min(wanted, cap), stacklevel=3)
     rows = []
     for (zeta, lam), realised in zip(points, impacts):
         zeta, lam = float(zeta), float(lam)
         reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
         row = {"zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
+        if beyond_shear_theory(target, realised.omega):
+            rows.append(unresolved_point(row))
+            continue
         capped = settings.cutoff_ratio * realised.omega > cap
-        if capped:
+        if capped and has_classical_asymptote(target):
             infinite = _asymptote_row(_INFINITE[structure.kind], target, zeta, lam)
             if reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
                 rows.append(exact_point(row | infinite | {"method": METHODS.index("infinite-structure-asymptote")}))
                 continue
+        if capped:
             warnings.warn(
                 f"{structure.name} (Hertz) at ζ_h = {zeta:g}, λ_h = {lam:g} needs more than {MAX_MODES} "
                 f"modes; integrating the first {MAX_MODES} (residual flexibility for the rest)",

@@ -182,6 +182,13 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
     zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
     points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
+    error, status = _corner_accuracy(dataset, lam_c, zeta_c, structure, theory, law)
+    if np.any(status == "unresolved"):
+        bad = np.flatnonzero(np.asarray(status == "unresolved").ravel())[0]
+        raise ValueError(
+            f"(loss_factor, relative_stiffness) = ({zeta.ravel()[bad]:g}, {lam.ravel()[bad]:g}) lies where "
+            f"the {structure} {theory} map holds no value (unresolved: beyond the range of its "
+            "structural theory, or no model within the mode cap); run a simulation instead")
     fmax = _interpolator(structure, theory, "fmax_normalised", law)(points).reshape(zeta.shape)
     peak_time = np.exp(_interpolator(structure, theory, "log_peak_time", law)(points)).reshape(zeta.shape) \
         if "log_peak_time" in dataset else None
@@ -189,7 +196,6 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         if "log_reflection_time" in dataset else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law)
-    error, status = _corner_accuracy(dataset, lam_c, zeta_c, structure, theory, law)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
     return LookupResult(fmax, regime, structure, theory, map_file_stem(SHIPPED_MAPS[(structure, theory)], law),
@@ -197,7 +203,7 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
 
 
 #: Severity of a status when four map points are combined (worst wins).
-_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "sensitive": 2}
+_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "sensitive": 2, "unresolved": 3}
 
 
 def interpolation_error(values: np.ndarray) -> np.ndarray:
@@ -218,7 +224,7 @@ def interpolation_error(values: np.ndarray) -> np.ndarray:
     for axis in range(f.ndim):
         if f.shape[axis] < 3:  # no second difference along a 1- or 2-point axis
             continue
-        d2 = np.abs(np.diff(f, n=2, axis=axis))
+        d2 = _nearest_known(np.abs(np.diff(f, n=2, axis=axis)), axis)
         pad = [(0, 0)] * f.ndim
         pad[axis] = (1, 1)
         d2 = np.pad(d2, pad, mode="edge")
@@ -227,6 +233,28 @@ def interpolation_error(values: np.ndarray) -> np.ndarray:
             widened = np.maximum(widened, np.roll(d2, shift, axis=axis))
         second += widened
     return second / 2.0
+
+
+def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
+    """``d2`` with each missing entry (a difference that reaches an ``unresolved`` point,
+    NaN) replaced by the nearest known one along ``axis`` (the largest known anywhere when
+    a whole line is missing)."""
+    if not np.isnan(d2).any():
+        return d2
+    out = np.ascontiguousarray(np.moveaxis(d2, axis, -1))  # a copy: lines are views of it
+    fallback = float(np.nanmax(d2)) if np.isfinite(d2).any() else 0.0
+    positions = np.arange(out.shape[-1])
+    for line in out.reshape(-1, out.shape[-1]):
+        known = np.flatnonzero(np.isfinite(line))
+        missing = np.flatnonzero(np.isnan(line))
+        if missing.size == 0:
+            continue
+        if known.size == 0:
+            line[missing] = fallback
+            continue
+        nearest = known[np.abs(positions[missing, None] - known[None, :]).argmin(axis=1)]
+        line[missing] = line[nearest]
+    return np.moveaxis(out, -1, axis)
 
 
 @functools.lru_cache(maxsize=16)
@@ -250,7 +278,7 @@ def _corner_accuracy(dataset: xr.Dataset, lam, zeta, structure: str, theory: str
         for c in cols:
             error = np.maximum(error, errors[r, c])
             worst = np.maximum(worst, severity[codes[r, c]])
-    names = np.array(["converged", "refined", "sensitive"])
+    names = np.array(["converged", "refined", "sensitive", "unresolved"])
     return error, names[worst]
 
 

@@ -8,8 +8,9 @@ error (refinement, or half the spread of a sensitive point) plus the local inter
 error estimated from the map's second differences
 (:func:`impactmaps.maps.lookup.interpolation_error` along the three axes), times
 :data:`BAND_SAFETY`; its coverage is measured by ``validation/lookup_error.py --law yc``.
-A point the map could not answer (missing), or a band that is not finite, is refused —
-never a number without its band.
+Next to a point the map holds no value for (``unresolved``: beyond what a Timoshenko
+theory holds, or no model within the mode cap) a lookup is refused — never a number
+without its band.
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ class PlasticLookup:
     absorbed_energy_fraction, absorbed_energy_error : contact dissipation / ½ m V0² and its band.
     status : str or ndarray of str
         Worst status of the eight map points around the answer (``sensitive`` >
-        ``refined`` > ``converged``/``asymptotic``).
+        ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused).
     map_name : str
     law : str
         ``"yc"`` or ``"stronge"``.
@@ -137,7 +138,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
     ------
     ValueError
         Outside the map's range (naming the number and the range), or where a map point
-        around the answer has no value or no finite band.
+        around the answer is ``unresolved`` (holds no value).
     """
     from .accuracy import STATUSES
     from .lookup import _SEVERITY, map_file_stem
@@ -161,14 +162,16 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         band = _band_grid(structure, theory, law, variable)
         out[error_name] = BAND_SAFETY * np.max([band[c] for c in corners], axis=0)
     codes = dataset["status"].isel(structure=0).values
-    if np.any([codes[c] < 0 for c in corners]) or not np.all(np.isfinite(out["fmax_error"])):
-        raise ValueError(f"the {law} map {PLASTIC_MAPS[(structure, theory)]} has no value at β = "
-                         f"{np.ravel(numbers[0]).tolist()}, ζ = {np.ravel(numbers[2]).tolist()}, λ = "
-                         f"{np.ravel(numbers[1]).tolist()} (a map point there was not solved); run a "
-                         "simulation (impactmaps simulate) instead")
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     worst = np.max([severity[codes[c]] for c in corners], axis=0)
-    status = np.array(["converged", "refined", "sensitive"])[worst]
+    status = np.array(["converged", "refined", "sensitive", "unresolved"])[worst]
+    if np.any(status == "unresolved") or not np.all(np.isfinite(out["fmax_normalised"])):
+        bad = int(np.flatnonzero((status == "unresolved") | ~np.isfinite(out["fmax_normalised"]))[0])
+        raise ValueError(f"(beta, loss_factor, relative_stiffness) = ({np.ravel(numbers[0])[bad]:g}, "
+                         f"{np.ravel(numbers[2])[bad]:g}, {np.ravel(numbers[1])[bad]:g}) lies where the {law} map "
+                         f"{PLASTIC_MAPS[(structure, theory)]} holds no value (unresolved: beyond the range of its "
+                         "structural theory, or no model within the mode cap); run a simulation (impactmaps "
+                         "simulate) instead")
     values = {key: value.reshape(shape) for key, value in out.items()}
     if not shape:
         values = {key: float(value) for key, value in values.items()}
@@ -203,7 +206,7 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
         found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
                                structure=structure, theory=theory, law=law)
     except ValueError as error:
-        if "outside the shipped map" not in str(error) and "has no value" not in str(error):
+        if "outside the shipped map" not in str(error) and "holds no value" not in str(error):
             raise
         raise ValueError(f"no shipped map covers this case: {str(error).split('; run')[0]}; run "
                          f"`impactmaps simulate {case.source or 'CASE.toml'}` instead") from None

@@ -61,7 +61,6 @@ from ..contact.stronge import StrongeContact
 from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
 from ..dimensionless import realise
 from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
-from ..solvers.mode_budget import ModeBudgetError, plan_basis
 from .accuracy import STATUSES, AccuracyControl, controlled_point
 from .structures import BasisTable, MapStructure
 
@@ -300,32 +299,25 @@ def _asymptote_row(plan, realised: PlasticRealisation) -> dict:
     }
 
 
-def _companion_errors(runs: list, status: int) -> dict:
+def _companion_errors(runs: list, status: int, levels: int) -> dict:
     """Errors of restitution and absorbed energy from the runs ``controlled_point`` made.
 
-    As its F̄max error: the change between the last two refinement levels (converged,
-    refined), or half the spread over the refined and perturbed runs (sensitive).
+    As its F̄max error (:func:`impactmaps.maps.accuracy.controlled_point`): the change
+    between the last two refinement levels (converged, refined), or half the spread of
+    every value seen — the ``levels`` refinement levels, the perturbed runs, and the
+    finest value ± its last change (sensitive).
     """
     out = {}
     for key in ("restitution", "absorbed_energy_fraction"):
         values = np.array([run.normalised_summary()[key] for run in runs])
         if STATUSES[status] == "sensitive":
-            spread = values[1:]
-            error = 0.5 * (np.max(spread) - np.min(spread)) if np.all(np.isfinite(spread)) else np.nan
+            finest, change = values[levels - 1], abs(values[levels - 1] - values[levels - 2])
+            seen = np.concatenate([values, [finest - change, finest + change]])
+            error = 0.5 * (np.max(seen) - np.min(seen)) if np.all(np.isfinite(seen)) else np.nan
         else:
             error = abs(values[-1] - values[-2])
         out[ERROR_OF[key]] = float(error)
     return out
-
-
-def _failed_row() -> dict:
-    """A point no method answers within the mode cap: missing values, status -1."""
-    return {"fmax_normalised": np.nan, "impacts": -1, "contact_time_normalised": np.nan,
-            "first_contact_normalised": np.nan, "peak_time_normalised": np.nan,
-            "energy_transferred_fraction": np.nan, "n_modes": -1, "time_limit_reached": -1,
-            "restitution": np.nan, "absorbed_energy_fraction": np.nan, "fmax_error": np.nan,
-            "fmax_low": np.nan, "fmax_high": np.nan, "status": -1, "restitution_error": np.nan,
-            "absorbed_energy_error": np.nan}
 
 
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
@@ -339,7 +331,9 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
     flexibility), the same answer beyond the cap
     (:func:`impactmaps.solvers.mode_budget.plan_basis`: the any-law infinite-structure
     asymptote where it holds, else the capped modes with a warning) and the same accuracy
-    control; a point nothing answers is stored as missing (status −1).
+    control; a point beyond what a Timoshenko theory holds, or one nothing answers within
+    the mode cap, is ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`: every
+    value missing), as in the linear and Hertz maps.
 
     Parameters
     ----------
@@ -356,7 +350,7 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
         One dict per point: the map scalars (module docstring), their errors, ``status``,
         ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
     """
-    from .sweep import MAX_MODES, METHODS, basis_table, frequency_cap
+    from .sweep import METHODS, _map_plan, basis_table, frequency_cap, unresolved_point
 
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
     settings = settings or ModalSettings()
@@ -370,11 +364,9 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
         omega = math.sqrt(reference_contact_stiffness(realised.law, realised.mass, 1.0) / realised.mass)
         reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
         row = {"beta": beta, "zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
-        try:
-            plan = plan_basis(target, realised.law, realised.mass, 1.0, settings.cutoff_ratio * omega,
-                              max_modes=MAX_MODES, cap_frequency=cap)
-        except ModeBudgetError:
-            rows.append(row | _failed_row() | {"method": -1})
+        plan = _map_plan(target, realised.law, realised.mass, omega, settings.cutoff_ratio * omega, cap, None)
+        if plan is None:  # beyond the shear-deformable theory, or no method within the mode cap
+            rows.append(unresolved_point(row) | {name: np.nan for name in PLASTIC_VARIABLES})
             continue
         if plan.method == "infinite-structure-asymptote":
             rows.append(row | _asymptote_row(plan, realised) | {"method": METHODS.index(plan.method)})
@@ -385,7 +377,8 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
         runs = []
         run = _plastic_runner(target, table, cap, map_law, (beta, zeta, lam), realised, runs)
         point = controlled_point(run, settings, control)
-        rows.append(row | point | _companion_errors(runs, point["status"]) | {"method": METHODS.index(plan.method)})
+        rows.append(row | point | _companion_errors(runs, point["status"], int(control.max_refinements) + 1)
+                    | {"method": METHODS.index(plan.method)})
     return rows
 
 

@@ -31,8 +31,8 @@ from ..solvers.modal import ModalSettings, simulate
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
 from ..solvers.mode_budget import METHODS as BUDGET_METHODS
 from ..solvers.mode_budget import frequency_cap as budget_frequency_cap
-from ..solvers.mode_budget import plan_basis
-from ..targets.plate_navier import warn_beyond_thickness_shear
+from ..solvers.mode_budget import ModeBudgetError, plan_basis
+from ..solvers.shear_range import beyond_shear_theory
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .hertz_points import HERTZ_AXES, HERTZ_DESCRIPTIONS, solve_hertz_points
 from .regimes import MAP_LAWS, classify
@@ -47,7 +47,7 @@ from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid"]
 
-SOLVER_REVISION = 5  # bump when a numerical change invalidates stored results (5: exact linear contact phase)
+SOLVER_REVISION = 6  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them)
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)
@@ -64,7 +64,7 @@ RESULT_VARIABLES = {
     "fmax_error": ("f8", np.nan, "1", "error estimate of fmax_normalised (change under refinement, or half the spread of a sensitive point)"),
     "fmax_low": ("f8", np.nan, "1", "lower end of the band that holds fmax_normalised"),
     "fmax_high": ("f8", np.nan, "1", "upper end of the band that holds fmax_normalised"),
-    "status": ("i1", -1, "1", "converged, refined, sensitive or asymptotic: see flag_meanings"),
+    "status": ("i1", -1, "1", "converged, refined, sensitive, asymptotic or unresolved: see flag_meanings"),
 }
 
 #: The (λ, ζ) axis descriptions of a map of each law.
@@ -139,6 +139,29 @@ def _asymptote_row(target, zeta: float) -> dict:
     }
 
 
+def unresolved_point(row: dict) -> dict:
+    """A map point no model here vouches for: every result missing, status ``unresolved``."""
+    missing = {name: spec[1] for name, spec in RESULT_VARIABLES.items()}
+    return row | missing | {"reflection_time_normalised": row["reflection_time_normalised"],
+                            "status": STATUSES.index("unresolved")}
+
+
+def _map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, zeta: float | None):
+    """The :class:`~impactmaps.solvers.mode_budget.BasisPlan` of one map point, or None.
+
+    None — the point is ``unresolved`` — when its contact frequency ``omega`` [rad/s] lies
+    beyond what the target's shear-deformable theory holds
+    (:func:`~impactmaps.solvers.shear_range.beyond_shear_theory`), or when no method the
+    mode budget knows answers it (too many modes, no asymptote).
+    """
+    if beyond_shear_theory(target, omega):
+        return None
+    try:
+        return plan_basis(target, law, mass, 1.0, wanted, max_modes=MAX_MODES, cap_frequency=cap, loss_factor=zeta)
+    except ModeBudgetError:
+        return None
+
+
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                  table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
     """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
@@ -167,10 +190,13 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     (more than ``MAX_MODES`` modes: light impactors on flexible plates, spec §3.6) is
     answered as :func:`impactmaps.solvers.mode_budget.plan_basis` decides: the
     infinite-structure solution if the first wave returns after
-    ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (it is then exact for the peak);
-    otherwise the modes up to the cap plus residual flexibility, with a warning (a
-    ``ValueError`` if the cap lies below a few contact frequencies). The ``method``
-    variable records which model produced each point.
+    ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (it is then exact for the peak;
+    Euler beams and Kirchhoff plates only); otherwise the modes up to the cap plus
+    residual flexibility, with a warning. A point that neither answers (the cap lies
+    below a few contact frequencies), or whose contact frequency lies beyond what a
+    Timoshenko/Mindlin theory holds (:mod:`impactmaps.solvers.shear_range`), is
+    ``unresolved``: status only, every result missing. The ``method`` variable records
+    which model produced each point.
     """
     target = structure.build()
     zetas = np.array([p[0] for p in points], dtype=float)
@@ -184,12 +210,13 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     wanted = settings.cutoff_ratio * omegas
     if table is None:
         table = basis_table(structure, settings.min_modes)
-    warn_beyond_thickness_shear(target, min(float(wanted.max()), cap), stacklevel=3)
     rows = []
     for k in range(len(points)):
         row = {"zeta": zetas[k], "lambda_": lambdas[k], "reflection_time_normalised": float(reflections[k])}
-        plan = plan_basis(target, LinearContact(stiffnesses[k]), masses[k], 1.0, wanted[k], max_modes=MAX_MODES,
-                          cap_frequency=cap, loss_factor=zetas[k])
+        plan = _map_plan(target, LinearContact(stiffnesses[k]), masses[k], omegas[k], wanted[k], cap, zetas[k])
+        if plan is None:
+            rows.append(unresolved_point(row))
+            continue
         if plan.method == "infinite-structure-asymptote":
             rows.append(exact_point(row | _asymptote_row(target, zetas[k])))
             continue
@@ -398,7 +425,8 @@ class _Results:
             for name in RESULT_VARIABLES:
                 self.arrays[name][s_index, l_index, z_index] = row[name]
             self.arrays["done"][s_index, l_index, z_index] = 1
-            self.methods.add(METHODS[row["method"]])
+            if row["method"] >= 0:  # an unresolved point has no method
+                self.methods.add(METHODS[row["method"]])
         self.absorbed += len(indices)
         self.bar.update(len(indices))
 
@@ -504,13 +532,14 @@ def _finish(results: _Results, stopped: bool) -> xr.Dataset:
 
 
 def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
-    """Regime label of every computed point of a sweep dataset (see :mod:`.regimes`)."""
+    """Regime label of every computed point of a sweep dataset (see :mod:`.regimes`);
+    ``""`` where a point is not computed or ``unresolved``."""
     labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
     criteria.setdefault("law", map_law(dataset))
     for s_index, kind in enumerate(dataset["kind"].values):
         fmax = dataset["fmax_normalised"].values[s_index]
         lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")
-        ok = dataset["done"].values[s_index].astype(bool)
+        ok = dataset["done"].values[s_index].astype(bool) & np.isfinite(fmax)  # unresolved: no label
         if ok.any():
             labels[s_index][ok] = classify(
                 fmax[ok], zeta[ok], lam[ok], str(kind),

@@ -390,8 +390,9 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
                         peak = value
                         peak_time = t - h + s
             f_prev = force
-            eta_prev[:] = eta
-            rate_prev[:] = rate
+            for k in range(n):  # element loop: a slice assignment compiles for seconds
+                eta_prev[k] = eta[k]
+                rate_prev[k] = rate[k]
             if record:
                 history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, h,
                                               row_spacing, omega, phi, residual, q, v, history, rec)

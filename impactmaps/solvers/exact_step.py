@@ -307,7 +307,9 @@ def integrate_impact(
 
     free_coef = np.empty((_FREE_POWERS, 4, n))  # homogeneous rows only: no force in flight
     free_ready = np.zeros(_FREE_POWERS, dtype=np.bool_)
-    free_coef[0] = coef[:4]
+    for row in range(4):  # element loops: a slice assignment compiles for seconds
+        for j in range(n):
+            free_coef[0, row, j] = coef[row, j]
     free_ready[0] = True
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)

@@ -47,7 +47,9 @@ def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
 def _grown(history):
     """The history array with twice the rows (the new ones zero)."""
     grown = np.zeros((2 * history.shape[0], HISTORY_WIDTH))
-    grown[:history.shape[0]] = history
+    for row in range(history.shape[0]):  # element loops: a slice assignment compiles for seconds
+        for column in range(HISTORY_WIDTH):
+            grown[row, column] = history[row, column]
     return grown
 
 

@@ -15,7 +15,9 @@ what answers such a run (spec §3.6):
   (``"infinite-structure-asymptote"``): the closed forms of
   :meth:`~impactmaps.targets.base.Target.infinite_structure_impact` for a linear law,
   the any-law asymptotes of :mod:`impactmaps.law_asymptotes` (infinite plate or beam)
-  otherwise;
+  otherwise — for Euler beams and Kirchhoff plates only: these classical solutions do
+  not answer for a Timoshenko beam or a Mindlin plate
+  (:func:`impactmaps.solvers.shear_range.has_classical_asymptote`);
 * otherwise the modes up to the cap plus the residual compliance of the rest, with a
   warning (``"modal+residual-capped"``), if the cap still lies at least
   :data:`MIN_CAPPED_CUTOFF_RATIO` times above ω (the dropped modes then respond nearly
@@ -39,6 +41,7 @@ import numpy as np
 from .asymptotes import infinite_plate_indentation
 from .infinite_beam import infinite_beam_indentation
 from .result import HISTORY_COLUMNS, ImpactResult
+from .shear_range import has_classical_asymptote
 
 __all__ = ["MEMORY_BUDGET_BYTES", "BASELINE_BYTES", "BYTES_PER_MODE", "MAX_MODES",
            "ASYMPTOTE_REFLECTION_FACTOR", "MIN_CAPPED_CUTOFF_RATIO", "METHODS", "BasisPlan",
@@ -259,11 +262,15 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
         return _replace(plan, METHODS[1], f"{many}; integrating the modes up to {cap:.4g} rad/s "
                         f"({cap / omega:.3g} ω), residual flexibility for the rest")
     highest = cap / MIN_CAPPED_CUTOFF_RATIO
-    returns = f"{reflection / peak_time:.3g} peak times" if answer is not None else "too early"
-    raise ModeBudgetError(
-        f"its contact frequency {omega:.4g} rad/s is too high ({many}, and a wave reflected from the "
-        f"boundary returns after {returns}, before the {ASYMPTOTE_REFLECTION_FACTOR:g} the "
-        "infinite-structure solution needs)", impactor_mass, highest, stiffness)
+    if not has_classical_asymptote(target):
+        why = (f"no infinite-structure solution answers for a {getattr(target, 'theory', '?')} target: the "
+               "closed forms are those of Euler beams and Kirchhoff plates")
+    else:
+        returns = f"{reflection / peak_time:.3g} peak times" if answer is not None else "too early"
+        why = (f"a wave reflected from the boundary returns after {returns}, before the "
+               f"{ASYMPTOTE_REFLECTION_FACTOR:g} the infinite-structure solution needs")
+    raise ModeBudgetError(f"its contact frequency {omega:.4g} rad/s is too high ({many}, and {why})",
+                          impactor_mass, highest, stiffness)
 
 
 def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
@@ -275,7 +282,7 @@ def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
 def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_factor):
     """(name, answer, peak time [s]) of the infinite-structure impact, or (None, None, nan)."""
     kind = getattr(target, "structure", None)
-    if kind not in ("plate", "beam"):
+    if kind not in ("plate", "beam") or not has_classical_asymptote(target):
         return None, None, math.nan
     omega = math.sqrt(stiffness / impactor_mass)
     if law.linear_stiffness is not None:

@@ -69,14 +69,32 @@ def _expm4(a):
         squarings = int(math.ceil(math.log2(norm / 0.25)))
     scale = 2.0 ** (-squarings)
     scaled = a * scale
-    result = np.eye(4)
-    term = np.eye(4)
+    result = np.zeros((4, 4))
+    term = np.zeros((4, 4))
+    for i in range(4):
+        result[i, i] = 1.0
+        term[i, i] = 1.0
     for k in range(1, 14):
-        term = term @ scaled / k
-        result = result + term
+        term = _product4(term, scaled)
+        for i in range(4):
+            for j in range(4):
+                term[i, j] /= k
+                result[i, j] += term[i, j]
     for _ in range(squarings):
-        result = result @ result
+        result = _product4(result, result)
     return result
+
+
+@numba.njit(cache=True)
+def _product4(a, b):
+    """The 4×4 matrix product a b (loops: numba's ``@`` compiles a BLAS binding for seconds)."""
+    out = np.zeros((4, 4))
+    for i in range(4):
+        for k in range(4):
+            aik = a[i, k]
+            for j in range(4):
+                out[i, j] += aik * b[k, j]
+    return out
 
 
 @numba.njit(cache=True, inline="always")

@@ -1,0 +1,109 @@
+"""Cold start: what the first run after installation costs, and where the compile time goes.
+
+Each measurement runs in a fresh interpreter with ``NUMBA_CACHE_DIR`` pointing at an empty
+temporary directory (numba then compiles everything, as after a fresh install):
+
+1. ``import impactmaps.solvers.modal`` (compiles the exact-step integrator, one eager
+   signature) with numba's compile events recorded: the largest inclusive compile times
+   per function (nested functions are counted in their callers too);
+2. ``impactmaps chart --quiet --out DIR`` on an empty cache (the README's first command
+   after ``pip install .``), then again on the now warm cache.
+
+Reported with the load average (other jobs on the machine make every number larger).
+
+Run: ``python benchmarks/bench_cold_start.py [--skip-chart]``; writes
+``benchmarks/RESULTS_cold_start.md``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+_PROFILE = r"""
+import collections, json, time
+from numba.core import event
+recorder = event.RecordingListener()
+event.register("numba:compile", recorder)
+start = time.perf_counter()
+import impactmaps.solvers.modal  # noqa: F401
+elapsed = time.perf_counter() - start
+totals, starts = collections.Counter(), {}
+for stamp, ev in recorder.buffer:
+    dispatcher = ev.data["dispatcher"]
+    key = (id(dispatcher), str(ev.data.get("args")))
+    name = dispatcher.py_func.__module__ + "." + dispatcher.py_func.__qualname__
+    if ev.is_start:
+        starts[key] = stamp
+    else:
+        totals[name] += stamp - starts.pop(key)
+print(json.dumps({"import_s": elapsed, "top": totals.most_common(12)}))
+"""
+
+
+def _environment(cache: str) -> dict:
+    return dict(os.environ, NUMBA_CACHE_DIR=cache,
+                PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+
+
+def profile_import() -> dict:
+    """Cold import of the modal solver with numba's compile events (fresh cache)."""
+    import json
+
+    with tempfile.TemporaryDirectory() as cache:
+        done = subprocess.run([sys.executable, "-c", _PROFILE], capture_output=True, text=True,
+                              env=_environment(cache), check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def time_chart() -> tuple[float, float]:
+    """(cold, warm) wall time [s] of ``impactmaps chart`` on a fresh numba cache."""
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        times = []
+        for run in ("cold", "warm"):
+            start = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "impactmaps.cli", "chart", "--quiet", "--out",
+                            str(pathlib.Path(out) / run)], env=_environment(cache), check=True,
+                           capture_output=True, cwd=out)
+            times.append(time.perf_counter() - start)
+    return times[0], times[1]
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--skip-chart", action="store_true", help="only the import profile")
+    args = parser.parse_args(argv)
+    load = os.getloadavg()[0]
+    profile = profile_import()
+    lines = [
+        "# Cold start",
+        "",
+        "`python benchmarks/bench_cold_start.py`",
+        f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average {load:.1f} "
+        f"on {os.cpu_count()} cores",
+        "",
+        f"Cold `import impactmaps.solvers.modal` (empty numba cache): **{profile['import_s']:.1f} s**. "
+        "Largest compile times (inclusive: a function's callees count in it too):",
+        "",
+        "| function | compile [s] |",
+        "|---|---|",
+    ]
+    lines += [f"| `{name}` | {seconds:.2f} |" for name, seconds in profile["top"]]
+    if not args.skip_chart:
+        cold, warm = time_chart()
+        lines += ["", f"`impactmaps chart`: first run (empty cache) **{cold:.1f} s**, second run {warm:.1f} s."]
+    text = "\n".join(lines) + "\n"
+    (ROOT / "benchmarks" / "RESULTS_cold_start.md").write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
