@@ -119,7 +119,8 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
         assert set(dataset["fmax_normalised"].dims) == {"structure", "beta", "lambda_", "zeta"}
         assert np.all(dataset["done"].values == 1) and np.all(dataset["status"].values >= 0)
         resolved = dataset["status"].values != STATUSES.index("unresolved")
-        assert resolved.mean() > 0.9
+        assert resolved.mean() > 0.75  # Timoshenko beams: light impactors pass a quarter of the thickness-shear
+        # cut-off (solvers/shear_range.py), 17 % (YC) and 22 % (Stronge) of the grid; Euler and Kirchhoff: none
         for name in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
             assert np.all(np.isfinite(dataset[name].values[resolved])), name
             assert np.all(np.isnan(dataset[name].values[~resolved])), name
@@ -145,6 +146,18 @@ def test_a_map_point_is_the_direct_solution():
         assert float(stored[name]) == row[name], name
     found = lookup_plastic(beta, zeta, lam, structure="beam", theory="euler", law="yc")
     assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
+
+
+def test_lookup_plastic_refuses_next_to_an_unresolved_point():
+    """Where the Timoshenko map holds no value (beyond its theory) the lookup refuses."""
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+
+    dataset = load_plastic_map("beam", "timoshenko", "yc").isel(structure=0)
+    at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
+    beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in zip(("beta", "lambda_", "zeta"), at))
+    with pytest.raises(ValueError, match="holds no value .unresolved"):
+        lookup_plastic(beta, zeta, lam, structure="beam", theory="timoshenko")
 
 
 def test_lookup_plastic_refuses_outside_the_map():

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.hertz_points import solve_hertz_points
 from impactmaps.maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
 from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
@@ -111,17 +112,19 @@ def measure_plastic(structure: str, theory: str, law: str, points: int, seed: in
     rows = solve_plastic_points(structure_from_name(name), law, list(zip(axes["beta"], axes["zeta"], axes["lambda_"])))
     frame = pd.DataFrame({"map": map_file_stem(name, law), "beta": axes["beta"], "zeta": axes["zeta"],
                           "lambda": axes["lambda_"]})
-    try:
-        found = lookup_plastic(axes["beta"], axes["zeta"], axes["lambda_"], structure=structure, theory=theory, law=law)
-    except ValueError:  # a missing map point somewhere: look the points up one by one
-        found = None
+    found = []
+    for beta, zeta, lam in zip(axes["beta"], axes["zeta"], axes["lambda_"]):
+        try:
+            found.append(lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law))
+        except ValueError:  # next to an unresolved map point: refused
+            found.append(None)
     for variable, error in ERROR_OF.items():
         frame[f"{variable}_direct"] = [r[variable] for r in rows]
         frame[f"{variable}_direct_error"] = [r[error] for r in rows]
-        if found is not None:
-            frame[f"{variable}_lookup"] = getattr(found, variable)
-            frame[f"{variable}_band"] = getattr(found, error)
-    frame["status"] = found.status if found is not None else ""
+        frame[f"{variable}_lookup"] = [np.nan if f is None else getattr(f, variable) for f in found]
+        frame[f"{variable}_band"] = [np.nan if f is None else getattr(f, error) for f in found]
+    frame["status"] = ["refused" if f is None else f.status for f in found]
+    frame["direct_status"] = [STATUSES[r["status"]] for r in rows]
     return frame
 
 
@@ -137,16 +140,18 @@ def plastic_main(args) -> None:
 
 def plastic_table(table: pd.DataFrame) -> str:
     """Markdown table: per map and quantity, the lookup error against direct solves and the band's coverage."""
-    lines = ["| map | quantity | points | median abs error | 95th pct | max | band covers error | median band |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = ["| map | quantity | points (refused) | median abs error | 95th pct | max | band covers error | "
+             "median band |", "|---|---|---|---|---|---|---|---|"]
     for name, group in table.groupby("map", sort=False):
+        refused = int(np.sum(group["status"] == "refused"))
+        unanswered = int(np.sum((group["status"] != "refused") & ~np.isfinite(group["fmax_normalised_direct"])))
+        if unanswered:  # a looked-up number where the direct solve holds none: never allowed
+            lines.append(f"| {name} | ANSWERED WHERE THE DIRECT SOLVE IS UNRESOLVED | {unanswered} | | | | | |")
         for variable in ERROR_OF:
-            if f"{variable}_lookup" not in group:
-                continue
             ok = np.isfinite(group[f"{variable}_direct"]) & np.isfinite(group[f"{variable}_lookup"])
             error = (group[f"{variable}_lookup"] - group[f"{variable}_direct"]).abs()[ok]
             allowed = (group[f"{variable}_band"] + group[f"{variable}_direct_error"])[ok]
-            lines.append(f"| {name} | {variable} | {int(ok.sum())} | {np.median(error):.4f} | "
+            lines.append(f"| {name} | {variable} | {int(ok.sum())} ({refused}) | {np.median(error):.4f} | "
                          f"{np.percentile(error, 95):.4f} | {error.max():.4f} | "
                          f"{int(np.sum(error <= allowed))}/{int(ok.sum())} | {np.median(allowed):.4f} |")
     return "\n".join(lines)
