@@ -7,6 +7,7 @@ import numpy as np
 
 __all__ = [
     "plot_fmax_chart",
+    "plot_plastic_chart",
     "plot_regime_strip",
     "plot_regime_map",
     "plot_force_history",
@@ -26,6 +27,22 @@ REGIME_COLOURS = {
 
 #: Opacity of the band drawn over sensitive stretches of a curve.
 SENSITIVE_ALPHA = 0.3
+
+#: Axis labels of a map chart per contact law of the map (``contact_law`` attribute): ζ axis,
+#: F̄max axis. The elastic-plastic laws share theirs (:mod:`impactmaps.maps.plastic_points`).
+FMAX_LABELS = {
+    "linear": ("loss factor ζ", r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$"),
+    "hertz": ("Hertz loss factor ζ_h = ζ(m, K_eq), K_eq = m V0²/α_m²",
+              r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)"),
+    "plastic": ("loss factor ζ(m, K_y), K_y = 1.5 K_h sqrt(α_y)",
+                r"$\bar{F}_{max} = F_{max} / (m_i V_0 \omega_y)$, $\omega_y = \sqrt{K_y/m_i}$"),
+}
+
+
+def _label_law(dataset) -> str:
+    """The key of :data:`FMAX_LABELS` for a map dataset (from its ``contact_law`` attribute)."""
+    law = str(dataset.attrs.get("contact_law", "linear"))
+    return law if law in ("linear", "hertz") else "plastic"
 
 
 def _axes(ax):
@@ -49,6 +66,12 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     drawn as a band between ``fmax_low`` and ``fmax_high`` in the curve's colour, not as
     a line, with a legend entry saying what the band means.
 
+    The axis labels follow the map's contact law (``contact_law`` attribute,
+    :data:`FMAX_LABELS`): ζ, λ and F_max/(m V0 ω) for a linear map; ζ_h, λ_h and
+    F_max/F_hs for a Hertz map; ζ, λ at K_y and F_max/(m V0 ω_y) for an elastic-plastic
+    map at one β (``dataset.sel(beta=…)``; over β see :func:`plot_plastic_chart`). The
+    asymptotes drawn here are the linear law's: only a linear map gets them.
+
     Parameters
     ----------
     dataset : xarray.Dataset
@@ -58,7 +81,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     lambdas : list of float, optional
         λ values to draw (default all in the dataset).
     asymptotes : bool
-        Draw the quasi-static and infinite-structure asymptotes.
+        Draw the quasi-static and infinite-structure asymptotes (linear maps only).
     shade_regimes : bool
         Shade the local band and the regime bands along ζ.
     ax : matplotlib Axes, optional
@@ -70,7 +93,12 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
 
     from .maps.regimes import infinite_structure_peak, quasi_static_peak
 
+    if "beta" in dataset.dims:
+        raise ValueError("dataset is an elastic-plastic map over β: select one β "
+                         "(dataset.sel(beta=..., method='nearest')) or draw it with plot_plastic_chart")
     ax = _axes(ax)
+    law = _label_law(dataset)
+    asymptotes = asymptotes and law == "linear"
     structures, lambda_values = _selection(dataset, structures, lambdas)
     zeta = dataset["zeta"].values
     colours, markers = _lambda_styles(len(lambda_values))
@@ -111,10 +139,12 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
                         label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$")
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
-    ax.set_ylim(0.0, 1.05)
-    ax.set_xlabel("loss factor ζ")
-    ax.set_ylabel(r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$")
-    ax.set_title("Normalised maximum impact force: plates solid, beams dashed; quasi-static dotted")
+    top = float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0)) if law == "plastic" else 0.0
+    ax.set_ylim(0.0, max(1.05, 1.05 * top))
+    ax.set_xlabel(FMAX_LABELS[law][0])
+    ax.set_ylabel(FMAX_LABELS[law][1])
+    ax.set_title("Normalised maximum impact force: plates solid, beams dashed"
+                 + ("; quasi-static dotted" if asymptotes else ""))
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return ax
@@ -499,3 +529,68 @@ def plot_restitution(beta, restitution, *, points=None, ax=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     return ax
+
+
+#: What :func:`plot_plastic_chart` draws per panel: variable, y label.
+PLASTIC_PANELS = (
+    ("fmax_normalised", FMAX_LABELS["plastic"][1]),
+    ("restitution", "coefficient of restitution e (rebound / approach speed)"),
+    ("absorbed_energy_fraction", "energy absorbed by the contact / ½ m V0²"),
+)
+
+
+def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
+    """F̄max, restitution and absorbed energy against ζ at a few β for one λ (elastic-plastic maps).
+
+    One curve per (β, structure): plates solid, beams dashed, one colour per β; each map
+    is read at the grid λ nearest to ``lambda_``. Sensitive points (no converged F̄max)
+    are drawn as the band ``fmax_low``–``fmax_high`` on the F̄max panel.
+
+    Parameters
+    ----------
+    maps : sequence of xarray.Dataset
+        Elastic-plastic maps of one law (dims ``structure``, ``beta``, ``lambda_``, ``zeta``;
+        :mod:`impactmaps.maps.plastic_points`).
+    lambda_ : float
+        Relative stiffness K_st/K_y of the curves [-].
+    betas : sequence of float, optional
+        Impact numbers (default: every second β of the first map); each map is read at the
+        nearest grid β.
+    axes : sequence of three matplotlib Axes, optional
+        F̄max, restitution and absorbed-energy panels (default: a new figure).
+
+    Returns
+    -------
+    list of matplotlib.axes.Axes
+    """
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(3, 1, figsize=(8, 11), sharex=True)
+    first = maps[0]
+    betas = first["beta"].values[::2] if betas is None else np.asarray(betas, float)
+    colours, markers = _lambda_styles(len(betas))
+    for dataset in maps:
+        name = str(dataset["structure"].values[0])
+        kind = str(dataset["kind"].values[0])
+        zeta = dataset["zeta"].values
+        for colour, marker, beta in zip(colours, markers, betas):
+            curve = dataset.isel(structure=0).sel(beta=beta, lambda_=lambda_, method="nearest")
+            for ax, (variable, _label) in zip(axes, PLASTIC_PANELS):
+                values = (_draw_sensitive_bands(ax, zeta, curve, colour) if variable == "fmax_normalised"
+                          else curve[variable].values)
+                ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.5, marker=marker,
+                        markevery=max(1, zeta.size // 8), ms=4, mfc="white" if kind == "beam" else colour,
+                        label=f"β = {float(curve['beta']):.3g}, {name}")
+    law = str(first.attrs.get("contact_law", ""))
+    grid = ", ".join(f"{d['kind'].values[0]!s} {float(d['lambda_'].sel(lambda_=lambda_, method='nearest')):.3g}"
+                     for d in maps)
+    for ax, (_variable, label) in zip(axes, PLASTIC_PANELS):
+        ax.set_xscale("log")
+        ax.set_ylabel(label, fontsize=9)
+        ax.grid(True, which="both", alpha=0.25)
+    axes[0].set_title(f"Elastic-plastic contact ({law}), λ = K_st/K_y ≈ {float(lambda_):g} (nearest grid λ: {grid})\n"
+                      "plates solid, beams dashed", fontsize=10)
+    axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    axes[-1].set_xlabel(FMAX_LABELS["plastic"][0])
+    return list(axes)

@@ -253,15 +253,17 @@ def test_lookup_case_is_right_or_refuses(kind, law):
 
 
 @pytest.mark.parametrize("old, new, expected", [
-    ('law = "linear"\nstiffness = 1e7', 'law = "yigit-christoforou"', "contact law 'yigit-christoforou'"),
+    ('law = "linear"\nstiffness = 1e7', 'law = "stronge"\nplastic_indentation_ratio = 50',
+     "contact law 'stronge' with plastic_indentation_ratio"),
     ('theory = "euler"', 'theory = "euler"\nsupports = "cc"', "supports 'cc'"),
     ('theory = "euler"', 'theory = "euler"\nimpact_position = 0.1', "mid-span"),
     ('theory = "euler"', 'theory = "timoshenko"', "slenderness 25"),
 ])
 def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
-    """Clamped or off-centre beams, other slendernesses and nonlinear laws are refused with
-    the reason and a pointer to `simulate` (they used to be looked up in the SS centre map,
-    +34 % to +65 %, or linearised with K_y: 293 N against 731 N)."""
+    """Clamped or off-centre beams, other slendernesses and laws no map describes (a Stronge
+    law with other constants; the Yigit–Christoforou law has its own maps since issue 13
+    item 2) are refused with the reason and a pointer to `simulate` (they used to be looked
+    up in the SS centre map, +34 % to +65 %, or linearised with K_y: 293 N against 731 N)."""
     from impactmaps.cases import parse_case
     from impactmaps.maps.lookup import lookup_case
 
@@ -273,3 +275,92 @@ def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
     with pytest.raises(ValueError, match="no shipped map covers this case") as info:
         lookup_case(parse_case(text.replace(old, new, 1)))
     assert expected in str(info.value) and "impactmaps simulate" in str(info.value)
+
+
+def _plastic_case(rng, kind, law="yigit-christoforou"):
+    """A random physical elastic-plastic case on a shipped plastic-map family: a steel ball
+    (radius 2–30 mm, 0.1–10 m/s, log-uniform) on a random SS Euler beam or SSSS square
+    Kirchhoff plate of steel or aluminium (catalogue yield strengths), or on a random steel
+    Timoshenko beam of slenderness 20 (``kind="timoshenko"``). Nothing is tuned to
+    the map: the numbers (β, ζ, λ) fall where physics puts them, some outside the map."""
+    from impactmaps.cases import parse_case
+
+    if kind == "timoshenko":  # the shipped Timoshenko family: slenderness 20, ν = 0.3 (steel)
+        length, width = rng.uniform(0.2, 1.0), rng.uniform(0.01, 0.05)
+        table = (f'type = "beam"\nlength = {length!r}\nwidth = {width!r}\nheight = {length / 20.0!r}\n'
+                 'material = "structural-steel"\ntheory = "timoshenko"')
+    else:
+        _, table = _family_target(rng, kind)
+    radius, velocity = 10 ** rng.uniform(np.log10(0.002), np.log10(0.03)), 10 ** rng.uniform(-1.0, 1.0)
+    return parse_case(f'[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
+                      f'[target]\n{table}\n[contact]\nlaw = "{law}"\n')
+
+
+@pytest.mark.parametrize("kind, law, count, least", [
+    ("beam", "yigit-christoforou", 40, 30), ("plate", "yigit-christoforou", 40, 30),
+    ("beam", "stronge", 20, 12), ("plate", "stronge", 20, 12), ("timoshenko", "yigit-christoforou", 20, 10)])
+def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
+    """Issue 13 item 2: `lookup --case` on 100 random physical Yigit–Christoforou cases (and
+    40 Stronge ones) gives the peak force, the restitution and the absorbed energy of
+    `simulate` within its stated bands (plus the direct run's own ≤ 1e-3 normalised error),
+    or refuses a case whose numbers lie outside the map — never a silent wrong number."""
+    import warnings
+
+    from impactmaps.cases import run_case
+    from impactmaps.maps.lookup import lookup_case
+
+    rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
+    answered = 0
+    for _ in range(count):
+        case = _plastic_case(rng, kind, law)
+        try:
+            found = lookup_case(case)
+        except ValueError as error:
+            assert "no shipped map covers this case" in str(error)
+            assert "outside the shipped map" in str(error) or "holds no value" in str(error)
+            assert "impactmaps simulate" in str(error)
+            continue
+        answered += 1
+        assert found["law"] == ("yc" if law == "yigit-christoforou" else "stronge")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # validity warnings of the extreme cases some draws give
+            _, summary = run_case(case)
+        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
+        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
+        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
+        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
+            found["absorbed_energy_error_J"] + 1e-3 * energy
+    assert answered >= least, answered
+
+
+def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
+    """No plastic map for the Mindlin plate (its pressure patch adds the sphere radius as a
+    number) nor for a Stronge law with other constants: refused, naming why."""
+    from impactmaps.cases import parse_case
+    from impactmaps.maps.lookup import lookup_case
+
+    text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvelocity = 1.0\n'
+            '[target]\ntype = "plate"\nlength_x = 0.1\nlength_y = 0.1\nthickness = 0.005\n'
+            'material = "structural-steel"\ntheory = "mindlin"\n[contact]\nlaw = "yigit-christoforou"\n')
+    with pytest.raises(ValueError, match="no shipped map covers this case.*theory 'mindlin'.*simulate"):
+        lookup_case(parse_case(text))
+    stronge = text.replace('theory = "mindlin"', 'theory = "kirchhoff"').replace(
+        'law = "yigit-christoforou"', 'law = "stronge"\nplastic_pressure_factor = 3.0')
+    with pytest.raises(ValueError, match="no shipped map covers this case.*plastic_pressure_factor.*simulate"):
+        lookup_case(parse_case(stronge))
+
+
+def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
+    """A case that asks for the finite-difference elastic-plastic beam (solver.kind = "fd")
+    is not looked up in a map of elastic structures, whatever its contact law."""
+    from pathlib import Path
+
+    from impactmaps.cases import load_case
+    from impactmaps.maps.lookup import lookup_case
+
+    text = (Path(__file__).resolve().parents[1] / "examples" / "steel_beam_fd_stronge.toml").read_text()
+    assert "[solver]\n" in text
+    path = tmp_path / "fd.toml"
+    path.write_text(text.replace("[solver]\n", '[solver]\nkind = "fd"\n', 1))
+    with pytest.raises(ValueError, match="no shipped map covers this case: solver.kind = 'fd'.*impactmaps simulate"):
+        lookup_case(load_case(path))

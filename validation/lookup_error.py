@@ -11,7 +11,13 @@ With ``--law hertz`` the same for the shipped Hertz maps over (ζ_h, λ_h)
 Hertz infinite-structure and quasi-static peaks), written to
 validation/lookup_error_hertz.csv.
 
-    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR] [--law hertz]
+With ``--law yc`` (or ``stronge``) the same for the shipped elastic-plastic maps over
+(β, ζ, λ) (:mod:`impactmaps.maps.plastic_lookup`): N log-uniform random points inside each
+map's box solved directly (:func:`~impactmaps.maps.plastic_points.solve_plastic_points`)
+against the lookup of F̄max, restitution and absorbed energy with their bands, written to
+validation/lookup_error_yc.csv (``…_stronge.csv``); no design formula.
+
+    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR] [--law hertz|yc|stronge]
     python validation/lookup_error.py --smoke    # 3 points per map (seconds)
 """
 
@@ -22,10 +28,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.hertz_points import solve_hertz_points
-from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
+from impactmaps.maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
+from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
+from impactmaps.maps.plastic_points import ERROR_OF, PLASTIC_LAWS, solve_plastic_points
 from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import MAP_LAWS, solve_points
+from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -60,13 +69,16 @@ def _options(parser) -> None:
     parser.add_argument("--points", type=int, default=None, help="random points per map (default 200; smoke 3)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--maps", nargs="*", default=None)
-    parser.add_argument("--law", choices=MAP_LAWS, default="linear", help="contact law of the maps (default linear)")
+    parser.add_argument("--law", choices=ALL_MAP_LAWS, default="linear", help="contact law of the maps (default linear)")
 
 
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=HERE, add_arguments=_options)
     if args.points is None:
         args.points = 3 if args.smoke else 200
+    if args.law in PLASTIC_LAWS:
+        plastic_main(args)
+        return
     frames = []
     for (structure, theory), name in SHIPPED_MAPS.items():
         if args.maps and name not in args.maps and map_file_stem(name, args.law) not in args.maps:
@@ -88,6 +100,61 @@ def main(argv=None) -> None:
               f"{formula_error.max():.4f} |")
     print()
     print(formula_by_regime(table))
+
+
+def measure_plastic(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
+    """Random-point comparison of a plastic map's lookup against direct solves (all three quantities)."""
+    dataset = load_plastic_map(structure, theory, law)
+    rng = np.random.default_rng(seed)
+    axes = {axis: np.exp(rng.uniform(*np.log([dataset[axis].min().item(), dataset[axis].max().item()]), points))
+            for axis in ("beta", "zeta", "lambda_")}
+    name = PLASTIC_MAPS[(structure, theory)]
+    rows = solve_plastic_points(structure_from_name(name), law, list(zip(axes["beta"], axes["zeta"], axes["lambda_"])))
+    frame = pd.DataFrame({"map": map_file_stem(name, law), "beta": axes["beta"], "zeta": axes["zeta"],
+                          "lambda": axes["lambda_"]})
+    found = []
+    for beta, zeta, lam in zip(axes["beta"], axes["zeta"], axes["lambda_"]):
+        try:
+            found.append(lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law))
+        except ValueError:  # next to an unresolved map point: refused
+            found.append(None)
+    for variable, error in ERROR_OF.items():
+        frame[f"{variable}_direct"] = [r[variable] for r in rows]
+        frame[f"{variable}_direct_error"] = [r[error] for r in rows]
+        frame[f"{variable}_lookup"] = [np.nan if f is None else getattr(f, variable) for f in found]
+        frame[f"{variable}_band"] = [np.nan if f is None else getattr(f, error) for f in found]
+    frame["status"] = ["refused" if f is None else f.status for f in found]
+    frame["direct_status"] = [STATUSES[r["status"]] for r in rows]
+    return frame
+
+
+def plastic_main(args) -> None:
+    """``--law yc|stronge``: measure every shipped plastic map, write the CSV, print the table."""
+    frames = [measure_plastic(structure, theory, args.law, args.points, args.seed)
+              for (structure, theory), name in PLASTIC_MAPS.items()
+              if not args.maps or name in args.maps or map_file_stem(name, args.law) in args.maps]
+    table = pd.concat(frames, ignore_index=True)
+    table.to_csv(args.out_dir / f"lookup_error_{args.law}.csv", index=False)
+    print(plastic_table(table))
+
+
+def plastic_table(table: pd.DataFrame) -> str:
+    """Markdown table: per map and quantity, the lookup error against direct solves and the band's coverage."""
+    lines = ["| map | quantity | points (refused) | median abs error | 95th pct | max | band covers error | "
+             "median band |", "|---|---|---|---|---|---|---|---|"]
+    for name, group in table.groupby("map", sort=False):
+        refused = int(np.sum(group["status"] == "refused"))
+        unanswered = int(np.sum((group["status"] != "refused") & ~np.isfinite(group["fmax_normalised_direct"])))
+        if unanswered:  # a looked-up number where the direct solve holds none: never allowed
+            lines.append(f"| {name} | ANSWERED WHERE THE DIRECT SOLVE IS UNRESOLVED | {unanswered} | | | | | |")
+        for variable in ERROR_OF:
+            ok = np.isfinite(group[f"{variable}_direct"]) & np.isfinite(group[f"{variable}_lookup"])
+            error = (group[f"{variable}_lookup"] - group[f"{variable}_direct"]).abs()[ok]
+            allowed = (group[f"{variable}_band"] + group[f"{variable}_direct_error"])[ok]
+            lines.append(f"| {name} | {variable} | {int(ok.sum())} ({refused}) | {np.median(error):.4f} | "
+                         f"{np.percentile(error, 95):.4f} | {error.max():.4f} | "
+                         f"{int(np.sum(error <= allowed))}/{int(ok.sum())} | {np.median(allowed):.4f} |")
+    return "\n".join(lines)
 
 
 def formula_by_regime(table: pd.DataFrame) -> str:

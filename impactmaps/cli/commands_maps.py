@@ -21,13 +21,32 @@ SCHEDULER_TIMEOUT_S = 5.0
 
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
+    from ..maps.plastic_points import PLASTIC_LAWS
 
+    if args.law in PLASTIC_LAWS:
+        return _plastic_chart(args)
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
     paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
                        zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
                        max_workers=args.workers, overwrite=args.overwrite, law=args.law)
+    return {key: str(value) for key, value in paths.items()}
+
+
+def _plastic_chart(args) -> dict:
+    """``chart --law yc|stronge``: F̄max, restitution, absorbed energy vs ζ at a few β for one λ,
+    drawn from the shipped elastic-plastic maps (``--lambdas``: one λ; ``--betas``: the β)."""
+    from ..maps.chart import DEFAULT_PLASTIC_BETAS, DEFAULT_PLASTIC_LAMBDA, make_plastic_chart
+
+    refuse(args, {"--workers": "workers", "--overwrite": "overwrite"},
+           "with an elastic-plastic --law (the chart is drawn from the shipped maps, nothing is swept)")
+    lambdas = args.lambdas or [DEFAULT_PLASTIC_LAMBDA]
+    if len(lambdas) != 1:
+        raise ValueError(f"--lambdas = {' '.join(f'{v:g}' for v in lambdas)} is invalid with --law {args.law}: "
+                         "give one λ (the curves are β at one λ)")
+    betas = getattr(args, "betas", None) or DEFAULT_PLASTIC_BETAS
+    paths = make_plastic_chart(out_dir("--out", args.out), law=args.law, lambda_=lambdas[0], betas=betas)
     return {key: str(value) for key, value in paths.items()}
 
 
@@ -292,7 +311,8 @@ def cmd_lookup(args) -> dict:
 
         from ..maps.lookup import case_map_law, map_for_case
 
-        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives ζ and λ)")
+        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta"},
+               "with --case (the case gives its numbers)")
         case = load_case(args.case)
         structure, theory = map_for_case(case)
         for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory),
@@ -303,6 +323,11 @@ def cmd_lookup(args) -> dict:
         return lookup_case(case)
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
+    from ..maps.plastic_points import PLASTIC_LAWS
+
+    if args.law in PLASTIC_LAWS:
+        return _lookup_plastic_numbers(args)
+    refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the yc and stronge maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"
@@ -311,3 +336,19 @@ def cmd_lookup(args) -> dict:
             "regime": found.regime, "map": found.map_name, "law": law}
 
 
+def _lookup_plastic_numbers(args) -> dict:
+    """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
+    from ..maps.plastic_lookup import lookup_plastic
+
+    beta = getattr(args, "beta", None)
+    if beta is None:
+        raise ValueError(f"--beta is required with --law {args.law} (the impact number; valid range (0, inf))")
+    check("--beta", beta, what="the impact number β")
+    check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
+    check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
+    found = lookup_plastic(beta, args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=args.law)
+    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
+            "restitution": found.restitution, "restitution_error": found.restitution_error,
+            "absorbed_energy_fraction": found.absorbed_energy_fraction,
+            "absorbed_energy_error": found.absorbed_energy_error, "status": found.status,
+            "map": found.map_name, "law": args.law}

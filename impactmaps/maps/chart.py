@@ -4,6 +4,10 @@
 F̄max = F_max/F_hs (:mod:`impactmaps.hertz_similarity`), with the Hertz asymptotes
 (Zener's infinite plate, the infinite beam, the quasi-static spring) of
 :func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`.
+
+For the elastic-plastic laws (``"yc"``, ``"stronge"``) :func:`make_plastic_chart` draws
+F̄max, restitution and absorbed energy against ζ at a few β for one λ from the shipped
+(β, λ, ζ) maps (:mod:`impactmaps.maps.plastic_points`) — no sweep: the maps are the data.
 """
 
 from __future__ import annotations
@@ -17,7 +21,8 @@ from .lookup import markdown_table
 from .structures import MapStructure
 from .sweep import log_grid, sweep
 
-__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_COUNT", "check_chart_grid", "make_chart", "tidy_frame"]
+__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_COUNT", "DEFAULT_PLASTIC_BETAS",
+           "DEFAULT_PLASTIC_LAMBDA", "check_chart_grid", "make_chart", "make_plastic_chart", "tidy_frame"]
 
 CHART_STRUCTURES = (
     MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
@@ -211,3 +216,74 @@ def _hertz_axes(ax, strip, dataset) -> None:
     ax.set_ylabel(_HERTZ_LABELS["fmax"])
     ax.set_title("Normalised maximum force, Hertz contact: plates solid, beams dashed")
     strip.set_xlabel(_HERTZ_LABELS["zeta"])
+
+
+#: β of the curves of the default elastic-plastic chart (nearest grid values are drawn).
+DEFAULT_PLASTIC_BETAS = (1.0, 10.0, 100.0, 1000.0)
+#: λ = K_st/K_y of the default elastic-plastic chart.
+DEFAULT_PLASTIC_LAMBDA = 0.1
+
+
+def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = "yc",
+                       lambda_: float = DEFAULT_PLASTIC_LAMBDA, betas=DEFAULT_PLASTIC_BETAS) -> dict:
+    """Draw the elastic-plastic chart from the shipped maps: F̄max, e and absorbed energy vs ζ.
+
+    Curves at the grid β nearest to each of ``betas`` and the grid λ nearest to
+    ``lambda_``, for the SS Euler beam (dashed) and the SSSS square Kirchhoff plate (solid)
+    (:func:`impactmaps.plotting.plot_plastic_chart`). Writes ``fmax_chart_{law}.png`` and
+    ``.svg`` and the drawn points as ``fmax_chart_{law}.csv`` into ``out_dir``.
+
+    Parameters
+    ----------
+    out_dir : path-like
+    law : {"yc", "stronge"}
+        Yigit–Christoforou or the refined Stronge law (default constants).
+    lambda_ : float
+        K_st/K_y of the curves, inside the maps' λ range [-].
+    betas : sequence of float
+        Impact numbers of the curves, inside the maps' β range [-].
+
+    Returns
+    -------
+    dict
+        Paths of the files written, keyed by kind.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plotting import plot_plastic_chart
+    from .plastic_lookup import load_plastic_map
+    from .plastic_points import PLASTIC_LAWS
+
+    if law not in PLASTIC_LAWS:
+        raise ValueError(f"--law = {law!r} is invalid for the elastic-plastic chart: choose "
+                         + " or ".join(PLASTIC_LAWS))
+    maps = [load_plastic_map(s.kind, s.theory, law) for s in CHART_STRUCTURES]
+    for name, values, axis in (("--lambdas", [lambda_], "lambda_"), ("--betas", list(betas), "beta")):
+        low = max(float(m[axis].min()) for m in maps) * (1 - 1e-12)
+        high = min(float(m[axis].max()) for m in maps) * (1 + 1e-12)
+        if not values or any(not (low <= float(v) <= high) for v in values):
+            raise ValueError(f"{name} = {' '.join(f'{float(v):g}' for v in values)} is invalid: valid range is "
+                             f"[{low:g}, {high:g}] (the shipped {law} maps)")
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out = {str(out)!r} is a file, not a directory")
+    out.mkdir(parents=True, exist_ok=True)
+    figure, axes = plt.subplots(3, 1, figsize=(9, 11), sharex=True)
+    plot_plastic_chart(maps, lambda_, betas=betas, axes=axes)
+    figure.tight_layout()
+    paths = {"png": out / f"fmax_chart_{law}.png", "svg": out / f"fmax_chart_{law}.svg",
+             "csv": out / f"fmax_chart_{law}.csv"}
+    figure.savefig(paths["png"], dpi=150)
+    figure.savefig(paths["svg"])
+    plt.close(figure)
+    frames = []
+    for dataset in maps:
+        drawn = dataset.sel(beta=list(betas), lambda_=[lambda_], method="nearest")
+        frames.append(tidy_frame(drawn).assign(structure=str(dataset["structure"].values[0])))
+    import pandas as pd
+
+    pd.concat(frames, ignore_index=True).to_csv(paths["csv"], index=False)
+    return paths

@@ -24,6 +24,8 @@ from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
+from .plastic_lookup import PLASTIC_MAPS
+from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
 from .structures import structure_from_name
 from .sweep import MAP_LAWS, map_law
@@ -31,6 +33,9 @@ from .sweep import MAP_LAWS, map_law
 __all__ = ["SHIPPED_MAPS", "map_file_stem", "LookupResult", "load_shipped_map", "require_map_law", "lookup",
            "lookup_case", "map_for_case", "case_map_law",
            "design_formula", "markdown_table"]
+
+#: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
+ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
 
 SHIPPED_MAPS = {
     ("beam", "euler"): "beam-ss-euler",
@@ -46,7 +51,7 @@ def map_file_stem(structure_name: str, law: str = "linear") -> str:
     The linear maps keep the structure's name (``plate-ssss-kirchhoff``); a map of
     another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
     """
-    require_choice("law", law, MAP_LAWS)
+    require_choice("law", law, ALL_MAP_LAWS)
     return structure_name if law == "linear" else f"{structure_name}-{law}"
 
 
@@ -109,7 +114,7 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
     A Hertz map read as a linear one (or the reverse) would give a number with the wrong
     force scale and the wrong axes: it is refused, naming both laws.
     """
-    require_choice("law", law, MAP_LAWS)
+    require_choice("law", law, ALL_MAP_LAWS)
     found = map_law(dataset)
     if found != law:
         raise ValueError(f"{name} is a map for the {found} contact law, not the {law} law: its axes and "
@@ -204,7 +209,8 @@ _SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "sensitive": 2, "unr
 def interpolation_error(values: np.ndarray) -> np.ndarray:
     """Local estimate of the linear-interpolation error of a map, per grid point [-].
 
-    Linear interpolation between grid points errs by about ``h² |f''| / 8`` in each
+    ``values`` has one axis per map axis (two for a (λ, ζ) map, three for a plastic
+    (β, λ, ζ) map; the sum below runs over all of them). Linear interpolation between grid points errs by about ``h² |f''| / 8`` in each
     direction; with the second differences of the map itself (``Δ²f``, in grid units)
     that is ``(|Δ²_λ f| + |Δ²_ζ f|) / 8``, taken as the largest over the point and its
     neighbours along each axis (second differences are largest next to kinks, which a
@@ -215,9 +221,11 @@ def interpolation_error(values: np.ndarray) -> np.ndarray:
     """
     f = np.asarray(values, float)
     second = np.zeros_like(f)
-    for axis in (0, 1):
+    for axis in range(f.ndim):
+        if f.shape[axis] < 3:  # no second difference along a 1- or 2-point axis
+            continue
         d2 = _nearest_known(np.abs(np.diff(f, n=2, axis=axis)), axis)
-        pad = [(0, 0), (0, 0)]
+        pad = [(0, 0)] * f.ndim
         pad[axis] = (1, 1)
         d2 = np.pad(d2, pad, mode="edge")
         widened = d2.copy()
@@ -321,20 +329,28 @@ SHIPPED_SLENDERNESS = 20.0
 
 
 def case_map_law(case) -> str:
-    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, or ``ValueError``.
+    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, or ``ValueError``.
 
-    Only laws that a shipped map describes exactly are named; any other law (one with a
-    yield indentation adds the impact number β as a third parameter) is refused.
+    Only laws that a shipped map describes exactly are named: the linear and Hertz laws
+    (axes ζ, λ), the Yigit–Christoforou law and the refined Stronge law with its default
+    constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
+    refused.
     """
     from ..contact.hertz import HertzContact
+    from .plastic_points import plastic_law_of
 
     if case.law.linear_stiffness is not None:
         return "linear"
     if isinstance(case.law, HertzContact):
         return "hertz"
-    raise ValueError(f"no shipped map covers this case: contact law {case.law_name!r} (the shipped maps are "
-                     "for the linear and the Hertz laws; linearising another law with K_y would be an "
-                     f"unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` instead")
+    try:
+        return plastic_law_of(case.law)
+    except ValueError as error:
+        reason = str(error) if case.law_name == "stronge" else f"contact law {case.law_name!r}"
+    raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
+                     "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
+                     f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "
+                     "instead")
 
 
 def map_for_case(case) -> tuple[str, str]:
@@ -343,8 +359,10 @@ def map_for_case(case) -> tuple[str, str]:
     A shipped map is a family of normalised structures with a linear or a Hertz contact
     law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
-    ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. A case outside every
-    family is refused, never looked up in the nearest map.
+    ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
+    (Yigit–Christoforou, default Stronge) have maps for the same families except the
+    Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). A case outside
+    every family is refused, never looked up in the nearest map.
 
     Parameters
     ----------
@@ -368,7 +386,10 @@ def map_for_case(case) -> tuple[str, str]:
     def same(value, wanted) -> bool:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
 
-    case_map_law(case)
+    law = case_map_law(case)
+    if case.solver_kind != "modal":
+        refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
+               "and Rayleigh theory; the maps are of elastic structures solved modally)")
     target = case.target
     if case.target_type == "beam":
         if target.supports != "ss":
@@ -389,9 +410,10 @@ def map_for_case(case) -> tuple[str, str]:
     else:
         refuse(f"target type {case.target_type!r} (maps: beams and plates)")
     structure = case.target_type
-    if (structure, theory) not in SHIPPED_MAPS:
-        refuse(f"{structure} theory {theory!r} (maps: "
-               + ", ".join(t for s, t in SHIPPED_MAPS if s == structure) + ")")
+    maps = SHIPPED_MAPS if law in MAP_LAWS else PLASTIC_MAPS
+    if (structure, theory) not in maps:
+        refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
+               + ", ".join(t for s, t in maps if s == structure) + ")")
     if theory in ("timoshenko", "mindlin"):
         if structure == "beam":
             slenderness = target.slenderness
@@ -448,16 +470,25 @@ def lookup_case(case) -> dict:
         ``peak_force_N`` with its band ``peak_force_error_N``, ``fmax_normalised`` and
         ``fmax_error``, ``status``, ``regime``, ``zeta``, ``lambda``, ``map``, ``law``.
         For a Hertz case ``zeta`` and ``lambda`` are the Hertz numbers ζ_h, λ_h and
-        ``fmax_normalised`` is F_max/F_hs (``force_scale_N`` = F_hs).
+        ``fmax_normalised`` is F_max/F_hs (``force_scale_N`` = F_hs). For an elastic-plastic
+        case (Yigit–Christoforou, default Stronge) ``beta``, ``zeta``, ``lambda`` are the
+        numbers of :func:`impactmaps.maps.plastic_points.plastic_numbers`,
+        ``fmax_normalised`` is F_max/(m V0 ω_y), and the answer adds ``restitution`` and
+        ``absorbed_energy_J`` (contact dissipation), each with its ``…_error`` band; it has
+        no ``regime``.
 
     Raises
     ------
     ValueError
-        When no shipped map describes the case (:func:`map_for_case`), or ζ, λ lie outside
-        the map.
+        When no shipped map describes the case (:func:`map_for_case`), or its numbers lie
+        outside the map (the message names them and suggests ``impactmaps simulate``).
     """
     structure, theory = map_for_case(case)
     law = case_map_law(case)
+    if law in PLASTIC_LAWS:
+        from .plastic_lookup import lookup_plastic_case
+
+        return lookup_plastic_case(case, structure, theory, law)
     if law == "hertz":
         from ..hertz_similarity import hertz_numbers
 
@@ -473,16 +504,20 @@ def lookup_case(case) -> dict:
         found = lookup(zeta, lam, structure=structure, theory=theory)
         scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
                                        numbers["contact_stiffness_N_m"])) / found.fmax_normalised
+    return _answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
+
+
+def _answer(found, scale: float, law: str, details: dict) -> dict:
+    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
     return {
         "peak_force_N": found.fmax_normalised * scale,
         "peak_force_error_N": found.fmax_error * scale,
         "fmax_normalised": found.fmax_normalised,
         "fmax_error": found.fmax_error,
         "status": found.status,
-        "regime": found.regime,
-        "zeta": zeta,
-        "lambda": lam,
+        **details,
         "map": found.map_name,
         "law": law,
         "force_scale_N": scale,
     }
+

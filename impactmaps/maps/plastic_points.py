@@ -1,0 +1,479 @@
+r"""Map points with an elastic-plastic contact law: (β, ζ, λ) realised, simulated, scaled.
+
+Which numbers fix a plastic-law impact
+--------------------------------------
+Both elastic-plastic laws of PHYSICS.md §2 are a fixed shape scaled by one length and
+one force: ``F = K_h α_y^{3/2} g(α/α_y)``.
+
+* Yigit–Christoforou: ``g(a) = a^{3/2}`` to yield, ``1 + (3/2)(a − 1)`` beyond, and
+  unloading ``a^{3/2} − a_f^{3/2}`` with ``a_f`` a function of ``a_m`` alone (the law has
+  no parameter in these units, :mod:`impactmaps.contact.yigit_christoforou`).
+* Refined Stronge with E*, R, Y: ``δ_y/α_y = c_y²/2.72`` and ``F_y = K_h δ_y^{3/2}``
+  (``K_h = (4/3) E* R^{1/2}``); its loading branches are functions of ``δ/δ_y`` times
+  ``F_y`` (the fully plastic one: ``π R δ_y (2d − 1) c_p Y = F_y (3c_p/(2c_y))(2d − 1)``),
+  and its unloading recovery ``3F_m/(4E* a_m) = δ_y f_m/sqrt(2d_m − 1)`` is one too. So
+  for fixed constants (c_y, c_p, δ_p/δ_y) ``g`` is again fixed; R on its own appears only
+  in the contact radius, which the modal solver uses for the pressure patch of Mindlin
+  plates alone (PHYSICS.md §8).
+
+With ``x̄ = x/α*``, ``τ = ω_y t``, ``F̄ = F/(m V0 ω_y)`` — the linear scales of the
+linearised stiffness ``K_y = (3/2) K_h α_y^{1/2}`` (seed 001 eqs 10, 18), ``ω_y =
+sqrt(K_y/m)``, ``α* = V0/ω_y`` — the impactor equation is ``x̄'' = −F̄`` and the law reads
+``F̄ = (α_y/α*)(2/3) g(ᾱ α*/α_y)``: one number, ``α*/α_y``. Since
+``β = V0/(ω_h α_y)`` with ``ω_h² = K_h α_y^{1/2}/m = (2/3) ω_y²`` (seed 001 eqs 11, 12),
+``α*/α_y = β sqrt(2/3)``: the law's number **is** the impact number β. The structure
+enters through ``K_y`` exactly as a linear spring ``K`` does (PHYSICS.md §1, §4): its
+point receptance in these scales depends on ``ζ = ζ(m, K_y)`` and ``λ = K_st/K_y``.
+Hence a plastic-law impact on a structure family is fixed by **(β, ζ, λ)** with ζ and λ
+the linear numbers at ``K_y`` — the numbers ``impactmaps simulate`` already prints for a
+plastic case (``beta``, ``zeta``, ``lambda``, ``lambda_basis`` = K_y) — and for large β,
+where the loading curve is nearly the line ``K_y α``, the map approaches the linear map
+at (ζ, λ) (the offset ``F_y/2`` of the post-yield line is ``1/(sqrt(6) β)`` in F̄).
+
+The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou law with the
+same E*, R, Y: :meth:`impactmaps.contact.stronge.StrongeContact.impact_number`), with
+its default constants only: other constants are another family.
+
+Stored quantities
+-----------------
+``fmax_normalised = F_max/(m V0 ω_y)``; times × ω_y; ``restitution`` = rebound speed /
+V0; ``absorbed_energy_fraction`` = energy dissipated in the contact
+(``law.dissipated_energy(α_max)``, exact for these laws: the history is α_max alone)
+over ½ m V0²; ``energy_transferred_fraction`` = vibration energy left in the structure
+over ½ m V0² (``e² + absorbed + transferred = 1``). Each of F̄max, restitution and
+absorbed energy carries an error estimate from the accuracy control of
+:mod:`.accuracy` (the change between the last two refinement levels, or half the
+spread of a sensitive point).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import xarray as xr
+
+from .._checks import require_choice, require_positive
+from ..contact.stronge import StrongeContact
+from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
+from ..dimensionless import realise
+from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
+from .accuracy import STATUSES, AccuracyControl, controlled_point
+from .structures import BasisTable, MapStructure
+
+__all__ = ["PLASTIC_LAWS", "PLASTIC_VARIABLES", "PlasticNumbers", "plastic_numbers", "realise_plastic",
+           "plastic_law_of", "solve_plastic_points"]
+
+#: Map-law name → registered contact-law name of the elastic-plastic maps.
+PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge"}
+
+#: The variables a plastic map adds to the F̄max ones: name → (units, description).
+PLASTIC_VARIABLES = {
+    "restitution": ("1", "impactor rebound speed / V0 (nan if the run ended in contact)"),
+    "restitution_error": ("1", "error estimate of restitution (as fmax_error)"),
+    "absorbed_energy_fraction": ("1", "energy dissipated in the contact / impact energy ½ m V0²"),
+    "absorbed_energy_error": ("1", "error estimate of absorbed_energy_fraction (as fmax_error)"),
+}
+#: The quantities whose error the map stores, with the name of their error variable.
+ERROR_OF = {"fmax_normalised": "fmax_error", "restitution": "restitution_error",
+            "absorbed_energy_fraction": "absorbed_energy_error"}
+
+
+@dataclass(frozen=True)
+class PlasticNumbers:
+    """The similarity numbers and scales of one elastic-plastic impact (SI units).
+
+    Attributes
+    ----------
+    impact_number : float
+        β = V0/(ω_h α_y) [-] (seed 001 eq 11).
+    loss_factor : float
+        ζ = ζ(m, K_y) of the target [-].
+    relative_stiffness : float
+        λ = K_st/K_y [-].
+    linearised_stiffness : float
+        K_y = 1.5 K_h sqrt(α_y) [N/m].
+    force_scale : float
+        m V0 ω_y [N], ω_y = sqrt(K_y/m).
+    time_scale : float
+        1/ω_y [s].
+    """
+
+    impact_number: float
+    loss_factor: float
+    relative_stiffness: float
+    linearised_stiffness: float
+    force_scale: float
+    time_scale: float
+
+
+def plastic_law_of(law) -> str:
+    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to, or ValueError.
+
+    A Stronge law with other than the default constants is another family: refused.
+    """
+    if isinstance(law, YigitChristoforouContact):
+        return "yc"
+    if isinstance(law, StrongeContact):
+        defaults = StrongeContact(1.0, 1.0, 1.0)
+        changed = [name for name in ("yield_pressure_factor", "plastic_pressure_factor",
+                                     "plastic_indentation_ratio")
+                   if float(getattr(law, name)) != float(getattr(defaults, name))]
+        if changed:
+            raise ValueError(f"contact law 'stronge' with {', '.join(changed)} other than the defaults (the "
+                             "plastic maps are for the default constants c_y = 1.6, c_p = 2.8, δ_p/δ_y = 84)")
+        return "stronge"
+    raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
+                     f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+
+
+def _hertz_and_yield(law) -> tuple[float, float]:
+    """(K_h [N/m^1.5], α_y [m]) of a plastic law: the Hertz stiffness and the eq (9) yield indentation."""
+    if isinstance(law, YigitChristoforouContact):
+        return float(law.hertz_stiffness), float(law.yield_indentation)
+    modulus, radius = float(law.effective_modulus), float(law.radius)
+    return (4.0 / 3.0 * modulus * math.sqrt(radius),
+            float(yield_indentation(float(law.yield_strength), radius, modulus)))
+
+
+def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
+    """β, ζ(m, K_y) and λ = K_st/K_y of an elastic-plastic impact (module docstring).
+
+    Parameters
+    ----------
+    target : Plate or Beam
+        Needs ``loss_factor(m, K)`` and ``static_compliance()``.
+    law : YigitChristoforouContact or StrongeContact
+    mass : float
+        Impactor mass m > 0 [kg].
+    velocity : float
+        Impact velocity V0 > 0 [m/s].
+
+    Returns
+    -------
+    PlasticNumbers
+    """
+    plastic_law_of(law)
+    require_positive("mass", mass, "kg")
+    require_positive("velocity", velocity, "m/s")
+    m, v = float(mass), float(velocity)
+    hertz, alpha_y = _hertz_and_yield(law)
+    stiffness = 1.5 * hertz * math.sqrt(alpha_y)
+    omega = math.sqrt(stiffness / m)
+    return PlasticNumbers(
+        impact_number=v * math.sqrt(1.5) / (omega * alpha_y),
+        loss_factor=float(target.loss_factor(m, stiffness)),
+        relative_stiffness=float(1.0 / (target.static_compliance() * stiffness)),
+        linearised_stiffness=stiffness,
+        force_scale=m * v * omega,
+        time_scale=1.0 / omega,
+    )
+
+
+def _law_from(map_law: str, hertz: float, alpha_y: float):
+    """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y.
+
+    A Stronge law needs E*, R, Y: R = 1 m (it only sets the contact radius, unused off
+    Mindlin plates), ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9).
+    """
+    if map_law == "yc":
+        return YigitChristoforouContact(hertz, alpha_y)
+    radius = 1.0
+    modulus = 0.75 * hertz / math.sqrt(radius)
+    strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))
+    return StrongeContact(modulus, radius, strength)
+
+
+@dataclass(frozen=True)
+class PlasticRealisation:
+    """An impact realising (β, ζ, λ) on a target: law, impactor mass, speed and numbers."""
+
+    law: object
+    mass: float
+    velocity: float
+    numbers: PlasticNumbers
+
+
+def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: float,
+                    velocity: float = 1.0) -> PlasticRealisation:
+    """The elastic-plastic impact with numbers (β, ζ, λ) on ``target`` at speed ``velocity``.
+
+    ``K_y = K_st/λ`` and ``m`` from ζ (:func:`impactmaps.dimensionless.realise`); then
+    ``α_y = sqrt(3/2) V0/(ω_y β)`` and ``K_h = K_y/(1.5 sqrt(α_y))``.
+
+    Parameters
+    ----------
+    target : Plate or Beam
+    map_law : {"yc", "stronge"}
+    beta, zeta, lambda_ : float
+        Impact number, loss factor and relative stiffness at K_y, > 0 [-].
+    velocity : float
+        V0 > 0 [m/s] (any: the numbers fix the normalised response).
+
+    Returns
+    -------
+    PlasticRealisation
+    """
+    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
+    require_positive("beta", beta)
+    require_positive("velocity", velocity, "m/s")
+    impactor = realise(target, zeta, lambda_)
+    mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
+    alpha_y = math.sqrt(1.5) * float(velocity) / (float(impactor.contact_frequency) * float(beta))
+    law = _law_from(map_law, stiffness / (1.5 * math.sqrt(alpha_y)), alpha_y)
+    return PlasticRealisation(law, mass, float(velocity), plastic_numbers(target, law, mass, velocity))
+
+
+class _PlasticScaled:
+    """A modal (or asymptote) result read in the plastic scales (what ``controlled_point`` reads)."""
+
+    def __init__(self, result, realised: PlasticRealisation):
+        self.result, self.realised = result, realised
+
+    @property
+    def fmax_normalised(self) -> float:
+        """F_max/(m V0 ω_y) [-]."""
+        return self.result.peak_force / self.realised.numbers.force_scale
+
+    @property
+    def impacts(self) -> int:
+        """Number of separate contacts [-]."""
+        return self.result.impacts
+
+    def normalised_summary(self) -> dict:
+        """The map scalars: forces over m V0 ω_y, times × ω_y, the energy fractions."""
+        return plastic_summary(self.result, self.realised)
+
+
+def plastic_summary(result, realised: PlasticRealisation) -> dict:
+    """The map scalars of a modal run of a realised plastic impact (keys of the map variables).
+
+    Parameters
+    ----------
+    result : ImpactResult
+    realised : PlasticRealisation
+
+    Returns
+    -------
+    dict
+        ``result.normalised_summary()`` with F̄max = F_max/(m V0 ω_y), times × ω_y, plus
+        ``restitution`` and ``absorbed_energy_fraction``.
+    """
+    summary = result.normalised_summary()
+    to_yield_time = 1.0 / (result.contact_frequency * realised.numbers.time_scale)
+    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised"):
+        summary[key] = summary[key] * to_yield_time
+    impact_energy = 0.5 * realised.mass * realised.velocity**2
+    return summary | {
+        "fmax_normalised": result.peak_force / realised.numbers.force_scale,
+        "restitution": float(result.rebound_velocity / realised.velocity),
+        "absorbed_energy_fraction": float(result.contact_dissipation / impact_energy),
+    }
+
+
+def _asymptote_row(plan, realised: PlasticRealisation) -> dict:
+    """The map scalars of the any-law infinite-structure answer of a plan."""
+    impact, scale = plan.asymptote, realised.numbers.time_scale
+    durations = [(end - start) / scale for start, end in impact.contact_intervals]
+    separated = np.isfinite(impact.contact_time) and np.isfinite(impact.restitution)
+    fmax = impact.peak_force / realised.numbers.force_scale
+    absorbed = float(realised.law.dissipated_energy(impact.max_indentation)) / (
+        0.5 * realised.mass * realised.velocity**2)
+    restitution = float(impact.restitution) if separated else np.nan
+    return {
+        "fmax_normalised": fmax,
+        "impacts": int(impact.impacts),
+        "contact_time_normalised": float(sum(durations)) if separated else np.nan,
+        "first_contact_normalised": durations[0] if np.isfinite(durations[0]) else np.nan,
+        "peak_time_normalised": impact.peak_time / scale,
+        "energy_transferred_fraction": 1.0 - restitution**2 - absorbed if separated else np.nan,
+        "n_modes": 0,
+        "time_limit_reached": int(impact.time_limit_reached),
+        "restitution": restitution,
+        "absorbed_energy_fraction": absorbed,
+        "fmax_error": 0.0, "fmax_low": fmax, "fmax_high": fmax, "status": STATUSES.index("asymptotic"),
+        "restitution_error": 0.0, "absorbed_energy_error": 0.0,
+    }
+
+
+def _companion_errors(runs: list, status: int, levels: int) -> dict:
+    """Errors of restitution and absorbed energy from the runs ``controlled_point`` made.
+
+    As its F̄max error (:func:`impactmaps.maps.accuracy.controlled_point`): the change
+    between the last two refinement levels (converged, refined), or half the spread of
+    every value seen — the ``levels`` refinement levels, the perturbed runs, and the
+    finest value ± its last change (sensitive).
+    """
+    out = {}
+    for key in ("restitution", "absorbed_energy_fraction"):
+        values = np.array([run.normalised_summary()[key] for run in runs])
+        if STATUSES[status] == "sensitive":
+            finest, change = values[levels - 1], abs(values[levels - 1] - values[levels - 2])
+            seen = np.concatenate([values, [finest - change, finest + change]])
+            error = 0.5 * (np.max(seen) - np.min(seen)) if np.all(np.isfinite(seen)) else np.nan
+        else:
+            error = abs(values[-1] - values[-2])
+        out[ERROR_OF[key]] = float(error)
+    return out
+
+
+def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
+                         settings: ModalSettings | None = None, table: BasisTable | None = None,
+                         control: AccuracyControl = AccuracyControl()) -> list[dict]:
+    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) on ``structure``.
+
+    The plastic counterpart of :func:`impactmaps.maps.sweep.solve_points`: the same
+    cut-off rule (modes up to ``settings.cutoff_ratio`` times the run's contact
+    frequency, clipped to :func:`~impactmaps.maps.sweep.frequency_cap`, plus residual
+    flexibility), the same answer beyond the cap
+    (:func:`impactmaps.solvers.mode_budget.plan_basis`: the any-law infinite-structure
+    asymptote where it holds, else the capped modes with a warning) and the same accuracy
+    control; a point beyond what a Timoshenko theory holds, or one nothing answers within
+    the mode cap, is ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`: every
+    value missing), as in the linear and Hertz maps.
+
+    Parameters
+    ----------
+    structure : MapStructure
+    map_law : {"yc", "stronge"}
+    points : sequence of (β, ζ, λ)
+    settings : ModalSettings, optional
+    table : BasisTable, optional
+    control : AccuracyControl, optional
+
+    Returns
+    -------
+    list of dict
+        One dict per point: the map scalars (module docstring), their errors, ``status``,
+        ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
+    """
+    from .sweep import METHODS, _map_plan, basis_table, frequency_cap, unresolved_point
+
+    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
+    settings = settings or ModalSettings()
+    target = structure.build()
+    cap = frequency_cap(structure)
+    table = basis_table(structure, settings.min_modes) if table is None else table
+    rows = []
+    for beta, zeta, lam in points:
+        beta, zeta, lam = float(beta), float(zeta), float(lam)
+        realised = realise_plastic(target, map_law, beta, zeta, lam)
+        omega = math.sqrt(reference_contact_stiffness(realised.law, realised.mass, 1.0) / realised.mass)
+        reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
+        row = {"beta": beta, "zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
+        plan = _map_plan(target, realised.law, realised.mass, omega, settings.cutoff_ratio * omega, cap, None)
+        if plan is None:  # beyond the shear-deformable theory, or no method within the mode cap
+            rows.append(unresolved_point(row) | {name: np.nan for name in PLASTIC_VARIABLES})
+            continue
+        if plan.method == "infinite-structure-asymptote":
+            rows.append(row | _asymptote_row(plan, realised) | {"method": METHODS.index(plan.method)})
+            continue
+        if plan.method == "modal+residual-capped":
+            warnings.warn(f"{structure.name} ({map_law}) at β = {beta:g}, ζ = {zeta:g}, λ = {lam:g}: "
+                          f"{plan.message}", RuntimeWarning, stacklevel=2)
+        runs = []
+        run = _plastic_runner(target, table, cap, map_law, (beta, zeta, lam), realised, runs)
+        point = controlled_point(run, settings, control)
+        rows.append(row | point | _companion_errors(runs, point["status"], int(control.max_refinements) + 1)
+                    | {"method": METHODS.index(plan.method)})
+    return rows
+
+
+def _plastic_runner(target, table: BasisTable, cap: float, map_law: str, numbers: tuple,
+                    realised: PlasticRealisation, runs: list):
+    """``run(settings, zeta_factor)`` of one plastic point; every result is appended to ``runs``."""
+    beta, zeta, lambda_ = numbers
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        impact = realised if zeta_factor == 1.0 else realise_plastic(target, map_law, beta, zeta * zeta_factor,
+                                                                     lambda_)
+        omega = math.sqrt(reference_contact_stiffness(impact.law, impact.mass, 1.0) / impact.mass)
+        basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
+        result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+        runs.append(_PlasticScaled(result, impact))
+        return runs[-1]
+
+    return run
+
+
+def plastic_map(structure: MapStructure, map_law: str, betas, zetas, lambdas, rows: Sequence[dict],
+                settings: ModalSettings | None = None) -> xr.Dataset:
+    """The map dataset of solved plastic points (dims ``structure``, ``beta``, ``lambda_``, ``zeta``).
+
+    Parameters
+    ----------
+    structure : MapStructure
+    map_law : {"yc", "stronge"}
+    betas, zetas, lambdas : array_like
+        The grid [-] (increasing).
+    rows : sequence of dict
+        :func:`solve_plastic_points` rows, one per grid point in any order (matched on
+        their ``beta``, ``zeta``, ``lambda_``).
+    settings : ModalSettings, optional
+        The settings the rows were solved with (provenance).
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables of :data:`impactmaps.maps.sweep.RESULT_VARIABLES` and
+        :data:`PLASTIC_VARIABLES`, ``done``; attributes ``contact_law`` (the map law),
+        ``fingerprint``, ``description``, ``solver_revision``, ``point_methods``.
+    """
+    from .. import __version__
+    from ..jsonio import dumps
+    from .store import fingerprint
+    from .sweep import METHODS, RESULT_VARIABLES, SOLVER_REVISION
+
+    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
+    axes = {"beta": np.asarray(betas, float), "lambda_": np.asarray(lambdas, float), "zeta": np.asarray(zetas, float)}
+    shape = (1,) + tuple(values.size for values in axes.values())
+    variables = {name: (dtype, missing, units, text) for name, (dtype, missing, units, text) in RESULT_VARIABLES.items()}
+    variables["fmax_normalised"] = ("f8", np.nan, "1", "maximum contact force / (m V0 ω_y), ω_y = sqrt(K_y/m)")
+    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised",
+                "reflection_time_normalised"):
+        variables[key] = variables[key][:3] + (variables[key][3].replace("× ω", "× ω_y").replace("ω d²", "ω_y d²"),)
+    variables.update({name: ("f8", np.nan, units, text) for name, (units, text) in PLASTIC_VARIABLES.items()})
+    arrays = {name: np.full(shape, missing, dtype=dtype) for name, (dtype, missing, _u, _t) in variables.items()}
+    arrays["done"] = np.zeros(shape, dtype="i1")
+    index = {name: {float(v): k for k, v in enumerate(values)} for name, values in axes.items()}
+    for row in rows:
+        at = (0, index["beta"][float(row["beta"])], index["lambda_"][float(row["lambda_"])],
+              index["zeta"][float(row["zeta"])])
+        for name in variables:
+            arrays[name][at] = row[name]
+        arrays["done"][at] = 1
+    dims = ("structure", "beta", "lambda_", "zeta")
+    data_vars = {name: (dims, arrays[name], {"units": units, "long_name": text})
+                 for name, (_d, _m, units, text) in variables.items()}
+    data_vars["method"][2].update(flag_values=np.arange(len(METHODS), dtype="i1"), flag_meanings=" ".join(METHODS))
+    data_vars["status"][2].update(flag_values=np.arange(len(STATUSES), dtype="i1"), flag_meanings=" ".join(STATUSES))
+    data_vars["done"] = (dims, arrays["done"], {"long_name": "1 where the point has been computed"})
+    description = {"structures": [structure.as_dict()], "beta": axes["beta"], "zeta": axes["zeta"],
+                   "lambda_": axes["lambda_"], "settings": asdict(settings or ModalSettings()),
+                   "solver_revision": SOLVER_REVISION, "law": map_law}
+    coords = {
+        "structure": ("structure", [structure.name]),
+        "beta": ("beta", axes["beta"], {"long_name": "impact number β = V0/(ω_h α_y) (seed 001 eq 11)", "units": "1"}),
+        "lambda_": ("lambda_", axes["lambda_"], {"long_name": "relative stiffness K_st/K_y", "units": "1"}),
+        "zeta": ("zeta", axes["zeta"], {"long_name": "loss factor ζ(m, K_y)", "units": "1"}),
+        "kind": ("structure", [structure.kind]), "theory": ("structure", [structure.theory]),
+        "supports": ("structure", [structure.supports]), "aspect_ratio": ("structure", [structure.aspect_ratio]),
+        "slenderness": ("structure", [structure.slenderness]),
+    }
+    methods = sorted({METHODS[int(row["method"])] for row in rows if int(row["method"]) >= 0})
+    attrs = {
+        "title": "impactmaps normalised elastic-plastic impact map",
+        "fingerprint": fingerprint(description),
+        "description": dumps(description, sort_keys=True),
+        "impactmaps_version": __version__,
+        "solver_revision": SOLVER_REVISION,
+        "method": f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[map_law]} "
+                  "contact; axes (β, λ, ζ) at the linearised stiffness K_y",
+        "contact_law": map_law,
+        "point_methods": ",".join(methods),
+        "complete": int(arrays["done"].all()),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)

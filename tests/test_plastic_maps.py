@@ -1,0 +1,271 @@
+"""Elastic-plastic maps over (β, ζ, λ): the similarity they rest on, the shipped maps, their lookup.
+
+Issue 13 item 2: for the Yigit–Christoforou and the refined Stronge law the impact number β
+is the third axis (:mod:`impactmaps.maps.plastic_points`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from impactmaps.materials import IsotropicMaterial
+from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.targets import Beam, Plate
+
+STEEL = IsotropicMaterial(youngs_modulus=210e9, poisson_ratio=0.3, density=7850.0)
+ALUMINIUM = IsotropicMaterial(youngs_modulus=69e9, poisson_ratio=0.33, density=2700.0)
+
+
+def _pair(kind):
+    """Two physically different targets of one map family (sizes, materials, Poisson ratio
+    of a Kirchhoff plate drop out of its normalised response only through D*, so keep ν)."""
+    if kind == "beam":
+        return (Beam.rectangular(0.5, 0.02, 0.01, STEEL, theory="euler"),
+                Beam.rectangular(1.3, 0.05, 0.03, ALUMINIUM, theory="euler"))
+    aluminium = IsotropicMaterial(youngs_modulus=69e9, poisson_ratio=0.3, density=2700.0)
+    return Plate.isotropic(0.3, 0.3, 0.004, STEEL), Plate.isotropic(0.8, 0.8, 0.012, aluminium)
+
+
+def _normalised(target, realised):
+    from impactmaps.maps.plastic_points import plastic_summary
+
+    result = simulate(target, realised.law, realised.mass, realised.velocity, settings=ModalSettings(),
+                      record=False)
+    return plastic_summary(result, realised)
+
+
+@pytest.mark.parametrize("law", ["yc", "stronge"])
+@pytest.mark.parametrize("kind", ["beam", "plate"])
+@pytest.mark.parametrize("numbers", [(30.0, 0.3, 0.5), (400.0, 0.05, 0.03), (2.0, 2.0, 5.0)])
+def test_equal_numbers_give_equal_normalised_response(kind, law, numbers):
+    """Two physically different impacts (other size, material, impactor mass and speed,
+    K_h and α_y) with equal (β, ζ, λ) give equal F_max/(m V0 ω_y), restitution, absorbed
+    and transferred energy fractions, number of impacts and contact time to 1e-6: the
+    similarity the plastic maps rest on (module docstring of plastic_points)."""
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+
+    beta, zeta, lam = numbers
+    first, second = _pair(kind)
+    one = realise_plastic(first, law, beta, zeta, lam, velocity=1.0)
+    two = realise_plastic(second, law, beta, zeta, lam, velocity=7.3)
+    assert abs(one.mass / two.mass - 1) > 0.5 and abs(float(one.numbers.force_scale) / two.numbers.force_scale - 1) > 0.5
+    for realised, target in ((one, first), (two, second)):
+        check = plastic_numbers(target, realised.law, realised.mass, realised.velocity)
+        assert np.allclose([check.impact_number, check.loss_factor, check.relative_stiffness], numbers, rtol=1e-12)
+    a, b = _normalised(first, one), _normalised(second, two)
+    assert a["impacts"] == b["impacts"]
+    for key in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "energy_transferred_fraction",
+                "contact_time_normalised", "peak_time_normalised"):
+        assert a[key] == pytest.approx(b[key], rel=1e-6, abs=1e-9), key
+    # the energy ledger closes: rebound + contact dissipation + structure = impact energy
+    assert a["restitution"] ** 2 + a["absorbed_energy_fraction"] + a["energy_transferred_fraction"] == \
+        pytest.approx(1.0, abs=1e-3)
+
+
+def test_a_physical_case_is_realised_by_its_numbers():
+    """A physical Yigit–Christoforou case (steel ball on a steel beam, from a case file) has
+    numbers (β, ζ, λ); their realisation on the map's reference beam gives the same
+    normalised answer — the route `lookup --case` takes."""
+    from impactmaps.cases import parse_case
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+    case = parse_case('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 0.05\n'
+                      '[target]\ntype = "beam"\nlength = 0.6\nwidth = 0.02\nheight = 0.01\n'
+                      'material = "structural-steel"\ntheory = "euler"\n[contact]\nlaw = "yigit-christoforou"\n')
+    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+    reference = DEFAULT_STRUCTURES[0].build()
+    realised = realise_plastic(reference, "yc", numbers.impact_number, numbers.loss_factor,
+                               numbers.relative_stiffness)
+    direct = simulate(case.target, case.law, case.impactor_mass, case.velocity, settings=ModalSettings(),
+                      record=False)
+    mapped = _normalised(reference, realised)
+    assert direct.peak_force / numbers.force_scale == pytest.approx(mapped["fmax_normalised"], rel=1e-6)
+    assert direct.restitution == pytest.approx(mapped["restitution"], rel=1e-6)
+
+
+def test_numbers_refuse_other_laws():
+    from impactmaps.contact.hertz import HertzContact
+    from impactmaps.contact.stronge import StrongeContact
+    from impactmaps.maps.plastic_points import plastic_law_of
+
+    assert plastic_law_of(StrongeContact(1e11, 0.01, 3e8)) == "stronge"
+    with pytest.raises(ValueError, match="plastic_pressure_factor"):
+        plastic_law_of(StrongeContact(1e11, 0.01, 3e8, plastic_pressure_factor=3.0))
+    with pytest.raises(ValueError, match="not an elastic-plastic law"):
+        plastic_law_of(HertzContact(1e10))
+
+
+# -- the shipped maps ---------------------------------------------------------------------------
+def _shipped():
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+
+    return [load_plastic_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
+
+
+def test_shipped_plastic_maps_are_complete_and_consistent():
+    """Every shipped plastic map: every point solved, with a status; finite values and errors
+    of all three quantities except at ``unresolved`` points (beyond what the Timoshenko
+    theory holds: no value at all); the energy ledger closed (e² + absorbed + transferred
+    = 1 wherever the sphere separated); its law recorded (it cannot be read as a linear or
+    Hertz map)."""
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.lookup import require_map_law
+
+    for dataset in _shipped():
+        law = dataset.attrs["contact_law"]
+        assert law in ("yc", "stronge") and int(dataset.attrs["complete"]) == 1
+        assert set(dataset["fmax_normalised"].dims) == {"structure", "beta", "lambda_", "zeta"}
+        assert np.all(dataset["done"].values == 1) and np.all(dataset["status"].values >= 0)
+        resolved = dataset["status"].values != STATUSES.index("unresolved")
+        assert resolved.mean() > 0.75  # Timoshenko beams: light impactors pass a quarter of the thickness-shear
+        # cut-off (solvers/shear_range.py), 17 % (YC) and 22 % (Stronge) of the grid; Euler and Kirchhoff: none
+        for name in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
+            assert np.all(np.isfinite(dataset[name].values[resolved])), name
+            assert np.all(np.isnan(dataset[name].values[~resolved])), name
+        separated = np.isfinite(dataset["restitution"].values)
+        ledger = (dataset["restitution"] ** 2 + dataset["absorbed_energy_fraction"]
+                  + dataset["energy_transferred_fraction"]).values[separated]
+        assert separated.sum() > 0.99 * resolved.sum() and np.allclose(ledger, 1.0, atol=5e-3)
+        with pytest.raises(ValueError, match="not the linear law"):
+            require_map_law(dataset, "linear")
+
+
+def test_a_map_point_is_the_direct_solution():
+    """A grid point of a shipped map is what solve_plastic_points gives for it (same bits)."""
+    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.plastic_points import solve_plastic_points
+    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+    dataset = load_plastic_map("beam", "euler", "yc")
+    beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in (("beta", 4), ("lambda_", 9), ("zeta", 12)))
+    row = solve_plastic_points(DEFAULT_STRUCTURES[0], "yc", [(beta, zeta, lam)])[0]
+    stored = dataset.isel(structure=0).sel(beta=beta, lambda_=lam, zeta=zeta)
+    for name in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "fmax_error"):
+        assert float(stored[name]) == row[name], name
+    found = lookup_plastic(beta, zeta, lam, structure="beam", theory="euler", law="yc")
+    assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
+
+
+def test_lookup_plastic_refuses_next_to_an_unresolved_point():
+    """Where the Timoshenko map holds no value (beyond its theory) the lookup refuses."""
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+
+    dataset = load_plastic_map("beam", "timoshenko", "yc").isel(structure=0)
+    at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
+    beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in zip(("beta", "lambda_", "zeta"), at))
+    with pytest.raises(ValueError, match="holds no value .unresolved"):
+        lookup_plastic(beta, zeta, lam, structure="beam", theory="timoshenko")
+
+
+def test_lookup_plastic_refuses_outside_the_map():
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
+        lookup_plastic(5000.0, 0.1, 0.1, structure="beam", theory="euler")
+    with pytest.raises(ValueError, match="relative_stiffness .* outside the shipped map: valid range is"):
+        lookup_plastic(10.0, 0.1, 0.005, structure="plate", theory="kirchhoff")
+    with pytest.raises(ValueError, match="structure, theory"):
+        lookup_plastic(10.0, 0.1, 0.1, structure="plate", theory="mindlin")
+
+
+_YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 1.0\n'
+            '[target]\ntype = "beam"\nlength = 0.6\nwidth = 0.02\nheight = 0.02\n'
+            'material = "structural-steel"\ntheory = "euler"\n[contact]\nlaw = "yigit-christoforou"\n')
+
+
+def test_lookup_command_answers_a_plastic_case(tmp_path, capsys):
+    """`impactmaps lookup --case` on a Yigit–Christoforou case prints the peak force with its
+    band and the status, the restitution and the absorbed energy; outside the map it exits 2
+    with one line naming the number and suggesting simulate."""
+    import json
+
+    from impactmaps.cli import main
+
+    case = tmp_path / "yc.toml"
+    case.write_text(_YC_BEAM)
+    assert main(["lookup", "--case", str(case), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["law"] == "yc" and out["map"] == "beam-ss-euler-yc"
+    for key in ("peak_force_N", "peak_force_error_N", "status", "restitution", "restitution_error",
+                "absorbed_energy_J", "absorbed_energy_error_J", "beta", "zeta", "lambda"):
+        assert key in out, key
+    assert 0 < out["restitution"] < 1 and out["absorbed_energy_J"] > 0 and out["peak_force_error_N"] >= 0
+    case.write_text(_YC_BEAM.replace("velocity = 1.0", "velocity = 80.0"))
+    assert main(["lookup", "--case", str(case)]) == 2
+    error = capsys.readouterr().err.strip()
+    assert len(error.splitlines()) == 1
+    assert "no shipped map covers this case: beta" in error and "impactmaps simulate" in error
+
+
+# -- the chart ------------------------------------------------------------------------------------
+def test_plastic_chart_from_the_maps(tmp_path):
+    """`chart --law yc` (make_plastic_chart): F̄max, restitution and absorbed energy against ζ
+    at a few β for one λ, drawn from the shipped maps; the data drawn in a CSV."""
+    import argparse
+
+    import pandas as pd
+
+    from impactmaps.cli.commands_maps import cmd_chart
+
+    args = argparse.Namespace(law="yc", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,
+                              overwrite=False, betas=[3.0, 300.0], zeta_range=(0.005, 100.0), zeta_count=200,
+                              quiet=True)
+    paths = cmd_chart(args)
+    for key in ("png", "svg", "csv"):
+        assert (tmp_path / "chart" / f"fmax_chart_yc.{key}").exists() and key in paths
+    frame = pd.read_csv(paths["csv"])
+    assert set(frame["structure"]) == {"beam-ss-euler", "plate-ssss-kirchhoff"}
+    assert frame["beta"].nunique() == 2 and frame.groupby("structure")["lambda"].nunique().eq(1).all()
+    with pytest.raises(ValueError, match=r"--lambdas = 0.001 is invalid: valid range is \[0.01"):
+        cmd_chart(argparse.Namespace(**{**vars(args), "lambdas": [0.001]}))
+    with pytest.raises(ValueError, match="give one λ"):
+        cmd_chart(argparse.Namespace(**{**vars(args), "lambdas": [0.1, 1.0]}))
+
+
+def test_fmax_chart_labels_follow_the_maps_law():
+    """plot_fmax_chart labels its axes for the law of the map it draws (linear, Hertz, plastic)
+    and refuses a plastic map over β (one β at a time, or plot_plastic_chart)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from impactmaps.maps.plastic_lookup import load_plastic_map
+    from impactmaps.plotting import FMAX_LABELS, plot_fmax_chart
+
+    dataset = load_plastic_map("beam", "euler", "stronge")
+    with pytest.raises(ValueError, match="select one β"):
+        plot_fmax_chart(dataset)
+    ax = plot_fmax_chart(dataset.sel(beta=100.0, method="nearest"), lambdas=[0.1, 1.0])
+    assert ax.get_xlabel() == FMAX_LABELS["plastic"][0] and ax.get_ylabel() == FMAX_LABELS["plastic"][1]
+    assert ax.get_ylim()[1] > 1.5  # the Stronge law's F̄max exceeds 1 (its plastic branch is stiffer than K_y)
+    from impactmaps.maps.lookup import load_shipped_map
+
+    for law in ("linear", "hertz"):
+        ax = plot_fmax_chart(load_shipped_map("beam", "euler", law), lambdas=[0.1, 1.0], asymptotes=False)
+        assert (ax.get_xlabel(), ax.get_ylabel()) == FMAX_LABELS[law]
+    plt.close("all")
+
+
+def test_lookup_command_at_given_numbers():
+    """cmd_lookup with an elastic-plastic --law reads the plastic map at (--beta, --zeta,
+    --lambda) (the parser's --law choices and --beta option are the lead's to add)."""
+    import argparse
+
+    from impactmaps.cli.commands_maps import cmd_lookup
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+                              theory="euler")
+    out = cmd_lookup(args)
+    assert out["fmax_normalised"] == lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler").fmax_normalised
+    assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
+    with pytest.raises(ValueError, match="--beta is required with --law yc"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))
+    with pytest.raises(ValueError, match="--beta cannot be used with the hertz law"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "law": "hertz"}))
+    with pytest.raises(ValueError, match="--zeta, --lambda, --beta cannot be used with --case"):
+        cmd_lookup(argparse.Namespace(**{**vars(args), "case": "case.toml"}))

@@ -1,0 +1,98 @@
+"""Build the elastic-plastic maps shipped in impactmaps/maps/data/ (axes β, λ, ζ).
+
+For the Yigit–Christoforou and the refined Stronge law (default constants) on the SS
+Euler and Timoshenko (L/h = 20) beams and the SSSS square Kirchhoff plate, impact at the
+centre (:mod:`impactmaps.maps.plastic_points`: β the impact number, ζ and λ the linear
+numbers at the linearised stiffness K_y). Grid: β from 1 to 10^3.5 at 2 per decade; ζ
+from 1e-3 to 10 at 6 per decade; λ from 1e-3 (plate: 1e-2) to 10^1.5 at 5 per decade.
+Files ``NAME-yc.nc`` and ``NAME-stronge.nc``. The Mindlin plate has no plastic map: its
+pressure patch depends on the sphere radius, a fourth number.
+
+    nice -n 19 python validation/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge]
+    python validation/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
+
+Prints the points and the CPU seconds of each map (the cost the README quotes).
+"""
+
+from __future__ import annotations
+
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from impactmaps.maps.accuracy import STATUSES
+from impactmaps.maps.lookup import map_file_stem
+from impactmaps.maps.plastic_points import PLASTIC_LAWS, plastic_map, solve_plastic_points
+from impactmaps.maps.store import save_atomic
+from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+from _script_options import parse
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "impactmaps" / "maps" / "data"
+#: Impact numbers: 1 (nearly elastic) to 10^3.5 (steel balls at metres per second), 2 per decade.
+BETAS = np.logspace(0.0, 3.5, 8)
+#: Loss factors ζ(m, K_y): 1e-3 to 10, 6 per decade.
+ZETAS = np.logspace(-3.0, 1.0, 25)
+#: Relative stiffnesses K_st/K_y, 5 per decade: beams from 1e-3, the plate from 1e-2 (below,
+#: heavy balls on flexible plates re-impact 20 times over 10⁴ modes: seconds per point).
+BEAM_LAMBDAS = np.logspace(-3.0, 1.5, 23)
+PLATE_LAMBDAS = np.logspace(-2.0, 1.5, 18)
+#: The structures with plastic maps (the Mindlin plate has none, see the module docstring).
+PLASTIC_STRUCTURES = tuple(s for s in DEFAULT_STRUCTURES if s.theory != "mindlin")
+
+
+def _options(parser) -> None:
+    parser.add_argument("--only", nargs="*", default=None, help="build only these structure names")
+    parser.add_argument("--laws", nargs="*", default=list(PLASTIC_LAWS), choices=list(PLASTIC_LAWS))
+    parser.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
+
+
+def _solve_row(structure, law, beta, lam, zetas):
+    """One (β, λ) row of the grid, and the CPU seconds it took (the worker's task)."""
+    start = time.process_time()
+    rows = solve_plastic_points(structure, law, [(beta, zeta, lam) for zeta in zetas])
+    return rows, time.process_time() - start
+
+
+def build(structure, law, betas, zetas, lambdas, workers: int):
+    """The map dataset of ``structure`` for ``law`` over the grid, and its CPU seconds."""
+    tasks = [(structure, law, float(beta), float(lam), [float(z) for z in zetas]) for beta in betas for lam in lambdas]
+    if workers <= 1:
+        results = [_solve_row(*task) for task in tasks]
+    else:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            results = list(pool.map(_solve_row, *zip(*tasks)))
+    rows = [row for chunk, _ in results for row in chunk]
+    return plastic_map(structure, law, betas, zetas, lambdas, rows), sum(seconds for _, seconds in results)
+
+
+def main(argv=None) -> None:
+    args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
+    structures = [s for s in PLASTIC_STRUCTURES if args.only is None or s.name in args.only]
+    if args.smoke:
+        structures, args.laws, args.workers = structures[:1], args.laws[:1], 1
+    total = 0.0
+    for structure in structures:
+        lambdas = PLATE_LAMBDAS if structure.kind == "plate" else BEAM_LAMBDAS
+        betas, zetas = BETAS, ZETAS
+        if args.smoke:
+            betas, zetas, lambdas = BETAS[[2, 4]], ZETAS[[10, 14]], lambdas[[10, 14]]
+        for law in args.laws:
+            start = time.perf_counter()
+            dataset, cpu = build(structure, law, betas, zetas, lambdas, args.workers)
+            wall = time.perf_counter() - start
+            dataset.attrs["build_cpu_seconds"] = round(cpu, 1)
+            stem = map_file_stem(structure.name, law)
+            save_atomic(dataset, args.out_dir / f"{stem}.nc")
+            total += cpu
+            counts = np.bincount(dataset["status"].values.ravel(), minlength=len(STATUSES))
+            print(f"{stem}: {int(dataset['done'].sum())} points, {cpu:.1f} s CPU ({wall:.1f} s wall); status "
+                  + ", ".join(f"{name} {count}" for name, count in zip(STATUSES, counts)))
+    print(f"all plastic maps: {total:.1f} s CPU")
+
+
+if __name__ == "__main__":
+    main()
