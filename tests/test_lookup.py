@@ -257,10 +257,12 @@ def test_lookup_case_is_right_or_refuses(kind, law):
      "contact law 'stronge' with plastic_indentation_ratio"),
     ('theory = "euler"', 'theory = "euler"\nsupports = "cc"', "supports 'cc'"),
     ('theory = "euler"', 'theory = "euler"\nimpact_position = 0.1', "mid-span"),
-    ('theory = "euler"', 'theory = "timoshenko"', "slenderness 25"),
+    ('height = 0.02\nmaterial = "structural-steel"\ntheory = "euler"',
+     'height = 0.08\nmaterial = "structural-steel"\ntheory = "timoshenko"', "slenderness 6.25"),
 ])
 def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
-    """Clamped or off-centre beams, other slendernesses and laws no map describes (a Stronge
+    """Clamped or off-centre beams, beams thicker than the thickest family member (span /
+    height 6.25 < 10; slenderness 25 is now read from the family) and laws no map describes (a Stronge
     law with other constants; the Yigit–Christoforou law has its own maps since issue 13
     item 2) are refused with the reason and a pointer to `simulate` (they used to be looked
     up in the SS centre map, +34 % to +65 %, or linearised with K_y: 293 N against 731 N)."""

@@ -54,8 +54,7 @@ __all__ = ["main", "build_parser", "SCHEDULER_TIMEOUT_S"]
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
-    from ..maps.lookup import SHIPPED_MAPS
-    from ..maps.sweep import MAP_LAWS
+    from ..maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS
     from ..targets.options import STRUCTURE_KINDS
 
     parser = Parser(prog="impactmaps", description=__doc__.splitlines()[0])
@@ -76,8 +75,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
     p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.add_argument("--law", choices=MAP_LAWS, default="linear",
-                   help="contact law: linear (axes ζ, λ, F/(m V0 ω)) or hertz (axes ζ_h, λ_h, F/F_hs); default linear")
+    p.add_argument("--law", choices=ALL_MAP_LAWS, default="linear",
+                   help="contact law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
+                   "elastic-plastic yc / stronge (F̄max, restitution and absorbed energy against ζ at several β, "
+                   "from the shipped maps); default linear")
+    p.add_argument("--betas", nargs="+", type=float, default=None,
+                   help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
 
     p = add("point", "simulate one (ζ, λ) point on a beam or plate", cmd_point)
     _point_arguments(p)
@@ -105,8 +108,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
     p.add_argument("--zeta", type=float)
     p.add_argument("--lambda", dest="lambda_", type=float)
-    p.add_argument("--law", choices=MAP_LAWS, default=None,
-                   help="contact law of the map: linear (default; ζ, λ) or hertz (the Hertz numbers ζ_h, λ_h)")
+    p.add_argument("--law", choices=ALL_MAP_LAWS, default=None,
+                   help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
+                   "or yc / stronge (with --beta: the elastic-plastic maps over β, ζ, λ)")
+    p.add_argument("--beta", type=float, default=None, help="impact number β (with --law yc or stronge)")
+    p.add_argument("--slenderness", type=float, default=None,
+                   help="span/thickness of a Timoshenko beam or Mindlin plate (≥ 10; default 20: the shipped "
+                   "map; others interpolated in 1/slenderness between the shipped family members)")
     p.add_argument("--case", type=Path, help="a physical case file: the map that describes it (or a refusal), "
                    "the peak force in newtons with its error band")
 

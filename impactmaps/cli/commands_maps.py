@@ -311,7 +311,7 @@ def cmd_lookup(args) -> dict:
 
         from ..maps.lookup import case_map_law, map_for_case
 
-        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta"},
+        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
         case = load_case(args.case)
         structure, theory = map_for_case(case)
@@ -326,12 +326,26 @@ def cmd_lookup(args) -> dict:
     from ..maps.plastic_points import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
+        refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")
         return _lookup_plastic_numbers(args)
     refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the yc and stronge maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"
-    found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=law)
+    slenderness = getattr(args, "slenderness", None)
+    try:
+        if slenderness is None:
+            found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=law)
+        else:
+            from ..maps.families import lookup_slenderness
+
+            check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest family member is 10)",
+                  low_inclusive=True)
+            found = lookup_slenderness(args.zeta, args.lambda_, structure=args.structure, theory=args.theory,
+                                       slenderness=slenderness, law=law)
+    except ValueError as error:  # name the options as the user typed them
+        raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
+            from None
     return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
             "regime": found.regime, "map": found.map_name, "law": law}
 

@@ -145,15 +145,16 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
     for (x0, s0), (x1, s1) in zip(members, members[1:]):
         if x0 <= inverse <= x1:
             break
+    weight = (inverse - x0) / (x1 - x0)
+    if weight in (0.0, 1.0):  # a member itself
+        return _member_lookup(loss_factor, relative_stiffness, structure, theory, s1 if weight else s0, law)
     low = _member_lookup(loss_factor, relative_stiffness, structure, theory, s0, law)
     high = _member_lookup(loss_factor, relative_stiffness, structure, theory, s1, law)
-    weight = (inverse - x0) / (x1 - x0)
     fmax = (1.0 - weight) * low.fmax_normalised + weight * high.fmax_normalised
-    exact = weight in (0.0, 1.0)
     lam_grid, zeta_grid, errors = slenderness_error_grid(structure, theory, law)
     row = int(np.argmin(np.abs(lam_grid - np.log(relative_stiffness))))
     column = int(np.argmin(np.abs(zeta_grid - np.log(loss_factor))))
-    slender_error = 0.0 if exact else float(errors[row, column])
+    slender_error = float(errors[row, column])
     if not np.isfinite(slender_error):
         raise ValueError(f"slenderness = {slenderness:g} at (loss_factor, relative_stiffness) = "
                          f"({loss_factor:g}, {relative_stiffness:g}): a family member holds no value next to it "

@@ -15,7 +15,7 @@ a linear one, nor the reverse.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 
 import numpy as np
@@ -27,7 +27,7 @@ from ..targets.options import STRUCTURE_KINDS
 from .plastic_lookup import PLASTIC_MAPS
 from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
-from .structures import structure_from_name
+from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law
 
 __all__ = ["SHIPPED_MAPS", "map_file_stem", "LookupResult", "load_shipped_map", "require_map_law", "lookup",
@@ -122,13 +122,23 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
     return dataset
 
 
-@functools.lru_cache(maxsize=16)
-def load_shipped_map(structure: str, theory: str, law: str = "linear") -> xr.Dataset:
-    """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact ``law``."""
+def shipped_structure_name(structure: str, theory: str, slenderness: float | None = None) -> str:
+    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable family
+    member at ``slenderness`` (one of :data:`~impactmaps.maps.structures.FAMILY_SLENDERNESSES`)."""
     require_choice("structure", structure, STRUCTURE_KINDS)
-    theories = [t for (s, t) in SHIPPED_MAPS if s == structure]
-    require_choice("theory", theory, theories)
-    name = map_file_stem(SHIPPED_MAPS[(structure, theory)], law)
+    require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == structure])
+    name = SHIPPED_MAPS[(structure, theory)]
+    if slenderness is None or theory not in ("timoshenko", "mindlin") or slenderness == SHIPPED_SLENDERNESS:
+        return name
+    require_choice("slenderness", float(slenderness), FAMILY_SLENDERNESSES)
+    return name.replace(f"-s{SHIPPED_SLENDERNESS:g}", f"-s{float(slenderness):g}")
+
+
+@functools.lru_cache(maxsize=32)
+def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
+    """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
+    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one)."""
+    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
     source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
     if not source.is_file():
         raise FileNotFoundError(
@@ -139,16 +149,17 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear") -> xr.Dat
         return require_map_law(opened.load(), law, f"shipped map {name}.nc")
 
 
-@functools.lru_cache(maxsize=32)
-def _interpolator(structure: str, theory: str, variable: str, law: str = "linear"):
-    dataset = load_shipped_map(structure, theory, law)
+@functools.lru_cache(maxsize=64)
+def _interpolator(structure: str, theory: str, variable: str, law: str = "linear", slenderness=None):
+    dataset = load_shipped_map(structure, theory, law, slenderness)
     values = dataset[variable].isel(structure=0).values
     grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
     return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
-           tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear") -> LookupResult:
+           tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear",
+           slenderness: float | None = None) -> LookupResult:
     """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
 
     Parameters
@@ -163,12 +174,16 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         Regime criteria (see :func:`impactmaps.maps.regimes.classify`).
     law : {"linear", "hertz"}
         Contact law of the map (F̄max = F_max/(m_i V0 ω), or F_max/F_hs for Hertz).
+    slenderness : float, optional
+        Timoshenko/Mindlin only: the family member to read (10, 20 or 50; default 20).
+        Any other slenderness ≥ 10: :func:`impactmaps.maps.families.lookup_slenderness`.
 
     Returns
     -------
     LookupResult
     """
-    dataset = load_shipped_map(structure, theory, law)
+    key = (structure, theory, law, slenderness)
+    dataset = load_shipped_map(*key)
     zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
@@ -182,24 +197,24 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
     zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
     points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
-    error, status = _corner_accuracy(dataset, lam_c, zeta_c, structure, theory, law)
+    error, status = _corner_accuracy(dataset, lam_c, zeta_c, key)
     if np.any(status == "unresolved"):
         bad = np.flatnonzero(np.asarray(status == "unresolved").ravel())[0]
         raise ValueError(
             f"(loss_factor, relative_stiffness) = ({zeta.ravel()[bad]:g}, {lam.ravel()[bad]:g}) lies where "
             f"the {structure} {theory} map holds no value (unresolved: beyond the range of its "
             "structural theory, or no model within the mode cap); run a simulation instead")
-    fmax = _interpolator(structure, theory, "fmax_normalised", law)(points).reshape(zeta.shape)
-    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time", law)(points)).reshape(zeta.shape) \
-        if "log_peak_time" in dataset else None
-    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time", law)(points)).reshape(zeta.shape) \
-        if "log_reflection_time" in dataset else None
+    fmax = _interpolator(structure, theory, "fmax_normalised", law, slenderness)(points).reshape(zeta.shape)
+    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time", law, slenderness)(points)).reshape(
+        zeta.shape) if "log_peak_time" in dataset else None
+    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time", law, slenderness)(points)).reshape(
+        zeta.shape) if "log_reflection_time" in dataset else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
-    return LookupResult(fmax, regime, structure, theory, map_file_stem(SHIPPED_MAPS[(structure, theory)], law),
-                        error, status, law)
+    return LookupResult(fmax, regime, structure, theory,
+                        map_file_stem(shipped_structure_name(structure, theory, slenderness), law), error, status, law)
 
 
 #: Severity of a status when four map points are combined (worst wins).
@@ -257,17 +272,18 @@ def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
     return np.moveaxis(out, -1, axis)
 
 
-@functools.lru_cache(maxsize=16)
-def _interpolation_error_grid(structure: str, theory: str, law: str = "linear") -> np.ndarray:
-    dataset = load_shipped_map(structure, theory, law)
+@functools.lru_cache(maxsize=32)
+def _interpolation_error_grid(key: tuple) -> np.ndarray:
+    dataset = load_shipped_map(*key)
     return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
-def _corner_accuracy(dataset: xr.Dataset, lam, zeta, structure: str, theory: str, law: str = "linear"):
-    """Largest error (points' own + interpolation) and worst status around each (λ, ζ)."""
+def _corner_accuracy(dataset: xr.Dataset, lam, zeta, key: tuple):
+    """Largest error (points' own + interpolation) and worst status around each (λ, ζ) of
+    the map ``key`` = (structure, theory, law, slenderness)."""
     from .accuracy import STATUSES
 
-    errors = dataset["fmax_error"].isel(structure=0).values + _interpolation_error_grid(structure, theory, law)
+    errors = dataset["fmax_error"].isel(structure=0).values + _interpolation_error_grid(key)
     codes = dataset["status"].isel(structure=0).values
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
@@ -414,21 +430,41 @@ def map_for_case(case) -> tuple[str, str]:
     if (structure, theory) not in maps:
         refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == structure) + ")")
-    if theory in ("timoshenko", "mindlin"):
-        if structure == "beam":
-            slenderness = target.slenderness
-        else:
-            slenderness = target.length_x / target.thickness
-        if slenderness is None or not same(slenderness, SHIPPED_SLENDERNESS):
+    slenderness = case_slenderness(case)
+    if theory == "mindlin" and law == "hertz" and _loads_a_patch(case):
+        refuse("a Hertz impact on a Mindlin plate, which simulate loads over the contact patch (the maps "
+               "are point-loaded, and the patch radius would be a third number)")
+    if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
+        family = law in MAP_LAWS and (theory == "timoshenko" or law == "linear")
+        if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
             refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
-                   f"{SHIPPED_SLENDERNESS:g}; the thin limit is the "
-                   f"{'euler' if structure == 'beam' else 'kirchhoff'} map)")
-    reference = _family_groups(structure_from_name(SHIPPED_MAPS[(structure, theory)]).build())
+                   + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
+                      f"{', '.join(f'{v:g}' for v in FAMILY_SLENDERNESSES)} and the thin limit"
+                      if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
+    reference = _family_groups(replace(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
+                                       slenderness=slenderness or SHIPPED_SLENDERNESS).build())
     for name, value in _family_groups(target).items():
         if not (same(value, reference[name]) if reference[name] else value == 0.0):
             refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
                    "another Poisson ratio of a shear-deformable target or structural damping is another family)")
     return structure, theory
+
+
+def case_slenderness(case) -> float | None:
+    """span/thickness of a case's Timoshenko beam or Mindlin plate [-]; None otherwise."""
+    target = case.target
+    if getattr(target, "theory", None) not in ("timoshenko", "mindlin"):
+        return None
+    if case.target_type == "beam":
+        return target.slenderness
+    return target.length_x / target.thickness
+
+
+def _loads_a_patch(case) -> bool:
+    """Whether ``simulate`` spreads this case's contact force over the contact patch."""
+    from ..solvers.modal import _uses_patch
+
+    return _uses_patch(case.target, case.settings.contact_patch)
 
 
 def _family_groups(target) -> dict:
@@ -489,19 +525,28 @@ def lookup_case(case) -> dict:
         from .plastic_lookup import lookup_plastic_case
 
         return lookup_plastic_case(case, structure, theory, law)
+    slenderness = case_slenderness(case)
+    if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
+        from .families import lookup_slenderness
+
+        def read(zeta, lam):
+            return lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness, law=law)
+    else:
+        def read(zeta, lam):
+            return lookup(zeta, lam, structure=structure, theory=theory, law=law)
     if law == "hertz":
         from ..hertz_similarity import hertz_numbers
 
         hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
         zeta, lam = hertz.loss_factor, hertz.relative_stiffness
-        found = lookup(zeta, lam, structure=structure, theory=theory, law=law)
+        found = read(zeta, lam)
         scale = hertz.force_scale
     else:
         from ..cases import case_dimensionless
 
         numbers = case_dimensionless(case)
         zeta, lam = numbers["zeta"], numbers["lambda"]
-        found = lookup(zeta, lam, structure=structure, theory=theory)
+        found = read(zeta, lam)
         scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
                                        numbers["contact_stiffness_N_m"])) / found.fmax_normalised
     return _answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
