@@ -75,7 +75,7 @@ def test_lookup_case_at_slenderness_30_matches_simulate():
     from the family (it used to refuse every slenderness but 20), within its band of
     `simulate`."""
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     text = """
 name = "steel ball on a 0.6 m, 20 x 20 mm Timoshenko beam, linear contact"

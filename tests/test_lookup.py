@@ -230,7 +230,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     build, seeds, count, least = _RANDOM_CASES[law]
     rng = np.random.default_rng(seeds[0] if kind == "beam" else seeds[1])
@@ -267,7 +267,7 @@ def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
     item 2) are refused with the reason and a pointer to `simulate` (they used to be looked
     up in the SS centre map, +34 % to +65 %, or linearised with K_y: 293 N against 731 N)."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvelocity = 1.0\n'
             '[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\n'
@@ -309,7 +309,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
     answered = 0
@@ -339,7 +339,7 @@ def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
     """No plastic map for the Mindlin plate (its pressure patch adds the sphere radius as a
     number) nor for a Stronge law with other constants: refused, naming why."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvelocity = 1.0\n'
             '[target]\ntype = "plate"\nlength_x = 0.1\nlength_y = 0.1\nthickness = 0.005\n'
@@ -358,7 +358,7 @@ def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
     from pathlib import Path
 
     from impactmaps.cases import load_case
-    from impactmaps.maps.lookup import lookup_case
+    from impactmaps.maps.case_lookup import lookup_case
 
     text = (Path(__file__).resolve().parents[1] / "examples" / "steel_beam_fd_stronge.toml").read_text()
     assert "[solver]\n" in text

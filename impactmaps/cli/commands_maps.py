@@ -307,9 +307,9 @@ def cmd_lookup(args) -> dict:
 
     if args.case is not None:
         from ..cases import load_case
-        from ..maps.lookup import lookup_case
+        from ..maps.case_lookup import lookup_case
 
-        from ..maps.lookup import case_map_law, map_for_case
+        from ..maps.case_lookup import case_map_law, map_for_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")

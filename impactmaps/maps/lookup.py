@@ -9,13 +9,15 @@ Hertz law (``NAME-hertz.nc``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
 (log ζ, log λ); the interpolation error against direct simulation is measured by
 ``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
 it was swept with (:func:`impactmaps.maps.sweep.map_law`): a Hertz map is never read as
-a linear one, nor the reverse.
+a linear one, nor the reverse. The shear-deformable maps also ship at other slendernesses
+(:mod:`impactmaps.maps.families`); a physical case finds its map in
+:mod:`impactmaps.maps.case_lookup`.
 """
 
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
@@ -24,15 +26,14 @@ from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
-from .plastic_lookup import PLASTIC_MAPS
 from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
-from .structures import FAMILY_SLENDERNESSES, structure_from_name
+from .structures import FAMILY_SLENDERNESSES
 from .sweep import MAP_LAWS, map_law
 
-__all__ = ["SHIPPED_MAPS", "map_file_stem", "LookupResult", "load_shipped_map", "require_map_law", "lookup",
-           "lookup_case", "map_for_case", "case_map_law",
-           "design_formula", "markdown_table"]
+__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
+           "require_map_law", "shipped_structure_name", "lookup", "interpolation_error", "design_formula",
+           "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
 ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
@@ -337,232 +338,5 @@ def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=N
     return "\n".join([f"**{structure}** — F̄max", "", header, rule, *rows])
 
 
-#: Relative tolerance within which a case "is" a shipped map's structure (impact point,
-#: aspect ratio, slenderness): beyond it the map does not describe the case.
-CASE_MATCH_RTOL = 1e-6
 #: Slenderness of the shipped shear-deformable maps (span/height, span/thickness).
 SHIPPED_SLENDERNESS = 20.0
-
-
-def case_map_law(case) -> str:
-    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, or ``ValueError``.
-
-    Only laws that a shipped map describes exactly are named: the linear and Hertz laws
-    (axes ζ, λ), the Yigit–Christoforou law and the refined Stronge law with its default
-    constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
-    refused.
-    """
-    from ..contact.hertz import HertzContact
-    from .plastic_points import plastic_law_of
-
-    if case.law.linear_stiffness is not None:
-        return "linear"
-    if isinstance(case.law, HertzContact):
-        return "hertz"
-    try:
-        return plastic_law_of(case.law)
-    except ValueError as error:
-        reason = str(error) if case.law_name == "stronge" else f"contact law {case.law_name!r}"
-    raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
-                     "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
-                     f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "
-                     "instead")
-
-
-def map_for_case(case) -> tuple[str, str]:
-    """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
-
-    A shipped map is a family of normalised structures with a linear or a Hertz contact
-    law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
-    the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
-    ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
-    (Yigit–Christoforou, default Stronge) have maps for the same families except the
-    Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). A case outside
-    every family is refused, never looked up in the nearest map.
-
-    Parameters
-    ----------
-    case : impactmaps.cases.Case
-
-    Returns
-    -------
-    (str, str)
-        ``structure`` and ``theory`` for :func:`lookup`.
-
-    Raises
-    ------
-    ValueError
-        Naming what no shipped map covers (contact law, supports, impact point, aspect,
-        theory, slenderness) and suggesting ``impactmaps simulate``.
-    """
-    def refuse(what: str):
-        raise ValueError(f"no shipped map covers this case: {what}; run `impactmaps simulate "
-                         f"{case.source or 'CASE.toml'}` instead")
-
-    def same(value, wanted) -> bool:
-        return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
-
-    law = case_map_law(case)
-    if case.solver_kind != "modal":
-        refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
-               "and Rayleigh theory; the maps are of elastic structures solved modally)")
-    target = case.target
-    if case.target_type == "beam":
-        if target.supports != "ss":
-            refuse(f"beam supports {target.supports!r} (maps: simply supported 'ss')")
-        if not same(target.impact_position, 0.5 * target.length):
-            refuse(f"impact at x0 = {target.impact_position:g} m of a {target.length:g} m span "
-                   "(maps: mid-span)")
-        theory = target.theory
-    elif case.target_type == "plate":
-        if target.edges != "SSSS":
-            refuse(f"plate edges {target.edges!r} (maps: 'SSSS')")
-        if not same(target.length_y, target.length_x):
-            refuse(f"plate aspect ratio {target.length_y / target.length_x:g} (maps: square)")
-        if not (same(target.impact_point[0], 0.5 * target.length_x)
-                and same(target.impact_point[1], 0.5 * target.length_y)):
-            refuse(f"impact at {target.impact_point} m (maps: the plate centre)")
-        theory = target.theory
-    else:
-        refuse(f"target type {case.target_type!r} (maps: beams and plates)")
-    structure = case.target_type
-    maps = SHIPPED_MAPS if law in MAP_LAWS else PLASTIC_MAPS
-    if (structure, theory) not in maps:
-        refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
-               + ", ".join(t for s, t in maps if s == structure) + ")")
-    slenderness = case_slenderness(case)
-    if theory == "mindlin" and law == "hertz" and _loads_a_patch(case):
-        refuse("a Hertz impact on a Mindlin plate, which simulate loads over the contact patch (the maps "
-               "are point-loaded, and the patch radius would be a third number)")
-    if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
-        family = law in MAP_LAWS and (theory == "timoshenko" or law == "linear")
-        if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
-            refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
-                   + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
-                      f"{', '.join(f'{v:g}' for v in FAMILY_SLENDERNESSES)} and the thin limit"
-                      if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
-    reference = _family_groups(replace(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
-                                       slenderness=slenderness or SHIPPED_SLENDERNESS).build())
-    for name, value in _family_groups(target).items():
-        if not (same(value, reference[name]) if reference[name] else value == 0.0):
-            refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
-                   "another Poisson ratio of a shear-deformable target or structural damping is another family)")
-    return structure, theory
-
-
-def case_slenderness(case) -> float | None:
-    """span/thickness of a case's Timoshenko beam or Mindlin plate [-]; None otherwise."""
-    target = case.target
-    if getattr(target, "theory", None) not in ("timoshenko", "mindlin"):
-        return None
-    if case.target_type == "beam":
-        return target.slenderness
-    return target.length_x / target.thickness
-
-
-def _loads_a_patch(case) -> bool:
-    """Whether ``simulate`` spreads this case's contact force over the contact patch."""
-    from ..solvers.modal import _uses_patch
-
-    return _uses_patch(case.target, case.settings.contact_patch)
-
-
-def _family_groups(target) -> dict:
-    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
-
-    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
-    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
-    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
-    undamped).
-    """
-    groups = {"damping_ratio": float(target.damping_ratio)}
-    if target.structure == "beam":
-        if target.theory != "euler":
-            span = target.length
-            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
-            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
-        return groups
-    groups["D22/D11"] = target.D22 / target.D11
-    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
-    if target.theory == "mindlin":
-        side = target.length_x
-        groups["D12/D11"] = target.D12 / target.D11
-        for name in ("A44", "A55"):
-            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
-        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
-    return groups
-
-
-def lookup_case(case) -> dict:
-    """Peak force of a physical case from the shipped map that describes it, or refuse.
-
-    Parameters
-    ----------
-    case : impactmaps.cases.Case
-
-    Returns
-    -------
-    dict
-        ``peak_force_N`` with its band ``peak_force_error_N``, ``fmax_normalised`` and
-        ``fmax_error``, ``status``, ``regime``, ``zeta``, ``lambda``, ``map``, ``law``.
-        For a Hertz case ``zeta`` and ``lambda`` are the Hertz numbers ζ_h, λ_h and
-        ``fmax_normalised`` is F_max/F_hs (``force_scale_N`` = F_hs). For an elastic-plastic
-        case (Yigit–Christoforou, default Stronge) ``beta``, ``zeta``, ``lambda`` are the
-        numbers of :func:`impactmaps.maps.plastic_points.plastic_numbers`,
-        ``fmax_normalised`` is F_max/(m V0 ω_y), and the answer adds ``restitution`` and
-        ``absorbed_energy_J`` (contact dissipation), each with its ``…_error`` band; it has
-        no ``regime``.
-
-    Raises
-    ------
-    ValueError
-        When no shipped map describes the case (:func:`map_for_case`), or its numbers lie
-        outside the map (the message names them and suggests ``impactmaps simulate``).
-    """
-    structure, theory = map_for_case(case)
-    law = case_map_law(case)
-    if law in PLASTIC_LAWS:
-        from .plastic_lookup import lookup_plastic_case
-
-        return lookup_plastic_case(case, structure, theory, law)
-    slenderness = case_slenderness(case)
-    if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
-        from .families import lookup_slenderness
-
-        def read(zeta, lam):
-            return lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness, law=law)
-    else:
-        def read(zeta, lam):
-            return lookup(zeta, lam, structure=structure, theory=theory, law=law)
-    if law == "hertz":
-        from ..hertz_similarity import hertz_numbers
-
-        hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
-        zeta, lam = hertz.loss_factor, hertz.relative_stiffness
-        found = read(zeta, lam)
-        scale = hertz.force_scale
-    else:
-        from ..cases import case_dimensionless
-
-        numbers = case_dimensionless(case)
-        zeta, lam = numbers["zeta"], numbers["lambda"]
-        found = read(zeta, lam)
-        scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
-                                       numbers["contact_stiffness_N_m"])) / found.fmax_normalised
-    return _answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
-
-
-def _answer(found, scale: float, law: str, details: dict) -> dict:
-    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
-    return {
-        "peak_force_N": found.fmax_normalised * scale,
-        "peak_force_error_N": found.fmax_error * scale,
-        "fmax_normalised": found.fmax_normalised,
-        "fmax_error": found.fmax_error,
-        "status": found.status,
-        **details,
-        "map": found.map_name,
-        "law": law,
-        "force_scale_N": scale,
-    }
-

@@ -183,22 +183,22 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
 
 
 def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
-    """:func:`impactmaps.maps.lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
+    """:func:`impactmaps.maps.case_lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
 
     Parameters
     ----------
     case : impactmaps.cases.Case
         With a Yigit–Christoforou or default refined Stronge law.
     structure, theory : str
-        The family (:func:`impactmaps.maps.lookup.map_for_case`).
+        The family (:func:`impactmaps.maps.case_lookup.map_for_case`).
     law : {"yc", "stronge"}
 
     Returns
     -------
     dict
-        See :func:`impactmaps.maps.lookup.lookup_case`.
+        See :func:`impactmaps.maps.case_lookup.lookup_case`.
     """
-    from .lookup import _answer
+    from .case_lookup import _answer
     from .plastic_points import plastic_numbers
 
     numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
