@@ -70,7 +70,7 @@ def cases(smoke: bool):
 def run(target, law, mass, velocity, cutoff, load, record=False):
     """One modal run; (result, number of warnings). Warnings (the point-loaded Mindlin
     plate's thickness-shear notice at high cut-offs) are counted, not shown."""
-    settings = ModalSettings(cutoff_ratio=cutoff, contact_patch=load)
+    settings = ModalSettings(cutoff_ratio=cutoff, patch_cutoff_ratio=cutoff, contact_patch=load)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = simulate(target, law, mass, velocity, settings=settings, record=record)
