@@ -490,7 +490,7 @@ def test_patch_basis_static_compliance_against_the_brute_force_series():
 
 def test_default_patch_run_takes_fewer_modes_and_steps_than_the_point_load():
     """Issue 14: the patch's transform suppresses the high modes, so the default patch run
-    (``patch_cutoff_ratio`` = 10) integrates 367 modes in 591 steps on the README plate
+    (``patch_cutoff_ratio`` = 20) integrates 987 modes in 726 steps on the README plate
     where the point load at its default 40 ω takes 3129 and 1398 — and lies within 5e-5 of
     the patch at 40 and 80 ω."""
     plate = readme_plate()
@@ -502,5 +502,5 @@ def test_default_patch_run_takes_fewer_modes_and_steps_than_the_point_load():
         warnings.simplefilter("ignore")
         point = simulate(plate, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius,
                          settings=ModalSettings(contact_patch="point"))
-    assert default.n_modes < point.n_modes / 4 and default.details.steps < point.details.steps / 2
+    assert default.n_modes < point.n_modes / 3 and default.details.steps < 0.6 * point.details.steps
     assert max(abs(f - default.peak_force) for f in fine) < 5e-5 * default.peak_force
