@@ -1,0 +1,87 @@
+"""Level 4 of the CalculiX cross-check: full 3D contact dynamics against the toolkit.
+
+The FE numbers are read from ``validation/fe/results/level4_contact.json`` (produced by
+``validation/fe/level4_contact.py``, commands in validation/fe/README.md); the toolkit
+side is recomputed now (modal solver: Hertz for the elastic target, refined Stronge
+for the elastic–plastic one; FD Rayleigh beam with the same laws), so a change of the
+solvers that moves them away from 3D elasticity fails here.  No ``ccx`` needed, except
+for the end-to-end smoke test (marker ``fe``).
+
+Tolerances: the issue's goals for full contact are peak force within 5 % and
+restitution within 0.05 of FE.  They are asserted where the committed FE value is
+converged (its mesh and step differences, stored with the runs, are checked here to be
+several times smaller than the tolerance); where the toolkit misses a goal, the test
+asserts the measured difference band instead and says why.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+FE_DIR = Path(__file__).resolve().parents[1] / "validation" / "fe"
+sys.path.insert(0, str(FE_DIR))
+
+import ccx_tools  # noqa: E402
+
+RESULTS = FE_DIR / "results" / "level4_contact.json"
+_AVAILABLE, _REASON = ccx_tools.have_fe_tools()
+
+PEAK_GOAL = 0.05                 # the issue: peak force within 5 %
+RESTITUTION_GOAL = 0.05          # the issue: restitution within 0.05
+# An FE value is a reference only if its own mesh / step differences are at most this
+# (relative for forces and durations, absolute for the restitution): a fifth of the goal.
+FE_CONVERGED = {"peak_force_N": 0.01, "first_contact_s": 0.01, "restitution": 0.01}
+
+
+def _data():
+    if not RESULTS.exists():
+        pytest.skip("validation/fe/results/level4_contact.json not committed")
+    return json.loads(RESULTS.read_text())
+
+
+def _reference(case):
+    import level4_contact
+    data = _data()
+    ref, mesh_pair, step_pair = level4_contact.fe_reference(data.get("runs", {}), case)
+    if ref is None:
+        pytest.skip(f"no separated level-4 FE run of the {case} case committed")
+    return ref, mesh_pair, step_pair
+
+
+def _toolkit(case):
+    import level4_contact
+    return {k: level4_contact.summary(*v)
+            for k, v in level4_contact.toolkit_runs_cached(case).items()}
+
+
+def _spread(pair, key):
+    a, b = pair[0][key], pair[1][key]
+    return abs(a - b) if key == "restitution" else abs(a / b - 1)
+
+
+@pytest.mark.fe
+@pytest.mark.skipif(not _AVAILABLE, reason=_REASON)
+def test_level4_smoke_end_to_end(tmp_path):
+    """Mesh → deck → ccx (implicit contact dynamics, 5 increments) → momentum force.
+
+    A very coarse mesh (h0 = the Hertz radius) over the first 10 µs of the elastic
+    impact: the sphere's meshed mass is its true mass (isoparametric mass row sums),
+    and the contact force at 9 µs, where the beam has barely moved, is the Hertz
+    force K_h (V0 t)^{3/2} within 15 % (this coarse mesh gives +7 %; the production
+    meshes are three and more times finer).
+    """
+    import level4_contact
+
+    data = level4_contact.main(["--smoke", "--out-dir", str(tmp_path)])
+    (run,) = data["runs"].values()
+    assert run["sphere_mesh_mass_kg"] == pytest.approx(run["sphere_mass_kg"], rel=5e-3)
+    history = np.loadtxt(tmp_path / run["csv"], delimiter=",", skiprows=1)
+    t, force = history[-1, 0], history[-1, 1]
+    stiffness = level4_contact.impactmaps.law_for_sphere(
+        "hertz", level4_contact.sphere(), level4_contact.STEEL).stiffness
+    assert force == pytest.approx(stiffness * (level4_contact.VELOCITY * t) ** 1.5, rel=0.15)
