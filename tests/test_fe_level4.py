@@ -85,3 +85,35 @@ def test_level4_smoke_end_to_end(tmp_path):
     stiffness = level4_contact.impactmaps.law_for_sphere(
         "hertz", level4_contact.sphere(), level4_contact.STEEL).stiffness
     assert force == pytest.approx(stiffness * (level4_contact.VELOCITY * t) ** 1.5, rel=0.15)
+
+
+def test_level4_elastic_fe_is_converged():
+    """The committed elastic FE reference has its convergence evidence: a run on the
+    other contact mesh and a run at the other time step, each within ``FE_CONVERGED``
+    of its partner for peak force, first-contact duration and restitution."""
+    ref, mesh_pair, step_pair = _reference("elastic")
+    for pair in (mesh_pair, step_pair):
+        assert pair is not None, "a mesh pair and a step pair must be committed"
+        for key, limit in FE_CONVERGED.items():
+            assert _spread(pair, key) <= limit, (key, pair[0]["csv"], pair[1]["csv"])
+
+
+@pytest.mark.parametrize("solver", ["modal_hertz", "fd_hertz"])
+def test_level4_elastic_peak_and_restitution(solver):
+    """The issue's goals on the elastic case: peak force within 5 %, restitution within
+    0.05 of the 3D contact run (measured: modal Timoshenko −2.2 %, −0.004; FD Rayleigh
+    −0.6 %, +0.010; the FE reference converged to ≤ 1 %, see above)."""
+    ref, _, _ = _reference("elastic")
+    run = _toolkit("elastic")[solver]
+    assert abs(run["peak_force_N"] / ref["peak_force_N"] - 1) <= PEAK_GOAL
+    assert abs(run["restitution"] - ref["restitution"]) <= RESTITUTION_GOAL
+    assert run["impacts"] == 1
+
+
+@pytest.mark.parametrize("solver", ["modal_hertz", "fd_hertz"])
+def test_level4_elastic_first_contact(solver):
+    """First-contact duration within 5 % of FE (the issue sets no goal for full contact;
+    5 % is its goal for the spring-coupled level 3; measured +0.6 % modal, −0.3 % FD)."""
+    ref, _, _ = _reference("elastic")
+    run = _toolkit("elastic")[solver]
+    assert run["first_contact_s"] == pytest.approx(ref["first_contact_s"], rel=0.05)

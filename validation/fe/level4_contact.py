@@ -29,20 +29,21 @@ small strains (no NLGEOM), the sphere's nodes given −V0 in z at t = 0 (touchin
 beam), run until ``END_FACTOR`` × the toolkit's first-contact duration (one impact in
 the toolkit for both cases: the sphere leaves for good).
 
-Output per increment (``.dat``): the displacements of the sphere's nodes and of the
-beam's axis x = y = 0.  The contact force is the sphere's momentum change: with the
-consistent mass matrix M of the sphere, 1ᵀ M u = Σ_j s_j u_j (s_j the row sums of M, of
-element mass m_e: −m_e/20 at the corners and m_e/5 at the mid-side nodes of a C3D10),
-so the centre-of-mass displacement is exact from the nodal displacements, and
-F(t) = −4 m_q ü_cm (central differences; m_q the quarter sphere's meshed mass, F for
-the full model).  Derived: peak force, first-contact duration (F > ``CONTACT_FRACTION``
-× peak), restitution e = v_cm(end) / V0 (the sphere moves freely after separation),
-permanent indentation = the target's top-minus-bottom shortening on the axis, averaged
-over the last ``TAIL`` of the run (≈ 0 for the elastic case: the size of that error).
+Output per increment (``.dat``): the velocities of the sphere's nodes and the
+displacements of the beam's axis x = y = 0.  The contact force is the sphere's momentum
+change: with the consistent mass matrix M of the sphere, 1ᵀ M v = Σ_j s_j v_j (s_j the
+row sums of M, ``ccx_tools.tet10_mass_weights``), so the centre-of-mass velocity is
+exact from the nodal velocities, and F = 4 m_q Δv_cm/Δt is the mean contact force of
+each increment (m_q the quarter sphere's meshed mass, F for the full model; the sphere
+has no other load in z).  Derived (:func:`fe_quantities`): peak force, first-contact
+duration (end of contact extrapolated from the last momentum samples), restitution
+e = v_cm(end) / V0 (the sphere moves freely after separation), permanent indentation
+= the target's top-minus-bottom shortening on the axis, averaged over the last
+``TAIL`` of the run (≈ 0 for the elastic case: the size of that error).
 
 Run (niced, single-threaded, in the background):
 ``OMP_NUM_THREADS=1 nohup nice -n 19 python validation/fe/level4_contact.py --case
-elastic --mesh coarse --step 0.68e-6 &``; each run adds its entry to
+elastic --mesh coarse --step 2.8e-6 &``; each run adds its entry to
 ``results/level4_contact.json`` and writes ``results/level4_<case>_<mesh>_<step>.csv``
 (force history).  ``--smoke``: a very coarse mesh and a few increments (seconds),
 written to ``--out-dir`` (a temporary directory by default).  ``--toolkit`` computes
@@ -79,7 +80,8 @@ PENALTY = l2.PENALTY
 FINE_ZONE = 1.5                      # size h0 up to FINE_ZONE × a_ref from the contact
 SLAVE_ZONE = 3.0                     # contact faces within SLAVE_ZONE × a_ref
 END_FACTOR = {"elastic": 1.15, "plastic": 1.3}   # run to this × the toolkit's first contact
-CONTACT_FRACTION = 0.005             # contact where F > this × peak force
+CONTACT_FRACTION = 0.005             # separated: last force below this × peak force
+TAIL_IMPULSE = 3e-3                  # end of contact from the last impulse above this
 TAIL = 0.1                           # permanent dent: mean over the last 10 % of the run
 MESHES = {"coarse": 3.0, "fine": 4.5, "smoke": 1.0}      # a_ref / h0
 FAR_SIZE = {"coarse": 0.005, "fine": 0.005, "smoke": 0.008}
@@ -279,30 +281,40 @@ def force_history(times, blocks, weights):
     return 0.5 * (t[1:] + t[:-1]), force, t, v
 
 
-def fe_quantities(t_mid, force, t, v, axis_t, dent):
-    """Peak force, first-contact duration, restitution and permanent dent of a FE run."""
+def fe_quantities(t_mid, force, t, v, dent):
+    """Peak force, first-contact duration, restitution and permanent dent of a FE run.
+
+    ``t_mid, force``: increment mid-points and mean forces; ``t, v``: increment ends
+    (t = 0 included) and the sphere's centre-of-mass velocity; ``dent``: the target's
+    axis shortening at the increment ends (without t = 0).  The peak is the vertex of
+    the parabola through the three largest samples.  The end of contact is
+    extrapolated from the exact momentum samples: near separation the impulse still
+    to come, r ∝ (v_end − v), falls as (t_e − t)^{5/2} (Hertz, α linear in t), so
+    r^{2/5} is linear in t; the last two increment ends with r > ``TAIL_IMPULSE``
+    (relative to the whole impulse) give t_e.
+    """
     k = int(np.argmax(force))
     peak = float(force[k])
     if 0 < k < len(force) - 1:           # parabola through the three samples at the top
         f0, f1, f2 = force[k - 1:k + 2]
         peak = float(f1 + (f2 - f0) ** 2 / (8 * (2 * f1 - f0 - f2)))
-    on = np.flatnonzero(force > CONTACT_FRACTION * peak)
-    first_end = on[np.flatnonzero(np.diff(on) > 1)[0]] if np.any(np.diff(on) > 1) else on[-1]
-    # contact from t = 0 to the threshold crossing after the last loaded increment
-    # of the first contact (linear interpolation between increment mid-points)
-    threshold = CONTACT_FRACTION * peak
-    if first_end + 1 < len(force):
-        f0, f1 = force[first_end], force[first_end + 1]
-        duration = float(t_mid[first_end] + (t_mid[first_end + 1] - t_mid[first_end])
-                         * (f0 - threshold) / (f0 - f1))
-    else:
-        duration = float(t[-1])
-    tail = axis_t >= (1 - TAIL) * axis_t[-1]
+    remaining = (v[-1] - v) / (v[-1] - v[0])
+    j = int(np.flatnonzero(remaining > TAIL_IMPULSE)[-1])
+    x0, x1 = remaining[j - 1] ** 0.4, remaining[j] ** 0.4
+    duration = float(t[j] + x1 * (t[j] - t[j - 1]) / (x0 - x1))
+    tail = t[1:] >= (1 - TAIL) * t[-1]
     return dict(peak_force_N=peak, first_contact_s=duration,
                 restitution=float(v[-1] / VELOCITY),
-                separated=bool(on[-1] < len(force) - 1),
+                separated=bool(force[-1] < CONTACT_FRACTION * peak and duration < t[-1]),
                 permanent_indentation_m=float(np.mean(dent[tail])),
                 permanent_indentation_spread_m=float(np.ptp(dent[tail])))
+
+
+def quantities_from_csv(path):
+    """:func:`fe_quantities` of a committed force-history CSV."""
+    h = np.loadtxt(path, delimiter=",", skiprows=1)
+    return fe_quantities(h[:, 0], h[:, 1], np.r_[0.0, h[:, 2]], np.r_[-VELOCITY, h[:, 3]],
+                         h[:, 4])
 
 
 def run_fe(case, mesh_name, step, workdir, out_dir, end_time=None):
@@ -325,7 +337,6 @@ def run_fe(case, mesh_name, step, workdir, out_dir, end_time=None):
     times, blocks = parse_velocity_blocks(text, "SPHN")
     t_mid, force, t, v = force_history(times, blocks, weights)
     axis = ct.parse_node_prints(text, "AXIS")
-    axis_t = ct.parse_node_print_times(text, "AXIS")
     ids = np.array(sorted(axis[0]))
     zs = mesh.coords[ids - 1, 2]
     top, bottom = ids[np.argmax(zs)], ids[np.argmin(zs)]
@@ -345,7 +356,7 @@ def run_fe(case, mesh_name, step, workdir, out_dir, end_time=None):
                   target_yield_strength_Pa=STEEL.yield_strength if case == "plastic" else None,
                   mesh_time_s=mesh_time, ccx_wall_time_s=wall,
                   newton_iterations=l2._iterations(dat.with_suffix(".sta")),
-                  **fe_quantities(t_mid, force, t, v, axis_t, dent))
+                  **fe_quantities(t_mid, force, t, v, dent))
     columns = dict(time_s=t_mid, force_N=force, increment_end_time_s=t[1:],
                    sphere_velocity_m_s=v[1:], axis_shortening_m=dent)
     csv = out_dir / f"{job}.csv"
@@ -420,27 +431,41 @@ def table(data):
     return "\n".join(rows)
 
 
-def figure(data, path):
-    """Overlaid force histories: FE runs of each case, modal and FD toolkit runs."""
+def figure(data, path, indentation=None):
+    """Force histories (FE runs, modal and FD toolkit runs) of both cases and, if given,
+    the quasi-static indentation curves of ``level4_plastic_indent.json``."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
     for ax, case in zip(axes, CASES):
         for name, run in sorted(data.get("runs", {}).items()):
-            if run["case"] != case:
-                continue
-            h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
-            ax.plot(h[:, 0] * 1e6, h[:, 1], lw=1.2, label=f"FE {run['mesh']}, "
-                    f"Δt {run['time_step_s'] * 1e6:.2g} µs")
+            if run["case"] == case and run["mesh"] != "smoke":
+                h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
+                ax.plot(h[:, 0] * 1e6, h[:, 1], lw=1.2, label=f"FE {run['mesh']}, "
+                        f"Δt {run['time_step_s'] * 1e6:.2g} µs")
         for key, (result, _) in toolkit_runs_cached(case).items():
             hist = result.history
             ax.plot(hist["time_s"] * 1e6, hist["force_N"], "--", lw=1.0,
                     label=key.replace("_", " "))
-        ax.set(title=f"{case} target", xlabel="time [µs]", xlim=(0, 110))
+        ax.set(title=f"{case} target, 1 m/s", xlabel="time [µs]", ylabel="contact force [N]",
+               xlim=(0, 110))
         ax.legend(fontsize=7)
-    axes[0].set_ylabel("contact force [N]")
-    fig.suptitle("Level 4: steel sphere R 10 mm, 1 m/s, on the SS beam 500×20×20 mm — "
+    ax = axes[2]
+    for mesh, run in sorted((indentation or {}).items()):
+        h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
+        ax.plot(np.r_[0, h[:, 0]] * 1e6, np.r_[0, h[:, 1]], "o-", ms=3, lw=1.2,
+                label=f"FE quasi-static, {mesh} mesh")
+    if indentation:
+        law = impactmaps.law_for_sphere("stronge", sphere(), STEEL)
+        a_max = next(iter(indentation.values()))["max_indentation_m"]
+        alpha = np.linspace(0, a_max, 200)
+        ax.plot(alpha * 1e6, law.loading_force(alpha), "k--", lw=1, label="refined Stronge")
+        ax.plot(alpha * 1e6, law.force(alpha, a_max), "k--", lw=1)
+    ax.set(title="elastic sphere on elastic–plastic block (S_y 235 MPa)",
+           xlabel="approach of the sphere [µm]", ylabel="force [N]")
+    ax.legend(fontsize=7)
+    fig.suptitle("Level 4: steel sphere R 10 mm on the SS steel beam 500×20×20 mm — "
                  "3D contact (CalculiX) vs toolkit", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
@@ -451,7 +476,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--case", choices=CASES, default="elastic")
     p.add_argument("--mesh", choices=("coarse", "fine"), default="coarse")
-    p.add_argument("--step", type=float, default=0.68e-6, help="fixed time increment [s]")
+    p.add_argument("--step", type=float, default=2.8e-6, help="fixed time increment [s]")
     p.add_argument("--end-time", type=float, default=None,
                    help="end of the run [s] (default END_FACTOR × toolkit first contact)")
     p.add_argument("--threads", default="1", help="ccx threads (FE_THREADS)")
@@ -464,8 +489,13 @@ def main(argv=None):
     a = p.parse_args(argv)
     if a.report:
         data = json.loads((ct.RESULTS / "level4_contact.json").read_text())
+        for run in data.get("runs", {}).values():     # re-derive with the current rules
+            run.update(quantities_from_csv(ct.RESULTS / run["csv"]))
+        (ct.RESULTS / "level4_contact.json").write_text(json.dumps(data, indent=1))
         print(table(data))
-        figure(data, HERE.parents[1] / "figures" / "fe_level4_force_history.png")
+        indent = ct.RESULTS / "level4_plastic_indent.json"
+        figure(data, HERE.parents[1] / "figures" / "fe_level4_force_history.png",
+               json.loads(indent.read_text()) if indent.exists() else None)
         return data
     os.environ["FE_THREADS"] = a.threads
     os.environ.setdefault("CCX_NPROC_EQUATION_SOLVER", a.threads)

@@ -138,6 +138,29 @@ def run(mesh_name, n_load, n_unload, workdir, out_dir):
     return record
 
 
+ITEMS = (("force at α_max [N]", "force_at_max_N", 1.0),
+         ("permanent indentation [µm]", "permanent_indentation_m", 1e6),
+         ("energy dissipated in the cycle [mJ]", "dissipated_energy_J", 1e3))
+
+
+def table(data):
+    """Markdown rows: FE (finest mesh) with its mesh difference, refined Stronge, diff."""
+    meshes = [m for m in ("fine", "coarse") if m in data]
+    if not meshes:
+        return ""
+    ref = data[meshes[0]]
+    other = data[meshes[1]] if len(meshes) > 1 else None
+    rows = ["| quantity (α_max = %.2f µm) | FE (%s mesh) | FE mesh Δ (%s − %s) | refined Stronge "
+            "| Stronge − FE |" % (ref["max_indentation_m"] * 1e6, meshes[0],
+                                   meshes[-1], meshes[0]), "|---|---|---|---|---|"]
+    for label, key, scale in ITEMS:
+        fe, law = ref[key], ref["toolkit"][key]
+        mesh = "—" if other is None else f"{100 * (other[key] / fe - 1):+.1f} %"
+        rows.append(f"| {label} | {fe * scale:.4g} | {mesh} | {law * scale:.4g} | "
+                    f"{100 * (law / fe - 1):+.1f} % |")
+    return "\n".join(rows)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--mesh", choices=tuple(MESHES), default="coarse")
@@ -145,7 +168,11 @@ def main(argv=None):
     p.add_argument("--unload", type=int, default=12, help="unloading increments")
     p.add_argument("--threads", default="1", help="ccx threads (FE_THREADS)")
     p.add_argument("--out-dir", type=Path, default=None)
+    p.add_argument("--table", action="store_true", help="print the README table")
     a = p.parse_args(argv)
+    if a.table:
+        print(table(json.loads((ct.RESULTS / "level4_plastic_indent.json").read_text())))
+        return None
     os.environ["FE_THREADS"] = a.threads
     out_dir = a.out_dir or ct.RESULTS
     out_dir.mkdir(parents=True, exist_ok=True)
