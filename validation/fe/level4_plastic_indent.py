@@ -1,15 +1,17 @@
 """Level 4, elastic–plastic target: quasi-static load–unload indentation (CalculiX).
 
-Why not the dynamic run: ccx 2.20's implicit dynamic contact controls the increment
-by an energy-conservation rule (``checkimpacts``, called from ``checkconvergence``):
-an increment in which the contact elements change and the total energy (internal +
-kinetic + contact − external work) drops by more than 0.8 % of its maximum is forced
-to diverge and cut to a quarter.  The *PLASTIC material's dissipation is not in that
-energy, so with a yielding target every increment of the first contact "loses"
-energy: with fixed increments (``*DYNAMIC, DIRECT``) ccx stops at the first increment
-("solution seems to diverge"); with automatic incrementation the increment falls to
-≈ 10⁻⁸ s within a few increments (measured on the smoke mesh: 0.24 µs of the 90 µs
-event in 5 min).  The rule has no switch in 2.20.
+Why not the dynamic run: ccx 2.20's implicit dynamic contact did not run with a
+yielding target in any variant tried on the smoke mesh (``level4_contact.py --case
+plastic``): perfectly plastic ``*PLASTIC`` gives NaN forces in the first iteration;
+with a small hardening (1 MPa per unit strain) and Δt = 2 µs the first increment
+converges, then ccx forces a divergence — with fixed increments (``*DYNAMIC, DIRECT``)
+that stops the run ("solution seems to diverge"), with automatic incrementation the
+increment falls to ≈ 10⁻⁸ s (0.24 µs of the 90 µs event in 5 min); with Δt = 0.2 µs
+the first iteration diverges (displacements 10¹⁴⁴).  The forced divergence is
+consistent with ccx's energy rule for dynamic contact (``checkimpacts``, called from
+``checkconvergence``: an increment whose energy balance drops by more than 0.8 % of the
+largest energy while the contact grows is cut to a quarter), which the plastic
+dissipation triggers; the rule has no switch in 2.20.
 
 What is run instead (the physics that differs from the elastic case is the contact
 law): the elastic sphere pressed into the elastic–perfectly plastic target
