@@ -315,3 +315,21 @@ def tet10_mass_weights(mesh: Mesh, mask, density, order: int = 4) -> np.ndarray:
     weights = np.zeros(len(mesh.coords))
     np.add.at(weights, elements, rows)
     return weights
+
+
+def write_quarter_contact(f, mesh: Mesh, faces, slope, tol=1e-9):
+    """Symmetry sets and the sphere–target contact of the quarter models (levels 2, 4).
+
+    Writes the node sets ``XSYM`` (x = 0) and ``YSYM`` (y = 0), the element surfaces
+    ``SSPH`` (``faces["slave"]``) and ``STGT`` (``faces["master"]``), and a frictionless
+    ``*CONTACT PAIR, TYPE=SURFACE TO SURFACE`` with a linear penalty of ``slope``
+    [Pa/m].  The caller writes ``*BOUNDARY`` (``XSYM,1,1`` / ``YSYM,2,2``).
+    """
+    x, y, _ = mesh.coords.T
+    write_nset(f, "XSYM", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
+    write_nset(f, "YSYM", mesh.nodes_where(np.isclose(y, 0, atol=tol)))
+    write_element_surface(f, "SSPH", faces["slave"])
+    write_element_surface(f, "STGT", faces["master"])
+    f.write("*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nSSPH,STGT\n"
+            "*SURFACE INTERACTION, NAME=SI1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+            f"{slope:.6e}\n")

@@ -73,17 +73,11 @@ def build_deck(mesh, faces, h0, delta_max, n_load, n_unload):
         ("TGT", ~in_sphere, "BLOCK", ct.material_cards(l4.STEEL, l4.STEEL.yield_strength))])
     target = np.ones(len(z), dtype=bool)
     target[mesh.elements[in_sphere].ravel() - 1] = False
-    ct.write_nset(F, "XSYM", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
-    ct.write_nset(F, "YSYM", mesh.nodes_where(np.isclose(y, 0, atol=tol)))
     ct.write_nset(F, "STOP", mesh.nodes_where(np.isclose(z, l2.RADIUS, atol=tol)))
     ct.write_nset(F, "SUPPORT", mesh.nodes_where(np.isclose(z, -BLOCK, atol=tol)))
     ct.write_nset(F, "AXIS", mesh.nodes_where(np.isclose(x, 0, atol=tol)
                                               & np.isclose(y, 0, atol=tol) & target))
-    ct.write_element_surface(F, "SSPH", faces["slave"])
-    ct.write_element_surface(F, "STGT", faces["master"])
-    w("*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nSSPH,STGT\n"
-      "*SURFACE INTERACTION, NAME=SI1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-      f"{l4.PENALTY * l4.STEEL.youngs_modulus / h0:.6e}\n")
+    ct.write_quarter_contact(F, mesh, faces, l4.PENALTY * l4.STEEL.youngs_modulus / h0)
     w("*BOUNDARY\nXSYM,1,1\nYSYM,2,2\nSUPPORT,3,3\n")
     prints = "*NODE PRINT, NSET=STOP, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=AXIS\nU\n*END STEP\n"
     for n, value in ((n_load, -delta_max), (n_unload, 0.0)):
@@ -152,9 +146,9 @@ def table(data):
         return ""
     ref = data[meshes[0]]
     other = data[meshes[1]] if len(meshes) > 1 else None
-    rows = ["| quantity (α_max = %.2f µm) | FE (%s mesh) | FE mesh Δ (%s − %s) | refined Stronge "
-            "| Stronge − FE |" % (ref["max_indentation_m"] * 1e6, meshes[0],
-                                   meshes[-1], meshes[0]), "|---|---|---|---|---|"]
+    head = (f"| quantity (α_max = {ref['max_indentation_m'] * 1e6:.2f} µm) | FE ({meshes[0]} "
+            f"mesh) | FE mesh Δ ({meshes[-1]} − {meshes[0]}) | refined Stronge | Stronge − FE |")
+    rows = [head, "|---|---|---|---|---|"]
     for label, key, scale in ITEMS:
         fe, law = ref[key], ref["toolkit"][key]
         mesh = "—" if other is None else f"{100 * (other[key] / fe - 1):+.1f} %"
