@@ -117,3 +117,42 @@ def test_level4_elastic_first_contact(solver):
     ref, _, _ = _reference("elastic")
     run = _toolkit("elastic")[solver]
     assert run["first_contact_s"] == pytest.approx(ref["first_contact_s"], rel=0.05)
+
+
+INDENT = FE_DIR / "results" / "level4_plastic_indent.json"
+# refined Stronge law − FE (relative), quasi-static load–unload to the impact's α_max:
+# (measured on the finest committed mesh, allowed band) — see the test's docstring.
+INDENT_BANDS = {"force_at_max_N": (0.0, 0.10),
+                "permanent_indentation_m": (-0.15, 0.0),
+                "dissipated_energy_J": (0.0, 0.16)}
+
+
+def test_level4_stronge_law_against_3d_plasticity():
+    """The refined Stronge law against the 3D elastic–perfectly plastic indentation.
+
+    ccx 2.20 cannot run the plastic impact dynamically (validation/fe/README.md,
+    level 4), so the elastic–plastic case is checked on its contact law: the elastic
+    sphere pressed quasi-statically into a 235 MPa block to the impact's largest
+    indentation (the toolkit's modal refined-Stronge run) and unloaded.  The law is
+    stiffer than the 3D solid (force at α_max above FE), leaves a smaller dent and
+    dissipates more energy; the issue's 5 % / 0.05 goals concern the dynamic peak and
+    restitution, which this check does not give, so the measured differences are
+    asserted as bands (``INDENT_BANDS``: the observed value lies inside with a margin
+    of about the coarse–fine mesh difference), so that a change of the law that moves
+    it away from — or towards — 3D plasticity shows up here.
+    """
+    if not INDENT.exists():
+        pytest.skip("validation/fe/results/level4_plastic_indent.json not committed")
+    import level4_plastic_indent
+    data = json.loads(INDENT.read_text())
+    ref = data.get("fine", data.get("coarse"))
+    law = level4_plastic_indent.stronge_law()
+    alpha_max = ref["max_indentation_m"]
+    toolkit = {"force_at_max_N": float(law.loading_force(alpha_max)),
+               "permanent_indentation_m": float(law.permanent_indentation(alpha_max)),
+               "dissipated_energy_J": float(law.dissipated_energy(alpha_max))}
+    for key, (low, high) in INDENT_BANDS.items():
+        assert low <= toolkit[key] / ref[key] - 1 <= high, (key, toolkit[key], ref[key])
+    # the FE cycle went to the modal run's α_max: it must still be the impact's
+    modal = level4_plastic_indent.l4.toolkit_runs_cached("plastic")["modal_stronge"][0]
+    assert modal.max_indentation == pytest.approx(alpha_max, rel=0.02)
