@@ -379,9 +379,8 @@ TOOLKIT_COLUMNS = {"elastic": ("modal_hertz", "fd_hertz"),
 def fe_reference(runs, case):
     """(reference run, mesh-variant run or None, step-variant run or None) of ``case``.
 
-    The reference is the finest mesh at its smallest step; the variants differ from it
-    in the mesh only / the step only (if that run is missing, the pair that differs in
-    that one thing elsewhere is used, stated by :func:`convergence`).
+    The reference is the finest mesh at its smallest step; the variants are pairs of
+    runs differing in the mesh only / the step only (:func:`convergence`).
     """
     mine = [r for r in runs.values() if r["case"] == case and r["mesh"] != "smoke"
             and r.get("separated")]
@@ -393,12 +392,15 @@ def fe_reference(runs, case):
 
 
 def convergence(runs, ref, what):
-    """A pair of runs differing only in ``what`` (``"mesh"`` or ``"time_step_s"``):
-    the one with ``ref``'s other setting first, else any such pair; None if none."""
+    """(finer, coarser): two runs differing only in ``what`` (``"mesh"`` or
+    ``"time_step_s"``), at ``ref``'s other setting if there is such a pair, else any
+    such pair; None if none."""
     other = "time_step_s" if what == "mesh" else "mesh"
+    rank = ((lambda r: r["mesh"] != "fine") if what == "mesh"
+            else (lambda r: r["time_step_s"]))
     pairs = [(a, b) for a in runs for b in runs
-             if a is not b and a[other] == b[other] and a[what] != b[what]]
-    pairs.sort(key=lambda ab: (ab[0] is not ref, ab[0][other] != ref[other]))
+             if a[other] == b[other] and rank(a) < rank(b)]
+    pairs.sort(key=lambda ab: ab[0][other] != ref[other])
     return pairs[0] if pairs else None
 
 

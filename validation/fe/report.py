@@ -195,4 +195,12 @@ if __name__ == "__main__":
     if (ct.RESULTS / "level3_plate.json").exists():
         print("\n## Level 3, plate\n")
         print(plate_table())
+    if (ct.RESULTS / "level4_contact.json").exists():
+        import level4_contact
+        print("\n## Level 4\n")
+        level4_contact.main(["--report"])      # tables; figures/fe_level4_force_history.png
+    if (ct.RESULTS / "level4_plastic_indent.json").exists():
+        import level4_plastic_indent
+        print("\n## Level 4, plastic indentation\n")
+        level4_plastic_indent.main(["--table"])
     figures()
