@@ -120,11 +120,13 @@ def test_level4_elastic_first_contact(solver):
 
 
 INDENT = FE_DIR / "results" / "level4_plastic_indent.json"
-# refined Stronge law − FE (relative), quasi-static load–unload to the impact's α_max:
-# (measured on the finest committed mesh, allowed band) — see the test's docstring.
-INDENT_BANDS = {"force_at_max_N": (0.0, 0.10),
-                "permanent_indentation_m": (-0.15, 0.0),
-                "dissipated_energy_J": (0.0, 0.16)}
+# refined Stronge law / FE − 1, quasi-static load–unload to the impact's α_max, fine
+# mesh: measured +8.5 % / −9.3 % / +10.5 % (coarse − fine mesh: +2.4 % / −0.3 % / −0.9 %);
+# the bands hold the measured value with a margin of about twice the mesh difference
+# (at least 3 points) on each side.
+INDENT_BANDS = {"force_at_max_N": (0.035, 0.135),
+                "permanent_indentation_m": (-0.125, -0.06),
+                "dissipated_energy_J": (0.07, 0.14)}
 
 
 def test_level4_stronge_law_against_3d_plasticity():
@@ -137,9 +139,10 @@ def test_level4_stronge_law_against_3d_plasticity():
     stiffer than the 3D solid (force at α_max above FE), leaves a smaller dent and
     dissipates more energy; the issue's 5 % / 0.05 goals concern the dynamic peak and
     restitution, which this check does not give, so the measured differences are
-    asserted as bands (``INDENT_BANDS``: the observed value lies inside with a margin
-    of about the coarse–fine mesh difference), so that a change of the law that moves
-    it away from — or towards — 3D plasticity shows up here.
+    asserted as bands (``INDENT_BANDS``), so that a change of the law that moves it
+    away from — or towards — 3D plasticity shows up here.  Measured (fine mesh):
+    the law's force at α_max +8.5 %, its permanent indentation −9.3 %, its
+    dissipated energy +10.5 % against FE.
     """
     if not INDENT.exists():
         pytest.skip("validation/fe/results/level4_plastic_indent.json not committed")
