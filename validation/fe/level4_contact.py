@@ -463,8 +463,9 @@ def figure(data, path, indentation=None):
             hist = result.history
             ax.plot(hist["time_s"] * 1e6, hist["force_N"], "--", lw=1.0,
                     label=key.replace("_", " "))
-        ax.set(title=f"{case} target, 1 m/s", xlabel="time [µs]", ylabel="contact force [N]",
-               xlim=(0, 110))
+        has_fe = any(r["case"] == case for r in data.get("runs", {}).values())
+        ax.set(title=f"{case} target, 1 m/s" + ("" if has_fe else " (toolkit only, no FE run)"),
+               xlabel="time [µs]", ylabel="contact force [N]", xlim=(0, 110))
         ax.legend(fontsize=7)
     ax = axes[2]
     for mesh, run in sorted((indentation or {}).items()):
