@@ -48,7 +48,8 @@ Run (niced, single-threaded, in the background):
 ``OMP_NUM_THREADS=1 nohup nice -n 19 python validation/fe/level4_contact.py --case
 elastic --mesh coarse --step 2.8e-6 &``; each run adds its entry to
 ``results/level4_contact.json`` and writes ``results/level4_<case>_<mesh>_<step>.csv``
-(force history).  ``--smoke``: a very coarse mesh and a few increments (seconds),
+(force history); ``python validation/fe/report.py`` prints the README tables and draws
+``figures/fe_level4_force_history.png``.  ``--smoke``: a very coarse mesh and a few increments (seconds),
 written to ``--out-dir`` (a temporary directory by default).  ``--toolkit`` computes
 and stores the toolkit's side only (modal / FD values, histories and wall times).
 """
@@ -68,7 +69,6 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import ccx_tools as ct  # noqa: E402
-from ccx_tools import HERE  # noqa: E402
 import level2_static_hertz as l2  # noqa: E402
 
 import impactmaps  # noqa: E402
@@ -372,14 +372,6 @@ def toolkit_record(case):
     return {k: summary(*v) for k, v in toolkit_runs_cached(case).items()}
 
 
-QUANTITIES = (("peak force [N]", "peak_force_N", 1.0, "rel"),
-              ("first contact [µs]", "first_contact_s", 1e6, "rel"),
-              ("restitution", "restitution", 1.0, "abs"),
-              ("permanent indentation [µm]", "permanent_indentation_m", 1e6, "abs"))
-TOOLKIT_COLUMNS = {"elastic": ("modal_hertz", "fd_hertz"),
-                   "plastic": ("modal_stronge", "fd_stronge", "modal_yigit-christoforou")}
-
-
 def fe_reference(runs, case):
     """(reference run, mesh-variant run or None, step-variant run or None) of ``case``.
 
@@ -408,86 +400,6 @@ def convergence(runs, ref, what):
     return pairs[0] if pairs else None
 
 
-def _diff(a, b, kind):
-    return f"{100 * (a / b - 1):+.2f} %" if kind == "rel" else f"{a - b:+.3f}"
-
-
-def table(data):
-    """Markdown table: case, quantity, FE with its mesh/step differences, toolkit columns."""
-    rows = [("| case | quantity | FE (reference) | FE mesh Δ | FE step Δ | modal | diff | "
-             "FD | diff | modal YC | diff |"), "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for case in CASES:
-        ref, mesh_pair, step_pair = fe_reference(data.get("runs", {}), case)
-        if ref is None:
-            continue
-        tk = [data["toolkit"][case][k] for k in TOOLKIT_COLUMNS[case]]
-        for label, key, scale, kind in QUANTITIES:
-            cells = [f"{ref[key] * scale:.4g}"]
-            for pair in (mesh_pair, step_pair):
-                cells.append("—" if pair is None else _diff(pair[1][key] * scale,
-                                                            pair[0][key] * scale, kind))
-            for run in tk:
-                cells += [f"{run[key] * scale:.4g}", _diff(run[key] * scale, ref[key] * scale,
-                                                           kind)]
-            cells += ["", ""] * (3 - len(tk))
-            rows.append(f"| {case} | {label} | " + " | ".join(cells) + " |")
-    return "\n".join(rows)
-
-
-def toolkit_table(data, case):
-    """Markdown table of the toolkit's runs of ``case`` (no FE needed)."""
-    runs = data["toolkit"][case]
-    rows = ["| toolkit run | " + " | ".join(label for label, *_ in QUANTITIES)
-            + " | wall time [ms] |", "|---" * (len(QUANTITIES) + 2) + "|"]
-    for name, run in runs.items():
-        cells = [f"{run[key] * scale:.4g}" for _, key, scale, _ in QUANTITIES]
-        rows.append(f"| {name.replace('_', ' ')} | " + " | ".join(cells)
-                    + f" | {run['wall_time_s'] * 1e3:.2g} |")
-    return "\n".join(rows)
-
-
-def figure(data, path, indentation=None):
-    """Force histories (FE runs, modal and FD toolkit runs) of both cases and, if given,
-    the quasi-static indentation curves of ``level4_plastic_indent.json``."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
-    for ax, case in zip(axes, CASES):
-        for name, run in sorted(data.get("runs", {}).items()):
-            if run["case"] == case and run["mesh"] != "smoke":
-                h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
-                ax.plot(h[:, 0] * 1e6, h[:, 1], lw=1.2, label=f"FE {run['mesh']}, "
-                        f"Δt {run['time_step_s'] * 1e6:.2g} µs")
-        for key, (result, _) in toolkit_runs_cached(case).items():
-            hist = result.history
-            ax.plot(hist["time_s"] * 1e6, hist["force_N"], "--", lw=1.0,
-                    label=key.replace("_", " "))
-        has_fe = any(r["case"] == case for r in data.get("runs", {}).values())
-        ax.set(title=f"{case} target, 1 m/s" + ("" if has_fe else " (toolkit only, no FE run)"),
-               xlabel="time [µs]", ylabel="contact force [N]", xlim=(0, 110))
-        ax.legend(fontsize=7)
-    ax = axes[2]
-    for mesh, run in sorted((indentation or {}).items()):
-        h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
-        ax.plot(np.r_[0, h[:, 0]] * 1e6, np.r_[0, h[:, 1]], "o-", ms=3, lw=1.2,
-                label=f"FE quasi-static, {mesh} mesh")
-    if indentation:
-        law = impactmaps.law_for_sphere("stronge", sphere(), STEEL)
-        a_max = next(iter(indentation.values()))["max_indentation_m"]
-        alpha = np.linspace(0, a_max, 200)
-        ax.plot(alpha * 1e6, law.loading_force(alpha), "k--", lw=1, label="refined Stronge")
-        ax.plot(alpha * 1e6, law.force(alpha, a_max), "k--", lw=1)
-    ax.set(title="elastic sphere on elastic–plastic block (S_y 235 MPa)",
-           xlabel="approach of the sphere [µm]", ylabel="force [N]")
-    ax.legend(fontsize=7)
-    fig.suptitle("Level 4: steel sphere R 10 mm on the SS steel beam 500×20×20 mm — "
-                 "3D contact (CalculiX) vs toolkit", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-
-
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--case", choices=CASES, default="elastic")
@@ -500,20 +412,7 @@ def main(argv=None):
     p.add_argument("--toolkit", action="store_true",
                    help="only compute and store the toolkit's side")
     p.add_argument("--out-dir", type=Path, default=None)
-    p.add_argument("--report", action="store_true",
-                   help="print the README table, draw figures/fe_level4_force_history.png")
     a = p.parse_args(argv)
-    if a.report:
-        data = json.loads((ct.RESULTS / "level4_contact.json").read_text())
-        for run in data.get("runs", {}).values():     # re-derive with the current rules
-            run.update(quantities_from_csv(ct.RESULTS / run["csv"]))
-        (ct.RESULTS / "level4_contact.json").write_text(json.dumps(data, indent=1))
-        print(table(data))
-        print(toolkit_table(data, "plastic"))
-        indent = ct.RESULTS / "level4_plastic_indent.json"
-        figure(data, HERE.parents[1] / "figures" / "fe_level4_force_history.png",
-               json.loads(indent.read_text()) if indent.exists() else None)
-        return data
     os.environ["FE_THREADS"] = a.threads
     os.environ.setdefault("CCX_NPROC_EQUATION_SOLVER", a.threads)
     if a.smoke:
