@@ -29,7 +29,8 @@ dissipated in the cycle.
 
 Run: ``OMP_NUM_THREADS=1 nohup nice -n 19 python validation/fe/level4_plastic_indent.py
 --mesh coarse &`` (then ``--mesh fine``); each run adds its entry to
-``results/level4_plastic_indent.json`` and writes ``results/level4_indent_<mesh>.csv``.
+``results/level4_plastic_indent.json`` and writes ``results/level4_indent_<mesh>.csv``
+(``--load 20 --unload 20``: the increment check, key ``<mesh>_20x20``).
 """
 
 from __future__ import annotations
@@ -51,6 +52,7 @@ import level4_contact as l4  # noqa: E402
 BLOCK = 0.03                       # quarter block side [m] (level 2)
 FAR_SIZE = 0.005                   # block far size [m] (level 2)
 MESHES = {"coarse": 3.0, "fine": 4.5, "smoke": 1.0}     # a_ref / h0
+DEFAULT_INCREMENTS = 10            # load and unload increments (maximum size 1/10)
 
 
 def stronge_law():
@@ -86,6 +88,12 @@ def build_deck(mesh, faces, h0, delta_max, n_load, n_unload):
     return "*HEADING\nlevel 4 plastic indentation\n" + "".join(parts)
 
 
+def run_key(mesh_name, n_load, n_unload):
+    """Key of a run in the JSON: the mesh name, with the increments if not the default."""
+    default = (n_load, n_unload) == (DEFAULT_INCREMENTS, DEFAULT_INCREMENTS)
+    return mesh_name if default else f"{mesh_name}_{n_load}x{n_unload}"
+
+
 def run(mesh_name, n_load, n_unload, workdir, out_dir):
     """Mesh, run ccx, parse; returns the JSON record of this run."""
     law = stronge_law()
@@ -98,7 +106,7 @@ def run(mesh_name, n_load, n_unload, workdir, out_dir):
     faces = l2.contact_faces(mesh, tris, l4.SLAVE_ZONE * a_ref)
     mesh_time = time.perf_counter() - t0
     deck = build_deck(mesh, faces, h0, alpha_max, n_load, n_unload)
-    job = f"level4_indent_{mesh_name}"
+    job = f"level4_indent_{run_key(mesh_name, n_load, n_unload)}"
     dat, wall = ct.run_ccx(deck, job, workdir)
     text = dat.read_text()
     force = -4.0 * l2.parse_totals(text, "STOP")[:, 2]
@@ -140,19 +148,25 @@ ITEMS = (("force at α_max [N]", "force_at_max_N", 1.0),
 
 
 def table(data):
-    """Markdown rows: FE (finest mesh) with its mesh difference, refined Stronge, diff."""
+    """Markdown rows: FE (finest mesh) with its mesh and increment differences, refined
+    Stronge, difference."""
     meshes = [m for m in ("fine", "coarse") if m in data]
     if not meshes:
         return ""
     ref = data[meshes[0]]
     other = data[meshes[1]] if len(meshes) > 1 else None
+    halved = next((k for k in data if k.startswith(f"{meshes[-1]}_")), None)
     head = (f"| quantity (α_max = {ref['max_indentation_m'] * 1e6:.2f} µm) | FE ({meshes[0]} "
-            f"mesh) | FE mesh Δ ({meshes[-1]} − {meshes[0]}) | refined Stronge | Stronge − FE |")
-    rows = [head, "|---|---|---|---|---|"]
+            f"mesh) | FE mesh Δ ({meshes[-1]} − {meshes[0]}) | FE increments Δ "
+            f"({meshes[-1]}: 10 − {halved.split('_')[-1] if halved else '—'}) | "
+            "refined Stronge | Stronge − FE |")
+    rows = [head, "|---|---|---|---|---|---|"]
     for label, key, scale in ITEMS:
         fe, law = ref[key], ref["toolkit"][key]
         mesh = "—" if other is None else f"{100 * (other[key] / fe - 1):+.1f} %"
-        rows.append(f"| {label} | {fe * scale:.4g} | {mesh} | {law * scale:.4g} | "
+        inc = ("—" if halved is None
+               else f"{100 * (data[meshes[-1]][key] / data[halved][key] - 1):+.1f} %")
+        rows.append(f"| {label} | {fe * scale:.4g} | {mesh} | {inc} | {law * scale:.4g} | "
                     f"{100 * (law / fe - 1):+.1f} % |")
     return "\n".join(rows)
 
@@ -160,8 +174,9 @@ def table(data):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--mesh", choices=tuple(MESHES), default="coarse")
-    p.add_argument("--load", type=int, default=12, help="loading increments")
-    p.add_argument("--unload", type=int, default=12, help="unloading increments")
+    p.add_argument("--load", type=int, default=DEFAULT_INCREMENTS, help="loading increments")
+    p.add_argument("--unload", type=int, default=DEFAULT_INCREMENTS,
+                   help="unloading increments")
     p.add_argument("--threads", default="1", help="ccx threads (FE_THREADS)")
     p.add_argument("--out-dir", type=Path, default=None)
     p.add_argument("--table", action="store_true", help="print the README table")
@@ -179,7 +194,7 @@ def main(argv=None):
                   threads=a.threads)
     path = out_dir / "level4_plastic_indent.json"
     data = json.loads(path.read_text()) if path.exists() else {}
-    data[a.mesh] = record
+    data[run_key(a.mesh, a.load, a.unload)] = record
     path.write_text(json.dumps(data, indent=1))
     print(json.dumps(record, indent=1))
     return record
