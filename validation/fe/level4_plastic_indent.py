@@ -147,27 +147,36 @@ ITEMS = (("force at α_max [N]", "force_at_max_N", 1.0),
          ("energy dissipated in the cycle [mJ]", "dissipated_energy_J", 1e3))
 
 
+def reference(data):
+    """(reference key, mesh-variant key or None, increment-variant key or None): the
+    reference is the fine mesh with the most increments committed."""
+    keys = [k for k in ("fine_20x20", "fine", "coarse_20x20", "coarse") if k in data]
+    if not keys:
+        return None, None, None
+    ref = keys[0]
+    mesh = ref.replace("fine", "coarse") if "fine" in ref else None
+    inc = ref.split("_")[0] if "_" in ref else f"{ref}_20x20"
+    return ref, mesh if mesh in data else None, inc if inc in data else None
+
+
 def table(data):
-    """Markdown rows: FE (finest mesh) with its mesh and increment differences, refined
+    """Markdown rows: FE reference with its mesh and increment differences, refined
     Stronge, difference."""
-    meshes = [m for m in ("fine", "coarse") if m in data]
-    if not meshes:
+    ref_key, mesh_key, inc_key = reference(data)
+    if ref_key is None:
         return ""
-    ref = data[meshes[0]]
-    other = data[meshes[1]] if len(meshes) > 1 else None
-    halved = next((k for k in data if k.startswith(f"{meshes[-1]}_")), None)
-    head = (f"| quantity (α_max = {ref['max_indentation_m'] * 1e6:.2f} µm) | FE ({meshes[0]} "
-            f"mesh) | FE mesh Δ ({meshes[-1]} − {meshes[0]}) | FE increments Δ "
-            f"({meshes[-1]}: 10 − {halved.split('_')[-1] if halved else '—'}) | "
+    ref = data[ref_key]
+    head = (f"| quantity (α_max = {ref['max_indentation_m'] * 1e6:.2f} µm) | FE ({ref_key}) | "
+            f"FE mesh Δ (coarse − fine) | FE increments Δ (10 + 10 − 20 + 20) | "
             "refined Stronge | Stronge − FE |")
     rows = [head, "|---|---|---|---|---|---|"]
     for label, key, scale in ITEMS:
         fe, law = ref[key], ref["toolkit"][key]
-        mesh = "—" if other is None else f"{100 * (other[key] / fe - 1):+.1f} %"
-        inc = ("—" if halved is None
-               else f"{100 * (data[meshes[-1]][key] / data[halved][key] - 1):+.1f} %")
-        rows.append(f"| {label} | {fe * scale:.4g} | {mesh} | {inc} | {law * scale:.4g} | "
-                    f"{100 * (law / fe - 1):+.1f} % |")
+        inc_pair = (inc_key, ref_key) if "_" in ref_key else (ref_key, inc_key)   # 10 vs 20
+        cells = ["—" if other is None else f"{100 * (data[a][key] / data[b][key] - 1):+.1f} %"
+                 for other, (a, b) in ((mesh_key, (mesh_key, ref_key)), (inc_key, inc_pair))]
+        rows.append(f"| {label} | {fe * scale:.4g} | {cells[0]} | {cells[1]} | "
+                    f"{law * scale:.4g} | {100 * (law / fe - 1):+.1f} % |")
     return "\n".join(rows)
 
 
