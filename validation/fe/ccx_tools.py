@@ -248,3 +248,88 @@ def have_fe_tools() -> tuple[bool, str]:
     except ImportError:
         return False, "Python module `gmsh` missing (pip install -e '.[fe]')"
     return True, ""
+
+
+def write_mesh_parts(f, mesh: Mesh, parts):
+    """Write *NODE and, per part, *ELEMENT, *MATERIAL and *SOLID SECTION blocks.
+
+    ``parts``: sequence of (elset name, boolean mask over ``mesh.elements``, material
+    name, material text) — the material text is the ccx cards that follow
+    ``*MATERIAL, NAME=...`` (e.g. from :func:`material_cards`).  Element ids stay those
+    of ``mesh.elements`` (1-based rows), so surfaces from :func:`tet_faces_on` hold.
+    """
+    f.write("*NODE, NSET=NALL\n")
+    for i, (x, y, z) in enumerate(mesh.coords, start=1):
+        f.write(f"{i},{x:.10e},{y:.10e},{z:.10e}\n")
+    for elset, mask, name, cards in parts:
+        f.write(f"*ELEMENT, TYPE={mesh.element_type}, ELSET={elset}\n")
+        for i in np.flatnonzero(mask):
+            ids = [str(i + 1)] + [str(v) for v in mesh.elements[i]]
+            lines = [ids[j:j + 16] for j in range(0, len(ids), 16)]
+            f.write(",\n".join(",".join(chunk) for chunk in lines) + "\n")
+    for elset, _mask, name, cards in parts:
+        f.write(f"*MATERIAL, NAME={name}\n{cards}")
+        f.write(f"*SOLID SECTION, ELSET={elset}, MATERIAL={name}\n")
+
+
+def material_cards(material, yield_strength=None) -> str:
+    """*ELASTIC and *DENSITY cards of ``material``, plus an elastic–perfectly plastic
+    *PLASTIC card (von Mises, no hardening) when ``yield_strength`` [Pa] is given."""
+    cards = (f"*ELASTIC\n{material.youngs_modulus:.6e},{material.poisson_ratio}\n"
+             f"*DENSITY\n{material.density}\n")
+    if yield_strength is not None:
+        cards += f"*PLASTIC\n{yield_strength:.6e},0.0\n"
+    return cards
+
+
+def tet10_mass_weights(mesh: Mesh, mask, density, order: int = 4) -> np.ndarray:
+    """Row sums s_j = ∫ ρ N_j dV [kg] of the consistent mass matrix of the C3D10
+    elements in ``mask`` (isoparametric, curved mid-side nodes included).
+
+    Σ_j s_j u_j = 1ᵀ M u is the body's mass times its centre-of-mass displacement,
+    exactly.  (For a straight-sided tetrahedron of mass m_e the sums are −m_e/20 at
+    the corners and m_e/5 at the mid-side nodes.)  Integrated with a collapsed
+    Gauss–Legendre rule of ``order``³ points.  Returns an array over all mesh nodes
+    (0 off the selected elements).
+    """
+    g, gw = np.polynomial.legendre.leggauss(order)
+    g, gw = 0.5 * (g + 1.0), 0.5 * gw
+    u, v, w = (a.ravel() for a in np.meshgrid(g, g, g, indexing="ij"))
+    wu, wv, ww = (a.ravel() for a in np.meshgrid(gw, gw, gw, indexing="ij"))
+    l1, l2, l3 = u, v * (1 - u), w * (1 - u) * (1 - v)
+    weight = wu * wv * ww * (1 - u) ** 2 * (1 - v)         # sums to 1/6
+    lam = np.stack([1 - l1 - l2 - l3, l1, l2, l3])         # (4, q)
+    edges = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
+    shape = np.concatenate([lam * (2 * lam - 1),
+                            np.stack([4 * lam[a] * lam[b] for a, b in edges])])   # (10, q)
+    dlam = np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    dshape = np.concatenate(
+        [(4 * lam - 1)[:, :, None] * dlam[:, None, :],
+         np.stack([4 * (lam[a][:, None] * dlam[b] + lam[b][:, None] * dlam[a])
+                   for a, b in edges])])                   # (10, q, 3)
+    elements = mesh.elements[np.asarray(mask)] - 1
+    xyz = mesh.coords[elements]                            # (e, 10, 3)
+    jac = np.einsum("ekx,kqd->eqxd", xyz, dshape)          # (e, q, 3, 3)
+    dv = np.abs(np.linalg.det(jac)) * weight               # (e, q)
+    rows = density * np.einsum("kq,eq->ek", shape, dv)     # (e, 10)
+    weights = np.zeros(len(mesh.coords))
+    np.add.at(weights, elements, rows)
+    return weights
+
+
+def write_quarter_contact(f, mesh: Mesh, faces, slope, tol=1e-9):
+    """Symmetry sets and the sphere–target contact of the quarter models (levels 2, 4).
+
+    Writes the node sets ``XSYM`` (x = 0) and ``YSYM`` (y = 0), the element surfaces
+    ``SSPH`` (``faces["slave"]``) and ``STGT`` (``faces["master"]``), and a frictionless
+    ``*CONTACT PAIR, TYPE=SURFACE TO SURFACE`` with a linear penalty of ``slope``
+    [Pa/m].  The caller writes ``*BOUNDARY`` (``XSYM,1,1`` / ``YSYM,2,2``).
+    """
+    x, y, _ = mesh.coords.T
+    write_nset(f, "XSYM", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
+    write_nset(f, "YSYM", mesh.nodes_where(np.isclose(y, 0, atol=tol)))
+    write_element_surface(f, "SSPH", faces["slave"])
+    write_element_surface(f, "STGT", faces["master"])
+    f.write("*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nSSPH,STGT\n"
+            "*SURFACE INTERACTION, NAME=SI1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+            f"{slope:.6e}\n")

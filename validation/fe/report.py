@@ -179,6 +179,118 @@ def figures():
     fig.savefig(FIGURES / "fe_modes_beam.png", dpi=130)
 
 
+# -- level 4 (full contact dynamics; quasi-static plastic indentation) ----------------
+import level4_contact as l4  # noqa: E402
+import level4_plastic_indent  # noqa: E402
+
+L4_QUANTITIES = (("peak force [N]", "peak_force_N", 1.0, "rel"),
+              ("first contact [µs]", "first_contact_s", 1e6, "rel"),
+              ("restitution", "restitution", 1.0, "abs"),
+              ("permanent indentation [µm]", "permanent_indentation_m", 1e6, "abs"))
+L4_TOOLKIT_COLUMNS = {"elastic": ("modal_hertz", "fd_hertz"),
+                   "plastic": ("modal_stronge", "fd_stronge", "modal_yigit-christoforou")}
+
+
+def _l4_diff(a, b, kind):
+    return f"{100 * (a / b - 1):+.2f} %" if kind == "rel" else f"{a - b:+.3f}"
+
+
+def level4_table(data):
+    """Markdown table: case, quantity, FE with its mesh/step differences, toolkit columns."""
+    rows = [("| case | quantity | FE (reference) | FE mesh Δ | FE step Δ | modal | diff | "
+             "FD | diff | modal YC | diff |"), "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for case in l4.CASES:
+        ref, mesh_pair, step_pair = l4.fe_reference(data.get("runs", {}), case)
+        if ref is None:
+            continue
+        tk = [data["toolkit"][case][k] for k in L4_TOOLKIT_COLUMNS[case]]
+        for label, key, scale, kind in L4_QUANTITIES:
+            cells = [f"{ref[key] * scale:.4g}"]
+            for pair in (mesh_pair, step_pair):
+                cells.append("—" if pair is None else _l4_diff(pair[1][key] * scale,
+                                                            pair[0][key] * scale, kind))
+            for run in tk:
+                cells += [f"{run[key] * scale:.4g}", _l4_diff(run[key] * scale, ref[key] * scale,
+                                                           kind)]
+            cells += ["", ""] * (3 - len(tk))
+            rows.append(f"| {case} | {label} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
+def level4_toolkit_table(data, case):
+    """Markdown table of the toolkit's runs of ``case`` (no FE needed)."""
+    runs = data["toolkit"][case]
+    rows = ["| toolkit run | " + " | ".join(label for label, *_ in L4_QUANTITIES)
+            + " | wall time [ms] |", "|---" * (len(L4_QUANTITIES) + 2) + "|"]
+    for name, run in runs.items():
+        cells = [f"{run[key] * scale:.4g}" for _, key, scale, _ in L4_QUANTITIES]
+        rows.append(f"| {name.replace('_', ' ')} | " + " | ".join(cells)
+                    + f" | {run['wall_time_s'] * 1e3:.2g} |")
+    return "\n".join(rows)
+
+
+def level4_figure(data, path, indentation=None):
+    """Force histories (FE runs, modal and FD toolkit runs) of both cases and, if given,
+    the quasi-static indentation curves of ``level4_plastic_indent.json``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    for ax, case in zip(axes, l4.CASES):
+        for name, run in sorted(data.get("runs", {}).items()):
+            if run["case"] == case and run["mesh"] != "smoke":
+                h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
+                ax.plot(h[:, 0] * 1e6, h[:, 1], lw=1.2, label=f"FE {run['mesh']}, "
+                        f"Δt {run['time_step_s'] * 1e6:.2g} µs")
+        for key, (result, _) in l4.toolkit_runs_cached(case).items():
+            hist = result.history
+            ax.plot(hist["time_s"] * 1e6, hist["force_N"], "--", lw=1.0,
+                    label=key.replace("_", " "))
+        has_fe = any(r["case"] == case for r in data.get("runs", {}).values())
+        ax.set(title=f"{case} target, 1 m/s" + ("" if has_fe else " (toolkit only, no FE run)"),
+               xlabel="time [µs]", ylabel="contact force [N]", xlim=(0, 110))
+        ax.legend(fontsize=7)
+    ax = axes[2]
+    for mesh, run in sorted((indentation or {}).items()):
+        h = np.loadtxt(ct.RESULTS / run["csv"], delimiter=",", skiprows=1)
+        ax.plot(np.r_[0, h[:, 0]] * 1e6, np.r_[0, h[:, 1]], "o-", ms=3, lw=1.2,
+                label=f"FE quasi-static, {mesh} mesh")
+    if indentation:
+        law = l4.impactmaps.law_for_sphere("stronge", l4.sphere(), l4.STEEL)
+        a_max = next(iter(indentation.values()))["max_indentation_m"]
+        alpha = np.linspace(0, a_max, 200)
+        ax.plot(alpha * 1e6, law.loading_force(alpha), "k--", lw=1, label="refined Stronge")
+        ax.plot(alpha * 1e6, law.force(alpha, a_max), "k--", lw=1)
+    ax.set(title="elastic sphere on elastic–plastic block (S_y 235 MPa)",
+           xlabel="approach of the sphere [µm]", ylabel="force [N]")
+    ax.legend(fontsize=7)
+    fig.suptitle("Level 4: steel sphere R 10 mm on the SS steel beam 500×20×20 mm — "
+                 "3D contact (CalculiX) vs toolkit", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def level4(figure_path=None):
+    """Print the level-4 tables; re-derive the FE quantities from the committed CSVs with
+    the current rules (``level4_contact.quantities_from_csv``) and store them; draw
+    ``figures/fe_level4_force_history.png``."""
+    path = ct.RESULTS / "level4_contact.json"
+    data = json.loads(path.read_text())
+    for run in data.get("runs", {}).values():
+        run.update(l4.quantities_from_csv(ct.RESULTS / run["csv"]))
+    path.write_text(json.dumps(data, indent=1))
+    print(level4_table(data))
+    print()
+    print(level4_toolkit_table(data, "plastic"))
+    indent = ct.RESULTS / "level4_plastic_indent.json"
+    indentation = json.loads(indent.read_text()) if indent.exists() else None
+    if indentation:
+        print()
+        print(level4_plastic_indent.table(indentation))
+    level4_figure(data, figure_path or FIGURES / "fe_level4_force_history.png", indentation)
+
+
 if __name__ == "__main__":
     print("## Level 1\n")
     print(level1_tables())
@@ -195,4 +307,7 @@ if __name__ == "__main__":
     if (ct.RESULTS / "level3_plate.json").exists():
         print("\n## Level 3, plate\n")
         print(plate_table())
+    if (ct.RESULTS / "level4_contact.json").exists():
+        print("\n## Level 4\n")
+        level4()
     figures()
