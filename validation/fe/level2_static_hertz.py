@@ -174,8 +174,6 @@ def build_deck(case, mesh, faces, h0, times, delta, block_side, preload=0.0):
         write = staticmethod(parts.append)
     w = parts.append
     ct.write_mesh(F, mesh, STEEL)
-    ct.write_nset(F, "XSYM", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
-    ct.write_nset(F, "YSYM", mesh.nodes_where(np.isclose(y, 0, atol=tol)))
     ct.write_nset(F, "STOP", mesh.nodes_where(np.isclose(z, RADIUS - preload, atol=tol)))
     target = np.zeros(len(z), dtype=bool)
     corners = mesh.elements[:, :4] - 1
@@ -187,12 +185,7 @@ def build_deck(case, mesh, faces, h0, times, delta, block_side, preload=0.0):
                                                                 atol=tol)))
     else:
         ct.write_nset(F, "SUPPORT", mesh.nodes_where(np.isclose(z, -block_side, atol=tol)))
-    ct.write_element_surface(F, "SSPH", faces["slave"])
-    ct.write_element_surface(F, "STGT", faces["master"])
-    slope = PENALTY * STEEL.youngs_modulus / h0
-    w("*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nSSPH,STGT\n"
-      "*SURFACE INTERACTION, NAME=SI1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-      f"{slope:.6e}\n")
+    ct.write_quarter_contact(F, mesh, faces, PENALTY * STEEL.youngs_modulus / h0)
     w("*AMPLITUDE, NAME=RAMP\n0.,0.\n")
     for t, d in zip(times, delta):
         w(f"{t:.10f},{d / delta[-1]:.12e}\n")
