@@ -22,6 +22,12 @@ Checks (each sentence starts with its tag):
 ``plate deflection``
     Plate deflection above half the thickness: membrane stretching (large deflection)
     stiffens the plate, which linear plate theory ignores.
+``structural theory``
+    A Timoshenko beam or Mindlin plate struck at a contact frequency ω = π/t_c (t_c the
+    first contact's duration) above a quarter of its thickness-shear cut-off
+    (:func:`impactmaps.solvers.shear_range.beyond_shear_theory`): the impact excites
+    waves as short as the thickness, which those theories do not describe (the maps mark
+    such points ``unresolved``).
 ``reflections``
     An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
     is exact only until flexural waves reflected from the nearest edge return. Their
@@ -103,7 +109,7 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
     """
     checks = (_pressure(sphere, target_material, law, result), _indentation(sphere, result),
               _speed(target_material, result), _deflection(target, result),
-              _reflections(target, result))
+              _structural_theory(target, result), _reflections(target, result))
     return [message for message in checks if message]
 
 
@@ -190,6 +196,25 @@ def _contact_time(result):
         intervals = np.asarray(result.contact_intervals, dtype=float)
         value = float(intervals[-1, 1] - intervals[0, 0]) if intervals.size else 0.0
     return float(value)
+
+
+def _structural_theory(target, result):
+    from .solvers.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
+
+    intervals = np.asarray(getattr(result, "contact_intervals", np.empty((0, 2))), dtype=float).reshape(-1, 2)
+    if target is None or intervals.size == 0 or not np.all(np.isfinite(intervals[0])):
+        return None
+    first = float(intervals[0, 1] - intervals[0, 0])
+    if first <= 0.0:
+        return None
+    frequency = math.pi / first
+    if not beyond_shear_theory(target, frequency):
+        return None
+    cutoff = thickness_shear_frequency(target)
+    return (f"structural theory: the first contact ({first:.4g} s) excites {frequency:.4g} rad/s, above "
+            f"{SHEAR_VALIDITY_FRACTION:g} × the thickness-shear cut-off {cutoff:.4g} rad/s of this "
+            f"{target.theory} {target.structure}: waves as short as the thickness, which the theory does "
+            "not describe")
 
 
 def _reflections(target, result):

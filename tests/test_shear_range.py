@@ -84,3 +84,27 @@ def test_map_points_beyond_the_theory_are_unresolved(name):
     assert np.isfinite(beyond["reflection_time_normalised"])
     assert STATUSES[inside["status"]] in ("converged", "refined", "sensitive")
     assert 0.0 < inside["fmax_normalised"] <= 1.0
+
+
+def test_validity_warns_when_the_contact_passes_the_shear_theory():
+    """A light steel ball on a thick Mindlin plate: a contact of a few microseconds excites
+    waves shorter than the thickness — the validity check says so; a heavy slow ball on the
+    same plate does not trigger it."""
+    import warnings
+
+    from impactmaps.contact import Sphere, law_for_sphere
+    from impactmaps.solvers.modal import simulate
+    from impactmaps.validity import validity_warnings
+
+    plate = Plate.isotropic(0.2, 0.2, 0.02, STEEL, theory="mindlin")
+    messages = {}
+    for radius, velocity in ((0.001, 1.0), (0.02, 0.5)):
+        sphere = Sphere(radius, STEEL)
+        law = law_for_sphere("hertz", sphere, STEEL)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = simulate(plate, law, sphere.mass, velocity, record=False)
+        messages[radius] = [m for m in validity_warnings(sphere, STEEL, law, plate, result)
+                            if m.startswith("structural theory")]
+    assert messages[0.001] and "thickness-shear cut-off" in messages[0.001][0]
+    assert not messages[0.02]
