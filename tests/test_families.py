@@ -39,7 +39,7 @@ def test_a_member_slenderness_reads_that_member_exactly(structure, theory, law):
 def test_leave_one_out_error_is_finite_where_the_members_have_values(structure, theory, law):
     _, _, errors = slenderness_error_grid(structure, theory, law)
     s20 = np.isfinite(lookup(1.0, 1.0, structure=structure, theory=theory, law=law).fmax_normalised)
-    assert s20 and np.isfinite(errors).mean() > 0.8
+    assert s20 and np.isfinite(errors).sum() >= 1500  # where every member has a value
     assert np.nanmax(errors) < 0.2
 
 
