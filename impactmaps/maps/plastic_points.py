@@ -57,6 +57,7 @@ import numpy as np
 import xarray as xr
 
 from .._checks import require_choice, require_positive
+from ..contact.hertz import hertz_stiffness
 from ..contact.stronge import StrongeContact
 from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
 from ..dimensionless import realise
@@ -135,7 +136,7 @@ def _hertz_and_yield(law) -> tuple[float, float]:
     if isinstance(law, YigitChristoforouContact):
         return float(law.hertz_stiffness), float(law.yield_indentation)
     modulus, radius = float(law.effective_modulus), float(law.radius)
-    return (4.0 / 3.0 * modulus * math.sqrt(radius),
+    return (float(hertz_stiffness(modulus, radius)),
             float(yield_indentation(float(law.yield_strength), radius, modulus)))
 
 
