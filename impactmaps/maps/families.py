@@ -27,6 +27,7 @@ import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
+from .lookup import _SEVERITY, load_shipped_map, lookup
 from .structures import FAMILY_SLENDERNESSES
 
 __all__ = ["FAMILY_THEORIES", "family_members", "lookup_slenderness", "slenderness_error_grid"]
@@ -55,8 +56,6 @@ def family_members(structure: str, theory: str, law: str = "linear") -> tuple[tu
 
 
 def _member_lookup(zeta, lam, structure: str, theory: str, slenderness: float | None, law: str):
-    from .lookup import lookup
-
     if slenderness is None:
         return lookup(zeta, lam, structure=structure, theory=FAMILY_THEORIES[(structure, theory)], law=law)
     return lookup(zeta, lam, structure=structure, theory=theory, law=law, slenderness=slenderness)
@@ -64,8 +63,6 @@ def _member_lookup(zeta, lam, structure: str, theory: str, slenderness: float | 
 
 def _member_values(structure: str, theory: str, slenderness: float | None, law: str):
     """(log λ grid, log ζ grid, F̄max values) of one member map."""
-    from .lookup import load_shipped_map
-
     if slenderness is None:
         dataset = load_shipped_map(structure, FAMILY_THEORIES[(structure, theory)], law)
     else:
@@ -159,8 +156,7 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
         raise ValueError(f"slenderness = {slenderness:g} at (loss_factor, relative_stiffness) = "
                          f"({loss_factor:g}, {relative_stiffness:g}): a family member holds no value next to it "
                          "(unresolved); run a simulation instead")
-    severity = ("converged", "asymptotic", "refined", "sensitive")
-    status = max(low.status, high.status, key=lambda s: severity.index(s) if s in severity else len(severity))
+    status = max(low.status, high.status, key=_SEVERITY.__getitem__)  # the worse member status
     name = f"{low.map_name} ×{1.0 - weight:.3g} + {high.map_name} ×{weight:.3g} (1/s)"
     return replace(low, fmax_normalised=float(fmax), fmax_error=float(max(low.fmax_error, high.fmax_error)
                                                                         + slender_error),

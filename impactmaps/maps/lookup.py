@@ -17,7 +17,7 @@ a linear one, nor the reverse. The shear-deformable maps also ship at other slen
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 
 import numpy as np
@@ -28,7 +28,7 @@ from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
-from .structures import FAMILY_SLENDERNESSES
+from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
@@ -132,7 +132,7 @@ def shipped_structure_name(structure: str, theory: str, slenderness: float | Non
     if slenderness is None or theory not in ("timoshenko", "mindlin") or slenderness == SHIPPED_SLENDERNESS:
         return name
     require_choice("slenderness", float(slenderness), FAMILY_SLENDERNESSES)
-    return name.replace(f"-s{SHIPPED_SLENDERNESS:g}", f"-s{float(slenderness):g}")
+    return replace(structure_from_name(name), slenderness=float(slenderness)).name
 
 
 @functools.lru_cache(maxsize=32)
