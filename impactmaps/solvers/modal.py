@@ -397,19 +397,20 @@ def simulate(
     params = np.array(law.kernel_parameters, dtype=float, order="C")
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
+    radius_of = None
+    if _uses_patch(target, settings.contact_patch):
+        radius_of = contact_radius_function(law, effective_radius)
     plan = None
-    if isinstance(target, Target):
+    if isinstance(target, Target):  # the budget of the cut-off the run will use
+        ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
         contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
-        plan = plan_basis(target, law, impactor_mass, velocity, float(settings.cutoff_ratio * contact_frequency))
+        plan = plan_basis(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
         if plan.method == METHODS[2]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
             return asymptote_result(plan, target, law, impactor_mass, velocity, record,
                                     _settings_dict(settings))
         if plan.method == METHODS[1]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
-    radius_of = None
-    if _uses_patch(target, settings.contact_patch):
-        radius_of = contact_radius_function(law, effective_radius)
     if radius_of is None:
         result = _run(target, law, params, impactor_mass, velocity, settings, record, time_step)
     else:
