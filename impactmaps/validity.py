@@ -28,6 +28,13 @@ Checks (each sentence starts with its tag):
     (:func:`impactmaps.solvers.shear_range.beyond_shear_theory`): the impact excites
     waves as short as the thickness, which those theories do not describe (the maps mark
     such points ``unresolved``).
+``point load``
+    A Mindlin plate loaded at a point (a linear law, a Hertz law given by its stiffness
+    alone, or ``contact_patch="point"``): its point-load deflection diverges
+    logarithmically, so the peak force falls with every doubling of the mode cut-off
+    (0.1–1 %) and has no converged value — the number depends on the cut-off. A contact
+    law with a geometry (a sphere's Hertz or plastic law) is spread over the contact patch
+    and converges (``docs/contact_patch.rst``).
 ``reflections``
     An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
     is exact only until flexural waves reflected from the nearest edge return. Their
@@ -109,7 +116,7 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
     """
     checks = (_pressure(sphere, target_material, law, result), _indentation(sphere, result),
               _speed(target_material, result), _deflection(target, result),
-              _structural_theory(target, result), _reflections(target, result))
+              _structural_theory(target, result), _point_load(target, result), _reflections(target, result))
     return [message for message in checks if message]
 
 
@@ -215,6 +222,17 @@ def _structural_theory(target, result):
             f"{SHEAR_VALIDITY_FRACTION:g} × the thickness-shear cut-off {cutoff:.4g} rad/s of this "
             f"{target.theory} {target.structure}: waves as short as the thickness, which the theory does "
             "not describe")
+
+
+def _point_load(target, result):
+    if getattr(target, "theory", None) != "mindlin" or not str(getattr(result, "method", "")).startswith("modal"):
+        return None
+    if (getattr(result, "settings", None) or {}).get("contact_radius_m"):
+        return None  # spread over the contact patch
+    return ("point load: a Mindlin plate struck at a point has a logarithmically divergent point-load "
+            "deflection, so this peak force falls with every doubling of the mode cut-off (0.1-1 %) and has "
+            "no converged value; a contact law with a geometry (the sphere's Hertz law) spreads the force over "
+            "the contact patch and converges")
 
 
 def _reflections(target, result):

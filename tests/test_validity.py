@@ -94,3 +94,27 @@ def test_reflections_check_for_infinite_structure_asymptotes():
     from impactmaps.law_asymptotes import infinite_beam_impact_any_law
     run = infinite_beam_impact_any_law(beam, law, 0.5, 0.1)
     assert "reflections" in _tags(validity_warnings(SPHERE, RUBBERY, law, beam, run))
+
+
+def test_point_load_on_a_mindlin_plate_is_said():
+    """A Mindlin plate struck at a point has no converged peak force (its point-load
+    deflection diverges): a linear law, or contact_patch="point", is warned about; the
+    sphere's Hertz law, spread over the contact patch by default, and a Kirchhoff plate are not."""
+    from dataclasses import replace
+
+    from impactmaps.contact import LinearContact
+    from impactmaps.solvers.modal import ModalSettings, simulate
+
+    mindlin = im.Plate.isotropic(0.3, 0.3, 0.015, STEEL, theory="mindlin")
+    hertz = law_for_sphere("hertz", SPHERE, STEEL)
+
+    def point_load_messages(plate, law, settings=ModalSettings()):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = simulate(plate, law, SPHERE.mass, 0.5, settings=settings, record=False)
+        return [m for m in validity_warnings(SPHERE, STEEL, law, plate, result) if m.startswith("point load")]
+
+    assert point_load_messages(mindlin, LinearContact(3e7))
+    assert point_load_messages(mindlin, hertz, replace(ModalSettings(), contact_patch="point"))
+    assert not point_load_messages(mindlin, hertz)
+    assert not point_load_messages(PLATE, LinearContact(3e7))
