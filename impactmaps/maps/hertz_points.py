@@ -30,7 +30,8 @@ from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, controlled_point, exact_point
 from .structures import BasisTable, MapStructure
 
-__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_summary", "solve_hertz_points"]
+__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_contact_frequency",
+           "hertz_summary", "solve_hertz_points"]
 
 #: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).
 HERTZ_TIME_KEYS = ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised")
@@ -91,6 +92,12 @@ class _HertzScaled:
     def normalised_summary(self) -> dict:
         """The map scalars of the run, forces over F_hs and times over t*."""
         return hertz_summary(self.result, self.numbers)
+
+
+def hertz_contact_frequency(target, zeta_h: float, lambda_h: float) -> float:
+    """Contact frequency ω [rad/s] of the impact realising (ζ_h, λ_h) on ``target`` at 1 m/s
+    (the frequency the cut-off of its map point is a multiple of)."""
+    return _Realised(target, float(zeta_h), float(lambda_h)).omega
 
 
 def hertz_summary(result, numbers) -> dict:

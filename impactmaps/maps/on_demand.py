@@ -33,7 +33,7 @@ _DIGITS = 12
 #: The slenderness given to a structure whose theory does not depend on it (Euler,
 #: Kirchhoff under a point load): the shipped maps' value.
 _ANY_SLENDERNESS = 20.0
-#: The Poisson ratio given to a structure whose response does not depend on it.
+#: The Poisson ratio given to a beam whose response does not depend on it (Euler).
 _ANY_POISSON = 0.3
 
 
@@ -83,11 +83,11 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
                   "impact_fraction": tuple(_rounded(x / length) for x, length in
                                            zip(target.impact_point, (target.length_x, target.length_y))),
                   "slenderness": _rounded(side / target.thickness) if target.theory == "mindlin" or patch
-                  else _ANY_SLENDERNESS,
-                  "poisson_ratio": _rounded(target.D12 / target.D11)
-                  if target.theory == "mindlin" or target.edges != "SSSS" else _ANY_POISSON}
+                  else _ANY_SLENDERNESS}
+        if target.theory == "mindlin" or target.edges != "SSSS":  # the Navier SSSS Kirchhoff plate has no ν
+            fields["poisson_ratio"] = _rounded(target.D12 / target.D11)
     structure = MapStructure(kind=case.target_type, theory=target.theory, **fields)
-    _check_describes(structure, target)
+    _check_describes(structure, target, "poisson_ratio" in fields)
     number = None
     if patch:
         from ..hertz_similarity import patch_number
@@ -96,12 +96,13 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     return structure, number
 
 
-def _check_describes(structure: MapStructure, target) -> None:
-    """``ValueError`` naming the first dimensionless group in which ``structure`` differs from ``target``."""
+def _check_describes(structure: MapStructure, target, poisson: bool) -> None:
+    """``ValueError`` naming the first dimensionless group in which ``structure`` differs from
+    ``target`` (for a plate also D12/D11 if ``poisson``: its response depends on ν)."""
     reference = structure.build()
 
     def groups(of):
-        extra = {"D12/D11": of.D12 / of.D11} if of.structure == "plate" else {}
+        extra = {"D12/D11": of.D12 / of.D11} if of.structure == "plate" and poisson else {}
         return _family_groups(of) | extra
 
     wanted = groups(reference)
