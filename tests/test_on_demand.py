@@ -39,7 +39,9 @@ def _random_case(rng, kind: str):
     0.3–5 m/s) with a linear (K_y) or Hertz law on
 
     * ``clamped-beam``: a clamped-clamped, clamped-simply supported or cantilever beam
-      (Euler, or Timoshenko of slenderness 10–40), struck anywhere in its middle 60 %;
+      (Euler, or one in four Timoshenko of slenderness 10–40: the first tile of a clamped
+      Timoshenko beam takes minutes, the sweep counting its finite-element modes for its
+      mode cap), struck anywhere in its middle 60 %;
     * ``off-centre``: an SS Euler beam or an SSSS square Kirchhoff plate struck off-centre;
     * ``rectangular``: an SSSS Kirchhoff plate of aspect ratio 0.4–2.5, struck anywhere;
     * ``thick-mindlin``: an SSSS Mindlin plate of slenderness 5–9 (below the families);
@@ -53,7 +55,7 @@ def _random_case(rng, kind: str):
     law = str(rng.choice(["linear", "hertz"])) if kind != "mindlin-hertz" else "hertz"
     if kind in ("clamped-beam", "off-centre") and (kind == "clamped-beam" or uniform(0, 1) < 0.5):
         length, width = uniform(0.2, 1.0), uniform(0.01, 0.05)
-        theory = "timoshenko" if kind == "clamped-beam" and uniform(0, 1) < 0.5 else "euler"
+        theory = "timoshenko" if kind == "clamped-beam" and uniform(0, 1) < 0.25 else "euler"
         height = length / uniform(10, 40) if theory == "timoshenko" else uniform(0.005, 0.03)
         supports = str(rng.choice(["cc", "cs", "cf"])) if kind == "clamped-beam" else "ss"
         position = length * uniform(0.2, 0.8) if kind == "clamped-beam" else length * uniform(0.1, 0.4)

@@ -144,24 +144,22 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         structure, patch = case_structure(case, law)
     except ValueError as error:
         raise NoMapError(case, f"{refusal.what}, and no on-demand map describes it: {error}") from None
-    key = None
+    settings, built = _tile_settings(case, patch), {}
 
     def read(zeta, lam):
-        nonlocal key
-        key = tile_for(structure, law, patch, zeta, lam, _tile_settings(case, patch))
-        dataset, path = cached_tile(key, cache_dir, notify=notify)
-        read.path = path
+        key = tile_for(structure, law, patch, zeta, lam, settings)
+        dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
         try:
             return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
                             law=law)
-        except ValueError as error:
-            raise NoMapError(case, f"{refusal.what}, and the {key.name} holds no value next to it "
-                             "(unresolved: the contact frequency lies beyond the range of the "
-                             f"{structure.theory} theory, or the point needs more modes than the sweep's cap of "
-                             f"{MAX_MODES} below its cut-off) [{error}]") from None
+        except ValueError:  # next to an unresolved point
+            raise NoMapError(case, f"{refusal.what}, and the {key.name} holds no value next to it, at "
+                             f"(ζ, λ) = ({zeta:.4g}, {lam:.4g}) (unresolved: the contact frequency lies beyond the "
+                             f"range of the {structure.theory} theory, or a point needs more modes than the sweep's "
+                             f"cap of {MAX_MODES} modes below its cut-off and no exact asymptote answers it)") from None
 
     answer = scaled_answer(case, law, read)
-    answer["cache_file"] = str(read.path)
+    answer["cache_file"] = str(built["path"])
     if patch is not None:
         answer["patch_number"] = patch
     return answer
