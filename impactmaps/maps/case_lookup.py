@@ -6,7 +6,9 @@ map family that describes it exactly, or refuses with the reason (never the near
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
 slenderness families :func:`impactmaps.maps.families.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
-to newtons with its band.
+to newtons with its band. A linear or Hertz case that no shipped map describes but a
+:class:`~impactmaps.maps.structures.MapStructure` can write is answered from a map tile
+built on demand and cached (:mod:`impactmaps.maps.on_demand`).
 """
 
 from __future__ import annotations

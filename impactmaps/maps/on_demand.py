@@ -159,7 +159,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
                              f"cap of {MAX_MODES} modes below its cut-off and no exact asymptote answers it)") from None
 
     answer = scaled_answer(case, law, read)
-    answer["cache_file"] = str(built["path"])
+    answer["cache_file"] = None if built["path"] is None else str(built["path"])
     if patch is not None:
         answer["patch_number"] = patch
     return answer

@@ -124,6 +124,8 @@ class TileKey:
         zetas, lambdas = self.axes
         law = "" if self.law == "linear" else f"-{self.law}"
         patch = "" if self.patch is None else f"-P{self.patch:.4g}"
+        if self.patch is not None and f"-s{self.structure.slenderness:g}" not in self.structure.name:
+            patch = f"-s{self.structure.slenderness:g}{patch}"  # a patch scales with the thickness
         return (f"on-demand tile {self.structure.name}{law}{patch} ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
                 f"λ {lambdas[0]:.3g}–{lambdas[-1]:.3g}")
 
@@ -222,37 +224,42 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
     return dataset
 
 
-def cached_tile(key: TileKey, cache_dir=None, build: bool = True, notify=None) -> tuple[xr.Dataset | None, Path]:
-    """The tile of ``key`` from the cache, or built (when ``build``) and cached.
+def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, Path | None]:
+    """The tile of ``key`` from the cache, or built and cached.
 
     Parameters
     ----------
     key : TileKey
     cache_dir : path-like, optional
         The cache (default :func:`cache_directory`).
-    build : bool
-        Build a tile the cache does not hold (else return None for it).
     notify : callable, optional
-        Called with one line of text before a tile is built.
+        Called with one line of text before a tile is built (and if it cannot be cached).
 
     Returns
     -------
-    (xarray.Dataset or None, Path)
-        The tile and its cache file.
+    (xarray.Dataset, Path or None)
+        The tile and its cache file (None when the cache could not be written: the
+        answer is the same, only not kept).
     """
     path = tile_path(key, cache_dir)
     dataset = _read(path, key)
     if dataset is not None:
-        os.utime(path)  # recently used: kept longest
+        try:
+            os.utime(path)  # recently used: kept longest
+        except OSError:
+            pass
         return dataset, path
-    if not build:
-        return None, path
     if notify is not None:
         notify(f"building an on-demand map tile of {TILE_POINTS ** 2} points for {key.name[len('on-demand tile '):]} "
                f"…; cached in {path}")
     dataset = build_tile(key)
-    save_atomic(dataset, path)
-    _prune(path.parent)
+    try:
+        save_atomic(dataset, path)
+        _prune(path.parent)
+    except OSError as error:
+        if notify is not None:
+            notify(f"the tile could not be cached ({error}); answering from it all the same")
+        return dataset, None
     return dataset, path
 
 
