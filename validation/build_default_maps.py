@@ -39,11 +39,11 @@ WORK = ROOT / "validation" / "work"
 #: Linear maps: the whole plane ζ, λ ∈ [1e-3, 1e3], 20 ζ and 10 λ per decade.
 ZETAS = np.geomspace(1e-3, 1e3, 121)
 LAMBDAS = np.geomspace(1e-3, 1e3, 61)
-#: The linear Mindlin plate map (a/h = 20) covers the whole plane too (1216 s on 2 cores):
+#: The linear Mindlin plate map (a/h = 20) covers the whole plane too (318 s on 2 cores at revision 7):
 #: towards light impactors its contact frequency passes a quarter of the thickness-shear
 #: cut-off, where the model no longer holds, and those points are ``unresolved``
 #: (:mod:`impactmaps.solvers.shear_range`); towards small λ the points just inside that
-#: limit bounce many times on 10⁴ modes (ζ = 10, λ = 0.001: 49 impacts, 25 CPU-s). The
+#: limit bounce many times on 10⁴ modes (ζ = 10, λ = 0.001: 49 impacts). The
 #: Mindlin family members at a/h = 10 and 50 and the Mindlin Hertz map keep
 #: ζ ∈ [0.005, 100], λ ∈ [0.05, 20] (cost).
 MINDLIN_ZETAS = np.geomspace(0.005, 100.0, 87)

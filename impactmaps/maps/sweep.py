@@ -47,7 +47,7 @@ from .structures import BasisTable, MapStructure
 
 __all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid"]
 
-SOLVER_REVISION = 6  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them)
+SOLVER_REVISION = 7  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide)
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)
