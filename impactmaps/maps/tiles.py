@@ -149,10 +149,11 @@ def build_tile(key: TileKey) -> xr.Dataset:
     """
     zetas, lambdas = key.axes
     points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas]
+    table = _table(key, points) if key.structure.build().bounded_modes else None  # None: the sweep's own
     if key.law == "linear":
-        rows = solve_points(key.structure, points, key.settings, _table(key, points), key.control)
+        rows = solve_points(key.structure, points, key.settings, table, key.control)
     elif key.patch is None:
-        rows = solve_hertz_points(key.structure, points, key.settings, _table(key, points), key.control)
+        rows = solve_hertz_points(key.structure, points, key.settings, table, key.control)
     else:  # patch-loaded points build their modes under each patch
         rows = solve_hertz_points(key.structure, points, key.settings, control=key.control, patch=key.patch)
     shape = (1, lambdas.size, zetas.size)
@@ -171,16 +172,21 @@ def build_tile(key: TileKey) -> xr.Dataset:
 
 
 def _table(key: TileKey, points) -> BasisTable:
-    """The modes the tile's points truncate from: up to the largest cut-off any of them can
-    use (its finest refinement level, perturbed up), never past the sweep's cap.
+    """The modes the points of a tile of a bounded model truncate from: up to the largest
+    cut-off any of them can use (its finest refinement level, perturbed up in cut-off and
+    ζ), never past the sweep's cap.
 
-    The shipped maps truncate from a table at the cap (:func:`impactmaps.maps.sweep.basis_table`);
-    truncation moves the modes left out into the residual, so a smaller table gives the
-    same points to rounding (and, for the finite-element beams, to their 3e-10 model
-    accuracy) at a fraction of the cost: the table of a clamped Timoshenko beam at the cap
-    takes minutes. A pure function of the key, like the tile. Points the sweep leaves
-    unresolved or answers by an asymptote (beyond the shear theory, or past the cap) use
-    no modes and set no cut-off.
+    The sweep truncates from a table at its cap (:func:`impactmaps.maps.sweep.basis_table`).
+    For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
+    other supports than SS) and Ritz plates — that table is the whole model, whose modes
+    take minutes to build (a clamped Timoshenko beam). Their point compliance is finite,
+    and truncation moves the modes left out into the residual, so a smaller table gives
+    the same points to rounding (and to the models' 3e-10 accuracy). Not so for a
+    point-loaded Mindlin plate: its shear deflection under a point load diverges, and the
+    residual of a truncated table holds the shear of the modes up to the table's top; its
+    tiles keep the sweep's table (Navier modes, quick). A pure function of the key, like the
+    tile. Points the sweep leaves unresolved or answers by an asymptote (beyond the shear
+    theory, or past the cap) use no modes and set no cut-off.
     """
     target = key.structure.build()
     cap = frequency_cap(key.structure)
@@ -188,7 +194,8 @@ def _table(key: TileKey, points) -> BasisTable:
         omegas = np.atleast_1d(realise(target, *np.array(points).T).contact_frequency)
     else:
         omegas = [hertz_contact_frequency(target, zeta, lam) for zeta, lam in points]
-    finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + key.control.perturbation)
+    p = key.control.perturbation  # a perturbed run: cut-off × (1 + p), or ζ × (1 ± p) and so ω up to 1/(1 − p)
+    finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
     wanted = [finest * omega for omega in omegas
               if key.settings.cutoff_ratio * omega <= cap and not beyond_shear_theory(target, omega)]
     with warnings.catch_warnings():
