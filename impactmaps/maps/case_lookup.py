@@ -239,8 +239,8 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     try:
         structure, theory = map_for_case(case)
     except NoMapError as refusal:
-        if not build or law not in MAP_LAWS or case.solver_kind != "modal":
-            raise
+        if not build or law not in MAP_LAWS or case.solver_kind != "modal" or case.target_type not in ("beam", "plate"):
+            raise  # what no on-demand map can describe either
         from .on_demand import lookup_on_demand
 
         return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
