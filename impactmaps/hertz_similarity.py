@@ -288,10 +288,8 @@ def patch_number(target, law, mass, velocity) -> float:
         Needs ``thickness`` h [m].
     law : HertzContact
         The Hertz law with its ``effective_radius`` R [m].
-    mass : float
-        Impactor mass m > 0 [kg].
-    velocity : float
-        Impact velocity V0 > 0 [m/s].
+    mass, velocity : float
+        The impactor's mass m [kg] and speed V0 [m/s], both > 0.
 
     Returns
     -------
