@@ -52,6 +52,30 @@ of whichever normalisation one prefers; :func:`zener_parameter` returns the cons
 combination ``(K_h² m³ V0)^{1/5}/Z``). Since ``2ζ_h = sqrt(m K_eq)/Z = m V0/(α_m Z)`` and
 ``K_h α_m^{5/2} = (5/4) m V0²``, ``μ = (5/2) ζ_h`` exactly: the Hertz loss factor *is*
 Zener's parameter up to a constant, and ``λ_h`` drops out on the infinite plate.
+
+Patch-loaded targets: the patch number
+--------------------------------------
+Where the modal solver spreads the force over the Hertz contact patch (Mindlin SSSS
+plates by default, :attr:`impactmaps.solvers.modal.ModalSettings.contact_patch`), the
+load is a Hertz pressure over the disc of radius ``a = sqrt(R α_max)`` (R the effective
+radius of the pair, :attr:`HertzContact.effective_radius`): each mode's participation
+is multiplied by the patch's transform ``T(k a)`` and the residual compliance is the one
+under the patch. In the scaled variables ``a = sqrt(R α_m) sqrt(ᾱ_max)`` and the
+wavenumbers of the family scale as ``k = κ/L`` (κ fixed by the family, L the span), so
+
+    k a = κ (h/L) P sqrt(ᾱ_max),    P = sqrt(R α_m)/h,
+
+and the structure's receptance under the patch is ``ĝ`` of the point load with each term
+weighted by functions of ``k a``: with the slenderness L/h fixed by the family, the
+response is a function of ``(ζ_h, λ_h, P)``. R enters nowhere else — K_h already holds
+it (``(4/3) sqrt(R) E*``) and is scaled out — so ``P``, the **patch number** (the
+half-space contact radius ``a_m = sqrt(R α_m)`` over the thickness, :func:`patch_number`),
+is the one number a patch adds. The fixed-point iteration of the patch radius is
+scale-free too (it starts from the half-space radius ``P h`` and stops on a relative
+change), so two patch-loaded impacts with equal ``(ζ_h, λ_h, P)`` on one family give
+equal ``F_max/F_hs``, ``t_c/t*`` and restitution, run for run (the test checks it to
+1e-9). A point of a patch-loaded map is realised with :func:`unit_speed_stiffness` as K_h
+and ``R = (P h)²/α_m`` (:func:`radius_for_patch_number`).
 """
 
 from __future__ import annotations
@@ -67,6 +91,8 @@ __all__ = [
     "HertzNumbers",
     "HertzRealisation",
     "hertz_numbers",
+    "patch_number",
+    "radius_for_patch_number",
     "realise_hertz",
     "unit_speed_stiffness",
     "zener_parameter",
@@ -248,3 +274,53 @@ def zener_parameter(plate, law, mass, velocity) -> float:
     require_positive("velocity", velocity, "m/s")
     impedance = 8.0 * (float(plate.mass_per_area) * float(plate.effective_bending_stiffness)) ** 0.5
     return (stiffness**2 * float(mass) ** 3 * float(velocity)) ** 0.2 / impedance
+
+
+def patch_number(target, law, mass, velocity) -> float:
+    """The patch number ``P = sqrt(R α_m)/h`` of a Hertz impact on a plate [-] (module docstring).
+
+    The half-space contact radius ``a_m = sqrt(R α_m)`` over the plate thickness: with
+    (ζ_h, λ_h) it fixes the response of a patch-loaded plate family.
+
+    Parameters
+    ----------
+    target : Plate
+        Needs ``thickness`` h [m].
+    law : HertzContact
+        The Hertz law with its ``effective_radius`` R [m].
+    mass, velocity : float
+        The impactor's mass m [kg] and speed V0 [m/s], both > 0.
+
+    Returns
+    -------
+    float
+    """
+    radius = getattr(law, "effective_radius", None)
+    if radius is None:
+        raise ValueError(f"law = {law!r} has no effective_radius: the patch number needs the contact "
+                         "radius scale R [m] (a Hertz law built from a sphere and a material has it)")
+    alpha_m = hertz_numbers(target, law, mass, velocity).indentation_scale
+    return float((float(radius) * alpha_m) ** 0.5 / float(target.thickness))
+
+
+def radius_for_patch_number(target, numbers: HertzNumbers, patch: float) -> float:
+    """The effective radius R [m] that gives the patch number ``patch`` to an impact on ``target``.
+
+    ``R = (P h)²/α_m``, the inverse of :func:`patch_number` at the impact's indentation
+    scale α_m (``numbers.indentation_scale``).
+
+    Parameters
+    ----------
+    target : Plate
+        Needs ``thickness`` h [m].
+    numbers : HertzNumbers
+        The Hertz numbers of the impact (:func:`hertz_numbers`).
+    patch : float
+        Patch number P > 0 [-].
+
+    Returns
+    -------
+    float
+    """
+    require_positive("patch", patch)
+    return float((float(patch) * float(target.thickness)) ** 2 / numbers.indentation_scale)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -146,18 +147,42 @@ def test_the_sweep_point_runs_at_unit_speed():
     assert row["peak_time_normalised"] == pytest.approx(1.47, rel=0.05)  # half-space: 1.4716 t*
 
 
-def test_lookup_case_on_the_steel_plate_hertz_example(capsys):
+def test_lookup_case_on_the_steel_plate_hertz_example(capsys, tmp_path, monkeypatch):
     """examples/steel_plate_hertz.toml (Mindlin plate, a/h = 62.5, λ_h = 0.043): no shipped
     map describes it — `simulate` loads a Hertz impact on a Mindlin plate over the contact
     patch, whose radius the point-loaded maps do not have (the Kirchhoff map would answer
-    for another family, +6.4 % against simulate's 731 N) — so lookup refuses and points to
-    simulate instead of the 293 N it used to answer."""
+    for another family, +6.4 % against simulate's 731 N). Issues 13/14: lookup builds the
+    tile of its structure and patch number P = sqrt(R α_m)/h on demand (one line on stderr
+    saying so) and answers within 1 % of simulate and within its own band; from the cache
+    the same bits, silently; with --no-build it refuses and points to simulate (it used to
+    answer 293 N)."""
+    monkeypatch.setenv("IMPACTMAPS_CACHE_DIR", str(tmp_path))
     example = ROOT / "examples" / "steel_plate_hertz.toml"
-    assert main(["lookup", "--case", str(example), "--json"]) == 2
+    assert main(["lookup", "--case", str(example), "--json"]) == 0
     captured = capsys.readouterr()
     values = json.loads(captured.out)
-    assert "Mindlin plate, which simulate loads over the contact patch" in values["error"]
-    assert "impactmaps simulate" in values["error"]
+    assert "NaN" not in captured.out and "Infinity" not in captured.out
+    err = captured.err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("building an on-demand map tile of 16 points for "
+                                               "plate-ssss-mindlin-s62.5-hertz-P0.07992")
+    assert values["map"].startswith("on-demand tile plate-ssss-mindlin-s62.5-hertz-P0.07992")
+    assert values["cache_file"].startswith(str(tmp_path)) and values["cache_file"] in err[0]
+    assert values["patch_number"] == pytest.approx(0.0799242, rel=1e-5)
+    from impactmaps.cases import load_case, run_case
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the contact yields (validity warning): the comparison is elastic
+        _, summary = run_case(load_case(example))
+    assert summary["peak_force_N"] == pytest.approx(731.25, abs=0.01)
+    assert values["peak_force_N"] == pytest.approx(summary["peak_force_N"], rel=0.01)
+    assert abs(values["peak_force_N"] - summary["peak_force_N"]) <= values["peak_force_error_N"]
+    assert main(["lookup", "--case", str(example), "--json"]) == 0
+    cached = capsys.readouterr()
+    assert json.loads(cached.out) == values and cached.err == ""
+    assert main(["lookup", "--case", str(example), "--no-build", "--json"]) == 2
+    captured = capsys.readouterr()
+    assert "Mindlin plate, which simulate loads over the contact patch" in json.loads(captured.out)["error"]
+    assert "impactmaps simulate" in json.loads(captured.out)["error"]
     assert len(captured.err.strip().splitlines()) == 1
 
 

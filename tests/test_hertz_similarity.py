@@ -17,6 +17,8 @@ from impactmaps.contact import HertzContact, LinearContact
 from impactmaps.hertz_similarity import (
     ZENER_TO_LOSS_FACTOR,
     hertz_numbers,
+    patch_number,
+    radius_for_patch_number,
     realise_hertz,
     zener_parameter,
 )
@@ -55,6 +57,34 @@ def test_timoshenko_beams_with_equal_hertz_numbers_respond_alike():
     runs = [im.simulate(short, law_a, case_a.mass, case_a.velocity),
             im.simulate(long, law_b, case_b.mass, case_b.velocity)]
     _assert_similar(_normalised(runs[0], case_a.numbers), _normalised(runs[1], case_b.numbers))
+
+
+@pytest.mark.parametrize("zeta_h, lambda_h, patch", [(0.13, 0.043, 0.08), (1.0, 2.0, 0.3)])
+def test_patch_loaded_mindlin_plates_with_equal_hertz_and_patch_numbers_respond_alike(zeta_h, lambda_h, patch):
+    """Issue 14: under the Hertz contact patch (Mindlin plates, contact_patch="auto") the
+    response depends on the patch number P = sqrt(R α_m)/h too. Two plates of one family
+    (slenderness 50, ν = 0.3) that differ in size, material, K_h, R, mass and speed, with
+    equal (ζ_h, λ_h, P), give equal F_max/F_hs, t_c/t*, restitution and patch radius/h —
+    to rounding: the fixed-point iteration of the radius is scale-free (it starts at the
+    half-space radius P h and stops on a relative change), so both runs take the same
+    passes and stop at the same one; 1e-9 is asked, the 1e-4 tolerance of the iteration
+    would be the limit otherwise. Another P gives another answer: P is a third number."""
+    small, large = im.Plate.isotropic(0.2, 0.2, 0.004, STEEL, theory="mindlin"), \
+        im.Plate.isotropic(0.5, 0.5, 0.01, ALLOY, theory="mindlin")
+    runs, radii = [], []
+    for plate, stiffness in ((small, 1.2e10), (large, 3e9)):
+        case = realise_hertz(plate, zeta_h, lambda_h, HertzContact(stiffness))
+        law = HertzContact(stiffness, effective_radius=radius_for_patch_number(plate, case.numbers, patch))
+        assert patch_number(plate, law, case.mass, case.velocity) == pytest.approx(patch, rel=1e-12)
+        run = im.simulate(plate, law, case.mass, case.velocity, record=False)
+        runs.append(_normalised(run, case.numbers))
+        radii.append(run.settings["contact_radius_m"] / plate.thickness)
+    for a, b in zip(runs[0] + (radii[0],), runs[1] + (radii[1],)):
+        assert a == pytest.approx(b, rel=1e-9)
+    case = realise_hertz(small, zeta_h, lambda_h, HertzContact(1.2e10))
+    other = HertzContact(1.2e10, effective_radius=radius_for_patch_number(small, case.numbers, 0.5 * patch))
+    moved = _normalised(im.simulate(small, other, case.mass, case.velocity, record=False), case.numbers)
+    assert abs(moved[0] - runs[0][0]) > 1e-4  # 1e5 times the similarity's agreement
 
 
 def test_realise_hertz_inverts_hertz_numbers():

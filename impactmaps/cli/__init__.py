@@ -103,7 +103,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--from-map", action="store_true", help="interpolate the shipped map instead of simulating")
     _point_arguments(p, with_target=False)
 
-    p = add("lookup", "F̄max and regime from the shipped maps (no simulation)", cmd_lookup)
+    p = add("lookup", "F̄max and regime from the shipped maps, or for a case an on-demand map tile (no simulation)",
+            cmd_lookup)
     p.add_argument("--structure", choices=STRUCTURE_KINDS)
     p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
     p.add_argument("--zeta", type=float)
@@ -115,8 +116,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--slenderness", type=float, default=None,
                    help="span/thickness of a Timoshenko beam or Mindlin plate (≥ 10; default 20: the shipped "
                    "map; others interpolated in 1/slenderness between the shipped family members)")
-    p.add_argument("--case", type=Path, help="a physical case file: the map that describes it (or a refusal), "
-                   "the peak force in newtons with its error band")
+    p.add_argument("--case", type=Path, help="a physical case file: the map that describes it — a shipped map, or "
+                   "an on-demand map tile built once and cached — or a refusal, the peak force in newtons with its "
+                   "error band")
+    p.add_argument("--no-build", action="store_true",
+                   help="with --case: refuse a case no shipped map describes instead of building its map tile")
 
     p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
     p.add_argument("config", type=Path)

@@ -306,21 +306,21 @@ def cmd_lookup(args) -> dict:
     from ..maps.lookup import lookup
 
     if args.case is not None:
-        from ..cases import load_case
-        from ..maps.case_lookup import lookup_case
+        import sys
 
-        from ..maps.case_lookup import case_map_law, map_for_case
+        from ..cases import load_case
+        from ..maps.case_lookup import case_map_law, lookup_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
         case = load_case(args.case)
-        structure, theory = map_for_case(case)
-        for option, given, wanted in (("--structure", args.structure, structure), ("--theory", args.theory, theory),
+        for option, given, wanted in (("--structure", args.structure, case.target_type),
+                                      ("--theory", args.theory, getattr(case.target, "theory", None)),
                                       ("--law", args.law, case_map_law(case))):
             if given is not None and given != wanted:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
-        return lookup_case(case)
+        return lookup_case(case, build=not args.no_build, notify=lambda line: print(line, file=sys.stderr))
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     from ..maps.plastic_points import PLASTIC_LAWS

@@ -6,7 +6,9 @@ map family that describes it exactly, or refuses with the reason (never the near
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
 slenderness families :func:`impactmaps.maps.families.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
-to newtons with its band.
+to newtons with its band. A linear or Hertz case that no shipped map describes but a
+:class:`~impactmaps.maps.structures.MapStructure` can write is answered from a map tile
+built on demand and cached (:mod:`impactmaps.maps.on_demand`).
 """
 
 from __future__ import annotations
@@ -19,11 +21,25 @@ from .plastic_points import PLASTIC_LAWS
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS
 
-__all__ = ["CASE_MATCH_RTOL", "case_map_law", "case_slenderness", "lookup_case", "map_for_case"]
+__all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law", "case_slenderness", "lookup_case",
+           "map_for_case"]
 
 #: Relative tolerance within which a case "is" a shipped map's structure (impact point,
 #: aspect ratio, slenderness): beyond it the map does not describe the case.
 CASE_MATCH_RTOL = 1e-6
+
+
+class NoMapError(ValueError):
+    """No shipped map describes a case: ``what`` names what no map covers.
+
+    The message is ``no shipped map covers this case: WHAT; run `impactmaps simulate
+    CASE` instead``.
+    """
+
+    def __init__(self, case, what: str):
+        self.what = what
+        super().__init__(f"no shipped map covers this case: {what}; run `impactmaps simulate "
+                         f"{case.source or 'CASE.toml'}` instead")
 
 
 def case_map_law(case) -> str:
@@ -73,13 +89,13 @@ def map_for_case(case) -> tuple[str, str]:
 
     Raises
     ------
-    ValueError
-        Naming what no shipped map covers (contact law, supports, impact point, aspect,
-        theory, slenderness) and suggesting ``impactmaps simulate``.
+    NoMapError
+        (a ``ValueError``) naming what no shipped map covers (supports, impact point,
+        aspect, theory, slenderness, patch load) and suggesting ``impactmaps simulate``;
+        a ``ValueError`` for a contact law no map describes (:func:`case_map_law`).
     """
     def refuse(what: str):
-        raise ValueError(f"no shipped map covers this case: {what}; run `impactmaps simulate "
-                         f"{case.source or 'CASE.toml'}` instead")
+        raise NoMapError(case, what)
 
     def same(value, wanted) -> bool:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
@@ -113,9 +129,9 @@ def map_for_case(case) -> tuple[str, str]:
         refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == structure) + ")")
     slenderness = case_slenderness(case)
-    if theory == "mindlin" and law == "hertz" and _loads_a_patch(case):
-        refuse("a Hertz impact on a Mindlin plate, which simulate loads over the contact patch (the maps "
-               "are point-loaded, and the patch radius would be a third number)")
+    if law == "hertz" and case_loads_a_patch(case):
+        refuse(f"a Hertz impact on a {theory.capitalize()} plate, which simulate loads over the contact patch (the "
+               "maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
     if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
         family = law in MAP_LAWS and (theory == "timoshenko" or law == "linear")
         if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
@@ -142,11 +158,12 @@ def case_slenderness(case) -> float | None:
     return target.length_x / target.thickness
 
 
-def _loads_a_patch(case) -> bool:
-    """Whether ``simulate`` spreads this case's contact force over the contact patch."""
-    from ..solvers.modal import _uses_patch
+def case_loads_a_patch(case) -> bool:
+    """Whether ``simulate`` spreads this case's contact force over the contact patch: the
+    target takes one under ``solver.contact_patch`` and the law has a contact radius."""
+    from ..solvers.modal import _uses_patch, contact_radius_function
 
-    return _uses_patch(case.target, case.settings.contact_patch)
+    return _uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
 
 
 def _family_groups(target) -> dict:
@@ -175,12 +192,27 @@ def _family_groups(target) -> dict:
     return groups
 
 
-def lookup_case(case) -> dict:
-    """Peak force of a physical case from the shipped map that describes it, or refuse.
+def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
+    """Peak force of a physical case from the map that describes it, or refuse.
+
+    A shipped map (:func:`map_for_case`) answers if one describes the case. Otherwise a
+    linear or Hertz case on a structure :class:`~impactmaps.maps.structures.MapStructure`
+    can write (isotropic, undamped beams and plates of any supports, impact point, aspect
+    and slenderness; a Hertz impact under the contact patch adds its patch number) is
+    answered from an on-demand map tile, built once and cached
+    (:func:`impactmaps.maps.on_demand.lookup_on_demand`); anything else is refused.
 
     Parameters
     ----------
     case : impactmaps.cases.Case
+    build : bool
+        Answer a case no shipped map describes from an on-demand tile (False: refuse it,
+        as without on-demand maps, whatever the cache holds).
+    cache_dir : path-like, optional
+        The tile cache (default :func:`impactmaps.maps.tiles.cache_directory`).
+    notify : callable, optional
+        Called with one line of text before a tile is built (the command line prints it
+        on stderr).
 
     Returns
     -------
@@ -193,16 +225,25 @@ def lookup_case(case) -> dict:
         numbers of :func:`impactmaps.maps.plastic_points.plastic_numbers`,
         ``fmax_normalised`` is F_max/(m V0 ω_y), and the answer adds ``restitution`` and
         ``absorbed_energy_J`` (contact dissipation), each with its ``…_error`` band; it has
-        no ``regime``.
+        no ``regime``. An on-demand answer names its tile in ``map`` and adds
+        ``cache_file`` (and ``patch_number`` for a patch-loaded Hertz case).
 
     Raises
     ------
     ValueError
-        When no shipped map describes the case (:func:`map_for_case`), or its numbers lie
-        outside the map (the message names them and suggests ``impactmaps simulate``).
+        When no map describes the case (:func:`map_for_case`; a :class:`NoMapError`
+        naming what no map covers), or its numbers lie outside the map or next to an
+        unresolved point (the message names them and suggests ``impactmaps simulate``).
     """
-    structure, theory = map_for_case(case)
     law = case_map_law(case)
+    try:
+        structure, theory = map_for_case(case)
+    except NoMapError as refusal:
+        if not build or law not in MAP_LAWS or case.solver_kind != "modal" or case.target_type not in ("beam", "plate"):
+            raise  # what no on-demand map can describe either
+        from .on_demand import lookup_on_demand
+
+        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
     if law in PLASTIC_LAWS:
         from .plastic_lookup import lookup_plastic_case
 
@@ -216,6 +257,12 @@ def lookup_case(case) -> dict:
     else:
         def read(zeta, lam):
             return lookup(zeta, lam, structure=structure, theory=theory, law=law)
+    return scaled_answer(case, law, read)
+
+
+def scaled_answer(case, law: str, read) -> dict:
+    """The answer of :func:`lookup_case` from ``read(ζ, λ) -> LookupResult``, a reading of a
+    linear or Hertz map at the case's numbers, scaled to newtons."""
     if law == "hertz":
         from ..hertz_similarity import hertz_numbers
 

@@ -18,18 +18,20 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from ..contact.hertz import HertzContact
-from ..hertz_similarity import realise_hertz, unit_speed_stiffness
+from ..hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
 from ..law_asymptotes import asymptote
-from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
+from ..solvers.modal import ModalSettings, _uses_patch, reference_contact_stiffness, simulate
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, controlled_point, exact_point
 from .structures import BasisTable, MapStructure
 
-__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_summary", "solve_hertz_points"]
+__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_contact_frequency",
+           "hertz_summary", "solve_hertz_points"]
 
 #: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).
 HERTZ_TIME_KEYS = ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised")
@@ -56,11 +58,17 @@ _INFINITE = {"plate": "infinite-plate", "beam": "infinite-beam"}
 
 
 class _Realised:
-    """The impact realising (ζ_h, λ_h) on a target at 1 m/s: law, mass, speed, scales."""
+    """The impact realising (ζ_h, λ_h) on a target at 1 m/s: law, mass, speed, scales.
 
-    def __init__(self, target, zeta_h: float, lambda_h: float):
-        self.law = HertzContact(unit_speed_stiffness(target, zeta_h, lambda_h))
-        realisation = realise_hertz(target, zeta_h, lambda_h, self.law)
+    With a patch number P the law also carries the effective radius R that gives it
+    (:func:`~impactmaps.hertz_similarity.radius_for_patch_number`), for a patch-loaded run.
+    """
+
+    def __init__(self, target, zeta_h: float, lambda_h: float, patch: float | None = None):
+        stiffness = unit_speed_stiffness(target, zeta_h, lambda_h)
+        realisation = realise_hertz(target, zeta_h, lambda_h, stiffness)
+        radius = None if patch is None else radius_for_patch_number(target, realisation.numbers, patch)
+        self.law = HertzContact(stiffness, effective_radius=radius)
         self.mass, self.velocity, self.numbers = realisation.mass, realisation.velocity, realisation.numbers
         self.omega = float(np.sqrt(reference_contact_stiffness(self.law, self.mass, self.velocity) / self.mass))
 
@@ -84,6 +92,12 @@ class _HertzScaled:
     def normalised_summary(self) -> dict:
         """The map scalars of the run, forces over F_hs and times over t*."""
         return hertz_summary(self.result, self.numbers)
+
+
+def hertz_contact_frequency(target, zeta_h: float, lambda_h: float) -> float:
+    """Contact frequency ω [rad/s] of the impact realising (ζ_h, λ_h) on ``target`` at 1 m/s
+    (the frequency the cut-off of its map point is a multiple of)."""
+    return _Realised(target, float(zeta_h), float(lambda_h)).omega
 
 
 def hertz_summary(result, numbers) -> dict:
@@ -169,7 +183,8 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
 
 
 def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
-                       table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
+                       table: BasisTable | None = None, control: AccuracyControl = AccuracyControl(),
+                       patch: float | None = None) -> list[dict]:
     """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``.
 
     The Hertz counterpart of :func:`impactmaps.maps.sweep.solve_points`, with the same
@@ -182,6 +197,15 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
     frequency lies beyond what a Timoshenko/Mindlin theory holds, the point is
     ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`).
 
+    With a patch number ``patch`` = P = sqrt(R α_m)/h (:mod:`impactmaps.hertz_similarity`)
+    the points are patch-loaded: each is realised with the R that gives P, and solved by
+    :func:`~impactmaps.solvers.modal.simulate` on the structure's target under the Hertz
+    patch of its peak indentation (the structure must load one under
+    ``settings.contact_patch``: Mindlin SSSS plates by default), with the cut-off
+    ``settings.patch_cutoff_ratio`` · ω clipped to the same cap; the same accuracy
+    control. No asymptote answers a patch-loaded point: where the cut-off passes the cap
+    it is ``unresolved``.
+
     Returns
     -------
     list of dict
@@ -192,8 +216,12 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
 
     target = structure.build()
     cap = frequency_cap(structure)
-    table = basis_table(structure, settings.min_modes) if table is None else table
-    impacts = [_Realised(target, float(zeta), float(lam)) for zeta, lam in points]
+    if patch is not None and not _uses_patch(target, settings.contact_patch):
+        raise ValueError(f"patch = {patch!r}: the {structure.name} target takes no contact patch under "
+                         f"contact_patch = {settings.contact_patch!r} (valid: patch = None)")
+    table = basis_table(structure, settings.min_modes) if table is None and patch is None else table
+    ratio = settings.cutoff_ratio if patch is None else settings.patch_cutoff_ratio
+    impacts = [_Realised(target, float(zeta), float(lam), patch) for zeta, lam in points]
     rows = []
     for (zeta, lam), realised in zip(points, impacts):
         zeta, lam = float(zeta), float(lam)
@@ -202,8 +230,8 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         if beyond_shear_theory(target, realised.omega):
             rows.append(unresolved_point(row))
             continue
-        capped = settings.cutoff_ratio * realised.omega > cap
-        if capped and has_classical_asymptote(target):
+        capped = ratio * realised.omega > cap
+        if capped and patch is None and has_classical_asymptote(target):
             infinite = _asymptote_row(_INFINITE[structure.kind], target, zeta, lam)
             if reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
                 rows.append(exact_point(row | infinite | {"method": METHODS.index("infinite-structure-asymptote")}))
@@ -211,7 +239,10 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         if capped:  # its cut-off could not be refined: the map does not vouch for it
             rows.append(unresolved_point(row))
             continue
-        run = _hertz_runner(target, table, cap, zeta, lam, realised)
+        if patch is None:
+            run = _hertz_runner(target, table, cap, zeta, lam, realised)
+        else:
+            run = _patch_runner(target, cap, zeta, lam, realised, patch)
         rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index("modal+residual")})
     return rows
 
@@ -223,6 +254,23 @@ def _hertz_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: f
         impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_)
         basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
         result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+        return _HertzScaled(result, impact.numbers)
+
+    return run
+
+
+def _patch_runner(target, cap: float, zeta: float, lambda_: float, realised: _Realised, patch: float):
+    """``run(settings, zeta_factor)`` of one patch-loaded Hertz point, read in the Hertz scales.
+
+    The patch radius is iterated by :func:`~impactmaps.solvers.modal.simulate` on the
+    target; the cut-off ``patch_cutoff_ratio`` · ω is clipped to ``cap`` [rad/s] as the
+    point-loaded runs clip theirs.
+    """
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_, patch)
+        clipped = replace(settings, patch_cutoff_ratio=min(settings.patch_cutoff_ratio, cap / impact.omega))
+        result = simulate(target, impact.law, impact.mass, impact.velocity, settings=clipped, record=False)
         return _HertzScaled(result, impact.numbers)
 
     return run

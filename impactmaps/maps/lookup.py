@@ -32,7 +32,7 @@ from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "lookup", "interpolation_error", "design_formula",
+           "require_map_law", "shipped_structure_name", "lookup", "read_map", "interpolation_error", "design_formula",
            "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
@@ -150,14 +150,6 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderne
         return require_map_law(opened.load(), law, f"shipped map {name}.nc")
 
 
-@functools.lru_cache(maxsize=64)
-def _interpolator(structure: str, theory: str, variable: str, law: str = "linear", slenderness=None):
-    dataset = load_shipped_map(structure, theory, law, slenderness)
-    values = dataset[variable].isel(structure=0).values
-    grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
-    return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)
-
-
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
            tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear",
            slenderness: float | None = None) -> LookupResult:
@@ -184,38 +176,87 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     LookupResult
     """
     key = (structure, theory, law, slenderness)
-    dataset = load_shipped_map(*key)
+    return read_map(load_shipped_map(*key), loss_factor, relative_stiffness, structure=structure, theory=theory,
+                    name=map_file_stem(shipped_structure_name(structure, theory, slenderness), law), law=law,
+                    tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key))
+
+
+def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
+             law: str = "linear", tolerance: float = 0.1, local_tolerance: float = 0.1,
+             error_grid: np.ndarray | None = None) -> LookupResult:
+    """F̄max, its band, status and regime at (ζ, λ) from any (ζ, λ) map ``dataset``.
+
+    The one reading of a map: :func:`lookup` applies it to the shipped maps,
+    :mod:`impactmaps.maps.on_demand` to the tiles it builds. F̄max is interpolated
+    linearly in (log λ, log ζ); the band is the largest error of the four map points
+    around (ζ, λ) plus the local interpolation error (:func:`interpolation_error`), the
+    status the worst of those four points (:class:`LookupResult`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A map as :func:`impactmaps.maps.sweep.sweep` writes it (one structure), with
+        ``fmax_normalised``, ``fmax_error`` and ``status``; ``log_peak_time`` and
+        ``log_reflection_time`` refine the regime when present.
+    loss_factor, relative_stiffness : float or array_like
+        ζ and λ [-] (ζ_h, λ_h for a Hertz map), inside the map's range.
+    structure, theory : str
+        The structure kind ("beam" or "plate", for the regime) and its theory.
+    name : str
+        The map's name, carried by the result.
+    law : {"linear", "hertz"}
+        The map's contact law.
+    tolerance, local_tolerance : float
+        Regime criteria (:func:`impactmaps.maps.regimes.classify`).
+    error_grid : ndarray, optional
+        :func:`interpolation_error` of the map's F̄max when already known (computed
+        otherwise).
+
+    Returns
+    -------
+    LookupResult
+
+    Raises
+    ------
+    ValueError
+        (ζ, λ) outside the map, or next to an ``unresolved`` point (no value).
+    """
     zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
-    for name, values, axis in (("loss_factor", zeta, "zeta"), ("relative_stiffness", lam, "lambda_")):
+    for label, values, axis in (("loss_factor", zeta, "zeta"), ("relative_stiffness", lam, "lambda_")):
         low, high = float(dataset[axis].min()), float(dataset[axis].max())
         if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
             raise ValueError(
-                f"{name} = {values.tolist()!r} is outside the shipped map: valid range is "
+                f"{label} = {values.tolist()!r} is outside the shipped map: valid range is "
                 f"[{low:g}, {high:g}]; run a simulation (impactmaps point) instead"
             )
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
     zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
     points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
-    error, status = _corner_accuracy(dataset, lam_c, zeta_c, key)
+    if error_grid is None:
+        error_grid = interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
+    error, status = _corner_accuracy(dataset, lam_c, zeta_c, error_grid)
     if np.any(status == "unresolved"):
         bad = np.flatnonzero(np.asarray(status == "unresolved").ravel())[0]
         raise ValueError(
             f"(loss_factor, relative_stiffness) = ({zeta.ravel()[bad]:g}, {lam.ravel()[bad]:g}) lies where "
             f"the {structure} {theory} map holds no value (unresolved: beyond the range of its "
             "structural theory, or no model within the mode cap); run a simulation instead")
-    fmax = _interpolator(structure, theory, "fmax_normalised", law, slenderness)(points).reshape(zeta.shape)
-    peak_time = np.exp(_interpolator(structure, theory, "log_peak_time", law, slenderness)(points)).reshape(
-        zeta.shape) if "log_peak_time" in dataset else None
-    reflection = np.exp(_interpolator(structure, theory, "log_reflection_time", law, slenderness)(points)).reshape(
-        zeta.shape) if "log_reflection_time" in dataset else None
+    grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
+
+    def interpolated(variable: str) -> np.ndarray:
+        values = dataset[variable].isel(structure=0).values
+        return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)(points).reshape(zeta.shape)
+
+    fmax = interpolated("fmax_normalised")
+    peak_time = np.exp(interpolated("log_peak_time")) if "log_peak_time" in dataset else None
+    reflection = np.exp(interpolated("log_reflection_time")) if "log_reflection_time" in dataset else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
-    return LookupResult(fmax, regime, structure, theory,
-                        map_file_stem(shipped_structure_name(structure, theory, slenderness), law), error, status, law)
+    return LookupResult(fmax, regime, structure, theory, name, error, status, law)
 
 
 #: Severity of a status when four map points are combined (worst wins).
@@ -275,16 +316,17 @@ def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
 
 @functools.lru_cache(maxsize=32)
 def _interpolation_error_grid(key: tuple) -> np.ndarray:
+    """:func:`interpolation_error` of the shipped map ``key`` = (structure, theory, law, slenderness)."""
     dataset = load_shipped_map(*key)
     return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
-def _corner_accuracy(dataset: xr.Dataset, lam, zeta, key: tuple):
-    """Largest error (points' own + interpolation) and worst status around each (λ, ζ) of
-    the map ``key`` = (structure, theory, law, slenderness)."""
+def _corner_accuracy(dataset: xr.Dataset, lam, zeta, error_grid: np.ndarray):
+    """Largest error (points' own + interpolation, ``error_grid``) and worst status around
+    each (λ, ζ) of the map ``dataset``."""
     from .accuracy import STATUSES
 
-    errors = dataset["fmax_error"].isel(structure=0).values + _interpolation_error_grid(key)
+    errors = dataset["fmax_error"].isel(structure=0).values + error_grid
     codes = dataset["status"].isel(structure=0).values
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))

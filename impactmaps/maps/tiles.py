@@ -1,0 +1,277 @@
+"""Map tiles: small (ζ, λ) maps on a global lattice, built on demand and cached on disk.
+
+A tile is the 4 × 4 points of the global log lattice around a (ζ, λ) — the lattice of
+the shipped linear maps, ``log10 ζ = i Δζ``, ``log10 λ = j Δλ`` (:func:`lattice_steps`) —
+for one structure and law (and, for a Hertz law on a patch-loaded target, one patch
+number P: :mod:`impactmaps.hertz_similarity`). Every point is solved exactly as the
+shipped maps solve theirs (:func:`impactmaps.maps.sweep.solve_points`,
+:func:`impactmaps.maps.hertz_points.solve_hertz_points`, the same settings and accuracy
+control), so it carries its error and status, and the tile is read with the shipped
+maps' interpolation and band (:func:`impactmaps.maps.lookup.read_map`): the point's
+cell is the tile's middle one, so the band's second differences have a neighbour on
+each side.
+
+A tile is a pure function of its :class:`TileKey`. The cache (:func:`cache_directory`)
+holds one NetCDF file per tile, named by the key's fingerprint
+(:func:`impactmaps.maps.store.fingerprint` of :meth:`TileKey.description`, which holds
+the solver revision), written atomically; a file is used only if its recorded
+fingerprint and the digest of its data match (anything else — corrupted, foreign,
+older solver — is rebuilt and replaced), and at most :data:`MAX_CACHED_TILES` are kept
+(the least recently used are removed). A cached tile gives the same bits as a fresh one.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import math
+import os
+import warnings
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..dimensionless import realise
+from ..jsonio import dumps
+from ..solvers.modal import ModalSettings
+from ..solvers.shear_range import beyond_shear_theory
+from .accuracy import AccuracyControl
+from .hertz_points import hertz_contact_frequency, solve_hertz_points
+from .lookup import load_shipped_map
+from .store import fingerprint, save_atomic
+from .structures import BasisTable, MapStructure
+from .sweep import RESULT_VARIABLES, SOLVER_REVISION, frequency_cap, solve_points
+
+__all__ = ["CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory", "lattice_steps",
+           "tile_for", "build_tile", "cached_tile"]
+
+#: Environment variable naming the cache directory of the tiles.
+CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
+#: Most tiles the cache keeps (the least recently used beyond it are removed).
+MAX_CACHED_TILES = 256
+#: Lattice points per axis of a tile.
+TILE_POINTS = 4
+#: Version of the tile file layout (part of the fingerprint).
+_TILE_FORMAT = 1
+
+
+def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
+    """The tile cache: ``cache_dir`` if given, else ``$IMPACTMAPS_CACHE_DIR``, else
+    ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps``."""
+    if cache_dir is not None:
+        return Path(cache_dir)
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "impactmaps"
+
+
+@functools.lru_cache(maxsize=1)
+def lattice_steps() -> tuple[float, float]:
+    """(Δ log10 ζ, Δ log10 λ) of the global lattice: the spacing of the shipped linear maps (0.05, 0.1)."""
+    dataset = load_shipped_map("beam", "euler")
+    return tuple(round(float(np.mean(np.diff(np.log10(dataset[axis].values)))), 6) for axis in ("zeta", "lambda_"))
+
+
+@dataclass(frozen=True)
+class TileKey:
+    """Everything that determines a tile.
+
+    Attributes
+    ----------
+    structure : MapStructure
+    law : {"linear", "hertz"}
+    patch : float or None
+        Patch number P = sqrt(R α_m)/h of a patch-loaded Hertz tile [-]; None: point load.
+    zeta_index, lambda_index : int
+        Lattice index of the tile's first ζ and λ (``log10 ζ = zeta_index · Δζ``).
+    settings : ModalSettings
+    control : AccuracyControl
+    """
+
+    structure: MapStructure
+    law: str
+    patch: float | None
+    zeta_index: int
+    lambda_index: int
+    settings: ModalSettings = ModalSettings()
+    control: AccuracyControl = AccuracyControl()
+
+    @property
+    def axes(self) -> tuple[np.ndarray, np.ndarray]:
+        """The tile's ζ and λ values [-], ascending."""
+        steps = lattice_steps()
+        return tuple(10.0 ** (step * (start + np.arange(TILE_POINTS)))
+                     for step, start in zip(steps, (self.zeta_index, self.lambda_index)))
+
+    def description(self) -> dict:
+        """JSON-ready description (the fingerprint's input; stored in the tile)."""
+        return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
+                "zeta_index": self.zeta_index, "lambda_index": self.lambda_index, "lattice": list(lattice_steps()),
+                "points_per_axis": TILE_POINTS, "settings": asdict(self.settings), "accuracy": asdict(self.control),
+                "solver_revision": SOLVER_REVISION, "tile_format": _TILE_FORMAT}
+
+    @property
+    def fingerprint(self) -> str:
+        """:func:`~impactmaps.maps.store.fingerprint` of :meth:`description`."""
+        return fingerprint(self.description())
+
+    @property
+    def name(self) -> str:
+        """Label of the tile, e.g. ``on-demand tile plate-ssss-mindlin-s62.5-hertz-P0.0799 ζ 0.09–0.18 λ 0.03–0.06``."""
+        zetas, lambdas = self.axes
+        law = "" if self.law == "linear" else f"-{self.law}"
+        patch = "" if self.patch is None else f"-P{self.patch:.4g}"
+        if self.patch is not None and f"-s{self.structure.slenderness:g}" not in self.structure.name:
+            patch = f"-s{self.structure.slenderness:g}{patch}"  # a patch scales with the thickness
+        return (f"on-demand tile {self.structure.name}{law}{patch} ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
+                f"λ {lambdas[0]:.3g}–{lambdas[-1]:.3g}")
+
+
+def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor: float, relative_stiffness: float,
+             settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl()) -> TileKey:
+    """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)."""
+    steps = lattice_steps()
+    first = [math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
+             for value, step in zip((loss_factor, relative_stiffness), steps)]
+    return TileKey(structure, law, patch, first[0], first[1], settings, control)
+
+
+def build_tile(key: TileKey) -> xr.Dataset:
+    """Solve the tile's points (serially) and return it as a one-structure map dataset.
+
+    The dataset has the variables of :data:`~impactmaps.maps.sweep.RESULT_VARIABLES`
+    over (``structure``, ``lambda_``, ``zeta``), ``log_peak_time`` and
+    ``log_reflection_time`` as the shipped maps, and the attributes ``fingerprint``,
+    ``description``, ``data_digest`` and ``contact_law``.
+    """
+    zetas, lambdas = key.axes
+    points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas]
+    table = _table(key, points) if key.structure.build().bounded_modes else None  # None: the sweep's own
+    if key.law == "linear":
+        rows = solve_points(key.structure, points, key.settings, table, key.control)
+    elif key.patch is None:
+        rows = solve_hertz_points(key.structure, points, key.settings, table, key.control)
+    else:  # patch-loaded points build their modes under each patch
+        rows = solve_hertz_points(key.structure, points, key.settings, control=key.control, patch=key.patch)
+    shape = (1, lambdas.size, zetas.size)
+    data = {name: (("structure", "lambda_", "zeta"),
+                   np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
+            for name, spec in RESULT_VARIABLES.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):  # unresolved points: NaN stays NaN
+        for name in ("peak_time", "reflection_time"):  # log-times, as the shipped maps interpolate them
+            dims, values, _ = data[f"{name}_normalised"]
+            data[f"log_{name}"] = (dims, np.log(values))
+    dataset = xr.Dataset(data, coords={"structure": [key.structure.name], "lambda_": lambdas, "zeta": zetas})
+    dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
+                          "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
+                          "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
+    return dataset
+
+
+def _table(key: TileKey, points) -> BasisTable:
+    """The modes the points of a tile of a bounded model truncate from: up to the largest
+    cut-off any of them can use (its finest refinement level, perturbed up in cut-off and
+    ζ), never past the sweep's cap.
+
+    The sweep truncates from a table at its cap (:func:`impactmaps.maps.sweep.basis_table`).
+    For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
+    other supports than SS) and Ritz plates — that table is the whole model, whose modes
+    take minutes to build (a clamped Timoshenko beam). Their point compliance is finite,
+    and truncation moves the modes left out into the residual, so a smaller table gives
+    the same points to rounding (and to the models' 3e-10 accuracy). Not so for a
+    point-loaded Mindlin plate: its shear deflection under a point load diverges, and the
+    residual of a truncated table holds the shear of the modes up to the table's top; its
+    tiles keep the sweep's table (Navier modes, quick). A pure function of the key, like the
+    tile. Points the sweep leaves unresolved or answers by an asymptote (beyond the shear
+    theory, or past the cap) use no modes and set no cut-off.
+    """
+    target = key.structure.build()
+    cap = frequency_cap(key.structure)
+    if key.law == "linear":
+        omegas = np.atleast_1d(realise(target, *np.array(points).T).contact_frequency)
+    else:
+        omegas = [hertz_contact_frequency(target, zeta, lam) for zeta, lam in points]
+    p = key.control.perturbation  # a perturbed run: cut-off × (1 + p), or ζ × (1 ± p) and so ω up to 1/(1 − p)
+    finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
+    wanted = [finest * omega for omega in omegas
+              if key.settings.cutoff_ratio * omega <= cap and not beyond_shear_theory(target, omega)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # as basis_table: a point's own cut-off is warned about
+        return BasisTable(target, min(max(wanted, default=0.0), cap),
+                          key.settings.min_modes * 2**key.control.max_refinements)
+
+
+def _data_digest(dataset: xr.Dataset) -> str:
+    """SHA-256 of the tile's coordinates and variables (names, dtypes and bytes)."""
+    digest = hashlib.sha256()
+    for name in ("zeta", "lambda_", *sorted(dataset.data_vars)):
+        values = np.ascontiguousarray(dataset[name].values)
+        digest.update(f"{name}:{values.dtype.str}:{values.shape}".encode())
+        digest.update(values.tobytes())
+    return digest.hexdigest()
+
+
+def tile_path(key: TileKey, cache_dir=None) -> Path:
+    """The cache file of a tile [path]."""
+    return cache_directory(cache_dir) / f"tile-{key.fingerprint[:32]}.nc"
+
+
+def _read(path: Path, key: TileKey) -> xr.Dataset | None:
+    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None."""
+    try:
+        with xr.open_dataset(path, engine="scipy") as opened:
+            dataset = opened.load()
+    except Exception:  # missing, truncated, not NetCDF: rebuilt
+        return None
+    if dataset.attrs.get("fingerprint") != key.fingerprint or dataset.attrs.get("data_digest") != _data_digest(dataset):
+        return None
+    return dataset
+
+
+def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, Path | None]:
+    """The tile of ``key`` from the cache, or built and cached.
+
+    Parameters
+    ----------
+    key : TileKey
+    cache_dir : path-like, optional
+        The cache (default :func:`cache_directory`).
+    notify : callable, optional
+        Called with one line of text before a tile is built (and if it cannot be cached).
+
+    Returns
+    -------
+    (xarray.Dataset, Path or None)
+        The tile and its cache file (None when the cache could not be written: the
+        answer is the same, only not kept).
+    """
+    path = tile_path(key, cache_dir)
+    dataset = _read(path, key)
+    if dataset is not None:
+        try:
+            os.utime(path)  # recently used: kept longest
+        except OSError:
+            pass
+        return dataset, path
+    if notify is not None:
+        notify(f"building an on-demand map tile of {TILE_POINTS ** 2} points for {key.name[len('on-demand tile '):]} "
+               f"…; cached in {path}")
+    dataset = build_tile(key)
+    try:
+        save_atomic(dataset, path)
+        _prune(path.parent)
+    except OSError as error:
+        if notify is not None:
+            notify(f"the tile could not be cached ({error}); answering from it all the same")
+        return dataset, None
+    return dataset, path
+
+
+def _prune(directory: Path) -> None:
+    """Remove the least recently used tiles beyond :data:`MAX_CACHED_TILES`."""
+    tiles = sorted(directory.glob("tile-*.nc"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
+    for stale in tiles[MAX_CACHED_TILES:]:
+        stale.unlink(missing_ok=True)
