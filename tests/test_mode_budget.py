@@ -248,3 +248,16 @@ def test_cli_refusal_is_exit_2_and_one_line(tmp_path):
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and "impactor.mass" in lines[0] and "Traceback" not in run.stderr
     assert peak < GIB
+
+
+def test_frequency_cap_crosses_the_cantilever_gap():
+    """Bug fixed: the cap stopped at the first doubling that added no mode, so a cantilever
+    (ω2/ω1 = 6.27: 3 ω1 and 6 ω1 both hold one mode) was capped at 3 ω1 and every map point
+    on it came out unresolved. The cap now holds many modes, and a bounded model still
+    stops at its largest frequency."""
+    cantilever = MapStructure(kind="beam", theory="euler", supports="cf", impact_fraction=(0.7,)).build()
+    cap = mode_budget.frequency_cap(cantilever)
+    assert cantilever.mode_count(cap, limit=mode_budget.MAX_MODES) > 100
+    ritz = MapStructure(kind="plate", theory="kirchhoff", supports="CCCC").build()
+    top = mode_budget.frequency_cap(ritz)
+    assert math.isfinite(top) and ritz.mode_count(8.0 * top, limit=10**6) == ritz.mode_count(top, limit=10**6)

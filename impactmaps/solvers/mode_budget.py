@@ -152,6 +152,13 @@ class BasisPlan:
     message: str = ""
 
 
+#: Doublings without a new mode after which :func:`frequency_cap` takes the model to have
+#: no more: 3, a factor 8 — the widest gap between consecutive bending modes is a
+#: cantilever's first, ω2/ω1 = 6.27 (a stop at the first doubling without a new mode
+#: capped a cantilever at 3 ω1, so every map point on it came out unresolved).
+_STALLED_DOUBLINGS = 3
+
+
 @functools.lru_cache(maxsize=16)
 def frequency_cap(target, max_modes: int = MAX_MODES) -> float:
     """Largest frequency [rad/s] below which ``target`` has at most ~``max_modes`` modes.
@@ -159,7 +166,8 @@ def frequency_cap(target, max_modes: int = MAX_MODES) -> float:
     From 1.5 × the fundamental, the frequency is doubled while the count
     (:meth:`~impactmaps.targets.base.Target.mode_count`, no mode built) stays within
     ``max_modes``; it also stops where the target has no more modes to give (a Ritz plate
-    or a finite-element beam stops at its largest model). ``inf`` for a target without
+    or a finite-element beam stops at its largest model): at the last frequency that
+    added a mode, once ``_STALLED_DOUBLINGS`` doublings have added none. ``inf`` for a target without
     elastic modes (a half-space). A pure function of its arguments (targets are frozen),
     cached (bounded).
     """
@@ -170,14 +178,22 @@ def frequency_cap(target, max_modes: int = MAX_MODES) -> float:
     if not elastic.size:
         return math.inf
     frequency = float(elastic[0]) * 1.5 + 1e-30
-    count = 0
+    count, probe, stalled = 0, frequency, 0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # probing only
-        while math.isfinite(2.0 * frequency):
-            more = max(target.mode_count(2.0 * frequency, limit=max_modes), 1)
-            if more > max_modes or more <= count:
+        while math.isfinite(2.0 * probe):
+            probe *= 2.0
+            more = max(target.mode_count(probe, limit=max_modes), 1)
+            if more > max_modes:
                 return frequency
-            count, frequency = more, 2.0 * frequency
+            if more > count:
+                count, frequency, stalled = more, probe, 0
+                continue
+            # no new mode in this doubling: a gap (a cantilever's ω2 = 6.27 ω1), or the
+            # model has no more modes to give once _STALLED_DOUBLINGS doublings add none
+            stalled += 1
+            if stalled >= _STALLED_DOUBLINGS:
+                return frequency
     return frequency
 
 
