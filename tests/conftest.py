@@ -1,7 +1,13 @@
 """Test configuration: single-threaded BLAS (the machine has 2 cores and the tests
-already run work in parallel; threaded BLAS under load is 10–20× slower)."""
+already run work in parallel; threaded BLAS under load is 10–20× slower), and the
+on-demand map tiles cached in a temporary directory of the session, never in the user's
+``~/.cache`` (a test that needs its own cache passes ``cache_dir`` or sets the variable)."""
 
 import os
+import tempfile
 
 for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_name, "1")
+
+_TILE_CACHE = tempfile.TemporaryDirectory(prefix="impactmaps-test-tiles-")
+os.environ["IMPACTMAPS_CACHE_DIR"] = _TILE_CACHE.name
