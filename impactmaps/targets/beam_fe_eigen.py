@@ -8,7 +8,7 @@ import numpy as np
 import scipy.linalg
 import scipy.sparse.linalg
 
-__all__ = ["eigenpairs_below"]
+__all__ = ["eigenpairs_below", "count_below"]
 
 #: FE models with at most this many unknowns are solved densely, larger ones by
 #: spectrum slicing (shift-invert Lanczos with Sturm-sequence checks).
@@ -102,6 +102,15 @@ def _solve_sliced(K, M, upper, start, width):
     vec = np.concatenate(vectors, axis=1) if vectors else np.zeros((n, 0))
     norms = np.sqrt(np.einsum("ij,ij->j", vec, M @ vec))
     return lam, vec / norms
+
+
+def count_below(K, M, width: int, shift: float) -> int:
+    """Number of eigenvalues of ``K x = λ M x`` below ``shift`` [rad²/s²], no mode built.
+
+    ``K``, ``M``: sparse symmetric banded matrices of half-bandwidth ``width`` [SI]
+    (Sylvester's inertia of ``K − shift·M``: :func:`_count_below`).
+    """
+    return int(_count_below(_lower_band(K, width), _lower_band(M, width), float(shift)))
 
 
 @numba.njit(cache=True)

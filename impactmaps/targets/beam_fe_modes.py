@@ -14,7 +14,7 @@ import numpy as np
 import scipy.sparse
 from numpy.polynomial import legendre
 
-from .beam_fe_eigen import eigenpairs_below
+from .beam_fe_eigen import count_below, eigenpairs_below
 from .beam_section import (
     BeamSection,
     ModeSet,
@@ -24,7 +24,7 @@ from .beam_section import (
     largest_wavenumber,
 )
 
-__all__ = ["finite_element_modes", "FE_DEGREE", "FE_RESOLUTION", "FE_MAX_DOFS"]
+__all__ = ["finite_element_modes", "finite_element_mode_count", "FE_DEGREE", "FE_RESOLUTION", "FE_MAX_DOFS"]
 
 #: Polynomial degree of the deflection field in the finite-element model.
 FE_DEGREE = 24
@@ -277,6 +277,33 @@ def _fe_solution(section: BeamSection, elements: int, degree: int) -> _FiniteEle
                                np.sqrt(eigenvalues), resolved)
 
 
+def finite_element_mode_count(section: BeamSection, max_frequency: float, *, degree: int = FE_DEGREE) -> int:
+    """Number of modes :func:`finite_element_modes` returns at or below ``max_frequency``
+    [rad/s] (``min_modes = 1``), counted without solving for them.
+
+    The same mesh (chosen from ``max_frequency``, capped at :data:`FE_MAX_DOFS` unknowns)
+    and the same resolved frequency; the count of its eigenvalues below
+    min(``max_frequency``, resolved)² is Sylvester's inertia of the banded ``K − ω²M``
+    (milliseconds, where solving the model takes up to minutes at 12 000 unknowns).
+    Equal to the count of the solved modes except for an eigenvalue within rounding of the
+    cut-off.
+    """
+    elements, _ = _capped_elements(section, _elements_needed(section, max_frequency, 1, degree), degree)
+    K, M, _, free, _, width = _assemble(section, elements, degree)
+    resolved = frequency_at_wavenumber(section, FE_RESOLUTION * degree * elements / section.length)
+    upper = min(float(max_frequency) ** 2, resolved**2 * (1.0 + 1e-9))
+    return count_below(K[free][:, free], M[free][:, free], width, upper)
+
+
+def _capped_elements(section: BeamSection, elements: int, degree: int) -> tuple[int, bool]:
+    """``elements``, or fewer so the model has at most :data:`FE_MAX_DOFS` unknowns; and whether it was capped."""
+    capped = _dofs(section, elements, degree) > FE_MAX_DOFS
+    if capped:
+        while elements > 2 and _dofs(section, elements, degree) > FE_MAX_DOFS:
+            elements -= 1
+    return elements, capped
+
+
 def _elements_needed(section: BeamSection, max_frequency: float, min_modes: int,
                      degree: int) -> int:
     L = section.length
@@ -329,10 +356,7 @@ def finite_element_modes(section: BeamSection, max_frequency: float, min_modes: 
     """
     elements = _elements_needed(section, max_frequency, min_modes, degree)
     while True:
-        capped = _dofs(section, elements, degree) > FE_MAX_DOFS
-        if capped:
-            while elements > 2 and _dofs(section, elements, degree) > FE_MAX_DOFS:
-                elements -= 1
+        elements, capped = _capped_elements(section, elements, degree)
         solution = _fe_solution(section, elements, degree)
         if len(solution) >= min_modes or capped:
             break
