@@ -420,3 +420,18 @@ def test_lookup_case_refuses_a_point_loaded_mindlin_plate(tmp_path):
     with pytest.raises(ValueError, match="Mindlin plate loaded at a point.*no converged value"):
         lookup_case(linear, cache_dir=tmp_path)
     assert not any(tmp_path.iterdir())
+
+
+def test_a_lookup_in_a_shipped_mindlin_map_says_it_is_a_point_load():
+    """The shipped Mindlin maps are point-loaded: their F̄max holds the shear of the modes
+    up to the sweep's cap and has no converged value — a lookup says so (a warning)."""
+    import warnings
+
+    from impactmaps.validity import ModelValidityWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        lookup(1.0, 1.0, structure="plate", theory="mindlin")
+        lookup(1.0, 1.0, structure="plate", theory="kirchhoff")
+    said = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
+    assert len(said) == 1 and str(said[0].message).startswith("point load: the shipped Mindlin maps")

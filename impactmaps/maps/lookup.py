@@ -17,6 +17,7 @@ a linear one, nor the reverse. The shear-deformable maps also ship at other slen
 from __future__ import annotations
 
 import functools
+import warnings
 from dataclasses import dataclass, replace
 from importlib import resources
 
@@ -176,9 +177,24 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     LookupResult
     """
     key = (structure, theory, law, slenderness)
+    if theory == "mindlin":
+        _warn_point_loaded_mindlin()
     return read_map(load_shipped_map(*key), loss_factor, relative_stiffness, structure=structure, theory=theory,
                     name=map_file_stem(shipped_structure_name(structure, theory, slenderness), law), law=law,
                     tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key))
+
+
+def _warn_point_loaded_mindlin() -> None:
+    """Say what a shipped Mindlin map is: a point load, whose answer depends on where its
+    divergent shear deflection is cut (``docs/contact_patch.rst``, section Maps)."""
+    from ..validity import ModelValidityWarning
+    from .sweep import MAX_MODES
+
+    warnings.warn("point load: the shipped Mindlin maps strike the plate at a point, whose deflection diverges; "
+                  "their F̄max holds the shear of every mode up to the sweep's cap of "
+                  f"{MAX_MODES} modes and has no converged value (simulate, which cuts it at its own cut-off, "
+                  "differs by up to ~3 %); a sphere's Hertz impact spread over its contact patch converges: "
+                  "`impactmaps lookup --case`", ModelValidityWarning, stacklevel=3)
 
 
 def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
