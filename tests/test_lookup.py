@@ -435,3 +435,29 @@ def test_a_lookup_in_a_shipped_mindlin_map_says_it_is_a_point_load():
         lookup(1.0, 1.0, structure="plate", theory="kirchhoff")
     said = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
     assert len(said) == 1 and str(said[0].message).startswith("point load: the shipped Mindlin maps")
+
+
+def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
+    """A case of a shipped family whose numbers lie beyond its map (a Hertz beam impact at
+    λ_h = 60, the map stops at 20) is answered from an on-demand tile of the same structure,
+    within its band of simulate; with build=False it is refused as before."""
+    import warnings
+
+    from impactmaps.cases import parse_case, run_case
+    from impactmaps.hertz_similarity import realise_hertz
+    from impactmaps.maps.case_lookup import lookup_case
+
+    beam = ('[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\nmaterial = "structural-steel"\n'
+            'theory = "euler"\n')
+    text = f'[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nmass = 1.0\nvelocity = 1.0\n{beam}[contact]\nlaw = "hertz"\n'
+    impact = realise_hertz(parse_case(text).target, 1.0, 60.0, parse_case(text).law)
+    case = parse_case(text.replace("mass = 1.0", f"mass = {impact.mass!r}").replace("velocity = 1.0",
+                                                                                      f"velocity = {impact.velocity!r}"))
+    with pytest.raises(ValueError, match="outside the shipped map"):
+        lookup_case(case, build=False)
+    found = lookup_case(case, cache_dir=tmp_path)
+    assert found["map"].startswith("on-demand tile beam-ss-euler-hertz")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, summary = run_case(case)
+    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]

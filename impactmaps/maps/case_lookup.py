@@ -201,7 +201,8 @@ def _family_groups(target) -> dict:
 def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     """Peak force of a physical case from the map that describes it, or refuse.
 
-    A shipped map (:func:`map_for_case`) answers if one describes the case. Otherwise a
+    A shipped map (:func:`map_for_case`) answers if one describes the case and holds its
+    numbers. Otherwise (or when the numbers lie beyond the shipped map) a
     linear or Hertz case on a structure :class:`~impactmaps.maps.structures.MapStructure`
     can write (isotropic, undamped beams and plates of any supports, impact point, aspect
     and slenderness; a Hertz impact under the contact patch adds its patch number) is
@@ -275,7 +276,17 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     else:
         def read(zeta, lam):
             return lookup(zeta, lam, structure=structure, theory=theory, law=law)
-    return scaled_answer(case, law, read)
+    try:
+        return scaled_answer(case, law, read)
+    except ValueError as error:
+        if not build or "outside the shipped map" not in str(error):
+            raise
+        # the case's family has a shipped map, but its numbers lie beyond it: a tile of the
+        # same structure answers (its points solved exactly as the shipped map's)
+        beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map ({error})")
+    from .on_demand import lookup_on_demand
+
+    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
 
 
 def scaled_answer(case, law: str, read) -> dict:
