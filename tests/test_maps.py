@@ -330,3 +330,19 @@ def test_sensitive_band_is_at_least_the_tolerance_wide():
     assert STATUSES[row["status"]] == "sensitive"
     assert row["fmax_low"] == pytest.approx(0.5001 - 1e-3)
     assert row["fmax_high"] == pytest.approx(0.5001 + 1e-3)
+
+
+def test_a_sweep_of_a_mindlin_plate_says_it_is_a_point_load():
+    """A sweep over a Mindlin plate strikes it at a point (no converged value): it says so."""
+    import warnings
+
+    from impactmaps.maps.structures import MapStructure
+    from impactmaps.maps.sweep import sweep
+    from impactmaps.validity import ModelValidityWarning
+
+    mindlin = MapStructure(kind="plate", theory="mindlin", supports="SSSS", slenderness=20)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sweep([mindlin], [1.0], [1.0], max_workers=1, progress=False)
+    said = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
+    assert said and str(said[0].message).startswith("point load: the Mindlin points of this sweep")

@@ -17,7 +17,6 @@ a linear one, nor the reverse. The shear-deformable maps also ship at other slen
 from __future__ import annotations
 
 import functools
-import warnings
 from dataclasses import dataclass, replace
 from importlib import resources
 
@@ -30,7 +29,7 @@ from ..targets.options import STRUCTURE_KINDS
 from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
-from .sweep import MAP_LAWS, map_law
+from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
            "require_map_law", "shipped_structure_name", "lookup", "read_map", "interpolation_error", "design_formula",
@@ -178,23 +177,10 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     """
     key = (structure, theory, law, slenderness)
     if theory == "mindlin":
-        _warn_point_loaded_mindlin()
+        warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
     return read_map(load_shipped_map(*key), loss_factor, relative_stiffness, structure=structure, theory=theory,
                     name=map_file_stem(shipped_structure_name(structure, theory, slenderness), law), law=law,
                     tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key))
-
-
-def _warn_point_loaded_mindlin() -> None:
-    """Say what a shipped Mindlin map is: a point load, whose answer depends on where its
-    divergent shear deflection is cut (``docs/contact_patch.rst``, section Maps)."""
-    from ..validity import ModelValidityWarning
-    from .sweep import MAX_MODES
-
-    warnings.warn("point load: the shipped Mindlin maps strike the plate at a point, whose deflection diverges; "
-                  "their F̄max holds the shear of every mode up to the sweep's cap of "
-                  f"{MAX_MODES} modes and has no converged value (simulate, which cuts it at its own cut-off, "
-                  "differs by up to ~3 %); a sphere's Hertz impact spread over its contact patch converges: "
-                  "`impactmaps lookup --case`", ModelValidityWarning, stacklevel=3)
 
 
 def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,

@@ -45,7 +45,8 @@ from .store import (
 )
 from .structures import BasisTable, MapStructure
 
-__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid"]
+__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid",
+           "warn_point_loaded_mindlin"]
 
 SOLVER_REVISION = 7  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide)
 
@@ -137,6 +138,21 @@ def _asymptote_row(target, zeta: float) -> dict:
         "time_limit_reached": 0,
         "method": METHODS.index("infinite-structure-asymptote"),
     }
+
+
+def warn_point_loaded_mindlin(who: str, stacklevel: int = 2) -> None:
+    """Say that a map of a Mindlin plate is a point load, whose answer depends on where its
+    divergent shear deflection is cut (``docs/contact_patch.rst``, section Maps).
+
+    ``who``: the subject of the sentence, e.g. "the shipped Mindlin maps strike".
+    """
+    from ..validity import ModelValidityWarning
+
+    warnings.warn(f"point load: {who} the plate at a point, whose deflection diverges; their F̄max holds the "
+                  f"shear of every mode up to the sweep's cap of {MAX_MODES} modes and has no converged value "
+                  "(simulate, which cuts it at its own cut-off, differs by up to ~3 %); a sphere's Hertz impact "
+                  "spread over its contact patch converges: `impactmaps lookup --case`", ModelValidityWarning,
+                  stacklevel=stacklevel + 1)
 
 
 def unresolved_point(row: dict) -> dict:
@@ -362,6 +378,8 @@ def sweep(
     settings = settings or ModalSettings()
     structures, zetas, lambdas, description, digest = _prepare(structures, loss_factors, relative_stiffnesses,
                                                                settings, law)
+    if any(structure.theory == "mindlin" for structure in structures):
+        warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=2)
     dataset = _resume(path, overwrite, digest, description, structures, lambdas, zetas, law)
     done = dataset["done"].values.astype(bool)
     tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
