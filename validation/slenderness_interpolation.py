@@ -29,7 +29,7 @@ import pandas as pd
 from impactmaps.maps.families import lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.hertz_points import solve_hertz_points
 from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.structures import FAMILY_SLENDERNESSES, structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
@@ -41,11 +41,13 @@ FAMILIES = (("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), (
 
 def measure(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
     """Random (ζ, λ, s) points: direct solve against the slenderness lookup and its band."""
-    dataset = load_shipped_map(structure, theory, law)
+    # the (ζ, λ) box every family member covers (the s = 20 maps may cover more)
+    members = [load_shipped_map(structure, theory, law, slenderness=s) for s in FAMILY_SLENDERNESSES]
+    box = {axis: (max(m[axis].min().item() for m in members), min(m[axis].max().item() for m in members))
+           for axis in ("zeta", "lambda_")}
     rng = np.random.default_rng(seed)
-    zetas = np.exp(rng.uniform(*np.log([dataset["zeta"].min().item(), dataset["zeta"].max().item()]), points))
-    lambdas = np.exp(rng.uniform(*np.log([dataset["lambda_"].min().item(), dataset["lambda_"].max().item()]),
-                                 points))
+    zetas = np.exp(rng.uniform(*np.log(box["zeta"]), points))
+    lambdas = np.exp(rng.uniform(*np.log(box["lambda_"]), points))
     slendernesses = np.exp(rng.uniform(np.log(10.0), np.log(100.0), points))
     solve = solve_points if law == "linear" else solve_hertz_points
     base = structure_from_name(SHIPPED_MAPS[(structure, theory)])
