@@ -23,7 +23,6 @@ Writes ``validation/sensitive_bands.csv`` (one row per point) and prints a Markd
 from __future__ import annotations
 
 import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +30,7 @@ import pandas as pd
 
 from impactmaps.contact.linear import LinearContact
 from impactmaps.dimensionless import realise
-from impactmaps.maps.accuracy import AccuracyControl
+from impactmaps.maps.accuracy import AccuracyControl, perturbed_runs, settled
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import _map_plan, _point_runner, basis_table, frequency_cap
 from impactmaps.solvers.modal import ModalSettings
@@ -41,19 +40,6 @@ from _script_options import parse
 HERE = Path(__file__).resolve().parent
 STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
 CONTROL = AccuracyControl()
-
-
-def _settled(fine, coarse) -> bool:
-    """The accuracy control's acceptance of a refinement (same rule as controlled_point)."""
-    return abs(fine.fmax_normalised - coarse.fmax_normalised) <= CONTROL.tolerance and fine.impacts == coarse.impacts
-
-
-def _perturbed(run, level: ModalSettings) -> list[float]:
-    p = CONTROL.perturbation
-    return [run(replace(level, cutoff_ratio=level.cutoff_ratio * (1 + p)), 1.0).fmax_normalised,
-            run(replace(level, cutoff_ratio=level.cutoff_ratio * (1 - p)), 1.0).fmax_normalised,
-            run(replace(level, step_scale=level.step_scale * (1 - p)), 1.0).fmax_normalised,
-            run(level, 1 + p).fmax_normalised, run(level, 1 - p).fmax_normalised]
 
 
 def sensitive_points(name: str, count: int, seed: int) -> list[dict]:
@@ -77,17 +63,17 @@ def sensitive_points(name: str, count: int, seed: int) -> list[dict]:
             continue
         run = _point_runner(target, table, cap, zeta, lam, impactor)
         runs = [run(levels[0], 1.0), run(levels[1], 1.0)]
-        if _settled(runs[1], runs[0]):
+        if settled(runs[1], runs[0], CONTROL):
             continue
         runs.append(run(levels[2], 1.0))
-        if _settled(runs[2], runs[1]):
+        if settled(runs[2], runs[1], CONTROL):
             continue
         rows.append({"structure": name, "zeta": zeta, "lambda": lam,
                      **{f"level{k}": r.fmax_normalised for k, r in enumerate(runs)},
                      "impacts_finest": runs[2].impacts,
                      "reference": run(levels[3], 1.0).fmax_normalised,
-                     **{f"base_perturbed{k}": v for k, v in enumerate(_perturbed(run, levels[0]))},
-                     **{f"finest_perturbed{k}": v for k, v in enumerate(_perturbed(run, levels[2]))}})
+                     **{f"{name}_perturbed{k}": r.fmax_normalised for name, level in (("base", 0), ("finest", 2))
+                        for k, r in enumerate(perturbed_runs(run, levels[level], CONTROL.perturbation))}})
     return rows
 
 
