@@ -198,7 +198,7 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     dict
         See :func:`impactmaps.maps.case_lookup.lookup_case`.
     """
-    from .case_lookup import _answer
+    from .case_lookup import NoMapError, _answer
     from .plastic_points import plastic_numbers
 
     numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
@@ -208,8 +208,7 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     except ValueError as error:
         if "outside the shipped map" not in str(error) and "holds no value" not in str(error):
             raise
-        raise ValueError(f"no shipped map covers this case: {str(error).split('; run')[0]}; run "
-                         f"`impactmaps simulate {case.source or 'CASE.toml'}` instead") from None
+        raise NoMapError(case, str(error).split("; run")[0]) from None
     scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
     return _answer(found, scale, law, {
         "restitution": found.restitution,
