@@ -173,8 +173,11 @@ def build_tile(key: TileKey) -> xr.Dataset:
 
 def _table(key: TileKey, points) -> BasisTable:
     """The modes the points of a tile of a bounded model truncate from: up to the largest
-    cut-off any of them can use (its finest refinement level, perturbed up in cut-off and
-    ζ), never past the sweep's cap.
+    cut-off any of them can use (its finest refinement level, with a margin of
+    (1 + p)/(1 − p) for the perturbed runs — since solver revision 7 these start from the
+    base settings and stay below the finest level, but the margin stays: a table of
+    another size would change a bounded model's points in the last bits, and the tile
+    files already cached with it), never past the sweep's cap.
 
     The sweep truncates from a table at its cap (:func:`impactmaps.maps.sweep.basis_table`).
     For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
@@ -194,7 +197,7 @@ def _table(key: TileKey, points) -> BasisTable:
         omegas = np.atleast_1d(realise(target, *np.array(points).T).contact_frequency)
     else:
         omegas = [hertz_contact_frequency(target, zeta, lam) for zeta, lam in points]
-    p = key.control.perturbation  # a perturbed run: cut-off × (1 + p), or ζ × (1 ± p) and so ω up to 1/(1 − p)
+    p = key.control.perturbation  # the margin of the docstring
     finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
     wanted = [finest * omega for omega in omegas
               if key.settings.cutoff_ratio * omega <= cap and not beyond_shear_theory(target, omega)]

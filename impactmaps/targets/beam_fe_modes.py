@@ -14,6 +14,7 @@ import numpy as np
 import scipy.sparse
 from numpy.polynomial import legendre
 
+from .._checks import require_nonnegative
 from .beam_fe_eigen import count_below, eigenpairs_below
 from .beam_section import (
     BeamSection,
@@ -288,6 +289,7 @@ def finite_element_mode_count(section: BeamSection, max_frequency: float, *, deg
     Equal to the count of the solved modes except for an eigenvalue within rounding of the
     cut-off.
     """
+    require_nonnegative("max_frequency", max_frequency, "rad/s")
     elements, _ = _capped_elements(section, _elements_needed(section, max_frequency, 1, degree), degree)
     K, M, _, free, _, width = _assemble(section, elements, degree)
     resolved = frequency_at_wavenumber(section, FE_RESOLUTION * degree * elements / section.length)
