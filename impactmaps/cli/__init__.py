@@ -54,6 +54,7 @@ __all__ = ["main", "build_parser", "SCHEDULER_TIMEOUT_S"]
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
+    from ..maps.chart import DEFAULT_ZETA_RANGE
     from ..maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS
     from ..targets.options import STRUCTURE_KINDS
 
@@ -69,7 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
     p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
-    p.add_argument("--zeta-range", nargs=2, type=float, default=(0.005, 100.0), metavar=("A", "B"))
+    p.add_argument("--zeta-range", nargs=2, type=float, default=DEFAULT_ZETA_RANGE, metavar=("A", "B"))
     p.add_argument("--zeta-count", type=int, default=200, help="log-spaced ζ values per curve (≥ 2, default 200)")
     p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")

@@ -21,7 +21,7 @@ from .lookup import markdown_table
 from .structures import MapStructure
 from .sweep import log_grid, sweep
 
-__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_COUNT", "DEFAULT_PLASTIC_BETAS",
+__all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_RANGE", "DEFAULT_ZETA_COUNT", "DEFAULT_PLASTIC_BETAS",
            "DEFAULT_PLASTIC_LAMBDA", "check_chart_grid", "make_chart", "make_plastic_chart", "tidy_frame"]
 
 CHART_STRUCTURES = (
@@ -29,6 +29,8 @@ CHART_STRUCTURES = (
     MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
 )
 DEFAULT_CHART_LAMBDAS = (0.05, 0.1, 0.2, 0.425, 1.0, 2.0, 5.0, 20.0)
+#: ζ range of the default chart (seed 001 Figure 2).
+DEFAULT_ZETA_RANGE = (0.005, 100.0)
 #: ζ points per curve of the default chart: enough that the re-impact peaks of F̄max(ζ)
 #: are resolved, not jagged (issue 12).
 DEFAULT_ZETA_COUNT = 200
@@ -77,7 +79,7 @@ def check_chart_grid(zeta_range, zeta_count, lambdas) -> None:
 def make_chart(
     out_dir: Path | str = "impactmaps-output",
     *,
-    zeta_range=(0.005, 100.0),
+    zeta_range=DEFAULT_ZETA_RANGE,
     zeta_count: int = DEFAULT_ZETA_COUNT,
     lambdas=None,
     structures=CHART_STRUCTURES,

@@ -36,6 +36,7 @@ from ..solvers.shear_range import beyond_shear_theory
 from .accuracy import STATUSES, AccuracyControl, controlled_point, exact_point
 from .hertz_points import HERTZ_AXES, HERTZ_DESCRIPTIONS, solve_hertz_points
 from .regimes import MAP_LAWS, classify
+from .shipped_results import load_shipped_result
 from .store import (
     SweepInterrupted,
     fingerprint,
@@ -45,7 +46,7 @@ from .store import (
 )
 from .structures import BasisTable, MapStructure
 
-__all__ = ["sweep", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid",
+__all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid",
            "warn_point_loaded_mindlin"]
 
 SOLVER_REVISION = 7  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide)
@@ -388,6 +389,16 @@ def sweep(
     return _finish(results, stopped)
 
 
+def sweep_fingerprint(structures: Sequence[MapStructure], loss_factors, relative_stiffnesses,
+                      settings: ModalSettings | None = None, law: str = "linear") -> str:
+    """The fingerprint of the sweep these arguments describe (what its result file is named by).
+
+    Parameters are those of :func:`sweep`; the fingerprint covers them and
+    :data:`SOLVER_REVISION` (:func:`impactmaps.maps.store.fingerprint`).
+    """
+    return _prepare(structures, loss_factors, relative_stiffnesses, settings or ModalSettings(), law)[4]
+
+
 # -- the stages of a sweep -------------------------------------------------------------------
 def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSettings, law: str = "linear"):
     """Check the grid; return it with its description and fingerprint (what a stored result must match)."""
@@ -415,11 +426,17 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
 
 def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas,
             law: str = "linear") -> xr.Dataset:
-    """The stored result at ``path`` if it matches ``digest`` (and not ``overwrite``), else an empty one."""
+    """The stored result at ``path`` if it matches ``digest`` (and not ``overwrite``), else the
+    package's shipped result of this sweep (:mod:`.shipped_results`, then written to ``path``),
+    else an empty one."""
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
         dataset = None if overwrite else load_matching(path, digest, description)
+    if dataset is None:
+        dataset = load_shipped_result(digest, description)
+        if dataset is not None and path is not None:
+            save_atomic(dataset, path)
     return _empty_dataset(structures, lambdas, zetas, description, digest, law) if dataset is None else dataset
 
 

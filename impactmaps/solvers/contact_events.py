@@ -11,16 +11,12 @@ from __future__ import annotations
 
 import numba
 
-from ..contact.base import KERNEL_TYPE
 from .oscillator_step import fill_step_coefficients, predict_step
 
 __all__ = ["locate_event", "solve_end_force"]
 
-_F8 = numba.types.float64
-_VECTOR = numba.types.Array(_F8, 1, "C")
 
-
-@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8, _F8), cache=True)
+@numba.njit(cache=True)
 def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, alpha_max):
     """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root).
 
@@ -56,7 +52,7 @@ def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, al
     return force
 
 
-@numba.njit(_F8(KERNEL_TYPE, _VECTOR, _F8, _F8, _F8), cache=True)
+@numba.njit(cache=True)
 def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loaded):
     """Indentation α_f(α_max) at and below which the law gives no force [m].
 

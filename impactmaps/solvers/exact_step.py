@@ -43,6 +43,7 @@ from ._peak import parabolic_peak
 from .contact_events import locate_event, solve_end_force
 from .coupled_contact import contact_phase
 from .history_rows import HISTORY_WIDTH, record_row, structure_energy
+from .lazy_kernel import LazyKernel
 from .oscillator_step import (
     fill_step_coefficients,
     predict_step,
@@ -207,15 +208,15 @@ def _step_compliance(coef, phi, h, mass, residual):
     return compliance
 
 
-@numba.njit(
-    numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
-        KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
-        numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
-    ),
-    cache=True,
-    nogil=True,
+#: The one signature of :data:`integrate_impact` (compiled on its first call).
+_SIGNATURE = numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
+    KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
+    numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
 )
-def integrate_impact(
+
+
+@numba.njit(cache=True, nogil=True)
+def _integrate_impact(
     kernel,
     params,
     linear_stiffness,
@@ -435,3 +436,8 @@ def integrate_impact(
     scalars[8] = steps
     scalars[9] = overflow
     return history[:rec].copy(), intervals[:n_intervals].copy(), scalars
+
+
+#: The integrator: compiled for :data:`_SIGNATURE` on its first call, not at import
+#: (:mod:`impactmaps.solvers.lazy_kernel`).
+integrate_impact = LazyKernel(_integrate_impact, _SIGNATURE)

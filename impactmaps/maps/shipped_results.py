@@ -1,0 +1,51 @@
+"""Sweep results shipped with the package, found by the fingerprint of their sweep.
+
+A sweep (:func:`impactmaps.maps.sweep.sweep`) is a pure function of its description —
+structures, grid, solver settings, contact law and solver revision — whose SHA-256 is
+the result's fingerprint (:func:`impactmaps.maps.store.fingerprint`). The package ships
+the result of the sweep behind the default chart (``impactmaps chart`` with no option:
+SS Euler beam and SS square Kirchhoff plate, 8 λ × 200 ζ; built by
+``validation/build_default_chart.py``) as ``data/results/<fingerprint>.nc``. A sweep whose
+fingerprint names a shipped result starts from it as from a finished run to resume: no
+point is computed again, and the values are those the same code computed (a default test
+recomputes a sample of its points; the slow test all of them). Any other grid, setting or
+solver revision has another fingerprint and is computed: a shipped result never answers
+for a sweep it was not made by.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+import xarray as xr
+
+from .store import load_matching
+
+__all__ = ["SHIPPED_RESULTS", "shipped_result_path", "load_shipped_result"]
+
+#: Folder of the shipped sweep results, one NetCDF per fingerprint.
+SHIPPED_RESULTS = Path(str(resources.files("impactmaps.maps").joinpath("data", "results")))
+
+
+def shipped_result_path(digest: str) -> Path:
+    """Where the shipped result of the sweep with fingerprint ``digest`` is (or would be)."""
+    return SHIPPED_RESULTS / f"{digest}.nc"
+
+
+def load_shipped_result(digest: str, description: dict | None = None) -> xr.Dataset | None:
+    """The shipped result of the sweep with fingerprint ``digest``, or ``None``.
+
+    Parameters
+    ----------
+    digest : str
+        Fingerprint of the sweep description.
+    description : dict, optional
+        The description itself (a mismatch names the keys that changed).
+
+    Returns
+    -------
+    xarray.Dataset or None
+        ``None`` when the package ships no result for this sweep.
+    """
+    return load_matching(shipped_result_path(digest), digest, description)

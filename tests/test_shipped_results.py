@@ -1,0 +1,121 @@
+"""The shipped result of the default chart's sweep, and the integrator compiled on first use.
+
+The README's first command (``impactmaps chart``) draws the chart from the shipped result
+of its sweep (:mod:`impactmaps.maps.shipped_results`); these tests hold that result to
+what the code computes today, and that nothing else ever takes it for an answer.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from impactmaps.maps import sweep as sweep_module
+from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
+from impactmaps.maps.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
+from impactmaps.maps.sweep import RESULT_VARIABLES, log_grid, solve_points, sweep, sweep_fingerprint
+from impactmaps.solvers.modal import ModalSettings
+
+ZETAS = log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT)
+DIGEST = sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS)
+
+
+def _shipped() -> xr.Dataset:
+    dataset = load_shipped_result(DIGEST)
+    assert dataset is not None, ("no shipped result for the default chart at this solver revision: "
+                                 "run python validation/build_default_chart.py")
+    return dataset
+
+
+def test_the_shipped_result_is_the_default_charts_and_the_only_one():
+    """Current (its fingerprint is today's default chart sweep's, solver revision
+    included), complete, and no stale result of an earlier revision is shipped."""
+    dataset = _shipped()
+    assert dataset.attrs["fingerprint"] == DIGEST
+    assert dataset["done"].values.all()
+    assert sorted(SHIPPED_RESULTS.glob("*.nc")) == [shipped_result_path(DIGEST)]
+
+
+@pytest.mark.parametrize("structure_index", [0, 1], ids=[s.name for s in CHART_STRUCTURES])
+def test_shipped_points_are_what_the_code_computes(structure_index):
+    """12 random points of each structure recomputed: every result variable as shipped."""
+    dataset = _shipped()
+    rng = np.random.default_rng(11 + structure_index)
+    picks = [(int(rng.integers(len(DEFAULT_CHART_LAMBDAS))), int(rng.integers(ZETAS.size))) for _ in range(12)]
+    points = [(float(ZETAS[z]), float(DEFAULT_CHART_LAMBDAS[lam])) for lam, z in picks]
+    rows = solve_points(CHART_STRUCTURES[structure_index], points, ModalSettings())
+    for (lam, z), row in zip(picks, rows):
+        for name in RESULT_VARIABLES:
+            stored = dataset[name].values[structure_index, lam, z]
+            assert stored == pytest.approx(row[name], rel=0, abs=1e-12, nan_ok=True), (name, points)
+
+
+def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypatch):
+    """Nothing is computed; the result file is written where asked, equal to the shipped one."""
+    def no_solving(*args, **kwargs):
+        raise AssertionError("a point was computed")
+
+    monkeypatch.setattr(sweep_module, "solve_points", no_solving)
+    monkeypatch.setattr(sweep_module, "_point_solver", lambda law: no_solving)
+    result = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, path=tmp_path / "map.nc", progress=False)
+    with xr.open_dataset(tmp_path / "map.nc", engine="scipy") as written:
+        for name in RESULT_VARIABLES:
+            np.testing.assert_array_equal(written[name].values, _shipped()[name].values)
+            np.testing.assert_array_equal(result[name].values, _shipped()[name].values)
+    assert "regime" in result
+
+
+def test_another_sweep_is_not_answered_by_the_shipped_result():
+    """One ζ fewer, other settings or another law: another fingerprint, nothing shipped."""
+    for digest in (sweep_fingerprint(CHART_STRUCTURES, ZETAS[:-1], DEFAULT_CHART_LAMBDAS),
+                   sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, ModalSettings(cutoff_ratio=41.0)),
+                   sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, law="hertz")):
+        assert digest != DIGEST
+        assert load_shipped_result(digest) is None
+
+
+def test_the_default_chart_compiles_no_integrator(tmp_path):
+    """In a fresh interpreter: importing the solvers compiles nothing, the default chart
+    integrates nothing (the integrator has no compiled specialisation after it), and the
+    first integration compiles exactly one."""
+    script = textwrap.dedent(f"""
+        from impactmaps.solvers.exact_step import integrate_impact
+        assert not integrate_impact.dispatcher.signatures
+        from impactmaps.maps.chart import make_chart
+        make_chart({str(tmp_path)!r}, progress=False)
+        assert not integrate_impact.dispatcher.signatures, "the default chart integrated"
+        print("ok")
+    """)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "fmax_map.nc").exists() and (tmp_path / "fmax_chart.png").exists()
+
+
+def test_the_integrator_has_one_specialisation_and_refuses_other_types():
+    """Compiled lazily, it keeps what an eager signature gave: one specialisation, and an
+    argument of another type is refused instead of compiling a second one."""
+    from impactmaps.contact.linear import LinearContact
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.solvers.modal import simulate
+
+    basis = structure_from_name("beam-ss-euler").build().modes(1e5, min_modes=4)
+    simulate(basis, LinearContact(1e7), 0.01, 1.0, record=False)
+    assert len(integrate_impact.dispatcher.signatures) == 1
+    with pytest.raises(TypeError):
+        integrate_impact.dispatcher(*([np.float32(1.0)] * 19))
+    assert len(integrate_impact.dispatcher.signatures) == 1
+
+
+@pytest.mark.slow
+def test_the_whole_shipped_result_is_what_the_code_computes(monkeypatch):
+    """All 3 200 points recomputed by a sweep that may not start from the shipped result."""
+    monkeypatch.setattr(sweep_module, "load_shipped_result", lambda digest, description=None: None)
+    fresh = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, progress=False)
+    for name in RESULT_VARIABLES:
+        np.testing.assert_allclose(fresh[name].values, _shipped()[name].values, rtol=0, atol=1e-12)

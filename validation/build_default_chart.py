@@ -1,0 +1,63 @@
+"""Build the shipped result of the default chart's sweep (``impactmaps chart`` with no option).
+
+The chart's sweep — SS Euler beam and SS square Kirchhoff plate
+(:data:`impactmaps.maps.chart.CHART_STRUCTURES`), the 8 λ of
+:data:`~impactmaps.maps.chart.DEFAULT_CHART_LAMBDAS` × 200 log-spaced ζ over
+:data:`~impactmaps.maps.chart.DEFAULT_ZETA_RANGE`, default solver settings, linear contact —
+is computed and stored as ``impactmaps/maps/data/results/<fingerprint>.nc``
+(:mod:`impactmaps.maps.shipped_results`); results of other fingerprints (an earlier solver
+revision or grid) are deleted. ``impactmaps chart`` then starts from it as from a finished
+run (the README's first command draws the chart without compiling the integrator).
+Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the defaults):
+``tests/test_shipped_results.py`` fails until it is.
+
+    python validation/build_default_chart.py [--quiet] [--force] [--out-dir DIR]
+    python validation/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory
+
+``--force`` recomputes a result that is already current.
+"""
+
+from __future__ import annotations
+
+import time
+
+from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
+from impactmaps.maps.shipped_results import SHIPPED_RESULTS, shipped_result_path
+from impactmaps.maps.store import save_atomic
+from impactmaps.maps.sweep import log_grid, sweep, sweep_fingerprint
+
+from _script_options import parse
+
+
+def default_chart_grid():
+    """(structures, ζ, λ) of the default chart's sweep."""
+    return CHART_STRUCTURES, log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT), DEFAULT_CHART_LAMBDAS
+
+
+def _options(parser) -> None:
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--force", action="store_true", help="recompute a result that is already current")
+
+
+def main(argv=None) -> None:
+    args = parse(__doc__.splitlines()[0], argv, default_out=SHIPPED_RESULTS, add_arguments=_options)
+    structures, zetas, lambdas = default_chart_grid()
+    if args.smoke:
+        zetas, lambdas = zetas[[50, 100, 150]], lambdas[:2]
+    digest = sweep_fingerprint(structures, zetas, lambdas)
+    target = args.out_dir / shipped_result_path(digest).name
+    for stale in args.out_dir.glob("*.nc"):
+        if stale != target or args.force:
+            stale.unlink()
+            print(f"removed {stale.name}")
+    if target.exists():
+        print(f"{target.name} is current")
+        return
+    start = time.perf_counter()
+    dataset = sweep(structures, zetas, lambdas, progress=not args.quiet)
+    save_atomic(dataset.drop_vars("regime"), target)
+    print(f"wrote {target} ({target.stat().st_size / 1e3:.0f} kB, {time.perf_counter() - start:.1f} s)")
+
+
+if __name__ == "__main__":
+    main()
