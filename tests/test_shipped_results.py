@@ -18,37 +18,40 @@ import xarray as xr
 from impactmaps.maps import sweep as sweep_module
 from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
-from impactmaps.maps.sweep import RESULT_VARIABLES, log_grid, solve_points, sweep, sweep_fingerprint
+from impactmaps.maps.sweep import RESULT_VARIABLES, _point_solver, log_grid, sweep, sweep_fingerprint
 from impactmaps.solvers.modal import ModalSettings
 
 ZETAS = log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT)
 DIGEST = sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS)
+HERTZ_DIGEST = sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, law="hertz")
 
 
-def _shipped() -> xr.Dataset:
-    dataset = load_shipped_result(DIGEST)
-    assert dataset is not None, ("no shipped result for the default chart at this solver revision: "
+def _shipped(digest: str = DIGEST) -> xr.Dataset:
+    dataset = load_shipped_result(digest)
+    assert dataset is not None, ("no shipped result for a default chart at this solver revision: "
                                  "run python validation/build_default_chart.py")
     return dataset
 
 
-def test_the_shipped_result_is_the_default_charts_and_the_only_one():
-    """Current (its fingerprint is today's default chart sweep's, solver revision
-    included), complete, and no stale result of an earlier revision is shipped."""
-    dataset = _shipped()
-    assert dataset.attrs["fingerprint"] == DIGEST
-    assert dataset["done"].values.all()
-    assert sorted(SHIPPED_RESULTS.glob("*.nc")) == [shipped_result_path(DIGEST)]
+def test_the_shipped_results_are_the_default_charts_and_no_other():
+    """Current (their fingerprints are today's default chart sweeps', linear and Hertz,
+    solver revision included), complete, and no stale result of an earlier revision."""
+    for digest in (DIGEST, HERTZ_DIGEST):
+        dataset = _shipped(digest)
+        assert dataset.attrs["fingerprint"] == digest
+        assert dataset["done"].values.all()
+    assert sorted(SHIPPED_RESULTS.glob("*.nc")) == sorted(shipped_result_path(d) for d in (DIGEST, HERTZ_DIGEST))
 
 
-@pytest.mark.parametrize("structure_index", [0, 1], ids=[s.name for s in CHART_STRUCTURES])
-def test_shipped_points_are_what_the_code_computes(structure_index):
-    """12 random points of each structure recomputed: every result variable as shipped."""
-    dataset = _shipped()
+@pytest.mark.parametrize("law, structure_index", [("linear", 0), ("linear", 1), ("hertz", 0), ("hertz", 1)])
+def test_shipped_points_are_what_the_code_computes(law, structure_index):
+    """Random points of each structure and law recomputed: every result variable as shipped."""
+    dataset = _shipped(DIGEST if law == "linear" else HERTZ_DIGEST)
     rng = np.random.default_rng(11 + structure_index)
-    picks = [(int(rng.integers(len(DEFAULT_CHART_LAMBDAS))), int(rng.integers(ZETAS.size))) for _ in range(12)]
+    count = 12 if law == "linear" else 4
+    picks = [(int(rng.integers(len(DEFAULT_CHART_LAMBDAS))), int(rng.integers(ZETAS.size))) for _ in range(count)]
     points = [(float(ZETAS[z]), float(DEFAULT_CHART_LAMBDAS[lam])) for lam, z in picks]
-    rows = solve_points(CHART_STRUCTURES[structure_index], points, ModalSettings())
+    rows = _point_solver(law)(CHART_STRUCTURES[structure_index], points, ModalSettings())
     for (lam, z), row in zip(picks, rows):
         for name in RESULT_VARIABLES:
             stored = dataset[name].values[structure_index, lam, z]
@@ -71,11 +74,12 @@ def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypa
 
 
 def test_another_sweep_is_not_answered_by_the_shipped_result():
-    """One ζ fewer, other settings or another law: another fingerprint, nothing shipped."""
+    """One ζ fewer, other settings, one structure: another fingerprint, nothing shipped."""
     for digest in (sweep_fingerprint(CHART_STRUCTURES, ZETAS[:-1], DEFAULT_CHART_LAMBDAS),
                    sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, ModalSettings(cutoff_ratio=41.0)),
-                   sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, law="hertz")):
-        assert digest != DIGEST
+                   sweep_fingerprint(CHART_STRUCTURES, ZETAS[:-1], DEFAULT_CHART_LAMBDAS, law="hertz"),
+                   sweep_fingerprint(CHART_STRUCTURES[:1], ZETAS, DEFAULT_CHART_LAMBDAS)):
+        assert digest not in (DIGEST, HERTZ_DIGEST)
         assert load_shipped_result(digest) is None
 
 
@@ -113,9 +117,11 @@ def test_the_integrator_has_one_specialisation_and_refuses_other_types():
 
 
 @pytest.mark.slow
-def test_the_whole_shipped_result_is_what_the_code_computes(monkeypatch):
+@pytest.mark.parametrize("law", ["linear", "hertz"])
+def test_the_whole_shipped_result_is_what_the_code_computes(monkeypatch, law):
     """All 3 200 points recomputed by a sweep that may not start from the shipped result."""
     monkeypatch.setattr(sweep_module, "load_shipped_result", lambda digest, description=None: None)
-    fresh = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, progress=False)
+    fresh = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, progress=False, law=law)
+    shipped = _shipped(DIGEST if law == "linear" else HERTZ_DIGEST)
     for name in RESULT_VARIABLES:
-        np.testing.assert_allclose(fresh[name].values, _shipped()[name].values, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(fresh[name].values, shipped[name].values, rtol=0, atol=1e-12)

@@ -3,9 +3,10 @@
 A sweep (:func:`impactmaps.maps.sweep.sweep`) is a pure function of its description —
 structures, grid, solver settings, contact law and solver revision — whose SHA-256 is
 the result's fingerprint (:func:`impactmaps.maps.store.fingerprint`). The package ships
-the result of the sweep behind the default chart (``impactmaps chart`` with no option:
-SS Euler beam and SS square Kirchhoff plate, 8 λ × 200 ζ; built by
-``validation/build_default_chart.py``) as ``data/results/<fingerprint>.nc``. A sweep whose
+the results of the sweeps behind the default charts (``impactmaps chart`` and
+``impactmaps chart --law hertz`` with no other option: SS Euler beam and SS square
+Kirchhoff plate, 8 λ × 200 ζ; built by ``validation/build_default_chart.py``) as
+``data/results/<fingerprint>.nc``. A sweep whose
 fingerprint names a shipped result starts from it as from a finished run to resume: no
 point is computed again, and the values are those the same code computed (a default test
 recomputes a sample of its points; the slow test all of them). Any other grid, setting or
