@@ -461,3 +461,26 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
         warnings.simplefilter("ignore")
         _, summary = run_case(case)
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]
+
+
+def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_band():
+    """Across a re-impact kink of F̄max (SS beam, ζ = 0.33, λ = 0.013: two impacts) every
+    map point around is converged, but the value between them is known only to ± the
+    interpolation error: status ``interpolated``, the band covers the direct simulation
+    and is wider than the points' tolerance. On a grid point the band is the point's own
+    error and the status the point's."""
+    from impactmaps.maps.lookup import BAND_TOLERANCE, answer_status
+
+    kink = lookup(0.33, 0.013, structure="beam", theory="euler")
+    direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]
+    assert kink.status == "interpolated" and kink.fmax_error > BAND_TOLERANCE
+    assert abs(kink.fmax_normalised - direct["fmax_normalised"]) <= kink.fmax_error
+    dataset = load_shipped_map("beam", "euler")
+    row, column = 40, 50
+    zeta, lam = float(dataset["zeta"][column]), float(dataset["lambda_"][row])
+    node = lookup(zeta, lam, structure="beam", theory="euler")
+    assert node.fmax_error == float(dataset["fmax_error"].isel(structure=0)[row, column])
+    assert node.status == "converged"
+    assert answer_status("sensitive", 0.5) == "sensitive" and answer_status("refined", 2e-3) == "interpolated"
+    assert list(answer_status(np.array(["converged", "converged"]), np.array([1e-4, 1e-2]))) == [
+        "converged", "interpolated"]

@@ -27,7 +27,7 @@ import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
-from .lookup import _SEVERITY, load_shipped_map, lookup
+from .lookup import _SEVERITY, answer_status, load_shipped_map, lookup
 from .structures import FAMILY_SLENDERNESSES
 
 __all__ = ["FAMILY_THEORIES", "family_members", "lookup_slenderness", "slenderness_error_grid"]
@@ -156,8 +156,8 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
         raise ValueError(f"slenderness = {slenderness:g} at (loss_factor, relative_stiffness) = "
                          f"({loss_factor:g}, {relative_stiffness:g}): a family member holds no value next to it "
                          "(unresolved); run a simulation instead")
-    status = max(low.status, high.status, key=_SEVERITY.__getitem__)  # the worse member status
+    band = float(max(low.fmax_error, high.fmax_error) + slender_error)
+    # the worse member status, interpolated if the slenderness error widens the band past the tolerance
+    status = answer_status(max(low.status, high.status, key=_SEVERITY.__getitem__), band)
     name = f"{low.map_name} ×{1.0 - weight:.3g} + {high.map_name} ×{weight:.3g} (1/s)"
-    return replace(low, fmax_normalised=float(fmax), fmax_error=float(max(low.fmax_error, high.fmax_error)
-                                                                        + slender_error),
-                   status=status, map_name=name, theory=theory)
+    return replace(low, fmax_normalised=float(fmax), fmax_error=band, status=status, map_name=name, theory=theory)

@@ -26,12 +26,14 @@ from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
+from .accuracy import AccuracyControl
 from .plastic_points import PLASTIC_LAWS
 from .regimes import classify, quasi_static_peak
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
-__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
+__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "answer_status", "map_file_stem", "LookupResult",
+           "load_shipped_map",
            "require_map_law", "shipped_structure_name", "lookup", "read_map", "interpolation_error", "design_formula",
            "markdown_table"]
 
@@ -78,7 +80,10 @@ class LookupResult:
     status : str or ndarray of str
         The worst status of those four points (``sensitive`` > ``refined`` >
         ``converged``/``asymptotic``; :mod:`impactmaps.maps.accuracy`): a
-        ``sensitive`` answer has no converged value, only the band.
+        ``sensitive`` answer has no converged value, only the band; and
+        ``interpolated`` where those points converged but the band is wider than
+        :data:`BAND_TOLERANCE` (:func:`answer_status`): the value is known to ± the band.
+        On a grid point the band is the point's own error.
     law : str
         Contact law of the map: ``"linear"`` (F̄max = F_max/(m_i V0 ω)) or ``"hertz"``
         (F̄max = F_max/F_hs, :mod:`impactmaps.hertz_similarity`).
@@ -261,8 +266,29 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     return LookupResult(fmax, regime, structure, theory, name, error, status, law)
 
 
-#: Severity of a status when four map points are combined (worst wins).
-_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "sensitive": 2, "unresolved": 3}
+#: Severity of a status when map points (or family members) are combined (worst wins);
+#: ``interpolated`` is a lookup's own status (:func:`answer_status`), never a point's.
+_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
+#: The status of each severity.
+_BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
+#: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
+#: band is wider is ``interpolated``, even where every point around it converged.
+BAND_TOLERANCE = AccuracyControl().tolerance
+
+
+def answer_status(point_status, band):
+    """The status of an interpolated answer from its map points' worst status and its band.
+
+    ``interpolated`` where the points converged (``converged``, ``refined``) but the band
+    — their own error plus the interpolation (or slenderness) error between them — is wider
+    than :data:`BAND_TOLERANCE`: the points are right, the value between them is known only
+    to ± the band (near a re-impact kink of F̄max the interpolation errs by up to a few
+    1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
+    """
+    status = np.asarray(point_status)
+    widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
+    out = np.where(widened, "interpolated", status)
+    return str(out) if out.ndim == 0 else out
 
 
 def interpolation_error(values: np.ndarray) -> np.ndarray:
@@ -328,7 +354,8 @@ def _corner_accuracy(dataset: xr.Dataset, lam, zeta, error_grid: np.ndarray):
     each (λ, ζ) of the map ``dataset``."""
     from .accuracy import STATUSES
 
-    errors = dataset["fmax_error"].isel(structure=0).values + error_grid
+    own = dataset["fmax_error"].isel(structure=0).values
+    errors = own + error_grid
     codes = dataset["status"].isel(structure=0).values
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
@@ -339,8 +366,10 @@ def _corner_accuracy(dataset: xr.Dataset, lam, zeta, error_grid: np.ndarray):
         for c in cols:
             error = np.maximum(error, errors[r, c])
             worst = np.maximum(worst, severity[codes[r, c]])
-    names = np.array(["converged", "refined", "sensitive", "unresolved"])
-    return error, names[worst]
+    # on a grid point the interpolation returns the stored point: only its own error
+    node = (rows[0] == rows[1]) & (cols[0] == cols[1])
+    error = np.where(node, own[rows[0], cols[0]], error)
+    return error, answer_status(_BY_SEVERITY[worst], error)
 
 
 def _bracket(grid: np.ndarray, values: np.ndarray):

@@ -54,7 +54,9 @@ class PlasticLookup:
     absorbed_energy_fraction, absorbed_energy_error : contact dissipation / ½ m V0² and its band.
     status : str or ndarray of str
         Worst status of the eight map points around the answer (``sensitive`` >
-        ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused).
+        ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused), and
+        ``interpolated`` where they converged but the F̄max band is wider than the points'
+        tolerance (:func:`impactmaps.maps.lookup.answer_status`).
     map_name : str
     law : str
         ``"yc"`` or ``"stronge"``.
@@ -141,7 +143,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         around the answer is ``unresolved`` (holds no value).
     """
     from .accuracy import STATUSES
-    from .lookup import _SEVERITY, map_file_stem
+    from .lookup import _BY_SEVERITY, _SEVERITY, answer_status, map_file_stem
 
     dataset = load_plastic_map(structure, theory, law)
     numbers = np.broadcast_arrays(*(np.asarray(v, float) for v in (beta, relative_stiffness, loss_factor)))
@@ -164,7 +166,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
     codes = dataset["status"].isel(structure=0).values
     severity = np.array([_SEVERITY[name] for name in STATUSES])
     worst = np.max([severity[codes[c]] for c in corners], axis=0)
-    status = np.array(["converged", "refined", "sensitive", "unresolved"])[worst]
+    status = answer_status(_BY_SEVERITY[worst], out["fmax_error"])
     if np.any(status == "unresolved") or not np.all(np.isfinite(out["fmax_normalised"])):
         bad = int(np.flatnonzero((status == "unresolved") | ~np.isfinite(out["fmax_normalised"]))[0])
         raise ValueError(f"(beta, loss_factor, relative_stiffness) = ({np.ravel(numbers[0])[bad]:g}, "
