@@ -58,14 +58,17 @@ def test_shipped_points_are_what_the_code_computes(law, structure_index):
             assert stored == pytest.approx(row[name], rel=0, abs=1e-12, nan_ok=True), (name, points)
 
 
-def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypatch):
-    """Nothing is computed; the result file is written where asked, equal to the shipped one."""
+def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypatch, capsys):
+    """Nothing is computed (and no empty progress bar drawn: one line says where the points
+    come from); the result file is written where asked, equal to the shipped one."""
     def no_solving(*args, **kwargs):
         raise AssertionError("a point was computed")
 
     monkeypatch.setattr(sweep_module, "solve_points", no_solving)
     monkeypatch.setattr(sweep_module, "_point_solver", lambda law: no_solving)
-    result = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, path=tmp_path / "map.nc", progress=False)
+    result = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, path=tmp_path / "map.nc", progress=True)
+    said = capsys.readouterr().err
+    assert "all 3200 points from the result shipped for this sweep" in said and "pt/s" not in said
     with xr.open_dataset(tmp_path / "map.nc", engine="scipy") as written:
         for name in RESULT_VARIABLES:
             np.testing.assert_array_equal(written[name].values, _shipped()[name].values)

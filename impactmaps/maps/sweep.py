@@ -12,6 +12,7 @@ from __future__ import annotations
 import functools
 import os
 import signal
+import sys
 import threading
 import time
 import warnings
@@ -381,7 +382,10 @@ def sweep(
                                                                settings, law)
     if any(structure.theory == "mindlin" for structure in structures):
         warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=2)
-    dataset = _resume(path, overwrite, digest, description, structures, lambdas, zetas, law)
+    dataset, shipped = _resume(path, overwrite, digest, description, structures, lambdas, zetas, law)
+    if shipped and progress:
+        print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "
+              f"(impactmaps.maps.shipped_results, {digest[:12]}…)", file=sys.stderr)
     done = dataset["done"].values.astype(bool)
     tasks = list(_chunks(structures, lambdas, zetas, done, max(1, int(chunk_size))))
     results = _Results(dataset, path, save_interval, sum(len(task[3]) for task in tasks), progress)
@@ -426,18 +430,21 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
 
 def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas,
             law: str = "linear") -> xr.Dataset:
-    """The stored result at ``path`` if it matches ``digest`` (and not ``overwrite``), else the
-    package's shipped result of this sweep (:mod:`.shipped_results`, then written to ``path``),
-    else an empty one."""
+    """(dataset, shipped): the stored result at ``path`` if it matches ``digest`` (and not
+    ``overwrite``), else the package's shipped result of this sweep (:mod:`.shipped_results`,
+    then written to ``path``; ``shipped`` True), else an empty one."""
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
         dataset = None if overwrite else load_matching(path, digest, description)
+    if dataset is not None:
+        return dataset, False
+    dataset = load_shipped_result(digest, description)
     if dataset is None:
-        dataset = load_shipped_result(digest, description)
-        if dataset is not None and path is not None:
-            save_atomic(dataset, path)
-    return _empty_dataset(structures, lambdas, zetas, description, digest, law) if dataset is None else dataset
+        return _empty_dataset(structures, lambdas, zetas, description, digest, law), False
+    if path is not None:
+        save_atomic(dataset, path)
+    return dataset, True
 
 
 class _Results:
@@ -449,7 +456,7 @@ class _Results:
         self.methods = set(str(dataset.attrs.get("point_methods", "")).split(",")) - {""}
         self.absorbed = 0
         from tqdm.auto import tqdm  # imported when a sweep runs, not with the module
-        self.bar = tqdm(total=pending, disable=not progress, desc="impact map", unit="pt")
+        self.bar = tqdm(total=pending, disable=not progress or not pending, desc="impact map", unit="pt")
         self.last_save = time.monotonic()
 
     def absorb(self, task, rows) -> None:
