@@ -1,0 +1,59 @@
+"""The hot path of a map point is fast without moving a bit: truncations of a basis
+table give the residual compliance of a fresh summation, the internal run of a map point
+gives what :func:`impactmaps.solvers.modal.simulate` gives, and validation still refuses
+bad input."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from impactmaps.maps.structures import structure_from_name
+from impactmaps.targets.base import ModalBasis
+
+
+def _old_residual(basis: ModalBasis, count: int) -> float:
+    """The residual of a truncation to ``count`` modes as ModalBasis.truncate summed it
+    before the table kept its sums (a cumsum over the dropped modes, highest first)."""
+    frequencies = basis.frequencies[count:]
+    dropped = np.zeros_like(frequencies)
+    elastic = frequencies > 0
+    dropped[elastic] = basis.participation[count:][elastic] ** 2 / frequencies[elastic] ** 2
+    return float(np.cumsum(dropped[::-1])[-1]) + basis.residual_compliance
+
+
+@pytest.fixture(scope="module")
+def beam_table():
+    from impactmaps.maps.sweep import basis_table
+
+    return basis_table(structure_from_name("beam-ss-euler"), 4)
+
+
+def test_table_truncation_residual_is_bit_identical_to_a_fresh_sum(beam_table):
+    basis = beam_table.basis
+    assert basis.size > 1000
+    rng = np.random.default_rng(3)
+    counts = sorted({4, 5, basis.size - 2, basis.size - 1, *rng.integers(4, basis.size, 300).tolist()})
+    for count in counts:
+        # a cut-off between mode count-1 and mode count keeps exactly count modes
+        cutoff = 0.5 * (basis.frequencies[count - 1] + basis.frequencies[count])
+        fast = beam_table.truncate(cutoff, 4)
+        plain = basis.truncate(cutoff, 4)
+        assert fast.size == plain.size == count
+        assert fast.residual_compliance == plain.residual_compliance == _old_residual(basis, count)
+        assert np.array_equal(fast.frequencies, basis.frequencies[:count])
+        assert np.array_equal(fast.participation, basis.participation[:count])
+        assert np.array_equal(fast.damping_ratios, basis.damping_ratios[:count])
+    assert beam_table.truncate(2 * basis.frequencies[-1], 4) is basis
+    assert beam_table.truncate(0.0, 7).size == 7
+
+
+def test_truncation_of_a_plain_basis_with_rigid_modes_is_unchanged():
+    rng = np.random.default_rng(5)
+    frequencies = np.concatenate(([0.0, 0.0], np.sort(rng.uniform(1.0, 1e4, 500))))
+    basis = ModalBasis(frequencies, rng.normal(size=frequencies.size), 3e-7)
+    for count in range(2, basis.size):
+        cutoff = 0.5 * (frequencies[count - 1] + frequencies[count]) if frequencies[count] > 0 else 0.0
+        truncated = basis.truncate(cutoff, count)
+        assert truncated.size == count
+        assert truncated.residual_compliance == _old_residual(basis, count)
