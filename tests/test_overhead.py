@@ -57,3 +57,45 @@ def test_truncation_of_a_plain_basis_with_rigid_modes_is_unchanged():
         truncated = basis.truncate(cutoff, count)
         assert truncated.size == count
         assert truncated.residual_compliance == _old_residual(basis, count)
+
+
+@pytest.mark.parametrize("value", [0.0, -1.0, -1, 0, float("nan"), float("inf"), -float("inf"), np.float64(-2.0),
+                                   np.float64("nan"), 2**60, -(2**60), 3.5, 7, np.float64(4.0), True])
+def test_scalar_checks_answer_as_the_array_checks(value):
+    """The checks' scalar fast paths accept and refuse exactly what their NumPy paths do,
+    with the same message."""
+    from impactmaps import _checks
+
+    def outcome(check, *args, **kwargs):
+        try:
+            check("x", value, *args, **kwargs)
+        except ValueError as error:
+            return str(error)
+        return None
+
+    def as_array(check, *args, **kwargs):
+        try:
+            check("x", np.array([value], dtype=float), *args, **kwargs)
+        except ValueError:
+            return "refused"
+        return None
+
+    for check, args, kwargs in [(_checks.require_positive, (), {}), (_checks.require_nonnegative, (), {}),
+                                (_checks.require_in_range, (0, 5), {}),
+                                (_checks.require_in_range, (0, 5), {"low_inclusive": False, "high_inclusive": False}),
+                                (_checks.require_in_range, (-np.inf, np.inf), {})]:
+        fast = outcome(check, *args, **kwargs)
+        assert (fast is None) == (as_array(check, *args, **kwargs) is None), (check, value)
+        if fast is not None:
+            assert fast.startswith(f"x = {value!r}") or fast.startswith(f"x = {float(value)!r}"), fast
+
+
+def test_a_bad_setting_still_raises_the_same_error():
+    from impactmaps.solvers.modal import ModalSettings
+
+    with pytest.raises(ValueError, match=r"min_modes = -1 is invalid: valid range is \[0, inf\)"):
+        ModalSettings(min_modes=-1)
+    with pytest.raises(ValueError, match=r"time_step_ratio = 1.5 is invalid: valid range is \(0, 1\]"):
+        ModalSettings(time_step_ratio=1.5)
+    with pytest.raises(ValueError, match=r"cutoff_ratio = nan is invalid: must be finite"):
+        ModalSettings(cutoff_ratio=float("nan"))
