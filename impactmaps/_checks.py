@@ -42,6 +42,8 @@ def require_positive(name: str, value, unit: str = "") -> None:
     """Raise ``ValueError`` unless every element of ``value`` is finite and > 0."""
     if _real_scalar(value) and 0.0 < value < math.inf:
         return  # the common scalar case, without NumPy
+    if _float_array(value) and 0.0 < value.min() and value.max() < math.inf:
+        return  # a float array, in two reductions (a NaN fails both comparisons)
     require_finite(name, value, unit)
     if np.any(np.asarray(value, dtype=float) <= 0):
         raise ValueError(
@@ -106,6 +108,11 @@ def _real_scalar(value) -> bool:
     """Whether ``value`` is a Python or NumPy float, or a Python int (bool included): a
     scalar the checks may compare without NumPy, as NumPy would compare it as a float."""
     return isinstance(value, float) or (isinstance(value, int) and abs(value) < _EXACT_INTEGER_LIMIT)
+
+
+def _float_array(value) -> bool:
+    """Whether ``value`` is a non-empty float64 ndarray (its ``min``/``max`` then propagate NaN)."""
+    return type(value) is np.ndarray and value.dtype == np.float64 and value.size > 0
 
 
 #: Ints below this size convert to float exactly: the fast paths compare them as NumPy would.

@@ -99,3 +99,18 @@ def test_a_bad_setting_still_raises_the_same_error():
         ModalSettings(time_step_ratio=1.5)
     with pytest.raises(ValueError, match=r"cutoff_ratio = nan is invalid: must be finite"):
         ModalSettings(cutoff_ratio=float("nan"))
+
+
+@pytest.mark.parametrize("values", [[1.0, 2.0], [1.0, 0.0], [1.0, -3.0], [np.nan, 1.0], [1.0, np.inf], [5e-324],
+                                    [[1.0, 2.0], [3.0, np.nan]], []])
+def test_positive_check_of_arrays_answers_as_before(values):
+    """The float-array fast path of require_positive refuses what the element checks refuse."""
+    from impactmaps._checks import require_positive
+
+    array = np.array(values, dtype=float)
+    bad = array.size > 0 and not (np.all(np.isfinite(array)) and np.all(array > 0))
+    if bad:
+        with pytest.raises(ValueError, match="^x = array of shape"):
+            require_positive("x", array)
+    else:
+        require_positive("x", array)
