@@ -114,3 +114,23 @@ def test_positive_check_of_arrays_answers_as_before(values):
             require_positive("x", array)
     else:
         require_positive("x", array)
+
+
+def test_coupled_stiffness_diagonal_is_added_as_before():
+    """coupled_modes adds ω_j² on the diagonal through ``flat``: the same matrix, bit for bit,
+    as through ``np.diag_indices`` (so the same eigenvectors)."""
+    from impactmaps.solvers.coupled_contact import coupled_modes
+
+    rng = np.random.default_rng(11)
+    for n in (1, 4, 17, 120):
+        basis = ModalBasis(np.sort(rng.uniform(1.0, 1e5, n)), rng.normal(size=n), float(rng.uniform(0, 1e-3)))
+        stiffness, mass = float(rng.uniform(0.1, 1e4)), float(rng.uniform(1e-3, 10.0))
+        effective = stiffness / (1.0 + stiffness * basis.residual_compliance)
+        gvec = np.concatenate(([1.0], -basis.participation))
+        scale = np.concatenate(([1.0 / np.sqrt(mass)], np.ones(n)))
+        matrix = effective * np.outer(scale * gvec, scale * gvec)
+        matrix[np.diag_indices(n + 1)] += np.concatenate(([0.0], basis.frequencies**2))
+        eigenvalues, vectors = np.linalg.eigh(matrix)
+        coupled = coupled_modes(basis, stiffness, mass)
+        assert np.array_equal(coupled.frequencies, np.sqrt(eigenvalues))
+        assert np.array_equal(coupled.from_coupled, scale[:, None] * vectors)
