@@ -15,7 +15,8 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-__all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
+__all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF",
+           "PARTICIPATION_THRESHOLD"]
 
 #: Relative size (of the static compliance) of a negative residual compliance that is
 #: treated as round-off and clipped to zero; anything more negative means wrong modes.
