@@ -77,8 +77,8 @@ def require_in_range(
     The interval is ``[low, high]`` with each end open or closed as requested;
     ``low``/``high`` may be ``-inf``/``inf``.
     """
-    if _real_scalar(value) and math.isfinite(value):  # the common scalar case, without NumPy
-        scalar = float(value)  # NaN and ±inf take the checks below
+    if _real_scalar(value) and _real_scalar(low) and _real_scalar(high) and math.isfinite(value):
+        scalar = float(value)  # the common scalar case, without NumPy (NaN, ±inf: the checks below)
         below = scalar < low if low_inclusive else scalar <= low
         above = scalar > high if high_inclusive else scalar >= high
         if not (below or above):
