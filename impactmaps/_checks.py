@@ -40,8 +40,10 @@ def require_finite(name: str, value, unit: str = "") -> None:
 
 def require_positive(name: str, value, unit: str = "") -> None:
     """Raise ``ValueError`` unless every element of ``value`` is finite and > 0."""
-    if type(value) is float and 0.0 < value < math.inf:
+    if _real_scalar(value) and 0.0 < value < math.inf:
         return  # the common scalar case, without NumPy
+    if _float_array(value) and 0.0 < value.min() and value.max() < math.inf:
+        return  # a float array, in two reductions (a NaN fails both comparisons)
     require_finite(name, value, unit)
     if np.any(np.asarray(value, dtype=float) <= 0):
         raise ValueError(
@@ -51,6 +53,8 @@ def require_positive(name: str, value, unit: str = "") -> None:
 
 def require_nonnegative(name: str, value, unit: str = "") -> None:
     """Raise ``ValueError`` unless every element of ``value`` is finite and >= 0."""
+    if _real_scalar(value) and 0.0 <= value < math.inf:
+        return  # the common scalar case, without NumPy
     require_finite(name, value, unit)
     if np.any(np.asarray(value, dtype=float) < 0):
         raise ValueError(
@@ -73,6 +77,12 @@ def require_in_range(
     The interval is ``[low, high]`` with each end open or closed as requested;
     ``low``/``high`` may be ``-inf``/``inf``.
     """
+    if _real_scalar(value) and _real_scalar(low) and _real_scalar(high) and math.isfinite(value):
+        scalar = float(value)  # the common scalar case, without NumPy (NaN, ±inf: the checks below)
+        below = scalar < low if low_inclusive else scalar <= low
+        above = scalar > high if high_inclusive else scalar >= high
+        if not (below or above):
+            return
     require_finite(name, value, unit)
     array = np.asarray(value, dtype=float)
     below = array < low if low_inclusive else array <= low
@@ -92,6 +102,21 @@ def require_choice(name: str, value, choices) -> None:
     if value not in choices:
         listed = ", ".join(repr(c) for c in choices)
         raise ValueError(f"{name} = {value!r} is not known: valid values are {listed}")
+
+
+def _real_scalar(value) -> bool:
+    """Whether ``value`` is a Python or NumPy float, or a Python int (bool included): a
+    scalar the checks may compare without NumPy, as NumPy would compare it as a float."""
+    return isinstance(value, float) or (isinstance(value, int) and abs(value) < _EXACT_INTEGER_LIMIT)
+
+
+def _float_array(value) -> bool:
+    """Whether ``value`` is a non-empty float64 ndarray (its ``min``/``max`` then propagate NaN)."""
+    return type(value) is np.ndarray and value.dtype == np.float64 and value.size > 0
+
+
+#: Ints below this size convert to float exactly: the fast paths compare them as NumPy would.
+_EXACT_INTEGER_LIMIT = 2**53
 
 
 def _unit(unit: str) -> str:

@@ -99,14 +99,14 @@ def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: fl
     """
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("impactor_mass", impactor_mass, "kg")
-    if np.any(basis.damping_ratios > 0.0) or np.any(basis.frequencies <= 0.0):
+    if (basis.damping_ratios > 0.0).any() or (basis.frequencies <= 0.0).any():
         return None
     effective = contact_stiffness / (1.0 + contact_stiffness * basis.residual_compliance)
     gvec = np.concatenate(([1.0], -basis.participation))
     scale = np.concatenate(([1.0 / np.sqrt(impactor_mass)], np.ones(basis.size)))
     scaled = (scale * gvec)  # M^{-1/2} g
     stiffness = effective * np.outer(scaled, scaled)
-    stiffness[np.diag_indices(basis.size + 1)] += np.concatenate(([0.0], basis.frequencies**2))
+    stiffness.flat[:: basis.size + 2] += np.concatenate(([0.0], basis.frequencies**2))  # the diagonal
     eigenvalues, vectors = np.linalg.eigh(stiffness)
     if not eigenvalues[0] > 0.0:
         return None

@@ -15,7 +15,8 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-__all__ = ["InfiniteImpact", "ModalBasis", "Target", "RESIDUAL_ROUND_OFF", "PARTICIPATION_THRESHOLD"]
+__all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF",
+           "PARTICIPATION_THRESHOLD"]
 
 #: Relative size (of the static compliance) of a negative residual compliance that is
 #: treated as round-off and clipped to zero; anything more negative means wrong modes.
@@ -135,19 +136,27 @@ class ModalBasis:
         The static compliance ``φ_j²/ω_j²`` of the elastic modes left out is added to the
         residual compliance, so retained + residual stays the target's static compliance
         (residual-flexibility correction). The frequencies must be ascending. The left-out
-        compliances are summed from the highest mode down (smallest terms first).
+        compliances are summed from the highest mode down (smallest terms first,
+        :func:`dropped_compliance_sums`).
         """
-        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
-        count = min(max(count, int(min_modes)), self.size)
+        count = self.cutoff_count(max_frequency, min_modes)
         if count == self.size:
             return self
-        frequencies = self.frequencies[count:]
-        dropped = np.zeros_like(frequencies)
-        elastic = frequencies > 0
-        dropped[elastic] = self.participation[count:][elastic] ** 2 / frequencies[elastic] ** 2
-        residual = float(np.cumsum(dropped[::-1])[-1]) + self.residual_compliance
+        tail = dropped_compliance_sums(self.frequencies[count:], self.participation[count:])
+        return self.head(count, float(tail[-1]))
+
+    def cutoff_count(self, max_frequency: float, min_modes: int = 1) -> int:
+        """How many modes :meth:`truncate` keeps: those with ω_j ≤ ``max_frequency`` [rad/s],
+        at least ``min_modes`` and at most all."""
+        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
+        return min(max(count, int(min_modes)), self.size)
+
+    def head(self, count: int, dropped_compliance: float) -> "ModalBasis":
+        """The first ``count`` modes, with ``dropped_compliance`` [m/N] — the static
+        compliance of the others (:func:`dropped_compliance_sums`) — added to the residual."""
         return ModalBasis.from_validated(self.frequencies[:count], self.participation[:count],
-                                         residual, self.damping_ratios[:count])
+                                         dropped_compliance + self.residual_compliance,
+                                         self.damping_ratios[:count])
 
     def participating(self) -> "ModalBasis":
         """The modes that take part in an impact at the impact point (same residual).
@@ -173,6 +182,33 @@ class ModalBasis:
         """Static compliance [m/N] of the retained elastic modes, ``Σ φ_j²/ω_j²``."""
         elastic = self.frequencies > 0
         return float(np.sum(self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2))
+
+
+def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) -> np.ndarray:
+    """Static compliances [m/N] of the modes from the highest down, summed one by one.
+
+    Element ``i`` is ``Σ φ_j²/ω_j²`` over the last ``i + 1`` modes (rigid-body modes,
+    ω_j = 0, count 0), added in order from the highest mode down — smallest terms first;
+    ``np.cumsum`` adds sequentially, so element ``i`` has the same bits as the last
+    element of the sums of those ``i + 1`` modes alone. :meth:`ModalBasis.truncate` takes
+    the last element over the modes it drops; a table truncated many times computes the
+    sums once (:class:`impactmaps.maps.structures.BasisTable`).
+
+    Parameters
+    ----------
+    frequencies : ndarray, shape (n,)
+        ω_j [rad/s], ≥ 0.
+    participation : ndarray, shape (n,)
+        φ_j [kg^-1/2].
+
+    Returns
+    -------
+    ndarray, shape (n,)
+    """
+    compliance = np.zeros_like(frequencies)
+    elastic = frequencies > 0
+    compliance[elastic] = participation[elastic] ** 2 / frequencies[elastic] ** 2
+    return np.cumsum(compliance[::-1])
 
 
 class InfiniteImpact(NamedTuple):
