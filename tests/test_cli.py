@@ -119,3 +119,20 @@ def test_asymptote_of_a_case_uses_its_own_law(capsys):
     assert values["impacts"] == 1 and isinstance(values["model_warnings"], list)
     assert main(["asymptote", "infinite-beam", "--case", str(path)]) == 2
     assert main(["asymptote", "half-space", "--zeta", "1"]) == 2
+
+
+def test_the_command_runs_one_blas_thread_unless_the_user_says_otherwise():
+    """The command line sets one BLAS thread before NumPy loads (its sweep workers inherit
+    it: N workers with N BLAS threads each oversubscribe the cores); a value the user set
+    is kept."""
+    import os
+    import subprocess
+    import sys
+
+    probe = "import os, impactmaps.cli; print(os.environ['OPENBLAS_NUM_THREADS'], os.environ['OMP_NUM_THREADS'])"
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, check=True)
+    assert done.stdout.split() == ["1", "1"]
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True,
+                          env=env | {"OPENBLAS_NUM_THREADS": "4"})
+    assert done.stdout.split() == ["4", "1"]
