@@ -2,7 +2,7 @@
 
 Simply supported, impact at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
 square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ and λ from 1e-3 to 1e3 at 20 ζ and
-10 λ per decade, twice that for the Euler beam and the Kirchhoff plate (the Mindlin family members at a/h = 10 and 50: ζ from 0.005 to 100,
+10 λ per decade, twice that for the Euler beam and the Kirchhoff plate (both laws; the Mindlin family members at a/h = 10 and 50: ζ from 0.005 to 100,
 λ from 0.05 to 20; the Hertz maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the
 Mindlin one from 0.05; same densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
 theories are stored ``unresolved``. The shear-deformable families add slendernesses 10 and
@@ -60,6 +60,9 @@ MINDLIN_LAMBDAS = np.geomspace(0.05, 20.0, 27)
 #: quasi-static corner is still costly.
 HERTZ_ZETAS = np.geomspace(0.005, 100.0, 87)
 HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 44)
+#: The Hertz maps of the Euler beam and the Kirchhoff plate: twice as dense, like their linear maps.
+DENSE_HERTZ_ZETAS = np.geomspace(0.005, 100.0, 173)
+DENSE_HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 87)
 
 
 def _options(parser) -> None:
@@ -76,7 +79,9 @@ def main(argv=None) -> None:
     for structure in (*DEFAULT_STRUCTURES, *families):
         if structure.name not in wanted:
             continue
-        if args.law != "linear":
+        if args.law != "linear" and structure.name in DENSE_MAPS:
+            zetas, lambdas = DENSE_HERTZ_ZETAS, DENSE_HERTZ_LAMBDAS
+        elif args.law != "linear":
             zetas, lambdas = HERTZ_ZETAS, (MINDLIN_LAMBDAS if structure.theory == "mindlin" else HERTZ_LAMBDAS)
         elif structure.theory == "mindlin" and structure.slenderness != 20.0:
             zetas, lambdas = MINDLIN_ZETAS, MINDLIN_LAMBDAS
