@@ -86,6 +86,22 @@ def test_another_sweep_is_not_answered_by_the_shipped_result():
         assert load_shipped_result(digest) is None
 
 
+def test_a_damaged_shipped_result_is_computed_instead(tmp_path, monkeypatch):
+    """A shipped file that cannot be read (or does not match its name) is not used: a
+    warning, and the sweep computes its points."""
+    import impactmaps.maps.shipped_results as shipped
+
+    zetas, lambdas = ZETAS[[10, 20]], DEFAULT_CHART_LAMBDAS[:1]
+    digest = sweep_fingerprint(CHART_STRUCTURES[:1], zetas, lambdas)
+    monkeypatch.setattr(shipped, "SHIPPED_RESULTS", tmp_path)
+    (tmp_path / f"{digest}.nc").write_bytes(b"not a NetCDF file")
+    with pytest.warns(UserWarning, match="not usable"):
+        assert load_shipped_result(digest) is None
+    with pytest.warns(UserWarning, match="not usable"):
+        result = sweep(CHART_STRUCTURES[:1], zetas, lambdas, progress=False, max_workers=1)
+    assert result["done"].values.all() and np.isfinite(result["fmax_normalised"].values).all()
+
+
 def test_the_default_chart_compiles_no_integrator(tmp_path):
     """In a fresh interpreter: importing the solvers compiles nothing, the default chart
     integrates nothing (the integrator has no compiled specialisation after it), and the

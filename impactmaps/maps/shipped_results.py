@@ -16,12 +16,13 @@ for a sweep it was not made by.
 
 from __future__ import annotations
 
+import warnings
 from importlib import resources
 from pathlib import Path
 
 import xarray as xr
 
-from .store import load_matching
+from .store import StoreMismatchError, load_matching
 
 __all__ = ["SHIPPED_RESULTS", "shipped_result_path", "load_shipped_result"]
 
@@ -47,6 +48,13 @@ def load_shipped_result(digest: str, description: dict | None = None) -> xr.Data
     Returns
     -------
     xarray.Dataset or None
-        ``None`` when the package ships no result for this sweep.
+        ``None`` when the package ships no result for this sweep — or ships one that cannot
+        be read or does not match its name (a damaged installation): then a warning says
+        so and the sweep computes its points, as for any other sweep.
     """
-    return load_matching(shipped_result_path(digest), digest, description)
+    try:
+        return load_matching(shipped_result_path(digest), digest, description)
+    except StoreMismatchError as error:
+        warnings.warn(f"the shipped result of this sweep is not usable ({error}); computing it instead",
+                      UserWarning, stacklevel=2)
+        return None
