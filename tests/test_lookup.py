@@ -485,3 +485,21 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     assert answer_status("sensitive", 0.5) == "sensitive" and answer_status("refined", 2e-3) == "interpolated"
     assert list(answer_status(np.array(["converged", "converged"]), np.array([1e-4, 1e-2]))) == [
         "converged", "interpolated"]
+
+
+def test_the_lookup_command_says_what_an_interpolated_or_sensitive_status_means(capsys):
+    """`lookup --json` adds a ``status_note`` where the status qualifies the number
+    (interpolated: known to ± the band, `impactmaps point` for 1e-3; sensitive: read the
+    band) and none where the points converged and the band is within their tolerance."""
+    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.33", "--lambda", "0.013",
+                 "--json"]) == 0
+    values = json.loads(capsys.readouterr().out)
+    assert values["status"] == "interpolated" and "impactmaps point" in values["status_note"]
+    assert main(["lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "17", "--lambda", "0.05",
+                 "--json"]) == 0
+    values = json.loads(capsys.readouterr().out)
+    assert values["status"] == "sensitive" and "read the band" in values["status_note"]
+    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.1", "--lambda", "1",
+                 "--json"]) == 0
+    values = json.loads(capsys.readouterr().out)
+    assert values["status"] == "converged" and "status_note" not in values

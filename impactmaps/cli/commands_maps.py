@@ -303,7 +303,7 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..maps.lookup import lookup
+    from ..maps.lookup import lookup, status_notes
 
     if args.case is not None:
         import sys
@@ -347,11 +347,12 @@ def cmd_lookup(args) -> dict:
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
             from None
     return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
-            "regime": found.regime, "map": found.map_name, "law": law}
+            **status_notes(found.status), "regime": found.regime, "map": found.map_name, "law": law}
 
 
 def _lookup_plastic_numbers(args) -> dict:
     """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
+    from ..maps.lookup import status_notes
     from ..maps.plastic_lookup import lookup_plastic
 
     beta = getattr(args, "beta", None)
@@ -365,4 +366,4 @@ def _lookup_plastic_numbers(args) -> dict:
             "restitution": found.restitution, "restitution_error": found.restitution_error,
             "absorbed_energy_fraction": found.absorbed_energy_fraction,
             "absorbed_energy_error": found.absorbed_energy_error, "status": found.status,
-            "map": found.map_name, "law": args.law}
+            **status_notes(found.status), "map": found.map_name, "law": args.law}

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
+from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup, status_notes
 from .plastic_lookup import PLASTIC_MAPS
 from .plastic_points import PLASTIC_LAWS
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
@@ -318,6 +318,7 @@ def _answer(found, scale: float, law: str, details: dict) -> dict:
         "fmax_normalised": found.fmax_normalised,
         "fmax_error": found.fmax_error,
         "status": found.status,
+        **status_notes(found.status),
         **details,
         "map": found.map_name,
         "law": law,

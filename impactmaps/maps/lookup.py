@@ -32,7 +32,8 @@ from .regimes import classify, quasi_static_peak
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
-__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "answer_status", "map_file_stem", "LookupResult",
+__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "answer_status", "status_notes", "map_file_stem",
+           "LookupResult",
            "load_shipped_map",
            "require_map_law", "shipped_structure_name", "lookup", "read_map", "interpolation_error", "design_formula",
            "markdown_table"]
@@ -293,6 +294,23 @@ def answer_status(point_status, band):
 
 #: Safety factor of :func:`interpolation_error` on the leading-order term ``h² |f''| / 8``.
 INTERPOLATION_SAFETY = 5.0
+
+
+#: What a lookup's status means for its number, where that needs saying.
+_STATUS_NOTES = {
+    "interpolated": "the map points around this one converged, but between them F̄max is known only to "
+                    "± fmax_error (interpolation across the map's kinks or curvature); `impactmaps point` "
+                    "computes this point to 1e-3",
+    "sensitive": "no converged value: re-impacts whose order flips with any change of the model; read the band "
+                 "(± fmax_error), not the number",
+}
+
+
+def status_notes(status) -> dict:
+    """``{"status_note": text}`` for a status whose number needs a word (``interpolated``,
+    ``sensitive``), else ``{}``; what the command line prints beside a lookup's status."""
+    note = _STATUS_NOTES.get(str(status)) if np.ndim(status) == 0 else None
+    return {"status_note": note} if note else {}
 
 
 def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY) -> np.ndarray:
