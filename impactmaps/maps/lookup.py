@@ -32,11 +32,9 @@ from .regimes import classify, quasi_static_peak
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
-__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "answer_status", "status_notes", "map_file_stem",
-           "LookupResult",
-           "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "lookup", "read_map", "interpolation_error", "design_formula",
-           "markdown_table"]
+__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
+           "require_map_law", "shipped_structure_name", "lookup", "read_map", "answer_status", "corner_status",
+           "status_notes", "interpolation_error", "design_formula", "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
 ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
@@ -292,8 +290,16 @@ def answer_status(point_status, band):
     return str(out) if out.ndim == 0 else out
 
 
-#: Safety factor of :func:`interpolation_error` on the leading-order term ``h² |f''| / 8``.
-INTERPOLATION_SAFETY = 5.0
+def corner_status(corner_codes, band):
+    """The status of an answer read between map points: the worst of the points' statuses
+    (``corner_codes``: one array of status codes of :data:`impactmaps.maps.accuracy.STATUSES`
+    per corner around the answers), ``interpolated`` where the ``band`` makes it so
+    (:func:`answer_status`)."""
+    from .accuracy import STATUSES
+
+    severity = np.array([_SEVERITY[name] for name in STATUSES])
+    worst = np.max([severity[codes] for codes in corner_codes], axis=0)
+    return answer_status(_BY_SEVERITY[worst], band)
 
 
 #: What a lookup's status means for its number, where that needs saying.
@@ -311,6 +317,10 @@ def status_notes(status) -> dict:
     ``sensitive``), else ``{}``; what the command line prints beside a lookup's status."""
     note = _STATUS_NOTES.get(str(status)) if np.ndim(status) == 0 else None
     return {"status_note": note} if note else {}
+
+
+#: Safety factor of :func:`interpolation_error` on the leading-order term ``h² |f''| / 8``.
+INTERPOLATION_SAFETY = 5.0
 
 
 def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY) -> np.ndarray:
@@ -395,24 +405,16 @@ def _interpolation_error_grid(key: tuple) -> np.ndarray:
 def _corner_accuracy(dataset: xr.Dataset, lam, zeta, error_grid: np.ndarray):
     """Largest error (points' own + interpolation, ``error_grid``) and worst status around
     each (λ, ζ) of the map ``dataset``."""
-    from .accuracy import STATUSES
-
     own = dataset["fmax_error"].isel(structure=0).values
-    errors = own + error_grid
     codes = dataset["status"].isel(structure=0).values
-    severity = np.array([_SEVERITY[name] for name in STATUSES])
     rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
     cols = _bracket(np.log(dataset["zeta"].values), np.log(zeta))
-    error = np.zeros(lam.shape)
-    worst = np.zeros(lam.shape, dtype=int)
-    for r in rows:
-        for c in cols:
-            error = np.maximum(error, errors[r, c])
-            worst = np.maximum(worst, severity[codes[r, c]])
+    corners = [(r, c) for r in rows for c in cols]
+    error = np.max([own[corner] + error_grid[corner] for corner in corners], axis=0)
     # on a grid point the interpolation returns the stored point: only its own error
     node = (rows[0] == rows[1]) & (cols[0] == cols[1])
     error = np.where(node, own[rows[0], cols[0]], error)
-    return error, answer_status(_BY_SEVERITY[worst], error)
+    return error, corner_status([codes[corner] for corner in corners], error)
 
 
 def _bracket(grid: np.ndarray, values: np.ndarray):

@@ -147,8 +147,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         Outside the map's range (naming the number and the range), or where a map point
         around the answer is ``unresolved`` (holds no value).
     """
-    from .accuracy import STATUSES
-    from .lookup import _BY_SEVERITY, _SEVERITY, answer_status, map_file_stem
+    from .lookup import corner_status, map_file_stem
 
     dataset = load_plastic_map(structure, theory, law)
     numbers = np.broadcast_arrays(*(np.asarray(v, float) for v in (beta, relative_stiffness, loss_factor)))
@@ -169,9 +168,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         band = _band_grid(structure, theory, law, variable)
         out[error_name] = BAND_SAFETY * np.max([band[c] for c in corners], axis=0)
     codes = dataset["status"].isel(structure=0).values
-    severity = np.array([_SEVERITY[name] for name in STATUSES])
-    worst = np.max([severity[codes[c]] for c in corners], axis=0)
-    status = answer_status(_BY_SEVERITY[worst], out["fmax_error"])
+    status = corner_status([codes[c] for c in corners], out["fmax_error"])
     if np.any(status == "unresolved") or not np.all(np.isfinite(out["fmax_normalised"])):
         bad = int(np.flatnonzero((status == "unresolved") | ~np.isfinite(out["fmax_normalised"]))[0])
         raise ValueError(f"(beta, loss_factor, relative_stiffness) = ({np.ravel(numbers[0])[bad]:g}, "

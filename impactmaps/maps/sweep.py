@@ -47,8 +47,8 @@ from .store import (
 )
 from .structures import BasisTable, MapStructure
 
-__all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law", "log_grid",
-           "warn_point_loaded_mindlin"]
+__all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law",
+           "log_grid", "warn_point_loaded_mindlin"]
 
 SOLVER_REVISION = 7  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide)
 
@@ -429,7 +429,7 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
 
 
 def _resume(path, overwrite: bool, digest: str, description: dict, structures, lambdas, zetas,
-            law: str = "linear") -> xr.Dataset:
+            law: str = "linear") -> tuple[xr.Dataset, bool]:
     """(dataset, shipped): the stored result at ``path`` if it matches ``digest`` (and not
     ``overwrite``), else the package's shipped result of this sweep (:mod:`.shipped_results`,
     then written to ``path``; ``shipped`` True), else an empty one."""

@@ -39,6 +39,5 @@ class LazyKernel:
             self.dispatcher.disable_compile()
 
     def __call__(self, *args):
-        if not self.dispatcher.signatures:
-            self.compile()
+        self.compile()
         return self.dispatcher(*args)
