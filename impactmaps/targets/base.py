@@ -16,13 +16,19 @@ from typing import ClassVar, NamedTuple
 import numpy as np
 
 __all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF",
-           "PARTICIPATION_THRESHOLD"]
+           "PARTICIPATION_THRESHOLD", "DEGENERACY_TOLERANCE"]
 
 #: Relative size (of the static compliance) of a negative residual compliance that is
 #: treated as round-off and clipped to zero; anything more negative means wrong modes.
 RESIDUAL_ROUND_OFF = 1e-9
 #: Modes with ``φ_j² ≤ PARTICIPATION_THRESHOLD · max φ²`` do not take part in an impact.
 PARTICIPATION_THRESHOLD = 1e-24
+#: Modes whose frequencies differ by at most this fraction (and whose damping ratios are
+#: equal) are one mode to the impact point (:meth:`ModalBasis.participating`). Their
+#: frequencies are equal in exact arithmetic (the (m, n) and (n, m) pairs of a square plate,
+#: the pairs of equal m² + n²); merged at 1e-9 they would drift apart by less than a
+#: radian only after 10⁹/(2π) periods, far beyond any impact.
+DEGENERACY_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -159,18 +165,30 @@ class ModalBasis:
                                          self.damping_ratios[:count])
 
     def participating(self) -> "ModalBasis":
-        """The modes that take part in an impact at the impact point (same residual).
+        """The modes as the impact point sees them (same residual compliance).
 
         A mode with ``φ_j² ≤`` :data:`PARTICIPATION_THRESHOLD` ``· max φ²`` is never
         excited by the contact force (e.g. antisymmetric modes at a centre impact); it is
-        dropped and its (negligible) compliance is not moved to the residual.
+        dropped and its (negligible) compliance is not moved to the residual. Modes of one
+        frequency and damping ratio (degenerate, :data:`DEGENERACY_TOLERANCE`) are merged
+        into one of participation ``sqrt(Σ φ_j²)``: driven by the same contact force they
+        move as one coordinate ``Q = Σ φ_j q_j / sqrt(Σ φ_j²)``, exactly, and the impact
+        point's deflection is ``sqrt(Σ φ_j²) Q`` (a square plate struck at its centre has
+        ~3 modes per distinct frequency; the solver's cost is per mode). The frequencies
+        must be ascending.
         """
         squares = self.participation**2
         significant = squares > PARTICIPATION_THRESHOLD * max(float(np.max(squares, initial=0.0)), 1e-300)
-        if np.all(significant):
-            return self
-        return ModalBasis.from_validated(self.frequencies[significant], self.participation[significant],
-                                         self.residual_compliance, self.damping_ratios[significant])
+        frequencies, damping = self.frequencies[significant], self.damping_ratios[significant]
+        starts = _degenerate_group_starts(frequencies, damping)
+        if starts.size == frequencies.size:
+            if np.all(significant):
+                return self
+            return ModalBasis.from_validated(frequencies, self.participation[significant],
+                                             self.residual_compliance, damping)
+        # group sums of φ² in order (np.add.reduceat: one pass, deterministic)
+        merged = np.sqrt(np.add.reduceat(squares[significant], starts))
+        return ModalBasis.from_validated(frequencies[starts], merged, self.residual_compliance, damping[starts])
 
     @property
     def size(self) -> int:
@@ -182,6 +200,25 @@ class ModalBasis:
         """Static compliance [m/N] of the retained elastic modes, ``Σ φ_j²/ω_j²``."""
         elastic = self.frequencies > 0
         return float(np.sum(self.participation[elastic] ** 2 / self.frequencies[elastic] ** 2))
+
+
+def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray) -> np.ndarray:
+    """Indices where a group of degenerate modes starts (ascending frequencies [rad/s]): a
+    mode joins the group before it when its frequency lies within
+    :data:`DEGENERACY_TOLERANCE` of the group's first and its damping ratio equals the
+    previous mode's."""
+    n = frequencies.size
+    if n < 2:
+        return np.arange(n)
+    close = (frequencies[1:] - frequencies[:-1] <= DEGENERACY_TOLERANCE * frequencies[1:]) & (
+        damping_ratios[1:] == damping_ratios[:-1])
+    if not np.any(close):
+        return np.arange(n)
+    starts = [0]
+    for j in range(1, n):  # only reached when some modes are degenerate
+        if not close[j - 1] or frequencies[j] - frequencies[starts[-1]] > DEGENERACY_TOLERANCE * frequencies[j]:
+            starts.append(j)
+    return np.asarray(starts, dtype=np.intp)
 
 
 def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) -> np.ndarray:
