@@ -618,6 +618,42 @@ def test_modal_basis_owns_residual_bookkeeping():
     assert participating.participating() is participating
 
 
+def test_degenerate_modes_are_one_mode_to_the_impact_point():
+    """participating merges modes of one frequency and damping into one of participation
+    sqrt(Σφ²) — exact: the impact equals, to the integrator's accuracy, that of the same
+    modes split 1e-7 apart (which stay separate); modes of other damping stay apart; a
+    square plate struck at its centre keeps one mode per distinct frequency."""
+    from impactmaps.contact.linear import LinearContact
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.targets.base import ModalBasis
+
+    frequencies = np.array([10.0, 30.0, 30.0, 30.0 * (1 + 1e-12), 50.0])
+    participation = np.array([1.0, 0.6, -0.8, 0.5, 0.3])
+    basis = ModalBasis(frequencies, participation, 1e-3)
+    merged = basis.participating()
+    np.testing.assert_array_equal(merged.frequencies, [10.0, 30.0, 50.0])
+    np.testing.assert_allclose(merged.participation, [1.0, math.sqrt(0.36 + 0.64 + 0.25), 0.3], rtol=1e-15)
+    assert merged.residual_compliance == basis.residual_compliance
+    assert merged.participating() is merged
+    damped = ModalBasis(frequencies, participation, 1e-3, np.array([0.0, 0.01, 0.02, 0.02, 0.0]))
+    np.testing.assert_array_equal(damped.participating().frequencies, [10.0, 30.0, 30.0, 50.0])
+
+    split = ModalBasis(frequencies * np.array([1.0, 1.0, 1.0 + 1e-7, 1.0 + 2e-7, 1.0]), participation, 1e-3)
+    assert split.participating().size == 5
+    law, settings = LinearContact(2000.0), ModalSettings(contact_phase="sampled")
+    one = simulate(basis, law, 1.0, 1.0, record=False, settings=settings)
+    apart = simulate(split, law, 1.0, 1.0, record=False, settings=settings)
+    assert one.n_modes == 3 and apart.n_modes == 5
+    assert one.peak_force == approx(apart.peak_force, rel=1e-5)
+    assert one.impacts == apart.impacts
+
+    target = structure_from_name("plate-ssss-kirchhoff").build()
+    modes = target.modes(2000.0 * target.modes(1.0, 1).frequencies[0]).participating()
+    distinct = np.unique(np.round(modes.frequencies / modes.frequencies[0], 9))
+    assert modes.size == distinct.size and np.all(np.diff(modes.frequencies) > 0)
+
+
 @pytest.mark.parametrize("theory", ["timoshenko", "rayleigh"])
 @pytest.mark.parametrize("supports", ["cc", "cs", "cf", "ff"])
 def test_finite_element_mode_count_is_the_count_of_the_solved_modes(theory, supports):

@@ -490,9 +490,10 @@ def test_patch_basis_static_compliance_against_the_brute_force_series():
 
 def test_default_patch_run_takes_fewer_modes_and_steps_than_the_point_load():
     """Issue 14: the patch's transform suppresses the high modes, so the default patch run
-    (``patch_cutoff_ratio`` = 20) integrates 987 modes in 726 steps on the README plate
-    where the point load at its default 40 ω takes 3129 and 1398 — and lies within 5e-5 of
-    the patch at 40 and 80 ω."""
+    (``patch_cutoff_ratio`` = 20) integrates 359 modes in 695 steps on the README plate
+    where the point load at its default 40 ω takes 1056 and 1308 — and lies within 5e-5 of
+    the patch at 40 and 80 ω. (Modes as the impact point sees them, degenerate ones
+    merged; before 2026-11-24 each degenerate mode counted: 987 against 3129.)"""
     plate = readme_plate()
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -502,5 +503,5 @@ def test_default_patch_run_takes_fewer_modes_and_steps_than_the_point_load():
         warnings.simplefilter("ignore")
         point = simulate(plate, HERTZ, SPHERE.mass, 3.0, record=False, effective_radius=SPHERE.radius,
                          settings=ModalSettings(contact_patch="point"))
-    assert default.n_modes < point.n_modes / 3 and default.details.steps < 0.6 * point.details.steps
+    assert default.n_modes < point.n_modes / 2.5 and default.details.steps < 0.6 * point.details.steps
     assert max(abs(f - default.peak_force) for f in fine) < 5e-5 * default.peak_force

@@ -10,13 +10,14 @@ period per step: ``modal.STABLE_TOP_STEP``.)
 
 One impact is a loop over four stages:
 
-* **free flight** (no contact force): the step doubles up to 64× as long as a bound on
+* **free flight** (no contact force): the step doubles up to 1024× as long as a bound on
   the closing speed proves that no touchdown fits inside it, and the run ends as soon as
   the gap exceeds the largest displacement the free vibration can reach at the impact
   point (:func:`_free_doublings`, :func:`_closing_speed_bound`). A recorded run takes the
-  same steps and records the exact state at the end of each, so its history rows are
-  spaced up to 64 h apart in free flight (every step h in contact) and its scalars are
-  those of the run without a record;
+  same steps and records the exact state at the end of each, and inside a step longer
+  than 64 h every 64 h (:func:`_record_free_inside`), so its history rows are spaced up to
+  64 h apart in free flight (every step h in contact) and its scalars are those of the
+  run without a record;
 * **event location**: contact start and separation are roots of the predicted gap
   inside the step (Brent's method); the step is cut there and the next one starts at the
   event (:mod:`impactmaps.solvers.contact_events`, :func:`_advance_to_event`);
@@ -57,8 +58,11 @@ _F8 = numba.types.float64
 _VECTOR = numba.types.Array(_F8, 1, "C")
 _MATRIX = numba.types.Array(_F8, 2, "C")
 
-#: Longest free-flight step: 2^(_FREE_POWERS − 1) = 64 steps h.
-_FREE_POWERS = 7
+#: Longest free-flight step: 2^(_FREE_POWERS − 1) = 1024 steps h. (Up to 2026-11-24 64 h:
+#: a light impactor's long flights between re-impacts took ~30 % of a plate run's steps.)
+_FREE_POWERS = 11
+#: A recorded run's rows in free flight are at most 2^_RECORD_POWER = 64 steps h apart.
+_RECORD_POWER = 6
 
 # The stages below are plain compiled calls, not ``inline="always"``: numba's IR inlining
 # adds reference-count operations on every array argument, which cost up to 1.5× per step
@@ -124,6 +128,27 @@ def _free_doublings(phi, q, wi, h, speed_bound):
     while k + 1 < _FREE_POWERS and (2.0 ** (k + 1)) * h * speed_bound < gap:
         k += 1
     return k
+
+
+@numba.njit(cache=True)
+def _record_free_inside(free_coef, k, h, t, wi, vi, residual, omega, phi, q, v, scratch, history, rec):
+    """Record exact rows every 2^_RECORD_POWER h inside a free-flight step of 2^k h [s]
+    that starts at time t [s] from the state (w_i, v_i, q, v), which is not touched;
+    ``scratch`` is (4, n). Returns the history and the next row."""
+    if k <= _RECORD_POWER:
+        return history, rec
+    spacing = 2.0**_RECORD_POWER * h
+    q_a, v_a, q_b, v_b = scratch[0], scratch[1], scratch[2], scratch[3]
+    for j in range(q.shape[0]):
+        q_a[j] = q[j]
+        v_a[j] = v[j]
+    for i in range(1, 2 ** (k - _RECORD_POWER)):
+        propagate_free(free_coef[_RECORD_POWER], spacing, wi, vi, q_a, v_a, phi, q_b, v_b)
+        q_a, q_b = q_b, q_a
+        v_a, v_b = v_b, v_a
+        history, rec = record_row(history, rec, t + i * spacing, 0.0, wi + vi * (i * spacing), vi, residual,
+                                  omega, phi, q_a, v_a)
+    return history, rec
 
 
 @numba.njit(cache=True)
@@ -307,6 +332,7 @@ def _integrate_impact(
     steps = 0
 
     free_coef = np.empty((_FREE_POWERS, 4, n))  # homogeneous rows only: no force in flight
+    record_scratch = np.empty((4, n if record else 0))
     free_ready = np.zeros(_FREE_POWERS, dtype=np.bool_)
     for row in range(4):  # element loops: a slice assignment compiles for seconds
         for j in range(n):
@@ -355,6 +381,9 @@ def _integrate_impact(
                                         compliance_h, alpha_max) == 0.0:
                 if damped:
                     damping_work += _damping_work(omega, zeta, v, vn, length)
+                if record:
+                    history, rec = _record_free_inside(free_coef, k, h, t, wi, vi, residual, omega, phi, q, v,
+                                                       record_scratch, history, rec)
                 wi = wi_free
                 q, qn = qn, q
                 v, vn = vn, v

@@ -57,8 +57,9 @@ BASELINE_BYTES = 384 * 1024**2
 #: Bytes per mode below the cut-off, rounded up from the measured parts: building the
 #: Navier modes peaks at ~81 B per mode (Kirchhoff) and ~360 B (Mindlin: the stacked 3×3
 #: problems), the bases the targets' caches keep hold ~54 B, and the integrator allocates
-#: 50 float64 per integrated mode (step coefficients 2 × 8, state 6, free-flight
-#: propagators 7 × 4: 400 B) plus the basis it integrates (24 B); ~900 B in all.
+#: 70 float64 per integrated mode (step coefficients 2 × 8, state 6, free-flight
+#: propagators 11 × 4, a recorded run's scratch 4: 560 B) plus the basis it integrates
+#: (24 B); ~1000 B in all.
 BYTES_PER_MODE = 1024
 #: Most modes a modal run builds: (budget − baseline) / bytes per mode = 655 360. Checked:
 #: capped runs with the convergence re-run peak at 348 MiB (Kirchhoff plate, 307 567 modes
