@@ -43,6 +43,10 @@ LAMBDAS = np.geomspace(1e-3, 1e3, 61)
 #: twice as dense, 40 ζ and 20 λ per decade (29 161 points, ~3 min on 2 cores), which
 #: divides their interpolation error by ~4 where F̄max is smooth and by ~2 at its kinks.
 DENSE_MAPS = ("beam-ss-euler", "plate-ssss-kirchhoff")
+#: The linear maps of the Timoshenko beam and the Mindlin plate (a/h = 20) at the same
+#: density (since 2026-11-24; their Hertz maps and the family members at a/h = 10 and 50
+#: keep 20 ζ and 10 λ per decade, the tiles' lattice).
+DENSE_LINEAR_MAPS = (*DENSE_MAPS, "beam-ss-timoshenko-s20", "plate-ssss-mindlin-s20")
 DENSE_ZETAS = np.geomspace(1e-3, 1e3, 241)
 DENSE_LAMBDAS = np.geomspace(1e-3, 1e3, 121)
 #: The linear Mindlin plate map (a/h = 20) covers the whole plane too (318 s on 2 cores at revision 7):
@@ -85,7 +89,7 @@ def main(argv=None) -> None:
             zetas, lambdas = HERTZ_ZETAS, (MINDLIN_LAMBDAS if structure.theory == "mindlin" else HERTZ_LAMBDAS)
         elif structure.theory == "mindlin" and structure.slenderness != 20.0:
             zetas, lambdas = MINDLIN_ZETAS, MINDLIN_LAMBDAS
-        elif structure.name in DENSE_MAPS:
+        elif structure.name in DENSE_LINEAR_MAPS:
             zetas, lambdas = DENSE_ZETAS, DENSE_LAMBDAS
         else:
             zetas, lambdas = ZETAS, LAMBDAS

@@ -50,7 +50,7 @@ from .structures import BasisTable, MapStructure
 __all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law",
            "log_grid", "warn_point_loaded_mindlin"]
 
-SOLVER_REVISION = 7  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide)
+SOLVER_REVISION = 8  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide; 8: degenerate modes merged, so the mode floor counts modes the impact point sees; free flight up to 1024 h; two-rate exact contact phase)
 
 RESULT_VARIABLES = {
     # name: (dtype, missing value, units, description)

@@ -22,7 +22,6 @@ older solver — is rebuilt and replaced), and at most :data:`MAX_CACHED_TILES` 
 
 from __future__ import annotations
 
-import functools
 import hashlib
 import math
 import os
@@ -39,13 +38,15 @@ from ..solvers.modal import ModalSettings
 from ..solvers.shear_range import beyond_shear_theory
 from .accuracy import AccuracyControl
 from .hertz_points import hertz_contact_frequency, solve_hertz_points
-from .lookup import load_shipped_map
 from .store import fingerprint, save_atomic
 from .structures import BasisTable, MapStructure
 from .sweep import RESULT_VARIABLES, SOLVER_REVISION, frequency_cap, solve_points
 
-__all__ = ["CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory", "lattice_steps",
+__all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory", "lattice_steps",
            "tile_for", "build_tile", "cached_tile"]
+
+#: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
+LATTICE_STEPS = (0.05, 0.1)
 
 #: Environment variable naming the cache directory of the tiles.
 CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
@@ -68,13 +69,12 @@ def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
     return Path(base) / "impactmaps"
 
 
-@functools.lru_cache(maxsize=1)
 def lattice_steps() -> tuple[float, float]:
     """(Δ log10 ζ, Δ log10 λ) of the global lattice: (0.05, 0.1), the spacing of the shipped
-    Timoshenko and Mindlin linear maps (every other point of the twice-denser Euler beam and
-    Kirchhoff plate maps); tiles, their fingerprints and their validation are on it."""
-    dataset = load_shipped_map("beam", "timoshenko")
-    return tuple(round(float(np.mean(np.diff(np.log10(dataset[axis].values)))), 6) for axis in ("zeta", "lambda_"))
+    linear maps of the shear-deformable family members at slenderness 10 and 50 (every
+    other point of the twice-denser Euler beam, Kirchhoff plate, Timoshenko beam and
+    Mindlin plate maps); tiles, their fingerprints and their validation are on it."""
+    return LATTICE_STEPS
 
 
 @dataclass(frozen=True)
