@@ -62,7 +62,7 @@ from .._checks import require_positive
 from ..targets.base import ModalBasis
 from .history_rows import record_row
 
-__all__ = ["COARSE_FACTOR", "COARSE_RESOLUTION", "CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes", "coupled_modes", "contact_phase"]
+__all__ = ["COARSE_FACTOR", "COARSE_RESOLUTION", "CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes", "contact_phase", "coupled_modes"]
 
 #: ε of the contact-phase step rule: coupled modes whose force amplitudes sum to at most
 #: ε/2 of the force content are not sampled (module docstring) [-].
