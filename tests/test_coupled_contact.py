@@ -154,9 +154,9 @@ def test_damped_or_rigid_modes_keep_the_sampled_phase():
 @pytest.mark.parametrize("case, settings", [(("beam", 1.0, 0.05), EXACT), (QUASI_STATIC, FINEST)])
 def test_record_adds_rows_but_leaves_the_scalars_bit_identical(case, settings):
     """A recorded exact phase writes exact rows inside its steps (≤ time_step_ratio/ω
-    apart, as fine as the sampled scheme's history) without changing its steps — one
-    rate (beam ζ = 1), and two rates in every contact (the quasi-static corner) — and
-    every row conserves energy to round-off (no damping)."""
+    apart, as fine as the sampled scheme's history) without changing its steps (beam
+    ζ = 1: coarse steps of 3 fine steps; the quasi-static corner: two rates in ~150
+    contacts), and every row conserves energy to round-off (no damping)."""
     basis, law, mass = _case(*case, settings=settings)
     plain = simulate(basis, law, mass, 1.0, record=False, settings=settings)
     recorded = simulate(basis, law, mass, 1.0, record=True, settings=settings)
@@ -257,7 +257,7 @@ def test_two_rate_contacts_match_the_fine_step():
 def test_two_rate_phase_is_the_single_rate_loop_where_the_coarse_step_is_short():
     """Where the coarse step would hold fewer than COARSE_FACTOR fine steps the phase
     keeps the fine step: the results are bit-identical to the single-rate phase."""
-    basis, law, mass = _case("beam", 1.0, 0.05)
+    basis, law, mass = _case("plate", 11.3, 0.425)
     modes = coupled_modes(basis, law.stiffness, mass)
     touchdown = (0.0, 1.0, np.zeros(basis.size), np.zeros(basis.size))
     eta = modes.to_coupled[:, 0] * 0.0

@@ -75,8 +75,9 @@ CONTACT_RESOLUTION = 1e-5
 #: (3e-3: fewest steps over the quasi-static map points of the beam and the plate
 #: against 1e-3, 5e-3, 1e-2 and 3e-2) [-].
 COARSE_RESOLUTION = 3e-3
-#: Fewest fine steps in a coarse step: below, the contact phase keeps the fine step [-].
-COARSE_FACTOR = 4
+#: Fewest fine steps in a coarse step: below, the contact phase keeps the fine step
+#: (2: 12 % less CPU than 4 over the quasi-static map points of the beam and the plate) [-].
+COARSE_FACTOR = 2
 #: Largest Ω_k h of the coupled mode that carries the most force (25 samples per period) [rad].
 SAMPLED_PHASE = 0.25
 #: Iterations of the Illinois root searches (each halves the bracket at least every
@@ -387,12 +388,13 @@ def _skippable(frequencies, force_row, eta, rate, coarse, peak):
     """Whether the coarse step from the state (η, η̇) may be taken without the fine
     step: no instant in it can have F ≤ 0, nor F above ``peak`` [N] (:func:`_coarse_plan`)."""
     _every, _length, cos_c, sin_c, low, margin = coarse
-    before = 0.0
+    before = _partial_force(force_row, eta, low)
+    if before <= margin or before + margin > peak:  # most samples of a fine window
+        return False
     after = 0.0
     for k in range(low):
-        before += force_row[k] * eta[k]
         after += force_row[k] * (eta[k] * cos_c[k] + rate[k] / frequencies[k] * sin_c[k])
-    return min(before, after) > margin and max(before, after) + margin <= peak
+    return after > margin and after + margin <= peak
 
 
 @numba.njit(cache=True)
@@ -579,7 +581,9 @@ def _coarse_steps(modes, rows, coarse, limits, state, run, record, history, rec,
         force = f_next
         low_now = low_next
         done = t >= max_time or steps >= max_steps
-        scalars, history, rec = _settle(modes, rows, coarse, anchor, scalars, peak, done, record, history, rec, q, v)
+        if scalars[3] > 0:
+            scalars, history, rec = _settle(modes, rows, coarse, anchor, scalars, peak, done, record, history, rec,
+                                            q, v)
         if done or (safe and scalars[3] > 0):
             break
     if scalars[3] > 0:  # the window starts at the anchor
