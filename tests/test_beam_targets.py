@@ -636,6 +636,8 @@ def test_degenerate_modes_are_one_mode_to_the_impact_point():
     np.testing.assert_allclose(merged.participation, [1.0, math.sqrt(0.36 + 0.64 + 0.25), 0.3], rtol=1e-15)
     assert merged.residual_compliance == basis.residual_compliance
     assert merged.participating() is merged
+    unsorted = ModalBasis(frequencies[::-1], participation[::-1], 1e-3)  # neighbours only, in any order
+    np.testing.assert_array_equal(unsorted.participating().frequencies, [50.0, 30.0 * (1 + 1e-12), 10.0])
     damped = ModalBasis(frequencies, participation, 1e-3, np.array([0.0, 0.01, 0.02, 0.02, 0.0]))
     np.testing.assert_array_equal(damped.participating().frequencies, [10.0, 30.0, 30.0, 50.0])
 

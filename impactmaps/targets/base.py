@@ -82,21 +82,25 @@ class ModalBasis:
         object.__setattr__(self, "frequencies", frequencies)
         object.__setattr__(self, "participation", participation)
         object.__setattr__(self, "damping_ratios", damping)
+        object.__setattr__(self, "_participating", False)
 
     @classmethod
-    def from_validated(cls, frequencies, participation, residual_compliance, damping_ratios) -> "ModalBasis":
+    def from_validated(cls, frequencies, participation, residual_compliance, damping_ratios, *,
+                       participating: bool = False) -> "ModalBasis":
         """A basis made of parts of an already validated one, without re-checking them.
 
         For the solvers' hot paths (truncating or filtering a validated basis); the
         arrays — frequencies [rad/s], participations [kg^-1/2], damping ratios [-] — must
         be float64, 1-D, of equal length, and satisfy the class invariants; the residual
-        compliance is in m/N.
+        compliance is in m/N. ``participating``: the modes are known to be as
+        :meth:`participating` leaves them (it then returns the basis itself at once).
         """
         basis = object.__new__(cls)
         object.__setattr__(basis, "frequencies", np.ascontiguousarray(frequencies))
         object.__setattr__(basis, "participation", np.ascontiguousarray(participation))
         object.__setattr__(basis, "residual_compliance", float(residual_compliance))
         object.__setattr__(basis, "damping_ratios", np.ascontiguousarray(damping_ratios))
+        object.__setattr__(basis, "_participating", bool(participating))
         return basis
 
     @classmethod
@@ -160,9 +164,11 @@ class ModalBasis:
     def head(self, count: int, dropped_compliance: float) -> "ModalBasis":
         """The first ``count`` modes, with ``dropped_compliance`` [m/N] — the static
         compliance of the others (:func:`dropped_compliance_sums`) — added to the residual."""
+        # the head of a participating basis is one (its largest φ² is not larger; a
+        # degenerate group has one frequency, so a head keeps it whole or not at all)
         return ModalBasis.from_validated(self.frequencies[:count], self.participation[:count],
                                          dropped_compliance + self.residual_compliance,
-                                         self.damping_ratios[:count])
+                                         self.damping_ratios[:count], participating=self._participating)
 
     def participating(self) -> "ModalBasis":
         """The modes as the impact point sees them (same residual compliance).
@@ -174,21 +180,25 @@ class ModalBasis:
         into one of participation ``sqrt(Σ φ_j²)``: driven by the same contact force they
         move as one coordinate ``Q = Σ φ_j q_j / sqrt(Σ φ_j²)``, exactly, and the impact
         point's deflection is ``sqrt(Σ φ_j²) Q`` (a square plate struck at its centre has
-        ~3 modes per distinct frequency; the solver's cost is per mode). The frequencies
-        must be ascending.
+        ~3 modes per distinct frequency; the solver's cost is per mode). Only neighbours
+        merge (the bases of the targets are in ascending order).
         """
+        if self._participating:
+            return self
         squares = self.participation**2
         significant = squares > PARTICIPATION_THRESHOLD * max(float(np.max(squares, initial=0.0)), 1e-300)
         frequencies, damping = self.frequencies[significant], self.damping_ratios[significant]
         starts = _degenerate_group_starts(frequencies, damping)
         if starts.size == frequencies.size:
             if np.all(significant):
+                object.__setattr__(self, "_participating", True)  # a flag that changes no answer
                 return self
             return ModalBasis.from_validated(frequencies, self.participation[significant],
-                                             self.residual_compliance, damping)
+                                             self.residual_compliance, damping, participating=True)
         # group sums of φ² in order (np.add.reduceat: one pass, deterministic)
         merged = np.sqrt(np.add.reduceat(squares[significant], starts))
-        return ModalBasis.from_validated(frequencies[starts], merged, self.residual_compliance, damping[starts])
+        return ModalBasis.from_validated(frequencies[starts], merged, self.residual_compliance, damping[starts],
+                                         participating=True)
 
     @property
     def size(self) -> int:
@@ -203,20 +213,20 @@ class ModalBasis:
 
 
 def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray) -> np.ndarray:
-    """Indices where a group of degenerate modes starts (ascending frequencies [rad/s]): a
-    mode joins the group before it when its frequency lies within
-    :data:`DEGENERACY_TOLERANCE` of the group's first and its damping ratio equals the
-    previous mode's."""
+    """Indices where a group of degenerate modes starts (frequencies [rad/s]): a mode joins
+    the group before it when its frequency lies within :data:`DEGENERACY_TOLERANCE` of the
+    group's first and its damping ratio equals the previous mode's (only neighbours merge:
+    in a basis not in ascending order, equal frequencies apart stay apart)."""
     n = frequencies.size
     if n < 2:
         return np.arange(n)
-    close = (frequencies[1:] - frequencies[:-1] <= DEGENERACY_TOLERANCE * frequencies[1:]) & (
+    close = (np.abs(frequencies[1:] - frequencies[:-1]) <= DEGENERACY_TOLERANCE * frequencies[1:]) & (
         damping_ratios[1:] == damping_ratios[:-1])
     if not np.any(close):
         return np.arange(n)
     starts = [0]
     for j in range(1, n):  # only reached when some modes are degenerate
-        if not close[j - 1] or frequencies[j] - frequencies[starts[-1]] > DEGENERACY_TOLERANCE * frequencies[j]:
+        if not close[j - 1] or abs(frequencies[j] - frequencies[starts[-1]]) > DEGENERACY_TOLERANCE * frequencies[j]:
             starts.append(j)
     return np.asarray(starts, dtype=np.intp)
 
