@@ -346,3 +346,44 @@ def test_a_sweep_of_a_mindlin_plate_says_it_is_a_point_load():
         sweep([mindlin], [1.0], [1.0], max_workers=1, progress=False)
     said = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
     assert said and str(said[0].message).startswith("point load: the Mindlin points of this sweep")
+
+
+def test_a_point_does_not_repeat_a_run_equal_to_an_earlier_one(monkeypatch):
+    """A sensitive point whose modes are set by the mode floor (SS beam ζ = 706.7,
+    λ = 0.001758: 4 modes at the base level) keeps its modes when the cut-off is perturbed
+    by ±1 %: those two of its eight runs are the base run, and the runner returns it
+    instead of repeating it (sweep.table_run_key). The row is bit for bit the row of a
+    runner that repeats every run."""
+    from impactmaps.contact.linear import LinearContact
+    from impactmaps.dimensionless import realise
+    from impactmaps.maps.accuracy import AccuracyControl, controlled_point
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import basis_table, frequency_cap
+
+    structure = structure_from_name("beam-ss-euler")
+    zeta, lam = 706.7, 0.001758
+    calls = []
+    original = sweep_module.simulate
+
+    def counted(*args, **kwargs):
+        calls.append(kwargs["settings"])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(sweep_module, "simulate", counted)
+    (row,) = solve_points(structure, [(zeta, lam)], ModalSettings())
+    assert sweep_module.STATUSES[row["status"]] == "sensitive"
+    assert len(calls) == 6  # base, two refinements, step −1 %, ζ ± 1 %
+
+    target = structure.build()
+    table, cap = basis_table(structure, ModalSettings().min_modes), frequency_cap(structure)
+
+    def every_run(settings, zeta_factor):
+        moved = realise(target, zeta * zeta_factor, lam)
+        omega = float(moved.contact_frequency)
+        basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
+        return original(basis, LinearContact(float(moved.contact_stiffness)), float(moved.impactor_mass), 1.0,
+                        settings=settings, record=False)
+
+    plain = controlled_point(every_run, ModalSettings(), AccuracyControl())
+    for name in ("fmax_normalised", "fmax_error", "fmax_low", "fmax_high", "status", "impacts"):
+        assert row[name] == plain[name], name

@@ -248,13 +248,20 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
 
 
 def _hertz_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, realised: _Realised):
-    """``run(settings, zeta_factor)`` of one Hertz point, read in the Hertz scales."""
+    """``run(settings, zeta_factor)`` of one Hertz point, read in the Hertz scales (a run
+    equal to an earlier one is not repeated: :func:`~impactmaps.maps.sweep.table_run_key`)."""
+    from .sweep import table_run_key
+
+    seen = {}
 
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_)
         basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
-        result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
-        return _HertzScaled(result, impact.numbers)
+        key = table_run_key(settings, zeta_factor, basis)
+        if key not in seen:
+            result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+            seen[key] = _HertzScaled(result, impact.numbers)
+        return seen[key]
 
     return run
 

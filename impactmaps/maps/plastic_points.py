@@ -385,16 +385,23 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
 
 def _plastic_runner(target, table: BasisTable, cap: float, map_law: str, numbers: tuple,
                     realised: PlasticRealisation, runs: list):
-    """``run(settings, zeta_factor)`` of one plastic point; every result is appended to ``runs``."""
+    """``run(settings, zeta_factor)`` of one plastic point; every result is appended to ``runs``
+    (a run equal to an earlier one is not repeated: :func:`~impactmaps.maps.sweep.table_run_key`)."""
+    from .sweep import table_run_key
+
     beta, zeta, lambda_ = numbers
+    seen = {}
 
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else realise_plastic(target, map_law, beta, zeta * zeta_factor,
                                                                      lambda_)
         omega = math.sqrt(reference_contact_stiffness(impact.law, impact.mass, 1.0) / impact.mass)
         basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
-        result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
-        runs.append(_PlasticScaled(result, impact))
+        key = table_run_key(settings, zeta_factor, basis)
+        if key not in seen:
+            result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+            seen[key] = _PlasticScaled(result, impact)
+        runs.append(seen[key])
         return runs[-1]
 
     return run

@@ -17,7 +17,7 @@ import threading
 import time
 import warnings
 from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from datetime import datetime, timezone
 from typing import Sequence
 
@@ -47,8 +47,8 @@ from .store import (
 )
 from .structures import BasisTable, MapStructure
 
-__all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "MAP_LAWS", "map_law",
-           "log_grid", "warn_point_loaded_mindlin"]
+__all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "table_run_key",
+           "MAP_LAWS", "map_law", "log_grid", "warn_point_loaded_mindlin"]
 
 SOLVER_REVISION = 8  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide; 8: degenerate modes merged, so the mode floor counts modes the impact point sees; free flight up to 1024 h; two-rate exact contact phase)
 
@@ -246,8 +246,19 @@ def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]],
     return rows
 
 
+def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
+    """What a run of one map point on a basis table depends on: the ζ factor, the modes
+    (a truncation of the table is fixed by its size) and every setting but the cut-off
+    ratios, which act only through the modes. A point's runners return the earlier
+    result for a key they have seen: a sensitive point's cut-off perturbed by ±1 % often
+    keeps the same modes (the mode floor, or no mode in the 2 % window), and that run is
+    the base run, bit for bit."""
+    return zeta_factor, basis.size, replace(settings, cutoff_ratio=1.0, patch_cutoff_ratio=1.0)
+
+
 def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, impactor):
     """``run(settings, zeta_factor)`` of one point: the realised impact on truncated modes."""
+    seen = {}
 
     def run(settings: ModalSettings, zeta_factor: float):
         mass, stiffness, omega = impactor
@@ -256,7 +267,10 @@ def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: f
             mass, stiffness, omega = (float(moved.impactor_mass), float(moved.contact_stiffness),
                                       float(moved.contact_frequency))
         basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
-        return simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
+        key = table_run_key(settings, zeta_factor, basis)
+        if key not in seen:
+            seen[key] = simulate(basis, LinearContact(stiffness), mass, 1.0, settings=settings, record=False)
+        return seen[key]
 
     return run
 
@@ -324,7 +338,7 @@ def sweep(
     executor: Executor | None = None,
     max_workers: int | None = None,
     progress: bool = True,
-    chunk_size: int = 10,
+    chunk_size: int = 40,
     save_interval: float = 1.0,
     overwrite: bool = False,
     law: str = "linear",
@@ -352,7 +366,11 @@ def sweep(
     progress : bool
         Show a tqdm progress bar.
     chunk_size : int
-        Points per task.
+        Points per task (at most, within one λ row). 40 (10 until 2026-11-24): each task
+        costs the executor ~1 ms of pickling and queueing, a tenth of a chunk of 10 cheap
+        points; the 200 × 50 grid of ``benchmarks/bench_plane.py`` took 20.3–20.8 s against
+        21.3–22.7 s with 10. The values do not depend on it (a point is a pure function of
+        its inputs).
     save_interval : float
         Minimum seconds between two saves of the result file (the final save always
         happens).
