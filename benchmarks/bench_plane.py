@@ -4,9 +4,10 @@ Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler
 ``plate-ssss-kirchhoff``, each point solved as a sweep solves it
 (:func:`impactmaps.maps.sweep.solve_points`: default ``ModalSettings``, per-point error
 control), one point per task on a pool of worker processes (all cores), one BLAS thread
-each. One point per task keeps the per-point wall times and guards; the queue traffic of a
-task costs ~3 % of the workers' time (3000 random beam points, 2026-11-24: 14.1 s of worker
-wall, 13.7 s inside the points), so chunks of points would gain little.
+each. One point per task keeps the per-point wall times and guards; it costs the executor
+~1 ms a task (a fifth of a cheap beam point's time), so the grid is then run again as a
+user runs it, through :func:`impactmaps.maps.sweep.sweep` (chunks of 40 points), timed on
+its own and checked bit for bit against the per-point results.
 
 Guards (the corners of the plane are known to blow up; that is the rest of issue 12):
 
