@@ -5,7 +5,8 @@ Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler
 (:func:`impactmaps.maps.sweep.solve_points`: default ``ModalSettings``, per-point error
 control), one point per task on a pool of worker processes (all cores), one BLAS thread
 each. One point per task keeps the per-point wall times and guards; it costs the executor
-~1 ms a task (a fifth of a cheap beam point's time), so the grid is then run again as a
+~0.5–2 ms a task (from the walls of the two runs below; a cheap beam point takes 0.6 ms),
+so the grid is then run again as a
 user runs it, through :func:`impactmaps.maps.sweep.sweep` (chunks of 40 points), timed on
 its own and checked bit for bit against the per-point results.
 

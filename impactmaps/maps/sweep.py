@@ -367,7 +367,7 @@ def sweep(
         Show a tqdm progress bar.
     chunk_size : int
         Points per task (at most, within one λ row). 40 (10 until 2026-11-24): each task
-        costs the executor ~1 ms of pickling and queueing, a tenth of a chunk of 10 cheap
+        costs the executor ~0.5–2 ms of pickling and queueing, as much as a few cheap
         points; the 200 × 50 grid of ``benchmarks/bench_plane.py`` took 20.3–20.8 s against
         21.3–22.7 s with 10. The values do not depend on it (a point is a pure function of
         its inputs).
