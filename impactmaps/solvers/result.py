@@ -109,7 +109,10 @@ class ImpactResult:
         The model that produced the result: ``"modal"``, ``"modal+residual"``,
         ``"half-space"`` or ``"finite-difference"``.
     n_modes : int
-        Number of modes integrated (0 for the half-space and finite-difference solvers).
+        Number of modes integrated, as the impact point sees them: modes that do not move
+        there are left out and degenerate ones count once (:meth:`ModalBasis.participating
+        <impactmaps.targets.base.ModalBasis.participating>`; 0 for the half-space and
+        finite-difference solvers).
     settings : dict
         Solver settings used (provenance).
     details : object or None
