@@ -2,7 +2,7 @@
 
 Simply supported, impact at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
 square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ and λ from 1e-3 to 1e3 at 20 ζ and
-10 λ per decade, twice that for the Euler and Timoshenko beams and the Kirchhoff plate (both laws) and the linear Mindlin plate (the Mindlin family members at a/h = 10 and 50: ζ from 0.005 to 100,
+10 λ per decade, twice that for the four maps at L/h = a/h = 20 (both laws; the Mindlin family members at a/h = 10 and 50: ζ from 0.005 to 100,
 λ from 0.05 to 20; the Hertz maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the
 Mindlin one from 0.05; same densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
 theories are stored ``unresolved``. The shear-deformable families add slendernesses 10 and
@@ -42,11 +42,10 @@ LAMBDAS = np.geomspace(1e-3, 1e3, 61)
 #: The SS Euler beam and SS Kirchhoff plate maps (the chart's structures, the most read):
 #: twice as dense, 40 ζ and 20 λ per decade (29 161 points, ~3 min on 2 cores), which
 #: divides their interpolation error by ~4 where F̄max is smooth and by ~2 at its kinks.
-DENSE_MAPS = ("beam-ss-euler", "plate-ssss-kirchhoff", "beam-ss-timoshenko-s20")
-#: Since 2026-11-24 the Timoshenko beam (a/h = 20; both laws, above) and the linear Mindlin
-#: plate map (a/h = 20) are as dense; the Mindlin Hertz map and the family members at
-#: a/h = 10 and 50 keep 20 ζ and 10 λ per decade, the tiles' lattice.
-DENSE_LINEAR_MAPS = (*DENSE_MAPS, "plate-ssss-mindlin-s20")
+#: Since 2026-11-24 the Timoshenko beam and the Mindlin plate (a/h = 20) are as dense, both
+#: laws; the family members at a/h = 10 and 50 keep 20 ζ and 10 λ per decade, the tiles'
+#: lattice.
+DENSE_MAPS = ("beam-ss-euler", "plate-ssss-kirchhoff", "beam-ss-timoshenko-s20", "plate-ssss-mindlin-s20")
 DENSE_ZETAS = np.geomspace(1e-3, 1e3, 241)
 DENSE_LAMBDAS = np.geomspace(1e-3, 1e3, 121)
 #: The linear Mindlin plate map (a/h = 20) covers the whole plane too (318 s on 2 cores at revision 7):
@@ -67,6 +66,8 @@ HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 44)
 #: The Hertz maps of the Euler beam and the Kirchhoff plate: twice as dense, like their linear maps.
 DENSE_HERTZ_ZETAS = np.geomspace(0.005, 100.0, 173)
 DENSE_HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 87)
+#: The Mindlin plate's Hertz map at that density: λ_h ∈ [0.05, 20].
+DENSE_MINDLIN_HERTZ_LAMBDAS = np.geomspace(0.05, 20.0, 53)
 
 
 def _options(parser) -> None:
@@ -84,12 +85,13 @@ def main(argv=None) -> None:
         if structure.name not in wanted:
             continue
         if args.law != "linear" and structure.name in DENSE_MAPS:
-            zetas, lambdas = DENSE_HERTZ_ZETAS, DENSE_HERTZ_LAMBDAS
+            zetas = DENSE_HERTZ_ZETAS
+            lambdas = DENSE_MINDLIN_HERTZ_LAMBDAS if structure.theory == "mindlin" else DENSE_HERTZ_LAMBDAS
         elif args.law != "linear":
             zetas, lambdas = HERTZ_ZETAS, (MINDLIN_LAMBDAS if structure.theory == "mindlin" else HERTZ_LAMBDAS)
         elif structure.theory == "mindlin" and structure.slenderness != 20.0:
             zetas, lambdas = MINDLIN_ZETAS, MINDLIN_LAMBDAS
-        elif structure.name in DENSE_LINEAR_MAPS:
+        elif structure.name in DENSE_MAPS:
             zetas, lambdas = DENSE_ZETAS, DENSE_LAMBDAS
         else:
             zetas, lambdas = ZETAS, LAMBDAS
