@@ -6,9 +6,9 @@ Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler
 control), one point per task on a pool of worker processes (all cores), one BLAS thread
 each. One point per task keeps the per-point wall times and guards; it costs the executor
 ~0.5–2 ms a task (from the walls of the two runs below; a cheap beam point takes 0.6 ms),
-so the grid is then run again as a
-user runs it, through :func:`impactmaps.maps.sweep.sweep` (chunks of 40 points), timed on
-its own and checked bit for bit against the per-point results.
+so the grid is then run again as a user runs it, through
+:func:`impactmaps.maps.sweep.sweep` (chunks of 40 points), timed on its own and checked bit
+for bit against the per-point results.
 
 Guards (the corners of the plane are known to blow up; that is the rest of issue 12):
 
@@ -283,8 +283,6 @@ def sweep_section(finished, zetas, lambdas, workers: int) -> list[str]:
     """The same grid through :func:`impactmaps.maps.sweep.sweep` (what a user runs: chunks of
     points per task, no per-point guards), its wall time, and whether every value equals the
     per-point tasks' bit for bit (a point is a pure function of its inputs)."""
-    import warnings
-
     from impactmaps.maps import sweep as sweep_module
     from impactmaps.maps.structures import structure_from_name
 

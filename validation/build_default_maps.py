@@ -2,7 +2,8 @@
 
 Simply supported, impact at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
 square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ and λ from 1e-3 to 1e3 at 20 ζ and
-10 λ per decade, twice that for the four maps at L/h = a/h = 20 (both laws; the Mindlin family members at a/h = 10 and 50: ζ from 0.005 to 100,
+10 λ per decade, twice that for the four maps at L/h = a/h = 20 (both laws; the Mindlin
+family members at a/h = 10 and 50: ζ from 0.005 to 100,
 λ from 0.05 to 20; the Hertz maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the
 Mindlin one from 0.05; same densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
 theories are stored ``unresolved``. The shear-deformable families add slendernesses 10 and
@@ -63,7 +64,7 @@ MINDLIN_LAMBDAS = np.geomspace(0.05, 20.0, 27)
 #: quasi-static corner is still costly.
 HERTZ_ZETAS = np.geomspace(0.005, 100.0, 87)
 HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 44)
-#: The Hertz maps of the Euler beam and the Kirchhoff plate: twice as dense, like their linear maps.
+#: The Hertz maps of the four structures at a/h = 20 (DENSE_MAPS): twice as dense, like their linear maps.
 DENSE_HERTZ_ZETAS = np.geomspace(0.005, 100.0, 173)
 DENSE_HERTZ_LAMBDAS = np.geomspace(1e-3, 20.0, 87)
 #: The Mindlin plate's Hertz map at that density: λ_h ∈ [0.05, 20].

@@ -252,7 +252,22 @@ def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
     ratios, which act only through the modes. A point's runners return the earlier
     result for a key they have seen: a sensitive point's cut-off perturbed by ±1 % often
     keeps the same modes (the mode floor, or no mode in the 2 % window), and that run is
-    the base run, bit for bit."""
+    the base run, bit for bit.
+
+    Parameters
+    ----------
+    settings : ModalSettings
+        The run's settings.
+    zeta_factor : float
+        Factor on the point's ζ [-] (1 but for a sensitive point's perturbed runs).
+    basis : ModalBasis
+        The modes the run integrates, truncated from the point's basis table.
+
+    Returns
+    -------
+    tuple
+        Hashable: equal keys mean runs with the same bits.
+    """
     return zeta_factor, basis.size, replace(settings, cutoff_ratio=1.0, patch_cutoff_ratio=1.0)
 
 

@@ -42,8 +42,8 @@ from .store import fingerprint, save_atomic
 from .structures import BasisTable, MapStructure
 from .sweep import RESULT_VARIABLES, SOLVER_REVISION, frequency_cap, solve_points
 
-__all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory", "lattice_steps",
-           "tile_for", "build_tile", "cached_tile"]
+__all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
+           "lattice_steps", "tile_for", "build_tile", "cached_tile"]
 
 #: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
 LATTICE_STEPS = (0.05, 0.1)
