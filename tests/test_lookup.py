@@ -120,11 +120,12 @@ def test_lookup_case_gives_newtons(capsys, tmp_path):
     assert values["peak_force_N"] == pytest.approx(result.peak_force, rel=LOOKUP_TOLERANCE)
 
 
-def test_fd_command_json_keys(capsys):
+def test_fd_command_json_keys(capsys, tmp_path):
     import pathlib
 
     example = pathlib.Path(__file__).resolve().parents[1] / "examples" / "steel_beam_fd_stronge.toml"
-    assert main(["fd", str(example), "--json"]) == 0
+    # its history and summary go to tmp_path, not ./impactmaps-output of whoever runs the tests
+    assert main(["fd", str(example), "--json", "--out", str(tmp_path)]) == 0
     values = json.loads(capsys.readouterr().out)
     assert set(values) >= {"peak_force_N", "contact_intervals_s", "restitution", "energy_loss_J",
                            "permanent_indentation_m", "beam_plastic_work_J", "energy_balance_error"}
