@@ -17,23 +17,24 @@ a linear one, nor the reverse. The shear-deformable maps also ship at other slen
 from __future__ import annotations
 
 import functools
+import warnings
 from dataclasses import dataclass, replace
 from importlib import resources
 
 import numpy as np
 import xarray as xr
-from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .accuracy import AccuracyControl
 from .plastic_points import PLASTIC_LAWS
+from .refinement import Refinement, interpolate
 from .regimes import classify, quasi_static_peak
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "lookup", "read_map", "answer_status", "corner_status",
+           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "lookup", "read_map", "answer_status", "corner_status",
            "status_notes", "interpolation_error", "design_formula", "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
@@ -184,19 +185,23 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
     return read_map(load_shipped_map(*key), loss_factor, relative_stiffness, structure=structure, theory=theory,
                     name=map_file_stem(shipped_structure_name(structure, theory, slenderness), law), law=law,
-                    tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key))
+                    tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key),
+                    refinement=load_shipped_refinement(*key))
 
 
 def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
              law: str = "linear", tolerance: float = 0.1, local_tolerance: float = 0.1,
-             error_grid: np.ndarray | None = None) -> LookupResult:
+             error_grid: np.ndarray | None = None, refinement: Refinement | None = None) -> LookupResult:
     """F̄max, its band, status and regime at (ζ, λ) from any (ζ, λ) map ``dataset``.
 
     The one reading of a map: :func:`lookup` applies it to the shipped maps,
     :mod:`impactmaps.maps.on_demand` to the tiles it builds. F̄max is interpolated
-    linearly in (log λ, log ζ); the band is the largest error of the four map points
-    around (ζ, λ) plus the local interpolation error (:func:`interpolation_error`), the
-    status the worst of those four points (:class:`LookupResult`).
+    bilinearly in (log λ, log ζ) between the four corners of the smallest cell that holds
+    (ζ, λ): a cell of the map's grid, or of its ``refinement`` where F̄max needed finer
+    cells (:mod:`impactmaps.maps.refinement`). The band is the largest own error of those
+    corners plus the cell's interpolation error (on a grid cell the map's second
+    differences, :func:`interpolation_error`; on a refined cell the measured surplus of
+    its points), the status the worst of the corners' (:class:`LookupResult`).
 
     Parameters
     ----------
@@ -217,6 +222,9 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     error_grid : ndarray, optional
         :func:`interpolation_error` of the map's F̄max when already known (computed
         otherwise).
+    refinement : Refinement, optional
+        The points added to the map where its interpolation erred
+        (:func:`impactmaps.maps.refinement.refine`); none by default.
 
     Returns
     -------
@@ -239,25 +247,29 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
             )
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
     zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
-    points = np.stack([np.log(lam_c).ravel(), np.log(zeta_c).ravel()], axis=-1)
     if error_grid is None:
         error_grid = interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
-    error, status = _corner_accuracy(dataset, lam_c, zeta_c, error_grid)
+    times = [name for name in ("log_peak_time", "log_reflection_time") if name in dataset]
+    base = {name: dataset[name].isel(structure=0).values
+            for name in ["fmax_normalised", *times, "fmax_error", "status"]}
+    grid_only = Refinement.empty(base["fmax_normalised"].shape)
+    rows = _grid_position(np.log(dataset["lambda_"].values), np.log(lam_c).ravel())
+    cols = _grid_position(np.log(dataset["zeta"].values), np.log(zeta_c).ravel())
+    values, error, codes = interpolate(refinement or grid_only, base, error_grid, rows, cols)
+    if times:  # the regime's times: from the map's own grid
+        values |= interpolate(grid_only, base, error_grid, rows, cols, times)[0]
+    error = error.reshape(zeta.shape)
+    status = corner_status([c.reshape(zeta.shape) for c in codes], error)
     if np.any(status == "unresolved"):
         bad = np.flatnonzero(np.asarray(status == "unresolved").ravel())[0]
         raise ValueError(
             f"(loss_factor, relative_stiffness) = ({zeta.ravel()[bad]:g}, {lam.ravel()[bad]:g}) lies where "
             f"the {structure} {theory} map holds no value (unresolved: beyond the range of its "
             "structural theory, or no model within the mode cap); run a simulation instead")
-    grid = (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values))
-
-    def interpolated(variable: str) -> np.ndarray:
-        values = dataset[variable].isel(structure=0).values
-        return RegularGridInterpolator(grid, values, method="linear", bounds_error=True)(points).reshape(zeta.shape)
-
-    fmax = interpolated("fmax_normalised")
-    peak_time = np.exp(interpolated("log_peak_time")) if "log_peak_time" in dataset else None
-    reflection = np.exp(interpolated("log_reflection_time")) if "log_reflection_time" in dataset else None
+    fmax = values["fmax_normalised"].reshape(zeta.shape)
+    peak_time = np.exp(values["log_peak_time"].reshape(zeta.shape)) if "log_peak_time" in values else None
+    reflection = (np.exp(values["log_reflection_time"].reshape(zeta.shape)) if "log_reflection_time" in values
+                  else None)
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law)
     if fmax.ndim == 0:
@@ -396,25 +408,41 @@ def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=32)
+def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
+                            slenderness: float | None = None) -> Refinement | None:
+    """The refinement shipped with a map (``data/refinements/NAME.nc``,
+    :mod:`impactmaps.maps.refinement`), or None where the map has none.
+
+    A refinement built for another version of the map (its ``base_fingerprint`` is not
+    the map's fingerprint) is not used: a warning says so and the map is read alone.
+    """
+    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    source = resources.files("impactmaps.maps").joinpath("data", "refinements", f"{name}.nc")
+    if not source.is_file():
+        return None
+    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
+        stored = opened.load()
+    expected = load_shipped_map(structure, theory, law, slenderness).attrs.get("fingerprint")
+    if stored.attrs.get("base_fingerprint") != expected:
+        warnings.warn(f"the refinement of the shipped map {name} was built for another version of the map; "
+                      "reading the map without it (rebuild with `python validation/build_refinements.py`)",
+                      UserWarning, stacklevel=3)
+        return None
+    return Refinement.from_dataset(stored)
+
+
+@functools.lru_cache(maxsize=32)
 def _interpolation_error_grid(key: tuple) -> np.ndarray:
     """:func:`interpolation_error` of the shipped map ``key`` = (structure, theory, law, slenderness)."""
     dataset = load_shipped_map(*key)
     return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
-def _corner_accuracy(dataset: xr.Dataset, lam, zeta, error_grid: np.ndarray):
-    """Largest error (points' own + interpolation, ``error_grid``) and worst status around
-    each (λ, ζ) of the map ``dataset``."""
-    own = dataset["fmax_error"].isel(structure=0).values
-    codes = dataset["status"].isel(structure=0).values
-    rows = _bracket(np.log(dataset["lambda_"].values), np.log(lam))
-    cols = _bracket(np.log(dataset["zeta"].values), np.log(zeta))
-    corners = [(r, c) for r in rows for c in cols]
-    error = np.max([own[corner] + error_grid[corner] for corner in corners], axis=0)
-    # on a grid point the interpolation returns the stored point: only its own error
-    node = (rows[0] == rows[1]) & (cols[0] == cols[1])
-    error = np.where(node, own[rows[0], cols[0]], error)
-    return error, corner_status([codes[corner] for corner in corners], error)
+def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Fractional index of each value on the (ascending) ``grid``: exact on a grid point."""
+    lower, upper = _bracket(grid, values)
+    span = np.where(upper > lower, grid[upper] - grid[lower], 1.0)
+    return lower + np.where(upper > lower, (values - grid[lower]) / span, 0.0)
 
 
 def _bracket(grid: np.ndarray, values: np.ndarray):

@@ -1,0 +1,149 @@
+"""Build the refinements of the shipped linear maps (impactmaps/maps/data/refinements/).
+
+Each dense map (``build_default_maps.DENSE_MAPS``) is refined where linear interpolation
+between its points errs by more than the tolerance (1e-3, the points' own): cells are
+split into four, down to 8× finer per axis, and the new points are solved exactly as the
+map's own (:func:`impactmaps.maps.sweep.solve_points`, default settings and accuracy
+control). See :mod:`impactmaps.maps.refinement`. Each round's new points are kept in
+``validation/work/NAME.refine.npz`` as they are solved, so an interrupted build resumes
+without recomputing them.
+
+    python validation/build_refinements.py [--quiet] [--only NAME …] [--max-points N]
+    python validation/build_refinements.py --smoke    # a few cells of one map, into a temporary directory
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from impactmaps.maps.lookup import interpolation_error
+from impactmaps.maps.refinement import MAX_LEVEL, refine
+from impactmaps.maps.store import save_atomic
+from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.sweep import solve_points
+from impactmaps.solvers.modal import ModalSettings
+
+from _script_options import parse
+from build_default_maps import DENSE_MAPS
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "impactmaps" / "maps" / "data"
+WORK = ROOT / "validation" / "work"
+#: Points solved per task (one structure; the worker's basis table is reused).
+CHUNK = 40
+#: The base map's variables the refinement reads.
+BASE_VARIABLES = ("fmax_normalised", "fmax_error", "status", "log_peak_time", "log_reflection_time")
+#: Row values kept for a resumed build (what the refinement stores, before logs).
+KEPT = ("fmax_normalised", "fmax_error", "status", "peak_time_normalised", "reflection_time_normalised")
+
+
+def grid_coordinates(lambdas: np.ndarray, zetas: np.ndarray):
+    """``coordinates(row, col) -> (zeta, lambda_)`` at fractional grid positions (log-linear)."""
+    def along(grid, position):
+        logs = np.log(grid)
+        low = np.clip(np.floor(position).astype(int), 0, grid.size - 2)
+        return np.exp(logs[low] + (position - low) * (logs[low + 1] - logs[low]))
+
+    return lambda row, col: (along(zetas, np.asarray(col, float)), along(lambdas, np.asarray(row, float)))
+
+
+class Solver:
+    """Solve scattered points of one structure on a process pool, remembering every row
+    (on disk, after each round) so that a resumed build recomputes none."""
+
+    def __init__(self, structure, executor, checkpoint: Path | None):
+        self.structure, self.executor, self.checkpoint = structure, executor, checkpoint
+        self.known = {}
+        if checkpoint is not None and checkpoint.exists():
+            with np.load(checkpoint) as stored:
+                arrays = {name: stored[name] for name in ("zeta", "lambda_", *KEPT)}
+            columns = [arrays[name].tolist() for name in KEPT]
+            for k, key in enumerate(zip(arrays["zeta"].tolist(), arrays["lambda_"].tolist())):
+                self.known[key] = {name: column[k] for name, column in zip(KEPT, columns)}
+
+    def __call__(self, zetas, lambdas) -> list[dict]:
+        keys = [(float(z), float(lam)) for z, lam in zip(zetas, lambdas)]
+        todo = [key for key in dict.fromkeys(keys) if key not in self.known]
+        chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
+        solved = (self.executor.map(_solve_chunk, [self.structure] * len(chunks), chunks) if self.executor
+                  else map(_solve_chunk, [self.structure] * len(chunks), chunks))
+        for chunk, rows in zip(chunks, solved):
+            for key, row in zip(chunk, rows):
+                self.known[key] = {name: row.get(name, np.nan) for name in KEPT}
+        self.save()
+        return [self.known[key] for key in keys]
+
+    def save(self) -> None:
+        if self.checkpoint is None:
+            return
+        keys = list(self.known)
+        arrays = {"zeta": np.array([k[0] for k in keys]), "lambda_": np.array([k[1] for k in keys])}
+        arrays |= {name: np.array([self.known[k][name] for k in keys], float) for name in KEPT}
+        partial = self.checkpoint.with_suffix(".partial.npz")
+        np.savez(partial, **arrays)
+        os.replace(partial, self.checkpoint)
+
+
+def _solve_chunk(structure, points):
+    return solve_points(structure, points, ModalSettings())
+
+
+def build(name: str, data: Path, out_dir: Path, work: Path | None, executor, *, max_points=None,
+          quiet: bool = False, cells: slice | None = None) -> xr.Dataset:
+    """Refine the map ``data/NAME.nc`` and write ``out_dir/NAME.nc``; returns the refinement's Dataset."""
+    with xr.open_dataset(data / f"{name}.nc", engine="scipy") as opened:
+        dataset = opened.load()
+    base = {key: dataset[key].isel(structure=0).values for key in BASE_VARIABLES}
+    if cells is not None:  # smoke: a corner of the map
+        base = {key: value[cells, cells] for key, value in base.items()}
+        dataset = dataset.isel(lambda_=cells, zeta=cells)
+    estimate = interpolation_error(base["fmax_normalised"])
+    coordinates = grid_coordinates(dataset["lambda_"].values, dataset["zeta"].values)
+    solver = Solver(structure_from_name(name), executor, None if work is None else work / f"{name}.refine.npz")
+    start = time.perf_counter()
+
+    def progress(round_number, split, total):
+        if not quiet:
+            print(f"  {name}: round {round_number}: {split} cells split, {total} points "
+                  f"({time.perf_counter() - start:.0f} s)", flush=True)
+
+    refinement = refine(base, estimate, coordinates, solver, max_points=max_points, progress=progress)
+    elapsed = time.perf_counter() - start
+    stored = refinement.dataset({
+        "title": f"impactmaps refinement of the map {name}",
+        "base_fingerprint": dataset.attrs["fingerprint"],
+        "tolerance": 1e-3,
+        "max_points": -1 if max_points is None else int(max_points),
+        "build_seconds": round(elapsed, 1),
+    })
+    out_dir.mkdir(parents=True, exist_ok=True)
+    save_atomic(stored, out_dir / f"{name}.nc")
+    print(f"{name}: {refinement.codes.size} points added in {elapsed:.1f} s (deepest level {MAX_LEVEL})")
+    return stored
+
+
+def main(argv=None) -> None:
+    def add_arguments(parser):
+        parser.add_argument("--quiet", action="store_true", help="no progress lines")
+        parser.add_argument("--only", nargs="+", default=None, help="map names to refine")
+        parser.add_argument("--max-points", type=int, default=None, help="cost cap of each map's refinement")
+
+    args = parse(__doc__.splitlines()[0], argv, default_out=DATA / "refinements", add_arguments=add_arguments)
+    names = args.only or list(DENSE_MAPS)
+    if args.smoke:
+        build(names[0], DATA, args.out_dir, None, None, max_points=20, quiet=True, cells=slice(100, 104))
+        return
+    WORK.mkdir(parents=True, exist_ok=True)
+    with ProcessPoolExecutor(max_workers=os.cpu_count()) as executor:
+        for name in names:
+            build(name, DATA, args.out_dir, WORK, executor, max_points=args.max_points, quiet=args.quiet)
+
+
+if __name__ == "__main__":
+    main()
