@@ -4,11 +4,12 @@ Each dense map (``build_default_maps.DENSE_MAPS``) is refined where linear inter
 between its points errs by more than the tolerance (1e-3, the points' own): cells are
 split into four, down to 8× finer per axis, and the new points are solved exactly as the
 map's own (:func:`impactmaps.maps.sweep.solve_points`, default settings and accuracy
-control). See :mod:`impactmaps.maps.refinement`. Each round's new points are kept in
+control; with ``--law hertz`` the Hertz maps ``NAME-hertz.nc``, their points solved by
+:func:`impactmaps.maps.hertz_points.solve_hertz_points`). See :mod:`impactmaps.maps.refinement`. Each round's new points are kept in
 ``validation/work/NAME.refine.npz`` as they are solved, so an interrupted build resumes
 without recomputing them.
 
-    python validation/build_refinements.py [--quiet] [--only NAME …] [--max-points N]
+    python validation/build_refinements.py [--quiet] [--only NAME …] [--max-points N] [--law hertz]
     python validation/build_refinements.py --smoke    # a few cells of one map, into a temporary directory
 """
 
@@ -22,7 +23,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.lookup import interpolation_error
+from impactmaps.maps.hertz_points import solve_hertz_points
+from impactmaps.maps.lookup import interpolation_error, map_file_stem
 from impactmaps.maps.refinement import MAX_LEVEL, refine
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import structure_from_name
@@ -57,8 +59,8 @@ class Solver:
     """Solve scattered points of one structure on a process pool, remembering every row
     (on disk, after each round) so that a resumed build recomputes none."""
 
-    def __init__(self, structure, executor, checkpoint: Path | None):
-        self.structure, self.executor, self.checkpoint = structure, executor, checkpoint
+    def __init__(self, structure, law: str, executor, checkpoint: Path | None):
+        self.structure, self.law, self.executor, self.checkpoint = structure, law, executor, checkpoint
         self.known = {}
         if checkpoint is not None and checkpoint.exists():
             with np.load(checkpoint) as stored:
@@ -71,8 +73,8 @@ class Solver:
         keys = [(float(z), float(lam)) for z, lam in zip(zetas, lambdas)]
         todo = [key for key in dict.fromkeys(keys) if key not in self.known]
         chunks = [todo[k:k + CHUNK] for k in range(0, len(todo), CHUNK)]
-        solved = (self.executor.map(_solve_chunk, [self.structure] * len(chunks), chunks) if self.executor
-                  else map(_solve_chunk, [self.structure] * len(chunks), chunks))
+        arguments = ([self.structure] * len(chunks), [self.law] * len(chunks), chunks)
+        solved = self.executor.map(_solve_chunk, *arguments) if self.executor else map(_solve_chunk, *arguments)
         for chunk, rows in zip(chunks, solved):
             for key, row in zip(chunk, rows):
                 self.known[key] = {name: row.get(name, np.nan) for name in KEPT}
@@ -90,22 +92,26 @@ class Solver:
         os.replace(partial, self.checkpoint)
 
 
-def _solve_chunk(structure, points):
-    return solve_points(structure, points, ModalSettings())
+def _solve_chunk(structure, law, points):
+    solve = solve_points if law == "linear" else solve_hertz_points
+    return solve(structure, points, ModalSettings())
 
 
-def build(name: str, data: Path, out_dir: Path, work: Path | None, executor, *, max_points=None,
-          quiet: bool = False, cells: slice | None = None) -> xr.Dataset:
-    """Refine the map ``data/NAME.nc`` and write ``out_dir/NAME.nc``; returns the refinement's Dataset."""
+def build(structure_name: str, data: Path, out_dir: Path, work: Path | None, executor, *, law: str = "linear",
+          max_points=None, quiet: bool = False, cells: tuple[slice, slice] | None = None) -> xr.Dataset:
+    """Refine the map ``data/NAME.nc`` of a structure and law and write ``out_dir/NAME.nc``;
+    returns the refinement's Dataset."""
+    name = map_file_stem(structure_name, law)
     with xr.open_dataset(data / f"{name}.nc", engine="scipy") as opened:
         dataset = opened.load()
     base = {key: dataset[key].isel(structure=0).values for key in BASE_VARIABLES}
-    if cells is not None:  # smoke: a corner of the map
-        base = {key: value[cells, cells] for key, value in base.items()}
-        dataset = dataset.isel(lambda_=cells, zeta=cells)
+    if cells is not None:  # smoke: a few cells of the map (λ slice, ζ slice)
+        base = {key: value[cells] for key, value in base.items()}
+        dataset = dataset.isel(lambda_=cells[0], zeta=cells[1])
     estimate = interpolation_error(base["fmax_normalised"])
     coordinates = grid_coordinates(dataset["lambda_"].values, dataset["zeta"].values)
-    solver = Solver(structure_from_name(name), executor, None if work is None else work / f"{name}.refine.npz")
+    solver = Solver(structure_from_name(structure_name), law, executor,
+                    None if work is None else work / f"{name}.refine.npz")
     start = time.perf_counter()
 
     def progress(round_number, split, total):
@@ -133,16 +139,20 @@ def main(argv=None) -> None:
         parser.add_argument("--quiet", action="store_true", help="no progress lines")
         parser.add_argument("--only", nargs="+", default=None, help="map names to refine")
         parser.add_argument("--max-points", type=int, default=None, help="cost cap of each map's refinement")
+        parser.add_argument("--law", choices=("linear", "hertz"), default="linear", help="the maps' contact law")
 
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA / "refinements", add_arguments=add_arguments)
     names = args.only or list(DENSE_MAPS)
     if args.smoke:
-        build(names[0], DATA, args.out_dir, None, None, max_points=20, quiet=True, cells=slice(100, 104))
+        # 3 × 3 cells around the Euler beam's re-impact kink at ζ = 0.33, λ = 0.013
+        build(names[0], DATA, args.out_dir, None, None, law=args.law, max_points=20, quiet=True,
+              cells=(slice(21, 25), slice(99, 103)))
         return
     WORK.mkdir(parents=True, exist_ok=True)
     with ProcessPoolExecutor(max_workers=os.cpu_count()) as executor:
         for name in names:
-            build(name, DATA, args.out_dir, WORK, executor, max_points=args.max_points, quiet=args.quiet)
+            build(name, DATA, args.out_dir, WORK, executor, law=args.law, max_points=args.max_points,
+                  quiet=args.quiet)
 
 
 if __name__ == "__main__":

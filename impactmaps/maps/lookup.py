@@ -34,7 +34,7 @@ from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "lookup", "read_map", "answer_status", "corner_status",
+           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "refinement_of", "lookup", "read_map", "answer_status", "corner_status",
            "status_notes", "interpolation_error", "design_formula", "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
@@ -72,11 +72,13 @@ class LookupResult:
     map_name : str
         The shipped map used.
     fmax_error : float or ndarray
-        Error band half-width of ``fmax_normalised`` [-]: over the four map points around
-        (ζ, λ), the largest of their own error (refinement, or half the spread of a
-        sensitive point) plus the local interpolation error estimated from the map's
-        second differences (:func:`interpolation_error`). Its coverage of the true
-        error is measured by ``validation/lookup_error.py`` (README).
+        Error band half-width of ``fmax_normalised`` [-]: over the four corners of the
+        cell around (ζ, λ) — a grid cell, or a cell of the map's refinement
+        (:mod:`impactmaps.maps.refinement`) — the largest of their own error (refinement,
+        or half the spread of a sensitive point) plus the cell's interpolation error
+        (estimated from the map's second differences on a grid cell, from the measured
+        surpluses on a refined one). Its coverage of the true error is measured by
+        ``validation/lookup_error.py`` and ``validation/refinement_error.py`` (README).
     status : str or ndarray of str
         The worst status of those four points (``sensitive`` > ``refined`` >
         ``converged``/``asymptotic``; :mod:`impactmaps.maps.accuracy`): a
@@ -422,11 +424,18 @@ def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
         return None
     with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
         stored = opened.load()
-    expected = load_shipped_map(structure, theory, law, slenderness).attrs.get("fingerprint")
-    if stored.attrs.get("base_fingerprint") != expected:
-        warnings.warn(f"the refinement of the shipped map {name} was built for another version of the map; "
-                      "reading the map without it (rebuild with `python validation/build_refinements.py`)",
-                      UserWarning, stacklevel=3)
+    return refinement_of(stored, load_shipped_map(structure, theory, law, slenderness), f"the shipped map {name}")
+
+
+def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map") -> Refinement | None:
+    """The refinement ``stored`` (:meth:`Refinement.dataset`) if it was built from the map
+    ``dataset`` (its ``base_fingerprint`` is the map's fingerprint and its lattice the
+    map's grid); else None, with a warning: the map is then read alone."""
+    shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
+    if (stored.attrs.get("base_fingerprint") != dataset.attrs.get("fingerprint")
+            or (stored.attrs.get("lambda_points"), stored.attrs.get("zeta_points")) != shape):
+        warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
+                      "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
     return Refinement.from_dataset(stored)
 

@@ -181,6 +181,7 @@ class Leaves:
                 (self.u + self.side, self.v + half)]
 
     def centre(self):
+        """The centre's (U, V)."""
         half = self.side // 2
         return self.u + half, self.v + half
 
