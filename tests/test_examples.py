@@ -39,7 +39,11 @@ EXPECTED = {
                           "peak Hertz force [N], 12.7 mm steel ball at 3 m/s on a 4 mm aluminium Mindlin plate"),
     "steel_plate_hertz.py": ("peak_force", 731.2544406218135,
                              "peak Hertz force [N] of examples/steel_plate_hertz.toml"),
-    "dimensionless_point.py": ("fmax_normalised", 0.7197302235773436,
+    # 0.7197302235773436 until 2026-11-24: simulate's mode floor counted the plate's modes
+    # before dropping the ones at rest at the centre and merging degenerate ones, and
+    # integrated 3 where the map's points integrate 4 (the map stores its refined run,
+    # 0.719766; its base run at 4 modes is this value to 1e-15)
+    "dimensionless_point.py": ("fmax_normalised", 0.7197070715998473,
                                "F̄max at (ζ, λ) = (1, 1), SS square Kirchhoff plate (reference table 0.720 ± 0.002)"),
     "fd_elastic_plastic_beam.py": ("restitution", 0.8084382192460435,
                                    "Newton restitution of examples/steel_beam_fd_stronge.toml (FD, Stronge)"),
