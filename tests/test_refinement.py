@@ -178,3 +178,25 @@ def test_the_shipped_lookups_against_committed_direct_runs():
         assert np.mean(error > 1e-3) < 0.03, name
         assert np.mean(found.fmax_error[kept] > 1e-3) < np.mean(runs["grid_band"].to_numpy()[kept] > 1e-3), name
         assert np.mean(error > band) <= 0.003 and np.all(error[error > band] <= 1e-3), name
+
+
+def test_an_unresolved_refinement_point_is_reported_never_a_nan_band():
+    """Where the solver leaves a new point without a value (``unresolved``: beyond a
+    Timoshenko/Mindlin theory), its cells report it (the lookup refuses there) and every
+    band stays finite."""
+    unresolved = STATUSES.index("unresolved")
+
+    def holes(row, col):
+        return np.where((row > 4) & (row < 5) & (col > 8) & (col < 9), np.nan, ridge(row, col))
+
+    def status(row, col):
+        return unresolved if np.isnan(holes(row, col)) else 0
+
+    base = base_map()
+    refinement = refine(base, interpolation_error(base["fmax_normalised"]), positions, Solver(holes, status))
+    assert np.any(refinement.values["status"] == unresolved)
+    rows, cols = random_positions(20000, seed=5)
+    values, band, codes = interpolate(refinement, base, interpolation_error(base["fmax_normalised"]), rows, cols)
+    assert np.all(np.isfinite(band))
+    reported = np.any(np.array(codes) == unresolved, axis=0)
+    assert np.all(np.isfinite(values["fmax_normalised"][~reported]))

@@ -10,15 +10,16 @@ the middles of its edges; a child may be split again, down to :data:`MAX_LEVEL` 
 map's grid subdivided 2^MAX_LEVEL times, and are keyed by their lattice position; a
 cell is split exactly when its centre is a point.
 
-**Reading** (:func:`locate`, :meth:`Refinement.read`): the answer at (ζ, λ) interpolates
+**Reading** (:func:`locate`, :func:`interpolate`): the answer at (ζ, λ) interpolates
 bilinearly between the four corners of the smallest cell that holds it (its *leaf*).
 Its interpolation error is measured, not modelled: every point added carries its
 *surplus*, how far the coarser interpolation missed it (the centre against the mean of
-the parent's corners, an edge middle against the mean of the edge's ends). A leaf's
-estimate is the largest surplus of its corners added at its own level — the error its
-parent made there, which the leaf's interpolation at least halves (a kink; ~4× where
-F̄max is smooth) — and of the points its split neighbours placed on its edges (the
-interpolation across a neighbour's finer points is discontinuous by their surplus).
+the parent's corners, an edge middle against the mean of the edge's ends). A refined
+leaf's estimate (:func:`leaf_estimate`) is :data:`SURPLUS_SAFETY` times the largest
+surplus of the points that split its parent and the parent's eight neighbours — the error
+the parent level made around it, which the leaf's interpolation at least halves (a kink;
+~4× where F̄max is smooth) — and of the points its split neighbours placed on its edges
+(the interpolation across a neighbour's finer points is discontinuous by their surplus).
 A leaf of the map's own grid keeps the second-difference estimate
 (:func:`impactmaps.maps.lookup.interpolation_error`).
 
@@ -41,14 +42,17 @@ import xarray as xr
 
 from .accuracy import STATUSES
 
-__all__ = ["MAX_LEVEL", "REFINEMENT_VARIABLES", "SURPLUS_SAFETY", "Refinement", "Leaves", "locate", "interpolate", "leaf_estimate",
-           "refine"]
+__all__ = ["MAX_LEVEL", "REFINEMENT_VARIABLES", "SURPLUS_SAFETY", "Refinement", "Leaves", "locate", "interpolate",
+           "leaf_estimate", "refine"]
 
 #: Deepest split: leaf cells down to 1/2^MAX_LEVEL of the map's grid spacing per axis.
 MAX_LEVEL = 3
 #: Factor on the measured surpluses in a refined leaf's interpolation estimate
-#: (:func:`leaf_estimate`): 2 — the leaf at least halves its parent's error at a kink.
-SURPLUS_SAFETY = 2.0
+#: (:func:`leaf_estimate`). A leaf at least halves its parent's error at a kink (~4× where
+#: F̄max is smooth), but a few points alias the quasi-static ripple: with a factor of 2 the
+#: band missed 4 of 4427 random lookups (by up to 1.4×), with 3 one, by 1.00×
+#: (``validation/refinement_error.py``, ``validation/lookup_error.py``).
+SURPLUS_SAFETY = 3.0
 #: What each refinement point stores (besides its lattice ``code``), and the dtype: single
 #: precision (6e-8 relative, against a tolerance of 1e-3) keeps a map's refinement of
 #: ~4·10⁵ points within ~7 MB. The regime's times are read from the map's own grid.
@@ -262,7 +266,7 @@ def leaf_estimate(refinement: Refinement, leaves: Leaves, base_estimate: np.ndar
 
     A leaf of the map's grid (level 0): the largest of ``base_estimate`` (the map's own,
     per grid point) at its corners (those ``used``, when given: a position on a grid line
-    reads only the line's two points). A deeper leaf: :data:`SURPLUS_SAFETY` times the
+    reads only the line's two points). A deeper leaf: :data:`SURPLUS_SAFETY` (3) times the
     largest surplus of the points that split its parent and the parent's eight
     neighbours (the error the parent level made around the leaf; its neighbours, because
     surpluses measured at a few points alias F̄max's ripples, as the map's second
@@ -312,8 +316,7 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
     Parameters
     ----------
     base : dict of str to ndarray
-        The base map's ``fmax_normalised``, ``fmax_error``, ``status``, ``log_peak_time``
-        and ``log_reflection_time``, each a (λ, ζ) array.
+        The base map's ``fmax_normalised``, ``fmax_error`` and ``status``, each a (λ, ζ) array.
     base_estimate : ndarray
         The base map's interpolation-error estimate per grid point
         (:func:`impactmaps.maps.lookup.interpolation_error`) [-].
@@ -403,7 +406,9 @@ def _add_points(refinement: Refinement, base: dict, chosen: Leaves, coordinates,
     solved = solve(zetas, lambdas)
     added = {name: np.array([row[name] for row in solved], float) for name in REFINEMENT_VARIABLES if name != "surplus"}
     added["fmax_normalised"] = added["fmax_normalised"].astype(np.float32).astype(float)  # as stored
-    added["surplus"] = np.abs(added["fmax_normalised"] - interpolated[first])
+    # an unresolved point (no value) gets the largest error F̄max ∈ [0, 1] allows: finite,
+    # and a cell that has it on an edge is split no further by it (its own corners decide)
+    added["surplus"] = np.nan_to_num(np.abs(added["fmax_normalised"] - interpolated[first]), nan=1.0)
     merged_codes = np.concatenate([refinement.codes, codes])
     order = np.argsort(merged_codes, kind="stable")
     values = {name: np.concatenate([refinement.values[name], np.asarray(added[name], dtype)])[order]
