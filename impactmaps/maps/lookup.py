@@ -85,7 +85,7 @@ class LookupResult:
         ``sensitive`` answer has no converged value, only the band; and
         ``interpolated`` where those points converged but the band is wider than
         :data:`BAND_TOLERANCE` (:func:`answer_status`): the value is known to ± the band.
-        On a grid point the band is the point's own error.
+        On a map point (of the grid or its refinement) the band is the point's own error.
     law : str
         Contact law of the map: ``"linear"`` (F̄max = F_max/(m_i V0 ω)) or ``"hertz"``
         (F̄max = F_max/F_hs, :mod:`impactmaps.hertz_similarity`).
