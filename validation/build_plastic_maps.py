@@ -26,6 +26,7 @@ from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import map_file_stem
 from impactmaps.maps.plastic_points import PLASTIC_LAWS, plastic_map, solve_plastic_points
 from impactmaps.maps.store import save_atomic
+from impactmaps.maps.workers import init_worker
 from impactmaps.maps.structures import DEFAULT_STRUCTURES
 
 from _script_options import parse
@@ -63,7 +64,7 @@ def build(structure, law, betas, zetas, lambdas, workers: int):
     if workers <= 1:
         results = [_solve_row(*task) for task in tasks]
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+        with ProcessPoolExecutor(max_workers=workers, initializer=init_worker, initargs=(False,)) as pool:
             results = list(pool.map(_solve_row, *zip(*tasks)))
     rows = [row for chunk, _ in results for row in chunk]
     return plastic_map(structure, law, betas, zetas, lambdas, rows), sum(seconds for _, seconds in results)

@@ -29,6 +29,7 @@ from impactmaps.maps.refinement import MAX_LEVEL, refine
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -149,7 +150,7 @@ def main(argv=None) -> None:
               cells=(slice(21, 25), slice(99, 103)))
         return
     WORK.mkdir(parents=True, exist_ok=True)
-    with ProcessPoolExecutor(max_workers=os.cpu_count()) as executor:
+    with ProcessPoolExecutor(max_workers=os.cpu_count(), initializer=init_worker, initargs=(False,)) as executor:
         for name in names:
             build(name, DATA, args.out_dir, WORK, executor, law=args.law, max_points=args.max_points,
                   quiet=args.quiet)

@@ -27,6 +27,7 @@ from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup, read_map
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -112,7 +113,7 @@ def main(argv=None) -> None:
     if args.smoke:
         table = pd.concat([measure(*key, points, args.seed, None) for key in keys], ignore_index=True)
     else:
-        with ProcessPoolExecutor() as executor:
+        with ProcessPoolExecutor(initializer=init_worker, initargs=(False,)) as executor:
             table = pd.concat([measure(*key, points, args.seed, executor) for key in keys], ignore_index=True)
     args.out_dir.mkdir(parents=True, exist_ok=True)
     table.to_csv(args.out_dir / "refinement_error.csv", index=False)

@@ -46,6 +46,7 @@ from .store import (
     save_atomic,
 )
 from .structures import BasisTable, MapStructure
+from .workers import init_worker
 
 __all__ = ["sweep", "sweep_fingerprint", "solve_points", "SOLVER_REVISION", "RESULT_VARIABLES", "table_run_key",
            "MAP_LAWS", "map_law", "log_grid", "warn_point_loaded_mindlin"]
@@ -268,7 +269,14 @@ def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
     tuple
         Hashable: equal keys mean runs with the same bits.
     """
-    return zeta_factor, basis.size, replace(settings, cutoff_ratio=1.0, patch_cutoff_ratio=1.0)
+    return zeta_factor, basis.size, _without_cutoffs(settings)
+
+
+@functools.lru_cache(maxsize=256)
+def _without_cutoffs(settings: ModalSettings) -> ModalSettings:
+    """``settings`` with both cut-off ratios set to 1 (a pure function of frozen settings,
+    cached: a sweep asks it twice per run with a handful of distinct settings)."""
+    return replace(settings, cutoff_ratio=1.0, patch_cutoff_ratio=1.0)
 
 
 def _point_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, impactor):
@@ -539,9 +547,8 @@ def _run(tasks, settings: ModalSettings, executor: Executor | None, max_workers:
             _run_inline(tasks, settings, results, stop, solver)
         elif tasks:
             if executor is None:
-                # workers ignore Ctrl-C: the parent saves and stops them
-                own_executor = executor = ProcessPoolExecutor(
-                    max_workers=workers, initializer=signal.signal, initargs=(signal.SIGINT, signal.SIG_IGN))
+                # one BLAS thread per worker; workers ignore Ctrl-C: the parent saves and stops them
+                own_executor = executor = ProcessPoolExecutor(max_workers=workers, initializer=init_worker)
             _run_on_executor(executor, tasks, settings, results, stop, solver)
     except KeyboardInterrupt:
         stop.append(signal.SIGINT)

@@ -236,14 +236,21 @@ class ModalSettings:
         halved (:attr:`step_scale`), so the step is really halved even where the
         stability limit sets it.
         """
-        return replace(
-            self,
-            cutoff_ratio=2 * self.cutoff_ratio,
-            patch_cutoff_ratio=2 * self.patch_cutoff_ratio,
-            min_modes=2 * self.min_modes,
-            step_scale=self.step_scale / 2,
-            check_convergence=False,
-        )
+        return _refined(self)
+
+
+@functools.lru_cache(maxsize=256)
+def _refined(settings: ModalSettings) -> ModalSettings:
+    """:meth:`ModalSettings.refined` (a pure function of frozen settings, cached: every map
+    point asks it once or twice, of a handful of distinct settings)."""
+    return replace(
+        settings,
+        cutoff_ratio=2 * settings.cutoff_ratio,
+        patch_cutoff_ratio=2 * settings.patch_cutoff_ratio,
+        min_modes=2 * settings.min_modes,
+        step_scale=settings.step_scale / 2,
+        check_convergence=False,
+    )
 
 
 DEFAULT_SETTINGS = ModalSettings()

@@ -1,0 +1,35 @@
+"""Set-up of the worker processes that solve map points.
+
+A worker solves one point after another in a single thread, so it runs with one BLAS
+thread: NumPy's default of one BLAS thread per core in *every* worker oversubscribes the
+cores as soon as two workers share them. On the 2-core development machine the
+200 × 50 grid of ``benchmarks/bench_plane.py`` (Euler beam and Kirchhoff plate) took
+26.5 s as a sweep with the default BLAS threads and 20.9 s with one per worker
+(2026-11-24). The limit is set with ``threadpoolctl`` (it finds the BLAS library NumPy
+and SciPy actually loaded: OpenBLAS, MKL or BLIS) and only inside the worker processes:
+the user's own process keeps its threads.
+"""
+
+from __future__ import annotations
+
+import signal
+
+__all__ = ["init_worker"]
+
+
+def init_worker(ignore_interrupts: bool = True) -> None:
+    """Initialise a worker process: one BLAS thread, and Ctrl-C left to the parent.
+
+    Parameters
+    ----------
+    ignore_interrupts : bool
+        Ignore SIGINT in the worker (the parent catches Ctrl-C, saves what is done and
+        stops the workers).
+
+    Use as the ``initializer`` of a :class:`concurrent.futures.ProcessPoolExecutor`.
+    """
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1, user_api="blas")
+    if ignore_interrupts:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
