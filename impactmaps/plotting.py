@@ -125,7 +125,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
         for name in structures:
             kind = str(dataset["kind"].sel(structure=name).item())
             curve = dataset.sel(structure=name).sel(lambda_=lam, method="nearest")
-            values = _draw_sensitive_bands(ax, zeta, curve, colour)
+            values = _draw_sensitive_bands(ax, zeta, curve, colour, kind)
             ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2,
                     marker=marker, markevery=marks, ms=4, mfc="white" if kind == "beam" else colour)
         ax.plot([], [], color=colour, lw=2.0, marker=marker, ms=4, label=f"λ = {lam:g}")
@@ -135,8 +135,10 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     if asymptotes:
         ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
     if _has_sensitive(dataset, structures, lambda_values):
+        beams = any(str(dataset["kind"].sel(structure=s).item()) == "beam" for s in structures)
         ax.fill_between([], [], [], color="0.5", alpha=SENSITIVE_ALPHA, lw=0,
-                        label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$")
+                        label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$"
+                        + (" (beams hatched)" if beams else ""))
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     top = float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0)) if law == "plastic" else 0.0
@@ -167,9 +169,12 @@ def _has_sensitive(dataset, structures, lambda_values):
                for name in structures for lam in lambda_values)
 
 
-def _draw_sensitive_bands(ax, zeta, curve, colour):
+def _draw_sensitive_bands(ax, zeta, curve, colour, kind="plate"):
     """Fill between ``fmax_low`` and ``fmax_high`` over each run of sensitive points of one
-    curve (widened to its neighbours, so band and line join), in the curve's colour.
+    curve (widened to its neighbours, so band and line join), in the curve's colour; a
+    beam's band is hatched and both edges are drawn thin in the curve's line style (plates
+    solid, beams dashed), so a plate's band and a beam's of the same λ stay apart where
+    they overlap.
 
     Returns the curve's F̄max with NaN at the sensitive points: the line is not drawn where
     the band stands for it (it would print one number where no converged value exists).
@@ -183,7 +188,12 @@ def _draw_sensitive_bands(ax, zeta, curve, colour):
     for start, stop in _runs(sensitive):
         first, last = max(start - 1, 0), min(stop + 1, zeta.size - 1)
         span = slice(first, last + 1)
-        ax.fill_between(zeta[span], low[span], high[span], color=colour, alpha=SENSITIVE_ALPHA, lw=0, zorder=1.5)
+        beam = kind == "beam"
+        ax.fill_between(zeta[span], low[span], high[span], facecolor=colour, alpha=SENSITIVE_ALPHA, lw=0,
+                        zorder=1.5, hatch="////" if beam else None, edgecolor=colour if beam else "none")
+        for edge in (low, high):
+            ax.plot(zeta[span], edge[span], color=colour, lw=0.6, ls="--" if beam else "-", alpha=0.8,
+                    zorder=1.6)
     values[sensitive] = np.nan
     return values
 
@@ -577,7 +587,7 @@ def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
         for colour, marker, beta in zip(colours, markers, betas):
             curve = dataset.isel(structure=0).sel(beta=beta, lambda_=lambda_, method="nearest")
             for ax, (variable, _label) in zip(axes, PLASTIC_PANELS):
-                values = (_draw_sensitive_bands(ax, zeta, curve, colour) if variable == "fmax_normalised"
+                values = (_draw_sensitive_bands(ax, zeta, curve, colour, kind) if variable == "fmax_normalised"
                           else curve[variable].values)
                 ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.5, marker=marker,
                         markevery=max(1, zeta.size // 8), ms=4, mfc="white" if kind == "beam" else colour,

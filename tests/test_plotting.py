@@ -142,6 +142,7 @@ def test_fmax_chart_draws_sensitive_stretches_as_a_band(dataset):
     drawn = np.asarray(beam[0].get_ydata(), float)
     assert np.all(np.isnan(drawn[2:5])) and np.allclose(drawn[[0, 1, 5, 6, 7]], values[[0, 1, 5, 6, 7]])
     assert matplotlib.colors.same_color(bands[0].get_facecolor()[0][:3], beam[0].get_color())
+    assert bands[0].get_hatch() == "////"  # a beam's band is hatched, a plate's is not
     labels = [text.get_text() for text in ax.get_legend().get_texts()]
     assert any(label.startswith("sensitive") for label in labels)
 
