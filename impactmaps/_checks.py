@@ -28,6 +28,18 @@ def _describe(value) -> str:
     return f"array of shape {array.shape} (first values {bad[:3].tolist()})"
 
 
+def describe_outside(value, low: float, high: float) -> str:
+    """``value`` for an error message about the elements outside ``[low, high]``: a scalar
+    as itself, an array by its shape, how many elements lie outside and the first three
+    of them (never the whole array)."""
+    array = np.asarray(value, dtype=float)
+    if array.ndim == 0:
+        return repr(float(array))
+    outside = array[(array < low) | (array > high)].ravel()
+    return (f"array of shape {array.shape} with {outside.size} value(s) outside "
+            f"(first {outside[:3].tolist()})")
+
+
 def require_finite(name: str, value, unit: str = "") -> None:
     """Raise ``ValueError`` unless every element of ``value`` is a finite real number."""
     try:

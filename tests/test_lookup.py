@@ -79,6 +79,12 @@ def test_lookup_rejects_out_of_range():
         pytest.skip("map not built")
     with pytest.raises(ValueError, match="loss_factor = .* outside the shipped map"):
         lookup(1e-4, 1.0, structure="plate", theory="kirchhoff")
+    # an array names its offending values, not all of them
+    many = np.r_[np.geomspace(0.01, 100, 500), 2e3, 5e3]
+    with pytest.raises(ValueError, match=r"loss_factor = array of shape \(502,\) with 2 value\(s\) outside "
+                                         r"\(first \[2000.0, 5000.0\]\) is outside the shipped map") as raised:
+        lookup(many, 1.0, structure="plate", theory="kirchhoff")
+    assert len(str(raised.value)) < 300
     with pytest.raises(ValueError, match="theory"):
         lookup(1.0, 1.0, structure="plate", theory="euler")
 

@@ -24,7 +24,7 @@ from importlib import resources
 import numpy as np
 import xarray as xr
 
-from .._checks import require_choice, require_positive
+from .._checks import describe_outside, require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
 from .accuracy import AccuracyControl
 from .plastic_points import PLASTIC_LAWS
@@ -243,8 +243,9 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     for label, values, axis in (("loss_factor", zeta, "zeta"), ("relative_stiffness", lam, "lambda_")):
         low, high = float(dataset[axis].min()), float(dataset[axis].max())
         if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
+            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
             raise ValueError(
-                f"{label} = {values.tolist()!r} is outside the shipped map: valid range is "
+                f"{label} = {shown} is outside the shipped map: valid range is "
                 f"[{low:g}, {high:g}]; run a simulation (impactmaps point) instead"
             )
     lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))

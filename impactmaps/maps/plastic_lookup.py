@@ -23,7 +23,7 @@ import numpy as np
 import xarray as xr
 from scipy.interpolate import RegularGridInterpolator
 
-from .._checks import require_choice, require_positive
+from .._checks import describe_outside, require_choice, require_positive
 from .plastic_points import ERROR_OF, PLASTIC_LAWS
 
 __all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "lookup_plastic_case"]
@@ -156,7 +156,8 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         require_positive(name, values)
         low, high = float(dataset[axis].min()), float(dataset[axis].max())
         if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
-            raise ValueError(f"{name} = {values.tolist()!r} is outside the shipped map: valid range is "
+            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
+            raise ValueError(f"{name} = {shown} is outside the shipped map: valid range is "
                              f"[{low:g}, {high:g}]; run a simulation (impactmaps simulate) instead")
     shape = numbers[0].shape
     points = np.stack([np.log(np.clip(v, float(dataset[a].min()), float(dataset[a].max()))).ravel()
