@@ -100,6 +100,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     law = _label_law(dataset)
     asymptotes = asymptotes and law == "linear"
     structures, lambda_values = _selection(dataset, structures, lambdas)
+    kinds = {name: str(dataset["kind"].sel(structure=name).item()) for name in structures}
     zeta = dataset["zeta"].values
     colours, markers = _lambda_styles(len(lambda_values))
     if shade_regimes:
@@ -111,11 +112,10 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
             _shade_regime_bands(ax, dataset, structures, lambda_values)
     if asymptotes:
         dense = np.geomspace(zeta[0], zeta[-1], 300)
-        kinds = {str(dataset["kind"].sel(structure=s).item()) for s in structures}
-        if "plate" in kinds:
+        if "plate" in kinds.values():
             ax.plot(dense, infinite_structure_peak(dense, "plate"), color="0.55", lw=3.0, alpha=0.6,
                     label="infinite plate", zorder=1)
-        if "beam" in kinds:
+        if "beam" in kinds.values():
             ax.plot(dense, infinite_structure_peak(dense, "beam"), color="0.55", lw=3.0, alpha=0.6, ls="--",
                     label="infinite beam", zorder=1)
     marks = max(1, zeta.size // 8)
@@ -123,22 +123,21 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
         if asymptotes:
             ax.axhline(float(quasi_static_peak(lam)), color=colour, lw=0.9, ls=":", zorder=1)
         for name in structures:
-            kind = str(dataset["kind"].sel(structure=name).item())
+            kind = kinds[name]
             curve = dataset.sel(structure=name).sel(lambda_=lam, method="nearest")
             values = _draw_sensitive_bands(ax, zeta, curve, colour, kind)
             ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2,
                     marker=marker, markevery=marks, ms=4, mfc="white" if kind == "beam" else colour)
         ax.plot([], [], color=colour, lw=2.0, marker=marker, ms=4, label=f"λ = {lam:g}")
     for kind, style in (("plate", "-"), ("beam", "--")):
-        if any(str(dataset["kind"].sel(structure=s).item()) == kind for s in structures):
+        if kind in kinds.values():
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
     if asymptotes:
         ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
     if _has_sensitive(dataset, structures, lambda_values):
-        beams = any(str(dataset["kind"].sel(structure=s).item()) == "beam" for s in structures)
         ax.fill_between([], [], [], color="0.5", alpha=SENSITIVE_ALPHA, lw=0,
                         label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$"
-                        + (" (beams hatched)" if beams else ""))
+                        + (" (beams hatched)" if "beam" in kinds.values() else ""))
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     top = float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0)) if law == "plastic" else 0.0
@@ -185,10 +184,10 @@ def _draw_sensitive_bands(ax, zeta, curve, colour, kind="plate"):
         return values
     low = np.asarray(curve["fmax_low"].values, dtype=float)
     high = np.asarray(curve["fmax_high"].values, dtype=float)
+    beam = kind == "beam"
     for start, stop in _runs(sensitive):
         first, last = max(start - 1, 0), min(stop + 1, zeta.size - 1)
         span = slice(first, last + 1)
-        beam = kind == "beam"
         ax.fill_between(zeta[span], low[span], high[span], facecolor=colour, alpha=SENSITIVE_ALPHA, lw=0,
                         zorder=1.5, hatch="////" if beam else None, edgecolor=colour if beam else "none")
         for edge in (low, high):

@@ -34,8 +34,9 @@ from .structures import FAMILY_SLENDERNESSES, structure_from_name
 from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "refinement_of", "lookup", "read_map", "answer_status", "corner_status",
-           "status_notes", "interpolation_error", "design_formula", "markdown_table"]
+           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "refinement_of", "lookup",
+           "read_map", "answer_status", "corner_status", "status_notes", "interpolation_error", "design_formula",
+           "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
 ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
