@@ -133,7 +133,9 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
 
 
 def test_a_map_point_is_the_direct_solution():
-    """A grid point of a shipped map is what solve_plastic_points gives for it (same bits)."""
+    """A grid point of a shipped map is what solve_plastic_points gives for it (to a few ulp:
+    the map was built with another build of the numeric libraries; same-build bit equality is
+    tested by the sweep tests)."""
     from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
     from impactmaps.maps.plastic_points import solve_plastic_points
     from impactmaps.maps.structures import DEFAULT_STRUCTURES
@@ -143,7 +145,7 @@ def test_a_map_point_is_the_direct_solution():
     row = solve_plastic_points(DEFAULT_STRUCTURES[0], "yc", [(beta, zeta, lam)])[0]
     stored = dataset.isel(structure=0).sel(beta=beta, lambda_=lam, zeta=zeta)
     for name in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "fmax_error"):
-        assert float(stored[name]) == row[name], name
+        assert float(stored[name]) == pytest.approx(row[name], rel=1e-14, abs=1e-15), name
     found = lookup_plastic(beta, zeta, lam, structure="beam", theory="euler", law="yc")
     assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
 

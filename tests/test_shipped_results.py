@@ -45,7 +45,13 @@ def test_the_shipped_results_are_the_default_charts_and_no_other():
 
 @pytest.mark.parametrize("law, structure_index", [("linear", 0), ("linear", 1), ("hertz", 0), ("hertz", 1)])
 def test_shipped_points_are_what_the_code_computes(law, structure_index):
-    """Random points of each structure and law recomputed: every result variable as shipped."""
+    """Random points of each structure and law recomputed: every result variable as shipped.
+
+    The shipped results were computed with another build of the numeric libraries (numba's
+    LLVM, NumPy, LAPACK); the same code on another build can differ in the last digits, and a
+    peak time found by root refinement by ~1e-12 relative. Bit equality within one build is
+    tested by the sweep tests (alone / in chunks / resumed).
+    """
     dataset = _shipped(DIGEST if law == "linear" else HERTZ_DIGEST)
     rng = np.random.default_rng(11 + structure_index)
     count = 12 if law == "linear" else 4
@@ -55,7 +61,7 @@ def test_shipped_points_are_what_the_code_computes(law, structure_index):
     for (lam, z), row in zip(picks, rows):
         for name in RESULT_VARIABLES:
             stored = dataset[name].values[structure_index, lam, z]
-            assert stored == pytest.approx(row[name], rel=0, abs=1e-12, nan_ok=True), (name, points)
+            assert stored == pytest.approx(row[name], rel=1e-11, abs=1e-12, nan_ok=True), (name, points)
 
 
 def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypatch, capsys):
