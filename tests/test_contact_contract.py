@@ -92,7 +92,11 @@ def cases_from_units(u: np.ndarray) -> dict:
     radius = _log_uniform(u[:, 6], 1e-4, 1.0)
     yield_delta = radius * (math.pi * 1.6 * strength / (2.0 * modulus)) ** 2
     ratio = np.where(u[:, 7] < 0.03, 0.0, _log_uniform(np.clip((u[:, 7] - 0.03) / 0.97, 0, 1), 1e-3, 1e4))
+    sphere_modulus = np.where(kind == 1, np.inf, e_sphere)  # the bodies, for a law that needs more than E*
+    target_modulus = np.where(kind == 2, np.inf, e_target)
     return dict(modulus=modulus, radius=radius, strength=strength, yield_delta=yield_delta,
+                sphere_modulus=sphere_modulus, sphere_poisson=nu_sphere,
+                target_modulus=target_modulus, target_poisson=nu_target,
                 peak=ratio * yield_delta, growth=_log_uniform(u[:, 8], 1e-9, 1.0), valley=u[:, 9])
 
 
@@ -105,7 +109,10 @@ def draw_cases(seed: int, explicit) -> dict:
 
 
 def batched_law(cls, cases):
-    """One law object holding every case (its fields as arrays), built pair by pair."""
+    """One law object holding every case (its fields as arrays), built pair by pair.
+
+    The laws are built from ``ContactPair(E*, R, Y)`` with their default options; a law
+    that needs more of the bodies finds their moduli and Poisson ratios in ``cases``."""
     laws = [cls.from_contact_pair(ContactPair(float(m), float(r), float(y)))
             for m, r, y in zip(cases["modulus"], cases["radius"], cases["strength"])]
     values = {}
