@@ -46,7 +46,12 @@ from hypothesis import Phase, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import simpson
 
-from impactmaps.contact import ContactPair, available_contact_laws, contact_law_class, effective_modulus
+from impactmaps.contact import (
+    ContactPair,
+    available_contact_laws,
+    contact_law_class,
+    effective_modulus,
+)
 from impactmaps.contact.base import evaluate_kernel
 from impactmaps.contact.hertz import HertzContact
 from impactmaps.solvers.halfspace import halfspace_impact, hertz_peak_force
@@ -94,10 +99,10 @@ def cases_from_units(u: np.ndarray) -> dict:
     ratio = np.where(u[:, 7] < 0.03, 0.0, _log_uniform(np.clip((u[:, 7] - 0.03) / 0.97, 0, 1), 1e-3, 1e4))
     sphere_modulus = np.where(kind == 1, np.inf, e_sphere)  # the bodies, for a law that needs more than E*
     target_modulus = np.where(kind == 2, np.inf, e_target)
-    return dict(modulus=modulus, radius=radius, strength=strength, yield_delta=yield_delta,
-                sphere_modulus=sphere_modulus, sphere_poisson=nu_sphere,
-                target_modulus=target_modulus, target_poisson=nu_target,
-                peak=ratio * yield_delta, growth=_log_uniform(u[:, 8], 1e-9, 1.0), valley=u[:, 9])
+    return {"modulus": modulus, "radius": radius, "strength": strength, "yield_delta": yield_delta,
+            "sphere_modulus": sphere_modulus, "sphere_poisson": nu_sphere,
+            "target_modulus": target_modulus, "target_poisson": nu_target,
+            "peak": ratio * yield_delta, "growth": _log_uniform(u[:, 8], 1e-9, 1.0), "valley": u[:, 9]}
 
 
 def draw_cases(seed: int, explicit) -> dict:
@@ -189,7 +194,7 @@ def violations(cls, cases) -> dict[str, np.ndarray]:
     s = np.sort(np.concatenate((s, 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, QUADRATURE_POINTS))))))
     delta = peak[:, None] * s[None, :]
     load, load_k = _kernel(law, delta, delta)
-    unload, unload_k = _kernel(law, delta, np.broadcast_to(peak[:, None], delta.shape))
+    unload, _ = _kernel(law, delta, np.broadcast_to(peak[:, None], delta.shape))
     peak_force, peak_k = _kernel(law, peak, peak)
     out = {}
 

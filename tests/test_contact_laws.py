@@ -4,6 +4,7 @@ equations, continuity at every phase boundary, energies, random load paths, bad 
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -457,9 +458,10 @@ def test_stronge_closed_form_energies_match_the_kernel():
         breaks = [b for b in (yield_delta, plastic_delta) if b < peak]
         edges = [0.0] + breaks + [peak]
         loading = sum(quad(lambda a: law.kernel(a, a, params)[0], lo, hi, epsabs=0, epsrel=1e-13, limit=200)[0]
-                      for lo, hi in zip(edges[:-1], edges[1:]))
+                      for lo, hi in itertools.pairwise(edges))
         final = float(law.permanent_indentation(peak))
-        recovered = quad(lambda a: law.kernel(a, peak, params)[0], final, peak, epsabs=0, epsrel=1e-13, limit=200)[0]
+        recovered = quad(lambda a, m=peak: law.kernel(a, m, params)[0], final, peak, epsabs=0, epsrel=1e-13,
+                         limit=200)[0]
         assert float(law.loading_energy(peak)) == pytest.approx(loading, rel=1e-10)
         assert float(law.recovered_energy(peak)) == pytest.approx(recovered, rel=1e-10)
 
