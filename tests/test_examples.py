@@ -45,7 +45,10 @@ EXPECTED = {
     # 0.719766; its base run at 4 modes is this value to 1e-15)
     "dimensionless_point.py": ("fmax_normalised", 0.7197070715998473,
                                "F̄max at (ζ, λ) = (1, 1), SS square Kirchhoff plate (reference table 0.720 ± 0.002)"),
-    "fd_elastic_plastic_beam.py": ("restitution", 0.8084382192460435,
+    # 0.8084382192460435 until the refined Stronge law was made energy-consistent (issue 28):
+    # softer from δ_y to δ_p, it absorbs less (energy loss 0.488 → 0.338 J of 1.410 J, 6 → 5
+    # contacts, same 13.85 kN peak)
+    "fd_elastic_plastic_beam.py": ("restitution", 0.8721170916161359,
                                    "Newton restitution of examples/steel_beam_fd_stronge.toml (FD, Stronge)"),
 }
 RELATIVE_TOLERANCE = 1e-6

@@ -120,14 +120,16 @@ def test_level4_elastic_first_contact(solver):
 
 
 INDENT = FE_DIR / "results" / "level4_plastic_indent.json"
-# refined Stronge law / FE − 1, quasi-static load–unload to the impact's α_max, fine
-# mesh, 20 + 20 increments: measured +7.5 % / −9.3 % / +8.9 % (coarse − fine mesh:
-# +2.3 % / −0.3 % / −0.7 %; 10 − 20 increments: −0.9 % / +0.1 % / −1.5 %); the bands hold
-# the measured value with a margin of about twice those differences (at least 3
-# points) on each side.
+# refined Stronge law (the energy-consistent form) / FE − 1, quasi-static load–unload to
+# the impact's α_max (101 δ_y, past δ_p: force and dent are those of the printed form,
+# the work absorbed on the way is smaller), fine mesh, 20 + 20 increments: measured
+# +7.5 % / −9.3 % / +1.1 % (coarse − fine mesh: −2.4 % / +0.3 % / +0.7 %; 10 − 20
+# increments: +1.0 % / −0.1 % / +1.5 %); the bands hold the measured value with a margin
+# of about twice those differences (at least 3 points) on each side. (The printed form
+# dissipated +8.9 %: band (0.07, 0.14) until the law was made consistent.)
 INDENT_BANDS = {"force_at_max_N": (0.035, 0.135),
                 "permanent_indentation_m": (-0.125, -0.06),
-                "dissipated_energy_J": (0.07, 0.14)}
+                "dissipated_energy_J": (-0.02, 0.045)}
 
 
 def test_level4_stronge_law_against_3d_plasticity():
@@ -143,7 +145,9 @@ def test_level4_stronge_law_against_3d_plasticity():
     asserted as bands (``INDENT_BANDS``), so that a change of the law that moves it
     away from — or towards — 3D plasticity shows up here.  Measured (fine mesh):
     the law's force at α_max +7.5 %, its permanent indentation −9.3 %, its
-    dissipated energy +8.9 % against FE (fine mesh, 20 + 20 increments).
+    dissipated energy +1.1 % against FE (fine mesh, 20 + 20 increments).  The FE cycle
+    went to the α_max of the modal run with the printed law; the consistent law's run
+    goes 2.2 % deeper (softer from δ_y to δ_p), within 3 %.
     """
     if not INDENT.exists():
         pytest.skip("validation/fe/results/level4_plastic_indent.json not committed")
@@ -159,4 +163,4 @@ def test_level4_stronge_law_against_3d_plasticity():
         assert low <= toolkit[key] / ref[key] - 1 <= high, (key, toolkit[key], ref[key])
     # the FE cycle went to the modal run's α_max: it must still be the impact's
     modal = level4_plastic_indent.l4.toolkit_runs_cached("plastic")["modal_stronge"][0]
-    assert modal.max_indentation == pytest.approx(alpha_max, rel=0.02)
+    assert modal.max_indentation == pytest.approx(alpha_max, rel=0.03)
