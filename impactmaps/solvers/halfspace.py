@@ -32,7 +32,7 @@ from scipy.special import beta as beta_function
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw, evaluate_kernel
-from .modal import reference_contact_stiffness
+from .contact_scale import reference_contact_stiffness
 from .result import ImpactResult, energy_balance_error
 
 __all__ = [
