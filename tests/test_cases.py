@@ -8,12 +8,10 @@ closed-form stiffnesses and the dimensionless definitions of seed 001.
 
 from __future__ import annotations
 
-import json
 import math
 import textwrap
 import warnings
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -31,7 +29,8 @@ from impactmaps.cases import (
 from impactmaps.materials import material
 from impactmaps.solvers.modal import ConvergenceWarning
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+from .helpers import EXAMPLES, strict_json_loads
+
 MODAL_EXAMPLES = ["steel_plate_hertz.toml", "aluminium_beam_linear.toml",
                   "composite_plate_sun_chen.toml"]
 
@@ -42,39 +41,16 @@ FD_SUMMARY_KEYS = ("peak_force_N", "contact_intervals_s", "restitution", "energy
                    "permanent_indentation_m", "beam_plastic_work_J", "energy_balance_error")
 
 
-def _beam_available() -> bool:
-    try:
-        import impactmaps.targets.beam  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-def _needs_beam(name: str):
-    marks = []
-    if "beam" in name:
-        marks.append(pytest.mark.skipif(not _beam_available(),
-                                        reason="impactmaps.targets.beam not available yet"))
-    return pytest.param(name, marks=marks)
-
-
 def _fast(case: Case) -> Case:
     """Coarse modal settings: few modes (the residual flexibility keeps the statics exact)."""
     return replace(case, settings=replace(case.settings, cutoff_ratio=6.0, min_modes=4,
                                           time_step_ratio=0.05))
 
 
-def _strict_json(text: str):
-    """json.loads that rejects NaN/Infinity (which are not JSON)."""
-    def reject(constant):
-        raise ValueError(f"non-JSON constant {constant} in summary.json")
-    return json.loads(text, parse_constant=reject)
-
-
 # -------------------------------------------------------------------------------------
 # Examples
 # -------------------------------------------------------------------------------------
-@pytest.mark.parametrize("name", [_needs_beam(n) for n in MODAL_EXAMPLES])
+@pytest.mark.parametrize("name", MODAL_EXAMPLES)
 def test_modal_example_loads_runs_and_round_trips(name, tmp_path):
     """Each shipped modal example loads, runs (coarse settings) and writes its outputs.
 
@@ -96,7 +72,7 @@ def test_modal_example_loads_runs_and_round_trips(name, tmp_path):
     assert summary["energy_balance_error"] < 1e-4
     paths = write_case_outputs(case, result, tmp_path)
     summary_text = paths["summary"].read_text()
-    assert _strict_json(summary_text) == summary
+    assert strict_json_loads(summary_text) == summary
     history, read_summary = read_case_outputs(tmp_path)
     assert read_summary == summary
     assert list(history.columns[:5]) == ["time_s", "force_N", "indentation_m",
@@ -137,7 +113,7 @@ def test_fd_example_loads_runs_and_writes(tmp_path):
     assert summary["peak_force_N"] > 0
     assert abs(summary["energy_balance_error"]) < 1e-3
     paths = write_case_outputs(coarse, result, tmp_path)
-    assert _strict_json(paths["summary"].read_text()) == summary
+    assert strict_json_loads(paths["summary"].read_text()) == summary
     history, _ = read_case_outputs(tmp_path)
     assert "target_displacement_m" in history.columns
 
@@ -541,7 +517,6 @@ def test_beam_cases_isotropic_and_laminated():
     b·D11 of the laminate (seed 001 (16)–(17)); its static stiffness uses the same
     closed form with EI → b D11 and kGA → k b A55.
     """
-    pytest.importorskip("impactmaps.targets.beam")
     case = load_case(EXAMPLES / "aluminium_beam_linear.toml")
     numbers = case_dimensionless(case)
     al = material("aluminium-6061-t6")
@@ -634,6 +609,6 @@ def test_summary_says_whether_the_run_converged(tmp_path):
     result, summary = run_case(checked)
     assert summary["converged"] is True and result.converged is True
     paths = write_case_outputs(checked, result, tmp_path)
-    assert _strict_json(paths["summary"].read_text())["converged"] is True
+    assert strict_json_loads(paths["summary"].read_text())["converged"] is True
     _, unchecked = run_case(parse_case(GOOD))
     assert unchecked["converged"] is None
