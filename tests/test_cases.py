@@ -2,7 +2,7 @@
 
 The examples are run with coarse settings (few modes, short time limit, coarse FD grid):
 these tests check the plumbing from TOML to solver to files, not convergence. The
-physics checks use the exact half-space solutions (PHYSICS.md §3.1 and Hertz theory),
+physics checks use the exact half-space solutions (docs/physics_contract.md §3.1 and Hertz theory),
 closed-form stiffnesses and the dimensionless definitions of seed 001.
 """
 
@@ -137,7 +137,7 @@ material = {{ youngs_modulus = 70e9, poisson_ratio = 0.33, density = 2700.0 }}
 
 
 def test_halfspace_linear_case_matches_exact_solution():
-    """Half-space, linear contact: F(t) = m V ω sin(ωt), contact time π/ω (PHYSICS.md §3.1).
+    """Half-space, linear contact: F(t) = m V ω sin(ωt), contact time π/ω (docs/physics_contract.md §3.1).
 
     The integrator is exact for a linear spring between events; the tolerance 1e-4
     covers the event location. λ and ζ are undefined for a half-space (None).
@@ -199,7 +199,7 @@ def test_dimensionless_numbers_of_a_plate_case():
     """λ, ζ, β of a case against independent closed forms.
 
     * K_st of an isotropic square SS plate at its centre is D/(0.011601 a²)
-      (PHYSICS.md §3.3; the constant is given to 5 digits, hence rel 1e-4);
+      (docs/physics_contract.md §3.3; the constant is given to 5 digits, hence rel 1e-4);
     * K_y = 1.5 K_h sqrt(α_y), α_y = 0.68 π² S_y² R/E*² with S_y the *smaller* yield
       strength of the pair (S235 sphere 235 MPa < 6061-T6 276 MPa; seed 001 eqs 9, 10);
     * ζ = (1/16) sqrt(m K/(ρh D)) (seed 001 eq 34), β = V/(ω_h α_y),
@@ -450,7 +450,7 @@ def test_fd_support_codes_map_to_beam_ends():
 
 
 # -------------------------------------------------------------------------------------
-# The benchmark laminate: infinite-plate check (and a correction to PHYSICS.md eq 31)
+# The benchmark laminate: infinite-plate check (and a correction to docs/physics_contract.md eq 31)
 # -------------------------------------------------------------------------------------
 def _infinite_plate_peak(mass, velocity, hertz, admittance):
     """Peak Hertz force [N] on an infinite Kirchhoff plate, ẇ = Y F (solve_ivp, tight tolerances)."""
@@ -480,7 +480,7 @@ def test_benchmark_laminate_first_peak_is_the_infinite_orthotropic_plate():
 
     (pole residue of the 2-D Fourier integral; K the complete elliptic integral). Modal
     (finite plate, 227+ modes, residual flexibility) and infinite-plate peaks agree to 1e-4.
-    The effective stiffness printed as seed 001 eq (31) / PHYSICS.md §3.3,
+    The effective stiffness printed as seed 001 eq (31) / docs/physics_contract.md §3.3,
     D* = ½(D12 + 2D66 + sqrt(D11 D22)), is exact only for A = 1 (isotropic); for this
     laminate (A = 0.215) it is 23 % low and predicts a peak force 9.5 % low — the test
     asserts that too, as the proof that eq (31) is not the infinite-plate stiffness.
@@ -512,7 +512,7 @@ def test_beam_cases_isotropic_and_laminated():
     """Beam targets from a case file.
 
     Isotropic (the aluminium example): K_st at mid-span of the SS Timoshenko beam is
-    1/K = L³/(48EI) + L/(4kGA) (PHYSICS.md §3.2, narrow beam EI = E b h³/12), so
+    1/K = L³/(48EI) + L/(4kGA) (docs/physics_contract.md §3.2, narrow beam EI = E b h³/12), so
     λ·K = K_st to round-off. Laminated: a layup builds Beam.from_laminate with
     b·D11 of the laminate (seed 001 (16)–(17)); its static stiffness uses the same
     closed form with EI → b D11 and kGA → k b A55.

@@ -78,7 +78,7 @@ def kinks(law: ContactLaw) -> list[float]:
 
 # -- registry -------------------------------------------------------------------------------
 def test_registry_holds_the_four_laws():
-    """The four laws of PHYSICS.md §2 are registered under their names."""
+    """The four laws of docs/physics_contract.md §2 are registered under their names."""
     assert KNOWN_LAWS <= set(available_contact_laws())
 
 
@@ -94,7 +94,7 @@ def test_unknown_law_name_lists_the_known_ones():
 
 @pytest.mark.parametrize("name", available_contact_laws())
 def test_registered_law_invariants(name):
-    """Invariants every law must satisfy (PHYSICS.md §2, base.py convention).
+    """Invariants every law must satisfy (docs/physics_contract.md §2, base.py convention).
 
     No tension (F = dF = 0 for α ≤ 0 whatever the history); F ≥ 0 on a grid of (α, α_max);
     tangent = central difference of the force (rel. 1e-5: O(h²) error with h = 1e-6 α);
@@ -338,7 +338,7 @@ def test_yigit_christoforou_continuity():
 
 
 def test_yigit_christoforou_normalised_energies():
-    """In units a = α/α_y, K_h α_y^{5/2}: loading work 2/5 + (a−1) + ¾(a−1)² (PHYSICS.md
+    """In units a = α/α_y, K_h α_y^{5/2}: loading work 2/5 + (a−1) + ¾(a−1)² (docs/physics_contract.md
     §2) and the unloading integral ∫ (a^{3/2} − a_f^{3/2}) da by quadrature (rel. 1e-10)."""
     law = YigitChristoforouContact(1.0, 1.0)
     for a in (1.5, 7.0, 300.0):
@@ -395,7 +395,7 @@ def test_stronge_phase_boundaries_are_continuous():
 
 
 def test_stronge_specified_law_creates_energy_just_above_yield():
-    """PROOF OF A PHYSICS.md DEFECT (kept as a passing test so that it is seen).
+    """PROOF OF A docs/physics_contract.md DEFECT (kept as a passing test so that it is seen).
 
     With the specified refined Stronge law the elastic-plastic loading curve is stiffer
     than Hertz (tangent 2(1 + 1/κ) F_y/δ_y vs 1.5 F_y/δ_y at δ_y), so the elastic

@@ -35,7 +35,7 @@ YC = YigitChristoforouContact(hertz_stiffness=8.0e9, yield_indentation=1.5e-6)
 
 # -- linear and Hertz: exact solutions -------------------------------------------------------
 def test_linear_law_is_a_half_sine():
-    """Linear contact on a half-space (PHYSICS.md §3.1, seed 001 eq 27): F̄(τ) = sin τ on
+    """Linear contact on a half-space (docs/physics_contract.md §3.1, seed 001 eq 27): F̄(τ) = sin τ on
     0 ≤ τ ≤ π, contact time π/ω, e = 1. Tolerance 1e-8 (spec asks 1e-6): the integrator
     runs at rtol 1e-12 and the observed error is ~3e-12."""
     stiffness, velocity = 2.0e7, 1.5
@@ -163,7 +163,7 @@ def velocity_for_peak(law, peak):
 def test_stronge_restitution_matches_energy_balance(ratio):
     """Stronge law: time-integrated e and α_m equal the energy balance on the law's closed
     forms (rel. 1e-8; observed ~1e-11) on both sides of δ_y and δ_p; e = 1 below yield.
-    (At 2 δ_y the specified law gives e ≈ 1.144 > 1 — the PHYSICS.md defect, see
+    (At 2 δ_y the specified law gives e ≈ 1.144 > 1 — the docs/physics_contract.md defect, see
     test_contact_laws.py — and the integrator reproduces it.)"""
     peak = ratio * float(STRONGE.yield_indentation)
     velocity = velocity_for_peak(STRONGE, peak)

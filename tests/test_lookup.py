@@ -13,7 +13,7 @@ from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
-#: Documented interpolation error (README "Validation"): over 150 random points per map
+#: Documented interpolation error (docs/validation.rst, "Lookup maps"): over 150 random points per map
 #: the largest |lookup − direct| was 0.023 (Mindlin plate); 0.03 leaves room for other seeds.
 LOOKUP_TOLERANCE = 0.03
 

@@ -1,4 +1,4 @@
-"""The dimensionless framework of seed 001 (PHYSICS.md §1 and §4).
+"""The dimensionless framework of seed 001 (docs/physics_contract.md §1 and §4).
 
 With a linear contact spring ``F = K α`` the impact of a sphere of mass ``m_i`` at
 speed ``V0`` is scaled by the contact frequency ``ω = sqrt(K/m_i)``: time ``τ = ω t``,
@@ -20,7 +20,7 @@ All functions accept scalars or arrays (NumPy broadcasting) and validate their i
 through :mod:`impactmaps._checks`, so bad input raises a ``ValueError`` naming the
 parameter.
 
-**Correction (beam loss factor, PHYSICS.md §1).** The driving-point velocity of an
+**Correction (beam loss factor, docs/physics_contract.md §1).** The driving-point velocity of an
 infinite Euler–Bernoulli beam under a force ``F(t)`` is
 
     ẇ(t) = 1/(2 sqrt(2π) m' c^{1/2}) ∫0^t F(ξ)/sqrt(t − ξ) dξ,   c = sqrt(EI/m'),

@@ -145,7 +145,7 @@ def impact_number(velocity, hertz_stiffness, yield_indentation, impactor_mass):
     Returns
     -------
     float or ndarray
-        β; the contact stays elastic (e = 1) for β ≤ sqrt(4/5) (PHYSICS.md §2).
+        β; the contact stays elastic (e = 1) for β ≤ sqrt(4/5) (docs/physics_contract.md §2).
     """
     require_positive("velocity", velocity, "m/s")
     omega_h = hertz_frequency(hertz_stiffness, yield_indentation, impactor_mass)
@@ -244,7 +244,7 @@ def loss_factor_plate(impactor_mass, contact_stiffness, mass_per_area,
 
 def impactor_mass_for_plate(loss_factor, contact_stiffness, mass_per_area,
                             effective_bending_stiffness):
-    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] giving the plate loss factor ζ (PHYSICS.md §4).
+    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] giving the plate loss factor ζ (docs/physics_contract.md §4).
 
     Parameters
     ----------
@@ -264,7 +264,7 @@ def impactor_mass_for_plate(loss_factor, contact_stiffness, mass_per_area,
 def loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length, bending_stiffness):
     """Beam loss factor ``ζ_b = (1/(4 sqrt(2π))) (m_i/m')^{3/4} (K/(b D11))^{1/4}`` [-].
 
-    This is the **corrected** loss factor of PHYSICS.md §1: with it the infinite
+    This is the **corrected** loss factor of docs/physics_contract.md §1: with it the infinite
     Euler-beam asymptote is exactly ``ᾱ'' + 2ζ_b ∫0^τ ᾱ'(s)/sqrt(τ−s) ds + ᾱ = 0``
     (seed 001 eq 36). Seed 001's printed eq (38) is twice this value
     (:func:`loss_factor_beam_paper`), because its eq (35) for the infinite-beam point
@@ -319,7 +319,7 @@ def zeta_beam_paper(loss_factor):
 
 def impactor_mass_for_beam(loss_factor, contact_stiffness, mass_per_length,
                            bending_stiffness):
-    """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (b D11/K)^{1/3}`` [kg] (PHYSICS.md §4).
+    """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (b D11/K)^{1/3}`` [kg] (docs/physics_contract.md §4).
 
     Inverse of :func:`loss_factor_beam` (the corrected ζ_b).
 

@@ -81,7 +81,7 @@ class Realisation:
 
 
 def realise(target, loss_factor, relative_stiffness) -> Realisation:
-    """The impactor mass and contact stiffness that give (ζ, λ) on ``target`` (PHYSICS.md §4).
+    """The impactor mass and contact stiffness that give (ζ, λ) on ``target`` (docs/physics_contract.md §4).
 
     ``K = K_st/λ`` with ``K_st = target.static_stiffness()``, then
     ``m_i = target.impactor_mass_for(ζ, K)``; the target's own loss-factor formula
@@ -132,7 +132,7 @@ def realise(target, loss_factor, relative_stiffness) -> Realisation:
 # Simply supported Euler beam struck at mid-span: (ζ, λ) fix everything
 # ---------------------------------------------------------------------------------
 def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
-    """Mass ratio ``μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}`` [-] (PHYSICS.md §4).
+    """Mass ratio ``μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}`` [-] (docs/physics_contract.md §4).
 
     For a simply supported Euler–Bernoulli beam struck at mid-span
     (``K_st = 48 EI/L³``) with the corrected beam loss factor ζ_b.
@@ -151,7 +151,7 @@ def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
 
 
 def ss_euler_beam_midspan_frequency_ratio(loss_factor, relative_stiffness):
-    """First beam frequency over contact frequency, ``ω_1/ω = sqrt(π⁴ μ λ/48)`` [-] (PHYSICS.md §4).
+    """First beam frequency over contact frequency, ``ω_1/ω = sqrt(π⁴ μ λ/48)`` [-] (docs/physics_contract.md §4).
 
     ``ω_1 = π² sqrt(EI/(m' L⁴))``; μ from :func:`ss_euler_beam_midspan_mass_ratio`.
 

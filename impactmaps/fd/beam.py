@@ -13,7 +13,7 @@ Equation (spec section 5, with the sign of the moment term made consistent — s
 
 ``w`` and ``z`` point in the impact direction; ``M`` is the sagging moment
 (:mod:`impactmaps.fd.section`), so in the elastic range ``M = −EI w''`` and the equation is
-the Rayleigh beam ``ρA ẅ − ρI ẅ'' + C ẇ + EI w'''' = p``. (PHYSICS.md §5 writes ``+M''``
+the Rayleigh beam ``ρA ẅ − ρI ẅ'' + C ẇ + EI w'''' = p``. (docs/physics_contract.md §5 writes ``+M''``
 together with ``M = b∫σz dz`` and ``ε = −z w''``; those three statements give
 ``ρA ẅ − EI w'''' = p``, which is ill-posed. ``+M''`` is right only for the hogging
 moment ``M = EI w''``. The static test ``PL³/(48EI)`` pins the sign used here.)

@@ -1,4 +1,4 @@
-"""Modes of simply supported (SSSS) plates by the Navier solution (PHYSICS.md 3.3).
+"""Modes of simply supported (SSSS) plates by the Navier solution (docs/physics_contract.md §3.3).
 
 Kirchhoff: closed-form frequencies per half-wave pair (m, n). Mindlin: per (m, n) the
 lowest (flexural) branch of the 3×3 eigenproblem of seed 001 eqs (13)–(15), polished by
