@@ -36,6 +36,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
+from ..targets.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
 
@@ -186,8 +187,6 @@ class FDBeam:
             If ``beam`` is not a rectangular beam of ``material`` (EI ≠ E b h³/12 or
             ρA ≠ ρ b h by more than 1e-9 relative, e.g. a laminate beam).
         """
-        from ..targets.beam import Beam
-
         if not isinstance(beam, Beam):
             raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beam.Beam")
         if beam.width is None or beam.height is None:

@@ -19,8 +19,9 @@ import pandas as pd
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.modal import reference_contact_stiffness
+from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.result import ImpactResult
+from ..targets.beam import Beam
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, FDSettings
 from .energy import impact_ledger
@@ -262,7 +263,6 @@ def _fd_beam(beam, material, settings, impact_position):
                              "FDBeam carries its own material")
         options = settings.beam_options()
         return (dataclasses.replace(beam, **options) if options else beam), impact_position
-    from ..targets.beam import Beam
 
     if isinstance(beam, Beam):
         if material is None:
