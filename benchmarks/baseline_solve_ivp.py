@@ -1,6 +1,6 @@
 """Baseline: the modal impact equations integrated by scipy ``solve_ivp`` (DOP853).
 
-This is the "straightforward" way to solve the problem of PHYSICS.md §3.4, used (a) as
+This is the "straightforward" way to solve the problem of docs/physics_contract.md §3.4, used (a) as
 the speed baseline of :mod:`benchmarks.bench_modal` and (b) at tight tolerances as the
 independent reference of ``tests/test_integrator.py``. It shares nothing with the
 impactmaps integrator except the modal basis, which is built exactly as

@@ -25,13 +25,13 @@ point receptance fixed by a mass ``M_s`` and a frequency ``Ω_s`` (plate: ``M_s 
 the response depends on ``m/M_s`` and ``Ω_s t*`` only — two numbers.
 
 *The choice of the two numbers.* Any two independent combinations do; the natural ones
-reuse the linear definitions (PHYSICS.md §1, §7) with the secant stiffness that stores
+reuse the linear definitions (docs/physics_contract.md §1, §7) with the secant stiffness that stores
 the impact energy at α_m,
 
     K_eq = m V0²/α_m²  (ω_eq = sqrt(K_eq/m) = V0/α_m = 1/t*),
 
 the **Hertz loss factor** ``ζ_h = ζ(m, K_eq)`` (plate ``(1/16) sqrt(m K_eq/(ρh D*))``, beam
-the corrected ``ζ_b`` of PHYSICS.md §1) and the **Hertz relative stiffness**
+the corrected ``ζ_b`` of docs/physics_contract.md §1) and the **Hertz relative stiffness**
 ``λ_h = K_st/K_eq``. For the plate ``ζ_h = (1/16)(m/M_s)/(Ω_s t*)`` and
 ``λ_h = c Ω_s² t*² M_s/m`` (``K_st = c D/a²``, c fixed by the family), a one-to-one map of
 ``(m/M_s, Ω_s t*)``; the beam is the same with its own exponents. So two physically

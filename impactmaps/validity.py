@@ -51,6 +51,7 @@ import warnings
 import numpy as np
 
 from .contact.base import effective_modulus
+from .solvers.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [
     "DEFLECTION_RATIO_LIMIT",
@@ -206,8 +207,6 @@ def _contact_time(result):
 
 
 def _structural_theory(target, result):
-    from .solvers.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
-
     intervals = np.asarray(getattr(result, "contact_intervals", np.empty((0, 2))), dtype=float).reshape(-1, 2)
     if target is None or intervals.size == 0 or not np.all(np.isfinite(intervals[0])):
         return None

@@ -11,3 +11,10 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 _TILE_CACHE = tempfile.TemporaryDirectory(prefix="impactmaps-test-tiles-")
 os.environ["IMPACTMAPS_CACHE_DIR"] = _TILE_CACHE.name
+
+
+def pytest_report_header(config):
+    """Which impactmaps the run tests: the installed package (its path), not the checkout."""
+    import impactmaps
+
+    return f"impactmaps {impactmaps.__version__} from {os.path.dirname(impactmaps.__file__)}"

@@ -1,4 +1,4 @@
-"""The refined Stronge law exactly as PHYSICS.md §2 printed it — a test fixture, never run by the package.
+"""The refined Stronge law exactly as docs/physics_contract.md §2 printed it — a test fixture, never run by the package.
 
 Its elastic-plastic branch takes the fully plastic contact area from first yield on,
 ``a² = R(2δ − δ_y)``, with ``F = F_y L [1 + ln L/κ]``, ``L = 2δ/δ_y − 1``: the loading

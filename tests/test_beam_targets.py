@@ -1,4 +1,4 @@
-"""Verification of the beam targets (impactmaps.targets.beam, PHYSICS.md 3.2, 3.4).
+"""Verification of the beam targets (impactmaps.targets.beam, docs/physics_contract.md §3.2, 3.4).
 
 Every test names the exact solution or invariant it checks. References:
 Blevins, *Formulas for Natural Frequency and Mode Shape* (1979), Table 8-1 (Euler βL
@@ -437,7 +437,7 @@ def test_modal_basis_contents():
 def test_loss_factor_and_dimensionless_realisation():
     """ζ_b = (m_i/m')^{3/4} (K/bD11)^{1/4}/(4 sqrt(2π)) and its inverse; for the SS Euler
     beam struck at mid-span (ζ, λ) fix μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}
-    and (ω_1/ω)² = π⁴ μ λ/48 (PHYSICS.md 4) — ties K_st, the loss factor and ω_1 together."""
+    and (ω_1/ω)² = π⁴ μ λ/48 (docs/physics_contract.md §4) — ties K_st, the loss factor and ω_1 together."""
     target = beam("euler", "ss")
     mass, stiffness = 0.05, 3e7
     expected = (mass / target.mass_per_length) ** 0.75 * (
@@ -532,7 +532,7 @@ REFERENCE = Path(__file__).resolve().parent / "data" / "fmax_reference.csv"  # s
 
 @pytest.mark.parametrize("theory,slenderness", [("euler", 20.0), ("timoshenko", 300.0)])
 def test_simply_supported_beam_reproduces_reference_peak_forces(theory, slenderness):
-    """End to end (PHYSICS.md 6): the modal solver on Beam (SS, struck at mid-span,
+    """End to end (docs/physics_contract.md §6): the modal solver on Beam (SS, struck at mid-span,
     realised from (ζ, λ) via static_compliance and impactor_mass_for) reproduces the
     independent F̄max table for SS Euler beams, λ = 1 and 10, ζ = 0.056…56.4, to 0.003
     (table accuracy ±0.002). A slender Timoshenko beam (L/h = 300, shear and rotary

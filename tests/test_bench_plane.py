@@ -5,10 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmarks import bench_plane
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
+
+from .helpers import repository_module
+
+bench_plane = repository_module("benchmarks/bench_plane.py")
 
 
 def test_pool_points_equal_solve_points_and_the_cap_kills_a_slow_point():

@@ -2,18 +2,16 @@
 
 The examples are run with coarse settings (few modes, short time limit, coarse FD grid):
 these tests check the plumbing from TOML to solver to files, not convergence. The
-physics checks use the exact half-space solutions (PHYSICS.md §3.1 and Hertz theory),
+physics checks use the exact half-space solutions (docs/physics_contract.md §3.1 and Hertz theory),
 closed-form stiffnesses and the dimensionless definitions of seed 001.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import textwrap
 import warnings
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -31,7 +29,8 @@ from impactmaps.cases import (
 from impactmaps.materials import material
 from impactmaps.solvers.modal import ConvergenceWarning
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+from .helpers import EXAMPLES, strict_json_loads
+
 MODAL_EXAMPLES = ["steel_plate_hertz.toml", "aluminium_beam_linear.toml",
                   "composite_plate_sun_chen.toml"]
 
@@ -42,39 +41,16 @@ FD_SUMMARY_KEYS = ("peak_force_N", "contact_intervals_s", "restitution", "energy
                    "permanent_indentation_m", "beam_plastic_work_J", "energy_balance_error")
 
 
-def _beam_available() -> bool:
-    try:
-        import impactmaps.targets.beam  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
-def _needs_beam(name: str):
-    marks = []
-    if "beam" in name:
-        marks.append(pytest.mark.skipif(not _beam_available(),
-                                        reason="impactmaps.targets.beam not available yet"))
-    return pytest.param(name, marks=marks)
-
-
 def _fast(case: Case) -> Case:
     """Coarse modal settings: few modes (the residual flexibility keeps the statics exact)."""
     return replace(case, settings=replace(case.settings, cutoff_ratio=6.0, min_modes=4,
                                           time_step_ratio=0.05))
 
 
-def _strict_json(text: str):
-    """json.loads that rejects NaN/Infinity (which are not JSON)."""
-    def reject(constant):
-        raise ValueError(f"non-JSON constant {constant} in summary.json")
-    return json.loads(text, parse_constant=reject)
-
-
 # -------------------------------------------------------------------------------------
 # Examples
 # -------------------------------------------------------------------------------------
-@pytest.mark.parametrize("name", [_needs_beam(n) for n in MODAL_EXAMPLES])
+@pytest.mark.parametrize("name", MODAL_EXAMPLES)
 def test_modal_example_loads_runs_and_round_trips(name, tmp_path):
     """Each shipped modal example loads, runs (coarse settings) and writes its outputs.
 
@@ -96,7 +72,7 @@ def test_modal_example_loads_runs_and_round_trips(name, tmp_path):
     assert summary["energy_balance_error"] < 1e-4
     paths = write_case_outputs(case, result, tmp_path)
     summary_text = paths["summary"].read_text()
-    assert _strict_json(summary_text) == summary
+    assert strict_json_loads(summary_text) == summary
     history, read_summary = read_case_outputs(tmp_path)
     assert read_summary == summary
     assert list(history.columns[:5]) == ["time_s", "force_N", "indentation_m",
@@ -137,7 +113,7 @@ def test_fd_example_loads_runs_and_writes(tmp_path):
     assert summary["peak_force_N"] > 0
     assert abs(summary["energy_balance_error"]) < 1e-3
     paths = write_case_outputs(coarse, result, tmp_path)
-    assert _strict_json(paths["summary"].read_text()) == summary
+    assert strict_json_loads(paths["summary"].read_text()) == summary
     history, _ = read_case_outputs(tmp_path)
     assert "target_displacement_m" in history.columns
 
@@ -161,7 +137,7 @@ material = {{ youngs_modulus = 70e9, poisson_ratio = 0.33, density = 2700.0 }}
 
 
 def test_halfspace_linear_case_matches_exact_solution():
-    """Half-space, linear contact: F(t) = m V ω sin(ωt), contact time π/ω (PHYSICS.md §3.1).
+    """Half-space, linear contact: F(t) = m V ω sin(ωt), contact time π/ω (docs/physics_contract.md §3.1).
 
     The integrator is exact for a linear spring between events; the tolerance 1e-4
     covers the event location. λ and ζ are undefined for a half-space (None).
@@ -223,7 +199,7 @@ def test_dimensionless_numbers_of_a_plate_case():
     """λ, ζ, β of a case against independent closed forms.
 
     * K_st of an isotropic square SS plate at its centre is D/(0.011601 a²)
-      (PHYSICS.md §3.3; the constant is given to 5 digits, hence rel 1e-4);
+      (docs/physics_contract.md §3.3; the constant is given to 5 digits, hence rel 1e-4);
     * K_y = 1.5 K_h sqrt(α_y), α_y = 0.68 π² S_y² R/E*² with S_y the *smaller* yield
       strength of the pair (S235 sphere 235 MPa < 6061-T6 276 MPa; seed 001 eqs 9, 10);
     * ζ = (1/16) sqrt(m K/(ρh D)) (seed 001 eq 34), β = V/(ω_h α_y),
@@ -474,7 +450,7 @@ def test_fd_support_codes_map_to_beam_ends():
 
 
 # -------------------------------------------------------------------------------------
-# The benchmark laminate: infinite-plate check (and a correction to PHYSICS.md eq 31)
+# The benchmark laminate: infinite-plate check (and a correction to docs/physics_contract.md eq 31)
 # -------------------------------------------------------------------------------------
 def _infinite_plate_peak(mass, velocity, hertz, admittance):
     """Peak Hertz force [N] on an infinite Kirchhoff plate, ẇ = Y F (solve_ivp, tight tolerances)."""
@@ -504,7 +480,7 @@ def test_benchmark_laminate_first_peak_is_the_infinite_orthotropic_plate():
 
     (pole residue of the 2-D Fourier integral; K the complete elliptic integral). Modal
     (finite plate, 227+ modes, residual flexibility) and infinite-plate peaks agree to 1e-4.
-    The effective stiffness printed as seed 001 eq (31) / PHYSICS.md §3.3,
+    The effective stiffness printed as seed 001 eq (31) / docs/physics_contract.md §3.3,
     D* = ½(D12 + 2D66 + sqrt(D11 D22)), is exact only for A = 1 (isotropic); for this
     laminate (A = 0.215) it is 23 % low and predicts a peak force 9.5 % low — the test
     asserts that too, as the proof that eq (31) is not the infinite-plate stiffness.
@@ -536,12 +512,11 @@ def test_beam_cases_isotropic_and_laminated():
     """Beam targets from a case file.
 
     Isotropic (the aluminium example): K_st at mid-span of the SS Timoshenko beam is
-    1/K = L³/(48EI) + L/(4kGA) (PHYSICS.md §3.2, narrow beam EI = E b h³/12), so
+    1/K = L³/(48EI) + L/(4kGA) (docs/physics_contract.md §3.2, narrow beam EI = E b h³/12), so
     λ·K = K_st to round-off. Laminated: a layup builds Beam.from_laminate with
     b·D11 of the laminate (seed 001 (16)–(17)); its static stiffness uses the same
     closed form with EI → b D11 and kGA → k b A55.
     """
-    pytest.importorskip("impactmaps.targets.beam")
     case = load_case(EXAMPLES / "aluminium_beam_linear.toml")
     numbers = case_dimensionless(case)
     al = material("aluminium-6061-t6")
@@ -634,6 +609,6 @@ def test_summary_says_whether_the_run_converged(tmp_path):
     result, summary = run_case(checked)
     assert summary["converged"] is True and result.converged is True
     paths = write_case_outputs(checked, result, tmp_path)
-    assert _strict_json(paths["summary"].read_text())["converged"] is True
+    assert strict_json_loads(paths["summary"].read_text())["converged"] is True
     _, unchecked = run_case(parse_case(GOOD))
     assert unchecked["converged"] is None

@@ -9,6 +9,8 @@ import pytest
 
 from impactmaps.cli import main
 
+from .helpers import EXAMPLES, strict_json_loads
+
 
 def run(capsys, *argv):
     status = main([*argv, "--json"])
@@ -104,14 +106,13 @@ def test_asymptote_of_a_case_uses_its_own_law(capsys):
     for the contact a user really has'): the infinite-plate solution with the case's Hertz
     law, in newtons and seconds, the same numbers as the library call, strict JSON, the
     model's violated assumptions listed; a limit that does not fit the case is refused."""
-    from pathlib import Path
 
     from impactmaps.cases import load_case
     from impactmaps.law_asymptotes import asymptote
 
-    path = Path(__file__).resolve().parent.parent / "examples" / "steel_plate_hertz.toml"
+    path = EXAMPLES / "steel_plate_hertz.toml"
     assert main(["asymptote", "infinite-plate", "--case", str(path), "--json"]) == 0
-    values = json.loads(capsys.readouterr().out, parse_constant=lambda c: pytest.fail(c))
+    values = strict_json_loads(capsys.readouterr().out)
     case = load_case(path)
     direct = asymptote("infinite-plate", case.target, case.law, case.impactor_mass, case.velocity)
     assert values["peak_force_N"] == pytest.approx(direct.peak_force, rel=1e-12)

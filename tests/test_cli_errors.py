@@ -10,7 +10,7 @@ import pytest
 
 from impactmaps.cli import main
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+from .helpers import EXAMPLES
 
 
 @pytest.fixture

@@ -1,4 +1,4 @@
-"""The contract every registered contact law keeps (PHYSICS.md §2, issue 28 step 1).
+"""The contract every registered contact law keeps (docs/physics_contract.md §2, issue 28 step 1).
 
 Property-based over random contact pairs: both bodies elastic or one rigid (E from 1 to
 1000 GPa, ν 0.2–0.45), Y/E* from 1e-4 to 3e-2, R from 0.1 mm to 1 m, maximum

@@ -77,7 +77,7 @@ def kinks(law: ContactLaw) -> list[float]:
 
 # -- registry -------------------------------------------------------------------------------
 def test_registry_holds_the_four_laws():
-    """The four laws of PHYSICS.md §2 are registered under their names."""
+    """The four laws of docs/physics_contract.md §2 are registered under their names."""
     assert KNOWN_LAWS <= set(available_contact_laws())
 
 
@@ -93,7 +93,7 @@ def test_unknown_law_name_lists_the_known_ones():
 
 @pytest.mark.parametrize("name", available_contact_laws())
 def test_registered_law_invariants(name):
-    """Invariants every law must satisfy (PHYSICS.md §2, base.py convention).
+    """Invariants every law must satisfy (docs/physics_contract.md §2, base.py convention).
 
     No tension (F = dF = 0 for α ≤ 0 whatever the history); F ≥ 0 on a grid of (α, α_max);
     tangent = central difference of the force (rel. 1e-5: O(h²) error with h = 1e-6 α);
@@ -333,7 +333,7 @@ def test_yigit_christoforou_continuity():
 
 
 def test_yigit_christoforou_normalised_energies():
-    """In units a = α/α_y, K_h α_y^{5/2}: loading work 2/5 + (a−1) + ¾(a−1)² (PHYSICS.md
+    """In units a = α/α_y, K_h α_y^{5/2}: loading work 2/5 + (a−1) + ¾(a−1)² (docs/physics_contract.md
     §2) and the unloading integral ∫ (a^{3/2} − a_f^{3/2}) da by quadrature (rel. 1e-10)."""
     law = YigitChristoforouContact(1.0, 1.0)
     for a in (1.5, 7.0, 300.0):
@@ -482,7 +482,7 @@ def test_stronge_constants_that_break_the_contract_are_refused():
 def test_printed_stronge_law_creates_energy_just_above_yield():
     """PROOF OF THE PRINTED FORM'S FLAW (the reason the package's law differs from it).
 
-    The refined Stronge law as PHYSICS.md §2 printed it (tests/printed_stronge.py, never
+    The refined Stronge law as docs/physics_contract.md §2 printed it (tests/printed_stronge.py, never
     run by the package): its elastic-plastic loading curve is stiffer than Hertz at
     yield (tangent 2(1 + 1/κ) = 2.635 vs 1.5 F_y/δ_y) and lies above it up to
     16.65 δ_y; the elastic recovery 3F_m/(4E* a_m) exceeds δ_m, δ_r ≈ −(2/κ)(δ_m − δ_y)

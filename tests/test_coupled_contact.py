@@ -12,7 +12,6 @@ import math
 import numpy as np
 import pytest
 
-from benchmarks.baseline_solve_ivp import solve_ivp_fmax
 from impactmaps.contact import LinearContact
 from impactmaps.solvers.coupled_contact import (
     CONTACT_RESOLUTION,
@@ -24,7 +23,10 @@ from impactmaps.solvers.coupled_contact import (
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 
+from .helpers import repository_module
 from .test_integrator import _case  # (basis, law, mass) realising (ζ, λ) on the closed-form structures
+
+solve_ivp_fmax = repository_module("benchmarks/baseline_solve_ivp.py").solve_ivp_fmax
 
 #: (kind, ζ, λ) where solve_ivp is affordable: a re-impact-free transition point, four
 #: impacts on a beam, six impacts separated by long flights on a plate.

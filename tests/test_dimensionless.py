@@ -1,4 +1,4 @@
-"""The dimensionless framework (PHYSICS.md §1 and §4).
+"""The dimensionless framework (docs/physics_contract.md §1 and §4).
 
 Round trips are algebraic identities, checked to rtol 1e-12 (a few ulps after powers
 such as ^(4/3) and ^(3/4)). The loss-factor constants are re-derived from first
@@ -126,7 +126,7 @@ def _infinite_euler_beam_displacement_coefficient(bending, m_prime):
 
 
 def test_beam_loss_factor_from_infinite_beam_green_function():
-    """The corrected ζ_b follows from the exact infinite Euler beam (PHYSICS.md §1).
+    """The corrected ζ_b follows from the exact infinite Euler beam (docs/physics_contract.md §1).
 
     w(0,t) = C sqrt(t) (unit impulse) means ẇ = (C/2) ∫ F(ξ)/sqrt(t−ξ) dξ; inserted in
     m_i ẅ_i = −Kα and normalised (τ = ωt) this gives 2ζ = (C/2) K ω^{-3/2}. The paper's

@@ -26,12 +26,11 @@ from __future__ import annotations
 import re
 import runpy
 import warnings
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "examples"
+from .helpers import EXAMPLES, ROOT
+
 
 #: example file → (name of the stored quantity in the script's namespace, value, what it is)
 EXPECTED = {

@@ -200,7 +200,7 @@ def test_stability_bound_is_safe_and_tight(n):
 # =====================================================================================
 def test_rigid_target_limit_linear_contact():
     """A very massive and stiff beam (E and ρ × 1e4, same wave speed) behaves as a rigid
-    target: F = m V0 ω sin ωt, F̄max = 1, contact time π/ω, e = 1 (PHYSICS.md §1 bound).
+    target: F = m V0 ω sin ωt, F̄max = 1, contact time π/ω, e = 1 (docs/physics_contract.md §1 bound).
     The default step is beam-limited here (ωΔt = 0.034); observed F̄max − 1 = 1.4e-4 and
     e − 1 = 1.3e-4 (contact start/end are located only to the step), tolerance 5e-4; the
     contact time is resolved to one step."""
@@ -223,7 +223,7 @@ def elastic_linear():
 
 
 def test_linear_contact_force_bound_and_history_consistency(elastic_linear):
-    """Linear contact, elastic beam: 0 ≤ F ≤ m V0 ω (energy bound ½Kα² ≤ ½mV0², PHYSICS.md
+    """Linear contact, elastic beam: 0 ≤ F ≤ m V0 ω (energy bound ½Kα² ≤ ½mV0², docs/physics_contract.md
     §1; +2e-4 for the scheme), F = Kα wherever α > 0 (the history is the law), sphere
     momentum: m(V0 − v(t)) = ∫F dt (trapezoid on the stride-1 history, 1e-3)."""
     r = elastic_linear

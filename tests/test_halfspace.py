@@ -35,7 +35,7 @@ YC = YigitChristoforouContact(hertz_stiffness=8.0e9, yield_indentation=1.5e-6)
 
 # -- linear and Hertz: exact solutions -------------------------------------------------------
 def test_linear_law_is_a_half_sine():
-    """Linear contact on a half-space (PHYSICS.md §3.1, seed 001 eq 27): F̄(τ) = sin τ on
+    """Linear contact on a half-space (docs/physics_contract.md §3.1, seed 001 eq 27): F̄(τ) = sin τ on
     0 ≤ τ ≤ π, contact time π/ω, e = 1. Tolerance 1e-8 (spec asks 1e-6): the integrator
     runs at rtol 1e-12 and the observed error is ~3e-12."""
     stiffness, velocity = 2.0e7, 1.5

@@ -30,7 +30,8 @@ from impactmaps.maps.structures import MapStructure, structure_from_name
 from impactmaps.maps.sweep import _prepare, map_law, sweep
 from impactmaps.solvers.modal import ModalSettings
 
-ROOT = Path(__file__).resolve().parents[1]
+from .helpers import ROOT
+
 ALLOY = im.IsotropicMaterial(70e9, 0.3, 2700.0)  # ν of the reference material: same family
 STEEL = im.IsotropicMaterial(200e9, 0.3, 7900.0)
 

@@ -22,7 +22,6 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from benchmarks.baseline_solve_ivp import baseline_like
 from impactmaps.contact import LinearContact
 from impactmaps.solvers.oscillator_step import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
@@ -34,6 +33,9 @@ from .analytic import (
     ss_plate_impactor,
     ss_square_plate_basis,
 )
+from .helpers import repository_module
+
+baseline_like = repository_module("benchmarks/baseline_solve_ivp.py").baseline_like
 
 RELATIVE_STIFFNESS = 0.425
 CASES = [(kind, zeta) for kind in ("plate", "beam") for zeta in (0.038, 1.198, 11.3)]

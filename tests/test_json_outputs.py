@@ -6,15 +6,14 @@ covers every subcommand of the parser, so a new command cannot skip this check.
 
 from __future__ import annotations
 
-import json
 import shutil
-from pathlib import Path
 
 import pytest
 
 from impactmaps.cli import build_parser, main
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+from .helpers import EXAMPLES, strict_json_loads
+
 
 SWEEP_CONFIG = """
 output = "out"
@@ -24,15 +23,6 @@ lambda = [1.0]
 [[structure]]
 kind = "beam"
 """
-
-
-def _refuse_constant(name):
-    raise ValueError(f"not strict JSON: {name}")
-
-
-def strict_loads(text: str):
-    """``json.loads`` that rejects NaN, Infinity and -Infinity."""
-    return json.loads(text, parse_constant=_refuse_constant)
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
@@ -71,7 +61,7 @@ def test_json_output_is_strict(command, tmp_path, capsys):
     status = main([*argv, "--json"])
     out = capsys.readouterr().out
     assert status == 0
-    values = strict_loads(out)
+    values = strict_json_loads(out)
     assert isinstance(values, dict) and values
     if command not in ("simulate", "fd"):  # case summaries: null = does not exist for this run
         for key, value in values.items():
@@ -93,9 +83,9 @@ def test_json_never_prints_nan_or_infinity(argv, capsys):
     main([*argv, "--json"])
     out = capsys.readouterr().out
     assert "NaN" not in out and "Infinity" not in out
-    strict_loads(out)
+    strict_json_loads(out)
 
 
 def test_strict_loads_rejects_nan():
     with pytest.raises(ValueError):
-        strict_loads('{"a": NaN}')
+        strict_json_loads('{"a": NaN}')

@@ -13,25 +13,15 @@ from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
-#: Documented interpolation error (README "Validation"): over 150 random points per map
+#: Documented interpolation error (docs/validation.rst, "Lookup maps"): over 150 random points per map
 #: the largest |lookup − direct| was 0.023 (Mindlin plate); 0.03 leaves room for other seeds.
 LOOKUP_TOLERANCE = 0.03
-
-
-def _available(structure, theory):
-    try:
-        load_shipped_map(structure, theory)
-    except FileNotFoundError:
-        return False
-    return True
 
 
 @pytest.mark.parametrize("structure, theory", list(SHIPPED_MAPS), ids=list(SHIPPED_MAPS.values()))
 def test_lookup_matches_direct_simulation(structure, theory):
     """Random (ζ, λ) inside the map: interpolated F̄max within the documented error of a
     direct simulation; grid points are reproduced exactly."""
-    if not _available(structure, theory):
-        pytest.skip("map not built")
     dataset = load_shipped_map(structure, theory)
     rng = np.random.default_rng(7)
     zetas = np.exp(rng.uniform(np.log(0.005), np.log(100), 8))
@@ -75,8 +65,6 @@ def test_design_formula_is_exact_at_its_asymptotes():
 
 
 def test_lookup_rejects_out_of_range():
-    if not _available("plate", "kirchhoff"):
-        pytest.skip("map not built")
     with pytest.raises(ValueError, match="loss_factor = .* outside the shipped map"):
         lookup(1e-4, 1.0, structure="plate", theory="kirchhoff")
     # an array names its offending values, not all of them
@@ -90,8 +78,6 @@ def test_lookup_rejects_out_of_range():
 
 
 def test_lookup_and_classify_commands(capsys):
-    if not _available("plate", "kirchhoff"):
-        pytest.skip("map not built")
     assert main(["lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "11.3",
                  "--lambda", "0.425", "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
@@ -106,8 +92,6 @@ def test_lookup_case_gives_newtons(capsys, tmp_path):
     """`impactmaps lookup --case`: ζ, λ of a physical case (here λ ≈ 1 by choosing the
     contact stiffness), F̄max from the map, and the peak force in newtons equal to
     F̄max · m_i V0 sqrt(K/m_i) — and close to a direct simulation of the same case."""
-    if not _available("beam", "euler"):
-        pytest.skip("map not built")
     case = tmp_path / "case.toml"
     case.write_text(
         '[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 2.0\n'

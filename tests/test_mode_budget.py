@@ -8,7 +8,6 @@ import math
 import subprocess
 import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,8 +18,8 @@ from impactmaps.solvers import mode_budget
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
 from impactmaps.solvers.mode_budget import ModeBudgetError, ModeBudgetWarning, plan_basis
 
-DATA = Path(__file__).parent / "data"
-ROOT = Path(__file__).resolve().parents[1]
+from .helpers import DATA, ROOT
+
 GIB = 1024**3
 
 STRUCTURES = [

@@ -1,7 +1,6 @@
 """Adaptive refinement of a map (impactmaps.maps.refinement): where it splits, what it reads, what it claims."""
 
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,7 +10,8 @@ from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import interpolation_error
 from impactmaps.maps.refinement import Refinement, interpolate, locate, refine
 
-ROOT = Path(__file__).resolve().parents[1]
+from .helpers import ROOT
+
 SHAPE = (11, 21)
 
 

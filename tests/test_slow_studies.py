@@ -50,7 +50,7 @@ def test_default_chart_grid_is_converged_and_bounded(name):
 @pytest.mark.parametrize("structure, theory", sorted(SHIPPED_MAPS))
 def test_shipped_maps_match_direct_simulation(structure, theory):
     """60 random (ζ, λ) points per shipped map: lookup within 0.03 of direct simulation
-    (the README's table gives the measured median, 95th percentile and maximum)."""
+    (docs/validation.rst gives the measured median, 95th percentile and maximum)."""
     name = SHIPPED_MAPS[(structure, theory)]
     rng = np.random.default_rng(7)
     zetas = np.exp(rng.uniform(np.log(0.005), np.log(100.0), 60))

@@ -14,11 +14,11 @@ from __future__ import annotations
 import runpy
 import sys
 import warnings
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from .helpers import ROOT
+
 VALIDATION = ROOT / "validation"
 SCRIPTS = sorted(p.name for p in VALIDATION.glob("*.py") if not p.name.startswith("_"))
 #: the directories a full run writes into; a smoke run must leave them untouched

@@ -2,7 +2,7 @@
 
 Every script in ``validation/`` runs in two sizes:
 
-* full (the default): the study quoted in the README and ``BENCHMARKS.md``, writing its
+* full (the default): the study quoted in docs/validation.rst and ``BENCHMARKS.md``, writing its
   figures into ``figures/`` (``build_default_maps.py``: the shipped maps;
   ``lookup_error.py``: ``validation/lookup_error.csv``);
 * ``--smoke``: the same code path on a tiny setting (seconds; the numbers it prints are

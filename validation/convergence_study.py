@@ -2,7 +2,7 @@
 long-structure limit (SS Euler beam / SS square Kirchhoff plate → infinite structure).
 
 Writes figures/convergence_modes_timestep.png, figures/long_structure_limit.png and
-prints the tables quoted in the README.
+prints the tables quoted in docs/validation.rst.
 
     python validation/convergence_study.py [--out-dir DIR]
     python validation/convergence_study.py --smoke    # one case, short ladders (seconds)

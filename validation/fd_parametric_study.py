@@ -20,7 +20,7 @@ Case (what is and is not known)
   EN 10025-2); seed 000's value is unknown here.
 * Sphere: steel, radius 12.5 mm (**assumed**), rigid body; its mass is varied
   independently of its radius (a sphere-tipped drop weight), so that the mass study
-  changes the mass alone. Contact: refined Stronge law (PHYSICS.md §2, defaults), with
+  changes the mass alone. Contact: refined Stronge law (docs/physics_contract.md §2, defaults), with
   the beam's yield stress (the hardened sphere is taken not to yield).
 * Drop test: gravity on the sphere; the sphere touches the beam at t = 0 with V0.
   Base case: m = 1 kg, V0 = 2 m/s, mid-span (velocity/plasticity study: m = 5 kg, so

@@ -4,7 +4,7 @@ For each refined linear map (``validation/build_refinements.py``), N log-uniform
 (ζ, λ) points over the whole map are simulated directly (the map's solver and settings,
 :func:`impactmaps.maps.sweep.solve_points`) and read from the map twice: from its grid
 alone (:func:`impactmaps.maps.lookup.read_map` without a refinement) and as ``lookup``
-reads it (with the shipped refinement). Prints a Markdown table (README, "Lookup maps"):
+reads it (with the shipped refinement). Prints a Markdown table (docs/validation.rst, "What the refinements buy"):
 per map, over the answered non-sensitive points, the share whose error exceeds 1e-3,
 the share whose band does (status ``interpolated``), how many bands cover the error, and
 the largest error; writes validation/refinement_error.csv, which
@@ -83,7 +83,7 @@ def measure(structure: str, theory: str, points: int, seed: int, executor) -> pd
 
 
 def summary(table: pd.DataFrame) -> str:
-    """The Markdown table of the README."""
+    """The Markdown table of docs/validation.rst."""
     lines = ["| map | answered, non-sensitive | error > 1e-3: grid alone | refined | band > 1e-3 (`interpolated`): grid alone | refined | band covers the error: grid alone | refined | max error: grid alone | refined |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for name, group in table.groupby("map", sort=False):

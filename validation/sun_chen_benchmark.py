@@ -24,7 +24,7 @@ compliance 1/E2 of Tan & Sun 1985):
 * Kirchhoff plate at cut-off 40 — the shear-rigid model, for comparison.
 
 The Mindlin point-contact result does not converge as the cut-off grows: the point-load
-deflection of a shear-deformable plate diverges logarithmically (PHYSICS.md §3.3), so the
+deflection of a shear-deformable plate diverges logarithmically (docs/physics_contract.md §3.3), so the
 cut-off acts as a regularisation of the contact patch. The script reports the contact radius
 at the peak force, ``a = sqrt(R α_max)``, and the equivalent shortest half-wavelength of the
 retained modes (:func:`shortest_half_wavelength`), so that the physically meaningful cut-off

@@ -81,7 +81,7 @@ Dimensionless numbers of a case (:func:`case_dimensionless`)
   :func:`impactmaps.solvers.modal.reference_contact_stiffness`). The summary says
   which (``lambda_basis``). ``None`` for a half-space (``K_st`` infinite).
 * ``zeta`` — the target's own loss factor ``target.loss_factor(m_i, K)`` with the same
-  ``K`` (plate: seed 001 eq 34; beam: the corrected eq 38, PHYSICS.md §1). ``None`` for
+  ``K`` (plate: seed 001 eq 34; beam: the corrected eq 38, docs/physics_contract.md §1). ``None`` for
   a half-space.
 
 Outputs (:func:`write_case_outputs`): ``history.csv`` (``time_s, force_N,

@@ -1,6 +1,6 @@
 """The contact pair: what every contact law needs to know about the two bodies.
 
-A sphere pressed on a target is, for any of the laws, three numbers: the effective
+A :class:`Sphere` (the impactor) pressed on a target is, for any of the laws, three numbers: the effective
 modulus E* (seed 001 eq 8), the effective radius R (``1/R = 1/R1 + 1/R2``) and the
 yield strength of the softer body (``None`` when neither yields). :class:`ContactPair`
 holds them; each registered law builds itself from one with ``from_contact_pair``.
@@ -25,7 +25,7 @@ from .base import (
     require_positive_or_infinite,
 )
 
-__all__ = ["ContactPair", "PAIR_OPTIONS", "softer_yield_strength"]
+__all__ = ["ContactPair", "PAIR_OPTIONS", "Sphere", "softer_yield_strength"]
 
 #: Keyword options of :meth:`ContactPair.from_sphere` (and so of ``law_for_sphere``) by name.
 PAIR_OPTIONS = {
@@ -95,6 +95,42 @@ def softer_yield_strength(*materials) -> float:
 
 
 @dataclass(frozen=True)
+class Sphere:
+    """A solid spherical impactor.
+
+    Parameters
+    ----------
+    radius : float
+        Sphere radius R [m].
+    material : material-like
+        Needs ``youngs_modulus`` [Pa], ``poisson_ratio`` [-], ``density`` [kg/m³] (the
+        last only if ``mass`` is not given) and optionally ``yield_strength`` [Pa].
+    mass : float, optional
+        Impactor mass m_i [kg]; default ``ρ (4/3) π R³``. Give it to model a sphere
+        carried by a heavier drop-weight.
+    """
+
+    radius: float
+    material: object
+    mass: float | None = None
+
+    def __post_init__(self):
+        require_positive("radius", self.radius, "m")
+        check_elastic_material(self.material, "material")
+        if self.mass is None:
+            density = material_attribute(self.material, "density", "material")
+            require_positive("material.density", density, "kg/m^3")
+            object.__setattr__(self, "mass", float(density) * 4.0 / 3.0 * np.pi * float(self.radius) ** 3)
+        else:
+            require_positive("mass", self.mass, "kg")
+
+    @property
+    def yield_strength(self):
+        """Yield strength of the sphere's material [Pa], or ``None``."""
+        return getattr(self.material, "yield_strength", None)
+
+
+@dataclass(frozen=True)
 class ContactPair:
     """Two bodies in contact, as the contact laws see them (SI units).
 
@@ -142,10 +178,6 @@ class ContactPair:
         -------
         ContactPair
         """
-        from .sphere import (
-            Sphere,  # sphere.py builds laws from pairs: import here, not at the top
-        )
-
         if not isinstance(sphere, Sphere):
             raise ValueError(f"sphere = {sphere!r} is not a Sphere")
         check_elastic_material(target_material, "target_material", allow_rigid=True)

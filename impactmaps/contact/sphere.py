@@ -1,4 +1,7 @@
-"""A spherical impactor, and any registered contact law built from sphere + target.
+"""Any registered contact law built from a sphere and a target material.
+
+The :class:`Sphere` itself lives in :mod:`impactmaps.contact.pair` with the checks of
+the materials (it is re-exported here).
 
 Materials are duck-typed: an object with ``youngs_modulus`` [Pa], ``poisson_ratio``
 [-], ``density`` [kg/m³] and optionally ``yield_strength`` [Pa] (``None`` or missing:
@@ -9,57 +12,10 @@ contact geometry are in :mod:`impactmaps.contact.pair`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-import numpy as np
-
-from .._checks import require_positive
 from .base import ContactLaw, LawOption, contact_law_class
-from .pair import (
-    PAIR_OPTIONS,
-    ContactPair,
-    check_elastic_material,
-    material_attribute,
-    softer_yield_strength,
-)
+from .pair import PAIR_OPTIONS, ContactPair, Sphere, softer_yield_strength
 
 __all__ = ["Sphere", "law_for_sphere", "law_options", "softer_yield_strength"]
-
-
-@dataclass(frozen=True)
-class Sphere:
-    """A solid spherical impactor.
-
-    Parameters
-    ----------
-    radius : float
-        Sphere radius R [m].
-    material : material-like
-        Needs ``youngs_modulus`` [Pa], ``poisson_ratio`` [-], ``density`` [kg/m³] (the
-        last only if ``mass`` is not given) and optionally ``yield_strength`` [Pa].
-    mass : float, optional
-        Impactor mass m_i [kg]; default ``ρ (4/3) π R³``. Give it to model a sphere
-        carried by a heavier drop-weight.
-    """
-
-    radius: float
-    material: object
-    mass: float | None = None
-
-    def __post_init__(self):
-        require_positive("radius", self.radius, "m")
-        check_elastic_material(self.material, "material")
-        if self.mass is None:
-            density = material_attribute(self.material, "density", "material")
-            require_positive("material.density", density, "kg/m^3")
-            object.__setattr__(self, "mass", float(density) * 4.0 / 3.0 * np.pi * float(self.radius) ** 3)
-        else:
-            require_positive("mass", self.mass, "kg")
-
-    @property
-    def yield_strength(self):
-        """Yield strength of the sphere's material [Pa], or ``None``."""
-        return getattr(self.material, "yield_strength", None)
 
 
 def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> ContactLaw:

@@ -27,7 +27,7 @@ continuous at δ_y and drops at δ_p (from 6.78 to 5.25 F_y/δ_y with the defaul
 
 What changed from the printed form, and why
 -------------------------------------------
-The printed model (PHYSICS.md §2) takes ``a² = R(2δ − δ_y)`` — the fully plastic
+The printed model (docs/physics_contract.md §2) takes ``a² = R(2δ − δ_y)`` — the fully plastic
 area — from first yield on, i.e. ``A = 2x − 1``: the area grows twice as fast as Hertz's
 at δ_y, the force tangent jumps from ``1.5`` to ``2(1 + 1/κ) = 2.635 F_y/δ_y``, the
 loading curve lies above the elastic Hertz curve for ``δ_y < δ < 16.65 δ_y`` and the
@@ -38,7 +38,7 @@ printed form that proves it). Here only the area law of the elastic-plastic phas
 changed; the force–area relation ``F = F_y A(1 + ln A/κ)``, κ, the yield point, the
 fully plastic phase and the unloading rule are the printed ones.
 
-The law keeps the contract of PHYSICS.md §2 (tests/test_contact_contract.py checks it
+The law keeps the contract of docs/physics_contract.md §2 (tests/test_contact_contract.py checks it
 over random materials and δ_m up to 10⁴ δ_y). In the elastic-plastic phase, with
 ``f = F/F_y`` and ``ā = a/a_y``: ``f ≤ x^{3/2}`` (loading ≤ Hertz; at yield both
 slopes are 3/2 and the curvatures 0.647 < 0.75 F_y/δ_y²); ``df/dx ≤ (3/2) ā`` (the
@@ -56,7 +56,7 @@ Sources of the default constants
 Hertz peak pressure is ``p0 ≈ 1.60 Y`` (Johnson, *Contact Mechanics*, CUP 1985, §6.2).
 ``c_p = 2.8``: mean pressure of a fully plastic spherical indentation, ``p_m ≈ 2.8–3 Y``
 (Tabor's hardness relation; Johnson 1985, §6.3–6.4). ``δ_p/δ_y = 84``: the ratio of the
-refined Stronge model as specified in PHYSICS.md, which attributes it to Stronge
+refined Stronge model as specified in docs/physics_contract.md, which attributes it to Stronge
 (*Impact Mechanics*, CUP 2000, ch. 4). We could not check 84 (nor the exact choice 2.8
 rather than 3) against the printed books; treat them as the specification's defaults,
 not as verified literature numbers. 1.60 is the standard von Mises value.
@@ -82,7 +82,7 @@ __all__ = ["StrongeContact", "stronge_area_law", "stronge_continuity_coefficient
 DEFAULT_YIELD_PRESSURE_FACTOR = 1.6
 #: Default ``c_p``: fully plastic mean pressure ``p_m ≈ 2.8 Y`` (Tabor; Johnson 1985, §6.3).
 DEFAULT_PLASTIC_PRESSURE_FACTOR = 2.8
-#: Default ``δ_p/δ_y`` of the refined Stronge model (PHYSICS.md §2; not verified in print).
+#: Default ``δ_p/δ_y`` of the refined Stronge model (docs/physics_contract.md §2; not verified in print).
 DEFAULT_PLASTIC_INDENTATION_RATIO = 84.0
 
 _CHECK_POINTS = 4001  # grid of the elastic-plastic branch on which the constructor checks the contract

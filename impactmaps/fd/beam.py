@@ -13,7 +13,7 @@ Equation (spec section 5, with the sign of the moment term made consistent — s
 
 ``w`` and ``z`` point in the impact direction; ``M`` is the sagging moment
 (:mod:`impactmaps.fd.section`), so in the elastic range ``M = −EI w''`` and the equation is
-the Rayleigh beam ``ρA ẅ − ρI ẅ'' + C ẇ + EI w'''' = p``. (PHYSICS.md §5 writes ``+M''``
+the Rayleigh beam ``ρA ẅ − ρI ẅ'' + C ẇ + EI w'''' = p``. (docs/physics_contract.md §5 writes ``+M''``
 together with ``M = b∫σz dz`` and ``ε = −z w''``; those three statements give
 ``ρA ẅ − EI w'''' = p``, which is ill-posed. ``+M''`` is right only for the hogging
 moment ``M = EI w''``. The static test ``PL³/(48EI)`` pins the sign used here.)
@@ -36,6 +36,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
+from ..targets.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
 
@@ -186,8 +187,6 @@ class FDBeam:
             If ``beam`` is not a rectangular beam of ``material`` (EI ≠ E b h³/12 or
             ρA ≠ ρ b h by more than 1e-9 relative, e.g. a laminate beam).
         """
-        from ..targets.beam import Beam
-
         if not isinstance(beam, Beam):
             raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beam.Beam")
         if beam.width is None or beam.height is None:

@@ -19,8 +19,9 @@ import pandas as pd
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.modal import reference_contact_stiffness
+from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.result import ImpactResult
+from ..targets.beam import Beam
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, FDSettings
 from .energy import impact_ledger
@@ -159,15 +160,9 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
                              safety_factor=safety_factor, gauge_positions=gauge_positions,
                              gravity=gravity, history_stride=history_stride)
     beam, impact_position = _fd_beam(beam, material, settings, impact_position)
-    if not isinstance(law, ContactLaw):
-        raise ValueError(f"law = {law!r} is not a ContactLaw")
-    require_positive("impactor_mass", impactor_mass, "kg")
-    require_positive("velocity", velocity, "m/s")
-    if settings.duration is None:
-        raise ValueError("duration is required (simulated time [s], valid range (0, inf))")
+    _check_inputs(law, impactor_mass, velocity, settings)
     params = single_case_parameters(law, "simulate_fd")
-    impactor_mass = float(impactor_mass)
-    velocity = float(velocity)
+    impactor_mass, velocity = float(impactor_mass), float(velocity)
     grid = beam_grid(beam)
     x0, node = node_for(beam, grid, impact_position, "impact_position")
     positions, gauge_left, gauge_weight = gauge_weights(beam, settings.gauge_positions)
@@ -185,16 +180,7 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
     n_rec = result.records
     rec = state["records"]
     time, wk = rec.time[:n_rec], rec.wk[:n_rec]
-    history = pd.DataFrame({
-        "time_s": time,
-        "force_N": rec.force[:n_rec],
-        "indentation_m": rec.alpha[:n_rec],
-        "impactor_velocity_m_s": rec.vs[:n_rec],
-        "impactor_displacement_m": rec.u[:n_rec],
-        "target_displacement_m": wk,
-        "target_velocity_m_s": rec.vk[:n_rec],
-        **gauge_columns(rec, beam.height, n_rec),
-    })
+    history = _history_frame(rec, n_rec, beam.height)
     separation_velocity = _separation_velocity(result, state["intervals"], n_steps * dt)
     energy, contact = impact_ledger(law, grid, result, state["v"], impactor_mass, velocity,
                                     separation_velocity)
@@ -226,15 +212,34 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
                       contact_stiffness_bound=contact_stiffness),
         details=FDDetails(
             permanent_beam_deflection=float(residual["permanent_deflection_m"].iloc[node]),
-            final_mean_deflection=float(np.mean(wk[tail])),
-            energy=energy,
-            residual=residual,
-            impact_position=x0,
-            impact_node_position=node * grid.dx,
-            stability_limit=limit,
-            gauge_positions=positions,
-        ),
+            final_mean_deflection=float(np.mean(wk[tail])), energy=energy, residual=residual,
+            impact_position=x0, impact_node_position=node * grid.dx, stability_limit=limit,
+            gauge_positions=positions),
     )
+
+
+def _check_inputs(law, impactor_mass, velocity, settings) -> None:
+    """``ValueError`` naming the input of :func:`simulate_fd` that is not valid."""
+    if not isinstance(law, ContactLaw):
+        raise ValueError(f"law = {law!r} is not a ContactLaw")
+    require_positive("impactor_mass", impactor_mass, "kg")
+    require_positive("velocity", velocity, "m/s")
+    if settings.duration is None:
+        raise ValueError("duration is required (simulated time [s], valid range (0, inf))")
+
+
+def _history_frame(rec, n_rec: int, height: float) -> pd.DataFrame:
+    """The recorded rows of a run as the history DataFrame (SI columns, gauges last)."""
+    return pd.DataFrame({
+        "time_s": rec.time[:n_rec],
+        "force_N": rec.force[:n_rec],
+        "indentation_m": rec.alpha[:n_rec],
+        "impactor_velocity_m_s": rec.vs[:n_rec],
+        "impactor_displacement_m": rec.u[:n_rec],
+        "target_displacement_m": rec.wk[:n_rec],
+        "target_velocity_m_s": rec.vk[:n_rec],
+        **gauge_columns(rec, height, n_rec),
+    })
 
 
 def _run_settings(settings, **keywords) -> FDSettings:
@@ -258,7 +263,6 @@ def _fd_beam(beam, material, settings, impact_position):
                              "FDBeam carries its own material")
         options = settings.beam_options()
         return (dataclasses.replace(beam, **options) if options else beam), impact_position
-    from ..targets.beam import Beam
 
     if isinstance(beam, Beam):
         if material is None:

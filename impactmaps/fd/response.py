@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import require_finite, require_positive
-from ..contact.linear import _linear_kernel
+from ..contact.linear import LinearContact
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, require_stride
 from .energy import beam_energies, kinetic_energy
@@ -124,7 +124,7 @@ def simulate_fd_response(beam: FDBeam, load=None, load_position=None, *, duratio
     # initial strain energy, corrected by the start-up half step of the discrete identity
     initial_energy = 0.5 * float(w0 @ elastic_force) - 0.5 * dt * float(elastic_force @ v0)
     drive = Drive(False, 1.0, 0.0, 0.0, node, external)
-    result, state = run_loop(beam, grid, _linear_kernel, np.ones(1), drive,
+    result, state = run_loop(beam, grid, LinearContact.kernel, np.ones(1), drive,
                              Stepping(dt, n_steps, stride), w0, v0, gauge_left, gauge_weight)
     n_rec = result.records
     rec = state["records"]

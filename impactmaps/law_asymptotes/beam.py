@@ -1,6 +1,6 @@
 r"""Impact on an infinite Euler beam with any contact law (convolution quadrature).
 
-The point mobility of an infinite Euler beam (PHYSICS.md §1, correction of seed 001
+The point mobility of an infinite Euler beam (docs/physics_contract.md §1, correction of seed 001
 eq 35) is a convolution with the ``t^{-1/2}`` kernel,
 
     ẇ(t) = A ∫0^t F(s) / sqrt(π (t − s)) ds,   A = 1 / (2 sqrt(2) m'^{3/4} (EI)^{1/4}),
@@ -14,7 +14,7 @@ With the impactor ``m ẍ = −F`` the indentation ``α = x − w`` is
     α(t) = V0 t − ∫0^t G(t − s) F(s) ds,   G(t) = t/m + 2A sqrt(t/π),
 
 (Laplace ``Ĝ(s) = s^{-2}/m + A s^{-3/2}``). With ``F = Kα`` this is the fractional
-oscillator of :mod:`impactmaps.solvers.infinite_beam` with ζ_b of PHYSICS.md §1
+oscillator of :mod:`impactmaps.solvers.infinite_beam` with ζ_b of docs/physics_contract.md §1
 (the tests check the constant this way, against ``infinite_beam_peak``).
 
 Scheme

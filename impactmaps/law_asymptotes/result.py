@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..solvers.modal import reference_contact_stiffness
+from ..solvers.contact_scale import reference_contact_stiffness
 
 __all__ = ["AsymptoteResult", "contact_frequency_of"]
 
@@ -15,7 +15,7 @@ __all__ = ["AsymptoteResult", "contact_frequency_of"]
 def contact_frequency_of(law, impactor_mass: float, velocity: float) -> float:
     """Contact frequency ω = sqrt(K_ref/m) [rad/s] used to normalise (as the modal solver).
 
-    ``K_ref`` is :func:`impactmaps.solvers.modal.reference_contact_stiffness`: the stiffness
+    ``K_ref`` is :func:`impactmaps.solvers.contact_scale.reference_contact_stiffness`: the stiffness
     of a linear law, otherwise the loading tangent at the half-space peak indentation.
     """
     return math.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)

@@ -42,7 +42,8 @@ from __future__ import annotations
 from ._common import DEFAULT_PLY_THICKNESS, SPECIALLY_ORTHOTROPIC_RTOL
 from .catalogue import CATALOGUE, available_materials, material
 from .isotropic import IsotropicMaterial
-from .laminate import Laminate, Ply
+from .laminate import Laminate
+from .ply import Ply
 
 __all__ = [
     "DEFAULT_PLY_THICKNESS",

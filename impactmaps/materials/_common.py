@@ -6,7 +6,7 @@ import numpy as np
 
 from .._checks import require_finite
 
-__all__ = ["DEFAULT_PLY_THICKNESS", "SPECIALLY_ORTHOTROPIC_RTOL"]
+__all__ = ["DEFAULT_PLY_THICKNESS", "SPECIALLY_ORTHOTROPIC_RTOL", "require_scalar"]
 
 #: Default cured ply thickness [m]: 0.125 mm, the nominal thickness of standard
 #: carbon/epoxy unidirectional prepreg (used e.g. with AS4/3501-6 in Anand, Kamrin &
@@ -19,7 +19,7 @@ DEFAULT_PLY_THICKNESS = 0.125e-3
 SPECIALLY_ORTHOTROPIC_RTOL = 1e-9
 
 
-def _scalar(name: str, value, unit: str = "") -> float:
+def require_scalar(name: str, value, unit: str = "") -> float:
     """Return ``value`` as a Python float, or raise ``ValueError`` naming ``name``."""
     require_finite(name, value, unit)
     array = np.asarray(value, dtype=float)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .._checks import require_choice
 from .isotropic import IsotropicMaterial
-from .laminate import Ply
+from .ply import Ply
 
 __all__ = ["CATALOGUE", "available_materials", "material"]
 

@@ -3,13 +3,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from .._checks import require_in_range, require_positive
-from ._common import _scalar
-
-if TYPE_CHECKING:
-    from .laminate import Ply
+from ._common import require_scalar
+from .ply import Ply
 
 __all__ = ["IsotropicMaterial"]
 
@@ -43,18 +40,18 @@ class IsotropicMaterial:
     name: str = ""
 
     def __post_init__(self):
-        youngs = _scalar("youngs_modulus", self.youngs_modulus, "Pa")
+        youngs = require_scalar("youngs_modulus", self.youngs_modulus, "Pa")
         require_positive("youngs_modulus", youngs, "Pa")
-        poisson = _scalar("poisson_ratio", self.poisson_ratio)
+        poisson = require_scalar("poisson_ratio", self.poisson_ratio)
         require_in_range("poisson_ratio", poisson, -1.0, 0.5,
                          low_inclusive=False, high_inclusive=False)
-        density = _scalar("density", self.density, "kg/m^3")
+        density = require_scalar("density", self.density, "kg/m^3")
         require_positive("density", density, "kg/m^3")
         object.__setattr__(self, "youngs_modulus", youngs)
         object.__setattr__(self, "poisson_ratio", poisson)
         object.__setattr__(self, "density", density)
         if self.yield_strength is not None:
-            strength = _scalar("yield_strength", self.yield_strength, "Pa")
+            strength = require_scalar("yield_strength", self.yield_strength, "Pa")
             require_positive("yield_strength", strength, "Pa")
             object.__setattr__(self, "yield_strength", strength)
 
@@ -68,14 +65,12 @@ class IsotropicMaterial:
         """Plane-stress (plate) modulus E / (1 − ν²) [Pa]; D = this × h³/12."""
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
-    def as_ply(self, thickness: float, angle_deg: float = 0.0) -> "Ply":
+    def as_ply(self, thickness: float, angle_deg: float = 0.0) -> Ply:
         """This material as an isotropic :class:`Ply` of the given thickness [m].
 
         ``E1 = E2 = E``, ``G12 = G13 = G23 = G``, ``ν12 = ν``, so that CLT reproduces
         the isotropic plate: ``D11 = E h³/(12(1 − ν²))``, ``A44 = A55 = G h``.
         """
-        from .laminate import Ply  # the ply module builds on this one
-
         shear = self.shear_modulus
         return Ply(
             longitudinal_modulus=self.youngs_modulus,
@@ -89,7 +84,3 @@ class IsotropicMaterial:
             transverse_shear_modulus_23=shear,
             name=self.name,
         )
-
-
-# ---------------------------------------------------------------------------------
-# Ply

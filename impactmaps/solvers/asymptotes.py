@@ -25,7 +25,7 @@ from .._checks import require_nonnegative, require_positive
 from .infinite_beam import (
     INFINITE_BEAM_METHODS,
     InfiniteBeamImpact,
-    _scalar_or_array,
+    scalar_or_array,
     critical_beam_loss_factor,
     infinite_beam_contact_time,
     infinite_beam_force,
@@ -85,7 +85,7 @@ def halfspace_force(tau):
     """
     require_nonnegative("tau", tau)
     tau = np.asarray(tau, dtype=float)
-    return _scalar_or_array(np.where(tau <= math.pi, np.sin(np.minimum(tau, math.pi)), 0.0))
+    return scalar_or_array(np.where(tau <= math.pi, np.sin(np.minimum(tau, math.pi)), 0.0))
 
 
 def halfspace_peak() -> float:
@@ -128,17 +128,17 @@ def quasi_static_force(tau, relative_stiffness):
     frequency = _quasi_static_frequency(relative_stiffness)
     phase = np.asarray(tau, dtype=float) * frequency
     force = frequency * np.sin(np.minimum(phase, math.pi))
-    return _scalar_or_array(np.where(phase <= math.pi, force, 0.0))
+    return scalar_or_array(np.where(phase <= math.pi, force, 0.0))
 
 
 def quasi_static_peak(relative_stiffness):
     """Quasi-static peak force F̄max = sqrt(λ/(1+λ)) [-] for λ = K_st/K > 0 [-]."""
-    return _scalar_or_array(_quasi_static_frequency(relative_stiffness))
+    return scalar_or_array(_quasi_static_frequency(relative_stiffness))
 
 
 def quasi_static_contact_time(relative_stiffness):
     """Quasi-static contact duration τ_c = π sqrt((1+λ)/λ) [-] for λ = K_st/K > 0 [-]."""
-    return _scalar_or_array(math.pi / _quasi_static_frequency(relative_stiffness))
+    return scalar_or_array(math.pi / _quasi_static_frequency(relative_stiffness))
 
 
 # --------------------------------------------------------------------------- infinite plate
@@ -200,7 +200,7 @@ def infinite_plate_indentation(tau, loss_factor):
     ndarray
         ᾱ = α ω/V0 [-].
     """
-    return _scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[0])
+    return scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[0])
 
 
 def infinite_plate_indentation_rate(tau, loss_factor):
@@ -208,7 +208,7 @@ def infinite_plate_indentation_rate(tau, loss_factor):
     :func:`infinite_plate_indentation`; τ [-] ≥ 0, loss factor ζ_p [-] > 0).
 
     The impactor velocity is ``ᾱ' + 2ζᾱ`` (plate point velocity ``2ζF̄``, eq 30)."""
-    return _scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[1])
+    return scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[1])
 
 
 def infinite_plate_force(tau, loss_factor):
@@ -235,7 +235,7 @@ def infinite_plate_force(tau, loss_factor):
     tau, zeta = _plate_inputs(tau, loss_factor)
     value = _plate_solution(tau, zeta)[0]
     contact = _plate_contact_time(zeta)
-    return _scalar_or_array(np.where(tau < contact, np.maximum(value, 0.0), 0.0))
+    return scalar_or_array(np.where(tau < contact, np.maximum(value, 0.0), 0.0))
 
 
 def _plate_contact_time(zeta):
@@ -276,7 +276,7 @@ def infinite_plate_peak(loss_factor):
     """
     require_positive("loss_factor", loss_factor)
     zeta = np.asarray(loss_factor, dtype=float)
-    return _scalar_or_array(np.exp(-zeta * _plate_peak_time(zeta)))
+    return scalar_or_array(np.exp(-zeta * _plate_peak_time(zeta)))
 
 
 def infinite_plate_peak_time(loss_factor):
@@ -290,7 +290,7 @@ def infinite_plate_peak_time(loss_factor):
         Plate loss factor ζ_p [-], > 0.
     """
     require_positive("loss_factor", loss_factor)
-    return _scalar_or_array(_plate_peak_time(loss_factor))
+    return scalar_or_array(_plate_peak_time(loss_factor))
 
 
 def infinite_plate_contact_time(loss_factor):
@@ -305,4 +305,4 @@ def infinite_plate_contact_time(loss_factor):
         Plate loss factor ζ_p [-], > 0.
     """
     require_positive("loss_factor", loss_factor)
-    return _scalar_or_array(_plate_contact_time(np.asarray(loss_factor, dtype=float)))
+    return scalar_or_array(_plate_contact_time(np.asarray(loss_factor, dtype=float)))

@@ -32,7 +32,7 @@ from scipy.special import beta as beta_function
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw, evaluate_kernel
-from .modal import reference_contact_stiffness
+from .contact_scale import reference_contact_stiffness
 from .result import ImpactResult, energy_balance_error
 
 __all__ = [
@@ -269,30 +269,11 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     alpha_max = scale * float(x_max)
     final = float(law.permanent_indentation(alpha_max))
 
-    second = None
-    separated = False
-    tau_end = tau_max
-    rebound = np.nan
+    second, separated, tau_end, rebound = None, False, tau_max, np.nan
     if turned and tau_max < time_limit:
-
-        def restitution_phase(_tau, state):
-            force = kernel(scale * state[0], alpha_max, params)[0]
-            return (state[1], -force_factor * force)
-
-        def separation(_tau, state):
-            return state[0] - final / scale
-
-        separation.terminal = True
-        separation.direction = -1.0
-        second = solve_ivp(restitution_phase, (tau_max, time_limit), (float(x_max), 0.0),
-                           events=separation, **options)
-        _raise_on_failure(second)
-        separated = second.t_events[0].size > 0
-        if separated:
-            tau_end = float(second.t_events[0][0])
-            rebound = -float(second.y_events[0][0][1]) * speed
-        else:
-            tau_end = float(second.t[-1])
+        second, separated, tau_end, rebound = _restitution(
+            kernel, params, scale, force_factor, alpha_max, final, float(x_max), tau_max, time_limit,
+            speed, options)
     if not separated:
         warnings.warn(
             f"half-space impact did not end within max_time = {time_limit * time_unit!r} s: "
@@ -329,6 +310,27 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
         time_step=float(time_step if time_step is not None else contact_time / _HISTORY_SAMPLES),
         method="half-space",
     )
+
+
+def _restitution(kernel, params, scale, force_factor, alpha_max, final, x_max, tau_max, time_limit,
+                 speed, options):
+    """The unloading phase from the turning point in scaled variables:
+    (solution, separated, scaled end time, rebound velocity [m/s] or NaN)."""
+
+    def restitution_phase(_tau, state):
+        force = kernel(scale * state[0], alpha_max, params)[0]
+        return (state[1], -force_factor * force)
+
+    def separation(_tau, state):
+        return state[0] - final / scale
+
+    separation.terminal = True
+    separation.direction = -1.0
+    second = solve_ivp(restitution_phase, (tau_max, time_limit), (x_max, 0.0), events=separation, **options)
+    _raise_on_failure(second)
+    if second.t_events[0].size > 0:
+        return second, True, float(second.t_events[0][0]), -float(second.y_events[0][0][1]) * speed
+    return second, False, float(second.t[-1]), np.nan
 
 
 def _raise_on_failure(solution):

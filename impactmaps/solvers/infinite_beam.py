@@ -69,8 +69,8 @@ from .._checks import require_choice, require_nonnegative, require_positive
 from .infinite_beam_cq import (
     DEFAULT_TIME_STEP,
     InfiniteBeamImpact,
-    _cq_grid,
-    _cq_march,
+    cq_grid,
+    cq_march,
     infinite_beam_impact,
 )
 
@@ -199,7 +199,7 @@ def _talbot_indentation(tau: np.ndarray, loss_factor: float) -> np.ndarray:
 # --------------------------------------------------------------------------- public API
 
 
-def _scalar_or_array(value: np.ndarray):
+def scalar_or_array(value: np.ndarray):
     """0-d arrays become numpy scalars, anything else is returned as is."""
     return value[()] if value.ndim == 0 else value
 
@@ -217,7 +217,7 @@ def _per_loss_factor(tau, loss_factor, evaluate):
     for zeta in np.unique(loss_factor):
         chosen = loss_factor == zeta
         result[chosen] = evaluate(tau[chosen], float(zeta))
-    return _scalar_or_array(result)
+    return scalar_or_array(result)
 
 
 def infinite_beam_indentation(
@@ -254,8 +254,8 @@ def infinite_beam_indentation(
         return _per_loss_factor(tau, loss_factor, _talbot_indentation)
 
     def by_cq(t, zeta):
-        step, count = _cq_grid(max(float(t.max()), 2 * time_step), float(time_step))
-        grid, _, indentation = _cq_march(zeta, step, count, False)
+        step, count = cq_grid(max(float(t.max()), 2 * time_step), float(time_step))
+        grid, _, indentation = cq_march(zeta, step, count, False)
         return CubicSpline(grid, indentation)(t)
 
     return _per_loss_factor(tau, loss_factor, by_cq)
@@ -323,7 +323,7 @@ def _over_loss_factors(loss_factor, index):
     require_positive("loss_factor", loss_factor)
     zeta = np.asarray(loss_factor, dtype=float)
     result = np.vectorize(lambda z: _first_contact(float(z))[index], otypes=[float])(zeta)
-    return _scalar_or_array(result)
+    return scalar_or_array(result)
 
 
 def infinite_beam_peak(loss_factor):
@@ -454,4 +454,4 @@ def infinite_beam_force(tau, loss_factor, *, time_step=DEFAULT_TIME_STEP):
             prescribed_force=lambda t: np.where(t <= contact, _moment(t, zeta, 1).real, -1.0),
         )
         force[later] = np.interp(tau[later], run.tau, run.force)
-    return _scalar_or_array(force)
+    return scalar_or_array(force)

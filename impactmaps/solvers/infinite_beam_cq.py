@@ -22,7 +22,8 @@ import numpy as np
 
 from .._checks import require_positive
 
-__all__ = ["DEFAULT_TIME_STEP", "MAX_CQ_STEPS", "InfiniteBeamImpact", "bdf2_weights", "infinite_beam_impact"]
+__all__ = ["DEFAULT_TIME_STEP", "MAX_CQ_STEPS", "InfiniteBeamImpact", "bdf2_weights", "cq_grid", "cq_march",
+           "infinite_beam_impact"]
 
 DEFAULT_TIME_STEP = 0.01  # normalised CQ step; max error ≈ 1.3e-4 on τ ≤ 10 (tests)
 MAX_CQ_STEPS = 100_000  # O(N²) convolution; beyond this the step is coarsened (warning)
@@ -71,7 +72,7 @@ def _march_kernel(weights, tau, prescribed, unilateral):
     return force, indentation
 
 
-def _cq_march(loss_factor: float, step: float, count: int, unilateral: bool, prescribed=None):
+def cq_march(loss_factor: float, step: float, count: int, unilateral: bool, prescribed=None):
     """BDF2 CQ of the receptance form on ``count`` steps; returns (τ, F̄, ᾱ) at the nodes.
 
     ``W`` are the weights of ``s^{-2} + 2c s^{-3/2}``; ``prescribed`` (F̄ at the first nodes)
@@ -85,7 +86,9 @@ def _cq_march(loss_factor: float, step: float, count: int, unilateral: bool, pre
     return tau, force, indentation
 
 
-def _cq_grid(duration: float, time_step: float):
+def cq_grid(duration: float, time_step: float):
+    """(step, count) of a CQ grid covering ``duration`` with steps ≤ ``time_step``
+    (normalised time), coarsened with a warning beyond :data:`MAX_CQ_STEPS` steps."""
     count = max(int(math.ceil(duration / time_step)), 2)
     if count > MAX_CQ_STEPS:
         warnings.warn(
@@ -148,14 +151,14 @@ def infinite_beam_impact(
     require_positive("loss_factor", loss_factor)
     require_positive("duration", duration)
     require_positive("time_step", time_step)
-    step, count = _cq_grid(float(duration), float(time_step))
+    step, count = cq_grid(float(duration), float(time_step))
     prescribed = None
     if prescribed_force is not None:
         values = np.asarray(prescribed_force(step * np.arange(count + 1)), dtype=float)
         negative = np.flatnonzero(values[1:] < 0)
         end = negative[0] + 1 if negative.size else count + 1
         prescribed = values[:end]
-    tau, force, indentation = _cq_march(float(loss_factor), step, count, True, prescribed)
+    tau, force, indentation = cq_march(float(loss_factor), step, count, True, prescribed)
     impulse = np.concatenate([[0.0], np.cumsum(0.5 * step * (force[1:] + force[:-1]))])
     in_contact = force > 0
     edges = np.flatnonzero(np.diff(in_contact.astype(int)))

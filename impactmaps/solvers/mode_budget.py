@@ -34,11 +34,14 @@ from __future__ import annotations
 import functools
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+import pandas as pd
 
+from ..law_asymptotes import asymptote
 from .asymptotes import infinite_plate_indentation
+from .contact_scale import reference_contact_stiffness
 from .infinite_beam import infinite_beam_indentation
 from .result import HISTORY_COLUMNS, ImpactResult
 from .shear_range import has_classical_asymptote
@@ -255,8 +258,6 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
         solution does not hold (a reflection returns too early) and the cap lies below
         :data:`MIN_CAPPED_CUTOFF_RATIO` ω.
     """
-    from .modal import reference_contact_stiffness
-
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega = math.sqrt(stiffness / impactor_mass)
     if cap_frequency is None:
@@ -291,8 +292,6 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
 
 
 def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
-    from dataclasses import replace
-
     return replace(plan, method=method, message=message)
 
 
@@ -306,8 +305,6 @@ def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_fa
         zeta = float(target.loss_factor(impactor_mass, stiffness)) if loss_factor is None else float(loss_factor)
         impact = target.infinite_structure_impact(zeta)
         return f"infinite-{kind} (linear, closed form)", impact, float(impact.peak_time) / omega
-    from ..law_asymptotes import asymptote
-
     answer = asymptote(f"infinite-{kind}", target, law, impactor_mass, velocity)
     return f"infinite-{kind} (any law)", answer, float(answer.peak_time)
 
@@ -406,8 +403,6 @@ def _linear_history(target, impact, plan: BasisPlan, law, mass, speed, contact):
     impactor velocity and displacement integrate the force (trapezoids), the struck
     point moves by ``w_i − α``.
     """
-    import pandas as pd
-
     omega = plan.contact_frequency
     end = contact if math.isfinite(contact) else min(plan.reflection_time,
                                                      ASYMPTOTE_REFLECTION_FACTOR * impact.peak_time / omega)

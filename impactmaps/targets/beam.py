@@ -1,6 +1,6 @@
 """Straight uniform beams (Euler–Bernoulli, Rayleigh, Timoshenko) as impact targets.
 
-A :class:`Beam` is described by its section properties (PHYSICS.md 3.2, seed 001
+A :class:`Beam` is described by its section properties (docs/physics_contract.md §3.2, seed 001
 (16)–(17)), so that isotropic and specially orthotropic beams share one code path:
 ``bending_stiffness`` bD11 (= EI), ``shear_stiffness`` k b A55 (= kGA),
 ``mass_per_length`` ρA (= m' = ρbh) and ``rotary_inertia`` ρI. The beam occupies
@@ -22,7 +22,7 @@ are excluded). :meth:`Beam.static_compliance` returns that value, so λ of a fre
 is the inertia-relief relative stiffness and ``residual = static − retained`` stays
 consistent.
 
-Loss factor: the corrected beam loss factor of PHYSICS.md 1 (``ζ_b``, half of seed 001's
+Loss factor: the corrected beam loss factor of docs/physics_contract.md §1 (``ζ_b``, half of seed 001's
 printed eq. 38), from :mod:`impactmaps.dimensionless`.
 """
 
@@ -170,7 +170,7 @@ class Beam(Target):
                     damping_ratio=0.0) -> "Beam":
         """A solid rectangular beam b × h of an isotropic material.
 
-        Narrow-beam convention (PHYSICS.md 3.2): ``bD11 = EI = E b h³/12`` (plane
+        Narrow-beam convention (docs/physics_contract.md §3.2): ``bD11 = EI = E b h³/12`` (plane
         stress in the width direction; a wide beam in cylindrical bending would use
         ``E/(1 − ν²)`` instead). ``S = k G b h`` with ``G = E/(2(1 + ν))``,
         ``ρA = ρ b h``, ``ρI = ρ b h³/12``.
@@ -432,7 +432,7 @@ class Beam(Target):
     def loss_factor(self, impactor_mass, contact_stiffness):
         """Beam loss factor ``ζ_b = (1/(4 sqrt(2π))) (m_i/m')^{3/4} (K/(bD11))^{1/4}`` [-].
 
-        The corrected ζ_b of PHYSICS.md 1 (half of seed 001's printed eq. 38), with
+        The corrected ζ_b of docs/physics_contract.md §1 (half of seed 001's printed eq. 38), with
         m' = ``mass_per_length`` and bD11 = ``bending_stiffness``; ``impactor_mass``
         [kg] and ``contact_stiffness`` [N/m] may be arrays.
         """
@@ -440,7 +440,7 @@ class Beam(Target):
                                 self.bending_stiffness)
 
     def impactor_mass_for(self, loss_factor, contact_stiffness):
-        """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (bD11/K)^{1/3}`` [kg] (PHYSICS.md 4)."""
+        """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (bD11/K)^{1/3}`` [kg] (docs/physics_contract.md §4)."""
         return impactor_mass_for_beam(loss_factor, contact_stiffness, self.mass_per_length,
                                       self.bending_stiffness)
 

@@ -1,4 +1,4 @@
-"""Natural modes and static point compliance of straight beams (PHYSICS.md 3.2).
+"""Natural modes and static point compliance of straight beams (docs/physics_contract.md §3.2).
 
 The beam occupies ``0 ≤ x ≤ L``. Its section is described by five numbers, so that
 isotropic and specially orthotropic beams share one code path:

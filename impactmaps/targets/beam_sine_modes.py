@@ -1,4 +1,4 @@
-"""Simply supported beams, every theory: closed-form modes (PHYSICS.md 3.2)."""
+"""Simply supported beams, every theory: closed-form modes (docs/physics_contract.md §3.2)."""
 
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def simply_supported_modes(section: BeamSection, max_frequency: float,
                            min_modes: int = 1) -> ModeSet:
     """All modes of a simply supported beam with ω ≤ ``max_frequency`` (≥ ``min_modes``).
 
-    ``w = W sin(k_n x)``, ``ψ = Ψ cos(k_n x)``, ``k_n = nπ/L`` (PHYSICS.md 3.2).
+    ``w = W sin(k_n x)``, ``ψ = Ψ cos(k_n x)``, ``k_n = nπ/L`` (docs/physics_contract.md §3.2).
 
     * Euler: ``ω_n = k_n² sqrt(EI/ρA)``, ``W = sqrt(2/(ρA L))``, ``Ψ = −k_n W``.
     * Rayleigh: ``ω_n² = EI k_n⁴/(ρA + ρI k_n²)``, ``Ψ = −k_n W``,

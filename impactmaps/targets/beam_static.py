@@ -11,10 +11,10 @@ def static_compliance(section: BeamSection, position: float) -> float:
     """Exact static deflection [m/N] at x0 = ``position`` under a unit force at x0.
 
     Closed forms (a = x0, b = L − x0, s = 1/S the shear compliance, zero for Euler and
-    Rayleigh, Φ = 12 EI s/L²), all derived from the static equations of PHYSICS.md 3.2
+    Rayleigh, Φ = 12 EI s/L²), all derived from the static equations of docs/physics_contract.md §3.2
     with a point load (unit-load method) and checked symbolically:
 
-    * ss: ``a²b²/(3EIL) + s a b/L`` (PHYSICS.md 3.2);
+    * ss: ``a²b²/(3EIL) + s a b/L`` (docs/physics_contract.md §3.2);
     * cc: ``a b [a²b² + (Φ L²/4)(L² + ab) + Φ² L⁴/4] / (3 EI L³ (1 + Φ))``; Φ = 0 gives
       ``a³b³/(3EIL³)``, the centre gives ``L³/(192EI) + L/(4S)``;
     * cs (clamped at x = 0): ``a b [a²b(3L + b) + Φ L²(L² + ab) + Φ² L⁴/4] / (3 EI L³ (4 + Φ))``;

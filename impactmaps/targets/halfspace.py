@@ -1,4 +1,4 @@
-"""A fixed half-space: the target of a compact-body impact (PHYSICS.md §3.1).
+"""A fixed half-space: the target of a compact-body impact (docs/physics_contract.md §3.1).
 
 The struck body is so large and stiff that it does not move: its surface point has no
 modes, no static compliance and takes no energy from the sphere; everything happens in

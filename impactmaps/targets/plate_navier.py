@@ -1,4 +1,4 @@
-"""Modes of simply supported (SSSS) plates by the Navier solution (PHYSICS.md 3.3).
+"""Modes of simply supported (SSSS) plates by the Navier solution (docs/physics_contract.md §3.3).
 
 Kirchhoff: closed-form frequencies per half-wave pair (m, n). Mindlin: per (m, n) the
 lowest (flexural) branch of the 3×3 eigenproblem of seed 001 eqs (13)–(15), polished by
@@ -11,16 +11,14 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..solvers.shear_range import thickness_shear_frequency
 from .base import ModalBasis
 from .patch import hertz_transform, mean_square_transform
 from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
 
-if TYPE_CHECKING:
-    from .plate import Plate
 
 __all__ = ["kirchhoff_eigenvalues", "mindlin_flexural", "navier_frequencies", "navier_mode_count",
            "navier_modes", "navier_pairs"]
@@ -29,7 +27,7 @@ __all__ = ["kirchhoff_eigenvalues", "mindlin_flexural", "navier_frequencies", "n
 COUNT_CHUNK = 65536
 
 
-def kirchhoff_eigenvalues(plate: Plate, m, n):
+def kirchhoff_eigenvalues(plate, m, n):
     """ω² [rad²/s²] of the classical SSSS plate for half-wave numbers m, n.
 
     Parameters
@@ -50,7 +48,7 @@ def kirchhoff_eigenvalues(plate: Plate, m, n):
     return (plate.D11 * p2**2 + 2.0 * H * p2 * q2 + plate.D22 * q2**2) / plate.mass_per_area
 
 
-def _mindlin_blocks(plate: Plate, p, q):
+def _mindlin_blocks(plate, p, q):
     """Bending block B (…, 2, 2) and shear stiffnesses kA55, kA44."""
     B = np.empty(p.shape + (2, 2))
     B[..., 0, 0] = plate.D11 * p**2 + plate.D66 * q**2
@@ -59,7 +57,7 @@ def _mindlin_blocks(plate: Plate, p, q):
     return B, plate.shear_correction * plate.A55, plate.shear_correction * plate.A44
 
 
-def _mindlin_matrices(plate: Plate, m, n):
+def _mindlin_matrices(plate, m, n):
     """Stacked 3×3 stiffness matrices K (…, 3, 3) and the mass diagonal (3,)."""
     p = np.pi * np.asarray(m, dtype=float) / plate.length_x
     q = np.pi * np.asarray(n, dtype=float) / plate.length_y
@@ -75,7 +73,7 @@ def _mindlin_matrices(plate: Plate, m, n):
     return K, mass
 
 
-def mindlin_flexural(plate: Plate, m, n):
+def mindlin_flexural(plate, m, n):
     """Flexural branch of the Mindlin SSSS plate: ω and the normalised amplitude W.
 
     Parameters
@@ -145,7 +143,7 @@ def mindlin_flexural(plate: Plate, m, n):
     return np.sqrt(lam), amplitude
 
 
-def navier_frequencies(plate: Plate, m, n):
+def navier_frequencies(plate, m, n):
     """Natural frequencies ω_mn [rad/s] of the SSSS plate (its theory) for half-wave numbers.
 
     Parameters
@@ -165,7 +163,7 @@ def navier_frequencies(plate: Plate, m, n):
     return mindlin_flexural(plate, m, n)[0]
 
 
-def navier_pairs(plate: Plate, max_frequency):
+def navier_pairs(plate, max_frequency):
     """All (m, n) with ω_mn ≤ max_frequency [rad/s], as two int arrays.
 
     Relies on ω_mn increasing in m and in n (true for D12 + 2D66 > 0; checked against
@@ -186,7 +184,7 @@ def navier_pairs(plate: Plate, max_frequency):
     return m_pairs, n_pairs
 
 
-def navier_mode_count(plate: Plate, max_frequency: float, limit: int | None = None) -> int:
+def navier_mode_count(plate, max_frequency: float, limit: int | None = None) -> int:
     """Number of half-wave pairs (m, n) with ω_mn ≤ ``max_frequency`` [rad/s], unbuilt.
 
     The count of :func:`navier_pairs` by the same searches, without forming the pairs:
@@ -225,8 +223,6 @@ def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2
     thickness-shear branches have modes below it. Kirchhoff plates (and other targets)
     never warn.
     """
-    from ..solvers.shear_range import thickness_shear_frequency
-
     if getattr(plate, "theory", None) != "mindlin":
         return
     cutoff = thickness_shear_frequency(plate)
@@ -237,7 +233,7 @@ def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2
             "are omitted, have modes below the cut-off frequency", UserWarning, stacklevel=stacklevel)
 
 
-def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float = 0.0):
+def navier_modes(plate, max_frequency: float, min_modes: int, contact_radius: float = 0.0):
     """(:class:`ModalBasis`, mode-shape function of points) of an SSSS plate.
 
     The modes with ω ≤ ``max_frequency`` [rad/s], at least ``min_modes``, ascending (ties
@@ -263,7 +259,7 @@ def navier_modes(plate: Plate, max_frequency: float, min_modes: int, contact_rad
     return basis, _shape_function(plate, m, n, amplitude)
 
 
-def _patch_basis(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float):
+def _patch_basis(plate, max_frequency: float, min_modes: int, contact_radius: float):
     """The SSSS basis seen by a Hertz pressure over a disc of ``contact_radius`` [m].
 
     Each participation is multiplied by the modal transform ``T(k a)`` of the Hertz
@@ -299,7 +295,7 @@ def _patch_basis(plate: Plate, max_frequency: float, min_modes: int, contact_rad
     return basis, _shape_function(plate, m, n, amplitude)
 
 
-def _lowest_modes(plate: Plate, max_frequency: float, min_modes: int):
+def _lowest_modes(plate, max_frequency: float, min_modes: int):
     """(m, n, ω, W, φ) of the modes with ω ≤ ``max_frequency`` (at least ``min_modes``),
     ascending; φ = W s_m(x0) s_n(y0) the point-load participation."""
     cutoff_frequency = max_frequency
@@ -320,7 +316,7 @@ def _lowest_modes(plate: Plate, max_frequency: float, min_modes: int):
     return m, n, omega[keep], amplitude, participation
 
 
-def _shape_function(plate: Plate, m, n, amplitude):
+def _shape_function(plate, m, n, amplitude):
     """Mode shapes w_j(points) [kg^-1/2] of the half-wave pairs (m, n) with amplitudes W."""
     a, b = plate.length_x, plate.length_y
 

@@ -1,6 +1,6 @@
 """Classical static point compliance of a simply supported (SSSS) orthotropic plate.
 
-The Navier double series of PHYSICS.md 3.3 with the inner sum in closed form
+The Navier double series of docs/physics_contract.md §3.3 with the inner sum in closed form
 (:func:`navier_static_compliance`), used by
 :meth:`impactmaps.targets.plate.Plate.static_compliance` (directly for SSSS plates, as
 the singularity correction of the Ritz value for other edges). Conventions as in
@@ -104,7 +104,7 @@ def navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_poin
                              terms: int = _NAVIER_STATIC_TERMS) -> float:
     """Classical point compliance 1/K_st [m/N] of a simply supported orthotropic plate.
 
-    Sums the Navier double series of PHYSICS.md 3.3,
+    Sums the Navier double series of docs/physics_contract.md §3.3,
     ``Σ_m Σ_n (4/(ab)) s_m(x0)² s_n(y0)² / (π⁴[D11 (m/a)⁴ + 2(D12+2D66)(m/a)²(n/b)² + D22 (n/b)⁴])``,
     with the inner series over n in closed form (hyperbolic functions, in the manner of
     Timoshenko & Woinowsky-Krieger, *Theory of Plates and Shells*, §30, extended to

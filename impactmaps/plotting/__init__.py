@@ -1,0 +1,43 @@
+"""Matplotlib charts. Every function takes ``ax=None`` (a new figure when missing)
+and returns the Axes.
+
+:mod:`~impactmaps.plotting.map_charts` draws the (ζ, λ) maps (F̄max chart, regimes,
+elastic-plastic panels); :mod:`~impactmaps.plotting.histories` single impacts (force
+histories, scaling, restitution).
+"""
+
+from __future__ import annotations
+
+from .histories import (
+    plot_force_history,
+    plot_impact_history,
+    plot_restitution,
+    plot_scaling,
+    save_impact_history,
+)
+from .map_charts import (
+    FMAX_LABELS,
+    PLASTIC_PANELS,
+    REGIME_COLOURS,
+    SENSITIVE_ALPHA,
+    plot_fmax_chart,
+    plot_plastic_chart,
+    plot_regime_map,
+    plot_regime_strip,
+)
+
+__all__ = [
+    "plot_fmax_chart",
+    "plot_plastic_chart",
+    "plot_regime_strip",
+    "plot_regime_map",
+    "plot_force_history",
+    "plot_impact_history",
+    "save_impact_history",
+    "plot_scaling",
+    "plot_restitution",
+    "FMAX_LABELS",
+    "PLASTIC_PANELS",
+    "REGIME_COLOURS",
+    "SENSITIVE_ALPHA",
+]

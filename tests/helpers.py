@@ -1,0 +1,48 @@
+"""Helpers shared by the tests: where the repository's files are, and strict JSON.
+
+The tests import the *installed* package (``pytest`` runs with
+``--import-mode=importlib``); what they read beside it — the examples, the validation
+scripts and results, the docs — comes from this checkout, located here once.
+Closed-form test systems are in :mod:`tests.analytic`.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+#: The repository checkout the tests run from.
+ROOT = Path(__file__).resolve().parents[1]
+#: Case files and short scripts (``examples/``).
+EXAMPLES = ROOT / "examples"
+#: Validation scripts and their committed results (``validation/``).
+VALIDATION = ROOT / "validation"
+#: Small data files of the tests (``tests/data/``).
+DATA = ROOT / "tests" / "data"
+
+
+def _refuse_constant(name):
+    raise ValueError(f"not strict JSON: {name}")
+
+
+def strict_json_loads(text: str):
+    """``json.loads`` that rejects NaN, Infinity and -Infinity (they are not JSON)."""
+    return json.loads(text, parse_constant=_refuse_constant)
+
+
+def repository_module(relative_path: str):
+    """Import a script of this checkout (``benchmarks/…``, ``validation/…``) by its path.
+
+    The checkout is not on ``sys.path`` (the tests import the installed package), so its
+    scripts are loaded from their files; a script imported twice is the same module.
+    """
+    path = ROOT / relative_path
+    name = "_repository_" + "_".join(path.relative_to(ROOT).with_suffix("").parts)
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    return sys.modules[name]
