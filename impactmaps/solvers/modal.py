@@ -316,11 +316,15 @@ def _uses_patch(target, contact_patch: str) -> bool:
     return contact_patch == "hertz-peak"
 
 
-def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None) -> ModalBasis:
+def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None,
+               cap=None) -> ModalBasis:
     """The participating modes below the cut-off, with the residual the settings ask for
-    (under a contact patch the cut-off is ``patch_cutoff_ratio`` · ω)."""
+    (under a contact patch the cut-off is ``patch_cutoff_ratio`` · ω; never above ``cap``
+    [rad/s] when given)."""
     ratio = settings.cutoff_ratio if contact_radius is None else settings.patch_cutoff_ratio
     max_frequency = float(ratio * contact_frequency)
+    if cap is not None:
+        max_frequency = min(max_frequency, float(cap))
     if isinstance(target, Target):  # never more modes than memory allows (simulate's plan)
         max_frequency = budget_cutoff(target, max_frequency)
     if isinstance(target, ModalBasis):
@@ -441,37 +445,77 @@ def simulate(
     if isinstance(target, Target):  # the budget of the cut-off the run will use
         ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
         contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
-        plan = plan_basis(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
+        plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
         if plan.method == METHODS[2]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
             return asymptote_result(plan, target, law, impactor_mass, velocity, record,
                                     _settings_dict(settings))
         if plan.method == METHODS[1]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
-    if radius_of is None:
-        result = _run(target, law, params, impactor_mass, velocity, settings, record, time_step)
-    else:
-        result = _run_with_patch(target, law, params, impactor_mass, velocity, settings, record, time_step,
-                                 radius_of)
-    if plan is not None and plan.method == METHODS[1]:
+    cap = plan.max_frequency if plan is not None and plan.method == METHODS[1] else None
+    run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
+                            radius_of)
+    result = run(record, cap)
+    if cap is not None:
         result = replace(result, method=METHODS[1])
     if settings.check_convergence:
         fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
                         effective_radius=effective_radius)
-        change = abs(fine.fmax_normalised - result.fmax_normalised)
-        result = replace(result, converged=bool(change <= settings.tolerance))
-        if change > settings.tolerance:
-            warnings.warn(
-                f"F̄max changed by {change:.2e} (> tolerance {settings.tolerance:g}) when the "
-                "cut-off was doubled and the step halved; the result is not converged",
-                ConvergenceWarning,
-                stacklevel=2,
-            )
+        result = _checked(result, fine, settings.tolerance, cap, run)
     return result
 
 
+def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float):
+    """:func:`~impactmaps.solvers.mode_budget.plan_basis` of a run whose cut-off is ``wanted``
+    [rad/s], also where the target's model, not memory, caps it.
+
+    A target of bounded size resolves modes up to :meth:`Target.resolution_limit` only (a
+    Ritz plate's largest basis, a finite-element beam's largest mesh): a cut-off above it
+    is a capped basis like one above the memory cap — the infinite-structure solution if
+    no reflection returns before the contact is over, else the modes up to the limit
+    (residual flexibility for the rest) if it lies far enough above ω, else a refusal
+    naming the impactor mass that fits. (Before, such a run silently integrated the
+    resolved modes and let the residual stand in for the rest.)
+    """
+    limit = float(target.resolution_limit())
+    if wanted <= limit:
+        return plan_basis(target, law, impactor_mass, velocity, wanted)
+    return plan_basis(target, law, impactor_mass, velocity, wanted, max_modes=target.resolved_mode_count(),
+                      cap_frequency=limit)
+
+
+def _run_at(target, law, params, impactor_mass, velocity, settings, time_step, radius_of, record, cap):
+    """One run of :func:`simulate` (point load or patch) with the cut-off capped at ``cap`` [rad/s]
+    (``None``: the settings' cut-off)."""
+    if radius_of is None:
+        return _run(target, law, params, impactor_mass, velocity, settings, record, time_step, cap=cap)
+    return _run_with_patch(target, law, params, impactor_mass, velocity, settings, record, time_step,
+                           radius_of, cap)
+
+
+def _checked(result: ImpactResult, fine: ImpactResult, tolerance: float, cap, run) -> ImpactResult:
+    """``result`` with ``converged`` set: F̄max against the ``fine`` run (twice the cut-off,
+    half the step), and, for a capped basis (``cap`` [rad/s]), against a run at half the cap
+    — what is actually capped; a warning and ``convergence_note`` say why when not."""
+    changes = [(abs(fine.fmax_normalised - result.fmax_normalised), "the cut-off was doubled and the step halved")]
+    if cap is not None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the coarse run's own warnings say nothing new
+            coarse = run(False, 0.5 * cap)
+        changes.append((abs(coarse.fmax_normalised - result.fmax_normalised),
+                        f"the capped basis (modes up to {cap:.4g} rad/s, "
+                        f"{cap / result.contact_frequency:.3g} ω) was halved"))
+    failed = [f"F̄max changed by {change:.2e} (> tolerance {tolerance:g}) when {how}"
+              for change, how in changes if not change <= tolerance]
+    if not failed:
+        return replace(result, converged=True)
+    note = "; ".join(failed) + "; the result is not converged"
+    warnings.warn(note, ConvergenceWarning, stacklevel=3)
+    return replace(result, converged=False, convergence_note=note)
+
+
 def _run_with_patch(target, law, params, impactor_mass, velocity, settings, record, time_step,
-                    radius_of) -> ImpactResult:
+                    radius_of, cap=None) -> ImpactResult:
     """:func:`_run` under the Hertz patch of the peak indentation, by fixed-point iteration.
 
     From the half-space peak indentation: run → α_max → ``a = radius_of(α_max)`` → run,
@@ -486,7 +530,7 @@ def _run_with_patch(target, law, params, impactor_mass, velocity, settings, reco
     for _ in range(PATCH_PASSES):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            result = _run(target, law, params, impactor_mass, velocity, settings, False, time_step, radius)
+            result = _run(target, law, params, impactor_mass, velocity, settings, False, time_step, radius, cap)
         new_radius = radius_of(result.max_indentation)
         if abs(new_radius - radius) <= PATCH_TOLERANCE * radius:
             break
@@ -499,7 +543,7 @@ def _run_with_patch(target, law, params, impactor_mass, velocity, settings, reco
     if record:  # only the run at the settled radius records its history (the same scalars, bit for bit)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            result = _run(target, law, params, impactor_mass, velocity, settings, True, time_step, radius)
+            result = _run(target, law, params, impactor_mass, velocity, settings, True, time_step, radius, cap)
     for caught_warning in caught:
         warnings.warn(caught_warning.message, stacklevel=3)
     result.settings["contact_radius_m"] = float(radius)
@@ -529,12 +573,20 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
     return _NO_COUPLED_MODES
 
 
+def _kernel_array(values: np.ndarray) -> np.ndarray:
+    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
+    same array when it already is; a copy of a read-only view, such as a cached Ritz
+    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    return np.require(values, dtype=np.float64, requirements=("C", "W"))
+
+
 def _run(target, law, params, impactor_mass, velocity, settings, record, time_step,
-         contact_radius=None) -> ImpactResult:
-    """One run of :func:`simulate` (validated inputs) with a point load or a patch [m]."""
+         contact_radius=None, cap=None) -> ImpactResult:
+    """One run of :func:`simulate` (validated inputs) with a point load or a patch [m], the
+    cut-off capped at ``cap`` [rad/s] when given."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega_c = float(np.sqrt(stiffness / impactor_mass))
-    basis = _basis_for(target, omega_c, settings, contact_radius)
+    basis = _basis_for(target, omega_c, settings, contact_radius, cap)
     automatic = time_step is None
     coupled = _NO_COUPLED_MODES
     if automatic:
@@ -558,9 +610,9 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
         kernel_pointer(law.kernel),
         params,
         _linear_stiffness(law),
-        basis.frequencies,
-        basis.participation,
-        basis.damping_ratios,
+        _kernel_array(basis.frequencies),
+        _kernel_array(basis.participation),
+        _kernel_array(basis.damping_ratios),
         float(basis.residual_compliance),
         float(impactor_mass),
         float(velocity),

@@ -23,7 +23,7 @@ from __future__ import annotations
 import functools
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import ClassVar
 
 import numpy as np
@@ -420,6 +420,24 @@ class Plate(Target):
     def bounded_modes(self) -> bool:
         """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
         return self.edges != "SSSS"
+
+    def resolution_limit(self) -> float:
+        """Highest frequency [rad/s] the plate's modes resolve: ``inf`` for SSSS (Navier,
+        exact), else what the largest Ritz basis (:data:`ritz.MAX_FUNCTIONS` per direction)
+        resolves (:attr:`ritz.RitzPlateSolution.resolved_frequency`)."""
+        if self.edges == "SSSS":
+            return math.inf
+        return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
+                                               self.D66, self.mass_per_area)
+
+    def resolved_mode_count(self) -> int:
+        """Modes below :meth:`resolution_limit`: 0 for SSSS (no limit); for a Ritz plate the
+        Navier count of its simply supported twin (same stiffnesses), which differs from
+        the Ritz count by the edges' boundary-layer term only — counting the Ritz modes
+        would take the largest eigen-solution (seconds)."""
+        if self.edges == "SSSS":
+            return 0
+        return plate_navier.navier_mode_count(replace(self, edges="SSSS"), self.resolution_limit(), None)
 
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
