@@ -202,3 +202,127 @@ def test_read_only_modal_basis_runs():
         warnings.simplefilter("ignore")
         result = simulate_normalised(_plate("SCSF"), 30.0, 1.0, record=False)
     assert np.isfinite(result.fmax_normalised)
+
+
+# -- 3. budgets before work -----------------------------------------------------------------
+SS_PLATE_CASE = CLAMPED_PLATE_CASE.replace("check_convergence = {check}\n", "{extra}\n").replace("{edges}", "SSSS")
+
+
+def _parse(extra="", law=None):
+    from impactmaps.cases import parse_case
+
+    text = SS_PLATE_CASE.format(extra=extra)
+    if law is not None:
+        text = text.replace('law = "hertz"', law)
+    return parse_case(text)
+
+
+def test_max_events_of_a_billion_is_refused_by_range():
+    """``max_events = 1e9`` allocated np.zeros((1e9, 2)) — 15.8 GB — before the run; now a
+    ValueError naming the key and the valid range, before any allocation."""
+    with pytest.raises(ValueError, match=r"solver.max_events = 1000000000 is invalid: valid range is \[1, 1e\+07\]"):
+        _parse("max_events = 1000000000")
+
+
+def test_cutoff_ratio_of_a_billion_is_refused_by_range():
+    """``cutoff_ratio = 1e9`` ran 593 s; the cut-off is bounded (modes 1e4 ω up respond
+    statically), and so are ``patch_cutoff_ratio`` and ``min_modes`` (1e9 modes asked for)."""
+    with pytest.raises(ValueError, match=r"solver.cutoff_ratio = 1000000000.0 is invalid: valid range is \(0, 10000\]"):
+        _parse("cutoff_ratio = 1e9")
+    with pytest.raises(ValueError, match="patch_cutoff_ratio"):
+        ModalSettings(patch_cutoff_ratio=1e9)
+    with pytest.raises(ValueError, match="min_modes"):
+        ModalSettings(min_modes=10**9)
+
+
+def test_refined_settings_stay_in_range():
+    """The convergence check doubles the cut-off and the mode floor: at the bounds it stops."""
+    refined = ModalSettings(cutoff_ratio=1e4, min_modes=100_000).refined()
+    assert refined.cutoff_ratio == 1e4 and refined.min_modes == 100_000
+
+
+def test_contact_stiffness_of_1e300_is_refused_by_range():
+    """``[contact] stiffness = 1e300`` was accepted (and the run hung > 5 min); now refused."""
+    with pytest.raises(ValueError, match=r"contact.stiffness = 1e\+300 is invalid"):
+        _parse(law='law = "linear"\nstiffness = 1e300')
+
+
+def test_time_step_of_a_picosecond_is_refused_before_the_run():
+    """A forced ``time_step = 1e-12`` s is 7.7e10 steps to the time limit: refused before the
+    run, naming ``time_step`` and the step that fits (memory of the history included)."""
+    from impactmaps.cases import run_case
+
+    case = _parse("time_step = 1e-12")
+    with pytest.raises(ValueError, match=r"time_step = 1e-12 s is invalid: .* valid range: time_step ≥ [0-9.e-]+ s"):
+        run_case(case)
+
+
+def test_modal_run_budget_refuses_above_a_gibibyte_and_announces_above_a_minute():
+    """The budget's two answers: a recorded run whose expected history exceeds 1 GiB is
+    refused naming the knob; a run estimated above a minute is announced (LongRunWarning)."""
+    from impactmaps.solvers.run_budget import LongRunWarning, modal_run_budget, refuse_or_announce
+
+    omega = 1e4
+    big = modal_run_budget(10, 1e-10, 1e-3, omega, True, 1000, forced_step=False)  # 1e7 rows
+    with pytest.raises(ValueError, match="GiB.*max_time_ratio ≤"):
+        refuse_or_announce(big, "test run")
+    assert modal_run_budget(10, 1e-10, 1e-3, omega, False, 1000, False).memory_bytes < 2**30  # no history
+    slow = modal_run_budget(500_000, 1e-8, 0.5, omega, False, 1000, forced_step=False)
+    with pytest.warns(LongRunWarning, match=r"about \d+ s on a 2-core machine"):
+        refuse_or_announce(slow, "test run")
+    events = modal_run_budget(10, 1e-6, 1e-3, omega, False, 10**8, False)
+    with pytest.raises(ValueError, match="max_events ≤"):
+        refuse_or_announce(events, "test run")
+
+
+def test_long_modal_run_answers_ctrl_c():
+    """A compiled loop does not see Ctrl-C; a modal run estimated above
+    INTERRUPTIBLE_SECONDS integrates in a worker thread that a KeyboardInterrupt stops at its
+    next step (the kernel reads a stop flag). The interrupt is sent as soon as the kernel's
+    thread runs (a run of ~2e6 steps); the run raises KeyboardInterrupt and the kernel's
+    thread ends."""
+    import _thread
+    import threading
+    import time
+
+    from impactmaps.solvers import modal
+
+    settings = ModalSettings(time_step_ratio=1e-5, contact_phase="sampled")
+    target = _plate("SSSS")
+
+    def interrupt_when_the_kernel_runs():
+        for _ in range(20000):
+            if any(t.name == "impactmaps-modal-kernel" for t in threading.enumerate()):
+                _thread.interrupt_main()
+                return
+            time.sleep(0.001)
+
+    watcher = threading.Thread(target=interrupt_when_the_kernel_runs)
+    watcher.start()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(KeyboardInterrupt):
+            simulate_normalised(target, 0.3, 0.1, settings=settings, record=False)
+    watcher.join()
+    for thread in threading.enumerate():
+        if thread.name == "impactmaps-modal-kernel":
+            thread.join(5.0)
+            assert not thread.is_alive()
+    assert modal.INTERRUPTIBLE_SECONDS < 1.0
+
+
+def test_stop_flag_ends_the_kernel_at_once():
+    """The kernel's stop flag, set before the run, ends it before its first step (flagged
+    like a run at its time limit)."""
+    from impactmaps.contact.base import kernel_pointer
+    from impactmaps.solvers.exact_step import integrate_impact
+
+    law = LinearContact(1e6)
+    basis = _plate("SSSS").modes(1e4)
+    empty = np.zeros(0)
+    history, intervals, scalars = integrate_impact(
+        kernel_pointer(law.kernel), np.array(law.kernel_parameters, dtype=float), 1e6,
+        np.array(basis.frequencies), np.array(basis.participation), np.array(basis.damping_ratios),
+        float(basis.residual_compliance), 0.01, 1.0, 1e-6, 1.0, False, 10, empty, empty,
+        np.zeros((0, 0)), np.zeros((0, 0)), 1e-6, 1.0, np.ones(1, dtype=np.int64))
+    assert scalars[8] == 0 and scalars[7] == 1.0

@@ -45,6 +45,7 @@ from .exact_step import integrate_impact
 from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, budget_cutoff, plan_basis
 from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
+from .run_budget import modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
@@ -85,6 +86,15 @@ COUPLED_COST_RATIO = 1.0
 COUPLED_MAX_MODES = 400
 COUPLED_ALWAYS_MODES = 32
 _NO_COUPLED_MODES = CoupledModes(np.zeros(0), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)))
+
+#: Largest ``cutoff_ratio`` and ``patch_cutoff_ratio``: modes 10⁴ times above the contact
+#: frequency respond statically (the residual compliance carries them); the convergence
+#: check's refinement stops doubling there.
+MAX_CUTOFF_RATIO = 1e4
+#: Largest ``min_modes`` (the refinement stops doubling there).
+MAX_MIN_MODES = 100_000
+#: Largest ``max_events``: the kernel allocates the contact-interval table whole (16 B each).
+MAX_EVENTS = 10_000_000
 
 #: Columns of the integrator's history array: the common ones, then the structure energy.
 HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
@@ -131,7 +141,8 @@ class ModalSettings:
     Attributes
     ----------
     cutoff_ratio : float
-        Integrate modes with ω_j ≤ ``cutoff_ratio`` · ω (contact frequency).
+        Integrate modes with ω_j ≤ ``cutoff_ratio`` · ω (contact frequency); in
+        (0, :data:`MAX_CUTOFF_RATIO`].
     patch_cutoff_ratio : float
         The same for a run under the contact patch (``contact_patch``): the patch's
         modal transform suppresses the modes above a few times the contact frequency
@@ -142,7 +153,7 @@ class ModalSettings:
         ``examples/composite_plate_sun_chen.toml`` within 1.2e-4 (10 ω: 2e-3 there;
         ``validation/patch_convergence.py``).
     min_modes : int
-        Integrate at least this many participating modes.
+        Integrate at least this many participating modes; in [0, :data:`MAX_MIN_MODES`].
     residual_flexibility : bool
         Add the static compliance of the dropped modes in series with the contact.
     time_step_ratio : float
@@ -156,7 +167,8 @@ class ModalSettings:
     max_time_ratio : float
         Time limit in units of 1/ω.
     max_events : int
-        Most contacts a run follows; a run with more stops there, with a warning and
+        Most contacts a run follows, in [1, :data:`MAX_EVENTS`] (the table is allocated
+        whole); a run with more stops there, with a warning and
         ``time_limit_reached`` set (a sphere resting on a structure can chatter through
         millions of contacts that carry no force).
     check_convergence : bool
@@ -216,21 +228,22 @@ class ModalSettings:
     contact_phase: str = "auto"
 
     def __post_init__(self):
-        require_positive("cutoff_ratio", self.cutoff_ratio)
-        require_positive("patch_cutoff_ratio", self.patch_cutoff_ratio)
-        require_in_range("min_modes", self.min_modes, 0, np.inf)
+        require_in_range("cutoff_ratio", self.cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
+        require_in_range("patch_cutoff_ratio", self.patch_cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
+        require_in_range("min_modes", self.min_modes, 0, MAX_MIN_MODES)
         require_in_range("time_step_ratio", self.time_step_ratio, 0, 1.0, low_inclusive=False)
         require_in_range("resolve_ratio", self.resolve_ratio, 0, 2.0, low_inclusive=False)
         require_in_range("force_resolution", self.force_resolution, 0, 1e-2)
         require_positive("max_time_ratio", self.max_time_ratio)
-        require_in_range("max_events", self.max_events, 1, np.inf)
+        require_in_range("max_events", self.max_events, 1, MAX_EVENTS)
         require_positive("tolerance", self.tolerance)
         require_in_range("step_scale", self.step_scale, 0.0, 1.0, low_inclusive=False)
         require_choice("contact_patch", self.contact_patch, CONTACT_PATCHES)
         require_choice("contact_phase", self.contact_phase, CONTACT_PHASES)
 
     def refined(self) -> "ModalSettings":
-        """Settings with twice the cut-off, twice the modes and half the time step.
+        """Settings with twice the cut-off, twice the modes and half the time step (the
+        cut-off and the modes at most :data:`MAX_CUTOFF_RATIO` and :data:`MAX_MIN_MODES`).
 
         The step rules are applied to the larger basis and the step they give is then
         halved (:attr:`step_scale`), so the step is really halved even where the
@@ -245,9 +258,9 @@ def _refined(settings: ModalSettings) -> ModalSettings:
     point asks it once or twice, of a handful of distinct settings)."""
     return replace(
         settings,
-        cutoff_ratio=2 * settings.cutoff_ratio,
-        patch_cutoff_ratio=2 * settings.patch_cutoff_ratio,
-        min_modes=2 * settings.min_modes,
+        cutoff_ratio=min(2 * settings.cutoff_ratio, MAX_CUTOFF_RATIO),
+        patch_cutoff_ratio=min(2 * settings.patch_cutoff_ratio, MAX_CUTOFF_RATIO),
+        min_modes=min(2 * settings.min_modes, MAX_MIN_MODES),
         step_scale=settings.step_scale / 2,
         check_convergence=False,
     )
@@ -428,7 +441,12 @@ def simulate(
     infinite-structure solution if no reflection returns before the contact is over,
     else the modes up to the cap plus residual compliance (a
     :class:`~impactmaps.solvers.mode_budget.ModeBudgetWarning`), else a ``ValueError``.
-    A :class:`ModalBasis` target is integrated as given.
+    The same holds where the target's own model caps the cut-off (a Ritz plate, a
+    finite-element beam: :meth:`~impactmaps.targets.base.Target.resolution_limit`).
+    A :class:`ModalBasis` target is integrated as given. Before each integration the
+    run's memory and time are estimated (:mod:`~impactmaps.solvers.run_budget`): above
+    1 GiB the run is refused (``ValueError`` naming the knob and the value that fits),
+    above a minute it is announced (:class:`~impactmaps.solvers.run_budget.LongRunWarning`).
     """
     settings = settings or DEFAULT_SETTINGS
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -573,6 +591,51 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
     return _NO_COUPLED_MODES
 
 
+#: Runs estimated above this many seconds (:mod:`~impactmaps.solvers.run_budget`) integrate
+#: in a worker thread, so that Ctrl-C stops them at once (see :func:`_integrate`).
+INTERRUPTIBLE_SECONDS = 0.5
+
+
+def _integrate(interruptible: bool, *args):
+    """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (the last one the
+    kernel's one-element ``stop`` flag).
+
+    A compiled loop does not see Ctrl-C (the signal is handled between Python bytecodes).
+    When ``interruptible``, the kernel (which releases the GIL) runs in a worker thread
+    while this thread waits in 0.1 s slices; on ``KeyboardInterrupt`` it sets the stop flag,
+    which the kernel reads at every step, waits for the kernel to return and re-raises.
+    The arithmetic is the kernel's own either way: results are bit for bit those of a direct
+    call. Short runs (most map points) call the kernel directly, without a thread.
+    """
+    if not interruptible:
+        return integrate_impact(*args)
+    import threading
+
+    integrate_impact.compile()  # compiling holds the interpreter: do it here, not in the worker
+    outcome = {}
+    done = threading.Event()  # not Thread.join: a join interrupted by Ctrl-C can return early later
+
+    def work():
+        try:
+            outcome["result"] = integrate_impact(*args)
+        except BaseException as error:  # noqa: BLE001 (handed to the caller's thread)
+            outcome["error"] = error
+        finally:
+            done.set()
+
+    threading.Thread(target=work, name="impactmaps-modal-kernel", daemon=True).start()
+    try:
+        while not done.wait(0.1):
+            pass
+    except KeyboardInterrupt:
+        args[-1][0] = 1
+        done.wait()
+        raise
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["result"]
+
+
 def _kernel_array(values: np.ndarray) -> np.ndarray:
     """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
     same array when it already is; a copy of a read-only view, such as a cached Ritz
@@ -606,7 +669,10 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
     else:
         require_positive("time_step", time_step, "s")
     max_time = settings.max_time_ratio / omega_c
-    history, intervals, scalars = integrate_impact(
+    budget = modal_run_budget(basis.size, float(time_step), max_time, omega_c, bool(record),
+                              int(settings.max_events), not automatic)
+    refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=4)
+    history, intervals, scalars = _integrate(budget.seconds > INTERRUPTIBLE_SECONDS,
         kernel_pointer(law.kernel),
         params,
         _linear_stiffness(law),
@@ -626,6 +692,7 @@ def _run(target, law, params, impactor_mass, velocity, settings, record, time_st
         coupled.to_coupled,
         float(settings.time_step_ratio / omega_c),
         float(settings.step_scale),
+        np.zeros(1, dtype=np.int64),
     )
     if scalars[9]:
         warnings.warn(
