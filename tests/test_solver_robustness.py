@@ -5,9 +5,18 @@ Each test is named after what it guards; the reproducers are the inputs of the i
 
 from __future__ import annotations
 
+import math
+import warnings
+
+import numpy as np
 import pytest
 
 from impactmaps.cli import main
+from impactmaps.contact.linear import LinearContact
+from impactmaps.materials import CATALOGUE
+from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
+from impactmaps.targets.beam import Beam
+from impactmaps.targets.plate import Plate
 
 MINDLIN_CASE = """
 [impactor]
@@ -59,17 +68,6 @@ def test_mindlin_plate_with_clamped_edges_is_a_clean_refusal(tmp_path, capsys, c
 
 
 # -- 1. never a confident wrong number ------------------------------------------------------
-import math  # noqa: E402
-import warnings  # noqa: E402
-
-import numpy as np  # noqa: E402
-
-from impactmaps.contact.linear import LinearContact  # noqa: E402
-from impactmaps.materials import CATALOGUE  # noqa: E402
-from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised  # noqa: E402
-from impactmaps.targets.beam import Beam  # noqa: E402
-from impactmaps.targets.plate import Plate  # noqa: E402
-
 ALUMINIUM = CATALOGUE["aluminium-6061-t6"]
 
 CLAMPED_PLATE_CASE = """
@@ -260,7 +258,11 @@ def test_time_step_of_a_picosecond_is_refused_before_the_run():
 def test_modal_run_budget_refuses_above_a_gibibyte_and_announces_above_a_minute():
     """The budget's two answers: a recorded run whose expected history exceeds 1 GiB is
     refused naming the knob; a run estimated above a minute is announced (LongRunWarning)."""
-    from impactmaps.solvers.run_budget import LongRunWarning, modal_run_budget, refuse_or_announce
+    from impactmaps.solvers.run_budget import (
+        LongRunWarning,
+        modal_run_budget,
+        refuse_or_announce,
+    )
 
     omega = 1e4
     big = modal_run_budget(10, 1e-10, 1e-3, omega, True, 1000, forced_step=False)  # 1e7 rows
@@ -320,7 +322,7 @@ def test_stop_flag_ends_the_kernel_at_once():
     law = LinearContact(1e6)
     basis = _plate("SSSS").modes(1e4)
     empty = np.zeros(0)
-    history, intervals, scalars = integrate_impact(
+    _history, _intervals, scalars = integrate_impact(
         kernel_pointer(law.kernel), np.array(law.kernel_parameters, dtype=float), 1e6,
         np.array(basis.frequencies), np.array(basis.participation), np.array(basis.damping_ratios),
         float(basis.residual_compliance), 0.01, 1.0, 1e-6, 1.0, False, 10, empty, empty,
