@@ -284,6 +284,7 @@ def test_long_modal_run_answers_ctrl_c():
     thread runs (a run of ~2e6 steps); the run raises KeyboardInterrupt and the kernel's
     thread ends."""
     import _thread
+    import signal
     import threading
     import time
 
@@ -299,13 +300,17 @@ def test_long_modal_run_answers_ctrl_c():
                 return
             time.sleep(0.001)
 
-    watcher = threading.Thread(target=interrupt_when_the_kernel_runs)
-    watcher.start()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        with pytest.raises(KeyboardInterrupt):
-            simulate_normalised(target, 0.3, 0.1, settings=settings, record=False)
-    watcher.join()
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # Python's own Ctrl-C
+    try:
+        watcher = threading.Thread(target=interrupt_when_the_kernel_runs)
+        watcher.start()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with pytest.raises(KeyboardInterrupt):
+                simulate_normalised(target, 0.3, 0.1, settings=settings, record=False)
+        watcher.join()
+    finally:
+        signal.signal(signal.SIGINT, previous)
     for thread in threading.enumerate():
         if thread.name == "impactmaps-modal-kernel":
             thread.join(5.0)

@@ -15,6 +15,7 @@ import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
 from ..contact.base import ContactLaw
+from .contact_scale import reference_contact_stiffness
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
            "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "reference_contact_stiffness",
@@ -212,23 +213,6 @@ def _linear_stiffness(law: ContactLaw) -> float:
     """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
     form), else 0. The one place that asks whether a law is linear."""
     return law.linear_stiffness or 0.0
-
-
-def reference_contact_stiffness(law: ContactLaw, impactor_mass: float, velocity: float) -> float:
-    """Contact stiffness [N/m] that sets the contact frequency of a run.
-
-    For a linear law its stiffness; otherwise the tangent stiffness on the loading
-    curve at the half-space peak indentation (where ``loading_energy = ½ m V0²``),
-    the stiffest the contact gets in a rigid-target impact.
-    """
-    linear = _linear_stiffness(law)
-    if linear > 0.0:
-        return linear
-    alpha_peak = float(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
-    stiffness = float(law.tangent_stiffness(alpha_peak, alpha_peak))
-    if not stiffness > 0:
-        raise ValueError("contact law has zero stiffness at the half-space peak indentation")
-    return stiffness
 
 
 def contact_radius_function(law: ContactLaw, effective_radius: float | None = None):
