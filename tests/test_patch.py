@@ -197,7 +197,7 @@ def test_contact_radius_is_validated():
         plate.modes(1e5, contact_radius=-1e-3)
     with pytest.raises(ValueError, match="contact_radius"):
         plate.modes(1e5, contact_radius=0.2)  # beyond the nearest edge
-    with pytest.raises(NotImplementedError, match="SSSS"):
+    with pytest.raises(ValueError, match="contact_radius = 0.001 is not supported with edges = .CCCC..*.SSSS."):
         orthotropic_plate(edges="CCCC").modes(1e5, contact_radius=1e-3)
     assert not orthotropic_plate(edges="CCCC").supports_contact_patch
 

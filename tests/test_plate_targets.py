@@ -576,10 +576,13 @@ def test_bad_input_messages_list_choices_and_range():
         plate.modes(1.0, min_modes=0)
 
 
-def test_mindlin_with_other_edges_not_implemented():
-    """Scope: Mindlin is Navier (SSSS) only; other edges raise NotImplementedError."""
-    with pytest.raises(NotImplementedError, match="SSSS"):
-        orthotropic_plate(theory="mindlin", edges="CCCC")
+@pytest.mark.parametrize("edges", ["CCCC", "CSCS", "CFFF", "SSSC"])
+def test_mindlin_with_other_edges_is_refused_by_value(edges):
+    """Scope: Mindlin is Navier (SSSS) only; other edges are a ValueError naming the option,
+    its value and what is supported (never NotImplementedError, which the CLI shows as a
+    traceback)."""
+    with pytest.raises(ValueError, match=f"theory = 'mindlin'.*edges = '{edges}'.*'SSSS'"):
+        orthotropic_plate(theory="mindlin", edges=edges)
 
 
 def test_plate_modes_are_kept_per_cutoff():

@@ -52,6 +52,9 @@ _TARGET_COMMON = ("type", "material", "plies", "layup", "yield_strength")
 _BEAM_SIZE = ("length", "width", "height")
 _PLATE_SIZE = ("length_x", "length_y", "thickness")
 _TARGET_UNITS = {"impact_position": "m", "impact_point": "m"}
+#: Largest ``[contact] stiffness`` [N/m or N/m^1.5]: a 1 m diamond sphere on diamond has a
+#: Hertz stiffness of ~1e12 N/m^1.5, so 1e15 is beyond any contact.
+MAX_CONTACT_STIFFNESS = 1e15
 #: ``[solver]`` keys that are not ModalSettings fields.
 _SOLVER_EXTRA = ("kind", "duration", "time_step")
 
@@ -237,6 +240,9 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     units = {key: option.unit for key, option in law_options(name).items()}
     options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)
     stiffness = number(entries, "stiffness", path, stiffness_unit or "")
+    if stiffness is not None:  # absurd values refused by range (stiffer than any contact: 1e300 hung a run)
+        require_in_range(f"{path}.stiffness", stiffness, 0.0, MAX_CONTACT_STIFFNESS, low_inclusive=False,
+                         unit=stiffness_unit or "")
     with key_path(path, allowed + ("stiffness",)):
         if stiffness is not None:
             law = contact_law(name, stiffness=stiffness)

@@ -273,31 +273,25 @@ def _fd_beam(beam, material, settings, impact_position):
     raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beam.Beam")
 
 
-#: Largest memory the recorded history may take [bytes] (records and their DataFrame).
-MAX_HISTORY_BYTES = 1 << 30
 #: Node-layer steps per second of the compiled loop, measured on the 2-core reference
 #: machine (benchmarks/bench_fd.py: 15 943 steps × 201 nodes × 20 layers in ≈ 0.09 s).
 NODE_LAYER_STEPS_PER_SECOND = 7e8
-#: Estimated run time [s] above which a run is announced with a warning.
-LONG_RUN_SECONDS = 60.0
 
 
 def _check_cost(n_steps, n_nodes, n_half_layers, settings, n_gauges, dt) -> None:
-    """Refuse a run whose history would not fit in memory; warn before a long one."""
+    """Refuse a run whose history would not fit in memory; warn before a long one (the
+    run budget of :mod:`impactmaps.solvers.run_budget`, shared with the modal solver)."""
+    from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
+
     records = n_steps // settings.history_stride + 1
     history_bytes = records * (7 + 2 * n_gauges) * 8 * 2
-    if history_bytes > MAX_HISTORY_BYTES:
-        needed = math.ceil(history_bytes * settings.history_stride / MAX_HISTORY_BYTES)
-        raise ValueError(
-            f"duration = {settings.duration:g} s is {n_steps} steps of {dt:.3g} s: the history would "
-            f"take {history_bytes / 2**30:.1f} GiB (limit {MAX_HISTORY_BYTES / 2**30:g} GiB); use "
-            f"history_stride ≥ {needed} or a shorter duration")
-    seconds = n_steps * n_nodes * 2 * n_half_layers / NODE_LAYER_STEPS_PER_SECOND
-    if seconds > LONG_RUN_SECONDS:
-        warnings.warn(
-            f"finite-difference run of {n_steps} steps on {n_nodes} nodes: about {seconds:.0f} s "
-            "on a 2-core machine (the step is bounded by the grid's stability limit, ∝ Δx²; fewer "
-            "elements or a shorter duration are faster)", UserWarning, stacklevel=3)
+    needed = math.ceil(history_bytes * settings.history_stride / MEMORY_LIMIT_BYTES)
+    budget = RunBudget(
+        float(history_bytes), n_steps * n_nodes * 2 * n_half_layers / NODE_LAYER_STEPS_PER_SECOND,
+        f"the history would; use history_stride ≥ {needed} or a shorter duration",
+        "the step is bounded by the grid's stability limit, ∝ Δx²; fewer elements or a shorter duration are faster")
+    refuse_or_announce(budget, f"duration = {settings.duration:g} s is {n_steps} steps of {dt:.3g} s: the "
+                               f"finite-difference run of {n_nodes} nodes", stacklevel=4)
 
 
 def _separation_velocity(result, intervals, end_time) -> float:

@@ -237,6 +237,7 @@ def _step_compliance(coef, phi, h, mass, residual):
 _SIGNATURE = numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
     KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
     numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
+    numba.types.Array(numba.types.int64, 1, "C"),
 )
 
 
@@ -261,6 +262,7 @@ def _integrate_impact(
     to_coupled,
     contact_row_spacing,
     step_scale,
+    stop,
 ):
     """Integrate one impact from first touch until re-impact is impossible.
 
@@ -283,6 +285,9 @@ def _integrate_impact(
         (:func:`~impactmaps.solvers.coupled_contact.contact_phase`) and h serves free flight.
     contact_row_spacing, step_scale : longest spacing of recorded rows in an exact contact
         phase [s], and the factor on its step.
+    stop : int64 array of one element; the run ends at its next step once another thread
+        sets it non-zero (Ctrl-C, :func:`impactmaps.solvers.modal.simulate`); read only, it
+        changes no arithmetic.
 
     Returns
     -------
@@ -342,6 +347,9 @@ def _integrate_impact(
     starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)
     coupled = coupled_frequencies.shape[0] > 0
     while True:
+        if stop[0] != 0:
+            hit_limit = 1.0
+            break
         if coupled and starting:
             touchdown = t
             before = steps

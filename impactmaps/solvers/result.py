@@ -121,7 +121,11 @@ class ImpactResult:
         modal solver, ``None`` otherwise.
     converged : bool or None
         Whether F̄max moved by at most the tolerance when the cut-off was doubled and the
-        step halved (``ModalSettings.check_convergence``); ``None``: not checked.
+        step halved, and, for a capped basis, when the cap was halved
+        (``ModalSettings.check_convergence``); ``None``: not checked.
+    convergence_note : str
+        Why the result is not converged (empty otherwise); ``summary()`` writes it as
+        ``converged_note``.
     """
 
     history: pd.DataFrame | None
@@ -146,6 +150,7 @@ class ImpactResult:
     settings: dict = field(default_factory=dict)
     details: Any = None
     converged: bool | None = None
+    convergence_note: str = ""
 
     # -- contacts -----------------------------------------------------------------------
     @property
@@ -283,6 +288,8 @@ class ImpactResult:
             "method": self.method,
             "converged": self.converged,
         }
+        if self.convergence_note:
+            out["converged_note"] = self.convergence_note
         if self.details is not None:
             out.update(self.details.summary())
         return out

@@ -9,6 +9,8 @@ shapes evaluated there, and the static compliance of the modes it leaves out
 
 from __future__ import annotations
 
+import math
+
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
@@ -306,6 +308,25 @@ class Target(ABC):
         (Navier plates, closed-form beams) and :mod:`impactmaps.solvers.mode_budget`
         guards it."""
         return False
+
+    def resolution_limit(self) -> float:
+        """Highest natural frequency [rad/s] the target's largest model resolves.
+
+        ``inf`` by default: the modes are exact at any cut-off (Navier plates, closed-form
+        beams). A target of bounded size (:attr:`bounded_modes`) returns what its largest
+        model resolves (a Ritz plate at its largest basis, a finite-element beam at its
+        largest mesh); a cut-off above it is capped there, and
+        :func:`impactmaps.solvers.modal.simulate` treats the run as capped (another model
+        answers, or the capped basis is reported as such).
+        """
+        return math.inf
+
+    def resolved_mode_count(self) -> int:
+        """Number of modes below :meth:`resolution_limit` (0 when the limit is infinite): what
+        the largest model can integrate. By default :meth:`mode_count` at the limit;
+        a target whose count would need its largest eigen-solution may estimate it."""
+        limit = self.resolution_limit()
+        return int(self.mode_count(limit)) if math.isfinite(limit) else 0
 
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
         """Number of modes with ω_j ≤ ``max_frequency`` [rad/s], participating or not.

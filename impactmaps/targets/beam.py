@@ -404,6 +404,14 @@ class Beam(Target):
         """True when the modes come from a model of bounded size (the finite-element beams)."""
         return self.supports != "ss" and self.theory != "euler"
 
+    def resolution_limit(self) -> float:
+        """Highest frequency [rad/s] the beam's modes resolve: ``inf`` for the closed forms
+        (SS, and Euler with any support), else what the largest finite-element model
+        resolves (:func:`~impactmaps.targets.beam_modes.finite_element_resolution_limit`)."""
+        if not self.bounded_modes:
+            return math.inf
+        return beam_modes.finite_element_resolution_limit(self.section)
+
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes).
 

@@ -25,7 +25,7 @@ from .beam_section import (
     largest_wavenumber,
 )
 
-__all__ = ["finite_element_modes", "finite_element_mode_count", "FE_DEGREE", "FE_RESOLUTION", "FE_MAX_DOFS"]
+__all__ = ["finite_element_modes", "finite_element_mode_count", "finite_element_resolution_limit", "FE_DEGREE", "FE_RESOLUTION", "FE_MAX_DOFS"]
 
 #: Polynomial degree of the deflection field in the finite-element model.
 FE_DEGREE = 24
@@ -295,6 +295,16 @@ def finite_element_mode_count(section: BeamSection, max_frequency: float, *, deg
     resolved = frequency_at_wavenumber(section, FE_RESOLUTION * degree * elements / section.length)
     upper = min(float(max_frequency) ** 2, resolved**2 * (1.0 + 1e-9))
     return count_below(K[free][:, free], M[free][:, free], width, upper)
+
+
+def finite_element_resolution_limit(section: BeamSection, *, degree: int = FE_DEGREE) -> float:
+    """Highest frequency [rad/s] the largest finite-element model (:data:`FE_MAX_DOFS`
+    unknowns) resolves: the resolved frequency of the capped mesh."""
+    per_element = 2 + _bubbles_per_element(section.theory, degree)
+    elements = max(2, (FE_MAX_DOFS - 2) // per_element)
+    while elements > 2 and _dofs(section, elements, degree) > FE_MAX_DOFS:
+        elements -= 1
+    return frequency_at_wavenumber(section, FE_RESOLUTION * degree * elements / section.length)
 
 
 def _capped_elements(section: BeamSection, elements: int, degree: int) -> tuple[int, bool]:

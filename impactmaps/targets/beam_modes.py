@@ -42,7 +42,8 @@ gathers them under one import path.
 from __future__ import annotations
 
 from .beam_euler_modes import classical_euler_modes, euler_roots
-from .beam_fe_modes import FE_DEGREE, FE_MAX_DOFS, FE_RESOLUTION, finite_element_mode_count, finite_element_modes
+from .beam_fe_modes import (FE_DEGREE, FE_MAX_DOFS, FE_RESOLUTION, finite_element_mode_count, finite_element_modes,
+                            finite_element_resolution_limit)
 from .beam_section import BeamSection, ModeSet, largest_wavenumber
 from .beam_sine_modes import simply_supported_count, simply_supported_modes
 from .beam_static import static_compliance
@@ -61,6 +62,7 @@ __all__ = [
     "classical_euler_modes",
     "finite_element_modes",
     "finite_element_mode_count",
+    "finite_element_resolution_limit",
     "static_compliance",
     "FE_DEGREE",
     "FE_RESOLUTION",

@@ -23,7 +23,7 @@ from __future__ import annotations
 import functools
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import ClassVar
 
 import numpy as np
@@ -94,7 +94,8 @@ class Plate(Target):
     -----
     * SSSS uses Navier (exact), other edges the Kirchhoff Ritz basis of
       :mod:`impactmaps.targets.ritz` (cached, basis size chosen from ``max_frequency``).
-    * ``theory="mindlin"`` with edges other than "SSSS" raises ``NotImplementedError``.
+    * ``theory="mindlin"`` with edges other than "SSSS" raises ``ValueError`` (no Mindlin
+      Ritz basis).
     * λ uses the classical static stiffness (:meth:`static_compliance`).
     """
 
@@ -149,9 +150,10 @@ class Plate(Target):
                 "stiffness is zero"
             )
         if self.theory == "mindlin" and self.edges != "SSSS":
-            raise NotImplementedError(
-                f"theory = 'mindlin' is implemented for edges = 'SSSS' only (got {self.edges!r}); "
-                "use theory = 'kirchhoff' for other edges"
+            raise ValueError(
+                f"theory = 'mindlin' is not supported with edges = {self.edges!r}: a Mindlin plate "
+                "has edges = 'SSSS' only (Navier modes); valid: theory = 'kirchhoff' with any edges, "
+                "or theory = 'mindlin' with edges = 'SSSS'"
             )
         require_in_range("shear_correction", self.shear_correction, 0.0, math.inf,
                          low_inclusive=False)
@@ -392,7 +394,7 @@ class Plate(Target):
             Minimum number of modes returned (the lowest ones), ≥ 1.
         contact_radius : float, optional
             Contact-patch radius [m], ≥ 0 and smaller than the distance from the impact
-            point to the nearest edge; SSSS plates only (``NotImplementedError`` for
+            point to the nearest edge; SSSS plates only (``ValueError`` for
             Ritz plates when > 0).
 
         Returns
@@ -419,6 +421,24 @@ class Plate(Target):
         """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
         return self.edges != "SSSS"
 
+    def resolution_limit(self) -> float:
+        """Highest frequency [rad/s] the plate's modes resolve: ``inf`` for SSSS (Navier,
+        exact), else what the largest Ritz basis (:data:`ritz.MAX_FUNCTIONS` per direction)
+        resolves (:attr:`ritz.RitzPlateSolution.resolved_frequency`)."""
+        if self.edges == "SSSS":
+            return math.inf
+        return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
+                                               self.D66, self.mass_per_area)
+
+    def resolved_mode_count(self) -> int:
+        """Modes below :meth:`resolution_limit`: 0 for SSSS (no limit); for a Ritz plate the
+        Navier count of its simply supported twin (same stiffnesses), which differs from
+        the Ritz count by the edges' boundary-layer term only — counting the Ritz modes
+        would take the largest eigen-solution (seconds)."""
+        if self.edges == "SSSS":
+            return 0
+        return plate_navier.navier_mode_count(replace(self, edges="SSSS"), self.resolution_limit(), None)
+
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
         if contact_radius is None:
@@ -426,9 +446,10 @@ class Plate(Target):
         require_in_range("contact_radius", contact_radius, 0.0, self.distance_to_nearest_edge(),
                          high_inclusive=False, unit="m")
         if contact_radius > 0.0 and not self.supports_contact_patch:
-            raise NotImplementedError(
-                f"contact_radius = {contact_radius!r}: the contact patch is implemented for "
-                f"edges = 'SSSS' only (got {self.edges!r})")
+            raise ValueError(
+                f"contact_radius = {contact_radius!r} is not supported with edges = {self.edges!r}: "
+                "the contact patch is available on plates with edges = 'SSSS' only; valid: "
+                "contact_radius = 0 (point load) on other edges")
         return float(contact_radius)
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:

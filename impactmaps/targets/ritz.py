@@ -56,6 +56,7 @@ __all__ = [
     "RitzPlateSolution",
     "boundary_polynomials",
     "ritz_basis_size",
+    "largest_resolved_frequency",
     "solve_ritz_plate",
     "ritz_static_compliance",
     "has_rigid_body_freedom",
@@ -271,6 +272,13 @@ def _resolved_frequency(n_x, n_y, length_x, length_y, D11, D22, D12, D66, mass_p
         omega = math.sqrt((D_along * k2**2 + 2.0 * H * k2 * q2 + D_across * q2**2) / mass_per_area)
         result = min(result, omega)
     return result
+
+
+def largest_resolved_frequency(length_x, length_y, D11, D22, D12, D66, mass_per_area) -> float:
+    """Highest frequency [rad/s] the largest basis (:data:`MAX_FUNCTIONS` per direction)
+    resolves (module rule); arguments as :func:`ritz_basis_size`."""
+    return _resolved_frequency(MAX_FUNCTIONS, MAX_FUNCTIONS, length_x, length_y, D11, D22, D12, D66,
+                               mass_per_area)
 
 
 def _validate(length_x, length_y, D11, D22, D12, D66, mass_per_area, edges, n_x, n_y):

@@ -1,0 +1,325 @@
+"""One run of the modal integrator: the basis, the step, the contact phase, the kernel call.
+
+The per-run worker of :func:`impactmaps.solvers.modal.simulate` (which decides what
+answers, iterates the contact patch and checks convergence): :func:`run_once` builds the
+participating modes below the cut-off with their residual compliance, chooses the time
+step (:mod:`~impactmaps.solvers.time_step`) and the contact phase (exact coupled modes or
+sampled), checks the run's budget (:mod:`~impactmaps.solvers.run_budget`) and calls the
+compiled integrator (:mod:`~impactmaps.solvers.exact_step`) through :class:`KernelInputs`
+and :class:`KernelScalars`.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from .._checks import require_positive
+from ..contact.base import ContactLaw, kernel_pointer
+from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
+from .coupled_contact import CoupledModes, coupled_modes
+from .exact_step import integrate_impact
+from .modal_settings import (
+    ConvergenceWarning,
+    ModalDetails,
+    ModalSettings,
+    _linear_stiffness,
+    _settings_dict,
+    reference_contact_stiffness,
+)
+from .mode_budget import budget_cutoff
+from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
+from .result import ImpactResult, energy_balance_error
+from .run_budget import modal_run_budget, refuse_or_announce
+from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
+
+__all__ = ["run_once", "KernelInputs", "KernelScalars", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
+           "COUPLED_COST_RATIO", "COUPLED_MAX_MODES", "COUPLED_ALWAYS_MODES"]
+
+#: The exact linear contact phase replaces the sampled one when the sampled scheme would
+#: take more than this many times (n + 1)² steps per contact of π/ω (n retained modes):
+#: its set-up, an (n + 1)² eigenproblem, then costs less than the steps it saves
+#: (see :func:`_coupled_phase`) …
+COUPLED_COST_RATIO = 1.0
+#: … and the retained modes are at most this many; below this many modes the set-up costs
+#: microseconds and the exact phase is always taken (a contact then takes ~10–10² steps
+#: instead of ≥ 250).
+COUPLED_MAX_MODES = 400
+COUPLED_ALWAYS_MODES = 32
+_NO_COUPLED_MODES = CoupledModes(np.zeros(0), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)))
+
+#: Columns of the integrator's history array: the common ones, then the structure energy.
+HISTORY_COLUMNS = COMMON_HISTORY_COLUMNS + ("structure_energy_J",)
+
+
+def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
+    """The kernel's history array as a DataFrame, with the impactor's kinetic energy."""
+    frame = pd.DataFrame(history, columns=HISTORY_COLUMNS)
+    frame["impactor_kinetic_energy_J"] = 0.5 * impactor_mass * frame["impactor_velocity_m_s"] ** 2
+    return frame
+
+
+def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None,
+               cap=None) -> ModalBasis:
+    """The participating modes below the cut-off, with the residual the settings ask for
+    (under a contact patch the cut-off is ``patch_cutoff_ratio`` · ω; never above ``cap``
+    [rad/s] when given)."""
+    ratio = settings.cutoff_ratio if contact_radius is None else settings.patch_cutoff_ratio
+    max_frequency = float(ratio * contact_frequency)
+    if cap is not None:
+        max_frequency = min(max_frequency, float(cap))
+    if isinstance(target, Target):  # never more modes than memory allows (simulate's plan)
+        max_frequency = budget_cutoff(target, max_frequency)
+    if isinstance(target, ModalBasis):
+        basis = target.participating().truncate(max_frequency, int(settings.min_modes))
+    elif isinstance(target, Target):
+        options = {} if contact_radius is None else {"contact_radius": contact_radius}
+        basis = _participating_modes(target, max_frequency, int(settings.min_modes), options)
+    else:
+        raise ValueError(f"target = {target!r} is not a Target or a ModalBasis")
+    residual = basis.residual_compliance if settings.residual_flexibility else 0.0
+    return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
+
+
+#: How far :func:`_participating_modes` raises the modes it asks a target for (× min_modes).
+_FLOOR_REQUEST_LIMIT = 64
+
+
+def _participating_modes(target, max_frequency: float, min_modes: int, options: dict) -> ModalBasis:
+    """The participating modes of ``target`` below ``max_frequency`` [rad/s], at least
+    ``min_modes`` of them when it has them.
+
+    The floor counts the modes the impact point sees (:meth:`ModalBasis.participating`:
+    a mode at rest there is dropped, degenerate ones merge), as the maps' basis tables
+    do: asked for four modes, an SS beam struck at mid-span gives two that move it and a
+    square plate struck at its centre one or two, which left heavy impactors
+    under-resolved (plate ζ = 10.9, λ = 0.119: F̄max 0.359 on 2 modes, 0.366 converged).
+    More modes are asked for (doubling) until enough participate — whole: a degenerate group
+    is kept with all its copies, as the maps' tables keep it — or the target has no more.
+    """
+    every = target.modes(max_frequency, min_modes=min_modes, **options)
+    basis = every.participating()
+    if np.searchsorted(basis.frequencies, max_frequency, side="right") >= min_modes:
+        return basis  # the cut-off holds enough modes: the floor plays no part
+    requested = 2 * max(min_modes, 1)
+    while True:
+        every = target.modes(max_frequency, min_modes=requested, **options)
+        basis = every.participating()
+        # a degenerate group at the highest mode asked for may be cut: count the groups below it
+        top = every.frequencies[-1] * (1.0 - DEGENERACY_TOLERANCE) if every.size else 0.0
+        whole = int(np.searchsorted(basis.frequencies, top, side="left"))
+        if whole >= min_modes or every.size < requested or requested >= _FLOOR_REQUEST_LIMIT * min_modes:
+            return basis.truncate(max_frequency, min_modes)
+        requested *= 2
+
+
+def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, time_step: float,
+                   contact_frequency: float, choice: str) -> CoupledModes:
+    """The coupled modes for the exact contact phase, or empty arrays for the sampled one.
+
+    ``choice`` is :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
+    (:mod:`~impactmaps.solvers.coupled_contact`) serves linear laws on undamped modes
+    when the sampled scheme's step ``time_step`` would cost more than the set-up
+    (:data:`COUPLED_COST_RATIO`): in the quasi-static corner the modes the mode
+    floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
+    to ~1/ω_top and a contact took ~10⁷ steps; the exact phase takes ~10².
+    """
+    stiffness = _linear_stiffness(law)
+    sampled_steps = np.pi / (contact_frequency * time_step)
+    cheaper = basis.size < COUPLED_ALWAYS_MODES or sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
+    wanted = choice == "exact" or (choice == "auto" and cheaper)
+    # never beyond COUPLED_MAX_MODES: the set-up holds (n + 1)² matrices
+    if stiffness > 0.0 and wanted and basis.size <= COUPLED_MAX_MODES:
+        coupled = coupled_modes(basis, stiffness, impactor_mass)
+        if coupled is not None:
+            return coupled
+    return _NO_COUPLED_MODES
+
+
+#: Runs estimated above this many seconds (:mod:`~impactmaps.solvers.run_budget`) integrate
+#: in a worker thread, so that Ctrl-C stops them at once (see :func:`_integrate`).
+INTERRUPTIBLE_SECONDS = 0.5
+
+
+def _integrate(interruptible: bool, args: KernelInputs):
+    """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (their ``stop``
+    the kernel's one-element stop flag).
+
+    A compiled loop does not see Ctrl-C (the signal is handled between Python bytecodes).
+    When ``interruptible``, the kernel (which releases the GIL) runs in a worker thread
+    while this thread waits in 0.1 s slices; on ``KeyboardInterrupt`` it sets the stop flag,
+    which the kernel reads at every step, waits for the kernel to return and re-raises.
+    The arithmetic is the kernel's own either way: results are bit for bit those of a direct
+    call. Short runs (most map points) call the kernel directly, without a thread.
+    """
+    if not interruptible:
+        return integrate_impact(*args)
+    import threading
+
+    integrate_impact.compile()  # compiling holds the interpreter: do it here, not in the worker
+    outcome = {}
+    done = threading.Event()  # not Thread.join: a join interrupted by Ctrl-C can return early later
+
+    def work():
+        try:
+            outcome["result"] = integrate_impact(*args)
+        except BaseException as error:  # noqa: BLE001 (handed to the caller's thread)
+            outcome["error"] = error
+        finally:
+            done.set()
+
+    threading.Thread(target=work, name="impactmaps-modal-kernel", daemon=True).start()
+    try:
+        while not done.wait(0.1):
+            pass
+    except KeyboardInterrupt:
+        args.stop[0] = 1
+        done.wait()
+        raise
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["result"]
+
+
+def _kernel_array(values: np.ndarray) -> np.ndarray:
+    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
+    same array when it already is; a copy of a read-only view, such as a cached Ritz
+    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    return np.require(values, dtype=np.float64, requirements=("C", "W"))
+
+
+class KernelInputs(NamedTuple):
+    """The arguments of :data:`~impactmaps.solvers.exact_step.integrate_impact`, by name and
+    in its order (see the kernel for their meaning; SI units)."""
+
+    kernel: object
+    params: np.ndarray
+    linear_stiffness: float
+    frequencies: np.ndarray
+    participation: np.ndarray
+    damping_ratios: np.ndarray
+    residual: float
+    mass: float
+    velocity: float
+    time_step: float
+    max_time: float
+    record: bool
+    max_events: int
+    coupled_frequencies: np.ndarray
+    coupled_force: np.ndarray
+    from_coupled: np.ndarray
+    to_coupled: np.ndarray
+    contact_row_spacing: float
+    step_scale: float
+    stop: np.ndarray
+
+
+class KernelScalars(NamedTuple):
+    """The scalars the integrator returns, by name (SI units)."""
+
+    peak_force: float
+    peak_time: float
+    max_indentation: float
+    final_velocity: float
+    structure_energy: float
+    damping_work: float
+    end_time: float
+    time_limit_reached: float
+    steps: float
+    events_overflow: float
+
+
+def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
+    """(time step [s], coupled modes) chosen automatically (module docstring of
+    :mod:`impactmaps.solvers.modal`): the exact phase where it pays, the step then only for
+    free flight."""
+    omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
+    content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
+
+    def step(cap):
+        return settings.step_scale * min(settings.time_step_ratio / omega_c,
+                                         max(settings.resolve_ratio / omega_top, min(content, cap)))
+
+    time_step = step(STABLE_TOP_STEP / omega_top)
+    coupled = _coupled_phase(basis, law, impactor_mass, time_step, omega_c, settings.contact_phase)
+    if coupled.frequencies.size:
+        # contacts are exact: the step only serves free flight, where every mode moves
+        # exactly, so the stability limit of the sampled contact loop does not apply
+        time_step = step(np.inf)
+    return time_step, coupled
+
+
+def run_once(target, law, params, impactor_mass, velocity, settings, record, time_step,
+             contact_radius=None, cap=None) -> ImpactResult:
+    """One run of :func:`~impactmaps.solvers.modal.simulate` (validated inputs) with a point
+    load or a patch of radius ``contact_radius`` [m], the cut-off capped at ``cap`` [rad/s]
+    when given, the step automatic when ``time_step`` is ``None``."""
+    stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
+    omega_c = float(np.sqrt(stiffness / impactor_mass))
+    basis = _basis_for(target, omega_c, settings, contact_radius, cap)
+    automatic = time_step is None
+    coupled = _NO_COUPLED_MODES
+    if automatic:
+        time_step, coupled = _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings)
+    else:
+        require_positive("time_step", time_step, "s")
+    max_time = settings.max_time_ratio / omega_c
+    budget = modal_run_budget(basis.size, float(time_step), max_time, omega_c, bool(record),
+                              int(settings.max_events), not automatic)
+    refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
+    inputs = KernelInputs(
+        kernel_pointer(law.kernel), params, _linear_stiffness(law), _kernel_array(basis.frequencies),
+        _kernel_array(basis.participation), _kernel_array(basis.damping_ratios), float(basis.residual_compliance),
+        float(impactor_mass), float(velocity), float(time_step), float(max_time), bool(record),
+        int(settings.max_events), coupled.frequencies, coupled.force_row, coupled.from_coupled, coupled.to_coupled,
+        float(settings.time_step_ratio / omega_c), float(settings.step_scale), np.zeros(1, dtype=np.int64))
+    history, intervals, raw = _integrate(budget.seconds > INTERRUPTIBLE_SECONDS, inputs)
+    scalars = KernelScalars._make(raw)
+    if scalars.events_overflow:
+        warnings.warn(
+            f"more than max_events = {settings.max_events} contacts: the run stopped there (time_limit_reached)",
+            RuntimeWarning, stacklevel=4)
+    result = _result(law, inputs, scalars, history if record else None, intervals, omega_c, basis.size, settings,
+                     "exact" if coupled.frequencies.size else "sampled")
+    if result.time_limit_reached:
+        warnings.warn(
+            f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
+            "became impossible; scalars describe a truncated event",
+            ConvergenceWarning, stacklevel=4)
+    return result
+
+
+def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, intervals, omega_c, n_modes,
+            settings: ModalSettings, phase: str) -> ImpactResult:
+    """The :class:`ImpactResult` of a kernel run (``history`` ``None`` when not recorded)."""
+    mass, velocity = inputs.mass, inputs.velocity
+    alpha_max = float(scalars.max_indentation)
+    dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
+    rebound = float(-scalars.final_velocity)
+    return ImpactResult(
+        history=_history_frame(history, mass) if history is not None else None,
+        peak_force=float(scalars.peak_force),
+        peak_time=float(scalars.peak_time),
+        contact_intervals=np.asarray(intervals),
+        max_indentation=alpha_max,
+        permanent_indentation=0.0 if law.elastic else float(law.permanent_indentation(alpha_max)),
+        rebound_velocity=rebound,
+        energy_transferred=float(scalars.structure_energy),
+        contact_dissipation=dissipation,
+        damping_work=float(scalars.damping_work),
+        energy_balance_error=energy_balance_error(
+            mass, velocity, rebound, float(scalars.structure_energy), dissipation, float(scalars.damping_work)),
+        end_time=float(scalars.end_time),
+        time_limit_reached=bool(scalars.time_limit_reached),
+        impactor_mass=float(mass),
+        velocity=float(velocity),
+        contact_frequency=omega_c,
+        n_modes=n_modes,
+        time_step=float(inputs.time_step),
+        method="modal+residual" if settings.residual_flexibility else "modal",
+        settings=_settings_dict(settings),
+        details=ModalDetails(int(scalars.steps), phase),
+    )

@@ -1,0 +1,242 @@
+"""Settings and facts of a modal run: :class:`ModalSettings`, the contact frequency, the patch.
+
+What every part of the modal solver (:mod:`impactmaps.solvers.modal`) reads: the numerical
+settings with their ranges, the extras a run reports (:class:`ModalDetails`), the reference
+contact stiffness that sets the contact frequency, and which load (point or patch) a run
+takes.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import asdict, dataclass, replace
+
+import numpy as np
+
+from .._checks import require_choice, require_in_range, require_positive
+from ..contact.base import ContactLaw
+from .contact_scale import reference_contact_stiffness
+
+__all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
+           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "reference_contact_stiffness",
+           "contact_radius_function"]
+
+#: Loads the modal solver can apply: "auto" (the default) — the patch on shear-deformable
+#: targets that support it (Mindlin SSSS plates), the point load elsewhere; "point" — at
+#: the impact point; "hertz-peak" — as a Hertz pressure over the contact disc at the peak
+#: indentation (targets with ``supports_contact_patch``).
+CONTACT_PATCHES = ("auto", "point", "hertz-peak")
+#: How the modal solver integrates a contact (:attr:`ModalSettings.contact_phase`).
+CONTACT_PHASES = ("auto", "exact", "sampled")
+#: Largest ``cutoff_ratio`` and ``patch_cutoff_ratio``: modes 10⁴ times above the contact
+#: frequency respond statically (the residual compliance carries them); the convergence
+#: check's refinement stops doubling there.
+MAX_CUTOFF_RATIO = 1e4
+#: Largest ``min_modes`` (the refinement stops doubling there).
+MAX_MIN_MODES = 100_000
+#: Largest ``max_events``: the kernel allocates the contact-interval table whole (16 B each).
+MAX_EVENTS = 10_000_000
+
+@dataclass(frozen=True)
+class ModalDetails:
+    """Extras of a modal run (``ImpactResult.details``).
+
+    Attributes
+    ----------
+    steps : int
+        Steps the integrator took (contact and free flight) [-].
+    contact_phase : {"exact", "sampled"}
+        How contacts were integrated: ``"exact"`` through the coupled modes of a linear
+        contact (:mod:`~impactmaps.solvers.coupled_contact`), ``"sampled"`` by the
+        exact-step scheme with the force sampled once per step
+        (:mod:`~impactmaps.solvers.exact_step`).
+    """
+
+    steps: int
+    contact_phase: str
+
+    def summary(self) -> dict:
+        """The details as JSON-ready scalars."""
+        return {"steps": int(self.steps), "contact_phase": self.contact_phase}
+
+
+class ConvergenceWarning(UserWarning):
+    """A result moved by more than the tolerance when the model was refined."""
+
+
+@dataclass(frozen=True)
+class ModalSettings:
+    """Numerical settings of the modal solver (all dimensionless).
+
+    Attributes
+    ----------
+    cutoff_ratio : float
+        Integrate modes with ω_j ≤ ``cutoff_ratio`` · ω (contact frequency); in
+        (0, :data:`MAX_CUTOFF_RATIO`].
+    patch_cutoff_ratio : float
+        The same for a run under the contact patch (``contact_patch``): the patch's
+        modal transform suppresses the modes above a few times the contact frequency
+        (their participation falls like (k a)⁻²) and the residual compliance under the
+        patch carries them statically, so fewer modes suffice. Default 20: on the README
+        plate 20 ω lies within 5e-5 of 40–160 ω (987 modes and 726 steps instead of 3129
+        and 1398), on a thick plate (a/h = 10) within 3e-5, on the shear-soft laminate of
+        ``examples/composite_plate_sun_chen.toml`` within 1.2e-4 (10 ω: 2e-3 there;
+        ``validation/patch_convergence.py``).
+    min_modes : int
+        Integrate at least this many participating modes; in [0, :data:`MAX_MIN_MODES`].
+    residual_flexibility : bool
+        Add the static compliance of the dropped modes in series with the contact.
+    time_step_ratio : float
+        Upper bound of ω·Δt.
+    resolve_ratio : float
+        Upper bound of ω_top·Δt (ω_top: highest coupled frequency in contact), unless
+        the force's content allows a longer step (``force_resolution``).
+    force_resolution : float
+        Tolerated interpolation error of the structural oscillations of the contact
+        force, in units of m_i V0 ω (:func:`content_time_step`); 0 always resolves ω_top.
+    max_time_ratio : float
+        Time limit in units of 1/ω.
+    max_events : int
+        Most contacts a run follows, in [1, :data:`MAX_EVENTS`] (the table is allocated
+        whole); a run with more stops there, with a warning and
+        ``time_limit_reached`` set (a sphere resting on a structure can chatter through
+        millions of contacts that carry no force).
+    check_convergence : bool
+        Re-run with twice the cut-off and half the step and warn
+        (:class:`ConvergenceWarning`) if F̄max moves by more than ``tolerance``.
+    tolerance : float
+        Convergence tolerance on F̄max.
+    step_scale : float
+        Factor in (0, 1] applied to the automatically chosen time step after every rule,
+        the stability cap included, so that a refinement really shortens the step also
+        where the stability limit sets it (:meth:`refined` halves it).
+    contact_patch : {"auto", "point", "hertz-peak"}
+        ``"point"``: the force acts at the impact point. ``"hertz-peak"``: on targets
+        that support it (``target.supports_contact_patch``, SSSS plates) and with a
+        contact law that has a geometry (:func:`contact_radius_function`), the force is
+        a Hertz pressure over the contact disc of the peak indentation,
+        ``a = sqrt(R α_max)``, found by fixed-point iteration (run → α_max → a → run,
+        from the half-space α_max, until a moves by < :data:`PATCH_TOLERANCE`); each
+        mode's participation is multiplied by the patch's modal transform and the
+        residual is the static compliance under the patch. Otherwise the point load.
+        ``"auto"`` (default): ``"hertz-peak"`` on shear-deformable targets that support
+        it (Mindlin SSSS plates), whose point-load deflection diverges logarithmically so
+        that a point-load peak force never converges in the cut-off (≈ −1 % per doubling
+        on the README example); the point load elsewhere — Kirchhoff plates and Euler,
+        Rayleigh and Timoshenko beams, bit for bit as ``"point"`` (their point-load
+        compliance is finite: the patch would move their peak force by O((k a)²) only;
+        a Timoshenko beam's shear deflection under a point load is finite, see
+        ``docs/contact_patch.rst``), laws without a contact geometry (linear laws, the
+        maps' normalised runs) and :class:`ModalBasis` targets. The converged patch
+        result lies 3.8 … 5.9 % under the 3D spring-coupled FE plate of
+        ``validation/fe`` (the point load at 40 ω: 2.7 … 3.4 %, but it keeps falling
+        with the cut-off): the remaining Mindlin-vs-3D near-field difference, see
+        ``docs/contact_patch.rst``.
+    contact_phase : {"auto", "exact", "sampled"}
+        How a contact is integrated. ``"exact"``: through the coupled modes of a linear
+        contact (:mod:`~impactmaps.solvers.coupled_contact`; linear laws on at most
+        :data:`COUPLED_MAX_MODES` undamped modes without rigid-body modes, otherwise
+        sampled); ``"sampled"``: the exact-step
+        scheme with the force sampled once per step; ``"auto"``: the exact phase where it
+        costs less (:data:`COUPLED_COST_RATIO`, :data:`COUPLED_MAX_MODES`). A forced
+        ``time_step`` always runs the sampled scheme.
+    """
+
+    cutoff_ratio: float = 40.0
+    patch_cutoff_ratio: float = 20.0
+    min_modes: int = 4
+    residual_flexibility: bool = True
+    time_step_ratio: float = 0.0125
+    resolve_ratio: float = 0.2
+    force_resolution: float = 1e-5
+    max_time_ratio: float = 5000.0
+    max_events: int = 1000
+    check_convergence: bool = False
+    tolerance: float = 1e-3
+    step_scale: float = 1.0
+    contact_patch: str = "auto"
+    contact_phase: str = "auto"
+
+    def __post_init__(self):
+        require_in_range("cutoff_ratio", self.cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
+        require_in_range("patch_cutoff_ratio", self.patch_cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
+        require_in_range("min_modes", self.min_modes, 0, MAX_MIN_MODES)
+        require_in_range("time_step_ratio", self.time_step_ratio, 0, 1.0, low_inclusive=False)
+        require_in_range("resolve_ratio", self.resolve_ratio, 0, 2.0, low_inclusive=False)
+        require_in_range("force_resolution", self.force_resolution, 0, 1e-2)
+        require_positive("max_time_ratio", self.max_time_ratio)
+        require_in_range("max_events", self.max_events, 1, MAX_EVENTS)
+        require_positive("tolerance", self.tolerance)
+        require_in_range("step_scale", self.step_scale, 0.0, 1.0, low_inclusive=False)
+        require_choice("contact_patch", self.contact_patch, CONTACT_PATCHES)
+        require_choice("contact_phase", self.contact_phase, CONTACT_PHASES)
+
+    def refined(self) -> "ModalSettings":
+        """Settings with twice the cut-off, twice the modes and half the time step (the
+        cut-off and the modes at most :data:`MAX_CUTOFF_RATIO` and :data:`MAX_MIN_MODES`).
+
+        The step rules are applied to the larger basis and the step they give is then
+        halved (:attr:`step_scale`), so the step is really halved even where the
+        stability limit sets it.
+        """
+        return _refined(self)
+
+
+@functools.lru_cache(maxsize=256)
+def _refined(settings: ModalSettings) -> ModalSettings:
+    """:meth:`ModalSettings.refined` (a pure function of frozen settings, cached: every map
+    point asks it once or twice, of a handful of distinct settings)."""
+    return replace(
+        settings,
+        cutoff_ratio=min(2 * settings.cutoff_ratio, MAX_CUTOFF_RATIO),
+        patch_cutoff_ratio=min(2 * settings.patch_cutoff_ratio, MAX_CUTOFF_RATIO),
+        min_modes=min(2 * settings.min_modes, MAX_MIN_MODES),
+        step_scale=settings.step_scale / 2,
+        check_convergence=False,
+    )
+
+
+DEFAULT_SETTINGS = ModalSettings()
+
+def _settings_dict(settings: ModalSettings) -> dict:
+    """``asdict(settings)`` as a fresh dict (its items are cached per settings value)."""
+    return dict(_settings_items(settings))
+
+
+@functools.lru_cache(maxsize=64)
+def _settings_items(settings: ModalSettings) -> tuple:
+    """The fields of frozen, hashable ``settings`` as (name, value) pairs."""
+    return tuple(asdict(settings).items())
+
+
+def _linear_stiffness(law: ContactLaw) -> float:
+    """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
+    form), else 0. The one place that asks whether a law is linear."""
+    return law.linear_stiffness or 0.0
+
+
+def contact_radius_function(law: ContactLaw, effective_radius: float | None = None):
+    """α [m] → contact radius a [m] of ``law``, or ``None`` when the law has no geometry.
+
+    A law with ``loading_contact_radius`` (Stronge) uses it; otherwise
+    ``a = sqrt(R α)`` with R the ``effective_radius`` given [m], else the law's
+    :attr:`~impactmaps.contact.base.ContactLaw.contact_radius_scale`. Laws without
+    either (a linear law, or a Hertz law built from its stiffness alone) give ``None``:
+    the point load.
+    """
+    if hasattr(law, "loading_contact_radius"):
+        return lambda alpha: float(law.loading_contact_radius(alpha))
+    radius = effective_radius if effective_radius is not None else law.contact_radius_scale
+    if radius is None:
+        return None
+    require_positive("effective_radius", radius, "m")
+    return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))
+
+
+def _uses_patch(target, contact_patch: str) -> bool:
+    """Whether ``contact_patch`` asks for the Hertz patch on ``target`` and it supports one."""
+    if not getattr(target, "supports_contact_patch", False):
+        return False
+    if contact_patch == "auto":
+        return getattr(target, "theory", None) == "mindlin"
+    return contact_patch == "hertz-peak"

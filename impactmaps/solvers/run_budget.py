@@ -1,0 +1,159 @@
+"""Budgets before work: what a run will hold and how long it will take, checked before it starts.
+
+One mechanism for every solver (the modal solver, :func:`modal_run_budget`, and the
+finite-difference beam): a run whose estimated memory exceeds :data:`MEMORY_LIMIT_BYTES` is
+refused with a ``ValueError`` that names the knob and the value that fits
+(:func:`refuse_or_announce`); a run estimated to take longer than :data:`LONG_RUN_SECONDS` is
+announced with a :class:`LongRunWarning` before it starts.
+
+Modal estimates (:func:`modal_run_budget`), per run of the compiled integrator
+(:mod:`impactmaps.solvers.exact_step`):
+
+* steps — over :data:`EXPECTED_RUN_RATIO`/ω (a run ends once re-impact is impossible:
+  4 … 13 /ω in the runs measured), at most the ``ceil(max_time/Δt) + 2`` steps to the time
+  limit; with a forced step they may not exceed :data:`MAX_STEPS` (the automatic step is
+  never refused for its count: it follows the modes the contact excites);
+* memory — the contact-interval table, allocated whole (``max_events`` × 16 B); the
+  history of a recorded run, one row per expected step (:data:`HISTORY_ROW_BYTES` per
+  row: the kernel's growing array, its copy and the DataFrame); the modes
+  (:data:`BYTES_PER_MODE`). A run with many re-impacts may outgrow the expected history;
+* time — :data:`SECONDS_PER_MODE_STEP` per mode and expected step.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import NamedTuple
+
+__all__ = ["MEMORY_LIMIT_BYTES", "LONG_RUN_SECONDS", "HISTORY_ROW_BYTES", "INTERVAL_BYTES", "BYTES_PER_MODE",
+           "SECONDS_PER_MODE_STEP", "EXPECTED_RUN_RATIO", "MAX_STEPS", "LongRunWarning", "RunBudget",
+           "refuse_or_announce", "modal_run_budget"]
+
+#: Memory one run may take [B].
+MEMORY_LIMIT_BYTES = 1 << 30
+#: Runs estimated to take longer than this [s] are announced before they start.
+LONG_RUN_SECONDS = 60.0
+#: Bytes per recorded history row of a modal run: 8 float64 in the kernel's array, which
+#: grows by doubling (up to 2×), its trimmed copy (1×) and the DataFrame with the impactor's
+#: kinetic energy (9 columns): (16 + 8 + 9) × 8 = 264 B, rounded up.
+HISTORY_ROW_BYTES = 320
+#: Bytes per entry of the contact-interval table (start and end, float64), allocated whole.
+INTERVAL_BYTES = 16
+#: Bytes per integrated mode (the integrator's 70 float64 per mode and the basis), as the
+#: mode budget counts them (:data:`impactmaps.solvers.mode_budget.BYTES_PER_MODE`).
+BYTES_PER_MODE = 1024
+#: Seconds per mode and step of the compiled integrator, rounded up from 9–48 ns measured on
+#: the 2-core reference machine (SSSS Kirchhoff plate, 72–5810 modes, 261–2049 steps,
+#: sampled contact phase).
+SECONDS_PER_MODE_STEP = 5e-8
+#: Expected length of a modal run in units of 1/ω for the time estimate (measured end times
+#: 4 … 13 /ω on plates from ζ = 0.03 to 1; a run with many re-impacts lasts longer).
+EXPECTED_RUN_RATIO = 20.0
+#: Most expected steps a forced time step may give.
+MAX_STEPS = 10**8
+
+
+class LongRunWarning(UserWarning):
+    """A run is estimated to take longer than :data:`LONG_RUN_SECONDS` (said before it starts)."""
+
+
+class RunBudget(NamedTuple):
+    """The estimate of one run.
+
+    Attributes
+    ----------
+    memory_bytes : float
+        Largest memory the run may take [B].
+    seconds : float
+        Estimated run time [s].
+    advice : str
+        The knob to change and the value that fits, for the refusal.
+    hint : str
+        What makes the run faster, for the announcement (may be empty).
+    """
+
+    memory_bytes: float
+    seconds: float
+    advice: str
+    hint: str = ""
+
+
+def refuse_or_announce(budget: RunBudget, what: str, stacklevel: int = 3) -> None:
+    """Refuse (``ValueError``) a run above :data:`MEMORY_LIMIT_BYTES`, announce
+    (:class:`LongRunWarning`) one estimated above :data:`LONG_RUN_SECONDS`.
+
+    Parameters
+    ----------
+    budget : RunBudget
+        The estimate.
+    what : str
+        The run in words, to start the messages with.
+    stacklevel : int, optional
+        For the warning.
+    """
+    if budget.memory_bytes > MEMORY_LIMIT_BYTES:
+        raise ValueError(f"{what} may take {budget.memory_bytes / 2**30:.3g} GiB (limit "
+                         f"{MEMORY_LIMIT_BYTES / 2**30:g} GiB): {budget.advice}")
+    if budget.seconds > LONG_RUN_SECONDS:
+        hint = f" ({budget.hint})" if budget.hint else ""
+        warnings.warn(f"{what}: about {budget.seconds:.0f} s on a 2-core machine{hint}", LongRunWarning,
+                      stacklevel=stacklevel)
+
+
+def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_frequency: float, record: bool,
+                     max_events: int, forced_step: bool) -> RunBudget:
+    """The :class:`RunBudget` of one run of the modal integrator.
+
+    Parameters
+    ----------
+    n_modes : int
+        Modes integrated.
+    time_step, max_time : float
+        Step Δt and time limit [s].
+    contact_frequency : float
+        ω [rad/s].
+    record : bool
+        Whether the history is kept.
+    max_events : int
+        Capacity of the contact-interval table.
+    forced_step : bool
+        Whether ``time_step`` was given by the user (then it is the knob to name).
+
+    Raises
+    ------
+    ValueError
+        A forced step with more than :data:`MAX_STEPS` expected steps (absurdly short),
+        naming ``time_step`` and the value that fits (memory included).
+    """
+    steps = math.ceil(max_time / time_step) + 2
+    expected = min(steps, math.ceil(EXPECTED_RUN_RATIO / (contact_frequency * time_step)) + 2)
+    room = MEMORY_LIMIT_BYTES - n_modes * BYTES_PER_MODE
+    if max_events * INTERVAL_BYTES > room / 2:
+        return RunBudget(float(MEMORY_LIMIT_BYTES + 1), 0.0, (
+            f"max_events = {max_events} holds {max_events * INTERVAL_BYTES / 2**30:.3g} GiB of contact "
+            f"intervals; valid range: max_events ≤ {int(room / 2 // INTERVAL_BYTES)}"))
+    fits = MAX_STEPS  # the most expected steps that fit (memory of the history, and MAX_STEPS)
+    if record:
+        fits = min(fits, int((room - max_events * INTERVAL_BYTES) // HISTORY_ROW_BYTES))
+    # the step at which the expected steps fit (the time limit, if it binds, scales the same way)
+    step_that_fits = time_step * (expected - 2) / max(fits - 2, 1)
+    if forced_step and expected > MAX_STEPS:
+        raise ValueError(f"time_step = {time_step:.6g} s is invalid: {expected:.3g} steps expected (at most "
+                         f"{MAX_STEPS:.0e}); valid range: time_step ≥ {step_that_fits:.3g} s")
+    rows = expected if record else 0
+    memory = max_events * INTERVAL_BYTES + n_modes * BYTES_PER_MODE + rows * HISTORY_ROW_BYTES
+    seconds = expected * max(n_modes, 1) * SECONDS_PER_MODE_STEP
+    if forced_step:
+        knob = f"time_step ≥ {step_that_fits:.3g} s"
+    elif expected == steps:  # the time limit binds
+        ratio = max_time * contact_frequency
+        knob = (f"max_time_ratio ≤ {ratio * (fits - 2) / steps:.3g} (solver.duration ≤ "
+                f"{max_time * (fits - 2) / steps:.3g} s)")
+    else:
+        knob = "a lighter or heavier impactor (the step follows the modes the contact excites)"
+    advice = (f"the history is expected to hold {rows:.3g} rows (one per step of {time_step:.3g} s over "
+              f"{rows * time_step:.3g} s, time limit {max_time:.3g} s); use {knob}, or run without the "
+              "history (record=False)")
+    hint = "a smaller cutoff_ratio, a shorter time limit or fewer modes are faster"
+    return RunBudget(float(memory), float(seconds), advice, hint)
