@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from impactmaps.solvers.modal import ModalSettings, _basis_for
+from impactmaps.solvers.modal import ModalSettings, basis_for
 from impactmaps.targets.base import ModalBasis
 
 __all__ = ["BaselineResult", "impact_basis", "solve_ivp_fmax", "baseline_like"]
@@ -95,7 +95,7 @@ def impact_basis(target, contact_stiffness: float, impactor_mass: float,
     """
     settings = settings or ModalSettings()
     omega = math.sqrt(contact_stiffness / impactor_mass)
-    return _basis_for(target, omega, settings)
+    return basis_for(target, omega, settings)
 
 
 def solve_ivp_fmax(

@@ -298,12 +298,12 @@ def test_content_estimate_matches_exact_residue_of_the_top_mode(kind, zeta):
     """The step rule's weak-coupling amplitude of the highest mode, m φ² (ω/ω_j)³/(1+Kr)²
     (summed over modes of equal frequency), is within a factor 2 of the exact residue of
     the force at the top coupled root."""
-    from impactmaps.solvers.modal import _basis_for
+    from impactmaps.solvers.modal import basis_for
 
     basis, law, mass = _case(kind, zeta)
     stiffness = float(law.stiffness)
     omega = math.sqrt(stiffness / mass)
-    basis = _basis_for(basis, omega, ModalSettings())
+    basis = basis_for(basis, omega, ModalSettings())
     exact, _top = _exact_top_residue(basis, stiffness, mass)
     top = basis.frequencies.max()
     same = np.isclose(basis.frequencies, top, rtol=1e-12)
@@ -333,13 +333,13 @@ def test_sampled_loop_instability_is_avoided():
     resolved answer."""
     from impactmaps.dimensionless import realise
     from impactmaps.maps.structures import BasisTable, structure_from_name
-    from impactmaps.solvers.modal import STABLE_TOP_STEP, _basis_for, coupled_top_frequency
+    from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency
 
     target = structure_from_name("plate-ssss-kirchhoff").build()
     impactor = realise(target, 95.64154521062957, 14.38075986535519)
     mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
     omega = math.sqrt(stiffness / mass)
-    basis = _basis_for(BasisTable(target, 1e9, 3).truncate(40 * omega, 3), omega, ModalSettings())
+    basis = basis_for(BasisTable(target, 1e9, 3).truncate(40 * omega, 3), omega, ModalSettings())
     assert basis.size == 3 and basis.frequencies.max() > 4e4 * omega
     law = LinearContact(stiffness)
     top = coupled_top_frequency(basis, stiffness, mass)

@@ -73,7 +73,7 @@ def test_sampled_loop_is_stable_up_to_and_beyond_the_cap(name):
     from impactmaps.contact import LinearContact
     from impactmaps.dimensionless import realise
     from impactmaps.maps.structures import BasisTable
-    from impactmaps.solvers.modal import STABLE_TOP_STEP, _basis_for, coupled_top_frequency, simulate
+    from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency, simulate
 
     structure = structure_from_name(name)
     target = structure.build()
@@ -87,7 +87,7 @@ def test_sampled_loop_is_stable_up_to_and_beyond_the_cap(name):
         mass = float(impactors.impactor_mass[k])
         stiffness = float(impactors.contact_stiffness[k])
         omega = math.sqrt(stiffness / mass)
-        basis = _basis_for(table.truncate(40 * omega, 4), omega, settings)
+        basis = basis_for(table.truncate(40 * omega, 4), omega, settings)
         top = coupled_top_frequency(basis, stiffness, mass)
         for ratio in (STABLE_TOP_STEP, 1.5 * STABLE_TOP_STEP):
             with warnings.catch_warnings():

@@ -39,7 +39,7 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
-from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, _basis_for, run_once
+from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, run_once
 from .modal_settings import (
     CONTACT_PATCHES,
     CONTACT_PHASES,
@@ -50,8 +50,8 @@ from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
     ModalSettings,
-    _settings_dict,
-    _uses_patch,
+    settings_dict,
+    uses_patch,
     contact_radius_function,
     reference_contact_stiffness,
 )
@@ -75,8 +75,9 @@ __all__ = [
 ]
 
 #: Names other modules and tests reach through this module (re-exported).
-_REEXPORTED = (HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, _basis_for, DEFAULT_SETTINGS, MAX_CUTOFF_RATIO, MAX_EVENTS,
-               MAX_MIN_MODES, STABLE_TOP_STEP, _uses_patch)
+_uses_patch = uses_patch  # the maps' name for it (until they ask the target)
+_REEXPORTED = (HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, DEFAULT_SETTINGS, MAX_CUTOFF_RATIO, MAX_EVENTS,
+               MAX_MIN_MODES, STABLE_TOP_STEP, uses_patch)
 
 #: The peak-indentation patch radius is iterated until it moves by less than this (relative).
 PATCH_TOLERANCE = 1e-4
@@ -157,7 +158,7 @@ def simulate(
     if params.ndim != 1:
         raise ValueError("simulate() takes a contact law with scalar parameters (one case)")
     radius_of = None
-    if _uses_patch(target, settings.contact_patch):
+    if uses_patch(target, settings.contact_patch):
         radius_of = contact_radius_function(law, effective_radius)
     plan = None
     if isinstance(target, Target):  # the budget of the cut-off the run will use
@@ -167,7 +168,7 @@ def simulate(
         if plan.method == METHODS[2]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
             return asymptote_result(plan, target, law, impactor_mass, velocity, record,
-                                    _settings_dict(settings))
+                                    settings_dict(settings))
         if plan.method == METHODS[1]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
     cap = plan.max_frequency if plan is not None and plan.method == METHODS[1] else None

@@ -26,8 +26,8 @@ from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
     ModalSettings,
-    _linear_stiffness,
-    _settings_dict,
+    linear_stiffness,
+    settings_dict,
     reference_contact_stiffness,
 )
 from .mode_budget import budget_cutoff
@@ -62,7 +62,7 @@ def _history_frame(history: np.ndarray, impactor_mass: float) -> pd.DataFrame:
     return frame
 
 
-def _basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None,
+def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius=None,
                cap=None) -> ModalBasis:
     """The participating modes below the cut-off, with the residual the settings ask for
     (under a contact patch the cut-off is ``patch_cutoff_ratio`` · ω; never above ``cap``
@@ -127,7 +127,7 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
     floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
     to ~1/ω_top and a contact took ~10⁷ steps; the exact phase takes ~10².
     """
-    stiffness = _linear_stiffness(law)
+    stiffness = linear_stiffness(law)
     sampled_steps = np.pi / (contact_frequency * time_step)
     cheaper = basis.size < COUPLED_ALWAYS_MODES or sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
     wanted = choice == "exact" or (choice == "auto" and cheaper)
@@ -259,7 +259,7 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
     when given, the step automatic when ``time_step`` is ``None``."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega_c = float(np.sqrt(stiffness / impactor_mass))
-    basis = _basis_for(target, omega_c, settings, contact_radius, cap)
+    basis = basis_for(target, omega_c, settings, contact_radius, cap)
     automatic = time_step is None
     coupled = _NO_COUPLED_MODES
     if automatic:
@@ -271,7 +271,7 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
                               int(settings.max_events), not automatic)
     refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
     inputs = KernelInputs(
-        kernel_pointer(law.kernel), params, _linear_stiffness(law), _kernel_array(basis.frequencies),
+        kernel_pointer(law.kernel), params, linear_stiffness(law), _kernel_array(basis.frequencies),
         _kernel_array(basis.participation), _kernel_array(basis.damping_ratios), float(basis.residual_compliance),
         float(impactor_mass), float(velocity), float(time_step), float(max_time), bool(record),
         int(settings.max_events), coupled.frequencies, coupled.force_row, coupled.from_coupled, coupled.to_coupled,
@@ -320,6 +320,6 @@ def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, interval
         n_modes=n_modes,
         time_step=float(inputs.time_step),
         method="modal+residual" if settings.residual_flexibility else "modal",
-        settings=_settings_dict(settings),
+        settings=settings_dict(settings),
         details=ModalDetails(int(scalars.steps), phase),
     )

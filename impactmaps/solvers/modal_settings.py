@@ -198,7 +198,7 @@ def _refined(settings: ModalSettings) -> ModalSettings:
 
 DEFAULT_SETTINGS = ModalSettings()
 
-def _settings_dict(settings: ModalSettings) -> dict:
+def settings_dict(settings: ModalSettings) -> dict:
     """``asdict(settings)`` as a fresh dict (its items are cached per settings value)."""
     return dict(_settings_items(settings))
 
@@ -209,7 +209,7 @@ def _settings_items(settings: ModalSettings) -> tuple:
     return tuple(asdict(settings).items())
 
 
-def _linear_stiffness(law: ContactLaw) -> float:
+def linear_stiffness(law: ContactLaw) -> float:
     """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
     form), else 0. The one place that asks whether a law is linear."""
     return law.linear_stiffness or 0.0
@@ -233,7 +233,7 @@ def contact_radius_function(law: ContactLaw, effective_radius: float | None = No
     return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))
 
 
-def _uses_patch(target, contact_patch: str) -> bool:
+def uses_patch(target, contact_patch: str) -> bool:
     """Whether ``contact_patch`` asks for the Hertz patch on ``target`` and it supports one."""
     if not getattr(target, "supports_contact_patch", False):
         return False
