@@ -9,12 +9,9 @@ from __future__ import annotations
 import math
 import sys
 
-from ._common import check, material_from_args, out_dir, refuse, save_figure
+from ._common import check, material_from_args, out_dir, plain_text, refuse, save_figure
 
 __all__ = ["cmd_simulate", "cmd_fd", "cmd_halfspace", "cmd_restitution", "cmd_materials", "cmd_laws"]
-
-#: Largest β for which the closed form of e(β) keeps ~9 significant digits.
-
 
 def _run_case_command(args, solver) -> dict:
     from ..cases import load_case, run_case, write_case_outputs
@@ -116,7 +113,7 @@ def cmd_laws(args) -> dict:
         options = {p.name: (None if p.default is inspect.Parameter.empty else p.default)
                    for p in inspect.signature(cls).parameters.values()}
         out[name] = {"class": f"{cls.__module__}.{cls.__name__}",
-                     "description": (module.__doc__ or cls.__doc__ or "").strip().splitlines()[0],
+                     "description": plain_text((module.__doc__ or cls.__doc__ or "").strip().splitlines()[0]),
                      "options": options}
     return {"laws": out, "options_note": "null: required (SI units); case files build them from the materials"}
 
