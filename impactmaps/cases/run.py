@@ -46,7 +46,7 @@ def case_dimensionless(case: Case) -> dict:
         except ValueError:
             pass  # no yield strength known: keep the reference stiffness
         else:
-            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (seed 001 eqs 9, 10)"
+            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (Christoforou & Yigit 1998, eqs 9, 10)"
     beta = law.impact_number(mass, velocity)
     if case.target_type == "halfspace":
         static = lam = zeta = None
@@ -74,18 +74,32 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
     ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
     |target displacement| at the impact point [m]), the dimensionless numbers of
-    :func:`case_dimensionless`, ``model_warnings`` (the assumptions of the model the run
+    :func:`impactmaps.cases.numbers.case_numbers` — ``zeta``, ``lambda``, ``beta``,
+    ``fmax_normalised`` and ``contact_time_normalised`` in the vocabulary of the law's
+    maps (for a law other than linear the solver's own normalisation moves to
+    ``fmax_normalised_reference``, ``contact_time_normalised_reference``) —,
+    ``model_warnings`` (the assumptions of the model the run
     violates, :func:`impactmaps.validity.validity_warnings`) and the case identity; NaN (a quantity that does not
     exist for this run, e.g. the restitution of a record that ends in contact) becomes
     ``None``.
     """
+    from .numbers import case_numbers
+
     summary = dict(result.summary())
     if result.history is not None and len(result.history):
         deflection = result.history["target_displacement_m"].to_numpy()
         summary["max_deflection_m"] = float(np.max(np.abs(deflection)))
     else:
-        summary["max_deflection_m"] = None
-    summary.update(case_dimensionless(case))
+        moved = getattr(getattr(result, "details", None), "max_target_displacement", None)
+        summary["max_deflection_m"] = None if moved is None else float(moved)
+    numbers = case_numbers(case)
+    if numbers["vocabulary"] != "linear":  # the solver's own basis, under explicit names
+        for key in ("fmax_normalised", "contact_time_normalised"):
+            if key in summary:
+                summary[f"{key}_reference"] = summary.pop(key)
+    summary["fmax_normalised"] = float(result.peak_force) / numbers["force_scale_N"]
+    summary["contact_time_normalised"] = float(result.total_contact_time) / numbers["time_scale_s"]
+    summary.update(numbers)
     summary["model_warnings"] = validity_warnings(case.sphere, case.target_material, case.law,
                                                   case.target, result)
     summary.update({
