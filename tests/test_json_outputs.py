@@ -73,12 +73,11 @@ def test_json_output_is_strict(command, tmp_path, capsys):
     assert status == 0
     values = strict_loads(out)
     assert isinstance(values, dict) and values
-    if command not in ("simulate", "fd"):  # case summaries: null = does not exist for this run
-        for key, value in values.items():
-            if value is None:
-                stem = key.split("_")[0]
-                assert any(k.startswith(stem) and k.endswith("_note") for k in values), \
-                    f"{command}: {key} is null without a companion note"
+    for key, value in values.items():
+        if value is None:
+            stem = key.split("_")[0]
+            assert any(k.startswith(stem) and k.endswith("_note") for k in values), \
+                f"{command}: {key} is null without a companion note"
     shutil.rmtree(tmp_path, ignore_errors=True)
 
 

@@ -45,6 +45,10 @@ __all__ = ["Case", "OutputSettings", "SOLVER_KINDS", "TARGET_TYPES", "parse_case
 TARGET_TYPES = ("beam", "plate", "halfspace")
 #: Solvers a case may ask for (``[solver] kind``).
 SOLVER_KINDS = ("modal", "fd")
+#: Range of ``contact.stiffness`` (K_h [N/m^1.5] or K [N/m]): a diamond sphere of radius
+#: 10 m on diamond has K_h = (4/3) sqrt(R) E* ≈ 2.5e12 N/m^1.5, a soft foam contact
+#: ~1e2; values beyond the range are typing errors (1e300 overflowed later).
+STIFFNESS_RANGE = (1.0e-3, 1.0e15)
 
 _TOP_KEYS = ("name", "description", "impactor", "target", "contact", "solver", "output", "fd")
 _IMPACTOR_KEYS = ("radius", "material", "mass", "density", "velocity")
@@ -236,7 +240,8 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
     units = {key: option.unit for key, option in law_options(name).items()}
     options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)
-    stiffness = number(entries, "stiffness", path, stiffness_unit or "")
+    stiffness = number(entries, "stiffness", path, stiffness_unit or "", low=STIFFNESS_RANGE[0],
+                       high=STIFFNESS_RANGE[1])
     with key_path(path, allowed + ("stiffness",)):
         if stiffness is not None:
             law = contact_law(name, stiffness=stiffness)
@@ -364,6 +369,13 @@ def load_case(path, *, solver: str | None = None) -> Case:
         text = source.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ValueError(f"case file {str(source)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"case file {str(source)!r} is a directory, not a TOML file") from None
+    except OSError as error:
+        raise ValueError(f"case file {str(source)!r} cannot be read: {error.strerror or error}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"case file {str(source)!r} is not UTF-8 text (byte {error.start}): a TOML case "
+                         "file is expected") from None
     try:
         return parse_case(text, name=source.stem, source=source, solver=solver)
     except ValueError as error:

@@ -109,7 +109,39 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
         "solver": case.solver_kind,
         "end_time_s": float(result.end_time),
     })
-    return plain(summary)
+    return _with_null_notes(plain(summary), case, result)
+
+
+def _null_notes(case: Case, result: ImpactResult) -> dict:
+    """Why a summary key is ``null``, for the keys whose reason is known."""
+    in_contact = ("the run ends with the sphere still in contact (time limit reached): it has not left the "
+                  "target; a longer [solver] duration gives it") if result.time_limit_reached else \
+        "not defined for this run"
+    halfspace = "a half-space has no structure stiffness (K_st is infinite)"
+    return {
+        **dict.fromkeys(("restitution", "rebound_velocity_m_s", "rebound_kinetic_energy_J", "energy_loss_J",
+                         "energy_transferred_J", "permanent_indentation_m", "first_contact_duration_s"),
+                        in_contact),
+        "beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
+        "zeta": halfspace, "lambda": halfspace, "static_stiffness_N_m": halfspace,
+        "zeta_linearised": halfspace, "lambda_linearised": halfspace,
+        "converged": "not checked: a finite-difference run has no convergence re-run (compare a run with more "
+                     "[fd] n_elements)" if case.solver_kind == "fd" else ("not checked: answered by the infinite-structure asymptote, exact until the first "
+                      "reflection returns") if result.method == "infinite-structure-asymptote" else
+        "not checked ([solver] check_convergence = false)",
+        "max_deflection_m": "no history: the run gives scalars only",
+    }
+
+
+def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
+    """``summary`` with a ``<key>_note`` beside each top-level ``null`` saying why."""
+    notes = _null_notes(case, result)
+    out = {}
+    for key, value in summary.items():
+        out[key] = value
+        if value is None and f"{key}_note" not in summary:
+            out[f"{key}_note"] = notes.get(key, "does not exist for this run")
+    return out
 
 
 def _run_fd(case: Case) -> ImpactResult:

@@ -40,6 +40,7 @@ from ._common import (
     emit,
     error_text,
     interrupted,
+    plain_text,
 )
 from .commands_cases import (
     cmd_fd,
@@ -73,7 +74,7 @@ def build_parser() -> argparse.ArgumentParser:
     from ..maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS
     from ..targets.options import STRUCTURE_KINDS
 
-    parser = Parser(prog="impactmaps", description=__doc__.splitlines()[0])
+    parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 

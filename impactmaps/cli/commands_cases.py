@@ -18,6 +18,9 @@ def _run_case_command(args, solver) -> dict:
 
     out = out_dir("--out", args.out)
     case = load_case(args.case, solver=solver)
+    if case.solver_kind == "modal" and case.fd_settings is not None:
+        raise ValueError(f"{args.case}: the [fd] section is read by the finite-difference solver only, and this "
+                         "case runs the modal solver: run impactmaps fd, set [solver] kind = \"fd\", or remove [fd]")
     result, summary = run_case(case)
     paths = write_case_outputs(case, result, out)
     summary = dict(summary)
@@ -26,11 +29,6 @@ def _run_case_command(args, solver) -> dict:
         save_figure(result, paths["figure"], normalised=False)
     else:
         summary["history_note"] = f"no history: answered by the {result.details.asymptote} asymptote (scalars only)"
-    if result.method == "infinite-structure-asymptote":
-        summary["converged_note"] = ("not checked: answered by the infinite-structure asymptote, exact "
-                                     "until the first reflection returns")
-    elif summary["converged"] is None:
-        summary["converged_note"] = "not checked ([solver] check_convergence = false)"
     summary["outputs"] = {key: str(value) for key, value in paths.items()}
     return summary
 
