@@ -95,6 +95,24 @@ def out_dir(option: str, value) -> Path:
     return out
 
 
+def text_file(what: str, value) -> Path:
+    """The input file ``value`` (``what``: e.g. ``"sweep file"``), refused — naming it — if it
+    does not exist, is a directory, cannot be read or is not UTF-8 text."""
+    path = Path(value)
+    try:
+        path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise ValueError(f"{what} {str(path)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"{what} {str(path)!r} is a directory, not a TOML file") from None
+    except OSError as error:
+        raise ValueError(f"{what} {str(path)!r} cannot be read: {error.strerror or error}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{what} {str(path)!r} is not UTF-8 text (byte {error.start}): a TOML file is "
+                         "expected") from None
+    return path
+
+
 def plot_file(option: str, value) -> Path:
     """The image file of ``option`` (``--plot``), checked before anything is computed:
     not a directory, an image format matplotlib writes, its directory writable."""

@@ -9,7 +9,7 @@ import math
 import warnings
 from dataclasses import replace
 
-from ._common import check, out_dir, plot_file, refuse, save_figure
+from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -30,6 +30,7 @@ ZETA_H_MAX = 1.0e3
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
     from ..maps.plastic_points import PLASTIC_LAWS
+    from ..maps.store_lock import store_lock
 
     if args.law in PLASTIC_LAWS:
         return _plastic_chart(args)
@@ -48,9 +49,11 @@ def cmd_chart(args) -> dict:
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
-    paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
-                       zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
-                       max_workers=args.workers, overwrite=args.overwrite, law=args.law)
+    out = out_dir("--out", args.out)
+    with store_lock(out / "fmax_map.nc", "--out"):
+        paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
+                           lambdas=args.lambdas, progress=not args.quiet, max_workers=args.workers,
+                           overwrite=args.overwrite, law=args.law)
     return {key: str(value) for key, value in paths.items()}
 
 
@@ -71,15 +74,28 @@ def _plastic_chart(args) -> dict:
 
 
 def cmd_sweep(args) -> dict:
-    from ..maps.config import run_sweep_config
+    from ..maps.config import load_sweep_config
+    from ..maps.store_lock import store_lock
 
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
+    if args.scheduler is not None:
+        refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
+    output = load_sweep_config(text_file("sweep file", args.config))[4]  # validated before anything is written
+    if output.exists() and not output.is_dir():
+        raise ValueError(f"{args.config}: output = {str(output)!r} is a file, not a directory")
+    output = out_dir(f"{args.config}: output", output)
+    with store_lock(output / "sweep.nc", f"{args.config}: output"):
+        return _run_sweep(args)
+
+
+def _run_sweep(args) -> dict:
+    from ..maps.config import run_sweep_config
+
     if args.scheduler is None:
         paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
                                  max_workers=args.workers)
         return {key: str(value) for key, value in paths.items()}
-    refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
     try:
         from dask.distributed import Client
     except ImportError:
