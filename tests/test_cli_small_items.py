@@ -219,3 +219,50 @@ def test_fd_run_ending_in_contact_explains_its_null_restitution(tmp_path):
     assert summary["restitution"] is None and "still in contact" in summary["restitution_note"]
     assert all(f"{key}_note" in summary for key, value in summary.items() if value is None)
     assert not any(isinstance(v, float) and not math.isfinite(v) for v in summary.values())
+
+
+# -- Python API type errors ------------------------------------------------------------------------
+def test_velocity_given_as_a_string_names_the_parameter():
+    """simulate(..., velocity="3") failed deep inside with "unsupported operand type(s) for
+    ** or pow(): 'str' and 'int'"; the checks now refuse strings (NumPy would convert "3")."""
+    from impactmaps.contact import HertzContact
+    from impactmaps.materials import material
+    from impactmaps.solvers.modal import simulate
+    from impactmaps.targets import Plate
+
+    plate = Plate.isotropic(0.3, 0.3, 0.002, material("aluminium-6061-t6"))
+    with pytest.raises(ValueError, match=r"velocity = '3' is a str, not a number \[m/s\]"):
+        simulate(plate, HertzContact(1e10), 0.02, "3")
+    with pytest.raises(ValueError, match=r"length_x = '0.3' is a str"):
+        Plate.isotropic("0.3", 0.3, 0.002, material("aluminium-6061-t6"))
+
+
+def test_require_instance_names_the_parameter_and_the_fix():
+    from impactmaps._checks import require_instance
+    from impactmaps.materials import IsotropicMaterial
+
+    with pytest.raises(TypeError, match=r"material = 'aluminium-6061-t6' is a str, not IsotropicMaterial: use"):
+        require_instance("material", "aluminium-6061-t6", IsotropicMaterial,
+                         "use impactmaps.materials.material('aluminium-6061-t6')")
+
+
+@pytest.mark.xfail(reason="needs the check in impactmaps/targets/plate.py (owned by another helper): "
+                          "require_instance('material', material, IsotropicMaterial, …) in Plate.isotropic")
+def test_plate_material_given_by_name_names_the_parameter():
+    """Plate.isotropic(..., "aluminium-6061-t6") → AttributeError 'str' object has no
+    attribute 'youngs_modulus'."""
+    from impactmaps.targets import Plate
+
+    with pytest.raises((TypeError, ValueError), match="material"):
+        Plate.isotropic(0.3, 0.3, 0.002, "aluminium-6061-t6")
+
+
+@pytest.mark.xfail(reason="needs the check in impactmaps/maps/lookup.py (owned by another helper): refuse "
+                          "law='yc'/'stronge' in lookup, pointing to lookup_plastic")
+def test_lookup_with_a_plastic_law_names_the_parameter():
+    """lookup(..., law="yc") → a NumPy TypeError about boolean indexing: the yc maps have a
+    β axis, so lookup (ζ, λ only) must refuse the law and point to lookup_plastic."""
+    from impactmaps.maps.lookup import lookup
+
+    with pytest.raises(ValueError, match="law"):
+        lookup(0.1, 1.0, structure="beam", theory="euler", law="yc")
