@@ -36,7 +36,7 @@ def strict_loads(text: str):
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
-            "restitution", "materials", "laws")
+            "restitution", "init", "check", "materials", "laws")
 
 
 def _invocations(tmp_path):
@@ -54,6 +54,8 @@ def _invocations(tmp_path):
         "halfspace": ["halfspace", "--law", "yigit-christoforou", "--radius", "0.005", "--velocity", "3",
                       "--material", "structural-steel", "--target-material", "aluminium-6061-t6"],
         "restitution": ["restitution", "--beta", "1e8"],
+        "init": ["init", "plate", str(tmp_path / "plate.toml")],
+        "check": ["check", str(EXAMPLES / "steel_plate_hertz.toml")],
         "materials": ["materials"],
         "laws": ["laws"],
     }
