@@ -50,9 +50,17 @@ def cmd_halfspace(args) -> dict:
         refuse(args, {"--youngs-modulus": "youngs_modulus", "--poisson-ratio": "poisson_ratio",
                        "--density": "density"},
                 "with both --material and --target-material (explicit values stand for a body without a name)")
-    check("--radius", args.radius, what="the sphere radius [m]")
-    check("--velocity", args.velocity, what="the impact velocity [m/s]")
-    check("--mass", args.mass, what="the impactor mass [kg]")
+    from ..cases._toml import UNIT_LIMITS
+    from ..cases.case import IMPACTOR_RANGES
+
+    for option, value, key, what in (("--radius", args.radius, "radius", "the sphere radius [m]"),
+                                     ("--velocity", args.velocity, "velocity", "the impact velocity [m/s]"),
+                                     ("--mass", args.mass, "mass", "the impactor mass [kg]")):
+        low, high = IMPACTOR_RANGES[key]
+        check(option, value, low, high, what, low_inclusive=True, high_inclusive=True)
+    for option, value, unit in (("--youngs-modulus", args.youngs_modulus, "Pa"), ("--density", args.density, "kg/m^3"),
+                                ("--yield-strength", args.yield_strength, "Pa")):
+        check(option, value, 0.0, UNIT_LIMITS[unit], f"the value [{unit}]", high_inclusive=True)
     impactor_material = material_from_args(args, "", "impactor")
     target_material = material_from_args(args, "target_", "target")
     sphere = Sphere(args.radius, impactor_material, args.mass)
