@@ -156,6 +156,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("case", type=Path)
         p.add_argument("--out", default="impactmaps-output",
                        help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
+        p.add_argument("--vary", default=None, metavar="KEY=A:B:N",
+                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B "
+                       "(or KEY=V1,V2,…), e.g. impactor.velocity=0.5:5:10; writes study.csv, study_forces.png and "
+                       "each run in study/run_NNN (reused when the command is run again)")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
     p.add_argument("--law", required=True, help="a contact law (impactmaps laws lists them)")
