@@ -267,6 +267,8 @@ def _main(argv) -> int:
         raise
     except (ValueError, TypeError, OSError, MemoryError) as error:
         message, status = error_text(error), EXIT_BAD_INPUT
+    except NotImplementedError as error:  # a combination the toolkit refuses (e.g. a Mindlin plate's edges)
+        message, status = f"not implemented: {error_text(error)}", EXIT_BAD_INPUT
     except (RuntimeError, ArithmeticError) as error:
         message, status = (f"the computation failed ({type(error).__name__}: {error_text(error)}); the input "
                            "passed the range checks, so one is missing: please report it"), EXIT_FAILED
