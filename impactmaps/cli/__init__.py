@@ -278,8 +278,9 @@ def _main(argv) -> int:
             text = str(warning.message)
             if text not in seen:
                 seen.add(text)
-                print(f"warning: {text}", file=sys.stderr)
+                print(f"warning: {plain_text(text)}", file=sys.stderr)
     if status is not None:
+        message = plain_text(message)
         if args.json:
             print(dumps({"error": message}))
         print(f"impactmaps {args.command}: error: {message}", file=sys.stderr)

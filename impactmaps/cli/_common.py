@@ -33,7 +33,7 @@ def emit(values: dict, as_json: bool, indent: str = "") -> None:
             print(f"{indent}{key}")
             emit(value, False, indent + "  ")
             continue
-        text = f"{value:.6g}" if isinstance(value, float) else ("-" if value is None else str(value))
+        text = f"{value:.6g}" if isinstance(value, float) else ("-" if value is None else plain_text(str(value)))
         print(f"{indent}{key:<{width}}  {text}")
 
 
