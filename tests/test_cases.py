@@ -335,7 +335,7 @@ def test_the_reference_text_is_valid():
     [
         ("[impactor]", "[impacter]", ["impacter", "impactor"]),
         ("length_x = 0.3", "lenght_x = 0.3", ["target.lenght_x", "length_x"]),
-        ("radius = 0.005", "radius = -0.005", ["impactor.radius", "-0.005", "[1e-06, 10]"]),
+        ("radius = 0.005", "radius = -0.005", ["impactor.radius", "-0.005", "(0, 10]"]),
         ("velocity = 1.0", 'velocity = "fast"', ["impactor.velocity", "fast", "not a number"]),
         ("velocity = 1.0\n", "", ["impactor.velocity", "required"]),
         ('law = "hertz"', 'law = "hurtz"', ["contact.law", "hurtz", "'hertz'"]),

@@ -49,10 +49,10 @@ SOLVER_KINDS = ("modal", "fd")
 #: 10 m on diamond has K_h = (4/3) sqrt(R) E* ≈ 2.5e12 N/m^1.5, a soft foam contact
 #: ~1e2; values beyond the range are typing errors (1e300 overflowed later).
 STIFFNESS_RANGE = (1.0e-3, 1.0e15)
-#: Ranges of the impactor keys [SI]: a 1 µm to 10 m sphere, 1e-15 kg (the test cases go to
-#: 1e-12 kg) to 1e9 kg, 1 µm/s to 10 km/s; beyond them the contact scales under- or
-#: overflow (velocity 1e-300 gave a zero contact stiffness, 1e300 an OverflowError).
-IMPACTOR_RANGES = {"radius": (1.0e-6, 10.0), "mass": (1.0e-15, 1.0e9), "velocity": (1.0e-6, 1.0e4)}
+#: Upper bounds of the impactor keys [SI] (all must be > 0): a 10 m sphere, 1e9 kg, 10 km/s;
+#: beyond them the contact scales overflow (a velocity or radius of 1e300 raised
+#: OverflowError). No lower bound: realisations of map points use speeds down to 1e-13 m/s.
+IMPACTOR_RANGES = {"radius": (0.0, 10.0), "mass": (0.0, 1.0e9), "velocity": (0.0, 1.0e4)}
 
 _TOP_KEYS = ("name", "description", "impactor", "target", "contact", "solver", "output", "fd")
 _IMPACTOR_KEYS = ("radius", "material", "mass", "density", "velocity")
@@ -172,12 +172,12 @@ def _impactor(data) -> tuple[Sphere, float]:
         raise ValueError("[impactor] is required (radius, material, velocity)")
     entries = table(data[path], path)
     check_keys(entries, path, _IMPACTOR_KEYS, ("radius", "material", "velocity"))
-    radius = number(entries, "radius", path, "m", low=IMPACTOR_RANGES["radius"][0], low_inclusive=True,
+    radius = number(entries, "radius", path, "m", low=IMPACTOR_RANGES["radius"][0],
                     high=IMPACTOR_RANGES["radius"][1])
-    velocity = number(entries, "velocity", path, "m/s", low=IMPACTOR_RANGES["velocity"][0], low_inclusive=True,
+    velocity = number(entries, "velocity", path, "m/s", low=IMPACTOR_RANGES["velocity"][0],
                       high=IMPACTOR_RANGES["velocity"][1])
     material = isotropic_material(entries["material"], f"{path}.material")
-    mass = number(entries, "mass", path, "kg", low=IMPACTOR_RANGES["mass"][0], low_inclusive=True,
+    mass = number(entries, "mass", path, "kg", low=IMPACTOR_RANGES["mass"][0],
                   high=IMPACTOR_RANGES["mass"][1])
     density = number(entries, "density", path, "kg/m^3")
     if mass is not None and density is not None:

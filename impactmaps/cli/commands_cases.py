@@ -66,7 +66,7 @@ def cmd_halfspace(args) -> dict:
                                      ("--velocity", args.velocity, "velocity", "the impact velocity [m/s]"),
                                      ("--mass", args.mass, "mass", "the impactor mass [kg]")):
         low, high = IMPACTOR_RANGES[key]
-        check(option, value, low, high, what, low_inclusive=True, high_inclusive=True)
+        check(option, value, low, high, what, high_inclusive=True)
     for option, value, unit in (("--youngs-modulus", args.youngs_modulus, "Pa"), ("--density", args.density, "kg/m^3"),
                                 ("--yield-strength", args.yield_strength, "Pa")):
         check(option, value, 0.0, UNIT_LIMITS[unit], f"the value [{unit}]", high_inclusive=True)
