@@ -107,9 +107,8 @@ from .case import (
     load_case,
     parse_case,
 )
-from .numbers import case_numbers
+from .numbers import case_dimensionless, case_numbers
 from .run import (
-    case_dimensionless,
     case_summary,
     read_case_outputs,
     run_case,

@@ -11,7 +11,7 @@ be fed to ``lookup`` and the answers agree:
 * Yigit–Christoforou and default refined Stronge laws — ``β``, ``ζ(m, K_y)``,
   ``λ = K_st/K_y`` and ``F/(m V0 ω_y)``
   (:func:`impactmaps.maps.plastic_points.plastic_numbers`);
-* any other law — the linearised numbers of :func:`impactmaps.cases.case_dimensionless`.
+* any other law — the linearised numbers of :func:`case_dimensionless`.
 
 A Hertz case also reports the linearised numbers (``zeta_linearised``,
 ``lambda_linearised``, basis ``linearised_basis``), never under the map names.
@@ -21,10 +21,11 @@ from __future__ import annotations
 
 import math
 
+from ..contact.sphere import law_for_sphere
+from ..solvers.modal import reference_contact_stiffness
 from .case import Case
-from .run import case_dimensionless
 
-__all__ = ["case_numbers", "NUMBER_BASES"]
+__all__ = ["case_dimensionless", "case_numbers", "NUMBER_BASES"]
 
 #: What ``lambda_basis`` says for the Hertz and plastic vocabularies (linear: the basis of
 #: :func:`case_dimensionless`).
@@ -33,6 +34,51 @@ NUMBER_BASES = {
     "plastic": "linearised stiffness K_y = 1.5 K_h sqrt(α_y): β, ζ(m, K_y), λ = K_st/K_y, F/(m V0 ω_y) "
                "(as lookup --law yc|stronge)",
 }
+
+
+def case_dimensionless(case: Case) -> dict:
+    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
+
+    Returns
+    -------
+    dict
+        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
+        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
+        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
+        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
+    """
+    mass, velocity, law = case.impactor_mass, case.velocity, case.law
+    reference = float(reference_contact_stiffness(law, mass, velocity))
+    if law.linear_stiffness is not None:
+        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
+    else:
+        stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
+        linear_options = {k: v for k, v in case.contact_options.items()
+                          if k in ("target_radius", "yield_strength")}
+        try:
+            linear = law_for_sphere("linear", case.sphere, case.target_material, **linear_options)
+        except ValueError:
+            pass  # no yield strength known: keep the reference stiffness
+        else:
+            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (Christoforou & Yigit 1998, eqs 9, 10)"
+    beta = law.impact_number(mass, velocity)
+    if case.target_type == "halfspace":
+        static = lam = zeta = None
+    else:
+        static = float(case.target.static_stiffness())
+        lam = static / stiffness
+        zeta = float(case.target.loss_factor(mass, stiffness))
+    return {
+        "beta": None if beta is None else float(beta),
+        "lambda": lam,
+        "zeta": zeta,
+        "lambda_basis": basis,
+        "contact_stiffness_N_m": stiffness,
+        "reference_contact_stiffness_N_m": reference,
+        "static_stiffness_N_m": static,
+        "impactor_mass_kg": mass,
+        "velocity_m_s": velocity,
+    }
 
 
 def _plastic(case: Case):

@@ -10,61 +10,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..contact.sphere import law_for_sphere
 from ..jsonio import dumps, plain
-from ..solvers.modal import reference_contact_stiffness, simulate
+from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
 from ..solvers.result import ImpactResult
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
+from .numbers import case_dimensionless, case_numbers
 
 __all__ = ["run_case", "case_dimensionless", "case_summary", "write_case_outputs",
            "read_case_outputs"]
-
-
-def case_dimensionless(case: Case) -> dict:
-    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
-
-    Returns
-    -------
-    dict
-        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
-        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
-        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
-        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
-    """
-    mass, velocity, law = case.impactor_mass, case.velocity, case.law
-    reference = float(reference_contact_stiffness(law, mass, velocity))
-    if law.linear_stiffness is not None:
-        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
-    else:
-        stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
-        linear_options = {k: v for k, v in case.contact_options.items()
-                          if k in ("target_radius", "yield_strength")}
-        try:
-            linear = law_for_sphere("linear", case.sphere, case.target_material, **linear_options)
-        except ValueError:
-            pass  # no yield strength known: keep the reference stiffness
-        else:
-            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (Christoforou & Yigit 1998, eqs 9, 10)"
-    beta = law.impact_number(mass, velocity)
-    if case.target_type == "halfspace":
-        static = lam = zeta = None
-    else:
-        static = float(case.target.static_stiffness())
-        lam = static / stiffness
-        zeta = float(case.target.loss_factor(mass, stiffness))
-    return {
-        "beta": None if beta is None else float(beta),
-        "lambda": lam,
-        "zeta": zeta,
-        "lambda_basis": basis,
-        "contact_stiffness_N_m": stiffness,
-        "reference_contact_stiffness_N_m": reference,
-        "static_stiffness_N_m": static,
-        "impactor_mass_kg": mass,
-        "velocity_m_s": velocity,
-    }
 
 
 def case_summary(case: Case, result: ImpactResult) -> dict:
@@ -83,8 +38,6 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     exist for this run, e.g. the restitution of a record that ends in contact) becomes
     ``None``.
     """
-    from .numbers import case_numbers
-
     summary = dict(result.summary())
     if result.history is not None and len(result.history):
         deflection = result.history["target_displacement_m"].to_numpy()

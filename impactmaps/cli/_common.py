@@ -171,6 +171,13 @@ def material_from_args(args, prefix: str, role: str):
     return IsotropicMaterial(args.youngs_modulus, args.poisson_ratio, args.density, args.yield_strength)
 
 
+def refuse_ignored_fd(case, source) -> None:
+    """Refuse a case the modal solver would run with an ``[fd]`` section it ignores."""
+    if case.solver_kind == "modal" and case.fd_settings is not None:
+        raise ValueError(f"{source}: the [fd] section is read by the finite-difference solver only, and this "
+                         "case runs the modal solver: run impactmaps fd, set [solver] kind = \"fd\", or remove [fd]")
+
+
 # -- running -------------------------------------------------------------------------------
 def save_figure(result, path: Path, normalised: bool) -> str:
     """Write the force/displacement histories of ``result`` to the image file ``path``

@@ -9,9 +9,9 @@ from __future__ import annotations
 import math
 import sys
 
-from ._common import check, material_from_args, out_dir, plain_text, refuse, save_figure
+from ._common import check, material_from_args, out_dir, plain_text, refuse, refuse_ignored_fd, save_figure
 
-__all__ = ["refuse_ignored_fd", "cmd_simulate", "cmd_fd", "cmd_halfspace", "cmd_restitution", "cmd_materials", "cmd_laws"]
+__all__ = ["cmd_simulate", "cmd_fd", "cmd_halfspace", "cmd_restitution", "cmd_materials", "cmd_laws"]
 
 def _run_case_command(args, solver) -> dict:
     from ..cases import load_case, run_case, write_case_outputs
@@ -33,13 +33,6 @@ def _run_case_command(args, solver) -> dict:
         summary["history_note"] = f"no history: answered by the {result.details.asymptote} asymptote (scalars only)"
     summary["outputs"] = {key: str(value) for key, value in paths.items()}
     return summary
-
-
-def refuse_ignored_fd(case, source) -> None:
-    """Refuse a case the modal solver would run with an ``[fd]`` section it ignores."""
-    if case.solver_kind == "modal" and case.fd_settings is not None:
-        raise ValueError(f"{source}: the [fd] section is read by the finite-difference solver only, and this "
-                         "case runs the modal solver: run impactmaps fd, set [solver] kind = \"fd\", or remove [fd]")
 
 
 def cmd_simulate(args) -> dict:

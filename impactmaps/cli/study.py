@@ -103,8 +103,7 @@ def run_study(case_path: Path, vary: str, out: Path, solver=None) -> dict:
     """Run the study ``vary`` of the case file ``case_path`` into ``out`` (see the module docstring)."""
     from ..cases import parse_case, run_case, write_case_outputs
     from ..jsonio import dumps
-    from ._common import text_file
-    from .commands_cases import refuse_ignored_fd
+    from ._common import refuse_ignored_fd, text_file
 
     key, values = parse_vary(vary)
     source = text_file("case file", case_path)
