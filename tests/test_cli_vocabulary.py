@@ -4,6 +4,7 @@ them, so that one command's output can be fed to another (issue 29, item 4)."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -83,9 +84,8 @@ def test_linear_case_numbers_are_the_linear_map_numbers():
     import math
 
     from impactmaps.cases import case_dimensionless, case_numbers, load_case
-    from tests.test_cli_errors import EXAMPLES
 
-    case = load_case(EXAMPLES / "aluminium_beam_linear.toml")
+    case = load_case(Path(__file__).resolve().parent.parent / "examples" / "aluminium_beam_linear.toml")
     numbers, linear = case_numbers(case), case_dimensionless(case)
     assert numbers["zeta"] == linear["zeta"] and numbers["lambda"] == linear["lambda"]
     omega = math.sqrt(linear["contact_stiffness_N_m"] / case.impactor_mass)
