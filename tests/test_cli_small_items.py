@@ -284,3 +284,12 @@ def _one_error_line_of(err: str) -> str:
     lines = [line for line in err.splitlines() if not line.startswith("warning:")]
     assert len(lines) == 1, err
     return lines[0]
+
+
+@pytest.mark.parametrize("zeta, lam, fragment", [("1e-300", "1", "--zeta = 1e-300"), ("1", "1e300", "--lambda = 1e+300"),
+                                                  ("1", "1e-300", "--lambda = 1e-300")])
+def test_simulated_point_out_of_range_names_the_option(zeta, lam, fragment, capsys):
+    """ζ = 1e-300 was refused as 'impactor_mass = 0.0', λ = 1e300 as 'contact_frequency = 0.0':
+    names the user never typed. Refused by range on the options now."""
+    assert main(["point", "--target", "beam-ss", "--zeta", zeta, "--lambda", lam, "--no-check"]) == 2
+    assert fragment in _one_error_line(capsys)

@@ -20,6 +20,11 @@ SCHEDULER_TIMEOUT_S = 5.0
 #: peak is below 1e-4 of the half-space's (F̄max ≈ 0.37 ζ^(-2/3) on the beam, 0.5/ζ on the
 #: plate) and the beam's closed form loses its root (it fails near ζ = 1e250).
 ZETA_MAX = 1.0e6
+#: Range of ζ and λ a simulated point accepts (``point``, ``classify``): beyond it the
+#: realised impactor's mass or contact frequency under- or overflows (ζ = 1e-300 gave a
+#: zero mass, λ = 1e300 a zero contact frequency); within it every run answers (measured
+#: on beam-ss at ζ = 1e-9, λ = 1e±9).
+SIMULATED_RANGE = (1.0e-9, 1.0e9)
 #: Hertz chart ranges: λ_h below this makes the quasi-static Hertz integration fail
 #: (measured: it fails at λ_h = 1e-6 and answers at 3e-6); ζ_h above ZETA_H_MAX makes the
 #: infinite-plate Hertz asymptote run for minutes (measured: 1e3 answers, 1e4 does not).
@@ -113,8 +118,10 @@ def _run_sweep(args) -> dict:
 
 def _point_defaults(args) -> None:
     """Check the point options as typed, then fill in their defaults."""
-    check("--zeta", args.zeta, high=ZETA_MAX, what="the loss factor ζ", high_inclusive=True)
-    check("--lambda", args.lambda_, what="the relative stiffness λ")
+    check("--zeta", args.zeta, SIMULATED_RANGE[0], ZETA_MAX, "the loss factor ζ", low_inclusive=True,
+          high_inclusive=True)
+    check("--lambda", args.lambda_, *SIMULATED_RANGE, "the relative stiffness λ", low_inclusive=True,
+          high_inclusive=True)
     check("--aspect", args.aspect, what="the plate aspect ratio b/a")
     check("--slenderness", args.slenderness, 2.0, what="span/thickness", low_inclusive=True)
     check("--position", args.position, 0.0, 1.0, "the impact point x0/L")
