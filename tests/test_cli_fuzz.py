@@ -209,7 +209,7 @@ def _run(argv, capsys, out_dir: Path):
     finally:
         os.chdir(before)
     captured = capsys.readouterr()
-    if os.environ.get("FUZZ_LOG"):
+    if os.environ.get("FUZZ_LOG"):  # optional: append each command line and its status to this file
         with open(os.environ["FUZZ_LOG"], "a") as log:
             log.write(f"{status} {argv}\n")
     assert status in (0, 2), (argv, status, captured.err[-2000:])
