@@ -17,6 +17,7 @@ __all__ = [
     "require_in_range",
     "require_choice",
     "require_finite",
+    "require_instance",
 ]
 
 
@@ -41,7 +42,14 @@ def describe_outside(value, low: float, high: float) -> str:
 
 
 def require_finite(name: str, value, unit: str = "") -> None:
-    """Raise ``ValueError`` unless every element of ``value`` is a finite real number."""
+    """Raise ``ValueError`` unless every element of ``value`` is a finite real number.
+
+    A string is refused even when it spells a number (``"3"``): NumPy would convert it
+    here, and the arithmetic after the check would fail with a ``TypeError`` naming no
+    parameter.
+    """
+    if isinstance(value, (str, bytes)) or (isinstance(value, np.ndarray) and value.dtype.kind in "USO"):
+        raise ValueError(f"{name} = {value!r} is a {type(value).__name__}, not a number{_unit(unit)}")
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -106,6 +114,17 @@ def require_in_range(
             f"{name} = {_describe(value)} is invalid: valid range is "
             f"{left}{low:g}, {high:g}{right}{_unit(unit)}"
         )
+
+
+def require_instance(name: str, value, kinds, hint: str = "") -> None:
+    """Raise ``TypeError`` unless ``value`` is an instance of ``kinds`` (a type or a tuple of
+    types); the message names the parameter, what was given and ``hint`` (how to build
+    the right object, e.g. ``"impactmaps.materials.material('steel')"``)."""
+    if isinstance(value, kinds):
+        return
+    wanted = " or ".join(k.__name__ for k in (kinds if isinstance(kinds, tuple) else (kinds,)))
+    raise TypeError(f"{name} = {value!r} is a {type(value).__name__}, not {wanted}"
+                    f"{': ' + hint if hint else ''}")
 
 
 def require_choice(name: str, value, choices) -> None:

@@ -11,7 +11,10 @@ Checks (each sentence starts with its tag):
     Elastic law only. Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` (Johnson,
     *Contact Mechanics*, 1985, §4.2) above the mean pressure at full plasticity, taken as
     ``1.6 S_y`` of the softer body (the yield-pressure factor of seed 001 eq 9's
-    derivation): the contact yields, a plastic law should be used.
+    derivation): the contact yields, a plastic law should be used. The softer body is
+    the one of lower yield strength; when only one strength is known, that body counts
+    only if it is also the elastically softer one (a steel ball's strength says nothing
+    about a composite laminate of unknown strength under it).
 ``indentation``
     ``α_max > 0.1 R``: Hertz theory assumes a contact radius small against R
     (``a = sqrt(Rα)``, so ``a/R = sqrt(α/R) > 0.3``).
@@ -133,16 +136,32 @@ def warn_if_invalid(sphere, target_material, law, target, result, *, stacklevel=
     return messages
 
 
-def _yield_strength(*materials):
-    values = [getattr(m, "yield_strength", None) for m in materials]
-    values = [float(v) for v in values if v is not None]
-    return min(values) if values else None
+def _softer_body(sphere_material, target_material):
+    """``(yield strength [Pa], "impactor"|"target")`` of the body whose contact yields first,
+    or None when that cannot be told.
+
+    With both strengths known, the lower one. With one known, only if that body is also
+    the elastically softer one (lower Young's modulus; a laminate: its transverse
+    modulus): a body of unknown strength that is softer — a composite laminate under a
+    steel ball — may yield (or crush) first, so the other body's strength says nothing.
+    """
+    bodies = (("impactor", sphere_material), ("target", target_material))
+    known = [(float(m.yield_strength), name) for name, m in bodies if getattr(m, "yield_strength", None) is not None]
+    if len(known) == 2:
+        return min(known)
+    if not known:
+        return None
+    strength, name = known[0]
+    moduli = {name: float(getattr(m, "youngs_modulus", math.nan)) for name, m in bodies}
+    other = "target" if name == "impactor" else "impactor"
+    return (strength, name) if moduli[name] <= moduli[other] else None
 
 
 def _pressure(sphere, target_material, law, result):
-    strength = _yield_strength(sphere.material, target_material)
-    if not law.elastic or strength is None:
+    softer = _softer_body(sphere.material, target_material)
+    if not law.elastic or softer is None:
         return None
+    strength, body = softer
     modulus = float(effective_modulus(sphere.material.youngs_modulus, sphere.material.poisson_ratio,
                                       target_material.youngs_modulus, target_material.poisson_ratio))
     pressure = float(hertz_peak_pressure(result.peak_force, modulus, float(sphere.radius)))
@@ -151,7 +170,7 @@ def _pressure(sphere, target_material, law, result):
         return None
     return (f"contact pressure: the elastic Hertz peak pressure {pressure:.4g} Pa exceeds the "
             f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} S_y, with S_y = {strength:.4g} Pa of the "
-            "softer body): the contact yields; use a plastic law ('yigit-christoforou' or 'stronge')")
+            f"{body}, the softer body): the contact yields; use a plastic law ('yigit-christoforou' or 'stronge')")
 
 
 def _indentation(sphere, result):
@@ -183,6 +202,9 @@ def _target_displacement(target, result):
         return float(np.max(np.abs(history["target_displacement_m"])))
     if getattr(result, "max_target_displacement", None) is not None:
         return float(result.max_target_displacement)
+    details = getattr(result, "details", None)  # an infinite-structure answer: its own displacement
+    if getattr(details, "max_target_displacement", None) is not None:
+        return float(details.max_target_displacement)
     return float(result.peak_force) * float(target.static_compliance())  # quasi-static estimate
 
 

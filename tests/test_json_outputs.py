@@ -26,7 +26,7 @@ kind = "beam"
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
-            "restitution", "materials", "laws")
+            "restitution", "init", "check", "materials", "laws")
 
 
 def _invocations(tmp_path):
@@ -44,6 +44,8 @@ def _invocations(tmp_path):
         "halfspace": ["halfspace", "--law", "yigit-christoforou", "--radius", "0.005", "--velocity", "3",
                       "--material", "structural-steel", "--target-material", "aluminium-6061-t6"],
         "restitution": ["restitution", "--beta", "1e8"],
+        "init": ["init", "plate", str(tmp_path / "plate.toml")],
+        "check": ["check", str(EXAMPLES / "steel_plate_hertz.toml")],
         "materials": ["materials"],
         "laws": ["laws"],
     }
@@ -63,12 +65,11 @@ def test_json_output_is_strict(command, tmp_path, capsys):
     assert status == 0
     values = strict_json_loads(out)
     assert isinstance(values, dict) and values
-    if command not in ("simulate", "fd"):  # case summaries: null = does not exist for this run
-        for key, value in values.items():
-            if value is None:
-                stem = key.split("_")[0]
-                assert any(k.startswith(stem) and k.endswith("_note") for k in values), \
-                    f"{command}: {key} is null without a companion note"
+    for key, value in values.items():
+        if value is None:
+            stem = key.split("_")[0]
+            assert any(k.startswith(stem) and k.endswith("_note") for k in values), \
+                f"{command}: {key} is null without a companion note"
     shutil.rmtree(tmp_path, ignore_errors=True)
 
 

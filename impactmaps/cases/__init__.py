@@ -84,6 +84,12 @@ Dimensionless numbers of a case (:func:`case_dimensionless`)
   ``K`` (plate: seed 001 eq 34; beam: the corrected eq 38, docs/physics_contract.md §1). ``None`` for
   a half-space.
 
+These are the *linearised* numbers. A run's summary (and ``impactmaps check``) reports
+the numbers in the vocabulary of the law's maps instead (:func:`case_numbers`: the Hertz
+numbers ζ_h, λ_h and F/F_hs for a Hertz law, with the linearised ones as
+``zeta_linearised``, ``lambda_linearised``), as ``impactmaps lookup`` prints them;
+``docs/output_keys.rst`` has the table of keys per law.
+
 Outputs (:func:`write_case_outputs`): ``history.csv`` (``time_s, force_N,
 indentation_m, impactor_displacement_m, impactor_velocity_m_s, target_displacement_m,
 target_velocity_m_s`` and the solver's extras — displacements positive into the target,
@@ -101,8 +107,8 @@ from .case import (
     load_case,
     parse_case,
 )
+from .numbers import case_dimensionless, case_numbers
 from .run import (
-    case_dimensionless,
     case_summary,
     read_case_outputs,
     run_case,
@@ -118,6 +124,7 @@ __all__ = [
     "parse_case",
     "run_case",
     "case_dimensionless",
+    "case_numbers",
     "case_summary",
     "write_case_outputs",
     "read_case_outputs",

@@ -61,9 +61,23 @@ def check_keys(data: dict, path: str, allowed, required=()) -> None:
             raise ValueError(f"{path}.{key} is required (missing from [{path}])")
 
 
+#: Largest value a case-file number of each unit may take, unless its key sets its own
+#: range: far beyond any impact the models describe, so that a typing error (1e300) is
+#: refused by range instead of overflowing in the physics (a 1e300 m/s impact raised
+#: OverflowError). 10 km, 10 km/s, 1e9 kg, 1e13 Pa (diamond: 1.2e12), 1e5 kg/m³ (osmium:
+#: 2.3e4).
+UNIT_LIMITS = {"m": 1.0e4, "m/s": 1.0e4, "kg": 1.0e9, "Pa": 1.0e13, "kg/m^3": 1.0e5}
+
+
 def number(data, key, path, unit="", *, default=None, required=False, low=0.0, high=math.inf,
            low_inclusive=False, high_inclusive=True, integer=False):
-    """A number from ``data[key]`` validated into a range (ValueError naming the key path)."""
+    """A number from ``data[key]`` validated into a range (ValueError naming the key path).
+
+    Without an explicit ``high``, a number with a unit in :data:`UNIT_LIMITS` is bounded
+    by that unit's limit.
+    """
+    if high == math.inf and unit in UNIT_LIMITS:
+        high = UNIT_LIMITS[unit]
     name = _join(path, key)
     if key not in data:
         if required:
@@ -72,7 +86,7 @@ def number(data, key, path, unit="", *, default=None, required=False, low=0.0, h
     value = data[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError(f"{name} = {value!r} is not a number{_unit(unit)}")
-    if integer and int(value) != value:
+    if integer and isinstance(value, float) and not value.is_integer():  # NaN, ±inf too
         raise ValueError(f"{name} = {value!r} is invalid: must be an integer")
     require_in_range(name, value, low, high, low_inclusive=low_inclusive,
                      high_inclusive=high_inclusive, unit=unit)

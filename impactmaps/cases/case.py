@@ -45,6 +45,14 @@ __all__ = ["Case", "OutputSettings", "SOLVER_KINDS", "TARGET_TYPES", "parse_case
 TARGET_TYPES = ("beam", "plate", "halfspace")
 #: Solvers a case may ask for (``[solver] kind``).
 SOLVER_KINDS = ("modal", "fd")
+#: Range of ``contact.stiffness`` (K_h [N/m^1.5] or K [N/m]): a diamond sphere of radius
+#: 10 m on diamond has K_h = (4/3) sqrt(R) E* ≈ 2.5e12 N/m^1.5, a soft foam contact
+#: ~1e2; values beyond the range are typing errors (1e300 overflowed later).
+STIFFNESS_RANGE = (1.0e-3, 1.0e15)
+#: Upper bounds of the impactor keys [SI] (all must be > 0): a 10 m sphere, 1e9 kg, 10 km/s;
+#: beyond them the contact scales overflow (a velocity or radius of 1e300 raised
+#: OverflowError). No lower bound: realisations of map points use speeds down to 1e-13 m/s.
+IMPACTOR_RANGES = {"radius": (0.0, 10.0), "mass": (0.0, 1.0e9), "velocity": (0.0, 1.0e4)}
 
 _TOP_KEYS = ("name", "description", "impactor", "target", "contact", "solver", "output", "fd")
 _IMPACTOR_KEYS = ("radius", "material", "mass", "density", "velocity")
@@ -52,9 +60,6 @@ _TARGET_COMMON = ("type", "material", "plies", "layup", "yield_strength")
 _BEAM_SIZE = ("length", "width", "height")
 _PLATE_SIZE = ("length_x", "length_y", "thickness")
 _TARGET_UNITS = {"impact_position": "m", "impact_point": "m"}
-#: Largest ``[contact] stiffness`` [N/m or N/m^1.5]: a 1 m diamond sphere on diamond has a
-#: Hertz stiffness of ~1e12 N/m^1.5, so 1e15 is beyond any contact.
-MAX_CONTACT_STIFFNESS = 1e15
 #: ``[solver]`` keys that are not ModalSettings fields.
 _SOLVER_EXTRA = ("kind", "duration", "time_step")
 
@@ -167,10 +172,13 @@ def _impactor(data) -> tuple[Sphere, float]:
         raise ValueError("[impactor] is required (radius, material, velocity)")
     entries = table(data[path], path)
     check_keys(entries, path, _IMPACTOR_KEYS, ("radius", "material", "velocity"))
-    radius = number(entries, "radius", path, "m")
-    velocity = number(entries, "velocity", path, "m/s")
+    radius = number(entries, "radius", path, "m", low=IMPACTOR_RANGES["radius"][0],
+                    high=IMPACTOR_RANGES["radius"][1])
+    velocity = number(entries, "velocity", path, "m/s", low=IMPACTOR_RANGES["velocity"][0],
+                      high=IMPACTOR_RANGES["velocity"][1])
     material = isotropic_material(entries["material"], f"{path}.material")
-    mass = number(entries, "mass", path, "kg")
+    mass = number(entries, "mass", path, "kg", low=IMPACTOR_RANGES["mass"][0],
+                  high=IMPACTOR_RANGES["mass"][1])
     density = number(entries, "density", path, "kg/m^3")
     if mass is not None and density is not None:
         raise ValueError("impactor.mass and impactor.density are exclusive: give one of them "
@@ -239,10 +247,8 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
     units = {key: option.unit for key, option in law_options(name).items()}
     options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)
-    stiffness = number(entries, "stiffness", path, stiffness_unit or "")
-    if stiffness is not None:  # absurd values refused by range (stiffer than any contact: 1e300 hung a run)
-        require_in_range(f"{path}.stiffness", stiffness, 0.0, MAX_CONTACT_STIFFNESS, low_inclusive=False,
-                         unit=stiffness_unit or "")
+    stiffness = number(entries, "stiffness", path, stiffness_unit or "", low=STIFFNESS_RANGE[0],
+                       high=STIFFNESS_RANGE[1])
     with key_path(path, allowed + ("stiffness",)):
         if stiffness is not None:
             law = contact_law(name, stiffness=stiffness)
@@ -370,6 +376,13 @@ def load_case(path, *, solver: str | None = None) -> Case:
         text = source.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ValueError(f"case file {str(source)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"case file {str(source)!r} is a directory, not a TOML file") from None
+    except OSError as error:
+        raise ValueError(f"case file {str(source)!r} cannot be read: {error.strerror or error}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"case file {str(source)!r} is not UTF-8 text (byte {error.start}): a TOML case "
+                         "file is expected") from None
     try:
         return parse_case(text, name=source.stem, source=source, solver=solver)
     except ValueError as error:

@@ -10,61 +10,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..contact.sphere import law_for_sphere
 from ..jsonio import dumps, plain
-from ..solvers.modal import reference_contact_stiffness, simulate
+from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
 from ..solvers.result import ImpactResult
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
+from .numbers import case_dimensionless, case_numbers
 
 __all__ = ["run_case", "case_dimensionless", "case_summary", "write_case_outputs",
            "read_case_outputs"]
-
-
-def case_dimensionless(case: Case) -> dict:
-    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
-
-    Returns
-    -------
-    dict
-        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
-        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
-        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
-        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
-    """
-    mass, velocity, law = case.impactor_mass, case.velocity, case.law
-    reference = float(reference_contact_stiffness(law, mass, velocity))
-    if law.linear_stiffness is not None:
-        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
-    else:
-        stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
-        linear_options = {k: v for k, v in case.contact_options.items()
-                          if k in ("target_radius", "yield_strength")}
-        try:
-            linear = law_for_sphere("linear", case.sphere, case.target_material, **linear_options)
-        except ValueError:
-            pass  # no yield strength known: keep the reference stiffness
-        else:
-            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (seed 001 eqs 9, 10)"
-    beta = law.impact_number(mass, velocity)
-    if case.target_type == "halfspace":
-        static = lam = zeta = None
-    else:
-        static = float(case.target.static_stiffness())
-        lam = static / stiffness
-        zeta = float(case.target.loss_factor(mass, stiffness))
-    return {
-        "beta": None if beta is None else float(beta),
-        "lambda": lam,
-        "zeta": zeta,
-        "lambda_basis": basis,
-        "contact_stiffness_N_m": stiffness,
-        "reference_contact_stiffness_N_m": reference,
-        "static_stiffness_N_m": static,
-        "impactor_mass_kg": mass,
-        "velocity_m_s": velocity,
-    }
 
 
 def case_summary(case: Case, result: ImpactResult) -> dict:
@@ -74,7 +29,11 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
     ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
     |target displacement| at the impact point [m]), the dimensionless numbers of
-    :func:`case_dimensionless`, ``model_warnings`` (the assumptions of the model the run
+    :func:`impactmaps.cases.numbers.case_numbers` — ``zeta``, ``lambda``, ``beta``,
+    ``fmax_normalised`` and ``contact_time_normalised`` in the vocabulary of the law's
+    maps (for a law other than linear the solver's own normalisation moves to
+    ``fmax_normalised_reference``, ``contact_time_normalised_reference``) —,
+    ``model_warnings`` (the assumptions of the model the run
     violates, :func:`impactmaps.validity.validity_warnings`) and the case identity; NaN (a quantity that does not
     exist for this run, e.g. the restitution of a record that ends in contact) becomes
     ``None``.
@@ -84,8 +43,16 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
         deflection = result.history["target_displacement_m"].to_numpy()
         summary["max_deflection_m"] = float(np.max(np.abs(deflection)))
     else:
-        summary["max_deflection_m"] = None
-    summary.update(case_dimensionless(case))
+        moved = getattr(getattr(result, "details", None), "max_target_displacement", None)
+        summary["max_deflection_m"] = None if moved is None else float(moved)
+    numbers = case_numbers(case)
+    if numbers["vocabulary"] != "linear":  # the solver's own basis, under explicit names
+        for key in ("fmax_normalised", "contact_time_normalised"):
+            if key in summary:
+                summary[f"{key}_reference"] = summary.pop(key)
+    summary["fmax_normalised"] = float(result.peak_force) / numbers["force_scale_N"]
+    summary["contact_time_normalised"] = float(result.total_contact_time) / numbers["time_scale_s"]
+    summary.update(numbers)
     summary["model_warnings"] = validity_warnings(case.sphere, case.target_material, case.law,
                                                   case.target, result)
     summary.update({
@@ -95,7 +62,39 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
         "solver": case.solver_kind,
         "end_time_s": float(result.end_time),
     })
-    return plain(summary)
+    return _with_null_notes(plain(summary), case, result)
+
+
+def _null_notes(case: Case, result: ImpactResult) -> dict:
+    """Why a summary key is ``null``, for the keys whose reason is known."""
+    in_contact = ("the run ends with the sphere still in contact (time limit reached): it has not left the "
+                  "target; a longer [solver] duration gives it") if result.time_limit_reached else \
+        "not defined for this run"
+    halfspace = "a half-space has no structure stiffness (K_st is infinite)"
+    return {
+        **dict.fromkeys(("restitution", "rebound_velocity_m_s", "rebound_kinetic_energy_J", "energy_loss_J",
+                         "energy_transferred_J", "permanent_indentation_m", "first_contact_duration_s"),
+                        in_contact),
+        "beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
+        "zeta": halfspace, "lambda": halfspace, "static_stiffness_N_m": halfspace,
+        "zeta_linearised": halfspace, "lambda_linearised": halfspace,
+        "converged": "not checked: a finite-difference run has no convergence re-run (compare a run with more "
+                     "[fd] n_elements)" if case.solver_kind == "fd" else ("not checked: answered by the infinite-structure asymptote, exact until the first "
+                      "reflection returns") if result.method == "infinite-structure-asymptote" else
+        "not checked ([solver] check_convergence = false)",
+        "max_deflection_m": "no history: the run gives scalars only",
+    }
+
+
+def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
+    """``summary`` with a ``<key>_note`` beside each top-level ``null`` saying why."""
+    notes = _null_notes(case, result)
+    out = {}
+    for key, value in summary.items():
+        out[key] = value
+        if value is None and f"{key}_note" not in summary:
+            out[f"{key}_note"] = notes.get(key, "does not exist for this run")
+    return out
 
 
 def _run_fd(case: Case) -> ImpactResult:

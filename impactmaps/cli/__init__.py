@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, init, check, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -32,6 +32,7 @@ from pathlib import Path
 from ..jsonio import dumps
 from ._common import (
     EXIT_BAD_INPUT,
+    EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_OK,
     Parser,
@@ -39,6 +40,7 @@ from ._common import (
     emit,
     error_text,
     interrupted,
+    plain_text,
 )
 from .commands_cases import (
     cmd_fd,
@@ -48,6 +50,7 @@ from .commands_cases import (
     cmd_restitution,
     cmd_simulate,
 )
+from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init
 from .commands_maps import (
     SCHEDULER_TIMEOUT_S,
     cmd_asymptote,
@@ -60,6 +63,10 @@ from .commands_maps import (
 
 __all__ = ["main", "build_parser", "SCHEDULER_TIMEOUT_S"]
 
+ZETA_HELP = ("loss factor ζ in (0, 1e6]: how strongly the structure carries the impact energy away in "
+             "waves (plate: ζ = sqrt(m K/(ρh D))/16)")
+LAMBDA_HELP = "relative stiffness λ = K_static/K_contact > 0: structure stiffness over contact stiffness"
+
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
@@ -68,7 +75,7 @@ def build_parser() -> argparse.ArgumentParser:
     from ..maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS
     from ..targets.options import STRUCTURE_KINDS
 
-    parser = Parser(prog="impactmaps", description=__doc__.splitlines()[0])
+    parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -102,12 +109,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("which", choices=("infinite-beam", "infinite-plate", "quasi-static", "half-space"))
     p.add_argument("--case", type=Path, help="a physical case file: the asymptote with the case's contact law, "
                    "in newtons and seconds")
-    p.add_argument("--zeta", type=float, help="loss factor ζ (infinite-beam, infinite-plate)")
-    p.add_argument("--lambda", dest="lambda_", type=float, help="relative stiffness λ (quasi-static)")
+    p.add_argument("--zeta", type=float, help=ZETA_HELP + " (infinite-beam, infinite-plate)")
+    p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float, help=LAMBDA_HELP + " (quasi-static)")
 
     p = add("classify", "regime of an impact at (ζ, λ)", cmd_classify)
-    p.add_argument("--zeta", type=float, required=True)
-    p.add_argument("--lambda", dest="lambda_", type=float, required=True)
+    p.add_argument("--zeta", type=float, required=True, help=ZETA_HELP)
+    p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float, required=True, help=LAMBDA_HELP)
     p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
     p.add_argument("--tolerance", type=float, default=0.1,
                    help="relative distance to an asymptote that counts as on it, in (0, 1] (default 0.1)")
@@ -118,8 +125,9 @@ def build_parser() -> argparse.ArgumentParser:
             cmd_lookup)
     p.add_argument("--structure", choices=STRUCTURE_KINDS)
     p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
-    p.add_argument("--zeta", type=float)
-    p.add_argument("--lambda", dest="lambda_", type=float)
+    p.add_argument("--zeta", type=float, help=ZETA_HELP + "; with --law hertz the Hertz loss factor ζ_h")
+    p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float,
+                   help=LAMBDA_HELP + "; with --law hertz the Hertz relative stiffness λ_h")
     p.add_argument("--law", choices=ALL_MAP_LAWS, default=None,
                    help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
                    "or yc / stronge (with --beta: the elastic-plastic maps over β, ζ, λ)")
@@ -148,6 +156,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("case", type=Path)
         p.add_argument("--out", default="impactmaps-output",
                        help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
+        p.add_argument("--vary", default=None, metavar="KEY=A:B:N",
+                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B "
+                       "(or KEY=V1,V2,…), e.g. impactor.velocity=0.5:5:10; writes study.csv, study_forces.png and "
+                       "each run in study/run_NNN (reused when the command is run again)")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
     p.add_argument("--law", required=True, help="a contact law (impactmaps laws lists them)")
@@ -162,7 +174,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
-    p.add_argument("--beta", type=float, required=True, help="impact number β > 0 (seed 001 eq 11)")
+    p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
+
+    p = add("init", "write a commented case file to start from (beam, plate, laminate or fd)", cmd_init)
+    p.add_argument("kind", choices=sorted(CASE_TEMPLATES), help="what the case describes")
+    p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default KIND.toml)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing FILE")
+
+    p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "
+            "its regime and scales", cmd_check)
+    p.add_argument("case", type=Path, help="the case file (TOML)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
@@ -173,24 +194,46 @@ def _point_arguments(p, with_target=True):
     if with_target:
         p.add_argument("--target", required=True, help="beam-ss, beam-cc, beam-cs, beam-cf, beam-ff, plate-ss, …")
         p.add_argument("--theory", default=None, help="euler|rayleigh|timoshenko or kirchhoff|mindlin")
-        p.add_argument("--zeta", type=float, required=True)
-        p.add_argument("--lambda", dest="lambda_", type=float, required=True)
+        p.add_argument("--zeta", type=float, required=True, help=ZETA_HELP)
+        p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float, required=True, help=LAMBDA_HELP)
     p.add_argument("--aspect", type=float, default=None, help="plate aspect ratio b/a (default 1)")
     p.add_argument("--slenderness", type=float, default=None, help="span/thickness (default 20)")
     p.add_argument("--position", type=float, default=None, help="impact point x0/L (or x0/a) (default 0.5)")
     p.add_argument("--position-y", type=float, default=None, help="impact point y0/b, plates (default 0.5)")
     p.add_argument("--cutoff-ratio", type=float, default=None, help="mode cut-off / contact frequency (default 40)")
     p.add_argument("--time-step-ratio", type=float, default=None,
-                   help="upper bound of ω Δt (default: the solver's, ModalSettings)")
+                   help="upper bound of ω Δt, ω the highest mode kept (default: the modal solver's)")
     p.add_argument("--no-check", action="store_true", help="skip the convergence re-run")
 
 
 def main(argv=None) -> int:
     """Entry point of the ``impactmaps`` command; returns the exit status.
 
-    0 on success, 2 on bad input (one line on stderr; with ``--json`` also
-    ``{"error": …}`` on stdout), 130 when interrupted (Ctrl-C).
+    0 on success (also when the reader of the output goes away early, as ``| head``
+    does: the rest of the output is dropped quietly), 2 on bad input (one line on
+    stderr; with ``--json`` also ``{"error": …}`` on stdout), 1 when a computation fails
+    on input the checks let through (one line: a range check is missing — please report
+    it), 130 when interrupted (Ctrl-C).
     """
+    try:
+        return _main(argv)
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_OK
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's final flush of a closed pipe
+    raises nothing."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # no file descriptor (captured output)
+        pass
+
+
+def _main(argv) -> int:
     from ..maps.store import SweepInterrupted
 
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
@@ -203,6 +246,7 @@ def main(argv=None) -> int:
         print(error, file=sys.stderr)
         return EXIT_BAD_INPUT
     caught = []
+    status = None
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -219,18 +263,27 @@ def main(argv=None) -> int:
             raise
         print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
-    except (ValueError, OSError, MemoryError) as error:
-        if args.json:
-            print(dumps({"error": error_text(error)}))
-        print(f"impactmaps {args.command}: error: {error_text(error)}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+    except BrokenPipeError:
+        raise
+    except (ValueError, TypeError, OSError, MemoryError) as error:
+        message, status = error_text(error), EXIT_BAD_INPUT
+    except NotImplementedError as error:  # a combination the toolkit refuses (e.g. a Mindlin plate's edges)
+        message, status = f"not implemented: {error_text(error)}", EXIT_BAD_INPUT
+    except (RuntimeError, ArithmeticError) as error:
+        message, status = (f"the computation failed ({type(error).__name__}: {error_text(error)}); the input "
+                           "passed the range checks, so one is missing: please report it"), EXIT_FAILED
     finally:
         seen = set()
         for warning in caught:
             text = str(warning.message)
             if text not in seen:
                 seen.add(text)
-                print(f"warning: {text}", file=sys.stderr)
+                print(f"warning: {plain_text(text)}", file=sys.stderr)
+    if status is not None:
+        message = plain_text(message)
+        if args.json:
+            print(dumps({"error": message}))
+        print(f"impactmaps {args.command}: error: {message}", file=sys.stderr)
+        return status
     emit(values, args.json)
     return EXIT_OK
-

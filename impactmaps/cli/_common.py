@@ -13,6 +13,8 @@ from ..jsonio import dumps
 
 #: Exit status of a successful run.
 EXIT_OK = 0
+#: Exit status of a computation that failed on input the checks let through (a missing check).
+EXIT_FAILED = 1
 #: Exit status of bad input (a command line argparse refuses, or a ``ValueError``).
 EXIT_BAD_INPUT = 2
 #: Exit status after Ctrl-C (128 + SIGINT, as a shell reports it).
@@ -31,8 +33,30 @@ def emit(values: dict, as_json: bool, indent: str = "") -> None:
             print(f"{indent}{key}")
             emit(value, False, indent + "  ")
             continue
-        text = f"{value:.6g}" if isinstance(value, float) else ("-" if value is None else str(value))
+        text = f"{value:.6g}" if isinstance(value, float) else ("-" if value is None else plain_text(str(value)))
         print(f"{indent}{key:<{width}}  {text}")
+
+
+#: How the sources the docstrings cite by their project names read for a user.
+_CITATIONS = (
+    (r"seed 001 (eqs?\.? )", r"Christoforou & Yigit 1998, \1"),
+    (r"seed 001", "Christoforou & Yigit 1998"),
+    (r"seed 000", "the paper 'Transient impact response analysis of an elastic-plastic beam'"),
+    (r"PHYSICS\.md", "docs/physics_contract.md"),
+)
+
+
+def plain_text(text: str) -> str:
+    """``text`` (a docstring line) as plain text for a user: no reStructuredText markup
+    (````code````, ``:func:`…```), sources named as a reader finds them (not by the
+    project's seed numbers)."""
+    import re
+
+    text = re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text)
+    text = text.replace("``", "").replace("**", "")
+    for pattern, replacement in _CITATIONS:
+        text = re.sub(pattern, replacement, text)
+    return text
 
 
 # -- option checks -------------------------------------------------------------------------
@@ -57,11 +81,72 @@ def refuse(args, options: dict, reason: str) -> None:
 
 
 def out_dir(option: str, value) -> Path:
-    """The output directory of ``option``; refused if it names an existing file."""
+    """The output directory of ``option``, checked writable before anything is computed.
+
+    Refused (``ValueError`` naming ``option``) if it names an existing file, if a parent
+    is a file, or if the directory — or, when it does not exist yet, its nearest existing
+    parent — does not accept a new file (probed by writing and removing one; nothing is
+    created).
+    """
     out = Path(value)
     if out.exists() and not out.is_dir():
         raise ValueError(f"{option} = {str(out)!r} is a file, not a directory")
+    _probe_writable(option, out)
     return out
+
+
+def text_file(what: str, value) -> Path:
+    """The input file ``value`` (``what``: e.g. ``"sweep file"``), refused — naming it — if it
+    does not exist, is a directory, cannot be read or is not UTF-8 text."""
+    path = Path(value)
+    try:
+        path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise ValueError(f"{what} {str(path)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"{what} {str(path)!r} is a directory, not a TOML file") from None
+    except OSError as error:
+        raise ValueError(f"{what} {str(path)!r} cannot be read: {error.strerror or error}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{what} {str(path)!r} is not UTF-8 text (byte {error.start}): a TOML file is "
+                         "expected") from None
+    return path
+
+
+def plot_file(option: str, value) -> Path:
+    """The image file of ``option`` (``--plot``), checked before anything is computed:
+    not a directory, an image format matplotlib writes, its directory writable."""
+    path = Path(value)
+    if path.is_dir():
+        raise ValueError(f"{option} = {str(path)!r} is a directory: give an image file name (e.g. history.png)")
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    formats = sorted(FigureCanvasBase.get_supported_filetypes())
+    suffix = path.suffix.lower().lstrip(".")
+    if suffix not in formats:
+        raise ValueError(f"{option} = {str(path)!r} is invalid: the file name must end in an image format "
+                         f"({', '.join('.' + f for f in formats)})")
+    _probe_writable(option, path.parent if str(path.parent) else Path("."))
+    return path
+
+
+def _probe_writable(option: str, directory: Path) -> None:
+    """Refuse ``directory`` (or its nearest existing parent) if no file can be created in it."""
+    import tempfile
+
+    existing = directory
+    while not existing.exists():
+        if existing.parent == existing:
+            break
+        existing = existing.parent
+    if existing.exists() and not existing.is_dir():
+        raise ValueError(f"{option} = {str(directory)!r} cannot be created: {str(existing)!r} is a file")
+    try:
+        with tempfile.NamedTemporaryFile(dir=existing, prefix=".impactmaps-probe-"):
+            pass
+    except OSError as error:
+        raise ValueError(f"{option} = {str(directory)!r} is not writable: {error.strerror or error} "
+                         f"({existing})") from None
 
 
 def material_from_args(args, prefix: str, role: str):
@@ -86,13 +171,19 @@ def material_from_args(args, prefix: str, role: str):
     return IsotropicMaterial(args.youngs_modulus, args.poisson_ratio, args.density, args.yield_strength)
 
 
+def refuse_ignored_fd(case, source) -> None:
+    """Refuse a case the modal solver would run with an ``[fd]`` section it ignores."""
+    if case.solver_kind == "modal" and case.fd_settings is not None:
+        raise ValueError(f"{source}: the [fd] section is read by the finite-difference solver only, and this "
+                         "case runs the modal solver: run impactmaps fd, set [solver] kind = \"fd\", or remove [fd]")
+
+
 # -- running -------------------------------------------------------------------------------
 def save_figure(result, path: Path, normalised: bool) -> str:
-    """Write the force/displacement histories of ``result`` to the image file ``path``."""
+    """Write the force/displacement histories of ``result`` to the image file ``path``
+    (checked beforehand with :func:`plot_file`)."""
     from ..plotting import save_impact_history
 
-    if path.exists() and path.is_dir():
-        raise ValueError(f"--plot = {str(path)!r} is a directory: give an image file name (e.g. history.png)")
     save_impact_history(result, path, normalised=normalised)
     return str(path)
 

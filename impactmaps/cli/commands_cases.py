@@ -9,18 +9,20 @@ from __future__ import annotations
 import math
 import sys
 
-from ._common import check, material_from_args, out_dir, refuse, save_figure
+from ._common import check, material_from_args, out_dir, plain_text, refuse, refuse_ignored_fd, save_figure
 
 __all__ = ["cmd_simulate", "cmd_fd", "cmd_halfspace", "cmd_restitution", "cmd_materials", "cmd_laws"]
-
-#: Largest β for which the closed form of e(β) keeps ~9 significant digits.
-
 
 def _run_case_command(args, solver) -> dict:
     from ..cases import load_case, run_case, write_case_outputs
 
     out = out_dir("--out", args.out)
+    if getattr(args, "vary", None) is not None:
+        from .study import run_study
+
+        return run_study(args.case, args.vary, out, solver=solver)
     case = load_case(args.case, solver=solver)
+    refuse_ignored_fd(case, args.case)
     result, summary = run_case(case)
     paths = write_case_outputs(case, result, out)
     summary = dict(summary)
@@ -29,11 +31,6 @@ def _run_case_command(args, solver) -> dict:
         save_figure(result, paths["figure"], normalised=False)
     else:
         summary["history_note"] = f"no history: answered by the {result.details.asymptote} asymptote (scalars only)"
-    if result.method == "infinite-structure-asymptote":
-        summary["converged_note"] = ("not checked: answered by the infinite-structure asymptote, exact "
-                                     "until the first reflection returns")
-    elif summary["converged"] is None:
-        summary["converged_note"] = "not checked ([solver] check_convergence = false)"
     summary["outputs"] = {key: str(value) for key, value in paths.items()}
     return summary
 
@@ -55,9 +52,17 @@ def cmd_halfspace(args) -> dict:
         refuse(args, {"--youngs-modulus": "youngs_modulus", "--poisson-ratio": "poisson_ratio",
                        "--density": "density"},
                 "with both --material and --target-material (explicit values stand for a body without a name)")
-    check("--radius", args.radius, what="the sphere radius [m]")
-    check("--velocity", args.velocity, what="the impact velocity [m/s]")
-    check("--mass", args.mass, what="the impactor mass [kg]")
+    from ..cases._toml import UNIT_LIMITS
+    from ..cases.case import IMPACTOR_RANGES
+
+    for option, value, key, what in (("--radius", args.radius, "radius", "the sphere radius [m]"),
+                                     ("--velocity", args.velocity, "velocity", "the impact velocity [m/s]"),
+                                     ("--mass", args.mass, "mass", "the impactor mass [kg]")):
+        low, high = IMPACTOR_RANGES[key]
+        check(option, value, low, high, what, high_inclusive=True)
+    for option, value, unit in (("--youngs-modulus", args.youngs_modulus, "Pa"), ("--density", args.density, "kg/m^3"),
+                                ("--yield-strength", args.yield_strength, "Pa")):
+        check(option, value, 0.0, UNIT_LIMITS[unit], f"the value [{unit}]", high_inclusive=True)
     impactor_material = material_from_args(args, "", "impactor")
     target_material = material_from_args(args, "target_", "target")
     sphere = Sphere(args.radius, impactor_material, args.mass)
@@ -116,7 +121,7 @@ def cmd_laws(args) -> dict:
         options = {p.name: (None if p.default is inspect.Parameter.empty else p.default)
                    for p in inspect.signature(cls).parameters.values()}
         out[name] = {"class": f"{cls.__module__}.{cls.__name__}",
-                     "description": (module.__doc__ or cls.__doc__ or "").strip().splitlines()[0],
+                     "description": plain_text((module.__doc__ or cls.__doc__ or "").strip().splitlines()[0]),
                      "options": options}
     return {"laws": out, "options_note": "null: required (SI units); case files build them from the materials"}
 

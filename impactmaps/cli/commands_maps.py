@@ -8,29 +8,57 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import replace
-from pathlib import Path
 
-from ._common import check, out_dir, refuse, save_figure
+from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
 
 #: Seconds to wait for a Dask scheduler (``sweep --scheduler``).
 SCHEDULER_TIMEOUT_S = 5.0
+#: Largest loss factor ζ the normalised commands accept: beyond it the infinite-structure
+#: peak is below 1e-4 of the half-space's (F̄max ≈ 0.37 ζ^(-2/3) on the beam, 0.5/ζ on the
+#: plate) and the beam's closed form loses its root (it fails near ζ = 1e250).
+ZETA_MAX = 1.0e6
+#: Range of ζ and λ a simulated point accepts (``point``, ``classify``): beyond it the
+#: realised impactor's mass or contact frequency under- or overflows (ζ = 1e-300 gave a
+#: zero mass, λ = 1e300 a zero contact frequency); within it every run answers (measured
+#: on beam-ss at ζ = 1e-9, λ = 1e±9).
+SIMULATED_RANGE = (1.0e-9, 1.0e9)
+#: Hertz chart ranges: λ_h below this makes the quasi-static Hertz integration fail
+#: (measured: it fails at λ_h = 1e-6 and answers at 3e-6); ζ_h above ZETA_H_MAX makes the
+#: infinite-plate Hertz asymptote run for minutes (measured: 1e3 answers, 1e4 does not).
+HERTZ_LAMBDA_MIN = 1.0e-5
+ZETA_H_MAX = 1.0e3
 
 
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
     from ..maps.plastic_points import PLASTIC_LAWS
+    from ..maps.store_lock import store_lock
 
     if args.law in PLASTIC_LAWS:
         return _plastic_chart(args)
+    refuse(args, {"--betas": "betas"}, f"with --law {args.law} (β is a number of the elastic-plastic laws "
+           "yc and stronge)")
+    if args.law == "hertz":
+        if args.lambdas is not None:
+            for value in args.lambdas:
+                check("--lambdas", value, HERTZ_LAMBDA_MIN, what="each Hertz relative stiffness λ_h",
+                      low_inclusive=True)
+        check("--zeta-range", args.zeta_range[1], high=ZETA_H_MAX, what="the largest Hertz loss factor ζ_h",
+              high_inclusive=True)
+    else:
+        check("--zeta-range", args.zeta_range[1], high=ZETA_MAX, what="the largest loss factor ζ",
+              high_inclusive=True)
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
-    paths = make_chart(out_dir=out_dir("--out", args.out), zeta_range=tuple(args.zeta_range),
-                       zeta_count=args.zeta_count, lambdas=args.lambdas, progress=not args.quiet,
-                       max_workers=args.workers, overwrite=args.overwrite, law=args.law)
+    out = out_dir("--out", args.out)
+    with store_lock(out / "fmax_map.nc", "--out"):
+        paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
+                           lambdas=args.lambdas, progress=not args.quiet, max_workers=args.workers,
+                           overwrite=args.overwrite, law=args.law)
     return {key: str(value) for key, value in paths.items()}
 
 
@@ -51,15 +79,28 @@ def _plastic_chart(args) -> dict:
 
 
 def cmd_sweep(args) -> dict:
-    from ..maps.config import run_sweep_config
+    from ..maps.config import load_sweep_config
+    from ..maps.store_lock import store_lock
 
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
+    if args.scheduler is not None:
+        refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
+    output = load_sweep_config(text_file("sweep file", args.config))[4]  # validated before anything is written
+    if output.exists() and not output.is_dir():
+        raise ValueError(f"{args.config}: output = {str(output)!r} is a file, not a directory")
+    output = out_dir(f"{args.config}: output", output)
+    with store_lock(output / "sweep.nc", f"{args.config}: output"):
+        return _run_sweep(args)
+
+
+def _run_sweep(args) -> dict:
+    from ..maps.config import run_sweep_config
+
     if args.scheduler is None:
         paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
                                  max_workers=args.workers)
         return {key: str(value) for key, value in paths.items()}
-    refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
     try:
         from dask.distributed import Client
     except ImportError:
@@ -77,8 +118,10 @@ def cmd_sweep(args) -> dict:
 
 def _point_defaults(args) -> None:
     """Check the point options as typed, then fill in their defaults."""
-    check("--zeta", args.zeta, what="the loss factor ζ")
-    check("--lambda", args.lambda_, what="the relative stiffness λ")
+    check("--zeta", args.zeta, SIMULATED_RANGE[0], ZETA_MAX, "the loss factor ζ", low_inclusive=True,
+          high_inclusive=True)
+    check("--lambda", args.lambda_, *SIMULATED_RANGE, "the relative stiffness λ", low_inclusive=True,
+          high_inclusive=True)
     check("--aspect", args.aspect, what="the plate aspect ratio b/a")
     check("--slenderness", args.slenderness, 2.0, what="span/thickness", low_inclusive=True)
     check("--position", args.position, 0.0, 1.0, "the impact point x0/L")
@@ -163,6 +206,7 @@ def cmd_point(args) -> dict:
     target = structure.build()
     settings = _settings_from_args(args)
     plot = getattr(args, "plot", None)
+    plot = None if plot is None else plot_file("--plot", plot)
     checked = settings.check_convergence
     result = _simulate_point(structure, target, args, replace(settings, check_convergence=False),
                              record=plot is not None)
@@ -203,7 +247,7 @@ def cmd_point(args) -> dict:
     if result.method == "infinite-structure-asymptote":
         values["asymptote"] = result.details.asymptote
     if plot is not None:
-        values["plot"] = save_figure(result, Path(plot), normalised=True)
+        values["plot"] = save_figure(result, plot, normalised=True)
         values["plot_note"] = "the history of the run at the given settings (the value above is the refined one)"
     return values
 
@@ -231,7 +275,7 @@ def cmd_asymptote(args) -> dict:
     refuse(args, {"--lambda": "lambda_"}, f"with the {args.which} asymptote (it depends on ζ only)")
     if args.zeta is None:
         raise ValueError(f"--zeta is required for the {args.which} asymptote (valid range (0, inf))")
-    check("--zeta", args.zeta, what="the loss factor ζ")
+    check("--zeta", args.zeta, high=ZETA_MAX, what="the loss factor ζ", high_inclusive=True)
     if args.which == "infinite-plate":
         peak, contact = asymptotes.infinite_plate_peak(args.zeta), asymptotes.infinite_plate_contact_time(args.zeta)
     else:
@@ -321,6 +365,7 @@ def cmd_lookup(args) -> dict:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
         return lookup_case(case, build=not args.no_build, notify=lambda line: print(line, file=sys.stderr))
+    refuse(args, {"--no-build": "no_build"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     from ..maps.plastic_points import PLASTIC_LAWS

@@ -1,0 +1,146 @@
+"""The normalised numbers of a case in the vocabulary of its contact law's maps.
+
+Every command that prints ``zeta``, ``lambda``, ``beta`` or ``fmax_normalised`` for a
+physical case means by them what the maps of the case's contact law mean
+(``docs/output_keys.rst`` has the table), so that a number printed by ``simulate`` can
+be fed to ``lookup`` and the answers agree:
+
+* linear law — ``ζ(m, K)``, ``λ = K_st/K``, ``F/(m V0 ω)`` with ``ω = sqrt(K/m)``;
+* Hertz law — the Hertz numbers ``ζ_h``, ``λ_h`` and ``F/F_hs``
+  (:func:`impactmaps.hertz_similarity.hertz_numbers`);
+* Yigit–Christoforou and default refined Stronge laws — ``β``, ``ζ(m, K_y)``,
+  ``λ = K_st/K_y`` and ``F/(m V0 ω_y)``
+  (:func:`impactmaps.maps.plastic_points.plastic_numbers`);
+* any other law — the linearised numbers of :func:`case_dimensionless`.
+
+A Hertz case also reports the linearised numbers (``zeta_linearised``,
+``lambda_linearised``, basis ``linearised_basis``), never under the map names.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..contact.sphere import law_for_sphere
+from ..solvers.modal import reference_contact_stiffness
+from .case import Case
+
+__all__ = ["case_dimensionless", "case_numbers", "NUMBER_BASES"]
+
+#: What ``lambda_basis`` says for the Hertz and plastic vocabularies (linear: the basis of
+#: :func:`case_dimensionless`).
+NUMBER_BASES = {
+    "hertz": "Hertz numbers: ζ_h = ζ(m, K_eq), λ_h = K_st/K_eq, F/F_hs, K_eq = m V0²/α_m² (as lookup --law hertz)",
+    "plastic": "linearised stiffness K_y = 1.5 K_h sqrt(α_y): β, ζ(m, K_y), λ = K_st/K_y, F/(m V0 ω_y) "
+               "(as lookup --law yc|stronge)",
+}
+
+
+def case_dimensionless(case: Case) -> dict:
+    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
+
+    Returns
+    -------
+    dict
+        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
+        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
+        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
+        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
+    """
+    mass, velocity, law = case.impactor_mass, case.velocity, case.law
+    reference = float(reference_contact_stiffness(law, mass, velocity))
+    if law.linear_stiffness is not None:
+        stiffness, basis = float(law.linear_stiffness), "linear law stiffness K"
+    else:
+        stiffness, basis = reference, "solver reference stiffness (loading tangent at the half-space peak indentation)"
+        linear_options = {k: v for k, v in case.contact_options.items()
+                          if k in ("target_radius", "yield_strength")}
+        try:
+            linear = law_for_sphere("linear", case.sphere, case.target_material, **linear_options)
+        except ValueError:
+            pass  # no yield strength known: keep the reference stiffness
+        else:
+            stiffness, basis = float(linear.linear_stiffness), "linearised contact stiffness K_y (Christoforou & Yigit 1998, eqs 9, 10)"
+    beta = law.impact_number(mass, velocity)
+    if case.target_type == "halfspace":
+        static = lam = zeta = None
+    else:
+        static = float(case.target.static_stiffness())
+        lam = static / stiffness
+        zeta = float(case.target.loss_factor(mass, stiffness))
+    return {
+        "beta": None if beta is None else float(beta),
+        "lambda": lam,
+        "zeta": zeta,
+        "lambda_basis": basis,
+        "contact_stiffness_N_m": stiffness,
+        "reference_contact_stiffness_N_m": reference,
+        "static_stiffness_N_m": static,
+        "impactor_mass_kg": mass,
+        "velocity_m_s": velocity,
+    }
+
+
+def _plastic(case: Case):
+    """``plastic_numbers`` of the case, or None when its law is not a plastic map law."""
+    try:
+        from ..maps.plastic_points import plastic_law_of, plastic_numbers
+
+        plastic_law_of(case.law)
+    except (ImportError, ValueError):
+        return None
+    return plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+
+
+def case_numbers(case: Case) -> dict:
+    """The normalised numbers of ``case`` under the names its law's maps use.
+
+    Parameters
+    ----------
+    case : Case
+
+    Returns
+    -------
+    dict
+        ``vocabulary`` (``"linear"``, ``"hertz"``, ``"plastic"`` or ``"linearised"``),
+        ``beta``, ``zeta``, ``lambda`` [-] (``None`` where the law or a half-space has
+        none), ``lambda_basis`` (what they are), ``force_scale_N`` and ``time_scale_s``
+        (``fmax_normalised = F_max/force_scale_N``, ``contact_time_normalised =
+        t_c/time_scale_s``), ``contact_stiffness_N_m`` (the linear or linearised
+        stiffness), and for a Hertz case ``zeta_linearised``, ``lambda_linearised``,
+        ``linearised_basis``; plus the other keys of :func:`case_dimensionless`.
+    """
+    linear = case_dimensionless(case)
+    mass, velocity = case.impactor_mass, case.velocity
+    numbers = dict(linear)
+    halfspace = case.target_type == "halfspace"
+    if case.law.linear_stiffness is not None:
+        omega = math.sqrt(linear["contact_stiffness_N_m"] / mass)
+        return numbers | {"vocabulary": "linear", "force_scale_N": mass * velocity * omega, "time_scale_s": 1.0 / omega}
+    from ..contact.hertz import HertzContact
+
+    if isinstance(case.law, HertzContact):
+        from ..solvers.halfspace import hertz_max_indentation
+
+        alpha_m = float(hertz_max_indentation(mass, velocity, float(case.law.stiffness)))
+        numbers |= {"vocabulary": "hertz", "lambda_basis": NUMBER_BASES["hertz"],
+                    "force_scale_N": float(case.law.stiffness) * alpha_m**1.5,
+                    "time_scale_s": alpha_m / velocity, "zeta": None, "lambda": None,
+                    "zeta_linearised": linear["zeta"], "lambda_linearised": linear["lambda"],
+                    "linearised_basis": linear["lambda_basis"]}
+        if not halfspace:
+            from ..hertz_similarity import hertz_numbers
+
+            hertz = hertz_numbers(case.target, case.law, mass, velocity)
+            numbers |= {"zeta": hertz.loss_factor, "lambda": hertz.relative_stiffness}
+        return numbers
+    plastic = None if halfspace else _plastic(case)
+    if plastic is not None:
+        return numbers | {"vocabulary": "plastic", "lambda_basis": NUMBER_BASES["plastic"],
+                          "beta": plastic.impact_number, "zeta": plastic.loss_factor,
+                          "lambda": plastic.relative_stiffness,
+                          "contact_stiffness_N_m": plastic.linearised_stiffness,
+                          "force_scale_N": plastic.force_scale, "time_scale_s": plastic.time_scale}
+    omega = math.sqrt(linear["contact_stiffness_N_m"] / mass)
+    return numbers | {"vocabulary": "linearised", "force_scale_N": mass * velocity * omega,
+                      "time_scale_s": 1.0 / omega}

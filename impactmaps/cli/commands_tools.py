@@ -1,0 +1,193 @@
+"""Subcommands that help write and check a case file: init, check.
+
+``init`` writes a commented case file to start from; ``check`` validates one without
+running it and prints what the run would be: the numbers of its law (the vocabulary of
+``docs/output_keys.rst``), the map that describes it and the regime it reads there, and
+the scales of the run.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+__all__ = ["CASE_TEMPLATES", "cmd_init", "cmd_check"]
+
+_HEADER = """# {title}
+#
+# Written by `impactmaps init {kind}`. Check it with `impactmaps check {file}` (validates and
+# prints the derived numbers without running), run it with `impactmaps {run} {file}`.
+# All quantities in SI units; materials from the catalogue (`impactmaps materials`).
+# Every key is documented in the user guide (docs/cases.rst); an unknown key is an error.
+"""
+
+_IMPACTOR = """
+[impactor]
+radius = 0.00635                # sphere radius R [m] (12.7 mm diameter)
+material = "structural-steel"   # catalogue name, or an inline table {{youngs_modulus, poisson_ratio, density, yield_strength}}
+# mass = 0.0084                 # [kg]; default: the solid sphere's, density x (4/3) pi R^3
+velocity = {velocity}                  # approach velocity V0 [m/s]
+"""
+
+CASE_TEMPLATES = {
+    "beam": ("a steel ball on a simply supported aluminium beam (Hertz contact)", "simulate", _IMPACTOR.format(
+        velocity="1.0") + """
+[target]
+type = "beam"
+length = 0.5                    # span L [m]
+width = 0.02                    # [m]
+height = 0.02                   # [m], in the impact direction
+material = "aluminium-6061-t6"
+supports = "ss"                 # "ss", "cc", "cs", "cf", "ff" (left end, right end)
+theory = "euler"                # "euler", "rayleigh", "timoshenko"
+impact_position = 0.25          # x0 [m] from the left end (here mid-span)
+
+[contact]
+law = "hertz"                   # "hertz", "linear", "yigit-christoforou", "stronge" (impactmaps laws)
+
+[solver]
+duration = 0.005                # time limit [s]; the run stops earlier once re-impact is impossible
+# check_convergence = true      # re-run with a doubled mode cut-off and report converged: true/false
+"""),
+    "plate": ("a steel ball on a simply supported steel plate (Hertz contact)", "simulate", _IMPACTOR.format(
+        velocity="2.0") + """
+[target]
+type = "plate"
+length_x = 0.25                 # [m]
+length_y = 0.25                 # [m]
+thickness = 0.004               # [m]
+material = "structural-steel"
+edges = "SSSS"                  # one letter per edge: S (simply supported), C (clamped), F (free)
+theory = "kirchhoff"            # "kirchhoff" or "mindlin"
+impact_point = [0.125, 0.125]   # [x0, y0] [m] (here the centre)
+
+[contact]
+law = "hertz"
+
+[solver]
+duration = 0.005                # time limit [s]
+"""),
+    "laminate": ("a steel ball on a simply supported cross-ply graphite/epoxy plate (Hertz contact)", "simulate",
+                 _IMPACTOR.format(velocity="3.0") + """
+[target]
+type = "plate"
+length_x = 0.2                  # [m]
+length_y = 0.2                  # [m]
+theory = "mindlin"              # laminates: first-order shear deformation
+edges = "SSSS"
+impact_point = [0.1, 0.1]       # [m]
+# the stacking sequence: a catalogue ply, its angles [deg], mirrored when symmetric
+layup = { ply = "t300-934", angles_deg = [0, 90, 0, 90, 0], symmetric = true, ply_thickness = 0.000269 }
+# yield_strength = 3.0e8        # the laminate's contact strength [Pa], for the plastic laws
+
+[contact]
+law = "hertz"
+
+[solver]
+duration = 0.002                # time limit [s]
+"""),
+    "fd": ("a steel ball on a simply supported steel beam, finite-difference elastic-plastic beam", "fd",
+           _IMPACTOR.format(velocity="0.5") + """
+[target]
+type = "beam"                   # the finite-difference solver takes isotropic beams only
+length = 0.78                   # span [m]
+width = 0.06                    # [m]
+height = 0.0278                 # [m], in the impact direction
+material = "structural-steel"   # needs a yield strength (the beam yields)
+supports = "ss"
+impact_position = 0.39          # [m], mid-span
+
+[contact]
+law = "stronge"                 # the refined Stronge law (the default of the fd solver)
+
+[solver]
+kind = "fd"                     # the finite-difference Rayleigh beam
+duration = 0.005                # simulated time [s] (required: the run always covers it)
+
+[fd]
+n_elements = 200                # beam elements along the span
+n_half_layers = 10              # layers through half the height (plastic zones)
+plastic = true
+"""),
+}
+
+
+def cmd_init(args) -> dict:
+    template = CASE_TEMPLATES[args.kind]
+    path = Path(args.file if args.file is not None else f"{args.kind}.toml")
+    if path.is_dir():
+        raise ValueError(f"FILE = {str(path)!r} is a directory: give a file name (e.g. {args.kind}.toml)")
+    if path.exists() and not args.overwrite:
+        raise ValueError(f"FILE = {str(path)!r} exists: give another name, or --overwrite to replace it")
+    title, run, body = template
+    text = _HEADER.format(title=title, kind=args.kind, file=path.name, run=run) + \
+        f'\nname = "{title}"\n' + body
+    try:
+        path.write_text(text, encoding="utf-8")
+    except OSError as error:
+        raise ValueError(f"FILE = {str(path)!r} cannot be written: {error.strerror or error}") from None
+    return {"case": str(path), "kind": args.kind, "next": f"impactmaps check {path}; impactmaps {run} {path}"}
+
+
+def cmd_check(args) -> dict:
+    """Validate a case file and report its derived numbers, without running it."""
+    from ..cases import case_numbers, load_case
+    from ..solvers.modal import reference_contact_stiffness
+
+    case = load_case(args.case)
+    numbers = case_numbers(case)
+    mass, velocity = case.impactor_mass, case.velocity
+    omega = math.sqrt(float(reference_contact_stiffness(case.law, mass, velocity)) / mass)
+    values = {
+        "case": case.name,
+        "valid": True,
+        "solver": case.solver_kind,
+        "target_type": case.target_type,
+        "law": case.law_name,
+        "impactor_mass_kg": mass,
+        "velocity_m_s": velocity,
+        "impact_energy_J": 0.5 * mass * velocity**2,
+        **{key: numbers.get(key) for key in ("vocabulary", "beta", "zeta", "lambda", "lambda_basis",
+                                               "zeta_linearised", "lambda_linearised") if key in numbers},
+        "force_scale_N": numbers["force_scale_N"],
+        "static_stiffness_N_m": numbers["static_stiffness_N_m"],
+        "contact_frequency_rad_s": omega,
+        "halfspace_contact_time_s": math.pi / omega,
+        "time_limit_s": case.duration,
+    }
+    if case.solver_kind == "modal" and case.fd_settings is not None:
+        values["valid"] = False
+        values["valid_note"] = ("the [fd] section is read by the finite-difference solver only: simulate refuses "
+                                "this case (run impactmaps fd, or set [solver] kind = \"fd\")")
+    values.update(_map_reading(case))
+    notes = {"beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
+             "time_limit_s": "no [solver] duration: the run stops once re-impact is impossible (or at "
+                             "max_time_ratio contact times)"}
+    halfspace = "a half-space has no structure stiffness (K_st is infinite)"
+    out = {}
+    for key, value in values.items():
+        out[key] = value
+        if value is None and f"{key}_note" not in values:
+            out[f"{key}_note"] = notes.get(key, halfspace if case.target_type == "halfspace" else
+                                           "does not exist for this case")
+    return out
+
+
+def _map_reading(case) -> dict:
+    """What a shipped map says of the case (no tile is built), or why none does."""
+    if case.target_type == "halfspace":
+        return {"regime": "half-space", "map": None, "map_note": "a half-space needs no map"}
+    from ..maps.case_lookup import lookup_case
+
+    try:
+        found = lookup_case(case, build=False)
+    except ValueError as error:
+        text = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+        text = text.removeprefix("no shipped map covers this case: ")
+        return {"regime": None, "regime_note": "no shipped map reads this case: " + text, "map": None,
+                "map_note": "impactmaps lookup --case builds an on-demand map tile where one can describe it"}
+    reading = {"regime": found.get("regime"), "map": found.get("map"),
+               "map_peak_force_N": found.get("peak_force_N"), "map_peak_force_error_N": found.get("peak_force_error_N")}
+    if reading["regime"] is None:
+        reading["regime_note"] = "the elastic-plastic maps have no regime classification"
+    return reading
