@@ -246,8 +246,6 @@ def test_require_instance_names_the_parameter_and_the_fix():
                          "use impactmaps.materials.material('aluminium-6061-t6')")
 
 
-@pytest.mark.xfail(reason="needs the check in impactmaps/targets/plate.py (owned by another helper): "
-                          "require_instance('material', material, IsotropicMaterial, …) in Plate.isotropic")
 def test_plate_material_given_by_name_names_the_parameter():
     """Plate.isotropic(..., "aluminium-6061-t6") → AttributeError 'str' object has no
     attribute 'youngs_modulus'."""

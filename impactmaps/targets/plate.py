@@ -183,6 +183,9 @@ class Plate(Target):
         arguments go to :class:`Plate`.
         """
         require_positive("thickness", thickness, "m")
+        if not all(hasattr(material, key) for key in ("youngs_modulus", "poisson_ratio", "density")):
+            raise TypeError(f"material = {material!r} is a {type(material).__name__}, not a material with "
+                            "youngs_modulus, poisson_ratio and density: use impactmaps.material(NAME)")
         E = float(material.youngs_modulus)
         nu = float(material.poisson_ratio)
         rho = float(material.density)
