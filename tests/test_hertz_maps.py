@@ -107,14 +107,16 @@ def test_a_hertz_map_is_never_read_as_a_linear_one(tmp_path):
     with pytest.raises(ValueError, match="linear contact law, not the hertz law"):
         require_map_law(load_shipped_map("plate", "kirchhoff"), "hertz")
     structure = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
-    linear_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "linear")[3]
-    hertz_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "hertz")[3]
+    linear_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "linear").description
+    hertz_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "hertz").description
     assert "law" not in linear_description and hertz_description["law"] == "hertz"
     path = tmp_path / "map.nc"
     sweep([structure], [1.0], [1.0], law="hertz", path=path, progress=False, max_workers=1)
     with pytest.raises(StoreMismatchError, match="changed: law"):
         sweep([structure], [1.0], [1.0], path=path, progress=False, max_workers=1)
-    with pytest.raises(ValueError, match="law = 'stronge'"):
+    with pytest.raises(ValueError, match="law = 'plastic'"):
+        sweep([structure], [1.0], [1.0], law="plastic", progress=False, max_workers=1)
+    with pytest.raises(ValueError, match=r"stronge maps: give the grids of \['beta'\]"):
         sweep([structure], [1.0], [1.0], law="stronge", progress=False, max_workers=1)
 
 

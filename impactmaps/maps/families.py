@@ -27,7 +27,8 @@ import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
-from .lookup import _SEVERITY, answer_status, load_shipped_map, lookup
+from .lookup import load_shipped_map, lookup
+from .reader import _SEVERITY, answer_status
 from .structures import FAMILY_SLENDERNESSES
 
 __all__ = ["FAMILY_THEORIES", "family_members", "lookup_slenderness", "slenderness_error_grid"]
