@@ -27,9 +27,9 @@ from .case_answer import (
 from .families import lookup_slenderness
 from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
-from .plastic_lookup import PLASTIC_MAPS
 from .plastic_points import PLASTIC_LAWS
 from .regimes import MAP_LAWS
+from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law", "case_slenderness", "lookup_case",
@@ -92,7 +92,7 @@ def map_for_case(case) -> tuple[str, str]:
     else:
         refuse(f"target type {case.target_type!r} (maps: beams and plates)")
     structure = case.target_type
-    maps = SHIPPED_MAPS if law in MAP_LAWS else PLASTIC_MAPS
+    maps = map_family(law).shipped
     if (structure, theory) not in maps:
         refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == structure) + ")")

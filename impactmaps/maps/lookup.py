@@ -50,12 +50,9 @@ __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_st
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
 ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
 
-SHIPPED_MAPS = {
-    ("beam", "euler"): "beam-ss-euler",
-    ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
-    ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
-    ("plate", "mindlin"): "plate-ssss-mindlin-s20",
-}
+#: (kind, theory) → structure name of the shipped (ζ, λ) maps (those of the linear family; the
+#: Hertz family ships the same structures).
+SHIPPED_MAPS = map_family("linear").shipped
 
 
 def map_file_stem(structure_name: str, law: str = "linear") -> str:
