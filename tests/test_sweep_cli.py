@@ -175,3 +175,16 @@ def test_scheduler_that_cannot_be_reached_exits_2(tmp_path, capsys, monkeypatch)
 def test_workers_with_scheduler_is_refused(tmp_path, capsys):
     status = main(["sweep", str(write_config(tmp_path)), "--workers", "2", "--scheduler", "tcp://127.0.0.1:9"])
     assert status == 2 and "--workers" in capsys.readouterr().err
+
+
+def test_a_plastic_sweep_is_configured_with_its_beta_grid(tmp_path):
+    """An elastic-plastic law takes the grid of its third axis, β, from [grid]; without it the
+    file is refused naming the axes the law needs."""
+    path = tmp_path / "plastic.toml"
+    path.write_text('law = "yc"\n' + BEAM_CONFIG.format(count=2, lambdas="[1.0]").replace(
+        "[grid]\n", "[grid]\nbeta = [3.0, 30.0]\n"))
+    *_, law, axes = load_sweep_config(path)
+    assert law == "yc" and axes["beta"].tolist() == [3.0, 30.0]
+    path.write_text('law = "yc"\n' + BEAM_CONFIG.format(count=2, lambdas="[1.0]"))
+    with pytest.raises(ValueError, match="'zeta', 'lambda', 'beta'"):
+        load_sweep_config(path)
