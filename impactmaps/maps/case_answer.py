@@ -16,6 +16,7 @@ from ..solvers.modal import _uses_patch, contact_radius_function
 from .lookup import status_notes
 from .plastic_lookup import lookup_plastic
 from .plastic_points import plastic_law_of, plastic_numbers
+from .reader import OutsideMapError, UnresolvedPointError
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "family_groups", "scaled_answer",
            "answer", "lookup_plastic_case"]
@@ -146,9 +147,7 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     try:
         found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
                                structure=structure, theory=theory, law=law)
-    except ValueError as error:
-        if "outside the shipped map" not in str(error) and "holds no value" not in str(error):
-            raise
+    except (OutsideMapError, UnresolvedPointError) as error:
         raise NoMapError(case, str(error).split("; run")[0]) from None
     scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
     return answer(found, scale, law, {

@@ -28,6 +28,7 @@ from .families import lookup_slenderness
 from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
 from .plastic_points import PLASTIC_LAWS
+from .reader import OutsideMapError
 from .regimes import MAP_LAWS
 from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
@@ -206,8 +207,8 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
             return lookup(zeta, lam, structure=structure, theory=theory, law=law)
     try:
         return scaled_answer(case, law, read)
-    except ValueError as error:
-        if not build or "outside the shipped map" not in str(error):
+    except OutsideMapError as error:
+        if not build:
             raise
         # the case's family has a shipped map, but its numbers lie beyond it: a tile of the
         # same structure answers (its points solved exactly as the shipped map's)

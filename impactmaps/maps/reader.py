@@ -29,7 +29,7 @@ from .._checks import describe_outside, require_positive
 from .accuracy import STATUSES, AccuracyControl, PointStatus
 from .refinement import Refinement, interpolate
 
-__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "Reading", "read_values", "answer_status", "corner_status",
+__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "read_values", "answer_status", "corner_status",
            "status_notes", "interpolation_error", "band_grid"]
 
 
@@ -178,6 +178,19 @@ def _bracket(grid: np.ndarray, values: np.ndarray):
     return np.where(exact, upper, lower), upper
 
 
+class OutsideMapError(ValueError):
+    """A number lies outside a map: ``parameter`` (as the caller named it), its ``value`` (the
+    offending values, shown) and the map's ``valid_range`` ``(low, high)``."""
+
+    def __init__(self, message: str, parameter: str, value: str, valid_range: tuple[float, float]):
+        super().__init__(message)
+        self.parameter, self.value, self.valid_range = parameter, value, valid_range
+
+
+class UnresolvedPointError(ValueError):
+    """A point lies next to an ``unresolved`` map point: the map holds no value there."""
+
+
 class Reading(NamedTuple):
     """What :func:`read_values` read: ``values`` and ``errors`` (name → array of the numbers'
     shape), ``status`` (array of str) and the numbers' broadcast ``shape``."""
@@ -229,8 +242,10 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
 
     Raises
     ------
-    ValueError
-        A number outside the map (naming it and the range), or next to an ``unresolved`` point.
+    OutsideMapError
+        (a ``ValueError``) A number outside the map, naming it and the range.
+    UnresolvedPointError
+        (a ``ValueError``) Next to an ``unresolved`` point.
     """
     numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
     axes = (*(axis.name for axis in family.extra_axes), "zeta", "lambda_")  # the numbers' order
@@ -240,8 +255,8 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
         low, high = float(dataset[axis].min()), float(dataset[axis].max())
         if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
             shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
-            raise ValueError(f"{label} = {shown} is outside the shipped map: valid range is "
-                             f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead")
+            raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
+                                  f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
     logs = {axis: np.log(np.clip(values, float(dataset[axis].min()), float(dataset[axis].max()))).ravel()
             for values, axis in zip(numbers, axes)}
     shape = numbers[0].shape
@@ -255,7 +270,7 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
     if np.any(bad):
         first = int(np.flatnonzero(bad)[0])
         shown = ", ".join(f"{np.ravel(value)[first]:g}" for value in numbers)
-        raise ValueError(f"({', '.join(labels)}) = ({shown}) lies where the {where} holds no value (unresolved: "
+        raise UnresolvedPointError(f"({', '.join(labels)}) = ({shown}) lies where the {where} holds no value (unresolved: "
                          "beyond the range of its structural theory, or no model within the mode cap); run a "
                          f"simulation{hints[1]} instead")
     return Reading({name: value.reshape(shape) for name, value in values.items()},
