@@ -10,12 +10,12 @@ newtons (:func:`scaled_answer`, :func:`lookup_plastic_case`) through this module
 from __future__ import annotations
 
 from ..cases import case_dimensionless
-from ..contact.hertz import HertzContact
 from ..hertz_similarity import hertz_numbers
 from ..solvers.modal import _uses_patch, contact_radius_function
 from .lookup import status_notes
 from .plastic_lookup import lookup_plastic
-from .plastic_points import plastic_law_of, plastic_numbers
+from .map_family import available_map_families, map_family
+from .plastic_points import plastic_numbers
 from .reader import OutsideMapError, UnresolvedPointError
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "family_groups", "scaled_answer",
@@ -48,14 +48,13 @@ def case_map_law(case) -> str:
     constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
     refused.
     """
-    if case.law.linear_stiffness is not None:
-        return "linear"
-    if isinstance(case.law, HertzContact):
-        return "hertz"
+    reason = f"contact law {case.law_name!r}"
     try:
-        return plastic_law_of(case.law)
-    except ValueError as error:
-        reason = str(error) if case.law_name == "stronge" else f"contact law {case.law_name!r}"
+        for name in available_map_families():
+            if map_family(name).describes(case.law):
+                return name
+    except ValueError as near_miss:  # a family's law with other constants
+        reason = str(near_miss)
     raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
                      "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
                      f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "

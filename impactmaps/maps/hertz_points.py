@@ -213,6 +213,9 @@ class HertzFamily(MapFamily):
     def __init__(self, patch: float | None = None):
         self.patch = patch
 
+    def describes(self, law) -> bool:
+        return isinstance(law, HertzContact)
+
     def with_patch(self, patch: float | None) -> "HertzFamily":
         """The family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
         return HertzFamily(patch)

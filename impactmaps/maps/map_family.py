@@ -141,6 +141,11 @@ class MapFamily:
         """The axes before (λ, ζ) (β of an elastic-plastic family)."""
         return self.axes[:-2]
 
+    def describes(self, law) -> bool:
+        """Whether a contact law's impacts are points of this family; ``ValueError`` with the
+        reason for a law of the family's kind that its maps do not describe (default False)."""
+        return False
+
     # -- points -----------------------------------------------------------------------
     def check(self, structure, target, settings) -> None:
         """Refuse a structure or settings the family cannot map (``ValueError``); default none."""

@@ -377,6 +377,10 @@ class PlasticFamily(MapFamily):
         return (f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[self.name]} "
                 "contact; axes (β, λ, ζ) at the linearised stiffness K_y")
 
+    def describes(self, law) -> bool:
+        kind = {"yc": YigitChristoforouContact, "stronge": StrongeContact}[self.name]
+        return isinstance(law, kind) and plastic_law_of(law) == self.name
+
     def realise(self, target, point) -> PlasticRealisation:
         beta, zeta, lam = (float(value) for value in point)
         return realise_plastic(target, self.name, beta, zeta, lam)
