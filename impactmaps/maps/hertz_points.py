@@ -9,6 +9,7 @@ linear maps (:mod:`.accuracy`), and stored in the Hertz half-space scales: force
 By the similarity of Hertz impacts (module :mod:`impactmaps.hertz_similarity`) one such
 point holds for every physical case of the family with the same (ζ_h, λ_h).
 
+The Hertz map family (:class:`HertzFamily`, registered as ``"hertz"``) is these points.
 The asymptotes of the Hertz regimes — infinite plate (Zener's model), infinite beam,
 quasi-static — are those of :mod:`impactmaps.law_asymptotes`, run on a realisation of
 (ζ_h, λ_h) and scaled the same way: :func:`hertz_asymptote_peak`.

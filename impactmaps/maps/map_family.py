@@ -155,8 +155,8 @@ class MapFamily:
         return True
 
     def realise_points(self, target, points) -> list:
-        """The impacts realising ``points`` (tuples in :attr:`axis_names` order but ζ before
-        λ, see :meth:`point_coordinates`) on ``target``; default one :meth:`realise` each."""
+        """The impacts realising ``points`` on ``target`` (each point ``(…, ζ, λ)``: the extra
+        axes' values, then ζ and λ); default one :meth:`realise` each."""
         return [self.realise(target, point) for point in points]
 
     def realise(self, target, point) -> Any:

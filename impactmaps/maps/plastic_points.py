@@ -34,6 +34,8 @@ The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou la
 same E*, R, Y: :meth:`impactmaps.contact.stronge.StrongeContact.impact_number`), with
 its default constants only: other constants are another family.
 
+The map families ``"yc"`` and ``"stronge"`` (:class:`PlasticFamily`) are these points.
+
 Stored quantities
 -----------------
 ``fmax_normalised = F_max/(m V0 ω_y)``; times × ω_y; ``restitution`` = rebound speed /
