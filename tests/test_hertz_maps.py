@@ -241,8 +241,9 @@ def test_chart_command_with_the_hertz_law(capsys, tmp_path):
 
 
 def test_sweep_config_with_the_hertz_law(capsys, tmp_path):
-    """`impactmaps sweep` takes ``law = "hertz"`` at the top of the TOML file; another law
-    exits 2 with one line naming the key."""
+    """`impactmaps sweep` takes ``law = "hertz"`` at the top of the TOML file; an unknown law
+    exits 2 with one line naming the key, an elastic-plastic law without its β grid with one
+    line naming the grid it needs."""
     config = tmp_path / "hertz.toml"
     config.write_text('output = "out"\nlaw = "hertz"\n[grid]\nzeta = [0.1, 1.0]\nlambda = [1.0]\n'
                       '[[structure]]\nkind = "beam"\n')
@@ -252,7 +253,11 @@ def test_sweep_config_with_the_hertz_law(capsys, tmp_path):
     with xr.open_dataset(json.loads(capsys.readouterr().out)["netcdf"], engine="scipy") as stored:
         assert map_law(stored) == "hertz"
         assert np.all(stored["fmax_normalised"].values <= 1.0)
-    config.write_text(config.read_text().replace('"hertz"', '"stronge"'))
+    config.write_text(config.read_text().replace('"hertz"', '"plastic"'))
     assert main(["sweep", str(config), "--quiet", "--json"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "law = 'stronge' is invalid" in err[0]
+    assert len(err) == 1 and "law = 'plastic' is invalid" in err[0]
+    config.write_text(config.read_text().replace('"plastic"', '"stronge"'))
+    assert main(["sweep", str(config), "--quiet", "--json"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "[grid] of the stronge law needs 'zeta', 'lambda', 'beta'" in err[0]

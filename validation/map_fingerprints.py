@@ -155,7 +155,7 @@ def cases() -> dict:
             answer = lookup_case(case, build=False)
         except ValueError as error:
             answer = {"refused": str(error)}
-        out[f"case/{name}"] = _digest(answer)
+        out[f"case/{name}"] = _digest(json.loads(json.dumps(answer, default=str).replace(str(ROOT), "ROOT")))
     return out
 
 
