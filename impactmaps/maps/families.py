@@ -22,6 +22,7 @@ Slendernesses below 10 are refused (no member brackets them).
 from __future__ import annotations
 
 import functools
+from dataclasses import replace
 
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
@@ -135,8 +136,6 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
         Slenderness below 10, no family for the law, or a member refusing (outside its
         range or next to an ``unresolved`` point).
     """
-    from dataclasses import replace
-
     members = family_members(structure, theory, law)
     require_in_range("slenderness", slenderness, min(FAMILY_SLENDERNESSES), np.inf)
     inverse = 1.0 / float(slenderness)
