@@ -18,8 +18,9 @@ import warnings
 
 import numpy as np
 
-from impactmaps.maps.lookup import (SHIPPED_MAPS, _grid_position, interpolation_error, load_shipped_map,
+from impactmaps.maps.lookup import (SHIPPED_MAPS, interpolation_error, load_shipped_map,
                                     load_shipped_refinement, lookup)
+from impactmaps.maps.reader import _grid_position
 from impactmaps.maps.refinement import Refinement, interpolate
 
 FIRST = ("import time, warnings; warnings.simplefilter('ignore'); t = time.perf_counter(); "

@@ -63,9 +63,10 @@ FINEST_CUTOFF_FACTOR = 4
 def _solve(task) -> dict:
     """One point: ``("map", structure, ζ, λ)`` as a sweep solves it, or ``("reference", …)``:
     one run at 8× the cut-off and mode floor, 1/8 of the step."""
-    from impactmaps.dimensionless import realise
+    from impactmaps.maps.linear_points import LINEAR
+    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
     from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import _point_runner, basis_table, frequency_cap, solve_points
+    from impactmaps.maps.sweep import solve_points
     from impactmaps.solvers.modal import ModalSettings
 
     kind, name, zeta, lambda_ = task
@@ -79,10 +80,8 @@ def _solve(task) -> dict:
         for _ in range(REFERENCE_LEVELS):  # cut-off and mode floor ×2, step /2, each time
             fine = fine.refined()
         target = structure.build()
-        moved = realise(target, zeta, lambda_)
-        impactor = (float(moved.impactor_mass), float(moved.contact_stiffness), float(moved.contact_frequency))
-        run = _point_runner(target, basis_table(structure, fine.min_modes), frequency_cap(structure), zeta,
-                            lambda_, impactor)
+        run = table_runner(LINEAR, target, basis_table(structure, fine.min_modes), frequency_cap(structure),
+                           (zeta, lambda_), LINEAR.realise(target, (zeta, lambda_)), [])
         result = run(fine, 1.0)
         return {"fmax_normalised": result.fmax_normalised, "n_modes": result.n_modes}
 

@@ -108,14 +108,16 @@ def test_a_hertz_map_is_never_read_as_a_linear_one(tmp_path):
     with pytest.raises(ValueError, match="linear contact law, not the hertz law"):
         require_map_law(load_shipped_map("plate", "kirchhoff"), "hertz")
     structure = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
-    linear_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "linear")[3]
-    hertz_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "hertz")[3]
+    linear_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "linear").description
+    hertz_description = _prepare([structure], [1.0], [1.0], ModalSettings(), "hertz").description
     assert "law" not in linear_description and hertz_description["law"] == "hertz"
     path = tmp_path / "map.nc"
     sweep([structure], [1.0], [1.0], law="hertz", path=path, progress=False, max_workers=1)
     with pytest.raises(StoreMismatchError, match="changed: law"):
         sweep([structure], [1.0], [1.0], path=path, progress=False, max_workers=1)
-    with pytest.raises(ValueError, match="law = 'stronge'"):
+    with pytest.raises(ValueError, match="law = 'plastic'"):
+        sweep([structure], [1.0], [1.0], law="plastic", progress=False, max_workers=1)
+    with pytest.raises(ValueError, match=r"stronge maps: give the grids of \['beta'\]"):
         sweep([structure], [1.0], [1.0], law="stronge", progress=False, max_workers=1)
 
 
@@ -240,8 +242,9 @@ def test_chart_command_with_the_hertz_law(capsys, tmp_path):
 
 
 def test_sweep_config_with_the_hertz_law(capsys, tmp_path):
-    """`impactmaps sweep` takes ``law = "hertz"`` at the top of the TOML file; another law
-    exits 2 with one line naming the key."""
+    """`impactmaps sweep` takes ``law = "hertz"`` at the top of the TOML file; an unknown law
+    exits 2 with one line naming the key, an elastic-plastic law without its β grid with one
+    line naming the grid it needs."""
     config = tmp_path / "hertz.toml"
     config.write_text('output = "out"\nlaw = "hertz"\n[grid]\nzeta = [0.1, 1.0]\nlambda = [1.0]\n'
                       '[[structure]]\nkind = "beam"\n')
@@ -251,7 +254,11 @@ def test_sweep_config_with_the_hertz_law(capsys, tmp_path):
     with xr.open_dataset(json.loads(capsys.readouterr().out)["netcdf"], engine="scipy") as stored:
         assert map_law(stored) == "hertz"
         assert np.all(stored["fmax_normalised"].values <= 1.0)
-    config.write_text(config.read_text().replace('"hertz"', '"stronge"'))
+    config.write_text(config.read_text().replace('"hertz"', '"plastic"'))
     assert main(["sweep", str(config), "--quiet", "--json"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "law = 'stronge' is invalid" in err[0]
+    assert len(err) == 1 and "law = 'plastic' is invalid" in err[0]
+    config.write_text(config.read_text().replace('"plastic"', '"stronge"'))
+    assert main(["sweep", str(config), "--quiet", "--json"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "[grid] of the stronge law needs 'zeta', 'lambda', 'beta'" in err[0]

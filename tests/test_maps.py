@@ -6,17 +6,20 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from impactmaps.maps import linear_points
+from impactmaps.maps import points as points_module
+from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps import sweep as sweep_module
 from impactmaps.maps.regimes import classify
 from impactmaps.maps.store import StoreMismatchError
 from impactmaps.maps.structures import MapStructure
-from impactmaps.maps.sweep import solve_points, sweep
+from impactmaps.maps.sweep import Pacing, solve_points, sweep
 from impactmaps.solvers.modal import ModalSettings
 
 PLATE = MapStructure(kind="plate", theory="kirchhoff", supports="SSSS")
 BEAM = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
 ZETAS = np.geomspace(0.03, 30, 7)
-_SOLVE_POINT = sweep_module.controlled_point  # the real point solver, before any test patches it
+_SOLVE_POINT = points_module.controlled_point  # the real point solver, before any test patches it
 LAMBDAS = [0.2, 2.0]
 
 
@@ -63,7 +66,7 @@ def _counting(monkeypatch, fail_after=None):
             raise KeyboardInterrupt
         return original(*args, **kwargs)
 
-    monkeypatch.setattr(sweep_module, "controlled_point", counted)
+    monkeypatch.setattr(points_module, "controlled_point", counted)
     return calls
 
 
@@ -74,15 +77,14 @@ def test_resume_recomputes_nothing_finished(tmp_path, monkeypatch):
     total = 2 * len(LAMBDAS) * len(ZETAS)
     calls = _counting(monkeypatch, fail_after=9)
     with pytest.raises(KeyboardInterrupt):
-        sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, chunk_size=3,
-              save_interval=0.0)
+        sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, pacing=Pacing(3, 0.0))
     stored = xr.open_dataset(path, engine="scipy").load()
     finished = int(stored["done"].sum())
     assert 0 < finished < total
     assert not list(tmp_path.glob(".*.tmp"))  # atomic writes leave no temporaries
 
     calls = _counting(monkeypatch)
-    resumed = sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, chunk_size=3)
+    resumed = sweep([PLATE, BEAM], ZETAS, LAMBDAS, path=path, max_workers=1, progress=False, pacing=Pacing(3))
     assert calls["n"] == total - finished
     assert bool(resumed["done"].all())
 
@@ -130,7 +132,7 @@ def test_dask_executor_gives_the_same_numbers():
 
     local = sweep([PLATE], ZETAS[:4], LAMBDAS, max_workers=1, progress=False)
     with distributed.Client(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None) as client:
-        remote = sweep([PLATE], ZETAS[:4], LAMBDAS, executor=client.get_executor(), progress=False, chunk_size=2)
+        remote = sweep([PLATE], ZETAS[:4], LAMBDAS, executor=client.get_executor(), progress=False, pacing=Pacing(2))
     np.testing.assert_array_equal(local["fmax_normalised"].values, remote["fmax_normalised"].values)
     np.testing.assert_array_equal(local["impacts"].values, remote["impacts"].values)
 
@@ -138,7 +140,7 @@ def test_dask_executor_gives_the_same_numbers():
 def test_process_pool_gives_the_same_numbers():
     """The default local process pool equals the inline run exactly."""
     inline = sweep([PLATE], ZETAS[:4], [1.0], max_workers=1, progress=False)
-    pooled = sweep([PLATE], ZETAS[:4], [1.0], max_workers=2, progress=False, chunk_size=2)
+    pooled = sweep([PLATE], ZETAS[:4], [1.0], max_workers=2, progress=False, pacing=Pacing(2))
     np.testing.assert_array_equal(inline["fmax_normalised"].values, pooled["fmax_normalised"].values)
 
 
@@ -168,7 +170,7 @@ def test_sweep_workers_run_one_blas_thread_and_leave_the_parent_alone(monkeypatc
         return ProcessPoolExecutor(**options)
 
     monkeypatch.setattr(sweep_module, "ProcessPoolExecutor", recording_pool)
-    sweep([BEAM], ZETAS[:2], [1.0], max_workers=2, progress=False, chunk_size=1)
+    sweep([BEAM], ZETAS[:2], [1.0], max_workers=2, progress=False, pacing=Pacing(1))
     assert [options.get("initializer") for options in pools] == [init_worker]
     assert _blas_threads() == before
 
@@ -233,7 +235,7 @@ def test_targets_answer_the_physics_of_their_kind(structure):
     expected = np.array([float(peak(z)) for z in zetas])
     np.testing.assert_array_equal(type(target).infinite_structure_peak(zetas), expected)
     np.testing.assert_array_equal(infinite_structure_peak(zetas, structure.kind), expected)
-    row = sweep_module._asymptote_row(target, 0.3)
+    row = linear_points.infinite_structure_row(target, 0.3)
     impact = target.infinite_structure_impact(0.3)
     assert row["fmax_normalised"] == float(impact.peak_force) == expected[1]
     assert row["peak_time_normalised"] == float(impact.peak_time)
@@ -395,15 +397,15 @@ def test_a_point_does_not_repeat_a_run_equal_to_an_earlier_one(monkeypatch):
     structure = structure_from_name("beam-ss-euler")
     zeta, lam = 706.7, 0.001758
     calls = []
-    original = sweep_module.simulate
+    original = points_module.simulate
 
     def counted(*args, **kwargs):
         calls.append(kwargs["settings"])
         return original(*args, **kwargs)
 
-    monkeypatch.setattr(sweep_module, "simulate", counted)
+    monkeypatch.setattr(points_module, "simulate", counted)
     (row,) = solve_points(structure, [(zeta, lam)], ModalSettings())
-    assert sweep_module.STATUSES[row["status"]] == "sensitive"
+    assert STATUSES[row["status"]] == "sensitive"
     assert len(calls) == 6  # base, two refinements, step −1 %, ζ ± 1 %
 
     target = structure.build()

@@ -271,3 +271,22 @@ def test_lookup_command_at_given_numbers():
         cmd_lookup(argparse.Namespace(**{**vars(args), "law": "hertz"}))
     with pytest.raises(ValueError, match="--zeta, --lambda, --beta cannot be used with --case"):
         cmd_lookup(argparse.Namespace(**{**vars(args), "case": "case.toml"}))
+
+
+@pytest.mark.parametrize("law", ["yc", "stronge"])
+def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
+    """Each shipped plastic map is the result of the sweep of its family over the grid of
+    ``validation/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
+    build resumes from (and is checked against) the same description, and the dataset a
+    sweep writes has the shipped map's layout."""
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import sweep_fingerprint
+
+    betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
+    for (kind, theory), name in PLASTIC_MAPS.items():
+        dataset = load_plastic_map(kind, theory, law)
+        lambdas = np.logspace(-2.0, 1.5, 18) if kind == "plate" else np.logspace(-3.0, 1.5, 23)
+        digest = sweep_fingerprint([structure_from_name(name)], zetas, lambdas, law=law, axes={"beta": betas})
+        assert digest == dataset.attrs["fingerprint"], name
+        assert dataset["fmax_normalised"].dims == ("structure", "beta", "lambda_", "zeta")

@@ -18,7 +18,8 @@ import xarray as xr
 from impactmaps.maps import sweep as sweep_module
 from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
-from impactmaps.maps.sweep import RESULT_VARIABLES, _point_solver, log_grid, sweep, sweep_fingerprint
+from impactmaps.maps.registry import map_family
+from impactmaps.maps.sweep import RESULT_VARIABLES, log_grid, solve_map_points, sweep, sweep_fingerprint
 from impactmaps.solvers.modal import ModalSettings
 
 ZETAS = log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT)
@@ -57,7 +58,7 @@ def test_shipped_points_are_what_the_code_computes(law, structure_index):
     count = 12 if law == "linear" else 4
     picks = [(int(rng.integers(len(DEFAULT_CHART_LAMBDAS))), int(rng.integers(ZETAS.size))) for _ in range(count)]
     points = [(float(ZETAS[z]), float(DEFAULT_CHART_LAMBDAS[lam])) for lam, z in picks]
-    rows = _point_solver(law)(CHART_STRUCTURES[structure_index], points, ModalSettings())
+    rows = solve_map_points(map_family(law), CHART_STRUCTURES[structure_index], points, ModalSettings())
     for (lam, z), row in zip(picks, rows):
         for name in RESULT_VARIABLES:
             stored = dataset[name].values[structure_index, lam, z]
@@ -70,8 +71,7 @@ def test_a_default_chart_sweep_starts_from_the_shipped_result(tmp_path, monkeypa
     def no_solving(*args, **kwargs):
         raise AssertionError("a point was computed")
 
-    monkeypatch.setattr(sweep_module, "solve_points", no_solving)
-    monkeypatch.setattr(sweep_module, "_point_solver", lambda law: no_solving)
+    monkeypatch.setattr(sweep_module, "solve_map_points", no_solving)
     result = sweep(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS, path=tmp_path / "map.nc", progress=True)
     said = capsys.readouterr().err
     assert "all 3200 points from the result shipped for this sweep" in said and "pt/s" not in said

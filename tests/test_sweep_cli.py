@@ -67,7 +67,7 @@ def test_nothing_is_written_before_the_first_point(tmp_path, monkeypatch):
     def fail(*args):
         raise ValueError("solver failed")
 
-    monkeypatch.setattr(sweep_module, "solve_points", fail)
+    monkeypatch.setattr(sweep_module, "solve_map_points", fail)
     path = tmp_path / "result.nc"
     with pytest.raises(ValueError, match="solver failed"):
         sweep_module.sweep([MapStructure(kind="beam", theory="euler", supports="ss")], [0.5, 1.0], [1.0],
@@ -102,7 +102,7 @@ def _umask() -> int:
 
 
 def test_interrupted_sweep_saves_and_resumes(tmp_path, monkeypatch, capsys):
-    real = sweep_module.solve_points
+    real = sweep_module.solve_map_points
     calls = []
 
     def interrupt_second(*args):
@@ -112,11 +112,11 @@ def test_interrupted_sweep_saves_and_resumes(tmp_path, monkeypatch, capsys):
         return real(*args)
 
     config = write_config(tmp_path, count=3, lambdas="[0.5, 2.0]")
-    monkeypatch.setattr(sweep_module, "solve_points", interrupt_second)
+    monkeypatch.setattr(sweep_module, "solve_map_points", interrupt_second)
     assert main(["sweep", str(config), "--quiet", "--workers", "1"]) == 130
     err = capsys.readouterr().err
     assert "interrupted: 3 of 6 points saved; run the same command to resume" in err
-    monkeypatch.setattr(sweep_module, "solve_points", real)
+    monkeypatch.setattr(sweep_module, "solve_map_points", real)
     assert main(["sweep", str(config), "--quiet", "--workers", "1"]) == 0
     with xr.open_dataset(tmp_path / "out" / "sweep.nc", engine="scipy") as dataset:
         assert int(dataset["done"].sum()) == 6
@@ -126,7 +126,7 @@ def test_library_sweep_raises_sweep_interrupted(tmp_path, monkeypatch):
     def interrupt(*args):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(sweep_module, "solve_points", interrupt)
+    monkeypatch.setattr(sweep_module, "solve_map_points", interrupt)
     with pytest.raises(SweepInterrupted) as stop:
         sweep_module.sweep([MapStructure(kind="beam", theory="euler", supports="ss")], [0.5, 1.0], [1.0], path=tmp_path / "r.nc", max_workers=1,
                            progress=False)
@@ -175,3 +175,16 @@ def test_scheduler_that_cannot_be_reached_exits_2(tmp_path, capsys, monkeypatch)
 def test_workers_with_scheduler_is_refused(tmp_path, capsys):
     status = main(["sweep", str(write_config(tmp_path)), "--workers", "2", "--scheduler", "tcp://127.0.0.1:9"])
     assert status == 2 and "--workers" in capsys.readouterr().err
+
+
+def test_a_plastic_sweep_is_configured_with_its_beta_grid(tmp_path):
+    """An elastic-plastic law takes the grid of its third axis, β, from [grid]; without it the
+    file is refused naming the axes the law needs."""
+    path = tmp_path / "plastic.toml"
+    path.write_text('law = "yc"\n' + BEAM_CONFIG.format(count=2, lambdas="[1.0]").replace(
+        "[grid]\n", "[grid]\nbeta = [3.0, 30.0]\n"))
+    *_, law, axes = load_sweep_config(path)
+    assert law == "yc" and axes["beta"].tolist() == [3.0, 30.0]
+    path.write_text('law = "yc"\n' + BEAM_CONFIG.format(count=2, lambdas="[1.0]"))
+    with pytest.raises(ValueError, match="'zeta', 'lambda', 'beta'"):
+        load_sweep_config(path)

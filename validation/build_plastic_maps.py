@@ -11,28 +11,32 @@ pressure patch depends on the sphere radius, a fourth number.
     nice -n 19 python validation/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge]
     python validation/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
 
-Prints the points and the CPU seconds of each map (the cost the README quotes).
+Each map is a :func:`impactmaps.maps.sweep.sweep` of the plastic family, so an
+interrupted build resumes (the sweep's file is ``validation/work/NAME-LAW.sweep.nc``, or
+``work/`` under ``--out-dir``). Prints the points and the CPU seconds of each map (the
+cost the README quotes: this process's and its finished workers').
 """
 
 from __future__ import annotations
 
+import resource
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
 from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import map_file_stem
-from impactmaps.maps.plastic_points import PLASTIC_LAWS, plastic_map, solve_plastic_points
+from impactmaps.maps.plastic_points import PLASTIC_LAWS
 from impactmaps.maps.store import save_atomic
-from impactmaps.maps.workers import init_worker
 from impactmaps.maps.structures import DEFAULT_STRUCTURES
+from impactmaps.maps.sweep import sweep
 
 from _script_options import parse
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "impactmaps" / "maps" / "data"
+WORK = ROOT / "validation" / "work"
 #: Impact numbers: 1 (nearly elastic) to 10^3.5 (steel balls at metres per second), 2 per decade.
 BETAS = np.logspace(0.0, 3.5, 8)
 #: Loss factors ζ(m, K_y): 1e-3 to 10, 6 per decade.
@@ -51,28 +55,24 @@ def _options(parser) -> None:
     parser.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
 
 
-def _solve_row(structure, law, beta, lam, zetas):
-    """One (β, λ) row of the grid, and the CPU seconds it took (the worker's task)."""
-    start = time.process_time()
-    rows = solve_plastic_points(structure, law, [(beta, zeta, lam) for zeta in zetas])
-    return rows, time.process_time() - start
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and of its finished child processes."""
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
 
 
-def build(structure, law, betas, zetas, lambdas, workers: int):
-    """The map dataset of ``structure`` for ``law`` over the grid, and its CPU seconds."""
-    tasks = [(structure, law, float(beta), float(lam), [float(z) for z in zetas]) for beta in betas for lam in lambdas]
-    if workers <= 1:
-        results = [_solve_row(*task) for task in tasks]
-    else:
-        with ProcessPoolExecutor(max_workers=workers, initializer=init_worker, initargs=(False,)) as pool:
-            results = list(pool.map(_solve_row, *zip(*tasks)))
-    rows = [row for chunk, _ in results for row in chunk]
-    return plastic_map(structure, law, betas, zetas, lambdas, rows), sum(seconds for _, seconds in results)
+def build(structure, law, betas, zetas, lambdas, workers: int, work: Path):
+    """The map dataset of ``structure`` for ``law`` over the grid (resumable in ``work``), and its CPU seconds."""
+    start = _cpu_seconds()
+    dataset = sweep([structure], zetas, lambdas, law=law, axes={"beta": betas}, max_workers=workers,
+                    path=work / f"{map_file_stem(structure.name, law)}.sweep.nc", progress=workers > 1)
+    return dataset, _cpu_seconds() - start
 
 
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
     structures = [s for s in PLASTIC_STRUCTURES if args.only is None or s.name in args.only]
+    work = WORK if args.out_dir == DATA else args.out_dir / "work"
     if args.smoke:
         structures, args.laws, args.workers = structures[:1], args.laws[:1], 1
     total = 0.0
@@ -83,7 +83,7 @@ def main(argv=None) -> None:
             betas, zetas, lambdas = BETAS[[2, 4]], ZETAS[[10, 14]], lambdas[[10, 14]]
         for law in args.laws:
             start = time.perf_counter()
-            dataset, cpu = build(structure, law, betas, zetas, lambdas, args.workers)
+            dataset, cpu = build(structure, law, betas, zetas, lambdas, args.workers, work)
             wall = time.perf_counter() - start
             dataset.attrs["build_cpu_seconds"] = round(cpu, 1)
             stem = map_file_stem(structure.name, law)

@@ -3,9 +3,8 @@
 Each dense map (``build_default_maps.DENSE_MAPS``) is refined where linear interpolation
 between its points errs by more than the tolerance (1e-3, the points' own): cells are
 split into four, down to 8× finer per axis, and the new points are solved exactly as the
-map's own (:func:`impactmaps.maps.sweep.solve_points`, default settings and accuracy
-control; with ``--law hertz`` the Hertz maps ``NAME-hertz.nc``, their points solved by
-:func:`impactmaps.maps.hertz_points.solve_hertz_points`). See :mod:`impactmaps.maps.refinement`. Each round's new points are kept in
+map's own (:func:`impactmaps.maps.points.solve_map_points` of the map's family, default
+settings and accuracy control; with ``--law hertz`` the Hertz maps ``NAME-hertz.nc``). See :mod:`impactmaps.maps.refinement`. Each round's new points are kept in
 ``validation/work/NAME.refine.npz`` as they are solved, so an interrupted build resumes
 without recomputing them.
 
@@ -23,12 +22,12 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.hertz_points import solve_hertz_points
 from impactmaps.maps.lookup import interpolation_error, map_file_stem
 from impactmaps.maps.refinement import MAX_LEVEL, refine
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.points import solve_map_points
+from impactmaps.maps.registry import map_family
 from impactmaps.maps.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
@@ -94,8 +93,7 @@ class Solver:
 
 
 def _solve_chunk(structure, law, points):
-    solve = solve_points if law == "linear" else solve_hertz_points
-    return solve(structure, points, ModalSettings())
+    return solve_map_points(map_family(law), structure, points, ModalSettings())
 
 
 def build(structure_name: str, data: Path, out_dir: Path, work: Path | None, executor, *, law: str = "linear",

@@ -28,11 +28,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.contact.linear import LinearContact
-from impactmaps.dimensionless import realise
 from impactmaps.maps.accuracy import AccuracyControl, perturbed_runs, settled
+from impactmaps.maps.linear_points import LINEAR
+from impactmaps.maps.points import basis_table, frequency_cap, map_plan, table_runner
 from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import _map_plan, _point_runner, basis_table, frequency_cap
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -55,13 +54,11 @@ def sensitive_points(name: str, count: int, seed: int) -> list[dict]:
     rows = []
     while len(rows) < count:
         zeta, lam = 10 ** rng.uniform(0, 3), 10 ** rng.uniform(-3, np.log10(0.05))
-        moved = realise(target, zeta, lam)
-        impactor = (float(moved.impactor_mass), float(moved.contact_stiffness), float(moved.contact_frequency))
-        plan = _map_plan(target, LinearContact(impactor[1]), impactor[0], impactor[2],
-                         base.cutoff_ratio * impactor[2], cap, zeta)
+        impact = LINEAR.realise(target, (zeta, lam))
+        plan = map_plan(target, impact.law, impact.mass, impact.omega, base.cutoff_ratio * impact.omega, cap, zeta)
         if plan is None or plan.method != "modal+residual":
             continue
-        run = _point_runner(target, table, cap, zeta, lam, impactor)
+        run = table_runner(LINEAR, target, table, cap, (zeta, lam), impact, [])
         runs = [run(levels[0], 1.0), run(levels[1], 1.0)]
         if settled(runs[1], runs[0], CONTROL):
             continue

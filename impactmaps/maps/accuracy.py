@@ -33,14 +33,26 @@ Statuses (the ``status`` variable of a map; ``STATUSES[code]``):
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from enum import StrEnum
 from typing import Callable
 
 from .._checks import require_in_range, require_positive
 
-__all__ = ["STATUSES", "AccuracyControl", "controlled_point", "exact_point", "perturbed_runs", "settled"]
+__all__ = ["STATUSES", "PointStatus", "AccuracyControl", "controlled_point", "exact_point", "perturbed_runs", "settled"]
 
-#: Status codes of a map point (the ``status`` variable; CF flag_values/flag_meanings).
-STATUSES = ("converged", "refined", "sensitive", "asymptotic", "unresolved")
+
+class PointStatus(StrEnum):
+    """The status of a map point (module docstring); its code is its index in :data:`STATUSES`."""
+
+    CONVERGED = "converged"
+    REFINED = "refined"
+    SENSITIVE = "sensitive"
+    ASYMPTOTIC = "asymptotic"
+    UNRESOLVED = "unresolved"
+
+
+#: Status names by code (the ``status`` variable; CF flag_values/flag_meanings).
+STATUSES = tuple(status.value for status in PointStatus)
 
 
 @dataclass(frozen=True)

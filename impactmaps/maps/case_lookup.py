@@ -15,57 +15,26 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup, status_notes
-from .plastic_lookup import PLASTIC_MAPS
+from .case_answer import (
+    CASE_MATCH_RTOL,
+    NoMapError,
+    case_loads_a_patch,
+    case_map_law,
+    family_groups,
+    lookup_plastic_case,
+    scaled_answer,
+)
+from .families import lookup_slenderness
+from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
+from .on_demand import lookup_on_demand
 from .plastic_points import PLASTIC_LAWS
+from .reader import OutsideMapError
+from .regimes import MAP_LAWS
+from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
-from .sweep import MAP_LAWS
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law", "case_slenderness", "lookup_case",
            "map_for_case"]
-
-#: Relative tolerance within which a case "is" a shipped map's structure (impact point,
-#: aspect ratio, slenderness): beyond it the map does not describe the case.
-CASE_MATCH_RTOL = 1e-6
-
-
-class NoMapError(ValueError):
-    """No shipped map describes a case: ``what`` names what no map covers.
-
-    The message is ``no shipped map covers this case: WHAT; run `impactmaps simulate
-    CASE` instead``.
-    """
-
-    def __init__(self, case, what: str):
-        self.what = what
-        super().__init__(f"no shipped map covers this case: {what}; run `impactmaps simulate "
-                         f"{case.source or 'CASE.toml'}` instead")
-
-
-def case_map_law(case) -> str:
-    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, or ``ValueError``.
-
-    Only laws that a shipped map describes exactly are named: the linear and Hertz laws
-    (axes ζ, λ), the Yigit–Christoforou law and the refined Stronge law with its default
-    constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
-    refused.
-    """
-    from ..contact.hertz import HertzContact
-    from .plastic_points import plastic_law_of
-
-    if case.law.linear_stiffness is not None:
-        return "linear"
-    if isinstance(case.law, HertzContact):
-        return "hertz"
-    try:
-        return plastic_law_of(case.law)
-    except ValueError as error:
-        reason = str(error) if case.law_name == "stronge" else f"contact law {case.law_name!r}"
-    raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
-                     "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
-                     f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "
-                     "instead")
-
 
 def map_for_case(case) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
@@ -124,7 +93,7 @@ def map_for_case(case) -> tuple[str, str]:
     else:
         refuse(f"target type {case.target_type!r} (maps: beams and plates)")
     structure = case.target_type
-    maps = SHIPPED_MAPS if law in MAP_LAWS else PLASTIC_MAPS
+    maps = map_family(law).shipped
     if (structure, theory) not in maps:
         refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == structure) + ")")
@@ -139,9 +108,9 @@ def map_for_case(case) -> tuple[str, str]:
                    + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
                       f"{', '.join(f'{v:g}' for v in FAMILY_SLENDERNESSES)} and the thin limit"
                       if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
-    reference = _family_groups(replace(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
+    reference = family_groups(replace(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
                                        slenderness=slenderness or SHIPPED_SLENDERNESS).build())
-    for name, value in _family_groups(target).items():
+    for name, value in family_groups(target).items():
         if not (same(value, reference[name]) if reference[name] else value == 0.0):
             refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
                    "another Poisson ratio of a shear-deformable target or structural damping is another family)")
@@ -162,40 +131,6 @@ def _point_loaded_mindlin(case) -> bool:
     """Whether ``simulate`` strikes this case's Mindlin plate at a point (no contact patch)."""
     return (case.target_type == "plate" and getattr(case.target, "theory", None) == "mindlin"
             and case.solver_kind == "modal" and not case_loads_a_patch(case))
-
-
-def case_loads_a_patch(case) -> bool:
-    """Whether ``simulate`` spreads this case's contact force over the contact patch: the
-    target takes one under ``solver.contact_patch`` and the law has a contact radius."""
-    from ..solvers.modal import _uses_patch, contact_radius_function
-
-    return _uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
-
-
-def _family_groups(target) -> dict:
-    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
-
-    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
-    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
-    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
-    undamped).
-    """
-    groups = {"damping_ratio": float(target.damping_ratio)}
-    if target.structure == "beam":
-        if target.theory != "euler":
-            span = target.length
-            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
-            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
-        return groups
-    groups["D22/D11"] = target.D22 / target.D11
-    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
-    if target.theory == "mindlin":
-        side = target.length_x
-        groups["D12/D11"] = target.D12 / target.D11
-        for name in ("A44", "A55"):
-            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
-        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
-    return groups
 
 
 def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
@@ -260,17 +195,11 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     except NoMapError as refusal:
         if not build or law not in MAP_LAWS or case.solver_kind != "modal" or case.target_type not in ("beam", "plate"):
             raise  # what no on-demand map can describe either
-        from .on_demand import lookup_on_demand
-
         return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
     if law in PLASTIC_LAWS:
-        from .plastic_lookup import lookup_plastic_case
-
         return lookup_plastic_case(case, structure, theory, law)
     slenderness = case_slenderness(case)
     if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
-        from .families import lookup_slenderness
-
         def read(zeta, lam):
             return lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness, law=law)
     else:
@@ -278,50 +207,12 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
             return lookup(zeta, lam, structure=structure, theory=theory, law=law)
     try:
         return scaled_answer(case, law, read)
-    except ValueError as error:
-        if not build or "outside the shipped map" not in str(error):
+    except OutsideMapError as error:
+        if not build:
             raise
         # the case's family has a shipped map, but its numbers lie beyond it: a tile of the
         # same structure answers (its points solved exactly as the shipped map's)
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map ({error})")
-    from .on_demand import lookup_on_demand
-
     return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
 
-
-def scaled_answer(case, law: str, read) -> dict:
-    """The answer of :func:`lookup_case` from ``read(ζ, λ) -> LookupResult``, a reading of a
-    linear or Hertz map at the case's numbers, scaled to newtons."""
-    if law == "hertz":
-        from ..hertz_similarity import hertz_numbers
-
-        hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
-        zeta, lam = hertz.loss_factor, hertz.relative_stiffness
-        found = read(zeta, lam)
-        scale = hertz.force_scale
-    else:
-        from ..cases import case_dimensionless
-
-        numbers = case_dimensionless(case)
-        zeta, lam = numbers["zeta"], numbers["lambda"]
-        found = read(zeta, lam)
-        scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
-                                       numbers["contact_stiffness_N_m"])) / found.fmax_normalised
-    return _answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
-
-
-def _answer(found, scale: float, law: str, details: dict) -> dict:
-    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
-    return {
-        "peak_force_N": found.fmax_normalised * scale,
-        "peak_force_error_N": found.fmax_error * scale,
-        "fmax_normalised": found.fmax_normalised,
-        "fmax_error": found.fmax_error,
-        "status": found.status,
-        **status_notes(found.status),
-        **details,
-        "map": found.map_name,
-        "law": law,
-        "force_scale_N": scale,
-    }
 

@@ -16,8 +16,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..plotting import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
 from ..solvers.modal import ModalSettings
+from .accuracy import STATUSES
+from .hertz_points import hertz_asymptote_peak
 from .lookup import markdown_table
+from .plastic_lookup import load_plastic_map
+from .plastic_points import PLASTIC_LAWS
+from .points import METHODS
 from .structures import MapStructure
 from .sweep import log_grid, sweep
 
@@ -44,9 +50,6 @@ def tidy_frame(dataset):
     ``unresolved`` point) and ``status`` the status's name
     (:data:`impactmaps.maps.accuracy.STATUSES`), not their codes.
     """
-    from .accuracy import STATUSES
-    from .sweep import METHODS
-
     frame = dataset.drop_vars(["kind", "theory", "supports", "aspect_ratio", "slenderness"]).to_dataframe().reset_index()
     frame = frame[frame["done"] == 1].drop(columns="done")
     if "method" in frame:
@@ -127,8 +130,6 @@ def make_chart(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..plotting import plot_fmax_chart, plot_regime_map, plot_regime_strip
-
     check_chart_grid(zeta_range, zeta_count, lambdas)
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
@@ -198,8 +199,6 @@ HERTZ_ASYMPTOTE_POINTS = 50
 
 def _hertz_axes(ax, strip, dataset) -> None:
     """The Hertz asymptotes and labels on a chart drawn by ``plot_fmax_chart(asymptotes=False)``."""
-    from .hertz_points import hertz_asymptote_peak
-
     zeta = dataset["zeta"].values
     dense = zeta[np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))]
     kinds = sorted({str(kind) for kind in dataset["kind"].values}, reverse=True)
@@ -254,10 +253,6 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from ..plotting import plot_plastic_chart
-    from .plastic_lookup import load_plastic_map
-    from .plastic_points import PLASTIC_LAWS
 
     if law not in PLASTIC_LAWS:
         raise ValueError(f"--law = {law!r} is invalid for the elastic-plastic chart: choose "

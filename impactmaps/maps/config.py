@@ -3,10 +3,11 @@
 Example::
 
     output = "my-sweep"                 # directory (relative to the config file)
-    law = "linear"                      # or "hertz": axes ζ_h, λ_h, F_max/F_hs
+    law = "linear"                      # or "hertz": axes ζ_h, λ_h, F_max/F_hs; "yc", "stronge": β too
     [grid]
     zeta = { min = 0.01, max = 10, count = 30 }      # or an explicit list
     lambda = [0.1, 1.0, 10.0]
+    # beta = { min = 1, max = 1000, count = 7 }      # the elastic-plastic laws' impact numbers
     [solver]                            # optional ModalSettings fields
     cutoff_ratio = 40
     [[structure]]                       # one table per structure (fields of MapStructure)
@@ -33,8 +34,10 @@ from pathlib import Path
 import numpy as np
 
 from ..solvers.modal import ModalSettings
-from .regimes import MAP_LAWS
+from .chart import tidy_frame
+from .registry import available_map_families, map_family
 from .structures import MapStructure
+from .sweep import sweep
 
 __all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
@@ -127,7 +130,8 @@ def load_sweep_config(path):
     Returns
     -------
     tuple
-        ``(structures, zetas, lambdas, settings, output_dir, law)``.
+        ``(structures, zetas, lambdas, settings, output_dir, law, axes)``: ``axes`` the grids of
+        the law's axes besides ζ and λ (``{"beta": …}`` for an elastic-plastic law; else empty).
     """
     path = Path(path)
     with open(path, "rb") as handle:
@@ -162,9 +166,13 @@ def load_sweep_config(path):
     if not isinstance(output, str) or not output:
         raise ValueError(f"output = {output!r} is invalid: give a directory name")
     law = config.get("law", "linear")
-    if law not in MAP_LAWS:
-        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(MAP_LAWS)}")
-    return structures, zetas, lambdas, settings, path.parent / output, law
+    if law not in available_map_families():
+        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
+    extra = [axis.name for axis in map_family(law).extra_axes]
+    if not set(extra) <= set(grid):
+        raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
+    axes = {name: _grid(name, grid[name]) for name in extra}
+    return structures, zetas, lambdas, settings, path.parent / output, law, axes
 
 
 def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
@@ -189,15 +197,12 @@ def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, ma
     dict
         ``{"netcdf": Path, "csv": Path}``.
     """
-    from .chart import tidy_frame
-    from .sweep import sweep
-
-    structures, zetas, lambdas, settings, output, law = load_sweep_config(path)
+    structures, zetas, lambdas, settings, output, law, axes = load_sweep_config(path)
     if output.exists() and not output.is_dir():
         raise ValueError(f"output = {str(output)!r} is a file, not a directory")
     netcdf = output / "sweep.nc"
     dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
-                    overwrite=overwrite, max_workers=max_workers, executor=executor, law=law)
+                    overwrite=overwrite, max_workers=max_workers, executor=executor, law=law, axes=axes)
     csv = output / "sweep.csv"
     tidy_frame(dataset).to_csv(csv, index=False)
     return {"netcdf": netcdf, "csv": csv}

@@ -22,12 +22,14 @@ Slendernesses below 10 are refused (no member brackets them).
 from __future__ import annotations
 
 import functools
+from dataclasses import replace
 
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
-from .lookup import _SEVERITY, answer_status, load_shipped_map, lookup
+from .lookup import load_shipped_map, lookup
+from .reader import _SEVERITY, answer_status
 from .structures import FAMILY_SLENDERNESSES
 
 __all__ = ["FAMILY_THEORIES", "family_members", "lookup_slenderness", "slenderness_error_grid"]
@@ -134,8 +136,6 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
         Slenderness below 10, no family for the law, or a member refusing (outside its
         range or next to an ``unresolved`` point).
     """
-    from dataclasses import replace
-
     members = family_members(structure, theory, law)
     require_in_range("slenderness", slenderness, min(FAMILY_SLENDERNESSES), np.inf)
     inverse = 1.0 / float(slenderness)

@@ -9,6 +9,7 @@ linear maps (:mod:`.accuracy`), and stored in the Hertz half-space scales: force
 By the similarity of Hertz impacts (module :mod:`impactmaps.hertz_similarity`) one such
 point holds for every physical case of the family with the same (ζ_h, λ_h).
 
+The Hertz map family (:class:`HertzFamily`, registered as ``"hertz"``) is these points.
 The asymptotes of the Hertz regimes — infinite plate (Zener's model), infinite beam,
 quasi-static — are those of :mod:`impactmaps.law_asymptotes`, run on a realisation of
 (ζ_h, λ_h) and scaled the same way: :func:`hertz_asymptote_peak`.
@@ -25,13 +26,16 @@ import numpy as np
 from ..contact.hertz import HertzContact
 from ..hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
 from ..law_asymptotes import asymptote
+from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR
 from ..solvers.modal import ModalSettings, _uses_patch, reference_contact_stiffness, simulate
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
-from .accuracy import AccuracyControl, controlled_point, exact_point
+from .accuracy import AccuracyControl, exact_point
+from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
+from .points import PlanMethod, method_code, solve_map_points
 from .structures import BasisTable, MapStructure
 
-__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "hertz_asymptote_peak", "hertz_contact_frequency",
-           "hertz_summary", "solve_hertz_points"]
+__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
+           "hertz_contact_frequency", "hertz_summary", "solve_hertz_points"]
 
 #: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).
 HERTZ_TIME_KEYS = ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised")
@@ -71,6 +75,10 @@ class _Realised:
         self.law = HertzContact(stiffness, effective_radius=radius)
         self.mass, self.velocity, self.numbers = realisation.mass, realisation.velocity, realisation.numbers
         self.omega = float(np.sqrt(reference_contact_stiffness(self.law, self.mass, self.velocity) / self.mass))
+
+    def reflection_on(self, target) -> float:
+        """The first wave return to the impact point of ``target`` over t* [-]."""
+        return float(target.reflection_time(1.0 / self.numbers.time_scale))
 
 
 class _HertzScaled:
@@ -182,20 +190,98 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
     return float(out) if out.ndim == 0 else out
 
 
+class HertzFamily(MapFamily):
+    """The Hertz law's maps over the Hertz numbers (ζ_h, λ_h) (module docstring).
+
+    Parameters
+    ----------
+    patch : float, optional
+        Patch number P = sqrt(R α_m)/h [-] of patch-loaded points (:func:`with_patch`);
+        None (the registered family): point-loaded.
+    """
+
+    name = "hertz"
+    axes = (Axis("lambda_", HERTZ_AXES[0]), Axis("zeta", HERTZ_AXES[1]))
+    variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
+    classifies = True
+    shipped = {
+        ("beam", "euler"): "beam-ss-euler",
+        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
+        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
+        ("plate", "mindlin"): "plate-ssss-mindlin-s20",
+    }
+
+    def __init__(self, patch: float | None = None):
+        self.patch = patch
+
+    def describes(self, law) -> bool:
+        return isinstance(law, HertzContact)
+
+    def with_patch(self, patch: float | None) -> "HertzFamily":
+        """The family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
+        return HertzFamily(patch)
+
+    def check(self, structure, target, settings) -> None:
+        if self.patch is not None and not _uses_patch(target, settings.contact_patch):
+            raise ValueError(f"patch = {self.patch!r}: the {structure.name} target takes no contact patch under "
+                             f"contact_patch = {settings.contact_patch!r} (valid: patch = None)")
+
+    def uses_table(self) -> bool:
+        return self.patch is None
+
+    def realise(self, target, point) -> _Realised:
+        zeta, lam = point
+        realised = _Realised(target, float(zeta), float(lam), self.patch)
+        realised.reflection = realised.reflection_on(target)
+        return realised
+
+    def plan(self, target, realised: _Realised, point, cap: float, settings) -> PointPlan:
+        zeta, lam = float(point[0]), float(point[1])
+        if beyond_shear_theory(target, realised.omega):
+            return PointPlan(None)
+        ratio = settings.cutoff_ratio if self.patch is None else settings.patch_cutoff_ratio
+        capped = ratio * realised.omega > cap
+        if capped and self.patch is None and has_classical_asymptote(target):
+            infinite = _asymptote_row(_INFINITE[target.structure], target, zeta, lam)
+            if realised.reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
+                return PointPlan(PlanMethod.ASYMPTOTE,
+                                 exact_point(infinite | {"method": method_code(PlanMethod.ASYMPTOTE)}))
+        if capped:  # its cut-off could not be refined: the map does not vouch for it
+            return PointPlan(None)
+        return PointPlan(PlanMethod.MODAL)
+
+    def scaled(self, result, realised: _Realised) -> _HertzScaled:
+        return _HertzScaled(result, realised.numbers)
+
+    def runner(self, target, table, cap: float, point, realised, runs: list):
+        if self.patch is None:
+            return None  # the table runner
+        return _patch_runner(self, target, cap, point, realised)
+
+    def infinite_peak(self, loss_factor, kind: str):
+        return hertz_asymptote_peak("infinite", kind, zeta_h=loss_factor)
+
+    def quasi_static_peak(self, relative_stiffness):
+        return hertz_asymptote_peak("quasi-static", "plate", lambda_h=relative_stiffness)
+
+
+HERTZ = register_map_family(HertzFamily())
+
+
 def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                        table: BasisTable | None = None, control: AccuracyControl = AccuracyControl(),
                        patch: float | None = None) -> list[dict]:
     """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``.
 
-    The Hertz counterpart of :func:`impactmaps.maps.sweep.solve_points`, with the same
-    parameters, the same cut-off rule (modes up to ``settings.cutoff_ratio`` times the
-    contact frequency, clipped to :func:`~impactmaps.maps.sweep.frequency_cap`, plus
-    residual flexibility) and the same accuracy control. Where the cut-off would pass the
-    cap, the infinite-structure asymptote of the Hertz law answers if the first wave
-    returns after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (Euler beams and
-    Kirchhoff plates); otherwise — the cut-off could not be refined — and where the contact
+    :func:`impactmaps.maps.points.solve_map_points` of the Hertz family: the same cut-off
+    rule as the linear maps (modes up to ``settings.cutoff_ratio`` times the contact
+    frequency, clipped to :func:`~impactmaps.maps.points.frequency_cap`, plus residual
+    flexibility) and the same accuracy control. Where the cut-off would pass the cap,
+    the infinite-structure asymptote of the Hertz law answers if the first wave returns
+    after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (Euler beams and Kirchhoff
+    plates); otherwise — the cut-off could not be refined — and where the contact
     frequency lies beyond what a Timoshenko/Mindlin theory holds, the point is
-    ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`).
+    ``unresolved``.
 
     With a patch number ``patch`` = P = sqrt(R α_m)/h (:mod:`impactmaps.hertz_similarity`)
     the points are patch-loaded: each is realised with the R that gives P, and solved by
@@ -212,61 +298,10 @@ def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, fl
         One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
         plus ``zeta``, ``lambda_``.
     """
-    from .sweep import ASYMPTOTE_REFLECTION_FACTOR, METHODS, basis_table, frequency_cap, unresolved_point
-
-    target = structure.build()
-    cap = frequency_cap(structure)
-    if patch is not None and not _uses_patch(target, settings.contact_patch):
-        raise ValueError(f"patch = {patch!r}: the {structure.name} target takes no contact patch under "
-                         f"contact_patch = {settings.contact_patch!r} (valid: patch = None)")
-    table = basis_table(structure, settings.min_modes) if table is None and patch is None else table
-    ratio = settings.cutoff_ratio if patch is None else settings.patch_cutoff_ratio
-    impacts = [_Realised(target, float(zeta), float(lam), patch) for zeta, lam in points]
-    rows = []
-    for (zeta, lam), realised in zip(points, impacts):
-        zeta, lam = float(zeta), float(lam)
-        reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
-        row = {"zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
-        if beyond_shear_theory(target, realised.omega):
-            rows.append(unresolved_point(row))
-            continue
-        capped = ratio * realised.omega > cap
-        if capped and patch is None and has_classical_asymptote(target):
-            infinite = _asymptote_row(_INFINITE[structure.kind], target, zeta, lam)
-            if reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
-                rows.append(exact_point(row | infinite | {"method": METHODS.index("infinite-structure-asymptote")}))
-                continue
-        if capped:  # its cut-off could not be refined: the map does not vouch for it
-            rows.append(unresolved_point(row))
-            continue
-        if patch is None:
-            run = _hertz_runner(target, table, cap, zeta, lam, realised)
-        else:
-            run = _patch_runner(target, cap, zeta, lam, realised, patch)
-        rows.append(row | controlled_point(run, settings, control) | {"method": METHODS.index("modal+residual")})
-    return rows
+    return solve_map_points(HERTZ.with_patch(patch), structure, points, settings, table, control)
 
 
-def _hertz_runner(target, table: BasisTable, cap: float, zeta: float, lambda_: float, realised: _Realised):
-    """``run(settings, zeta_factor)`` of one Hertz point, read in the Hertz scales (a run
-    equal to an earlier one is not repeated: :func:`~impactmaps.maps.sweep.table_run_key`)."""
-    from .sweep import table_run_key
-
-    seen = {}
-
-    def run(settings: ModalSettings, zeta_factor: float):
-        impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_)
-        basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
-        key = table_run_key(settings, zeta_factor, basis)
-        if key not in seen:
-            result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
-            seen[key] = _HertzScaled(result, impact.numbers)
-        return seen[key]
-
-    return run
-
-
-def _patch_runner(target, cap: float, zeta: float, lambda_: float, realised: _Realised, patch: float):
+def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Realised):
     """``run(settings, zeta_factor)`` of one patch-loaded Hertz point, read in the Hertz scales.
 
     The patch radius is iterated by :func:`~impactmaps.solvers.modal.simulate` on the
@@ -275,7 +310,7 @@ def _patch_runner(target, cap: float, zeta: float, lambda_: float, realised: _Re
     """
 
     def run(settings: ModalSettings, zeta_factor: float):
-        impact = realised if zeta_factor == 1.0 else _Realised(target, zeta * zeta_factor, lambda_, patch)
+        impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))
         clipped = replace(settings, patch_cutoff_ratio=min(settings.patch_cutoff_ratio, cap / impact.omega))
         result = simulate(target, impact.law, impact.mass, impact.velocity, settings=clipped, record=False)
         return _HertzScaled(result, impact.numbers)

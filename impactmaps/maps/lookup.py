@@ -24,14 +24,23 @@ from importlib import resources
 import numpy as np
 import xarray as xr
 
-from .._checks import describe_outside, require_choice, require_positive
+from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS
-from .accuracy import AccuracyControl
 from .plastic_points import PLASTIC_LAWS
-from .refinement import Refinement, interpolate
-from .regimes import classify, quasi_static_peak
+from .reader import (
+    BAND_TOLERANCE,
+    answer_status,
+    corner_status,
+    interpolation_error,
+    read_values,
+    status_notes,
+)
+from .dataset import map_law
+from .points import warn_point_loaded_mindlin
+from .refinement import Refinement
+from .regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_static_peak
+from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
-from .sweep import MAP_LAWS, map_law, warn_point_loaded_mindlin
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
            "require_map_law", "shipped_structure_name", "load_shipped_refinement", "refinement_of", "lookup",
@@ -41,12 +50,9 @@ __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_st
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
 ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
 
-SHIPPED_MAPS = {
-    ("beam", "euler"): "beam-ss-euler",
-    ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
-    ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
-    ("plate", "mindlin"): "plate-ssss-mindlin-s20",
-}
+#: (kind, theory) → structure name of the shipped (ζ, λ) maps (those of the linear family; the
+#: Hertz family ships the same structures).
+SHIPPED_MAPS = map_family("linear").shipped
 
 
 def map_file_stem(structure_name: str, law: str = "linear") -> str:
@@ -238,177 +244,19 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     ValueError
         (ζ, λ) outside the map, or next to an ``unresolved`` point (no value).
     """
+    reading = read_values(dataset, map_family(law), (loss_factor, relative_stiffness),
+                          ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
+                          hints=(" (impactmaps point)", ""), refinement=refinement, error_grid=error_grid)
     zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
-    require_positive("loss_factor", zeta)
-    require_positive("relative_stiffness", lam)
-    for label, values, axis in (("loss_factor", zeta, "zeta"), ("relative_stiffness", lam, "lambda_")):
-        low, high = float(dataset[axis].min()), float(dataset[axis].max())
-        if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
-            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
-            raise ValueError(
-                f"{label} = {shown} is outside the shipped map: valid range is "
-                f"[{low:g}, {high:g}]; run a simulation (impactmaps point) instead"
-            )
-    lam_c = np.clip(lam, float(dataset["lambda_"].min()), float(dataset["lambda_"].max()))
-    zeta_c = np.clip(zeta, float(dataset["zeta"].min()), float(dataset["zeta"].max()))
-    if error_grid is None:
-        error_grid = interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
-    times = [name for name in ("log_peak_time", "log_reflection_time") if name in dataset]
-    base = {name: dataset[name].isel(structure=0).values
-            for name in ["fmax_normalised", *times, "fmax_error", "status"]}
-    grid_only = Refinement.empty(base["fmax_normalised"].shape)
-    rows = _grid_position(np.log(dataset["lambda_"].values), np.log(lam_c).ravel())
-    cols = _grid_position(np.log(dataset["zeta"].values), np.log(zeta_c).ravel())
-    values, error, codes = interpolate(refinement or grid_only, base, error_grid, rows, cols)
-    if times:  # the regime's times: from the map's own grid
-        values |= interpolate(grid_only, base, error_grid, rows, cols, times)[0]
-    error = error.reshape(zeta.shape)
-    status = corner_status([c.reshape(zeta.shape) for c in codes], error)
-    if np.any(status == "unresolved"):
-        bad = np.flatnonzero(np.asarray(status == "unresolved").ravel())[0]
-        raise ValueError(
-            f"(loss_factor, relative_stiffness) = ({zeta.ravel()[bad]:g}, {lam.ravel()[bad]:g}) lies where "
-            f"the {structure} {theory} map holds no value (unresolved: beyond the range of its "
-            "structural theory, or no model within the mode cap); run a simulation instead")
-    fmax = values["fmax_normalised"].reshape(zeta.shape)
-    peak_time = np.exp(values["log_peak_time"].reshape(zeta.shape)) if "log_peak_time" in values else None
-    reflection = (np.exp(values["log_reflection_time"].reshape(zeta.shape)) if "log_reflection_time" in values
-                  else None)
+    values = reading.values
+    fmax, error, status = values["fmax_normalised"], reading.errors["fmax_error"], reading.status
+    peak_time = np.exp(values["log_peak_time"]) if "log_peak_time" in values else None
+    reflection = np.exp(values["log_reflection_time"]) if "log_reflection_time" in values else None
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
     return LookupResult(fmax, regime, structure, theory, name, error, status, law)
-
-
-#: Severity of a status when map points (or family members) are combined (worst wins);
-#: ``interpolated`` is a lookup's own status (:func:`answer_status`), never a point's.
-_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
-#: The status of each severity.
-_BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
-#: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
-#: band is wider is ``interpolated``, even where every point around it converged.
-BAND_TOLERANCE = AccuracyControl().tolerance
-
-
-def answer_status(point_status, band):
-    """The status of an interpolated answer from its map points' worst status and its band.
-
-    ``interpolated`` where the points converged (``converged``, ``refined``) but the band
-    — their own error plus the interpolation (or slenderness) error between them — is wider
-    than :data:`BAND_TOLERANCE`: the points are right, the value between them is known only
-    to ± the band (near a re-impact kink of F̄max the interpolation errs by up to a few
-    1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
-    """
-    status = np.asarray(point_status)
-    widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
-    out = np.where(widened, "interpolated", status)
-    return str(out) if out.ndim == 0 else out
-
-
-def corner_status(corner_codes, band):
-    """The status of an answer read between map points: the worst of the points' statuses
-    (``corner_codes``: one array of status codes of :data:`impactmaps.maps.accuracy.STATUSES`
-    per corner around the answers), ``interpolated`` where the ``band`` makes it so
-    (:func:`answer_status`)."""
-    from .accuracy import STATUSES
-
-    severity = np.array([_SEVERITY[name] for name in STATUSES])
-    worst = np.max([severity[codes] for codes in corner_codes], axis=0)
-    return answer_status(_BY_SEVERITY[worst], band)
-
-
-#: What a lookup's status means for its number, where that needs saying.
-_STATUS_NOTES = {
-    "interpolated": "the map points around this one converged, but between them F̄max is known only to "
-                    "± fmax_error (interpolation across the map's kinks or curvature); `impactmaps point` "
-                    "computes this point to 1e-3",
-    "sensitive": "no converged value: re-impacts whose order flips with any change of the model; read the band "
-                 "(± fmax_error), not the number",
-}
-
-
-def status_notes(status) -> dict:
-    """``{"status_note": text}`` for a status whose number needs a word (``interpolated``,
-    ``sensitive``), else ``{}``; what the command line prints beside a lookup's status."""
-    note = _STATUS_NOTES.get(str(status)) if np.ndim(status) == 0 else None
-    return {"status_note": note} if note else {}
-
-
-#: Safety factor of :func:`interpolation_error` on the leading-order term ``h² |f''| / 8``.
-INTERPOLATION_SAFETY = 5.0
-
-
-def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY) -> np.ndarray:
-    """Local estimate of the linear-interpolation error of a map, per grid point [-].
-
-    ``values`` has one axis per map axis (two for a (λ, ζ) map, three for a plastic
-    (β, λ, ζ) map; the sum below runs over all of them). Linear interpolation between
-    grid points errs by about ``h² |f''| / 8`` in each direction; with the second
-    differences of the map itself (``Δ²f``, in grid units) that is
-    ``(|Δ²_λ f| + |Δ²_ζ f|) / 8``, each taken as the largest over the point and its two
-    neighbours on each side along its axis: second differences are largest next to kinks,
-    which a cell may straddle, and F̄max has ripples shorter than the grid spacing
-    (quasi-static regime, ~1e-4) that one point's second differences alias — with one
-    neighbour a side the band missed one of 734 random points of the twice-denser Euler
-    beam map by 20 %. Near the re-impact kinks of the transition the leading-order term
-    underestimates the error by up to 3.3× on maps of 20 ζ and 10 λ per decade (320 random
-    points) and by 4.9× at one of 1102 random points of the twice-denser maps (a steep
-    change of the impact that carries the peak, within one λ cell), so the estimate
-    carries a safety factor of 5: ``5 (|Δ²_λ f| + |Δ²_ζ f|) / 8``. Edges reuse the
-    nearest interior difference.
-
-    Parameters
-    ----------
-    values : ndarray
-        The map's values on its grid (NaN where a point holds no value).
-    reach : int
-        Neighbours on each side over which a second difference is the largest (2 for the
-        (ζ, λ) maps; the plastic maps keep the 1 they were validated with).
-    safety : float
-        Factor on the leading-order term (:data:`INTERPOLATION_SAFETY`; the plastic maps: 4).
-
-    Returns
-    -------
-    ndarray
-        The estimate per grid point [same unit as ``values``].
-    """
-    f = np.asarray(values, float)
-    second = np.zeros_like(f)
-    for axis in range(f.ndim):
-        if f.shape[axis] < 3:  # no second difference along a 1- or 2-point axis
-            continue
-        d2 = _nearest_known(np.abs(np.diff(f, n=2, axis=axis)), axis)
-        pad = [(0, 0)] * f.ndim
-        pad[axis] = (1, 1)
-        d2 = np.pad(d2, pad, mode="edge")
-        widened = d2.copy()
-        for shift in range(1, reach + 1):
-            widened = np.maximum(widened, np.maximum(np.roll(d2, shift, axis=axis), np.roll(d2, -shift, axis=axis)))
-        second += widened
-    return second * (safety / 8.0)
-
-
-def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
-    """``d2`` with each missing entry (a difference that reaches an ``unresolved`` point,
-    NaN) replaced by the nearest known one along ``axis`` (the largest known anywhere when
-    a whole line is missing)."""
-    if not np.isnan(d2).any():
-        return d2
-    out = np.ascontiguousarray(np.moveaxis(d2, axis, -1))  # a copy: lines are views of it
-    fallback = float(np.nanmax(d2)) if np.isfinite(d2).any() else 0.0
-    positions = np.arange(out.shape[-1])
-    for line in out.reshape(-1, out.shape[-1]):
-        known = np.flatnonzero(np.isfinite(line))
-        missing = np.flatnonzero(np.isnan(line))
-        if missing.size == 0:
-            continue
-        if known.size == 0:
-            line[missing] = fallback
-            continue
-        nearest = known[np.abs(positions[missing, None] - known[None, :]).argmin(axis=1)]
-        line[missing] = line[nearest]
-    return np.moveaxis(out, -1, axis)
 
 
 @functools.lru_cache(maxsize=32)
@@ -449,21 +297,6 @@ def _interpolation_error_grid(key: tuple) -> np.ndarray:
     return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
-def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """Fractional index of each value on the (ascending) ``grid``: exact on a grid point."""
-    lower, upper = _bracket(grid, values)
-    span = np.where(upper > lower, grid[upper] - grid[lower], 1.0)
-    return lower + np.where(upper > lower, (values - grid[lower]) / span, 0.0)
-
-
-def _bracket(grid: np.ndarray, values: np.ndarray):
-    """Indices of the grid points just below and just above each value."""
-    upper = np.clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
-    lower = np.clip(upper - 1, 0, grid.size - 1)
-    exact = np.isclose(grid[upper], values, rtol=0, atol=1e-12)
-    return np.where(exact, upper, lower), upper
-
-
 def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
@@ -474,8 +307,6 @@ def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "
     ``law="hertz"`` the same with the Hertz asymptotes over (ζ_h, λ_h), in F_max/F_hs
     (not closed forms: each is an asymptote run, :mod:`impactmaps.maps.hertz_points`).
     """
-    from .regimes import infinite_structure_peak
-
     return np.maximum(infinite_structure_peak(loss_factor, structure, law),
                       quasi_static_peak(relative_stiffness, law))
 

@@ -19,10 +19,12 @@ of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the neares
 
 from __future__ import annotations
 
-from .case_lookup import CASE_MATCH_RTOL, NoMapError, _family_groups, case_loads_a_patch, scaled_answer
+from ..hertz_similarity import patch_number
+from ..solvers.modal import ModalSettings
+from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, family_groups, scaled_answer
 from .lookup import read_map
+from .points import MAX_MODES
 from .structures import MapStructure
-from .sweep import MAX_MODES
 from .tiles import cached_tile, tile_for
 
 __all__ = ["case_structure", "lookup_on_demand"]
@@ -90,8 +92,6 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     _check_describes(structure, target, "poisson_ratio" in fields)
     number = None
     if patch:
-        from ..hertz_similarity import patch_number
-
         number = _rounded(patch_number(target, case.law, case.impactor_mass, case.velocity))
     return structure, number
 
@@ -103,7 +103,7 @@ def _check_describes(structure: MapStructure, target, poisson: bool) -> None:
 
     def groups(of):
         extra = {"D12/D11": of.D12 / of.D11} if of.structure == "plate" and poisson else {}
-        return _family_groups(of) | extra
+        return family_groups(of) | extra
 
     wanted = groups(reference)
     for name, value in groups(target).items():
@@ -168,6 +168,4 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
 def _tile_settings(case, patch):
     """The tile's ModalSettings: the shipped maps' defaults, with the case's ``contact_patch``
     for a patch-loaded tile (the load it asks for)."""
-    from ..solvers.modal import ModalSettings
-
     return ModalSettings() if patch is None else ModalSettings(contact_patch=case.settings.contact_patch)

@@ -34,6 +34,8 @@ The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou la
 same E*, R, Y: :meth:`impactmaps.contact.stronge.StrongeContact.impact_number`), with
 its default constants only: other constants are another family.
 
+The map families ``"yc"`` and ``"stronge"`` (:class:`PlasticFamily`) are these points.
+
 Stored quantities
 -----------------
 ``fmax_normalised = F_max/(m V0 ω_y)``; times × ω_y; ``restitution`` = rebound speed /
@@ -49,23 +51,23 @@ spread of a sensitive point).
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
-import xarray as xr
 
 from .._checks import require_choice, require_positive
 from ..contact.hertz import hertz_stiffness
 from ..contact.stronge import StrongeContact
 from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
 from ..dimensionless import realise
-from ..solvers.modal import ModalSettings, reference_contact_stiffness, simulate
-from .accuracy import STATUSES, AccuracyControl, controlled_point
+from ..solvers.modal import ModalSettings, reference_contact_stiffness
+from .accuracy import STATUSES, AccuracyControl, PointStatus
+from .map_family import RESULT_VARIABLES, Axis, Interpolation, MapFamily, PointPlan, register_map_family
+from .points import PlanMethod, map_plan, method_code, solve_map_points
 from .structures import BasisTable, MapStructure
 
-__all__ = ["PLASTIC_LAWS", "PLASTIC_VARIABLES", "PlasticNumbers", "plastic_numbers", "realise_plastic",
+__all__ = ["PLASTIC_LAWS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
            "plastic_law_of", "solve_plastic_points"]
 
 #: Map-law name → registered contact-law name of the elastic-plastic maps.
@@ -190,12 +192,19 @@ def _law_from(map_law: str, hertz: float, alpha_y: float):
 
 @dataclass(frozen=True)
 class PlasticRealisation:
-    """An impact realising (β, ζ, λ) on a target: law, impactor mass, speed and numbers."""
+    """An impact realising (β, ζ, λ) on a target: law, impactor mass, speed and numbers.
+
+    ``omega`` is the contact frequency [rad/s] of the law's reference stiffness at 1 m/s
+    (what a map point's cut-off is a multiple of); ``reflection`` the first wave return
+    to the impact point × ω_y [-] (None when not asked for).
+    """
 
     law: object
     mass: float
     velocity: float
     numbers: PlasticNumbers
+    omega: float = math.nan
+    reflection: float | None = None
 
 
 def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: float,
@@ -225,7 +234,10 @@ def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: flo
     mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
     alpha_y = math.sqrt(1.5) * float(velocity) / (float(impactor.contact_frequency) * float(beta))
     law = _law_from(map_law, stiffness / (1.5 * math.sqrt(alpha_y)), alpha_y)
-    return PlasticRealisation(law, mass, float(velocity), plastic_numbers(target, law, mass, velocity))
+    numbers = plastic_numbers(target, law, mass, velocity)
+    omega = math.sqrt(reference_contact_stiffness(law, mass, 1.0) / mass)
+    return PlasticRealisation(law, mass, float(velocity), numbers, omega,
+                              float(target.reflection_time(1.0 / numbers.time_scale)))
 
 
 class _PlasticScaled:
@@ -295,7 +307,7 @@ def _asymptote_row(plan, realised: PlasticRealisation) -> dict:
         "time_limit_reached": int(impact.time_limit_reached),
         "restitution": restitution,
         "absorbed_energy_fraction": absorbed,
-        "fmax_error": 0.0, "fmax_low": fmax, "fmax_high": fmax, "status": STATUSES.index("asymptotic"),
+        "fmax_error": 0.0, "fmax_low": fmax, "fmax_high": fmax, "status": STATUSES.index(PointStatus.ASYMPTOTIC),
         "restitution_error": 0.0, "absorbed_energy_error": 0.0,
     }
 
@@ -311,7 +323,7 @@ def _companion_errors(runs: list, status: int, levels: int) -> dict:
     out = {}
     for key in ("restitution", "absorbed_energy_fraction"):
         values = np.array([run.normalised_summary()[key] for run in runs])
-        if STATUSES[status] == "sensitive":
+        if STATUSES[status] == PointStatus.SENSITIVE:
             finest, change = values[levels - 1], abs(values[levels - 1] - values[levels - 2])
             seen = np.concatenate([values, [finest - change, finest + change]])
             error = 0.5 * (np.max(seen) - np.min(seen)) if np.all(np.isfinite(seen)) else np.nan
@@ -321,20 +333,95 @@ def _companion_errors(runs: list, status: int, levels: int) -> dict:
     return out
 
 
+#: The descriptions a plastic map gives the variables it shares with the others.
+_PLASTIC_DESCRIPTIONS = {"fmax_normalised": "maximum contact force / (m V0 ω_y), ω_y = sqrt(K_y/m)"} | {
+    key: RESULT_VARIABLES[key][3].replace("× ω", "× ω_y").replace("ω d²", "ω_y d²")
+    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised",
+                "reflection_time_normalised")}
+
+
+class PlasticFamily(MapFamily):
+    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y (module docstring).
+
+    Parameters
+    ----------
+    name : str
+        The map law (a key of :data:`PLASTIC_LAWS`).
+    """
+
+    axes = (Axis("beta", "impact number β = V0/(ω_h α_y) (seed 001 eq 11)"),
+            Axis("lambda_", "relative stiffness K_st/K_y"), Axis("zeta", "loss factor ζ(m, K_y)"))
+    variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
+                 } | {name: ("f8", np.nan, units, text) for name, (units, text) in PLASTIC_VARIABLES.items()}
+    errors = ERROR_OF
+    #: Second differences over one neighbour a side, safety factor 4, no further factor on
+    #: the band: what the plastic maps' bands were validated with (``validation/lookup_error.py
+    #: --law yc`` and ``--law stronge``: the band covered all 3306 errors of answered points,
+    #: largest error/band 0.67 and 0.86).
+    interpolation = Interpolation(reach=1, safety=4.0, band_safety=1.0)
+    #: No Mindlin plate: its pressure patch depends on the sphere radius, a fourth number.
+    shipped = {
+        ("beam", "euler"): "beam-ss-euler",
+        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
+        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
+    }
+    title = "impactmaps normalised elastic-plastic impact map"
+
+    def __init__(self, name: str):
+        require_choice("map_law", name, tuple(PLASTIC_LAWS))
+        self.name = name
+
+    def __reduce__(self):
+        return (type(self), (self.name,))
+
+    @property
+    def method_text(self) -> str:
+        return (f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[self.name]} "
+                "contact; axes (β, λ, ζ) at the linearised stiffness K_y")
+
+    def describes(self, law) -> bool:
+        kind = {"yc": YigitChristoforouContact, "stronge": StrongeContact}[self.name]
+        return isinstance(law, kind) and plastic_law_of(law) == self.name
+
+    def realise(self, target, point) -> PlasticRealisation:
+        beta, zeta, lam = (float(value) for value in point)
+        return realise_plastic(target, self.name, beta, zeta, lam)
+
+    def plan(self, target, realised: PlasticRealisation, point, cap: float, settings) -> PointPlan:
+        plan = map_plan(target, realised.law, realised.mass, realised.omega, settings.cutoff_ratio * realised.omega,
+                        cap, None)
+        if plan is None:  # beyond the shear-deformable theory, or no method within the mode cap
+            return PointPlan(None)
+        if plan.method == PlanMethod.ASYMPTOTE:
+            return PointPlan(plan.method, _asymptote_row(plan, realised) | {"method": method_code(plan.method)})
+        return PointPlan(plan.method)
+
+    def scaled(self, result, realised: PlasticRealisation) -> _PlasticScaled:
+        return _PlasticScaled(result, realised)
+
+    def companion_errors(self, runs: list, status: int, levels: int) -> dict:
+        return _companion_errors(runs, status, levels)
+
+    def unresolved_extras(self) -> dict:
+        return {name: np.nan for name in PLASTIC_VARIABLES}
+
+
+YC = register_map_family(PlasticFamily("yc"))
+STRONGE = register_map_family(PlasticFamily("stronge"))
+
+
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
                          settings: ModalSettings | None = None, table: BasisTable | None = None,
                          control: AccuracyControl = AccuracyControl()) -> list[dict]:
     """Simulate the elastic-plastic impacts realising each (β, ζ, λ) on ``structure``.
 
-    The plastic counterpart of :func:`impactmaps.maps.sweep.solve_points`: the same
-    cut-off rule (modes up to ``settings.cutoff_ratio`` times the run's contact
-    frequency, clipped to :func:`~impactmaps.maps.sweep.frequency_cap`, plus residual
-    flexibility), the same answer beyond the cap
-    (:func:`impactmaps.solvers.mode_budget.plan_basis`: the any-law infinite-structure
-    asymptote where it holds, else the capped modes with a warning) and the same accuracy
-    control; a point beyond what a Timoshenko theory holds, or one nothing answers within
-    the mode cap, is ``unresolved`` (:func:`impactmaps.maps.sweep.unresolved_point`: every
-    value missing), as in the linear and Hertz maps.
+    :func:`impactmaps.maps.points.solve_map_points` of the plastic family ``map_law``: the
+    same cut-off rule as the linear maps (modes up to ``settings.cutoff_ratio`` times the
+    run's contact frequency, clipped to the structure's mode cap, plus residual
+    flexibility), the same answer beyond the cap (the any-law infinite-structure
+    asymptote where it holds) and the same accuracy control; a point beyond what a
+    Timoshenko theory holds, or one nothing answers within the mode cap, is
+    ``unresolved`` (every value missing).
 
     Parameters
     ----------
@@ -351,137 +438,6 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
         One dict per point: the map scalars (module docstring), their errors, ``status``,
         ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
     """
-    from .sweep import METHODS, _map_plan, basis_table, frequency_cap, unresolved_point
-
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
-    settings = settings or ModalSettings()
-    target = structure.build()
-    cap = frequency_cap(structure)
-    table = basis_table(structure, settings.min_modes) if table is None else table
-    rows = []
-    for beta, zeta, lam in points:
-        beta, zeta, lam = float(beta), float(zeta), float(lam)
-        realised = realise_plastic(target, map_law, beta, zeta, lam)
-        omega = math.sqrt(reference_contact_stiffness(realised.law, realised.mass, 1.0) / realised.mass)
-        reflection = float(target.reflection_time(1.0 / realised.numbers.time_scale))
-        row = {"beta": beta, "zeta": zeta, "lambda_": lam, "reflection_time_normalised": reflection}
-        plan = _map_plan(target, realised.law, realised.mass, omega, settings.cutoff_ratio * omega, cap, None)
-        if plan is None:  # beyond the shear-deformable theory, or no method within the mode cap
-            rows.append(unresolved_point(row) | {name: np.nan for name in PLASTIC_VARIABLES})
-            continue
-        if plan.method == "infinite-structure-asymptote":
-            rows.append(row | _asymptote_row(plan, realised) | {"method": METHODS.index(plan.method)})
-            continue
-        if plan.method == "modal+residual-capped":
-            warnings.warn(f"{structure.name} ({map_law}) at β = {beta:g}, ζ = {zeta:g}, λ = {lam:g}: "
-                          f"{plan.message}", RuntimeWarning, stacklevel=2)
-        runs = []
-        run = _plastic_runner(target, table, cap, map_law, (beta, zeta, lam), realised, runs)
-        point = controlled_point(run, settings, control)
-        rows.append(row | point | _companion_errors(runs, point["status"], int(control.max_refinements) + 1)
-                    | {"method": METHODS.index(plan.method)})
-    return rows
-
-
-def _plastic_runner(target, table: BasisTable, cap: float, map_law: str, numbers: tuple,
-                    realised: PlasticRealisation, runs: list):
-    """``run(settings, zeta_factor)`` of one plastic point; every result is appended to ``runs``
-    (a run equal to an earlier one is not repeated: :func:`~impactmaps.maps.sweep.table_run_key`)."""
-    from .sweep import table_run_key
-
-    beta, zeta, lambda_ = numbers
-    seen = {}
-
-    def run(settings: ModalSettings, zeta_factor: float):
-        impact = realised if zeta_factor == 1.0 else realise_plastic(target, map_law, beta, zeta * zeta_factor,
-                                                                     lambda_)
-        omega = math.sqrt(reference_contact_stiffness(impact.law, impact.mass, 1.0) / impact.mass)
-        basis = table.truncate(min(settings.cutoff_ratio * omega, cap), settings.min_modes)
-        key = table_run_key(settings, zeta_factor, basis)
-        if key not in seen:
-            result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
-            seen[key] = _PlasticScaled(result, impact)
-        runs.append(seen[key])
-        return runs[-1]
-
-    return run
-
-
-def plastic_map(structure: MapStructure, map_law: str, betas, zetas, lambdas, rows: Sequence[dict],
-                settings: ModalSettings | None = None) -> xr.Dataset:
-    """The map dataset of solved plastic points (dims ``structure``, ``beta``, ``lambda_``, ``zeta``).
-
-    Parameters
-    ----------
-    structure : MapStructure
-    map_law : {"yc", "stronge"}
-    betas, zetas, lambdas : array_like
-        The grid [-] (increasing).
-    rows : sequence of dict
-        :func:`solve_plastic_points` rows, one per grid point in any order (matched on
-        their ``beta``, ``zeta``, ``lambda_``).
-    settings : ModalSettings, optional
-        The settings the rows were solved with (provenance).
-
-    Returns
-    -------
-    xarray.Dataset
-        The variables of :data:`impactmaps.maps.sweep.RESULT_VARIABLES` and
-        :data:`PLASTIC_VARIABLES`, ``done``; attributes ``contact_law`` (the map law),
-        ``fingerprint``, ``description``, ``solver_revision``, ``point_methods``.
-    """
-    from .. import __version__
-    from ..jsonio import dumps
-    from .store import fingerprint
-    from .sweep import METHODS, RESULT_VARIABLES, SOLVER_REVISION
-
-    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
-    axes = {"beta": np.asarray(betas, float), "lambda_": np.asarray(lambdas, float), "zeta": np.asarray(zetas, float)}
-    shape = (1,) + tuple(values.size for values in axes.values())
-    variables = {name: (dtype, missing, units, text) for name, (dtype, missing, units, text) in RESULT_VARIABLES.items()}
-    variables["fmax_normalised"] = ("f8", np.nan, "1", "maximum contact force / (m V0 ω_y), ω_y = sqrt(K_y/m)")
-    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised",
-                "reflection_time_normalised"):
-        variables[key] = variables[key][:3] + (variables[key][3].replace("× ω", "× ω_y").replace("ω d²", "ω_y d²"),)
-    variables.update({name: ("f8", np.nan, units, text) for name, (units, text) in PLASTIC_VARIABLES.items()})
-    arrays = {name: np.full(shape, missing, dtype=dtype) for name, (dtype, missing, _u, _t) in variables.items()}
-    arrays["done"] = np.zeros(shape, dtype="i1")
-    index = {name: {float(v): k for k, v in enumerate(values)} for name, values in axes.items()}
-    for row in rows:
-        at = (0, index["beta"][float(row["beta"])], index["lambda_"][float(row["lambda_"])],
-              index["zeta"][float(row["zeta"])])
-        for name in variables:
-            arrays[name][at] = row[name]
-        arrays["done"][at] = 1
-    dims = ("structure", "beta", "lambda_", "zeta")
-    data_vars = {name: (dims, arrays[name], {"units": units, "long_name": text})
-                 for name, (_d, _m, units, text) in variables.items()}
-    data_vars["method"][2].update(flag_values=np.arange(len(METHODS), dtype="i1"), flag_meanings=" ".join(METHODS))
-    data_vars["status"][2].update(flag_values=np.arange(len(STATUSES), dtype="i1"), flag_meanings=" ".join(STATUSES))
-    data_vars["done"] = (dims, arrays["done"], {"long_name": "1 where the point has been computed"})
-    description = {"structures": [structure.as_dict()], "beta": axes["beta"], "zeta": axes["zeta"],
-                   "lambda_": axes["lambda_"], "settings": asdict(settings or ModalSettings()),
-                   "solver_revision": SOLVER_REVISION, "law": map_law}
-    coords = {
-        "structure": ("structure", [structure.name]),
-        "beta": ("beta", axes["beta"], {"long_name": "impact number β = V0/(ω_h α_y) (seed 001 eq 11)", "units": "1"}),
-        "lambda_": ("lambda_", axes["lambda_"], {"long_name": "relative stiffness K_st/K_y", "units": "1"}),
-        "zeta": ("zeta", axes["zeta"], {"long_name": "loss factor ζ(m, K_y)", "units": "1"}),
-        "kind": ("structure", [structure.kind]), "theory": ("structure", [structure.theory]),
-        "supports": ("structure", [structure.supports]), "aspect_ratio": ("structure", [structure.aspect_ratio]),
-        "slenderness": ("structure", [structure.slenderness]),
-    }
-    methods = sorted({METHODS[int(row["method"])] for row in rows if int(row["method"]) >= 0})
-    attrs = {
-        "title": "impactmaps normalised elastic-plastic impact map",
-        "fingerprint": fingerprint(description),
-        "description": dumps(description, sort_keys=True),
-        "impactmaps_version": __version__,
-        "solver_revision": SOLVER_REVISION,
-        "method": f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[map_law]} "
-                  "contact; axes (β, λ, ζ) at the linearised stiffness K_y",
-        "contact_law": map_law,
-        "point_methods": ",".join(methods),
-        "complete": int(arrays["done"].all()),
-    }
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+    family = YC if map_law == "yc" else STRONGE
+    return solve_map_points(family, structure, points, settings, table, control)

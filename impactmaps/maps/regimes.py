@@ -32,11 +32,12 @@ import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
 from ..targets.options import STRUCTURE_KINDS
+from .registry import PLANE_LAWS, available_map_families, map_family
 
-__all__ = ["REGIMES", "classify", "infinite_structure_peak", "quasi_static_peak"]
+__all__ = ["REGIMES", "MAP_LAWS", "classify", "infinite_structure_peak", "quasi_static_peak"]
 
-#: The contact laws a map can be swept with and whose asymptotes :func:`classify` knows.
-MAP_LAWS = ("linear", "hertz")
+#: The built-in (ζ, λ) map families, whose asymptotes :func:`classify` knows.
+MAP_LAWS = PLANE_LAWS
 
 REGIMES = ("local", "infinite-structure", "transition", "quasi-static")
 
@@ -47,13 +48,7 @@ def quasi_static_peak(relative_stiffness, law: str = "linear"):
     With ``law="hertz"``, F_max/F_hs of the Hertz law in series with the static
     stiffness at λ_h (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
     """
-    require_choice("law", law, MAP_LAWS)
-    if law == "hertz":
-        from .hertz_points import hertz_asymptote_peak
-
-        return hertz_asymptote_peak("quasi-static", "plate", lambda_h=relative_stiffness)
-    lam = np.asarray(relative_stiffness, dtype=float)
-    return np.sqrt(lam / (1.0 + lam))
+    return _classifying(law).quasi_static_peak(relative_stiffness)
 
 
 def infinite_structure_peak(loss_factor, structure: str, law: str = "linear"):
@@ -64,15 +59,16 @@ def infinite_structure_peak(loss_factor, structure: str, law: str = "linear"):
     F_max/F_hs of the Hertz law on the infinite structure at ζ_h
     (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
     """
-    from ..targets import target_class
-
     require_choice("structure", structure, STRUCTURE_KINDS)
-    require_choice("law", law, MAP_LAWS)
-    if law == "hertz":
-        from .hertz_points import hertz_asymptote_peak
+    return _classifying(law).infinite_peak(loss_factor, structure)
 
-        return hertz_asymptote_peak("infinite", structure, zeta_h=loss_factor)
-    return target_class(structure).infinite_structure_peak(loss_factor)
+
+def _classifying(law):
+    """The registered map family ``law`` if its points have regimes, else ``ValueError``."""
+    if law in available_map_families() and map_family(law).classifies:
+        return map_family(law)
+    require_choice("law", law, MAP_LAWS)  # names the built-in ones
+    return map_family(law)
 
 
 def classify(

@@ -19,8 +19,9 @@ import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
 from ..targets.base import ModalBasis, Target, dropped_compliance_sums
-from ..targets.beam import MIN_SLENDERNESS
+from ..targets.beam import MIN_SLENDERNESS, Beam
 from ..targets.options import BEAM_THEORIES, PLATE_THEORIES, STRUCTURE_KINDS
+from ..targets.plate import Plate
 
 __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
 
@@ -120,8 +121,6 @@ def _build_target(structure: MapStructure) -> Target:
     span = 1.0
     thickness = span / structure.slenderness
     if structure.kind == "beam":
-        from ..targets.beam import Beam
-
         return Beam.rectangular(
             span,
             thickness,
@@ -131,8 +130,6 @@ def _build_target(structure: MapStructure) -> Target:
             supports=structure.supports,
             impact_position=structure.impact_fraction[0] * span,
         )
-    from ..targets.plate import Plate
-
     width = span * structure.aspect_ratio
     return Plate.isotropic(
         span,

@@ -32,15 +32,15 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..dimensionless import realise
 from ..jsonio import dumps
 from ..solvers.modal import ModalSettings
 from ..solvers.shear_range import beyond_shear_theory
 from .accuracy import AccuracyControl
-from .hertz_points import hertz_contact_frequency, solve_hertz_points
+from .map_family import RESULT_VARIABLES
+from .points import SOLVER_REVISION, frequency_cap, solve_map_points
+from .registry import map_family
 from .store import fingerprint, save_atomic
 from .structures import BasisTable, MapStructure
-from .sweep import RESULT_VARIABLES, SOLVER_REVISION, frequency_cap, solve_points
 
 __all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
            "lattice_steps", "tile_for", "build_tile", "cached_tile"]
@@ -151,13 +151,10 @@ def build_tile(key: TileKey) -> xr.Dataset:
     """
     zetas, lambdas = key.axes
     points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas]
-    table = _table(key, points) if key.structure.build().bounded_modes else None  # None: the sweep's own
-    if key.law == "linear":
-        rows = solve_points(key.structure, points, key.settings, table, key.control)
-    elif key.patch is None:
-        rows = solve_hertz_points(key.structure, points, key.settings, table, key.control)
-    else:  # patch-loaded points build their modes under each patch
-        rows = solve_hertz_points(key.structure, points, key.settings, control=key.control, patch=key.patch)
+    family = _family(key)
+    # None: the sweep's own table; patch-loaded points build their modes under each patch
+    table = _table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
+    rows = solve_map_points(family, key.structure, points, key.settings, table, key.control)
     shape = (1, lambdas.size, zetas.size)
     data = {name: (("structure", "lambda_", "zeta"),
                    np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
@@ -195,10 +192,7 @@ def _table(key: TileKey, points) -> BasisTable:
     """
     target = key.structure.build()
     cap = frequency_cap(key.structure)
-    if key.law == "linear":
-        omegas = np.atleast_1d(realise(target, *np.array(points).T).contact_frequency)
-    else:
-        omegas = [hertz_contact_frequency(target, zeta, lam) for zeta, lam in points]
+    omegas = [impact.omega for impact in _family(key).realise_points(target, points)]
     p = key.control.perturbation  # the margin of the docstring
     finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
     wanted = [finest * omega for omega in omegas
@@ -207,6 +201,12 @@ def _table(key: TileKey, points) -> BasisTable:
         warnings.simplefilter("ignore", UserWarning)  # as basis_table: a point's own cut-off is warned about
         return BasisTable(target, min(max(wanted, default=0.0), cap),
                           key.settings.min_modes * 2**key.control.max_refinements)
+
+
+def _family(key: TileKey):
+    """The map family of a tile's points (patch-loaded Hertz points: its patch number)."""
+    family = map_family(key.law)
+    return family if key.patch is None else family.with_patch(key.patch)
 
 
 def _data_digest(dataset: xr.Dataset) -> str:

@@ -1,0 +1,162 @@
+"""What every answer for a physical case shares: its map law, its refusal, its scaling to newtons.
+
+:func:`impactmaps.maps.case_lookup.lookup_case` answers a case from a shipped map or an
+on-demand tile (:mod:`impactmaps.maps.on_demand`); both name the case's map law
+(:func:`case_map_law`), compare its dimensionless groups with a map structure's
+(:func:`family_groups`), refuse with a :class:`NoMapError` and scale the reading to
+newtons (:func:`scaled_answer`, :func:`lookup_plastic_case`) through this module.
+"""
+
+from __future__ import annotations
+
+from ..cases import case_dimensionless
+from ..hertz_similarity import hertz_numbers
+from ..solvers.modal import _uses_patch, contact_radius_function
+from .lookup import status_notes
+from .plastic_lookup import lookup_plastic
+from .map_family import available_map_families, map_family
+from .plastic_points import plastic_numbers
+from .reader import OutsideMapError, UnresolvedPointError
+
+__all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "family_groups", "scaled_answer",
+           "answer", "lookup_plastic_case"]
+
+
+#: Relative tolerance within which a case "is" a shipped map's structure (impact point,
+#: aspect ratio, slenderness): beyond it the map does not describe the case.
+CASE_MATCH_RTOL = 1e-6
+
+
+class NoMapError(ValueError):
+    """No shipped map describes a case: ``what`` names what no map covers.
+
+    The message is ``no shipped map covers this case: WHAT; run `impactmaps simulate
+    CASE` instead``.
+    """
+
+    def __init__(self, case, what: str):
+        self.what = what
+        super().__init__(f"no shipped map covers this case: {what}; run `impactmaps simulate "
+                         f"{case.source or 'CASE.toml'}` instead")
+
+
+def case_map_law(case) -> str:
+    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, or ``ValueError``.
+
+    Only laws that a shipped map describes exactly are named: the linear and Hertz laws
+    (axes ζ, λ), the Yigit–Christoforou law and the refined Stronge law with its default
+    constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
+    refused.
+    """
+    reason = f"contact law {case.law_name!r}"
+    try:
+        for name in available_map_families():
+            if map_family(name).describes(case.law):
+                return name
+    except ValueError as near_miss:  # a family's law with other constants
+        reason = str(near_miss)
+    raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
+                     "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
+                     f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "
+                     "instead")
+
+
+def case_loads_a_patch(case) -> bool:
+    """Whether ``simulate`` spreads this case's contact force over the contact patch: the
+    target takes one under ``solver.contact_patch`` and the law has a contact radius."""
+    return _uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
+
+
+def family_groups(target) -> dict:
+    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
+
+    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
+    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
+    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
+    undamped).
+    """
+    groups = {"damping_ratio": float(target.damping_ratio)}
+    if target.structure == "beam":
+        if target.theory != "euler":
+            span = target.length
+            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
+            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
+        return groups
+    groups["D22/D11"] = target.D22 / target.D11
+    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
+    if target.theory == "mindlin":
+        side = target.length_x
+        groups["D12/D11"] = target.D12 / target.D11
+        for name in ("A44", "A55"):
+            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
+        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
+    return groups
+
+
+def scaled_answer(case, law: str, read) -> dict:
+    """The answer of :func:`lookup_case` from ``read(ζ, λ) -> LookupResult``, a reading of a
+    linear or Hertz map at the case's numbers, scaled to newtons."""
+    if law == "hertz":
+        hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+        zeta, lam = hertz.loss_factor, hertz.relative_stiffness
+        found = read(zeta, lam)
+        scale = hertz.force_scale
+    else:
+        numbers = case_dimensionless(case)
+        zeta, lam = numbers["zeta"], numbers["lambda"]
+        found = read(zeta, lam)
+        scale = float(found.peak_force(numbers["impactor_mass_kg"], numbers["velocity_m_s"],
+                                       numbers["contact_stiffness_N_m"])) / found.fmax_normalised
+    return answer(found, scale, law, {"regime": found.regime, "zeta": zeta, "lambda": lam})
+
+
+def answer(found, scale: float, law: str, details: dict) -> dict:
+    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
+    return {
+        "peak_force_N": found.fmax_normalised * scale,
+        "peak_force_error_N": found.fmax_error * scale,
+        "fmax_normalised": found.fmax_normalised,
+        "fmax_error": found.fmax_error,
+        "status": found.status,
+        **status_notes(found.status),
+        **details,
+        "map": found.map_name,
+        "law": law,
+        "force_scale_N": scale,
+    }
+
+
+def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
+    """:func:`impactmaps.maps.case_lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
+
+    Parameters
+    ----------
+    case : impactmaps.cases.Case
+        With a Yigit–Christoforou or default refined Stronge law.
+    structure, theory : str
+        The family (:func:`impactmaps.maps.case_lookup.map_for_case`).
+    law : {"yc", "stronge"}
+
+    Returns
+    -------
+    dict
+        See :func:`impactmaps.maps.case_lookup.lookup_case`.
+    """
+    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+    try:
+        found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
+                               structure=structure, theory=theory, law=law)
+    except (OutsideMapError, UnresolvedPointError) as error:
+        raise NoMapError(case, str(error).split("; run")[0]) from None
+    scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
+    return answer(found, scale, law, {
+        "restitution": found.restitution,
+        "restitution_error": found.restitution_error,
+        "absorbed_energy_J": found.absorbed_energy_fraction * energy,
+        "absorbed_energy_error_J": found.absorbed_energy_error * energy,
+        "absorbed_energy_fraction": found.absorbed_energy_fraction,
+        "absorbed_energy_error": found.absorbed_energy_error,
+        "beta": numbers.impact_number,
+        "zeta": numbers.loss_factor,
+        "lambda": numbers.relative_stiffness,
+    })

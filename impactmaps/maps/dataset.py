@@ -1,0 +1,102 @@
+"""The map dataset of any family: its layout, its law and its regimes.
+
+A map is an xarray Dataset with dims ``structure`` and the family's axes (``lambda_``,
+``zeta``; ``beta`` first for an elastic-plastic family), the family's variables
+(:attr:`MapFamily.variables <impactmaps.maps.map_family.MapFamily.variables>`) with
+their units and descriptions, ``done`` marking the computed points, and its provenance
+in attributes — ``fingerprint`` and ``description`` (what a stored result must match to
+be resumed), ``contact_law`` (the family's name), ``solver_revision``.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime, timezone
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+from ..jsonio import dumps
+from .accuracy import STATUSES
+from .points import METHODS, SOLVER_REVISION
+from .regimes import classify
+
+__all__ = ["empty_dataset", "map_law", "classify_dataset"]
+
+
+def map_law(dataset: xr.Dataset) -> str:
+    """The map family (contact law) a map dataset was swept with (a map without the attribute is linear).
+
+    The law is part of a map's identity: it is in the fingerprint (for every law but the
+    linear one, whose fingerprints predate it), in the ``contact_law`` attribute and in
+    the variables' descriptions.
+    """
+    return str(dataset.attrs.get("contact_law", "linear"))
+
+
+def empty_dataset(family, structures, axes: dict, description: dict, digest: str) -> xr.Dataset:
+    """A map of ``family`` with no point computed.
+
+    Parameters
+    ----------
+    family : MapFamily
+    structures : sequence of MapStructure
+    axes : dict
+        Axis name → values [-], for every axis of the family.
+    description, digest : dict, str
+        The sweep's description and its fingerprint (attributes).
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    dims = ("structure", *family.axis_names)
+    shape = (len(structures), *(len(axes[name]) for name in family.axis_names))
+    data_vars = {name: (dims, np.full(shape, missing, dtype=dtype), {"units": units, "long_name": text})
+                 for name, (dtype, missing, units, text) in family.variables.items()}
+    data_vars["method"][2]["flag_values"] = np.arange(len(METHODS), dtype="i1")
+    data_vars["method"][2]["flag_meanings"] = " ".join(METHODS)
+    data_vars["status"][2]["flag_values"] = np.arange(len(STATUSES), dtype="i1")
+    data_vars["status"][2]["flag_meanings"] = " ".join(STATUSES)
+    data_vars["done"] = (dims, np.zeros(shape, dtype="i1"), {"long_name": "1 where the point has been computed"})
+    coords = {"structure": ("structure", [s.name for s in structures])}
+    coords |= {axis.name: (axis.name, np.asarray(axes[axis.name], float), {"long_name": axis.long_name, "units": "1"})
+               for axis in family.axes}
+    coords |= {
+        "kind": ("structure", [s.kind for s in structures]),
+        "theory": ("structure", [s.theory for s in structures]),
+        "supports": ("structure", [s.supports for s in structures]),
+        "aspect_ratio": ("structure", [s.aspect_ratio for s in structures]),
+        "slenderness": ("structure", [s.slenderness for s in structures]),
+    }
+    attrs = {
+        "title": family.title,
+        "fingerprint": digest,
+        "description": dumps(description, sort_keys=True),
+        "impactmaps_version": __version__,
+        "solver_revision": SOLVER_REVISION,
+        "method": family.method_text,
+        "contact_law": family.name,
+        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
+    """Regime label of every computed point of a (ζ, λ) map (see :mod:`.regimes`);
+    ``""`` where a point is not computed or ``unresolved``."""
+    labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
+    criteria.setdefault("law", map_law(dataset))
+    for s_index, kind in enumerate(dataset["kind"].values):
+        fmax = dataset["fmax_normalised"].values[s_index]
+        lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")
+        ok = dataset["done"].values[s_index].astype(bool) & np.isfinite(fmax)  # unresolved: no label
+        if ok.any():
+            labels[s_index][ok] = classify(
+                fmax[ok], zeta[ok], lam[ok], str(kind),
+                peak_time=dataset["peak_time_normalised"].values[s_index][ok],
+                reflection_time=dataset["reflection_time_normalised"].values[s_index][ok],
+                **criteria,
+            )
+    return xr.DataArray(labels.astype(str), dims=("structure", "lambda_", "zeta"),
+                        attrs={"long_name": "impact regime (local / infinite-structure / transition / quasi-static)"})

@@ -1,0 +1,328 @@
+"""The one map reader: a value, its band and its status at any point of any family's map.
+
+A map holds values on a regular grid in the logarithms of its axes (λ, ζ; β first for
+an elastic-plastic family). :func:`read_values` reads every family's map through the
+same steps: the numbers are checked against the map's range (a ``ValueError`` names the
+number as the caller called it, its value and the range), the answer interpolates
+linearly in the log axes between the 2ᴺ corners of the cell that holds it, its band is
+the corners' own error plus the interpolation error there, its status the corners' worst
+(``interpolated`` where the band is wider than :data:`BAND_TOLERANCE`), and a point next
+to an ``unresolved`` corner is refused — never a number without its band.
+
+How the cell and its interpolation error are found depends on what the map has: a
+(λ, ζ) map may carry a :class:`~impactmaps.maps.refinement.Refinement` whose leaves are
+finer cells with measured surpluses (:func:`impactmaps.maps.refinement.interpolate`);
+a map with more axes is read on its grid, the band of each quantity the largest over the
+2ᴺ corners of (own error + second-difference estimate) times the family's
+``band_safety`` (:class:`~impactmaps.maps.map_family.Interpolation`).
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import NamedTuple
+
+import numpy as np
+import xarray as xr
+
+from .._checks import describe_outside, require_positive
+from .accuracy import STATUSES, AccuracyControl, PointStatus
+from .refinement import Refinement, interpolate
+
+__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "read_values", "answer_status", "corner_status",
+           "status_notes", "interpolation_error", "band_grid"]
+
+
+#: Severity of a status when map points (or family members) are combined (worst wins);
+#: ``interpolated`` is a lookup's own status (:func:`answer_status`), never a point's.
+_SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
+#: The status of each severity.
+_BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
+#: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
+#: band is wider is ``interpolated``, even where every point around it converged.
+BAND_TOLERANCE = AccuracyControl().tolerance
+
+
+def answer_status(point_status, band):
+    """The status of an interpolated answer from its map points' worst status and its band.
+
+    ``interpolated`` where the points converged (``converged``, ``refined``) but the band
+    — their own error plus the interpolation (or slenderness) error between them — is wider
+    than :data:`BAND_TOLERANCE`: the points are right, the value between them is known only
+    to ± the band (near a re-impact kink of F̄max the interpolation errs by up to a few
+    1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
+    """
+    status = np.asarray(point_status)
+    widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
+    out = np.where(widened, "interpolated", status)
+    return str(out) if out.ndim == 0 else out
+
+
+def corner_status(corner_codes, band):
+    """The status of an answer read between map points: the worst of the points' statuses
+    (``corner_codes``: one array of status codes of :data:`impactmaps.maps.accuracy.STATUSES`
+    per corner around the answers), ``interpolated`` where the ``band`` makes it so
+    (:func:`answer_status`)."""
+    severity = np.array([_SEVERITY[name] for name in STATUSES])
+    worst = np.max([severity[codes] for codes in corner_codes], axis=0)
+    return answer_status(_BY_SEVERITY[worst], band)
+
+
+#: What a lookup's status means for its number, where that needs saying.
+_STATUS_NOTES = {
+    "interpolated": "the map points around this one converged, but between them F̄max is known only to "
+                    "± fmax_error (interpolation across the map's kinks or curvature); `impactmaps point` "
+                    "computes this point to 1e-3",
+    "sensitive": "no converged value: re-impacts whose order flips with any change of the model; read the band "
+                 "(± fmax_error), not the number",
+}
+
+
+def status_notes(status) -> dict:
+    """``{"status_note": text}`` for a status whose number needs a word (``interpolated``,
+    ``sensitive``), else ``{}``; what the command line prints beside a lookup's status."""
+    note = _STATUS_NOTES.get(str(status)) if np.ndim(status) == 0 else None
+    return {"status_note": note} if note else {}
+
+
+#: Safety factor of :func:`interpolation_error` on the leading-order term ``h² |f''| / 8``.
+INTERPOLATION_SAFETY = 5.0
+
+
+def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY) -> np.ndarray:
+    """Local estimate of the linear-interpolation error of a map, per grid point [-].
+
+    ``values`` has one axis per map axis (two for a (λ, ζ) map, three for a plastic
+    (β, λ, ζ) map; the sum below runs over all of them). Linear interpolation between
+    grid points errs by about ``h² |f''| / 8`` in each direction; with the second
+    differences of the map itself (``Δ²f``, in grid units) that is
+    ``(|Δ²_λ f| + |Δ²_ζ f|) / 8``, each taken as the largest over the point and its two
+    neighbours on each side along its axis: second differences are largest next to kinks,
+    which a cell may straddle, and F̄max has ripples shorter than the grid spacing
+    (quasi-static regime, ~1e-4) that one point's second differences alias — with one
+    neighbour a side the band missed one of 734 random points of the twice-denser Euler
+    beam map by 20 %. Near the re-impact kinks of the transition the leading-order term
+    underestimates the error by up to 3.3× on maps of 20 ζ and 10 λ per decade (320 random
+    points) and by 4.9× at one of 1102 random points of the twice-denser maps (a steep
+    change of the impact that carries the peak, within one λ cell), so the estimate
+    carries a safety factor of 5: ``5 (|Δ²_λ f| + |Δ²_ζ f|) / 8``. Edges reuse the
+    nearest interior difference.
+
+    Parameters
+    ----------
+    values : ndarray
+        The map's values on its grid (NaN where a point holds no value).
+    reach : int
+        Neighbours on each side over which a second difference is the largest (2 for the
+        (ζ, λ) maps; the plastic maps keep the 1 they were validated with).
+    safety : float
+        Factor on the leading-order term (:data:`INTERPOLATION_SAFETY`; the plastic maps: 4).
+
+    Returns
+    -------
+    ndarray
+        The estimate per grid point [same unit as ``values``].
+    """
+    f = np.asarray(values, float)
+    second = np.zeros_like(f)
+    for axis in range(f.ndim):
+        if f.shape[axis] < 3:  # no second difference along a 1- or 2-point axis
+            continue
+        d2 = _nearest_known(np.abs(np.diff(f, n=2, axis=axis)), axis)
+        pad = [(0, 0)] * f.ndim
+        pad[axis] = (1, 1)
+        d2 = np.pad(d2, pad, mode="edge")
+        widened = d2.copy()
+        for shift in range(1, reach + 1):
+            widened = np.maximum(widened, np.maximum(np.roll(d2, shift, axis=axis), np.roll(d2, -shift, axis=axis)))
+        second += widened
+    return second * (safety / 8.0)
+
+
+def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
+    """``d2`` with each missing entry (a difference that reaches an ``unresolved`` point,
+    NaN) replaced by the nearest known one along ``axis`` (the largest known anywhere when
+    a whole line is missing)."""
+    if not np.isnan(d2).any():
+        return d2
+    out = np.ascontiguousarray(np.moveaxis(d2, axis, -1))  # a copy: lines are views of it
+    fallback = float(np.nanmax(d2)) if np.isfinite(d2).any() else 0.0
+    positions = np.arange(out.shape[-1])
+    for line in out.reshape(-1, out.shape[-1]):
+        known = np.flatnonzero(np.isfinite(line))
+        missing = np.flatnonzero(np.isnan(line))
+        if missing.size == 0:
+            continue
+        if known.size == 0:
+            line[missing] = fallback
+            continue
+        nearest = known[np.abs(positions[missing, None] - known[None, :]).argmin(axis=1)]
+        line[missing] = line[nearest]
+    return np.moveaxis(out, -1, axis)
+
+
+
+
+def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Fractional index of each value on the (ascending) ``grid``: exact on a grid point."""
+    lower, upper = _bracket(grid, values)
+    span = np.where(upper > lower, grid[upper] - grid[lower], 1.0)
+    return lower + np.where(upper > lower, (values - grid[lower]) / span, 0.0)
+
+
+def _bracket(grid: np.ndarray, values: np.ndarray):
+    """Indices of the grid points just below and just above each value."""
+    upper = np.clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
+    lower = np.clip(upper - 1, 0, grid.size - 1)
+    exact = np.isclose(grid[upper], values, rtol=0, atol=1e-12)
+    return np.where(exact, upper, lower), upper
+
+
+class OutsideMapError(ValueError):
+    """A number lies outside a map: ``parameter`` (as the caller named it), its ``value`` (the
+    offending values, shown) and the map's ``valid_range`` ``(low, high)``."""
+
+    def __init__(self, message: str, parameter: str, value: str, valid_range: tuple[float, float]):
+        super().__init__(message)
+        self.parameter, self.value, self.valid_range = parameter, value, valid_range
+
+
+class UnresolvedPointError(ValueError):
+    """A point lies next to an ``unresolved`` map point: the map holds no value there."""
+
+
+class Reading(NamedTuple):
+    """What :func:`read_values` read: ``values`` and ``errors`` (name → array of the numbers'
+    shape), ``status`` (array of str) and the numbers' broadcast ``shape``."""
+
+    values: dict
+    errors: dict
+    status: np.ndarray
+    shape: tuple
+
+
+def band_grid(dataset: xr.Dataset, family, variable: str) -> np.ndarray:
+    """Per grid point of a map with more than two axes: the own error of ``variable`` plus its
+    second-difference interpolation estimate (NaN where missing) [-]."""
+    values = dataset[variable].isel(structure=0).values
+    own = dataset[family.errors[variable]].isel(structure=0).values
+    settings = family.interpolation
+    return own + interpolation_error(values, reach=settings.reach, safety=settings.safety)
+
+
+def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hints: tuple[str, str] = ("", ""),
+                refinement: Refinement | None = None, error_grid: np.ndarray | None = None,
+                band_grids: dict | None = None) -> Reading:
+    """Read a map at ``numbers``: interpolated values, their bands and statuses (module docstring).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A map of ``family`` (one structure), as :func:`impactmaps.maps.sweep.sweep` writes it.
+    family : MapFamily
+    numbers : sequence of array_like
+        The point's numbers in the order of a map point, ``(…, ζ, λ)`` [-]; broadcast together.
+    labels : sequence of str
+        What the caller calls each number (the error messages name them).
+    where : str
+        The map, as a refusal names it ("the beam euler map").
+    hints : (str, str)
+        What to run instead, appended to "run a simulation" when the numbers lie outside the
+        map and when they lie next to an ``unresolved`` point.
+    refinement : Refinement, optional
+        The finer leaves of a (λ, ζ) map (none by default).
+    error_grid : ndarray, optional
+        The interpolation estimate of a (λ, ζ) map's F̄max when already known.
+    band_grids : dict, optional
+        :func:`band_grid` of each interpolated variable of a map with more axes, when known.
+
+    Returns
+    -------
+    Reading
+
+    Raises
+    ------
+    OutsideMapError
+        (a ``ValueError``) A number outside the map, naming it and the range.
+    UnresolvedPointError
+        (a ``ValueError``) Next to an ``unresolved`` point.
+    """
+    numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
+    axes = (*(axis.name for axis in family.extra_axes), "zeta", "lambda_")  # the numbers' order
+    for label, values in zip(labels, numbers):
+        require_positive(label, values)
+    for label, values, axis in zip(labels, numbers, axes):
+        low, high = float(dataset[axis].min()), float(dataset[axis].max())
+        if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
+            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
+            raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
+                                  f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
+    logs = {axis: np.log(np.clip(values, float(dataset[axis].min()), float(dataset[axis].max()))).ravel()
+            for values, axis in zip(numbers, axes)}
+    shape = numbers[0].shape
+    if len(axes) == 2:
+        values, errors, codes = _read_plane(dataset, logs, refinement, error_grid)
+    else:
+        values, errors, codes = _read_cube(dataset, family, logs, band_grids)
+    status = corner_status(codes, errors["fmax_error"])
+    status = np.atleast_1d(status).ravel()
+    bad = (status == PointStatus.UNRESOLVED.value) | ~np.isfinite(values["fmax_normalised"])
+    if np.any(bad):
+        first = int(np.flatnonzero(bad)[0])
+        shown = ", ".join(f"{np.ravel(value)[first]:g}" for value in numbers)
+        raise UnresolvedPointError(f"({', '.join(labels)}) = ({shown}) lies where the {where} holds no value (unresolved: "
+                         "beyond the range of its structural theory, or no model within the mode cap); run a "
+                         f"simulation{hints[1]} instead")
+    return Reading({name: value.reshape(shape) for name, value in values.items()},
+                   {name: value.reshape(shape) for name, value in errors.items()}, status.reshape(shape), shape)
+
+
+def _read_plane(dataset: xr.Dataset, logs: dict, refinement: Refinement | None, error_grid):
+    """A (λ, ζ) map read in the leaves of its refinement (the grid's cells where it has none)."""
+    if error_grid is None:
+        error_grid = interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
+    times = [name for name in ("log_peak_time", "log_reflection_time") if name in dataset]
+    base = {name: dataset[name].isel(structure=0).values for name in ["fmax_normalised", *times, "fmax_error",
+                                                                      "status"]}
+    grid_only = Refinement.empty(base["fmax_normalised"].shape)
+    rows = _grid_position(np.log(dataset["lambda_"].values), logs["lambda_"])
+    cols = _grid_position(np.log(dataset["zeta"].values), logs["zeta"])
+    values, error, codes = interpolate(refinement or grid_only, base, error_grid, rows, cols)
+    if times:  # the regime's times: from the map's own grid
+        values |= interpolate(grid_only, base, error_grid, rows, cols, times)[0]
+    return values, {"fmax_error": error}, codes
+
+
+def _read_cube(dataset: xr.Dataset, family, logs: dict, band_grids: dict | None):
+    """A map of more axes read on its grid: multilinear in the log axes; bands over the 2ᴺ corners."""
+    names = family.axis_names
+    grids = [np.log(dataset[name].values) for name in names]
+    points = [logs[name] for name in names]
+    corners = list(itertools.product(*(_bracket(grid, values) for grid, values in zip(grids, points))))
+    cell = [_cell(grid, values) for grid, values in zip(grids, points)]
+    values, errors = {}, {}
+    for variable, error_name in family.errors.items():
+        values[variable] = _multilinear(dataset[variable].isel(structure=0).values, cell)
+        band = band_grid(dataset, family, variable) if band_grids is None else band_grids[variable]
+        errors[error_name] = family.interpolation.band_safety * np.max([band[c] for c in corners], axis=0)
+    codes = dataset["status"].isel(structure=0).values
+    return values, errors, [codes[c] for c in corners]
+
+
+def _cell(grid: np.ndarray, values: np.ndarray):
+    """(lower index, distance from it in cells) of each value on an ascending grid (a value on the
+    last grid point is at distance 1 in the last cell)."""
+    index = np.clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
+    return index, (values - grid[index]) / (grid[index + 1] - grid[index])
+
+
+def _multilinear(table: np.ndarray, cell) -> np.ndarray:
+    """Multilinear interpolation of ``table`` at the cells ``cell`` (per axis: index, distance)."""
+    value = np.array([0.0])
+    for corner in itertools.product(*(((index, 1 - distance), (index + 1, distance)) for index, distance in cell)):
+        indices, weights = zip(*corner)
+        weight = np.array([1.0])
+        for w in weights:
+            weight = weight * w
+        value = value + np.asarray(table[indices]) * weight
+    return value
