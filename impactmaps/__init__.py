@@ -56,6 +56,7 @@ _EXPORTS = {
     "MapStructure": "impactmaps.maps.structures",
     "classify": "impactmaps.maps.regimes",
     "lookup": "impactmaps.maps.lookup",
+    "lookup_plastic": "impactmaps.maps.plastic_lookup",
     "design_formula": "impactmaps.maps.lookup",
     "make_chart": "impactmaps.maps.chart",
     # cases

@@ -255,8 +255,6 @@ def test_plate_material_given_by_name_names_the_parameter():
         Plate.isotropic(0.3, 0.3, 0.002, "aluminium-6061-t6")
 
 
-@pytest.mark.xfail(reason="needs the check in impactmaps/maps/lookup.py (owned by another helper): refuse "
-                          "law='yc'/'stronge' in lookup, pointing to lookup_plastic")
 def test_lookup_with_a_plastic_law_names_the_parameter():
     """lookup(..., law="yc") → a NumPy TypeError about boolean indexing: the yc maps have a
     β axis, so lookup (ζ, λ only) must refuse the law and point to lookup_plastic."""

@@ -14,18 +14,10 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-import pytest
 
 import impactmaps
 
 PACKAGE_ROOT = Path(impactmaps.__file__).resolve().parent
-
-#: Packages whose internal circles are being removed on another branch (the map-family
-#: refactor): circles lying entirely inside one of them are reported by
-#: ``test_no_import_cycles_in_pending_packages`` (xfail) instead of failing
-#: ``test_no_import_cycles``. Remove an entry when its refactor merges.
-PENDING_CYCLES_IN = {"impactmaps.maps"}
-
 
 def _modules() -> dict[str, tuple[Path, bool]]:
     """Dotted module name → (file, is a package ``__init__``)."""
@@ -137,10 +129,6 @@ def _describe(cycle: list[str], graph) -> str:
     return "  " + " ⇄ ".join(cycle) + "\n" + "\n".join(edges)
 
 
-def _pending(cycle: list[str]) -> bool:
-    return any(all(m == p or m.startswith(p + ".") for m in cycle) for p in PENDING_CYCLES_IN)
-
-
 def test_the_graph_sees_every_kind_of_import():
     """The walker itself: relative, absolute, function-level and package-vs-submodule imports."""
     graph = import_graph()
@@ -155,20 +143,11 @@ def test_the_graph_sees_every_kind_of_import():
 
 
 def test_no_import_cycles():
-    """No circle of imports in the package (outside the packages of PENDING_CYCLES_IN)."""
+    """No circle of imports anywhere in the package."""
     graph = import_graph()
-    cycles = [c for c in import_cycles(graph) if not _pending(c)]
+    cycles = import_cycles(graph)
     report = "\n".join(_describe(c, graph) for c in cycles)
     assert not cycles, f"{len(cycles)} import circle(s):\n{report}"
-
-
-@pytest.mark.xfail(strict=False, reason="map-family refactor in progress")
-def test_no_import_cycles_in_pending_packages():
-    """The circles inside PENDING_CYCLES_IN, printed; passes once they are gone."""
-    graph = import_graph()
-    cycles = [c for c in import_cycles(graph) if _pending(c)]
-    report = "\n".join(_describe(c, graph) for c in cycles)
-    assert not cycles, f"{len(cycles)} import circle(s) in {sorted(PENDING_CYCLES_IN)}:\n{report}"
 
 
 def private_imports() -> list[str]:

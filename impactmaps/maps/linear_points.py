@@ -1,4 +1,4 @@
-"""The linear map family: (ζ, λ) of PHYSICS.md §4, F̄max = F_max/(m V0 ω), times × ω.
+"""The linear map family: (ζ, λ) of docs/physics_contract.md §4, F̄max = F_max/(m V0 ω), times × ω.
 
 A point (ζ, λ) is the impactor of :func:`impactmaps.dimensionless.realise` on the
 structure's reference target (a linear spring K struck at 1 m/s); its run is read

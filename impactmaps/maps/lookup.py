@@ -189,6 +189,9 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     -------
     LookupResult
     """
+    if law in PLASTIC_LAWS:
+        raise ValueError(f"law = {law!r}: an elastic-plastic map has a third axis β; read it with "
+                         "impactmaps.lookup_plastic(beta, zeta, lambda_, ...) (lookup takes law 'linear' or 'hertz')")
     key = (structure, theory, law, slenderness)
     if theory == "mindlin":
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)

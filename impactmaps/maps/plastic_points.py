@@ -2,7 +2,7 @@ r"""Map points with an elastic-plastic contact law: (β, ζ, λ) realised, simul
 
 Which numbers fix a plastic-law impact
 --------------------------------------
-Both elastic-plastic laws of PHYSICS.md §2 are a fixed shape scaled by one length and
+Both elastic-plastic laws of docs/physics_contract.md §2 are a fixed shape scaled by one length and
 one force: ``F = K_h α_y^{3/2} g(α/α_y)``.
 
 * Yigit–Christoforou: ``g(a) = a^{3/2}`` to yield, ``1 + (3/2)(a − 1)`` beyond, and
@@ -14,7 +14,7 @@ one force: ``F = K_h α_y^{3/2} g(α/α_y)``.
   and its unloading recovery ``3F_m/(4E* a_m) = δ_y f_m/sqrt(2d_m − 1)`` is one too. So
   for fixed constants (c_y, c_p, δ_p/δ_y) ``g`` is again fixed; R on its own appears only
   in the contact radius, which the modal solver uses for the pressure patch of Mindlin
-  plates alone (PHYSICS.md §8).
+  plates alone (docs/physics_contract.md §8).
 
 With ``x̄ = x/α*``, ``τ = ω_y t``, ``F̄ = F/(m V0 ω_y)`` — the linear scales of the
 linearised stiffness ``K_y = (3/2) K_h α_y^{1/2}`` (seed 001 eqs 10, 18), ``ω_y =
@@ -22,7 +22,7 @@ sqrt(K_y/m)``, ``α* = V0/ω_y`` — the impactor equation is ``x̄'' = −F̄``
 ``F̄ = (α_y/α*)(2/3) g(ᾱ α*/α_y)``: one number, ``α*/α_y``. Since
 ``β = V0/(ω_h α_y)`` with ``ω_h² = K_h α_y^{1/2}/m = (2/3) ω_y²`` (seed 001 eqs 11, 12),
 ``α*/α_y = β sqrt(2/3)``: the law's number **is** the impact number β. The structure
-enters through ``K_y`` exactly as a linear spring ``K`` does (PHYSICS.md §1, §4): its
+enters through ``K_y`` exactly as a linear spring ``K`` does (docs/physics_contract.md §1, §4): its
 point receptance in these scales depends on ``ζ = ζ(m, K_y)`` and ``λ = K_st/K_y``.
 Hence a plastic-law impact on a structure family is fixed by **(β, ζ, λ)** with ζ and λ
 the linear numbers at ``K_y`` — the numbers ``impactmaps simulate`` already prints for a

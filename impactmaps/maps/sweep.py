@@ -139,7 +139,7 @@ def sweep(
         the first point is saved).
     law : str or MapFamily
         The map family (:mod:`impactmaps.maps.map_family`; a registered name:
-        ``"linear"`` — ζ, λ of PHYSICS.md and F̄max = F_max/(m V0 ω), times × ω;
+        ``"linear"`` — ζ, λ of docs/physics_contract.md and F̄max = F_max/(m V0 ω), times × ω;
         ``"hertz"`` — the Hertz numbers ζ_h, λ_h (:mod:`impactmaps.hertz_similarity`),
         F̄max = F_max/F_hs, times / t*; ``"yc"``, ``"stronge"`` — the elastic-plastic
         numbers β, ζ, λ at K_y (:mod:`impactmaps.maps.plastic_points`)).

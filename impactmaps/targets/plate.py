@@ -1,6 +1,6 @@
 """Rectangular, specially orthotropic plates (Kirchhoff or Mindlin) as impact targets.
 
-Simply supported plates (``edges="SSSS"``) use the Navier solution (PHYSICS.md 3.3):
+Simply supported plates (``edges="SSSS"``) use the Navier solution (docs/physics_contract.md §3.3):
 closed-form Kirchhoff frequencies, or per half-wave pair (m, n) the 3×3 Mindlin
 eigenproblem of seed 001 eqs (13)–(15). Any other combination of simply supported (S),
 clamped (C) and free (F) edges uses the Rayleigh–Ritz basis of
@@ -13,7 +13,7 @@ Conventions: the plate occupies ``0 ≤ x ≤ a``, ``0 ≤ y ≤ b``; the edge c
 edges x = 0, y = 0, x = a, y = b in that order; ``s_m(x) = sin(mπx/a)``,
 ``c_m(x) = cos(mπx/a)``; A55 is the xz and A44 the yz transverse shear stiffness.
 
-Static point stiffness (for λ, PHYSICS.md 1 and 3.3): always the *classical*
+Static point stiffness (for λ, docs/physics_contract.md §1 and §3.3): always the *classical*
 (shear-rigid) value, also for ``theory="mindlin"``: with transverse shear the deflection
 under a point load diverges logarithmically, so the Mindlin point stiffness is zero.
 """
