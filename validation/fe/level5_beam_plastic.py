@@ -63,7 +63,8 @@ JSON = ct.RESULTS / "level5_beam_plastic.json"
 FORCE_CSV = ct.RESULTS / "level5_force.csv"
 # FE meshes: (elements through the depth nz, across the half width ny, element length in
 # the mid-span zone |x - L/2| <= ZONE in units of h/nz, growth factor outside the zone).
-MESHES = {"coarse": dict(nz=4, ny=2), "fine": dict(nz=6, ny=2), "smoke": dict(nz=2, ny=1)}
+MESHES = {"coarse": dict(nz=4, ny=2), "fine": dict(nz=6, ny=2), "coarse1": dict(nz=4, ny=1),
+          "fine1": dict(nz=6, ny=1), "smoke": dict(nz=2, ny=1)}
 ZONE = 0.16                                       # m: fine zone half-length (FD zone 0.13)
 
 
@@ -182,11 +183,11 @@ def x_knots(nz, patch):
     return np.concatenate([outer, zone])
 
 
-def quarter_mesh(nz, ny, patch):
+def quarter_mesh(nz, ny, patch, width=WIDTH):
     """C3D20R mesh of [0, L/2] × [0, b/2] × [0, h] with the graded x knots."""
     knots = x_knots(nz, patch)
     nx = len(knots) - 1
-    mesh = ct.structured_box(1.0, 0.5 * WIDTH, HEIGHT, nx, ny, nz)
+    mesh = ct.structured_box(1.0, 0.5 * width, HEIGHT, nx, ny, nz)
     s = mesh.coords[:, 0] * nx
     mesh.coords[:, 0] = np.interp(s, np.arange(nx + 1), knots)
     return mesh, knots
@@ -227,7 +228,7 @@ def section_weights(mesh, ids):
     return weights / weights.sum()
 
 
-def fe_deck(mesh, times, force, dt, patch):
+def fe_deck(mesh, times, force, dt, patch, auto=False, width=WIDTH, static_load=None):
     """The ccx deck: quarter beam, supports, the strip load, *DYNAMIC then *STATIC."""
     x, y, z = mesh.coords.T
     tol = 1e-9
@@ -244,11 +245,21 @@ def fe_deck(mesh, times, force, dt, patch):
     ct.write_nset(f, "END", mesh.nodes_where(np.isclose(x, 0, atol=tol)))
     ct.write_nset(f, "MID", mesh.nodes_where(mid))
     f.write("*BOUNDARY\nXSYM,1,1\nYSYM,2,2\nEND,3,3\n")
-    f.write("*AMPLITUDE, NAME=FORCE\n")
-    f.write("".join(f"{t:.9e},{v:.9e}\n" for t, v in zip(times, force)))
+    if static_load is None:
+        f.write("*AMPLITUDE, NAME=FORCE\n")
+        f.write("".join(f"{t:.9e},{v:.9e}\n" for t, v in zip(times, force)))
     faces = top_faces(mesh, 0.5 * LENGTH - patch)
-    pressure = 1.0 / (2 * patch * WIDTH)            # Pa per newton of the total force
-    f.write(f"*STEP, INC=1000000\n*DYNAMIC, DIRECT, ALPHA=0.0\n{dt:.6e},{times[-1]:.9e}\n")
+    pressure = 1.0 / (2 * patch * width)            # Pa per newton of the total force
+    if static_load is not None:   # quasi-static 3-point bending to static_load [N], ≤ 2 % steps
+        f.write("*STEP, INC=1000\n*STATIC\n0.02,1.0,1e-6,0.02\n*DLOAD\n")
+        f.write("".join(f"{e},{label},{pressure * static_load:.9e}\n" for e, label in faces))
+        f.write("*NODE PRINT, NSET=MID\nU\n*EL PRINT, ELSET=EALL\nPEEQ,S\n*END STEP\n")
+        return f.getvalue(), faces
+    if auto:      # automatic incrementation, Δt ≤ dt (ccx cuts the step where Newton fails)
+        f.write(f"*STEP, INC=1000000\n*DYNAMIC, ALPHA=0.0\n{dt:.6e},{times[-1]:.9e},"
+                f"{dt * 1e-4:.3e},{dt:.6e}\n")
+    else:
+        f.write(f"*STEP, INC=1000000\n*DYNAMIC, DIRECT, ALPHA=0.0\n{dt:.6e},{times[-1]:.9e}\n")
     f.write("*DLOAD, AMPLITUDE=FORCE\n")
     f.write("".join(f"{e},{label},{pressure:.9e}\n" for e, label in faces))
     f.write("*NODE PRINT, NSET=MID\nU\n*END STEP\n")
@@ -280,8 +291,9 @@ def run_fe(args):
     if not np.isclose(knots, 0.5 * LENGTH - patch).any():
         raise RuntimeError(f"patch half-length {patch} m is not an element boundary")
     times, force = prescribed_force(args.end)
-    deck, faces = fe_deck(mesh, times, force, args.dt, patch)
-    tag = args.tag or f"{args.mesh}_dt{args.dt * 1e6:g}us_c{patch * 1e3:.3g}mm"
+    deck, faces = fe_deck(mesh, times, force, args.dt, patch, args.auto)
+    tag = args.tag or (f"{args.mesh}_dt{args.dt * 1e6:g}us{'auto' if args.auto else ''}"
+                       f"_c{patch * 1e3:.3g}mm")
     dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
     text = dat.read_text()
     blocks = ct.parse_node_prints(text, "MID")
@@ -295,7 +307,7 @@ def run_fe(args):
     mean = uz @ weights
     na = np.array([-b[axis][2] for b in blocks])
     bot = np.array([-b[bottom][2] for b in blocks])
-    n_dyn = int(round(times[-1] / args.dt))
+    n_dyn = int(np.count_nonzero(t_fe <= times[-1] + 1e-9))     # then the static step
     dyn_t, dyn_mean = t_fe[:n_dyn], mean[:n_dyn]
     peeq = parse_peeq(text)
     centres = {e: mesh.coords[mesh.elements[e - 1][:8] - 1, 0].mean() for e in peeq}
@@ -305,7 +317,8 @@ def run_fe(args):
     entry = dict(mesh=args.mesh, **spec, n_nodes=len(mesh.coords),
                  n_elements=len(mesh.elements), element_type=mesh.element_type,
                  zone_element_length_m=HEIGHT / spec["nz"], x_elements=len(knots) - 1,
-                 patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt,
+                 patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt, automatic_increments=bool(args.auto),
+                 dynamic_increments=n_dyn,
                  dynamic_end_s=float(times[-1]), ccx_wall_time_s=wall,
                  ccx_version=ct.ccx_version(),
                  peak_deflection_m=float(dyn_mean.max()),
@@ -332,25 +345,28 @@ def run_fe(args):
     print(json.dumps(entry, indent=1))
 
 
-#: The FE runs of the study: reference (finest step, coarse mesh), mesh pair and step pair
-#: (each (coarser, finer)), patch pair (wider, reference patch) at the pair's step.
+#: The FE runs of the study: the reference (coarse mesh, fixed Δt 10 µs) and the pairs
+#: (coarser, finer) that bound its error, at automatic Δt ≤ 20 µs: step (20 auto → 10
+#: fixed), depth/length (nz 4 → 6 at ny 1), width (ny 1 → 2 at nz 4); patch: the strip
+#: half-length c 6.95 → 3.475 mm (the reference's).
 REFERENCE = "coarse_dt10us_c3.47mm"
-MESH_PAIR = ("coarse_dt20us_c3.47mm", "fine_dt20us_c3.47mm")
-STEP_PAIR = ("coarse_dt20us_c3.47mm", "coarse_dt10us_c3.47mm")
-PATCH_PAIR = ("coarse_dt20us_c6.95mm", "coarse_dt20us_c3.47mm")
+PAIRS = {"step": ("coarse_dt20usauto_c3.47mm", "coarse_dt10us_c3.47mm"),
+         "mesh": ("coarse1_dt20usauto_c3.47mm", "fine1_dt20usauto_c3.47mm"),
+         "width": ("coarse1_dt20usauto_c3.47mm", "coarse_dt20usauto_c3.47mm"),
+         "patch": ("coarse1_dt20usauto_c6.95mm", "coarse1_dt20usauto_c3.47mm")}
 COMPARED = ("peak_deflection_m", "permanent_deflection_m")
 
 
 def fe_reference(runs):
-    """(reference run, {quantity: relative change} for "mesh", "step" and "patch").
+    """(reference run, {pair: {quantity: relative change}}) for the pairs of PAIRS.
 
-    ``mesh``/``step``: finer minus coarser over the finer. ``patch``: the change from
-    halving the patch half-length c (reference minus the wider patch, over the reference),
-    i.e. the estimated distance of the reference from a point load (linear in c).
+    The change is finer minus coarser over finer. For ``patch`` it is the change from
+    halving the strip half-length c, i.e. (linear in c) the estimated distance of the
+    reference from a point load.
     """
     ref = runs.get(REFERENCE)
     changes = {}
-    for name, (a, b) in (("mesh", MESH_PAIR), ("step", STEP_PAIR), ("patch", PATCH_PAIR)):
+    for name, (a, b) in PAIRS.items():
         if a in runs and b in runs:
             changes[name] = {q: runs[b][q] / runs[a][q] - 1.0 for q in COMPARED}
     return ref, changes
@@ -375,6 +391,15 @@ def table():
                 f"{fd['peak_deflection_m'] * 1e3:.4f} | | {fd['permanent_deflection_m'] * 1e3:.4f}"
                 f" | | {fd['plastic_half_length_m'] * 1e3:.0f} | |")
     print("\n".join(rows))
+    ref, changes = fe_reference(runs)
+    print("\nFE changes (finer − coarser)/finer:", json.dumps(changes, indent=1))
+    print("\n| FD grid N_l×N_h | coupled: peak w [mm] | permanent w [mm] | plastic half-length "
+          "[mm] | prescribed load: peak w [mm] |\n|---|---|---|---|---|")
+    for key, r in data["fd_grid_study"].items():
+        p = data["fd_prescribed_grid_study"].get(key, {}).get("peak_deflection_m")
+        print(f"| {key} | {r['peak_deflection_m'] * 1e3:.4f} | "
+              f"{r['permanent_deflection_m'] * 1e3:.4f} | {r['plastic_half_length_m'] * 1e3:.0f}"
+              f" | {'' if p is None else f'{p * 1e3:.4f}'} |")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -398,6 +423,54 @@ def table():
     fig.savefig(ct.RESULTS / "level5_beam_plastic.png", dpi=110)
 
 
+def beam_theory_static(load, patch, width):
+    """Mid-span deflection [m] of the elastic–perfectly plastic Euler beam (exact
+    rectangle M(κ), :func:`impactmaps.fd.rectangular_moment_curvature` inverted) under
+    ``load`` [N] spread uniformly over |x − L/2| ≤ ``patch`` (virtual work, 4000 points)."""
+    e, sy = STEEL.youngs_modulus, STEEL.yield_strength
+    m_y, m_p = sy * width * HEIGHT**2 / 6, sy * width * HEIGHT**2 / 4
+    ei, kappa_y = e * width * HEIGHT**3 / 12, 2 * sy / (e * HEIGHT)
+    x = np.linspace(0.0, 0.5 * LENGTH, 4001)
+    moment = 0.5 * load * x - load / (4 * patch) * np.clip(x - (0.5 * LENGTH - patch), 0, None) ** 2
+    if moment.max() >= m_p:
+        return np.inf
+    kappa = np.where(moment <= m_y, moment / ei,
+                     kappa_y / np.sqrt(np.maximum(3 * (1 - moment / m_p), 1e-300)))
+    return float(np.trapezoid(kappa * x, x))
+
+
+def run_static(args):
+    """Quasi-static 3-point bending of the quarter beam of width ``--width`` to
+    ``--pmax`` × P_y (P_y = 4 M_y / L), against the beam theory of the same load."""
+    width = args.width * 1e-3
+    patch = HEIGHT / 8
+    p_y = 4 * STEEL.yield_strength * width * HEIGHT**2 / 6 / LENGTH
+    mesh, knots = quarter_mesh(args.nz, args.ny, patch, width)
+    deck, faces = fe_deck(mesh, None, None, None, patch, width=width,
+                          static_load=args.pmax * p_y)
+    tag = f"static_b{args.width:g}mm_nz{args.nz}_ny{args.ny}"
+    dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
+    text = dat.read_text()
+    blocks = ct.parse_node_prints(text, "MID")
+    t_fe = ct.parse_node_print_times(text, "MID")
+    ids = mesh.nodes_where(np.isclose(mesh.coords[:, 0], 0.5 * LENGTH, atol=1e-9))
+    mean = np.array([[-b[i][2] for i in ids] for b in blocks]) @ section_weights(mesh, ids)
+    loads = t_fe * args.pmax * p_y
+    theory = np.array([beam_theory_static(p, patch, width) for p in loads])
+    rows = np.column_stack([loads / p_y, mean, theory])
+    np.savetxt(ct.RESULTS / f"level5_{tag}.csv", rows, delimiter=",", fmt="%.6e",
+               comments="", header="load_over_Py,fe_section_mean_m,beam_theory_m")
+    data = _load()
+    data.setdefault("static_runs", {})[tag] = dict(
+        width_m=width, nz=args.nz, ny=args.ny, n_nodes=len(mesh.coords), patch_half_length_m=patch,
+        yield_load_N=p_y, ccx_wall_time_s=wall,
+        fe_over_theory_at=[[float(a), float(b / c)] for a, b, c in rows[1:]],
+        command="python validation/fe/level5_beam_plastic.py " + " ".join(sys.argv[1:]))
+    _save(data)
+    for a, b, c in rows:
+        print(f"P/Py {a:.3f}  FE {b * 1e3:.4f} mm  beam {c * 1e3:.4f} mm  FE/beam {b / c:.4f}")
+
+
 def _load():
     return json.loads(JSON.read_text()) if JSON.exists() else {}
 
@@ -411,17 +484,26 @@ def main(argv=None):
     sub = p.add_subparsers(dest="what", required=True)
     sub.add_parser("fd")
     sub.add_parser("table")
+    st = sub.add_parser("static")
+    st.add_argument("--width", type=float, default=WIDTH * 1e3, help="beam width b [mm]")
+    st.add_argument("--nz", type=int, default=4)
+    st.add_argument("--ny", type=int, default=1)
+    st.add_argument("--pmax", type=float, default=1.4, help="largest load / P_y")
     fe = sub.add_parser("fe")
     fe.add_argument("--mesh", default="coarse", choices=sorted(MESHES))
     fe.add_argument("--dt", type=float, default=5e-6)
     fe.add_argument("--patch", type=float, default=None, help="patch half-length [mm]")
     fe.add_argument("--tag", default=None)
+    fe.add_argument("--auto", action="store_true",
+                    help="automatic incrementation with Δt ≤ --dt (default: fixed Δt)")
     fe.add_argument("--end", type=float, default=FE_END, help="dynamic step end [s]")
     a = p.parse_args(argv)
     if a.what == "fd":
         run_fd(a)
     elif a.what == "table":
         table()
+    elif a.what == "static":
+        run_static(a)
     else:
         run_fe(a)
 
