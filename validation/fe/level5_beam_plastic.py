@@ -37,19 +37,19 @@ Outputs: ``results/level5_beam_plastic.json`` (every run), ``results/level5_forc
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import ccx_tools as ct  # noqa: E402
+import ccx_tools as ct
 
-import impactmaps  # noqa: E402
-from impactmaps import FDBeam, Sphere, law_for_sphere, simulate_fd  # noqa: E402
-from impactmaps.fd import simulate_fd_response  # noqa: E402
+import impactmaps
+from impactmaps import FDBeam, Sphere, law_for_sphere, simulate_fd
+from impactmaps.fd import simulate_fd_response
 
 STEEL = impactmaps.material("structural-steel")
 LENGTH, WIDTH, HEIGHT = 0.78, 0.060, 0.0278      # m (examples/steel_beam_fd_stronge.toml)
@@ -138,7 +138,7 @@ def run_fd(args):
                                         deflection_at_end_m=float(w[-1]))
     # the dynamic step ends at FE_END: no yielding after it (same permanent deflection)
     early = fd_summary(fd_impact(duration=FE_END))["permanent_deflection_m"]
-    data = _load()
+    data = load()
     data["case"] = dict(length_m=LENGTH, width_m=WIDTH, height_m=HEIGHT, impactor_mass_kg=MASS,
                         nose_radius_m=RADIUS, velocity_m_s=VELOCITY, law=LAW,
                         material=STEEL.name, youngs_modulus_Pa=STEEL.youngs_modulus,
@@ -150,7 +150,7 @@ def run_fd(args):
     data["fd_prescribed_grid_study"] = prescribed
     data["fd_permanent_deflection_at_fe_end_m"] = early
     data["fd_command"] = "python validation/fe/level5_beam_plastic.py fd"
-    _save(data)
+    save(data)
 
 
 def prescribed_force(end=FE_END):
@@ -159,6 +159,14 @@ def prescribed_force(end=FE_END):
     t, f = np.loadtxt(FORCE_CSV, delimiter=",", skiprows=1, usecols=(0, 1), unpack=True)
     times = np.arange(0.0, end + 0.5 * LOAD_DT, LOAD_DT)
     return times, np.interp(times, t, f, right=0.0)
+
+
+def smoothed(force, window):
+    """``force`` (sampled every LOAD_DT) averaged over the preceding ``window`` [s]
+    (causal moving average: the impulse is kept, spikes shorter than the window are
+    spread over it)."""
+    n = max(1, int(round(window / LOAD_DT)))
+    return np.convolve(force, np.ones(n) / n, mode="full")[:len(force)]
 
 
 # -- FE side -------------------------------------------------------------------------
@@ -233,9 +241,6 @@ def fe_deck(mesh, times, force, dt, patch, auto=False, width=WIDTH, static_load=
     x, y, z = mesh.coords.T
     tol = 1e-9
     mid = np.isclose(x, 0.5 * LENGTH, atol=tol)
-    parts = []
-    w = parts.append
-    import io
     f = io.StringIO()
     f.write("*HEADING\nlevel 5 plastic beam\n")
     ct.write_mesh_parts(f, mesh, [("EALL", np.ones(len(mesh.elements), bool), "STEEL",
@@ -291,6 +296,8 @@ def run_fe(args):
     if not np.isclose(knots, 0.5 * LENGTH - patch).any():
         raise RuntimeError(f"patch half-length {patch} m is not an element boundary")
     times, force = prescribed_force(args.end)
+    if args.smooth:
+        force = smoothed(force, args.smooth * 1e-6)
     deck, faces = fe_deck(mesh, times, force, args.dt, patch, args.auto)
     tag = args.tag or (f"{args.mesh}_dt{args.dt * 1e6:g}us{'auto' if args.auto else ''}"
                        f"_c{patch * 1e3:.3g}mm")
@@ -318,6 +325,7 @@ def run_fe(args):
                  n_elements=len(mesh.elements), element_type=mesh.element_type,
                  zone_element_length_m=HEIGHT / spec["nz"], x_elements=len(knots) - 1,
                  patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt, automatic_increments=bool(args.auto),
+                 load_smoothing_window_s=args.smooth * 1e-6,
                  dynamic_increments=n_dyn,
                  dynamic_end_s=float(times[-1]), ccx_wall_time_s=wall,
                  ccx_version=ct.ccx_version(),
@@ -339,9 +347,9 @@ def run_fe(args):
                                 bot[:n_dyn], w_fd_at])[::max(1, int(round(1e-5 / args.dt)))],
                delimiter=",", fmt="%.6e", comments="",
                header="time_s,force_N,fe_section_mean_m,fe_axis_m,fe_bottom_m,fd_prescribed_m")
-    data = _load()
+    data = load()
     data.setdefault("fe_runs", {})[tag] = entry
-    _save(data)
+    save(data)
     print(json.dumps(entry, indent=1))
 
 
@@ -372,110 +380,11 @@ def fe_reference(runs):
     return ref, changes
 
 
-def table():
-    """Markdown table of the committed runs against the FD beam, and the figure."""
-    data = _load()
-    fd, runs = data["fd_impact"], data["fe_runs"]
-    rows = ["| FE run | nodes | Δt [µs] | patch c [mm] | peak w [mm] | FD − FE | "
-            "permanent w [mm] | FD − FE | plastic half-length [mm] | wall [s] |",
-            "|---|---|---|---|---|---|---|---|---|---|"]
-    for tag, r in runs.items():
-        rows.append(
-            f"| {tag} | {r['n_nodes']} | {r['time_step_s'] * 1e6:g} | "
-            f"{r['patch_half_length_m'] * 1e3:.3g} | {r['peak_deflection_m'] * 1e3:.4f} | "
-            f"{(fd['peak_deflection_m'] / r['peak_deflection_m'] - 1) * 100:+.2f} % | "
-            f"{r['permanent_deflection_m'] * 1e3:.4f} | "
-            f"{(fd['permanent_deflection_m'] / r['permanent_deflection_m'] - 1) * 100:+.2f} % | "
-            f"{(r['plastic_half_length_m'] or 0) * 1e3:.0f} | {r['ccx_wall_time_s']:.0f} |")
-    rows.append(f"| FD {data['case']['fd_grid'][0]}×{data['case']['fd_grid'][1]} (coupled) | | | | "
-                f"{fd['peak_deflection_m'] * 1e3:.4f} | | {fd['permanent_deflection_m'] * 1e3:.4f}"
-                f" | | {fd['plastic_half_length_m'] * 1e3:.0f} | |")
-    print("\n".join(rows))
-    ref, changes = fe_reference(runs)
-    print("\nFE changes (finer − coarser)/finer:", json.dumps(changes, indent=1))
-    print("\n| FD grid N_l×N_h | coupled: peak w [mm] | permanent w [mm] | plastic half-length "
-          "[mm] | prescribed load: peak w [mm] |\n|---|---|---|---|---|")
-    for key, r in data["fd_grid_study"].items():
-        p = data["fd_prescribed_grid_study"].get(key, {}).get("peak_deflection_m")
-        print(f"| {key} | {r['peak_deflection_m'] * 1e3:.4f} | "
-              f"{r['permanent_deflection_m'] * 1e3:.4f} | {r['plastic_half_length_m'] * 1e3:.0f}"
-              f" | {'' if p is None else f'{p * 1e3:.4f}'} |")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    t, f, w = np.loadtxt(FORCE_CSV, delimiter=",", skiprows=1, unpack=True)
-    a0.plot(t * 1e3, f / 1e3, lw=0.6, color="k")
-    a0.set_ylabel("contact force [kN]")
-    a1.plot(t * 1e3, w * 1e3, color="k", lw=1.5, label="FD beam (coupled, 200×10)")
-    for tag in runs:
-        h = np.loadtxt(ct.RESULTS / f"level5_fe_{tag}.csv", delimiter=",", skiprows=1)
-        a1.plot(h[:, 0] * 1e3, h[:, 2] * 1e3, lw=0.9, label=f"3D FE {tag}")
-    a1.axhline(fd["permanent_deflection_m"] * 1e3, color="k", ls=":", lw=0.8,
-               label="FD permanent")
-    for tag, r in runs.items():
-        a1.plot([FE_END * 1e3], [r["permanent_deflection_m"] * 1e3], "o", ms=4)
-    a1.set_xlabel("time [ms]")
-    a1.set_ylabel("mid-span deflection [mm]")
-    a1.set_xlim(0, FE_END * 1e3 + 0.5)
-    a1.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(ct.RESULTS / "level5_beam_plastic.png", dpi=110)
-
-
-def beam_theory_static(load, patch, width):
-    """Mid-span deflection [m] of the elastic–perfectly plastic Euler beam (exact
-    rectangle M(κ), :func:`impactmaps.fd.rectangular_moment_curvature` inverted) under
-    ``load`` [N] spread uniformly over |x − L/2| ≤ ``patch`` (virtual work, 4000 points)."""
-    e, sy = STEEL.youngs_modulus, STEEL.yield_strength
-    m_y, m_p = sy * width * HEIGHT**2 / 6, sy * width * HEIGHT**2 / 4
-    ei, kappa_y = e * width * HEIGHT**3 / 12, 2 * sy / (e * HEIGHT)
-    x = np.linspace(0.0, 0.5 * LENGTH, 4001)
-    moment = 0.5 * load * x - load / (4 * patch) * np.clip(x - (0.5 * LENGTH - patch), 0, None) ** 2
-    if moment.max() >= m_p:
-        return np.inf
-    kappa = np.where(moment <= m_y, moment / ei,
-                     kappa_y / np.sqrt(np.maximum(3 * (1 - moment / m_p), 1e-300)))
-    return float(np.trapezoid(kappa * x, x))
-
-
-def run_static(args):
-    """Quasi-static 3-point bending of the quarter beam of width ``--width`` to
-    ``--pmax`` × P_y (P_y = 4 M_y / L), against the beam theory of the same load."""
-    width = args.width * 1e-3
-    patch = HEIGHT / 8
-    p_y = 4 * STEEL.yield_strength * width * HEIGHT**2 / 6 / LENGTH
-    mesh, knots = quarter_mesh(args.nz, args.ny, patch, width)
-    deck, faces = fe_deck(mesh, None, None, None, patch, width=width,
-                          static_load=args.pmax * p_y)
-    tag = f"static_b{args.width:g}mm_nz{args.nz}_ny{args.ny}"
-    dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
-    text = dat.read_text()
-    blocks = ct.parse_node_prints(text, "MID")
-    t_fe = ct.parse_node_print_times(text, "MID")
-    ids = mesh.nodes_where(np.isclose(mesh.coords[:, 0], 0.5 * LENGTH, atol=1e-9))
-    mean = np.array([[-b[i][2] for i in ids] for b in blocks]) @ section_weights(mesh, ids)
-    loads = t_fe * args.pmax * p_y
-    theory = np.array([beam_theory_static(p, patch, width) for p in loads])
-    rows = np.column_stack([loads / p_y, mean, theory])
-    np.savetxt(ct.RESULTS / f"level5_{tag}.csv", rows, delimiter=",", fmt="%.6e",
-               comments="", header="load_over_Py,fe_section_mean_m,beam_theory_m")
-    data = _load()
-    data.setdefault("static_runs", {})[tag] = dict(
-        width_m=width, nz=args.nz, ny=args.ny, n_nodes=len(mesh.coords), patch_half_length_m=patch,
-        yield_load_N=p_y, ccx_wall_time_s=wall,
-        fe_over_theory_at=[[float(a), float(b / c)] for a, b, c in rows[1:]],
-        command="python validation/fe/level5_beam_plastic.py " + " ".join(sys.argv[1:]))
-    _save(data)
-    for a, b, c in rows:
-        print(f"P/Py {a:.3f}  FE {b * 1e3:.4f} mm  beam {c * 1e3:.4f} mm  FE/beam {b / c:.4f}")
-
-
-def _load():
+def load():
     return json.loads(JSON.read_text()) if JSON.exists() else {}
 
 
-def _save(data):
+def save(data):
     JSON.write_text(json.dumps(data, indent=1) + "\n")
 
 
@@ -483,12 +392,6 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = p.add_subparsers(dest="what", required=True)
     sub.add_parser("fd")
-    sub.add_parser("table")
-    st = sub.add_parser("static")
-    st.add_argument("--width", type=float, default=WIDTH * 1e3, help="beam width b [mm]")
-    st.add_argument("--nz", type=int, default=4)
-    st.add_argument("--ny", type=int, default=1)
-    st.add_argument("--pmax", type=float, default=1.4, help="largest load / P_y")
     fe = sub.add_parser("fe")
     fe.add_argument("--mesh", default="coarse", choices=sorted(MESHES))
     fe.add_argument("--dt", type=float, default=5e-6)
@@ -496,14 +399,12 @@ def main(argv=None):
     fe.add_argument("--tag", default=None)
     fe.add_argument("--auto", action="store_true",
                     help="automatic incrementation with Δt ≤ --dt (default: fixed Δt)")
+    fe.add_argument("--smooth", type=float, default=0.0,
+                    help="moving-average window of the load [µs] (0: the FD force as is)")
     fe.add_argument("--end", type=float, default=FE_END, help="dynamic step end [s]")
     a = p.parse_args(argv)
     if a.what == "fd":
         run_fd(a)
-    elif a.what == "table":
-        table()
-    elif a.what == "static":
-        run_static(a)
     else:
         run_fe(a)
 
