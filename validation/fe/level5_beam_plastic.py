@@ -37,6 +37,7 @@ Outputs: ``results/level5_beam_plastic.json`` (every run), ``results/level5_forc
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import io
 import json
 import sys
@@ -353,15 +354,16 @@ def run_fe(args):
     print(json.dumps(entry, indent=1))
 
 
-#: The FE runs of the study: the reference (coarse mesh, fixed Δt 10 µs) and the pairs
-#: (coarser, finer) that bound its error, at automatic Δt ≤ 20 µs: step (20 auto → 10
-#: fixed), depth/length (nz 4 → 6 at ny 1), width (ny 1 → 2 at nz 4); patch: the strip
-#: half-length c 6.95 → 3.475 mm (the reference's).
-REFERENCE = "coarse_dt10us_c3.47mm"
-PAIRS = {"step": ("coarse_dt20usauto_c3.47mm", "coarse_dt10us_c3.47mm"),
-         "mesh": ("coarse1_dt20usauto_c3.47mm", "fine1_dt20usauto_c3.47mm"),
-         "width": ("coarse1_dt20usauto_c3.47mm", "coarse_dt20usauto_c3.47mm"),
-         "patch": ("coarse1_dt20usauto_c6.95mm", "coarse1_dt20usauto_c3.47mm")}
+#: The FE reference (coarse1 mesh: 4 × 1 elements in depth × half width, automatic
+#: Δt ≤ 20 µs, strip c = h/8) and the pairs (coarser, finer) that bound its error:
+#: step (≤ 20 µs automatic → fixed 10 µs, to 7.5 ms), width (ny 1 → 2 at fixed 10 µs,
+#: to 7.5 ms), depth (nz 4 → 6 with the zone element h/4 → h/6, to 4.3 ms: stopped),
+#: patch (c 6.95 → 3.475 mm, whole run).
+REFERENCE = "coarse1_dt20usauto_c3.47mm"
+PAIRS = {"step": (REFERENCE, "coarse1_dt10us_c3.47mm_to7.5ms"),
+         "width": ("coarse1_dt10us_c3.47mm_to7.5ms", "coarse_dt10us_c3.47mm"),
+         "depth": (REFERENCE, "fine1_dt20usauto_c3.47mm"),
+         "patch": ("coarse1_dt20usauto_c6.95mm", REFERENCE)}
 COMPARED = ("peak_deflection_m", "permanent_deflection_m")
 
 

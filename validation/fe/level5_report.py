@@ -23,35 +23,65 @@ from level5_beam_plastic import (
     HEIGHT,
     LENGTH,
     MESHES,
+    PAIRS,
+    fd_prescribed,
     fe_reference,
     load,
+    prescribed_force,
     quarter_mesh,
     save,
     section_weights,
 )
 
 
+def history(tag):
+    """(t, w) of an FE run: its full CSV, else the harvested partial one, else None."""
+    for name, column in ((f"level5_fe_{tag}.csv", 2), (f"level5_fe_{tag}_partial.csv", 1)):
+        path = ct.RESULTS / name
+        if path.exists():
+            h = np.loadtxt(path, delimiter=",", skiprows=1)
+            return h[:, 0], h[:, column]
+    return None
+
+
+def compare(coarser, finer):
+    """Over the common time span: largest |finer − coarser| / max|finer|, and the
+    change of the maximum deflection (finer/coarser − 1)."""
+    a, b = history(coarser), history(finer)
+    if a is None or b is None:
+        return None
+    end = min(a[0][-1], b[0][-1])
+    t = b[0][b[0] <= end]
+    wa, wb = np.interp(t, *a), b[1][b[0] <= end]
+    return {"up_to_s": float(end), "max_history_difference": float(np.abs(wb - wa).max() / wb.max()),
+            "max_deflection_change": float(wb.max() / wa[: len(t)].max() - 1)}
+
+
 def table():
-    """Markdown table of the committed runs against the FD beam, and the figure."""
+    """The tables of README Level 5, the ``convergence`` entry of the JSON, the figure."""
     data = load()
-    fd, runs = data["fd_impact"], data["fe_runs"]
-    rows = ["| FE run | nodes | Δt [µs] | patch c [mm] | peak w [mm] | FD − FE | "
-            "permanent w [mm] | FD − FE | plastic half-length [mm] | wall [s] |",
-            "|---|---|---|---|---|---|---|---|---|---|"]
-    for tag, r in runs.items():
-        rows.append(
-            f"| {tag} | {r['n_nodes']} | {r['time_step_s'] * 1e6:g} | "
-            f"{r['patch_half_length_m'] * 1e3:.3g} | {r['peak_deflection_m'] * 1e3:.4f} | "
-            f"{(fd['peak_deflection_m'] / r['peak_deflection_m'] - 1) * 100:+.2f} % | "
-            f"{r['permanent_deflection_m'] * 1e3:.4f} | "
-            f"{(fd['permanent_deflection_m'] / r['permanent_deflection_m'] - 1) * 100:+.2f} % | "
-            f"{(r['plastic_half_length_m'] or 0) * 1e3:.0f} | {r['ccx_wall_time_s']:.0f} |")
-    rows.append(f"| FD {data['case']['fd_grid'][0]}×{data['case']['fd_grid'][1]} (coupled) | | | | "
-                f"{fd['peak_deflection_m'] * 1e3:.4f} | | {fd['permanent_deflection_m'] * 1e3:.4f}"
-                f" | | {fd['plastic_half_length_m'] * 1e3:.0f} | |")
-    print("\n".join(rows))
+    runs = data.get("fe_runs", {})
     ref, changes = fe_reference(runs)
-    print("\nFE changes (finer − coarser)/finer:", json.dumps(changes, indent=1))
+    convergence = {name: compare(*pair) for name, pair in PAIRS.items()}
+    convergence["patch_end_values"] = changes.get("patch")
+    data["convergence"] = convergence
+    save(data)
+    print("| FE run | nodes | Δt [µs] | c [mm] | load | peak w [mm] | permanent w [mm] | "
+          "plastic half-length [mm] | ccx wall [s] |\n|---|---|---|---|---|---|---|---|---|")
+    for tag, r in runs.items():
+        load_kind = "smoothed 100 µs" if r.get("load_smoothing_window_s") else "FD force"
+        step = f"≤ {r['time_step_s'] * 1e6:g} auto" if r.get("automatic_increments") else \
+            f"{r['time_step_s'] * 1e6:g}"
+        perm = f"{r['permanent_deflection_m'] * 1e3:.4f}" if r["dynamic_end_s"] >= FE_END - 1e-9 \
+            else f"(unloaded at {r['dynamic_end_s'] * 1e3:g} ms)"
+        print(f"| {tag} | {r['n_nodes']} | {step} | {r['patch_half_length_m'] * 1e3:.3g} | "
+              f"{load_kind} | {r['peak_deflection_m'] * 1e3:.4f} | "
+              f"{perm} | "
+              f"{(r['plastic_half_length_m'] or 0) * 1e3:.0f} | {r['ccx_wall_time_s']:.0f} |")
+    for tag, r in data.get("partial_runs", {}).items():
+        print(f"| {tag} (stopped at {r['reached_s'] * 1e3:.2f} ms) | {r['n_nodes']} | | | | "
+              f"(max so far {r['max_so_far_m'] * 1e3:.4f}) | | | |")
+    print("\nconvergence:", json.dumps(convergence, indent=1))
     print("\n| FD grid N_l×N_h | coupled: peak w [mm] | permanent w [mm] | plastic half-length "
           "[mm] | prescribed load: peak w [mm] |\n|---|---|---|---|---|")
     for key, r in data["fd_grid_study"].items():
@@ -59,21 +89,31 @@ def table():
         print(f"| {key} | {r['peak_deflection_m'] * 1e3:.4f} | "
               f"{r['permanent_deflection_m'] * 1e3:.4f} | {r['plastic_half_length_m'] * 1e3:.0f}"
               f" | {'' if p is None else f'{p * 1e3:.4f}'} |")
+    figure(data, runs)
+
+
+def figure(data, runs):
+    """``results/level5_beam_plastic.png``: the force; FD and FE mid-span deflections."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     t, f, w = np.loadtxt(FORCE_CSV, delimiter=",", skiprows=1, unpack=True)
     a0.plot(t * 1e3, f / 1e3, lw=0.6, color="k")
-    a0.set_ylabel("contact force [kN]")
-    a1.plot(t * 1e3, w * 1e3, color="k", lw=1.5, label="FD beam (coupled, 200×10)")
-    for tag in runs:
-        h = np.loadtxt(ct.RESULTS / f"level5_fe_{tag}.csv", delimiter=",", skiprows=1)
-        a1.plot(h[:, 0] * 1e3, h[:, 2] * 1e3, lw=0.9, label=f"3D FE {tag}")
-    a1.axhline(fd["permanent_deflection_m"] * 1e3, color="k", ls=":", lw=0.8,
-               label="FD permanent")
+    a0.set_ylabel("prescribed force [kN]")
+    times, force = prescribed_force()
+    tf, wf = fd_prescribed(times, force, 400, 40)
+    a1.plot(tf * 1e3, wf * 1e3, color="k", lw=1.6, label="FD beam 400×40, same force")
+    a1.plot(t * 1e3, w * 1e3, color="0.5", lw=1.0, ls="--", label="FD beam 200×10 (coupled)")
+    for tag in list(runs) + list(data.get("partial_runs", {})):
+        h = history(tag)
+        if h is not None and "smooth" not in tag:
+            a1.plot(h[0] * 1e3, h[1] * 1e3, lw=0.9, label=f"3D {tag}")
+    a1.axhline(data["fd_impact"]["permanent_deflection_m"] * 1e3, color="k", ls=":", lw=0.8,
+               label="FD permanent (coupled 200×10)")
     for tag, r in runs.items():
-        a1.plot([FE_END * 1e3], [r["permanent_deflection_m"] * 1e3], "o", ms=4)
+        if "smooth" not in tag and r["dynamic_end_s"] >= FE_END - 1e-9:
+            a1.plot([FE_END * 1e3 + 0.2], [r["permanent_deflection_m"] * 1e3], "o", ms=4)
     a1.set_xlabel("time [ms]")
     a1.set_ylabel("mid-span deflection [mm]")
     a1.set_xlim(0, FE_END * 1e3 + 0.5)

@@ -60,8 +60,17 @@ def run_static(args):
     mesh, knots = quarter_mesh(args.nz, args.ny, patch, width)
     deck, faces = fe_deck(mesh, None, None, None, patch, width=width,
                           static_load=args.pmax * p_y)
-    tag = f"static_b{args.width:g}mm_nz{args.nz}_ny{args.ny}"
-    dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
+    tag = f"static_b{args.width:g}mm_nz{args.nz}_ny{args.ny}" + (f"_p{args.pmax:g}" if args.pmax != 1.4 else "")
+    stopped = None
+    if args.parse_only:          # re-read the .dat of an earlier run
+        dat, wall = ct.WORK / "level5" / f"level5_{tag}.dat", float("nan")
+    else:
+        try:
+            dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
+        except RuntimeError as error:  # beyond the limit load: no equilibrium
+            dat, wall, stopped = ct.WORK / "level5" / f"level5_{tag}.dat", float("nan"), str(error)
+    if stopped is None and "no convergence" in args.note:
+        stopped = args.note
     text = dat.read_text()
     blocks = ct.parse_node_prints(text, "MID")
     t_fe = ct.parse_node_print_times(text, "MID")
@@ -76,6 +85,9 @@ def run_static(args):
     data.setdefault("static_runs", {})[tag] = dict(
         width_m=width, nz=args.nz, ny=args.ny, n_nodes=len(mesh.coords), patch_half_length_m=patch,
         yield_load_N=p_y, ccx_wall_time_s=wall,
+        last_converged_load_over_Py=float(rows[-1, 0]),
+        beam_theory_collapse_load_over_Py=float(LENGTH / (LENGTH - patch) * 1.5),
+        stopped=None if stopped is None else "ccx stopped: no equilibrium beyond the last load",
         fe_over_theory_at=[[float(a), float(b / c)] for a, b, c in rows[1:]],
         command="python validation/fe/level5_static_bending.py " + " ".join(sys.argv[1:]))
     save(data)
@@ -89,6 +101,8 @@ def main(argv=None):
     st.add_argument("--nz", type=int, default=4)
     st.add_argument("--ny", type=int, default=1)
     st.add_argument("--pmax", type=float, default=1.4, help="largest load / P_y")
+    st.add_argument("--parse-only", action="store_true", help="re-read an earlier run's .dat")
+    st.add_argument("--note", default="")
     run_static(st.parse_args(argv))
 
 
