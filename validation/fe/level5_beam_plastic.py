@@ -293,13 +293,17 @@ def run_fe(args):
     """One FE run: writes its CSV and adds its entry to the JSON."""
     spec = MESHES[args.mesh]
     patch = args.patch * 1e-3 if args.patch else HEIGHT / 8
-    mesh, knots = quarter_mesh(patch=patch, **spec)
+    width = args.width * 1e-3 if args.width else WIDTH
+    mesh, knots = quarter_mesh(patch=patch, width=width, **spec)
     if not np.isclose(knots, 0.5 * LENGTH - patch).any():
         raise RuntimeError(f"patch half-length {patch} m is not an element boundary")
     times, force = prescribed_force(args.end)
     if args.smooth:
         force = smoothed(force, args.smooth * 1e-6)
-    deck, faces = fe_deck(mesh, times, force, args.dt, patch, args.auto)
+    # a beam of another width carries the force scaled by width/WIDTH: the same stresses,
+    # and the same beam-theory deflection (mass, stiffness and M_p all ∝ b)
+    deck, faces = fe_deck(mesh, times, force * width / WIDTH, args.dt, patch, args.auto,
+                          width=width)
     tag = args.tag or (f"{args.mesh}_dt{args.dt * 1e6:g}us{'auto' if args.auto else ''}"
                        f"_c{patch * 1e3:.3g}mm")
     dat, wall = ct.run_ccx(deck, f"level5_{tag}", ct.WORK / "level5")
@@ -325,7 +329,7 @@ def run_fe(args):
     entry = dict(mesh=args.mesh, **spec, n_nodes=len(mesh.coords),
                  n_elements=len(mesh.elements), element_type=mesh.element_type,
                  zone_element_length_m=HEIGHT / spec["nz"], x_elements=len(knots) - 1,
-                 patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt, automatic_increments=bool(args.auto),
+                 patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt, automatic_increments=bool(args.auto), width_m=width,
                  load_smoothing_window_s=args.smooth * 1e-6,
                  dynamic_increments=n_dyn,
                  dynamic_end_s=float(times[-1]), ccx_wall_time_s=wall,
@@ -403,6 +407,8 @@ def main(argv=None):
                     help="automatic incrementation with Δt ≤ --dt (default: fixed Δt)")
     fe.add_argument("--smooth", type=float, default=0.0,
                     help="moving-average window of the load [µs] (0: the FD force as is)")
+    fe.add_argument("--width", type=float, default=None,
+                    help="beam width [mm] (default the case's 60 mm); the force is scaled by b")
     fe.add_argument("--end", type=float, default=FE_END, help="dynamic step end [s]")
     a = p.parse_args(argv)
     if a.what == "fd":
