@@ -39,12 +39,12 @@ def _data():
     return json.loads(l5.JSON.read_text())
 
 
-def _reference():
-    """The committed FE reference run (entry of the JSON) and its history CSV."""
-    run = _data().get("fe_runs", {}).get(l5.REFERENCE)
-    csv = l5.ct.RESULTS / f"level5_fe_{l5.REFERENCE}.csv"
+def _reference(tag=l5.REFERENCE):
+    """A committed FE run (entry of the JSON) and its history CSV."""
+    run = _data().get("fe_runs", {}).get(tag)
+    csv = l5.ct.RESULTS / f"level5_fe_{tag}.csv"
     if run is None or not csv.exists():
-        pytest.skip(f"FE run {l5.REFERENCE} not committed")
+        pytest.skip(f"FE run {tag} not committed")
     return run, np.loadtxt(csv, delimiter=",", skiprows=1)
 
 
@@ -148,6 +148,30 @@ def test_fd_permanent_deflection_measured_band(fd_run):
     run, _h = _reference()
     excess = fd_run["permanent_deflection_m"] / run["permanent_deflection_m"] - 1
     assert PERMANENT_BAND[0] <= excess <= PERMANENT_BAND[1]
+
+
+def test_fd_against_narrow_3d_beam(fd_run, fd_prescribed):
+    """On a 10 mm wide beam (the force scaled by b/60 mm, so beam theory predicts the
+    same deflection) the 3D hinge is no longer restrained across the width, and the FD
+    beam meets the issue's goals: peak within 3 % (measured: coupled +1.0 %, same force
+    +1.0 %; FD converged −0.0 %), and the history within 3 % of the peak up to 8.5 ms
+    (measured 1.9 %; 3.2 % over the whole run)."""
+    run, h = _reference(l5.NARROW)
+    for peak in (fd_run["peak_deflection_m"], fd_prescribed[1].max()):
+        assert peak == pytest.approx(run["peak_deflection_m"], rel=PEAK_GOAL)
+    t, w = fd_prescribed
+    early = h[:, 0] <= 8.5e-3
+    assert np.abs(np.interp(h[early, 0], t, w) - h[early, 2]).max() <= PEAK_GOAL * h[:, 2].max()
+
+
+def test_fd_permanent_deflection_against_narrow_3d_beam(fd_run):
+    """The permanent deflection of the FD impact within 5 % of the narrow 3D beam's (the
+    issue's goal). Measured +4.6 % (FD 2.732 mm, 3D 2.612 mm with the 3.475 mm strip;
+    with the point-load correction measured on the wide beam, +1.4 % on the 3D value,
+    the FD is +3.1 %; the grid-converged FD is +1.0 % higher still)."""
+    run, _h = _reference(l5.NARROW)
+    assert fd_run["permanent_deflection_m"] == pytest.approx(run["permanent_deflection_m"],
+                                                             rel=PERMANENT_GOAL)
 
 
 def test_committed_force_is_the_current_fd_force(fd_result):

@@ -364,6 +364,9 @@ def run_fe(args):
 #: to 7.5 ms), depth (nz 4 → 6 with the zone element h/4 → h/6, to 4.3 ms: stopped),
 #: patch (c 6.95 → 3.475 mm, whole run).
 REFERENCE = "coarse1_dt20usauto_c3.47mm"
+#: The same run on a 10 mm wide beam (force scaled by b/WIDTH): the beam-theory answer is
+#: unchanged, the 3D hinge is no longer restrained across the width.
+NARROW = "coarse1_dt20usauto_c3.47mm_b10mm"
 PAIRS = {"step": (REFERENCE, "coarse1_dt10us_c3.47mm_to7.5ms"),
          "width": ("coarse1_dt10us_c3.47mm_to7.5ms", "coarse_dt10us_c3.47mm"),
          "depth": (REFERENCE, "fine1_dt20usauto_c3.47mm"),
