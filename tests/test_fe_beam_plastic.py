@@ -17,6 +17,7 @@ of the goal or less, checked below).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -81,7 +82,7 @@ def test_fd_static_bending_against_3d():
                       skiprows=1)
     beam = l5.fd_beam(100, 20)
     damping = 2.0 * beam.mass_per_length * float(beam.simply_supported_frequency(1))
-    beam = l5.dataclasses.replace(beam, damping_per_length=damping)
+    beam = dataclasses.replace(beam, damping_per_length=damping)
     for level in (1.0, 1.2, 1.3, 1.4):
         load = level * static["yield_load_N"]
         response = l5.simulate_fd_response(beam, lambda t, p=load: p * np.minimum(t / 0.05, 1.0),

@@ -37,7 +37,6 @@ Outputs: ``results/level5_beam_plastic.json`` (every run), ``results/level5_forc
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import io
 import json
 import sys
