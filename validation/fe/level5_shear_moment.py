@@ -22,7 +22,15 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from level5_beam_plastic import HEIGHT, LENGTH, STEEL, WIDTH, load, prescribed_force, save
+from level5_beam_plastic import (
+    HEIGHT,
+    LENGTH,
+    STEEL,
+    WIDTH,
+    load,
+    prescribed_force,
+    save,
+)
 from spring_integrator import step_coefficients
 
 
