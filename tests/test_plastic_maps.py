@@ -290,3 +290,18 @@ def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
         digest = sweep_fingerprint([structure_from_name(name)], zetas, lambdas, law=law, axes={"beta": betas})
         assert digest == dataset.attrs["fingerprint"], name
         assert dataset["fmax_normalised"].dims == ("structure", "beta", "lambda_", "zeta")
+
+
+def test_a_redefined_law_changes_the_fingerprint(monkeypatch):
+    """A law whose definition changed (``ContactLaw.revision``: the refined Stronge law is at
+    2, its energy-consistent form) gives its sweeps a new fingerprint, so a stored sweep of
+    the old definition is neither resumed nor read as current; laws at revision 1 keep the
+    fingerprints they had (the YC maps' above)."""
+    from impactmaps.contact.stronge import StrongeContact
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import sweep_fingerprint
+
+    grid = ([structure_from_name("beam-ss-euler")], [0.1, 1.0], [0.1, 1.0])
+    current = sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]})
+    monkeypatch.setattr(StrongeContact, "revision", 1)
+    assert sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]}) != current

@@ -207,13 +207,16 @@ class ContactLaw(ABC):
     strength), and provide ``kernel`` (a ``staticmethod`` wrapping a numba scalar
     kernel), :attr:`kernel_parameters`, :meth:`permanent_indentation` and
     :meth:`from_contact_pair`. Parameters may be arrays, so one law object describes a
-    batch of cases.
+    batch of cases. ``revision`` counts changes of the law's definition that change its
+    answers; it enters the fingerprint of a map sweep of the law, so a stored result of an
+    older definition is never resumed or read as current.
     """
 
     name: ClassVar[str]
     elastic: ClassVar[bool]
     needs_yield_strength: ClassVar[bool]
     kernel: ClassVar  # staticmethod(numba dispatcher)
+    revision: ClassVar[int] = 1
 
     @property
     @abstractmethod

@@ -297,6 +297,8 @@ class StrongeContact(ContactLaw):
         "δ_p/δ_y: onset of the fully plastic regime (large enough that the law stays below Hertz)")
 
     name: ClassVar[str] = "stronge"
+    #: 2: the energy-consistent elastic-plastic area law (1 was the printed form).
+    revision: ClassVar[int] = 2
     elastic: ClassVar[bool] = False
     needs_yield_strength: ClassVar[bool] = True
     kernel = staticmethod(_stronge_kernel)

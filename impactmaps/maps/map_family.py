@@ -110,6 +110,9 @@ class MapFamily:
     law_in_description : bool
         Whether the law is a key of a sweep's description (the linear family's
         fingerprints predate it: False).
+    law_revision : int
+        The revision of the family's contact law (:attr:`ContactLaw.revision`); above 1 it
+        is a key of a sweep's description, so its fingerprint changes with the law.
     title, method_text : str
         The ``title`` and ``method`` attributes of its maps.
     classifies : bool
@@ -123,6 +126,7 @@ class MapFamily:
     interpolation: ClassVar[Interpolation] = Interpolation()
     shipped: ClassVar[dict] = {}
     law_in_description: ClassVar[bool] = True
+    law_revision: ClassVar[int] = 1
     title: ClassVar[str] = "impactmaps normalised impact map"
     classifies: ClassVar[bool] = False
 

@@ -214,6 +214,8 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
     description |= {name: grids[name] for name in extra}
     if family.law_in_description:  # the linear description has no law key: its fingerprints stay those shipped
         description["law"] = family.name
+    if family.law_revision != 1:  # a redefined law: no stored result of its old definition matches
+        description["law_revision"] = family.law_revision
     axes_in_order = {name: grids[name] for name in family.axis_names}
     return SweepGrid(structures, family, axes_in_order, description, fingerprint(description))
 
