@@ -8,6 +8,7 @@ and the valid range.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -152,3 +153,21 @@ _EXACT_INTEGER_LIMIT = 2**53
 
 def _unit(unit: str) -> str:
     return f" [{unit}]" if unit else ""
+
+
+def read_text_input(what: str, value) -> tuple[Path, str]:
+    """The path and UTF-8 text of the input file ``value`` (``what``: e.g. ``"case file"``);
+    ``ValueError`` naming it if it does not exist, is a directory, cannot be read or is not
+    UTF-8 text (a TOML file is expected)."""
+    path = Path(value)
+    try:
+        return path, path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise ValueError(f"{what} {str(path)!r} does not exist") from None
+    except IsADirectoryError:
+        raise ValueError(f"{what} {str(path)!r} is a directory, not a TOML file") from None
+    except OSError as error:
+        raise ValueError(f"{what} {str(path)!r} cannot be read: {error.strerror or error}") from None
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{what} {str(path)!r} is not UTF-8 text (byte {error.start}): a TOML file is "
+                         "expected") from None

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .._checks import require_in_range
+from .._checks import read_text_input, require_in_range
 from ..contact import law_options
 from ..contact.base import ContactLaw, available_contact_laws, contact_law
 from ..contact.sphere import Sphere, law_for_sphere
@@ -371,18 +371,7 @@ def load_case(path, *, solver: str | None = None) -> Case:
         Missing file, invalid TOML, unknown keys or invalid values; the message starts
         with the file name and names the key path.
     """
-    source = Path(path)
-    try:
-        text = source.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ValueError(f"case file {str(source)!r} does not exist") from None
-    except IsADirectoryError:
-        raise ValueError(f"case file {str(source)!r} is a directory, not a TOML file") from None
-    except OSError as error:
-        raise ValueError(f"case file {str(source)!r} cannot be read: {error.strerror or error}") from None
-    except UnicodeDecodeError as error:
-        raise ValueError(f"case file {str(source)!r} is not UTF-8 text (byte {error.start}): a TOML case "
-                         "file is expected") from None
+    source, text = read_text_input("case file", path)
     try:
         return parse_case(text, name=source.stem, source=source, solver=solver)
     except ValueError as error:

@@ -9,6 +9,7 @@ import argparse
 import math
 from pathlib import Path
 
+from .._checks import read_text_input
 from ..jsonio import dumps
 
 #: Exit status of a successful run.
@@ -98,19 +99,7 @@ def out_dir(option: str, value) -> Path:
 def text_file(what: str, value) -> Path:
     """The input file ``value`` (``what``: e.g. ``"sweep file"``), refused — naming it — if it
     does not exist, is a directory, cannot be read or is not UTF-8 text."""
-    path = Path(value)
-    try:
-        path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise ValueError(f"{what} {str(path)!r} does not exist") from None
-    except IsADirectoryError:
-        raise ValueError(f"{what} {str(path)!r} is a directory, not a TOML file") from None
-    except OSError as error:
-        raise ValueError(f"{what} {str(path)!r} cannot be read: {error.strerror or error}") from None
-    except UnicodeDecodeError as error:
-        raise ValueError(f"{what} {str(path)!r} is not UTF-8 text (byte {error.start}): a TOML file is "
-                         "expected") from None
-    return path
+    return read_text_input(what, value)[0]
 
 
 def plot_file(option: str, value) -> Path:

@@ -37,54 +37,9 @@ integrals of the infinite beam and plate.
 
 from __future__ import annotations
 
-from .groups import (
-    BEAM_LOSS_CONSTANT,
-    contact_frequency,
-    contact_stiffness_for_relative_stiffness,
-    effective_plate_stiffness,
-    force_scale,
-    halfspace_indentation,
-    hertz_frequency,
-    impact_number,
-    impactor_mass_for_beam,
-    impactor_mass_for_plate,
-    loss_factor_beam,
-    loss_factor_beam_paper,
-    loss_factor_plate,
-    normalised_force,
-    relative_stiffness,
-    velocity_for_impact_number,
-    zeta_beam_paper,
-)
-from .realisation import (
-    Realisation,
-    realise,
-    ss_euler_beam_midspan_frequency_ratio,
-    ss_euler_beam_midspan_loss_factor,
-    ss_euler_beam_midspan_mass_ratio,
-)
+from . import groups, realisation
 
-__all__ = [
-    "BEAM_LOSS_CONSTANT",
-    "contact_frequency",
-    "halfspace_indentation",
-    "force_scale",
-    "normalised_force",
-    "hertz_frequency",
-    "impact_number",
-    "velocity_for_impact_number",
-    "relative_stiffness",
-    "contact_stiffness_for_relative_stiffness",
-    "effective_plate_stiffness",
-    "loss_factor_plate",
-    "impactor_mass_for_plate",
-    "loss_factor_beam",
-    "loss_factor_beam_paper",
-    "zeta_beam_paper",
-    "impactor_mass_for_beam",
-    "Realisation",
-    "realise",
-    "ss_euler_beam_midspan_mass_ratio",
-    "ss_euler_beam_midspan_frequency_ratio",
-    "ss_euler_beam_midspan_loss_factor",
-]
+from .groups import *  # noqa: F403 (the names of groups.__all__)
+from .realisation import *  # noqa: F403 (the names of realisation.__all__)
+
+__all__ = groups.__all__ + realisation.__all__
