@@ -36,8 +36,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import ccx_tools as ct  # noqa: E402
-import axisym_model as am  # noqa: E402
+import axisym_model as am
+import ccx_tools as ct
 
 RUNS_CSV = ct.RESULTS / "axisym_runs.csv"
 CURVES_CSV = ct.RESULTS / "axisym_curves.csv"
@@ -47,11 +47,11 @@ WORK = ct.WORK / "axisym"
 X_M = np.round(np.logspace(0, 3, 8), 3)            # δ_m/δ_y: 1 … 1000, log-spaced
 Y_OVER_ESTAR = (1e-3, 2.2e-3, 4.6e-3, 1e-2)
 MAX_DEPTH = 0.1                                     # largest δ_m/R of the sweep
-# the sweeps: (name, Y/E* values, ν of the flat, E_sphere/E_flat)
-SWEEPS = {"base": (Y_OVER_ESTAR, 0.3, 1e3),
-          "nu": ((2.2e-3,), 0.45, 1e3),
-          "equal": ((2.2e-3,), 0.3, 1.0),
-          "steel-al": ((2.2e-3,), 0.3, 3.0)}
+# the sweeps: name -> (Y/E* values, ν of the flat, E_sphere/E_flat, δ_m/δ_y values)
+SWEEPS = {"base": (Y_OVER_ESTAR, 0.3, 1e3, X_M),
+          "nu": ((2.2e-3,), 0.45, 1e3, X_M),
+          "equal": ((2.2e-3,), 0.3, 1.0, X_M[1::2]),
+          "steel-al": ((2.2e-3,), 0.3, 3.0, X_M[1::2])}
 KEYS = ("x_m", "y_over_estar", "nu_flat", "stiffness_ratio", "nlgeom")
 COLUMNS = KEYS + ("delta_m_over_R", "F_over_Fy", "d0_over_dm", "dent_over_dm", "e2",
                   "absorbed_over_FyDy", "contact_radius_over_ay", "tail_exponent",
@@ -73,10 +73,20 @@ def run(case: am.Case, reuse=True):
     return rec, curve
 
 
+#: Largest δ_m/R at which small strain is kept: beyond it geometric nonlinearity moves
+#: F_m or e² by more than 1 % (the nlgeom study) and the runs are repeated with NLGEOM.
+SMALL_STRAIN_DEPTH = 0.012
+
+
 def sweep_cases(name):
-    ys, nu, ratio = SWEEPS[name]
+    if name == "deep":      # the cases of the other sweeps deeper than small strain allows
+        deep = [replace(case, nlgeom=True) for other in ("base", "nu", "equal")
+                for case in sweep_cases(other) if case.delta_m > SMALL_STRAIN_DEPTH * case.radius]
+        yield from sorted(deep, key=lambda c: c.delta_m / c.radius)
+        return
+    ys, nu, ratio, xs = SWEEPS[name]
     for y in ys:
-        for x in X_M:
+        for x in xs:
             case = am.Case(x_m=float(x), y_over_estar=y, nu_flat=nu, stiffness_ratio=ratio)
             if case.delta_m <= MAX_DEPTH * case.radius * (1 + 1e-9):
                 yield case
@@ -132,13 +142,38 @@ def claim(case) -> bool:
     return True
 
 
+def rebuild():
+    """Rewrite the CSVs from the runs already on disk (no ccx): every sweep's cases whose
+    run finished are re-read and re-summarised."""
+    for path in (RUNS_CSV, CURVES_CSV):
+        path.unlink(missing_ok=True)
+    for name in ("base", "nu", "equal", "deep"):
+        cases = list(sweep_cases(name))
+        largest = {}
+        for case in cases:
+            largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)] = case
+        for case in cases:
+            if not (WORK / f"{job_name(case)}.log").exists():
+                continue
+            try:
+                rec, curve = run(case, reuse=True)
+            except RuntimeError as err:
+                print(f"FAILED {job_name(case)}: {str(err).splitlines()[0]}", flush=True)
+                continue
+            append_row(rec)
+            if case is largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)]:
+                append_curve(case, curve)
+
+
 def sweep(name, reverse=False):
     ct.RESULTS.mkdir(parents=True, exist_ok=True)
     cases = list(sweep_cases(name))
     largest = {}
     for case in cases:
-        largest[case.y_over_estar] = case
+        largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)] = case
     for case in (cases[::-1] if reverse else cases):
+        if not case.nlgeom and case.delta_m > SMALL_STRAIN_DEPTH * case.radius:
+            continue        # the deep sweep runs it with NLGEOM
         if not claim(case):
             continue
         try:
@@ -147,7 +182,7 @@ def sweep(name, reverse=False):
             print(f"FAILED {job_name(case)}: {str(err)[-300:]}", flush=True)
             continue
         append_row(rec)
-        if case is largest[case.y_over_estar]:
+        if case is largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)]:
             append_curve(case, curve)
         print(json.dumps({k: rec.get(k) for k in COLUMNS}), flush=True)
 
@@ -177,8 +212,10 @@ def study_variants(name):
         return base, [replace(base, hardening=h) for h in (0.1, 0.01)]
     if name == "increments":
         return base, [replace(base, n_load=2 * base.n_load, n_unload=2 * base.n_unload)]
+    if name == "increments1000":
+        return big, [replace(big, n_load=2 * big.n_load, n_unload=2 * big.n_unload)]
     if name == "nlgeom":
-        cases = [am.Case(x_m=x, y_over_estar=1e-2) for x in (7.197, 51.795, 138.95)]
+        cases = [am.Case(x_m=x, y_over_estar=1e-2) for x in (7.197, 19.307, 51.795)]
         return None, [(c, replace(c, nlgeom=True)) for c in cases]
     raise ValueError(name)
 
@@ -199,15 +236,40 @@ def elastic_check():
     return out
 
 
+def first_yield():
+    """Elastic flat loaded to 2 δ_y: the largest von Mises stress below the contact gives
+    the Hertz peak pressure at first yield: p0 ∝ δ^{1/2} is 1.6 √2 Y at 2 δ_y, so
+    c_y^FE = 1.6 √2 Y / σ_vM,max."""
+    out = {}
+    for nu in (0.3, 0.45):
+        case = am.Case(x_m=2.0, y_over_estar=2.2e-3, nu_flat=nu, plastic=False,
+                       print_stress=True)
+        rec, _ = run(case)
+        text = (WORK / f"{job_name(case)}.dat").read_text()
+        sigma = am.max_von_mises(text)
+        out[f"nu_{nu:g}"] = dict(max_von_mises_over_Y=sigma / case.yield_strength,
+                                 c_y_fe=1.6 * np.sqrt(2.0) * case.yield_strength / sigma,
+                                 wall_s=rec["wall_s"])
+    return out
+
+
 def studies(names):
     data = json.loads(STUDY_JSON.read_text()) if STUDY_JSON.exists() else {}
     for name in names:
         if name == "elastic":
             data[name] = elastic_check()
+        elif name == "firstyield":
+            data[name] = first_yield()
         elif name == "nlgeom":
             rows = []
             for small, large in study_variants(name)[1]:
-                a, b = run(small)[0], run(large)[0]
+                try:
+                    a, b = run(small)[0], run(large)[0]
+                except RuntimeError as err:
+                    rows.append(dict(x_m=small.x_m, y_over_estar=small.y_over_estar,
+                                     delta_m_over_R=small.delta_m / small.radius,
+                                     failed=str(err).splitlines()[0]))
+                    continue
                 rows.append(dict(x_m=small.x_m, y_over_estar=small.y_over_estar,
                                  delta_m_over_R=small.delta_m / small.radius,
                                  small_strain={q: a[q] for q in QUANTITIES if q in a},
@@ -235,20 +297,24 @@ def studies(names):
         print(name, json.dumps(data[name], indent=1), flush=True)
 
 
-ALL_STUDIES = ("elastic", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
+ALL_STUDIES = ("elastic", "firstyield", "increments1000", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
                "nlgeom")
 
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--sweep", choices=tuple(SWEEPS))
+    p.add_argument("--sweep", choices=(*SWEEPS, "deep"))
     p.add_argument("--study", nargs="+", choices=ALL_STUDIES + ("all",))
     p.add_argument("--reverse", action="store_true", help="run the sweep's cases last first")
+    p.add_argument("--rebuild", action="store_true",
+                   help="rewrite the CSVs from the finished runs on disk (no ccx)")
     a = p.parse_args(argv)
     if a.study:
         studies(ALL_STUDIES if "all" in a.study else a.study)
     if a.sweep:
         sweep(a.sweep, a.reverse)
+    if a.rebuild:
+        rebuild()
 
 
 if __name__ == "__main__":

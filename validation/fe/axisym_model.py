@@ -21,12 +21,11 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, asdict
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
-import numpy as np
-
 import ccx_tools as ct
+import numpy as np
 
 FINE = 1.6          # size h0 up to FINE × a_ref from the contact point
 GROWTH = 0.25       # mesh size slope beyond the fine zone
@@ -51,6 +50,7 @@ class Case:
     n_load: int = 20
     n_unload: int = 30
     nlgeom: bool = False
+    print_stress: bool = False  # print the stresses near the contact (first-yield check)
     print_surface: bool = True  # print the flat's surface displacements
     element: str = "CAX8R"      # CAX8R (8-node, reduced) or CAX4R
     contact: str = "SURFACE TO SURFACE"
@@ -199,6 +199,9 @@ def build_deck(case: Case, coords, elements, in_sphere, edges, h0):
     ct.write_nset(f, "EQ", np.flatnonzero(sphere_nodes & (np.abs(y - case.radius) < tol)) + 1)
     ct.write_nset(f, "BOTTOM", np.flatnonzero(~sphere_nodes & (np.abs(y + case.block * case.a_ref) < tol * 1e3)) + 1)
     ct.write_nset(f, "DENT", np.flatnonzero(~sphere_nodes & (np.abs(x) < tol) & (np.abs(y) < tol)) + 1)
+    centre = coords[elements[:, :4] - 1].mean(axis=1)
+    near = ~in_sphere & (centre[:, 0] < case.a_ref) & (centre[:, 1] > -1.5 * case.a_ref)
+    out.append("*ELSET, ELSET=NEAR\n" + "".join(f"{i + 1},\n" for i in np.flatnonzero(near)))
     top = ~sphere_nodes & (np.abs(y) < tol) & (x < 2.0 * case.a_ref)
     ct.write_nset(f, "TOP", np.flatnonzero(top) + 1)
     within = 3.0 * case.a_ref
@@ -223,6 +226,7 @@ def build_deck(case: Case, coords, elements, in_sphere, edges, h0):
     nl = ", NLGEOM" if case.nlgeom else ""
     prints = ("*NODE PRINT, NSET=EQ, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=DENT\nU\n"
               + ("*NODE PRINT, NSET=TOP\nU\n" if case.print_surface else "")
+              + ("*EL PRINT, ELSET=NEAR\nS\n" if case.print_stress else "")
               + "*END STEP\n")
     for amp, n in (("LOAD", case.n_load), ("UNLOAD", case.n_unload)):
         out.append(f"*STEP{nl}, INC=10000\n{case.controls}*STATIC\n{1 / n:.8f},1.0,{1e-4 / n:.3e},{1 / n:.8f}\n"
@@ -241,6 +245,23 @@ def plastic_card(case: Case) -> str:
     if case.hardening:
         card += f"{y * (1.0 + case.hardening):.6e},1.0\n"
     return card
+
+
+def max_von_mises(dat_text):
+    """Largest von Mises stress [Pa] over the NEAR elements' integration points in the
+    last printed stress block."""
+    block = dat_text.rsplit("stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz) for set NEAR", 1)[1]
+    vm = []
+    for line in block.splitlines()[2:]:
+        parts = line.split()
+        if len(parts) != 8:
+            if vm:
+                break
+            continue
+        sx, sy, sz, txy, txz, tyz = (ct._fortran_float(v) for v in parts[2:])
+        vm.append(np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
+                          + 3 * (txy ** 2 + txz ** 2 + tyz ** 2)))
+    return float(np.max(vm))
 
 
 def parse(dat_text):
@@ -354,9 +375,13 @@ def summarise(case: Case, curve):
         try:
             (a, x0, n_tail), _ = curve_fit(lambda x, a, x0, n: a * np.clip(x - x0, 1e-12, None) ** n,
                                            x, y, p0=(1.0, d0 / case.delta_m - 1e-3, 1.5),
+                                           bounds=([0.0, 0.0, 1.0], [np.inf, 1.0, 3.0]),
                                            maxfev=20000)
-            d0 = x0 * case.delta_m
-        except RuntimeError:
+            if x0 < x.min():       # a zero beyond the last point in contact is no fit
+                d0 = x0 * case.delta_m
+            else:
+                n_tail = float("nan")
+        except (RuntimeError, ValueError):
             pass
     w_tail = float(fk[-1] * (dk[-1] - d0) / ((n_tail if np.isfinite(n_tail) else 1.0) + 1.0))
     w_rec = float(-np.trapezoid(fk, dk)) + max(w_tail, 0.0)
