@@ -206,6 +206,11 @@ def study_variants(name):
         return base, [replace(base, per_radius=p) for p in (4.0, 9.0)]
     if name == "mesh1000":
         return big, [replace(big, per_radius=p) for p in (4.0, 9.0)]
+    if name == "mesh12":
+        return base, [replace(base, per_radius=12.0)]
+    if name == "mesh7":
+        small = am.Case(x_m=7.197, y_over_estar=2.2e-3)
+        return small, [replace(small, per_radius=9.0)]
     if name == "penalty":
         return base, [replace(base, penalty=p) for p in (8e-3, 5e-4)]
     if name == "hardening":
@@ -297,7 +302,7 @@ def studies(names):
         print(name, json.dumps(data[name], indent=1), flush=True)
 
 
-ALL_STUDIES = ("elastic", "firstyield", "increments1000", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
+ALL_STUDIES = ("elastic", "firstyield", "increments1000", "mesh12", "mesh7", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
                "nlgeom")
 
 

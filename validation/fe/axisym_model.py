@@ -248,9 +248,11 @@ def plastic_card(case: Case) -> str:
 
 
 def max_von_mises(dat_text):
-    """Largest von Mises stress [Pa] over the NEAR elements' integration points in the
-    last printed stress block."""
-    block = dat_text.rsplit("stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz) for set NEAR", 1)[1]
+    """Largest von Mises stress [Pa] over the NEAR elements' integration points at the
+    end of loading (the stress block printed at total time 1)."""
+    header = "stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz) for set NEAR and time"
+    blocks = dat_text.split(header)[1:]
+    block = next(b for b in blocks if abs(float(b.split()[0]) - 1.0) < 1e-6)
     vm = []
     for line in block.splitlines()[2:]:
         parts = line.split()
