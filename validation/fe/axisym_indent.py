@@ -5,22 +5,26 @@ The model (mesh, deck, post-processing) is :mod:`axisym_model`; this script runs
 convergence studies and the calibration sweep and writes
 
 * ``results/axisym_runs.csv`` — one row per sweep run: the case (δ_m/δ_y, Y/E*, ν of the
-  flat, E_sphere/E_flat) and the normalised results F_m/F_y, δ_0/δ_m (approach where the
-  unloading force vanishes = permanent indentation), the residual dent on the axis
-  δ_r/δ_m, e² = recovered/absorbed work, absorbed work/(F_y δ_y), the contact radius,
-  wall time;
-* ``results/axisym_curves.csv`` — normalised loading/unloading curves of the sweep runs
-  at δ_m/δ_y = 1000 (or the largest of each material);
-* ``results/axisym_convergence.json`` — the studies (elastic Hertz check, block size,
-  mesh, penalty, hardening, increments, NLGEOM) with the reference case and the
-  relative changes.
+  flat, E_sphere/E_flat, NLGEOM) and the normalised results F_m/F_y, δ_0/δ_m (approach
+  where the unloading force vanishes), the residual dent on the axis δ_r/δ_m (the
+  permanent indentation), e² = recovered/absorbed work, absorbed work/(F_y δ_y), the
+  contact radius, ccx wall time;
+* ``results/axisym_curves.csv`` — normalised loading/unloading curves of the largest δ_m
+  of each material;
+* ``results/axisym_convergence.json`` — the studies (elastic Hertz check, first yield,
+  block size, mesh, penalty, hardening, increments, NLGEOM) with the reference case and
+  the relative changes.
 
-Run (each run takes 20–120 s on one core; ``nice``, one ccx thread)::
+Run (a run takes ≈ 20 s of CPU; ``nice``, one ccx thread; several sweeps may run at
+once, each case is claimed by a lock file)::
 
-    OMP_NUM_THREADS=1 nohup nice -n 19 python validation/fe/axisym_indent.py --study all &
     OMP_NUM_THREADS=1 nohup nice -n 19 python validation/fe/axisym_indent.py --sweep base &
+    (then --sweep nu, --sweep equal, --sweep deep, --study all)
+    python validation/fe/axisym_indent.py --rebuild      # CSVs from the runs on disk
 
-The sweep is resumable: rows already in the CSV are skipped.
+Small-strain cases deeper than ``SMALL_STRAIN_DEPTH`` × R are skipped by the sweeps and
+run with NLGEOM by ``--sweep deep``.  The sweep is resumable: rows already in the CSV
+are skipped.
 """
 
 from __future__ import annotations

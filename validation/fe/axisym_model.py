@@ -5,14 +5,15 @@ Geometry in the (r, z) plane (ccx axisymmetric: x = r, y = z): the flat is the b
 0 ≤ r ≤ L, −L ≤ z ≤ 0; the sphere (radius R) touches it at the origin and is cut at its
 equator z = R, which is driven down by δ (``*BOUNDARY`` with an amplitude) while the
 block's bottom is held in z.  The approach δ is the equator's displacement: the
-Hertz approach of distant points, the block's finite-size compliance included
-(a size study shows it negligible).  Mesh: gmsh quadrilaterals (CAX4R, reduced
-integration with hourglass control — full-integration CAX4 locks under isochoric
-plastic flow), size h0 within ``FINE`` × a_ref of the contact point, growing
-linearly (slope ``GROWTH``) beyond; a_ref = sqrt(2 R δ_m) is an upper estimate of the
-contact radius.  Contact: ``SURFACE TO SURFACE``, the sphere's arc the slave, linear
-penalty of slope 3Y / (``penalty`` × δ_m): a pressure of 3Y (about the
-largest there is) overcloses the surfaces by ``penalty`` × δ_m.
+Hertz approach of distant points, the block's finite-size compliance included.
+Mesh: gmsh quadrilaterals, 8-node reduced integration (CAX8R; CAX4R does not converge
+on unloading with this contact), size h0 = a_ref/``per_radius`` within ``FINE`` × a_ref
+of the contact point, growing linearly (slope ``GROWTH``) beyond; a_ref = sqrt(2 R δ_m)
+is an upper estimate of the contact radius.  Contact: ``SURFACE TO SURFACE``,
+``SMALL SLIDING``, the sphere's arc the slave, linear penalty of slope
+3Y / (``penalty`` × δ_m): a pressure of 3Y (about the largest there is) overcloses the
+surfaces by ``penalty`` × δ_m.  The flat is von Mises with a small hardening
+(:func:`plastic_card`).  Convergence, limits and what failed: docs/epp_calibration.rst.
 
 Units SI.  Nothing here is part of the toolkit.
 """
@@ -272,7 +273,7 @@ def parse(dat_text):
     import level2_static_hertz as l2
     rf = l2.parse_totals(dat_text, "EQ")
     times = ct.parse_node_print_times(dat_text, "DENT")
-    dent = np.array([list(b.values())[0][1] for b in ct.parse_node_prints(dat_text, "DENT")])
+    dent = np.array([next(iter(b.values()))[1] for b in ct.parse_node_prints(dat_text, "DENT")])
     return times, rf[:, 1], dent
 
 
@@ -381,7 +382,7 @@ def summarise(case: Case, curve):
     if tail.sum() >= 3:
         x, y = dk[tail] / case.delta_m, fk[tail] / fm
         try:
-            (a, x0, n_tail), _ = curve_fit(lambda x, a, x0, n: a * np.clip(x - x0, 1e-12, None) ** n,
+            (_a, x0, n_tail), _ = curve_fit(lambda x, a, x0, n: a * np.clip(x - x0, 1e-12, None) ** n,
                                            x, y, p0=(1.0, d0 / case.delta_m - 1e-3, 1.5),
                                            bounds=([0.0, 0.0, 1.0], [np.inf, 1.0, 3.0]),
                                            maxfev=20000)
