@@ -267,6 +267,14 @@ def studies(names):
             data[name] = elastic_check()
         elif name == "firstyield":
             data[name] = first_yield()
+        elif name == "mesh12":
+            rows = []
+            for x in (7.197, 51.795, 372.759):
+                case = am.Case(x_m=x, y_over_estar=1e-3)
+                a, b = run(case)[0], run(replace(case, per_radius=12.0))[0]
+                rows.append(dict(x_m=x, y_over_estar=1e-3, per_radius=[6.0, 12.0],
+                                 change=compare(a, b), wall_s=[a["wall_s"], b["wall_s"]]))
+            data[name] = rows
         elif name == "nlgeom":
             rows = []
             for small, large in study_variants(name)[1]:
@@ -304,7 +312,7 @@ def studies(names):
         print(name, json.dumps(data[name], indent=1), flush=True)
 
 
-ALL_STUDIES = ("elastic", "firstyield", "increments1000", "mesh7", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
+ALL_STUDIES = ("elastic", "firstyield", "increments1000", "mesh7", "mesh12", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
                "nlgeom")
 
 
