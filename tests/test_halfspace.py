@@ -183,6 +183,7 @@ def _registry_law(name):
         "hertz": dict(stiffness=8e9),
         "yigit-christoforou": dict(hertz_stiffness=8e9, yield_indentation=1.5e-6),
         "stronge": dict(effective_modulus=1.1e11, radius=0.01, yield_strength=4e8),
+        "epp": dict(effective_modulus=1.1e11, radius=0.01, yield_strength=4e8),
     }
     if name not in params:
         pytest.fail(f"registered law {name!r} has no example in test_halfspace.py: add one")

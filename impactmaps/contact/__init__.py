@@ -1,5 +1,6 @@
 """Contact laws: one module per law, all behind :class:`ContactLaw` and one registry."""
 
+from . import epp  # noqa: F401  (registers the FE-calibrated law "epp")
 from .base import (
     ContactLaw,
     LawOption,
