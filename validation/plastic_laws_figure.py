@@ -27,8 +27,8 @@ import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-from impactmaps.contact import ContactPair, contact_law_class, effective_modulus
-from impactmaps.solvers.halfspace import halfspace_impact
+from impactmaps.contact import ContactPair, contact_law_class, effective_modulus  # noqa: E402
+from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
 
 C_Y = 1.6
 RADIUS = 6.35e-3

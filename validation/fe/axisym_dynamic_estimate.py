@@ -32,9 +32,9 @@ from scipy.optimize import brentq
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
-from impactmaps.contact import ContactPair, effective_modulus
-from impactmaps.contact.epp import EppContact
-from impactmaps.solvers.halfspace import halfspace_impact
+from impactmaps.contact import ContactPair, effective_modulus  # noqa: E402
+from impactmaps.contact.epp import EppContact  # noqa: E402
+from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
 
 BALL = dict(E=200e9, nu=0.3, rho=7800.0, R=6.35e-3)
 FLAT = dict(E=70e9, nu=0.33, rho=2700.0, Y=275e6)

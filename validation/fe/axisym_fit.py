@@ -29,7 +29,7 @@ from scipy.optimize import least_squares
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
-from impactmaps.contact import epp
+from impactmaps.contact import epp  # noqa: E402
 
 ORDER = epp._ORDER
 
