@@ -2,7 +2,7 @@
 the axisymmetric FE (quasi-static), Thornton's 1997 model, and the registered plastic
 laws (Yigit–Christoforou, Stronge, epp).
 
-Scales (PHYSICS.md §2, c_y = 1.6): δ_y = R (π c_y Y/(2E*))², F_y = (4/3) E* R^{1/2}
+Scales (docs/physics_contract.md §2, c_y = 1.6): δ_y = R (π c_y Y/(2E*))², F_y = (4/3) E* R^{1/2}
 δ_y^{3/2}, and V_y with ½ m V_y² = (2/5) F_y δ_y (the Hertz impact that just reaches
 δ_y).  The laws are run through :func:`impactmaps.solvers.halfspace.halfspace_impact`
 for the issue's example (a 12.7 mm steel ball on an aluminium half-space, Y = 275 MPa).
@@ -10,7 +10,7 @@ FE points: ``validation/fe/results/axisym_runs.csv`` (rigid sphere, ν = 0.3, ev
 Y/E*; the reference runs of the calibration: small strain up to δ_m = 0.012 R, NLGEOM
 up to 0.05 R): a run to δ_m is the quasi-static impact whose kinetic energy equals the work
 absorbed, V/V_y = sqrt(W_abs/((2/5) F_y δ_y)), with e² = W_rec/W_abs.
-Thornton (1997), as PHYSICS.md §2 defines it: Hertz to δ_y, then
+Thornton (1997), as docs/physics_contract.md §2 defines it: Hertz to δ_y, then
 F = F_y + π p_y R (δ − δ_y) with p_y = c_y Y, unloading Hertzian with
 R_p = (4/3) E* a_m³/F_m, a_m² = R δ_m; its energies have closed forms (below).
 
@@ -98,7 +98,7 @@ def main(out=ROOT / "figures" / "plastic_laws.png"):
         colour, dash = STYLE[name]
         for k, ax in enumerate(axes):
             ax.plot(ratios, values[:, k], color=colour, linestyle=dash,
-                    label="Thornton 1997 (PHYSICS.md §2)" if name == "thornton" else name)
+                    label="Thornton 1997" if name == "thornton" else name)
     for ax, pts in zip(axes, (e, f, dent)):
         ax.plot(v, pts, "ko", ms=4, mfc="none", label="CalculiX axisymmetric (quasi-static)")
         ax.set_xscale("log")

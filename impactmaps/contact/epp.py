@@ -1,6 +1,6 @@
 """``epp``: sphere on an elastic–perfectly plastic flat, calibrated on axisymmetric FE.
 
-Normalised by the first-yield scales of PHYSICS.md §2 (``c_y = 1.6``)::
+Normalised by the first-yield scales of docs/physics_contract.md §2 (``c_y = 1.6``)::
 
     δ_y = R (π c_y Y / (2E*))²,   F_y = (4/3) E* R^{1/2} δ_y^{3/2},   x = δ/δ_y
 
@@ -51,7 +51,7 @@ from .yigit_christoforou import YigitChristoforouContact
 
 __all__ = ["COEFFICIENTS", "EppContact"]
 
-#: Hertz peak pressure at first yield, ``p0 = c_y Y`` (PHYSICS.md §2).
+#: Hertz peak pressure at first yield, ``p0 = c_y Y`` (docs/physics_contract.md §2).
 YIELD_PRESSURE_FACTOR = 1.6
 
 #: Fitted coefficients (validation/fe/axisym_fit.py on validation/fe/results/axisym_runs.csv).

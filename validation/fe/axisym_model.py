@@ -31,7 +31,7 @@ import numpy as np
 
 FINE = 1.6          # size h0 up to FINE × a_ref from the contact point
 GROWTH = 0.25       # mesh size slope beyond the fine zone
-C_Y = 1.6           # yield when the Hertz peak pressure reaches C_Y × Y (PHYSICS.md §2)
+C_Y = 1.6           # yield when the Hertz peak pressure reaches C_Y × Y (docs/physics_contract.md §2)
 
 
 @dataclass(frozen=True)
