@@ -37,3 +37,20 @@ def test_epp_is_the_law_nearest_the_continuum():
     for law in ("stronge", "yigit-christoforou", "thornton"):
         assert max(worst.loc[law, "peak_force_error"], worst.loc[law, "restitution_error"]) > \
             max(worst.loc["epp", "peak_force_error"], worst.loc["epp", "restitution_error"])
+
+
+def test_the_package_ships_the_measured_ranges_and_laws_prints_them():
+    """``impactmaps.contact.fe_agreement`` (what ``impactmaps laws`` prints) holds the ranges
+    of the committed table (4 decimals), for every plastic law and no elastic one."""
+    from impactmaps.cli.commands_cases import cmd_laws
+    from impactmaps.contact.fe_agreement import fe_agreement
+
+    spans = table_script.ranges(pd.read_csv(table_script.OUT))
+    for law in ("epp", "stronge", "yigit-christoforou"):
+        for quantity, (low, high) in fe_agreement(law).items():
+            assert low == round(spans.loc[law, (f"{quantity}_error", "min")], 4)
+            assert high == round(spans.loc[law, (f"{quantity}_error", "max")], 4)
+    assert fe_agreement("hertz") is None and fe_agreement("linear") is None
+    printed = cmd_laws(None)["laws"]
+    assert printed["epp"]["fe_agreement"]["peak_force"] == "-2.7% to +1.0%"
+    assert "fe_agreement" not in printed["hertz"]

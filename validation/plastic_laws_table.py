@@ -10,8 +10,9 @@ steel ball on aluminium, Y = 275 MPa; the normalised answers depend on V/V_y alo
 indentation are compared with the FE's F_m, sqrt(W_rec/W_abs) and dent. Thornton's 1997
 model (closed form, ``plastic_laws_figure.thornton``) is the implementation cross-check.
 
-Writes ``validation/plastic_laws_error.csv`` (one row per law and FE point) and prints the
-range of each law's error, the table of ``docs/epp_calibration.rst``.
+Writes ``validation/plastic_laws_error.csv`` (one row per law and FE point) and the per-law
+ranges the package ships (``impactmaps/contact/data/fe_agreement.csv``, printed by
+``impactmaps laws``), and prints the ranges, the table of ``docs/epp_calibration.rst``.
 
     python validation/plastic_laws_table.py
 """
@@ -29,6 +30,9 @@ sys.path.insert(0, str(HERE))
 from plastic_laws_figure import LAWS, fe_points, law_curves, thornton  # noqa: E402
 
 OUT = HERE / "plastic_laws_error.csv"
+#: The per-law ranges the package ships (``impactmaps.contact.fe_agreement``).
+PACKAGE_SUMMARY = HERE.parent / "impactmaps" / "contact" / "data" / "fe_agreement.csv"
+QUANTITIES = ("peak_force", "restitution", "permanent_indentation")
 
 
 def error_table() -> pd.DataFrame:
@@ -51,13 +55,22 @@ def ranges(table: pd.DataFrame) -> pd.DataFrame:
     """Smallest and largest error of each law and quantity, over V/V_y ≥ 2 (below, the FE
     dent is a fraction of a yield indentation and its relative error is not meaningful)."""
     sel = table[table["velocity_over_yield_velocity"] >= 2.0]
-    columns = ["peak_force_error", "restitution_error", "permanent_indentation_error"]
+    columns = [f"{quantity}_error" for quantity in QUANTITIES]
     return sel.groupby("law")[columns].agg(["min", "max"])
+
+
+def package_summary(table: pd.DataFrame) -> pd.DataFrame:
+    """The rows of ``impactmaps/contact/data/fe_agreement.csv``: law, quantity, lowest, highest."""
+    spans = ranges(table)
+    return pd.DataFrame([{"law": law, "quantity": quantity, "lowest": spans.loc[law, (f"{quantity}_error", "min")],
+                          "highest": spans.loc[law, (f"{quantity}_error", "max")]}
+                         for law in spans.index if law != "thornton" for quantity in QUANTITIES])
 
 
 def main() -> None:
     table = error_table()
     table.to_csv(OUT, index=False, float_format="%.6g")
+    package_summary(table).to_csv(PACKAGE_SUMMARY, index=False, float_format="%.4f")
     with pd.option_context("display.float_format", "{:+.3f}".format, "display.width", 160):
         print(ranges(table))
     print(OUT)

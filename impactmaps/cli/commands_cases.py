@@ -113,6 +113,7 @@ def cmd_laws(args) -> dict:
     import inspect
 
     from ..contact import available_contact_laws, contact_law_class
+    from ..contact.fe_agreement import FE_AGREEMENT_RANGE, fe_agreement
 
     out = {}
     for name in available_contact_laws():
@@ -123,6 +124,11 @@ def cmd_laws(args) -> dict:
         out[name] = {"class": f"{cls.__module__}.{cls.__name__}",
                      "description": plain_text((module.__doc__ or cls.__doc__ or "").strip().splitlines()[0]),
                      "options": options}
-    return {"laws": out, "options_note": "null: required (SI units); case files build them from the materials"}
+        measured = fe_agreement(name)
+        if measured is not None:
+            out[name]["fe_agreement"] = {quantity: f"{low:+.1%} to {high:+.1%}" for quantity, (low, high) in
+                                         measured.items()}
+    return {"laws": out, "options_note": "null: required (SI units); case files build them from the materials",
+            "fe_agreement_note": f"error against axisymmetric finite elements: {FE_AGREEMENT_RANGE}"}
 
 
