@@ -14,7 +14,8 @@ Thornton (1997), as docs/physics_contract.md §2 defines it: Hertz to δ_y, then
 F = F_y + π p_y R (δ − δ_y) with p_y = c_y Y, unloading Hertzian with
 R_p = (4/3) E* a_m³/F_m, a_m² = R δ_m; its energies have closed forms (below).
 
-Run: ``python validation/plastic_laws_figure.py`` → ``figures/plastic_laws.png``.
+Run: ``python validation/plastic_laws_figure.py`` → ``figures/plastic_laws.png``
+(``--smoke``: 4 speeds, into a temporary directory).
 """
 
 from __future__ import annotations
@@ -29,6 +30,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 from impactmaps.contact import ContactPair, contact_law_class, effective_modulus  # noqa: E402
 from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
+
+sys.path.insert(0, str(ROOT / "validation"))
+from _script_options import parse  # noqa: E402
 
 C_Y = 1.6
 RADIUS = 6.35e-3
@@ -85,11 +89,13 @@ def fe_points():
             runs["dent_over_dm"] * runs["x_m"])
 
 
-def main(out=ROOT / "figures" / "plastic_laws.png"):
+def main(argv=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    ratios = np.geomspace(1.05, 3000, 40)
+    args = parse(__doc__.splitlines()[0], argv, default_out=ROOT / "figures")
+    out = args.out_dir / "plastic_laws.png"
+    ratios = np.geomspace(1.05, 3000, 4 if args.smoke else 40)
     curves = law_curves(ratios)
     curves["thornton"] = np.column_stack(thornton(ratios))
     v, e, f, dent = fe_points()
@@ -113,7 +119,6 @@ def main(out=ROOT / "figures" / "plastic_laws.png"):
     axes[0].legend(fontsize=8)
     fig.suptitle("Rigid sphere on an elastic–perfectly plastic half-space: laws vs FE")
     fig.tight_layout()
-    out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=130)
     print(out)
 

@@ -14,7 +14,7 @@ Writes ``validation/plastic_laws_error.csv`` (one row per law and FE point) and 
 ranges the package ships (``impactmaps/contact/data/fe_agreement.csv``, printed by
 ``impactmaps laws``), and prints the ranges, the table of ``docs/epp_calibration.rst``.
 
-    python validation/plastic_laws_table.py
+    python validation/plastic_laws_table.py     (--smoke: the table into a temporary directory)
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+from _script_options import parse  # noqa: E402
 from plastic_laws_figure import LAWS, fe_points, law_curves, thornton  # noqa: E402
 
 OUT = HERE / "plastic_laws_error.csv"
@@ -67,13 +68,17 @@ def package_summary(table: pd.DataFrame) -> pd.DataFrame:
                          for law in spans.index if law != "thornton" for quantity in QUANTITIES])
 
 
-def main() -> None:
+def main(argv=None) -> None:
+    args = parse(__doc__.splitlines()[0], argv, default_out=HERE)
     table = error_table()
-    table.to_csv(OUT, index=False, float_format="%.6g")
-    package_summary(table).to_csv(PACKAGE_SUMMARY, index=False, float_format="%.4f")
+    out, summary = OUT, PACKAGE_SUMMARY
+    if args.smoke or args.out_dir.resolve() != HERE:
+        out, summary = args.out_dir / OUT.name, args.out_dir / PACKAGE_SUMMARY.name
+    table.to_csv(out, index=False, float_format="%.6g")
+    package_summary(table).to_csv(summary, index=False, float_format="%.4f")
     with pd.option_context("display.float_format", "{:+.3f}".format, "display.width", 160):
         print(ranges(table))
-    print(OUT)
+    print(out)
 
 
 if __name__ == "__main__":

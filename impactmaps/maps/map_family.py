@@ -92,8 +92,8 @@ class Interpolation:
 class MapFamily:
     """One contact law's normalised maps (see the module docstring). Subclass and register.
 
-    Class attributes
-    ----------------
+    Attributes
+    ----------
     name : str
         The map law, e.g. ``"hertz"`` (the ``contact_law`` attribute of its maps, their
         file suffix).
