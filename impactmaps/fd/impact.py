@@ -193,7 +193,6 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
                                     separation_velocity)
     residual = residual_state(beam, grid, result.curvature, state)
     _warn_if_wide_section_yields(beam, residual)
-    tail = time >= 0.8 * time[-1]
     return ImpactResult(
         history=history,
         peak_force=float(result.peak_force),
@@ -220,7 +219,7 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
                       contact_stiffness_bound=contact_stiffness),
         details=FDDetails(
             permanent_beam_deflection=float(residual["permanent_deflection_m"].iloc[node]),
-            final_mean_deflection=float(np.mean(wk[tail])), energy=energy, residual=residual,
+            final_mean_deflection=float(np.mean(wk[time >= 0.8 * time[-1]])), energy=energy, residual=residual,
             impact_position=x0, impact_node_position=node * grid.dx, stability_limit=limit,
             gauge_positions=positions),
     )

@@ -43,15 +43,12 @@ from ..solvers import asymptotes
 from . import plate_navier, ritz
 from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES
+from .plate_ritz import STATIC_RITZ_FUNCTIONS, classical_static_compliance, ritz_plate_modes
 from .plate_static import navier_static_compliance
 
 __all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "PLATE_THEORIES",
            "STATIC_RITZ_FUNCTIONS"]
 
-#: Ritz functions per direction for the static point compliance of non-SSSS plates.
-#: Must be ≥ :data:`impactmaps.targets.ritz.MAX_FUNCTIONS` so that the static basis
-#: contains every modal basis (then the residual compliance is never negative).
-STATIC_RITZ_FUNCTIONS = 40
 
 
 # ---------------------------------------------------------------------------------
@@ -483,40 +480,6 @@ class Plate(Target):
         """ω_mn [rad/s] of the SSSS plate (:func:`plate_navier.navier_frequencies`)."""
         return plate_navier.navier_frequencies(self, m, n)
 
-    # Ritz ----------------------------------------------------------------------------
-    def _ritz_modes(self, max_frequency, min_modes):
-        args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
-        sizing_frequency = max_frequency
-        while True:
-            n_x, n_y, required_x, required_y = ritz.ritz_basis_size(sizing_frequency, *args)
-            solution = ritz.solve_ritz_plate(*args, self.edges, n_x, n_y)
-            resolved_count = int(np.sum(solution.frequencies <= solution.resolved_frequency))
-            at_cap = n_x == ritz.MAX_FUNCTIONS and n_y == ritz.MAX_FUNCTIONS
-            if resolved_count >= min_modes or at_cap:
-                break
-            sizing_frequency = max(1.5 * sizing_frequency, float(solution.frequencies[min_modes - 1]))
-        if max_frequency > solution.resolved_frequency:
-            warnings.warn(
-                f"max_frequency = {max_frequency:.6g} rad/s exceeds what the largest Ritz basis "
-                f"({n_x}×{n_y} functions; {required_x}×{required_y} would be needed) resolves, "
-                f"{solution.resolved_frequency:.6g} rad/s: modes above that are represented by "
-                "the residual compliance only", stacklevel=4)
-        count = int(np.sum(solution.frequencies <= min(max_frequency, solution.resolved_frequency)))
-        count = max(count, min(min_modes, solution.frequencies.size))
-        if count > resolved_count:
-            warnings.warn(
-                f"min_modes = {min_modes} exceeds the {resolved_count} modes the largest Ritz "
-                "basis resolves; the higher modes returned are not converged", stacklevel=4)
-        omega = np.asarray(solution.frequencies[:count])
-        participation = solution.mode_shapes(np.array([self.impact_point]), count)[0]
-        basis = ModalBasis.from_modes(omega, participation, self.static_compliance(),
-                                      np.full(omega.shape, float(self.damping_ratio)))
-
-        def shape_function(points):
-            return solution.mode_shapes(points, count)
-
-        return basis, shape_function
-
 
 def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
     """(cut-off [rad/s], mode count) of a request for modes, validated."""
@@ -532,21 +495,4 @@ def _plate_modes(plate: Plate, max_frequency: float, min_modes: int, contact_rad
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
     if plate.edges == "SSSS":
         return plate_navier.navier_modes(plate, max_frequency, min_modes, contact_radius)
-    return plate._ritz_modes(max_frequency, min_modes)
-
-
-@functools.lru_cache(maxsize=32)
-def classical_static_compliance(length_x, length_y, D11, D22, D12, D66, edges, impact_point) -> float:
-    """Classical point compliance [m/N] of a plate with any edges (:meth:`Plate.static_compliance`).
-
-    Parameters as the fields of :class:`Plate` (sides [m], bending stiffnesses [N·m], the
-    edge code and the impact point (x0, y0) [m]); cached (a pure function of numbers).
-    """
-    navier = navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_point)
-    if edges == "SSSS":
-        return navier
-    args = (length_x, length_y, D11, D22, D12, D66)
-    n = max(STATIC_RITZ_FUNCTIONS, ritz.MAX_FUNCTIONS)  # must contain every modal basis
-    ritz_edges = ritz.ritz_static_compliance(*args, edges, impact_point, n, n)
-    ritz_ssss = ritz.ritz_static_compliance(*args, "SSSS", impact_point, n, n)
-    return ritz_edges + (navier - ritz_ssss)
+    return ritz_plate_modes(plate, max_frequency, min_modes)
