@@ -456,6 +456,29 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]
 
 
+def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tmp_path):
+    """Issue 29 item 5: the 12.7 mm steel ball at 1 m/s on a simply supported 500 × 20 × 20 mm
+    steel Timoshenko beam (Hertz) lies next to points the shipped family member (L/h = 20)
+    could not resolve, and was refused although simulate answers; a tile of the case's own
+    structure (L/h = 25) resolves it, within its band of simulate. build=False still refuses."""
+    import warnings
+
+    from impactmaps.cases import parse_case, run_case
+    from impactmaps.maps.case_lookup import lookup_case
+
+    case = parse_case('[impactor]\nradius = 0.00635\nmaterial = "structural-steel"\nvelocity = 1.0\n'
+                      '[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\n'
+                      'material = "structural-steel"\ntheory = "timoshenko"\n[contact]\nlaw = "hertz"\n')
+    with pytest.raises(ValueError, match="could not resolve|holds no value"):
+        lookup_case(case, build=False)
+    found = lookup_case(case, cache_dir=tmp_path)
+    assert found["map"].startswith("on-demand tile beam-ss-timoshenko-s25-hertz")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, summary = run_case(case)
+    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"]
+
+
 def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_band():
     """Across a re-impact kink of F̄max (SS beam, ζ = 0.33, λ = 0.013: two impacts) every
     map point around is converged, but the value between them is known only to ± the

@@ -28,7 +28,7 @@ from .families import lookup_slenderness
 from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
 from .plastic_points import PLASTIC_LAWS
-from .reader import OutsideMapError
+from .reader import OutsideMapError, UnresolvedPointError
 from .regimes import MAP_LAWS
 from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
@@ -207,12 +207,14 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
             return lookup(zeta, lam, structure=structure, theory=theory, law=law)
     try:
         return scaled_answer(case, law, read)
-    except OutsideMapError as error:
+    except (OutsideMapError, UnresolvedPointError) as error:
         if not build:
             raise
-        # the case's family has a shipped map, but its numbers lie beyond it: a tile of the
-        # same structure answers (its points solved exactly as the shipped map's)
-        beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map ({error})")
+        # the case's family has a shipped map, but its numbers lie beyond it or next to a
+        # point the family member could not resolve: a tile of the case's own structure
+        # answers (its points solved exactly as the shipped map's) or refuses in turn
+        beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
+                                  f"it could not resolve ({error})")
     return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
 
 
