@@ -519,3 +519,14 @@ def test_the_lookup_command_says_what_an_interpolated_or_sensitive_status_means(
                  "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["status"] == "converged" and "status_note" not in values
+
+
+def test_a_hertz_lookup_suggests_a_command_that_exists():
+    """Issue 29 item 5: outside the Hertz map the refusal suggested `impactmaps point`, which
+    has no contact-law option; it names `impactmaps simulate` on a case file (the linear
+    lookup keeps `impactmaps point`, which computes linear map points)."""
+    with pytest.raises(ValueError) as hertz:
+        lookup(1e-6, 1.0, structure="beam", theory="euler", law="hertz")
+    assert "impactmaps simulate" in str(hertz.value) and "impactmaps point" not in str(hertz.value)
+    with pytest.raises(ValueError, match="impactmaps point"):
+        lookup(1e-6, 1.0, structure="beam", theory="euler")

@@ -249,7 +249,8 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     """
     reading = read_values(dataset, map_family(law), (loss_factor, relative_stiffness),
                           ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
-                          hints=(" (impactmaps point)", ""), refinement=refinement, error_grid=error_grid)
+                          hints=(" (impactmaps point)" if law == "linear" else " (impactmaps simulate on a case file)", ""),
+                          refinement=refinement, error_grid=error_grid)
     zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
     values = reading.values
     fmax, error, status = values["fmax_normalised"], reading.errors["fmax_error"], reading.status

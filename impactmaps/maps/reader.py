@@ -71,8 +71,9 @@ def corner_status(corner_codes, band):
 #: What a lookup's status means for its number, where that needs saying.
 _STATUS_NOTES = {
     "interpolated": "the map points around this one converged, but between them F̄max is known only to "
-                    "± fmax_error (interpolation across the map's kinks or curvature); `impactmaps point` "
-                    "computes this point to 1e-3",
+                    "± fmax_error (interpolation across the map's kinks or curvature); a simulation computes "
+                    "it to 1e-3 (`impactmaps point` for the linear law, `impactmaps simulate` on a case file for "
+                    "any law)",
     "sensitive": "no converged value: re-impacts whose order flips with any change of the model; read the band "
                  "(± fmax_error), not the number",
 }
