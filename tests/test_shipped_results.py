@@ -150,3 +150,32 @@ def test_the_whole_shipped_result_is_what_the_code_computes(monkeypatch, law):
     shipped = _shipped(DIGEST if law == "linear" else HERTZ_DIGEST)
     for name in RESULT_VARIABLES:
         np.testing.assert_allclose(fresh[name].values, shipped[name].values, rtol=0, atol=1e-12)
+
+
+def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
+    """Issue 29 item 6 / issue 30: the regimes and the drawn asymptotes of the default linear
+    and Hertz charts come from the peaks kept with the shipped results (they took 408 and
+    108 asymptote integrations, 75 s, on every ``chart --law hertz``): with every asymptote
+    integrator patched to raise, both charts are drawn, and the peaks equal a fresh
+    computation bit for bit."""
+    import impactmaps.maps.hertz_points as hertz_points
+    from impactmaps.maps.chart import make_chart
+    from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
+
+    for digest in (DIGEST, HERTZ_DIGEST):
+        shipped = _shipped(digest)
+        assert all(name in shipped for name in ASYMPTOTE_PEAKS)
+        fresh = with_asymptote_peaks(shipped.drop_vars(list(ASYMPTOTE_PEAKS)).isel(zeta=slice(0, None, 40)))
+        for name in ASYMPTOTE_PEAKS:
+            np.testing.assert_array_equal(fresh[name].values, shipped[name].isel(zeta=slice(0, None, 40)).values
+                                          if "zeta" in shipped[name].dims else shipped[name].values)
+
+    def no_integration(*args, **kwargs):
+        raise AssertionError("an asymptote was integrated")
+
+    monkeypatch.setattr(hertz_points, "asymptote", no_integration)
+    with pytest.raises(AssertionError, match="integrated"):  # the patch reaches the integrations
+        hertz_points.hertz_asymptote_peak("infinite", "beam", zeta_h=0.123456789)
+    for law in ("linear", "hertz"):
+        written = make_chart(tmp_path / law, law=law, progress=False)
+        assert written

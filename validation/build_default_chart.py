@@ -15,13 +15,18 @@ Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the def
     python validation/build_default_chart.py [--quiet] [--force] [--out-dir DIR]
     python validation/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory
 
-``--force`` recomputes a result that is already current.
+``--force`` recomputes a result that is already current. A current result without the
+asymptote peaks its regimes are judged by (:func:`impactmaps.maps.dataset.with_asymptote_peaks`)
+gets them added (the chart then classifies without integrating an asymptote).
 """
 
 from __future__ import annotations
 
 import time
 
+import xarray as xr
+
+from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
 from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.shipped_results import SHIPPED_RESULTS, shipped_result_path
 from impactmaps.maps.store import save_atomic
@@ -57,7 +62,12 @@ def main(argv=None) -> None:
             print(f"removed {stale.name}")
     for law, target in targets.items():
         if target.exists():
-            print(f"{law}: {target.name} is current")
+            current = xr.load_dataset(target)
+            if all(name in current for name in ASYMPTOTE_PEAKS):
+                print(f"{law}: {target.name} is current")
+            else:
+                save_atomic(with_asymptote_peaks(current), target)
+                print(f"{law}: {target.name}: asymptote peaks added")
             continue
         start = time.perf_counter()
         dataset = sweep(structures, zetas, lambdas, progress=not args.quiet, law=law)

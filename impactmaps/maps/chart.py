@@ -19,7 +19,7 @@ import numpy as np
 from ..plotting import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
 from ..solvers.modal import ModalSettings
 from .accuracy import STATUSES
-from .hertz_points import hertz_asymptote_peak
+from .dataset import with_asymptote_peaks
 from .lookup import markdown_table
 from .plastic_lookup import load_plastic_map
 from .plastic_points import PLASTIC_LAWS
@@ -192,26 +192,28 @@ _HERTZ_LABELS = {
     "lambda": "Hertz relative stiffness λ_h = K_st/K_eq",
     "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
 }
-#: Most ζ_h points of a drawn Hertz asymptote (each one an ODE or convolution run; taken
-#: from the chart's grid, whose asymptote values the regime classification has cached).
+#: Most ζ_h points of a drawn Hertz asymptote (taken from the chart's grid).
 HERTZ_ASYMPTOTE_POINTS = 50
 
 
 def _hertz_axes(ax, strip, dataset) -> None:
-    """The Hertz asymptotes and labels on a chart drawn by ``plot_fmax_chart(asymptotes=False)``."""
+    """The Hertz asymptotes and labels on a chart drawn by ``plot_fmax_chart(asymptotes=False)``:
+    the peaks the sweep keeps with its result (:func:`impactmaps.maps.dataset.with_asymptote_peaks`),
+    so drawing them integrates nothing."""
+    dataset = with_asymptote_peaks(dataset)
     zeta = dataset["zeta"].values
-    dense = zeta[np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))]
-    kinds = sorted({str(kind) for kind in dataset["kind"].values}, reverse=True)
-    for kind in kinds:
-        ax.plot(dense, hertz_asymptote_peak("infinite", kind, dense), color="0.55", lw=3.0, alpha=0.6,
+    dense = np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))
+    kinds = [str(kind) for kind in dataset["kind"].values]
+    for kind in sorted(set(kinds), reverse=True):
+        peaks = dataset["infinite_structure_peak"].values[kinds.index(kind)]
+        ax.plot(zeta[dense], peaks[dense], color="0.55", lw=3.0, alpha=0.6,
                 ls="-" if kind == "plate" else "--", zorder=1,
                 label="infinite plate (Zener)" if kind == "plate" else "infinite beam")
     # each λ in the colour of its curve (plot_fmax_chart labels one line per λ)
     colours = {line.get_label(): line.get_color() for line in ax.get_lines()}
-    for lam in dataset["lambda_"].values:
+    for lam, peak in zip(dataset["lambda_"].values, dataset["quasi_static_peak"].values[0]):
         colour = colours.get(f"λ = {lam:g}", "0.3")
-        ax.axhline(hertz_asymptote_peak("quasi-static", "plate", lambda_h=float(lam)), color=colour, lw=0.9,
-                   ls=":", zorder=1)
+        ax.axhline(float(peak), color=colour, lw=0.9, ls=":", zorder=1)
     ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\bar{F}^{5/3} + (25/16)\bar{F}^2/\lambda_h = 1$")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     ax.set_ylabel(_HERTZ_LABELS["fmax"])

@@ -19,7 +19,7 @@ from .. import __version__
 from ..jsonio import dumps
 from .accuracy import STATUSES
 from .points import METHODS, SOLVER_REVISION
-from .regimes import classify
+from .regimes import classify, infinite_structure_peak, quasi_static_peak
 
 __all__ = ["empty_dataset", "map_law", "classify_dataset"]
 
@@ -82,21 +82,50 @@ def empty_dataset(family, structures, axes: dict, description: dict, digest: str
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
+#: The variables holding a (ζ, λ) map's asymptote peaks (:func:`with_asymptote_peaks`).
+ASYMPTOTE_PEAKS = ("infinite_structure_peak", "quasi_static_peak")
+
+
+def with_asymptote_peaks(dataset: xr.Dataset) -> xr.Dataset:
+    """``dataset`` with the asymptote peaks its regimes are judged by: the infinite-structure
+    peak of each structure at each ζ and the quasi-static peak at each λ (the map law's,
+    :func:`impactmaps.maps.regimes.infinite_structure_peak` and ``quasi_static_peak``),
+    computed once per grid and kept with the map, so classifying it again (another
+    tolerance, a resumed or re-read result) integrates no asymptote."""
+    if all(name in dataset for name in ASYMPTOTE_PEAKS):
+        return dataset
+    law = map_law(dataset)
+    zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
+    kinds = [str(kind) for kind in dataset["kind"].values]
+    by_kind = {kind: np.asarray(infinite_structure_peak(zeta, kind, law), float) for kind in set(kinds)}
+    quasi = np.asarray(quasi_static_peak(lam, law), float)
+    out = dataset.copy()
+    out["infinite_structure_peak"] = (("structure", "zeta"), np.stack([by_kind[kind] for kind in kinds]),
+                                      {"units": "1", "long_name": "normalised peak force of the infinite structure"})
+    out["quasi_static_peak"] = (("structure", "lambda_"), np.stack([quasi for _ in kinds]),
+                                {"units": "1", "long_name": "normalised quasi-static peak force"})
+    return out
+
+
 def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
     """Regime label of every computed point of a (ζ, λ) map (see :mod:`.regimes`);
-    ``""`` where a point is not computed or ``unresolved``."""
+    ``""`` where a point is not computed or ``unresolved``. The asymptote peaks are the
+    map's own (:func:`with_asymptote_peaks`) when it holds them."""
     labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
     criteria.setdefault("law", map_law(dataset))
+    peaked = with_asymptote_peaks(dataset)
     for s_index, kind in enumerate(dataset["kind"].values):
         fmax = dataset["fmax_normalised"].values[s_index]
         lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")
+        infinite, quasi = np.meshgrid(peaked["quasi_static_peak"].values[s_index],
+                                      peaked["infinite_structure_peak"].values[s_index], indexing="ij")[::-1]
         ok = dataset["done"].values[s_index].astype(bool) & np.isfinite(fmax)  # unresolved: no label
         if ok.any():
             labels[s_index][ok] = classify(
                 fmax[ok], zeta[ok], lam[ok], str(kind),
                 peak_time=dataset["peak_time_normalised"].values[s_index][ok],
                 reflection_time=dataset["reflection_time_normalised"].values[s_index][ok],
-                **criteria,
+                peaks=(infinite[ok], quasi[ok]), **criteria,
             )
     return xr.DataArray(labels.astype(str), dims=("structure", "lambda_", "zeta"),
                         attrs={"long_name": "impact regime (local / infinite-structure / transition / quasi-static)"})

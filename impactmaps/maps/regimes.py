@@ -82,6 +82,7 @@ def classify(
     tolerance: float = 0.1,
     local_tolerance: float = 0.1,
     law: str = "linear",
+    peaks=None,
 ):
     """Regime of each impact from its normalised peak force (vectorised).
 
@@ -103,6 +104,10 @@ def classify(
     law : {"linear", "hertz"}
         Whose asymptotes: the linear law's (ζ, λ, F̄max = F_max/(m V0 ω)) or the Hertz
         law's (ζ_h, λ_h, F̄max = F_max/F_hs).
+    peaks : (array_like, array_like), optional
+        The infinite-structure and quasi-static peaks at these points when already known
+        (:func:`infinite_structure_peak` and :func:`quasi_static_peak` of the same numbers,
+        e.g. stored with a map); computed otherwise.
 
     Returns
     -------
@@ -118,8 +123,9 @@ def classify(
         raise ValueError("fmax contains NaN or inf: classify computed points only")
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
-    infinite = infinite_structure_peak(zeta, structure, law)
-    quasi = quasi_static_peak(lam, law)
+    if peaks is None:
+        peaks = (infinite_structure_peak(zeta, structure, law), quasi_static_peak(lam, law))
+    infinite, quasi = (np.broadcast_to(np.asarray(peak, dtype=float), fmax.shape) for peak in peaks)
     distance_infinite = np.abs(fmax - infinite) / infinite
     distance_quasi = np.abs(fmax - quasi) / quasi
     before_reflection = np.ones(fmax.shape, dtype=bool)

@@ -27,7 +27,7 @@ import xarray as xr
 from .._checks import require_positive
 from ..solvers.modal import ModalSettings
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
-from .dataset import classify_dataset, empty_dataset, map_law
+from .dataset import ASYMPTOTE_PEAKS, classify_dataset, empty_dataset, map_law, with_asymptote_peaks
 from .linear_points import solve_points
 from .map_family import RESULT_VARIABLES, MapFamily
 from .points import (
@@ -376,6 +376,10 @@ def _finish(results: _Results, stopped: bool, family: MapFamily) -> xr.Dataset:
     if not family.classifies:
         return result
     try:
+        if not all(name in result for name in ASYMPTOTE_PEAKS):
+            result = with_asymptote_peaks(result)
+            if results.path is not None:  # kept with the stored result: a re-run classifies without integrating
+                save_atomic(result, results.path)
         result["regime"] = classify_dataset(result)
     except KeyboardInterrupt:
         raise results.interrupted() from None
