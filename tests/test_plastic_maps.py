@@ -305,3 +305,87 @@ def test_a_redefined_law_changes_the_fingerprint(monkeypatch):
     current = sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]})
     monkeypatch.setattr(StrongeContact, "revision", 1)
     assert sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]}) != current
+
+
+# -- the epp law (issue 28 step 6) --------------------------------------------------------------
+_EPP_BEAM = _YC_BEAM.replace('law = "yigit-christoforou"', 'law = "epp"')
+
+
+@pytest.mark.parametrize("kind", ["beam", "plate"])
+@pytest.mark.parametrize("numbers", [(30.0, 0.3, 0.5), (400.0, 0.05, 0.03)])
+def test_equal_numbers_give_equal_normalised_epp_response(kind, numbers):
+    """The similarity of the plastic maps holds for ``epp`` too: two physically different
+    impacts with equal (β, ζ, λ) give equal normalised answers to 1e-6 (its curves are fixed
+    in units α_y, K_h α_y^{3/2} at fixed options; module docstring of plastic_points)."""
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+
+    beta, zeta, lam = numbers
+    first, second = _pair(kind)
+    one = realise_plastic(first, "epp", beta, zeta, lam, velocity=1.0)
+    two = realise_plastic(second, "epp", beta, zeta, lam, velocity=7.3)
+    for realised, target in ((one, first), (two, second)):
+        check = plastic_numbers(target, realised.law, realised.mass, realised.velocity)
+        assert np.allclose([check.impact_number, check.loss_factor, check.relative_stiffness], numbers, rtol=1e-12)
+    a, b = _normalised(first, one), _normalised(second, two)
+    assert a["impacts"] == b["impacts"]
+    for key in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "energy_transferred_fraction"):
+        assert a[key] == pytest.approx(b[key], rel=1e-6, abs=1e-9), key
+    assert a["restitution"] ** 2 + a["absorbed_energy_fraction"] + a["energy_transferred_fraction"] == \
+        pytest.approx(1.0, abs=1e-3)
+
+
+def test_an_epp_case_is_realised_by_its_numbers():
+    """A physical ``epp`` case (10 mm steel ball on a steel beam: R = 1 cm, E*, Y of the pair)
+    and its realisation on the map's reference beam (R = 1 m, other E*, Y, m, V0) at the same
+    (β, ζ, λ) give the same F_max/(m V0 ω_y) and restitution to 1e-6: β of the
+    Yigit–Christoforou α_y and the scale K_y = 1.5 K_h α_y^{1/2} fix the epp impact
+    (δ_y/α_y = c_y²/2.72 and F_y = K_h δ_y^{3/2} are the same for every E*, R, Y)."""
+    from impactmaps.cases import parse_case
+    from impactmaps.contact.epp import EppContact
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+    case = parse_case(_EPP_BEAM.replace("velocity = 1.0", "velocity = 0.05"))
+    assert isinstance(case.law, EppContact)
+    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+    assert numbers.impact_number == pytest.approx(float(case.law.impact_number(case.impactor_mass, case.velocity)),
+                                                  rel=1e-12)
+    reference = DEFAULT_STRUCTURES[0].build()
+    realised = realise_plastic(reference, "epp", numbers.impact_number, numbers.loss_factor,
+                               numbers.relative_stiffness)
+    assert float(realised.law.radius) == 1.0 and float(case.law.radius) == 0.01
+    direct = simulate(case.target, case.law, case.impactor_mass, case.velocity, settings=ModalSettings(),
+                      record=False)
+    mapped = _normalised(reference, realised)
+    assert direct.peak_force / numbers.force_scale == pytest.approx(mapped["fmax_normalised"], rel=1e-6)
+    assert direct.restitution == pytest.approx(mapped["restitution"], rel=1e-6)
+
+
+@pytest.mark.parametrize("option, value", [("poisson_ratio", 0.33), ("sphere_compliance", 0.5)])
+def test_epp_maps_describe_only_their_options(option, value):
+    """Both epp options change the normalised response (the FE calibration: docs/epp_calibration.rst),
+    so the epp maps, built at the defaults, describe an epp law only at those values: otherwise a
+    lookup refuses, naming the option, its value and the maps' value."""
+    from impactmaps.cases import parse_case
+    from impactmaps.contact.epp import EppContact
+    from impactmaps.contact.stronge import StrongeContact
+    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
+    from impactmaps.maps.registry import map_family
+
+    assert EPP_MAP_OPTIONS == {"poisson_ratio": 0.3, "sphere_compliance": 0.0}
+    family = map_family("epp")
+    assert family.describes(EppContact(1e11, 0.01, 3e8)) and plastic_law_of(EppContact(1e11, 0.01, 3e8)) == "epp"
+    assert not map_family("yc").describes(EppContact(1e11, 0.01, 3e8))
+    assert not family.describes(StrongeContact(1e11, 0.01, 3e8))
+    other = EppContact(1e11, 0.01, 3e8, **{option: value})
+    reason = rf"contact law 'epp' with {option} = {value:g} \(the maps' value: {EPP_MAP_OPTIONS[option]:g}\)"
+    with pytest.raises(ValueError, match=reason):
+        family.describes(other)
+    # the response really moves: the same impact at the other option value
+    base, moved = EppContact(1e11, 0.01, 3e8), other
+    delta = 30.0 * float(base.yield_indentation)
+    assert abs(float(moved.force(delta)) / float(base.force(delta)) - 1.0) > 1e-3
+    case = parse_case(_EPP_BEAM.replace('law = "epp"', f'law = "epp"\n{option} = {value}'))
+    with pytest.raises(ValueError, match="no shipped map covers this case: " + reason + ".*impactmaps simulate"):
+        lookup_case(case)
