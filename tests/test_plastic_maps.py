@@ -389,3 +389,90 @@ def test_epp_maps_describe_only_their_options(option, value):
     case = parse_case(_EPP_BEAM.replace('law = "epp"', f'law = "epp"\n{option} = {value}'))
     with pytest.raises(ValueError, match="no shipped map covers this case: " + reason + ".*impactmaps simulate"):
         lookup_case(case)
+
+
+def _epp_maps():
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+
+    return {name: load_plastic_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
+
+
+def test_shipped_epp_maps_are_complete_sweeps_stating_their_options():
+    """Each shipped epp map is the sweep of the epp family over the grid of
+    ``validation/build_plastic_maps.py`` (its fingerprint), every point solved, finite values
+    and errors wherever resolved, the energy ledger closed (e² + absorbed + transferred = 1
+    where the sphere separated), and its attributes state the law options it was built at."""
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import sweep_fingerprint
+
+    betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
+    for name, dataset in _epp_maps().items():
+        lambdas = np.logspace(-2.0, 1.5, 18) if name.startswith("plate") else np.logspace(-3.0, 1.5, 23)
+        digest = sweep_fingerprint([structure_from_name(name)], zetas, lambdas, law="epp", axes={"beta": betas})
+        assert digest == dataset.attrs["fingerprint"] and dataset.attrs["contact_law"] == "epp", name
+        assert int(dataset.attrs["complete"]) == 1 and np.all(dataset["done"].values == 1)
+        for option, value in EPP_MAP_OPTIONS.items():
+            assert float(dataset.attrs[f"law_option_{option}"]) == value
+            assert f"{option} = {value:g}" in dataset.attrs["method"]
+        resolved = dataset["status"].values != STATUSES.index("unresolved")
+        assert resolved.mean() > 0.75, name
+        for variable in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
+            assert np.all(np.isfinite(dataset[variable].values[resolved])), (name, variable)
+        separated = np.isfinite(dataset["restitution"].values)
+        ledger = (dataset["restitution"] ** 2 + dataset["absorbed_energy_fraction"]
+                  + dataset["energy_transferred_fraction"]).values[separated]
+        assert separated.sum() > 0.99 * resolved.sum() and np.allclose(ledger, 1.0, atol=5e-3), name
+
+
+def test_epp_lookups_against_committed_direct_runs():
+    """validation/lookup_error_epp.csv holds direct epp solves at 200 random (β, ζ, λ) per shipped
+    epp map (``validation/lookup_error.py --law epp``, seed 1). Read again from the current maps:
+    every answer's band (plus the direct solve's own error) covers its error in F̄max,
+    restitution and absorbed energy; refused points are those next to an unresolved one."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from impactmaps.maps.lookup import map_file_stem
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.plastic_points import ERROR_OF
+
+    table = pd.read_csv(Path(__file__).resolve().parents[1] / "validation" / "lookup_error_epp.csv")
+    for (kind, theory), name in PLASTIC_MAPS.items():
+        runs = table[(table["map"] == map_file_stem(name, "epp")) & (table["status"] != "refused")
+                     & np.isfinite(table["fmax_normalised_direct"])]
+        assert len(runs) > 150, name
+        found = lookup_plastic(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
+                               structure=kind, theory=theory, law="epp")
+        for variable, error in ERROR_OF.items():
+            direct = runs[f"{variable}_direct"].to_numpy()
+            ok = np.isfinite(direct)
+            np.testing.assert_allclose(getattr(found, variable)[ok], runs[f"{variable}_lookup"].to_numpy()[ok],
+                                       rtol=1e-12, atol=1e-14)
+            miss = np.abs(getattr(found, variable) - direct)[ok]
+            assert np.all(miss <= getattr(found, error)[ok] + runs[f"{variable}_direct_error"].to_numpy()[ok]), \
+                (name, variable)
+
+
+def test_epp_chart_and_lookup_commands(tmp_path):
+    """`chart --law epp` draws from the shipped epp maps and `lookup --law epp --beta …` reads
+    them (the CLI's law choices come from the map-family registry)."""
+    import argparse
+
+    from impactmaps.cli.commands_maps import cmd_chart, cmd_lookup
+    from impactmaps.maps.lookup import ALL_MAP_LAWS
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    assert "epp" in ALL_MAP_LAWS
+    args = argparse.Namespace(law="epp", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,
+                              overwrite=False, betas=[3.0, 300.0], zeta_range=(0.005, 100.0), zeta_count=50,
+                              quiet=True)
+    paths = cmd_chart(args)
+    assert (tmp_path / "chart" / "fmax_chart_epp.png").exists() and "csv" in paths
+    args = argparse.Namespace(case=None, law="epp", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+                              theory="euler")
+    out = cmd_lookup(args)
+    found = lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler", law="epp")
+    assert out["fmax_normalised"] == found.fmax_normalised and out["map"] == "beam-ss-euler-epp"
