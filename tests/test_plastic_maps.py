@@ -430,7 +430,8 @@ def test_epp_lookups_against_committed_direct_runs():
     """validation/lookup_error_epp.csv holds direct epp solves at 200 random (β, ζ, λ) per shipped
     epp map (``validation/lookup_error.py --law epp``, seed 1). Read again from the current maps:
     every answer's band (plus the direct solve's own error) covers its error in F̄max,
-    restitution and absorbed energy; refused points are those next to an unresolved one."""
+    restitution and absorbed energy; every point the direct solve leaves unresolved is refused
+    (on the Timoshenko beam 56 of 200 are refused, next to unresolved map points)."""
     from pathlib import Path
 
     import pandas as pd
@@ -441,9 +442,10 @@ def test_epp_lookups_against_committed_direct_runs():
 
     table = pd.read_csv(Path(__file__).resolve().parents[1] / "validation" / "lookup_error_epp.csv")
     for (kind, theory), name in PLASTIC_MAPS.items():
-        runs = table[(table["map"] == map_file_stem(name, "epp")) & (table["status"] != "refused")
-                     & np.isfinite(table["fmax_normalised_direct"])]
-        assert len(runs) > 150, name
+        mine = table[table["map"] == map_file_stem(name, "epp")]
+        assert np.all(mine["status"][~np.isfinite(mine["fmax_normalised_direct"])] == "refused"), name
+        runs = mine[mine["status"] != "refused"]
+        assert len(runs) > (140 if theory == "timoshenko" else 190), name
         found = lookup_plastic(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
                                structure=kind, theory=theory, law="epp")
         for variable, error in ERROR_OF.items():
