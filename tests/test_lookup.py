@@ -363,6 +363,40 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     assert answered >= least, answered
 
 
+@pytest.mark.parametrize("kind, count, least", [("beam", 20, 12), ("plate", 20, 12)])
+def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
+    """Issue 28 step 6: `lookup --case` on 40 random physical ``epp`` cases (default options)
+    on the SS beam and SSSS plate answers from the shipped epp maps with the peak force, the
+    restitution and the absorbed energy of `simulate` within its stated bands (plus the direct
+    run's own ≤ 1e-3 normalised error), or refuses a case whose numbers lie outside the map."""
+    import warnings
+
+    from impactmaps.cases import run_case
+    from impactmaps.maps.case_lookup import lookup_case
+
+    rng = np.random.default_rng({"beam": 61, "plate": 62}[kind])
+    answered = 0
+    for _ in range(count):
+        case = _plastic_case(rng, kind, "epp")
+        try:
+            found = lookup_case(case)
+        except ValueError as error:
+            assert "no shipped map covers this case" in str(error)
+            assert "outside the shipped map" in str(error) or "holds no value" in str(error)
+            continue
+        answered += 1
+        assert found["law"] == "epp" and found["map"].endswith("-epp")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _, summary = run_case(case)
+        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
+        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
+        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
+        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
+            found["absorbed_energy_error_J"] + 1e-3 * energy
+    assert answered >= least, answered
+
+
 def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
     """No plastic map for the Mindlin plate (its pressure patch adds the sphere radius as a
     number) nor for a Stronge law with other constants: refused, naming why."""

@@ -305,3 +305,176 @@ def test_a_redefined_law_changes_the_fingerprint(monkeypatch):
     current = sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]})
     monkeypatch.setattr(StrongeContact, "revision", 1)
     assert sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]}) != current
+
+
+# -- the epp law (issue 28 step 6) --------------------------------------------------------------
+_EPP_BEAM = _YC_BEAM.replace('law = "yigit-christoforou"', 'law = "epp"')
+
+
+@pytest.mark.parametrize("kind", ["beam", "plate"])
+@pytest.mark.parametrize("numbers", [(30.0, 0.3, 0.5), (400.0, 0.05, 0.03)])
+def test_equal_numbers_give_equal_normalised_epp_response(kind, numbers):
+    """The similarity of the plastic maps holds for ``epp`` too: two physically different
+    impacts with equal (β, ζ, λ) give equal normalised answers to 1e-6 (its curves are fixed
+    in units α_y, K_h α_y^{3/2} at fixed options; module docstring of plastic_points)."""
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+
+    beta, zeta, lam = numbers
+    first, second = _pair(kind)
+    one = realise_plastic(first, "epp", beta, zeta, lam, velocity=1.0)
+    two = realise_plastic(second, "epp", beta, zeta, lam, velocity=7.3)
+    for realised, target in ((one, first), (two, second)):
+        check = plastic_numbers(target, realised.law, realised.mass, realised.velocity)
+        assert np.allclose([check.impact_number, check.loss_factor, check.relative_stiffness], numbers, rtol=1e-12)
+    a, b = _normalised(first, one), _normalised(second, two)
+    assert a["impacts"] == b["impacts"]
+    for key in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "energy_transferred_fraction"):
+        assert a[key] == pytest.approx(b[key], rel=1e-6, abs=1e-9), key
+    assert a["restitution"] ** 2 + a["absorbed_energy_fraction"] + a["energy_transferred_fraction"] == \
+        pytest.approx(1.0, abs=1e-3)
+
+
+def test_an_epp_case_is_realised_by_its_numbers():
+    """A physical ``epp`` case (10 mm steel ball on a steel beam: R = 1 cm, E*, Y of the pair)
+    and its realisation on the map's reference beam (R = 1 m, other E*, Y, m, V0) at the same
+    (β, ζ, λ) give the same F_max/(m V0 ω_y) and restitution to 1e-6: β of the
+    Yigit–Christoforou α_y and the scale K_y = 1.5 K_h α_y^{1/2} fix the epp impact
+    (δ_y/α_y = c_y²/2.72 and F_y = K_h δ_y^{3/2} are the same for every E*, R, Y)."""
+    from impactmaps.cases import parse_case
+    from impactmaps.contact.epp import EppContact
+    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+
+    case = parse_case(_EPP_BEAM.replace("velocity = 1.0", "velocity = 0.05"))
+    assert isinstance(case.law, EppContact)
+    numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
+    assert numbers.impact_number == pytest.approx(float(case.law.impact_number(case.impactor_mass, case.velocity)),
+                                                  rel=1e-12)
+    reference = DEFAULT_STRUCTURES[0].build()
+    realised = realise_plastic(reference, "epp", numbers.impact_number, numbers.loss_factor,
+                               numbers.relative_stiffness)
+    assert float(realised.law.radius) == 1.0 and float(case.law.radius) == 0.01
+    direct = simulate(case.target, case.law, case.impactor_mass, case.velocity, settings=ModalSettings(),
+                      record=False)
+    mapped = _normalised(reference, realised)
+    assert direct.peak_force / numbers.force_scale == pytest.approx(mapped["fmax_normalised"], rel=1e-6)
+    assert direct.restitution == pytest.approx(mapped["restitution"], rel=1e-6)
+
+
+@pytest.mark.parametrize("option, value", [("poisson_ratio", 0.33), ("sphere_compliance", 0.5)])
+def test_epp_maps_describe_only_their_options(option, value):
+    """Both epp options change the normalised response (the FE calibration: docs/epp_calibration.rst),
+    so the epp maps, built at the defaults, describe an epp law only at those values: otherwise a
+    lookup refuses, naming the option, its value and the maps' value."""
+    from impactmaps.cases import parse_case
+    from impactmaps.contact.epp import EppContact
+    from impactmaps.contact.stronge import StrongeContact
+    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
+    from impactmaps.maps.registry import map_family
+
+    assert EPP_MAP_OPTIONS == {"poisson_ratio": 0.3, "sphere_compliance": 0.0}
+    family = map_family("epp")
+    assert family.describes(EppContact(1e11, 0.01, 3e8)) and plastic_law_of(EppContact(1e11, 0.01, 3e8)) == "epp"
+    assert not map_family("yc").describes(EppContact(1e11, 0.01, 3e8))
+    assert not family.describes(StrongeContact(1e11, 0.01, 3e8))
+    other = EppContact(1e11, 0.01, 3e8, **{option: value})
+    reason = rf"contact law 'epp' with {option} = {value:g} \(the maps' value: {EPP_MAP_OPTIONS[option]:g}\)"
+    with pytest.raises(ValueError, match=reason):
+        family.describes(other)
+    # the response really moves: the same impact at the other option value
+    base, moved = EppContact(1e11, 0.01, 3e8), other
+    delta = 30.0 * float(base.yield_indentation)
+    assert abs(float(moved.force(delta)) / float(base.force(delta)) - 1.0) > 1e-3
+    case = parse_case(_EPP_BEAM.replace('law = "epp"', f'law = "epp"\n{option} = {value}'))
+    with pytest.raises(ValueError, match="no shipped map covers this case: " + reason + ".*impactmaps simulate"):
+        lookup_case(case)
+
+
+def _epp_maps():
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+
+    return {name: load_plastic_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
+
+
+def test_shipped_epp_maps_are_complete_sweeps_stating_their_options():
+    """Each shipped epp map is the sweep of the epp family over the grid of
+    ``validation/build_plastic_maps.py`` (its fingerprint), every point solved, finite values
+    and errors wherever resolved, the energy ledger closed (e² + absorbed + transferred = 1
+    where the sphere separated), and its attributes state the law options it was built at."""
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import sweep_fingerprint
+
+    betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
+    for name, dataset in _epp_maps().items():
+        lambdas = np.logspace(-2.0, 1.5, 18) if name.startswith("plate") else np.logspace(-3.0, 1.5, 23)
+        digest = sweep_fingerprint([structure_from_name(name)], zetas, lambdas, law="epp", axes={"beta": betas})
+        assert digest == dataset.attrs["fingerprint"] and dataset.attrs["contact_law"] == "epp", name
+        assert int(dataset.attrs["complete"]) == 1 and np.all(dataset["done"].values == 1)
+        for option, value in EPP_MAP_OPTIONS.items():
+            assert float(dataset.attrs[f"law_option_{option}"]) == value
+            assert f"{option} = {value:g}" in dataset.attrs["method"]
+        resolved = dataset["status"].values != STATUSES.index("unresolved")
+        assert resolved.mean() > 0.75, name
+        for variable in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
+            assert np.all(np.isfinite(dataset[variable].values[resolved])), (name, variable)
+        separated = np.isfinite(dataset["restitution"].values)
+        ledger = (dataset["restitution"] ** 2 + dataset["absorbed_energy_fraction"]
+                  + dataset["energy_transferred_fraction"]).values[separated]
+        assert separated.sum() > 0.99 * resolved.sum() and np.allclose(ledger, 1.0, atol=5e-3), name
+
+
+def test_epp_lookups_against_committed_direct_runs():
+    """validation/lookup_error_epp.csv holds direct epp solves at 200 random (β, ζ, λ) per shipped
+    epp map (``validation/lookup_error.py --law epp``, seed 1). Read again from the current maps:
+    every answer's band (plus the direct solve's own error) covers its error in F̄max,
+    restitution and absorbed energy; every point the direct solve leaves unresolved is refused
+    (on the Timoshenko beam 56 of 200 are refused, next to unresolved map points)."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from impactmaps.maps.lookup import map_file_stem
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.plastic_points import ERROR_OF
+
+    table = pd.read_csv(Path(__file__).resolve().parents[1] / "validation" / "lookup_error_epp.csv")
+    for (kind, theory), name in PLASTIC_MAPS.items():
+        mine = table[table["map"] == map_file_stem(name, "epp")]
+        assert np.all(mine["status"][~np.isfinite(mine["fmax_normalised_direct"])] == "refused"), name
+        runs = mine[mine["status"] != "refused"]
+        assert len(runs) > (140 if theory == "timoshenko" else 190), name
+        found = lookup_plastic(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
+                               structure=kind, theory=theory, law="epp")
+        for variable, error in ERROR_OF.items():
+            direct = runs[f"{variable}_direct"].to_numpy()
+            ok = np.isfinite(direct)
+            np.testing.assert_allclose(getattr(found, variable)[ok], runs[f"{variable}_lookup"].to_numpy()[ok],
+                                       rtol=1e-12, atol=1e-14)
+            miss = np.abs(getattr(found, variable) - direct)[ok]
+            assert np.all(miss <= getattr(found, error)[ok] + runs[f"{variable}_direct_error"].to_numpy()[ok]), \
+                (name, variable)
+
+
+def test_epp_chart_and_lookup_commands(tmp_path):
+    """`chart --law epp` draws from the shipped epp maps and `lookup --law epp --beta …` reads
+    them (the CLI's law choices come from the map-family registry)."""
+    import argparse
+
+    from impactmaps.cli.commands_maps import cmd_chart, cmd_lookup
+    from impactmaps.maps.lookup import ALL_MAP_LAWS
+    from impactmaps.maps.plastic_lookup import lookup_plastic
+
+    assert "epp" in ALL_MAP_LAWS
+    args = argparse.Namespace(law="epp", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,
+                              overwrite=False, betas=[3.0, 300.0], zeta_range=(0.005, 100.0), zeta_count=50,
+                              quiet=True)
+    paths = cmd_chart(args)
+    assert (tmp_path / "chart" / "fmax_chart_epp.png").exists() and "csv" in paths
+    args = argparse.Namespace(case=None, law="epp", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+                              theory="euler")
+    out = cmd_lookup(args)
+    found = lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler", law="epp")
+    assert out["fmax_normalised"] == found.fmax_normalised and out["map"] == "beam-ss-euler-epp"

@@ -1,14 +1,17 @@
 """Build the elastic-plastic maps shipped in impactmaps/maps/data/ (axes β, λ, ζ).
 
-For the Yigit–Christoforou and the refined Stronge law (default constants) on the SS
+For the Yigit–Christoforou law, the refined Stronge law (default constants) and the
+``epp`` law (default options: the flat's ν = 0.3, a rigid sphere) on the SS
 Euler and Timoshenko (L/h = 20) beams and the SSSS square Kirchhoff plate, impact at the
 centre (:mod:`impactmaps.maps.plastic_points`: β the impact number, ζ and λ the linear
 numbers at the linearised stiffness K_y). Grid: β from 1 to 10^3.5 at 2 per decade; ζ
 from 1e-3 to 10 at 6 per decade; λ from 1e-3 (plate: 1e-2) to 10^1.5 at 5 per decade.
-Files ``NAME-yc.nc`` and ``NAME-stronge.nc``. The Mindlin plate has no plastic map: its
+Files ``NAME-yc.nc``, ``NAME-stronge.nc`` and ``NAME-epp.nc`` (an ``epp`` map states the
+law options it was built at as attributes ``law_option_poisson_ratio`` and
+``law_option_sphere_compliance``). The Mindlin plate has no plastic map: its
 pressure patch depends on the sphere radius, a fourth number.
 
-    nice -n 19 python validation/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge]
+    nice -n 19 python validation/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge epp]
     python validation/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
 
 Each map is a :func:`impactmaps.maps.sweep.sweep` of the plastic family, so an
@@ -28,6 +31,7 @@ import numpy as np
 from impactmaps.maps.accuracy import STATUSES
 from impactmaps.maps.lookup import map_file_stem
 from impactmaps.maps.plastic_points import PLASTIC_LAWS
+from impactmaps.maps.registry import map_family
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import DEFAULT_STRUCTURES
 from impactmaps.maps.sweep import sweep
@@ -86,6 +90,8 @@ def main(argv=None) -> None:
             dataset, cpu = build(structure, law, betas, zetas, lambdas, args.workers, work)
             wall = time.perf_counter() - start
             dataset.attrs["build_cpu_seconds"] = round(cpu, 1)
+            for name, value in map_family(law).law_options.items():
+                dataset.attrs[f"law_option_{name}"] = float(value)
             stem = map_file_stem(structure.name, law)
             save_atomic(dataset, args.out_dir / f"{stem}.nc")
             total += cpu

@@ -11,13 +11,13 @@ With ``--law hertz`` the same for the shipped Hertz maps over (ζ_h, λ_h)
 Hertz infinite-structure and quasi-static peaks), written to
 validation/lookup_error_hertz.csv.
 
-With ``--law yc`` (or ``stronge``) the same for the shipped elastic-plastic maps over
+With ``--law yc`` (``stronge`` or ``epp``) the same for the shipped elastic-plastic maps over
 (β, ζ, λ) (:mod:`impactmaps.maps.plastic_lookup`): N log-uniform random points inside each
 map's box solved directly (:func:`~impactmaps.maps.plastic_points.solve_plastic_points`)
 against the lookup of F̄max, restitution and absorbed energy with their bands, written to
-validation/lookup_error_yc.csv (``…_stronge.csv``); no design formula.
+validation/lookup_error_yc.csv (``…_stronge.csv``, ``…_epp.csv``); no design formula.
 
-    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR] [--law hertz|yc|stronge]
+    python validation/lookup_error.py [--points 200] [--seed 1] [--out-dir DIR] [--law hertz|yc|stronge|epp]
     python validation/lookup_error.py --smoke    # 3 points per map (seconds)
 """
 
@@ -141,7 +141,7 @@ def measure_plastic(structure: str, theory: str, law: str, points: int, seed: in
 
 
 def plastic_main(args) -> None:
-    """``--law yc|stronge``: measure every shipped plastic map, write the CSV, print the table."""
+    """``--law yc|stronge|epp``: measure every shipped plastic map, write the CSV, print the table."""
     frames = [measure_plastic(structure, theory, args.law, args.points, args.seed)
               for (structure, theory), name in PLASTIC_MAPS.items()
               if not args.maps or name in args.maps or map_file_stem(name, args.law) in args.maps]

@@ -41,12 +41,13 @@ class NoMapError(ValueError):
 
 
 def case_map_law(case) -> str:
-    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, or ``ValueError``.
+    """The map law of a case's contact law: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``, or ``ValueError``.
 
     Only laws that a shipped map describes exactly are named: the linear and Hertz laws
-    (axes ζ, λ), the Yigit–Christoforou law and the refined Stronge law with its default
-    constants (axes β, ζ, λ: :mod:`impactmaps.maps.plastic_points`). Any other law is
-    refused.
+    (axes ζ, λ), the Yigit–Christoforou law, the refined Stronge law with its default
+    constants and the ``epp`` law with its default options (axes β, ζ, λ:
+    :mod:`impactmaps.maps.plastic_points`). Any other law is refused, naming the option
+    and the maps' value where it is a mapped law at other options.
     """
     reason = f"contact law {case.law_name!r}"
     try:
@@ -56,7 +57,7 @@ def case_map_law(case) -> str:
     except ValueError as near_miss:  # a family's law with other constants
         reason = str(near_miss)
     raise ValueError(f"no shipped map covers this case: {reason} (the shipped maps are for the linear, Hertz, "
-                     "Yigit–Christoforou and default refined Stronge laws; linearising another law with K_y "
+                     "Yigit–Christoforou, default refined Stronge and default epp laws; linearising another law with K_y "
                      f"would be an unconservative guess); run `impactmaps simulate {case.source or 'CASE.toml'}` "
                      "instead")
 
@@ -132,10 +133,10 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     Parameters
     ----------
     case : impactmaps.cases.Case
-        With a Yigit–Christoforou or default refined Stronge law.
+        With a Yigit–Christoforou, default refined Stronge or default ``epp`` law.
     structure, theory : str
         The family (:func:`impactmaps.maps.case_lookup.map_for_case`).
-    law : {"yc", "stronge"}
+    law : {"yc", "stronge", "epp"}
 
     Returns
     -------

@@ -1,13 +1,13 @@
 """Lookups in the shipped elastic-plastic maps: F̄max, restitution and absorbed energy at (β, ζ, λ).
 
-The maps (``impactmaps/maps/data/NAME-yc.nc`` and ``NAME-stronge.nc``, built by
+The maps (``impactmaps/maps/data/NAME-yc.nc``, ``NAME-stronge.nc`` and ``NAME-epp.nc``, built by
 ``validation/build_plastic_maps.py``; numbers and scales in
 :mod:`impactmaps.maps.plastic_points`) are interpolated linearly in (log β, log λ, log ζ).
 Each answer carries a band: over the eight map points around it, the largest of their own
 error (refinement, or half the spread of a sensitive point) plus the local interpolation
 error estimated from the map's second differences
 (:func:`impactmaps.maps.lookup.interpolation_error` along the three axes), times
-:data:`BAND_SAFETY`; its coverage is measured by ``validation/lookup_error.py --law yc``.
+:data:`BAND_SAFETY`; its coverage is measured by ``validation/lookup_error.py --law yc`` (``stronge``, ``epp``).
 Next to a point the map holds no value for (``unresolved``: beyond what a Timoshenko
 theory holds, or no model within the mode cap) a lookup is refused — never a number
 without its band.
@@ -54,7 +54,7 @@ class PlasticLookup:
         tolerance (:func:`impactmaps.maps.lookup.answer_status`).
     map_name : str
     law : str
-        ``"yc"`` or ``"stronge"``.
+        ``"yc"``, ``"stronge"`` or ``"epp"``.
     """
 
     fmax_normalised: object
@@ -70,7 +70,7 @@ class PlasticLookup:
 
 @functools.lru_cache(maxsize=8)
 def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
-    """The shipped plastic map of ``structure`` in {"beam", "plate"}, its ``theory``, ``law`` in {"yc", "stronge"}."""
+    """The shipped plastic map of ``structure`` in {"beam", "plate"}, its ``theory``, ``law`` in {"yc", "stronge", "epp"}."""
     require_choice("law", law, tuple(PLASTIC_LAWS))
     require_choice("(structure, theory)", (structure, theory), tuple(PLASTIC_MAPS))
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
@@ -100,7 +100,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         inside the map's range.
     structure, theory : str
         A key of :data:`PLASTIC_MAPS`.
-    law : {"yc", "stronge"}
+    law : {"yc", "stronge", "epp"}
 
     Returns
     -------

@@ -34,7 +34,16 @@ The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou la
 same E*, R, Y: :meth:`impactmaps.contact.stronge.StrongeContact.impact_number`), with
 its default constants only: other constants are another family.
 
-The map families ``"yc"`` and ``"stronge"`` (:class:`PlasticFamily`) are these points.
+The ``epp`` law (:mod:`impactmaps.contact.epp`) is the same kind: its yield scales
+``δ_y = R (π c_y Y/(2E*))²`` (c_y = 1.6) and ``F_y = K_h δ_y^{3/2}`` are those of the
+Stronge law, so ``δ_y/α_y = c_y²/2.72`` and, in units α_y and ``K_h α_y^{3/2}``, its
+curves are fixed for fixed options — the flat's ``poisson_ratio`` and the
+``sphere_compliance`` both change them, so its maps are built at the law's defaults
+(:data:`EPP_MAP_OPTIONS`: ν = 0.3, a rigid sphere) and describe only that law. β and
+K_y are again those of the Yigit–Christoforou law with the same E*, R, Y
+(:meth:`impactmaps.contact.epp.EppContact.impact_number`).
+
+The map families ``"yc"``, ``"stronge"`` and ``"epp"`` (:class:`PlasticFamily`) are these points.
 
 Stored quantities
 -----------------
@@ -57,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import require_choice, require_positive
+from ..contact.epp import EppContact
 from ..contact.hertz import hertz_stiffness
 from ..contact.stronge import StrongeContact
 from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
@@ -67,11 +77,17 @@ from .map_family import RESULT_VARIABLES, Axis, Interpolation, MapFamily, PointP
 from .points import PlanMethod, map_plan, method_code, solve_map_points
 from .structures import BasisTable, MapStructure
 
-__all__ = ["PLASTIC_LAWS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
+__all__ = ["PLASTIC_LAWS", "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
            "plastic_law_of", "solve_plastic_points"]
 
 #: Map-law name → registered contact-law name of the elastic-plastic maps.
-PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge"}
+PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge", "epp": "epp"}
+#: Map-law name → its contact-law class.
+_LAW_CLASSES = {"yc": YigitChristoforouContact, "stronge": StrongeContact, "epp": EppContact}
+#: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's
+#: Poisson ratio 0.3, a rigid sphere); each changes the normalised response, so another
+#: value is another family.
+EPP_MAP_OPTIONS = {name: option.default for name, option in EppContact.options().items()}
 
 #: The variables a plastic map adds to the F̄max ones: name → (units, description).
 PLASTIC_VARIABLES = {
@@ -116,7 +132,9 @@ class PlasticNumbers:
 def plastic_law_of(law) -> str:
     """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to, or ValueError.
 
-    A Stronge law with other than the default constants is another family: refused.
+    A Stronge law with other than the default constants is another family, as is an
+    ``epp`` law with other than the default options (:data:`EPP_MAP_OPTIONS`): refused,
+    naming the option, its value and the maps' value.
     """
     if isinstance(law, YigitChristoforouContact):
         return "yc"
@@ -129,8 +147,22 @@ def plastic_law_of(law) -> str:
             raise ValueError(f"contact law 'stronge' with {', '.join(changed)} other than the defaults (the "
                              "plastic maps are for the default constants c_y = 1.6, c_p = 2.8, δ_p/δ_y = 84)")
         return "stronge"
+    if isinstance(law, EppContact):
+        changed = [f"{name} = {_option_text(getattr(law, name))} (the maps' value: {value:g})"
+                   for name, value in EPP_MAP_OPTIONS.items()
+                   if not np.all(np.asarray(getattr(law, name), float) == float(value))]
+        if changed:
+            raise ValueError(f"contact law 'epp' with {', '.join(changed)}: the normalised response depends on "
+                             "these options and the epp maps are built at their defaults")
+        return "epp"
     raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
                      f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+
+
+def _option_text(value) -> str:
+    """A law option's value as the user gave it (a number, or an array's values)."""
+    values = np.unique(np.asarray(value, float))
+    return f"{values[0]:g}" if values.size == 1 else "[" + ", ".join(f"{v:g}" for v in values) + "]"
 
 
 def _hertz_and_yield(law) -> tuple[float, float]:
@@ -149,7 +181,7 @@ def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
     ----------
     target : Plate or Beam
         Needs ``loss_factor(m, K)`` and ``static_compliance()``.
-    law : YigitChristoforouContact or StrongeContact
+    law : YigitChristoforouContact, StrongeContact or EppContact
     mass : float
         Impactor mass m > 0 [kg].
     velocity : float
@@ -179,14 +211,17 @@ def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
 def _law_from(map_law: str, hertz: float, alpha_y: float):
     """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y.
 
-    A Stronge law needs E*, R, Y: R = 1 m (it only sets the contact radius, unused off
-    Mindlin plates), ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9).
+    A Stronge or ``epp`` law needs E*, R, Y: R = 1 m (it only sets the contact radius,
+    unused off Mindlin plates), ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9); an ``epp``
+    law at the maps' options (:data:`EPP_MAP_OPTIONS`).
     """
     if map_law == "yc":
         return YigitChristoforouContact(hertz, alpha_y)
     radius = 1.0
     modulus = 0.75 * hertz / math.sqrt(radius)
     strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))
+    if map_law == "epp":
+        return EppContact(modulus, radius, strength, **EPP_MAP_OPTIONS)
     return StrongeContact(modulus, radius, strength)
 
 
@@ -217,7 +252,7 @@ def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: flo
     Parameters
     ----------
     target : Plate or Beam
-    map_law : {"yc", "stronge"}
+    map_law : {"yc", "stronge", "epp"}
     beta, zeta, lambda_ : float
         Impact number, loss factor and relative stiffness at K_y, > 0 [-].
     velocity : float
@@ -377,15 +412,25 @@ class PlasticFamily(MapFamily):
     @property
     def method_text(self) -> str:
         return (f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[self.name]} "
-                "contact; axes (β, λ, ζ) at the linearised stiffness K_y")
+                f"contact{self.law_options_text}; axes (β, λ, ζ) at the linearised stiffness K_y")
+
+    @property
+    def law_options(self) -> dict:
+        """The contact-law options the maps are built at (name → value; empty but for ``epp``)."""
+        return dict(EPP_MAP_OPTIONS) if self.name == "epp" else {}
+
+    @property
+    def law_options_text(self) -> str:
+        """`` (name = value, …)`` of :attr:`law_options`, or ``""``."""
+        options = self.law_options
+        return " (" + ", ".join(f"{name} = {value:g}" for name, value in options.items()) + ")" if options else ""
 
     @property
     def law_revision(self) -> int:
-        return {"yc": YigitChristoforouContact, "stronge": StrongeContact}[self.name].revision
+        return _LAW_CLASSES[self.name].revision
 
     def describes(self, law) -> bool:
-        kind = {"yc": YigitChristoforouContact, "stronge": StrongeContact}[self.name]
-        return isinstance(law, kind) and plastic_law_of(law) == self.name
+        return isinstance(law, _LAW_CLASSES[self.name]) and plastic_law_of(law) == self.name
 
     def realise(self, target, point) -> PlasticRealisation:
         beta, zeta, lam = (float(value) for value in point)
@@ -412,6 +457,7 @@ class PlasticFamily(MapFamily):
 
 YC = register_map_family(PlasticFamily("yc"))
 STRONGE = register_map_family(PlasticFamily("stronge"))
+EPP = register_map_family(PlasticFamily("epp"))
 
 
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
@@ -430,7 +476,7 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
     Parameters
     ----------
     structure : MapStructure
-    map_law : {"yc", "stronge"}
+    map_law : {"yc", "stronge", "epp"}
     points : sequence of (β, ζ, λ)
     settings : ModalSettings, optional
     table : BasisTable, optional
@@ -443,5 +489,5 @@ def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence
         ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
     """
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
-    family = YC if map_law == "yc" else STRONGE
+    family = {"yc": YC, "stronge": STRONGE, "epp": EPP}[map_law]
     return solve_map_points(family, structure, points, settings, table, control)
