@@ -238,10 +238,9 @@ _ARGUMENTS = (
     numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
     numba.types.Array(numba.types.int64, 1, "C"),
 )
-_RESULT = numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))
-#: The two signatures of :data:`integrate_impact`, by its ``exact_phase`` argument: without
-#: the exact contact phase (``None``) and with it (``True``); each compiled on first use.
-_SIGNATURES = {None: _RESULT(*_ARGUMENTS, numba.types.none), True: _RESULT(*_ARGUMENTS, numba.types.boolean)}
+#: The signatures of :data:`integrate_impact` by ``exact_phase`` (without / with the exact contact phase).
+_SIGNATURES = {variant: numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(*_ARGUMENTS, last)
+               for variant, last in ((None, numba.types.none), (True, numba.types.boolean))}
 
 
 def _exact_phase(args) -> bool | None:
@@ -298,10 +297,9 @@ def _integrate_impact(
         sets it non-zero (Ctrl-C, :func:`impactmaps.solvers.modal.simulate`); read only, it
         changes no arithmetic.
     exact_phase : None or True
-        None compiles a variant without the exact contact phase (its branch is pruned at
-        compile time, so :func:`~impactmaps.solvers.coupled_contact.contact_phase` is not
-        compiled with it), for runs without coupled modes; True the variant with it.
-        :data:`integrate_impact` passes it from the coupled arrays.
+        None: the variant without the exact contact phase (its branch is pruned when
+        compiling, so :func:`~impactmaps.solvers.coupled_contact.contact_phase` is not
+        compiled), for runs without coupled modes; True: with it (:data:`integrate_impact`).
 
     Returns
     -------
