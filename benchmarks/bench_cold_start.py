@@ -12,12 +12,18 @@ temporary directory (numba then compiles everything, as after a fresh install):
    after ``pip install .``: drawn from the shipped result of its sweep,
    :mod:`impactmaps.maps.shipped_results`), then again on the now warm cache;
 3. ``impactmaps chart --zeta-count 100 --quiet`` on an empty cache and again warm: a chart
-   no result is shipped for, swept on all cores (compiles the integrator, then computes).
+   no result is shipped for, swept on all cores (compiles the integrator, then computes);
+4. the first integrating commands, ``impactmaps simulate`` of the example cases
+   ``aluminium_beam_linear.toml`` (linear law) and ``steel_plate_hertz.toml`` (Hertz), on
+   an empty cache and again warm;
+5. commands that solve nothing: ``impactmaps --help`` and ``impactmaps laws`` (median of
+   three runs; imports only).
 
-Reported with the load average (other jobs on the machine make every number larger).
+Reported with the load average (other jobs on the machine make every number larger: run
+it for two checkouts in the same minutes and compare ratios, ``--root``).
 
-Run: ``python benchmarks/bench_cold_start.py [--skip-chart]``; writes
-``benchmarks/RESULTS_cold_start.md``.
+Run: ``python benchmarks/bench_cold_start.py [--skip-chart] [--root CHECKOUT] [--print-only]``;
+writes ``benchmarks/RESULTS_cold_start.md`` unless ``--print-only``.
 """
 
 from __future__ import annotations
@@ -58,9 +64,34 @@ print(json.dumps({"import_s": elapsed, "compile_s": first_call, "top": totals.mo
 """
 
 
+#: The checkout measured (``--root``; default this one).
+CODE = ROOT
+
+
 def _environment(cache: str) -> dict:
-    return dict(os.environ, NUMBA_CACHE_DIR=cache,
-                PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    return dict(os.environ, NUMBA_CACHE_DIR=cache, OMP_NUM_THREADS="1",
+                PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+
+
+def time_command(*argv: str, cold: bool = True) -> tuple[float, float]:
+    """(cold, warm) wall time [s] of ``impactmaps ARGV`` on a fresh numba cache; warm is
+    NaN unless ``cold`` (then the first run is the only one, on a fresh cache too)."""
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        times = []
+        for _ in range(2 if cold else 1):
+            start = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "impactmaps.cli", *argv], env=_environment(cache),
+                           check=True, capture_output=True, cwd=out)
+            times.append(time.perf_counter() - start)
+    return times[0], (times[1] if cold else float("nan"))
+
+
+def time_light(*argv: str, repeats: int = 3) -> float:
+    """Median wall time [s] of ``impactmaps ARGV`` (a command that solves nothing)."""
+    import statistics
+
+    runs = [time_command(*argv, cold=False)[0] for _ in range(repeats)]
+    return statistics.median(runs)
 
 
 def profile_import() -> dict:
@@ -88,20 +119,25 @@ def time_chart(*options: str) -> tuple[float, float]:
 
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--skip-chart", action="store_true", help="only the import profile")
+    parser.add_argument("--skip-chart", action="store_true", help="no chart timings")
+    parser.add_argument("--root", type=pathlib.Path, default=ROOT, help="the checkout to measure (default this one)")
+    parser.add_argument("--print-only", action="store_true", help="print, do not write RESULTS_cold_start.md")
     args = parser.parse_args(argv)
+    global CODE
+    CODE = args.root.resolve()
     load = os.getloadavg()[0]
     profile = profile_import()
     lines = [
         "# Cold start",
         "",
-        "`python benchmarks/bench_cold_start.py`",
+        f"`python benchmarks/bench_cold_start.py` (code of {CODE.name})",
         f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average {load:.1f} "
         f"on {os.cpu_count()} cores",
         "",
         f"Cold `import impactmaps.solvers.modal` (empty numba cache): **{profile['import_s']:.1f} s** "
         "(the integrator is compiled on its first call, not at import). "
-        f"First integration: compiles for **{profile['compile_s']:.1f} s**. "
+        f"Compiling both variants of the integrator (with and without the exact contact phase): "
+        f"**{profile['compile_s']:.1f} s**. "
         "Largest compile times (inclusive: a function's callees count in it too):",
         "",
         "| function | compile [s] |",
@@ -115,8 +151,19 @@ def main(argv=None) -> None:
         cold, warm = time_chart("--zeta-count", "100")
         lines += ["", f"`impactmaps chart --zeta-count 100` (no shipped result: compiles, then sweeps 1 600 "
                   f"points): first run **{cold:.1f} s**, second run {warm:.1f} s."]
+    examples = ROOT / "examples"
+    lines += ["", "| first integrating command | empty cache [s] | warm [s] | load |", "|---|---|---|---|"]
+    for case in ("aluminium_beam_linear.toml", "steel_plate_hertz.toml"):
+        cold, warm = time_command("simulate", str(examples / case), "--out", "out")
+        lines.append(f"| `impactmaps simulate examples/{case}` | **{cold:.1f}** | {warm:.1f} | "
+                     f"{os.getloadavg()[0]:.1f} |")
+    lines += ["", "| command that solves nothing | wall [s] (median of 3) | load |", "|---|---|---|"]
+    for command in (("--help",), ("laws",)):
+        lines.append(f"| `impactmaps {' '.join(command)}` | **{time_light(*command):.2f}** | "
+                     f"{os.getloadavg()[0]:.1f} |")
     text = "\n".join(lines) + "\n"
-    (ROOT / "benchmarks" / "RESULTS_cold_start.md").write_text(text)
+    if not args.print_only:
+        (ROOT / "benchmarks" / "RESULTS_cold_start.md").write_text(text)
     print(text)
 
 

@@ -25,8 +25,10 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
 import argparse
+import importlib
 import sys
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
 
 from ..jsonio import dumps
@@ -68,11 +70,64 @@ ZETA_HELP = ("loss factor ζ in (0, 1e6]: how strongly the structure carries the
 LAMBDA_HELP = "relative stiffness λ = K_static/K_contact > 0: structure stiffness over contact stiffness"
 
 
+class _Deferred(Sequence):
+    """A sequence constant of a module, imported on first use.
+
+    The parser's choices and defaults (laws, shipped theories, the chart's ζ range) live in
+    modules that import xarray, numba and the solvers; building the parser from deferred
+    constants keeps ``impactmaps --help`` and every command that never reads them from
+    importing those modules. ``transform`` derives the sequence from the constant.
+    """
+
+    def __init__(self, module: str, name: str, transform=tuple):
+        self._source = (module, name, transform)
+        self._value = None
+
+    def _resolve(self) -> tuple:
+        if self._value is None:
+            module, name, transform = self._source
+            self._value = tuple(transform(getattr(importlib.import_module(module), name)))
+        return self._value
+
+    def __getitem__(self, index):
+        return self._resolve()[index]
+
+    def __len__(self) -> int:
+        return len(self._resolve())
+
+    def __contains__(self, value) -> bool:
+        return value in self._resolve()
+
+    def __iter__(self):
+        return iter(self._resolve())
+
+    def __eq__(self, other) -> bool:
+        return tuple(self) == (tuple(other) if isinstance(other, Sequence) else other)
+
+    def __repr__(self) -> str:
+        return repr(self._resolve())
+
+
+def _theories(shipped_maps) -> list[str]:
+    return sorted({theory for _, theory in shipped_maps})
+
+
+def _deferred_choices(action: argparse.Action, choices: _Deferred) -> argparse.Action:
+    """Give ``action`` choices that are imported when an argument is checked or help is shown
+    (set after ``add_argument``, which would otherwise list them at once)."""
+    action.choices = choices
+    return action
+
+
+#: Deferred parser constants (see :class:`_Deferred`).
+_MAP_LAWS = _Deferred("impactmaps.maps.lookup", "ALL_MAP_LAWS")
+_THEORIES = _Deferred("impactmaps.maps.lookup", "SHIPPED_MAPS", _theories)
+_ZETA_RANGE = _Deferred("impactmaps.maps.chart", "DEFAULT_ZETA_RANGE")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
-    from ..maps.chart import DEFAULT_ZETA_RANGE
-    from ..maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS
     from ..targets.options import STRUCTURE_KINDS
 
     parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
@@ -87,16 +142,17 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
     p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
-    p.add_argument("--zeta-range", nargs=2, type=float, default=DEFAULT_ZETA_RANGE, metavar=("A", "B"))
+    p.add_argument("--zeta-range", nargs=2, type=float, default=_ZETA_RANGE, metavar=("A", "B"))
     p.add_argument("--zeta-count", type=int, default=200, help="log-spaced ζ values per curve (≥ 2, default 200)")
     p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
     p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.add_argument("--law", choices=ALL_MAP_LAWS, default="linear",
-                   help="contact law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
-                   "elastic-plastic yc / stronge (F̄max, restitution and absorbed energy against ζ at several β, "
-                   "from the shipped maps); default linear")
+    _deferred_choices(p.add_argument(
+        "--law", default="linear",
+        help="contact law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
+        "elastic-plastic yc / stronge (F̄max, restitution and absorbed energy against ζ at several β, "
+        "from the shipped maps); default linear"), _MAP_LAWS)
     p.add_argument("--betas", nargs="+", type=float, default=None,
                    help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
 
@@ -124,13 +180,14 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("lookup", "F̄max and regime from the shipped maps, or for a case an on-demand map tile (no simulation)",
             cmd_lookup)
     p.add_argument("--structure", choices=STRUCTURE_KINDS)
-    p.add_argument("--theory", choices=sorted({t for _, t in SHIPPED_MAPS}))
+    _deferred_choices(p.add_argument("--theory"), _THEORIES)
     p.add_argument("--zeta", type=float, help=ZETA_HELP + "; with --law hertz the Hertz loss factor ζ_h")
     p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float,
                    help=LAMBDA_HELP + "; with --law hertz the Hertz relative stiffness λ_h")
-    p.add_argument("--law", choices=ALL_MAP_LAWS, default=None,
-                   help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
-                   "or yc / stronge (with --beta: the elastic-plastic maps over β, ζ, λ)")
+    _deferred_choices(p.add_argument(
+        "--law", default=None,
+        help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
+        "or yc / stronge (with --beta: the elastic-plastic maps over β, ζ, λ)"), _MAP_LAWS)
     p.add_argument("--beta", type=float, default=None, help="impact number β (with --law yc or stronge)")
     p.add_argument("--slenderness", type=float, default=None,
                    help="span/thickness of a Timoshenko beam or Mindlin plate (≥ 10; default 20: the shipped "
@@ -233,9 +290,18 @@ def _silence_stdout() -> None:
         pass
 
 
-def _main(argv) -> int:
-    from ..maps.store import SweepInterrupted
+class _NotRaised(Exception):
+    """Stands for an exception class whose module was never imported (so never raised)."""
 
+
+def _sweep_interrupted() -> type[Exception]:
+    """The sweep store's interruption, if the store was imported (else nothing can raise it):
+    the store imports xarray, which commands that never sweep do not need."""
+    store = sys.modules.get("impactmaps.maps.store")
+    return _NotRaised if store is None else store.SweepInterrupted
+
+
+def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     parser = build_parser()
     try:
@@ -251,7 +317,7 @@ def _main(argv) -> int:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             values = args.handler(args)
-    except SweepInterrupted as stop:
+    except _sweep_interrupted() as stop:
         print(f"impactmaps {args.command}: interrupted: {stop.saved} of {stop.total} points saved; "
               "run the same command to resume", file=sys.stderr)
         return EXIT_INTERRUPTED

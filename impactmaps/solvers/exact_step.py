@@ -233,12 +233,19 @@ def _step_compliance(coef, phi, h, mass, residual):
     return compliance
 
 
-#: The one signature of :data:`integrate_impact` (compiled on its first call).
-_SIGNATURE = numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(
+_ARGUMENTS = (
     KERNEL_TYPE, _VECTOR, _F8, _VECTOR, _VECTOR, _VECTOR, _F8, _F8, _F8, _F8, _F8,
     numba.types.boolean, numba.types.int64, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8,
     numba.types.Array(numba.types.int64, 1, "C"),
 )
+#: The signatures of :data:`integrate_impact` by ``exact_phase`` (without / with the exact contact phase).
+_SIGNATURES = {variant: numba.types.Tuple((_MATRIX, _MATRIX, _VECTOR))(*_ARGUMENTS, last)
+               for variant, last in ((None, numba.types.none), (True, numba.types.boolean))}
+
+
+def _exact_phase(args) -> bool | None:
+    """The ``exact_phase`` argument for the other arguments: True when coupled modes are given."""
+    return True if args[13].shape[0] > 0 else None
 
 
 @numba.njit(cache=True, nogil=True)
@@ -263,6 +270,7 @@ def _integrate_impact(
     contact_row_spacing,
     step_scale,
     stop,
+    exact_phase,
 ):
     """Integrate one impact from first touch until re-impact is impossible.
 
@@ -288,6 +296,10 @@ def _integrate_impact(
     stop : int64 array of one element; the run ends at its next step once another thread
         sets it non-zero (Ctrl-C, :func:`impactmaps.solvers.modal.simulate`); read only, it
         changes no arithmetic.
+    exact_phase : None or True
+        None: the variant without the exact contact phase (its branch is pruned when
+        compiling, so :func:`~impactmaps.solvers.coupled_contact.contact_phase` is not
+        compiled), for runs without coupled modes; True: with it (:data:`integrate_impact`).
 
     Returns
     -------
@@ -302,7 +314,10 @@ def _integrate_impact(
     fill_step_coefficients(omega, zeta, phi, h, coef)
     sub = np.empty((8, n))
     compliance_h = _step_compliance(coef, phi, h, mass, residual)
-    damped = np.any(zeta > 0.0)
+    damped = False  # a loop, not np.any(zeta > 0.0): the array expression compiles for longer
+    for j in range(n):
+        if zeta[j] > 0.0:
+            damped = True
 
     q = np.zeros(n)
     v = np.zeros(n)
@@ -322,7 +337,7 @@ def _integrate_impact(
     capacity = min(max_steps + 1, 4096) if record else 1
     history = np.zeros((capacity, HISTORY_WIDTH))
     intervals = np.zeros((max_events, 2))
-    n_intervals = 0
+    n_intervals = np.int64(0)
     overflow = 0.0
     rec = 0
     if record:
@@ -334,7 +349,7 @@ def _integrate_impact(
     f_prev2 = -1.0
     f_prev1 = -1.0
     hit_limit = 0.0
-    steps = 0
+    steps = np.int64(0)  # not a literal 0: callees then compile for int64 only
 
     free_coef = np.empty((_FREE_POWERS, 4, n))  # homogeneous rows only: no force in flight
     record_scratch = np.empty((4, n if record else 0))
@@ -345,34 +360,37 @@ def _integrate_impact(
     free_ready[0] = True
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     starting = True  # the sphere touches the surface at t = 0 (and after each touchdown)
-    coupled = coupled_frequencies.shape[0] > 0
+    coupled = False
+    if exact_phase is not None:
+        coupled = coupled_frequencies.shape[0] > 0
     while True:
         if stop[0] != 0:
             hit_limit = 1.0
             break
         if coupled and starting:
-            touchdown = t
-            before = steps
-            t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
-                coupled_frequencies, coupled_force, from_coupled, to_coupled, contact_row_spacing, step_scale,
-                omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
-                record, history, rec)
-            starting = False
-            speed_bound = -1.0
-            f_prev2 = -1.0
-            f_prev1 = 0.0
-            if steps > before:
-                n_intervals, full = _mark_contact(intervals, n_intervals, 0, touchdown)
-                overflow = max(overflow, full)
-                alpha_max = max(alpha_max, peak / linear_stiffness)
-                in_contact = not separated
-                if separated:
-                    n_intervals, full = _mark_contact(intervals, n_intervals, 1, t)
+            if exact_phase is not None:  # typed None: this branch is not compiled
+                touchdown = t
+                before = steps
+                t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
+                    coupled_frequencies, coupled_force, from_coupled, to_coupled, contact_row_spacing, step_scale,
+                    omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
+                    record, history, rec)
+                starting = False
+                speed_bound = -1.0
+                f_prev2 = -1.0
+                f_prev1 = 0.0
+                if steps > before:
+                    n_intervals, full = _mark_contact(intervals, n_intervals, 0, touchdown)
                     overflow = max(overflow, full)
-            if _out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
-                hit_limit = 1.0
-                break
-            continue
+                    alpha_max = max(alpha_max, peak / linear_stiffness)
+                    in_contact = not separated
+                    if separated:
+                        n_intervals, full = _mark_contact(intervals, n_intervals, 1, t)
+                        overflow = max(overflow, full)
+                if _out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
+                    hit_limit = 1.0
+                    break
+                continue
         if force != 0.0 or starting:
             speed_bound = -1.0
         else:
@@ -475,6 +493,8 @@ def _integrate_impact(
     return history[:rec].copy(), intervals[:n_intervals].copy(), scalars
 
 
-#: The integrator: compiled for :data:`_SIGNATURE` on its first call, not at import
-#: (:mod:`impactmaps.solvers.lazy_kernel`).
-integrate_impact = LazyKernel(_integrate_impact, _SIGNATURE)
+#: The integrator, called with the arguments of :func:`_integrate_impact` but
+#: ``exact_phase``: the variant the arguments need is compiled on its first call, not at
+#: import (:mod:`impactmaps.solvers.lazy_kernel`), so a run without coupled modes never
+#: compiles the exact contact phase.
+integrate_impact = LazyKernel(_integrate_impact, _SIGNATURES, _exact_phase)

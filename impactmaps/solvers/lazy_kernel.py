@@ -1,11 +1,14 @@
-"""A numba kernel compiled for its one signature on its first call, not at import.
+"""A numba kernel compiled for the signatures it is called with, on first call, not at import.
 
 An eager signature (``numba.njit(signature)``) compiles when the module is imported: every
 command that merely imports a solver then pays for it (the exact-step integrator takes
-~11 s to compile on an empty cache), also the ones that never integrate (the chart drawn
-from a shipped result, ``lookup``, ``--help``). :class:`LazyKernel` keeps what the eager
-signature gives — exactly one specialisation, arguments of another type refused — and
-compiles (or loads from numba's on-disk cache) when the kernel is first called.
+seconds to compile on an empty cache), also the ones that never integrate (the chart drawn
+from a shipped result, ``lookup``, ``--help``). :class:`LazyKernel` keeps what eager
+signatures give — a fixed set of specialisations, arguments of another type refused —
+and compiles (or loads from numba's on-disk cache) a specialisation when a call first
+needs it. A kernel with several variants (:data:`impactmaps.solvers.exact_step.integrate_impact`)
+takes a trailing variant argument that the caller does not pass: ``choose(args)`` derives
+it from the other arguments, and only the variants that calls need are compiled.
 """
 
 from __future__ import annotations
@@ -14,36 +17,58 @@ __all__ = ["LazyKernel"]
 
 
 class LazyKernel:
-    """Call a numba dispatcher compiled for ``signature`` only, compiling on first use.
+    """Call a numba dispatcher compiled for fixed signatures only, compiling each on first use.
 
     Parameters
     ----------
     dispatcher : numba.core.registry.CPUDispatcher
         An ``njit`` function given without signature (``cache=True`` recommended).
-    signature : numba signature
-        The one signature it is compiled for; after compiling, the dispatcher compiles no
-        other (a call with other argument types raises ``TypeError``, as with an eager
-        signature).
+    signature : numba signature or dict
+        The one signature it is compiled for; or ``{variant: signature}`` with ``choose``,
+        where ``variant`` is the value of the dispatcher's last argument.
+    choose : callable, optional
+        ``choose(args) -> variant`` for the arguments a caller passes (all but the last);
+        the call is then ``dispatcher(*args, variant)``.
+
+    Notes
+    -----
+    Outside :meth:`compile` the dispatcher compiles nothing: a call with other argument
+    types raises ``TypeError``, as with eager signatures.
     """
 
-    def __init__(self, dispatcher, signature):
+    def __init__(self, dispatcher, signature, choose=None):
         self.dispatcher = dispatcher
+        self.signatures = signature if isinstance(signature, dict) else {None: signature}
         self.signature = signature
+        self._choose = choose
         self.__doc__ = dispatcher.py_func.__doc__
         self.__wrapped__ = dispatcher.py_func
-        # whether compile() has run: asking the dispatcher for its signatures on every call
+        # the variants compiled: asking the dispatcher for its signatures on every call
         # hashed their types, ~25 µs a call (a tenth of a cheap map point's run)
-        self._compiled = False
+        self._compiled = set()
 
-    def compile(self) -> None:
-        """Compile (or load from numba's cache) the one specialisation; idempotent."""
-        if not self._compiled:
-            if not self.dispatcher.signatures:
-                self.dispatcher.compile(self.signature)
-                self.dispatcher.disable_compile()
-            self._compiled = True
+    def compile(self, *args) -> None:
+        """Compile (or load from numba's cache) the variant ``args`` need, every variant
+        without ``args``; idempotent."""
+        if args and self._choose is not None:
+            variants = [self._choose(args)]
+        else:
+            variants = list(self.signatures)
+        for variant in variants:
+            if variant not in self._compiled:
+                self.dispatcher.disable_compile(False)
+                try:
+                    self.dispatcher.compile(self.signatures[variant])
+                finally:
+                    self.dispatcher.disable_compile()
+                self._compiled.add(variant)
 
     def __call__(self, *args):
-        if not self._compiled:
-            self.compile()
-        return self.dispatcher(*args)
+        if self._choose is None:
+            if not self._compiled:
+                self.compile()
+            return self.dispatcher(*args)
+        variant = self._choose(args)
+        if variant not in self._compiled:
+            self.compile(*args)
+        return self.dispatcher(*args, variant)

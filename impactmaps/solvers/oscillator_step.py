@@ -68,7 +68,10 @@ def _expm4(a):
     if norm > 0.25:
         squarings = int(math.ceil(math.log2(norm / 0.25)))
     scale = 2.0 ** (-squarings)
-    scaled = a * scale
+    scaled = np.empty((4, 4))  # element loops: an array expression compiles a ufunc kernel
+    for i in range(4):
+        for j in range(4):
+            scaled[i, j] = a[i, j] * scale
     result = np.zeros((4, 4))
     term = np.zeros((4, 4))
     for i in range(4):

@@ -187,6 +187,14 @@ class ModalBasis:
         """
         if self._participating:
             return self
+        merged = self.__dict__.get("_participating_basis")
+        if merged is None:  # computed once per basis (a frozen value: its arrays are not changed)
+            merged = self._merge_participating()
+            if merged is not self:
+                object.__setattr__(self, "_participating_basis", merged)
+        return merged
+
+    def _merge_participating(self) -> "ModalBasis":
         squares = self.participation**2
         significant = squares > PARTICIPATION_THRESHOLD * max(float(np.max(squares, initial=0.0)), 1e-300)
         frequencies, damping = self.frequencies[significant], self.damping_ratios[significant]
@@ -218,7 +226,11 @@ def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray
     """Indices where a group of degenerate modes starts (frequencies [rad/s]): a mode joins
     the group before it when its frequency lies within :data:`DEGENERACY_TOLERANCE` of the
     group's first and its damping ratio equals the previous mode's (only neighbours merge:
-    in a basis not in ascending order, equal frequencies apart stay apart)."""
+    in a basis not in ascending order, equal frequencies apart stay apart).
+
+    Vectorised: the groups of neighbours that are close are the answer when every mode lies
+    within the tolerance of its group's first (the usual case); a chain of close neighbours
+    that drifts further is split by the sequential rule (:func:`_split_drifting_groups`)."""
     n = frequencies.size
     if n < 2:
         return np.arange(n)
@@ -226,8 +238,17 @@ def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray
         damping_ratios[1:] == damping_ratios[:-1])
     if not np.any(close):
         return np.arange(n)
+    starts = np.flatnonzero(np.concatenate(([True], ~close)))
+    first = frequencies[np.repeat(starts, np.diff(np.append(starts, n)))]
+    if np.all(np.abs(frequencies - first) <= DEGENERACY_TOLERANCE * frequencies):
+        return starts
+    return _split_drifting_groups(frequencies, close)
+
+
+def _split_drifting_groups(frequencies: np.ndarray, close: np.ndarray) -> np.ndarray:
+    """The sequential grouping rule of :func:`_degenerate_group_starts`, mode by mode."""
     starts = [0]
-    for j in range(1, n):  # only reached when some modes are degenerate
+    for j in range(1, frequencies.size):
         if not close[j - 1] or abs(frequencies[j] - frequencies[starts[-1]]) > DEGENERACY_TOLERANCE * frequencies[j]:
             starts.append(j)
     return np.asarray(starts, dtype=np.intp)
