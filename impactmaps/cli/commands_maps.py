@@ -40,7 +40,7 @@ def cmd_chart(args) -> dict:
     if args.law in PLASTIC_LAWS:
         return _plastic_chart(args)
     refuse(args, {"--betas": "betas"}, f"with --law {args.law} (β is a number of the elastic-plastic laws "
-           "yc and stronge)")
+           f"{', '.join(PLASTIC_LAWS)})")
     if args.law == "hertz":
         if args.lambdas is not None:
             for value in args.lambdas:
@@ -373,7 +373,7 @@ def cmd_lookup(args) -> dict:
     if args.law in PLASTIC_LAWS:
         refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")
         return _lookup_plastic_numbers(args)
-    refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the yc and stronge maps)")
+    refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the {', '.join(PLASTIC_LAWS)} maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"

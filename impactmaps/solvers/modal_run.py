@@ -159,7 +159,7 @@ def _integrate(interruptible: bool, args: KernelInputs):
         return integrate_impact(*args)
     import threading
 
-    integrate_impact.compile()  # compiling holds the interpreter: do it here, not in the worker
+    integrate_impact.compile(*args)  # the variant this run needs; compiling holds the interpreter: do it here, not in the worker
     outcome = {}
     done = threading.Event()  # not Thread.join: a join interrupted by Ctrl-C can return early later
 
