@@ -487,7 +487,8 @@ def test_printed_stronge_law_creates_energy_just_above_yield():
     yield (tangent 2(1 + 1/κ) = 2.635 vs 1.5 F_y/δ_y) and lies above it up to
     16.65 δ_y; the elastic recovery 3F_m/(4E* a_m) exceeds δ_m, δ_r ≈ −(2/κ)(δ_m − δ_y)
     near yield, and a load–unload cycle to 2δ_y returns 1.308 times the work it absorbed.
-    Dissipation is negative up to δ_m = 4.897 δ_y. On the issue-28 half-space (12.7 mm
+    Dissipation is negative up to δ_m = 4.897 δ_y, the permanent indentation up to
+    5.396 δ_y. On the issue-28 half-space (12.7 mm
     steel ball, E 200 GPa, ν 0.3, ρ 7850, on aluminium E 70 GPa, ν 0.33, Y 275 MPa) at
     2 V_y it rebounds with e = 1.158 and 15.11 N against Hertz's 12.18 N. Checked with
     independent quadratures of the kernel; the package's law on the same cases: e ≤ 1,
@@ -509,6 +510,10 @@ def test_printed_stronge_law_creates_energy_just_above_yield():
     assert recovered / loading == pytest.approx(1.308, abs=1e-3)
     threshold = brentq(lambda r: float(law.dissipated_energy(r * yield_delta)), 2.0, 10.0, xtol=1e-10)
     assert threshold == pytest.approx(4.897382, rel=1e-5)
+    # the spec said δ_r < 0 below 4.897 δ_y; δ_r is negative up to 5.396 δ_y (4.897 δ_y is
+    # where the dissipation turns positive): docs/physics_contract.md §2 says so now
+    negative_dent = brentq(lambda r: float(law.signed_permanent_indentation(r * yield_delta)), 2.0, 10.0, xtol=1e-10)
+    assert negative_dent == pytest.approx(5.396, abs=1e-3)
 
     pair = ContactPair(float(effective_modulus(200e9, 0.3, 70e9, 0.33)), 0.00635, 275e6)
     mass = 7850.0 * 4 / 3 * math.pi * 0.00635**3
