@@ -155,6 +155,21 @@ def _unit(unit: str) -> str:
     return f" [{unit}]" if unit else ""
 
 
+def require_isotropic_material(name: str, material) -> tuple[float, float, float]:
+    """``(E [Pa], ν [-], ρ [kg/m³])`` of ``material``, validated; ``TypeError`` naming
+    ``name`` when it is not a material (e.g. a catalogue name given as a string) and
+    ``ValueError`` naming ``name.youngs_modulus`` etc. when a value is out of range."""
+    if not all(hasattr(material, key) for key in ("youngs_modulus", "poisson_ratio", "density")):
+        raise TypeError(f"{name} = {material!r} is a {type(material).__name__}, not a material with "
+                        "youngs_modulus, poisson_ratio and density: use impactmaps.material(NAME)")
+    youngs, poisson, density = (float(material.youngs_modulus), float(material.poisson_ratio),
+                                float(material.density))
+    require_positive(f"{name}.youngs_modulus", youngs, "Pa")
+    require_in_range(f"{name}.poisson_ratio", poisson, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
+    require_positive(f"{name}.density", density, "kg/m^3")
+    return youngs, poisson, density
+
+
 def read_text_input(what: str, value) -> tuple[Path, str]:
     """The path and UTF-8 text of the input file ``value`` (``what``: e.g. ``"case file"``);
     ``ValueError`` naming it if it does not exist, is a directory, cannot be read or is not

@@ -255,6 +255,15 @@ def test_plate_material_given_by_name_names_the_parameter():
         Plate.isotropic(0.3, 0.3, 0.002, "aluminium-6061-t6")
 
 
+
+def test_beam_material_given_by_name_names_the_parameter():
+    """The plate's twin: Beam.rectangular(..., "aluminium-6061-t6") was an AttributeError."""
+    from impactmaps.targets import Beam
+
+    with pytest.raises(TypeError, match="material = 'aluminium-6061-t6'"):
+        Beam.rectangular(0.5, 0.02, 0.02, "aluminium-6061-t6")
+
+
 def test_lookup_with_a_plastic_law_names_the_parameter():
     """lookup(..., law="yc") → a NumPy TypeError about boolean indexing: the yc maps have a
     β axis, so lookup (ζ, λ only) must refuse the law and point to lookup_plastic."""

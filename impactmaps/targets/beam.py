@@ -38,6 +38,7 @@ import numpy as np
 from .._checks import (
     require_choice,
     require_in_range,
+    require_isotropic_material,
     require_nonnegative,
     require_positive,
 )
@@ -190,13 +191,7 @@ class Beam(Target):
         for name, value in (("length", length), ("width", width), ("height", height)):
             require_positive(name, value, "m")
         require_positive("shear_correction", shear_correction)
-        youngs = float(material.youngs_modulus)
-        poisson = float(material.poisson_ratio)
-        density = float(material.density)
-        require_positive("material.youngs_modulus", youngs, "Pa")
-        require_in_range("material.poisson_ratio", poisson, -1.0, 0.5,
-                         low_inclusive=False, high_inclusive=False)
-        require_positive("material.density", density, "kg/m^3")
+        youngs, poisson, density = require_isotropic_material("material", material)
         area = float(width) * float(height)
         second_moment = float(width) * float(height) ** 3 / 12.0
         shear_modulus = youngs / (2.0 * (1.0 + poisson))

@@ -31,6 +31,7 @@ import numpy as np
 from .._checks import (
     require_choice,
     require_in_range,
+    require_isotropic_material,
     require_nonnegative,
     require_positive,
 )
@@ -180,15 +181,7 @@ class Plate(Target):
         arguments go to :class:`Plate`.
         """
         require_positive("thickness", thickness, "m")
-        if not all(hasattr(material, key) for key in ("youngs_modulus", "poisson_ratio", "density")):
-            raise TypeError(f"material = {material!r} is a {type(material).__name__}, not a material with "
-                            "youngs_modulus, poisson_ratio and density: use impactmaps.material(NAME)")
-        E = float(material.youngs_modulus)
-        nu = float(material.poisson_ratio)
-        rho = float(material.density)
-        require_positive("youngs_modulus", E, "Pa")
-        require_in_range("poisson_ratio", nu, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
-        require_positive("density", rho, "kg/m³")
+        E, nu, rho = require_isotropic_material("material", material)
         h = float(thickness)
         D = E * h**3 / (12.0 * (1.0 - nu**2))
         G = E / (2.0 * (1.0 + nu))
