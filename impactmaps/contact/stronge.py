@@ -74,7 +74,7 @@ import numpy as np
 
 from .._checks import require_in_range, require_positive
 from .base import ContactLaw, law_option, register_contact_law
-from .yigit_christoforou import YigitChristoforouContact
+from .first_yield import first_yield_force, first_yield_indentation, reference_impact_number
 
 __all__ = ["StrongeContact", "stronge_area_law", "stronge_continuity_coefficient"]
 
@@ -338,23 +338,19 @@ class StrongeContact(ContactLaw):
         velocity : float or array_like
             Impact velocity V0 [m/s].
         """
-        reference = YigitChristoforouContact.from_properties(self.effective_modulus, self.radius,
-                                                             self.yield_strength)
-        return reference.impact_number(impactor_mass, velocity)
+        return reference_impact_number(self.effective_modulus, self.radius, self.yield_strength, impactor_mass,
+                                       velocity)
 
     @property
     def yield_indentation(self):
         """``δ_y = R (π c_y Y / (2E*))²`` [m]."""
-        return np.asarray(self.radius, float) * (
-            np.pi * np.asarray(self.yield_pressure_factor, float) * np.asarray(self.yield_strength, float)
-            / (2.0 * np.asarray(self.effective_modulus, float))
-        ) ** 2
+        return first_yield_indentation(self.effective_modulus, self.radius, self.yield_strength,
+                                       self.yield_pressure_factor)
 
     @property
     def yield_force(self):
         """``F_y = (4/3) E* R^{1/2} δ_y^{3/2}`` [N]."""
-        return (4.0 / 3.0 * np.asarray(self.effective_modulus, float) * np.sqrt(np.asarray(self.radius, float))
-                * self.yield_indentation**1.5)
+        return first_yield_force(self.effective_modulus, self.radius, self.yield_indentation)
 
     @property
     def plastic_indentation(self):

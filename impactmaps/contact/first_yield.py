@@ -1,0 +1,38 @@
+"""First yield of a sphere pressed into a flat, and the impact number every elastic-plastic
+law places its impacts by (docs/physics_contract.md §1–2).
+
+First yield when the Hertz peak pressure reaches ``c_y Y``:
+``δ_y = R (π c_y Y / (2E*))²``, ``F_y = (4/3) E* R^{1/2} δ_y^{3/2}``. The impact number β
+is the Yigit–Christoforou one (seed 001 eq 11, ``α_y = 0.68 π² Y² R/E*²``) whichever law
+is used, so that one β places an impact on every plastic chart and map.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .yigit_christoforou import YigitChristoforouContact
+
+__all__ = ["first_yield_force", "first_yield_indentation", "reference_impact_number"]
+
+
+def first_yield_indentation(effective_modulus, radius, yield_strength, pressure_factor):
+    """``δ_y = R (π c_y Y / (2E*))²`` [m] from E* [Pa], R [m], Y [Pa] and ``c_y`` [-]."""
+    return np.asarray(radius, float) * (
+        np.pi * np.asarray(pressure_factor, float) * np.asarray(yield_strength, float)
+        / (2.0 * np.asarray(effective_modulus, float))
+    ) ** 2
+
+
+def first_yield_force(effective_modulus, radius, yield_indentation):
+    """``F_y = (4/3) E* R^{1/2} δ_y^{3/2}`` [N] from E* [Pa], R [m] and δ_y [m]."""
+    return (4.0 / 3.0 * np.asarray(effective_modulus, float) * np.sqrt(np.asarray(radius, float))
+            * yield_indentation**1.5)
+
+
+def reference_impact_number(effective_modulus, radius, yield_strength, impactor_mass, velocity):
+    """β [-] of the Yigit–Christoforou law with these E* [Pa], R [m] and Y [Pa] for an
+    impactor of mass m_i [kg] at V0 [m/s]: ``β = V0/(ω α_y)``,
+    ``ω = sqrt(K_h α_y^{1/2}/m_i)`` (seed 001 eqs 9, 11, 12)."""
+    reference = YigitChristoforouContact.from_properties(effective_modulus, radius, yield_strength)
+    return reference.impact_number(impactor_mass, velocity)
