@@ -32,7 +32,7 @@ from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, exact_point
 from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
 from .points import PlanMethod, method_code, solve_map_points
-from .structures import BasisTable, MapStructure
+from .structures import SHIPPED_PLANE_MAPS, BasisTable, MapStructure
 
 __all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
            "hertz_contact_frequency", "hertz_summary", "solve_hertz_points"]
@@ -204,12 +204,7 @@ class HertzFamily(MapFamily):
     axes = (Axis("lambda_", HERTZ_AXES[0]), Axis("zeta", HERTZ_AXES[1]))
     variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
     classifies = True
-    shipped = {
-        ("beam", "euler"): "beam-ss-euler",
-        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
-        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
-        ("plate", "mindlin"): "plate-ssss-mindlin-s20",
-    }
+    shipped = SHIPPED_PLANE_MAPS
 
     def __init__(self, patch: float | None = None):
         self.patch = patch

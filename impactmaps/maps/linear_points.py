@@ -24,7 +24,7 @@ from ..targets import target_class
 from .accuracy import AccuracyControl, exact_point
 from .map_family import Axis, MapFamily, PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points
-from .structures import BasisTable, MapStructure
+from .structures import SHIPPED_PLANE_MAPS, BasisTable, MapStructure
 
 __all__ = ["LinearFamily", "LINEAR", "solve_points"]
 
@@ -47,12 +47,7 @@ class LinearFamily(MapFamily):
     axes = (Axis("lambda_", "relative stiffness K_st/K"), Axis("zeta", "loss factor"))
     law_in_description = False
     classifies = True
-    shipped = {
-        ("beam", "euler"): "beam-ss-euler",
-        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
-        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
-        ("plate", "mindlin"): "plate-ssss-mindlin-s20",
-    }
+    shipped = SHIPPED_PLANE_MAPS
 
     def describes(self, law) -> bool:
         return law.linear_stiffness is not None

@@ -176,6 +176,9 @@ DEFAULT_STRUCTURES = (
     MapStructure(kind="plate", theory="mindlin", supports="SSSS"),
 )
 
+#: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike.
+SHIPPED_PLANE_MAPS = {(structure.kind, structure.theory): structure.name for structure in DEFAULT_STRUCTURES}
+
 #: Slendernesses (span/thickness) of the shipped shear-deformable map families; the
 #: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.
 FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
