@@ -29,6 +29,7 @@ import pandas as pd
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 from impactmaps.contact import ContactPair, contact_law_class, effective_modulus  # noqa: E402
+from impactmaps.contact.first_yield import first_yield_force, first_yield_indentation  # noqa: E402
 from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "validation"))
@@ -45,8 +46,8 @@ STYLE = {"yigit-christoforou": ("tab:blue", "--"), "stronge": ("tab:orange", "-.
 
 
 def scales():
-    delta_y = RADIUS * (np.pi * C_Y * YIELD / (2 * E_STAR)) ** 2
-    force_y = 4 / 3 * E_STAR * np.sqrt(RADIUS) * delta_y ** 1.5
+    delta_y = float(first_yield_indentation(E_STAR, RADIUS, YIELD, C_Y))
+    force_y = float(first_yield_force(E_STAR, RADIUS, delta_y))
     v_y = np.sqrt(0.8 * force_y * delta_y / MASS)
     return delta_y, force_y, v_y
 

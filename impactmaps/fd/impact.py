@@ -30,10 +30,9 @@ from .grid import beam_grid, gauge_columns, gauge_weights, node_for
 from .residual import residual_state
 from .timestep import choose_time_step, contact_rate, single_case_parameters
 
-#: Width/height above which a yielding layered section under-predicts the hinge: against a 3D
-#: elastic–perfectly-plastic beam (validation/fe/level5_*), b/h = 2.16 gave the FD mid-span
-#: peak deflection +6.6 % and permanent deflection +22.7 % too large (the 3D hinge is held
-#: across the width, its static limit load 8 % above beam theory); b/h = 0.36: +1.0 %, +4.6 %.
+#: Width/height above which a yielding layered section under-predicts the hinge (the 3D hinge
+#: is held across the width): measured against a 3D elastic–perfectly-plastic beam in
+#: validation/fe/level5_* (docs/validation.rst, FE level 5).
 WIDE_SECTION_RATIO = 1.0
 
 __all__ = ["FDDetails", "STANDARD_GRAVITY", "simulate_fd"]

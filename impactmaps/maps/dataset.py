@@ -117,8 +117,8 @@ def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
     for s_index, kind in enumerate(dataset["kind"].values):
         fmax = dataset["fmax_normalised"].values[s_index]
         lam, zeta = np.meshgrid(dataset["lambda_"].values, dataset["zeta"].values, indexing="ij")
-        infinite, quasi = np.meshgrid(peaked["quasi_static_peak"].values[s_index],
-                                      peaked["infinite_structure_peak"].values[s_index], indexing="ij")[::-1]
+        infinite = np.broadcast_to(peaked["infinite_structure_peak"].values[s_index], fmax.shape)
+        quasi = np.broadcast_to(peaked["quasi_static_peak"].values[s_index][:, None], fmax.shape)
         ok = dataset["done"].values[s_index].astype(bool) & np.isfinite(fmax)  # unresolved: no label
         if ok.any():
             labels[s_index][ok] = classify(
