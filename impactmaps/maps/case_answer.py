@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..cases import case_dimensionless
 from ..hertz_similarity import hertz_numbers
-from ..solvers.modal import _uses_patch, contact_radius_function
+from ..solvers.modal import uses_patch, contact_radius_function
 from .lookup import status_notes
 from .plastic_lookup import lookup_plastic
 from .map_family import available_map_families, map_family
@@ -65,7 +65,7 @@ def case_map_law(case) -> str:
 def case_loads_a_patch(case) -> bool:
     """Whether ``simulate`` spreads this case's contact force over the contact patch: the
     target takes one under ``solver.contact_patch`` and the law has a contact radius."""
-    return _uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
+    return uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
 
 
 def family_groups(target) -> dict:

@@ -27,7 +27,7 @@ from ..contact.hertz import HertzContact
 from ..hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
 from ..law_asymptotes import asymptote
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR
-from ..solvers.modal import ModalSettings, _uses_patch, reference_contact_stiffness, simulate
+from ..solvers.modal import ModalSettings, uses_patch, reference_contact_stiffness, simulate
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, exact_point
 from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
@@ -217,7 +217,7 @@ class HertzFamily(MapFamily):
         return HertzFamily(patch)
 
     def check(self, structure, target, settings) -> None:
-        if self.patch is not None and not _uses_patch(target, settings.contact_patch):
+        if self.patch is not None and not uses_patch(target, settings.contact_patch):
             raise ValueError(f"patch = {self.patch!r}: the {structure.name} target takes no contact patch under "
                              f"contact_patch = {settings.contact_patch!r} (valid: patch = None)")
 

@@ -75,7 +75,6 @@ __all__ = [
 ]
 
 #: Names other modules and tests reach through this module (re-exported).
-_uses_patch = uses_patch  # the maps' name for it (until they ask the target)
 _REEXPORTED = (HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, DEFAULT_SETTINGS, MAX_CUTOFF_RATIO, MAX_EVENTS,
                MAX_MIN_MODES, STABLE_TOP_STEP, uses_patch)
 
