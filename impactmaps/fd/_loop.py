@@ -44,11 +44,14 @@ MAX_INTERVALS = 10_000
 #: M_mass + ½Δt C_d with the constrained rows as identity).
 LoopGrid = namedtuple("LoopGrid", "dx constrained section_weight stencil mass_diag mass_off "
                       "damping_diag pivots lower")
-#: The section's constants: layer mid-planes z, layer area b Δz, E, σ_y, H, model EI.
+#: The section's constants: layer mid-planes z, layer area b Δz, E, σ_y, H, model EI and the
+#: width constraint's β_sat, γ (:mod:`impactmaps.fd.wide_section`).
 LoopSection = namedtuple("LoopSection", "plastic z layer_area youngs_modulus yield_strength "
-                         "hardening_modulus bending_stiffness")
-#: Per node (and layer) section state, updated in place.
-LayerState = namedtuple("LayerState", "stress back plastic_strain plastic_work_node virgin")
+                         "hardening_modulus bending_stiffness constraint_saturation "
+                         "constraint_rate")
+#: Per node (and layer) section state, updated in place (``constraint``: β_c, part of ``back``).
+LayerState = namedtuple("LayerState", "stress back plastic_strain plastic_work_node virgin "
+                        "constraint")
 #: What drives the beam: a sphere (``has_impactor``) and/or a prescribed load history
 #: ``external_force`` (one value per step, or empty), both at ``node``.
 Drive = namedtuple("Drive", "has_impactor impactor_mass velocity gravity node external_force")
@@ -72,8 +75,9 @@ _MAT = numba.types.Array(_F8, 2, "C")
 _BOOL_VEC = numba.types.Array(_BOOL, 1, "C")
 _GRID_TYPE = numba.types.NamedTuple((_F8, _BOOL_VEC, _VEC, _MAT, _VEC, _VEC, _VEC, _VEC, _VEC),
                                     LoopGrid)
-_SECTION_TYPE = numba.types.NamedTuple((_BOOL, _VEC, _F8, _F8, _F8, _F8, _F8), LoopSection)
-_LAYERS_TYPE = numba.types.NamedTuple((_MAT, _MAT, _MAT, _VEC, _BOOL_VEC), LayerState)
+_SECTION_TYPE = numba.types.NamedTuple((_BOOL, _VEC, _F8, _F8, _F8, _F8, _F8, _F8, _F8),
+                                       LoopSection)
+_LAYERS_TYPE = numba.types.NamedTuple((_MAT, _MAT, _MAT, _VEC, _BOOL_VEC, _MAT), LayerState)
 _DRIVE_TYPE = numba.types.NamedTuple((_BOOL, _F8, _F8, _F8, _I8, _VEC), Drive)
 _STEPPING_TYPE = numba.types.NamedTuple((_F8, _I8, _I8), Stepping)
 _RECORDS_TYPE = numba.types.NamedTuple(
@@ -136,10 +140,13 @@ def _section_moments(section, layers, section_weight, curvature, old_curvature, 
         m = 0.0
         work = 0.0
         for i in range(n_layers):
-            s, b, p, wk = return_map(stress[j, i], back[j, i], -z[i] * dk, youngs_modulus,
-                                     section.yield_strength, section.hardening_modulus)
+            s, b, c, p, wk = return_map(stress[j, i], back[j, i], layers.constraint[j, i],
+                                        -z[i] * dk, youngs_modulus, section.yield_strength,
+                                        section.hardening_modulus,
+                                        section.constraint_saturation, section.constraint_rate)
             stress[j, i] = s
             back[j, i] = b
+            layers.constraint[j, i] = c
             layers.plastic_strain[j, i] += p
             m += s * z[i]
             work += wk
@@ -399,7 +406,8 @@ def _loop_section(beam):
     return LoopSection(beam.plastic, np.ascontiguousarray(section.layer_positions, dtype=float),
                        float(section.width * section.layer_thickness),
                        float(beam.youngs_modulus), float(beam.yield_strength),
-                       float(beam.hardening_modulus), float(beam.bending_stiffness))
+                       float(beam.hardening_modulus), float(beam.bending_stiffness),
+                       float(section.constraint_saturation), float(section.constraint_rate))
 
 
 def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v0,
@@ -429,7 +437,7 @@ def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v
     result : LoopResult
         Scalars of the run (``records``: number of recorded steps) and final curvature.
     state : dict
-        ``w``, ``v`` (v^{N−½}), ``stress``, ``back``, ``plastic_strain``,
+        ``w``, ``v`` (v^{N−½}), ``stress``, ``back``, ``constraint``, ``plastic_strain``,
         ``plastic_work_node``, ``records`` (a :class:`Records`) and ``intervals`` (the
         contact intervals kept, shape (k, 2)) [SI].
     """
@@ -437,7 +445,7 @@ def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v
     n = grid.n_nodes
     shape = (n, section.z.shape[0]) if beam.plastic else (n, 1)
     layers = LayerState(np.zeros(shape), np.zeros(shape), np.zeros(shape), np.zeros(n),
-                        np.ones(n, dtype=bool))
+                        np.ones(n, dtype=bool), np.zeros(shape))
     pivots, lower = factorise(grid, stepping.dt)
     loop_grid = LoopGrid(float(grid.dx), grid.constrained, grid.section_weight, grid.stencil,
                          grid.mass_diag, grid.mass_off, grid.damping_diag, pivots, lower)
@@ -452,7 +460,7 @@ def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v
     if result.n_intervals > MAX_INTERVALS:
         warnings.warn(f"{result.n_intervals} contacts; only the first {MAX_INTERVALS} intervals "
                       "are kept", stacklevel=3)
-    state = dict(w=w, v=v, stress=layers.stress, back=layers.back,
+    state = dict(w=w, v=v, stress=layers.stress, back=layers.back, constraint=layers.constraint,
                  plastic_strain=layers.plastic_strain,
                  plastic_work_node=layers.plastic_work_node, records=records,
                  intervals=records.intervals[: min(result.n_intervals, MAX_INTERVALS)])

@@ -39,6 +39,7 @@ from .._checks import (
 from ..targets.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
+from .wide_section import constraint_parameters
 
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
 
@@ -91,6 +92,11 @@ class FDBeam:
         ν [-], not used by the beam; kept so that the beam can serve as the target
         material of a contact law, e.g. ``law_for_sphere("stronge", sphere, beam)``
         (default 0.3).
+    width_constraint : bool, optional
+        If True (default) a section wider than it is deep gets the wide-section model of
+        :mod:`impactmaps.fd.wide_section` (the plastic hinge held across the width,
+        calibrated on 3D finite elements for 1 < b/h ≤ 8.6); for b/h ≤ 1 it changes
+        nothing. False: the uniaxial layered section at every width.
     """
 
     length: float
@@ -106,6 +112,7 @@ class FDBeam:
     n_half_layers: int = 10
     plastic: bool = True
     poisson_ratio: float = 0.3
+    width_constraint: bool = True
 
     def __post_init__(self):
         require_positive("length", self.length, "m")
@@ -210,8 +217,11 @@ class FDBeam:
     @property
     def section(self) -> LayeredSection:
         """The layered cross-section."""
+        saturation, rate = constraint_parameters(self.width, self.height, self.youngs_modulus,
+                                                 self.yield_strength) \
+            if self.width_constraint else (0.0, 0.0)
         return LayeredSection(self.width, self.height, self.youngs_modulus, self.yield_strength,
-                              self.hardening_modulus, self.n_half_layers)
+                              self.hardening_modulus, self.n_half_layers, saturation, rate)
 
     @property
     def area(self) -> float:

@@ -18,6 +18,7 @@ from ..contact.linear import LinearContact
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, require_stride
 from .energy import beam_energies, kinetic_energy
+from .residual import residual_state
 from .grid import (
     beam_grid,
     factorise,
@@ -50,6 +51,10 @@ class FDResponse:
         Δt [s].
     load_node_position : float
         Node carrying the load [m].
+    residual : pandas.DataFrame or None
+        Per node residual state at the end of the run, as ``FDDetails.residual``
+        (``permanent_deflection_m``: the final state unloaded elastically, ``w − K_e⁻¹
+        f_int``, whatever load still acts); None when the run has no step.
     """
 
     history: pd.DataFrame
@@ -57,6 +62,7 @@ class FDResponse:
     energy: dict
     time_step: float
     load_node_position: float
+    residual: pd.DataFrame | None = None
 
 
 def simulate_fd_response(beam: FDBeam, load=None, load_position=None, *, duration,
@@ -144,5 +150,6 @@ def simulate_fd_response(beam: FDBeam, load=None, load_position=None, *, duratio
     scale = max(abs(load_work) + initial_energy, 1e-300)
     energy = dict(load_work=load_work, initial_energy=initial_energy + start_kinetic, **energies,
                   damping_work=damping_work, energy_balance_error=(total - reference) / scale)
+    residual = residual_state(beam, grid, result.curvature, state) if n_steps else None
     return FDResponse(history=history, final_deflection=state["w"].copy(), energy=energy,
-                      time_step=dt, load_node_position=node * grid.dx)
+                      time_step=dt, load_node_position=node * grid.dx, residual=residual)

@@ -32,6 +32,12 @@ gives the Bauschinger effect and a constant elastic range ``2 σ_y``; in monoton
 it coincides with isotropic hardening. The return mapping in 1-D is exact for a strain
 increment of any size (closed form), so the stress update introduces no time-step error.
 
+A wide section (b/h > 1, :mod:`impactmaps.fd.wide_section`) adds a saturating
+(Armstrong–Frederick) kinematic back stress β_c ≤ β_sat for the plastic hinge held across
+the width; its return needs a scalar Newton solve (convex, monotone convergence), exact
+to round-off for an increment of any size. Without it (β_sat = 0) the section is the
+uniaxial one above.
+
 Energy: per unit volume the strain energy is ``σ²/(2E)`` and the plastic work increment
 is ``W_p += ½(σ_old + σ_new) Δε_p`` (trapezoidal rule). With that choice
 ``½(σ_old + σ_new) Δε = Δ(σ²/(2E)) + ΔW_p`` holds *exactly* for every increment, so the
@@ -46,6 +52,7 @@ legitimately gives ``ΔW_p < 0``; without hardening ``ΔW_p ≥ 0`` always.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numba
@@ -68,84 +75,125 @@ __all__ = [
 
 # -- the one implementation of the layer stress update --------------------------------
 @numba.njit(cache=True)
-def return_map(stress, back_stress, strain_increment, youngs_modulus, yield_strength,
-               hardening_modulus):
-    """Elastic predictor / radial return for one layer (scalar numba kernel).
+def return_map(stress, back_stress, constraint_stress, strain_increment, youngs_modulus,
+               yield_strength, hardening_modulus, constraint_saturation, constraint_rate):
+    """Elastic predictor / return mapping for one layer (scalar numba kernel).
+
+    The back stress is ``β = β_H + β_c``: the linear kinematic part ``dβ_H = H dε_p`` and
+    the width-constraint part (Armstrong–Frederick form) ``dβ_c = γ (β_sat sign(dε_p) −
+    β_c) |dε_p|``, which saturates at ``±β_sat`` (:mod:`impactmaps.fd.wide_section`;
+    ``β_sat = 0``: no constraint, the closed-form linear return). With the constraint the
+    plastic multiplier solves ``excess = (E + H) Δλ + a (1 − e^{−γ Δλ})`` (``a = β_sat −
+    n β_c ≥ 0``), convex and decreasing in Δλ: Newton from Δλ = 0 converges monotonically;
+    the β_c update is exact for the increment.
 
     Parameters
     ----------
-    stress, back_stress : float
-        Stress σ* and back stress β at the previous step [Pa].
+    stress, back_stress, constraint_stress : float
+        Stress σ*, total back stress β and its constraint part β_c at the previous step [Pa].
     strain_increment : float
         Total strain increment Δε [-].
     youngs_modulus, yield_strength, hardening_modulus : float
         E, σ_y and plastic (kinematic) hardening modulus H [Pa].
+    constraint_saturation : float
+        β_sat [Pa] (0: none).
+    constraint_rate : float
+        γ [-] (1/plastic strain).
 
     Returns
     -------
-    stress, back_stress, plastic_strain_increment, plastic_work_density : float
-        Updated σ [Pa] and β [Pa], Δε_p [-], and ΔW_p = ½(σ* + σ) Δε_p [J/m³].
+    stress, back_stress, constraint_stress, plastic_strain_increment, plastic_work_density : float
+        Updated σ, β and β_c [Pa], Δε_p [-], and ΔW_p = ½(σ* + σ) Δε_p [J/m³].
     """
     trial = stress + youngs_modulus * strain_increment
     relative = trial - back_stress
     excess = abs(relative) - yield_strength
     if excess <= 0.0:
-        return trial, back_stress, 0.0, 0.0
+        return trial, back_stress, constraint_stress, 0.0, 0.0
     direction = 1.0 if relative > 0.0 else -1.0
-    multiplier = excess / (youngs_modulus + hardening_modulus)
+    slope = youngs_modulus + hardening_modulus
+    new_constraint = constraint_stress
+    if constraint_saturation > 0.0:
+        span = constraint_saturation - direction * constraint_stress
+        multiplier = 0.0
+        for _ in range(60):
+            decay = math.exp(-constraint_rate * multiplier)
+            residual = excess - slope * multiplier - span * (1.0 - decay)
+            step = residual / (slope + span * constraint_rate * decay)
+            multiplier += step
+            if step <= 1e-15 * multiplier:
+                break
+        new_constraint = direction * constraint_saturation \
+            - direction * span * math.exp(-constraint_rate * multiplier)
+    else:
+        multiplier = excess / slope
     new_stress = trial - youngs_modulus * multiplier * direction
-    new_back = back_stress + hardening_modulus * multiplier * direction
+    new_back = back_stress + hardening_modulus * multiplier * direction \
+        + (new_constraint - constraint_stress)
     plastic_increment = multiplier * direction
     work = 0.5 * (stress + new_stress) * plastic_increment
-    return new_stress, new_back, plastic_increment, work
+    return new_stress, new_back, new_constraint, plastic_increment, work
 
 
 @numba.njit(cache=True)
-def _update_flat(stress, back_stress, strain_increment, youngs_modulus, yield_strength,
-                 hardening_modulus):
+def _update_flat(stress, back_stress, constraint_stress, strain_increment, youngs_modulus,
+                 yield_strength, hardening_modulus, constraint_saturation, constraint_rate):
     n = stress.shape[0]
     new_stress = np.empty(n)
     new_back = np.empty(n)
+    new_constraint = np.empty(n)
     plastic = np.empty(n)
     work = np.empty(n)
     for i in range(n):
-        s, b, p, w = return_map(stress[i], back_stress[i], strain_increment[i],
-                                youngs_modulus, yield_strength, hardening_modulus)
+        s, b, c, p, w = return_map(stress[i], back_stress[i], constraint_stress[i],
+                                   strain_increment[i], youngs_modulus, yield_strength,
+                                   hardening_modulus, constraint_saturation, constraint_rate)
         new_stress[i] = s
         new_back[i] = b
+        new_constraint[i] = c
         plastic[i] = p
         work[i] = w
-    return new_stress, new_back, plastic, work
+    return new_stress, new_back, new_constraint, plastic, work
 
 
 def stress_update(stress, back_stress, strain_increment, youngs_modulus, yield_strength,
-                  hardening_modulus=0.0):
+                  hardening_modulus=0.0, constraint_stress=0.0, constraint_saturation=0.0,
+                  constraint_rate=0.0):
     """Vectorised layer stress update ``σ = σ* + E Δε`` returned to ``|σ − β| ≤ σ_y``.
 
     Parameters
     ----------
     stress, back_stress, strain_increment : array_like
-        Previous stress σ* [Pa], back stress β [Pa] and strain increment Δε [-];
+        Previous stress σ* [Pa], total back stress β [Pa] and strain increment Δε [-];
         broadcast together (e.g. shape ``(n_nodes, n_layers)``).
     youngs_modulus, yield_strength : float
         E [Pa] and initial yield stress σ_y [Pa].
     hardening_modulus : float, optional
         Linear kinematic plastic modulus H [Pa] (0: perfectly plastic).
+    constraint_stress : array_like, optional
+        Previous width-constraint part β_c of the back stress [Pa] (broadcast as above).
+    constraint_saturation, constraint_rate : float, optional
+        β_sat [Pa] and γ [-] of the width constraint (:func:`return_map`; 0: none).
 
     Returns
     -------
     stress, back_stress, plastic_strain_increment, plastic_work_density : ndarray
-        New σ [Pa], β [Pa], Δε_p [-] and plastic work per unit volume ΔW_p [J/m³].
+        New σ [Pa], β [Pa], Δε_p [-] and plastic work per unit volume ΔW_p [J/m³]; with
+        ``constraint_saturation > 0`` the new β_c [Pa] follows as a fifth array.
     """
     arrays = np.broadcast_arrays(
         np.asarray(stress, float), np.asarray(back_stress, float),
-        np.asarray(strain_increment, float),
+        np.asarray(constraint_stress, float), np.asarray(strain_increment, float),
     )
     shape = arrays[0].shape
     flat = [np.ascontiguousarray(a.ravel()) for a in arrays]
-    out = _update_flat(flat[0], flat[1], flat[2], float(youngs_modulus),
-                       float(yield_strength), float(hardening_modulus))
-    return tuple(o.reshape(shape) for o in out)
+    out = _update_flat(flat[0], flat[1], flat[2], flat[3], float(youngs_modulus),
+                       float(yield_strength), float(hardening_modulus),
+                       float(constraint_saturation), float(constraint_rate))
+    stress, back, constraint, plastic, work = (o.reshape(shape) for o in out)
+    if constraint_saturation > 0.0:
+        return stress, back, plastic, work, constraint
+    return stress, back, plastic, work
 
 
 # -- the section ----------------------------------------------------------------------
@@ -159,6 +207,8 @@ class SectionState:
         Curvature κ = w'' at the last update [1/m].
     stress, back_stress, plastic_strain : ndarray, shape (n_points, 2 N_h)
         Layer stress σ [Pa], back stress β [Pa] and accumulated plastic strain ε_p [-].
+    constraint_stress : ndarray, shape (n_points, 2 N_h)
+        The width-constraint part β_c of the back stress [Pa] (0 without it).
     plastic_work : ndarray, shape (n_points,)
         Accumulated plastic work per unit length of beam [J/m].
     """
@@ -168,6 +218,7 @@ class SectionState:
     back_stress: np.ndarray
     plastic_strain: np.ndarray
     plastic_work: np.ndarray
+    constraint_stress: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -188,6 +239,13 @@ class LayeredSection:
         Linear kinematic plastic modulus H [Pa]; 0 (default) is perfectly plastic.
     n_half_layers : int, optional
         N_h; the section has ``2 N_h`` layers (≥ 2, default 10).
+    constraint_saturation : float, optional
+        β_sat [Pa]: the width-constraint back stress saturates at ±β_sat, so the fully
+        plastic moment tends to ``(σ_y + β_sat) b h²/4``; 0 (default): the uniaxial
+        section (:mod:`impactmaps.fd.wide_section` gives it for a wide beam).
+    constraint_rate : float, optional
+        γ [-]: the constraint back stress reaches 1 − 1/e of β_sat after a plastic strain
+        1/γ (needed > 0 when ``constraint_saturation > 0``).
     """
 
     width: float
@@ -196,6 +254,8 @@ class LayeredSection:
     yield_strength: float
     hardening_modulus: float = 0.0
     n_half_layers: int = 10
+    constraint_saturation: float = 0.0
+    constraint_rate: float = 0.0
 
     def __post_init__(self):
         require_positive("width", self.width, "m")
@@ -210,6 +270,9 @@ class LayeredSection:
             )
         require_in_range("n_half_layers", self.n_half_layers, 2, np.inf)
         object.__setattr__(self, "n_half_layers", int(self.n_half_layers))
+        require_nonnegative("constraint_saturation", self.constraint_saturation, "Pa")
+        if self.constraint_saturation > 0.0:
+            require_positive("constraint_rate", self.constraint_rate, "-")
 
     # -- geometry ------------------------------------------------------------------
     @property
@@ -255,6 +318,13 @@ class LayeredSection:
         return self.yield_strength * self.width * self.height**2 / 4.0
 
     @property
+    def limit_moment(self) -> float:
+        """Moment the section tends to at large curvature, ``(σ_y + β_sat) b h² / 4``
+        (= :attr:`plastic_moment` without the width constraint; perfectly plastic
+        layers) [N m]."""
+        return (self.yield_strength + self.constraint_saturation) * self.width * self.height**2 / 4.0
+
+    @property
     def yield_curvature(self) -> float:
         """Curvature magnitude at first yield κ_y = 2 σ_y / (E h) [1/m]."""
         return 2.0 * self.yield_strength / (self.youngs_modulus * self.height)
@@ -269,6 +339,7 @@ class LayeredSection:
             back_stress=np.zeros(shape),
             plastic_strain=np.zeros(shape),
             plastic_work=np.zeros(shape[0]),
+            constraint_stress=np.zeros(shape),
         )
 
     def moment(self, stress) -> np.ndarray:
@@ -295,10 +366,14 @@ class LayeredSection:
         curvature = np.asarray(curvature, dtype=float)
         z = self.layer_positions
         strain_increment = -np.outer(curvature - state.curvature, z)
-        stress, back, plastic, work = stress_update(
-            state.stress, state.back_stress, strain_increment,
-            self.youngs_modulus, self.yield_strength, self.hardening_modulus,
-        )
+        stress, back, constraint, plastic, work = _update_flat(
+            *(np.ascontiguousarray(a, dtype=float).ravel() for a in np.broadcast_arrays(
+                state.stress, state.back_stress, state.constraint_stress, strain_increment)),
+            float(self.youngs_modulus), float(self.yield_strength), float(self.hardening_modulus),
+            float(self.constraint_saturation), float(self.constraint_rate))
+        stress, back, constraint, plastic, work = (
+            a.reshape(state.stress.shape) for a in (stress, back, constraint, plastic, work))
+        state.constraint_stress[...] = constraint
         state.stress[...] = stress
         state.back_stress[...] = back
         state.plastic_strain[...] += plastic

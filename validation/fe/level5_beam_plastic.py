@@ -68,29 +68,63 @@ MESHES = {"coarse": dict(nz=4, ny=2), "fine": dict(nz=6, ny=2), "coarse1": dict(
 ZONE = 0.16                                       # m: fine zone half-length (FD zone 0.13)
 
 
-def fd_beam(n_elements=FD_GRID[0], n_half_layers=FD_GRID[1]) -> FDBeam:
-    """The FD beam of the case."""
+def fd_beam(n_elements=FD_GRID[0], n_half_layers=FD_GRID[1], width_constraint=True) -> FDBeam:
+    """The FD beam of the case (``width_constraint``: the wide-section model, default on;
+    False: the uniaxial layered section)."""
     return FDBeam.from_material(LENGTH, WIDTH, HEIGHT, STEEL, n_elements=n_elements,
-                                n_half_layers=n_half_layers)
+                                n_half_layers=n_half_layers, width_constraint=width_constraint)
 
 
-def fd_impact(n_elements=FD_GRID[0], n_half_layers=FD_GRID[1], duration=FD_DURATION):
-    """The coupled FD impact (Hertz contact) of the case: an ImpactResult."""
+def fd_impact(n_elements=FD_GRID[0], n_half_layers=FD_GRID[1], duration=FD_DURATION,
+              width_constraint=False):
+    """The coupled FD impact (Hertz contact) of the case: an ImpactResult. The default is
+    the uniaxial section, the run that made the committed force (FORCE_CSV)."""
     sphere = Sphere(RADIUS, STEEL, mass=MASS)
     law = law_for_sphere(LAW, sphere, STEEL)
-    return simulate_fd(fd_beam(n_elements, n_half_layers), law, MASS, VELOCITY,
-                       duration=duration)
+    return simulate_fd(fd_beam(n_elements, n_half_layers, width_constraint), law, MASS,
+                       VELOCITY, duration=duration)
 
 
 def fd_prescribed(times, force, n_elements=FD_GRID[0], n_half_layers=FD_GRID[1],
-                  duration=None):
-    """FD beam under the piecewise-linear load (times, force): (t, w_mid) arrays."""
+                  duration=None, width_constraint=False, permanent=False):
+    """FD beam under the piecewise-linear load (times, force): (t, w_mid) arrays, and with
+    ``permanent=True`` also the permanent mid-span deflection at the end [m]."""
     response = simulate_fd_response(
-        fd_beam(n_elements, n_half_layers),
+        fd_beam(n_elements, n_half_layers, width_constraint),
         lambda t: np.interp(t, times, force, right=0.0),
         duration=times[-1] if duration is None else duration)
     h = response.history
-    return h["time_s"].to_numpy(), h["deflection_at_load_m"].to_numpy()
+    out = h["time_s"].to_numpy(), h["deflection_at_load_m"].to_numpy()
+    if not permanent:
+        return out
+    residual = response.residual
+    mid = int(np.argmin(np.abs(residual["x_m"].to_numpy() - 0.5 * LENGTH)))
+    return (*out, float(residual["permanent_deflection_m"].to_numpy()[mid]))
+
+
+def run_fd_wide(_args):
+    """The FD beam with the wide-section model against the 3D reference, same force: grid
+    study (prescribed load) and the coupled impact (its own force; information only)."""
+    times, force = prescribed_force()
+    data = load()
+    ref = data["fe_runs"][REFERENCE]
+    study = {}
+    for nl, nh in ((100, 10), (200, 10), (400, 10), (200, 20), (200, 40), (400, 20)):
+        for constrained in (True, False):
+            t, w, perm = fd_prescribed(times, force, nl, nh, width_constraint=constrained,
+                                       permanent=True)
+            key = f"{nl}x{nh}" + ("" if constrained else "_uniaxial")
+            study[key] = dict(peak_deflection_m=float(w.max()), permanent_deflection_m=perm,
+                              peak_over_fe=float(w.max() / ref["peak_deflection_m"] - 1),
+                              permanent_over_fe=float(perm / ref["permanent_deflection_m"] - 1))
+            print(key, study[key], flush=True)
+    coupled = fd_summary(fd_impact(duration=FE_END, width_constraint=True))
+    coupled["peak_over_fe"] = coupled["peak_deflection_m"] / ref["peak_deflection_m"] - 1
+    coupled["permanent_over_fe"] = coupled["permanent_deflection_m"] / ref["permanent_deflection_m"] - 1
+    print("coupled", coupled)
+    data["fd_wide"] = dict(prescribed=study, coupled_own_force=coupled, reference=REFERENCE,
+                           command="python validation/fe/level5_beam_plastic.py fd-wide")
+    save(data)
 
 
 def late_mean(t, w, start):
@@ -400,6 +434,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = p.add_subparsers(dest="what", required=True)
     sub.add_parser("fd")
+    sub.add_parser("fd-wide")
     fe = sub.add_parser("fe")
     fe.add_argument("--mesh", default="coarse", choices=sorted(MESHES))
     fe.add_argument("--dt", type=float, default=5e-6)
@@ -415,6 +450,8 @@ def main(argv=None):
     a = p.parse_args(argv)
     if a.what == "fd":
         run_fd(a)
+    elif a.what == "fd-wide":
+        run_fd_wide(a)
     else:
         run_fe(a)
 
