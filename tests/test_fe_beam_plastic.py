@@ -10,9 +10,11 @@ grid operators, time loop, residual state) that moves it away from the 3D solid 
 here. No ``ccx`` needed.
 
 Goals (issue 28, step 5): permanent mid-span deflection within 5 %, peak deflection
-within 3 % of the 3D solid. They are asserted against the FE reference only where the
-committed FE runs show that reference converged (mesh and time-step differences a third
-of the goal or less, checked below).
+within 3 % of the 3D solid under the same prescribed force. On the 60 mm wide beam (b/h
+2.16) they hold with the wide-section model (:mod:`impactmaps.fd.wide_section`, the
+default); the uniaxial layered section (``width_constraint=False``) misses them, and
+stays checked against its measured bands. The committed force is the coupled FD impact
+with the uniaxial section (the run that made it).
 """
 
 from __future__ import annotations
@@ -51,8 +53,17 @@ def _reference(tag=l5.REFERENCE):
 
 @pytest.fixture(scope="module")
 def fd_result():
-    """The coupled FD impact of the case on the grid that made the committed force."""
+    """The coupled FD impact of the case (uniaxial section) on the grid that made the
+    committed force."""
     return l5.fd_impact(*l5.FD_GRID, duration=l5.FE_END)
+
+
+@pytest.fixture(scope="module")
+def fd_wide():
+    """The FD beam with the wide-section model (200 × 10) under the committed load:
+    (t, w_mid, permanent w_mid)."""
+    _data()
+    return l5.fd_prescribed(*l5.prescribed_force(), width_constraint=True, permanent=True)
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +73,7 @@ def fd_run(fd_result):
 
 @pytest.fixture(scope="module")
 def fd_prescribed():
-    """The FD beam (N_l × N_h = 200 × 10) under the committed load: (t, w_mid)."""
+    """The uniaxial FD beam (N_l × N_h = 200 × 10) under the committed load: (t, w_mid)."""
     _data()
     return l5.fd_prescribed(*l5.prescribed_force())
 
@@ -71,10 +82,11 @@ def test_fd_static_bending_against_3d():
     """The section model alone: the FD beam loaded quasi-statically at mid-span (load
     ramped over 50 ms ≈ 5 periods, critically damped fundamental) against the 3D quarter
     beam in static 3-point bending (``level5_static_bending.py``), up to 1.4 P_y
-    (M = 0.93 M_p): within 1.5 %. Measured: the FD is within 0.2 % of the exact beam
-    theory and the 3D beam within 0.7 % of it up to 1.37 P_y, 1.1 % stiffer at 1.40 P_y
-    (b = 60 mm; b = 10 mm: 0.1 %), so the FD − 3D difference is ≤ 1.3 %: the uniaxial
-    layered section holds statically."""
+    (M = 0.93 M_p): within 1.5 %. Measured: the uniaxial FD is within 0.2 % of the exact
+    beam theory and the 3D beam within 0.7 % of it up to 1.37 P_y, 1.1 % stiffer at
+    1.40 P_y (b = 60 mm; b = 10 mm: 0.1 %), so the FD − 3D difference is ≤ 1.3 %; the
+    wide-section model (the default, run here) is within 0.8 % of the 3D beam up to
+    1.5 P_y (``level5_wide_calibration.py``)."""
     static = _data().get("static_runs", {}).get("static_b60mm_nz4_ny1")
     if static is None:
         pytest.skip("static bending run not committed")
@@ -102,40 +114,50 @@ def test_fd_elastic_phase_against_3d(fd_prescribed):
     early = h[:, 0] <= 3e-3
     difference = np.interp(h[early, 0], t, w) - h[early, 2]
     assert np.abs(difference).max() <= 0.02 * h[early, 2].max()
-# Measured (committed runs, README Level 5): the coupled FD (200 × 10) is +6.6 % above the
-# 3D peak deflection and +22.7 % above its permanent deflection (grid-converged FD: +6.3 %,
-# +23.9 %). The goals are missed because the FD's uniaxial section caps the mid-span hinge
-# at M_p = σ_y b h²/4, while the 3D hinge of this wide beam (b/h = 2.2) is restrained
-# across the width: its static limit load is 8 % above the beam theory's (2 % for a
-# 10 mm wide beam), and the force spikes drive the mid-span moment to collapse level.
-# The bands below catch a change of the FD beam; the goals stay as strict xfails.
+def test_fd_peak_deflection_goal(fd_wide):
+    """Issue goal: peak mid-span deflection of the FD beam within 3 % of the 3D beam under
+    the same force. Wide-section model, 200 × 10: +0.65 % (converged grids +0.27 … +0.52 %;
+    100 × 10: +1.3 %); the FE time-step uncertainty of the peak is 1.3 %."""
+    run, _h = _reference()
+    assert fd_wide[1].max() == pytest.approx(run["peak_deflection_m"], rel=PEAK_GOAL)
+
+
+def test_fd_permanent_deflection_goal(fd_wide):
+    """Issue goal: permanent mid-span deflection (elastic unloading of the final state on
+    both sides) within 5 % of the 3D beam under the same force. Wide-section model,
+    200 × 10: −4.3 % — inside, with a thin margin: the finer FD grids give −4.1 … −5.2 %,
+    the calibration's spread of ε_c (per width) moves it by −2.8 … +2.9 %, and the 3D value
+    itself is +1.4 % from a point load (README, Level 5)."""
+    run, _h = _reference()
+    assert fd_wide[2] == pytest.approx(run["permanent_deflection_m"], rel=PERMANENT_GOAL)
+
+
+def test_fd_wide_history_follows_3d(fd_wide):
+    """The wide-section FD deflection history under the same force: within 3 % of the 3D
+    peak up to 8.5 ms (measured 2.2 %; 1.4 % up to 8 ms), within 5 % over the whole dynamic
+    step (measured 4.4 %, at 10.5 ms in the free vibration after the last large contact,
+    the FD below the 3D beam; the uniaxial section: 11.8 %)."""
+    _run, h = _reference()
+    t, w, _perm = fd_wide
+    difference = np.abs(np.interp(h[:, 0], t, w) - h[:, 2])
+    peak = h[:, 2].max()
+    assert difference[h[:, 0] <= 8.5e-3].max() <= PEAK_GOAL * peak
+    assert difference.max() <= 0.05 * peak
+
+
+# Measured (committed runs, README Level 5) with the *uniaxial* section: the coupled FD
+# (200 × 10) is +6.6 % above the 3D peak deflection and +22.7 % above its permanent
+# deflection (grid-converged FD: +6.3 %, +23.9 %). It caps the mid-span hinge at M_p =
+# σ_y b h²/4, while the 3D hinge of this wide beam (b/h = 2.2) is restrained across the
+# width (static limit load 8 % above the beam theory's, 2 % for a 10 mm wide beam). The
+# bands catch a change of the uniaxial FD beam.
 PEAK_BAND = (0.04, 0.09)
 PERMANENT_BAND = (0.15, 0.30)
-GOAL_MISSED = ("issue 28 step 5 goal not met: the FD section's uniaxial hinge (M_p = σ_y b h²/4) "
-               "is weaker than the 3D wide beam's laterally restrained hinge (static limit load "
-               "+8 %); see validation/fe/README.md, Level 5")
-
-
-@pytest.mark.xfail(strict=True, reason=GOAL_MISSED)
-def test_fd_peak_deflection_goal(fd_run):
-    """Issue goal: peak mid-span deflection of the FD impact within 3 % of the 3D beam
-    driven by the same force."""
-    run, _h = _reference()
-    assert fd_run["peak_deflection_m"] == pytest.approx(run["peak_deflection_m"], rel=PEAK_GOAL)
-
-
-@pytest.mark.xfail(strict=True, reason=GOAL_MISSED)
-def test_fd_permanent_deflection_goal(fd_run):
-    """Issue goal: permanent mid-span deflection (elastic unloading of the final state on
-    both sides) within 5 % of the 3D beam."""
-    run, _h = _reference()
-    assert fd_run["permanent_deflection_m"] == pytest.approx(run["permanent_deflection_m"],
-                                                             rel=PERMANENT_GOAL)
 
 
 def test_fd_peak_deflection_measured_band(fd_run, fd_prescribed):
-    """The FD peak (coupled run, and the FD under the committed force itself) stays in
-    the measured band above the 3D peak (+6.6 % / +6.6 %; FE time-step uncertainty of
+    """The uniaxial FD peak (coupled run, and the FD under the committed force itself)
+    stays in the measured band above the 3D peak (+6.6 % / +6.6 %; FE time-step uncertainty of
     the peak 1.3 %, mesh and width ≤ 0.2 %)."""
     run, _h = _reference()
     for peak in (fd_run["peak_deflection_m"], fd_prescribed[1].max()):
@@ -144,7 +166,7 @@ def test_fd_peak_deflection_measured_band(fd_run, fd_prescribed):
 
 
 def test_fd_permanent_deflection_measured_band(fd_run):
-    """The FD permanent deflection stays in the measured band above the 3D one (+22.7 %;
+    """The uniaxial FD permanent deflection stays in the measured band above the 3D one (+22.7 %;
     the 3D value moves by 1.4 % when the load strip is halved)."""
     run, _h = _reference()
     excess = fd_run["permanent_deflection_m"] / run["permanent_deflection_m"] - 1
@@ -154,7 +176,8 @@ def test_fd_permanent_deflection_measured_band(fd_run):
 def test_fd_against_narrow_3d_beam(fd_run, fd_prescribed):
     """On a 10 mm wide beam (the force scaled by b/60 mm, so beam theory predicts the
     same deflection) the 3D hinge is no longer restrained across the width, and the FD
-    beam meets the issue's goals: peak within 3 % (measured: coupled +1.0 %, same force
+    beam (uniaxial there, b/h = 0.36; the uniaxial 60 mm FD beam is the same beam with
+    everything scaled by b) meets the issue's goals: peak within 3 % (measured: coupled +1.0 %, same force
     +1.0 %; FD converged −0.0 %), and the history within 3 % of the peak up to 8.5 ms
     (measured 1.9 %; 3.2 % over the whole run)."""
     run, h = _reference(l5.NARROW)
@@ -187,13 +210,25 @@ def test_committed_force_is_the_current_fd_force(fd_result):
     assert np.trapezoid(now, times) == pytest.approx(np.trapezoid(force, times), rel=0.005)
 
 
-def test_a_wide_yielding_section_is_announced():
-    """The measured limit of the layered section (above: b/h = 2.16 misses both goals, the
-    3D hinge being held across the width) is announced by the FD run itself: a
-    ModelValidityWarning naming width/height when the section yielded with b/h > 1 (a
-    coarse grid and 3 ms suffice: the section yields in the first contact)."""
+def test_a_section_outside_the_checked_range_is_announced():
+    """The uniaxial section (``width_constraint=False``) yielding at b/h = 2.16 (which
+    misses both goals, above) is announced by the FD run itself, a ModelValidityWarning
+    naming width/height; the wide-section model is not, inside its calibrated range, and
+    is beyond it (b/h > 8.63). A coarse grid and 3 ms suffice: the section yields in the
+    first contact."""
+    import warnings
+
     from impactmaps.validity import ModelValidityWarning
 
     with pytest.warns(ModelValidityWarning, match="width/height = 2.16"):
         result = l5.fd_impact(50, 4, duration=0.003)
     assert result.details.residual["max_plastic_strain"].max() > 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelValidityWarning)
+        result = l5.fd_impact(50, 4, duration=0.003, width_constraint=True)
+    assert result.details.residual["max_plastic_strain"].max() > 0.0
+    wide = dataclasses.replace(l5.fd_beam(50, 4), width=0.3)
+    sphere = l5.Sphere(l5.RADIUS, l5.STEEL, mass=5 * l5.MASS)
+    with pytest.warns(ModelValidityWarning, match="beyond the 3D calibration"):
+        l5.simulate_fd(wide, l5.law_for_sphere(l5.LAW, sphere, l5.STEEL), 5 * l5.MASS,
+                       l5.VELOCITY, duration=0.003)

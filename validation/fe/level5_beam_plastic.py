@@ -61,6 +61,8 @@ FE_END = 0.0145                                   # s: dynamic step end (last co
 LOAD_DT = 5e-6                                    # s: sampling of the prescribed load
 JSON = ct.RESULTS / "level5_beam_plastic.json"
 FORCE_CSV = ct.RESULTS / "level5_force.csv"
+#: The force of the coupled FD impact with the wide-section model (``fd-wide``).
+FORCE_WIDE_CSV = ct.RESULTS / "level5_force_wide.csv"
 # FE meshes: (elements through the depth nz, across the half width ny, element length in
 # the mid-span zone |x - L/2| <= ZONE in units of h/nz, growth factor outside the zone).
 MESHES = {"coarse": dict(nz=4, ny=2), "fine": dict(nz=6, ny=2), "coarse1": dict(nz=4, ny=1),
@@ -118,7 +120,14 @@ def run_fd_wide(_args):
                               peak_over_fe=float(w.max() / ref["peak_deflection_m"] - 1),
                               permanent_over_fe=float(perm / ref["permanent_deflection_m"] - 1))
             print(key, study[key], flush=True)
-    coupled = fd_summary(fd_impact(duration=FE_END, width_constraint=True))
+    impact = fd_impact(duration=FE_END, width_constraint=True)
+    h = impact.history
+    np.savetxt(FORCE_WIDE_CSV, np.column_stack([times, *(np.interp(times, h["time_s"], h[c])
+                                                          for c in ("force_N",
+                                                                    "target_displacement_m"))]),
+               delimiter=",", fmt="%.9e", comments="",
+               header="time_s,force_N,fd_midspan_deflection_m")
+    coupled = fd_summary(impact)
     coupled["peak_over_fe"] = coupled["peak_deflection_m"] / ref["peak_deflection_m"] - 1
     coupled["permanent_over_fe"] = coupled["permanent_deflection_m"] / ref["permanent_deflection_m"] - 1
     print("coupled", coupled)
@@ -187,10 +196,11 @@ def run_fd(args):
     save(data)
 
 
-def prescribed_force(end=FE_END):
+def prescribed_force(end=FE_END, csv=FORCE_CSV):
     """The prescribed load, (times, force): the FD force sampled every LOAD_DT (as
-    committed in FORCE_CSV), up to ``end``."""
-    t, f = np.loadtxt(FORCE_CSV, delimiter=",", skiprows=1, usecols=(0, 1), unpack=True)
+    committed in ``csv``: FORCE_CSV, the uniaxial section's coupled impact, or
+    FORCE_WIDE_CSV, the wide-section model's), up to ``end``."""
+    t, f = np.loadtxt(csv, delimiter=",", skiprows=1, usecols=(0, 1), unpack=True)
     times = np.arange(0.0, end + 0.5 * LOAD_DT, LOAD_DT)
     return times, np.interp(times, t, f, right=0.0)
 
@@ -330,7 +340,8 @@ def run_fe(args):
     mesh, knots = quarter_mesh(patch=patch, width=width, **spec)
     if not np.isclose(knots, 0.5 * LENGTH - patch).any():
         raise RuntimeError(f"patch half-length {patch} m is not an element boundary")
-    times, force = prescribed_force(args.end)
+    wide = args.force == "wide"
+    times, force = prescribed_force(args.end, FORCE_WIDE_CSV if wide else FORCE_CSV)
     if args.smooth:
         force = smoothed(force, args.smooth * 1e-6)
     # a beam of another width carries the force scaled by width/WIDTH: the same stresses,
@@ -357,13 +368,13 @@ def run_fe(args):
     peeq = parse_peeq(text)
     centres = {e: mesh.coords[mesh.elements[e - 1][:8] - 1, 0].mean() for e in peeq}
     yielded = [0.5 * LENGTH - centres[e] for e, v in peeq.items() if v > 0]
-    t_fd, w_fd = fd_prescribed(times, force)
+    t_fd, w_fd = fd_prescribed(times, force, width_constraint=wide)
     w_fd_at = np.interp(dyn_t, t_fd, w_fd)
     entry = dict(mesh=args.mesh, **spec, n_nodes=len(mesh.coords),
                  n_elements=len(mesh.elements), element_type=mesh.element_type,
                  zone_element_length_m=HEIGHT / spec["nz"], x_elements=len(knots) - 1,
                  patch_half_length_m=patch, loaded_faces=len(faces), time_step_s=args.dt, automatic_increments=bool(args.auto), width_m=width,
-                 load_smoothing_window_s=args.smooth * 1e-6,
+                 load_smoothing_window_s=args.smooth * 1e-6, force=args.force,
                  dynamic_increments=n_dyn,
                  dynamic_end_s=float(times[-1]), ccx_wall_time_s=wall,
                  ccx_version=ct.ccx_version(),
@@ -447,6 +458,9 @@ def main(argv=None):
     fe.add_argument("--width", type=float, default=None,
                     help="beam width [mm] (default the case's 60 mm); the force is scaled by b")
     fe.add_argument("--end", type=float, default=FE_END, help="dynamic step end [s]")
+    fe.add_argument("--force", default="uniaxial", choices=("uniaxial", "wide"),
+                    help="prescribed force: the coupled FD impact with the uniaxial section "
+                         "(level5_force.csv) or with the wide-section model (level5_force_wide.csv)")
     a = p.parse_args(argv)
     if a.what == "fd":
         run_fd(a)
