@@ -67,7 +67,7 @@ def job_name(case: am.Case) -> str:
     return (f"x{case.x_m:g}_y{case.y_over_estar:g}_nu{case.nu_flat:g}_k{case.stiffness_ratio:g}"
             f"_p{case.per_radius:g}_b{case.block:g}_pen{case.penalty:g}_h{case.hardening:g}"
             f"_n{case.n_load}-{case.n_unload}_{case.element}{'_nl' if case.nlgeom else ''}"
-            f"{'' if case.plastic else '_el'}")
+            f"{'' if case.plastic else '_el'}{'_map' if case.mapped else ''}")
 
 
 def run(case: am.Case, reuse=True):
@@ -260,6 +260,21 @@ def first_yield():
     return out
 
 
+def committed_unstructured(data, case):
+    """The committed unstructured-mesh result of ``case`` (a sweep row of RUNS_CSV or the
+    reference of the mesh study), or None."""
+    if case == REFERENCE and "mesh" in data:
+        return data["mesh"]["reference"]
+    if RUNS_CSV.exists():
+        with RUNS_CSV.open() as f:
+            for row in csv.DictReader(f):
+                if (np.isclose(float(row["x_m"]), case.x_m) and np.isclose(float(row["y_over_estar"]), case.y_over_estar)
+                        and float(row["nu_flat"]) == case.nu_flat and float(row["stiffness_ratio"]) == case.stiffness_ratio
+                        and row["nlgeom"] == "False"):
+                    return {q: float(row[q]) for q in QUANTITIES}
+    return None
+
+
 def studies(names):
     data = json.loads(STUDY_JSON.read_text()) if STUDY_JSON.exists() else {}
     for name in names:
@@ -274,6 +289,24 @@ def studies(names):
                 a, b = run(case)[0], run(replace(case, per_radius=12.0))[0]
                 rows.append(dict(x_m=x, y_over_estar=1e-3, per_radius=[6.0, 12.0],
                                  change=compare(a, b), wall_s=[a["wall_s"], b["wall_s"]]))
+            data[name] = rows
+        elif name == "mapped":
+            rows = []
+            for x, y, pers in ((100.0, 2.2e-3, (6.0, 12.0, 9.0)), (372.759, 1e-3, (6.0, 12.0)),
+                               (7.197, 1e-3, (6.0, 12.0))):
+                base = am.Case(x_m=x, y_over_estar=y)
+                mapped = [run(replace(base, mapped=True, per_radius=p))[0] for p in pers]
+                free = committed_unstructured(data, base) or run(base)[0]
+                rows.append(dict(
+                    x_m=x, y_over_estar=y, per_radius=list(pers),
+                    mapped={q: [m[q] for m in mapped] for q in QUANTITIES},
+                    unstructured_6={q: free[q] for q in QUANTITIES},
+                    mapped_over_unstructured_6=[compare(free, m) for m in mapped],
+                    refinement_change=[compare(mapped[0], m) for m in mapped[1:]],
+                    n_elements=[m["n_elements"] for m in mapped],
+                    wall_s=[m["wall_s"] for m in mapped]))
+                data[name] = rows
+                STUDY_JSON.write_text(json.dumps(data, indent=1))
             data[name] = rows
         elif name == "nlgeom":
             rows = []
@@ -313,7 +346,7 @@ def studies(names):
 
 
 ALL_STUDIES = ("elastic", "firstyield", "increments1000", "mesh7", "mesh12", "size", "mesh", "penalty", "hardening", "increments", "mesh1000",
-               "nlgeom")
+               "nlgeom", "mapped")
 
 
 def main(argv=None):

@@ -58,6 +58,7 @@ class Case:
     contact: str = "SURFACE TO SURFACE"
     small_sliding: bool = True  # ccx SMALL SLIDING: contact elements fixed per increment
     slave: str = "sphere"       # which surface is the slave: "sphere" or "flat"
+    mapped: bool = False        # structured (transfinite) patches of size h0 at the contact
     tension: float = 0.0        # σ∞ / Y of the linear penalty (ccx *SURFACE BEHAVIOR)
     controls: str = ""          # extra ccx cards (e.g. *CONTROLS)
     hardening: float = 0.03     # slope of the *PLASTIC curve / Y (per unit plastic strain)
@@ -101,28 +102,31 @@ def build_mesh(case: Case):
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("axisym")
         g = gmsh.model.geo
-        # block
-        p = [g.addPoint(0, 0, 0), g.addPoint(side, 0, 0), g.addPoint(side, -side, 0),
-             g.addPoint(0, -side, 0)]
-        top = g.addLine(p[0], p[1])
-        lines = [top, g.addLine(p[1], p[2]), g.addLine(p[2], p[3]), g.addLine(p[3], p[0])]
-        block = g.addPlaneSurface([g.addCurveLoop(lines)])
-        # sphere, cut at the equator: quarter disc, arc from the tip to the equator
-        tip, centre, equator = g.addPoint(0, 0, 0), g.addPoint(0, r, 0), g.addPoint(r, r, 0)
-        arc = g.addCircleArc(tip, centre, equator)
-        sph = g.addPlaneSurface([g.addCurveLoop([arc, g.addLine(equator, centre),
-                                                 g.addLine(centre, tip)])])
+        if case.mapped:
+            blocks, sphs, tops, arcs = _mapped_geometry(g, case, side, h0)
+        else:
+            # block
+            p = [g.addPoint(0, 0, 0), g.addPoint(side, 0, 0), g.addPoint(side, -side, 0),
+                 g.addPoint(0, -side, 0)]
+            top = g.addLine(p[0], p[1])
+            lines = [top, g.addLine(p[1], p[2]), g.addLine(p[2], p[3]), g.addLine(p[3], p[0])]
+            blocks, tops = [g.addPlaneSurface([g.addCurveLoop(lines)])], [top]
+            # sphere, cut at the equator: quarter disc, arc from the tip to the equator
+            tip, centre, equator = g.addPoint(0, 0, 0), g.addPoint(0, r, 0), g.addPoint(r, r, 0)
+            arc = g.addCircleArc(tip, centre, equator)
+            sphs, arcs = [g.addPlaneSurface([g.addCurveLoop([arc, g.addLine(equator, centre),
+                                                             g.addLine(centre, tip)])])], [arc]
         g.synchronize()
         far_block, far_sphere = side / 8, r / 6
         expr = "Min({far}, {h0} + {k}*Max(Sqrt(x*x+y*y) - {rf}, 0))"
         fields = []
-        for tag, surf, far in ((1, block, far_block), (3, sph, far_sphere)):
+        for tag, surf, far in ((1, blocks, far_block), (3, sphs, far_sphere)):
             gmsh.model.mesh.field.add("MathEval", tag)
             gmsh.model.mesh.field.setString(tag, "F", expr.format(
                 far=far, h0=h0, k=GROWTH, rf=FINE * a))
             gmsh.model.mesh.field.add("Restrict", tag + 1)
             gmsh.model.mesh.field.setNumber(tag + 1, "InField", tag)
-            gmsh.model.mesh.field.setNumbers(tag + 1, "SurfacesList", [surf])
+            gmsh.model.mesh.field.setNumbers(tag + 1, "SurfacesList", list(surf))
             fields.append(tag + 1)
         gmsh.model.mesh.field.add("Min", 9)
         gmsh.model.mesh.field.setNumbers(9, "FieldsList", fields)
@@ -143,7 +147,7 @@ def build_mesh(case: Case):
         lookup = {int(t): i + 1 for i, t in enumerate(tags)}
         coords = xyz.reshape(-1, 3)
         elements, in_sphere = [], []
-        for surf, flag in ((block, False), (sph, True)):
+        for surf, flag in [(b, False) for b in blocks] + [(sp, True) for sp in sphs]:
             etypes, _, enodes = gmsh.model.mesh.getElements(2, surf)
             for et, en in zip(etypes, enodes):
                 if et != qtype:
@@ -152,10 +156,13 @@ def build_mesh(case: Case):
                 elements.append(conn)
                 in_sphere += [flag] * len(conn)
         edges = {}
-        for key, curve in (("slave", arc), ("master", top)):
-            etypes, _, enodes = gmsh.model.mesh.getElements(1, curve)
-            k = list(etypes).index(ltype)
-            edges[key] = np.array([lookup[int(v)] for v in enodes[k]]).reshape(-1, nper // 4 + 1)[:, :2]
+        for key, curves in (("slave", arcs), ("master", tops)):
+            parts = []
+            for curve in curves:
+                etypes, _, enodes = gmsh.model.mesh.getElements(1, curve)
+                k = list(etypes).index(ltype)
+                parts.append(np.array([lookup[int(v)] for v in enodes[k]]).reshape(-1, nper // 4 + 1)[:, :2])
+            edges[key] = np.vstack(parts)
     finally:
         gmsh.finalize()
     elements = np.vstack(elements)
@@ -166,6 +173,46 @@ def build_mesh(case: Case):
     flip = [0, 3, 2, 1, 7, 6, 5, 4][:elements.shape[1]]
     elements[area < 0] = elements[area < 0][:, flip]
     return coords, elements, np.array(in_sphere), edges, h0
+
+
+def _mapped_geometry(g, case: Case, side, h0):
+    """Block and sphere with a structured patch each at the contact (``case.mapped``): the
+    square 0 ≤ r ≤ m, −m ≤ z ≤ 0 of the block and the sphere's region between its arc
+    (tip to r = m), r = m and z = z_m + min(m, 0.8 (R − z_m)), m = FINE a_ref, transfinite quads of
+    size ≈ h0; the rest of each body is meshed as before, conforming to the patches.
+    Returns (block surfaces, sphere surfaces, top curves, arc curves)."""
+    import gmsh
+
+    r, m = case.radius, FINE * case.a_ref
+    n = int(math.ceil(m / h0)) + 1                     # nodes per patch side
+    # block: square patch + the L-shaped rest
+    o, a1, b1, c1 = g.addPoint(0, 0, 0), g.addPoint(m, 0, 0), g.addPoint(m, -m, 0), g.addPoint(0, -m, 0)
+    far_top, far_corner, far_axis = g.addPoint(side, 0, 0), g.addPoint(side, -side, 0), g.addPoint(0, -side, 0)
+    top1, right1, bottom1, axis1 = g.addLine(o, a1), g.addLine(a1, b1), g.addLine(b1, c1), g.addLine(c1, o)
+    square = g.addPlaneSurface([g.addCurveLoop([top1, right1, bottom1, axis1])])
+    top2 = g.addLine(a1, far_top)
+    rest = g.addPlaneSurface([g.addCurveLoop([top2, g.addLine(far_top, far_corner),
+                                              g.addLine(far_corner, far_axis),
+                                              g.addLine(far_axis, c1), -bottom1, -right1])])
+    # sphere: patch at the tip + the rest of the quarter disc
+    zm = r - math.sqrt(r * r - m * m)
+    tip, centre, equator = g.addPoint(0, 0, 0), g.addPoint(0, r, 0), g.addPoint(r, r, 0)
+    hm = min(m, 0.8 * (r - zm))                         # patch height, below the centre
+    pm, qm, sm = g.addPoint(m, zm, 0), g.addPoint(m, zm + hm, 0), g.addPoint(0, zm + hm, 0)
+    arc1, arc2 = g.addCircleArc(tip, centre, pm), g.addCircleArc(pm, centre, equator)
+    up, across, down = g.addLine(pm, qm), g.addLine(qm, sm), g.addLine(sm, tip)
+    patch = g.addPlaneSurface([g.addCurveLoop([arc1, up, across, down])])
+    rest_s = g.addPlaneSurface([g.addCurveLoop([arc2, g.addLine(equator, centre),
+                                                g.addLine(centre, sm), -across, -up])])
+    g.synchronize()
+    for curve in (top1, right1, bottom1, axis1, arc1, across):
+        gmsh.model.mesh.setTransfiniteCurve(curve, n)
+    for curve in (up, down):
+        gmsh.model.mesh.setTransfiniteCurve(curve, int(math.ceil(hm / h0)) + 1)
+    for surf in (square, patch):
+        gmsh.model.mesh.setTransfiniteSurface(surf)
+        gmsh.model.mesh.setRecombine(2, surf)
+    return [square, rest], [patch, rest_s], [top1, top2], [arc1, arc2]
 
 
 def edge_faces(elements, edges, coords, within):

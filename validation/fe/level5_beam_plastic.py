@@ -104,6 +104,25 @@ def fd_prescribed(times, force, n_elements=FD_GRID[0], n_half_layers=FD_GRID[1],
     return (*out, float(residual["permanent_deflection_m"].to_numpy()[mid]))
 
 
+def constraint_strain_sensitivity(times, force, ref):
+    """FD (200 × 10, wide-section model) under the force with n_c = ε_c E/σ_y set to each
+    width's own best fit of the calibration (results/level5_wide_calibration.json)."""
+    from impactmaps.fd import wide_section
+
+    fitted = json.loads((ct.RESULTS / "level5_wide_calibration.json").read_text())
+    out, kept = {}, wide_section.CONSTRAINT_STRAIN_RATIO
+    try:
+        for tag, n_c in fitted["constraint_strain_ratio_per_width"].items():
+            wide_section.CONSTRAINT_STRAIN_RATIO = n_c
+            t, w, perm = fd_prescribed(times, force, width_constraint=True, permanent=True)
+            out[tag] = dict(n_c=n_c, peak_over_fe=float(w.max() / ref["peak_deflection_m"] - 1),
+                            permanent_over_fe=float(perm / ref["permanent_deflection_m"] - 1))
+            print("n_c of", tag, out[tag], flush=True)
+    finally:
+        wide_section.CONSTRAINT_STRAIN_RATIO = kept
+    return out
+
+
 def run_fd_wide(_args):
     """The FD beam with the wide-section model against the 3D reference, same force: grid
     study (prescribed load) and the coupled impact (its own force; information only)."""
@@ -131,7 +150,9 @@ def run_fd_wide(_args):
     coupled["peak_over_fe"] = coupled["peak_deflection_m"] / ref["peak_deflection_m"] - 1
     coupled["permanent_over_fe"] = coupled["permanent_deflection_m"] / ref["permanent_deflection_m"] - 1
     print("coupled", coupled)
+    sensitivity = constraint_strain_sensitivity(times, force, ref)
     data["fd_wide"] = dict(prescribed=study, coupled_own_force=coupled, reference=REFERENCE,
+                           constraint_strain_sensitivity=sensitivity,
                            command="python validation/fe/level5_beam_plastic.py fd-wide")
     save(data)
 

@@ -69,7 +69,8 @@ def table():
     print("| FE run | nodes | Δt [µs] | c [mm] | load | peak w [mm] | permanent w [mm] | "
           "plastic half-length [mm] | ccx wall [s] |\n|---|---|---|---|---|---|---|---|---|")
     for tag, r in runs.items():
-        load_kind = "smoothed 100 µs" if r.get("load_smoothing_window_s") else "FD force"
+        load_kind = "smoothed 100 µs" if r.get("load_smoothing_window_s") else \
+            ("FD force, wide-section model" if r.get("force") == "wide" else "FD force")
         step = f"≤ {r['time_step_s'] * 1e6:g} auto" if r.get("automatic_increments") else \
             f"{r['time_step_s'] * 1e6:g}"
         perm = f"{r['permanent_deflection_m'] * 1e3:.4f}" if r["dynamic_end_s"] >= FE_END - 1e-9 \
@@ -103,16 +104,18 @@ def figure(data, runs):
     a0.set_ylabel("prescribed force [kN]")
     times, force = prescribed_force()
     tf, wf = fd_prescribed(times, force, 400, 40)
-    a1.plot(tf * 1e3, wf * 1e3, color="k", lw=1.6, label="FD beam 400×40, same force")
+    a1.plot(tf * 1e3, wf * 1e3, color="k", lw=1.6, label="FD beam 400×40 (uniaxial section), same force")
+    tw, ww = fd_prescribed(times, force, width_constraint=True)
+    a1.plot(tw * 1e3, ww * 1e3, color="tab:red", lw=1.4, label="FD beam 200×10, wide-section model, same force")
     a1.plot(t * 1e3, w * 1e3, color="0.5", lw=1.0, ls="--", label="FD beam 200×10 (coupled)")
     for tag in list(runs) + list(data.get("partial_runs", {})):
         h = history(tag)
-        if h is not None and "smooth" not in tag:
+        if h is not None and "smooth" not in tag and runs.get(tag, {}).get("force") != "wide":
             a1.plot(h[0] * 1e3, h[1] * 1e3, lw=0.9, label=f"3D {tag}")
     a1.axhline(data["fd_impact"]["permanent_deflection_m"] * 1e3, color="k", ls=":", lw=0.8,
                label="FD permanent (coupled 200×10)")
     for tag, r in runs.items():
-        if "smooth" not in tag and r["dynamic_end_s"] >= FE_END - 1e-9:
+        if "smooth" not in tag and r.get("force") != "wide" and r["dynamic_end_s"] >= FE_END - 1e-9:
             a1.plot([FE_END * 1e3 + 0.2], [r["permanent_deflection_m"] * 1e3], "o", ms=4)
     a1.set_xlabel("time [ms]")
     a1.set_ylabel("mid-span deflection [mm]")
