@@ -153,3 +153,19 @@ def test_wide_limit_moment_follows_the_3d_limit_loads():
                                  *ws.constraint_parameters(ratio * h, h, E, SY))
         model = section.limit_moment / section.plastic_moment
         assert model == pytest.approx(rows[ratio] / rows[1.0], rel=0.015), ratio
+
+
+def test_settings_and_case_key_turn_the_model_off():
+    """``FDSettings(width_constraint=False)`` (the case file's ``[fd] width_constraint``)
+    reaches the FDBeam; a non-boolean is typed like ``plastic``."""
+    from impactmaps.fd import FDSettings
+    from impactmaps.materials import IsotropicMaterial
+    from impactmaps.targets.beam import Beam
+
+    steel = IsotropicMaterial(E, 0.3, 7850.0, SY)
+    beam = Beam.rectangular(0.78, 0.06, 0.0278, steel, theory="rayleigh", supports="ss")
+    assert FDBeam.from_beam(beam, steel).width_constraint is True
+    off = FDBeam.from_beam(beam, steel, FDSettings(width_constraint=False))
+    assert off.width_constraint is False
+    assert off.section.constraint_saturation == 0.0
+    assert FDBeam.from_beam(beam, steel).section.constraint_saturation > 0.0

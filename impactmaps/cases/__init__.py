@@ -51,7 +51,7 @@ Format
 
     [fd]                                 # optional, finite-difference beam (kind = "fd")
     # n_elements, n_half_layers, plastic, hardening_modulus [Pa],
-    # damping_per_length [N s/m²], gravity, safety_factor, time_step [s],
+    # damping_per_length [N s/m²], width_constraint, gravity, safety_factor, time_step [s],
     # history_stride, gauge_positions [m]
 
 Material tables: see :mod:`impactmaps.cases._materials`.

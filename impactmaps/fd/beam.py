@@ -49,7 +49,7 @@ SUPPORT_ENDS = {"ss": ("ss", "ss"), "cc": ("cc", "cc"), "cs": ("cc", "ss"),
                 "cf": ("cc", "free"), "ff": ("free", "free")}
 #: FDSettings fields that belong to the FDBeam (grid, section, damping).
 _BEAM_OPTIONS = ("n_elements", "n_half_layers", "plastic", "hardening_modulus",
-                 "damping_per_length")
+                 "damping_per_length", "width_constraint")
 
 
 # =====================================================================================
@@ -321,7 +321,7 @@ class FDSettings:
 
     Parameters
     ----------
-    n_elements, n_half_layers, plastic, hardening_modulus, damping_per_length : optional
+    n_elements, n_half_layers, plastic, hardening_modulus, damping_per_length, width_constraint : optional
         Grid and section options of the :class:`FDBeam` (see there). ``None`` (default):
         the FDBeam default, or the value of the FDBeam given to the solver; a value
         replaces it.
@@ -344,6 +344,7 @@ class FDSettings:
     plastic: bool | None = None
     hardening_modulus: float | None = None
     damping_per_length: float | None = None
+    width_constraint: bool | None = None
     gravity: bool = False
     safety_factor: float = 0.8
     time_step: float | None = None
@@ -378,7 +379,7 @@ def _checked_beam_options(options) -> dict:
 
     One check for :class:`FDBeam` and :class:`FDSettings`: integers ``n_elements ≥ 4``
     and ``n_half_layers ≥ 2``, ``hardening_modulus`` [Pa] and ``damping_per_length``
-    [N s/m²] ≥ 0, ``plastic`` a boolean.
+    [N s/m²] ≥ 0, ``plastic`` and ``width_constraint`` booleans.
     """
     values = options if isinstance(options, dict) else {n: getattr(options, n) for n in _BEAM_OPTIONS}
     out = {}
@@ -393,8 +394,9 @@ def _checked_beam_options(options) -> dict:
     for name, unit in (("hardening_modulus", "Pa"), ("damping_per_length", "N s/m^2")):
         if name in values:
             require_nonnegative(name, values[name], unit)
-    if "plastic" in values:
-        out["plastic"] = bool(values["plastic"])
+    for name in ("plastic", "width_constraint"):
+        if name in values:
+            out[name] = bool(values[name])
     return out
 
 

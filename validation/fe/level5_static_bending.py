@@ -84,7 +84,7 @@ def run_static(args):
     data = load()
     data.setdefault("static_runs", {})[tag] = dict(
         width_m=width, nz=args.nz, ny=args.ny, n_nodes=len(mesh.coords), patch_half_length_m=patch,
-        yield_load_N=p_y, ccx_wall_time_s=wall,
+        yield_load_N=p_y, ccx_wall_time_s=wall if np.isfinite(wall) else None,
         last_converged_load_over_Py=float(rows[-1, 0]),
         beam_theory_collapse_load_over_Py=float(LENGTH / (LENGTH - patch) * 1.5),
         stopped=None if stopped is None else "ccx stopped: no equilibrium beyond the last load",
