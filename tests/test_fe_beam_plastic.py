@@ -127,7 +127,8 @@ def test_fd_permanent_deflection_goal(fd_wide):
     both sides) within 5 % of the 3D beam under the same force. Wide-section model,
     200 × 10: −4.3 % — inside, with a thin margin: the finer FD grids give −4.1 … −5.2 %,
     the calibration's spread of ε_c (per width) moves it by −2.8 … +2.9 %, and the 3D value
-    itself is +1.4 % from a point load (README, Level 5)."""
+    itself is +1.4 % from a point load (README, Level 5). Under a second load the goal is
+    missed (+9.9 %, ``test_wide_model_under_its_own_force``)."""
     run, _h = _reference()
     assert fd_wide[2] == pytest.approx(run["permanent_deflection_m"], rel=PERMANENT_GOAL)
 
@@ -232,3 +233,39 @@ def test_a_section_outside_the_checked_range_is_announced():
     with pytest.warns(ModelValidityWarning, match="beyond the 3D calibration"):
         l5.simulate_fd(wide, l5.law_for_sphere(l5.LAW, sphere, l5.STEEL), 5 * l5.MASS,
                        l5.VELOCITY, duration=0.003)
+
+
+@pytest.fixture(scope="module")
+def wide_coupled():
+    """The coupled FD impact with the wide-section model (200 × 10): it made FORCE_WIDE_CSV."""
+    return l5.fd_impact(*l5.FD_GRID, duration=l5.FE_END, width_constraint=True)
+
+
+def test_committed_wide_force_is_the_current_fd_force(wide_coupled):
+    """The second committed load (the wide-section model's coupled impact, sampled every
+    5 µs) is still what the FD gives: largest sample and impulse within 0.5 %."""
+    if not l5.FORCE_WIDE_CSV.exists():
+        pytest.skip("level5_force_wide.csv not committed")
+    times, force = l5.prescribed_force(csv=l5.FORCE_WIDE_CSV)
+    h = wide_coupled.history
+    now = np.interp(times, h["time_s"], h["force_N"])
+    assert now.max() == pytest.approx(force.max(), rel=0.005)
+    assert np.trapezoid(now, times) == pytest.approx(np.trapezoid(force, times), rel=0.005)
+
+
+def test_wide_model_under_its_own_force(wide_coupled):
+    """A second load history: the 3D beam driven by the wide-section model's own coupled
+    force (11 contacts, 68.0 kN largest). Peak: the goal holds (FD under the same force
+    +1.9 %, finer grids +1.0 … +1.4 %; the coupled run +2.0 %). Permanent: **the 5 % goal is
+    missed here** — measured +9.9 % (200 × 10; +8.6 % at 200 × 20, +7.5 % at 400 × 20; the
+    uniaxial section +38.5 %), asserted as a band; under the first load it is −4.3 %. The
+    model removes three quarters of the uniaxial section's bias, but its permanent
+    deflection is within about ±10 % of the 3D beam, not 5 % (README, Level 5)."""
+    run, _h = _reference(l5.REFERENCE_WIDE_FORCE)
+    t, w, perm = l5.fd_prescribed(*l5.prescribed_force(csv=l5.FORCE_WIDE_CSV),
+                                  width_constraint=True, permanent=True)
+    assert w.max() == pytest.approx(run["peak_deflection_m"], rel=PEAK_GOAL)
+    assert 0.05 <= perm / run["permanent_deflection_m"] - 1 <= 0.15
+    coupled = l5.fd_summary(wide_coupled)
+    assert coupled["peak_deflection_m"] == pytest.approx(run["peak_deflection_m"], rel=PEAK_GOAL)
+    assert 0.05 <= coupled["permanent_deflection_m"] / run["permanent_deflection_m"] - 1 <= 0.15

@@ -104,59 +104,6 @@ def fd_prescribed(times, force, n_elements=FD_GRID[0], n_half_layers=FD_GRID[1],
     return (*out, float(residual["permanent_deflection_m"].to_numpy()[mid]))
 
 
-def constraint_strain_sensitivity(times, force, ref):
-    """FD (200 × 10, wide-section model) under the force with n_c = ε_c E/σ_y set to each
-    width's own best fit of the calibration (results/level5_wide_calibration.json)."""
-    from impactmaps.fd import wide_section
-
-    fitted = json.loads((ct.RESULTS / "level5_wide_calibration.json").read_text())
-    out, kept = {}, wide_section.CONSTRAINT_STRAIN_RATIO
-    try:
-        for tag, n_c in fitted["constraint_strain_ratio_per_width"].items():
-            wide_section.CONSTRAINT_STRAIN_RATIO = n_c
-            t, w, perm = fd_prescribed(times, force, width_constraint=True, permanent=True)
-            out[tag] = dict(n_c=n_c, peak_over_fe=float(w.max() / ref["peak_deflection_m"] - 1),
-                            permanent_over_fe=float(perm / ref["permanent_deflection_m"] - 1))
-            print("n_c of", tag, out[tag], flush=True)
-    finally:
-        wide_section.CONSTRAINT_STRAIN_RATIO = kept
-    return out
-
-
-def run_fd_wide(_args):
-    """The FD beam with the wide-section model against the 3D reference, same force: grid
-    study (prescribed load) and the coupled impact (its own force; information only)."""
-    times, force = prescribed_force()
-    data = load()
-    ref = data["fe_runs"][REFERENCE]
-    study = {}
-    for nl, nh in ((100, 10), (200, 10), (400, 10), (200, 20), (200, 40), (400, 20)):
-        for constrained in (True, False):
-            t, w, perm = fd_prescribed(times, force, nl, nh, width_constraint=constrained,
-                                       permanent=True)
-            key = f"{nl}x{nh}" + ("" if constrained else "_uniaxial")
-            study[key] = dict(peak_deflection_m=float(w.max()), permanent_deflection_m=perm,
-                              peak_over_fe=float(w.max() / ref["peak_deflection_m"] - 1),
-                              permanent_over_fe=float(perm / ref["permanent_deflection_m"] - 1))
-            print(key, study[key], flush=True)
-    impact = fd_impact(duration=FE_END, width_constraint=True)
-    h = impact.history
-    np.savetxt(FORCE_WIDE_CSV, np.column_stack([times, *(np.interp(times, h["time_s"], h[c])
-                                                          for c in ("force_N",
-                                                                    "target_displacement_m"))]),
-               delimiter=",", fmt="%.9e", comments="",
-               header="time_s,force_N,fd_midspan_deflection_m")
-    coupled = fd_summary(impact)
-    coupled["peak_over_fe"] = coupled["peak_deflection_m"] / ref["peak_deflection_m"] - 1
-    coupled["permanent_over_fe"] = coupled["permanent_deflection_m"] / ref["permanent_deflection_m"] - 1
-    print("coupled", coupled)
-    sensitivity = constraint_strain_sensitivity(times, force, ref)
-    data["fd_wide"] = dict(prescribed=study, coupled_own_force=coupled, reference=REFERENCE,
-                           constraint_strain_sensitivity=sensitivity,
-                           command="python validation/fe/level5_beam_plastic.py fd-wide")
-    save(data)
-
-
 def late_mean(t, w, start):
     """Mean of w over t >= start (the centre of the free vibration) [m]."""
     return float(np.mean(w[t >= start]))
@@ -429,6 +376,9 @@ def run_fe(args):
 #: to 7.5 ms), depth (nz 4 → 6 with the zone element h/4 → h/6, to 4.3 ms: stopped),
 #: patch (c 6.95 → 3.475 mm, whole run).
 REFERENCE = "coarse1_dt20usauto_c3.47mm"
+#: The same mesh and step driven by the force of the coupled FD impact with the wide-section
+#: model (FORCE_WIDE_CSV): a second load history for that model.
+REFERENCE_WIDE_FORCE = "coarse1_dt20usauto_c3.47mm_forcewide"
 #: The same run on a 10 mm wide beam (force scaled by b/WIDTH): the beam-theory answer is
 #: unchanged, the 3D hinge is no longer restrained across the width.
 NARROW = "coarse1_dt20usauto_c3.47mm_b10mm"
@@ -486,6 +436,7 @@ def main(argv=None):
     if a.what == "fd":
         run_fd(a)
     elif a.what == "fd-wide":
+        from level5_wide_fd import run_fd_wide
         run_fd_wide(a)
     else:
         run_fe(a)
