@@ -106,7 +106,7 @@ def figure(data, runs):
     tf, wf = fd_prescribed(times, force, 400, 40)
     a1.plot(tf * 1e3, wf * 1e3, color="k", lw=1.6, label="FD beam 400×40 (uniaxial section), same force")
     tw, ww = fd_prescribed(times, force, width_constraint=True)
-    a1.plot(tw * 1e3, ww * 1e3, color="tab:red", lw=1.4, label="FD beam 200×10, wide-section model, same force")
+    a1.plot(tw * 1e3, ww * 1e3, color="m", lw=1.8, ls="-.", label="FD beam 200×10, wide-section model, same force")
     a1.plot(t * 1e3, w * 1e3, color="0.5", lw=1.0, ls="--", label="FD beam 200×10 (coupled)")
     for tag in list(runs) + list(data.get("partial_runs", {})):
         h = history(tag)
