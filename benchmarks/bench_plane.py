@@ -238,7 +238,8 @@ def main(argv=None) -> None:
              .replace(" `", "`"),
              f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {args.workers} workers, "
              f"guards: > {args.max_modes} modes skipped, {args.point_cap:g} s per point, "
-             f"{args.budget:g} s budget per structure", ""]
+             f"{args.budget:g} s budget per structure; load average at the start {os.getloadavg()[0]:.1f} "
+             "(the machine may be shared: compare walls within one run)", ""]
     finished = []  # (name, ζ, λ, row)
     total_wall = 0.0
     lines += ["| structure | wall [s] | done | skipped (modes) | timed out | failed | not run (budget) "

@@ -127,7 +127,7 @@ def main(argv=None) -> None:
              f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, serially in one process, "
              f"CPU time (`time.process_time`); the machine's load average at the start: {os.getloadavg()[0]:.1f}", "",
              "| structure | CPU [s] | compiled integrator | coupled-modes set-up | the rest (Python) "
-             "| runs and CPU by kind: base / refinement 1 / refinement 2 / perturbed | mode-steps by kind [10⁶] |",
+             "| runs and CPU by kind: base (with a sensitive point's ζ ± 1 % runs) / refinement 1 / refinement 2 / cut-off and step perturbed | mode-steps by kind [10⁶] |",
              "|---|---|---|---|---|---|---|"]
     for name in STRUCTURES:
         timers = Timers()
