@@ -34,10 +34,12 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import json
 import multiprocessing
 import os
 import pathlib
 import queue
+import subprocess
 import sys
 import time
 import warnings
@@ -52,7 +54,11 @@ if __name__ == "__main__":
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # this checkout's impactmaps, not an installed one
+#: ``--root DIR`` (a checkout of another commit, e.g. the base of a change): its impactmaps is
+#: imported instead of this checkout's; read here, before any import of the package.
+PACKAGE_ROOT = pathlib.Path(sys.argv[sys.argv.index("--root") + 1]).resolve() if (
+    __name__ == "__main__" and "--root" in sys.argv[:-1]) else ROOT
+sys.path.insert(0, str(PACKAGE_ROOT))  # this checkout's impactmaps (or --root's), not an installed one
 STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
 REFERENCE_LEVELS = 3  # the reference: three refinements of the default settings (8× cut-off and floor, 1/8 step)
 #: Refinement levels of the default AccuracyControl multiply the cut-off by 2 each.
@@ -186,6 +192,12 @@ def finest_mode_counts(name: str, zetas, lambdas) -> np.ndarray:
     return np.maximum(counts, FINEST_CUTOFF_FACTOR * settings.min_modes).reshape(zz.shape)
 
 
+def _grid(quick: bool):
+    """The (ζ, λ) grid: 200 × 50 log-spaced over [1e-3, 1e3]² (20 × 10 with ``--quick``)."""
+    n_zeta, n_lambda = (20, 10) if quick else (200, 50)
+    return np.geomspace(1e-3, 1e3, n_zeta), np.geomspace(1e-3, 1e3, n_lambda)
+
+
 def percentile_row(seconds) -> str:
     p = np.percentile(seconds, [50, 90, 99, 100]) * 1e3
     return " / ".join(f"{v:.1f}" for v in p)
@@ -202,20 +214,32 @@ def main(argv=None) -> None:
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--seed", type=int, default=12)
     parser.add_argument("--out", default=str(ROOT / "benchmarks" / "RESULTS_plane.md"))
+    parser.add_argument("--baseline", help="another checkout (e.g. the base commit's worktree): its sweeps are "
+                        "timed side by side with this one's, alternating")
+    parser.add_argument("--repeats", type=int, default=3, help="side-by-side rounds with --baseline (default 3)")
+    parser.add_argument("--root", help="import impactmaps from this checkout (read before the import)")
+    parser.add_argument("--time-sweeps", metavar="NPZ", help=argparse.SUPPRESS)  # a side-by-side round's child
     args = parser.parse_args(argv)
     if args.reference < 0:
         raise ValueError(f"--reference = {args.reference} is invalid: valid range is [0, inf)")
+    if args.repeats < 1:
+        raise ValueError(f"--repeats = {args.repeats} is invalid: valid range is [1, inf)")
+    if args.time_sweeps:
+        zetas, lambdas = _grid(args.quick)
+        print(json.dumps(time_sweeps(zetas, lambdas, args.workers, args.time_sweeps)))
+        return
     from impactmaps.maps.accuracy import STATUSES
     from impactmaps.maps.sweep import METHODS
 
-    n_zeta, n_lambda = (20, 10) if args.quick else (200, 50)
-    zetas, lambdas = np.geomspace(1e-3, 1e3, n_zeta), np.geomspace(1e-3, 1e3, n_lambda)
+    zetas, lambdas = _grid(args.quick)
+    n_zeta, n_lambda = zetas.size, lambdas.size
     lines = [f"# The whole (ζ, λ) plane: {n_zeta} × {n_lambda} log grid over [1e-3, 1e3]²",
              "", f"`python benchmarks/bench_plane.py {' '.join(sys.argv[1:] if argv is None else argv)}`"
              .replace(" `", "`"),
              f"run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {args.workers} workers, "
              f"guards: > {args.max_modes} modes skipped, {args.point_cap:g} s per point, "
-             f"{args.budget:g} s budget per structure", ""]
+             f"{args.budget:g} s budget per structure; load average at the start {os.getloadavg()[0]:.1f} "
+             "(the machine may be shared: compare walls within one run)", ""]
     finished = []  # (name, ζ, λ, row)
     total_wall = 0.0
     lines += ["| structure | wall [s] | done | skipped (modes) | timed out | failed | not run (budget) "
@@ -249,7 +273,7 @@ def main(argv=None) -> None:
         lines.append(f"| {name} | {wall:.1f} | {len(done)} | {len(skipped)} | {len(timed)} | {len(failed)} | "
                      f"{budget} | {percentile_row(seconds)} | {slowest} | {np.nansum(seconds):.1f} |")
         for t, o in done:
-            finished.append((name, t[2], t[3], o["row"]))
+            finished.append((name, t[2], t[3], o["row"] | {"seconds": o["seconds"]}))
         total = counts.size
         shares = {s: sum(STATUSES[o["row"]["status"]] == s for _, o in done) for s in STATUSES}
         methods = {m: sum(METHODS[o["row"]["method"]] == m for _, o in done) for m in METHODS}
@@ -271,48 +295,151 @@ def main(argv=None) -> None:
               "Share of all grid points per status:", "",
               "| structure | " + " | ".join(STATUSES) + " | not computed | methods of the computed points |",
               "|---|" + "---|" * (len(STATUSES) + 2)] + status_lines
+    lines += cost_section(finished, STATUSES)
     lines += sweep_section(finished, zetas, lambdas, args.workers)
+    if args.baseline:
+        lines += side_by_side_section(args)
     lines += reference_section(finished, args, STATUSES)
     text = "\n".join(lines) + "\n"
     pathlib.Path(args.out).write_text(text)
     print(text)
 
 
-def sweep_section(finished, zetas, lambdas, workers: int) -> list[str]:
-    """The same grid through :func:`impactmaps.maps.sweep.sweep` (what a user runs: chunks of
-    points per task, no per-point guards), its wall time, and whether every value equals the
-    per-point tasks' bit for bit (a point is a pure function of its inputs)."""
+#: Classes of the retained run's modes and of the impacts, for :func:`cost_section`.
+MODE_CLASSES = ((1, 16), (17, 64), (65, 400), (401, 1000), (1001, 10**9))
+IMPACT_CLASSES = ((1, 1), (2, 4), (5, 19), (20, 10**9))
+
+
+def cost_section(finished, statuses) -> list[str]:
+    """Where the points' time goes: the share of the summed per-point wall by status, by the
+    retained run's modes (``n_modes``; above 400 the contact phase is sampled, below it may be
+    exact) and by the number of impacts."""
+    lines = ["", "## Where the time goes (per-point tasks above)", "",
+             "Share of each structure's summed per-point wall (and of its points) by class:", "",
+             "| structure | by status | by modes of the retained run | by impacts |", "|---|---|---|---|"]
+
+    def shares(rows, key, classes, label):
+        total = sum(r["seconds"] for r in rows) or 1.0
+        parts = []
+        for cls in classes:
+            chosen = [r for r in rows if key(r, cls)]
+            if chosen:
+                parts.append(f"{label(cls)}: {100 * sum(r['seconds'] for r in chosen) / total:.0f} % "
+                             f"({100 * len(chosen) / len(rows):.0f} %)")
+        return "; ".join(parts)
+
+    for name in STRUCTURES:
+        rows = [row for structure, _, _, row in finished if structure == name]
+        if not rows:
+            continue
+        by_status = shares(rows, lambda r, c: statuses[r["status"]] == c, statuses, str)
+        by_modes = shares(rows, lambda r, c: c[0] <= r["n_modes"] <= c[1], MODE_CLASSES,
+                          lambda c: f"{c[0]}–{c[1]}" if c[1] < 10**9 else f"> {c[0] - 1}")
+        by_impacts = shares(rows, lambda r, c: r["n_modes"] > 0 and c[0] <= r["impacts"] <= c[1], IMPACT_CLASSES,
+                            lambda c: (f"{c[0]}" if c[0] == c[1] else f"{c[0]}–{c[1]}") if c[1] < 10**9 else f"≥ {c[0]}")
+        lines.append(f"| {name} | {by_status} | {by_modes} | {by_impacts} |")
+    return lines
+
+
+def timed_sweeps(zetas, lambdas, workers: int):
+    """The grid through :func:`impactmaps.maps.sweep.sweep` as a user runs it (chunks of points
+    per task, no per-point guards, never read from a shipped result): each structure alone,
+    then both in one call (one pool). Returns ({"beam-ss-euler": s, …, "both": s} walls [s],
+    the datasets by the same keys)."""
     from impactmaps.maps import sweep as sweep_module
     from impactmaps.maps.structures import structure_from_name
 
     sweep_module.load_shipped_result = lambda digest, description=None: None  # compute, never read
-    walls, differing, compared = {}, 0, 0
-    by_point = {(name, zeta, lam): row for name, zeta, lam, row in finished}
-    for name in STRUCTURES:
+    walls, datasets = {}, {}
+    for key, names in [*((name, [name]) for name in STRUCTURES), ("both", list(STRUCTURES))]:
         start = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            dataset = sweep_module.sweep([structure_from_name(name)], zetas, lambdas, progress=False,
-                                         max_workers=workers)
-        walls[name] = time.perf_counter() - start
-        values = dataset["fmax_normalised"].sel(structure=name)
-        statuses = dataset["status"].sel(structure=name)
-        for j, lam in enumerate(lambdas):
-            for i, zeta in enumerate(zetas):
-                row = by_point.get((name, float(zeta), float(lam)))
-                if row is None:
-                    continue
-                compared += 1
-                value = float(values.values[j, i])
-                same = (value == row["fmax_normalised"] or (np.isnan(value) and np.isnan(row["fmax_normalised"])))
-                differing += not (same and int(statuses.values[j, i]) == row["status"])
-    total = sum(walls.values())
+            datasets[key] = sweep_module.sweep([structure_from_name(name) for name in names], zetas, lambdas,
+                                               progress=False, max_workers=workers)
+        walls[key] = time.perf_counter() - start
+    return walls, datasets
+
+
+def time_sweeps(zetas, lambdas, workers: int, save: str) -> dict:
+    """A side-by-side round's child: :func:`timed_sweeps`, F̄max and status of the one-call sweep
+    saved to ``save`` (.npz); returns the walls and whether the one-structure sweeps gave the
+    same bits."""
+    walls, datasets = timed_sweeps(zetas, lambdas, workers)
+    both = datasets["both"]
+    same = all(np.array_equal(datasets[name][var].sel(structure=name).values,
+                              both[var].sel(structure=name).values, equal_nan=(var == "fmax_normalised"))
+               for name in STRUCTURES for var in ("fmax_normalised", "status"))
+    np.savez(save, fmax=both["fmax_normalised"].values, status=both["status"].values)
+    return {"walls": walls, "same": bool(same)}
+
+
+def sweep_section(finished, zetas, lambdas, workers: int) -> list[str]:
+    """The same grid through :func:`impactmaps.maps.sweep.sweep` (what a user runs: chunks of
+    points per task, no per-point guards), its wall time, and whether every value equals the
+    per-point tasks' bit for bit (a point is a pure function of its inputs)."""
+    walls, datasets = timed_sweeps(zetas, lambdas, workers)
+    differing, compared = 0, 0
+    by_point = {(name, zeta, lam): row for name, zeta, lam, row in finished}
+    for key, dataset in datasets.items():
+        for name in STRUCTURES if key == "both" else [key]:
+            values = dataset["fmax_normalised"].sel(structure=name).values
+            statuses = dataset["status"].sel(structure=name).values
+            for j, lam in enumerate(lambdas):
+                for i, zeta in enumerate(zetas):
+                    row = by_point.get((name, float(zeta), float(lam)))
+                    if row is None:
+                        continue
+                    compared += 1
+                    value = float(values[j, i])
+                    same = (value == row["fmax_normalised"] or (np.isnan(value) and np.isnan(row["fmax_normalised"])))
+                    differing += not (same and int(statuses[j, i]) == row["status"])
+    alone = sum(walls[name] for name in STRUCTURES)
     return ["", "## The same grid as a user's sweep", "",
-            f"`impactmaps.maps.sweep.sweep` over the grid, one structure at a time, {workers} workers (chunks "
-            f"of points per task, no per-point guards): **{total:.1f} s wall** ("
-            + ", ".join(f"{name} {wall:.1f} s" for name, wall in walls.items())
-            + f"); F̄max and status at {compared} points compared with the per-point tasks above: "
+            f"`impactmaps.maps.sweep.sweep` over the grid, {workers} workers (chunks of points per task, no "
+            f"per-point guards): both structures in one call (one pool) **{walls['both']:.1f} s wall**; one "
+            f"structure at a time {alone:.1f} s ("
+            + ", ".join(f"{name} {walls[name]:.1f} s" for name in STRUCTURES)
+            + f"); F̄max and status at {compared} points (both ways) compared with the per-point tasks above: "
             f"{differing} differ (bit for bit)."]
+
+
+def side_by_side_section(args) -> list[str]:
+    """The user's sweeps timed with this checkout and ``args.baseline`` in alternating child
+    processes (``--repeats`` rounds, the order swapped each round), their walls, the ratios of
+    the medians, and whether the two checkouts give the same bits at every point."""
+    import statistics
+    import tempfile
+
+    roots = {"this": str(PACKAGE_ROOT), "baseline": str(pathlib.Path(args.baseline).resolve())}
+    walls = {side: [] for side in roots}
+    arrays = {}
+    with tempfile.TemporaryDirectory() as scratch:
+        for round_ in range(args.repeats):
+            for side in (("this", "baseline") if round_ % 2 == 0 else ("baseline", "this")):
+                save = os.path.join(scratch, f"{side}.npz")
+                command = [sys.executable, str(pathlib.Path(__file__).resolve()), "--root", roots[side],
+                           "--time-sweeps", save, "--workers", str(args.workers)] + (["--quick"] if args.quick else [])
+                done = subprocess.run(command, capture_output=True, text=True, check=True)
+                walls[side].append(json.loads(done.stdout.strip().splitlines()[-1]))
+                with np.load(save) as stored:
+                    arrays[side] = (stored["fmax"], stored["status"])
+    same = (np.array_equal(arrays["this"][0], arrays["baseline"][0], equal_nan=True)
+            and np.array_equal(arrays["this"][1], arrays["baseline"][1]))
+    keys = ("both", *STRUCTURES)
+    lines = ["", f"## Side by side with {args.baseline}", "",
+             f"The user's sweep (as above) in child processes, this checkout and the baseline alternating, "
+             f"{args.repeats} rounds; wall [s] per round, ratio = baseline median / this median:", "",
+             "| sweep | this checkout | baseline | ratio |", "|---|---|---|---|"]
+    for key in keys:
+        mine = [w["walls"][key] for w in walls["this"]]
+        base = [w["walls"][key] for w in walls["baseline"]]
+        lines.append(f"| {'beam + plate, one call' if key == 'both' else key + ' alone'} | "
+                     + " / ".join(f"{w:.1f}" for w in mine) + " | " + " / ".join(f"{w:.1f}" for w in base)
+                     + f" | **{statistics.median(base) / statistics.median(mine):.2f}×** |")
+    lines += ["", f"F̄max and status at all {arrays['this'][0].size} points: "
+              + ("the same bits in both checkouts." if same else "**the checkouts differ**.")]
+    return lines
 
 
 def reference_section(finished, args, statuses) -> list[str]:

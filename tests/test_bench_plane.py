@@ -33,3 +33,24 @@ def test_pool_points_equal_solve_points_and_the_cap_kills_a_slow_point():
 def test_finest_mode_counts_cover_the_grid():
     counts = bench_plane.finest_mode_counts("beam-ss-euler", np.array([0.01, 1.0, 100.0]), np.array([0.1, 10.0]))
     assert counts.shape == (3, 2) and np.all(counts >= 16)
+
+
+def test_cost_section_shares_the_cpu_by_class():
+    from impactmaps.maps.accuracy import STATUSES
+
+    rows = [("beam-ss-euler", 0.1, 0.1, {"status": 0, "n_modes": 10, "impacts": 1, "seconds": 3.0}),
+            ("beam-ss-euler", 1.0, 0.1, {"status": 2, "n_modes": 500, "impacts": 30, "seconds": 1.0})]
+    line = bench_plane.cost_section(rows, STATUSES)[-1]
+    for part in ("converged: 75 % (50 %)", "sensitive: 25 % (50 %)", "1–16: 75 %", "401–1000: 25 %", "≥ 20: 25 %"):
+        assert part in line, (part, line)
+
+
+def test_profile_plane_sorts_the_runs_of_a_point_by_kind():
+    from dataclasses import replace
+
+    profile_plane = repository_module("benchmarks/profile_plane.py")
+    base = ModalSettings()
+    assert profile_plane.run_kind(base, base) == "base"
+    assert profile_plane.run_kind(base.refined(), base) == "refinement 1"
+    assert profile_plane.run_kind(base.refined().refined(), base) == "refinement 2"
+    assert profile_plane.run_kind(replace(base, step_scale=0.99), base) == "perturbed (sensitive)"

@@ -318,6 +318,38 @@ def test_long_modal_run_answers_ctrl_c():
     assert modal.INTERRUPTIBLE_SECONDS < 1.0
 
 
+def test_a_process_that_ignores_ctrl_c_runs_the_kernel_without_a_thread(monkeypatch):
+    """A sweep's worker ignores Ctrl-C (``init_worker``): there a long run calls the kernel
+    directly, with the same bits as the interruptible run in a worker thread."""
+    import signal
+    import threading
+
+    from impactmaps.solvers import modal_run
+
+    monkeypatch.setattr(modal_run, "INTERRUPTIBLE_SECONDS", -1.0)  # every run counts as long
+    started = []
+    original_start = threading.Thread.start
+
+    def start(thread):
+        started.append(thread.name)
+        return original_start(thread)
+
+    monkeypatch.setattr(threading.Thread, "start", start)
+    target = _plate("SSSS")
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        threaded = simulate_normalised(target, 0.3, 0.1, record=False)
+        kernel_threads = started.count("impactmaps-modal-kernel")
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        direct = simulate_normalised(target, 0.3, 0.1, record=False)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert kernel_threads >= 1
+    assert started.count("impactmaps-modal-kernel") == kernel_threads  # none for the second run
+    assert direct.fmax_normalised == threaded.fmax_normalised
+    assert direct.impacts == threaded.impacts and direct.details == threaded.details
+
+
 def test_stop_flag_ends_the_kernel_at_once():
     """The kernel's stop flag, set before the run, ends it before its first step (flagged
     like a run at its time limit)."""

@@ -144,6 +144,13 @@ def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, tim
 INTERRUPTIBLE_SECONDS = 0.5
 
 
+def _interrupts_ignored() -> bool:
+    """Whether this process ignores Ctrl-C (SIGINT set to ``SIG_IGN``, as in a sweep's workers)."""
+    import signal
+
+    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+
+
 def _integrate(interruptible: bool, args: KernelInputs):
     """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (their ``stop``
     the kernel's one-element stop flag).
@@ -153,9 +160,11 @@ def _integrate(interruptible: bool, args: KernelInputs):
     while this thread waits in 0.1 s slices; on ``KeyboardInterrupt`` it sets the stop flag,
     which the kernel reads at every step, waits for the kernel to return and re-raises.
     The arithmetic is the kernel's own either way: results are bit for bit those of a direct
-    call. Short runs (most map points) call the kernel directly, without a thread.
+    call. Short runs (most map points) call the kernel directly, without a thread, and so
+    does every run in a process that ignores Ctrl-C (a sweep's worker,
+    :func:`impactmaps.maps.workers.init_worker`): there no interrupt can arrive to stop it.
     """
-    if not interruptible:
+    if not interruptible or _interrupts_ignored():
         return integrate_impact(*args)
     import threading
 
