@@ -21,9 +21,11 @@ from __future__ import annotations
 
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
-from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, family_groups, scaled_answer
+from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
+from .case_answer import NoMapError, case_loads_a_patch, scaled_answer
 from .lookup import read_map
 from .points import MAX_MODES
+from .registry import map_family
 from .structures import MapStructure
 from .tiles import cached_tile, tile_for
 
@@ -32,11 +34,6 @@ __all__ = ["case_structure", "lookup_on_demand"]
 #: Significant digits kept of a case's shape numbers and patch number: cases that agree
 #: to them share a tile (far below CASE_MATCH_RTOL, which the structure is checked to).
 _DIGITS = 12
-#: The slenderness given to a structure whose theory does not depend on it (Euler,
-#: Kirchhoff under a point load): the shipped maps' value.
-_ANY_SLENDERNESS = 20.0
-#: The Poisson ratio given to a beam whose response does not depend on it (Euler).
-_ANY_POISSON = 0.3
 
 
 def _rounded(value: float) -> float:
@@ -46,71 +43,53 @@ def _rounded(value: float) -> float:
 def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     """The :class:`MapStructure` that describes ``case`` exactly, and its patch number.
 
+    The structure is the one the target names (:meth:`impactmaps.targets.base.Target.map_structure`,
+    its numbers rounded to 12 significant digits so that cases that agree to them share a
+    tile), with the reference slenderness and Poisson ratio where the response does not
+    depend on them.
+
     Parameters
     ----------
     case : impactmaps.cases.Case
         A case on a beam or a plate.
-    law : {"linear", "hertz"}
+    law : str
         The case's map law (:func:`impactmaps.maps.case_lookup.case_map_law`).
 
     Returns
     -------
     (MapStructure, float or None)
-        The structure (slenderness and Poisson ratio only where they matter: Timoshenko
-        and Rayleigh beams, Mindlin plates, plates with other edges than SSSS, a patch
-        load) and the patch number P of a Hertz case that ``simulate`` loads over the
-        contact patch (None otherwise).
+        The structure and the patch number P of a Hertz case that ``simulate`` loads over
+        the contact patch (None otherwise).
 
     Raises
     ------
     ValueError
         Naming the ratio (shear stiffness, rotary inertia, D22/D11, damping ratio …) in
-        which the case differs from every such structure.
+        which the case differs from every such structure; for a law with more numbers than
+        ζ and λ (an elastic-plastic one), a target loaded over the contact patch (its radius
+        adds the sphere radius as a number) or one whose point-load deflection diverges.
     """
+    family = map_family(law)
+    patch = case_loads_a_patch(case)
     target = case.target
-    patch = law == "hertz" and case_loads_a_patch(case)
-    if case.target_type == "beam":
-        shear_deformable = target.theory != "euler"
-        if shear_deformable and target.slenderness is None:
-            raise ValueError(f"a {target.theory} beam without a height (its slenderness is unknown)")
-        fields = {"supports": target.supports, "impact_fraction": (_rounded(target.impact_position / target.length),),
-                  "slenderness": _rounded(target.slenderness) if shear_deformable else _ANY_SLENDERNESS,
-                  # the shear group of a rectangle, S L²/EI = 5 s²/(1 + ν) (k = 5/6): the ν it implies
-                  "poisson_ratio": _rounded(5.0 * target.slenderness**2 * target.bending_stiffness
-                                            / (target.shear_stiffness * target.length**2) - 1.0)
-                  if shear_deformable else _ANY_POISSON}
-    else:
-        side = target.length_x
-        fields = {"supports": target.edges, "aspect_ratio": _rounded(target.length_y / side),
-                  "impact_fraction": tuple(_rounded(x / length) for x, length in
-                                           zip(target.impact_point, (target.length_x, target.length_y))),
-                  "slenderness": _rounded(side / target.thickness) if target.theory == "mindlin" or patch
-                  else _ANY_SLENDERNESS}
-        if target.theory == "mindlin" or target.edges != "SSSS":  # the Navier SSSS Kirchhoff plate has no ν
-            fields["poisson_ratio"] = _rounded(target.D12 / target.D11)
-    structure = MapStructure(kind=case.target_type, theory=target.theory, **fields)
-    _check_describes(structure, target, "poisson_ratio" in fields)
+    if family.extra_axes and (patch or target.point_load_diverges):
+        raise ValueError("an elastic-plastic impact on a target that simulate loads over the contact patch, or whose "
+                         "point-load deflection diverges (a Mindlin plate): its response depends on the sphere radius "
+                         "as a fourth number")
+    patch = patch and law == "hertz"
+    key = target.map_structure(patch_loaded=patch)
+    if key is None:
+        raise ValueError(target.map_structure_refusal(patch_loaded=patch))
+    structure = MapStructure(kind=key.kind, theory=key.theory, supports=key.supports,
+                             aspect_ratio=_rounded(key.aspect_ratio),
+                             impact_fraction=tuple(_rounded(f) for f in key.impact_fraction),
+                             slenderness=REFERENCE_SLENDERNESS if key.slenderness is None else _rounded(key.slenderness),
+                             poisson_ratio=REFERENCE_POISSON if key.poisson_ratio is None
+                             else _rounded(key.poisson_ratio))
     number = None
     if patch:
         number = _rounded(patch_number(target, case.law, case.impactor_mass, case.velocity))
     return structure, number
-
-
-def _check_describes(structure: MapStructure, target, poisson: bool) -> None:
-    """``ValueError`` naming the first dimensionless group in which ``structure`` differs from
-    ``target`` (for a plate also D12/D11 if ``poisson``: its response depends on ν)."""
-    reference = structure.build()
-
-    def groups(of):
-        extra = {"D12/D11": of.D12 / of.D11} if of.structure == "plate" and poisson else {}
-        return family_groups(of) | extra
-
-    wanted = groups(reference)
-    for name, value in groups(target).items():
-        if not (abs(value - wanted[name]) <= CASE_MATCH_RTOL * abs(wanted[name]) if wanted[name] else value == 0.0):
-            raise ValueError(f"{name} = {value:.6g} where the isotropic, undamped {structure.name} has "
-                             f"{wanted[name]:.6g} (an orthotropic or laminated plate, another beam section or "
-                             "structural damping is not a map structure)")
 
 
 def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None) -> dict:
