@@ -364,8 +364,9 @@ def cmd_lookup(args) -> dict:
             if given is not None and given != wanted:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
-        return lookup_case(case, build=not args.no_build, notify=lambda line: print(line, file=sys.stderr))
-    refuse(args, {"--no-build": "no_build"}, "without --case (only the lookup of a case builds map tiles)")
+        notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
+        return lookup_case(case, build=not args.no_build, notify=notify)
+    refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     from ..maps.plastic_points import PLASTIC_LAWS

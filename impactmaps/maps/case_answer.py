@@ -20,7 +20,7 @@ from .plastic_points import plastic_numbers
 from .reader import OutsideMapError, UnresolvedPointError
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "scaled_answer",
-           "answer", "lookup_plastic_case"]
+           "answer", "lookup_plastic_case", "plastic_answer"]
 
 
 #: Relative tolerance within which a case "is" a shipped map's structure (impact point,
@@ -119,12 +119,22 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     dict
         See :func:`impactmaps.maps.case_lookup.lookup_case`.
     """
+    def read(beta, zeta, lam):
+        try:
+            return lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law)
+        except (OutsideMapError, UnresolvedPointError) as error:
+            raise NoMapError(case, str(error).split("; run")[0]) from None
+
+    return plastic_answer(case, law, read)
+
+
+def plastic_answer(case, law: str, read) -> dict:
+    """The answer of :func:`impactmaps.maps.case_lookup.lookup_case` for an elastic-plastic case
+    from ``read(β, ζ, λ) -> PlasticLookup``, a reading of a plastic map (shipped or a tile) at
+    the case's numbers (:func:`impactmaps.maps.plastic_points.plastic_numbers`), scaled to
+    newtons and joules."""
     numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
-    try:
-        found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
-                               structure=structure, theory=theory, law=law)
-    except (OutsideMapError, UnresolvedPointError) as error:
-        raise NoMapError(case, str(error).split("; run")[0]) from None
+    found = read(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness)
     scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
     return answer(found, scale, law, {
         "restitution": found.restitution,

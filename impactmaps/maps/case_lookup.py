@@ -194,11 +194,19 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     try:
         structure, theory = map_for_case(case)
     except NoMapError as refusal:
-        if not build or law not in MAP_LAWS or case.solver_kind != "modal" or case.target_type not in ("beam", "plate"):
+        if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either
         return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
     if law in PLASTIC_LAWS:
-        return lookup_plastic_case(case, structure, theory, law)
+        try:
+            return lookup_plastic_case(case, structure, theory, law)
+        except NoMapError as error:
+            if not build:
+                raise
+            # beyond the shipped plastic map, or next to a point it could not resolve: a tile answers or refuses
+            beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} {law} map or next "
+                                      f"to a point it could not resolve ({error.what})")
+        return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
     slenderness = case_slenderness(case)
     if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
         def read(zeta, lam):

@@ -22,8 +22,9 @@ from __future__ import annotations
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
-from .case_answer import NoMapError, case_loads_a_patch, scaled_answer
+from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from .lookup import read_map
+from .plastic_lookup import read_plastic
 from .points import MAX_MODES
 from .registry import map_family
 from .structures import MapStructure
@@ -125,19 +126,33 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         raise NoMapError(case, f"{refusal.what}, and no on-demand map describes it: {error}") from None
     settings, built = _tile_settings(case, patch), {}
 
-    def read(zeta, lam):
-        key = tile_for(structure, law, patch, zeta, lam, settings)
-        dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
-        try:
-            return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
-                            law=law)
-        except ValueError:  # next to an unresolved point
-            raise NoMapError(case, f"{refusal.what}, and the {key.name} holds no value next to it, at "
-                             f"(ζ, λ) = ({zeta:.4g}, {lam:.4g}) (unresolved: the contact frequency lies beyond the "
-                             f"range of the {structure.theory} theory, or a point needs more modes than the sweep's "
-                             f"cap of {MAX_MODES} modes below its cut-off and no exact asymptote answers it)") from None
+    def unresolved(name, numbers):
+        return NoMapError(case, f"{refusal.what}, and the {name} holds no value next to it, at "
+                                f"{numbers} (unresolved: the contact frequency lies beyond the range of the "
+                                f"{structure.theory} theory, or a point needs more modes than the sweep's cap of "
+                                f"{MAX_MODES} modes below its cut-off and no exact asymptote answers it)")
 
-    answer = scaled_answer(case, law, read)
+    if map_family(law).extra_axes:  # an elastic-plastic family: (β, ζ, λ)
+        def read(beta, zeta, lam):
+            key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,))
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
+            try:
+                return read_plastic(dataset, law, (beta, zeta, lam), name=key.name, where=key.name)
+            except ValueError:  # next to an unresolved point
+                raise unresolved(key.name, f"(β, ζ, λ) = ({beta:.4g}, {zeta:.4g}, {lam:.4g})") from None
+
+        answer = plastic_answer(case, law, read)
+    else:
+        def read(zeta, lam):
+            key = tile_for(structure, law, patch, zeta, lam, settings)
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
+            try:
+                return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
+                                law=law)
+            except ValueError:  # next to an unresolved point
+                raise unresolved(key.name, f"(ζ, λ) = ({zeta:.4g}, {lam:.4g})") from None
+
+        answer = scaled_answer(case, law, read)
     answer["cache_file"] = None if built["path"] is None else str(built["path"])
     if patch is not None:
         answer["patch_number"] = patch
