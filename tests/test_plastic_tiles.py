@@ -147,3 +147,19 @@ def test_plastic_lookups_on_structures_without_a_shipped_map_match_simulate(law,
     found = lookup_case(case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile ")
     _check_within_band(case, found)
+
+
+@pytest.mark.slow
+def test_a_plastic_case_beyond_the_shipped_map_is_answered_from_a_tile(tmp_path):
+    """A case of a shipped plastic family (SS Euler beam at mid-span) whose ζ lies below the
+    shipped map's 1e-3 (a 2 mm ball on a stout aluminium beam 300 × 20 × 30 mm: ζ = 1.3e-4) is
+    refused with build=False, and answered from a tile of the same family otherwise, within
+    its bands."""
+    text = _CLAMPED.replace('supports = "cc"', 'supports = "ss"').replace("length = 0.5", "length = 0.3").replace(
+        "height = 0.02", "height = 0.03")
+    case = _case("epp", 1.0, 0.001, text)
+    with pytest.raises(ValueError, match="outside the shipped map"):
+        lookup_case(case, build=False)
+    found = lookup_case(case, cache_dir=tmp_path)
+    assert found["zeta"] < 1e-3 and found["map"].startswith("on-demand tile beam-ss-euler-epp β ")
+    _check_within_band(case, found)
