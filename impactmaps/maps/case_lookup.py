@@ -6,9 +6,10 @@ map family that describes it exactly, or refuses with the reason (never the near
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
 slenderness families :func:`impactmaps.maps.families.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
-to newtons with its band. A linear or Hertz case that no shipped map describes but a
-:class:`~impactmaps.maps.structures.MapStructure` can write is answered from a map tile
-built on demand and cached (:mod:`impactmaps.maps.on_demand`).
+to newtons with its band. A case that no shipped map describes but whose target names a
+reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
+is answered from a map tile built on demand and cached (:mod:`impactmaps.maps.on_demand`),
+for the linear, Hertz and elastic-plastic laws alike.
 """
 
 from __future__ import annotations
@@ -42,9 +43,11 @@ def map_for_case(case) -> tuple[str, str]:
     law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
     ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
-    (Yigit–Christoforou, default Stronge) have maps for the same families except the
-    Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). A case outside
-    every family is refused, never looked up in the nearest map.
+    (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same families
+    except the Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). The
+    target names its reference structure (:meth:`Target.map_structure
+    <impactmaps.targets.base.Target.map_structure>`); a case whose structure is no shipped
+    map's is refused, never looked up in the nearest map.
 
     Parameters
     ----------
@@ -139,10 +142,10 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
 
     A shipped map (:func:`map_for_case`) answers if one describes the case and holds its
     numbers. Otherwise (or when the numbers lie beyond the shipped map) a
-    linear or Hertz case on a structure :class:`~impactmaps.maps.structures.MapStructure`
-    can write (isotropic, undamped beams and plates of any supports, impact point, aspect
-    and slenderness; a Hertz impact under the contact patch adds its patch number) is
-    answered from an on-demand map tile, built once and cached
+    case whose target names a reference structure (isotropic, undamped beams and plates of
+    any supports, impact point, aspect and slenderness; a Hertz impact under the contact
+    patch adds its patch number; an elastic-plastic law its β, except on a Mindlin plate)
+    is answered from an on-demand map tile, built once and cached
     (:func:`impactmaps.maps.on_demand.lookup_on_demand`); anything else is refused.
 
     Parameters

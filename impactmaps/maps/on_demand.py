@@ -1,18 +1,22 @@
 """On-demand maps: the answer for a case that no shipped map describes.
 
 The shipped maps cover a few structure families (:mod:`impactmaps.maps.case_lookup`). A
-case with a linear or Hertz contact law whose target a
-:class:`~impactmaps.maps.structures.MapStructure` can write exactly — an isotropic,
-undamped beam or plate of any supports, impact point, aspect ratio, slenderness and
-Poisson ratio (:func:`case_structure`) — is answered from a small tile of the map of
-exactly that structure around the case's (ζ, λ), built once and cached
-(:mod:`impactmaps.maps.tiles`). A Hertz impact that ``simulate`` loads over the contact
-patch (Mindlin SSSS plates by default) has a third number, the patch number
-``P = sqrt(R α_m)/h`` (:mod:`impactmaps.hertz_similarity`); its tile is of that P.
+case whose target names a reference structure (:meth:`Target.map_structure
+<impactmaps.targets.base.Target.map_structure>`: an isotropic, undamped beam or plate of
+any supports, impact point, aspect ratio, slenderness and Poisson ratio;
+:func:`case_structure`) is answered from a small tile of the map of exactly that structure
+around the case's numbers, built once and cached (:mod:`impactmaps.maps.tiles`): (ζ, λ) for
+a linear or Hertz law, (β, ζ, λ) for an elastic-plastic one (Yigit–Christoforou, default
+Stronge, default ``epp``; read as the shipped plastic maps,
+:func:`impactmaps.maps.plastic_lookup.read_plastic`). A Hertz impact that ``simulate``
+loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
+patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.hertz_similarity`); its tile is of
+that P.
 
 Everything else stays refused with the reason: a target the structure cannot write
 (orthotropic or laminated, structural damping, a beam section whose shear or rotary
-inertia no rectangle of any Poisson ratio has), a tile point next to the case that is
+inertia no rectangle of any Poisson ratio has), an elastic-plastic impact on a Mindlin
+plate (the sphere radius a fourth number), a tile point next to the case that is
 ``unresolved`` (beyond the structural theory's range, or more modes than the sweep's cap
 of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the nearest map.
 """
@@ -99,7 +103,8 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     Parameters
     ----------
     case : impactmaps.cases.Case
-    law : {"linear", "hertz"}
+    law : str
+        The case's map law (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
     refusal : NoMapError
         Why no shipped map describes the case (:func:`~impactmaps.maps.case_lookup.map_for_case`);
         part of the message when no tile can answer either.
@@ -111,8 +116,9 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     Returns
     -------
     dict
-        The keys of ``lookup_case``, ``map`` naming the tile, plus ``cache_file`` (the
-        tile's file) and, for a patch-loaded Hertz case, ``patch_number``.
+        The keys of ``lookup_case`` (an elastic-plastic case: with ``restitution``,
+        ``absorbed_energy_J`` and their bands), ``map`` naming the tile, plus ``cache_file``
+        (the tile's file) and, for a patch-loaded Hertz case, ``patch_number``.
 
     Raises
     ------
