@@ -132,9 +132,10 @@ def case_slenderness(case) -> float | None:
 
 
 def _point_loaded_mindlin(case) -> bool:
-    """Whether ``simulate`` strikes this case's Mindlin plate at a point (no contact patch)."""
-    return (case.target_type == "plate" and getattr(case.target, "theory", None) == "mindlin"
-            and case.solver_kind == "modal" and not case_loads_a_patch(case))
+    """Whether ``simulate`` strikes this case's target at a point (no contact patch) where its
+    point-load deflection diverges (a Mindlin plate: :attr:`Target.point_load_diverges
+    <impactmaps.targets.base.Target.point_load_diverges>`)."""
+    return case.target.point_load_diverges and case.solver_kind == "modal" and not case_loads_a_patch(case)
 
 
 def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
