@@ -84,11 +84,13 @@ def map_for_case(case) -> tuple[str, str]:
     if not shipped:
         refuse(f"target type {key.kind!r} (maps for the {law} law: " + ", ".join(sorted({k for k, _ in maps})) + ")")
     reference = shipped[0]  # every shipped map of a kind has its supports, impact point and aspect
+    beam = key.kind == "beam"
     if key.supports != reference.supports:
-        refuse(f"{key.kind} supports {key.supports!r} (maps: {reference.supports!r})")
+        refuse(f"beam supports {key.supports!r} (maps: simply supported {reference.supports!r})" if beam
+               else f"plate edges {key.supports!r} (maps: {reference.supports!r})")
     if not all(same(f, wanted) for f, wanted in zip(key.impact_fraction, reference.impact_fraction)):
-        where = "mid-span" if key.kind == "beam" else "the plate centre"
-        refuse(f"impact at {', '.join(f'{f:g}' for f in key.impact_fraction)} of the span (maps: {where})")
+        refuse(f"impact at x0/L = {key.impact_fraction[0]:g} (maps: mid-span)" if beam else
+               "impact at (x0/a, y0/b) = ({:g}, {:g}) (maps: the plate centre)".format(*key.impact_fraction))
     if not same(key.aspect_ratio, reference.aspect_ratio):
         refuse(f"plate aspect ratio {key.aspect_ratio:g} (maps: square)")
     if (key.kind, key.theory) not in maps:
