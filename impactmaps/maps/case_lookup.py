@@ -89,8 +89,8 @@ def map_for_case(case) -> tuple[str, str]:
         refuse(f"beam supports {key.supports!r} (maps: simply supported {reference.supports!r})" if beam
                else f"plate edges {key.supports!r} (maps: {reference.supports!r})")
     if not all(same(f, wanted) for f, wanted in zip(key.impact_fraction, reference.impact_fraction)):
-        refuse(f"impact at x0/L = {key.impact_fraction[0]:g} (maps: mid-span)" if beam else
-               "impact at (x0/a, y0/b) = ({:g}, {:g}) (maps: the plate centre)".format(*key.impact_fraction))
+        refuse(f"impact at x0 = {target.impact_position:g} m of a {target.length:g} m span (maps: mid-span)" if beam
+               else f"impact at {target.impact_point} m (maps: the plate centre)")
     if not same(key.aspect_ratio, reference.aspect_ratio):
         refuse(f"plate aspect ratio {key.aspect_ratio:g} (maps: square)")
     if (key.kind, key.theory) not in maps:
