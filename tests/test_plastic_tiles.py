@@ -75,8 +75,9 @@ def test_plastic_lookup_on_a_clamped_beam_with_epp_is_answered_within_its_band_o
 
 
 def test_plastic_lookup_case_on_the_command_line(tmp_path, monkeypatch, capsys):
-    """`impactmaps lookup --case … --json` prints the plastic tile's answer (the committed tile);
-    `--no-build` still refuses the clamped beam, naming its supports."""
+    """`impactmaps lookup --case … --json` prints the plastic tile's answer (the committed tile:
+    nothing built, nothing on stderr); `--no-build` still refuses the clamped beam, naming its
+    supports."""
     from impactmaps.cli import main
 
     shutil.copy(_COMMITTED_TILE, tmp_path)
@@ -118,8 +119,11 @@ def test_a_plastic_impact_on_a_mindlin_plate_stays_refused(tmp_path):
 
 @pytest.mark.slow
 def test_the_committed_tile_is_what_a_fresh_build_gives(tmp_path):
-    """The default test's tile, rebuilt: the same fingerprint and the same bits."""
-    found = lookup_case(_case(), cache_dir=tmp_path)
+    """The default test's tile, rebuilt: the same fingerprint and the same bits (built in four
+    (λ, ζ) planes, each reported to ``progress``)."""
+    calls = []
+    found = lookup_case(_case(), cache_dir=tmp_path, progress=lambda done, total: calls.append((done, total)))
+    assert calls == [(16, 64), (32, 64), (48, 64), (64, 64)]
     fresh = Path(found["cache_file"])
     assert fresh.name == _COMMITTED_TILE.name
     with xr.open_dataset(fresh, engine="scipy") as a, xr.open_dataset(_COMMITTED_TILE, engine="scipy") as b:

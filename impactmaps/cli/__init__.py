@@ -198,7 +198,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-build", action="store_true",
                    help="with --case: refuse a case no shipped map describes instead of building its map tile")
     p.add_argument("--quiet", action="store_true",
-                   help="with --case: no line on stderr announcing a map tile's build")
+                   help="with --case: no lines on stderr announcing a map tile's build and its progress")
 
     p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
     p.add_argument("config", type=Path)

@@ -365,7 +365,8 @@ def cmd_lookup(args) -> dict:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
         notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
-        return lookup_case(case, build=not args.no_build, notify=notify)
+        progress = None if args.quiet else (lambda done, total: print(f"  {done}/{total} points", file=sys.stderr))
+        return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")

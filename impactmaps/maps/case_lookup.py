@@ -140,7 +140,7 @@ def _point_loaded_mindlin(case) -> bool:
     return case.target.point_load_diverges and case.solver_kind == "modal" and not case_loads_a_patch(case)
 
 
-def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
+def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=None) -> dict:
     """Peak force of a physical case from the map that describes it, or refuse.
 
     A shipped map (:func:`map_for_case`) answers if one describes the case and holds its
@@ -162,6 +162,9 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     notify : callable, optional
         Called with one line of text before a tile is built (the command line prints it
         on stderr).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built (the command line
+        prints it on stderr).
 
     Returns
     -------
@@ -202,7 +205,7 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     except NoMapError as refusal:
         if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either
-        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
+        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
     if law in PLASTIC_LAWS:
         try:
             return lookup_plastic_case(case, structure, theory, law)
@@ -212,7 +215,7 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
             # beyond the shipped plastic map, or next to a point it could not resolve: a tile answers or refuses
             beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} {law} map or next "
                                       f"to a point it could not resolve ({error.what})")
-        return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
+        return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
     slenderness = case_slenderness(case)
     if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
         def read(zeta, lam):
@@ -230,6 +233,6 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")
-    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
+    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
 
 

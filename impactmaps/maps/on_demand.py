@@ -97,7 +97,7 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     return structure, number
 
 
-def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None) -> dict:
+def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None, progress=None) -> dict:
     """:func:`impactmaps.maps.case_lookup.lookup_case` of a case no shipped map describes.
 
     Parameters
@@ -112,6 +112,8 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         The tile cache (:func:`impactmaps.maps.tiles.cache_directory`).
     notify : callable, optional
         Called with one line before a tile is built.
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built.
 
     Returns
     -------
@@ -141,7 +143,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     if map_family(law).extra_axes:  # an elastic-plastic family: (β, ζ, λ)
         def read(beta, zeta, lam):
             key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,))
-            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
                 return read_plastic(dataset, law, (beta, zeta, lam), name=key.name, where=key.name)
             except ValueError:  # next to an unresolved point
@@ -151,7 +153,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     else:
         def read(zeta, lam):
             key = tile_for(structure, law, patch, zeta, lam, settings)
-            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
                 return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
                                 law=law)

@@ -185,14 +185,15 @@ def _first_index(value: float, step: float) -> int:
     return math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
 
 
-def build_tile(key: TileKey) -> xr.Dataset:
+def build_tile(key: TileKey, progress=None) -> xr.Dataset:
     """Solve the tile's points (serially) and return it as a one-structure map dataset.
 
     The dataset has the family's variables (:attr:`MapFamily.variables
     <impactmaps.maps.map_family.MapFamily.variables>`) over (``structure``, its extra axes
     (β …), ``lambda_``, ``zeta``), ``log_peak_time`` and
     ``log_reflection_time`` as the shipped maps, and the attributes ``fingerprint``,
-    ``description``, ``data_digest`` and ``contact_law``.
+    ``description``, ``data_digest`` and ``contact_law``. ``progress(done, total)``, if
+    given, is called after each (λ, ζ) plane of points (16 points).
     """
     zetas, lambdas = key.axes
     extra = key.extra_axes
@@ -201,7 +202,11 @@ def build_tile(key: TileKey) -> xr.Dataset:
     family = _family(key)
     # None: the sweep's own table; patch-loaded points build their modes under each patch
     table = _table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
-    rows = solve_map_points(family, key.structure, points, key.settings, table, key.control)
+    rows, chunk = [], TILE_POINTS**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
+    for start in range(0, len(points), chunk):
+        rows += solve_map_points(family, key.structure, points[start:start + chunk], key.settings, table, key.control)
+        if progress is not None:
+            progress(len(rows), len(points))
     shape = (1, *(values.size for values in extra), lambdas.size, zetas.size)
     dims = ("structure", *(axis.name for axis in family.extra_axes), "lambda_", "zeta")
     data = {name: (dims, np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
@@ -285,7 +290,7 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
     return dataset
 
 
-def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, Path | None]:
+def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
     """The tile of ``key`` from the cache, or built and cached.
 
     Parameters
@@ -295,6 +300,8 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, 
         The cache (default :func:`cache_directory`).
     notify : callable, optional
         Called with one line of text before a tile is built (and if it cannot be cached).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built.
 
     Returns
     -------
@@ -313,7 +320,7 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, 
     if notify is not None:
         notify(f"building an on-demand map tile of {TILE_POINTS ** (2 + len(key.extra_indices))} points for {key.name[len('on-demand tile '):]} "
                f"…; cached in {path}")
-    dataset = build_tile(key)
+    dataset = build_tile(key, progress)
     try:
         save_atomic(dataset, path)
         _prune(path.parent)
