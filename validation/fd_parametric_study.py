@@ -265,7 +265,7 @@ def law_comparison(size: Size, out: pathlib.Path) -> pd.DataFrame:
     fig.suptitle("Seed-000 FD beam with three elastic-plastic contact laws (squares: runs with sub-impacts)",
                  fontsize=10)
     fig.tight_layout()
-    fig.savefig(out / "fd_parametric_laws.png", dpi=120)
+    fig.savefig(out / "fd_parametric_laws.png", dpi=90)
     plt.close(fig)
     return table
 
