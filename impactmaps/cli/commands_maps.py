@@ -351,6 +351,7 @@ def cmd_lookup(args) -> dict:
 
     if args.case is not None:
         import sys
+        import time
 
         from ..cases import load_case
         from ..maps.case_lookup import case_map_law, lookup_case
@@ -365,7 +366,9 @@ def cmd_lookup(args) -> dict:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
         notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
-        progress = None if args.quiet else (lambda done, total: print(f"  {done}/{total} points", file=sys.stderr))
+        start = time.perf_counter()
+        progress = None if args.quiet else (lambda done, total: print(
+            f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
         return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
