@@ -180,8 +180,9 @@ _YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity 
 
 def test_lookup_command_answers_a_plastic_case(tmp_path, capsys):
     """`impactmaps lookup --case` on a Yigit–Christoforou case prints the peak force with its
-    band and the status, the restitution and the absorbed energy; outside the map it exits 2
-    with one line naming the number and suggesting simulate."""
+    band and the status, the restitution and the absorbed energy; outside the map, with
+    --no-build, it exits 2 with one line naming the number and suggesting simulate (without,
+    a plastic tile answers)."""
     import json
 
     from impactmaps.cli import main
@@ -196,10 +197,13 @@ def test_lookup_command_answers_a_plastic_case(tmp_path, capsys):
         assert key in out, key
     assert 0 < out["restitution"] < 1 and out["absorbed_energy_J"] > 0 and out["peak_force_error_N"] >= 0
     case.write_text(_YC_BEAM.replace("velocity = 1.0", "velocity = 80.0"))
-    assert main(["lookup", "--case", str(case)]) == 2
+    assert main(["lookup", "--case", str(case), "--no-build"]) == 2
     error = capsys.readouterr().err.strip()
     assert len(error.splitlines()) == 1
     assert "no shipped map covers this case: beta" in error and "impactmaps simulate" in error
+    # without --no-build: a plastic tile of the same family beyond the map (tests/test_plastic_tiles.py)
+    assert main(["lookup", "--case", str(case), "--json", "--quiet"]) == 0
+    assert json.loads(capsys.readouterr().out)["map"].startswith("on-demand tile beam-ss-euler-yc β ")
 
 
 # -- the chart ------------------------------------------------------------------------------------

@@ -1,6 +1,6 @@
 """`lookup --case` against `simulate` on random physical cases, per contact law and family.
 
-For each contact law (linear, Hertz, Yigit–Christoforou) and each family of targets, N
+For each contact law (linear, Hertz, Yigit–Christoforou, ``epp``) and each family of targets, N
 random physical cases are drawn — random size and metal of the target, the impact's
 numbers drawn log-uniform over (and a little beyond) the maps' range and realised as an
 impactor mass, speed and contact stiffness (plastic law: a steel ball of random radius
@@ -13,15 +13,17 @@ and speed, its numbers where physics puts them) — and each is answered by
 * ``clamped beam``, ``off-centre beam`` (x0/L ∈ [0.2, 0.45]), ``oblong plate`` (b/a ∈
   [1.2, 2]), ``thick Mindlin plate`` (a/h ∈ [6, 9.5], below the shipped families): no
   shipped map describes them; lookup builds a map tile on demand where it can
-  (:mod:`impactmaps.maps.on_demand`) or refuses (a linear law on a Mindlin plate is a
-  point load, which has no converged value: refused).
+  (:mod:`impactmaps.maps.on_demand`; a plastic tile over (β, ζ, λ) for a plastic law) or
+  refuses (a linear law on a Mindlin plate is a point load, which has no converged value;
+  a plastic law on a Mindlin plate has the sphere radius as a fourth number: refused).
 
 A lookup is *right* when |peak force − simulate| ≤ its band + 1e-3 of the force scale
 (the direct run's own tolerance). Prints a Markdown table per (law, family): cases,
 answered, refused (and the first refusal reason), median and largest error, median band,
-answers inside their band; writes ``validation/case_lookup_error.csv``.
+answers inside their band; writes ``validation/case_lookup_error.csv`` (with ``--laws``,
+only those laws' rows of an existing file are replaced).
 
-    python validation/case_lookup_error.py [--cases 20] [--seed 1]
+    python validation/case_lookup_error.py [--cases 20] [--seed 1] [--laws LAW …]
     python validation/case_lookup_error.py --smoke    # 1 case: linear and Hertz, shipped and clamped beam
 """
 
@@ -43,7 +45,7 @@ from impactmaps.maps.case_lookup import lookup_case
 from _script_options import parse
 
 HERE = Path(__file__).resolve().parent
-LAWS = ("linear", "hertz", "yigit-christoforou")
+LAWS = ("linear", "hertz", "yigit-christoforou", "epp")
 FAMILIES = ("shipped", "clamped beam", "off-centre beam", "oblong plate", "thick Mindlin plate")
 SPHERE = 'radius = 0.005\nmaterial = "structural-steel"'
 
@@ -73,7 +75,7 @@ def _target_table(rng, family: str) -> str:
 def random_case(rng, law: str, family: str):
     """A random physical case of ``law`` on a target of ``family`` (see the module docstring)."""
     table = _target_table(rng, family)
-    if law == "yigit-christoforou":
+    if law in ("yigit-christoforou", "epp"):
         radius, velocity = 10 ** rng.uniform(np.log10(0.002), np.log10(0.03)), 10 ** rng.uniform(-1.0, 1.0)
         return parse_case(f'[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
                           f'[target]\n{table}[contact]\nlaw = "{law}"\n')
@@ -137,16 +139,23 @@ def main(argv=None) -> None:
     def options(parser):
         parser.add_argument("--cases", type=int, default=20, help="cases per law and family")
         parser.add_argument("--seed", type=int, default=1)
+        parser.add_argument("--laws", nargs="*", choices=LAWS, default=None,
+                            help="only these laws (their rows replace those of an existing CSV)")
 
     args = parse(__doc__.splitlines()[0], argv, default_out=HERE, add_arguments=options)
     count = 1 if args.smoke else args.cases
-    laws, families = (LAWS[:2], FAMILIES[:2]) if args.smoke else (LAWS, FAMILIES)
+    laws, families = (LAWS[:2], FAMILIES[:2]) if args.smoke else (tuple(args.laws or LAWS), FAMILIES)
     rng = np.random.default_rng(args.seed)
     with tempfile.TemporaryDirectory(prefix="impactmaps-tiles-") as cache, warnings.catch_warnings():
         warnings.simplefilter("ignore")  # validity warnings of the extreme draws
         frame = pd.DataFrame([row for law in laws for family in families
                               for row in measure(law, family, count, rng, Path(cache))])
-    frame.to_csv(args.out_dir / "case_lookup_error.csv", index=False, float_format="%.9g")
+    path = args.out_dir / "case_lookup_error.csv"
+    if args.laws and path.exists():  # the other laws' rows kept, in the order of LAWS
+        kept = pd.read_csv(path)
+        frame = pd.concat([kept[~kept.law.isin(laws)], frame], ignore_index=True)
+        frame = frame.sort_values("law", key=lambda column: column.map(LAWS.index), kind="stable")
+    frame.to_csv(path, index=False, float_format="%.9g")
     print(summary_table(frame))
 
 

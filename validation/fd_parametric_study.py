@@ -38,12 +38,24 @@ contact; once the beam swings back into the sphere, sub-impacts appear, and the 
 loss and e jump. The figures mark t_r (computed from each run's first-contact duration)
 and the runs with more than one contact.
 
-Output: ``figures/fd_force_histories.png``, ``figures/fd_mass_effect.png``,
-``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png``. Runtime ≈ 30 s
-on 2 cores (98 runs of 20 ms at N_l = 200, 2N_h = 20).
+Contact laws compared
+---------------------
+``--study laws`` runs the mass, velocity (elastic-plastic and elastic beam) and location
+sweeps with each consistent elastic-plastic contact law of the package: the refined
+Stronge law (defaults), Yigit–Christoforou (same E*, R, Y) and ``epp`` (the beam's
+ν = 0.3; the steel sphere's share of 1/E*, E*(1 − ν²)/E = 0.5: an elastic sphere as stiff
+as the beam), and writes ``fd_parametric_laws.csv`` (one row per run) and
+``fd_parametric_laws.png`` (peak force, energy loss and restitution of each sweep, the
+three laws side by side).
 
-    python validation/fd_parametric_study.py [--out-dir DIR]
-    python validation/fd_parametric_study.py --smoke    # 11 runs of 4 ms on a coarse grid (seconds)
+Output: ``figures/fd_force_histories.png``, ``figures/fd_mass_effect.png``,
+``figures/fd_velocity_effect.png``, ``figures/fd_location_effect.png`` (``--study stronge``)
+and ``figures/fd_parametric_laws.csv``, ``figures/fd_parametric_laws.png`` (``--study laws``).
+Runtime ≈ 30 s on 2 cores for the Stronge study (98 runs of 20 ms at N_l = 200, 2N_h = 20),
+three times the runs for the law comparison.
+
+    python validation/fd_parametric_study.py [--out-dir DIR] [--study {all,stronge,laws}]
+    python validation/fd_parametric_study.py --smoke    # runs of 4 ms on a coarse grid (seconds)
 """
 
 from __future__ import annotations
@@ -61,7 +73,8 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
-from impactmaps.contact import StrongeContact, effective_modulus  # noqa: E402
+from impactmaps.contact import StrongeContact, YigitChristoforouContact, effective_modulus  # noqa: E402
+from impactmaps.contact.epp import EppContact  # noqa: E402
 from impactmaps.fd import FDBeam, simulate_fd  # noqa: E402
 
 from _script_options import parse  # noqa: E402
@@ -96,6 +109,15 @@ SMOKE = Size(duration=4e-3, n_elements=40, n_half_layers=4, masses=2, velocities
 def contact_law():
     e_star = float(effective_modulus(MODULUS, POISSON, MODULUS, POISSON))
     return StrongeContact(e_star, SPHERE_RADIUS, YIELD)
+
+
+def contact_laws() -> dict:
+    """The consistent elastic-plastic laws of the comparison, same E*, R, Y (module docstring)."""
+    e_star = float(effective_modulus(MODULUS, POISSON, MODULUS, POISSON))
+    sphere_share = e_star * (1.0 - POISSON**2) / MODULUS  # steel on steel: 0.5
+    return {"stronge": contact_law(),
+            "yc": YigitChristoforouContact.from_properties(e_star, SPHERE_RADIUS, YIELD),
+            "epp": EppContact(e_star, SPHERE_RADIUS, YIELD, poisson_ratio=POISSON, sphere_compliance=sphere_share)}
 
 
 def beam(plastic=True, size=FULL):
@@ -193,11 +215,80 @@ def _mark_jumps(axes, table, x):
             ax.axvline(first, color="C3", lw=0.8, ls="-.")
 
 
+#: The law comparison's sweeps: name → (x column, axis label, logarithmic x axis).
+LAW_STUDIES = {
+    "mass": ("mass_kg", "impactor mass [kg] (V0 = 2 m/s, mid-span)", True),
+    "velocity": ("velocity_m_s", f"V0 [m/s] (m = {PLASTICITY_MASS:g} kg, elastic-plastic beam)", False),
+    "velocity-elastic-beam": ("velocity_m_s", f"V0 [m/s] (m = {PLASTICITY_MASS:g} kg, elastic beam)", False),
+    "location": ("x_over_L", "impact position x0/L (m = 1 kg, V0 = 2 m/s)", False),
+}
+
+
+def law_comparison(size: Size, out: pathlib.Path) -> pd.DataFrame:
+    """The mass, velocity and location sweeps with each law of :func:`contact_laws`; CSV and figure in ``out``."""
+    studies = {
+        "mass": (np.geomspace(0.05, 5.0, size.masses), lambda law, m: run(mass=m, law=law, size=size)),
+        "velocity": (np.linspace(0.5, 7.0, size.velocities),
+                     lambda law, v: run(mass=PLASTICITY_MASS, velocity=v, law=law, size=size)),
+        "velocity-elastic-beam": (np.linspace(0.5, 7.0, size.velocities),
+                                  lambda law, v: run(mass=PLASTICITY_MASS, velocity=v, plastic=False, law=law,
+                                                     size=size)),
+        "location": (np.linspace(0.06, 0.5, size.positions) * LENGTH, lambda law, x: run(position=x, law=law,
+                                                                                           size=size)),
+    }
+    tables = []
+    for name, law in contact_laws().items():
+        for study, (values, make) in studies.items():
+            table = sweep(f"{study} ({name})", values, lambda value, law=law, make=make: make(law, value))
+            tables.append(table.assign(law=name, study=study, x_over_L=table["position_m"] / LENGTH))
+    table = pd.concat(tables, ignore_index=True)
+    columns = ["law", "study", "mass_kg", "velocity_m_s", "x_over_L", "plastic", "peak_force_N", "impacts",
+               "first_contact_s", "wave_return_s", "energy_loss_fraction", "restitution",
+               "contact_dissipation_fraction", "plastic_work_fraction", "permanent_indentation_m",
+               "permanent_deflection_m"]
+    table[columns].to_csv(out / "fd_parametric_laws.csv", index=False, float_format="%.6g")
+    fig, axes = plt.subplots(len(LAW_STUDIES), 3, figsize=(12, 13))
+    quantities = (("peak_force_N", 1e-3, "peak force [kN]"), ("energy_loss_fraction", 1.0, "energy loss / impact energy"),
+                  ("restitution", 1.0, "Newton restitution e"))
+    for row, (study, (x, label, log)) in zip(axes, LAW_STUDIES.items()):
+        for column, (ax, (quantity, scale, ylabel)) in enumerate(zip(row, quantities)):
+            for i, law in enumerate(("stronge", "yc", "epp")):
+                part = table[(table["law"] == law) & (table["study"] == study)]
+                multi = part["impacts"] > 1
+                ax.plot(part[x], part[quantity] * scale, "o-", ms=3, color=f"C{i}", label=law)
+                ax.plot(part[x][multi], part[quantity][multi] * scale, "s", mfc="none", ms=7, color=f"C{i}")
+            ax.set_xscale("log" if log else "linear")
+            ax.set_xlabel(label, fontsize=8)
+            ax.set_ylabel(ylabel, fontsize=8)
+            ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle("Seed-000 FD beam with three elastic-plastic contact laws (squares: runs with sub-impacts)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out / "fd_parametric_laws.png", dpi=90)
+    plt.close(fig)
+    return table
+
+
+def _options(parser) -> None:
+    parser.add_argument("--study", choices=("all", "stronge", "laws"), default="all",
+                        help="the Stronge study's figures, the law comparison, or both (default)")
+
+
 def main(argv=None):
-    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES)
+    args = parse(__doc__.splitlines()[0], argv, default_out=FIGURES, add_arguments=_options)
     size = SMOKE if args.smoke else FULL
     out = args.out_dir
     start = time.perf_counter()
+    if args.study != "stronge":
+        law_comparison(size, out)
+    if args.study != "laws":
+        stronge_study(size, out)
+    print(f"total runtime {time.perf_counter() - start:.1f} s")
+
+
+def stronge_study(size: Size, out: pathlib.Path) -> None:
+    """The force histories and the mass, velocity/plasticity and location figures with the Stronge law."""
     law = contact_law()
 
     # -- force histories -------------------------------------------------------------------
@@ -284,7 +375,6 @@ def main(argv=None):
     plt.close(fig)
     print(table[["x_over_L", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
                  "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
-    print(f"total runtime {time.perf_counter() - start:.1f} s")
 
 
 if __name__ == "__main__":

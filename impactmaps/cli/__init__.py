@@ -187,8 +187,8 @@ def build_parser() -> argparse.ArgumentParser:
     _deferred_choices(p.add_argument(
         "--law", default=None,
         help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
-        "or yc / stronge (with --beta: the elastic-plastic maps over β, ζ, λ)"), _MAP_LAWS)
-    p.add_argument("--beta", type=float, default=None, help="impact number β (with --law yc or stronge)")
+        "or yc / stronge / epp (with --beta: the elastic-plastic maps over β, ζ, λ)"), _MAP_LAWS)
+    p.add_argument("--beta", type=float, default=None, help="impact number β (with --law yc, stronge or epp)")
     p.add_argument("--slenderness", type=float, default=None,
                    help="span/thickness of a Timoshenko beam or Mindlin plate (≥ 10; default 20: the shipped "
                    "map; others interpolated in 1/slenderness between the shipped family members)")
@@ -197,6 +197,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "error band")
     p.add_argument("--no-build", action="store_true",
                    help="with --case: refuse a case no shipped map describes instead of building its map tile")
+    p.add_argument("--quiet", action="store_true",
+                   help="with --case: no lines on stderr announcing a map tile's build and its progress")
 
     p = add("sweep", "run a sweep described by a TOML file (resumable)", cmd_sweep)
     p.add_argument("config", type=Path)

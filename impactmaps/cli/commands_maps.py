@@ -351,6 +351,7 @@ def cmd_lookup(args) -> dict:
 
     if args.case is not None:
         import sys
+        import time
 
         from ..cases import load_case
         from ..maps.case_lookup import case_map_law, lookup_case
@@ -364,8 +365,12 @@ def cmd_lookup(args) -> dict:
             if given is not None and given != wanted:
                 raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
                                  "the case says which map describes it")
-        return lookup_case(case, build=not args.no_build, notify=lambda line: print(line, file=sys.stderr))
-    refuse(args, {"--no-build": "no_build"}, "without --case (only the lookup of a case builds map tiles)")
+        notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
+        start = time.perf_counter()
+        progress = None if args.quiet else (lambda done, total: print(
+            f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
+        return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+    refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
     from ..maps.plastic_points import PLASTIC_LAWS

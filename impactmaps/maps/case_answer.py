@@ -3,7 +3,7 @@
 :func:`impactmaps.maps.case_lookup.lookup_case` answers a case from a shipped map or an
 on-demand tile (:mod:`impactmaps.maps.on_demand`); both name the case's map law
 (:func:`case_map_law`), compare its dimensionless groups with a map structure's
-(:func:`family_groups`), refuse with a :class:`NoMapError` and scale the reading to
+(:meth:`impactmaps.targets.base.Target.similarity_groups`), refuse with a :class:`NoMapError` and scale the reading to
 newtons (:func:`scaled_answer`, :func:`lookup_plastic_case`) through this module.
 """
 
@@ -12,19 +12,21 @@ from __future__ import annotations
 from ..cases import case_dimensionless
 from ..hertz_similarity import hertz_numbers
 from ..solvers.modal import uses_patch, contact_radius_function
+from ..targets.map_structure import STRUCTURE_MATCH_RTOL
 from .lookup import status_notes
 from .plastic_lookup import lookup_plastic
 from .map_family import available_map_families, map_family
 from .plastic_points import plastic_numbers
 from .reader import OutsideMapError, UnresolvedPointError
 
-__all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "family_groups", "scaled_answer",
-           "answer", "lookup_plastic_case"]
+__all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "scaled_answer",
+           "answer", "lookup_plastic_case", "plastic_answer"]
 
 
 #: Relative tolerance within which a case "is" a shipped map's structure (impact point,
-#: aspect ratio, slenderness): beyond it the map does not describe the case.
-CASE_MATCH_RTOL = 1e-6
+#: aspect ratio, slenderness, dimensionless groups): beyond it the map does not describe the
+#: case (the targets' own tolerance, :data:`impactmaps.targets.map_structure.STRUCTURE_MATCH_RTOL`).
+CASE_MATCH_RTOL = STRUCTURE_MATCH_RTOL
 
 
 class NoMapError(ValueError):
@@ -66,32 +68,6 @@ def case_loads_a_patch(case) -> bool:
     """Whether ``simulate`` spreads this case's contact force over the contact patch: the
     target takes one under ``solver.contact_patch`` and the law has a contact radius."""
     return uses_patch(case.target, case.settings.contact_patch) and contact_radius_function(case.law) is not None
-
-
-def family_groups(target) -> dict:
-    """The dimensionless ratios that, besides shape, supports and impact point, fix a map family.
-
-    Kirchhoff SSSS plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies); Mindlin
-    plates add D12/D11 and the shear and rotary-inertia ratios; Timoshenko beams the
-    shear and rotary-inertia ratios; every target its modal damping ratio (the maps are
-    undamped).
-    """
-    groups = {"damping_ratio": float(target.damping_ratio)}
-    if target.structure == "beam":
-        if target.theory != "euler":
-            span = target.length
-            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
-            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
-        return groups
-    groups["D22/D11"] = target.D22 / target.D11
-    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
-    if target.theory == "mindlin":
-        side = target.length_x
-        groups["D12/D11"] = target.D12 / target.D11
-        for name in ("A44", "A55"):
-            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
-        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
-    return groups
 
 
 def scaled_answer(case, law: str, read) -> dict:
@@ -143,12 +119,22 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     dict
         See :func:`impactmaps.maps.case_lookup.lookup_case`.
     """
+    def read(beta, zeta, lam):
+        try:
+            return lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law)
+        except (OutsideMapError, UnresolvedPointError) as error:
+            raise NoMapError(case, str(error).split("; run")[0]) from None
+
+    return plastic_answer(case, law, read)
+
+
+def plastic_answer(case, law: str, read) -> dict:
+    """The answer of :func:`impactmaps.maps.case_lookup.lookup_case` for an elastic-plastic case
+    from ``read(β, ζ, λ) -> PlasticLookup``, a reading of a plastic map (shipped or a tile) at
+    the case's numbers (:func:`impactmaps.maps.plastic_points.plastic_numbers`), scaled to
+    newtons and joules."""
     numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
-    try:
-        found = lookup_plastic(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness,
-                               structure=structure, theory=theory, law=law)
-    except (OutsideMapError, UnresolvedPointError) as error:
-        raise NoMapError(case, str(error).split("; run")[0]) from None
+    found = read(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness)
     scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2
     return answer(found, scale, law, {
         "restitution": found.restitution,

@@ -6,9 +6,10 @@ map family that describes it exactly, or refuses with the reason (never the near
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
 slenderness families :func:`impactmaps.maps.families.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
-to newtons with its band. A linear or Hertz case that no shipped map describes but a
-:class:`~impactmaps.maps.structures.MapStructure` can write is answered from a map tile
-built on demand and cached (:mod:`impactmaps.maps.on_demand`).
+to newtons with its band. A case that no shipped map describes but whose target names a
+reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
+is answered from a map tile built on demand and cached (:mod:`impactmaps.maps.on_demand`),
+for the linear, Hertz and elastic-plastic laws alike.
 """
 
 from __future__ import annotations
@@ -20,12 +21,11 @@ from .case_answer import (
     NoMapError,
     case_loads_a_patch,
     case_map_law,
-    family_groups,
     lookup_plastic_case,
     scaled_answer,
 )
-from .families import lookup_slenderness
-from .lookup import SHIPPED_MAPS, SHIPPED_SLENDERNESS, lookup
+from .families import family_members, lookup_slenderness
+from .lookup import SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
 from .plastic_points import PLASTIC_LAWS
 from .reader import OutsideMapError, UnresolvedPointError
@@ -43,9 +43,11 @@ def map_for_case(case) -> tuple[str, str]:
     law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
     ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
-    (Yigit–Christoforou, default Stronge) have maps for the same families except the
-    Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). A case outside
-    every family is refused, never looked up in the nearest map.
+    (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same families
+    except the Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). The
+    target names its reference structure (:meth:`Target.map_structure
+    <impactmaps.targets.base.Target.map_structure>`); a case whose structure is no shipped
+    map's is refused, never looked up in the nearest map.
 
     Parameters
     ----------
@@ -74,74 +76,79 @@ def map_for_case(case) -> tuple[str, str]:
         refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
                "and Rayleigh theory; the maps are of elastic structures solved modally)")
     target = case.target
-    if case.target_type == "beam":
-        if target.supports != "ss":
-            refuse(f"beam supports {target.supports!r} (maps: simply supported 'ss')")
-        if not same(target.impact_position, 0.5 * target.length):
-            refuse(f"impact at x0 = {target.impact_position:g} m of a {target.length:g} m span "
-                   "(maps: mid-span)")
-        theory = target.theory
-    elif case.target_type == "plate":
-        if target.edges != "SSSS":
-            refuse(f"plate edges {target.edges!r} (maps: 'SSSS')")
-        if not same(target.length_y, target.length_x):
-            refuse(f"plate aspect ratio {target.length_y / target.length_x:g} (maps: square)")
-        if not (same(target.impact_point[0], 0.5 * target.length_x)
-                and same(target.impact_point[1], 0.5 * target.length_y)):
-            refuse(f"impact at {target.impact_point} m (maps: the plate centre)")
-        theory = target.theory
-    else:
-        refuse(f"target type {case.target_type!r} (maps: beams and plates)")
-    structure = case.target_type
+    key = target.map_structure()
+    if key is None:
+        refuse(target.map_structure_refusal())
     maps = map_family(law).shipped
-    if (structure, theory) not in maps:
-        refuse(f"{structure} theory {theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
-               + ", ".join(t for s, t in maps if s == structure) + ")")
-    slenderness = case_slenderness(case)
+    shipped = [structure_from_name(name) for (kind, _), name in maps.items() if kind == key.kind]
+    if not shipped:
+        refuse(f"target type {key.kind!r} (maps for the {law} law: " + ", ".join(sorted({k for k, _ in maps})) + ")")
+    reference = shipped[0]  # every shipped map of a kind has its supports, impact point and aspect
+    beam = key.kind == "beam"
+    if key.supports != reference.supports:
+        refuse(f"beam supports {key.supports!r} (maps: simply supported {reference.supports!r})" if beam
+               else f"plate edges {key.supports!r} (maps: {reference.supports!r})")
+    if not all(same(f, wanted) for f, wanted in zip(key.impact_fraction, reference.impact_fraction)):
+        refuse(f"impact at x0 = {target.impact_position:g} m of a {target.length:g} m span (maps: mid-span)" if beam
+               else f"impact at {target.impact_point} m (maps: the plate centre)")
+    if not same(key.aspect_ratio, reference.aspect_ratio):
+        refuse(f"plate aspect ratio {key.aspect_ratio:g} (maps: square)")
+    if (key.kind, key.theory) not in maps:
+        refuse(f"{key.kind} theory {key.theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
+               + ", ".join(t for s, t in maps if s == key.kind) + ")")
     if law == "hertz" and case_loads_a_patch(case):
-        refuse(f"a Hertz impact on a {theory.capitalize()} plate, which simulate loads over the contact patch (the "
-               "maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
+        refuse(f"a Hertz impact on a {key.theory.capitalize()} plate, which simulate loads over the contact patch "
+               "(the maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
+    slenderness = key.slenderness
     if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
-        family = law in MAP_LAWS and (theory == "timoshenko" or law == "linear")
+        family = _has_family(key.kind, key.theory, law)
         if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
-            refuse(f"{theory} {structure} of slenderness {slenderness:.4g} (maps: "
+            refuse(f"{key.theory} {key.kind} of slenderness {slenderness:.4g} (maps: "
                    + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
                       f"{', '.join(f'{v:g}' for v in FAMILY_SLENDERNESSES)} and the thin limit"
                       if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
-    reference = family_groups(replace(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
-                                       slenderness=slenderness or SHIPPED_SLENDERNESS).build())
-    for name, value in family_groups(target).items():
-        if not (same(value, reference[name]) if reference[name] else value == 0.0):
-            refuse(f"{name} = {value:.6g} (maps: {reference[name]:.6g}; an orthotropic or laminated plate, "
-                   "another Poisson ratio of a shear-deformable target or structural damping is another family)")
-    return structure, theory
+    wanted = replace(structure_from_name(maps[(key.kind, key.theory)]), slenderness=slenderness or SHIPPED_SLENDERNESS)
+    groups = wanted.build().similarity_groups()
+    for name, value in target.similarity_groups().items():
+        if not (same(value, groups[name]) if groups[name] else value == 0.0):
+            refuse(f"{name} = {value:.6g} (maps: {groups[name]:.6g}; another Poisson ratio of a shear-deformable "
+                   "target is another family)")
+    return key.kind, key.theory
+
+
+def _has_family(kind: str, theory: str, law: str) -> bool:
+    """Whether a slenderness family is shipped for a (kind, theory) with ``law``."""
+    try:
+        family_members(kind, theory, law)
+    except ValueError:
+        return False
+    return True
 
 
 def case_slenderness(case) -> float | None:
-    """span/thickness of a case's Timoshenko beam or Mindlin plate [-]; None otherwise."""
-    target = case.target
-    if getattr(target, "theory", None) not in ("timoshenko", "mindlin"):
-        return None
-    if case.target_type == "beam":
-        return target.slenderness
-    return target.length_x / target.thickness
+    """span/thickness of a case's target where its normalised response depends on it (a
+    Timoshenko or Rayleigh beam, a Mindlin plate: :meth:`~impactmaps.targets.base.Target.map_structure`) [-];
+    None otherwise (or when no reference structure describes the target)."""
+    key = case.target.map_structure()
+    return None if key is None else key.slenderness
 
 
 def _point_loaded_mindlin(case) -> bool:
-    """Whether ``simulate`` strikes this case's Mindlin plate at a point (no contact patch)."""
-    return (case.target_type == "plate" and getattr(case.target, "theory", None) == "mindlin"
-            and case.solver_kind == "modal" and not case_loads_a_patch(case))
+    """Whether ``simulate`` strikes this case's target at a point (no contact patch) where its
+    point-load deflection diverges (a Mindlin plate: :attr:`Target.point_load_diverges
+    <impactmaps.targets.base.Target.point_load_diverges>`)."""
+    return case.target.point_load_diverges and case.solver_kind == "modal" and not case_loads_a_patch(case)
 
 
-def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
+def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=None) -> dict:
     """Peak force of a physical case from the map that describes it, or refuse.
 
     A shipped map (:func:`map_for_case`) answers if one describes the case and holds its
     numbers. Otherwise (or when the numbers lie beyond the shipped map) a
-    linear or Hertz case on a structure :class:`~impactmaps.maps.structures.MapStructure`
-    can write (isotropic, undamped beams and plates of any supports, impact point, aspect
-    and slenderness; a Hertz impact under the contact patch adds its patch number) is
-    answered from an on-demand map tile, built once and cached
+    case whose target names a reference structure (isotropic, undamped beams and plates of
+    any supports, impact point, aspect and slenderness; a Hertz impact under the contact
+    patch adds its patch number; an elastic-plastic law its β, except on a Mindlin plate)
+    is answered from an on-demand map tile, built once and cached
     (:func:`impactmaps.maps.on_demand.lookup_on_demand`); anything else is refused.
 
     Parameters
@@ -155,6 +162,9 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     notify : callable, optional
         Called with one line of text before a tile is built (the command line prints it
         on stderr).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built (the command line
+        prints it on stderr).
 
     Returns
     -------
@@ -193,11 +203,19 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
     try:
         structure, theory = map_for_case(case)
     except NoMapError as refusal:
-        if not build or law not in MAP_LAWS or case.solver_kind != "modal" or case.target_type not in ("beam", "plate"):
+        if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either
-        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify)
+        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
     if law in PLASTIC_LAWS:
-        return lookup_plastic_case(case, structure, theory, law)
+        try:
+            return lookup_plastic_case(case, structure, theory, law)
+        except NoMapError as error:
+            if not build:
+                raise
+            # beyond the shipped plastic map, or next to a point it could not resolve: a tile answers or refuses
+            beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} {law} map or next "
+                                      f"to a point it could not resolve ({error.what})")
+        return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
     slenderness = case_slenderness(case)
     if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
         def read(zeta, lam):
@@ -215,6 +233,6 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None) -> dict:
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")
-    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify)
+    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
 
 

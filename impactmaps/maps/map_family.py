@@ -117,6 +117,9 @@ class MapFamily:
         The ``title`` and ``method`` attributes of its maps.
     classifies : bool
         Whether its points have regimes (:meth:`infinite_peak`, :meth:`quasi_static_peak`).
+    tile_lattice : dict
+        Axis name → Δ log10 of the global lattice of its on-demand tiles
+        (:mod:`impactmaps.maps.tiles`), every axis.
     """
 
     name: ClassVar[str]
@@ -129,6 +132,7 @@ class MapFamily:
     law_revision: ClassVar[int] = 1
     title: ClassVar[str] = "impactmaps normalised impact map"
     classifies: ClassVar[bool] = False
+    tile_lattice: ClassVar[dict] = {"zeta": 0.05, "lambda_": 0.1}
 
     @property
     def method_text(self) -> str:

@@ -1,18 +1,22 @@
 """On-demand maps: the answer for a case that no shipped map describes.
 
 The shipped maps cover a few structure families (:mod:`impactmaps.maps.case_lookup`). A
-case with a linear or Hertz contact law whose target a
-:class:`~impactmaps.maps.structures.MapStructure` can write exactly — an isotropic,
-undamped beam or plate of any supports, impact point, aspect ratio, slenderness and
-Poisson ratio (:func:`case_structure`) — is answered from a small tile of the map of
-exactly that structure around the case's (ζ, λ), built once and cached
-(:mod:`impactmaps.maps.tiles`). A Hertz impact that ``simulate`` loads over the contact
-patch (Mindlin SSSS plates by default) has a third number, the patch number
-``P = sqrt(R α_m)/h`` (:mod:`impactmaps.hertz_similarity`); its tile is of that P.
+case whose target names a reference structure (:meth:`Target.map_structure
+<impactmaps.targets.base.Target.map_structure>`: an isotropic, undamped beam or plate of
+any supports, impact point, aspect ratio, slenderness and Poisson ratio;
+:func:`case_structure`) is answered from a small tile of the map of exactly that structure
+around the case's numbers, built once and cached (:mod:`impactmaps.maps.tiles`): (ζ, λ) for
+a linear or Hertz law, (β, ζ, λ) for an elastic-plastic one (Yigit–Christoforou, default
+Stronge, default ``epp``; read as the shipped plastic maps,
+:func:`impactmaps.maps.plastic_lookup.read_plastic`). A Hertz impact that ``simulate``
+loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
+patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.hertz_similarity`); its tile is of
+that P.
 
 Everything else stays refused with the reason: a target the structure cannot write
 (orthotropic or laminated, structural damping, a beam section whose shear or rotary
-inertia no rectangle of any Poisson ratio has), a tile point next to the case that is
+inertia no rectangle of any Poisson ratio has), an elastic-plastic impact on a Mindlin
+plate (the sphere radius a fourth number), a tile point next to the case that is
 ``unresolved`` (beyond the structural theory's range, or more modes than the sweep's cap
 of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the nearest map.
 """
@@ -21,9 +25,12 @@ from __future__ import annotations
 
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
-from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, family_groups, scaled_answer
+from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
+from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from .lookup import read_map
+from .plastic_lookup import read_plastic
 from .points import MAX_MODES
+from .registry import map_family
 from .structures import MapStructure
 from .tiles import cached_tile, tile_for
 
@@ -32,11 +39,6 @@ __all__ = ["case_structure", "lookup_on_demand"]
 #: Significant digits kept of a case's shape numbers and patch number: cases that agree
 #: to them share a tile (far below CASE_MATCH_RTOL, which the structure is checked to).
 _DIGITS = 12
-#: The slenderness given to a structure whose theory does not depend on it (Euler,
-#: Kirchhoff under a point load): the shipped maps' value.
-_ANY_SLENDERNESS = 20.0
-#: The Poisson ratio given to a beam whose response does not depend on it (Euler).
-_ANY_POISSON = 0.3
 
 
 def _rounded(value: float) -> float:
@@ -46,80 +48,63 @@ def _rounded(value: float) -> float:
 def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     """The :class:`MapStructure` that describes ``case`` exactly, and its patch number.
 
+    The structure is the one the target names (:meth:`impactmaps.targets.base.Target.map_structure`,
+    its numbers rounded to 12 significant digits so that cases that agree to them share a
+    tile), with the reference slenderness and Poisson ratio where the response does not
+    depend on them.
+
     Parameters
     ----------
     case : impactmaps.cases.Case
         A case on a beam or a plate.
-    law : {"linear", "hertz"}
+    law : str
         The case's map law (:func:`impactmaps.maps.case_lookup.case_map_law`).
 
     Returns
     -------
     (MapStructure, float or None)
-        The structure (slenderness and Poisson ratio only where they matter: Timoshenko
-        and Rayleigh beams, Mindlin plates, plates with other edges than SSSS, a patch
-        load) and the patch number P of a Hertz case that ``simulate`` loads over the
-        contact patch (None otherwise).
+        The structure and the patch number P of a Hertz case that ``simulate`` loads over
+        the contact patch (None otherwise).
 
     Raises
     ------
     ValueError
         Naming the ratio (shear stiffness, rotary inertia, D22/D11, damping ratio …) in
-        which the case differs from every such structure.
+        which the case differs from every such structure; for a law with more numbers than
+        ζ and λ (an elastic-plastic one), a target loaded over the contact patch (its radius
+        adds the sphere radius as a number) or one whose point-load deflection diverges.
     """
+    family = map_family(law)
+    patch = case_loads_a_patch(case)
     target = case.target
-    patch = law == "hertz" and case_loads_a_patch(case)
-    if case.target_type == "beam":
-        shear_deformable = target.theory != "euler"
-        if shear_deformable and target.slenderness is None:
-            raise ValueError(f"a {target.theory} beam without a height (its slenderness is unknown)")
-        fields = {"supports": target.supports, "impact_fraction": (_rounded(target.impact_position / target.length),),
-                  "slenderness": _rounded(target.slenderness) if shear_deformable else _ANY_SLENDERNESS,
-                  # the shear group of a rectangle, S L²/EI = 5 s²/(1 + ν) (k = 5/6): the ν it implies
-                  "poisson_ratio": _rounded(5.0 * target.slenderness**2 * target.bending_stiffness
-                                            / (target.shear_stiffness * target.length**2) - 1.0)
-                  if shear_deformable else _ANY_POISSON}
-    else:
-        side = target.length_x
-        fields = {"supports": target.edges, "aspect_ratio": _rounded(target.length_y / side),
-                  "impact_fraction": tuple(_rounded(x / length) for x, length in
-                                           zip(target.impact_point, (target.length_x, target.length_y))),
-                  "slenderness": _rounded(side / target.thickness) if target.theory == "mindlin" or patch
-                  else _ANY_SLENDERNESS}
-        if target.theory == "mindlin" or target.edges != "SSSS":  # the Navier SSSS Kirchhoff plate has no ν
-            fields["poisson_ratio"] = _rounded(target.D12 / target.D11)
-    structure = MapStructure(kind=case.target_type, theory=target.theory, **fields)
-    _check_describes(structure, target, "poisson_ratio" in fields)
+    if family.extra_axes and (patch or target.point_load_diverges):
+        raise ValueError("an elastic-plastic impact on a target that simulate loads over the contact patch, or whose "
+                         "point-load deflection diverges (a Mindlin plate): its response depends on the sphere radius "
+                         "as a fourth number")
+    patch = patch and law == "hertz"
+    key = target.map_structure(patch_loaded=patch)
+    if key is None:
+        raise ValueError(target.map_structure_refusal(patch_loaded=patch))
+    structure = MapStructure(kind=key.kind, theory=key.theory, supports=key.supports,
+                             aspect_ratio=_rounded(key.aspect_ratio),
+                             impact_fraction=tuple(_rounded(f) for f in key.impact_fraction),
+                             slenderness=REFERENCE_SLENDERNESS if key.slenderness is None else _rounded(key.slenderness),
+                             poisson_ratio=REFERENCE_POISSON if key.poisson_ratio is None
+                             else _rounded(key.poisson_ratio))
     number = None
     if patch:
         number = _rounded(patch_number(target, case.law, case.impactor_mass, case.velocity))
     return structure, number
 
 
-def _check_describes(structure: MapStructure, target, poisson: bool) -> None:
-    """``ValueError`` naming the first dimensionless group in which ``structure`` differs from
-    ``target`` (for a plate also D12/D11 if ``poisson``: its response depends on ν)."""
-    reference = structure.build()
-
-    def groups(of):
-        extra = {"D12/D11": of.D12 / of.D11} if of.structure == "plate" and poisson else {}
-        return family_groups(of) | extra
-
-    wanted = groups(reference)
-    for name, value in groups(target).items():
-        if not (abs(value - wanted[name]) <= CASE_MATCH_RTOL * abs(wanted[name]) if wanted[name] else value == 0.0):
-            raise ValueError(f"{name} = {value:.6g} where the isotropic, undamped {structure.name} has "
-                             f"{wanted[name]:.6g} (an orthotropic or laminated plate, another beam section or "
-                             "structural damping is not a map structure)")
-
-
-def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None) -> dict:
+def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None, progress=None) -> dict:
     """:func:`impactmaps.maps.case_lookup.lookup_case` of a case no shipped map describes.
 
     Parameters
     ----------
     case : impactmaps.cases.Case
-    law : {"linear", "hertz"}
+    law : str
+        The case's map law (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
     refusal : NoMapError
         Why no shipped map describes the case (:func:`~impactmaps.maps.case_lookup.map_for_case`);
         part of the message when no tile can answer either.
@@ -127,12 +112,15 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         The tile cache (:func:`impactmaps.maps.tiles.cache_directory`).
     notify : callable, optional
         Called with one line before a tile is built.
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built.
 
     Returns
     -------
     dict
-        The keys of ``lookup_case``, ``map`` naming the tile, plus ``cache_file`` (the
-        tile's file) and, for a patch-loaded Hertz case, ``patch_number``.
+        The keys of ``lookup_case`` (an elastic-plastic case: with ``restitution``,
+        ``absorbed_energy_J`` and their bands), ``map`` naming the tile, plus ``cache_file``
+        (the tile's file) and, for a patch-loaded Hertz case, ``patch_number``.
 
     Raises
     ------
@@ -146,19 +134,33 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         raise NoMapError(case, f"{refusal.what}, and no on-demand map describes it: {error}") from None
     settings, built = _tile_settings(case, patch), {}
 
-    def read(zeta, lam):
-        key = tile_for(structure, law, patch, zeta, lam, settings)
-        dataset, built["path"] = cached_tile(key, cache_dir, notify=notify)
-        try:
-            return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
-                            law=law)
-        except ValueError:  # next to an unresolved point
-            raise NoMapError(case, f"{refusal.what}, and the {key.name} holds no value next to it, at "
-                             f"(ζ, λ) = ({zeta:.4g}, {lam:.4g}) (unresolved: the contact frequency lies beyond the "
-                             f"range of the {structure.theory} theory, or a point needs more modes than the sweep's "
-                             f"cap of {MAX_MODES} modes below its cut-off and no exact asymptote answers it)") from None
+    def unresolved(name, numbers):
+        return NoMapError(case, f"{refusal.what}, and the {name} holds no value next to it, at "
+                                f"{numbers} (unresolved: the contact frequency lies beyond the range of the "
+                                f"{structure.theory} theory, or a point needs more modes than the sweep's cap of "
+                                f"{MAX_MODES} modes below its cut-off and no exact asymptote answers it)")
 
-    answer = scaled_answer(case, law, read)
+    if map_family(law).extra_axes:  # an elastic-plastic family: (β, ζ, λ)
+        def read(beta, zeta, lam):
+            key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,))
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
+            try:
+                return read_plastic(dataset, law, (beta, zeta, lam), name=key.name, where=key.name)
+            except ValueError:  # next to an unresolved point
+                raise unresolved(key.name, f"(β, ζ, λ) = ({beta:.4g}, {zeta:.4g}, {lam:.4g})") from None
+
+        answer = plastic_answer(case, law, read)
+    else:
+        def read(zeta, lam):
+            key = tile_for(structure, law, patch, zeta, lam, settings)
+            dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
+            try:
+                return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
+                                law=law)
+            except ValueError:  # next to an unresolved point
+                raise unresolved(key.name, f"(ζ, λ) = ({zeta:.4g}, {lam:.4g})") from None
+
+        answer = scaled_answer(case, law, read)
     answer["cache_file"] = None if built["path"] is None else str(built["path"])
     if patch is not None:
         answer["patch_number"] = patch

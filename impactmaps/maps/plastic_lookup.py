@@ -27,7 +27,7 @@ from .plastic_points import ERROR_OF, PLASTIC_LAWS, YC
 from .reader import band_grid, read_values
 from .registry import map_family
 
-__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic"]
+__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "read_plastic"]
 
 #: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
 #: patch depends on the sphere radius, a fourth number).
@@ -114,9 +114,38 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
     """
     dataset = load_plastic_map(structure, theory, law)
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
-    reading = read_values(dataset, map_family(law), (beta, loss_factor, relative_stiffness),
-                          ("beta", "loss_factor", "relative_stiffness"), where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}",
-                          hints=(" (impactmaps simulate)",) * 2, band_grids=_band_grids(structure, theory, law))
+    return read_plastic(dataset, law, (beta, loss_factor, relative_stiffness), name=name,
+                        where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}",
+                        band_grids=_band_grids(structure, theory, law))
+
+
+def read_plastic(dataset: xr.Dataset, law: str, numbers, *, name: str, where: str,
+                 band_grids: dict | None = None) -> PlasticLookup:
+    """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A map of the plastic family ``law`` over (β, λ, ζ).
+    law : {"yc", "stronge", "epp"}
+    numbers : (β, ζ, λ)
+        Floats or arrays [-].
+    name, where : str
+        The map's name (the answer's ``map_name``) and how a refusal names it.
+    band_grids : dict, optional
+        :func:`~impactmaps.maps.reader.band_grid` of each interpolated quantity, when known.
+
+    Returns
+    -------
+    PlasticLookup
+
+    Raises
+    ------
+    ValueError
+        As :func:`lookup_plastic`.
+    """
+    reading = read_values(dataset, map_family(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
+                          where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids)
     values = reading.values | reading.errors
     status = reading.status
     if not reading.shape:

@@ -401,6 +401,9 @@ class PlasticFamily(MapFamily):
         ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
     }
     title = "impactmaps normalised elastic-plastic impact map"
+    #: The on-demand tiles' lattice: the shipped plastic maps' grid (2 β, 6 ζ, 5 λ per decade),
+    #: on which their bands were validated.
+    tile_lattice = {"beta": 0.5, "zeta": 1.0 / 6.0, "lambda_": 0.2}
 
     def __init__(self, name: str):
         require_choice("map_law", name, tuple(PLASTIC_LAWS))

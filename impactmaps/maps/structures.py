@@ -20,20 +20,11 @@ import numpy as np
 from .._checks import require_choice, require_in_range, require_positive
 from ..targets.base import ModalBasis, Target, dropped_compliance_sums
 from ..targets.beam import MIN_SLENDERNESS, Beam
+from ..targets.map_structure import reference_target
 from ..targets.options import BEAM_THEORIES, PLATE_THEORIES, STRUCTURE_KINDS
 from ..targets.plate import Plate
 
 __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
-
-
-@dataclass(frozen=True)
-class _ReferenceMaterial:
-    """Steel-like isotropic material of the reference targets (E, ν, ρ in SI)."""
-
-    youngs_modulus: float = 210e9
-    poisson_ratio: float = 0.3
-    density: float = 7850.0
-    yield_strength: float | None = None
 
 
 @dataclass(frozen=True)
@@ -113,33 +104,7 @@ class MapStructure:
         A new (equal) target each call: targets hold no state, their modes are cached by
         value (:mod:`impactmaps.targets`).
         """
-        return _build_target(self)
-
-
-def _build_target(structure: MapStructure) -> Target:
-    material = _ReferenceMaterial(poisson_ratio=structure.poisson_ratio)
-    span = 1.0
-    thickness = span / structure.slenderness
-    if structure.kind == "beam":
-        return Beam.rectangular(
-            span,
-            thickness,
-            thickness,
-            material,
-            theory=structure.theory,
-            supports=structure.supports,
-            impact_position=structure.impact_fraction[0] * span,
-        )
-    width = span * structure.aspect_ratio
-    return Plate.isotropic(
-        span,
-        width,
-        thickness,
-        material,
-        theory=structure.theory,
-        edges=structure.supports,
-        impact_point=(structure.impact_fraction[0] * span, structure.impact_fraction[1] * width),
-    )
+        return reference_target(Beam if self.kind == "beam" else Plate, self)
 
 
 def structure_from_name(name: str) -> MapStructure:

@@ -1,15 +1,19 @@
-"""Map tiles: small (ζ, λ) maps on a global lattice, built on demand and cached on disk.
+"""Map tiles: small maps on a global lattice, built on demand and cached on disk.
 
-A tile is the 4 × 4 points of the global log lattice around a (ζ, λ) — the lattice of
-the shipped linear maps, ``log10 ζ = i Δζ``, ``log10 λ = j Δλ`` (:func:`lattice_steps`) —
-for one structure and law (and, for a Hertz law on a patch-loaded target, one patch
-number P: :mod:`impactmaps.hertz_similarity`). Every point is solved exactly as the
-shipped maps solve theirs (:func:`impactmaps.maps.sweep.solve_points`,
-:func:`impactmaps.maps.hertz_points.solve_hertz_points`, the same settings and accuracy
-control), so it carries its error and status, and the tile is read with the shipped
-maps' interpolation and band (:func:`impactmaps.maps.lookup.read_map`): the point's
-cell is the tile's middle one, so the band's second differences have a neighbour on
-each side.
+A tile is the 4 points a side of the global log lattice of its map family around a
+point — ``log10 ζ = i Δζ``, ``log10 λ = j Δλ``, and ``log10 β = k Δβ`` for an
+elastic-plastic family (:attr:`MapFamily.tile_lattice
+<impactmaps.maps.map_family.MapFamily.tile_lattice>`: the lattice of the shipped linear
+maps, (Δζ, Δλ) = (0.05, 0.1) (:func:`lattice_steps`), for the linear and Hertz families,
+4 × 4 points; the shipped plastic maps' grid, (Δβ, Δζ, Δλ) = (0.5, 1/6, 0.2), for the
+plastic ones, 4 × 4 × 4 points) — for one structure and law (and, for a Hertz law on a
+patch-loaded target, one patch number P: :mod:`impactmaps.hertz_similarity`). Every point
+is solved exactly as the shipped maps solve theirs (:func:`impactmaps.maps.points.solve_map_points`
+of the family, the same settings and accuracy control), so it carries its error and
+status, and the tile is read with the shipped maps' interpolation and band
+(:func:`impactmaps.maps.lookup.read_map`, :func:`impactmaps.maps.reader.read_values`):
+the point's cell is the tile's middle one, so the band's second differences have a
+neighbour on each side.
 
 A tile is a pure function of its :class:`TileKey`. The cache (:func:`cache_directory`)
 holds one NetCDF file per tile, named by the key's fingerprint
@@ -23,6 +27,7 @@ older solver — is rebuilt and replaced), and at most :data:`MAX_CACHED_TILES` 
 from __future__ import annotations
 
 import hashlib
+import itertools
 import math
 import os
 import warnings
@@ -36,7 +41,6 @@ from ..jsonio import dumps
 from ..solvers.modal import ModalSettings
 from ..solvers.shear_range import beyond_shear_theory
 from .accuracy import AccuracyControl
-from .map_family import RESULT_VARIABLES
 from .points import SOLVER_REVISION, frequency_cap, solve_map_points
 from .registry import map_family
 from .store import fingerprint, save_atomic
@@ -84,13 +88,17 @@ class TileKey:
     Attributes
     ----------
     structure : MapStructure
-    law : {"linear", "hertz"}
+    law : str
+        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
     patch : float or None
         Patch number P = sqrt(R α_m)/h of a patch-loaded Hertz tile [-]; None: point load.
     zeta_index, lambda_index : int
         Lattice index of the tile's first ζ and λ (``log10 ζ = zeta_index · Δζ``).
     settings : ModalSettings
     control : AccuracyControl
+    extra_indices : tuple of int
+        Lattice index of the tile's first value on each axis of the family before (λ, ζ)
+        (β of an elastic-plastic family); empty for a (ζ, λ) family.
     """
 
     structure: MapStructure
@@ -100,18 +108,33 @@ class TileKey:
     lambda_index: int
     settings: ModalSettings = ModalSettings()
     control: AccuracyControl = AccuracyControl()
+    extra_indices: tuple = ()
 
     @property
     def axes(self) -> tuple[np.ndarray, np.ndarray]:
         """The tile's ζ and λ values [-], ascending."""
-        steps = lattice_steps()
-        return tuple(10.0 ** (step * (start + np.arange(TILE_POINTS)))
-                     for step, start in zip(steps, (self.zeta_index, self.lambda_index)))
+        steps = _family(self).tile_lattice
+        return tuple(_values(steps[name], start) for name, start in (("zeta", self.zeta_index),
+                                                                      ("lambda_", self.lambda_index)))
+
+    @property
+    def extra_axes(self) -> tuple[np.ndarray, ...]:
+        """The tile's values on the family's axes before (λ, ζ) (β …) [-], ascending; empty for (ζ, λ)."""
+        family = _family(self)
+        return tuple(_values(family.tile_lattice[axis.name], start)
+                     for axis, start in zip(family.extra_axes, self.extra_indices))
 
     def description(self) -> dict:
         """JSON-ready description (the fingerprint's input; stored in the tile)."""
+        lattice = _family(self).tile_lattice
+        extra = {}
+        if self.extra_indices:  # (a (ζ, λ) tile's description predates the extra axes)
+            extra = {"extra_indices": {axis.name: index for axis, index in
+                                       zip(_family(self).extra_axes, self.extra_indices)},
+                     "extra_lattice": {axis.name: lattice[axis.name] for axis in _family(self).extra_axes}}
         return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
-                "zeta_index": self.zeta_index, "lambda_index": self.lambda_index, "lattice": list(lattice_steps()),
+                "zeta_index": self.zeta_index, "lambda_index": self.lambda_index,
+                "lattice": [lattice["zeta"], lattice["lambda_"]], **extra,
                 "points_per_axis": TILE_POINTS, "settings": asdict(self.settings), "accuracy": asdict(self.control),
                 "solver_revision": SOLVER_REVISION, "tile_format": _TILE_FORMAT}
 
@@ -128,42 +151,73 @@ class TileKey:
         patch = "" if self.patch is None else f"-P{self.patch:.4g}"
         if self.patch is not None and f"-s{self.structure.slenderness:g}" not in self.structure.name:
             patch = f"-s{self.structure.slenderness:g}{patch}"  # a patch scales with the thickness
-        return (f"on-demand tile {self.structure.name}{law}{patch} ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
+        extra = "".join(f"{_SYMBOLS.get(axis.name, axis.name)} {values[0]:.3g}–{values[-1]:.3g} "
+                        for axis, values in zip(_family(self).extra_axes, self.extra_axes))
+        return (f"on-demand tile {self.structure.name}{law}{patch} {extra}ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
                 f"λ {lambdas[0]:.3g}–{lambdas[-1]:.3g}")
 
 
+#: How a tile's name writes an axis before (λ, ζ).
+_SYMBOLS = {"beta": "β"}
+
+
+def _values(step: float, start: int) -> np.ndarray:
+    """The :data:`TILE_POINTS` lattice values ``10^(step (start + i))`` [-]."""
+    return 10.0 ** (step * (start + np.arange(TILE_POINTS)))
+
+
 def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor: float, relative_stiffness: float,
-             settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl()) -> TileKey:
-    """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)."""
-    steps = lattice_steps()
-    first = [math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
-             for value, step in zip((loss_factor, relative_stiffness), steps)]
-    return TileKey(structure, law, patch, first[0], first[1], settings, control)
+             settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl(),
+             extra: tuple = ()) -> TileKey:
+    """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)
+    and, for a family with more axes, their values ``extra`` (β …, in the family's order)."""
+    lattice = map_family(law).tile_lattice
+    names = [axis.name for axis in map_family(law).extra_axes]
+    if len(extra) != len(names):
+        raise ValueError(f"extra = {tuple(extra)!r}: the {law} tiles need a value of each of {names}")
+    first = [_first_index(value, lattice[name]) for value, name in
+             zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
+    return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]))
 
 
-def build_tile(key: TileKey) -> xr.Dataset:
+def _first_index(value: float, step: float) -> int:
+    """Lattice index of the first of :data:`TILE_POINTS` values whose middle cell holds ``value``."""
+    return math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
+
+
+def build_tile(key: TileKey, progress=None) -> xr.Dataset:
     """Solve the tile's points (serially) and return it as a one-structure map dataset.
 
-    The dataset has the variables of :data:`~impactmaps.maps.sweep.RESULT_VARIABLES`
-    over (``structure``, ``lambda_``, ``zeta``), ``log_peak_time`` and
+    The dataset has the family's variables (:attr:`MapFamily.variables
+    <impactmaps.maps.map_family.MapFamily.variables>`) over (``structure``, its extra axes
+    (β …), ``lambda_``, ``zeta``), ``log_peak_time`` and
     ``log_reflection_time`` as the shipped maps, and the attributes ``fingerprint``,
-    ``description``, ``data_digest`` and ``contact_law``.
+    ``description``, ``data_digest`` and ``contact_law``. ``progress(done, total)``, if
+    given, is called after each (λ, ζ) plane of points (16 points).
     """
     zetas, lambdas = key.axes
-    points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas]
+    extra = key.extra_axes
+    points = [(*(float(v) for v in values), float(zeta), float(lam))
+              for values in itertools.product(*extra) for lam in lambdas for zeta in zetas]
     family = _family(key)
     # None: the sweep's own table; patch-loaded points build their modes under each patch
     table = _table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
-    rows = solve_map_points(family, key.structure, points, key.settings, table, key.control)
-    shape = (1, lambdas.size, zetas.size)
-    data = {name: (("structure", "lambda_", "zeta"),
-                   np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
-            for name, spec in RESULT_VARIABLES.items()}
+    rows, chunk = [], TILE_POINTS**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
+    for start in range(0, len(points), chunk):
+        rows += solve_map_points(family, key.structure, points[start:start + chunk], key.settings, table, key.control)
+        if progress is not None:
+            progress(len(rows), len(points))
+    shape = (1, *(values.size for values in extra), lambdas.size, zetas.size)
+    dims = ("structure", *(axis.name for axis in family.extra_axes), "lambda_", "zeta")
+    data = {name: (dims, np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
+            for name, spec in family.variables.items()}
     with np.errstate(invalid="ignore", divide="ignore"):  # unresolved points: NaN stays NaN
         for name in ("peak_time", "reflection_time"):  # log-times, as the shipped maps interpolate them
             dims, values, _ = data[f"{name}_normalised"]
             data[f"log_{name}"] = (dims, np.log(values))
-    dataset = xr.Dataset(data, coords={"structure": [key.structure.name], "lambda_": lambdas, "zeta": zetas})
+    coords = {"structure": [key.structure.name], **{axis.name: values for axis, values in
+                                                     zip(family.extra_axes, extra)}, "lambda_": lambdas, "zeta": zetas}
+    dataset = xr.Dataset(data, coords=coords)
     dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
                           "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
                           "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
@@ -236,7 +290,7 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
     return dataset
 
 
-def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, Path | None]:
+def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
     """The tile of ``key`` from the cache, or built and cached.
 
     Parameters
@@ -246,6 +300,8 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, 
         The cache (default :func:`cache_directory`).
     notify : callable, optional
         Called with one line of text before a tile is built (and if it cannot be cached).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built.
 
     Returns
     -------
@@ -262,9 +318,9 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None) -> tuple[xr.Dataset, 
             pass
         return dataset, path
     if notify is not None:
-        notify(f"building an on-demand map tile of {TILE_POINTS ** 2} points for {key.name[len('on-demand tile '):]} "
+        notify(f"building an on-demand map tile of {TILE_POINTS ** (2 + len(key.extra_indices))} points for {key.name[len('on-demand tile '):]} "
                f"…; cached in {path}")
-    dataset = build_tile(key)
+    dataset = build_tile(key, progress)
     try:
         save_atomic(dataset, path)
         _prune(path.parent)

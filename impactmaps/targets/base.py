@@ -17,6 +17,8 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
+from .map_structure import StructureKey, describing_structure, similarity_groups
+
 __all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF",
            "PARTICIPATION_THRESHOLD", "DEGENERACY_TOLERANCE"]
 
@@ -397,6 +399,31 @@ class Target(ABC):
         mass per length or area)`` [m²/s]. Finite structures (beams, plates) override it.
         """
         raise NotImplementedError(f"{type(self).__name__} has no wave-return time")
+
+    @property
+    def point_load_diverges(self) -> bool:
+        """Whether the deflection under a point load is infinite (a Mindlin plate's); default False."""
+        return False
+
+    def map_structure(self, *, patch_loaded: bool = False) -> StructureKey | None:
+        """The reference structure whose normalised maps describe this target exactly, or None.
+
+        :func:`impactmaps.targets.map_structure.describing_structure`: the isotropic,
+        undamped unit-span beam or plate of the target's theory, supports, aspect, impact
+        point (and slenderness, Poisson ratio where they matter) with the target's
+        dimensionless groups; ``patch_loaded``: the impact is loaded over the contact patch.
+        :meth:`map_structure_refusal` says why there is none.
+        """
+        return describing_structure(self, patch_loaded)[0]
+
+    def map_structure_refusal(self, *, patch_loaded: bool = False) -> str | None:
+        """Why no reference structure describes this target (:meth:`map_structure`), or None."""
+        return describing_structure(self, patch_loaded)[1]
+
+    def similarity_groups(self) -> dict:
+        """The dimensionless groups that, with shape, supports and impact point, fix the target's
+        normalised response (:func:`impactmaps.targets.map_structure.similarity_groups`)."""
+        return similarity_groups(self)
 
     @classmethod
     def infinite_structure_peak(cls, loss_factor):

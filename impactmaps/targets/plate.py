@@ -317,6 +317,11 @@ class Plate(Target):
                                        self.effective_bending_stiffness)
 
     @property
+    def point_load_diverges(self) -> bool:
+        """True for a Mindlin plate: its shear deflection under a point load diverges (ln 1/a)."""
+        return self.theory == "mindlin"
+
+    @property
     def supports_contact_patch(self) -> bool:
         """True when :meth:`modes` can spread the load over a contact patch (SSSS plates)."""
         return self.edges == "SSSS"

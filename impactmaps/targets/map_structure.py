@@ -1,0 +1,166 @@
+"""Which reference structure describes a target: the question the maps ask of a target.
+
+A normalised map is computed on a *reference structure*: an isotropic, undamped, unit-span
+beam or plate (steel-like: E = 210 GPa, ρ = 7850 kg/m³) of some theory, supports, aspect
+ratio, slenderness, impact point and Poisson ratio (:class:`StructureKey`;
+:func:`reference_target` builds it). Its map describes a target exactly when the target
+has the same shape and the same dimensionless groups (:func:`similarity_groups`): the
+normalised response of a modal impact depends on nothing else. :func:`describing_structure`
+answers for any target which reference that is — or why there is none (an orthotropic or
+laminated plate, structural damping, a beam section no rectangle of any Poisson ratio has,
+a half-space) — and :meth:`impactmaps.targets.base.Target.map_structure` asks it.
+
+The slenderness and the Poisson ratio are part of the key only where the response depends
+on them: a Timoshenko or Rayleigh beam (slenderness from its rotary inertia, ν from its
+shear stiffness, as a rectangle with shear correction 5/6 has them; a Rayleigh beam has no
+ν), a Mindlin plate, a
+plate with other edges than SSSS (ν), a plate loaded over the contact patch (the patch
+scales with the thickness); elsewhere the key holds ``None`` and a reference is built at
+:data:`REFERENCE_SLENDERNESS` and :data:`REFERENCE_POISSON`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+__all__ = ["REFERENCE_SLENDERNESS", "REFERENCE_POISSON", "STRUCTURE_MATCH_RTOL", "StructureKey", "ReferenceMaterial",
+           "reference_target", "similarity_groups", "describing_structure"]
+
+#: Slenderness (span/thickness) of a reference whose response does not depend on it [-].
+REFERENCE_SLENDERNESS = 20.0
+#: Poisson ratio of a reference whose response does not depend on it [-].
+REFERENCE_POISSON = 0.3
+#: Relative tolerance within which a target's dimensionless group equals the reference's.
+STRUCTURE_MATCH_RTOL = 1e-6
+
+
+class StructureKey(NamedTuple):
+    """The reference structure of a target (the fields of :class:`impactmaps.maps.structures.MapStructure`).
+
+    ``slenderness`` (span/thickness [-]) and ``poisson_ratio`` [-] are None where the
+    target's normalised response does not depend on them.
+    """
+
+    kind: str
+    theory: str
+    supports: str
+    aspect_ratio: float
+    slenderness: float | None
+    impact_fraction: tuple
+    poisson_ratio: float | None
+
+
+@dataclass(frozen=True)
+class ReferenceMaterial:
+    """Steel-like isotropic material of the reference targets (E [Pa], ν [-], ρ [kg/m³])."""
+
+    youngs_modulus: float = 210e9
+    poisson_ratio: float = 0.3
+    density: float = 7850.0
+    yield_strength: float | None = None
+
+
+def reference_target(target_class, key):
+    """The reference target of ``key`` (any object with the :class:`StructureKey` fields; None
+    slenderness or Poisson ratio: the reference values): unit span, steel-like,
+    thickness = span/slenderness, built by ``target_class`` (``Beam`` or ``Plate``)."""
+    slenderness = REFERENCE_SLENDERNESS if key.slenderness is None else key.slenderness
+    poisson = REFERENCE_POISSON if key.poisson_ratio is None else key.poisson_ratio
+    material = ReferenceMaterial(poisson_ratio=poisson)
+    span = 1.0
+    thickness = span / slenderness
+    if key.kind == "beam":
+        return target_class.rectangular(span, thickness, thickness, material, theory=key.theory,
+                                        supports=key.supports, impact_position=key.impact_fraction[0] * span)
+    width = span * key.aspect_ratio
+    return target_class.isotropic(span, width, thickness, material, theory=key.theory, edges=key.supports,
+                                  impact_point=(key.impact_fraction[0] * span, key.impact_fraction[1] * width))
+
+
+def similarity_groups(target, poisson: bool = False) -> dict:
+    """The dimensionless ratios that, besides shape, supports and impact point, fix a target's
+    normalised response.
+
+    Kirchhoff plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies), with
+    ``poisson`` also D12/D11; Mindlin plates add D12/D11 and the shear and rotary-inertia
+    ratios; Timoshenko beams the shear and rotary-inertia ratios, Rayleigh beams the latter; every target
+    its modal damping ratio (the maps are undamped).
+    """
+    groups = {"damping_ratio": float(target.damping_ratio)}
+    if target.structure == "beam":
+        span = target.length
+        if target.theory == "timoshenko":
+            groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
+        if target.theory != "euler":
+            groups["rotary inertia/(m' L²)"] = target.rotary_inertia / (target.mass_per_length * span**2)
+        return groups
+    groups["D22/D11"] = target.D22 / target.D11
+    groups["(D12 + 2 D66)/D11"] = (target.D12 + 2.0 * target.D66) / target.D11
+    if target.theory == "mindlin" or poisson:
+        groups["D12/D11"] = target.D12 / target.D11
+    if target.theory == "mindlin":
+        side = target.length_x
+        for name in ("A44", "A55"):
+            groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
+        groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
+    return groups
+
+
+def _beam_key(beam) -> StructureKey:
+    fraction = (beam.impact_position / beam.length,)
+    if beam.theory == "euler":
+        return StructureKey("beam", "euler", beam.supports, 1.0, None, fraction, None)
+    # a rectangle: ρI/(m' L²) = 1/(12 s²) and S L²/EI = 12 k s²/(2 (1 + ν)) = 5 s²/(1 + ν), k = 5/6
+    slenderness = beam.slenderness or beam.length / math.sqrt(12.0 * beam.rotary_inertia / beam.mass_per_length)
+    poisson = None
+    if beam.theory == "timoshenko":
+        poisson = (5.0 * slenderness**2 * beam.bending_stiffness
+                   / (beam.shear_stiffness * beam.length**2) - 1.0)
+    return StructureKey("beam", beam.theory, beam.supports, 1.0, slenderness, fraction, poisson)
+
+
+def _plate_key(plate, patch_loaded: bool) -> StructureKey:
+    side = plate.length_x
+    fraction = tuple(x / length for x, length in zip(plate.impact_point, (plate.length_x, plate.length_y)))
+    shear = plate.theory == "mindlin"
+    poisson = plate.D12 / plate.D11 if shear or plate.edges != "SSSS" else None  # Navier SSSS Kirchhoff: no ν
+    slenderness = side / plate.thickness if shear or patch_loaded else None
+    return StructureKey("plate", plate.theory, plate.edges, plate.length_y / side, slenderness, fraction, poisson)
+
+
+def describing_structure(target, patch_loaded: bool = False) -> tuple[StructureKey | None, str | None]:
+    """The reference structure that describes ``target`` exactly, or why none does.
+
+    Parameters
+    ----------
+    target : Target
+    patch_loaded : bool
+        Whether the impact loads the target over the contact patch (its radius scales with
+        the thickness, so the slenderness is part of the key).
+
+    Returns
+    -------
+    (StructureKey, None) or (None, str)
+        The key, or the reason: the target type, or the first dimensionless group (:func:`similarity_groups`) in which the target differs
+        from the isotropic, undamped reference of its shape.
+    """
+    if target.structure == "beam":
+        key = _beam_key(target)
+    elif target.structure == "plate":
+        key = _plate_key(target, patch_loaded)
+    else:
+        return None, f"target type {target.structure!r} (maps: beams and plates)"
+    if key.poisson_ratio is not None and not -1.0 < key.poisson_ratio < 0.5:
+        return None, (f"a section whose shear stiffness implies a Poisson ratio of {key.poisson_ratio:.4g} "
+                      "(no isotropic rectangle has it)")
+    poisson = key.poisson_ratio is not None
+    wanted = similarity_groups(reference_target(type(target), key), poisson)
+    for name, value in similarity_groups(target, poisson).items():
+        reference = wanted[name]
+        if not (abs(value - reference) <= STRUCTURE_MATCH_RTOL * abs(reference) if reference else value == 0.0):
+            name_of = f"the isotropic, undamped {key.kind} of its shape"
+            return None, (f"{name} = {value:.6g} where {name_of} has {reference:.6g} (an orthotropic or laminated "
+                          "plate, another beam section or structural damping is not a map structure)")
+    return key, None
