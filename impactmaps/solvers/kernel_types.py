@@ -128,7 +128,7 @@ class KernelScalars(NamedTuple):
 
 
 MODES_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _VECTOR, _F8), KernelModes)
-IMPACT_TYPE = numba.types.NamedTuple((_F8, _F8), KernelImpact)
+IMPACT_TYPE = numba.types.NamedUniTuple(_F8, 2, KernelImpact)  # what numba.typeof gives a homogeneous tuple
 RUN_TYPE = numba.types.NamedTuple((_F8, _F8, _BOOL, _I8, _I8, numba.types.Array(_I8, 1, "C")), KernelRun)
 COUPLED_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8), KernelCoupled)
 SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL), KernelScalars)
