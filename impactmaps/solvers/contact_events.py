@@ -52,7 +52,7 @@ def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, al
     return force
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loaded):
     """Indentation α_f(α_max) at and below which the law gives no force [m].
 
@@ -75,7 +75,7 @@ def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loade
     return lo
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _ramp_gap(modes, mass, state, force, s, work):
     """Gap w_i − Σφ_j q_j after a sub-step s [s] with the force ramped from ``force`` [N] to
     0, from ``state`` = (w_i, v_i, q, v); ``work`` = (sub, q_try, v_try): the step
@@ -88,7 +88,7 @@ def _ramp_gap(modes, mass, state, force, s, work):
     return wi_s - wt_s
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state, force, gap_end, separation,
                  work, h):
     """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts.

@@ -67,12 +67,16 @@ __all__ = ["integrate_impact"]
 
 _MATRIX = numba.types.Array(numba.types.float64, 2, "C")
 
-# The stages below are plain compiled calls, not ``inline="always"``: numba's IR inlining
-# adds reference-count operations on every array argument, which cost up to 1.5× per step
-# (measured); only the helpers on scalars are inlined.
+# The per-step stages below are plain compiled calls, not ``inline="always"``: numba's IR
+# inlining adds reference-count operations on every array argument, which cost up to 1.5×
+# per step (measured); only the helpers on scalars and the stages called once per run or
+# per contact (``_workspace``, ``_exact_contact``, ``_finish``) are inlined. Functions only
+# compiled code calls get no CPython or C wrapper (``no_cpython_wrapper``,
+# ``no_cfunc_wrapper``): their named-tuple arguments made the wrappers a tenth of the
+# integrator's cold compile.
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _advance_to_event(modes, mass, start, force, s, ready, sub, qn, vn):
     """Event stage: advance from ``start`` = (w_i, v_i, q, v) over s [s] with the force
     ramped from ``force`` [N] to 0; modes into (qn, vn).
@@ -88,7 +92,7 @@ def _advance_to_event(modes, mass, start, force, s, ready, sub, qn, vn):
     return wi_e, vi_e
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn):
     """Step-acceptance stage: add the implicit end force ``f_new`` to the prediction made
     with the force ramped to 0 (modes in qn, vn); returns (w_i, v_i, w_t) at the end."""
@@ -102,7 +106,7 @@ def _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p,
     return wi_p, vi_p, wt_p
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _mark_contact(intervals, n_intervals, column, time):
     """Write a contact start (column 0) or end (column 1, which closes the interval) at
     ``time`` [s]; returns the interval count and 1.0 if the table was full (else 0.0)."""
@@ -141,7 +145,7 @@ def _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform):
     return peak, peak_time, -1.0, force
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _step_compliance(coef, phi, h, mass, residual):
     """Compliance C [m/N] through which the end force of a step takes back indentation:
     impactor ``h²/(6m)``, residual flexibility and the retained modes ``Σ φ_j coef[5, j]``."""
@@ -151,7 +155,7 @@ def _step_compliance(coef, phi, h, mass, residual):
     return compliance
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _workspace(modes, impact, run):
     """The :class:`~impactmaps.solvers.kernel_types.Work` of a run: its step coefficients,
     compliance and scratch arrays, the free-flight propagator over h and the
@@ -178,7 +182,7 @@ def _workspace(modes, impact, run):
                 np.zeros((run.max_events, 2)))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _exact_contact(coupled, modes, linear_stiffness, work, state, q, v, history, rec):
     """Exact contact stage: one contact phase through the coupled modes from the touchdown
     at ``state`` (:func:`~impactmaps.solvers.coupled_contact.contact_phase`); q and v are
@@ -201,7 +205,7 @@ def _exact_contact(coupled, modes, linear_stiffness, work, state, q, v, history,
     return state, history, rec
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _sampled_step(kernel, params, linear_stiffness, modes, impact, work, state, modal, history, rec):
     """One step of h with the force going linearly from ``state.force`` to the implicit end
     force; a contact event inside it cuts the step short at the event.
@@ -365,7 +369,7 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
     return _finish(modes, work, state, q, v, history, rec, hit_limit, run.record and rec >= run.max_rows)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _finish(modes, work, state, q, v, history, rec, hit_limit, row_cap):
     """The kernel's outputs at the end of a run (closing an open contact interval)."""
     n_intervals = state.n_intervals

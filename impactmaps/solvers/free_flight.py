@@ -30,7 +30,7 @@ FREE_POWERS = 11
 _RECORD_POWER = 6
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def no_reimpact_possible(omega, phi, q, v, wi, vi):
     """True once the impactor moves away and its gap exceeds the largest displacement the
     free vibration can ever reach at x0: |w_t| ≤ Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (sum of
@@ -48,7 +48,7 @@ def no_reimpact_possible(omega, phi, q, v, wi, vi):
     return vi - rigid_v <= 0.0 and wi - rigid_w < -bound
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _damping_power(omega, zeta, v):
     power = 0.0
     for j in range(v.shape[0]):
@@ -56,7 +56,7 @@ def _damping_power(omega, zeta, v):
     return power
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def damping_work(omega, zeta, v, vn, length):
     """Work of the modal damping over a step of ``length`` [s] (trapezoidal rule) [J]."""
     return 0.5 * length * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
@@ -68,7 +68,7 @@ def out_of_time(t, steps, max_time, max_steps):
     return t >= max_time or steps >= max_steps
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _closing_speed_bound(omega, phi, q, v, vi):
     """Bound on the speed at which the gap can close in free flight [m/s]:
     ``|v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²)`` (modal amplitudes are constant or decay)."""
@@ -78,7 +78,7 @@ def _closing_speed_bound(omega, phi, q, v, vi):
     return speed_bound
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _free_doublings(phi, q, wi, h, speed_bound):
     """How many times the step h may double, k < :data:`FREE_POWERS`.
 
@@ -97,7 +97,7 @@ def _free_doublings(phi, q, wi, h, speed_bound):
     return k
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def record_free_inside(free_coef, k, h, start, modes, scratch, history, rec):
     """Record exact rows every 2^_RECORD_POWER h inside a free-flight step of 2^k h [s]
     from ``start`` = (t [s], w_i, v_i, q, v), which is not touched; ``modes`` the
@@ -121,7 +121,7 @@ def record_free_inside(free_coef, k, h, start, modes, scratch, history, rec):
     return history, rec
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def free_step(kernel, params, linear_stiffness, modes, work, state, speed_bound, modal, history, rec):
     """One free-flight step from ``state`` (a :class:`~impactmaps.solvers.kernel_types.Flight`)
     with no contact force, as long as it is proven free (k > 0 doublings), or a step of h

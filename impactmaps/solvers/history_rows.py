@@ -28,13 +28,13 @@ class HistoryRows(NamedTuple):
     cap: int
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def new_history(rows, cap):
     """An empty :class:`HistoryRows` of ``min(rows, cap)`` zero rows, at most ``cap`` rows."""
     return HistoryRows(np.zeros((max(min(rows, cap), 1), HISTORY_WIDTH)), cap)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def structure_energy(omega, q, v):
     energy = 0.0
     for j in range(q.shape[0]):
@@ -42,7 +42,7 @@ def structure_energy(omega, q, v):
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
     """Write the state at time t [s] into row ``rec`` of the history."""
     wt = residual * force
@@ -60,7 +60,7 @@ def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
     history[rec, 7] = structure_energy(omega, q, v) + 0.5 * residual * force * force
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _grown(history, cap):
     """The history array with twice the rows, at most ``cap`` (the new ones zero)."""
     grown = np.zeros((min(2 * history.shape[0], cap), HISTORY_WIDTH))
@@ -70,7 +70,7 @@ def _grown(history, cap):
     return grown
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
     """Append the state at time t [s] as row ``rec`` of the :class:`HistoryRows` (growing its
     table when full), nothing once it holds its ``cap`` rows; returns the history and the
