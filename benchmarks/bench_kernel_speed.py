@@ -64,7 +64,9 @@ def main(argv=None) -> None:
     roots = [root.resolve() for root in (args.root or [ROOT])]
     results = [measure(root, args.repeats) for root in roots]
     head = "| case | steps | " + " | ".join(f"`{root}` CPU [ms]" for root in roots) + " |"
-    lines = [f"load average {os.getloadavg()[0]:.1f}; median of {args.repeats} runs", "", head,
+    lines = ["# Warm CPU per modal run, checkouts side by side", "",
+             f"`python benchmarks/bench_kernel_speed.py` ({', '.join(root.name for root in roots)}); "
+             f"load average {os.getloadavg()[0]:.1f}; median of {args.repeats} runs", "", head,
              "|" + "---|" * (2 + len(roots))]
     for case in results[0]:
         cells = " | ".join(f"{result[case][0] * 1e3:.2f}" for result in results)
