@@ -100,7 +100,7 @@ def profile_import() -> dict:
 
     with tempfile.TemporaryDirectory() as cache:
         done = subprocess.run([sys.executable, "-c", _PROFILE], capture_output=True, text=True,
-                              env=_environment(cache), check=True)
+                              env=_environment(cache), check=True, cwd=cache)  # not this checkout's cwd
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 

@@ -246,7 +246,7 @@ def _structural_theory(target, result):
 
 
 def _point_load(target, result):
-    if getattr(target, "theory", None) != "mindlin" or not str(getattr(result, "method", "")).startswith("modal"):
+    if not getattr(target, "point_load_diverges", False) or not str(getattr(result, "method", "")).startswith("modal"):
         return None
     if (getattr(result, "settings", None) or {}).get("contact_radius_m"):
         return None  # spread over the contact patch
@@ -259,18 +259,13 @@ def _point_load(target, result):
 def _reflections(target, result):
     if getattr(result, "method", None) not in INFINITE_STRUCTURE_METHODS or target is None:
         return None
-    if target.structure == "plate":
-        distance = float(target.distance_to_nearest_edge())
-        stiffness = float(target.effective_bending_stiffness) / float(target.mass_per_area)
-    else:
-        distance = float(target.distance_to_nearest_end())
-        stiffness = float(target.bending_stiffness) / float(target.mass_per_length)
+    distance = target.wave_return_distance()
     contact = _contact_time(result)
     if math.isinf(contact):
         return (f"reflections: the contact never ends on the infinite {target.structure}, so waves "
                 f"reflected {distance:.4g} m away always return during it: simulate the finite "
                 f"{target.structure}")
-    group_velocity = 2.0 * math.sqrt(2.0 * math.pi / contact) * stiffness**0.25
+    group_velocity = target.flexural_group_velocity(2.0 * math.pi / contact)  # at the contact's frequency
     round_trip = 2.0 * distance / group_velocity
     if round_trip >= contact:
         return None

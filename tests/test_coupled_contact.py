@@ -20,6 +20,8 @@ from impactmaps.solvers.coupled_contact import (
     contact_phase,
     coupled_modes,
 )
+from impactmaps.solvers.history_rows import HistoryRows
+from impactmaps.solvers.kernel_types import KernelCoupled, KernelModes
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 
@@ -201,10 +203,11 @@ def _contact(modes, basis, step_scale, touchdown, two_rate, record=False):
     """One contact phase from ``touchdown``: (t_end, wi, vi, force, peak, peak_time, steps,
     separated, history, rec)."""
     wi, vi, q, v = touchdown
-    return contact_phase(modes.frequencies, modes.force_row, modes.from_coupled, modes.to_coupled, 1e-6,
-                         step_scale, basis.frequencies, basis.participation, basis.residual_compliance,
-                         0.0, wi, vi, q.copy(), v.copy(), 0.0, 0.0, 0, 1e9, 10**12, record,
-                         np.zeros((1, 8)), 0, two_rate)
+    coupled = KernelCoupled(modes.frequencies, modes.force_row, modes.from_coupled, modes.to_coupled, 1e-6,
+                            step_scale)
+    target = KernelModes(basis.frequencies, basis.participation, basis.damping_ratios, basis.residual_compliance)
+    return contact_phase(coupled, target, (1e9, 10**12), (0.0, wi, vi, 0.0, 0.0, 0), q.copy(), v.copy(), record,
+                         HistoryRows(np.zeros((1, 8)), 10**9), 0, two_rate)
 
 
 def test_coarse_step_bounds_the_force():

@@ -256,18 +256,22 @@ def test_time_step_of_a_picosecond_is_refused_before_the_run():
 
 
 def test_modal_run_budget_refuses_above_a_gibibyte_and_announces_above_a_minute():
-    """The budget's two answers: a recorded run whose expected history exceeds 1 GiB is
-    refused naming the knob; a run estimated above a minute is announced (LongRunWarning)."""
+    """The budget's two answers: a run above 1 GiB is refused naming the knob; a run
+    estimated above a minute is announced (LongRunWarning). A recorded run whose expected
+    history exceeds the kernel's row cap is estimated at the cap (it stops there), so its
+    history alone is never refused."""
     from impactmaps.solvers.run_budget import (
+        HISTORY_ROW_BYTES,
+        HISTORY_ROW_CAP,
         LongRunWarning,
         modal_run_budget,
         refuse_or_announce,
     )
 
     omega = 1e4
-    big = modal_run_budget(10, 1e-10, 1e-3, omega, True, 1000, forced_step=False)  # 1e7 rows
-    with pytest.raises(ValueError, match="GiB.*max_time_ratio ≤"):
-        refuse_or_announce(big, "test run")
+    big = modal_run_budget(10, 1e-10, 1e-3, omega, True, 1000, forced_step=False)  # 1e7 rows expected
+    assert HISTORY_ROW_CAP * HISTORY_ROW_BYTES <= big.memory_bytes < HISTORY_ROW_CAP * HISTORY_ROW_BYTES + 2**20
+    refuse_or_announce(big, "test run")  # not refused: the history stops at the cap
     assert modal_run_budget(10, 1e-10, 1e-3, omega, False, 1000, False).memory_bytes < 2**30  # no history
     slow = modal_run_budget(500_000, 1e-8, 0.5, omega, False, 1000, forced_step=False)
     with pytest.warns(LongRunWarning, match=r"about \d+ s on a 2-core machine"):
@@ -355,13 +359,15 @@ def test_stop_flag_ends_the_kernel_at_once():
     like a run at its time limit)."""
     from impactmaps.contact.base import kernel_pointer
     from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.solvers.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun
 
     law = LinearContact(1e6)
     basis = _plate("SSSS").modes(1e4)
     empty = np.zeros(0)
     _history, _intervals, scalars = integrate_impact(
         kernel_pointer(law.kernel), np.array(law.kernel_parameters, dtype=float), 1e6,
-        np.array(basis.frequencies), np.array(basis.participation), np.array(basis.damping_ratios),
-        float(basis.residual_compliance), 0.01, 1.0, 1e-6, 1.0, False, 10, empty, empty,
-        np.zeros((0, 0)), np.zeros((0, 0)), 1e-6, 1.0, np.ones(1, dtype=np.int64))
-    assert scalars[8] == 0 and scalars[7] == 1.0
+        KernelModes(np.array(basis.frequencies), np.array(basis.participation), np.array(basis.damping_ratios),
+                    float(basis.residual_compliance)),
+        KernelImpact(0.01, 1.0), KernelRun(1e-6, 1.0, False, 10, 100, np.ones(1, dtype=np.int64)),
+        KernelCoupled(empty, empty, np.zeros((0, 0)), np.zeros((0, 0)), 1e-6, 1.0))
+    assert scalars.steps == 0 and scalars.time_limit_reached and not scalars.row_cap_reached

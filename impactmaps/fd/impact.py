@@ -104,9 +104,7 @@ class FDDetails:
 
 
 def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=None, *,
-                settings: FDSettings | None = None, material=None, duration=None,
-                time_step=None, safety_factor=None, gauge_positions=None, gravity=None,
-                history_stride=None) -> ImpactResult:
+                settings: FDSettings | None = None, material=None, **options) -> ImpactResult:
     """Impact of a rigid sphere on a finite-difference Rayleigh beam.
 
     Parameters
@@ -136,6 +134,9 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
         Its grid and section fields (when not ``None``) replace those of an FDBeam.
     material : material-like, optional
         The material of a toolkit ``Beam`` (required with one, refused with an FDBeam).
+    **options
+        The run options below (the fields of the same names of :class:`FDSettings`);
+        another keyword is a ``TypeError``.
     duration : float
         Simulated time [s] (> 0, required here or in ``settings``); the run always
         covers it (sub-impacts may occur late).
@@ -163,9 +164,7 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
     -----
     Stability limit and default step: :mod:`impactmaps.fd.timestep`.
     """
-    settings = _run_settings(settings, duration=duration, time_step=time_step,
-                             safety_factor=safety_factor, gauge_positions=gauge_positions,
-                             gravity=gravity, history_stride=history_stride)
+    settings = _run_settings(settings, **options)
     beam, impact_position = _fd_beam(beam, material, settings, impact_position)
     _check_inputs(law, impactor_mass, velocity, settings)
     params = single_case_parameters(law, "simulate_fd")
@@ -249,8 +248,16 @@ def _history_frame(rec, n_rec: int, height: float) -> pd.DataFrame:
     })
 
 
+#: The keywords :func:`simulate_fd` takes for the run options (fields of :class:`FDSettings`).
+_RUN_OPTIONS = ("duration", "time_step", "safety_factor", "gauge_positions", "gravity", "history_stride")
+
+
 def _run_settings(settings, **keywords) -> FDSettings:
-    """The run's FDSettings: ``settings`` as given, or built from the keywords."""
+    """The run's FDSettings: ``settings`` as given, or built from the keywords
+    (:data:`_RUN_OPTIONS`; another keyword is a ``TypeError``, as for any function)."""
+    unknown = sorted(set(keywords) - set(_RUN_OPTIONS))
+    if unknown:
+        raise TypeError(f"simulate_fd() got an unexpected keyword argument {unknown[0]!r}")
     given = {name: value for name, value in keywords.items() if value is not None}
     if settings is None:
         return FDSettings(**given)

@@ -52,7 +52,7 @@ def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, al
     return force
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loaded):
     """Indentation α_f(α_max) at and below which the law gives no force [m].
 
@@ -75,18 +75,29 @@ def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loade
     return lo
 
 
-@numba.njit(cache=True)
-def _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, s, sub, q_try, v_try):
-    """Gap w_i − Σφ_j q_j after a sub-step s with the force ramped from ``force`` to 0."""
-    fill_step_coefficients(omega, zeta, phi, s, sub)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _ramp_gap(modes, mass, state, force, s, work):
+    """Gap w_i − Σφ_j q_j after a sub-step s [s] with the force ramped from ``force`` [N] to
+    0, from ``state`` = (w_i, v_i, q, v); ``work`` = (sub, q_try, v_try): the step
+    coefficients over s and the modal state at its end are written there."""
+    wi, vi, q, v = state
+    sub, q_try, v_try = work
+    phi = modes.participation
+    fill_step_coefficients(modes.frequencies, modes.damping_ratios, phi, s, sub)
     wi_s, _vi_s, wt_s = predict_step(sub, s, mass, wi, vi, q, v, phi, force, 0.0, q_try, v_try)
     return wi_s - wt_s
 
 
-@numba.njit(cache=True)
-def locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, mass,
-                  wi, vi, q, v, force, gap_end, separation, sub, q_try, v_try, h):
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state, force, gap_end, separation,
+                 work, h):
     """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts.
+
+    The law is (``kernel``, ``params``, ``linear_stiffness``) with the largest indentation
+    so far ``alpha_max`` [m]; ``modes`` the :class:`~impactmaps.solvers.kernel_types.KernelModes`,
+    ``mass`` the impactor's [kg]; ``state`` = (w_i, v_i, q, v) at the step's start and
+    ``force`` [N] there; ``gap_end`` the predicted gap at its end [m]; ``work`` = (sub,
+    q_try, v_try) scratch for :func:`_ramp_gap`.
 
     The predicted gap g(s) (force ramped from its current value to 0 over s) crosses the
     no-force threshold α_f of the law. The root is bracketed by s = 0 and s = h
@@ -97,6 +108,8 @@ def locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, 
     |g − α_f| ≤ 1e-11 of the bracket's gaps — and whether ``sub`` holds the step
     coefficients over s (the last point evaluated).
     """
+    wi, _vi, q, _v = state
+    phi = modes.participation
     wt_now = 0.0
     for j in range(q.shape[0]):
         wt_now += phi[j] * q[j]
@@ -153,7 +166,7 @@ def locate_event(kernel, params, linear_stiffness, alpha_max, omega, zeta, phi, 
             b += d
         else:
             b += tol1 if xm > 0.0 else -tol1
-        fb = _ramp_gap(omega, zeta, phi, mass, wi, vi, q, v, force, b, sub, q_try, v_try) - threshold
+        fb = _ramp_gap(modes, mass, state, force, b, work) - threshold
         last = b
         if (fb > 0.0) == (fc > 0.0):
             c = a

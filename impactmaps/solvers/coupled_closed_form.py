@@ -192,11 +192,14 @@ def _to_physical(from_coupled, eta, rate, q, v):
 
 
 @numba.njit(cache=True)
-def _record_inside(from_coupled, frequencies, force_row, eta, rate, t, length, spacing,
-                   omega, phi, residual, q, v, history, rec):
-    """Record exact rows inside a step of ``length`` [s] from time t [s] and state (η, η̇),
-    at most ``spacing`` [s] apart (the step's end row is written by the caller); q and v
-    serve as scratch. Returns the history and the next row."""
+def _record_inside(modes, rows, start, t, length, q, v, history, rec):
+    """Record exact rows inside a step of ``length`` [s] from time t [s] and state
+    ``start`` = (η, η̇), at most ``rows[0]`` [s] apart (the step's end row is written by
+    the caller); ``modes`` = (Ω, c, from_coupled), ``rows`` = (row spacing [s], ω, φ,
+    residual [m/N]); q and v serve as scratch. Returns the history and the next row."""
+    frequencies, force_row, from_coupled = modes
+    spacing, omega, phi, residual = rows
+    eta, rate = start
     count = int(math.ceil(length / spacing))
     if count <= 1:
         return history, rec

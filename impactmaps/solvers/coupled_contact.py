@@ -135,27 +135,30 @@ def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: fl
 
 
 @numba.njit(cache=True)
-def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing, step_scale,
-                  omega, phi, residual, t, wi, vi, q, v, peak, peak_time, steps, max_time, max_steps,
-                  record, history, rec, two_rate=True):
+def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two_rate=True):
     """One contact, from touchdown (α = 0) to separation or the run's limits.
 
     Parameters
     ----------
-    frequencies, force_row, from_coupled, to_coupled : arrays of :class:`CoupledModes`.
-    row_spacing : float
-        Longest spacing of the recorded rows in contact [s] (the settings'
-        ``time_step_ratio/ω``): a recorded run adds exact rows inside its steps, so its
-        history is as fine as the sampled scheme's and its scalars are those of the run
-        without a record.
-    step_scale : float
-        Factor on the step (the settings' ``step_scale``).
-    omega, phi, residual : retained modes [rad/s], participations, residual [m/N].
-    t, wi, vi, q, v : time [s] and state at touchdown; q and v are overwritten with the
-        state at the end.
-    peak, peak_time : largest force so far [N] and its time [s].
-    steps, max_time, max_steps : steps taken so far, the run's time limit [s] and budget.
-    record, history, rec : history array and next row (:mod:`history_rows`).
+    coupled : KernelCoupled
+        The coupled modes (:class:`CoupledModes`), the longest spacing of the recorded
+        rows in contact [s] (the settings' ``time_step_ratio/ω``: a recorded run adds
+        exact rows inside its steps, so its history is as fine as the sampled scheme's
+        and its scalars are those of the run without a record) and the factor on the step
+        (the settings' ``step_scale``) (:class:`~impactmaps.solvers.kernel_types.KernelCoupled`).
+    modes : KernelModes
+        Retained modes [rad/s], participations and residual [m/N]
+        (:class:`~impactmaps.solvers.kernel_types.KernelModes`).
+    limits : tuple
+        (max_time [s], max_steps): the run's time limit and step budget.
+    start : tuple
+        (t [s], w_i [m], v_i [m/s], peak [N], peak time [s], steps) at touchdown: time,
+        impactor state, largest force so far and steps taken so far.
+    q, v : ndarray
+        Modal state at touchdown, overwritten with the state at the end.
+    record, history, rec
+        Whether to record, the :class:`~impactmaps.solvers.history_rows.HistoryRows` and its
+        next row.
     two_rate : bool
         Take coarse steps where they are proven to change nothing (module docstring);
         ``False`` keeps the fine step throughout (the reference the tests compare with).
@@ -168,6 +171,10 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
         anywhere in the first step) returns with ``steps`` unchanged, a round-off moment
         later, where the gap is strictly open.
     """
+    frequencies, force_row, from_coupled, to_coupled = (coupled.frequencies, coupled.force_row,
+                                                        coupled.from_coupled, coupled.to_coupled)
+    omega, phi, residual = modes.frequencies, modes.participation, modes.residual
+    t, wi, vi, peak, peak_time, steps = start
     n = frequencies.shape[0]
     eta = np.empty(n)
     rate = np.empty(n)
@@ -177,7 +184,7 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
         for j in range(1, n):
             eta[k] += to_coupled[k, j] * q[j - 1]
             rate[k] += to_coupled[k, j] * v[j - 1]
-    h = step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
+    h = coupled.step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
     if h == 0.0 or _first_positive(frequencies, force_row, eta, rate, h) == 0.0:
         # grazing: no force anywhere in the first step (a touchdown at zero closing speed
         # whose force grows at second order — a sphere resting on a structure that
@@ -190,22 +197,21 @@ def contact_phase(frequencies, force_row, from_coupled, to_coupled, row_spacing,
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
     while resolved < n and frequencies[resolved] * h <= 1.0:
         resolved += 1
-    modes = (frequencies, force_row, from_coupled)
-    rows = (row_spacing, omega, phi, residual)
+    phase_modes = (frequencies, force_row, from_coupled)
+    rows = (coupled.row_spacing, omega, phi, residual)
     fine = (h, np.cos(frequencies * h), np.sin(frequencies * h), resolved)
     coarse = _coarse_plan(frequencies, force_row, eta, rate, h) if two_rate else \
         (0, 0.0, np.empty(0), np.empty(0), 0, 0.0)
-    limits = (max_time, max_steps)
     state = (eta, rate, np.empty(n), np.empty(n))
     run = (t, 0.0, -1.0, peak, peak_time, steps)  # no force, and no sample before touchdown
     while True:
         state, run, separated, stopped, wi, vi, history, rec = _fine_steps(
-            modes, rows, fine, coarse, limits, state, run, record, history, rec, q, v)
+            phase_modes, rows, fine, coarse, limits, state, run, record, history, rec, q, v)
         t, force, f_prev, peak, peak_time, steps = run
         if not stopped:
             return t, wi, vi, force, peak, peak_time, steps, separated, history, rec
         eta, rate, (t, force, peak, peak_time, steps), done, wi, vi, history, rec = _coarse_steps(
-            modes, rows, coarse, limits, (state[0], state[1]), (t, force, peak, peak_time, steps),
+            phase_modes, rows, coarse, limits, (state[0], state[1]), (t, force, peak, peak_time, steps),
             record, history, rec, q, v)
         if done:
             return t, wi, vi, force, peak, peak_time, steps, False, history, rec

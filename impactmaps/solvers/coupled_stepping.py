@@ -89,10 +89,9 @@ def _skippable(frequencies, force_row, eta, rate, coarse, peak):
 def _record_step(modes, rows, start, end, t, length, force, history, rec, q, v):
     """Record a step of ``length`` [s] from time t [s]: exact rows inside, and its end
     (state ``end``, force [N]); q and v serve as scratch."""
-    frequencies, force_row, from_coupled = modes
-    row_spacing, omega, phi, residual = rows
-    history, rec = _record_inside(from_coupled, frequencies, force_row, start[0], start[1], t, length,
-                                  row_spacing, omega, phi, residual, q, v, history, rec)
+    _frequencies, _force_row, from_coupled = modes
+    _row_spacing, omega, phi, residual = rows
+    history, rec = _record_inside(modes, rows, start, t, length, q, v, history, rec)
     wi, vi = _to_physical(from_coupled, end[0], end[1], q, v)
     return record_row(history, rec, t + length, force, wi, vi, residual, omega, phi, q, v)
 
@@ -113,7 +112,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
     Returns (state, run, separated, stopped, wi, vi, history, rec).
     """
     frequencies, force_row, from_coupled = modes
-    row_spacing, omega, phi, residual = rows
+    _row_spacing, omega, phi, residual = rows
     h, cos_h, sin_h, resolved = fine
     every = coarse[0]
     max_time, max_steps = limits
@@ -140,8 +139,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
             # (η, η̇) at the separation land in eta_next, rate_next
             s, _wi, _vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, s, h, eta_next, rate_next, q, v)
             if record:
-                history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, s,
-                                              row_spacing, omega, phi, residual, q, v, history, rec)
+                history, rec = _record_inside(modes, rows, (eta, rate), t, s, q, v, history, rec)
             t += s
             force = 0.0
             separated = True
@@ -166,8 +164,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
                 eta_prev[k] = eta[k]
                 rate_prev[k] = rate[k]
             if record:
-                history, rec = _record_inside(from_coupled, frequencies, force_row, eta, rate, t, h,
-                                              row_spacing, omega, phi, residual, q, v, history, rec)
+                history, rec = _record_inside(modes, rows, (eta, rate), t, h, q, v, history, rec)
             t += h
             force = f_next
             if force > peak:

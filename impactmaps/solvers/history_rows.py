@@ -1,23 +1,40 @@
 """Rows of the recorded history of the modal impact integrators (numba).
 
-A history is an (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure — grown
-by doubling; :func:`record_row` appends the state at one instant. Shared by the sampled
-scheme (:mod:`impactmaps.solvers.exact_step`) and the exact linear contact phase
-(:mod:`impactmaps.solvers.coupled_contact`).
+A history is a :class:`HistoryRows`: an (n_records, 8) table — t, F, α, w_i, v_i, w_t, v_t,
+E_structure — grown by doubling up to its row cap; :func:`record_row` appends the state at
+one instant, or nothing once the cap is reached (the integrator then stops the run).
+Shared by the sampled scheme (:mod:`impactmaps.solvers.exact_step`) and the exact linear
+contact phase (:mod:`impactmaps.solvers.coupled_contact`).
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numba
 import numpy as np
 
-__all__ = ["HISTORY_WIDTH", "record_row", "structure_energy"]
+__all__ = ["HISTORY_WIDTH", "HistoryRows", "new_history", "record_row", "structure_energy"]
 
 #: Columns of the recorded history.
 HISTORY_WIDTH = 8
 
 
-@numba.njit(cache=True)
+class HistoryRows(NamedTuple):
+    """A history being recorded: ``table`` (rows × :data:`HISTORY_WIDTH`, float64) holds at
+    most ``cap`` rows."""
+
+    table: np.ndarray
+    cap: int
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def new_history(rows, cap):
+    """An empty :class:`HistoryRows` of ``min(rows, cap)`` zero rows, at most ``cap`` rows."""
+    return HistoryRows(np.zeros((max(min(rows, cap), 1), HISTORY_WIDTH)), cap)
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def structure_energy(omega, q, v):
     energy = 0.0
     for j in range(q.shape[0]):
@@ -25,7 +42,7 @@ def structure_energy(omega, q, v):
     return energy
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
     """Write the state at time t [s] into row ``rec`` of the history."""
     wt = residual * force
@@ -43,21 +60,24 @@ def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
     history[rec, 7] = structure_energy(omega, q, v) + 0.5 * residual * force * force
 
 
-@numba.njit(cache=True)
-def _grown(history):
-    """The history array with twice the rows (the new ones zero)."""
-    grown = np.zeros((2 * history.shape[0], HISTORY_WIDTH))
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _grown(history, cap):
+    """The history array with twice the rows, at most ``cap`` (the new ones zero)."""
+    grown = np.zeros((min(2 * history.shape[0], cap), HISTORY_WIDTH))
     for row in range(history.shape[0]):  # element loops: a slice assignment compiles for seconds
         for column in range(HISTORY_WIDTH):
             grown[row, column] = history[row, column]
     return grown
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
-    """Append the state at time t [s] as row ``rec`` (growing the array when full);
-    returns the history array and the next row index."""
-    if rec == history.shape[0]:
-        history = _grown(history)
-    _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+    """Append the state at time t [s] as row ``rec`` of the :class:`HistoryRows` (growing its
+    table when full), nothing once it holds its ``cap`` rows; returns the history and the
+    next row index (``cap`` at most)."""
+    if rec >= history.cap:
+        return history, rec
+    if rec == history.table.shape[0]:
+        history = HistoryRows(_grown(history.table, history.cap), history.cap)
+    _record_state(history.table, rec, t, force, wi, vi, residual, omega, phi, q, v)
     return history, rec + 1

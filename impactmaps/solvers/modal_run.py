@@ -6,7 +6,8 @@ participating modes below the cut-off with their residual compliance, chooses th
 step (:mod:`~impactmaps.solvers.time_step`) and the contact phase (exact coupled modes or
 sampled), checks the run's budget (:mod:`~impactmaps.solvers.run_budget`) and calls the
 compiled integrator (:mod:`~impactmaps.solvers.exact_step`) through :class:`KernelInputs`
-and :class:`KernelScalars`.
+(its named tuples of :mod:`~impactmaps.solvers.kernel_types`) and
+:class:`~impactmaps.solvers.kernel_types.KernelScalars`.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from ..contact.base import ContactLaw, kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
 from .exact_step import integrate_impact
+from .kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars
 from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
@@ -33,7 +35,7 @@ from .modal_settings import (
 from .mode_budget import budget_cutoff
 from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
-from .run_budget import modal_run_budget, refuse_or_announce
+from .run_budget import HISTORY_ROW_CAP, modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = ["run_once", "KernelInputs", "KernelScalars", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
@@ -152,7 +154,7 @@ def _interrupts_ignored() -> bool:
 
 
 def _integrate(interruptible: bool, args: KernelInputs):
-    """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (their ``stop``
+    """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (``args.run.stop``
     the kernel's one-element stop flag).
 
     A compiled loop does not see Ctrl-C (the signal is handled between Python bytecodes).
@@ -185,7 +187,7 @@ def _integrate(interruptible: bool, args: KernelInputs):
         while not done.wait(0.1):
             pass
     except KeyboardInterrupt:
-        args.stop[0] = 1
+        args.run.stop[0] = 1
         done.wait()
         raise
     if "error" in outcome:
@@ -202,43 +204,23 @@ def _kernel_array(values: np.ndarray) -> np.ndarray:
 
 class KernelInputs(NamedTuple):
     """The arguments of :data:`~impactmaps.solvers.exact_step.integrate_impact`, by name and
-    in its order (see the kernel for their meaning; SI units)."""
+    in its order: the law's kernel pointer, parameters and linear stiffness [N/m] (0 if
+    not linear), then the named tuples of :mod:`~impactmaps.solvers.kernel_types`."""
 
     kernel: object
     params: np.ndarray
     linear_stiffness: float
-    frequencies: np.ndarray
-    participation: np.ndarray
-    damping_ratios: np.ndarray
-    residual: float
-    mass: float
-    velocity: float
-    time_step: float
-    max_time: float
-    record: bool
-    max_events: int
-    coupled_frequencies: np.ndarray
-    coupled_force: np.ndarray
-    from_coupled: np.ndarray
-    to_coupled: np.ndarray
-    contact_row_spacing: float
-    step_scale: float
-    stop: np.ndarray
+    modes: KernelModes
+    impact: KernelImpact
+    run: KernelRun
+    coupled: KernelCoupled
 
 
-class KernelScalars(NamedTuple):
-    """The scalars the integrator returns, by name (SI units)."""
-
-    peak_force: float
-    peak_time: float
-    max_indentation: float
-    final_velocity: float
-    structure_energy: float
-    damping_work: float
-    end_time: float
-    time_limit_reached: float
-    steps: float
-    events_overflow: float
+#: What a run stopped at the row cap says (its warning and ``convergence_note``).
+_ROW_CAP_NOTE = ("row cap reached: the history holds HISTORY_ROW_CAP = {rows} rows and the run stopped there, "
+                 "at t = {time:.3g} s, before re-impact became impossible (time_limit_reached; the result is not "
+                 "converged); for the whole event run without the history (record=False), or shorten it with the "
+                 "time limit (solver.duration, max_time_ratio)")
 
 
 def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
@@ -280,20 +262,25 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
                               int(settings.max_events), not automatic)
     refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
     inputs = KernelInputs(
-        kernel_pointer(law.kernel), params, linear_stiffness(law), _kernel_array(basis.frequencies),
-        _kernel_array(basis.participation), _kernel_array(basis.damping_ratios), float(basis.residual_compliance),
-        float(impactor_mass), float(velocity), float(time_step), float(max_time), bool(record),
-        int(settings.max_events), coupled.frequencies, coupled.force_row, coupled.from_coupled, coupled.to_coupled,
-        float(settings.time_step_ratio / omega_c), float(settings.step_scale), np.zeros(1, dtype=np.int64))
-    history, intervals, raw = _integrate(budget.seconds > INTERRUPTIBLE_SECONDS, inputs)
-    scalars = KernelScalars._make(raw)
+        kernel_pointer(law.kernel), params, linear_stiffness(law),
+        KernelModes(_kernel_array(basis.frequencies), _kernel_array(basis.participation),
+                    _kernel_array(basis.damping_ratios), float(basis.residual_compliance)),
+        KernelImpact(float(impactor_mass), float(velocity)),
+        KernelRun(float(time_step), float(max_time), bool(record), int(settings.max_events),
+                  HISTORY_ROW_CAP, np.zeros(1, dtype=np.int64)),
+        KernelCoupled(coupled.frequencies, coupled.force_row, coupled.from_coupled, coupled.to_coupled,
+                      float(settings.time_step_ratio / omega_c), float(settings.step_scale)))
+    history, intervals, scalars = _integrate(budget.seconds > INTERRUPTIBLE_SECONDS, inputs)
     if scalars.events_overflow:
         warnings.warn(
             f"more than max_events = {settings.max_events} contacts: the run stopped there (time_limit_reached)",
             RuntimeWarning, stacklevel=4)
+    if scalars.row_cap_reached:
+        warnings.warn(_ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time), ConvergenceWarning,
+                      stacklevel=4)
     result = _result(law, inputs, scalars, history if record else None, intervals, omega_c, basis.size, settings,
                      "exact" if coupled.frequencies.size else "sampled")
-    if result.time_limit_reached:
+    if result.time_limit_reached and not scalars.row_cap_reached:
         warnings.warn(
             f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
             "became impossible; scalars describe a truncated event",
@@ -304,7 +291,7 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
 def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, intervals, omega_c, n_modes,
             settings: ModalSettings, phase: str) -> ImpactResult:
     """The :class:`ImpactResult` of a kernel run (``history`` ``None`` when not recorded)."""
-    mass, velocity = inputs.mass, inputs.velocity
+    mass, velocity = inputs.impact.mass, inputs.impact.velocity
     alpha_max = float(scalars.max_indentation)
     dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
     rebound = float(-scalars.final_velocity)
@@ -327,8 +314,11 @@ def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, interval
         velocity=float(velocity),
         contact_frequency=omega_c,
         n_modes=n_modes,
-        time_step=float(inputs.time_step),
+        time_step=float(inputs.run.time_step),
         method="modal+residual" if settings.residual_flexibility else "modal",
         settings=settings_dict(settings),
         details=ModalDetails(int(scalars.steps), phase),
+        converged=False if scalars.row_cap_reached else None,
+        convergence_note=_ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time)
+        if scalars.row_cap_reached else "",
     )

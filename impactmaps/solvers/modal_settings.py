@@ -237,6 +237,6 @@ def uses_patch(target, contact_patch: str) -> bool:
     """Whether ``contact_patch`` asks for the Hertz patch on ``target`` and it supports one."""
     if not getattr(target, "supports_contact_patch", False):
         return False
-    if contact_patch == "auto":
-        return getattr(target, "theory", None) == "mindlin"
+    if contact_patch == "auto":  # where the point load has no converged answer (a Mindlin plate)
+        return bool(getattr(target, "point_load_diverges", False))
     return contact_patch == "hertz-peak"

@@ -15,8 +15,9 @@ Modal estimates (:func:`modal_run_budget`), per run of the compiled integrator
   never refused for its count: it follows the modes the contact excites);
 * memory — the contact-interval table, allocated whole (``max_events`` × 16 B); the
   history of a recorded run, one row per expected step (:data:`HISTORY_ROW_BYTES` per
-  row: the kernel's growing array, its copy and the DataFrame); the modes
-  (:data:`BYTES_PER_MODE`). A run with many re-impacts may outgrow the expected history;
+  row: the kernel's growing array, its copy and the DataFrame), at most
+  :data:`HISTORY_ROW_CAP` rows — the kernel writes no more (a run that reaches them stops
+  there, flagged); the modes (:data:`BYTES_PER_MODE`);
 * time — :data:`SECONDS_PER_MODE_STEP` per mode and expected step.
 """
 
@@ -26,7 +27,8 @@ import math
 import warnings
 from typing import NamedTuple
 
-__all__ = ["MEMORY_LIMIT_BYTES", "LONG_RUN_SECONDS", "HISTORY_ROW_BYTES", "INTERVAL_BYTES", "BYTES_PER_MODE",
+__all__ = ["MEMORY_LIMIT_BYTES", "LONG_RUN_SECONDS", "HISTORY_ROW_BYTES", "HISTORY_ROW_CAP", "INTERVAL_BYTES",
+           "BYTES_PER_MODE",
            "SECONDS_PER_MODE_STEP", "EXPECTED_RUN_RATIO", "MAX_STEPS", "LongRunWarning", "RunBudget",
            "refuse_or_announce", "modal_run_budget"]
 
@@ -38,6 +40,11 @@ LONG_RUN_SECONDS = 60.0
 #: grows by doubling (up to 2×), its trimmed copy (1×) and the DataFrame with the impactor's
 #: kinetic energy (9 columns): (16 + 8 + 9) × 8 = 264 B, rounded up.
 HISTORY_ROW_BYTES = 320
+#: Most history rows a recorded modal run writes (≈ 0.3 GiB at :data:`HISTORY_ROW_BYTES`):
+#: the integrator stops a run there (``row_cap_reached``) instead of growing its history.
+#: Not a :class:`~impactmaps.solvers.modal.ModalSettings` field: the settings are part of
+#: every sweep's fingerprint, so a new field would orphan the shipped results.
+HISTORY_ROW_CAP = 1_000_000
 #: Bytes per entry of the contact-interval table (start and end, float64), allocated whole.
 INTERVAL_BYTES = 16
 #: Bytes per integrated mode (the integrator's 70 float64 per mode and the basis), as the
@@ -141,7 +148,7 @@ def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_fr
     if forced_step and expected > MAX_STEPS:
         raise ValueError(f"time_step = {time_step:.6g} s is invalid: {expected:.3g} steps expected (at most "
                          f"{MAX_STEPS:.0e}); valid range: time_step ≥ {step_that_fits:.3g} s")
-    rows = expected if record else 0
+    rows = min(expected, HISTORY_ROW_CAP) if record else 0
     memory = max_events * INTERVAL_BYTES + n_modes * BYTES_PER_MODE + rows * HISTORY_ROW_BYTES
     seconds = expected * max(n_modes, 1) * SECONDS_PER_MODE_STEP
     if forced_step:

@@ -20,17 +20,17 @@ Kirchhoff plate's dashpot 8 sqrt(Dρh), the Euler beam's t^(-1/2) kernel) answer
 shear-deformable target: a point-loaded Mindlin plate's deflection under the load is
 unbounded (logarithmic), a Timoshenko beam's carries the shear compliance.
 :func:`has_classical_asymptote` says which targets the asymptotes serve.
+
+Each target says its own range (:meth:`~impactmaps.targets.base.Target.thickness_shear_frequency`,
+:attr:`~impactmaps.targets.base.Target.has_classical_asymptote`); the functions here ask it,
+and answer for any other object (a :class:`~impactmaps.targets.base.ModalBasis`) as for a
+classical theory without an asymptote.
 """
 
 from __future__ import annotations
 
-import math
-
-__all__ = ["CLASSICAL_THEORIES", "SHEAR_VALIDITY_FRACTION", "beyond_shear_theory",
-           "has_classical_asymptote", "thickness_shear_frequency"]
-
-#: Structural theories whose infinite-structure closed forms are the toolkit's asymptotes.
-CLASSICAL_THEORIES = ("euler", "kirchhoff")
+__all__ = ["SHEAR_VALIDITY_FRACTION", "beyond_shear_theory", "has_classical_asymptote",
+           "thickness_shear_frequency"]
 
 #: Largest contact frequency, as a fraction of the thickness-shear cut-off, at which a
 #: shear-deformable result is vouched for.
@@ -38,26 +38,22 @@ SHEAR_VALIDITY_FRACTION = 0.25
 
 
 def thickness_shear_frequency(target) -> float | None:
-    """The thickness-shear cut-off ω_s [rad/s] of a Mindlin plate or Timoshenko beam.
+    """The thickness-shear cut-off ω_s [rad/s] of a shear-deformable target.
 
     Parameters
     ----------
     target : Target
-        Any target; only ``theory`` ``"mindlin"`` (plates) and ``"timoshenko"`` (beams)
-        have a cut-off.
+        Any target (or object); it says its cut-off
+        (:meth:`~impactmaps.targets.base.Target.thickness_shear_frequency`).
 
     Returns
     -------
     float or None
-        ``sqrt(k min(A44, A55)/(ρh³/12))`` (plate), ``sqrt(kGA/(ρI))`` (beam) [rad/s];
-        None for the classical theories.
+        ``sqrt(k min(A44, A55)/(ρh³/12))`` (Mindlin plate), ``sqrt(kGA/(ρI))`` (Timoshenko
+        beam) [rad/s]; None for the classical theories and objects that are no target.
     """
-    theory = getattr(target, "theory", None)
-    if theory == "mindlin":
-        return math.sqrt(target.shear_correction * min(target.A44, target.A55) / target.rotary_inertia_per_area)
-    if theory == "timoshenko":
-        return math.sqrt(target.shear_stiffness / target.rotary_inertia)
-    return None
+    method = getattr(target, "thickness_shear_frequency", None)
+    return None if method is None else method()
 
 
 def beyond_shear_theory(target, contact_frequency: float) -> bool:
@@ -73,6 +69,7 @@ def beyond_shear_theory(target, contact_frequency: float) -> bool:
 def has_classical_asymptote(target) -> bool:
     """Whether the closed-form infinite-structure solutions hold for ``target``'s theory.
 
-    True for Euler beams and Kirchhoff plates (:data:`CLASSICAL_THEORIES`).
+    True for Euler beams and Kirchhoff plates, as the target says
+    (:attr:`~impactmaps.targets.base.Target.has_classical_asymptote`).
     """
-    return getattr(target, "theory", None) in CLASSICAL_THEORIES
+    return bool(getattr(target, "has_classical_asymptote", False))

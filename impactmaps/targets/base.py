@@ -18,6 +18,7 @@ from typing import ClassVar, NamedTuple
 import numpy as np
 
 from .map_structure import StructureKey, describing_structure, similarity_groups
+from .options import CLASSICAL_THEORIES, DIVERGENT_POINT_LOAD_THEORIES
 
 __all__ = ["InfiniteImpact", "ModalBasis", "dropped_compliance_sums", "Target", "RESIDUAL_ROUND_OFF",
            "PARTICIPATION_THRESHOLD", "DEGENERACY_TOLERANCE"]
@@ -391,6 +392,36 @@ class Target(ABC):
     def impactor_mass_for(self, loss_factor, contact_stiffness):
         """Impactor mass m_i [kg] giving ``loss_factor`` ζ with contact stiffness K [N/m]."""
 
+    @property
+    def point_load_diverges(self) -> bool:
+        """Whether the deflection under a point load is unbounded, so that a point-load peak
+        force has no converged value in the mode cut-off (the contact patch answers): a
+        target whose ``theory`` is one of :data:`~impactmaps.targets.options.DIVERGENT_POINT_LOAD_THEORIES`."""
+        return getattr(self, "theory", None) in DIVERGENT_POINT_LOAD_THEORIES
+
+    @property
+    def has_classical_asymptote(self) -> bool:
+        """Whether the closed-form infinite-structure solutions (:meth:`infinite_structure_peak`)
+        hold for the target's theory (:data:`~impactmaps.targets.options.CLASSICAL_THEORIES`)."""
+        return getattr(self, "theory", None) in CLASSICAL_THEORIES
+
+    def thickness_shear_frequency(self) -> float | None:
+        """The thickness-shear cut-off ω_s [rad/s] of a shear-deformable theory, above a
+        fraction of which it stops holding (:mod:`impactmaps.solvers.shear_range`); None
+        (the default) for a theory without one."""
+        return None
+
+    def wave_return_distance(self) -> float:
+        """Distance [m] from the impact point to the nearest boundary that reflects flexural
+        waves back to it. Finite structures (beams, plates) override it."""
+        raise NotImplementedError(f"{type(self).__name__} has no boundary")
+
+    def flexural_group_velocity(self, angular_frequency):
+        """Group velocity [m/s] of the flexural waves at ``angular_frequency`` ω [rad/s] in the
+        classical (shear-rigid) theory, ``2 sqrt(ω) (D/m)^(1/4)`` with D/m the bending
+        stiffness over the mass per length or area. Finite structures override it."""
+        raise NotImplementedError(f"{type(self).__name__} has no flexural waves")
+
     def reflection_time(self, contact_frequency):
         """Normalised time ω d²/c [-] of the first wave return to the impact point.
 
@@ -399,11 +430,6 @@ class Target(ABC):
         mass per length or area)`` [m²/s]. Finite structures (beams, plates) override it.
         """
         raise NotImplementedError(f"{type(self).__name__} has no wave-return time")
-
-    @property
-    def point_load_diverges(self) -> bool:
-        """Whether the deflection under a point load is infinite (a Mindlin plate's); default False."""
-        return False
 
     def map_structure(self, *, patch_loaded: bool = False) -> StructureKey | None:
         """The reference structure whose normalised maps describe this target exactly, or None.

@@ -287,6 +287,17 @@ class Beam(Target):
         """
         return min(self.impact_position, self.length - self.impact_position)
 
+    def thickness_shear_frequency(self) -> float | None:
+        """The thickness-shear cut-off ``sqrt(kGA/(ρI))`` [rad/s] of a Timoshenko beam; None
+        for the other theories."""
+        if self.theory != "timoshenko":
+            return None
+        return math.sqrt(self.shear_stiffness / self.rotary_inertia)
+
+    def wave_return_distance(self) -> float:
+        """Distance [m] to the nearest end, supported or free (:meth:`distance_to_nearest_end`)."""
+        return float(self.distance_to_nearest_end())
+
     def reflection_time(self, contact_frequency):
         """Normalised time ω d²/c [-] of the first wave return to the impact point.
 

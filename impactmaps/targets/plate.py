@@ -316,10 +316,16 @@ class Plate(Target):
         return impactor_mass_for_plate(loss_factor, contact_stiffness, self.mass_per_area,
                                        self.effective_bending_stiffness)
 
-    @property
-    def point_load_diverges(self) -> bool:
-        """True for a Mindlin plate: its shear deflection under a point load diverges (ln 1/a)."""
-        return self.theory == "mindlin"
+    def thickness_shear_frequency(self) -> float | None:
+        """Mindlin: the thickness-shear cut-off ``sqrt(k min(A44, A55)/(ρh³/12))`` [rad/s]."""
+        return (math.sqrt(self.shear_correction * min(self.A44, self.A55) / self.rotary_inertia_per_area)
+                if self.theory == "mindlin" else None)
+
+    wave_return_distance = distance_to_nearest_edge  # the nearest edge reflects first
+
+    def flexural_group_velocity(self, angular_frequency):
+        """Classical flexural group velocity ``2 (D*/ρh)^(1/4) sqrt(ω)`` [m/s] at ω [rad/s]."""
+        return 2.0 * ((self.effective_bending_stiffness / self.mass_per_area) ** 0.25 * math.sqrt(angular_frequency))
 
     @property
     def supports_contact_patch(self) -> bool:
@@ -472,8 +478,6 @@ class Plate(Target):
         require_in_range("points y", points[:, 1], 0.0, self.length_y, unit="m")
         return _plate_modes(self, *_checked_request(max_frequency, min_modes), 0.0)[1](points)
 
-    # -- implementation -----------------------------------------------------------------
-    # Navier (plate_navier) -----------------------------------------------------------
     def _navier_frequencies(self, m, n):
         """ω_mn [rad/s] of the SSSS plate (:func:`plate_navier.navier_frequencies`)."""
         return plate_navier.navier_frequencies(self, m, n)

@@ -14,7 +14,6 @@ import warnings
 
 import numpy as np
 
-from ..solvers.shear_range import thickness_shear_frequency
 from .base import ModalBasis
 from .patch import hertz_transform, mean_square_transform
 from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
@@ -219,14 +218,12 @@ def warn_beyond_thickness_shear(plate, max_frequency: float, stacklevel: int = 2
     """Warn when a cut-off [rad/s] passes a Mindlin plate's thickness-shear cut-off.
 
     ``sqrt(k min(A44, A55)/(ρh³/12))`` [rad/s]
-    (:func:`impactmaps.solvers.shear_range.thickness_shear_frequency`): the omitted
+    (:meth:`impactmaps.targets.plate.Plate.thickness_shear_frequency`): the omitted
     thickness-shear branches have modes below it. Kirchhoff plates (and other targets)
     never warn.
     """
-    if getattr(plate, "theory", None) != "mindlin":
-        return
-    cutoff = thickness_shear_frequency(plate)
-    if max_frequency > cutoff:
+    cutoff = plate.thickness_shear_frequency()
+    if cutoff is not None and max_frequency > cutoff:
         warnings.warn(
             f"max_frequency = {max_frequency:.6g} rad/s exceeds the thickness-shear "
             f"cut-off {cutoff:.6g} rad/s: the Mindlin thickness-shear branches, which "

@@ -1,0 +1,169 @@
+"""The free-flight stage of the exact-step modal integrator (numba).
+
+With no contact force every modal coordinate and the impactor move exactly over any step,
+so the step doubles up to 2^(:data:`FREE_POWERS` − 1) = 1024 h as long as a bound on the
+closing speed proves that no touchdown fits inside it (:func:`free_step`), and the run
+ends once the gap exceeds the largest displacement the free vibration can reach at the
+impact point (:func:`no_reimpact_possible`). A recorded run takes the same steps and
+records the exact state at the end of each, and inside a step longer than 64 h every
+64 h (:func:`record_free_inside`), so its scalars are those of the run without a record.
+The loop that calls this stage is :mod:`impactmaps.solvers.exact_step`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+from .contact_events import solve_end_force
+from .history_rows import record_row
+from .kernel_types import Flight
+from .oscillator_step import propagate_free, square_free_propagators
+
+__all__ = ["FREE_POWERS", "damping_work", "free_step", "no_reimpact_possible", "out_of_time"]
+
+#: Longest free-flight step: 2^(FREE_POWERS − 1) = 1024 steps h. (Up to 2026-11-24 64 h:
+#: a light impactor's long flights between re-impacts took ~30 % of a plate run's steps.)
+FREE_POWERS = 11
+#: A recorded run's rows in free flight are at most 2^_RECORD_POWER = 64 steps h apart.
+_RECORD_POWER = 6
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def no_reimpact_possible(omega, phi, q, v, wi, vi):
+    """True once the impactor moves away and its gap exceeds the largest displacement the
+    free vibration can ever reach at x0: |w_t| ≤ Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (sum of
+    modal amplitudes; damping only shrinks them), relative to the rigid-body motion.
+    This bound is ≤ the Cauchy–Schwarz bound sqrt(2 E_s Σφ²/ω²) (docs/physics_contract.md §3.6)."""
+    rigid_w = 0.0
+    rigid_v = 0.0
+    bound = 0.0
+    for j in range(q.shape[0]):
+        if omega[j] == 0.0:
+            rigid_w += phi[j] * q[j]
+            rigid_v += phi[j] * v[j]
+        else:
+            bound += abs(phi[j]) * math.sqrt(q[j] * q[j] + (v[j] / omega[j]) ** 2)
+    return vi - rigid_v <= 0.0 and wi - rigid_w < -bound
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _damping_power(omega, zeta, v):
+    power = 0.0
+    for j in range(v.shape[0]):
+        power += 2.0 * zeta[j] * omega[j] * v[j] * v[j]
+    return power
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def damping_work(omega, zeta, v, vn, length):
+    """Work of the modal damping over a step of ``length`` [s] (trapezoidal rule) [J]."""
+    return 0.5 * length * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
+
+
+@numba.njit(cache=True, inline="always")
+def out_of_time(t, steps, max_time, max_steps):
+    """Whether the run has reached its time limit or its step budget."""
+    return t >= max_time or steps >= max_steps
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _closing_speed_bound(omega, phi, q, v, vi):
+    """Bound on the speed at which the gap can close in free flight [m/s]:
+    ``|v_i| + Σ|φ_j| sqrt(ω_j² q_j² + v_j²)`` (modal amplitudes are constant or decay)."""
+    speed_bound = abs(vi)
+    for j in range(q.shape[0]):
+        speed_bound += abs(phi[j]) * math.sqrt((omega[j] * q[j]) ** 2 + v[j] * v[j])
+    return speed_bound
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _free_doublings(phi, q, wi, h, speed_bound):
+    """How many times the step h may double, k < :data:`FREE_POWERS`.
+
+    With no contact force every mode moves exactly over any step, so the step may grow
+    as long as contact cannot start inside it: the gap −α shrinks at most at
+    ``speed_bound`` V (:func:`_closing_speed_bound`), hence a step of 2^k h with
+    2^k h V < −α cannot contain a touchdown.
+    """
+    wt_now = 0.0
+    for j in range(q.shape[0]):
+        wt_now += phi[j] * q[j]
+    gap = wt_now - wi  # −α
+    k = 0
+    while k + 1 < FREE_POWERS and (2.0 ** (k + 1)) * h * speed_bound < gap:
+        k += 1
+    return k
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def record_free_inside(free_coef, k, h, start, modes, scratch, history, rec):
+    """Record exact rows every 2^_RECORD_POWER h inside a free-flight step of 2^k h [s]
+    from ``start`` = (t [s], w_i, v_i, q, v), which is not touched; ``modes`` the
+    :class:`~impactmaps.solvers.kernel_types.KernelModes`, ``scratch`` (4, n). Returns the
+    history and the next row."""
+    if k <= _RECORD_POWER:
+        return history, rec
+    t, wi, vi, q, v = start
+    omega, phi = modes.frequencies, modes.participation
+    spacing = 2.0**_RECORD_POWER * h
+    q_a, v_a, q_b, v_b = scratch[0], scratch[1], scratch[2], scratch[3]
+    for j in range(q.shape[0]):
+        q_a[j] = q[j]
+        v_a[j] = v[j]
+    for i in range(1, 2 ** (k - _RECORD_POWER)):
+        propagate_free(free_coef[_RECORD_POWER], spacing, wi, vi, q_a, v_a, phi, q_b, v_b)
+        q_a, q_b = q_b, q_a
+        v_a, v_b = v_b, v_a
+        history, rec = record_row(history, rec, t + i * spacing, 0.0, wi + vi * (i * spacing), vi,
+                                  modes.residual, omega, phi, q_a, v_a)
+    return history, rec
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def free_step(kernel, params, linear_stiffness, modes, work, state, speed_bound, modal, history, rec):
+    """One free-flight step from ``state`` (a :class:`~impactmaps.solvers.kernel_types.Flight`)
+    with no contact force, as long as it is proven free (k > 0 doublings), or a step of h
+    whose end shows no contact.
+
+    ``modal`` = (q, v, qn, vn): the modal state and where the state at the end goes;
+    ``work`` the integrator's :class:`~impactmaps.solvers.kernel_types.Work`; ``speed_bound`` the closing-speed bound [m/s] of this
+    flight (< 0: not computed yet). Returns (state, speed_bound, taken, ended, history,
+    rec): ``taken`` False leaves the step to the sampled scheme (a contact at its end);
+    ``ended`` 1 when re-impact became impossible, 2 at the time limit or step budget,
+    else 0.
+    """
+    omega, phi, zeta = modes.frequencies, modes.participation, modes.damping_ratios
+    q, v, qn, vn = modal
+    h = work.h
+    if speed_bound < 0.0:
+        speed_bound = _closing_speed_bound(omega, phi, q, v, state.vi)
+    # k > 0: the speed bound proves the long step free; k = 0: a free step whose end shows
+    # no contact (the test the full step of the sampled scheme would make)
+    k = _free_doublings(phi, q, state.wi, h, speed_bound)
+    length = (2.0 ** k) * h
+    if not work.free_ready[k]:
+        square_free_propagators(work.free_coef, work.free_ready, k)
+    wi_free, wt_free = propagate_free(work.free_coef[k], length, state.wi, state.vi, q, v, phi, qn, vn)
+    if k == 0 and solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free, work.compliance_h,
+                                  state.alpha_max) != 0.0:
+        return state, speed_bound, False, 0, history, rec
+    damping = state.damping_work
+    if work.damped:
+        damping += damping_work(omega, zeta, v, vn, length)
+    if work.record:
+        history, rec = record_free_inside(work.free_coef, k, h, (state.t, state.wi, state.vi, q, v), modes,
+                                          work.scratch, history, rec)
+    t = state.t + length
+    steps = state.steps + 1
+    if work.record:
+        history, rec = record_row(history, rec, t, 0.0, wi_free, state.vi, modes.residual, omega, phi, qn, vn)
+    ended = 0
+    if (k > 0 or steps % 8 == 0) and no_reimpact_possible(omega, phi, qn, vn, wi_free, state.vi):
+        ended = 1
+    elif out_of_time(t, steps, work.max_time, work.max_steps):
+        ended = 2
+    state = Flight(t, wi_free, state.vi, state.force, state.alpha_max, state.in_contact, state.starting,
+                   damping, state.peak, state.peak_time, -1.0, 0.0, steps, state.n_intervals, state.overflow)
+    return state, speed_bound, True, ended, history, rec
