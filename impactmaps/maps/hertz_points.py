@@ -25,9 +25,9 @@ import numpy as np
 
 from ..contact.hertz import HertzContact
 from ..hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
-from ..law_asymptotes import asymptote
+from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR
-from ..solvers.modal import ModalSettings, uses_patch, reference_contact_stiffness, simulate
+from ..solvers.modal_settings import ModalSettings, uses_patch
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, exact_point
 from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
@@ -135,6 +135,8 @@ def hertz_summary(result, numbers) -> dict:
 def _asymptote_row(which: str, target, zeta_h: float, lambda_h: float) -> dict:
     """The map scalars of an any-law asymptote of the realised Hertz impact."""
     realised = _Realised(target, zeta_h, lambda_h)
+    from ..law_asymptotes import asymptote  # scipy's integrators: only where one is computed
+
     impact = asymptote(which, target, realised.law, realised.mass, realised.velocity)
     scale = realised.numbers.time_scale
     durations = [(end - start) / scale for start, end in impact.contact_intervals]
@@ -303,6 +305,7 @@ def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Rea
     target; the cut-off ``patch_cutoff_ratio`` · ω is clipped to ``cap`` [rad/s] as the
     point-loaded runs clip theirs.
     """
+    from ..solvers.modal import simulate  # the integrator: only where a point is computed
 
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from enum import StrEnum
 
-from ..solvers.modal import ModalSettings, simulate
+from ..solvers.modal_settings import ModalSettings
 from ..solvers.mode_budget import METHODS as BUDGET_METHODS
 from ..solvers.mode_budget import ModeBudgetError, plan_basis
 from ..solvers.mode_budget import frequency_cap as budget_frequency_cap
@@ -146,6 +146,8 @@ def table_runner(family, target, table: BasisTable, cap: float, point, realised,
     ``table`` at ``settings.cutoff_ratio`` times its contact frequency (clipped to ``cap``
     [rad/s]), read in the family's scales. A run equal to an earlier one is not repeated
     (:func:`table_run_key`); every result is appended to ``runs``."""
+    from ..solvers.modal import simulate  # the integrator: only where a point is computed
+
     seen = {}
 
     def run(settings: ModalSettings, zeta_factor: float):
