@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, init, check, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, init, check, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -52,7 +52,7 @@ from .commands_cases import (
     cmd_restitution,
     cmd_simulate,
 )
-from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init
+from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
 from .commands_maps import (
     SCHEDULER_TIMEOUT_S,
     cmd_asymptote,
@@ -241,6 +241,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "
             "its regime and scales", cmd_check)
     p.add_argument("case", type=Path, help="the case file (TOML)")
+
+    p = add("warm-up", "compile the solver's kernels once into numba's cache, so that the first simulation "
+            "starts at once (run after installing)", cmd_warm_up)
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes compiling at once (default 2; 1 compiles in this process)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
