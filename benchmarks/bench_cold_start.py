@@ -120,7 +120,7 @@ def time_after_warm_up(*argv: str) -> tuple[float, float]:
         try:
             warm = run_command(["warm-up"], cache, out)
         except subprocess.CalledProcessError:
-            CPU_TIMES.append(float("nan"))
+            CPU_TIMES.extend((float("nan"), float("nan")))
             return float("nan"), float("nan")
         return warm, run_command(argv, cache, out)
 
