@@ -132,11 +132,17 @@ def hertz_summary(result, numbers) -> dict:
     return summary
 
 
+def asymptote(which: str, target, law, mass: float, velocity: float):
+    """:func:`impactmaps.law_asymptotes.asymptote`, imported on first use (it imports scipy's
+    integrators, which a map lookup never runs)."""
+    from ..law_asymptotes import asymptote as any_law_asymptote
+
+    return any_law_asymptote(which, target, law, mass, velocity)
+
+
 def _asymptote_row(which: str, target, zeta_h: float, lambda_h: float) -> dict:
     """The map scalars of an any-law asymptote of the realised Hertz impact."""
     realised = _Realised(target, zeta_h, lambda_h)
-    from ..law_asymptotes import asymptote  # scipy's integrators: only where one is computed
-
     impact = asymptote(which, target, realised.law, realised.mass, realised.velocity)
     scale = realised.numbers.time_scale
     durations = [(end - start) / scale for start, end in impact.contact_intervals]

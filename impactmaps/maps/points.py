@@ -110,6 +110,14 @@ def unresolved_point(row: dict) -> dict:
                             "status": STATUSES.index(PointStatus.UNRESOLVED)}
 
 
+def simulate(target, law, impactor_mass, velocity, **options):
+    """:func:`impactmaps.solvers.modal.simulate`, imported on first use: a lookup imports this
+    module but runs no point, and the integrator's module is not needed until one is run."""
+    from ..solvers.modal import simulate as modal_simulate
+
+    return modal_simulate(target, law, impactor_mass, velocity, **options)
+
+
 def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
     """What a run of one map point on a basis table depends on: the ζ factor, the modes
     (a truncation of the table is fixed by its size) and every setting but the cut-off
@@ -146,8 +154,6 @@ def table_runner(family, target, table: BasisTable, cap: float, point, realised,
     ``table`` at ``settings.cutoff_ratio`` times its contact frequency (clipped to ``cap``
     [rad/s]), read in the family's scales. A run equal to an earlier one is not repeated
     (:func:`table_run_key`); every result is appended to ``runs``."""
-    from ..solvers.modal import simulate  # the integrator: only where a point is computed
-
     seen = {}
 
     def run(settings: ModalSettings, zeta_factor: float):
