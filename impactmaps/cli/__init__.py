@@ -233,13 +233,19 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
 
+    _tool_parsers(add)
+    return parser
+
+
+def _tool_parsers(add) -> None:
+    """The subcommands around the solvers: init, check, warm-up, materials, laws."""
     p = add("init", "write a commented case file to start from (beam, plate, laminate or fd)", cmd_init)
     p.add_argument("kind", choices=sorted(CASE_TEMPLATES), help="what the case describes")
     p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default KIND.toml)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing FILE")
 
     p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "
-            "its regime and scales", cmd_check)
+            "its regime, scales and estimated cost", cmd_check)
     p.add_argument("case", type=Path, help="the case file (TOML)")
 
     p = add("warm-up", "compile the solver's kernels once into numba's cache, so that the first simulation "
@@ -249,7 +255,6 @@ def build_parser() -> argparse.ArgumentParser:
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
-    return parser
 
 
 def _point_arguments(p, with_target=True):
