@@ -15,10 +15,14 @@ temporary directory (numba then compiles everything, as after a fresh install):
    no result is shipped for, swept on all cores (compiles the integrator, then computes);
 4. the first integrating commands, ``impactmaps simulate`` of the example cases
    ``aluminium_beam_linear.toml`` (linear law) and ``steel_plate_hertz.toml`` (Hertz), on
-   an empty cache and again warm;
-5. commands that solve nothing: ``impactmaps --help`` and ``impactmaps laws`` (median of
-   three runs; imports only).
+   an empty cache and again warm; then, on another empty cache, ``impactmaps warm-up``
+   (what the installation runs, :mod:`impactmaps.solvers.warm_up`) followed by the same
+   command (a checkout without ``warm-up`` shows nan);
+5. commands that solve nothing: ``impactmaps --help``, ``materials``, ``laws`` and a
+   ``lookup`` on a shipped map (median of three runs; imports only).
 
+Each command's CPU time (``getrusage`` of the ended children: the command and the
+processes it started) is given beside its wall time.
 Reported with the load average (other jobs on the machine make every number larger: run
 it for two checkouts in the same minutes and compare ratios, ``--root``).
 
@@ -32,6 +36,7 @@ import argparse
 import datetime
 import os
 import pathlib
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -64,6 +69,10 @@ print(json.dumps({"import_s": elapsed, "compile_s": first_call, "top": totals.mo
 """
 
 
+#: The commands that solve nothing, timed (median of three runs each).
+LIGHT_COMMANDS = (("--help",), ("materials",), ("laws",),
+                  ("lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"))
+
 #: The checkout measured (``--root``; default this one).
 CODE = ROOT
 
@@ -73,23 +82,51 @@ def _environment(cache: str) -> dict:
                 PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
 
 
+#: CPU time [s] of each command :func:`run_command` ran, in order (user + system of the child).
+CPU_TIMES: list[float] = []
+
+
+def _children_cpu() -> float:
+    import resource
+
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def run_command(argv, cache: str, cwd: str) -> float:
+    """Wall time [s] of ``impactmaps ARGV`` with numba's cache at ``cache``; its CPU time
+    (children's ``getrusage``: the command and any process it started) is appended to
+    :data:`CPU_TIMES` — on a shared machine the CPU time is the steadier figure."""
+    cpu, start = _children_cpu(), time.perf_counter()
+    subprocess.run([sys.executable, "-m", "impactmaps.cli", *argv], env=_environment(cache), check=True,
+                   capture_output=True, cwd=cwd)
+    wall = time.perf_counter() - start
+    CPU_TIMES.append(_children_cpu() - cpu)
+    return wall
+
+
 def time_command(*argv: str, cold: bool = True) -> tuple[float, float]:
     """(cold, warm) wall time [s] of ``impactmaps ARGV`` on a fresh numba cache; warm is
     NaN unless ``cold`` (then the first run is the only one, on a fresh cache too)."""
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
-        times = []
-        for _ in range(2 if cold else 1):
-            start = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "impactmaps.cli", *argv], env=_environment(cache),
-                           check=True, capture_output=True, cwd=out)
-            times.append(time.perf_counter() - start)
+        times = [run_command(argv, cache, out) for _ in range(2 if cold else 1)]
     return times[0], (times[1] if cold else float("nan"))
+
+
+def time_after_warm_up(*argv: str) -> tuple[float, float]:
+    """(``impactmaps warm-up`` on an empty cache, then ``impactmaps ARGV``) wall times [s];
+    (nan, nan) for a checkout without the warm-up command."""
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        try:
+            warm = run_command(["warm-up"], cache, out)
+        except subprocess.CalledProcessError:
+            CPU_TIMES.extend((float("nan"), float("nan")))
+            return float("nan"), float("nan")
+        return warm, run_command(argv, cache, out)
 
 
 def time_light(*argv: str, repeats: int = 3) -> float:
     """Median wall time [s] of ``impactmaps ARGV`` (a command that solves nothing)."""
-    import statistics
-
     runs = [time_command(*argv, cold=False)[0] for _ in range(repeats)]
     return statistics.median(runs)
 
@@ -152,14 +189,20 @@ def main(argv=None) -> None:
         lines += ["", f"`impactmaps chart --zeta-count 100` (no shipped result: compiles, then sweeps 1 600 "
                   f"points): first run **{cold:.1f} s**, second run {warm:.1f} s."]
     examples = ROOT / "examples"
-    lines += ["", "| first integrating command | empty cache [s] | warm [s] | load |", "|---|---|---|---|"]
+    lines += ["", "| first integrating command | empty cache: wall [s] (CPU [s]) | warm [s] (CPU) | "
+              "`warm-up` on an empty cache [s] (CPU) | then the command [s] (CPU) | load |", "|---|---|---|---|---|---|"]
     for case in ("aluminium_beam_linear.toml", "steel_plate_hertz.toml"):
         cold, warm = time_command("simulate", str(examples / case), "--out", "out")
-        lines.append(f"| `impactmaps simulate examples/{case}` | **{cold:.1f}** | {warm:.1f} | "
+        warm_up, after = time_after_warm_up("simulate", str(examples / case), "--out", "out")
+        cpu = CPU_TIMES[-4:]
+        lines.append(f"| `impactmaps simulate examples/{case}` | **{cold:.1f}** ({cpu[0]:.1f}) | {warm:.1f} "
+                     f"({cpu[1]:.1f}) | {warm_up:.1f} ({cpu[2]:.1f}) | **{after:.1f}** ({cpu[3]:.1f}) | "
                      f"{os.getloadavg()[0]:.1f} |")
-    lines += ["", "| command that solves nothing | wall [s] (median of 3) | load |", "|---|---|---|"]
-    for command in (("--help",), ("laws",)):
-        lines.append(f"| `impactmaps {' '.join(command)}` | **{time_light(*command):.2f}** | "
+    lines += ["", "| command that solves nothing | wall [s] (median of 3) | CPU [s] (median of 3) | load |",
+              "|---|---|---|---|"]
+    for command in LIGHT_COMMANDS:
+        wall = time_light(*command)
+        lines.append(f"| `impactmaps {' '.join(command)}` | **{wall:.2f}** | {statistics.median(CPU_TIMES[-3:]):.2f} | "
                      f"{os.getloadavg()[0]:.1f} |")
     text = "\n".join(lines) + "\n"
     if not args.print_only:

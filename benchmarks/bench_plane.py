@@ -20,7 +20,9 @@ Guards (the corners of the plane are known to blow up; that is the rest of issue
 * after ``--budget`` seconds no new point starts: "not run (budget)".
 
 Reported (``benchmarks/RESULTS_plane.md``): wall time of each structure and in total,
-per-point wall percentiles and the slowest point, the share of points per status, and,
+per-point wall percentiles and the slowest point, CPU time (the points': each worker's
+``time.process_time`` over its task; the pool's: ``getrusage`` of this process and its
+ended workers), the share of points per status, and,
 at ``--reference N`` random finished points, |F̄max − reference| where the reference is
 one run at 8× the cut-off, 8× the mode floor and 1/8 of the step
 (``ModalSettings().refined()`` three times), max over non-sensitive points. (Before
@@ -102,19 +104,22 @@ def _worker(tasks, results, stop, wid) -> None:
             results.put(("skip", wid, index))
             continue
         results.put(("start", wid, index, time.time()))
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         try:
             row = _solve(task)
-            results.put(("done", wid, index, row, time.perf_counter() - start))
+            results.put(("done", wid, index, row, time.perf_counter() - start, time.process_time() - cpu))
         except Exception as error:  # reported as a failed point, the run goes on
-            results.put(("fail", wid, index, f"{type(error).__name__}: {error}", time.perf_counter() - start))
+            results.put(("fail", wid, index, f"{type(error).__name__}: {error}", time.perf_counter() - start,
+                         time.process_time() - cpu))
 
 
 # -- driver side ---------------------------------------------------------------------------
 def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict]:
     """Run every task on ``workers`` processes; a task over ``point_cap`` s is killed with
     its worker (which is replaced); after ``budget`` s no task starts. One outcome per task:
-    ``{"state": "done"|"timeout"|"fail"|"budget", "row", "seconds", "error"}``."""
+    ``{"state": "done"|"timeout"|"fail"|"budget", "row", "seconds", "cpu", "error"}``: ``seconds``
+    the task's wall time, ``cpu`` the worker process's CPU time during it (``time.process_time``
+    in the worker; until 2026-11-26 the table's CPU column summed the wall times)."""
     context = multiprocessing.get_context("fork")
     task_queue, result_queue, stop = context.Queue(), context.Queue(), context.Event()
     for index, task in enumerate(tasks):
@@ -153,13 +158,16 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
                 running.pop(wid, None)
                 remaining -= 1
                 if kind == "done":
-                    outcomes[index] = {"state": "done", "row": message[3], "seconds": message[4]}
+                    outcomes[index] = {"state": "done", "row": message[3], "seconds": message[4], "cpu": message[5]}
                 else:
-                    outcomes[index] = {"state": "fail", "error": message[3], "seconds": message[4]}
+                    outcomes[index] = {"state": "fail", "error": message[3], "seconds": message[4],
+                                       "cpu": message[5]}
         now = time.time()
         for wid, (index, since) in list(running.items()):
             if now - since > point_cap:
-                processes.pop(wid).kill()
+                killed = processes.pop(wid)
+                killed.kill()
+                killed.join(timeout=5)  # reaped: its CPU time counts in RUSAGE_CHILDREN
                 running.pop(wid)
                 outcomes[index] = {"state": "timeout", "seconds": now - since}
                 remaining -= 1
@@ -196,6 +204,14 @@ def _grid(quick: bool):
     """The (ζ, λ) grid: 200 × 50 log-spaced over [1e-3, 1e3]² (20 × 10 with ``--quick``)."""
     n_zeta, n_lambda = (20, 10) if quick else (200, 50)
     return np.geomspace(1e-3, 1e3, n_zeta), np.geomspace(1e-3, 1e3, n_lambda)
+
+
+def cpu_seconds() -> float:
+    """CPU time [s] of this process and of its children that have ended (user + system)."""
+    import resource
+
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
 
 
 def percentile_row(seconds) -> str:
@@ -240,11 +256,16 @@ def main(argv=None) -> None:
              f"guards: > {args.max_modes} modes skipped, {args.point_cap:g} s per point, "
              f"{args.budget:g} s budget per structure; load average at the start {os.getloadavg()[0]:.1f} "
              "(the machine may be shared: compare walls within one run)", ""]
+    from impactmaps.solvers.warm_up import warm_up
+
+    warmed = warm_up()  # compiled once before the pool: a cold compile in every worker would hit the point cap
+    lines += [f"Kernels compiled or loaded first (`impactmaps warm-up`): {warmed['total_s']:.1f} s, "
+              f"{warmed['compiled_variants']} integrator variants compiled.", ""]
     finished = []  # (name, ζ, λ, row)
     total_wall = 0.0
     lines += ["| structure | wall [s] | done | skipped (modes) | timed out | failed | not run (budget) "
-              "| per point p50 / p90 / p99 / max [ms] | slowest point | CPU [s] of the points done |",
-              "|---|---|---|---|---|---|---|---|---|---|"]
+              "| per point p50 / p90 / p99 / max [ms] | slowest point | CPU [s] of the points done | CPU [s] of the "
+              "pool |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     status_lines = []
     for name in STRUCTURES:
         counts = finest_mode_counts(name, zetas, lambdas)
@@ -258,20 +279,21 @@ def main(argv=None) -> None:
         # random order: if the budget stops the run, the points done are a fair sample
         order = np.random.default_rng(args.seed).permutation(len(tasks))
         tasks = [tasks[k] for k in order]
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), cpu_seconds()
         outcomes = run_tasks(tasks, args.workers, args.point_cap, args.budget)
-        wall = time.perf_counter() - start
+        wall, pool_cpu = time.perf_counter() - start, cpu_seconds() - cpu
         total_wall += wall
         done = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "done"]
         timed = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "timeout"]
         failed = [(t, o) for t, o in zip(tasks, outcomes) if o["state"] == "fail"]
         budget = sum(o["state"] == "budget" for o in outcomes)
         seconds = np.array([o["seconds"] for _, o in done]) if done else np.array([np.nan])
+        point_cpu = sum(o["cpu"] for _, o in done)
         slow_t, slow_o = max(done, key=lambda item: item[1]["seconds"]) if done else ((None,) * 4, {})
         slowest = (f"ζ = {slow_t[2]:.3g}, λ = {slow_t[3]:.3g}: {slow_o['seconds']:.2f} s, "
                    f"{slow_o['row']['n_modes']} modes" if done else "–")
         lines.append(f"| {name} | {wall:.1f} | {len(done)} | {len(skipped)} | {len(timed)} | {len(failed)} | "
-                     f"{budget} | {percentile_row(seconds)} | {slowest} | {np.nansum(seconds):.1f} |")
+                     f"{budget} | {percentile_row(seconds)} | {slowest} | {point_cpu:.1f} | {pool_cpu:.1f} |")
         for t, o in done:
             finished.append((name, t[2], t[3], o["row"] | {"seconds": o["seconds"]}))
         total = counts.size

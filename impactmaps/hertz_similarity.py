@@ -84,7 +84,6 @@ from dataclasses import dataclass
 
 from ._checks import require_positive
 from .contact.hertz import HertzContact
-from .solvers.halfspace import hertz_max_indentation
 
 __all__ = [
     "ZENER_TO_LOSS_FACTOR",
@@ -178,6 +177,8 @@ def hertz_numbers(target, law, mass, velocity) -> HertzNumbers:
     -------
     HertzNumbers
     """
+    from .solvers.halfspace import hertz_max_indentation  # scipy's integrators, pandas: on use
+
     stiffness = _hertz_stiffness(law)
     require_positive("mass", mass, "kg")
     require_positive("velocity", velocity, "m/s")

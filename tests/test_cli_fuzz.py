@@ -29,7 +29,7 @@ from impactmaps.cli import build_parser, main
 #: more than this while fuzzing (ru_maxrss is a high-water mark, so one bad example shows).
 MEMORY_LIMIT_BYTES = 1 << 30
 #: Commands whose valid inputs run a computation of seconds or more.
-HEAVY = {"chart", "point", "classify", "sweep", "simulate", "fd", "lookup"}
+HEAVY = {"chart", "point", "classify", "sweep", "simulate", "fd", "lookup", "warm-up"}
 #: Values every numeric option must refuse (and refuse before computing).
 BAD_NUMBERS = ("nan", "inf", "-inf", "-1", "0", "1e300", "-1e300", "abc", "")
 EDGE_NUMBERS = BAD_NUMBERS + ("1e-300", "1e-6", "0.5", "1", "2", "20", "1e6")
@@ -132,6 +132,7 @@ def _bases(files) -> dict:
         "check": ["check", str(files["valid_case"])],
         "materials": ["materials"],
         "laws": ["laws"],
+        "warm-up": ["warm-up", "--workers", "1"],
     }
 
 

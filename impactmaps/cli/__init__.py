@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, init, check, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, init, check, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -52,7 +52,7 @@ from .commands_cases import (
     cmd_restitution,
     cmd_simulate,
 )
-from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init
+from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
 from .commands_maps import (
     SCHEDULER_TIMEOUT_S,
     cmd_asymptote,
@@ -235,18 +235,28 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
 
+    _tool_parsers(add)
+    return parser
+
+
+def _tool_parsers(add) -> None:
+    """The subcommands around the solvers: init, check, warm-up, materials, laws."""
     p = add("init", "write a commented case file to start from (beam, plate, laminate or fd)", cmd_init)
     p.add_argument("kind", choices=sorted(CASE_TEMPLATES), help="what the case describes")
     p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default KIND.toml)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing FILE")
 
     p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "
-            "its regime and scales", cmd_check)
+            "its regime, scales and estimated cost", cmd_check)
     p.add_argument("case", type=Path, help="the case file (TOML)")
+
+    p = add("warm-up", "compile the solver's kernels once into numba's cache, so that the first simulation "
+            "starts at once (run after installing)", cmd_warm_up)
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes compiling at once (default 2; 1 compiles in this process)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
-    return parser
 
 
 def _point_arguments(p, with_target=True):

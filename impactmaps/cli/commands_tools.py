@@ -1,4 +1,5 @@
-"""Subcommands that help write and check a case file: init, check.
+"""Subcommands that help write and check a case file (init, check) and prepare the
+installation (warm-up).
 
 ``init`` writes a commented case file to start from; ``check`` validates one without
 running it and prints what the run would be: the numbers of its law (the vocabulary of
@@ -11,7 +12,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-__all__ = ["CASE_TEMPLATES", "cmd_init", "cmd_check"]
+__all__ = ["CASE_TEMPLATES", "cmd_init", "cmd_check", "cmd_warm_up"]
 
 _HEADER = """# {title}
 #
@@ -160,6 +161,7 @@ def cmd_check(args) -> dict:
         values["valid_note"] = ("the [fd] section is read by the finite-difference solver only: simulate refuses "
                                 "this case (run impactmaps fd, or set [solver] kind = \"fd\")")
     values.update(_map_reading(case))
+    values.update(_estimated_cost(case, values))
     notes = {"beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
              "time_limit_s": "no [solver] duration: the run stops once re-impact is impossible (or at "
                              "max_time_ratio contact times)"}
@@ -170,6 +172,40 @@ def cmd_check(args) -> dict:
         if value is None and f"{key}_note" not in values:
             out[f"{key}_note"] = notes.get(key, halfspace if case.target_type == "halfspace" else
                                            "does not exist for this case")
+    return out
+
+
+def _estimated_cost(case, values: dict) -> dict:
+    """The modal run's estimate (:func:`impactmaps.solvers.modal.estimate_run`: modes, steps,
+    history rows, memory, time), keys ``estimated_…``; a run the budget refuses makes the
+    case invalid (``valid_note`` says why)."""
+    from ..solvers.run_budget import LONG_RUN_SECONDS, MEMORY_LIMIT_BYTES
+
+    if case.solver_kind != "modal":
+        return {"estimated_cost": None, "estimated_cost_note": "the finite-difference run estimates its memory and "
+                "time when it starts (refused above 1 GiB, announced above a minute)"}
+    from ..solvers.modal import estimate_run
+
+    try:
+        cost = estimate_run(case.target, case.law, case.impactor_mass, case.velocity, settings=case.settings,
+                            record=True, time_step=case.time_step)
+    except ValueError as error:  # the run would be refused before it starts
+        values["valid"] = False
+        values["valid_note"] = f"simulate refuses this case: {error}"
+        return {}
+    out = {f"estimated_{key}": value for key, value in cost.items()}
+    out["estimated_memory_MiB"] = out.pop("estimated_memory_bytes") / 2**20
+    if cost["memory_bytes"] > MEMORY_LIMIT_BYTES:
+        values["valid"] = False
+        values["valid_note"] = (f"simulate refuses this case: the run may take {cost['memory_bytes'] / 2**30:.3g} GiB "
+                                f"(limit {MEMORY_LIMIT_BYTES / 2**30:g} GiB)")
+    out["estimated_cost_note"] = (
+        "before any run, from the mode budget and the run budget (impactmaps.solvers.run_budget): seconds on the "
+        f"2-core reference machine (runs above {LONG_RUN_SECONDS:g} s are announced), runs = 2 with the convergence "
+        "check's re-run at twice the cut-off; a first run on an empty numba cache also compiles the integrator "
+        "(impactmaps warm-up does that once)")
+    if cost["time_step_s"] is None:
+        out["estimated_time_step_s_note"] = "the infinite-structure solution answers: nothing is integrated"
     return out
 
 
@@ -191,3 +227,15 @@ def _map_reading(case) -> dict:
     if reading["regime"] is None:
         reading["regime_note"] = "the elastic-plastic maps have no regime classification"
     return reading
+
+
+def cmd_warm_up(args) -> dict:
+    """Compile the modal solver's kernels into numba's cache (``impactmaps warm-up``)."""
+    from ._common import check
+    from ..solvers.warm_up import warm_up
+
+    workers = 2 if args.workers is None else args.workers
+    check("--workers", workers, 1, 64, "worker processes", low_inclusive=True, high_inclusive=True)
+    done = warm_up(int(workers))
+    return {**done, "note": "the first integrating command now loads the compiled kernels instead of compiling "
+                            "them; run again after upgrading impactmaps or numba"}

@@ -34,6 +34,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
+from ..solvers.lazy_kernel import LazyKernel
 
 __all__ = [
     "ContactLaw",
@@ -109,8 +110,8 @@ def kernel_pointer(kernel) -> _KernelPointer:
     return _pointer_of(kernel)
 
 
-@numba.njit(numba.types.UniTuple(_VECTOR, 2)(KERNEL_TYPE, _VECTOR, _VECTOR, _MATRIX), cache=True)
-def _evaluate_many(kernel, alpha, alpha_max, params):
+@numba.njit(cache=True)
+def _evaluate_many_kernel(kernel, alpha, alpha_max, params):
     n = alpha.shape[0]
     force = np.empty(n)
     stiffness = np.empty(n)
@@ -119,6 +120,13 @@ def _evaluate_many(kernel, alpha, alpha_max, params):
         force[i] = f
         stiffness[i] = s
     return force, stiffness
+
+
+# Compiled (or loaded from numba's cache) on its first call, not at import: ``impactmaps
+# laws`` and a map lookup import the contact laws but evaluate none (the eager signature
+# cost ~0.6 s of every such command).
+_evaluate_many = LazyKernel(_evaluate_many_kernel,
+                            numba.types.UniTuple(_VECTOR, 2)(KERNEL_TYPE, _VECTOR, _VECTOR, _MATRIX))
 
 
 def evaluate_kernel(kernel, parameters, indentation, max_indentation):

@@ -25,9 +25,9 @@ import numpy as np
 
 from ..contact.hertz import HertzContact
 from ..hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
-from ..law_asymptotes import asymptote
+from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR
-from ..solvers.modal import ModalSettings, uses_patch, reference_contact_stiffness, simulate
+from ..solvers.modal_settings import ModalSettings, uses_patch
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from .accuracy import AccuracyControl, exact_point
 from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
@@ -130,6 +130,14 @@ def hertz_summary(result, numbers) -> dict:
         summary[key] = summary[key] * to_hertz_time
     summary["fmax_normalised"] = result.peak_force / numbers.force_scale
     return summary
+
+
+def asymptote(which: str, target, law, mass: float, velocity: float):
+    """:func:`impactmaps.law_asymptotes.asymptote`, imported on first use (it imports scipy's
+    integrators, which a map lookup never runs)."""
+    from ..law_asymptotes import asymptote as any_law_asymptote
+
+    return any_law_asymptote(which, target, law, mass, velocity)
 
 
 def _asymptote_row(which: str, target, zeta_h: float, lambda_h: float) -> dict:
@@ -303,6 +311,7 @@ def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Rea
     target; the cut-off ``patch_cutoff_ratio`` · ω is clipped to ``cap`` [rad/s] as the
     point-loaded runs clip theirs.
     """
+    from ..solvers.modal import simulate  # the integrator: only where a point is computed
 
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..contact.linear import LinearContact
 from ..dimensionless import realise
-from ..solvers.modal import ModalSettings
+from ..solvers.modal_settings import ModalSettings
 from ..targets import target_class
 from .accuracy import AccuracyControl, exact_point
 from .map_family import Axis, MapFamily, PointPlan, register_map_family

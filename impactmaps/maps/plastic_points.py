@@ -71,7 +71,8 @@ from ..contact.hertz import hertz_stiffness
 from ..contact.stronge import StrongeContact
 from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
 from ..dimensionless import realise
-from ..solvers.modal import ModalSettings, reference_contact_stiffness
+from ..solvers.contact_scale import reference_contact_stiffness
+from ..solvers.modal_settings import ModalSettings
 from .accuracy import STATUSES, AccuracyControl, PointStatus
 from .map_family import RESULT_VARIABLES, Axis, Interpolation, MapFamily, PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from enum import StrEnum
 
-from ..solvers.modal import ModalSettings, simulate
+from ..solvers.modal_settings import ModalSettings
 from ..solvers.mode_budget import METHODS as BUDGET_METHODS
 from ..solvers.mode_budget import ModeBudgetError, plan_basis
 from ..solvers.mode_budget import frequency_cap as budget_frequency_cap
@@ -108,6 +108,14 @@ def unresolved_point(row: dict) -> dict:
     missing = {name: spec[1] for name, spec in RESULT_VARIABLES.items()}
     return row | missing | {"reflection_time_normalised": row["reflection_time_normalised"],
                             "status": STATUSES.index(PointStatus.UNRESOLVED)}
+
+
+def simulate(target, law, impactor_mass, velocity, **options):
+    """:func:`impactmaps.solvers.modal.simulate`, imported on first use: a lookup imports this
+    module but runs no point, and the integrator's module is not needed until one is run."""
+    from ..solvers.modal import simulate as modal_simulate
+
+    return modal_simulate(target, law, impactor_mass, velocity, **options)
 
 
 def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:

@@ -61,8 +61,6 @@ import functools
 import math
 
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 from scipy.special import wofz
 
 from .._checks import require_choice, require_nonnegative, require_positive
@@ -256,6 +254,8 @@ def infinite_beam_indentation(
     def by_cq(t, zeta):
         step, count = cq_grid(max(float(t.max()), 2 * time_step), float(time_step))
         grid, _, indentation = cq_march(zeta, step, count, False)
+        from scipy.interpolate import CubicSpline  # ~0.3 s to import: only where a curve is resampled
+
         return CubicSpline(grid, indentation)(t)
 
     return _per_loss_factor(tau, loss_factor, by_cq)
@@ -297,6 +297,14 @@ def infinite_beam_impactor_velocity(tau, loss_factor):
     return _per_loss_factor(tau, loss_factor, lambda t, z: -_moment(t, z, -1).real)
 
 
+def _brentq(*args, **options):
+    """:func:`scipy.optimize.brentq`, imported on first use (scipy.optimize takes ~0.3 s to
+    import; a map lookup imports this module but finds no root)."""
+    from scipy.optimize import brentq
+
+    return brentq(*args, **options)
+
+
 @functools.lru_cache(maxsize=1024)
 def _first_contact(loss_factor: float):
     """(peak time, peak, time of first local minimum or nan, value there, contact time)."""
@@ -307,15 +315,15 @@ def _first_contact(loss_factor: float):
     scale = min(1.0, (2.0 * math.sqrt(math.pi) * loss_factor) ** (-2.0 / 3.0))
     grid = scale * np.unique(np.r_[np.geomspace(1e-3, 1.0, 200), np.linspace(1.0, 15.0, 2800)])
     changes = np.flatnonzero(np.diff(np.sign(rate(grid))) != 0)
-    peak_time = brentq(rate, grid[changes[0]], grid[changes[0] + 1], xtol=1e-15, rtol=1e-15)
+    peak_time = _brentq(rate, grid[changes[0]], grid[changes[0] + 1], xtol=1e-15, rtol=1e-15)
     if changes.size < 2:
         return peak_time, float(value(peak_time)), math.nan, math.nan, math.inf
     low, high = grid[changes[1]], grid[changes[1] + 1]
-    trough_time = brentq(rate, low, high, xtol=1e-15, rtol=1e-15)
+    trough_time = _brentq(rate, low, high, xtol=1e-15, rtol=1e-15)
     trough = float(value(trough_time))
     contact = math.inf
     if trough < 0:
-        contact = brentq(value, peak_time, trough_time, xtol=1e-15, rtol=1e-15)
+        contact = _brentq(value, peak_time, trough_time, xtol=1e-15, rtol=1e-15)
     return peak_time, float(value(peak_time)), trough_time, trough, contact
 
 
@@ -386,7 +394,7 @@ def critical_beam_loss_factor() -> float:
     float
         ζ_crit [-] (spec's corrected beam loss factor; the paper's printed eq 38 gives 2ζ).
     """
-    return brentq(lambda z: _first_contact(z)[3], 0.9, 1.1, xtol=1e-15, rtol=1e-15)
+    return _brentq(lambda z: _first_contact(z)[3], 0.9, 1.1, xtol=1e-15, rtol=1e-15)
 
 
 @functools.lru_cache(maxsize=1)
@@ -403,7 +411,7 @@ def recontact_beam_loss_factor() -> float:
     float
         ζ_r [-].
     """
-    return brentq(_separation_velocity, 0.2, 0.3, xtol=1e-15, rtol=1e-15)
+    return _brentq(_separation_velocity, 0.2, 0.3, xtol=1e-15, rtol=1e-15)
 
 
 def _separation_velocity(loss_factor: float) -> float:

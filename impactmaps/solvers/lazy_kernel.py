@@ -55,13 +55,20 @@ class LazyKernel:
         else:
             variants = list(self.signatures)
         for variant in variants:
-            if variant not in self._compiled:
-                self.dispatcher.disable_compile(False)
-                try:
-                    self.dispatcher.compile(self.signatures[variant])
-                finally:
-                    self.dispatcher.disable_compile()
-                self._compiled.add(variant)
+            self.compile_variant(variant)
+
+    def compile_variant(self, variant) -> None:
+        """Compile (or load from numba's cache) one variant, named by its last argument
+        (``None`` for a kernel without variants); idempotent."""
+        if variant not in self.signatures:
+            raise ValueError(f"variant = {variant!r} is not one of {sorted(map(repr, self.signatures))}")
+        if variant not in self._compiled:
+            self.dispatcher.disable_compile(False)
+            try:
+                self.dispatcher.compile(self.signatures[variant])
+            finally:
+                self.dispatcher.disable_compile()
+            self._compiled.add(variant)
 
     def __call__(self, *args):
         if self._choose is None:

@@ -30,6 +30,7 @@ plate couples only weakly to the modes near the cut-off, their share of the forc
 from __future__ import annotations
 
 import functools
+import math
 import warnings
 from dataclasses import replace
 
@@ -39,7 +40,7 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
-from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, run_once
+from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, prepare_run, run_once
 from .modal_settings import (
     CONTACT_PATCHES,
     CONTACT_PHASES,
@@ -64,6 +65,7 @@ __all__ = [
     "ModalDetails",
     "simulate",
     "simulate_normalised",
+    "estimate_run",
     "simulate_batch",
     "reference_contact_stiffness",
     "coupled_top_frequency",
@@ -200,6 +202,74 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
         return plan_basis(target, law, impactor_mass, velocity, wanted)
     return plan_basis(target, law, impactor_mass, velocity, wanted, max_modes=target.resolved_mode_count(),
                       cap_frequency=limit)
+
+
+def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
+                 settings: ModalSettings | None = None, record: bool = True,
+                 time_step: float | None = None) -> dict:
+    """What :func:`simulate` would integrate and what it would cost, without integrating.
+
+    The mode budget's plan, the basis and time step of the run (for a patch load, of the
+    first pass at the half-space peak indentation's radius) and the estimate of
+    :func:`~impactmaps.solvers.run_budget.modal_run_budget`: the figures that decide whether
+    a run is refused (above 1 GiB) or announced (above a minute).
+
+    Parameters
+    ----------
+    target : Target or ModalBasis
+        As for :func:`simulate`.
+    law : ContactLaw
+        Contact law with scalar parameters.
+    impactor_mass, velocity : float
+        m_i [kg] and V0 [m/s], > 0.
+    settings : ModalSettings, optional
+        As for :func:`simulate`.
+    record, time_step
+        As for :func:`simulate`.
+
+    Returns
+    -------
+    dict
+        ``method`` (what answers: see :func:`simulate`), ``modes``, ``time_step_s``,
+        ``expected_steps`` (over ``EXPECTED_RUN_RATIO``/ω or to the time limit),
+        ``history_rows`` (0 without a history), ``memory_bytes``, ``seconds`` (on the
+        2-core reference machine; compilation on an empty numba cache not included) and
+        ``runs`` (1, or the convergence check's re-run at twice the cut-off counted in:
+        2, with ``memory_bytes`` and ``seconds`` of both). An infinite-structure answer
+        integrates nothing: ``modes`` 0 and no step.
+    """
+    from .run_budget import EXPECTED_RUN_RATIO
+
+    settings = settings or DEFAULT_SETTINGS
+    require_positive("impactor_mass", impactor_mass, "kg")
+    require_positive("velocity", velocity, "m/s")
+    method, cap, radius = "modal+residual" if settings.residual_flexibility else "modal", None, None
+    radius_of = contact_radius_function(law, None) if uses_patch(target, settings.contact_patch) else None
+    if radius_of is not None:
+        radius = radius_of(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
+    if isinstance(target, Target):
+        ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
+        contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the run says these; an estimate only counts
+            plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
+        if plan.method == METHODS[2]:
+            return {"method": plan.method, "modes": 0, "time_step_s": None, "expected_steps": 0,
+                    "history_rows": 0, "memory_bytes": 0.0, "seconds": 0.0, "runs": 1}
+        if plan.method == METHODS[1]:
+            method, cap = plan.method, plan.max_frequency
+    setup = prepare_run(target, law, impactor_mass, velocity, settings, record, time_step, radius, cap)
+    expected = min(math.ceil(setup.max_time / setup.time_step) + 2,
+                   math.ceil(EXPECTED_RUN_RATIO / (setup.contact_frequency * setup.time_step)) + 2)
+    out = {"method": method, "modes": int(setup.basis.size), "time_step_s": setup.time_step,
+           "expected_steps": int(expected), "history_rows": int(expected) if record else 0,
+           "memory_bytes": float(setup.budget.memory_bytes), "seconds": float(setup.budget.seconds), "runs": 1}
+    if settings.check_convergence:
+        fine = estimate_run(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
+                            time_step=time_step)
+        out.update(runs=2, memory_bytes=out["memory_bytes"] + fine["memory_bytes"],
+                   seconds=out["seconds"] + fine["seconds"])
+    return out
 
 
 def _run_at(target, law, params, impactor_mass, velocity, settings, time_step, radius_of, record, cap):

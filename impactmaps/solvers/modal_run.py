@@ -35,7 +35,7 @@ from .modal_settings import (
 from .mode_budget import budget_cutoff
 from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from .result import ImpactResult, energy_balance_error
-from .run_budget import HISTORY_ROW_CAP, modal_run_budget, refuse_or_announce
+from .run_budget import HISTORY_ROW_CAP, RunBudget, modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = ["run_once", "KernelInputs", "KernelScalars", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
@@ -243,11 +243,21 @@ def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: Mod
     return time_step, coupled
 
 
-def run_once(target, law, params, impactor_mass, velocity, settings, record, time_step,
-             contact_radius=None, cap=None) -> ImpactResult:
-    """One run of :func:`~impactmaps.solvers.modal.simulate` (validated inputs) with a point
-    load or a patch of radius ``contact_radius`` [m], the cut-off capped at ``cap`` [rad/s]
-    when given, the step automatic when ``time_step`` is ``None``."""
+class RunSetup(NamedTuple):
+    """What one run integrates, decided before it starts (SI units)."""
+
+    basis: ModalBasis
+    contact_frequency: float
+    time_step: float
+    coupled: object
+    max_time: float
+    budget: RunBudget
+
+
+def prepare_run(target, law, impactor_mass, velocity, settings, record, time_step, contact_radius=None,
+                cap=None) -> RunSetup:
+    """The :class:`RunSetup` of :func:`run_once` (its basis, step, exact-phase modes and
+    :func:`~impactmaps.solvers.run_budget.modal_run_budget`), without integrating."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
     omega_c = float(np.sqrt(stiffness / impactor_mass))
     basis = basis_for(target, omega_c, settings, contact_radius, cap)
@@ -260,6 +270,16 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
     max_time = settings.max_time_ratio / omega_c
     budget = modal_run_budget(basis.size, float(time_step), max_time, omega_c, bool(record),
                               int(settings.max_events), not automatic)
+    return RunSetup(basis, omega_c, float(time_step), coupled, float(max_time), budget)
+
+
+def run_once(target, law, params, impactor_mass, velocity, settings, record, time_step,
+             contact_radius=None, cap=None) -> ImpactResult:
+    """One run of :func:`~impactmaps.solvers.modal.simulate` (validated inputs) with a point
+    load or a patch of radius ``contact_radius`` [m], the cut-off capped at ``cap`` [rad/s]
+    when given, the step automatic when ``time_step`` is ``None``."""
+    basis, omega_c, time_step, coupled, max_time, budget = prepare_run(
+        target, law, impactor_mass, velocity, settings, record, time_step, contact_radius, cap)
     refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
     inputs = KernelInputs(
         kernel_pointer(law.kernel), params, linear_stiffness(law),

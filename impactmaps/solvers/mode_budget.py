@@ -35,16 +35,15 @@ import functools
 import math
 import warnings
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
-from ..law_asymptotes import asymptote
-from .asymptotes import infinite_plate_indentation
 from .contact_scale import reference_contact_stiffness
-from .infinite_beam import infinite_beam_indentation
-from .result import HISTORY_COLUMNS, ImpactResult
 from .shear_range import has_classical_asymptote
+
+if TYPE_CHECKING:
+    from .result import ImpactResult
 
 __all__ = ["MEMORY_BUDGET_BYTES", "BASELINE_BYTES", "BYTES_PER_MODE", "MAX_MODES",
            "ASYMPTOTE_REFLECTION_FACTOR", "MIN_CAPPED_CUTOFF_RATIO", "METHODS", "BasisPlan",
@@ -305,6 +304,8 @@ def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_fa
         zeta = float(target.loss_factor(impactor_mass, stiffness)) if loss_factor is None else float(loss_factor)
         impact = target.infinite_structure_impact(zeta)
         return f"infinite-{kind} (linear, closed form)", impact, float(impact.peak_time) / omega
+    from ..law_asymptotes import asymptote  # scipy's integrators: only where an asymptote answers
+
     answer = asymptote(f"infinite-{kind}", target, law, impactor_mass, velocity)
     return f"infinite-{kind} (any law)", answer, float(answer.peak_time)
 
@@ -350,6 +351,8 @@ def asymptote_result(plan: BasisPlan, target, law, impactor_mass: float, velocit
     linear law (closed forms); the any-law asymptotes give scalars only (``history``
     ``None``, with a warning).
     """
+    from .result import ImpactResult
+
     answer, omega, mass, speed = plan.asymptote, plan.contact_frequency, float(impactor_mass), float(velocity)
     if hasattr(answer, "fmax_normalised"):  # AsymptoteResult (SI)
         finished = not answer.time_limit_reached
@@ -403,6 +406,12 @@ def _linear_history(target, impact, plan: BasisPlan, law, mass, speed, contact):
     impactor velocity and displacement integrate the force (trapezoids), the struck
     point moves by ``w_i − α``.
     """
+    import pandas as pd
+
+    from .asymptotes import infinite_plate_indentation
+    from .infinite_beam import infinite_beam_indentation
+    from .result import HISTORY_COLUMNS
+
     omega = plan.contact_frequency
     end = contact if math.isfinite(contact) else min(plan.reflection_time,
                                                      ASYMPTOTE_REFLECTION_FACTOR * impact.peak_time / omega)

@@ -75,7 +75,8 @@ class RunBudget(NamedTuple):
     seconds : float
         Estimated run time [s].
     advice : str
-        The knob to change and the value that fits, for the refusal.
+        The knob to change and the value that fits, for the refusal (empty when the
+        run fits: only a refusal reads it).
     hint : str
         What makes the run faster, for the announcement (may be empty).
     """
@@ -151,6 +152,9 @@ def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_fr
     rows = min(expected, HISTORY_ROW_CAP) if record else 0
     memory = max_events * INTERVAL_BYTES + n_modes * BYTES_PER_MODE + rows * HISTORY_ROW_BYTES
     seconds = expected * max(n_modes, 1) * SECONDS_PER_MODE_STEP
+    hint = "a smaller cutoff_ratio, a shorter time limit or fewer modes are faster"
+    if memory <= MEMORY_LIMIT_BYTES:  # the advice is read by a refusal only: not formatted for every run
+        return RunBudget(float(memory), float(seconds), "", hint)
     if forced_step:
         knob = f"time_step ≥ {step_that_fits:.3g} s"
     elif expected == steps:  # the time limit binds
@@ -162,5 +166,4 @@ def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_fr
     advice = (f"the history is expected to hold {rows:.3g} rows (one per step of {time_step:.3g} s over "
               f"{rows * time_step:.3g} s, time limit {max_time:.3g} s); use {knob}, or run without the "
               "history (record=False)")
-    hint = "a smaller cutoff_ratio, a shorter time limit or fewer modes are faster"
     return RunBudget(float(memory), float(seconds), advice, hint)

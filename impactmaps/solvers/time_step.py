@@ -105,7 +105,11 @@ def _receptance(omega2, frequencies, participation, series, mass):
 def _top_root(frequencies, participation, series, mass, rtol):
     if frequencies.shape[0] == 0:
         return np.sqrt(1.0 / (mass * series))
-    low = np.max(frequencies) ** 2 * (1.0 + 1e-12) + 1e-300
+    top = frequencies[0]
+    for j in range(1, frequencies.shape[0]):  # a loop, not np.max: numba compiles its reduction for ~0.5 s
+        if frequencies[j] > top:
+            top = frequencies[j]
+    low = top ** 2 * (1.0 + 1e-12) + 1e-300
     high = max(4.0 * low, 1.0)
     while _receptance(high, frequencies, participation, series, mass) < 0.0:
         high *= 4.0

@@ -1,0 +1,84 @@
+"""The kernel's share of a single-impact call: the Python around the compiled integrator.
+
+For each case of :mod:`benchmarks.bench_modal` (λ = 0.425; plate and beam at ζ = 0.038,
+1.198, 11.3; the closed-form bases of ``tests/analytic.py`` or, with ``--targets real``,
+the library targets) one warm call of ``simulate(..., record=False)``, then ``--calls``
+timed calls: the median CPU time of a call (``time.process_time``, steadier than wall time
+on a shared machine) and the CPU time spent inside the integrator
+(:data:`impactmaps.solvers.exact_step.integrate_impact`, timed by a wrapper put where
+:mod:`impactmaps.solvers.modal_run` calls it). Kernel share = kernel time / call time
+summed over the calls (issue 30 goal: ≥ 80 %).
+
+Run for two checkouts in the same minutes to compare (``--root``):
+``python benchmarks/bench_thin_calls.py [--targets real] [--calls 400] [--root CHECKOUT]``.
+Prints one Markdown table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import pathlib
+import statistics
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def measure(targets: str, calls: int) -> list[tuple]:
+    """(structure, ζ, modes, median call CPU [µs], kernel share) per bench_modal case."""
+    from benchmarks.bench_modal import LOSS_FACTORS, _analytic_case, _real_case
+    from impactmaps.solvers import modal_run
+    from impactmaps.solvers.modal import ModalSettings, simulate
+
+    settings = ModalSettings()
+    build = _analytic_case if targets == "analytic" else _real_case
+    real_kernel = modal_run.integrate_impact
+    spent = [0.0]
+
+    class TimedKernel:
+        def __call__(self, *args):
+            start = time.process_time()
+            out = real_kernel(*args)
+            spent[0] += time.process_time() - start
+            return out
+
+        def compile(self, *args):
+            real_kernel.compile(*args)
+
+    rows = []
+    modal_run.integrate_impact = TimedKernel()
+    try:
+        for kind in ("plate", "beam"):
+            for zeta in LOSS_FACTORS:
+                target, law, mass = build(kind, zeta, settings)
+                result = simulate(target, law, mass, 1.0, settings=settings, record=False)  # compile or load
+                spent[0], durations = 0.0, []
+                for _ in range(calls):
+                    start = time.process_time()
+                    simulate(target, law, mass, 1.0, settings=settings, record=False)
+                    durations.append(time.process_time() - start)
+                rows.append((kind, zeta, result.n_modes, 1e6 * statistics.median(durations),
+                             spent[0] / sum(durations)))
+    finally:
+        modal_run.integrate_impact = real_kernel
+    return rows
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--targets", choices=("analytic", "real"), default="analytic")
+    parser.add_argument("--calls", type=int, default=400)
+    parser.add_argument("--root", type=pathlib.Path, default=ROOT, help="the checkout to measure (default this one)")
+    args = parser.parse_args(argv)
+    sys.path.insert(0, str(args.root.resolve()))
+    rows = measure(args.targets, max(args.calls, 10))
+    print(f"`python benchmarks/bench_thin_calls.py --targets {args.targets} --calls {args.calls}` "
+          f"(code of {args.root.resolve().name})\n")
+    print("| structure | ζ | modes | call CPU [µs] (median) | kernel share |\n|---|---|---|---|---|")
+    for kind, zeta, modes, call, share in rows:
+        print(f"| {kind} | {zeta} | {modes} | {call:.1f} | {100 * share:.0f} % |")
+
+
+if __name__ == "__main__":
+    main()

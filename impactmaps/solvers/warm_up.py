@@ -1,0 +1,116 @@
+"""Compile the modal solver's kernels into numba's on-disk cache ahead of the first run.
+
+numba compiles a kernel on its first call and keeps the machine code in its cache
+(``__pycache__`` beside the sources, or ``NUMBA_CACHE_DIR``); every later process loads it
+in milliseconds. On an empty cache the first integrating command pays for the compile
+(the exact-step integrator alone takes ~9 s on one idle core). :func:`warm_up` does that
+work once, right after installation (``impactmaps warm-up``): the two variants of the
+integrator (:data:`impactmaps.solvers.exact_step.integrate_impact`, with and without the
+exact contact phase) in two processes at once, then, in this process, everything else a
+run compiles — the time-step kernels, every registered contact law's kernel and the
+vectorised law evaluation — by loading the integrators back and running two tiny impacts.
+It changes no answer: the compiled code is the code a cold run would compile.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import multiprocessing
+import time
+
+import numpy as np
+
+__all__ = ["warm_up", "cache_directory"]
+
+#: The integrator variants (``exact_phase`` argument), compiled one per process.
+_VARIANTS = (None, True)
+
+
+def _compile_variant(variant) -> float:
+    """Compile (or load) one variant of the integrator; its wall time [s]."""
+    from .exact_step import integrate_impact
+
+    start = time.perf_counter()
+    integrate_impact.compile_variant(variant)
+    return time.perf_counter() - start
+
+
+def _tiny_impacts() -> None:
+    """Two impacts on a three-mode basis, a linear and a Hertz law: a run's Python path and
+    the small kernels it compiles (time step, coupled top frequency, law evaluation)."""
+    from ..contact import available_contact_laws, contact_law_class, evaluate_kernel
+    from ..contact.base import kernel_pointer
+    from ..contact.hertz import HertzContact
+    from ..contact.linear import LinearContact
+    from ..targets.base import ModalBasis
+    from .modal import simulate
+
+    basis = ModalBasis(np.array([2e3, 9e3, 4e4]), np.array([3.0, 2.0, 1.0]), 1e-9)
+    for law in (LinearContact(1e7), HertzContact(1e9)):
+        simulate(basis, law, 0.01, 1.0, record=True)
+    for name in available_contact_laws():
+        kernel = contact_law_class(name).kernel
+        kernel_pointer(kernel)
+        evaluate_kernel(kernel, np.ones((13, 1)), np.zeros(1), np.zeros(1))
+
+
+def _cached(variant) -> bool:
+    """Whether numba's cache holds this variant of the integrator for this machine (False
+    when that cannot be told: then it is compiled)."""
+    from .exact_step import integrate_impact
+
+    dispatcher = integrate_impact.dispatcher
+    try:  # numba's cache index, as Dispatcher.compile consults it
+        cache = dispatcher._cache
+        key = cache._index_key(integrate_impact.signatures[variant], dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:  # noqa: BLE001 (an internal of numba changed: compile rather than guess)
+        return False
+
+
+def cache_directory() -> str:
+    """Where numba keeps the integrator's compiled code (the cache :func:`warm_up` fills)."""
+    from .exact_step import integrate_impact
+
+    return str(integrate_impact.dispatcher._cache._cache_path)
+
+
+def warm_up(workers: int = 2) -> dict:
+    """Compile every kernel of a modal run into numba's cache (or load what is there).
+
+    Parameters
+    ----------
+    workers : int
+        Processes compiling the integrator's two variants at once (1: one after the other
+        in this process), ≥ 1.
+
+    Returns
+    -------
+    dict
+        ``compiled_variants`` (integrator variants that were not in the cache),
+        ``integrator_s`` (wall time of their compile [s]), ``rest_s`` (the tiny impacts
+        and law kernels [s]), ``total_s`` and ``cache_directory``.
+
+    Notes
+    -----
+    Idempotent: on a warm cache it loads everything and takes about a second. Two
+    processes writing the same cache index at the same instant can lose one entry; the
+    tiny impacts then compile that variant again here, so the cache is complete when
+    this returns.
+    """
+    from .._checks import require_in_range
+
+    require_in_range("workers", workers, 1, 64)
+    start = time.perf_counter()
+    missing = [variant for variant in _VARIANTS if not _cached(variant)]
+    if workers > 1 and len(missing) > 1:
+        context = multiprocessing.get_context("spawn")
+        with concurrent.futures.ProcessPoolExecutor(min(int(workers), len(_VARIANTS)), mp_context=context) as pool:
+            list(pool.map(_compile_variant, missing))
+    for variant in _VARIANTS:  # loads what the workers wrote (compiles a variant whose index entry was lost)
+        _compile_variant(variant)
+    middle = time.perf_counter()
+    _tiny_impacts()
+    end = time.perf_counter()
+    return {"compiled_variants": len(missing), "integrator_s": middle - start, "rest_s": end - middle,
+            "total_s": end - start, "cache_directory": cache_directory()}
