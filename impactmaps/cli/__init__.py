@@ -151,7 +151,7 @@ def build_parser() -> argparse.ArgumentParser:
     _deferred_choices(p.add_argument(
         "--law", default="linear",
         help="contact law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
-        "elastic-plastic yc / stronge (F̄max, restitution and absorbed energy against ζ at several β, "
+        "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
         "from the shipped maps); default linear"), _MAP_LAWS)
     p.add_argument("--betas", nargs="+", type=float, default=None,
                    help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
