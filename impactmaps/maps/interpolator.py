@@ -1,0 +1,192 @@
+"""A (λ, ζ) map prepared for reading: its arrays and its refinement's leaves as index tables.
+
+:func:`impactmaps.maps.refinement.interpolate` finds each answer's leaf by descending the
+refinement's levels and its corners by binary searches in the refinement's keys, per call.
+A :class:`PlaneInterpolator` does that search once, when it is built: every leaf of the
+map's refinement (the grid's own cells where it has none) with its four corners as indices
+into one table of the map's and the refinement's points, its measured-surplus estimate
+(:func:`~impactmaps.maps.refinement.leaf_estimate`) and, per cell of the finest lattice,
+the leaf that holds it. A read is then an index computation, a gather and a weighted sum
+with the same operations in the same order as :func:`~impactmaps.maps.refinement.interpolate`,
+so its answers are bit-identical (``tests/test_lookup_stored.py``). The interpolator holds
+copies of what it reads: changing the dataset afterwards does not change it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .refinement import Leaves, Refinement, leaf_estimate
+
+__all__ = ["PlaneInterpolator", "grid_bilinear", "interpolate_line"]
+
+
+class PlaneInterpolator:
+    """The leaves of a (λ, ζ) map's refinement as index tables (module docstring).
+
+    Parameters
+    ----------
+    base : dict of str to ndarray
+        The map's ``fmax_normalised``, ``fmax_error``, ``status`` (and any other variable
+        to interpolate), each a (λ, ζ) array.
+    base_estimate : ndarray
+        The map's interpolation-error estimate per grid point [-]
+        (:func:`impactmaps.maps.reader.interpolation_error`).
+    refinement : Refinement, optional
+        The map's refinement (none: the grid's cells are the leaves).
+    """
+
+    def __init__(self, base: dict, base_estimate: np.ndarray, refinement: Refinement | None = None):
+        shape = np.shape(base["fmax_normalised"])
+        refinement = _IndexedRefinement.of(refinement or Refinement.empty(shape))
+        self.refinement, self.shape, self.scale = refinement, shape, refinement.scale
+        self.cells = ((shape[0] - 1) * self.scale, (shape[1] - 1) * self.scale)
+        leaves = _leaves(refinement)
+        n_base = int(np.prod(shape))
+        self.tables = {name: np.concatenate([np.asarray(values, float).ravel(),
+                                             np.asarray(refinement.values[name], float)
+                                             if name in refinement.values else np.zeros(refinement.codes.size)])
+                       for name, values in base.items()}
+        self.estimate = np.concatenate([np.asarray(base_estimate, float).ravel(), np.zeros(refinement.codes.size)])
+        corners = []
+        for cu, cv in leaves.corners():
+            on_base = (cu % self.scale == 0) & (cv % self.scale == 0)
+            where, found = refinement.index(refinement.code(cu, cv))
+            index = np.where(on_base, (cu // self.scale) * shape[1] + cv // self.scale,
+                             np.where(found, where + n_base, -1))
+            corners.append(index)
+        self.corners = np.stack(corners, axis=1)
+        self.leaves = leaves
+        self.u, self.v, self.side = leaves.u, leaves.v, leaves.side
+        self.at_base = leaves.level == 0
+        self._surplus_estimate = np.full(leaves.u.size, np.nan)  # per leaf, computed when first read
+        self.cell_leaf = np.full(self.cells, -1, np.int32)
+        for side in np.unique(leaves.side):
+            ids = np.flatnonzero(leaves.side == side)
+            for du in range(int(side)):
+                for dv in range(int(side)):
+                    self.cell_leaf[leaves.u[ids] + du, leaves.v[ids] + dv] = ids
+
+    def interpolate(self, row: np.ndarray, col: np.ndarray, names=("fmax_normalised",)):
+        """Bilinear interpolation in each position's leaf, with its band and corners' statuses.
+
+        Parameters
+        ----------
+        row, col : ndarray
+            Positions in grid units (along λ, along ζ), inside the grid.
+        names : sequence of str
+            The variables to interpolate.
+
+        Returns
+        -------
+        values, error, corner_codes
+            As :func:`impactmaps.maps.refinement.interpolate` returns them.
+        """
+        scaled_row, scaled_col = row * self.scale, col * self.scale
+        leaf = self.cell_leaf[np.minimum(np.floor(scaled_row).astype(np.int64), self.cells[0] - 1),
+                              np.minimum(np.floor(scaled_col).astype(np.int64), self.cells[1] - 1)]
+        side = self.side[leaf]
+        x = np.clip((scaled_row - self.u[leaf]) / side, 0.0, 1.0)
+        y = np.clip((scaled_col - self.v[leaf]) / side, 0.0, 1.0)
+        weights = np.stack([(1.0 - x) * (1.0 - y), x * (1.0 - y), (1.0 - x) * y, x * y])
+        used = weights > 0
+        corners = self.corners[leaf].T
+        if np.any(corners < 0):
+            raise KeyError("a lattice position read from the refinement holds no point")
+        values = {name: _corner_sum(weights, used, self.tables[name][corners]) for name in names}
+        zero = np.zeros((1, x.size))
+        own = np.max(np.concatenate([zero, np.where(used, self.tables["fmax_error"][corners], 0.0)]), axis=0)
+        codes = list(np.where(used, self.tables["status"][corners], 0).astype(int))
+        at_base = np.where(used & self.at_base[leaf], self.estimate[corners], 0.0)
+        estimate = np.max(np.concatenate([zero, at_base]), axis=0)
+        node = np.sum(used, axis=0) == 1
+        error = np.where(node, own, own + np.maximum(estimate, self._surplus_of(leaf)))
+        return values, error, codes
+
+    def _surplus_of(self, leaf: np.ndarray) -> np.ndarray:
+        """The measured-surplus part of each leaf's estimate (:func:`leaf_estimate` with no grid
+        estimate), computed once per leaf."""
+        missing = np.unique(leaf[np.isnan(self._surplus_estimate[leaf])])
+        if missing.size:
+            chosen = Leaves(self.leaves.level[missing], self.u[missing], self.v[missing], self.side[missing])
+            self._surplus_estimate[missing] = leaf_estimate(self.refinement, chosen, np.zeros(self.shape))
+        return self._surplus_estimate[leaf]
+
+
+@dataclass(frozen=True)
+class _IndexedRefinement(Refinement):
+    """A refinement whose points are found through a table over its whole lattice (a gather
+    where :meth:`Refinement.index` searches); the same points, the same answers."""
+
+    table: np.ndarray = field(default=None, repr=False)
+
+    @classmethod
+    def of(cls, refinement: Refinement) -> "_IndexedRefinement":
+        size = refinement.shape[0] and ((refinement.shape[0] - 1) * refinement.scale + 1) * refinement.width
+        table = np.full(size, -1, np.int32 if refinement.codes.size < 2**31 else np.int64)
+        table[refinement.codes] = np.arange(refinement.codes.size)
+        return cls(refinement.shape, refinement.codes, refinement.values, refinement.max_level, table)
+
+    def index(self, codes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        codes = np.asarray(codes, np.int64)
+        inside = (codes >= 0) & (codes < self.table.size)
+        where = self.table[np.where(inside, codes, 0)].astype(np.int64)
+        found = inside & (where >= 0)
+        return np.where(found, where, 0), found
+
+
+def _leaves(refinement: Refinement) -> Leaves:
+    """Every leaf of a refinement (the cells :func:`~impactmaps.maps.refinement.locate` ends in)."""
+    scale = refinement.scale
+    u, v = np.meshgrid(np.arange(refinement.shape[0] - 1, dtype=np.int64) * scale,
+                       np.arange(refinement.shape[1] - 1, dtype=np.int64) * scale, indexing="ij")
+    u, v = u.ravel(), v.ravel()
+    found_u, found_v, found_level = [], [], []
+    for depth in range(refinement.max_level):
+        half = scale >> (depth + 1)
+        _, split = refinement.index(refinement.code(u + half, v + half))
+        found_u.append(u[~split])
+        found_v.append(v[~split])
+        found_level.append(np.full((~split).sum(), depth))
+        u, v = u[split], v[split]
+        u, v = (np.concatenate([u, u + half, u, u + half]), np.concatenate([v, v, v + half, v + half]))
+    found_u.append(u)
+    found_v.append(v)
+    found_level.append(np.full(u.size, refinement.max_level))
+    level = np.concatenate(found_level).astype(int)
+    return Leaves(level, np.concatenate(found_u), np.concatenate(found_v), scale >> level)
+
+
+def grid_bilinear(base: dict, row: np.ndarray, col: np.ndarray, names, scale: int) -> dict:
+    """Bilinear interpolation of ``names`` on the map's own grid (a corner without weight
+    counts 0, whatever it holds): :func:`impactmaps.maps.refinement.interpolate` of an
+    empty refinement of lattice ``scale``, operation for operation."""
+    shape = np.shape(base[names[0]])
+    u = np.clip(np.floor(row), 0, shape[0] - 2).astype(np.int64) * scale
+    v = np.clip(np.floor(col), 0, shape[1] - 2).astype(np.int64) * scale
+    x = np.clip((row * scale - u) / scale, 0.0, 1.0)
+    y = np.clip((col * scale - v) / scale, 0.0, 1.0)
+    weights = np.stack([(1.0 - x) * (1.0 - y), x * (1.0 - y), (1.0 - x) * y, x * y])
+    flat = (u // scale) * shape[1] + v // scale
+    corners = np.stack([flat, flat + shape[1], flat + 1, flat + shape[1] + 1])
+    used = weights > 0
+    return {name: _corner_sum(weights, used, np.asarray(base[name], float).ravel()[corners]) for name in names}
+
+
+def _corner_sum(weights: np.ndarray, used: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Σ over the four corners of weight × value, in corner order from 0, a corner without
+    weight adding 0 (the sum of :func:`impactmaps.maps.refinement.interpolate`)."""
+    terms = np.where(used, weights * values, 0.0)
+    return ((np.zeros(terms.shape[1:]) + terms[0]) + terms[1] + terms[2]) + terms[3]
+
+
+def interpolate_line(values: np.ndarray, position: np.ndarray) -> np.ndarray:
+    """Linear interpolation of a stored line (one value per grid point of one axis) at
+    fractional grid positions; exactly the stored value on a grid point [-]."""
+    values = np.asarray(values, float)
+    lower = np.clip(np.floor(position), 0, values.size - 2).astype(np.int64)
+    fraction = position - lower
+    return (np.where(fraction < 1.0, (1.0 - fraction) * values[lower], 0.0)
+            + np.where(fraction > 0.0, fraction * values[lower + 1], 0.0))
