@@ -119,9 +119,29 @@ def answers(key, numbers: dict) -> dict:
             return
         out["fmax"][index], out["band"][index], out["status"][index], out["regime"][index] = fmax, band, status, regime
 
-    for chunk in np.array_split(np.arange(count), max(1, count // 2000)):
-        visit(chunk)
+    alone = _near_missing(_dataset(key), numbers)  # likely refused: read one by one (their messages)
+    for index in np.flatnonzero(alone):
+        visit(np.array([index]))
+    for chunk in np.array_split(np.flatnonzero(~alone), max(1, int(np.count_nonzero(~alone)) // 2000)):
+        if chunk.size:
+            visit(chunk)
     return out
+
+
+def _near_missing(dataset, numbers: dict) -> np.ndarray:
+    """Points with a grid corner that holds no value (the refused ones, and a few more)."""
+    fmax = dataset["fmax_normalised"].isel(structure=0).values
+    missing = ~np.isfinite(fmax)
+    corners = np.zeros(len(numbers["zeta"]), bool)
+    axes = [axis for axis in ("beta", "lambda_", "zeta") if axis in numbers]
+    brackets = []
+    for axis in axes:
+        grid = np.log(dataset[axis].values)
+        upper = np.clip(np.searchsorted(grid, np.log(numbers[axis])), 0, grid.size - 1)
+        brackets.append((np.clip(upper - 1, 0, grid.size - 1), upper))
+    for choice in np.ndindex(*(2,) * len(axes)):
+        corners |= missing[tuple(bracket[c] for bracket, c in zip(brackets, choice))]
+    return corners
 
 
 def record(path: Path, count: int, keys, regime: bool) -> None:

@@ -210,16 +210,21 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
 
 def shipped_reader(structure: str, theory: str, law: str = "linear", slenderness: float | None = None):
     """The shipped map of (structure, theory, law, slenderness) prepared for reading
-    (:func:`impactmaps.maps.reader.prepare_map`, with its refinement and interpolation
-    estimate), and its name.
+    (:func:`impactmaps.maps.reader.prepare_map`: with its refinement and interpolation
+    estimate, or an elastic-plastic map's band grids), and its name.
 
     Prepared once per file: the cache is keyed by the identity of the map's file and its
     refinement's (path, inode, size, modification time), so a file rewritten on disk is
     read again; a file that cannot be identified (not on a file system) is prepared at
     every call. Returns ``(PreparedMap, name)``.
     """
-    require_choice("law", law, MAP_LAWS)
-    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    require_choice("law", law, ALL_MAP_LAWS)
+    if law in PLASTIC_LAWS:
+        shipped = map_family(law).shipped
+        require_choice("(structure, theory)", (structure, theory), tuple(shipped))
+        name = map_file_stem(shipped[(structure, theory)], law)
+    else:
+        name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
     identity = _file_identity(name)
     if identity is None:
         return _prepare_shipped((structure, theory, law, slenderness), name, None), name
@@ -263,8 +268,9 @@ def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
         data = resources.files("impactmaps.maps").joinpath("data")
         source, stored = data.joinpath(f"{name}.nc"), data.joinpath("refinements", f"{name}.nc")
         if not source.is_file():
+            script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
             raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
-                                    f"`python validation/build_default_maps.py --law {law}`")
+                                    f"`python validation/{script} {law}`")
         sources = (source, stored if stored.is_file() else None)
     else:
         sources = tuple(None if entry is None else Path(entry[0]) for entry in identity)
@@ -346,7 +352,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
     regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law, peaks=peaks)
     if fmax.ndim == 0:
-        fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
+        fmax, regime, error, status = float(fmax), regime.item(), float(error), np.asarray(status).item()
     return LookupResult(fmax, regime, structure, theory, name, error, status, law)
 
 

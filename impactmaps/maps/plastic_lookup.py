@@ -22,9 +22,9 @@ from importlib import resources
 import xarray as xr
 
 from .._checks import require_choice
-from .lookup import map_file_stem, require_map_law
-from .plastic_points import ERROR_OF, PLASTIC_LAWS, YC
-from .reader import band_grid, read_values
+from .lookup import map_file_stem, require_map_law, shipped_reader
+from .plastic_points import PLASTIC_LAWS, YC
+from .reader import read_values
 from .registry import map_family
 
 __all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic"]
@@ -82,13 +82,6 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
         return require_map_law(opened.load(), law, f"shipped map {name}.nc")
 
 
-@functools.lru_cache(maxsize=8)
-def _band_grids(structure: str, theory: str, law: str) -> dict:
-    """:func:`~impactmaps.maps.reader.band_grid` of each interpolated quantity of a shipped map (cached)."""
-    dataset = load_plastic_map(structure, theory, law)
-    return {variable: band_grid(dataset, map_family(law), variable) for variable in ERROR_OF}
-
-
 def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
                    law: str = "yc") -> PlasticLookup:
     """F̄max, restitution and absorbed energy at (β, ζ, λ) from a shipped plastic map.
@@ -112,11 +105,11 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         Outside the map's range (naming the number and the range), or where a map point
         around the answer is ``unresolved`` (holds no value).
     """
-    dataset = load_plastic_map(structure, theory, law)
-    name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
-    reading = read_values(dataset, map_family(law), (beta, loss_factor, relative_stiffness),
+    require_choice("law", law, tuple(PLASTIC_LAWS))
+    prepared, name = shipped_reader(structure, theory, law)
+    reading = read_values(None, map_family(law), (beta, loss_factor, relative_stiffness),
                           ("beta", "loss_factor", "relative_stiffness"), where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}",
-                          hints=(" (impactmaps simulate)",) * 2, band_grids=_band_grids(structure, theory, law))
+                          hints=(" (impactmaps simulate)",) * 2, prepared=prepared)
     values = reading.values | reading.errors
     status = reading.status
     if not reading.shape:

@@ -57,7 +57,7 @@ def answer_status(point_status, band):
     status = np.asarray(point_status)
     widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
     out = np.where(widened, "interpolated", status)
-    return str(out) if out.ndim == 0 else out
+    return out.item() if out.ndim == 0 else out
 
 
 def corner_status(corner_codes, band):
@@ -175,8 +175,8 @@ def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 def _bracket(grid: np.ndarray, values: np.ndarray):
     """Indices of the grid points just below and just above each value."""
-    upper = np.clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
-    lower = np.clip(upper - 1, 0, grid.size - 1)
+    upper = _clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
+    lower = _clip(upper - 1, 0, grid.size - 1)
     exact = np.abs(grid[upper] - values) <= 1e-12  # np.isclose(rtol=0, atol=1e-12) of finite numbers
     return np.where(exact, upper, lower), upper
 
@@ -331,7 +331,7 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
             shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
             raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
                                   f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
-    logs = {axis: np.log(np.clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
+    logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
     shape = numbers[0].shape
     if prepared.plane is not None:
         values, errors, codes = _read_plane(prepared, logs)
@@ -381,7 +381,7 @@ def _read_cube(prepared: PreparedMap, family, logs: dict):
 def _cell(grid: np.ndarray, values: np.ndarray):
     """(lower index, distance from it in cells) of each value on an ascending grid (a value on the
     last grid point is at distance 1 in the last cell)."""
-    index = np.clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
+    index = _clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
     return index, (values - grid[index]) / (grid[index + 1] - grid[index])
 
 
@@ -395,3 +395,8 @@ def _multilinear(table: np.ndarray, cell) -> np.ndarray:
             weight = weight * w
         value = value + np.asarray(table[indices]) * weight
     return value
+
+
+def _clip(values, low, high):
+    """``np.clip`` (the same numbers), at a fraction of its cost on small arrays."""
+    return np.minimum(np.maximum(values, low), high)
