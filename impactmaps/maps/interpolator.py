@@ -201,9 +201,8 @@ def _corner_sum(weights: np.ndarray, used: np.ndarray, values: np.ndarray) -> np
 
 def interpolate_line(values: np.ndarray, position: np.ndarray) -> np.ndarray:
     """Linear interpolation of a stored line (one value per grid point of one axis) at
-    fractional grid positions; exactly the stored value on a grid point [-]."""
-    values = np.asarray(values, float)
-    lower = _clip(np.floor(position), 0, values.size - 2).astype(np.int64)
+    fractional grid positions (≥ 0); exactly the stored value on a grid point [-]."""
+    lower = np.minimum(position.astype(np.int64), values.size - 2)
     fraction = position - lower
     return (np.where(fraction < 1.0, (1.0 - fraction) * values[lower], 0.0)
             + np.where(fraction > 0.0, fraction * values[lower + 1], 0.0))

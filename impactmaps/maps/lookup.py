@@ -218,17 +218,23 @@ def shipped_reader(structure: str, theory: str, law: str = "linear", slenderness
     read again; a file that cannot be identified (not on a file system) is prepared at
     every call. Returns ``(PreparedMap, name)``.
     """
-    require_choice("law", law, ALL_MAP_LAWS)
-    if law in PLASTIC_LAWS:
-        shipped = map_family(law).shipped
-        require_choice("(structure, theory)", (structure, theory), tuple(shipped))
-        name = map_file_stem(shipped[(structure, theory)], law)
-    else:
-        name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    name = _shipped_name(structure, theory, law, slenderness)
     identity = _file_identity(name)
     if identity is None:
         return _prepare_shipped((structure, theory, law, slenderness), name, None), name
     return _prepared_shipped((structure, theory, law, slenderness), name, identity), name
+
+
+@functools.lru_cache(maxsize=256)
+def _shipped_name(structure: str, theory: str, law: str, slenderness: float | None) -> str:
+    """File stem of the shipped map of (structure, theory, law, slenderness); ``ValueError`` naming
+    a value no shipped map has (a refusal is not cached)."""
+    require_choice("law", law, ALL_MAP_LAWS)
+    if law in PLASTIC_LAWS:
+        shipped = map_family(law).shipped
+        require_choice("(structure, theory)", (structure, theory), tuple(shipped))
+        return map_file_stem(shipped[(structure, theory)], law)
+    return map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
 
 
 def _file_identity(name: str):
@@ -343,13 +349,12 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
                           ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
                           hints=(" (impactmaps point)" if law == "linear" else " (impactmaps simulate on a case file)", ""),
                           refinement=refinement, error_grid=error_grid, prepared=prepared)
-    zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
     values = reading.values
     fmax, error, status = values["fmax_normalised"], reading.errors["fmax_error"], reading.status
     peak_time = np.exp(values["log_peak_time"]) if "log_peak_time" in values else None
     reflection = np.exp(values["log_reflection_time"]) if "log_reflection_time" in values else None
     peaks = tuple(values[name] for name in ASYMPTOTE_PEAKS) if all(name in values for name in ASYMPTOTE_PEAKS) else None
-    regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
+    regime = classify(fmax, loss_factor, relative_stiffness, structure, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law, peaks=peaks)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), regime.item(), float(error), np.asarray(status).item()

@@ -40,6 +40,8 @@ __all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "Unresol
 _SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
 #: The status of each severity.
 _BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
+#: Severity of each status code (:data:`impactmaps.maps.accuracy.STATUSES`).
+_CODE_SEVERITY = np.array([_SEVERITY[name] for name in STATUSES])
 #: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
 #: band is wider is ``interpolated``, even where every point around it converged.
 BAND_TOLERANCE = AccuracyControl().tolerance
@@ -55,7 +57,7 @@ def answer_status(point_status, band):
     1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
     """
     status = np.asarray(point_status)
-    widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
+    widened = ((status == "converged") | (status == "refined")) & (np.asarray(band) > BAND_TOLERANCE)
     out = np.where(widened, "interpolated", status)
     return out.item() if out.ndim == 0 else out
 
@@ -65,8 +67,7 @@ def corner_status(corner_codes, band):
     (``corner_codes``: one array of status codes of :data:`impactmaps.maps.accuracy.STATUSES`
     per corner around the answers), ``interpolated`` where the ``band`` makes it so
     (:func:`answer_status`)."""
-    severity = np.array([_SEVERITY[name] for name in STATUSES])
-    worst = np.max([severity[codes] for codes in corner_codes], axis=0)
+    worst = np.max(_CODE_SEVERITY[np.asarray(corner_codes)], axis=0)
     return answer_status(_BY_SEVERITY[worst], band)
 
 
