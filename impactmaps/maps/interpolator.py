@@ -199,13 +199,15 @@ def _corner_sum(weights: np.ndarray, used: np.ndarray, values: np.ndarray) -> np
     return ((np.zeros(terms.shape[1:]) + terms[0]) + terms[1] + terms[2]) + terms[3]
 
 
-def interpolate_line(values: np.ndarray, position: np.ndarray) -> np.ndarray:
-    """Linear interpolation of a stored line (one value per grid point of one axis) at
-    fractional grid positions (≥ 0); exactly the stored value on a grid point [-]."""
+def interpolate_line(values: np.ndarray, position: np.ndarray, logs: np.ndarray | None = None) -> np.ndarray:
+    """Interpolation of a stored line of positive values (one per grid point of a log axis)
+    at fractional grid positions (≥ 0), linear in the log of the values: exact for a power
+    law, as the asymptote peaks are in their tails; exactly the stored value on a grid point [-]."""
     lower = np.minimum(position.astype(np.int64), values.size - 2)
     fraction = position - lower
-    return (np.where(fraction < 1.0, (1.0 - fraction) * values[lower], 0.0)
-            + np.where(fraction > 0.0, fraction * values[lower + 1], 0.0))
+    logs = np.log(values) if logs is None else logs  # the values' logs, when already known
+    between = np.exp((1.0 - fraction) * logs[lower] + fraction * logs[lower + 1])
+    return np.where(fraction == 0.0, values[lower], np.where(fraction == 1.0, values[lower + 1], between))
 
 
 def _clip(values, low, high):

@@ -306,7 +306,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
     differences, :func:`interpolation_error`; on a refined cell the measured surplus of
     its points), the status the worst of the corners' (:class:`LookupResult`). The regime
     classifies the interpolated F̄max (and times) against the asymptote peaks the map
-    stores, interpolated linearly in log ζ and log λ
+    stores, interpolated linearly in log peak against log ζ and log λ
     (:func:`impactmaps.maps.dataset.with_asymptote_peaks`); a map without them (built
     before they were stored) has them computed at (ζ, λ).
 

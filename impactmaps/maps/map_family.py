@@ -52,7 +52,7 @@ RESULT_VARIABLES = {
 #: criteria (:func:`impactmaps.maps.regimes.classify`): name → (the one axis it varies along,
 #: units, description). Each is stored per structure and grid value of its axis
 #: (:func:`impactmaps.maps.dataset.with_asymptote_peaks`, :meth:`MapFamily.asymptote_peaks`)
-#: and a lookup interpolates it linearly in the log of that axis.
+#: and a lookup interpolates it linearly in log peak against the log of that axis.
 ASYMPTOTE_PEAK_VARIABLES = {
     "infinite_structure_peak": ("zeta", "1", "normalised peak force of the infinite structure"),
     "quasi_static_peak": ("lambda_", "1", "normalised quasi-static peak force"),

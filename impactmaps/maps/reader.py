@@ -233,8 +233,8 @@ class PreparedMap(NamedTuple):
     times : tuple of str
         The regime's log-time variables a (λ, ζ) map holds, read on its grid.
     lines : dict
-        Stored lines a (λ, ζ) map is read along one axis: variable → (axis, values)
-        (the asymptote peaks, :data:`impactmaps.maps.map_family.ASYMPTOTE_PEAK_VARIABLES`).
+        Stored lines a (λ, ζ) map is read along one axis: variable → (axis, values, their
+        logs) (the asymptote peaks, :data:`impactmaps.maps.map_family.ASYMPTOTE_PEAK_VARIABLES`).
     band_grids : dict
         Variable → :func:`band_grid` of a map with more axes.
     """
@@ -269,6 +269,7 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | None = Non
                                   error_grid, refinement)
         lines = {name: (axis, np.array(dataset[name].isel(structure=0).values, float))
                  for name, (axis, _units, _text) in ASYMPTOTE_PEAK_VARIABLES.items() if name in dataset}
+        lines = {name: (axis, values, np.log(values)) for name, (axis, values) in lines.items()}
         return PreparedMap(axes, ranges, grids, tables, plane, times, lines, {})
     names = {*family.errors, "status"}
     tables = {name: np.array(dataset[name].isel(structure=0).values) for name in names}
@@ -311,8 +312,9 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
     -------
     Reading
         A (λ, ζ) map's values also hold its stored asymptote peaks at the numbers
-        (``infinite_structure_peak``, ``quasi_static_peak``), interpolated linearly in the
-        log of their axis, when it stores them.
+        (``infinite_structure_peak``, ``quasi_static_peak``), interpolated linearly in log
+        peak against the log of their axis (:func:`~impactmaps.maps.interpolator.interpolate_line`),
+        when it stores them.
 
     Raises
     ------
@@ -358,8 +360,8 @@ def _read_plane(prepared: PreparedMap, logs: dict):
     values, error, codes = prepared.plane.interpolate(rows, cols)
     if prepared.times:  # the regime's times: from the map's own grid
         values |= grid_bilinear(prepared.tables, rows, cols, prepared.times, 1 << MAX_LEVEL)
-    for name, (axis, line) in prepared.lines.items():
-        values[name] = interpolate_line(line, positions[axis])
+    for name, (axis, line, logs) in prepared.lines.items():
+        values[name] = interpolate_line(line, positions[axis], logs)
     return values, {"fmax_error": error}, codes
 
 
