@@ -116,19 +116,21 @@ def _surplus_estimates(refinement: Refinement, leaves: Leaves) -> np.ndarray:
     dense = np.zeros(((refinement.shape[0] - 1) * scale + 1 + 2 * pad, refinement.width + 2 * pad))
     u, v = refinement.position(refinement.codes)
     dense[u + pad, v + pad] = refinement.values["surplus"]
-    surplus = np.zeros(leaves.u.shape)
+    flat, width = dense.ravel(), dense.shape[1]
     deep = np.flatnonzero(leaves.level > 0)
     parent, half = 2 * leaves.side[deep], leaves.side[deep]
-    low_u, low_v = (leaves.u[deep] // parent) * parent + pad, (leaves.v[deep] // parent) * parent + pad
+    low = ((leaves.u[deep] // parent) * parent + pad) * width + (leaves.v[deep] // parent) * parent + pad
+    deep_surplus = np.zeros(deep.size)
     for du in (-1, 0, 1):
         for dv in (-1, 0, 1):
-            pu, pv = low_u + du * parent, low_v + dv * parent
-            for mu, mv in ((pu + half, pv + half), (pu + half, pv), (pu + half, pv + parent), (pu, pv + half),
-                           (pu + parent, pv + half)):
-                surplus[deep] = np.maximum(surplus[deep], dense[mu, mv])
+            corner = low + du * parent * width + dv * parent
+            for mu, mv in ((half, half), (half, 0), (half, parent), (0, half), (parent, half)):
+                deep_surplus = np.maximum(deep_surplus, flat[corner + mu * width + mv])
+    surplus = np.zeros(leaves.u.shape)
+    surplus[deep] = deep_surplus
     deeper = leaves.side > 1
     for mu, mv in leaves.edge_middles():
-        surplus = np.maximum(surplus, np.where(deeper, dense[mu + pad, mv + pad], 0.0))
+        surplus = np.maximum(surplus, np.where(deeper, flat[(mu + pad) * width + mv + pad], 0.0))
     return np.maximum(0.0, SURPLUS_SAFETY * surplus)
 
 
