@@ -97,10 +97,15 @@ def _case(rng, law: str, structure: str):
                       f'[target]\n{table}\n[contact]\nlaw = "{name}"\n')
 
 
+_CPU = {}
+
+
 def _time(call, repeat: int = 1) -> float:
-    start = time.perf_counter()
+    """Wall seconds per call (the process CPU seconds per call: ``_CPU["last"]``)."""
+    start, cpu = time.perf_counter(), time.process_time()
     for _ in range(repeat):
         call()
+    _CPU["last"] = (time.process_time() - cpu) / repeat
     return (time.perf_counter() - start) / repeat
 
 
@@ -115,11 +120,15 @@ def measure(points: int, singles: int, cases: int) -> dict:
         read, dataset = _reader(law, structure, theory)
         read(_draw(rng, 1, dataset))  # the map read and prepared: not what is measured here
         numbers = _draw(rng, points, dataset)
+        cpu = {}
         vector = _time(lambda: read(numbers)) / points
+        cpu["vector"] = _CPU["last"] / points
         fresh = _draw(rng, singles, dataset)
         single_fresh = _time(lambda: [read({k: v[i] for k, v in fresh.items()}) for i in range(singles)]) / singles
+        cpu["single_fresh"] = _CPU["last"] / singles
         one = {k: v[0] for k, v in fresh.items()}
         single_again = _time(lambda: read(one), 200)
+        cpu["single_again"] = _CPU["last"]
         drawn, answered = [], 0
         while law not in ("linear", "hertz") and len(drawn) < cases and answered < 50 * cases:
             answered += 1
@@ -131,10 +140,12 @@ def measure(points: int, singles: int, cases: int) -> dict:
             drawn.append(case)
         fresh_cases = [_case(rng, law, structure) for _ in range(cases)] if law in ("linear", "hertz") else drawn
         case_fresh = _time(lambda: [lookup_case(case, build=False) for case in fresh_cases]) / len(fresh_cases)
+        cpu["case_fresh"] = _CPU["last"] / len(fresh_cases)
         case_again = _time(lambda: lookup_case(fresh_cases[0], build=False), 50)
+        cpu["case_again"] = _CPU["last"]
         out[row] = {"vector": vector, "single_fresh": single_fresh, "single_again": single_again,
                     "case_fresh": case_fresh, "case_again": case_again, "points": points, "singles": singles,
-                    "cases": len(fresh_cases)}
+                    "cases": len(fresh_cases)} | {f"cpu_{key}": value for key, value in cpu.items()}
         print(f"# {row}: {out[row]}", file=sys.stderr)
     return out
 
@@ -173,9 +184,12 @@ COLUMNS = [("vector", 1e6, "µs/point", "`lookup`, fresh points at once (this: {
 
 
 def table(runs: dict, labels: list[str]) -> str:
-    """Markdown: per family and measurement, each code's faster run and the ratio base/this."""
+    """Markdown: per family and measurement, each code's faster run and the ratio base/this
+    (wall time, then the process's CPU time of the same calls)."""
     lines = []
-    for key, factor, unit, text in COLUMNS:
+    columns = COLUMNS + [(f"cpu_{key}", factor, unit, f"CPU time: {text}") for key, factor, unit, text in COLUMNS
+                         if key != "first"]
+    for key, factor, unit, text in columns:
         example = runs[labels[-1]][0][ROWS[0][0]]
         lines += [f"**{text.format(**example)}** [{unit}]", "",
                   "| family | " + " | ".join(labels) + (" | ratio |" if len(labels) == 2 else " |"),
