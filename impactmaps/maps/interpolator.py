@@ -99,7 +99,7 @@ class PlaneInterpolator:
         values = {name: _corner_sum(weights, used, self.tables[name][corners]) for name in names}
         zero = np.zeros((1, x.size))
         own = np.max(np.concatenate([zero, np.where(used, self.tables["fmax_error"][corners], 0.0)]), axis=0)
-        codes = list(np.where(used, self.tables["status"][corners], 0).astype(int))
+        codes = np.where(used, self.tables["status"][corners], 0).astype(int)  # one row per corner
         at_base = np.where(used & self.at_base[leaf], self.estimate[corners], 0.0)
         estimate = np.max(np.concatenate([zero, at_base]), axis=0)
         node = np.sum(used, axis=0) == 1

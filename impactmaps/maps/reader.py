@@ -330,7 +330,7 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
         require_positive(label, values)
     for label, values, axis in zip(labels, numbers, prepared.axes):
         low, high = prepared.ranges[axis]
-        if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
+        if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
             shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
             raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
                                   f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
