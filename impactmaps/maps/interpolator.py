@@ -117,17 +117,31 @@ def _surplus_estimates(refinement: Refinement, leaves: Leaves) -> np.ndarray:
     u, v = refinement.position(refinement.codes)
     dense[u + pad, v + pad] = refinement.values["surplus"]
     flat, width = dense.ravel(), dense.shape[1]
-    deep = np.flatnonzero(leaves.level > 0)
-    parent, half = 2 * leaves.side[deep], leaves.side[deep]
-    low = ((leaves.u[deep] // parent) * parent + pad) * width + (leaves.v[deep] // parent) * parent + pad
-    deep_surplus = np.zeros(deep.size)
-    for du in (-1, 0, 1):
-        for dv in (-1, 0, 1):
-            corner = low + du * parent * width + dv * parent
-            for mu, mv in ((half, half), (half, 0), (half, parent), (0, half), (parent, half)):
-                deep_surplus = np.maximum(deep_surplus, flat[corner + mu * width + mv])
     surplus = np.zeros(leaves.u.shape)
-    surplus[deep] = deep_surplus
+    for level in range(1, refinement.max_level + 1):
+        chosen = np.flatnonzero(leaves.level == level)
+        if chosen.size == 0:
+            continue
+        half = scale >> level
+        parent = 2 * half
+        # the largest surplus of the five points that split each parent-sized cell, on the grid of
+        # those cells from one before the lattice to one after it (cell k starts at (k - 1) parent)
+        rows = ((refinement.shape[0] - 1) * scale) // parent + 2
+        cols = (refinement.width - 1) // parent + 2
+
+        def points(du, dv):
+            start_u, start_v = pad - parent + du, pad - parent + dv
+            return dense[start_u:start_u + rows * parent:parent, start_v:start_v + cols * parent:parent]
+
+        split = points(half, half)
+        for du, dv in ((half, 0), (half, parent), (0, half), (parent, half)):
+            split = np.maximum(split, points(du, dv))
+        around = np.zeros_like(split)  # each cell and its eight neighbours
+        for du in (-1, 0, 1):
+            for dv in (-1, 0, 1):
+                around[1:-1, 1:-1] = np.maximum(around[1:-1, 1:-1],
+                                                split[1 + du:rows - 1 + du, 1 + dv:cols - 1 + dv])
+        surplus[chosen] = around[leaves.u[chosen] // parent + 1, leaves.v[chosen] // parent + 1]
     deeper = leaves.side > 1
     for mu, mv in leaves.edge_middles():
         surplus = np.maximum(surplus, np.where(deeper, flat[(mu + pad) * width + mv + pad], 0.0))
