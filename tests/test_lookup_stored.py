@@ -253,6 +253,15 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
         np.testing.assert_array_equal(new[1], old[1])
         for got, want in zip(new[2], old[2]):
             np.testing.assert_array_equal(got, want)
+    from impactmaps.maps import interpolator
+    from impactmaps.maps.refinement import Leaves, leaf_estimate
+
+    indexed = interpolator._IndexedRefinement.of(refinement)
+    leaves = interpolator._leaves(indexed)
+    pick = rng.choice(leaves.u.size, 5000, replace=False)
+    some = Leaves(leaves.level[pick], leaves.u[pick], leaves.v[pick], leaves.side[pick])
+    np.testing.assert_array_equal(interpolator._surplus_estimates(indexed, leaves)[pick],
+                                  leaf_estimate(refinement, some, np.zeros(refinement.shape)))
     times = ("log_peak_time", "log_reflection_time")
     old = interpolate(Refinement.empty((rows, cols)), base, estimate, row, col, times)[0]
     new = grid_bilinear(base, row, col, times, Refinement.empty((rows, cols)).scale)
