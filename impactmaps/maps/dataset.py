@@ -19,7 +19,9 @@ from .. import __version__
 from ..jsonio import dumps
 from .accuracy import STATUSES
 from .points import METHODS, SOLVER_REVISION
-from .regimes import classify, infinite_structure_peak, quasi_static_peak
+from .map_family import ASYMPTOTE_PEAK_VARIABLES
+from .registry import map_family
+from .regimes import classify
 
 __all__ = ["empty_dataset", "map_law", "classify_dataset"]
 
@@ -83,27 +85,27 @@ def empty_dataset(family, structures, axes: dict, description: dict, digest: str
 
 
 #: The variables holding a (ζ, λ) map's asymptote peaks (:func:`with_asymptote_peaks`).
-ASYMPTOTE_PEAKS = ("infinite_structure_peak", "quasi_static_peak")
+ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
 
 
 def with_asymptote_peaks(dataset: xr.Dataset) -> xr.Dataset:
     """``dataset`` with the asymptote peaks its regimes are judged by: the infinite-structure
-    peak of each structure at each ζ and the quasi-static peak at each λ (the map law's,
+    peak of each structure at each ζ and the quasi-static peak at each λ (the map family's,
+    :meth:`~impactmaps.maps.map_family.MapFamily.asymptote_peaks`, the numbers of
     :func:`impactmaps.maps.regimes.infinite_structure_peak` and ``quasi_static_peak``),
     computed once per grid and kept with the map, so classifying it again (another
-    tolerance, a resumed or re-read result) integrates no asymptote."""
+    tolerance, a resumed or re-read result) or looking a point up in it integrates no
+    asymptote. A map that holds them is returned as is."""
     if all(name in dataset for name in ASYMPTOTE_PEAKS):
         return dataset
-    law = map_law(dataset)
+    family = map_family(map_law(dataset))
     zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
     kinds = [str(kind) for kind in dataset["kind"].values]
-    by_kind = {kind: np.asarray(infinite_structure_peak(zeta, kind, law), float) for kind in set(kinds)}
-    quasi = np.asarray(quasi_static_peak(lam, law), float)
+    by_kind = {kind: family.asymptote_peaks(kind, zeta, lam) for kind in sorted(set(kinds))}
     out = dataset.copy()
-    out["infinite_structure_peak"] = (("structure", "zeta"), np.stack([by_kind[kind] for kind in kinds]),
-                                      {"units": "1", "long_name": "normalised peak force of the infinite structure"})
-    out["quasi_static_peak"] = (("structure", "lambda_"), np.stack([quasi for _ in kinds]),
-                                {"units": "1", "long_name": "normalised quasi-static peak force"})
+    for name, (axis, units, text) in ASYMPTOTE_PEAK_VARIABLES.items():
+        out[name] = (("structure", axis), np.stack([by_kind[kind][name] for kind in kinds]),
+                     {"units": units, "long_name": text})
     return out
 
 

@@ -17,9 +17,11 @@ a linear one, nor the reverse. The shear-deformable maps also ship at other slen
 from __future__ import annotations
 
 import functools
+import os
 import warnings
 from dataclasses import dataclass, replace
 from importlib import resources
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -29,13 +31,15 @@ from ..targets.options import STRUCTURE_KINDS
 from .plastic_points import PLASTIC_LAWS
 from .reader import (
     BAND_TOLERANCE,
+    PreparedMap,
     answer_status,
     corner_status,
     interpolation_error,
+    prepare_map,
     read_values,
     status_notes,
 )
-from .dataset import map_law
+from .dataset import ASYMPTOTE_PEAKS, map_law
 from .points import warn_point_loaded_mindlin
 from .refinement import Refinement
 from .regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_static_peak
@@ -43,7 +47,7 @@ from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "load_shipped_refinement", "refinement_of", "lookup",
+           "require_map_law", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
            "read_map", "answer_status", "corner_status", "status_notes", "interpolation_error", "design_formula",
            "markdown_table"]
 
@@ -169,6 +173,11 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
            slenderness: float | None = None) -> LookupResult:
     """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
 
+    An interpolation of what the map stores, nothing else: F̄max, its band and status
+    (:func:`read_map`) and the asymptote peaks the regime is judged by, stored with the
+    map when it was built (:func:`impactmaps.maps.dataset.with_asymptote_peaks`). The
+    map is prepared for reading once per file (:func:`shipped_reader`).
+
     Parameters
     ----------
     loss_factor, relative_stiffness : float or array_like
@@ -192,18 +201,100 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     if law in PLASTIC_LAWS:
         raise ValueError(f"law = {law!r}: an elastic-plastic map has a third axis β; read it with "
                          "impactmaps.lookup_plastic(beta, zeta, lambda_, ...) (lookup takes law 'linear' or 'hertz')")
-    key = (structure, theory, law, slenderness)
     if theory == "mindlin":
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
-    return read_map(load_shipped_map(*key), loss_factor, relative_stiffness, structure=structure, theory=theory,
-                    name=map_file_stem(shipped_structure_name(structure, theory, slenderness), law), law=law,
-                    tolerance=tolerance, local_tolerance=local_tolerance, error_grid=_interpolation_error_grid(key),
-                    refinement=load_shipped_refinement(*key))
+    prepared, name = shipped_reader(structure, theory, law, slenderness)
+    return read_map(None, loss_factor, relative_stiffness, structure=structure, theory=theory, name=name, law=law,
+                    tolerance=tolerance, local_tolerance=local_tolerance, prepared=prepared)
 
 
-def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
+def shipped_reader(structure: str, theory: str, law: str = "linear", slenderness: float | None = None):
+    """The shipped map of (structure, theory, law, slenderness) prepared for reading
+    (:func:`impactmaps.maps.reader.prepare_map`: with its refinement and interpolation
+    estimate, or an elastic-plastic map's band grids), and its name.
+
+    Prepared once per file: the cache is keyed by the identity of the map's file and its
+    refinement's (path, inode, size, modification time), so a file rewritten on disk is
+    read again; a file that cannot be identified (not on a file system) is prepared at
+    every call. Returns ``(PreparedMap, name)``.
+    """
+    name = _shipped_name(structure, theory, law, slenderness)
+    identity = _file_identity(name)
+    if identity is None:
+        return _prepare_shipped((structure, theory, law, slenderness), name, None), name
+    return _prepared_shipped((structure, theory, law, slenderness), name, identity), name
+
+
+@functools.lru_cache(maxsize=256)
+def _shipped_name(structure: str, theory: str, law: str, slenderness: float | None) -> str:
+    """File stem of the shipped map of (structure, theory, law, slenderness); ``ValueError`` naming
+    a value no shipped map has (a refusal is not cached)."""
+    require_choice("law", law, ALL_MAP_LAWS)
+    if law in PLASTIC_LAWS:
+        shipped = map_family(law).shipped
+        require_choice("(structure, theory)", (structure, theory), tuple(shipped))
+        return map_file_stem(shipped[(structure, theory)], law)
+    return map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+
+
+def _file_identity(name: str):
+    """(path, inode, size, mtime) of the map ``name`` and of its refinement (None where it has
+    none); None when a file is not on a file system or is missing."""
+    out = []
+    for index, source in enumerate(_shipped_sources(name)):
+        try:
+            stat = os.stat(source)
+        except OSError:
+            if index == 0:  # the map itself: prepared uncached (and refused if missing)
+                return None
+            out.append(None)  # no refinement
+            continue
+        out.append((source, stat.st_ino, stat.st_size, stat.st_mtime_ns))
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=64)
+def _shipped_sources(name: str) -> tuple[str, str]:
+    """File-system paths of the shipped map ``name`` and of its refinement."""
+    data = resources.files("impactmaps.maps").joinpath("data")
+    return str(data.joinpath(f"{name}.nc")), str(data.joinpath("refinements", f"{name}.nc"))
+
+
+@functools.lru_cache(maxsize=32)
+def _prepared_shipped(key: tuple, name: str, identity: tuple):
+    """:func:`_prepare_shipped`, once per file identity (:func:`shipped_reader`)."""
+    return _prepare_shipped(key, name, identity)
+
+
+def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
+    """The shipped map ``key`` read from its file now, with its refinement, prepared: from the
+    files ``identity`` names, or (None) through :mod:`importlib.resources`."""
+    law = key[2]
+    if identity is None:
+        data = resources.files("impactmaps.maps").joinpath("data")
+        source, stored = data.joinpath(f"{name}.nc"), data.joinpath("refinements", f"{name}.nc")
+        if not source.is_file():
+            script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
+            raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
+                                    f"`python validation/{script} {law}`")
+        sources = (source, stored if stored.is_file() else None)
+    else:
+        sources = tuple(None if entry is None else Path(entry[0]) for entry in identity)
+    dataset = require_map_law(_load(sources[0]), law, f"shipped map {name}.nc")
+    refinement = None if sources[1] is None else refinement_of(_load(sources[1]), dataset, f"the shipped map {name}")
+    return prepare_map(dataset, map_family(law), refinement)
+
+
+def _load(source) -> xr.Dataset:
+    """A NetCDF file (a path or a package resource) read into memory."""
+    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
+        return opened.load()
+
+
+def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
              law: str = "linear", tolerance: float = 0.1, local_tolerance: float = 0.1,
-             error_grid: np.ndarray | None = None, refinement: Refinement | None = None) -> LookupResult:
+             error_grid: np.ndarray | None = None, refinement: Refinement | None = None,
+             prepared: PreparedMap | None = None) -> LookupResult:
     """F̄max, its band, status and regime at (ζ, λ) from any (ζ, λ) map ``dataset``.
 
     The one reading of a map: :func:`lookup` applies it to the shipped maps,
@@ -213,14 +304,18 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     cells (:mod:`impactmaps.maps.refinement`). The band is the largest own error of those
     corners plus the cell's interpolation error (on a grid cell the map's second
     differences, :func:`interpolation_error`; on a refined cell the measured surplus of
-    its points), the status the worst of the corners' (:class:`LookupResult`).
+    its points), the status the worst of the corners' (:class:`LookupResult`). The regime
+    classifies the interpolated F̄max (and times) against the asymptote peaks the map
+    stores, interpolated linearly in log peak against log ζ and log λ
+    (:func:`impactmaps.maps.dataset.with_asymptote_peaks`); a map without them (built
+    before they were stored) has them computed at (ζ, λ).
 
     Parameters
     ----------
-    dataset : xarray.Dataset
+    dataset : xarray.Dataset or None
         A map as :func:`impactmaps.maps.sweep.sweep` writes it (one structure), with
         ``fmax_normalised``, ``fmax_error`` and ``status``; ``log_peak_time`` and
-        ``log_reflection_time`` refine the regime when present.
+        ``log_reflection_time`` refine the regime when present. None with ``prepared``.
     loss_factor, relative_stiffness : float or array_like
         ζ and λ [-] (ζ_h, λ_h for a Hertz map), inside the map's range.
     structure, theory : str
@@ -237,6 +332,9 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     refinement : Refinement, optional
         The points added to the map where its interpolation erred
         (:func:`impactmaps.maps.refinement.refine`); none by default.
+    prepared : PreparedMap, optional
+        The map prepared for reading (:func:`impactmaps.maps.reader.prepare_map`) in place
+        of ``dataset``, ``error_grid`` and ``refinement``.
 
     Returns
     -------
@@ -250,16 +348,16 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
     reading = read_values(dataset, map_family(law), (loss_factor, relative_stiffness),
                           ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
                           hints=(" (impactmaps point)" if law == "linear" else " (impactmaps simulate on a case file)", ""),
-                          refinement=refinement, error_grid=error_grid)
-    zeta, lam = np.broadcast_arrays(np.asarray(loss_factor, float), np.asarray(relative_stiffness, float))
+                          refinement=refinement, error_grid=error_grid, prepared=prepared)
     values = reading.values
     fmax, error, status = values["fmax_normalised"], reading.errors["fmax_error"], reading.status
     peak_time = np.exp(values["log_peak_time"]) if "log_peak_time" in values else None
     reflection = np.exp(values["log_reflection_time"]) if "log_reflection_time" in values else None
-    regime = classify(fmax, zeta, lam, structure, peak_time=peak_time, reflection_time=reflection,
-                      tolerance=tolerance, local_tolerance=local_tolerance, law=law)
+    peaks = tuple(values[name] for name in ASYMPTOTE_PEAKS) if all(name in values for name in ASYMPTOTE_PEAKS) else None
+    regime = classify(fmax, loss_factor, relative_stiffness, structure, peak_time=peak_time, reflection_time=reflection,
+                      tolerance=tolerance, local_tolerance=local_tolerance, law=law, peaks=peaks)
     if fmax.ndim == 0:
-        fmax, regime, error, status = float(fmax), str(regime), float(error), str(status)
+        fmax, regime, error, status = float(fmax), regime.item(), float(error), np.asarray(status).item()
     return LookupResult(fmax, regime, structure, theory, name, error, status, law)
 
 
@@ -292,13 +390,6 @@ def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map"
                       "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
     return Refinement.from_dataset(stored)
-
-
-@functools.lru_cache(maxsize=32)
-def _interpolation_error_grid(key: tuple) -> np.ndarray:
-    """:func:`interpolation_error` of the shipped map ``key`` = (structure, theory, law, slenderness)."""
-    dataset = load_shipped_map(*key)
-    return interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
 
 
 def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):

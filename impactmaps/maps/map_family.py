@@ -27,7 +27,7 @@ import numpy as np
 
 from .._checks import require_choice
 
-__all__ = ["RESULT_VARIABLES", "Axis", "PointPlan", "Interpolation", "MapFamily", "register_map_family",
+__all__ = ["RESULT_VARIABLES", "ASYMPTOTE_PEAK_VARIABLES", "Axis", "PointPlan", "Interpolation", "MapFamily", "register_map_family",
            "map_family", "available_map_families"]
 
 #: The variables of every map: name → (dtype, missing value, units, description).
@@ -46,6 +46,16 @@ RESULT_VARIABLES = {
     "fmax_low": ("f8", np.nan, "1", "lower end of the band that holds fmax_normalised"),
     "fmax_high": ("f8", np.nan, "1", "upper end of the band that holds fmax_normalised"),
     "status": ("i1", -1, "1", "converged, refined, sensitive, asymptotic or unresolved: see flag_meanings"),
+}
+
+#: The asymptote peaks a classifying family's (ζ, λ) maps store, the inputs of their regime
+#: criteria (:func:`impactmaps.maps.regimes.classify`): name → (the one axis it varies along,
+#: units, description). Each is stored per structure and grid value of its axis
+#: (:func:`impactmaps.maps.dataset.with_asymptote_peaks`, :meth:`MapFamily.asymptote_peaks`)
+#: and a lookup interpolates it linearly in log peak against the log of that axis.
+ASYMPTOTE_PEAK_VARIABLES = {
+    "infinite_structure_peak": ("zeta", "1", "normalised peak force of the infinite structure"),
+    "quasi_static_peak": ("lambda_", "1", "normalised quasi-static peak force"),
 }
 
 
@@ -214,6 +224,16 @@ class MapFamily:
     def quasi_static_peak(self, relative_stiffness):
         """F̄max of the quasi-static spring at λ [-] (families that classify)."""
         raise ValueError(f"the {self.name} maps have no regimes")
+
+    def asymptote_peaks(self, kind: str, loss_factors, relative_stiffnesses) -> dict:
+        """The :data:`ASYMPTOTE_PEAK_VARIABLES` a map of this family stores for a structure of
+        ``kind`` on its grid (ζ values, λ values) [-]: name → values along its axis. What the
+        map's lookups judge their regimes by, computed once when the map is built; a family
+        without regimes stores none ({})."""
+        if not self.classifies:
+            return {}
+        return {"infinite_structure_peak": np.asarray(self.infinite_peak(loss_factors, kind), float),
+                "quasi_static_peak": np.asarray(self.quasi_static_peak(relative_stiffnesses), float)}
 
 
 _REGISTRY: dict[str, MapFamily] = {}

@@ -22,9 +22,9 @@ from importlib import resources
 import xarray as xr
 
 from .._checks import require_choice
-from .lookup import map_file_stem, require_map_law
-from .plastic_points import ERROR_OF, PLASTIC_LAWS, YC
-from .reader import band_grid, read_values
+from .lookup import map_file_stem, require_map_law, shipped_reader
+from .plastic_points import PLASTIC_LAWS, YC
+from .reader import read_values
 from .registry import map_family
 
 __all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "read_plastic"]
@@ -82,13 +82,6 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
         return require_map_law(opened.load(), law, f"shipped map {name}.nc")
 
 
-@functools.lru_cache(maxsize=8)
-def _band_grids(structure: str, theory: str, law: str) -> dict:
-    """:func:`~impactmaps.maps.reader.band_grid` of each interpolated quantity of a shipped map (cached)."""
-    dataset = load_plastic_map(structure, theory, law)
-    return {variable: band_grid(dataset, map_family(law), variable) for variable in ERROR_OF}
-
-
 def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
                    law: str = "yc") -> PlasticLookup:
     """F̄max, restitution and absorbed energy at (β, ζ, λ) from a shipped plastic map.
@@ -112,21 +105,20 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         Outside the map's range (naming the number and the range), or where a map point
         around the answer is ``unresolved`` (holds no value).
     """
-    dataset = load_plastic_map(structure, theory, law)
-    name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
-    return read_plastic(dataset, law, (beta, loss_factor, relative_stiffness), name=name,
-                        where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}",
-                        band_grids=_band_grids(structure, theory, law))
+    require_choice("law", law, tuple(PLASTIC_LAWS))
+    prepared, name = shipped_reader(structure, theory, law)
+    return read_plastic(None, law, (beta, loss_factor, relative_stiffness), name=name,
+                        where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}", prepared=prepared)
 
 
-def read_plastic(dataset: xr.Dataset, law: str, numbers, *, name: str, where: str,
-                 band_grids: dict | None = None) -> PlasticLookup:
+def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,
+                 band_grids: dict | None = None, prepared=None) -> PlasticLookup:
     """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
 
     Parameters
     ----------
-    dataset : xarray.Dataset
-        A map of the plastic family ``law`` over (β, λ, ζ).
+    dataset : xarray.Dataset or None
+        A map of the plastic family ``law`` over (β, λ, ζ) (None when ``prepared`` is given).
     law : {"yc", "stronge", "epp"}
     numbers : (β, ζ, λ)
         Floats or arrays [-].
@@ -134,6 +126,8 @@ def read_plastic(dataset: xr.Dataset, law: str, numbers, *, name: str, where: st
         The map's name (the answer's ``map_name``) and how a refusal names it.
     band_grids : dict, optional
         :func:`~impactmaps.maps.reader.band_grid` of each interpolated quantity, when known.
+    prepared : PreparedMap, optional
+        The map already prepared (:func:`~impactmaps.maps.reader.prepare_map`).
 
     Returns
     -------
@@ -145,7 +139,8 @@ def read_plastic(dataset: xr.Dataset, law: str, numbers, *, name: str, where: st
         As :func:`lookup_plastic`.
     """
     reading = read_values(dataset, map_family(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
-                          where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids)
+                          where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
+                          prepared=prepared)
     values = reading.values | reading.errors
     status = reading.status
     if not reading.shape:

@@ -27,9 +27,11 @@ import xarray as xr
 
 from .._checks import describe_outside, require_positive
 from .accuracy import STATUSES, AccuracyControl, PointStatus
-from .refinement import Refinement, interpolate
+from .interpolator import PlaneInterpolator, grid_bilinear, interpolate_line
+from .map_family import ASYMPTOTE_PEAK_VARIABLES
+from .refinement import MAX_LEVEL, Refinement
 
-__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "read_values", "answer_status", "corner_status",
+__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "answer_status", "corner_status",
            "status_notes", "interpolation_error", "band_grid"]
 
 
@@ -38,6 +40,8 @@ __all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "Unresol
 _SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
 #: The status of each severity.
 _BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
+#: Severity of each status code (:data:`impactmaps.maps.accuracy.STATUSES`).
+_CODE_SEVERITY = np.array([_SEVERITY[name] for name in STATUSES])
 #: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
 #: band is wider is ``interpolated``, even where every point around it converged.
 BAND_TOLERANCE = AccuracyControl().tolerance
@@ -53,9 +57,9 @@ def answer_status(point_status, band):
     1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
     """
     status = np.asarray(point_status)
-    widened = np.isin(status, ("converged", "refined")) & (np.asarray(band) > BAND_TOLERANCE)
+    widened = ((status == "converged") | (status == "refined")) & (np.asarray(band) > BAND_TOLERANCE)
     out = np.where(widened, "interpolated", status)
-    return str(out) if out.ndim == 0 else out
+    return out.item() if out.ndim == 0 else out
 
 
 def corner_status(corner_codes, band):
@@ -63,8 +67,7 @@ def corner_status(corner_codes, band):
     (``corner_codes``: one array of status codes of :data:`impactmaps.maps.accuracy.STATUSES`
     per corner around the answers), ``interpolated`` where the ``band`` makes it so
     (:func:`answer_status`)."""
-    severity = np.array([_SEVERITY[name] for name in STATUSES])
-    worst = np.max([severity[codes] for codes in corner_codes], axis=0)
+    worst = np.max(_CODE_SEVERITY[np.asarray(corner_codes)], axis=0)
     return answer_status(_BY_SEVERITY[worst], band)
 
 
@@ -173,9 +176,9 @@ def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 def _bracket(grid: np.ndarray, values: np.ndarray):
     """Indices of the grid points just below and just above each value."""
-    upper = np.clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
-    lower = np.clip(upper - 1, 0, grid.size - 1)
-    exact = np.isclose(grid[upper], values, rtol=0, atol=1e-12)
+    upper = _clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
+    lower = _clip(upper - 1, 0, grid.size - 1)
+    exact = np.abs(grid[upper] - values) <= 1e-12  # np.isclose(rtol=0, atol=1e-12) of finite numbers
     return np.where(exact, upper, lower), upper
 
 
@@ -211,15 +214,80 @@ def band_grid(dataset: xr.Dataset, family, variable: str) -> np.ndarray:
     return own + interpolation_error(values, reach=settings.reach, safety=settings.safety)
 
 
-def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hints: tuple[str, str] = ("", ""),
+class PreparedMap(NamedTuple):
+    """A map's arrays ready for :func:`read_values` (:func:`prepare_map`): plain NumPy copies,
+    so that reading it again costs no dataset access.
+
+    Attributes
+    ----------
+    axes : tuple of str
+        The map's axes in the order of a point's numbers, ``(…, "zeta", "lambda_")``.
+    ranges : dict
+        Axis → (lowest, highest) grid value [-].
+    grids : dict
+        Axis → log of its grid values.
+    tables : dict
+        Variable → its values on the grid (the family's axis order, structure dropped).
+    plane : PlaneInterpolator or None
+        The leaves of a (λ, ζ) map (its refinement's, else its grid's).
+    times : tuple of str
+        The regime's log-time variables a (λ, ζ) map holds, read on its grid.
+    lines : dict
+        Stored lines a (λ, ζ) map is read along one axis: variable → (axis, values, their
+        logs) (the asymptote peaks, :data:`impactmaps.maps.map_family.ASYMPTOTE_PEAK_VARIABLES`).
+    band_grids : dict
+        Variable → :func:`band_grid` of a map with more axes.
+    """
+
+    axes: tuple
+    ranges: dict
+    grids: dict
+    tables: dict
+    plane: PlaneInterpolator | None
+    times: tuple
+    lines: dict
+    band_grids: dict
+
+
+def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | None = None, error_grid: np.ndarray | None = None,
+                band_grids: dict | None = None) -> PreparedMap:
+    """A map of ``family`` (one structure) prepared for :func:`read_values` (:class:`PreparedMap`).
+
+    Parameters are those of :func:`read_values`; the result reads exactly as the dataset.
+    """
+    axes = (*(axis.name for axis in family.extra_axes), "zeta", "lambda_")
+    coordinates = {axis: np.asarray(dataset[axis].values, float) for axis in axes}
+    ranges = {axis: (float(values.min()), float(values.max())) for axis, values in coordinates.items()}
+    grids = {axis: np.log(values) for axis, values in coordinates.items()}
+    if len(axes) == 2:
+        times = tuple(name for name in ("log_peak_time", "log_reflection_time") if name in dataset)
+        tables = {name: np.array(dataset[name].isel(structure=0).values)
+                  for name in ["fmax_normalised", *times, "fmax_error", "status"]}
+        if error_grid is None:
+            error_grid = interpolation_error(tables["fmax_normalised"])
+        plane = PlaneInterpolator({name: tables[name] for name in ("fmax_normalised", "fmax_error", "status")},
+                                  error_grid, refinement)
+        lines = {name: (axis, np.array(dataset[name].isel(structure=0).values, float))
+                 for name, (axis, _units, _text) in ASYMPTOTE_PEAK_VARIABLES.items() if name in dataset}
+        lines = {name: (axis, values, np.log(values)) for name, (axis, values) in lines.items()}
+        return PreparedMap(axes, ranges, grids, tables, plane, times, lines, {})
+    names = {*family.errors, "status"}
+    tables = {name: np.array(dataset[name].isel(structure=0).values) for name in names}
+    if band_grids is None:
+        band_grids = {variable: band_grid(dataset, family, variable) for variable in family.errors}
+    return PreparedMap(axes, ranges, grids, tables, None, (), {}, dict(band_grids))
+
+
+def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: str, hints: tuple[str, str] = ("", ""),
                 refinement: Refinement | None = None, error_grid: np.ndarray | None = None,
-                band_grids: dict | None = None) -> Reading:
+                band_grids: dict | None = None, prepared: PreparedMap | None = None) -> Reading:
     """Read a map at ``numbers``: interpolated values, their bands and statuses (module docstring).
 
     Parameters
     ----------
     dataset : xarray.Dataset
-        A map of ``family`` (one structure), as :func:`impactmaps.maps.sweep.sweep` writes it.
+        A map of ``family`` (one structure), as :func:`impactmaps.maps.sweep.sweep` writes it
+        (None when ``prepared`` is given).
     family : MapFamily
     numbers : sequence of array_like
         The point's numbers in the order of a map point, ``(…, ζ, λ)`` [-]; broadcast together.
@@ -236,10 +304,17 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
         The interpolation estimate of a (λ, ζ) map's F̄max when already known.
     band_grids : dict, optional
         :func:`band_grid` of each interpolated variable of a map with more axes, when known.
+    prepared : PreparedMap, optional
+        The map already prepared (:func:`prepare_map`; then ``refinement``, ``error_grid``
+        and ``band_grids`` are those it was prepared with).
 
     Returns
     -------
     Reading
+        A (λ, ζ) map's values also hold its stored asymptote peaks at the numbers
+        (``infinite_structure_peak``, ``quasi_static_peak``), interpolated linearly in log
+        peak against the log of their axis (:func:`~impactmaps.maps.interpolator.interpolate_line`),
+        when it stores them.
 
     Raises
     ------
@@ -248,23 +323,23 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
     UnresolvedPointError
         (a ``ValueError``) Next to an ``unresolved`` point.
     """
+    if prepared is None:
+        prepared = prepare_map(dataset, family, refinement, error_grid, band_grids)
     numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
-    axes = (*(axis.name for axis in family.extra_axes), "zeta", "lambda_")  # the numbers' order
     for label, values in zip(labels, numbers):
         require_positive(label, values)
-    for label, values, axis in zip(labels, numbers, axes):
-        low, high = float(dataset[axis].min()), float(dataset[axis].max())
-        if np.any(values < low * (1 - 1e-12)) or np.any(values > high * (1 + 1e-12)):
+    for label, values, axis in zip(labels, numbers, prepared.axes):
+        low, high = prepared.ranges[axis]
+        if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
             shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
             raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
                                   f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
-    logs = {axis: np.log(np.clip(values, float(dataset[axis].min()), float(dataset[axis].max()))).ravel()
-            for values, axis in zip(numbers, axes)}
+    logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
     shape = numbers[0].shape
-    if len(axes) == 2:
-        values, errors, codes = _read_plane(dataset, logs, refinement, error_grid)
+    if prepared.plane is not None:
+        values, errors, codes = _read_plane(prepared, logs)
     else:
-        values, errors, codes = _read_cube(dataset, family, logs, band_grids)
+        values, errors, codes = _read_cube(prepared, family, logs)
     status = corner_status(codes, errors["fmax_error"])
     status = np.atleast_1d(status).ravel()
     bad = (status == PointStatus.UNRESOLVED.value) | ~np.isfinite(values["fmax_normalised"])
@@ -278,42 +353,38 @@ def read_values(dataset: xr.Dataset, family, numbers, labels, *, where: str, hin
                    {name: value.reshape(shape) for name, value in errors.items()}, status.reshape(shape), shape)
 
 
-def _read_plane(dataset: xr.Dataset, logs: dict, refinement: Refinement | None, error_grid):
+def _read_plane(prepared: PreparedMap, logs: dict):
     """A (λ, ζ) map read in the leaves of its refinement (the grid's cells where it has none)."""
-    if error_grid is None:
-        error_grid = interpolation_error(dataset["fmax_normalised"].isel(structure=0).values)
-    times = [name for name in ("log_peak_time", "log_reflection_time") if name in dataset]
-    base = {name: dataset[name].isel(structure=0).values for name in ["fmax_normalised", *times, "fmax_error",
-                                                                      "status"]}
-    grid_only = Refinement.empty(base["fmax_normalised"].shape)
-    rows = _grid_position(np.log(dataset["lambda_"].values), logs["lambda_"])
-    cols = _grid_position(np.log(dataset["zeta"].values), logs["zeta"])
-    values, error, codes = interpolate(refinement or grid_only, base, error_grid, rows, cols)
-    if times:  # the regime's times: from the map's own grid
-        values |= interpolate(grid_only, base, error_grid, rows, cols, times)[0]
+    positions = {axis: _grid_position(prepared.grids[axis], logs[axis]) for axis in ("lambda_", "zeta")}
+    rows, cols = positions["lambda_"], positions["zeta"]
+    values, error, codes = prepared.plane.interpolate(rows, cols)
+    if prepared.times:  # the regime's times: from the map's own grid
+        values |= grid_bilinear(prepared.tables, rows, cols, prepared.times, 1 << MAX_LEVEL)
+    for name, (axis, line, logs) in prepared.lines.items():
+        values[name] = interpolate_line(line, positions[axis], logs)
     return values, {"fmax_error": error}, codes
 
 
-def _read_cube(dataset: xr.Dataset, family, logs: dict, band_grids: dict | None):
+def _read_cube(prepared: PreparedMap, family, logs: dict):
     """A map of more axes read on its grid: multilinear in the log axes; bands over the 2ᴺ corners."""
     names = family.axis_names
-    grids = [np.log(dataset[name].values) for name in names]
+    grids = [prepared.grids[name] for name in names]
     points = [logs[name] for name in names]
     corners = list(itertools.product(*(_bracket(grid, values) for grid, values in zip(grids, points))))
     cell = [_cell(grid, values) for grid, values in zip(grids, points)]
     values, errors = {}, {}
     for variable, error_name in family.errors.items():
-        values[variable] = _multilinear(dataset[variable].isel(structure=0).values, cell)
-        band = band_grid(dataset, family, variable) if band_grids is None else band_grids[variable]
+        values[variable] = _multilinear(prepared.tables[variable], cell)
+        band = prepared.band_grids[variable]
         errors[error_name] = family.interpolation.band_safety * np.max([band[c] for c in corners], axis=0)
-    codes = dataset["status"].isel(structure=0).values
+    codes = prepared.tables["status"]
     return values, errors, [codes[c] for c in corners]
 
 
 def _cell(grid: np.ndarray, values: np.ndarray):
     """(lower index, distance from it in cells) of each value on an ascending grid (a value on the
     last grid point is at distance 1 in the last cell)."""
-    index = np.clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
+    index = _clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
     return index, (values - grid[index]) / (grid[index + 1] - grid[index])
 
 
@@ -327,3 +398,8 @@ def _multilinear(table: np.ndarray, cell) -> np.ndarray:
             weight = weight * w
         value = value + np.asarray(table[indices]) * weight
     return value
+
+
+def _clip(values, low, high):
+    """``np.clip`` (the same numbers), at a fraction of its cost on small arrays."""
+    return np.minimum(np.maximum(values, low), high)

@@ -40,6 +40,8 @@ __all__ = ["REGIMES", "MAP_LAWS", "classify", "infinite_structure_peak", "quasi_
 MAP_LAWS = PLANE_LAWS
 
 REGIMES = ("local", "infinite-structure", "transition", "quasi-static")
+_REGIME_ARRAY = np.array(REGIMES)
+_LOCAL, _INFINITE, _TRANSITION, _QUASI_STATIC = range(len(REGIMES))
 
 
 def quasi_static_peak(relative_stiffness, law: str = "linear"):
@@ -125,16 +127,22 @@ def classify(
     require_positive("relative_stiffness", lam)
     if peaks is None:
         peaks = (infinite_structure_peak(zeta, structure, law), quasi_static_peak(lam, law))
-    infinite, quasi = (np.broadcast_to(np.asarray(peak, dtype=float), fmax.shape) for peak in peaks)
+    infinite, quasi = (_shaped(peak, fmax.shape) for peak in peaks)
     distance_infinite = np.abs(fmax - infinite) / infinite
     distance_quasi = np.abs(fmax - quasi) / quasi
-    before_reflection = np.ones(fmax.shape, dtype=bool)
+    before_reflection = True
     if peak_time is not None and reflection_time is not None:
-        before_reflection = np.broadcast_to(np.asarray(peak_time) < np.asarray(reflection_time), fmax.shape)
+        before_reflection = _shaped(np.asarray(peak_time) < np.asarray(reflection_time), fmax.shape)
     on_infinite = (distance_infinite <= tolerance) & before_reflection
     on_quasi = distance_quasi <= tolerance
-    labels = np.full(fmax.shape, "transition", dtype=object)
-    labels[on_quasi] = "quasi-static"
-    labels[on_infinite & (~on_quasi | (distance_infinite <= distance_quasi))] = "infinite-structure"
-    labels[(fmax >= 1.0 - local_tolerance) & before_reflection] = "local"
-    return labels.astype(str)
+    code = np.where(on_quasi, _QUASI_STATIC, _TRANSITION)
+    code = np.where(on_infinite & (~on_quasi | (distance_infinite <= distance_quasi)), _INFINITE, code)
+    code = np.where((fmax >= 1.0 - local_tolerance) & before_reflection, _LOCAL, code)
+    return np.asarray(_REGIME_ARRAY[code])
+
+
+def _shaped(values, shape) -> np.ndarray:
+    """``values`` broadcast to ``shape`` (as they are when they have it already)."""
+    values = np.asarray(values)
+    values = values if values.dtype == bool else values.astype(float, copy=False)
+    return values if values.shape == shape else np.broadcast_to(values, shape)
