@@ -170,7 +170,7 @@ def _pressure(sphere, target_material, law, result):
         return None
     return (f"contact pressure: the elastic Hertz peak pressure {pressure:.4g} Pa exceeds the "
             f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} S_y, with S_y = {strength:.4g} Pa of the "
-            f"{body}, the softer body): the contact yields; use a plastic law ('yigit-christoforou' or 'stronge')")
+            f"{body}, the softer body): the contact yields; use a plastic law ('epp', calibrated on finite elements; or 'stronge', 'yigit-christoforou')")
 
 
 def _indentation(sphere, result):
