@@ -19,7 +19,6 @@ from __future__ import annotations
 import functools
 import warnings
 from dataclasses import dataclass, replace
-from importlib import resources
 
 import numpy as np
 import xarray as xr
@@ -35,6 +34,7 @@ from .reader import (
     read_values,
     status_notes,
 )
+from .data_io import read_shipped
 from .dataset import map_law
 from .points import warn_point_loaded_mindlin
 from .refinement import Refinement
@@ -154,14 +154,13 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderne
     """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
     ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one)."""
     name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
-    source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
-    if not source.is_file():
+    dataset = read_shipped(name)
+    if dataset is None:
         raise FileNotFoundError(
             f"shipped map {name}.nc is missing from the installation; rebuild it with "
             f"`python validation/build_default_maps.py --law {law}`"
         )
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return require_map_law(opened.load(), law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}.nc")
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
@@ -266,18 +265,16 @@ def read_map(dataset: xr.Dataset, loss_factor, relative_stiffness, *, structure:
 @functools.lru_cache(maxsize=32)
 def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
                             slenderness: float | None = None) -> Refinement | None:
-    """The refinement shipped with a map (``data/refinements/NAME.nc``,
+    """The refinement shipped with a map (``data/refinements/NAME.npz``,
     :mod:`impactmaps.maps.refinement`), or None where the map has none.
 
     A refinement built for another version of the map (its ``base_fingerprint`` is not
     the map's fingerprint) is not used: a warning says so and the map is read alone.
     """
     name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
-    source = resources.files("impactmaps.maps").joinpath("data", "refinements", f"{name}.nc")
-    if not source.is_file():
+    stored = read_shipped("refinements", name)
+    if stored is None:
         return None
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        stored = opened.load()
     return refinement_of(stored, load_shipped_map(structure, theory, law, slenderness), f"the shipped map {name}")
 
 
@@ -291,7 +288,7 @@ def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map"
         warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
                       "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
-    return Refinement.from_dataset(stored)
+    return Refinement.from_dataset(stored, dataset["fmax_normalised"].isel(structure=0).values)
 
 
 @functools.lru_cache(maxsize=32)

@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from importlib import resources
 
 import xarray as xr
 
 from .._checks import require_choice
+from .data_io import read_shipped
 from .lookup import map_file_stem, require_map_law
 from .plastic_points import ERROR_OF, PLASTIC_LAWS, YC
 from .reader import band_grid, read_values
@@ -74,12 +74,11 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
     require_choice("law", law, tuple(PLASTIC_LAWS))
     require_choice("(structure, theory)", (structure, theory), tuple(PLASTIC_MAPS))
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
-    source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
-    if not source.is_file():
+    dataset = read_shipped(name)
+    if dataset is None:
         raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
                                 f"`python validation/build_plastic_maps.py --laws {law}`")
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return require_map_law(opened.load(), law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}.nc")
 
 
 @functools.lru_cache(maxsize=8)
