@@ -17,7 +17,9 @@ What is stored in fewer bits (each packed file's header says so; docs/install.rs
 * the refinements: ``surplus`` is not stored — it is recomputed from the points' values
   (:meth:`impactmaps.maps.refinement.Refinement.recomputed_surplus`), checked here bit for bit
   (a refinement where it is not exact keeps it) — and each point's own ``fmax_error`` is kept
-  to 8 significant bits, rounded up (bfloat16: the band only widens, by < 0.8 % of that error);
+  to 8 significant bits, rounded up (bfloat16: the band only widens, by < 0.8 % of that
+  error), except at the points where that could carry a lookup's band over the tolerance and
+  change its status (:func:`status_safe`: those keep their float32);
 * the shipped sweep results: nothing (a sweep served from one must equal a direct run bit for bit).
 
 Every file is read back and checked: exact variables bit for bit, the others within their
@@ -40,7 +42,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
 from impactmaps.maps.data_io import PACKED_SUFFIX, read_dataset  # noqa: E402
-from impactmaps.maps.refinement import Refinement  # noqa: E402
+from impactmaps.maps.reader import BAND_TOLERANCE, interpolation_error  # noqa: E402
+from impactmaps.maps.refinement import Refinement, all_leaves, leaf_estimate  # noqa: E402
 from impactmaps.maps.store import save_atomic  # noqa: E402
 
 DATA = ROOT / "impactmaps" / "maps" / "data"
@@ -72,6 +75,48 @@ def without_surplus(stored, base_fmax):
     return stored, "stored (recomputation not exact)"
 
 
+def status_safe(stored, base) -> np.ndarray:
+    """Where a refinement point's own error must stay exact so that no lookup's status changes.
+
+    A lookup is ``interpolated`` where its band — the largest own error of the corners it reads
+    plus its leaf's estimate (none on a lattice point) — exceeds :data:`BAND_TOLERANCE`. For
+    every leaf, every corner that is a refinement point and every set of corners a lookup can
+    read (the four, the two of each edge with the corner, the corner alone), the point is kept
+    exact if its error rounded up would carry that band over the tolerance and the exact one
+    does not. The corner need not be the largest of its set: a superset of the points that matter.
+    """
+    refinement = Refinement.from_dataset(stored, base["fmax_normalised"])
+    leaves = all_leaves(refinement)
+    estimate = interpolation_error(base["fmax_normalised"])
+    corners = leaves.corners()
+    edges = ((0, 1), (2, 3), (0, 2), (1, 3))
+    rounded = read_back_bfloat16(refinement.values["fmax_error"])
+    keep = np.zeros(refinement.codes.size, bool)
+    sets = [(0, 1, 2, 3), *edges]
+    estimates = {used: leaf_estimate(refinement, leaves, estimate, [np.full(leaves.u.shape, j in used) for j in range(4)])
+                 for used in sets}
+    for k, (cu, cv) in enumerate(corners):
+        point = (cu % refinement.scale != 0) | (cv % refinement.scale != 0)
+        where, found = refinement.index(refinement.code(cu[point], cv[point]))
+        assert found.all()
+        exact = refinement.values["fmax_error"][where].astype(float)
+        up = rounded[where].astype(float)
+        bands = [(exact, up)]  # the corner alone: its own error
+        for used in sets:
+            if k in used:
+                bands.append((exact + estimates[used][point], up + estimates[used][point]))
+        crosses = np.any([(low <= BAND_TOLERANCE) & (high > BAND_TOLERANCE) for low, high in bands], axis=0)
+        keep[where[crosses]] = True
+    return keep
+
+
+def read_back_bfloat16(values) -> np.ndarray:
+    """``values`` as a bfloat16-up variable reads back (float32)."""
+    from impactmaps.maps.data_io import _bfloat16_up
+
+    return (_bfloat16_up(values).astype(np.uint32) << 16).view(np.float32)
+
+
 def check(original, packed_path: Path, single, bfloat16_up, base_fmax=None) -> None:
     """Read ``packed_path`` back and compare with ``original``; ``AssertionError`` naming what differs."""
     again = read_dataset(packed_path)
@@ -88,7 +133,7 @@ def check(original, packed_path: Path, single, bfloat16_up, base_fmax=None) -> N
             assert old.tolist() == new.tolist(), name
         elif name in single:
             assert np.array_equal(new, old.astype(np.float32).astype(old.dtype), equal_nan=True), name
-        elif name in bfloat16_up:
+        elif name in bfloat16_up:  # (those kept exact are exact: the status check below is the test)
             finite = np.isfinite(old)
             assert np.array_equal(finite, np.isfinite(new)), name
             assert np.all(new[finite] >= old[finite]) and np.all(new[finite] <= old[finite] * (1 + 2.0**-7)), name
@@ -100,7 +145,7 @@ def pack_one(kind: str, path: Path, data: Path, out: Path, in_place: bool) -> di
     """Pack one file of ``data`` into the same place under ``out``; its sizes and what was done."""
     original = read_dataset(path)
     target = out / path.relative_to(data).with_suffix(PACKED_SUFFIX)
-    single, bfloat16_up, base_fmax, surplus = (), (), None, ""
+    single, bfloat16_up, base_fmax, surplus, keep = (), (), None, "", None
     if kind == "map":
         single = tuple(name for name in SINGLE if name in original)
     elif kind == "refinement":
@@ -108,8 +153,10 @@ def pack_one(kind: str, path: Path, data: Path, out: Path, in_place: bool) -> di
         base_fmax = base["fmax_normalised"].isel(structure=0).values
         bfloat16_up = BFLOAT16_UP
         stored, surplus = without_surplus(original, base_fmax)
+        keep = {"fmax_error": status_safe(original, {"fmax_normalised": base_fmax})}
+        surplus += f"; own error exact at {int(keep['fmax_error'].sum())} points (statuses)"
     stored = stored if kind == "refinement" else original
-    save_atomic(stored, target, single=single, bfloat16_up=bfloat16_up)
+    save_atomic(stored, target, single=single, bfloat16_up=bfloat16_up, keep_exact=keep)
     check(original, target, single, bfloat16_up, base_fmax)
     before = path.stat().st_size
     if in_place and path.suffix == ".nc":

@@ -55,15 +55,16 @@ _OPERATIONS = {"log": np.log, "minus": np.subtract, "plus": np.add}
 _ZIP_TIME = (1980, 1, 1, 0, 0, 0)
 
 
-def write_dataset(dataset: xr.Dataset, path, *, packed: bool | None = None, single=(), bfloat16_up=()) -> Path:
+def write_dataset(dataset: xr.Dataset, path, *, packed: bool | None = None, single=(), bfloat16_up=(),
+                  keep_exact=None) -> Path:
     """Write ``dataset`` to ``path``: packed (:func:`pack`, with the lossy options ``single``,
-    ``bfloat16_up``) if ``packed`` — by default, if the path ends in ``.npz`` — else NetCDF3.
-    Not atomic (:func:`impactmaps.maps.store.save_atomic` is). Returns the path."""
+    ``bfloat16_up``, ``keep_exact``) if ``packed`` — by default, if the path ends in ``.npz`` —
+    else NetCDF3. Not atomic (:func:`impactmaps.maps.store.save_atomic` is). Returns the path."""
     path = Path(path)
     if not (path.suffix == PACKED_SUFFIX if packed is None else packed):
         dataset.to_netcdf(path, engine="scipy", format="NETCDF3_64BIT")
         return path
-    arrays = pack(dataset, single=single, bfloat16_up=bfloat16_up)
+    arrays = pack(dataset, single=single, bfloat16_up=bfloat16_up, keep_exact=keep_exact)
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=9) as archive:
         for name in sorted(arrays):
             buffer = io.BytesIO()
@@ -105,7 +106,7 @@ def read_shipped(*parts: str) -> xr.Dataset | None:
 
 
 # -- the packed format ---------------------------------------------------------------------
-def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=()) -> dict:
+def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=(), keep_exact=None) -> dict:
     """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored variable.
 
     Parameters
@@ -116,6 +117,8 @@ def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=()) -> dict:
     bfloat16_up : sequence of str
         Non-negative float variables stored as the 16 high bits of their float32, rounded
         up (a stored error estimate only grows, by less than 2⁻⁷ of itself).
+    keep_exact : dict of str to ndarray of bool, optional
+        For a ``bfloat16_up`` variable, where to keep its float32 value exactly (stored apart).
 
     Returns
     -------
@@ -132,6 +135,10 @@ def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=()) -> dict:
         elif name in bfloat16_up:
             entry["codec"] = "bfloat16_up"
             arrays[name] = _shuffle(_bfloat16_up(values))
+            exact = np.asarray((keep_exact or {}).get(name, np.zeros(values.shape, bool)), bool)
+            if exact.any():
+                arrays[name + ".where_exact"] = np.packbits(exact.ravel())
+                arrays[name + ".exact"] = _shuffle(np.asarray(values, np.float32)[exact])
         elif name in DERIVED and _derivable(dataset, name, single, bfloat16_up):
             entry["codec"] = "derived"
             exact = _derived(dataset, name).view(np.uint64) == values.view(np.uint64)
@@ -160,7 +167,13 @@ def unpack(arrays: dict) -> xr.Dataset:
             decoded[name] = np.array(entry["values"], dtype=object if dtype.kind == "O" else dtype).reshape(shape)
         elif codec == "bfloat16_up":
             high = _unshuffle(arrays[name], np.dtype("<u2"), shape)
-            decoded[name] = (high.astype(np.uint32) << 16).view(np.float32).astype(dtype)
+            single_values = (high.astype(np.uint32) << 16).view(np.float32)
+            if name + ".where_exact" in arrays:
+                where = np.unpackbits(arrays[name + ".where_exact"], count=single_values.size).astype(bool)
+                single_values = single_values.ravel()
+                single_values[where] = _unshuffle(arrays[name + ".exact"], np.float32, (int(where.sum()),))
+                single_values = single_values.reshape(shape)
+            decoded[name] = single_values.astype(dtype)
         elif codec == "derived":
             derived.append(entry)
         else:

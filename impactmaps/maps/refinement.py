@@ -43,7 +43,7 @@ import xarray as xr
 from .accuracy import STATUSES
 
 __all__ = ["MAX_LEVEL", "REFINEMENT_VARIABLES", "SURPLUS_SAFETY", "Refinement", "Leaves", "locate", "interpolate",
-           "leaf_estimate", "refine"]
+           "leaf_estimate", "all_leaves", "refine"]
 
 #: Deepest split: leaf cells down to 1/2^MAX_LEVEL of the map's grid spacing per axis.
 MAX_LEVEL = 3
@@ -294,6 +294,20 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     node = np.sum(used, axis=0) == 1
     error = np.where(node, own, own + leaf_estimate(refinement, leaves, base_estimate, used))
     return values, error, codes
+
+
+def all_leaves(refinement: Refinement) -> Leaves:
+    """Every leaf cell of a refinement: the map's grid cells, each split where its centre is a point."""
+    scale = refinement.scale
+    rows, cols = np.meshgrid(np.arange(refinement.shape[0] - 1), np.arange(refinement.shape[1] - 1), indexing="ij")
+    leaves = Leaves(np.zeros(rows.size, int), rows.ravel() * scale, cols.ravel() * scale,
+                    np.full(rows.size, scale, np.int64))
+    while True:
+        _, split = refinement.index(refinement.code(*leaves.centre()))
+        split &= leaves.side > 1
+        if not split.any():
+            return leaves
+        leaves = _children(leaves, split)
 
 
 def leaf_estimate(refinement: Refinement, leaves: Leaves, base_estimate: np.ndarray, used=None) -> np.ndarray:
