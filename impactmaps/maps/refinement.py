@@ -183,10 +183,13 @@ class Refinement:
         u, v = self.position(self.codes)
         half = self.scale >> self.creation_level(u, v)
         centre_u, centre_v = u % (2 * half) == half, v % (2 * half) == half
-        base = {"fmax_normalised": np.asarray(base_fmax, float)}
+        own = np.asarray(self.values["fmax_normalised"], float)
+        lattice = np.full(((self.shape[0] - 1) * self.scale + 1, self.width), np.nan)  # ~15 MB for a shipped map
+        lattice[::self.scale, ::self.scale] = np.asarray(base_fmax, float)
+        lattice[u, v] = own
 
         def at(du, dv, where):
-            return self.values_at(base, u[where] + du * half[where], v[where] + dv * half[where], "fmax_normalised")
+            return lattice[u[where] + du * half[where], v[where] + dv * half[where]]
 
         interpolated = np.full(u.shape, np.nan)
         c = centre_u & centre_v
@@ -195,7 +198,6 @@ class Refinement:
         interpolated[e] = (at(-1, 0, e) + at(1, 0, e)) / 2.0
         e = ~centre_u & centre_v  # along ζ
         interpolated[e] = (at(0, -1, e) + at(0, 1, e)) / 2.0
-        own = np.asarray(self.values["fmax_normalised"], float)
         return np.nan_to_num(np.abs(own - interpolated), nan=1.0).astype(REFINEMENT_VARIABLES["surplus"])
 
 
