@@ -1,10 +1,10 @@
 """Design-rule lookups from the shipped maps: F̄max and regime without a simulation.
 
-The package ships precomputed maps (``impactmaps/maps/data/*.nc``, built by
+The package ships precomputed maps (``impactmaps/maps/data/*.npz``, built by
 ``validation/build_default_maps.py``) for simply supported structures struck at the
 centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
-plates (a/h = 20), each for the linear contact law (``NAME.nc``, axes ζ, λ) and for the
-Hertz law (``NAME-hertz.nc``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
+plates (a/h = 20), each for the linear contact law (``NAME.npz``, axes ζ, λ) and for the
+Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
 :mod:`impactmaps.hertz_similarity`). :func:`lookup` interpolates F̄max linearly in
 (log ζ, log λ); the interpolation error against direct simulation is measured by
 ``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
@@ -56,7 +56,7 @@ SHIPPED_MAPS = map_family("linear").shipped
 
 
 def map_file_stem(structure_name: str, law: str = "linear") -> str:
-    """File name (without ``.nc``) of the shipped map of a structure for a contact law.
+    """File name (without its suffix) of the shipped map of a structure for a contact law.
 
     The linear maps keep the structure's name (``plate-ssss-kirchhoff``); a map of
     another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
@@ -157,10 +157,10 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderne
     dataset = read_shipped(name)
     if dataset is None:
         raise FileNotFoundError(
-            f"shipped map {name}.nc is missing from the installation; rebuild it with "
+            f"shipped map {name} is missing from the installation; rebuild it with "
             f"`python validation/build_default_maps.py --law {law}`"
         )
-    return require_map_law(dataset, law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}")
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",

@@ -1,6 +1,6 @@
 """Lookups in the shipped elastic-plastic maps: F̄max, restitution and absorbed energy at (β, ζ, λ).
 
-The maps (``impactmaps/maps/data/NAME-yc.nc``, ``NAME-stronge.nc`` and ``NAME-epp.nc``, built by
+The maps (``impactmaps/maps/data/NAME-yc.npz``, ``NAME-stronge.npz`` and ``NAME-epp.npz``, built by
 ``validation/build_plastic_maps.py``; numbers and scales in
 :mod:`impactmaps.maps.plastic_points`) are interpolated linearly in (log β, log λ, log ζ).
 Each answer carries a band: over the eight map points around it, the largest of their own
@@ -76,9 +76,9 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
     dataset = read_shipped(name)
     if dataset is None:
-        raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
+        raise FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
                                 f"`python validation/build_plastic_maps.py --laws {law}`")
-    return require_map_law(dataset, law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}")
 
 
 @functools.lru_cache(maxsize=8)
