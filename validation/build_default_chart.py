@@ -5,7 +5,7 @@ The chart's sweep — SS Euler beam and SS square Kirchhoff plate
 :data:`~impactmaps.maps.chart.DEFAULT_CHART_LAMBDAS` × 200 log-spaced ζ over
 :data:`~impactmaps.maps.chart.DEFAULT_ZETA_RANGE`, default solver settings, for the linear
 law (ζ, λ) and the Hertz law (ζ_h, λ_h) — is computed and stored as
-``impactmaps/maps/data/results/<fingerprint>.nc``
+``impactmaps/maps/data/results/<fingerprint>.npz`` (packed, lossless: :mod:`impactmaps.maps.data_io`)
 (:mod:`impactmaps.maps.shipped_results`); results of other fingerprints (an earlier solver
 revision or grid) are deleted. ``impactmaps chart`` then starts from it as from a finished
 run (the README's first command draws the chart without compiling the integrator).
@@ -24,11 +24,10 @@ from __future__ import annotations
 
 import time
 
-import xarray as xr
-
 from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
 from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.shipped_results import SHIPPED_RESULTS, shipped_result_path
+from impactmaps.maps.data_io import read_dataset
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.sweep import log_grid, sweep, sweep_fingerprint
 
@@ -56,13 +55,13 @@ def main(argv=None) -> None:
         zetas, lambdas = zetas[[50, 100, 150]], lambdas[:2]
     targets = {law: args.out_dir / shipped_result_path(sweep_fingerprint(structures, zetas, lambdas, law=law)).name
                for law in CHART_LAWS}
-    for stale in args.out_dir.glob("*.nc"):
+    for stale in [*args.out_dir.glob("*.nc"), *args.out_dir.glob("*.npz")]:
         if stale not in targets.values() or args.force:
             stale.unlink()
             print(f"removed {stale.name}")
     for law, target in targets.items():
         if target.exists():
-            current = xr.load_dataset(target)
+            current = read_dataset(target)
             if all(name in current for name in ASYMPTOTE_PEAKS):
                 print(f"{law}: {target.name} is current")
             else:

@@ -24,6 +24,7 @@ import xarray as xr
 
 from impactmaps.maps.lookup import interpolation_error, map_file_stem
 from impactmaps.maps.refinement import MAX_LEVEL, refine
+from impactmaps.maps.data_io import read_dataset
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import structure_from_name
 from impactmaps.maps.points import solve_map_points
@@ -101,8 +102,8 @@ def build(structure_name: str, data: Path, out_dir: Path, work: Path | None, exe
     """Refine the map ``data/NAME.nc`` of a structure and law and write ``out_dir/NAME.nc``;
     returns the refinement's Dataset."""
     name = map_file_stem(structure_name, law)
-    with xr.open_dataset(data / f"{name}.nc", engine="scipy") as opened:
-        dataset = opened.load()
+    dataset = read_dataset(next((p for p in (data / f"{name}.nc", data / f"{name}.npz") if p.exists()),
+                                data / f"{name}.nc"))
     base = {key: dataset[key].isel(structure=0).values for key in BASE_VARIABLES}
     if cells is not None:  # smoke: a few cells of the map (λ slice, ζ slice)
         base = {key: value[cells] for key, value in base.items()}

@@ -73,9 +73,11 @@ def _plain(value):
 def shipped_data(limit: int | None = None) -> dict:
     out = {}
     data = Path(str(resources.files("impactmaps.maps").joinpath("data")))
-    for path in sorted(data.rglob("*.nc"))[:limit]:
-        with xr.open_dataset(path, engine="scipy") as opened:
-            out[f"data/{path.relative_to(data)}"] = _digest_dataset(opened.load())
+    from impactmaps.maps.data_io import read_dataset
+
+    for path in sorted([*data.rglob("*.nc"), *data.rglob("*.npz")])[:limit]:
+        # keyed without the suffix: a file packed (.npz) compares with its NetCDF (.nc) before
+        out[f"data/{path.relative_to(data).with_suffix('')}"] = _digest_dataset(read_dataset(path))
     return out
 
 

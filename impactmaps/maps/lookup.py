@@ -1,10 +1,10 @@
 """Design-rule lookups from the shipped maps: F̄max and regime without a simulation.
 
-The package ships precomputed maps (``impactmaps/maps/data/*.nc``, built by
+The package ships precomputed maps (``impactmaps/maps/data/*.npz``, built by
 ``validation/build_default_maps.py``) for simply supported structures struck at the
 centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
-plates (a/h = 20), each for the linear contact law (``NAME.nc``, axes ζ, λ) and for the
-Hertz law (``NAME-hertz.nc``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
+plates (a/h = 20), each for the linear contact law (``NAME.npz``, axes ζ, λ) and for the
+Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
 :mod:`impactmaps.hertz_similarity`). :func:`lookup` interpolates F̄max linearly in
 (log ζ, log λ); the interpolation error against direct simulation is measured by
 ``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
@@ -39,6 +39,7 @@ from .reader import (
     read_values,
     status_notes,
 )
+from .data_io import read_dataset, read_shipped, shipped_path
 from .dataset import ASYMPTOTE_PEAKS, map_law
 from .points import warn_point_loaded_mindlin
 from .refinement import Refinement
@@ -60,7 +61,7 @@ SHIPPED_MAPS = map_family("linear").shipped
 
 
 def map_file_stem(structure_name: str, law: str = "linear") -> str:
-    """File name (without ``.nc``) of the shipped map of a structure for a contact law.
+    """File name (without its suffix) of the shipped map of a structure for a contact law.
 
     The linear maps keep the structure's name (``plate-ssss-kirchhoff``); a map of
     another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
@@ -158,14 +159,13 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderne
     """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
     ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one)."""
     name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
-    source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
-    if not source.is_file():
+    dataset = read_shipped(name)
+    if dataset is None:
         raise FileNotFoundError(
-            f"shipped map {name}.nc is missing from the installation; rebuild it with "
+            f"shipped map {name} is missing from the installation; rebuild it with "
             f"`python validation/build_default_maps.py --law {law}`"
         )
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return require_map_law(opened.load(), law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}")
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
@@ -255,9 +255,10 @@ def _file_identity(name: str):
 
 @functools.lru_cache(maxsize=64)
 def _shipped_sources(name: str) -> tuple[str, str]:
-    """File-system paths of the shipped map ``name`` and of its refinement."""
-    data = resources.files("impactmaps.maps").joinpath("data")
-    return str(data.joinpath(f"{name}.nc")), str(data.joinpath("refinements", f"{name}.nc"))
+    """File-system paths of the shipped map ``name`` and of its refinement
+    (:func:`~impactmaps.maps.data_io.shipped_path`; "" where there is none)."""
+    sources = (shipped_path(name), shipped_path("refinements", name))
+    return tuple("" if source is None else str(source) for source in sources)
 
 
 @functools.lru_cache(maxsize=32)
@@ -271,24 +272,23 @@ def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
     files ``identity`` names, or (None) through :mod:`importlib.resources`."""
     law = key[2]
     if identity is None:
-        data = resources.files("impactmaps.maps").joinpath("data")
-        source, stored = data.joinpath(f"{name}.nc"), data.joinpath("refinements", f"{name}.nc")
-        if not source.is_file():
+        source, stored = shipped_path(name), shipped_path("refinements", name)
+        if source is None:
             script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
-            raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
+            raise FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
                                     f"`python validation/{script} {law}`")
-        sources = (source, stored if stored.is_file() else None)
+        sources = (source, stored)
     else:
         sources = tuple(None if entry is None else Path(entry[0]) for entry in identity)
-    dataset = require_map_law(_load(sources[0]), law, f"shipped map {name}.nc")
+    dataset = require_map_law(_load(sources[0]), law, f"shipped map {name}")
     refinement = None if sources[1] is None else refinement_of(_load(sources[1]), dataset, f"the shipped map {name}")
     return prepare_map(dataset, map_family(law), refinement)
 
 
 def _load(source) -> xr.Dataset:
-    """A NetCDF file (a path or a package resource) read into memory."""
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return opened.load()
+    """A map file (a path or a package resource; packed or NetCDF) read into memory."""
+    with resources.as_file(source) as path:
+        return read_dataset(path)
 
 
 def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
@@ -364,18 +364,16 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
 @functools.lru_cache(maxsize=32)
 def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
                             slenderness: float | None = None) -> Refinement | None:
-    """The refinement shipped with a map (``data/refinements/NAME.nc``,
+    """The refinement shipped with a map (``data/refinements/NAME.npz``,
     :mod:`impactmaps.maps.refinement`), or None where the map has none.
 
     A refinement built for another version of the map (its ``base_fingerprint`` is not
     the map's fingerprint) is not used: a warning says so and the map is read alone.
     """
     name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
-    source = resources.files("impactmaps.maps").joinpath("data", "refinements", f"{name}.nc")
-    if not source.is_file():
+    stored = read_shipped("refinements", name)
+    if stored is None:
         return None
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        stored = opened.load()
     return refinement_of(stored, load_shipped_map(structure, theory, law, slenderness), f"the shipped map {name}")
 
 
@@ -389,7 +387,7 @@ def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map"
         warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
                       "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
-    return Refinement.from_dataset(stored)
+    return Refinement.from_dataset(stored, dataset["fmax_normalised"].isel(structure=0).values)
 
 
 def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):

@@ -1,6 +1,6 @@
 """Lookups in the shipped elastic-plastic maps: F̄max, restitution and absorbed energy at (β, ζ, λ).
 
-The maps (``impactmaps/maps/data/NAME-yc.nc``, ``NAME-stronge.nc`` and ``NAME-epp.nc``, built by
+The maps (``impactmaps/maps/data/NAME-yc.npz``, ``NAME-stronge.npz`` and ``NAME-epp.npz``, built by
 ``validation/build_plastic_maps.py``; numbers and scales in
 :mod:`impactmaps.maps.plastic_points`) are interpolated linearly in (log β, log λ, log ζ).
 Each answer carries a band: over the eight map points around it, the largest of their own
@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from importlib import resources
 
 import xarray as xr
 
 from .._checks import require_choice
+from .data_io import read_shipped
 from .lookup import map_file_stem, require_map_law, shipped_reader
 from .plastic_points import PLASTIC_LAWS, YC
 from .reader import read_values
@@ -74,12 +74,11 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
     require_choice("law", law, tuple(PLASTIC_LAWS))
     require_choice("(structure, theory)", (structure, theory), tuple(PLASTIC_MAPS))
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
-    source = resources.files("impactmaps.maps").joinpath("data", f"{name}.nc")
-    if not source.is_file():
-        raise FileNotFoundError(f"shipped map {name}.nc is missing from the installation; rebuild it with "
+    dataset = read_shipped(name)
+    if dataset is None:
+        raise FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
                                 f"`python validation/build_plastic_maps.py --laws {law}`")
-    with resources.as_file(source) as path, xr.open_dataset(path, engine="scipy") as opened:
-        return require_map_law(opened.load(), law, f"shipped map {name}.nc")
+    return require_map_law(dataset, law, f"shipped map {name}")
 
 
 def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",

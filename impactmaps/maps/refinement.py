@@ -43,7 +43,7 @@ import xarray as xr
 from .accuracy import STATUSES
 
 __all__ = ["MAX_LEVEL", "REFINEMENT_VARIABLES", "SURPLUS_SAFETY", "Refinement", "Leaves", "locate", "interpolate",
-           "leaf_estimate", "refine"]
+           "leaf_estimate", "all_leaves", "refine"]
 
 #: Deepest split: leaf cells down to 1/2^MAX_LEVEL of the map's grid spacing per axis.
 MAX_LEVEL = 3
@@ -156,12 +156,49 @@ class Refinement:
         return out
 
     @classmethod
-    def from_dataset(cls, dataset: xr.Dataset) -> "Refinement":
-        """The refinement stored by :meth:`dataset`."""
+    def from_dataset(cls, dataset: xr.Dataset, base_fmax: np.ndarray | None = None) -> "Refinement":
+        """The refinement stored by :meth:`dataset`; one stored without ``surplus`` (a packed
+        shipped file) gets it recomputed from ``base_fmax``, the base map's F̄max as a (λ, ζ)
+        array (:meth:`recomputed_surplus`)."""
         shape = (int(dataset.attrs["lambda_points"]), int(dataset.attrs["zeta_points"]))
-        return cls(shape, np.asarray(dataset["code"].values, np.int64),
-                   {name: np.asarray(dataset[name].values) for name in REFINEMENT_VARIABLES},
-                   int(dataset.attrs["max_level"]))
+        stored = [name for name in REFINEMENT_VARIABLES if name in dataset]
+        out = cls(shape, np.asarray(dataset["code"].values, np.int64),
+                  {name: np.asarray(dataset[name].values) for name in stored}, int(dataset.attrs["max_level"]))
+        if "surplus" in stored:
+            return out
+        if base_fmax is None:
+            raise ValueError("this refinement is stored without its surplus: give base_fmax, the base map's "
+                             "fmax_normalised as a (λ, ζ) array, to recompute it")
+        return cls(shape, out.codes, out.values | {"surplus": out.recomputed_surplus(base_fmax)}, out.max_level)
+
+    def recomputed_surplus(self, base_fmax: np.ndarray) -> np.ndarray:
+        """Each point's surplus as :func:`refine` measured it, from the stored values (float32).
+
+        The point's F̄max against the interpolation of the cell or edge that made it: the mean of
+        the four corners of the cell whose centre it is (added in the order of
+        :meth:`Leaves.corners`), or of the two ends of the edge whose middle it is (lower end
+        first); 1 where that is not a number. The same operations as :func:`_add_points`, so
+        the same bits (checked on every shipped refinement by ``validation/pack_map_data.py``).
+        """
+        u, v = self.position(self.codes)
+        half = self.scale >> self.creation_level(u, v)
+        centre_u, centre_v = u % (2 * half) == half, v % (2 * half) == half
+        own = np.asarray(self.values["fmax_normalised"], float)
+        lattice = np.full(((self.shape[0] - 1) * self.scale + 1, self.width), np.nan)  # ~15 MB for a shipped map
+        lattice[::self.scale, ::self.scale] = np.asarray(base_fmax, float)
+        lattice[u, v] = own
+
+        def at(du, dv, where):
+            return lattice[u[where] + du * half[where], v[where] + dv * half[where]]
+
+        interpolated = np.full(u.shape, np.nan)
+        c = centre_u & centre_v
+        interpolated[c] = (((at(-1, -1, c) + at(1, -1, c)) + at(-1, 1, c)) + at(1, 1, c)) / 4.0
+        e = centre_u & ~centre_v  # the middle of an edge along λ
+        interpolated[e] = (at(-1, 0, e) + at(1, 0, e)) / 2.0
+        e = ~centre_u & centre_v  # along ζ
+        interpolated[e] = (at(0, -1, e) + at(0, 1, e)) / 2.0
+        return np.nan_to_num(np.abs(own - interpolated), nan=1.0).astype(REFINEMENT_VARIABLES["surplus"])
 
 
 @dataclass(frozen=True)
@@ -259,6 +296,20 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     node = np.sum(used, axis=0) == 1
     error = np.where(node, own, own + leaf_estimate(refinement, leaves, base_estimate, used))
     return values, error, codes
+
+
+def all_leaves(refinement: Refinement) -> Leaves:
+    """Every leaf cell of a refinement: the map's grid cells, each split where its centre is a point."""
+    scale = refinement.scale
+    rows, cols = np.meshgrid(np.arange(refinement.shape[0] - 1), np.arange(refinement.shape[1] - 1), indexing="ij")
+    leaves = Leaves(np.zeros(rows.size, int), rows.ravel() * scale, cols.ravel() * scale,
+                    np.full(rows.size, scale, np.int64))
+    while True:
+        _, split = refinement.index(refinement.code(*leaves.centre()))
+        split &= leaves.side > 1
+        if not split.any():
+            return leaves
+        leaves = _children(leaves, split)
 
 
 def leaf_estimate(refinement: Refinement, leaves: Leaves, base_estimate: np.ndarray, used=None) -> np.ndarray:

@@ -6,7 +6,7 @@ the result's fingerprint (:func:`impactmaps.maps.store.fingerprint`). The packag
 the results of the sweeps behind the default charts (``impactmaps chart`` and
 ``impactmaps chart --law hertz`` with no other option: SS Euler beam and SS square
 Kirchhoff plate, 8 λ × 200 ζ; built by ``validation/build_default_chart.py``) as
-``data/results/<fingerprint>.nc``. A sweep whose
+``data/results/<fingerprint>.npz`` (:mod:`.data_io`). A sweep whose
 fingerprint names a shipped result starts from it as from a finished run to resume: no
 point is computed again, and the values are those the same code computed (a default test
 recomputes a sample of its points; the slow test all of them). Any other grid, setting or
@@ -22,17 +22,21 @@ from pathlib import Path
 
 import xarray as xr
 
+from .data_io import PACKED_SUFFIX
 from .store import StoreMismatchError, load_matching
 
 __all__ = ["SHIPPED_RESULTS", "shipped_result_path", "load_shipped_result"]
 
-#: Folder of the shipped sweep results, one NetCDF per fingerprint.
+#: Folder of the shipped sweep results, one packed file per fingerprint.
 SHIPPED_RESULTS = Path(str(resources.files("impactmaps.maps").joinpath("data", "results")))
 
 
 def shipped_result_path(digest: str) -> Path:
-    """Where the shipped result of the sweep with fingerprint ``digest`` is (or would be)."""
-    return SHIPPED_RESULTS / f"{digest}.nc"
+    """Where the shipped result of the sweep with fingerprint ``digest`` is (or would be):
+    ``<digest>.npz`` (packed, :mod:`.data_io`), or a ``<digest>.nc`` not yet packed."""
+    packed = SHIPPED_RESULTS / f"{digest}{PACKED_SUFFIX}"
+    legacy = SHIPPED_RESULTS / f"{digest}.nc"
+    return legacy if legacy.exists() else packed  # a .nc is read first (data_io.shipped_path)
 
 
 def load_shipped_result(digest: str, description: dict | None = None) -> xr.Dataset | None:

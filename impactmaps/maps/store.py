@@ -1,4 +1,4 @@
-"""A resumable, atomic store for sweep results (one NetCDF file).
+"""A resumable, atomic store for sweep results (one NetCDF file, or a packed ``.npz``: :mod:`.data_io`).
 
 The file holds the whole result grid; points not yet computed are marked in the
 ``done`` variable. Every save writes a temporary file beside the target and renames it
@@ -23,6 +23,7 @@ from pathlib import Path
 import xarray as xr
 
 from ..jsonio import dumps
+from .data_io import PACKED_SUFFIX, read_dataset, write_dataset
 
 __all__ = ["fingerprint", "save_atomic", "load_matching", "remove_stale_temporaries",
            "StoreMismatchError", "SweepInterrupted"]
@@ -56,15 +57,16 @@ def fingerprint(description: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-def save_atomic(dataset: xr.Dataset, path: str | os.PathLike) -> Path:
-    """Write ``dataset`` to ``path`` (NetCDF3 via scipy) atomically; return the path."""
+def save_atomic(dataset: xr.Dataset, path: str | os.PathLike, **options) -> Path:
+    """Write ``dataset`` to ``path`` atomically; return the path. NetCDF3 via scipy, or the
+    packed format for a ``.npz`` path (``options``: :func:`impactmaps.maps.data_io.write_dataset`'s)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     temporary = path.parent / f".{path.name}.{secrets.token_hex(4)}.tmp"
     # os.open applies the umask to 0o666 like any other output (mkstemp would give 0600)
     os.close(os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
     try:
-        dataset.to_netcdf(temporary, engine="scipy", format="NETCDF3_64BIT")
+        write_dataset(dataset, temporary, packed=path.suffix == PACKED_SUFFIX, **options)
         os.replace(temporary, path)
     except BaseException:
         if os.path.exists(temporary):
@@ -130,9 +132,8 @@ def load_matching(path: str | os.PathLike, expected_fingerprint: str,
     if not path.exists():
         return None
     try:
-        with xr.open_dataset(path, engine="scipy") as opened:
-            dataset = opened.load()
-    except Exception as error:  # corrupted, truncated or not NetCDF at all
+        dataset = read_dataset(path)
+    except Exception as error:  # corrupted, truncated or not NetCDF (or a packed file) at all
         raise StoreMismatchError(
             f"result file {str(path)!r} cannot be read as an impactmaps sweep ({error}); "
             "delete it or choose another output path"

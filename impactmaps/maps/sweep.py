@@ -4,7 +4,7 @@ A sweep solves every point of a grid — structures × the family's axes (λ, ζ
 for an elastic-plastic family) — with :func:`~impactmaps.maps.points.solve_map_points`.
 Work is split into chunks of points sharing one structure and every axis but ζ; each
 chunk is solved in a worker (any :class:`concurrent.futures.Executor`: local processes
-by default, a Dask cluster through ``dask.distributed.Client.get_executor()``).
+by default, a Dask cluster given its ``dask.distributed.Client``: :mod:`.dask_backend`).
 Finished chunks are written to the result file atomically as they complete, so an
 interrupted sweep resumes where it stopped, whatever the family.
 """
@@ -125,9 +125,11 @@ def sweep(
         the same path computes only the missing points. A file made with other
         settings is refused (``ValueError`` naming the keys that changed) unless
         ``overwrite``. Temporaries of an interrupted save are removed.
-    executor : concurrent.futures.Executor, optional
-        Where chunks run (e.g. ``dask.distributed.Client(...).get_executor()``).
-        Default: a local process pool over the machine's cores.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where chunks run. A Dask client (or its ``get_executor()``) first gets
+        :func:`~impactmaps.maps.workers.init_worker` on every worker
+        (:mod:`impactmaps.maps.dask_backend`). Default: a local process pool over the
+        machine's cores.
     max_workers : int, optional
         Size of the default process pool (default: ``os.cpu_count()``); 1 runs inline.
     progress : bool
@@ -315,6 +317,10 @@ def _run(tasks, settings: ModalSettings, executor: Executor | None, max_workers:
             if executor is None:
                 # one BLAS thread per worker; workers ignore Ctrl-C: the parent saves and stops them
                 own_executor = executor = ProcessPoolExecutor(max_workers=workers, initializer=init_worker)
+            elif type(executor).__module__.startswith("distributed."):  # the same set-up on Dask's workers
+                from .dask_backend import dask_executor
+
+                executor = dask_executor(executor)
             _run_on_executor(executor, tasks, settings, results, stop, family)
     except KeyboardInterrupt:
         stop.append(signal.SIGINT)
