@@ -26,7 +26,7 @@ kind = "beam"
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
-            "restitution", "init", "check", "materials", "laws")
+            "restitution", "init", "check", "warm-up", "materials", "laws")
 
 
 def _invocations(tmp_path):
@@ -46,6 +46,8 @@ def _invocations(tmp_path):
         "restitution": ["restitution", "--beta", "1e8"],
         "init": ["init", "plate", str(tmp_path / "plate.toml")],
         "check": ["check", str(EXAMPLES / "steel_plate_hertz.toml")],
+        # in this process: the kernels the commands above compiled are reused, the rest compiled once
+        "warm-up": ["warm-up", "--workers", "1"],
         "materials": ["materials"],
         "laws": ["laws"],
     }

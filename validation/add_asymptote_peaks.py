@@ -10,7 +10,8 @@ and written back through :func:`impactmaps.maps.store.save_atomic`; every other 
 attribute is left as it was (checked: the script refuses to write a map whose other
 variables would change). Deterministic: the peaks are the family's asymptotes at the grid
 values. The plastic maps have no regimes and are left alone. A map that already stores the
-peaks is skipped.
+peaks is skipped. A packed map (``.npz``) is read and written as NetCDF beside it (the
+reader takes the ``.nc`` first); ``python validation/pack_map_data.py`` then packs it.
 
     python validation/add_asymptote_peaks.py                 # the package's maps, in place
     python validation/add_asymptote_peaks.py --smoke         # one linear map, copied into a temporary directory
@@ -18,13 +19,13 @@ peaks is skipped.
 
 from __future__ import annotations
 
-import shutil
 import time
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
+from impactmaps.maps.data_io import read_dataset
 from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, map_law, with_asymptote_peaks
 from impactmaps.maps.registry import map_family
 from impactmaps.maps.store import save_atomic
@@ -57,22 +58,25 @@ def same_data(before: xr.Dataset, after: xr.Dataset) -> bool:
 
 
 def add_peaks(path: Path) -> str:
-    """Add the asymptote peaks to the map at ``path`` (in place); what was done, in words."""
-    with xr.open_dataset(path, engine="scipy") as opened:
-        dataset = opened.load()
+    """Add the asymptote peaks to the map at ``path`` (written as ``.nc`` beside a packed one, in
+    place otherwise); what was done, in words."""
+    dataset = read_dataset(path)
     if not map_family(map_law(dataset)).classifies:
         return "no regimes (left alone)"
     if all(name in dataset for name in ASYMPTOTE_PEAKS):
         return "already stores its asymptote peaks"
     start = time.perf_counter()
-    original = path.read_bytes()
-    save_atomic(with_asymptote_peaks(dataset), path)
-    with xr.open_dataset(path, engine="scipy") as opened:
-        written = opened.load()
-    if not same_data(dataset, written):
-        path.write_bytes(original)
+    target = path.with_suffix(".nc")
+    original = target.read_bytes() if target.is_file() else None
+    save_atomic(with_asymptote_peaks(dataset), target)
+    if not same_data(dataset, read_dataset(target)):
+        if original is None:
+            target.unlink()
+        else:
+            target.write_bytes(original)
         raise RuntimeError(f"{path.name}: writing the peaks would change another variable (left as it was)")
-    return f"asymptote peaks added ({time.perf_counter() - start:.1f} s)"
+    packed = " (written as NetCDF beside it: run validation/pack_map_data.py)" if target != path else ""
+    return f"asymptote peaks added ({time.perf_counter() - start:.1f} s){packed}"
 
 
 def _options(parser) -> None:
@@ -81,14 +85,19 @@ def _options(parser) -> None:
 
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
-    paths = sorted(DATA.glob("*.nc"))
+    stems = sorted({path.stem for path in DATA.iterdir() if path.suffix in (".nc", ".npz")})
+    paths = [DATA / f"{stem}.nc" if (DATA / f"{stem}.nc").is_file() else DATA / f"{stem}.npz" for stem in stems]
     if args.only:
         paths = [path for path in paths if path.stem in args.only]
-    if args.smoke:  # a copy of the smallest linear map, never the package's
+    if args.smoke:  # the smallest linear map without its peaks, in a temporary directory
         source = min((p for p in paths if p.stem.startswith("plate-ssss-mindlin-s10")), key=lambda p: p.stat().st_size)
-        paths = [Path(shutil.copy(source, args.out_dir / source.name))]
+        paths = [args.out_dir / f"{source.stem}.nc"]
+        save_atomic(read_dataset(source).drop_vars(ASYMPTOTE_PEAKS, errors="ignore"), paths[0])
     elif args.out_dir != DATA:
-        paths = [Path(shutil.copy(path, args.out_dir / path.name)) for path in paths]
+        paths = [args.out_dir / f"{path.stem}.nc" for path in paths]
+        for path, stem in zip(paths, (p.stem for p in paths)):
+            save_atomic(read_dataset(DATA / f"{stem}.nc" if (DATA / f"{stem}.nc").is_file() else DATA / f"{stem}.npz"),
+                        path)
     for path in paths:
         print(f"{path.name}: {add_peaks(path)}")
 

@@ -53,7 +53,7 @@ def shipped_keys() -> list[tuple]:
         for structure, theory in SHIPPED_MAPS:
             for slenderness in (None, 10.0, 50.0) if theory in ("timoshenko", "mindlin") else (None,):
                 name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
-                if (data / f"{name}.nc").is_file():
+                if any((data / f"{name}{suffix}").is_file() for suffix in (".nc", ".npz")):
                     keys.append((structure, theory, law, slenderness))
     keys += [(structure, theory, law, None) for law in PLASTIC_LAWS for structure, theory in PLASTIC_MAPS]
     return keys

@@ -66,8 +66,7 @@ def use_data(folder: Path) -> None:
 
     lookup_module.read_shipped = plastic_lookup.read_shipped = read_shipped
     for cached in (lookup_module.load_shipped_map, lookup_module.load_shipped_refinement,
-                   lookup_module._interpolation_error_grid, plastic_lookup.load_plastic_map,
-                   plastic_lookup._band_grids):
+                   plastic_lookup.load_plastic_map):
         cached.cache_clear()
 
 
@@ -91,13 +90,12 @@ def answers(key, numbers) -> dict:
     if law in ("yc", "stronge", "epp"):
         dataset = plastic_lookup.load_plastic_map(structure, theory, law)
         logs = _logs(dataset, ("beta", "zeta", "lambda_"), numbers)
-        values, errors, codes = reader._read_cube(dataset, map_family(law), logs,
-                                                  plastic_lookup._band_grids(structure, theory, law))
+        values, errors, codes = reader._read_cube(reader.prepare_map(dataset, map_family(law)), map_family(law), logs)
     else:
         dataset = lookup_module.load_shipped_map(structure, theory, law, slenderness)
         refinement = lookup_module.load_shipped_refinement(structure, theory, law, slenderness)
         logs = _logs(dataset, ("zeta", "lambda_"), numbers)
-        values, errors, codes = reader._read_plane(dataset, logs, refinement, lookup_module._interpolation_error_grid(key))
+        values, errors, codes = reader._read_plane(reader.prepare_map(dataset, map_family(law), refinement), logs)
         values = {"fmax_normalised": values["fmax_normalised"]}
     status = np.atleast_1d(reader.corner_status(codes, errors["fmax_error"])).ravel().astype(object)
     refused = (status == "unresolved") | ~np.isfinite(values["fmax_normalised"])

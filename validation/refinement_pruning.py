@@ -33,13 +33,14 @@ sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 from impactmaps.maps import lookup as lookup_module  # noqa: E402
 from impactmaps.maps import reader  # noqa: E402
 from impactmaps.maps.refinement import Refinement  # noqa: E402
+from impactmaps.maps.registry import map_family  # noqa: E402
 
 
 def read(key, refinement, numbers):
     """(F̄max, band, status) at ``numbers`` of the map ``key`` read with ``refinement``."""
     dataset = lookup_module.load_shipped_map(*key)
-    values, errors, codes = reader._read_plane(dataset, _logs(dataset, ("zeta", "lambda_"), numbers), refinement,
-                                               lookup_module._interpolation_error_grid(key))
+    values, errors, codes = reader._read_plane(reader.prepare_map(dataset, map_family(key[2]), refinement),
+                                               _logs(dataset, ("zeta", "lambda_"), numbers))
     status = np.asarray(reader.corner_status(codes, errors["fmax_error"]))
     return values["fmax_normalised"], errors["fmax_error"], status
 
