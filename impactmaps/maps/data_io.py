@@ -36,7 +36,7 @@ import numpy as np
 import xarray as xr
 
 __all__ = ["PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "shipped_path",
-           "read_shipped"]
+           "read_shipped", "read_resource"]
 
 #: Suffix of a packed dataset (a NumPy ``.npz`` archive with a JSON header).
 PACKED_SUFFIX = ".npz"
@@ -99,8 +99,11 @@ def shipped_path(*parts: str):
 def read_shipped(*parts: str) -> xr.Dataset | None:
     """The shipped dataset ``data/<parts>`` (:func:`shipped_path`), or None if there is none."""
     source = shipped_path(*parts)
-    if source is None:
-        return None
+    return None if source is None else read_resource(source)
+
+
+def read_resource(source) -> xr.Dataset:
+    """:func:`read_dataset` of a path or a package resource (an importlib ``Traversable``)."""
     with resources.as_file(source) as path:
         return read_dataset(path)
 

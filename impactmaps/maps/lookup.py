@@ -20,7 +20,6 @@ import functools
 import os
 import warnings
 from dataclasses import dataclass, replace
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +38,7 @@ from .reader import (
     read_values,
     status_notes,
 )
-from .data_io import read_dataset, read_shipped, shipped_path
+from .data_io import read_resource, read_shipped, shipped_path
 from .dataset import ASYMPTOTE_PEAKS, map_law
 from .points import warn_point_loaded_mindlin
 from .refinement import Refinement
@@ -48,7 +47,7 @@ from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
+           "require_map_law", "missing_shipped_map", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
            "read_map", "answer_status", "corner_status", "status_notes", "interpolation_error", "design_formula",
            "markdown_table"]
 
@@ -161,11 +160,16 @@ def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderne
     name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
     dataset = read_shipped(name)
     if dataset is None:
-        raise FileNotFoundError(
-            f"shipped map {name} is missing from the installation; rebuild it with "
-            f"`python validation/build_default_maps.py --law {law}`"
-        )
+        raise missing_shipped_map(name, law)
     return require_map_law(dataset, law, f"shipped map {name}")
+
+
+def missing_shipped_map(name: str, law: str) -> FileNotFoundError:
+    """The error for a shipped map ``name`` of the contact law ``law`` that the installation
+    lacks, naming the script that rebuilds it."""
+    script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
+    return FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
+                             f"`python validation/{script} {law}`")
 
 
 def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
@@ -274,21 +278,13 @@ def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
     if identity is None:
         source, stored = shipped_path(name), shipped_path("refinements", name)
         if source is None:
-            script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
-            raise FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
-                                    f"`python validation/{script} {law}`")
+            raise missing_shipped_map(name, law)
         sources = (source, stored)
     else:
         sources = tuple(None if entry is None else Path(entry[0]) for entry in identity)
-    dataset = require_map_law(_load(sources[0]), law, f"shipped map {name}")
-    refinement = None if sources[1] is None else refinement_of(_load(sources[1]), dataset, f"the shipped map {name}")
+    dataset = require_map_law(read_resource(sources[0]), law, f"shipped map {name}")
+    refinement = None if sources[1] is None else refinement_of(read_resource(sources[1]), dataset, f"the shipped map {name}")
     return prepare_map(dataset, map_family(law), refinement)
-
-
-def _load(source) -> xr.Dataset:
-    """A map file (a path or a package resource; packed or NetCDF) read into memory."""
-    with resources.as_file(source) as path:
-        return read_dataset(path)
 
 
 def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,

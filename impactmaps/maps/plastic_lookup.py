@@ -22,7 +22,7 @@ import xarray as xr
 
 from .._checks import require_choice
 from .data_io import read_shipped
-from .lookup import map_file_stem, require_map_law, shipped_reader
+from .lookup import map_file_stem, missing_shipped_map, require_map_law, shipped_reader
 from .plastic_points import PLASTIC_LAWS, YC
 from .reader import read_values
 from .registry import map_family
@@ -76,8 +76,7 @@ def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
     name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
     dataset = read_shipped(name)
     if dataset is None:
-        raise FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
-                                f"`python validation/build_plastic_maps.py --laws {law}`")
+        raise missing_shipped_map(name, law)
     return require_map_law(dataset, law, f"shipped map {name}")
 
 
