@@ -22,6 +22,25 @@ VALIDATION = ROOT / "validation"
 #: Small data files of the tests (``tests/data/``).
 DATA = ROOT / "tests" / "data"
 
+#: A Hertz impact of a 12.7 mm steel ball at 1 m/s on a simply supported 500 × 20 × 20 mm
+#: aluminium Euler beam struck at mid-span (case-file text, no name): the family of the
+#: shipped Hertz beam map, so ``lookup`` answers from it.
+HERTZ_BEAM_CASE = """[impactor]
+radius = 0.00635
+material = "structural-steel"
+velocity = 1.0
+[target]
+type = "beam"
+length = 0.5
+width = 0.02
+height = 0.02
+supports = "ss"
+theory = "euler"
+material = "aluminium-6061-t6"
+[contact]
+law = "hertz"
+"""
+
 
 def _refuse_constant(name):
     raise ValueError(f"not strict JSON: {name}")

@@ -25,6 +25,8 @@ from hypothesis import strategies as st
 
 from impactmaps.cli import build_parser, main
 
+from .helpers import HERTZ_BEAM_CASE
+
 #: In-process memory ceiling: the peak resident set of this test process may grow by no
 #: more than this while fuzzing (ru_maxrss is a high-water mark, so one bad example shows).
 MEMORY_LIMIT_BYTES = 1 << 30
@@ -34,24 +36,7 @@ HEAVY = {"chart", "point", "classify", "sweep", "simulate", "fd", "lookup", "war
 BAD_NUMBERS = ("nan", "inf", "-inf", "-1", "0", "1e300", "-1e300", "abc", "")
 EDGE_NUMBERS = BAD_NUMBERS + ("1e-300", "1e-6", "0.5", "1", "2", "20", "1e6")
 
-HERTZ_BEAM = """name = "fuzz"
-[impactor]
-radius = 0.00635
-material = "structural-steel"
-velocity = 1.0
-[target]
-type = "beam"
-length = 0.5
-width = 0.02
-height = 0.02
-supports = "ss"
-theory = "euler"
-material = "aluminium-6061-t6"
-[contact]
-law = "hertz"
-[solver]
-duration = 0.0005
-"""
+HERTZ_BEAM = 'name = "fuzz"\n' + HERTZ_BEAM_CASE + "[solver]\nduration = 0.0005\n"
 
 FD_BEAM = HERTZ_BEAM.replace('law = "hertz"', 'law = "stronge"').replace(
     "[solver]\n", '[solver]\nkind = "fd"\n').replace('material = "aluminium-6061-t6"', 'material = "structural-steel"') \

@@ -10,25 +10,9 @@ import pytest
 
 from impactmaps.cli import main
 
-#: A Hertz impact on a simply supported Euler beam struck at mid-span: the family of the
-#: shipped Hertz beam map, so ``lookup`` answers from it.
-HERTZ_BEAM = """
-name = "hertz beam"
-[impactor]
-radius = 0.00635
-material = "structural-steel"
-velocity = 1.0
-[target]
-type = "beam"
-length = 0.5
-width = 0.02
-height = 0.02
-supports = "ss"
-theory = "euler"
-material = "aluminium-6061-t6"
-[contact]
-law = "hertz"
-"""
+from .helpers import HERTZ_BEAM_CASE
+
+HERTZ_BEAM = 'name = "hertz beam"\n' + HERTZ_BEAM_CASE
 
 
 def _json(argv, capsys) -> dict:
