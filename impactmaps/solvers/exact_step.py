@@ -48,7 +48,14 @@ from ..contact.base import KERNEL_TYPE
 from ._peak import parabolic_peak
 from .contact_events import locate_event, solve_end_force
 from .coupled_contact import contact_phase
-from .free_flight import FREE_POWERS, damping_work, free_step, no_reimpact_possible, out_of_time
+from .free_flight import (
+    FREE_POWERS,
+    damping_work,
+    free_doublings,
+    no_reimpact_possible,
+    out_of_time,
+    record_free_inside,
+)
 from .history_rows import new_history, record_row, structure_energy
 from .kernel_types import (
     COUPLED_TYPE,
@@ -56,12 +63,11 @@ from .kernel_types import (
     MODES_TYPE,
     RUN_TYPE,
     SCALARS_TYPE,
-    Flight,
     KernelScalars,
     Work,
 )
 from .lazy_kernel import LazyKernel
-from .oscillator_step import fill_step_coefficients, predict_step
+from .oscillator_step import fill_step_coefficients, predict_step, propagate_free, square_free_propagators
 
 __all__ = ["integrate_impact"]
 
@@ -183,90 +189,47 @@ def _workspace(modes, impact, run):
 
 
 @numba.njit(cache=True, inline="always")
-def _exact_contact(coupled, modes, linear_stiffness, work, state, q, v, history, rec):
+def _exact_contact(coupled, modes, linear_stiffness, work, start, q, v, history, rec):
     """Exact contact stage: one contact phase through the coupled modes from the touchdown
-    at ``state`` (:func:`~impactmaps.solvers.coupled_contact.contact_phase`); q and v are
-    overwritten with the state at its end. Returns (state, history, rec)."""
-    before = state.steps
+    at ``start`` = (t, w_i, v_i, α_max, in contact, peak, peak time, steps, intervals
+    written, overflow) (:func:`~impactmaps.solvers.coupled_contact.contact_phase`); q and v
+    are overwritten with the state at its end. Returns the same tuple with the force (0 after
+    a separation) after v_i, then history, rec."""
+    t0, wi, vi, alpha_max, in_contact, peak, peak_time, before, n_intervals, overflow = start
     t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
-        coupled, modes, (work.max_time, work.max_steps),
-        (state.t, state.wi, state.vi, state.peak, state.peak_time, state.steps), q, v, work.record, history, rec)
-    alpha_max, in_contact, n_intervals, overflow = state.alpha_max, state.in_contact, state.n_intervals, state.overflow
+        coupled, modes, (work.max_time, work.max_steps), (t0, wi, vi, peak, peak_time, before), q, v, work.record,
+        history, rec)
     if steps > before:
-        n_intervals, full = _mark_contact(work.intervals, n_intervals, 0, state.t)
+        n_intervals, full = _mark_contact(work.intervals, n_intervals, 0, t0)
         overflow = max(overflow, full)
         alpha_max = max(alpha_max, peak / linear_stiffness)
         in_contact = not separated
         if separated:
             n_intervals, full = _mark_contact(work.intervals, n_intervals, 1, t)
             overflow = max(overflow, full)
-    state = Flight(t, wi, vi, force, alpha_max, in_contact, False, state.damping_work, peak, peak_time, -1.0, 0.0,
-                   steps, n_intervals, overflow)
-    return state, history, rec
+    return (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow), history, rec
 
 
-@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
-def _sampled_step(kernel, params, linear_stiffness, modes, impact, work, state, modal, history, rec):
-    """One step of h with the force going linearly from ``state.force`` to the implicit end
-    force; a contact event inside it cuts the step short at the event.
+@numba.njit(cache=True, inline="always")
+def _cut_at_event(law, modes, mass, work, start, force, gap_end, separation):
+    """Event stage of a sampled step from ``start`` = (w_i, v_i, q, v, qn, vn) with the force
+    ``force`` [N]: the instant s [s] of the separation or touchdown inside the step
+    (``law`` = (kernel, params, linear stiffness, α_max); ``gap_end`` the predicted gap at
+    the step's end [m]) and, when s > 0, the state there (modes into qn, vn).
 
-    ``modal`` = (q, v, qn, vn): the modal state and where the state at the end goes.
-    Returns (state, swap, finished, history, rec): ``swap`` says that the state at the end
-    is in (qn, vn) (False: an event at the step's start), ``finished`` that re-impact has
-    become impossible.
-    """
-    omega, phi, zeta, residual = modes.frequencies, modes.participation, modes.damping_ratios, modes.residual
-    q, v, qn, vn = modal
-    h, mass, coef, compliance_h = work.h, impact.mass, work.coef, work.compliance_h
-    t, wi, vi, force, alpha_max = state.t, state.wi, state.vi, state.force, state.alpha_max
-    in_contact, starting, damping = state.in_contact, state.starting, state.damping_work
-    n_intervals, overflow = state.n_intervals, state.overflow
-    wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
-    f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
-    separation, touchdown = _contact_event(force, f_new, starting)
-    uniform = not (separation or touchdown)
-    swap = True
-    if uniform:
-        wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
+    Returns (s, swap, w_i, v_i, damping work over s [J]); ``swap`` says that the state at s
+    is in (qn, vn) (False: the event is at the step's start and nothing moved)."""
+    kernel, params, linear_stiffness, alpha_max = law
+    wi, vi, q, v, qn, vn = start
+    s, ready = locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, (wi, vi, q, v), force,
+                            gap_end, separation, (work.sub, work.q_try, work.v_try), work.h)
+    swap = s > 0.0
+    damping = 0.0
+    if swap:
+        wi, vi = _advance_to_event(modes, mass, (wi, vi, q, v), force, s, ready, work.sub, qn, vn)
         if work.damped:
-            damping += damping_work(omega, zeta, v, vn, h)
-        if f_new > 0.0:
-            if not in_contact:
-                in_contact = True
-                n_intervals, full = _mark_contact(work.intervals, n_intervals, 0, t)
-                overflow = max(overflow, full)
-            alpha = wi - wt - residual * f_new
-            if alpha > alpha_max:
-                alpha_max = alpha
-        force = f_new
-        starting = False
-        t += h
-    else:
-        s, ready = locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, (wi, vi, q, v), force,
-                                wi_p - wt_p, separation, (work.sub, work.q_try, work.v_try), h)
-        swap = s > 0.0
-        if swap:
-            wi, vi = _advance_to_event(modes, mass, (wi, vi, q, v), force, s, ready, work.sub, qn, vn)
-            if work.damped:
-                damping += damping_work(omega, zeta, v, vn, s)
-        if separation:
-            n_intervals, full = _mark_contact(work.intervals, n_intervals, 1, t + s)
-            overflow = max(overflow, full)
-            in_contact = False
-        else:
-            starting = True  # contact begins at the start of the next step
-        force = 0.0
-        t += s  # the next step starts at the event, with the full step h
-    steps = state.steps + 1
-    peak, peak_time, f_prev2, f_prev1 = _track_peak(state.peak, state.peak_time, state.f_prev2, state.f_prev1,
-                                                    force, t, h, uniform)
-    q_end, v_end = (qn, vn) if swap else (q, v)
-    if work.record:
-        history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q_end, v_end)
-    finished = force == 0.0 and steps % 8 == 0 and no_reimpact_possible(omega, phi, q_end, v_end, wi, vi)
-    state = Flight(t, wi, vi, force, alpha_max, in_contact, starting, damping, peak, peak_time, f_prev2, f_prev1,
-                   steps, n_intervals, overflow)
-    return state, swap, finished, history, rec
+            damping = damping_work(modes.frequencies, modes.damping_ratios, v, vn, s)
+    return s, swap, wi, vi, damping
 
 
 #: The signatures of :data:`integrate_impact` by ``exact_phase`` (without / with the exact contact phase).
@@ -306,78 +269,160 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
     intervals : (n_intervals, 2) array of contact start/end times [s].
     scalars : KernelScalars
     """
-    n = modes.frequencies.shape[0]
     work = _workspace(modes, impact, run)
-    q = np.zeros(n)
-    v = np.zeros(n)
-    qn = np.empty(n)
-    vn = np.empty(n)
     history = new_history(min(work.max_steps + 1, 4096) if run.record else 1, run.max_rows)
     rec = 0
     if run.record:
         history.table[0, 4] = impact.velocity
         rec = 1
+    n = modes.frequencies.shape[0]
+    q = np.zeros(n)
+    v = np.zeros(n)
+    state, hit_limit, swapped, history, rec = _impact_loop(kernel, params, linear_stiffness, modes, impact,
+                                                          (q, v, np.empty(n), np.empty(n)), work, coupled,
+                                                          exact_phase, (history, rec, run.stop))
+    return _finish(modes, work, state, swapped, history, rec, hit_limit, run.record and rec >= run.max_rows)
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, coupled, exact_phase, output):
+    """The integrator's loop over the stages of the module docstring, its state in local
+    variables (passing it through stage calls cost ~45 % of a cheap run, measured).
+
+    ``modal`` = (q, v, qn, vn): the modal state at touchdown (zero) and scratch; ``output``
+    = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact, peak, peak time,
+    steps, intervals written, overflow, damping work), hit_limit, (q, v) at the end,
+    history, rec).
+    """
+    omega, phi, zeta, residual = modes.frequencies, modes.participation, modes.damping_ratios, modes.residual
+    h, max_time, max_steps, record, compliance_h, damped = (work.h, work.max_time, work.max_steps, work.record,
+                                                            work.compliance_h, work.damped)
+    coef, free_coef, free_ready, intervals = work.coef, work.free_coef, work.free_ready, work.intervals
+    q, v, qn, vn = modal
+    history, rec, stop = output
     # the sphere touches the surface at t = 0 (``starting``); steps: int64, not a literal 0
-    state = Flight(0.0, 0.0, impact.velocity, 0.0, 0.0, False, True, 0.0, 0.0, 0.0, -1.0, -1.0, np.int64(0),
-                   np.int64(0), 0.0)
+    mass, vi = impact
+    t, wi, force, alpha_max, in_contact, starting, damping = 0.0, 0.0, 0.0, 0.0, False, True, 0.0
+    peak, peak_time, f_prev2, f_prev1, steps, n_intervals, overflow = 0.0, 0.0, -1.0, -1.0, np.int64(0), \
+        np.int64(0), 0.0
     hit_limit = False
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     exact = False
     if exact_phase is not None:
         exact = coupled.frequencies.shape[0] > 0
     while True:
-        if run.stop[0] != 0:
+        if stop[0] != 0:
             hit_limit = True
             break
-        if exact and state.starting:
+        if exact and starting:
             if exact_phase is not None:  # typed None: this branch is not compiled
-                state, history, rec = _exact_contact(coupled, modes, linear_stiffness, work, state, q, v, history,
-                                                     rec)
-                speed_bound = -1.0
-                if out_of_time(state.t, state.steps, work.max_time, work.max_steps) or state.overflow > 0.0:
+                (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow), history, \
+                    rec = _exact_contact(coupled, modes, linear_stiffness, work, (t, wi, vi, alpha_max, in_contact,
+                                         peak, peak_time, steps, n_intervals, overflow), q, v, history, rec)
+                starting, speed_bound, f_prev2, f_prev1 = False, -1.0, -1.0, 0.0
+                if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
                     hit_limit = True
                     break
-                if run.record and rec >= run.max_rows:
+                if record and rec >= history.cap:
                     break
                 continue
-        if state.force != 0.0 or state.starting:
+        if force != 0.0 or starting:
             speed_bound = -1.0
         else:
-            state, speed_bound, taken, ended, history, rec = free_step(
-                kernel, params, linear_stiffness, modes, work, state, speed_bound, (q, v, qn, vn), history, rec)
-            if taken:
+            # free flight: k > 0 doublings when the speed bound proves the long step free; k = 0
+            # a free step whose end shows no contact (else the sampled step below takes it)
+            k, speed_bound = free_doublings(omega, phi, q, v, wi, vi, h, speed_bound)
+            length = (2.0 ** k) * h
+            if not free_ready[k]:
+                square_free_propagators(free_coef, free_ready, k)
+            wi_free, wt_free = propagate_free(free_coef[k], length, wi, vi, q, v, phi, qn, vn)
+            if k > 0 or solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free, compliance_h,
+                                        alpha_max) == 0.0:
+                if damped:
+                    damping += damping_work(omega, zeta, v, vn, length)
+                if record:
+                    history, rec = record_free_inside(free_coef, k, h, (t, wi, vi, q, v), modes, work.scratch,
+                                                      history, rec)
+                wi = wi_free
                 q, qn = qn, q
                 v, vn = vn, v
-                if ended > 0:
-                    hit_limit = ended == 2
+                t += length
+                steps += 1
+                f_prev2, f_prev1 = -1.0, 0.0
+                if record:
+                    history, rec = record_row(history, rec, t, 0.0, wi, vi, residual, omega, phi, q, v)
+                if (k > 0 or steps % 8 == 0) and no_reimpact_possible(omega, phi, q, v, wi, vi):
                     break
-                if run.record and rec >= run.max_rows:
+                if out_of_time(t, steps, max_time, max_steps):
+                    hit_limit = True
+                    break
+                if record and rec >= history.cap:
                     break
                 continue
-        state, swap, finished, history, rec = _sampled_step(
-            kernel, params, linear_stiffness, modes, impact, work, state, (q, v, qn, vn), history, rec)
+        # sampled step of h, the force linear from ``force`` to the implicit end force; a
+        # contact event inside it cuts the step short at the event
+        wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+        f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
+        separation, touchdown = _contact_event(force, f_new, starting)
+        uniform = not (separation or touchdown)
+        swap = True
+        if uniform:
+            wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
+            if damped:
+                damping += damping_work(omega, zeta, v, vn, h)
+            if f_new > 0.0:
+                if not in_contact:
+                    in_contact = True
+                    n_intervals, full = _mark_contact(intervals, n_intervals, 0, t)
+                    overflow = max(overflow, full)
+                alpha = wi - wt - residual * f_new
+                if alpha > alpha_max:
+                    alpha_max = alpha
+            force = f_new
+            starting = False
+            t += h
+        else:
+            s, swap, wi, vi, event_damping = _cut_at_event((kernel, params, linear_stiffness, alpha_max), modes, mass,
+                                                           work, (wi, vi, q, v, qn, vn), force, wi_p - wt_p,
+                                                           separation)
+            if swap and damped:
+                damping += event_damping
+            if separation:
+                n_intervals, full = _mark_contact(intervals, n_intervals, 1, t + s)
+                overflow = max(overflow, full)
+                in_contact = False
+            else:
+                starting = True  # contact begins at the start of the next step
+            force = 0.0
+            t += s  # the next step starts at the event, with the full step h
+        steps += 1
+        peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform)
         if swap:
             q, qn = qn, q
             v, vn = vn, v
-        if finished:
+        if record:
+            history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
+        if force == 0.0 and steps % 8 == 0 and no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
-        if out_of_time(state.t, state.steps, work.max_time, work.max_steps) or state.overflow > 0.0:
+        if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
             hit_limit = True
             break
-        if run.record and rec >= run.max_rows:
+        if record and rec >= history.cap:
             break
-    return _finish(modes, work, state, q, v, history, rec, hit_limit, run.record and rec >= run.max_rows)
+    state = (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping)
+    return state, hit_limit, (q, v), history, rec
 
 
 @numba.njit(cache=True, inline="always")
-def _finish(modes, work, state, q, v, history, rec, hit_limit, row_cap):
+def _finish(modes, work, state, modal, history, rec, hit_limit, row_cap):
     """The kernel's outputs at the end of a run (closing an open contact interval)."""
-    n_intervals = state.n_intervals
-    if state.in_contact:
-        n_intervals, _full = _mark_contact(work.intervals, n_intervals, 1, state.t)
-    energy = structure_energy(modes.frequencies, q, v) + 0.5 * modes.residual * state.force * state.force
-    scalars = KernelScalars(state.peak, state.peak_time, state.alpha_max, state.vi, energy, state.damping_work,
-                            state.t, hit_limit or row_cap, state.steps, state.overflow > 0.0, row_cap)
+    t, _wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping = state
+    q, v = modal
+    if in_contact:
+        n_intervals, _full = _mark_contact(work.intervals, n_intervals, 1, t)
+    energy = structure_energy(modes.frequencies, q, v) + 0.5 * modes.residual * force * force
+    scalars = KernelScalars(peak, peak_time, alpha_max, vi, energy, damping, t, hit_limit or row_cap, steps,
+                            overflow > 0.0, row_cap)
     return history.table[:rec].copy(), work.intervals[:n_intervals].copy(), scalars
 
 

@@ -2,7 +2,7 @@
 
 With no contact force every modal coordinate and the impactor move exactly over any step,
 so the step doubles up to 2^(:data:`FREE_POWERS` − 1) = 1024 h as long as a bound on the
-closing speed proves that no touchdown fits inside it (:func:`free_step`), and the run
+closing speed proves that no touchdown fits inside it (:func:`free_doublings`), and the run
 ends once the gap exceeds the largest displacement the free vibration can reach at the
 impact point (:func:`no_reimpact_possible`). A recorded run takes the same steps and
 records the exact state at the end of each, and inside a step longer than 64 h every
@@ -16,12 +16,11 @@ import math
 
 import numba
 
-from .contact_events import solve_end_force
 from .history_rows import record_row
-from .kernel_types import Flight
-from .oscillator_step import propagate_free, square_free_propagators
+from .oscillator_step import propagate_free
 
-__all__ = ["FREE_POWERS", "damping_work", "free_step", "no_reimpact_possible", "out_of_time"]
+__all__ = ["FREE_POWERS", "damping_work", "free_doublings", "no_reimpact_possible", "out_of_time",
+           "record_free_inside"]
 
 #: Longest free-flight step: 2^(FREE_POWERS − 1) = 1024 steps h. (Up to 2026-11-24 64 h:
 #: a light impactor's long flights between re-impacts took ~30 % of a plate run's steps.)
@@ -79,14 +78,18 @@ def _closing_speed_bound(omega, phi, q, v, vi):
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
-def _free_doublings(phi, q, wi, h, speed_bound):
-    """How many times the step h may double, k < :data:`FREE_POWERS`.
+def free_doublings(omega, phi, q, v, wi, vi, h, speed_bound):
+    """How many times k < :data:`FREE_POWERS` the free-flight step h [s] may double from the
+    state (w_i, v_i, q, v), and the closing-speed bound [m/s] of this flight (``speed_bound``
+    < 0: not computed yet; then computed here).
 
     With no contact force every mode moves exactly over any step, so the step may grow
     as long as contact cannot start inside it: the gap −α shrinks at most at
     ``speed_bound`` V (:func:`_closing_speed_bound`), hence a step of 2^k h with
-    2^k h V < −α cannot contain a touchdown.
+    2^k h V < −α cannot contain a touchdown. Returns (k, speed_bound).
     """
+    if speed_bound < 0.0:
+        speed_bound = _closing_speed_bound(omega, phi, q, v, vi)
     wt_now = 0.0
     for j in range(q.shape[0]):
         wt_now += phi[j] * q[j]
@@ -94,7 +97,7 @@ def _free_doublings(phi, q, wi, h, speed_bound):
     k = 0
     while k + 1 < FREE_POWERS and (2.0 ** (k + 1)) * h * speed_bound < gap:
         k += 1
-    return k
+    return k, speed_bound
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
@@ -119,51 +122,3 @@ def record_free_inside(free_coef, k, h, start, modes, scratch, history, rec):
         history, rec = record_row(history, rec, t + i * spacing, 0.0, wi + vi * (i * spacing), vi,
                                   modes.residual, omega, phi, q_a, v_a)
     return history, rec
-
-
-@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
-def free_step(kernel, params, linear_stiffness, modes, work, state, speed_bound, modal, history, rec):
-    """One free-flight step from ``state`` (a :class:`~impactmaps.solvers.kernel_types.Flight`)
-    with no contact force, as long as it is proven free (k > 0 doublings), or a step of h
-    whose end shows no contact.
-
-    ``modal`` = (q, v, qn, vn): the modal state and where the state at the end goes;
-    ``work`` the integrator's :class:`~impactmaps.solvers.kernel_types.Work`; ``speed_bound`` the closing-speed bound [m/s] of this
-    flight (< 0: not computed yet). Returns (state, speed_bound, taken, ended, history,
-    rec): ``taken`` False leaves the step to the sampled scheme (a contact at its end);
-    ``ended`` 1 when re-impact became impossible, 2 at the time limit or step budget,
-    else 0.
-    """
-    omega, phi, zeta = modes.frequencies, modes.participation, modes.damping_ratios
-    q, v, qn, vn = modal
-    h = work.h
-    if speed_bound < 0.0:
-        speed_bound = _closing_speed_bound(omega, phi, q, v, state.vi)
-    # k > 0: the speed bound proves the long step free; k = 0: a free step whose end shows
-    # no contact (the test the full step of the sampled scheme would make)
-    k = _free_doublings(phi, q, state.wi, h, speed_bound)
-    length = (2.0 ** k) * h
-    if not work.free_ready[k]:
-        square_free_propagators(work.free_coef, work.free_ready, k)
-    wi_free, wt_free = propagate_free(work.free_coef[k], length, state.wi, state.vi, q, v, phi, qn, vn)
-    if k == 0 and solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free, work.compliance_h,
-                                  state.alpha_max) != 0.0:
-        return state, speed_bound, False, 0, history, rec
-    damping = state.damping_work
-    if work.damped:
-        damping += damping_work(omega, zeta, v, vn, length)
-    if work.record:
-        history, rec = record_free_inside(work.free_coef, k, h, (state.t, state.wi, state.vi, q, v), modes,
-                                          work.scratch, history, rec)
-    t = state.t + length
-    steps = state.steps + 1
-    if work.record:
-        history, rec = record_row(history, rec, t, 0.0, wi_free, state.vi, modes.residual, omega, phi, qn, vn)
-    ended = 0
-    if (k > 0 or steps % 8 == 0) and no_reimpact_possible(omega, phi, qn, vn, wi_free, state.vi):
-        ended = 1
-    elif out_of_time(t, steps, work.max_time, work.max_steps):
-        ended = 2
-    state = Flight(t, wi_free, state.vi, state.force, state.alpha_max, state.in_contact, state.starting,
-                   damping, state.peak, state.peak_time, -1.0, 0.0, steps, state.n_intervals, state.overflow)
-    return state, speed_bound, True, ended, history, rec

@@ -134,34 +134,6 @@ COUPLED_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, 
 SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL), KernelScalars)
 
 
-class Flight(NamedTuple):
-    """The integrator's scalar state between two steps (internal to the kernel).
-
-    Time ``t`` [s], impactor displacement ``wi`` [m] and velocity ``vi`` [m/s], contact
-    force ``force`` [N], largest indentation ``alpha_max`` [m], whether a contact interval
-    is open (``in_contact``) or starts at this instant (``starting``), damping work so far
-    [J], peak force [N] and its time [s], the two previous force samples of the peak
-    parabola (``f_prev2``, ``f_prev1``; −1: none uniform), steps taken, contact intervals
-    written and the interval-table overflow flag (1.0 when full).
-    """
-
-    t: float
-    wi: float
-    vi: float
-    force: float
-    alpha_max: float
-    in_contact: bool
-    starting: bool
-    damping_work: float
-    peak: float
-    peak_time: float
-    f_prev2: float
-    f_prev1: float
-    steps: int
-    n_intervals: int
-    overflow: float
-
-
 class Work(NamedTuple):
     """What the integrator's stages share through a run (internal to the kernel): the step
     h [s], time limit [s], step budget, whether to record, the step's compliance [m/N],
