@@ -326,6 +326,7 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
                 if record and rec >= history.cap:
                     break
                 continue
+        free, swap = False, True
         if force != 0.0 or starting:
             speed_bound = -1.0
         else:
@@ -336,75 +337,65 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
             if not free_ready[k]:
                 square_free_propagators(free_coef, free_ready, k)
             wi_free, wt_free = propagate_free(free_coef[k], length, wi, vi, q, v, phi, qn, vn)
-            if k > 0 or solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free, compliance_h,
-                                        alpha_max) == 0.0:
-                if damped:
-                    damping += damping_work(omega, zeta, v, vn, length)
-                if record:
-                    history, rec = record_free_inside(free_coef, k, h, (t, wi, vi, q, v), modes, work.scratch,
-                                                      history, rec)
-                wi = wi_free
-                q, qn = qn, q
-                v, vn = vn, v
-                t += length
-                steps += 1
-                f_prev2, f_prev1 = -1.0, 0.0
-                if record:
-                    history, rec = record_row(history, rec, t, 0.0, wi, vi, residual, omega, phi, q, v)
-                if (k > 0 or steps % 8 == 0) and no_reimpact_possible(omega, phi, q, v, wi, vi):
-                    break
-                if out_of_time(t, steps, max_time, max_steps):
-                    hit_limit = True
-                    break
-                if record and rec >= history.cap:
-                    break
-                continue
-        # sampled step of h, the force linear from ``force`` to the implicit end force; a
-        # contact event inside it cuts the step short at the event
-        wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
-        f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
-        separation, touchdown = _contact_event(force, f_new, starting)
-        uniform = not (separation or touchdown)
-        swap = True
-        if uniform:
-            wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
+            free = k > 0 or solve_end_force(kernel, params, linear_stiffness, wi_free - wt_free, compliance_h,
+                                            alpha_max) == 0.0
+        if free:
             if damped:
-                damping += damping_work(omega, zeta, v, vn, h)
-            if f_new > 0.0:
-                if not in_contact:
-                    in_contact = True
-                    n_intervals, full = _mark_contact(intervals, n_intervals, 0, t)
-                    overflow = max(overflow, full)
-                alpha = wi - wt - residual * f_new
-                if alpha > alpha_max:
-                    alpha_max = alpha
-            force = f_new
-            starting = False
-            t += h
-        else:
-            s, swap, wi, vi, event_damping = _cut_at_event((kernel, params, linear_stiffness, alpha_max), modes, mass,
-                                                           work, (wi, vi, q, v, qn, vn), force, wi_p - wt_p,
-                                                           separation)
-            if swap and damped:
-                damping += event_damping
-            if separation:
-                n_intervals, full = _mark_contact(intervals, n_intervals, 1, t + s)
-                overflow = max(overflow, full)
-                in_contact = False
+                damping += damping_work(omega, zeta, v, vn, length)
+            if record:
+                history, rec = record_free_inside(free_coef, k, h, (t, wi, vi, q, v), modes, work.scratch, history,
+                                                  rec)
+            wi = wi_free
+            t += length
+            f_prev2, f_prev1 = -1.0, 0.0
+            ended = k > 0 or (steps + 1) % 8 == 0  # re-impact may have become impossible
+        else:  # a sampled step of h, the force linear from ``force`` to the implicit end force; a
+            # contact event inside it cuts the step short at the event
+            wi_p, vi_p, wt_p = predict_step(coef, h, mass, wi, vi, q, v, phi, force, 0.0, qn, vn)
+            f_new = solve_end_force(kernel, params, linear_stiffness, wi_p - wt_p, compliance_h, alpha_max)
+            separation, touchdown = _contact_event(force, f_new, starting)
+            uniform = not (separation or touchdown)
+            if uniform:
+                wi, vi, wt = _accept_step(coef, h, mass, residual, compliance_h, f_new, wi_p, vi_p, wt_p, qn, vn)
+                if damped:
+                    damping += damping_work(omega, zeta, v, vn, h)
+                if f_new > 0.0:
+                    if not in_contact:
+                        in_contact = True
+                        n_intervals, full = _mark_contact(intervals, n_intervals, 0, t)
+                        overflow = max(overflow, full)
+                    alpha = wi - wt - residual * f_new
+                    if alpha > alpha_max:
+                        alpha_max = alpha
+                force = f_new
+                starting = False
+                t += h
             else:
-                starting = True  # contact begins at the start of the next step
-            force = 0.0
-            t += s  # the next step starts at the event, with the full step h
+                s, swap, wi, vi, event_damping = _cut_at_event((kernel, params, linear_stiffness, alpha_max), modes,
+                                                               mass, work, (wi, vi, q, v, qn, vn), force,
+                                                               wi_p - wt_p, separation)
+                if swap and damped:
+                    damping += event_damping
+                if separation:
+                    n_intervals, full = _mark_contact(intervals, n_intervals, 1, t + s)
+                    overflow = max(overflow, full)
+                    in_contact = False
+                else:
+                    starting = True  # contact begins at the start of the next step
+                force = 0.0
+                t += s  # the next step starts at the event, with the full step h
+            peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h,
+                                                            uniform)
+            ended = force == 0.0 and (steps + 1) % 8 == 0
         steps += 1
-        peak, peak_time, f_prev2, f_prev1 = _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform)
         if swap:
             q, qn = qn, q
             v, vn = vn, v
         if record:
-            history, rec = record_row(history, rec, t, force, wi, vi, residual, omega, phi, q, v)
-        if force == 0.0 and steps % 8 == 0 and no_reimpact_possible(omega, phi, q, v, wi, vi):
+            history, rec = record_row(history, rec, t, 0.0 if free else force, wi, vi, residual, omega, phi, q, v)
+        if ended and no_reimpact_possible(omega, phi, q, v, wi, vi):
             break
-        if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
+        if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:  # no overflow in flight
             hit_limit = True
             break
         if record and rec >= history.cap:
