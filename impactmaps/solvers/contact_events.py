@@ -16,7 +16,7 @@ from .oscillator_step import fill_step_coefficients, predict_step
 __all__ = ["locate_event", "solve_end_force"]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, alpha_max):
     """Force F1 ≥ 0 with F1 = F(α_pred − C F1; α_max) (monotone, unique root).
 

@@ -26,7 +26,7 @@ SAMPLED_PHASE = 0.25
 _ROOT_ITERATIONS = 200
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _force(frequencies, force_row, eta, rate, s):
     """F(s) [N] a time s [s] after the state (η, η̇)."""
     total = 0.0
@@ -36,7 +36,7 @@ def _force(frequencies, force_row, eta, rate, s):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _force_rate(frequencies, force_row, eta, rate, s, count):
     """dF/dt(s) [N/s] a time s [s] after the state (η, η̇), of the first ``count``
     coupled modes (the sampled ones: the peak search leaves out the ripple of modes the
@@ -48,7 +48,7 @@ def _force_rate(frequencies, force_row, eta, rate, s, count):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _root(frequencies, force_row, eta, rate, start, length, derivative, count):
     """Root in (start, length) of F (or, if ``derivative``, of the rate of its first
     ``count`` coupled modes) from the state (η, η̇), given a sign change over the interval
@@ -87,7 +87,7 @@ def _root(frequencies, force_row, eta, rate, start, length, derivative, count):
     return 0.5 * (a + b) if derivative else b
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _first_positive(frequencies, force_row, eta, rate, length):
     """An instant in (0, length] [s] where F > 0, by halving from ``length``; 0 if none
     is found down to length/2⁶⁰ (the force of a contact that begins tangentially grows
@@ -100,7 +100,7 @@ def _first_positive(frequencies, force_row, eta, rate, length):
     return 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _clear_gap(from_coupled, frequencies, eta, rate, phi, s, length, eta_s, rate_s, q, v):
     """The separation instant ``s`` [s], moved later by the least round-off amount that
     makes the physical gap w_i − Σ φ_j q_j strictly open; returns it with w_i [m] and
@@ -127,7 +127,7 @@ def _clear_gap(from_coupled, frequencies, eta, rate, phi, s, length, eta_s, rate
     return s, wi, vi
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _advance(frequencies, eta, rate, s, eta_out, rate_out):
     """Exact propagation of every coupled oscillator over s [s]."""
     for k in range(eta.shape[0]):
@@ -138,7 +138,7 @@ def _advance(frequencies, eta, rate, s, eta_out, rate_out):
         rate_out[k] = rate[k] * cx - eta[k] * frequencies[k] * sx
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _amplitudes(frequencies, force_row, eta, rate):
     """A_k [N]: the amplitude of each coupled mode's share of F for the state (η, η̇);
     constant through a contact (every coupled mode is an undamped oscillator)."""
@@ -148,7 +148,7 @@ def _amplitudes(frequencies, force_row, eta, rate):
     return amplitude
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _content_step(frequencies, force_row, eta, rate, resolution):
     """The contact step [s] for the state (η, η̇): :data:`SAMPLED_PHASE`/Ω of the coupled
     mode of largest amplitude, and at most 1/Ω of the fastest mode that must be sampled
@@ -171,7 +171,7 @@ def _content_step(frequencies, force_row, eta, rate, resolution):
     return min(SAMPLED_PHASE / frequencies[dominant], 1.0 / frequencies[fastest])
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _to_physical(from_coupled, eta, rate, q, v):
     """(w_i, v_i) and the modal state (q, v) of the coupled state (η, η̇)."""
     n = eta.shape[0]
@@ -191,7 +191,7 @@ def _to_physical(from_coupled, eta, rate, q, v):
     return wi, vi
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record_inside(modes, rows, start, t, length, q, v, history, rec):
     """Record exact rows inside a step of ``length`` [s] from time t [s] and state
     ``start`` = (η, η̇), at most ``rows[0]`` [s] apart (the step's end row is written by
@@ -217,7 +217,7 @@ def _record_inside(modes, rows, start, t, length, q, v, history, rec):
     return history, rec
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _partial_force(force_row, eta, count):
     """Σ_{k<count} c_k η_k [N]: the force of the ``count`` slowest coupled modes."""
     total = 0.0
@@ -226,7 +226,7 @@ def _partial_force(force_row, eta, count):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _step(frequencies, eta, rate, cos_s, sin_s, eta_out, rate_out):
     """Exact propagation over the step whose cos Ω_k s, sin Ω_k s are given (the
     arithmetic of every stepping loop here, so that two loops reach one sample alike)."""

@@ -134,7 +134,7 @@ def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: fl
                         np.ascontiguousarray(from_coupled), to_coupled)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two_rate=True):
     """One contact, from touchdown (α = 0) to separation or the run's limits.
 

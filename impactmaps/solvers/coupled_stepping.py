@@ -40,7 +40,7 @@ COARSE_RESOLUTION = 3e-3
 COARSE_FACTOR = 2
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _coarse_plan(frequencies, force_row, eta, rate, h):
     """The coarse rate of a contact whose fine step is h [s].
 
@@ -71,7 +71,7 @@ def _coarse_plan(frequencies, force_row, eta, rate, h):
     return every, length, np.cos(frequencies * length), np.sin(frequencies * length), low, margin
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _skippable(frequencies, force_row, eta, rate, coarse, peak):
     """Whether the coarse step from the state (η, η̇) may be taken without the fine
     step: no instant in it can have F ≤ 0, nor F above ``peak`` [N] (:func:`_coarse_plan`)."""
@@ -85,7 +85,7 @@ def _skippable(frequencies, force_row, eta, rate, coarse, peak):
     return after > margin and after + margin <= peak
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record_step(modes, rows, start, end, t, length, force, history, rec, q, v):
     """Record a step of ``length`` [s] from time t [s]: exact rows inside, and its end
     (state ``end``, force [N]); q and v serve as scratch."""
@@ -96,7 +96,7 @@ def _record_step(modes, rows, start, end, t, length, force, history, rec, q, v):
     return record_row(history, rec, t + length, force, wi, vi, residual, omega, phi, q, v)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, rec, q, v):
     """Steps of the fine step h: the single-rate loop of the contact phase.
 
@@ -182,7 +182,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
             wi, vi, history, rec)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _settle(modes, rows, coarse, anchor, scalars, peak, flush, record, history, rec, q, v):
     """Move the anchor (the first coarse sample not yet proven skippable, ``anchor`` =
     (η, η̇, scratch, scratch), ``scalars`` = (t, F, F_low, pending coarse steps after it))
@@ -211,7 +211,7 @@ def _settle(modes, rows, coarse, anchor, scalars, peak, flush, record, history, 
     return (t_a, f_a, low_a, pending), history, rec
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _coarse_steps(modes, rows, coarse, limits, state, run, record, history, rec, q, v):
     """Coarse steps H from a sample where the fine loop stopped, to the start of the next
     fine window or the run's limits.

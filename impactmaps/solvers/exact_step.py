@@ -244,7 +244,7 @@ def _exact_phase(args) -> bool | None:
     return True if args[6].frequencies.shape[0] > 0 else None
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, no_cfunc_wrapper=True)
 def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coupled, exact_phase):
     """Integrate one impact from first touch until re-impact is impossible.
 

@@ -35,7 +35,7 @@ _COSC = (0.5, -0.041666666666666664, 0.001388888888888889, -2.48015873015873e-05
 _SIN3 = (0.16666666666666666, -0.008333333333333333, 0.0001984126984126984, -2.7557319223985893e-06, 2.505210838544172e-08, -1.6059043836821613e-10, 7.647163731819816e-13, -2.8114572543455206e-15, 8.22063524662433e-18, -1.9572941063391263e-20)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _horner10(c, x2):
     total = c[9]
     for k in range(8, -1, -1):
@@ -43,7 +43,7 @@ def _horner10(c, x2):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _trig_functions(x):
     """S = sin x/x, C1 = (1−cos x)/x², S3 = (x−sin x)/x³, stable for small x."""
     if x < _SERIES_LIMIT:
@@ -55,7 +55,7 @@ def _trig_functions(x):
     return sx * inverse, (1.0 - math.cos(x)) * inverse2, (x - sx) * inverse2 * inverse
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _expm4(a):
     """Matrix exponential of a 4×4 matrix by scaling and squaring with Taylor terms."""
     norm = 0.0
@@ -88,7 +88,7 @@ def _expm4(a):
     return result
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _product4(a, b):
     """The 4×4 matrix product a b (loops: numba's ``@`` compiles a BLAS binding for seconds)."""
     out = np.zeros((4, 4))
@@ -108,7 +108,7 @@ def _undamped_coefficients(omega, h, s, c1, s3):
             h * h * (c1 - s3), h * h * s3, h * (s - c1), h * c1)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def oscillator_step_coefficients(omega, zeta, h, out):
     """Exact one-step coefficients of ``q̈ + 2ζωq̇ + ω²q = f(t)``, f linear on [0, h].
 
@@ -140,7 +140,7 @@ def oscillator_step_coefficients(omega, zeta, h, out):
     out[7] = e[1, 3]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def fill_step_coefficients(omega, zeta, phi, h, coef):
     """Per-mode step coefficients into ``coef[k, j]`` (k = 0…7 as in
     :func:`oscillator_step_coefficients`); the force rows are pre-multiplied by φ_j.
@@ -172,7 +172,7 @@ def fill_step_coefficients(omega, zeta, phi, h, coef):
                 coef[k, j] = tmp[k] * phi[j]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def square_free_propagators(free_coef, free_ready, k):
     """Free-vibration propagators over 2^k h from those over 2^(k−1) h, by squaring.
 
@@ -195,7 +195,7 @@ def square_free_propagators(free_coef, free_ready, k):
         free_ready[p] = True
 
 
-@numba.njit(cache=True, fastmath={"reassoc", "contract"})
+@numba.njit(cache=True, fastmath={"reassoc", "contract"}, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def predict_step(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
     """Advance impactor and modes over h with force f0 → f1; return (wi, vi, w_target).
 
@@ -214,7 +214,7 @@ def predict_step(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
     return wi_new, vi_new, wt
 
 
-@numba.njit(cache=True, fastmath={"reassoc", "contract"})
+@numba.njit(cache=True, fastmath={"reassoc", "contract"}, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def propagate_free(rows, h, wi, vi, q, v, phi, qn, vn):
     """Free flight over h (no contact force): impactor drifts, modes follow ``rows`` (4, n).
 

@@ -79,7 +79,7 @@ def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass
     return float(np.sqrt(8.0 * tolerance / weight)) if weight > 0 else np.inf
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _content_weight(frequencies, participation, stiffness, mass, residual):
     """Σ_{ω_j > 2ω} min(Â_j, 1) ω_j² of :func:`content_time_step` [1/s²]."""
     omega = np.sqrt(stiffness / mass)
@@ -93,7 +93,7 @@ def _content_weight(frequencies, participation, stiffness, mass, residual):
     return weight
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _receptance(omega2, frequencies, participation, series, mass):
     total = series - 1.0 / (mass * omega2)
     for j in range(frequencies.shape[0]):
@@ -101,7 +101,7 @@ def _receptance(omega2, frequencies, participation, series, mass):
     return total
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, no_cfunc_wrapper=True)
 def _top_root(frequencies, participation, series, mass, rtol):
     if frequencies.shape[0] == 0:
         return np.sqrt(1.0 / (mass * series))
