@@ -82,8 +82,9 @@ def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius
         basis = _participating_modes(target, max_frequency, int(settings.min_modes), options)
     else:
         raise ValueError(f"target = {target!r} is not a Target or a ModalBasis")
-    residual = basis.residual_compliance if settings.residual_flexibility else 0.0
-    return ModalBasis.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
+    if settings.residual_flexibility:
+        return basis  # its residual is the one asked for
+    return ModalBasis.from_validated(basis.frequencies, basis.participation, 0.0, basis.damping_ratios)
 
 
 #: How far :func:`_participating_modes` raises the modes it asks a target for (× min_modes).
@@ -199,6 +200,10 @@ def _kernel_array(values: np.ndarray) -> np.ndarray:
     """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
     same array when it already is; a copy of a read-only view, such as a cached Ritz
     solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
+        flags = values.flags
+        if flags.c_contiguous and flags.writeable:
+            return values  # what np.require returns here, without its keyword handling (~1 µs a call)
     return np.require(values, dtype=np.float64, requirements=("C", "W"))
 
 
