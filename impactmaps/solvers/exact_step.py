@@ -56,7 +56,7 @@ from .free_flight import (
     out_of_time,
     record_free_inside,
 )
-from .history_rows import new_history, record_row, structure_energy
+from .history_rows import new_history, record_row, structure_energy, zeros_matrix
 from .kernel_types import (
     COUPLED_TYPE,
     IMPACT_TYPE,
@@ -177,15 +177,16 @@ def _workspace(modes, impact, run):
         if zeta[j] > 0.0:
             damped = True
     free_coef = np.empty((FREE_POWERS, 4, n))  # homogeneous rows only: no force in flight
-    free_ready = np.zeros(FREE_POWERS, dtype=np.bool_)
+    free_ready = np.empty(FREE_POWERS, dtype=np.bool_)  # np.zeros would compile two more overloads
+    for power in range(FREE_POWERS):
+        free_ready[power] = power == 0
     for row in range(4):  # element loops: a slice assignment compiles for seconds
         for j in range(n):
             free_coef[0, row, j] = coef[row, j]
-    free_ready[0] = True
     max_steps = int(math.ceil(run.max_time / h)) + 2
     return Work(h, run.max_time, max_steps, run.record, compliance_h, damped, coef, np.empty((8, n)), np.empty(n),
                 np.empty(n), free_coef, free_ready, np.empty((4, n if run.record else 0)),
-                np.zeros((run.max_events, 2)))
+                zeros_matrix(run.max_events, 2))
 
 
 @numba.njit(cache=True, inline="always")
@@ -276,8 +277,11 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
         history.table[0, 4] = impact.velocity
         rec = 1
     n = modes.frequencies.shape[0]
-    q = np.zeros(n)
-    v = np.zeros(n)
+    q = np.empty(n)  # at rest: zeros by a loop (np.zeros(n) compiles three more overloads than np.empty)
+    v = np.empty(n)
+    for j in range(n):
+        q[j] = 0.0
+        v[j] = 0.0
     state, hit_limit, swapped, history, rec = _impact_loop(kernel, params, linear_stiffness, modes, impact,
                                                           (q, v, np.empty(n), np.empty(n)), work, coupled,
                                                           exact_phase, (history, rec, run.stop))

@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-__all__ = ["HISTORY_WIDTH", "HistoryRows", "new_history", "record_row", "structure_energy"]
+__all__ = ["HISTORY_WIDTH", "HistoryRows", "new_history", "record_row", "structure_energy", "zeros_matrix"]
 
 #: Columns of the recorded history.
 HISTORY_WIDTH = 8
@@ -29,9 +29,21 @@ class HistoryRows(NamedTuple):
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def zeros_matrix(rows, cols):
+    """A (rows, cols) float64 array of zeros, filled by a loop: ``np.zeros`` of a 2-D shape
+    compiles three overloads more than ``np.empty``, again in every kernel that types it
+    (the solvers' 2-D zeros all come from here)."""
+    out = np.empty((rows, cols))
+    for i in range(rows):
+        for j in range(cols):
+            out[i, j] = 0.0
+    return out
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def new_history(rows, cap):
     """An empty :class:`HistoryRows` of ``min(rows, cap)`` zero rows, at most ``cap`` rows."""
-    return HistoryRows(np.zeros((max(min(rows, cap), 1), HISTORY_WIDTH)), cap)
+    return HistoryRows(zeros_matrix(max(min(rows, cap), 1), HISTORY_WIDTH), cap)
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
@@ -63,7 +75,7 @@ def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _grown(history, cap):
     """The history array with twice the rows, at most ``cap`` (the new ones zero)."""
-    grown = np.zeros((min(2 * history.shape[0], cap), HISTORY_WIDTH))
+    grown = zeros_matrix(min(2 * history.shape[0], cap), HISTORY_WIDTH)
     for row in range(history.shape[0]):  # element loops: a slice assignment compiles for seconds
         for column in range(HISTORY_WIDTH):
             grown[row, column] = history[row, column]

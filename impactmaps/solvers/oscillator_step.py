@@ -16,6 +16,8 @@ import math
 import numba
 import numpy as np
 
+from .history_rows import zeros_matrix
+
 __all__ = [
     "fill_step_coefficients",
     "oscillator_step_coefficients",
@@ -72,8 +74,8 @@ def _expm4(a):
     for i in range(4):
         for j in range(4):
             scaled[i, j] = a[i, j] * scale
-    result = np.zeros((4, 4))
-    term = np.zeros((4, 4))
+    result = zeros_matrix(4, 4)
+    term = zeros_matrix(4, 4)
     for i in range(4):
         result[i, i] = 1.0
         term[i, i] = 1.0
@@ -91,7 +93,7 @@ def _expm4(a):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _product4(a, b):
     """The 4×4 matrix product a b (loops: numba's ``@`` compiles a BLAS binding for seconds)."""
-    out = np.zeros((4, 4))
+    out = zeros_matrix(4, 4)
     for i in range(4):
         for k in range(4):
             aik = a[i, k]
@@ -123,7 +125,7 @@ def oscillator_step_coefficients(omega, zeta, h, out):
             out[k] = coefficients[k]
         return
     # damped: exponential of the augmented system [q, v, f, ḟ]
-    m = np.zeros((4, 4))
+    m = zeros_matrix(4, 4)
     m[0, 1] = h
     m[1, 0] = -omega * omega * h
     m[1, 1] = -2.0 * zeta * omega * h
