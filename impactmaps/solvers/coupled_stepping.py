@@ -38,6 +38,10 @@ COARSE_RESOLUTION = 3e-3
 #: Fewest fine steps in a coarse step: below, the contact phase keeps the fine step
 #: (2: 12 % less CPU than 4 over the quasi-static map points of the beam and the plate) [-].
 COARSE_FACTOR = 2
+#: ``derivative`` of :func:`_root` as booleans, not literals (a literal True and False would
+#: compile it twice).
+_OF_FORCE = np.bool_(False)
+_OF_RATE = np.bool_(True)
 
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)
@@ -135,7 +139,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
             steps += 1
             # the bracket starts where F > 0: at the step's start, or inside the first step
             start = 0.0 if force > 0.0 else _first_positive(frequencies, force_row, eta, rate, h)
-            s = _root(frequencies, force_row, eta, rate, start, h, False, n)
+            s = _root(frequencies, force_row, eta, rate, start, h, _OF_FORCE, n)
             # (η, η̇) at the separation land in eta_next, rate_next
             s, _wi, _vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, s, h, eta_next, rate_next, q, v)
             if record:
@@ -149,7 +153,7 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
                 # vanishes over the two steps around it (the force there, ripple included)
                 if (_force_rate(frequencies, force_row, eta_prev, rate_prev, 0.0, resolved) > 0.0
                         and _force_rate(frequencies, force_row, eta_prev, rate_prev, 2.0 * h, resolved) < 0.0):
-                    s = _root(frequencies, force_row, eta_prev, rate_prev, 0.0, 2.0 * h, True, resolved)
+                    s = _root(frequencies, force_row, eta_prev, rate_prev, 0.0, 2.0 * h, _OF_RATE, resolved)
                     value = _force(frequencies, force_row, eta_prev, rate_prev, s)
                     if value > peak:
                         peak = value

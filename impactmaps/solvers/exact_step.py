@@ -72,6 +72,10 @@ from .oscillator_step import fill_step_coefficients, predict_step, propagate_fre
 __all__ = ["integrate_impact"]
 
 _MATRIX = numba.types.Array(numba.types.float64, 2, "C")
+#: The columns of the contact-interval table, as int64 values (a literal 0 or 1 would compile
+#: :func:`_mark_contact` once for each).
+_START = np.int64(0)
+_END = np.int64(1)
 
 # The per-step stages below are plain compiled calls, not ``inline="always"``: numba's IR
 # inlining adds reference-count operations on every array argument, which cost up to 1.5×
@@ -186,7 +190,7 @@ def _workspace(modes, impact, run):
     max_steps = int(math.ceil(run.max_time / h)) + 2
     return Work(h, run.max_time, max_steps, run.record, compliance_h, damped, coef, np.empty((8, n)), np.empty(n),
                 np.empty(n), free_coef, free_ready, np.empty((4, n if run.record else 0)),
-                zeros_matrix(run.max_events, 2))
+                zeros_matrix(run.max_events, np.int64(2)))
 
 
 @numba.njit(cache=True, inline="always")
@@ -201,12 +205,12 @@ def _exact_contact(coupled, modes, linear_stiffness, work, start, q, v, history,
         coupled, modes, (work.max_time, work.max_steps), (t0, wi, vi, peak, peak_time, before), q, v, work.record,
         history, rec)
     if steps > before:
-        n_intervals, full = _mark_contact(work.intervals, n_intervals, 0, t0)
+        n_intervals, full = _mark_contact(work.intervals, n_intervals, _START, t0)
         overflow = max(overflow, full)
         alpha_max = max(alpha_max, peak / linear_stiffness)
         in_contact = not separated
         if separated:
-            n_intervals, full = _mark_contact(work.intervals, n_intervals, 1, t)
+            n_intervals, full = _mark_contact(work.intervals, n_intervals, _END, t)
             overflow = max(overflow, full)
     return (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow), history, rec
 
@@ -366,7 +370,7 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
                 if f_new > 0.0:
                     if not in_contact:
                         in_contact = True
-                        n_intervals, full = _mark_contact(intervals, n_intervals, 0, t)
+                        n_intervals, full = _mark_contact(intervals, n_intervals, _START, t)
                         overflow = max(overflow, full)
                     alpha = wi - wt - residual * f_new
                     if alpha > alpha_max:
@@ -381,7 +385,7 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
                 if swap and damped:
                     damping += event_damping
                 if separation:
-                    n_intervals, full = _mark_contact(intervals, n_intervals, 1, t + s)
+                    n_intervals, full = _mark_contact(intervals, n_intervals, _END, t + s)
                     overflow = max(overflow, full)
                     in_contact = False
                 else:
@@ -414,7 +418,7 @@ def _finish(modes, work, state, modal, history, rec, hit_limit, row_cap):
     t, _wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping = state
     q, v = modal
     if in_contact:
-        n_intervals, _full = _mark_contact(work.intervals, n_intervals, 1, t)
+        n_intervals, _full = _mark_contact(work.intervals, n_intervals, _END, t)
     energy = structure_energy(modes.frequencies, q, v) + 0.5 * modes.residual * force * force
     scalars = KernelScalars(peak, peak_time, alpha_max, vi, energy, damping, t, hit_limit or row_cap, steps,
                             overflow > 0.0, row_cap)

@@ -32,7 +32,8 @@ class HistoryRows(NamedTuple):
 def zeros_matrix(rows, cols):
     """A (rows, cols) float64 array of zeros, filled by a loop: ``np.zeros`` of a 2-D shape
     compiles three overloads more than ``np.empty``, again in every kernel that types it
-    (the solvers' 2-D zeros all come from here)."""
+    (the solvers' 2-D zeros all come from here). Callers pass int64 values, not literals
+    (``np.int64(2)``, not ``2``): each literal would compile a specialisation of its own."""
     out = np.empty((rows, cols))
     for i in range(rows):
         for j in range(cols):
@@ -43,7 +44,7 @@ def zeros_matrix(rows, cols):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def new_history(rows, cap):
     """An empty :class:`HistoryRows` of ``min(rows, cap)`` zero rows, at most ``cap`` rows."""
-    return HistoryRows(zeros_matrix(max(min(rows, cap), 1), HISTORY_WIDTH), cap)
+    return HistoryRows(zeros_matrix(max(min(rows, cap), 1), np.int64(HISTORY_WIDTH)), cap)
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
@@ -75,7 +76,7 @@ def _record_state(history, rec, t, force, wi, vi, residual, omega, phi, q, v):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _grown(history, cap):
     """The history array with twice the rows, at most ``cap`` (the new ones zero)."""
-    grown = zeros_matrix(min(2 * history.shape[0], cap), HISTORY_WIDTH)
+    grown = zeros_matrix(min(2 * history.shape[0], cap), np.int64(HISTORY_WIDTH))
     for row in range(history.shape[0]):  # element loops: a slice assignment compiles for seconds
         for column in range(HISTORY_WIDTH):
             grown[row, column] = history[row, column]

@@ -27,6 +27,8 @@ __all__ = [
 ]
 
 _SERIES_LIMIT = 1.0
+#: 4 as an int64, not a literal: :func:`~impactmaps.solvers.history_rows.zeros_matrix` then compiles once.
+_FOUR = np.int64(4)
 
 
 # Taylor coefficients in x² of sin x/x, (1 − cos x)/x² and (x − sin x)/x³ (ten terms:
@@ -74,8 +76,8 @@ def _expm4(a):
     for i in range(4):
         for j in range(4):
             scaled[i, j] = a[i, j] * scale
-    result = zeros_matrix(4, 4)
-    term = zeros_matrix(4, 4)
+    result = zeros_matrix(_FOUR, _FOUR)
+    term = zeros_matrix(_FOUR, _FOUR)
     for i in range(4):
         result[i, i] = 1.0
         term[i, i] = 1.0
@@ -93,7 +95,7 @@ def _expm4(a):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _product4(a, b):
     """The 4×4 matrix product a b (loops: numba's ``@`` compiles a BLAS binding for seconds)."""
-    out = zeros_matrix(4, 4)
+    out = zeros_matrix(_FOUR, _FOUR)
     for i in range(4):
         for k in range(4):
             aik = a[i, k]
@@ -125,7 +127,7 @@ def oscillator_step_coefficients(omega, zeta, h, out):
             out[k] = coefficients[k]
         return
     # damped: exponential of the augmented system [q, v, f, ḟ]
-    m = zeros_matrix(4, 4)
+    m = zeros_matrix(_FOUR, _FOUR)
     m[0, 1] = h
     m[1, 0] = -omega * omega * h
     m[1, 1] = -2.0 * zeta * omega * h
