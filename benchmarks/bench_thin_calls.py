@@ -7,7 +7,11 @@ timed calls: the median CPU time of a call (``time.process_time``, steadier than
 on a shared machine) and the CPU time spent inside the integrator
 (:data:`impactmaps.solvers.exact_step.integrate_impact`, timed by a wrapper put where
 :mod:`impactmaps.solvers.modal_run` calls it). Kernel share = kernel time / call time
-summed over the calls (issue 30 goal: ≥ 80 %).
+summed over the calls (issue 30 goal: ≥ 80 %). Where the rest goes, as shares of the call
+(CPU time of wrappers put where :mod:`~impactmaps.solvers.modal_run` calls them): the run's
+set-up (``prepare_run``: basis, time step, budget) and, inside it, the coupled modes of the
+exact linear contact phase (``coupled_modes``, an (n + 1)² ``eigh``), and the result object
+(``_result``); the remainder is ``simulate``'s checks and the kernel's argument tuples.
 
 Run for two checkouts in the same minutes to compare (``--root``):
 ``python benchmarks/bench_thin_calls.py [--targets real] [--calls 400] [--root CHECKOUT]``.
@@ -17,6 +21,7 @@ Prints one Markdown table.
 from __future__ import annotations
 
 import argparse
+import os
 import pathlib
 import statistics
 import sys
@@ -26,7 +31,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def measure(targets: str, calls: int) -> list[tuple]:
-    """(structure, ζ, modes, median call CPU [µs], kernel share) per bench_modal case."""
+    """(structure, ζ, modes, median call CPU [µs], kernel share, set-up share, coupled-modes
+    share, result share) per bench_modal case."""
     from benchmarks.bench_modal import LOSS_FACTORS, _analytic_case, _real_case
     from impactmaps.solvers import modal_run
     from impactmaps.solvers.modal import ModalSettings, simulate
@@ -34,34 +40,51 @@ def measure(targets: str, calls: int) -> list[tuple]:
     settings = ModalSettings()
     build = _analytic_case if targets == "analytic" else _real_case
     real_kernel = modal_run.integrate_impact
-    spent = [0.0]
+    parts = {"kernel": 0.0, "prepare_run": 0.0, "coupled_modes": 0.0, "_result": 0.0}
 
     class TimedKernel:
         def __call__(self, *args):
             start = time.process_time()
             out = real_kernel(*args)
-            spent[0] += time.process_time() - start
+            parts["kernel"] += time.process_time() - start
             return out
 
         def compile(self, *args):
             real_kernel.compile(*args)
 
+    def timed(name, function):
+        def call(*args, **kwargs):
+            start = time.process_time()
+            out = function(*args, **kwargs)
+            parts[name] += time.process_time() - start
+            return out
+        return call
+
+    originals = {"prepare_run": modal_run.prepare_run, "_result": modal_run._result,
+                 "coupled_modes": modal_run.coupled_modes}
     rows = []
     modal_run.integrate_impact = TimedKernel()
+    for name, function in originals.items():
+        setattr(modal_run, name, timed(name, function))
     try:
         for kind in ("plate", "beam"):
             for zeta in LOSS_FACTORS:
                 target, law, mass = build(kind, zeta, settings)
                 result = simulate(target, law, mass, 1.0, settings=settings, record=False)  # compile or load
-                spent[0], durations = 0.0, []
+                durations = []
+                for name in parts:
+                    parts[name] = 0.0
                 for _ in range(calls):
                     start = time.process_time()
                     simulate(target, law, mass, 1.0, settings=settings, record=False)
                     durations.append(time.process_time() - start)
-                rows.append((kind, zeta, result.n_modes, 1e6 * statistics.median(durations),
-                             spent[0] / sum(durations)))
+                total = sum(durations)
+                rows.append((kind, zeta, result.n_modes, 1e6 * statistics.median(durations), parts["kernel"] / total,
+                             parts["prepare_run"] / total, parts["coupled_modes"] / total, parts["_result"] / total))
     finally:
         modal_run.integrate_impact = real_kernel
+        for name, function in originals.items():
+            setattr(modal_run, name, function)
     return rows
 
 
@@ -75,9 +98,12 @@ def main(argv=None) -> None:
     rows = measure(args.targets, max(args.calls, 10))
     print(f"`python benchmarks/bench_thin_calls.py --targets {args.targets} --calls {args.calls}` "
           f"(code of {args.root.resolve().name})\n")
-    print("| structure | ζ | modes | call CPU [µs] (median) | kernel share |\n|---|---|---|---|---|")
-    for kind, zeta, modes, call, share in rows:
-        print(f"| {kind} | {zeta} | {modes} | {call:.1f} | {100 * share:.0f} % |")
+    print(f"load average {' '.join(f'{x:.1f}' for x in os.getloadavg())}\n")
+    print("| structure | ζ | modes | call CPU [µs] (median) | kernel share | set-up (coupled modes) | result |\n"
+          "|---|---|---|---|---|---|---|")
+    for kind, zeta, modes, call, share, setup, coupled, result in rows:
+        print(f"| {kind} | {zeta} | {modes} | {call:.1f} | {100 * share:.0f} % | {100 * setup:.0f} % "
+              f"({100 * coupled:.0f} %) | {100 * result:.0f} % |")
 
 
 if __name__ == "__main__":
