@@ -77,13 +77,18 @@ _MATRIX = numba.types.Array(numba.types.float64, 2, "C")
 _START = np.int64(0)
 _END = np.int64(1)
 
-# The per-step stages below are plain compiled calls, not ``inline="always"``: numba's IR
-# inlining adds reference-count operations on every array argument, which cost up to 1.5×
-# per step (measured); only the helpers on scalars and the stages called once per run or
-# per contact (``_workspace``, ``_exact_contact``, ``_finish``) are inlined. Functions only
-# compiled code calls get no CPython or C wrapper (``no_cpython_wrapper``,
-# ``no_cfunc_wrapper``): their named-tuple arguments made the wrappers a tenth of the
-# integrator's cold compile.
+# The loop (:func:`_impact_loop`) keeps the step state in local variables and calls its
+# per-step stages with arrays and scalars only: a stage that takes named tuples of arrays
+# and is not simple enough for numba's reference-count pruning increfs and decrefs every
+# array in them on each call (atomic operations: the named-tuple stages of before cost a
+# cheap plate run 2× in its kernel, benchmarks/RESULTS_kernel_speed.md). The per-step
+# stages are plain compiled calls, not ``inline="always"``: numba's IR inlining adds
+# reference-count operations on every array argument, which cost up to 1.5× per step
+# (measured); only the helpers on scalars and the stages called once per run, per contact
+# or per event (``_workspace``, ``_exact_contact``, ``_cut_at_event``, ``_finish``) are
+# inlined. Functions only compiled code calls get no CPython or C wrapper
+# (``no_cpython_wrapper``, ``no_cfunc_wrapper``): their named-tuple arguments made the
+# wrappers a tenth of the integrator's cold compile.
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
