@@ -300,7 +300,8 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, coupled, exact_phase, output):
     """The integrator's loop over the stages of the module docstring, its state in local
-    variables (passing it through stage calls cost ~45 % of a cheap run, measured).
+    variables (carried through stage calls, it doubled the kernel's time on a cheap plate
+    run: ``benchmarks/RESULTS_kernel_speed.md``).
 
     ``modal`` = (q, v, qn, vn): the modal state at touchdown (zero) and scratch; ``output``
     = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact, peak, peak time,
