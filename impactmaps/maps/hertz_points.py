@@ -213,6 +213,7 @@ class HertzFamily(MapFamily):
     variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
     classifies = True
     shipped = SHIPPED_PLANE_MAPS
+    patch_loadable = True
 
     def __init__(self, patch: float | None = None):
         self.patch = patch
