@@ -108,6 +108,11 @@ class HertzContact(ContactLaw):
     def kernel_parameters(self) -> np.ndarray:
         return np.asarray(self.stiffness, dtype=float)[None, ...]
 
+    @property
+    def hertzian_stiffness(self):
+        """K_h [N/m^1.5] (:attr:`stiffness`)."""
+        return self.stiffness
+
     def permanent_indentation(self, max_indentation):
         """Zero [m]: the Hertz law is elastic."""
         return np.zeros_like(np.asarray(max_indentation, dtype=float))

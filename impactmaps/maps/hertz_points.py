@@ -219,7 +219,7 @@ class HertzFamily(MapFamily):
         self.patch = patch
 
     def describes(self, law) -> bool:
-        return isinstance(law, HertzContact)
+        return law.hertzian_stiffness is not None
 
     def with_patch(self, patch: float | None) -> "HertzFamily":
         """The family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
