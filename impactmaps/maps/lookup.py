@@ -156,8 +156,9 @@ def shipped_structure_name(structure: str, theory: str, slenderness: float | Non
 @functools.lru_cache(maxsize=32)
 def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
     """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
-    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one)."""
-    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one),
+    named by :func:`_shipped_name` (an elastic-plastic law: the structures its family ships)."""
+    name = _shipped_name(structure, theory, law, slenderness)
     dataset = read_shipped(name)
     if dataset is None:
         raise missing_shipped_map(name, law)
@@ -366,7 +367,7 @@ def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
     A refinement built for another version of the map (its ``base_fingerprint`` is not
     the map's fingerprint) is not used: a warning says so and the map is read alone.
     """
-    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    name = _shipped_name(structure, theory, law, slenderness)
     stored = read_shipped("refinements", name)
     if stored is None:
         return None
