@@ -216,7 +216,8 @@ class ContactLaw(ABC):
     :meth:`from_contact_pair`. Parameters may be arrays, so one law object describes a
     batch of cases. ``revision`` counts changes of the law's definition that change its
     answers; it enters the fingerprint of a map sweep of the law, so a stored result of an
-    older definition is never resumed or read as current.
+    older definition is never resumed or read as current. ``stiffness_unit`` is the unit of
+    the ``stiffness`` a law given by its stiffness alone takes (None: no such parameter).
     """
 
     name: ClassVar[str]
@@ -224,6 +225,7 @@ class ContactLaw(ABC):
     needs_yield_strength: ClassVar[bool]
     kernel: ClassVar  # staticmethod(numba dispatcher)
     revision: ClassVar[int] = 1
+    stiffness_unit: ClassVar[str | None] = None
 
     @property
     @abstractmethod

@@ -67,6 +67,7 @@ class HertzContact(ContactLaw):
     effective_radius: float | None = None
 
     name: ClassVar[str] = "hertz"
+    stiffness_unit: ClassVar[str] = "N/m^1.5"
     elastic: ClassVar[bool] = True
     needs_yield_strength: ClassVar[bool] = False
     kernel = staticmethod(_hertz_kernel)
