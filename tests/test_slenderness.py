@@ -1,4 +1,4 @@
-"""Shear-deformable map families: lookups at any slenderness ≥ 10, interpolated in 1/s."""
+"""Slenderness families of the shear-deformable maps: lookups at any slenderness ≥ 10, interpolated in 1/s."""
 
 from __future__ import annotations
 

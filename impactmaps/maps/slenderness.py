@@ -1,9 +1,9 @@
-"""Shear-deformable map families: a lookup at any slenderness by interpolation in 1/s.
+"""Slenderness families of the shear-deformable maps: a lookup at any slenderness by interpolation in 1/s.
 
 The maps of Timoshenko beams and Mindlin plates depend on the slenderness s = span /
 thickness; those of Euler beams and Kirchhoff plates do not. ζ and λ are defined with the
 classical quantities (static stiffness, infinite-structure impedance), so as s grows a
-shear-deformable map tends to the classical one. The package ships each family at
+shear-deformable map tends to the classical one. The package ships each slenderness family at
 s = 10, 20 and 50 (:data:`~impactmaps.maps.structures.FAMILY_SLENDERNESSES`; Timoshenko
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
