@@ -8,7 +8,8 @@ not count):
   ``changed_options``, its registry ``name``); ``isinstance(x, ContactLaw)`` (is it a law
   at all?) is fine;
 * no comparison (``==``, ``!=``, ``in``, ``not in``) with a string equal to a registered
-  theory name outside ``impactmaps/targets/``: the targets' registry answers
+  theory name, and no theory name picked by a conditional expression (``"euler" if … else
+  "kirchhoff"``), outside ``impactmaps/targets/``: the targets' registry answers
   (:mod:`impactmaps.targets.options`: ``default_theory``, ``classical_theory``,
   ``depends_on_slenderness``, ``is_shear_deformable``, ``point_load_diverges``).
 
@@ -84,6 +85,8 @@ def _findings(path: Path, law_classes: frozenset[str]) -> list[tuple[str, int, s
         if isinstance(node, ast.Compare) and any(isinstance(op, _COMPARISONS) for op in node.ops):
             if any(s in THEORIES for operand in (node.left, *node.comparators) for s in _strings(operand)):
                 found.append(("theory", node.lineno, function, ast.unparse(node)))
+        if isinstance(node, ast.IfExp) and any(s in THEORIES for s in _strings(node.body) + _strings(node.orelse)):
+            found.append(("theory", node.lineno, function, ast.unparse(node)))  # a default chosen by name
         for child in ast.iter_child_nodes(node):
             visit(child, function)
 
@@ -116,15 +119,17 @@ def test_no_theory_name_compared_outside_targets():
 
 
 def test_the_walk_sees_both_kinds(tmp_path):
-    """The detector itself: a module with one of each is caught; docstrings and keywords are not."""
+    """The detector itself: each kind is caught; a docstring and a keyword argument are not."""
     source = tmp_path / "sample.py"
     source.write_text('"""theory == "mindlin" in a docstring."""\n'
                       "def f(law, theory):\n"
                       "    make(theory=\"euler\")\n"
+                      "    default = \"euler\" if theory is None else theory\n"
                       "    if isinstance(law, (int, HertzContact)):\n"
                       "        return theory in (\"timoshenko\", \"mindlin\")\n", encoding="utf-8")
     found = _findings(source, frozenset({"HertzContact"}))
-    assert [(kind, line, function) for kind, line, function, _ in found] == [("isinstance", 4, "f"), ("theory", 5, "f")]
+    assert [(kind, line, function) for kind, line, function, _ in found] == [
+        ("theory", 4, "f"), ("isinstance", 5, "f"), ("theory", 6, "f")]
 
 
 def test_the_targets_registry_answers_the_theory_questions():
