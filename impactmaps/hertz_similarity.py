@@ -83,7 +83,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ._checks import require_positive
-from .contact.hertz import HertzContact
+from .contact.base import ContactLaw
 
 __all__ = [
     "ZENER_TO_LOSS_FACTOR",
@@ -149,8 +149,8 @@ class HertzRealisation:
 
 
 def _hertz_stiffness(law) -> float:
-    if isinstance(law, HertzContact):
-        return float(law.stiffness)
+    if isinstance(law, ContactLaw) and law.hertzian_stiffness is not None:
+        return float(law.hertzian_stiffness)
     if isinstance(law, (int, float)):
         require_positive("law (Hertz stiffness)", float(law), "N/m^1.5")
         return float(law)

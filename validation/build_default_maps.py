@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem
+from impactmaps.maps.slenderness import shipped_for
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import DEFAULT_STRUCTURES, FAMILY_STRUCTURES
 from impactmaps.maps.sweep import MAP_LAWS, sweep
@@ -80,7 +81,7 @@ def _options(parser) -> None:
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
     work = WORK if args.out_dir == DATA else args.out_dir / "work"
-    families = [s for s in FAMILY_STRUCTURES if args.law == "linear" or s.theory == "timoshenko"]
+    families = [s for s in FAMILY_STRUCTURES if shipped_for(s.kind, s.theory, args.law)]
     wanted = set(args.only or [*SHIPPED_MAPS.values(), *(s.name for s in families)])
     for structure in (*DEFAULT_STRUCTURES, *families):
         if structure.name not in wanted:

@@ -95,7 +95,7 @@ def _log_uniform(rng, low, high, count):
 
 
 def lookups() -> dict:
-    from impactmaps.maps.families import lookup_slenderness
+    from impactmaps.maps.slenderness import lookup_slenderness
     from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup
     from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
     from impactmaps.maps.structures import FAMILY_SLENDERNESSES

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import warnings
 
+from ..targets.options import FD_BEAM_THEORY
 from ._toml import check_keys, key_path, keyword_options, read_options, string, table
 
 __all__ = ["check_fd_target", "fd_settings"]
@@ -32,7 +33,7 @@ def check_fd_target(data) -> None:
         raise ValueError("target.plies/target.layup are not supported by the finite-difference "
                          "beam: give an isotropic target.material")
     theory = entries.get("theory")
-    if theory is not None and theory != "rayleigh":
+    if theory is not None and theory != FD_BEAM_THEORY:
         warnings.warn(f"target.theory = {theory!r}: the finite-difference beam is a Rayleigh beam "
                       "(no shear deformation); the key is ignored", UserWarning, stacklevel=4)
     for key in ("shear_correction", "damping_ratio"):

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 from .._checks import read_text_input, require_in_range
 from ..contact import law_options
-from ..contact.base import ContactLaw, available_contact_laws, contact_law
+from ..contact.base import ContactLaw, available_contact_laws, contact_law, contact_law_class
 from ..contact.sphere import Sphere, law_for_sphere
 from ..materials import Laminate
 from ..solvers.modal import ModalSettings, reference_contact_stiffness
@@ -243,7 +243,7 @@ def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactL
     name = string(entries, "law", path, choices=available_contact_laws(),
                   default=default_law, required=default_law is None)
     allowed = tuple(law_options(name))
-    stiffness_unit = {"hertz": "N/m^1.5", "linear": "N/m"}.get(name)
+    stiffness_unit = contact_law_class(name).stiffness_unit
     check_keys(entries, path, ("law",) + allowed + (("stiffness",) if stiffness_unit else ()))
     units = {key: option.unit for key, option in law_options(name).items()}
     options = read_options(entries, path, dict.fromkeys(allowed, "number"), units)

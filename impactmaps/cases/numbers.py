@@ -117,14 +117,13 @@ def case_numbers(case: Case) -> dict:
     if case.law.linear_stiffness is not None:
         omega = math.sqrt(linear["contact_stiffness_N_m"] / mass)
         return numbers | {"vocabulary": "linear", "force_scale_N": mass * velocity * omega, "time_scale_s": 1.0 / omega}
-    from ..contact.hertz import HertzContact
-
-    if isinstance(case.law, HertzContact):
+    if case.law.hertzian_stiffness is not None:
         from ..solvers.halfspace import hertz_max_indentation
 
-        alpha_m = float(hertz_max_indentation(mass, velocity, float(case.law.stiffness)))
+        stiffness = float(case.law.hertzian_stiffness)
+        alpha_m = float(hertz_max_indentation(mass, velocity, stiffness))
         numbers |= {"vocabulary": "hertz", "lambda_basis": NUMBER_BASES["hertz"],
-                    "force_scale_N": float(case.law.stiffness) * alpha_m**1.5,
+                    "force_scale_N": stiffness * alpha_m**1.5,
                     "time_scale_s": alpha_m / velocity, "zeta": None, "lambda": None,
                     "zeta_linearised": linear["zeta"], "lambda_linearised": linear["lambda"],
                     "linearised_basis": linear["lambda_basis"]}

@@ -136,7 +136,7 @@ def _point_defaults(args) -> None:
 
 def _structure_from_args(args):
     from ..maps.structures import MapStructure
-    from ..targets.options import STRUCTURE_KINDS
+    from ..targets.options import STRUCTURE_KINDS, default_theory
 
     kind, _, supports = args.target.partition("-")
     if kind not in STRUCTURE_KINDS or not supports:
@@ -147,7 +147,7 @@ def _structure_from_args(args):
     if kind == "plate" and supports.lower() == "ss":
         supports = "SSSS"
     _point_defaults(args)
-    theory = args.theory or ("euler" if kind == "beam" else "kirchhoff")
+    theory = args.theory or default_theory(kind)
     fractions = (args.position,) if kind == "beam" else (args.position, args.position_y)
     try:
         structure = MapStructure(kind=kind, theory=theory, supports=supports, aspect_ratio=args.aspect,
@@ -328,6 +328,7 @@ def cmd_classify(args) -> dict:
            high_inclusive=True)
     if args.from_map:
         from ..maps.lookup import lookup
+        from ..targets.options import default_theory
 
         refuse(args, {"--aspect": "aspect", "--slenderness": "slenderness", "--position": "position",
                        "--position-y": "position_y", "--cutoff-ratio": "cutoff_ratio",
@@ -335,7 +336,7 @@ def cmd_classify(args) -> dict:
                 "with --from-map (the shipped maps are for centre impacts on SS beams and square plates)")
         check("--zeta", args.zeta, what="the loss factor ζ")
         check("--lambda", args.lambda_, what="the relative stiffness λ")
-        theory = "euler" if args.structure == "beam" else "kirchhoff"
+        theory = default_theory(args.structure)
         found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=theory,
                        tolerance=args.tolerance)
         return {"regime": found.regime, "fmax_normalised": found.fmax_normalised, "source": f"map {found.map_name}"}
@@ -387,7 +388,7 @@ def cmd_lookup(args) -> dict:
         if slenderness is None:
             found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=law)
         else:
-            from ..maps.families import lookup_slenderness
+            from ..maps.slenderness import lookup_slenderness
 
             check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest family member is 10)",
                   low_inclusive=True)

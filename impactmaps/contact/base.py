@@ -30,11 +30,10 @@ import numpy as np
 
 from .._checks import (
     require_choice,
-    require_in_range,
     require_nonnegative,
-    require_positive,
 )
 from ..solvers.lazy_kernel import LazyKernel
+from .geometry import effective_modulus, effective_radius, require_positive_or_infinite  # noqa: F401 (re-exported)
 
 __all__ = [
     "ContactLaw",
@@ -217,7 +216,8 @@ class ContactLaw(ABC):
     :meth:`from_contact_pair`. Parameters may be arrays, so one law object describes a
     batch of cases. ``revision`` counts changes of the law's definition that change its
     answers; it enters the fingerprint of a map sweep of the law, so a stored result of an
-    older definition is never resumed or read as current.
+    older definition is never resumed or read as current. ``stiffness_unit`` is the unit of
+    the ``stiffness`` a law given by its stiffness alone takes (None: no such parameter).
     """
 
     name: ClassVar[str]
@@ -225,6 +225,7 @@ class ContactLaw(ABC):
     needs_yield_strength: ClassVar[bool]
     kernel: ClassVar  # staticmethod(numba dispatcher)
     revision: ClassVar[int] = 1
+    stiffness_unit: ClassVar[str | None] = None
 
     @property
     @abstractmethod
@@ -372,6 +373,23 @@ class ContactLaw(ABC):
         """
         return _invert_loading_energy(self, energy)
 
+    # -- what places the law's impacts on a normalised map ------------------------------
+    @property
+    def hertzian_stiffness(self):
+        """K_h [N/m^1.5] of an elastic Hertz law ``F = K_h α^{3/2}``; ``None`` for any other law."""
+        return None
+
+    @property
+    def yield_scales(self):
+        """``(K_h [N/m^1.5], α_y [m])`` of the Yigit–Christoforou law (seed 001 eqs 7, 9) that places an
+        elastic-plastic law's impacts (such a law also has ``from_yield_scales``); ``None`` without a yield scale."""
+        return None
+
+    def changed_options(self) -> dict:
+        """Name → value of the :meth:`options` that differ from their defaults (an array: any value)."""
+        return {name: getattr(self, name) for name, option in self.options().items()
+                if not np.all(np.asarray(getattr(self, name), float) == float(option.default))}
+
 
 #: First trial indentation of the generic energy inversion [m] (grown or shrunk ×4).
 _TRIAL_INDENTATION = 1e-6
@@ -453,42 +471,3 @@ def contact_law_class(name: str) -> type[ContactLaw]:
 def contact_law(name: str, **parameters) -> ContactLaw:
     """Build the registered contact law ``name`` from keyword parameters (SI units)."""
     return contact_law_class(name)(**parameters)
-
-
-# -- contact geometry ---------------------------------------------------------------
-def require_positive_or_infinite(name: str, value, unit: str) -> np.ndarray:
-    """``value`` as a float array, or ``ValueError`` unless every element is in (0, inf]."""
-    array = np.asarray(value, dtype=float)
-    if np.any(np.isnan(array)) or np.any(array <= 0):
-        raise ValueError(f"{name} = {value!r} is invalid: valid range is (0, inf] [{unit}]")
-    return array
-
-
-def effective_modulus(
-    youngs_modulus_1, poisson_ratio_1, youngs_modulus_2=np.inf, poisson_ratio_2=0.0
-):
-    """Effective contact modulus E* [Pa], ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` (seed 001 eq 8).
-
-    Parameters
-    ----------
-    youngs_modulus_1, poisson_ratio_1 : float or array_like
-        Young's modulus [Pa] and Poisson ratio [-] of body 1 (the impactor).
-    youngs_modulus_2, poisson_ratio_2 : float or array_like
-        The same for body 2 (the target); ``inf`` means rigid.
-    """
-    require_positive("youngs_modulus_1", youngs_modulus_1, "Pa")
-    require_in_range("poisson_ratio_1", poisson_ratio_1, -1.0, 0.5,
-                     low_inclusive=False, high_inclusive=False)
-    e2 = require_positive_or_infinite("youngs_modulus_2", youngs_modulus_2, "Pa")
-    require_in_range("poisson_ratio_2", poisson_ratio_2, -1.0, 0.5,
-                     low_inclusive=False, high_inclusive=False)
-    compliance = (1 - np.asarray(poisson_ratio_1) ** 2) / np.asarray(youngs_modulus_1, float)
-    compliance = compliance + np.where(np.isinf(e2), 0.0, (1 - np.asarray(poisson_ratio_2) ** 2) / e2)
-    return 1.0 / compliance
-
-
-def effective_radius(radius_1, radius_2=np.inf):
-    """Effective contact radius R [m], ``1/R = 1/R1 + 1/R2``; ``radius_2 = inf`` is a flat."""
-    require_positive("radius_1", radius_1, "m")
-    r2 = require_positive_or_infinite("radius_2", radius_2, "m")
-    return 1.0 / (1.0 / np.asarray(radius_1, float) + np.where(np.isinf(r2), 0.0, 1.0 / r2))

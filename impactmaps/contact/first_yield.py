@@ -9,11 +9,15 @@ is used, so that one β places an impact on every plastic chart and map.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .yigit_christoforou import YigitChristoforouContact
+from .hertz import hertz_stiffness
+from .yigit_christoforou import YigitChristoforouContact, yield_indentation
 
-__all__ = ["first_yield_force", "first_yield_indentation", "reference_impact_number"]
+__all__ = ["first_yield_force", "first_yield_indentation", "reference_impact_number", "reference_yield_scales",
+           "properties_for_yield_scales"]
 
 
 def first_yield_indentation(effective_modulus, radius, yield_strength, pressure_factor):
@@ -36,3 +40,19 @@ def reference_impact_number(effective_modulus, radius, yield_strength, impactor_
     ``ω = sqrt(K_h α_y^{1/2}/m_i)`` (seed 001 eqs 9, 11, 12)."""
     reference = YigitChristoforouContact.from_properties(effective_modulus, radius, yield_strength)
     return reference.impact_number(impactor_mass, velocity)
+
+
+def reference_yield_scales(effective_modulus, radius, yield_strength) -> tuple:
+    """``(K_h, α_y)`` [N/m^1.5, m] of the Yigit–Christoforou law with these E* [Pa], R [m]
+    and Y [Pa] (seed 001 eqs 7, 9): the yield scales of a law given by E*, R, Y."""
+    return hertz_stiffness(effective_modulus, radius), yield_indentation(yield_strength, radius, effective_modulus)
+
+
+def properties_for_yield_scales(hertz: float, alpha_y: float) -> tuple[float, float, float]:
+    """``(E*, R, Y)`` [Pa, m, Pa] whose :func:`reference_yield_scales` are K_h [N/m^1.5] and
+    α_y [m]: R = 1 m (a law given by E*, R, Y depends on R alone through its contact radius),
+    ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9)."""
+    radius = 1.0
+    modulus = 0.75 * hertz / math.sqrt(radius)
+    strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))
+    return modulus, radius, strength

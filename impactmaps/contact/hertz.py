@@ -67,6 +67,7 @@ class HertzContact(ContactLaw):
     effective_radius: float | None = None
 
     name: ClassVar[str] = "hertz"
+    stiffness_unit: ClassVar[str] = "N/m^1.5"
     elastic: ClassVar[bool] = True
     needs_yield_strength: ClassVar[bool] = False
     kernel = staticmethod(_hertz_kernel)
@@ -107,6 +108,11 @@ class HertzContact(ContactLaw):
     @property
     def kernel_parameters(self) -> np.ndarray:
         return np.asarray(self.stiffness, dtype=float)[None, ...]
+
+    @property
+    def hertzian_stiffness(self):
+        """K_h [N/m^1.5] (:attr:`stiffness`)."""
+        return self.stiffness
 
     def permanent_indentation(self, max_indentation):
         """Zero [m]: the Hertz law is elastic."""

@@ -37,6 +37,7 @@ class LinearContact(ContactLaw):
     stiffness: float
 
     name: ClassVar[str] = "linear"
+    stiffness_unit: ClassVar[str] = "N/m"
     elastic: ClassVar[bool] = True
     needs_yield_strength: ClassVar[bool] = True
     kernel = staticmethod(_linear_kernel)

@@ -134,7 +134,17 @@ class YigitChristoforouContact(ContactLaw):
         return cls.from_properties(pair.effective_modulus, pair.effective_radius,
                                    pair.required_yield_strength())
 
+    @classmethod
+    def from_yield_scales(cls, hertz_stiffness, yield_indentation) -> "YigitChristoforouContact":
+        """The law of Hertz stiffness K_h [N/m^1.5] and yield indentation α_y [m]."""
+        return cls(hertz_stiffness, yield_indentation)
+
     # -- derived quantities -------------------------------------------------------
+    @property
+    def yield_scales(self):
+        """``(K_h, α_y)`` [N/m^1.5, m]: the law's own parameters."""
+        return self.hertz_stiffness, self.yield_indentation
+
     @property
     def linearised_stiffness(self):
         """``K_y = 1.5 K_h sqrt(α_y)`` [N/m], the stiffness of the linearised law (eqs 10, 18)."""

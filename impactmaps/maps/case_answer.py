@@ -72,8 +72,9 @@ def case_loads_a_patch(case) -> bool:
 
 def scaled_answer(case, law: str, read) -> dict:
     """The answer of :func:`lookup_case` from ``read(ζ, λ) -> LookupResult``, a reading of a
-    linear or Hertz map at the case's numbers, scaled to newtons."""
-    if law == "hertz":
+    linear or Hertz map at the case's numbers, scaled to newtons: the Hertz numbers
+    (ζ_h, λ_h, F_hs) where the case's law is a Hertz law (its ``hertzian_stiffness``)."""
+    if case.law.hertzian_stiffness is not None:
         hertz = hertz_numbers(case.target, case.law, case.impactor_mass, case.velocity)
         zeta, lam = hertz.loss_factor, hertz.relative_stiffness
         found = read(zeta, lam)

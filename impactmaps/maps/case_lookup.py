@@ -4,7 +4,7 @@
 theory, supports, impact point, aspect ratio, slenderness, contact law — and names the
 map family that describes it exactly, or refuses with the reason (never the nearest
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
-slenderness families :func:`impactmaps.maps.families.lookup_slenderness`, or the plastic
+slenderness families :func:`impactmaps.maps.slenderness.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
 to newtons with its band. A case that no shipped map describes but whose target names a
 reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
@@ -24,7 +24,7 @@ from .case_answer import (
     lookup_plastic_case,
     scaled_answer,
 )
-from .families import family_members, lookup_slenderness
+from .slenderness import lookup_slenderness, shipped_for
 from .lookup import SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
 from .plastic_points import PLASTIC_LAWS
@@ -96,12 +96,12 @@ def map_for_case(case) -> tuple[str, str]:
     if (key.kind, key.theory) not in maps:
         refuse(f"{key.kind} theory {key.theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == key.kind) + ")")
-    if law == "hertz" and case_loads_a_patch(case):
+    if map_family(law).patch_loadable and case_loads_a_patch(case):
         refuse(f"a Hertz impact on a {key.theory.capitalize()} plate, which simulate loads over the contact patch "
                "(the maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
     slenderness = key.slenderness
     if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
-        family = _has_family(key.kind, key.theory, law)
+        family = shipped_for(key.kind, key.theory, law)
         if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
             refuse(f"{key.theory} {key.kind} of slenderness {slenderness:.4g} (maps: "
                    + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
@@ -114,15 +114,6 @@ def map_for_case(case) -> tuple[str, str]:
             refuse(f"{name} = {value:.6g} (maps: {groups[name]:.6g}; another Poisson ratio of a shear-deformable "
                    "target is another family)")
     return key.kind, key.theory
-
-
-def _has_family(kind: str, theory: str, law: str) -> bool:
-    """Whether a slenderness family is shipped for a (kind, theory) with ``law``."""
-    try:
-        family_members(kind, theory, law)
-    except ValueError:
-        return False
-    return True
 
 
 def case_slenderness(case) -> float | None:

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from ..solvers.modal import ModalSettings
+from ..targets.options import default_theory
 from .chart import tidy_frame
 from .registry import available_map_families, map_family
 from .structures import MapStructure
@@ -47,8 +48,8 @@ _SOLVER_KEYS = {f.name for f in fields(ModalSettings)}
 
 #: Defaults of a ``[[structure]]`` table that depend on its ``kind``.
 KIND_DEFAULTS = {
-    "beam": {"theory": "euler", "supports": "ss", "impact_fraction": (0.5,)},
-    "plate": {"theory": "kirchhoff", "supports": "SSSS", "impact_fraction": (0.5, 0.5)},
+    "beam": {"theory": default_theory("beam"), "supports": "ss", "impact_fraction": (0.5,)},
+    "plate": {"theory": default_theory("plate"), "supports": "SSSS", "impact_fraction": (0.5, 0.5)},
 }
 
 

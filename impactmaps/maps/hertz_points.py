@@ -29,6 +29,7 @@ from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR
 from ..solvers.modal_settings import ModalSettings, uses_patch
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
+from ..targets.options import default_theory
 from .accuracy import AccuracyControl, exact_point
 from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
 from .points import PlanMethod, method_code, solve_map_points
@@ -52,11 +53,11 @@ HERTZ_DESCRIPTIONS = {
 #: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
 HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")
 
-#: The structure whose target stands for each kind in the Hertz asymptotes (the infinite
+#: The structure (of the classical theory) whose target stands for each kind in the Hertz asymptotes (the infinite
 #: plate needs ρh and D*, the infinite beam m' and EI; the loss factor is defined on them).
 _ASYMPTOTE_STRUCTURES = {
-    "plate": MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
-    "beam": MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
+    "plate": MapStructure(kind="plate", theory=default_theory("plate"), supports="SSSS"),
+    "beam": MapStructure(kind="beam", theory=default_theory("beam"), supports="ss", impact_fraction=(0.5,)),
 }
 _INFINITE = {"plate": "infinite-plate", "beam": "infinite-beam"}
 
@@ -213,12 +214,13 @@ class HertzFamily(MapFamily):
     variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
     classifies = True
     shipped = SHIPPED_PLANE_MAPS
+    patch_loadable = True
 
     def __init__(self, patch: float | None = None):
         self.patch = patch
 
     def describes(self, law) -> bool:
-        return isinstance(law, HertzContact)
+        return law.hertzian_stiffness is not None
 
     def with_patch(self, patch: float | None) -> "HertzFamily":
         """The family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""

@@ -10,7 +10,7 @@ Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
 ``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
 it was swept with (:func:`impactmaps.maps.sweep.map_law`): a Hertz map is never read as
 a linear one, nor the reverse. The shear-deformable maps also ship at other slendernesses
-(:mod:`impactmaps.maps.families`); a physical case finds its map in
+(:mod:`impactmaps.maps.slenderness`); a physical case finds its map in
 :mod:`impactmaps.maps.case_lookup`.
 """
 
@@ -26,7 +26,7 @@ import numpy as np
 import xarray as xr
 
 from .._checks import require_choice, require_positive
-from ..targets.options import STRUCTURE_KINDS
+from ..targets.options import STRUCTURE_KINDS, is_shear_deformable, point_load_diverges
 from .plastic_points import PLASTIC_LAWS
 from .reader import (
     BAND_TOLERANCE,
@@ -147,7 +147,7 @@ def shipped_structure_name(structure: str, theory: str, slenderness: float | Non
     require_choice("structure", structure, STRUCTURE_KINDS)
     require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == structure])
     name = SHIPPED_MAPS[(structure, theory)]
-    if slenderness is None or theory not in ("timoshenko", "mindlin") or slenderness == SHIPPED_SLENDERNESS:
+    if slenderness is None or not is_shear_deformable(theory) or slenderness == SHIPPED_SLENDERNESS:
         return name
     require_choice("slenderness", float(slenderness), FAMILY_SLENDERNESSES)
     return replace(structure_from_name(name), slenderness=float(slenderness)).name
@@ -156,8 +156,9 @@ def shipped_structure_name(structure: str, theory: str, slenderness: float | Non
 @functools.lru_cache(maxsize=32)
 def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
     """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
-    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one)."""
-    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one),
+    named by :func:`_shipped_name` (an elastic-plastic law: the structures its family ships)."""
+    name = _shipped_name(structure, theory, law, slenderness)
     dataset = read_shipped(name)
     if dataset is None:
         raise missing_shipped_map(name, law)
@@ -196,7 +197,7 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         Contact law of the map (F̄max = F_max/(m_i V0 ω), or F_max/F_hs for Hertz).
     slenderness : float, optional
         Timoshenko/Mindlin only: the family member to read (10, 20 or 50; default 20).
-        Any other slenderness ≥ 10: :func:`impactmaps.maps.families.lookup_slenderness`.
+        Any other slenderness ≥ 10: :func:`impactmaps.maps.slenderness.lookup_slenderness`.
 
     Returns
     -------
@@ -205,7 +206,7 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     if law in PLASTIC_LAWS:
         raise ValueError(f"law = {law!r}: an elastic-plastic map has a third axis β; read it with "
                          "impactmaps.lookup_plastic(beta, zeta, lambda_, ...) (lookup takes law 'linear' or 'hertz')")
-    if theory == "mindlin":
+    if point_load_diverges(theory):
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
     prepared, name = shipped_reader(structure, theory, law, slenderness)
     return read_map(None, loss_factor, relative_stiffness, structure=structure, theory=theory, name=name, law=law,
@@ -366,7 +367,7 @@ def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
     A refinement built for another version of the map (its ``base_fingerprint`` is not
     the map's fingerprint) is not used: a warning says so and the map is read alone.
     """
-    name = map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+    name = _shipped_name(structure, theory, law, slenderness)
     stored = read_shipped("refinements", name)
     if stored is None:
         return None

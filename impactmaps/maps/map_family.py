@@ -130,6 +130,9 @@ class MapFamily:
     tile_lattice : dict
         Axis name → Δ log10 of the global lattice of its on-demand tiles
         (:mod:`impactmaps.maps.tiles`), every axis.
+    patch_loadable : bool
+        Whether its points can be loaded over the contact patch (a family of one patch
+        number P, ``with_patch``); the registered family itself is point-loaded.
     """
 
     name: ClassVar[str]
@@ -143,6 +146,7 @@ class MapFamily:
     title: ClassVar[str] = "impactmaps normalised impact map"
     classifies: ClassVar[bool] = False
     tile_lattice: ClassVar[dict] = {"zeta": 0.05, "lambda_": 0.1}
+    patch_loadable: ClassVar[bool] = False
 
     @property
     def method_text(self) -> str:

@@ -81,7 +81,7 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
         raise ValueError("an elastic-plastic impact on a target that simulate loads over the contact patch, or whose "
                          "point-load deflection diverges (a Mindlin plate): its response depends on the sphere radius "
                          "as a fourth number")
-    patch = patch and law == "hertz"
+    patch = patch and family.patch_loadable
     key = target.map_structure(patch_loaded=patch)
     if key is None:
         raise ValueError(target.map_structure_refusal(patch_loaded=patch))

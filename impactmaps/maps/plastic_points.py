@@ -66,10 +66,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import require_choice, require_positive
+from ..contact.base import contact_law_class
 from ..contact.epp import EppContact
-from ..contact.hertz import hertz_stiffness
-from ..contact.stronge import StrongeContact
-from ..contact.yigit_christoforou import YigitChristoforouContact, yield_indentation
 from ..dimensionless import realise
 from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.modal_settings import ModalSettings
@@ -83,8 +81,6 @@ __all__ = ["PLASTIC_LAWS", "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbe
 
 #: Map-law name → registered contact-law name of the elastic-plastic maps.
 PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge", "epp": "epp"}
-#: Map-law name → its contact-law class.
-_LAW_CLASSES = {"yc": YigitChristoforouContact, "stronge": StrongeContact, "epp": EppContact}
 #: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's
 #: Poisson ratio 0.3, a rigid sphere); each changes the normalised response, so another
 #: value is another family.
@@ -133,46 +129,28 @@ class PlasticNumbers:
 def plastic_law_of(law) -> str:
     """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to, or ValueError.
 
-    A Stronge law with other than the default constants is another family, as is an
-    ``epp`` law with other than the default options (:data:`EPP_MAP_OPTIONS`): refused,
-    naming the option, its value and the maps' value.
+    A law with other than its default options (:meth:`~impactmaps.contact.ContactLaw.changed_options`:
+    the constants of a Stronge law, the options of an ``epp`` law, :data:`EPP_MAP_OPTIONS`) is
+    another family: refused, naming the option, its value and the maps' value.
     """
-    if isinstance(law, YigitChristoforouContact):
-        return "yc"
-    if isinstance(law, StrongeContact):
-        defaults = StrongeContact(1.0, 1.0, 1.0)
-        changed = [name for name in ("yield_pressure_factor", "plastic_pressure_factor",
-                                     "plastic_indentation_ratio")
-                   if float(getattr(law, name)) != float(getattr(defaults, name))]
-        if changed:
-            raise ValueError(f"contact law 'stronge' with {', '.join(changed)} other than the defaults (the "
-                             "plastic maps are for the default constants c_y = 1.6, c_p = 2.8, δ_p/δ_y = 84)")
-        return "stronge"
-    if isinstance(law, EppContact):
-        changed = [f"{name} = {_option_text(getattr(law, name))} (the maps' value: {value:g})"
-                   for name, value in EPP_MAP_OPTIONS.items()
-                   if not np.all(np.asarray(getattr(law, name), float) == float(value))]
-        if changed:
-            raise ValueError(f"contact law 'epp' with {', '.join(changed)}: the normalised response depends on "
-                             "these options and the epp maps are built at their defaults")
-        return "epp"
-    raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
-                     f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+    name = getattr(law, "name", None)
+    map_law = next((key for key, law_name in PLASTIC_LAWS.items() if law_name == name), None)
+    if map_law is None:
+        raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
+                         f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+    defaults = law.options()
+    changed = [f"{option} = {_option_text(value)} (the maps' value: {float(defaults[option].default):g})"
+               for option, value in law.changed_options().items()]
+    if changed:
+        raise ValueError(f"contact law {name!r} with {', '.join(changed)}: the normalised response depends on "
+                         f"these options and the {map_law} maps are built at their defaults")
+    return map_law
 
 
 def _option_text(value) -> str:
     """A law option's value as the user gave it (a number, or an array's values)."""
     values = np.unique(np.asarray(value, float))
     return f"{values[0]:g}" if values.size == 1 else "[" + ", ".join(f"{v:g}" for v in values) + "]"
-
-
-def _hertz_and_yield(law) -> tuple[float, float]:
-    """(K_h [N/m^1.5], α_y [m]) of a plastic law: the Hertz stiffness and the eq (9) yield indentation."""
-    if isinstance(law, YigitChristoforouContact):
-        return float(law.hertz_stiffness), float(law.yield_indentation)
-    modulus, radius = float(law.effective_modulus), float(law.radius)
-    return (float(hertz_stiffness(modulus, radius)),
-            float(yield_indentation(float(law.yield_strength), radius, modulus)))
 
 
 def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
@@ -196,7 +174,7 @@ def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
     require_positive("mass", mass, "kg")
     require_positive("velocity", velocity, "m/s")
     m, v = float(mass), float(velocity)
-    hertz, alpha_y = _hertz_and_yield(law)
+    hertz, alpha_y = (float(scale) for scale in law.yield_scales)
     stiffness = 1.5 * hertz * math.sqrt(alpha_y)
     omega = math.sqrt(stiffness / m)
     return PlasticNumbers(
@@ -210,20 +188,10 @@ def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
 
 
 def _law_from(map_law: str, hertz: float, alpha_y: float):
-    """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y.
-
-    A Stronge or ``epp`` law needs E*, R, Y: R = 1 m (it only sets the contact radius,
-    unused off Mindlin plates), ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9); an ``epp``
-    law at the maps' options (:data:`EPP_MAP_OPTIONS`).
-    """
-    if map_law == "yc":
-        return YigitChristoforouContact(hertz, alpha_y)
-    radius = 1.0
-    modulus = 0.75 * hertz / math.sqrt(radius)
-    strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))
-    if map_law == "epp":
-        return EppContact(modulus, radius, strength, **EPP_MAP_OPTIONS)
-    return StrongeContact(modulus, radius, strength)
+    """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y,
+    at its default options (:meth:`~impactmaps.contact.ContactLaw.from_yield_scales`; for an
+    ``epp`` law those are :data:`EPP_MAP_OPTIONS`)."""
+    return contact_law_class(PLASTIC_LAWS[map_law]).from_yield_scales(hertz, alpha_y)
 
 
 @dataclass(frozen=True)
@@ -431,10 +399,10 @@ class PlasticFamily(MapFamily):
 
     @property
     def law_revision(self) -> int:
-        return _LAW_CLASSES[self.name].revision
+        return contact_law_class(PLASTIC_LAWS[self.name]).revision
 
     def describes(self, law) -> bool:
-        return isinstance(law, _LAW_CLASSES[self.name]) and plastic_law_of(law) == self.name
+        return getattr(law, "name", None) == PLASTIC_LAWS[self.name] and plastic_law_of(law) == self.name
 
     def realise(self, target, point) -> PlasticRealisation:
         beta, zeta, lam = (float(value) for value in point)

@@ -13,7 +13,7 @@ part of the key (default span/thickness = 20).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -21,7 +21,7 @@ from .._checks import require_choice, require_in_range, require_positive
 from ..targets.base import ModalBasis, Target, dropped_compliance_sums
 from ..targets.beam import MIN_SLENDERNESS, Beam
 from ..targets.map_structure import reference_target
-from ..targets.options import BEAM_THEORIES, PLATE_THEORIES, STRUCTURE_KINDS
+from ..targets.options import STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ..targets.plate import Plate
 
 __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
@@ -60,7 +60,7 @@ class MapStructure:
 
     def __post_init__(self):
         require_choice("kind", self.kind, STRUCTURE_KINDS)
-        require_choice("theory", self.theory, BEAM_THEORIES if self.kind == "beam" else PLATE_THEORIES)
+        require_choice("theory", self.theory, theories(self.kind))
         require_positive("aspect_ratio", self.aspect_ratio)
         require_in_range("slenderness", self.slenderness, MIN_SLENDERNESS, np.inf)
         require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
@@ -87,7 +87,7 @@ class MapStructure:
         extras = []
         if self.kind == "plate" and self.aspect_ratio != 1.0:
             extras.append(f"ar{self.aspect_ratio:g}")
-        if self.theory in ("timoshenko", "rayleigh", "mindlin"):
+        if depends_on_slenderness(self.theory):
             extras.append(f"s{self.slenderness:g}")
         centre = (0.5,) if self.kind == "beam" else (0.5, 0.5)
         if self.impact_fraction != centre:
@@ -150,10 +150,9 @@ FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
 
 #: The shear-deformable family members besides the default slenderness 20.
 FAMILY_STRUCTURES = tuple(
-    MapStructure(kind=kind, theory=theory, supports=supports, slenderness=slenderness,
-                 impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5))
-    for kind, theory, supports in (("beam", "timoshenko", "ss"), ("plate", "mindlin", "SSSS"))
-    for slenderness in FAMILY_SLENDERNESSES if slenderness != 20.0
+    replace(structure, slenderness=slenderness)
+    for structure in DEFAULT_STRUCTURES if is_shear_deformable(structure.theory)
+    for slenderness in FAMILY_SLENDERNESSES if slenderness != structure.slenderness
 )
 
 

@@ -26,6 +26,7 @@ import xarray as xr
 
 from .._checks import require_positive
 from ..solvers.modal import ModalSettings
+from ..targets.options import point_load_diverges
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
 from .dataset import ASYMPTOTE_PEAKS, classify_dataset, empty_dataset, map_law, with_asymptote_peaks
 from .linear_points import solve_points
@@ -163,7 +164,7 @@ def sweep(
     """
     settings = settings or ModalSettings()
     grid = _prepare(structures, loss_factors, relative_stiffnesses, settings, law, axes)
-    if any(structure.theory == "mindlin" for structure in grid.structures):
+    if any(point_load_diverges(structure.theory) for structure in grid.structures):
         warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=2)
     dataset, shipped = _resume(path, overwrite, grid)
     if shipped and progress:

@@ -39,7 +39,7 @@ FMAX_LABELS = {
 def _label_law(dataset) -> str:
     """The key of :data:`FMAX_LABELS` for a map dataset (from its ``contact_law`` attribute)."""
     law = str(dataset.attrs.get("contact_law", "linear"))
-    return law if law in ("linear", "hertz") else "plastic"
+    return law if law in FMAX_LABELS else "plastic"
 
 
 def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):

@@ -7,7 +7,9 @@ command line) imports them from here.
 from __future__ import annotations
 
 __all__ = ["STRUCTURE_KINDS", "BEAM_THEORIES", "BEAM_SUPPORTS", "PLATE_THEORIES", "CLASSICAL_THEORIES",
-           "DIVERGENT_POINT_LOAD_THEORIES"]
+           "DIVERGENT_POINT_LOAD_THEORIES", "SLENDERNESS_THEORIES", "SHEAR_THEORIES", "FD_BEAM_THEORY",
+           "theories", "default_theory", "classical_theory", "depends_on_slenderness", "is_shear_deformable",
+           "point_load_diverges"]
 
 #: Kinds of finite structure with modes and an infinite-structure asymptote.
 STRUCTURE_KINDS = ("beam", "plate")
@@ -23,3 +25,44 @@ CLASSICAL_THEORIES = ("euler", "kirchhoff")
 #: Theories under which the deflection under a point load is unbounded (a Mindlin plate:
 #: logarithmic, from transverse shear), so a point-load peak force never converges.
 DIVERGENT_POINT_LOAD_THEORIES = ("mindlin",)
+#: Theories whose normalised response depends on the slenderness (span/thickness), through
+#: rotary inertia (Rayleigh) or shear and rotary inertia (Timoshenko, Mindlin).
+SLENDERNESS_THEORIES = ("rayleigh", "timoshenko", "mindlin")
+#: Shear-deformable theories, each with its classical (shear-rigid) thin limit.
+SHEAR_THEORIES = {"timoshenko": "euler", "mindlin": "kirchhoff"}
+#: The theory of the finite-difference beam (:mod:`impactmaps.fd`): rotary inertia, no shear.
+FD_BEAM_THEORY = "rayleigh"
+
+
+def theories(kind: str) -> tuple[str, ...]:
+    """The theories of a structure kind: :data:`BEAM_THEORIES` or :data:`PLATE_THEORIES`."""
+    return BEAM_THEORIES if kind == "beam" else PLATE_THEORIES
+
+
+def default_theory(kind: str) -> str:
+    """The theory a structure of ``kind`` takes when none is given: the classical one
+    (``"beam"`` → Euler–Bernoulli, ``"plate"`` → Kirchhoff)."""
+    return next(theory for theory in theories(kind) if theory in CLASSICAL_THEORIES)
+
+
+def classical_theory(theory: str) -> str:
+    """The classical (shear-rigid) thin limit of a shear-deformable ``theory``
+    (Timoshenko → Euler, Mindlin → Kirchhoff); a classical theory is its own."""
+    return SHEAR_THEORIES.get(theory, theory)
+
+
+def depends_on_slenderness(theory: str) -> bool:
+    """Whether the normalised response under ``theory`` depends on the slenderness
+    (:data:`SLENDERNESS_THEORIES`)."""
+    return theory in SLENDERNESS_THEORIES
+
+
+def is_shear_deformable(theory: str) -> bool:
+    """Whether ``theory`` has transverse shear deformation (:data:`SHEAR_THEORIES`)."""
+    return theory in SHEAR_THEORIES
+
+
+def point_load_diverges(theory: str) -> bool:
+    """Whether the deflection under a point load is unbounded under ``theory``
+    (:data:`DIVERGENT_POINT_LOAD_THEORIES`)."""
+    return theory in DIVERGENT_POINT_LOAD_THEORIES

@@ -1,9 +1,9 @@
-"""Shear-deformable map families: a lookup at any slenderness by interpolation in 1/s.
+"""Slenderness families of the shear-deformable maps: a lookup at any slenderness by interpolation in 1/s.
 
 The maps of Timoshenko beams and Mindlin plates depend on the slenderness s = span /
 thickness; those of Euler beams and Kirchhoff plates do not. ζ and λ are defined with the
 classical quantities (static stiffness, infinite-structure impedance), so as s grows a
-shear-deformable map tends to the classical one. The package ships each family at
+shear-deformable map tends to the classical one. The package ships each slenderness family at
 s = 10, 20 and 50 (:data:`~impactmaps.maps.structures.FAMILY_SLENDERNESSES`; Timoshenko
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
@@ -28,18 +28,27 @@ import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
+from ..targets.options import classical_theory, is_shear_deformable, point_load_diverges
 from .lookup import load_shipped_map, lookup
 from .reader import _SEVERITY, answer_status
+from .registry import PLANE_LAWS, map_family
 from .structures import FAMILY_SLENDERNESSES
 
-__all__ = ["FAMILY_THEORIES", "family_members", "lookup_slenderness", "slenderness_error_grid"]
+__all__ = ["family_members", "lookup_slenderness", "slenderness_error_grid", "shipped_for"]
 
-#: The shear-deformable theory of each structure kind with a family, and its thin limit.
-FAMILY_THEORIES = {("beam", "timoshenko"): "euler", ("plate", "mindlin"): "kirchhoff"}
 
-#: Laws each family is shipped for (a Hertz impact on a Mindlin plate loads the contact
-#: patch, whose radius is a third parameter: no Mindlin Hertz family).
-_FAMILY_LAWS = {("beam", "timoshenko"): ("linear", "hertz"), ("plate", "mindlin"): ("linear",)}
+def shipped_for(structure: str, theory: str, law: str) -> bool:
+    """Whether a slenderness family is shipped for a (kind, theory) with the map law ``law``.
+
+    A shear-deformable theory (:func:`~impactmaps.targets.options.is_shear_deformable`) of a
+    shipped (ζ, λ) map of the law, struck by a point load: a law whose family loads the
+    contact patch (Hertz) on a target whose point load diverges (Mindlin) has the patch
+    radius as a third number, so no family is shipped for it.
+    """
+    if law not in PLANE_LAWS or not is_shear_deformable(theory):
+        return False
+    family = map_family(law)
+    return (structure, theory) in family.shipped and not (family.patch_loadable and point_load_diverges(theory))
 
 
 def family_members(structure: str, theory: str, law: str = "linear") -> tuple[tuple[float, float | None], ...]:
@@ -50,8 +59,7 @@ def family_members(structure: str, theory: str, law: str = "linear") -> tuple[tu
     ValueError
         When no family is shipped for (structure, theory, law).
     """
-    key = (structure, theory)
-    if key not in FAMILY_THEORIES or law not in _FAMILY_LAWS[key]:
+    if not shipped_for(structure, theory, law):
         raise ValueError(f"no slenderness family is shipped for a {theory} {structure} with the {law} law "
                          f"(families: Timoshenko beams, linear and Hertz; Mindlin plates, linear)")
     return ((0.0, None), *((1.0 / s, s) for s in sorted(FAMILY_SLENDERNESSES, reverse=True)))
@@ -59,14 +67,14 @@ def family_members(structure: str, theory: str, law: str = "linear") -> tuple[tu
 
 def _member_lookup(zeta, lam, structure: str, theory: str, slenderness: float | None, law: str):
     if slenderness is None:
-        return lookup(zeta, lam, structure=structure, theory=FAMILY_THEORIES[(structure, theory)], law=law)
+        return lookup(zeta, lam, structure=structure, theory=classical_theory(theory), law=law)
     return lookup(zeta, lam, structure=structure, theory=theory, law=law, slenderness=slenderness)
 
 
 def _member_values(structure: str, theory: str, slenderness: float | None, law: str):
     """(log λ grid, log ζ grid, F̄max values) of one member map."""
     if slenderness is None:
-        dataset = load_shipped_map(structure, FAMILY_THEORIES[(structure, theory)], law)
+        dataset = load_shipped_map(structure, classical_theory(theory), law)
     else:
         dataset = load_shipped_map(structure, theory, law, slenderness=slenderness)
     return (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values),

@@ -1,4 +1,4 @@
-"""Shear-deformable map families: lookups at any slenderness ≥ 10, interpolated in 1/s."""
+"""Slenderness families of the shear-deformable maps: lookups at any slenderness ≥ 10, interpolated in 1/s."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from impactmaps.maps.families import family_members, lookup_slenderness, slenderness_error_grid
+from impactmaps.maps.slenderness import family_members, lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.lookup import lookup
 from impactmaps.maps.structures import FAMILY_SLENDERNESSES, structure_from_name
 from impactmaps.maps.sweep import solve_points
