@@ -18,6 +18,7 @@ so an interrupted build resumes without recomputing them.
 from __future__ import annotations
 
 import os
+import resource
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -185,6 +186,8 @@ def main(argv=None) -> None:
         for name in names:
             build(name, DATA, args.out_dir, WORK, executor, law=args.law, max_points=args.max_points,
                   quiet=args.quiet)
+    workers = resource.getrusage(resource.RUSAGE_CHILDREN)
+    print(f"worker processes: {workers.ru_utime + workers.ru_stime:.0f} CPU-s; load average {os.getloadavg()}")
 
 
 if __name__ == "__main__":
