@@ -14,7 +14,9 @@ How the cell and its interpolation error are found depends on what the map has: 
 finer cells with measured surpluses (:func:`impactmaps.maps.refinement.interpolate`);
 a map with more axes is read on its grid, the band of each quantity the largest over the
 2ᴺ corners of (own error + second-difference estimate) times the family's
-``band_safety`` (:class:`~impactmaps.maps.map_family.Interpolation`).
+``band_safety`` (:class:`~impactmaps.maps.map_family.Interpolation`), except that with a
+:class:`~impactmaps.maps.slice_refinement.SlicedRefinement` F̄max is read in each
+neighbouring (λ, ζ) slice's refined leaf where there is one, then across the extra axes.
 """
 
 from __future__ import annotations
