@@ -42,6 +42,7 @@ from .data_io import read_resource, read_shipped, shipped_path
 from .dataset import ASYMPTOTE_PEAKS, map_law
 from .points import warn_point_loaded_mindlin
 from .refinement import Refinement
+from .slice_refinement import SlicedRefinement
 from .regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_static_peak
 from .registry import map_family
 from .structures import FAMILY_SLENDERNESSES, structure_from_name
@@ -375,16 +376,23 @@ def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
 
 
 def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map") -> Refinement | None:
-    """The refinement ``stored`` (:meth:`Refinement.dataset`) if it was built from the map
-    ``dataset`` (its ``base_fingerprint`` is the map's fingerprint and its lattice the
-    map's grid); else None, with a warning: the map is then read alone."""
+    """The refinement ``stored`` (:meth:`Refinement.dataset`; a
+    :class:`~impactmaps.maps.slice_refinement.SlicedRefinement` for a map with extra axes) if it
+    was built from the map ``dataset`` (its ``base_fingerprint`` is the map's fingerprint and its
+    lattice the map's grid); else None, with a warning: the map is then read alone."""
+    fmax = dataset["fmax_normalised"].isel(structure=0)
+    extra = tuple(size for dim, size in zip(fmax.dims, fmax.shape) if dim not in ("lambda_", "zeta"))
     shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
+    sliced = "slice" in stored
     if (stored.attrs.get("base_fingerprint") != dataset.attrs.get("fingerprint")
-            or (stored.attrs.get("lambda_points"), stored.attrs.get("zeta_points")) != shape):
+            or (stored.attrs.get("lambda_points"), stored.attrs.get("zeta_points")) != shape
+            or sliced != bool(extra) or (sliced and tuple(np.atleast_1d(stored.attrs["slice_points"])) != extra)):
         warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
                       "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
-    return Refinement.from_dataset(stored, dataset["fmax_normalised"].isel(structure=0).values)
+    if sliced:  # one (λ, ζ) refinement per slice of the extra axes (β)
+        return SlicedRefinement.from_dataset(stored, fmax.values)
+    return Refinement.from_dataset(stored, fmax.values)
 
 
 def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):

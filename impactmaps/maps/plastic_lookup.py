@@ -8,6 +8,8 @@ error (refinement, or half the spread of a sensitive point) plus the local inter
 error estimated from the map's second differences
 (:func:`impactmaps.maps.lookup.interpolation_error` along the three axes), times
 :data:`BAND_SAFETY`; its coverage is measured by ``validation/lookup_error.py --law yc`` (``stronge``, ``epp``).
+A map may ship with a refinement of each β slice (``data/refinements/NAME-LAW``,
+:mod:`impactmaps.maps.slice_refinement`): F̄max is then read in the slices' refined leaves.
 Next to a point the map holds no value for (``unresolved``: beyond what a Timoshenko
 theory holds, or no model within the mode cap) a lookup is refused — never a number
 without its band.
@@ -110,7 +112,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
 
 
 def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,
-                 band_grids: dict | None = None, prepared=None) -> PlasticLookup:
+                 band_grids: dict | None = None, prepared=None, refinement=None) -> PlasticLookup:
     """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
 
     Parameters
@@ -126,6 +128,9 @@ def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, wh
         :func:`~impactmaps.maps.reader.band_grid` of each interpolated quantity, when known.
     prepared : PreparedMap, optional
         The map already prepared (:func:`~impactmaps.maps.reader.prepare_map`).
+    refinement : SlicedRefinement, optional
+        The refinement of each β slice of ``dataset``
+        (:mod:`impactmaps.maps.slice_refinement`): F̄max is read in the slices' refined leaves.
 
     Returns
     -------
@@ -138,7 +143,7 @@ def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, wh
     """
     reading = read_values(dataset, map_family(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
                           where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
-                          prepared=prepared)
+                          prepared=prepared, refinement=refinement)
     values = reading.values | reading.errors
     status = reading.status
     if not reading.shape:

@@ -14,7 +14,9 @@ How the cell and its interpolation error are found depends on what the map has: 
 finer cells with measured surpluses (:func:`impactmaps.maps.refinement.interpolate`);
 a map with more axes is read on its grid, the band of each quantity the largest over the
 2ᴺ corners of (own error + second-difference estimate) times the family's
-``band_safety`` (:class:`~impactmaps.maps.map_family.Interpolation`).
+``band_safety`` (:class:`~impactmaps.maps.map_family.Interpolation`), except that with a
+:class:`~impactmaps.maps.slice_refinement.SlicedRefinement` F̄max is read in each
+neighbouring (λ, ζ) slice's refined leaf where there is one, then across the extra axes.
 """
 
 from __future__ import annotations
@@ -30,9 +32,10 @@ from .accuracy import STATUSES, AccuracyControl, PointStatus
 from .interpolator import PlaneInterpolator, grid_bilinear, interpolate_line
 from .map_family import ASYMPTOTE_PEAK_VARIABLES
 from .refinement import MAX_LEVEL, Refinement
+from .slice_refinement import SlicedRefinement, read_slices
 
 __all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "answer_status", "corner_status",
-           "status_notes", "interpolation_error", "band_grid"]
+           "status_notes", "interpolation_error", "slice_estimates", "band_grid"]
 
 
 #: Severity of a status when map points (or family members) are combined (worst wins);
@@ -93,7 +96,8 @@ def status_notes(status) -> dict:
 INTERPOLATION_SAFETY = 5.0
 
 
-def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY) -> np.ndarray:
+def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = INTERPOLATION_SAFETY,
+                        axes=None) -> np.ndarray:
     """Local estimate of the linear-interpolation error of a map, per grid point [-].
 
     ``values`` has one axis per map axis (two for a (λ, ζ) map, three for a plastic
@@ -121,6 +125,9 @@ def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = I
         (ζ, λ) maps; the plastic maps keep the 1 they were validated with).
     safety : float
         Factor on the leading-order term (:data:`INTERPOLATION_SAFETY`; the plastic maps: 4).
+    axes : sequence of int, optional
+        The axes whose second differences are summed (default all; :func:`slice_estimates`
+        splits a plastic map's estimate into its (λ, ζ) part and its β part).
 
     Returns
     -------
@@ -129,7 +136,7 @@ def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = I
     """
     f = np.asarray(values, float)
     second = np.zeros_like(f)
-    for axis in range(f.ndim):
+    for axis in range(f.ndim) if axes is None else axes:
         if f.shape[axis] < 3:  # no second difference along a 1- or 2-point axis
             continue
         d2 = _nearest_known(np.abs(np.diff(f, n=2, axis=axis)), axis)
@@ -141,6 +148,18 @@ def interpolation_error(values: np.ndarray, *, reach: int = 2, safety: float = I
             widened = np.maximum(widened, np.maximum(np.roll(d2, shift, axis=axis), np.roll(d2, -shift, axis=axis)))
         second += widened
     return second * (safety / 8.0)
+
+
+def slice_estimates(values: np.ndarray, family) -> tuple[np.ndarray, np.ndarray]:
+    """A map's interpolation estimate per grid point split by axes: its (λ, ζ) part, what a
+    slice's refinement (:mod:`impactmaps.maps.slice_refinement`) splits against and reads at
+    its unsplit leaves, and the extra axes' part, what interpolating across slices adds [-].
+    With the family's ``reach`` and ``safety`` (:func:`interpolation_error` of those axes)."""
+    f = np.asarray(values, float)
+    settings = family.interpolation
+    plane = interpolation_error(f, reach=settings.reach, safety=settings.safety, axes=(f.ndim - 2, f.ndim - 1))
+    extra = interpolation_error(f, reach=settings.reach, safety=settings.safety, axes=tuple(range(f.ndim - 2)))
+    return plane, extra
 
 
 def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
@@ -237,6 +256,11 @@ class PreparedMap(NamedTuple):
         logs) (the asymptote peaks, :data:`impactmaps.maps.map_family.ASYMPTOTE_PEAK_VARIABLES`).
     band_grids : dict
         Variable → :func:`band_grid` of a map with more axes.
+    slices : tuple of PlaneInterpolator
+        The refined (λ, ζ) slices of a map with more axes (C order of its extra axes;
+        empty without a refinement).
+    extra_estimate : ndarray or None
+        The extra axes' part of its F̄max estimate (:func:`slice_estimates`), with ``slices``.
     """
 
     axes: tuple
@@ -247,9 +271,12 @@ class PreparedMap(NamedTuple):
     times: tuple
     lines: dict
     band_grids: dict
+    slices: tuple = ()
+    extra_estimate: np.ndarray | None = None
 
 
-def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | None = None, error_grid: np.ndarray | None = None,
+def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefinement | None = None,
+                error_grid: np.ndarray | None = None,
                 band_grids: dict | None = None) -> PreparedMap:
     """A map of ``family`` (one structure) prepared for :func:`read_values` (:class:`PreparedMap`).
 
@@ -275,7 +302,26 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | None = Non
     tables = {name: np.array(dataset[name].isel(structure=0).values) for name in names}
     if band_grids is None:
         band_grids = {variable: band_grid(dataset, family, variable) for variable in family.errors}
-    return PreparedMap(axes, ranges, grids, tables, None, (), {}, dict(band_grids))
+    if refinement is None:
+        return PreparedMap(axes, ranges, grids, tables, None, (), {}, dict(band_grids))
+    slices, extra_estimate = _slice_planes(dataset, tables, family, refinement)
+    return PreparedMap(axes, ranges, grids, tables, None, (), {}, dict(band_grids), slices, extra_estimate)
+
+
+def _slice_planes(dataset: xr.Dataset, tables: dict, family, refinement: SlicedRefinement):
+    """Each (λ, ζ) slice of a map with more axes as a :class:`PlaneInterpolator` of its
+    refinement, and the extra axes' part of the F̄max estimate (:func:`slice_estimates`)."""
+    fmax = tables["fmax_normalised"]
+    if not isinstance(refinement, SlicedRefinement) or tuple(refinement.shape) != fmax.shape:
+        raise ValueError(f"refinement: a map of grid {fmax.shape} takes a SlicedRefinement of that grid, "
+                         f"not {getattr(refinement, 'shape', refinement)}")
+    plane, extra = slice_estimates(fmax, family)
+    own = np.asarray(dataset[family.errors["fmax_normalised"]].isel(structure=0).values)
+    flat = {name: np.reshape(values, (-1, *fmax.shape[-2:]))
+            for name, values in (("fmax_normalised", fmax), ("fmax_error", own), ("status", tables["status"]))}
+    plane = np.reshape(plane, (-1, *fmax.shape[-2:]))
+    return tuple(PlaneInterpolator({name: values[k] for name, values in flat.items()}, plane[k], part)
+                 for k, part in enumerate(refinement.slices)), extra
 
 
 def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: str, hints: tuple[str, str] = ("", ""),
@@ -298,8 +344,9 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
     hints : (str, str)
         What to run instead, appended to "run a simulation" when the numbers lie outside the
         map and when they lie next to an ``unresolved`` point.
-    refinement : Refinement, optional
-        The finer leaves of a (λ, ζ) map (none by default).
+    refinement : Refinement or SlicedRefinement, optional
+        The finer leaves of a (λ, ζ) map, or of each (λ, ζ) slice of a map with more axes
+        (none by default).
     error_grid : ndarray, optional
         The interpolation estimate of a (λ, ζ) map's F̄max when already known.
     band_grids : dict, optional
@@ -377,8 +424,27 @@ def _read_cube(prepared: PreparedMap, family, logs: dict):
         values[variable] = _multilinear(prepared.tables[variable], cell)
         band = prepared.band_grids[variable]
         errors[error_name] = family.interpolation.band_safety * np.max([band[c] for c in corners], axis=0)
-    codes = prepared.tables["status"]
-    return values, errors, [codes[c] for c in corners]
+    codes = [prepared.tables["status"][c] for c in corners]
+    if prepared.slices:
+        _read_slices(prepared, family, logs, values, errors, codes, corners)
+    return values, errors, codes
+
+
+def _read_slices(prepared: PreparedMap, family, logs: dict, values: dict, errors: dict, codes: list, corners) -> None:
+    """Where a neighbouring slice's leaf is refined, F̄max read in each slice's leaf and across the
+    extra axes (:func:`~impactmaps.maps.slice_refinement.read_slices`; between slices the band adds
+    the extra axes' estimate at the grid corners); elsewhere the grid's answer stays, bit for bit."""
+    rows, cols = (_grid_position(prepared.grids[axis], logs[axis]) for axis in ("lambda_", "zeta"))
+    brackets = []
+    for axis in family.extra_axes:
+        lower, upper = _bracket(prepared.grids[axis.name], logs[axis.name])
+        brackets.append((lower, upper, _grid_position(prepared.grids[axis.name], logs[axis.name]) - lower))
+    shape = tuple(prepared.grids[axis.name].size for axis in family.extra_axes)
+    fmax, band, deep, between, slice_codes = read_slices(prepared.slices, shape, rows, cols, brackets)
+    across = np.where(between, np.max([prepared.extra_estimate[c] for c in corners], axis=0), 0.0)
+    values["fmax_normalised"] = np.where(deep, fmax, values["fmax_normalised"])
+    errors["fmax_error"] = np.where(deep, family.interpolation.band_safety * (band + across), errors["fmax_error"])
+    codes.extend(np.where(deep, code, 0) for code in slice_codes)
 
 
 def _cell(grid: np.ndarray, values: np.ndarray):
