@@ -132,6 +132,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
+    parser.add_argument("--no-background-warm-up", action="store_true",
+                        help="do not start compiling the solver in the background when its cache is cold "
+                        "(also: IMPACTMAPS_NO_BACKGROUND_WARMUP=1)")
     sub = parser.add_subparsers(dest="command", required=True)
 
     def add(name, help_text, handler):
@@ -313,6 +316,17 @@ def _sweep_interrupted() -> type[Exception]:
     return _NotRaised if store is None else store.SweepInterrupted
 
 
+def _background_warm_up(args) -> None:
+    """Start compiling the solver in the background if its cache is cold
+    (:mod:`impactmaps.solvers.background_warm_up`; about a millisecond here), unless turned off."""
+    from ..solvers import background_warm_up
+
+    if args.no_background_warm_up:
+        os.environ[background_warm_up.DISABLE_ENV] = "1"  # no start here, no wait in a compile
+    elif args.command != "warm-up":
+        background_warm_up.start_background()
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     parser = build_parser()
@@ -323,6 +337,7 @@ def _main(argv) -> int:
             print(dumps({"error": str(error)}))
         print(error, file=sys.stderr)
         return EXIT_BAD_INPUT
+    _background_warm_up(args)
     caught = []
     status = None
     try:

@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-__all__ = ["warm_up", "cache_directory"]
+__all__ = ["warm_up", "cache_directory", "run_background"]
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
 _VARIANTS = (None, True)
@@ -114,3 +114,37 @@ def warm_up(workers: int = 2) -> dict:
     end = time.perf_counter()
     return {"compiled_variants": len(missing), "integrator_s": middle - start, "rest_s": end - middle,
             "total_s": end - start, "cache_directory": cache_directory()}
+
+
+def run_background(directory, sleep_s: float | None = None) -> int:
+    """The background warm-up process (:mod:`impactmaps.solvers.background_warm_up`): at
+    low priority, take the lock of the state ``directory`` (or end if another process holds
+    it or the cache is warm), run :func:`warm_up` (or, for tests, sleep ``sleep_s`` [s]),
+    write the marker; the exit status (0)."""
+    import json
+    import os
+
+    from .background_warm_up import hold_lock, mark_warm
+
+    try:
+        os.nice(10)
+    except (OSError, AttributeError):  # pragma: no cover (no nice on this system)
+        pass
+    handle, _ = hold_lock(directory)
+    if handle is None:
+        return 0
+    with handle:
+        handle.seek(0)
+        handle.truncate()
+        handle.write(json.dumps({"pid": os.getpid(), "started": time.time()}))
+        handle.flush()
+        print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up started (pid {os.getpid()})", flush=True)
+        if sleep_s is None:
+            done = warm_up(2)
+        else:
+            time.sleep(sleep_s)
+            done = {"total_s": sleep_s}
+        mark_warm(done, directory)
+        print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up done: {json.dumps(done, default=str)}", flush=True)
+    return 0
+
