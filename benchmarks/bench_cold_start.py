@@ -27,7 +27,9 @@ Reported with the load average (other jobs on the machine make every number larg
 it for two checkouts in the same minutes and compare ratios, ``--root``).
 
 Run: ``python benchmarks/bench_cold_start.py [--skip-chart] [--root CHECKOUT] [--print-only]``;
-writes ``benchmarks/RESULTS_cold_start.md`` unless ``--print-only``.
+writes ``benchmarks/RESULTS_cold_start.md`` unless ``--print-only``. The commands run with
+the background warm-up off, except with ``--background``: then only the scenarios of
+:func:`background_rows` run, appended to the results.
 """
 
 from __future__ import annotations
@@ -77,9 +79,15 @@ LIGHT_COMMANDS = (("--help",), ("materials",), ("laws",),
 CODE = ROOT
 
 
-def _environment(cache: str) -> dict:
-    return dict(os.environ, NUMBA_CACHE_DIR=cache, OMP_NUM_THREADS="1",
-                PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def _environment(cache: str, background: bool = False) -> dict:
+    """The commands' environment: numba's cache at ``cache``, the background warm-up off
+    unless ``background`` (the measurements above it are of the commands alone)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache, OMP_NUM_THREADS="1",
+               PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env.pop("IMPACTMAPS_NO_BACKGROUND_WARMUP", None)
+    if not background:
+        env["IMPACTMAPS_NO_BACKGROUND_WARMUP"] = "1"
+    return env
 
 
 #: CPU time [s] of each command :func:`run_command` ran, in order (user + system of the child).
@@ -154,15 +162,92 @@ def time_chart(*options: str) -> tuple[float, float]:
     return times[0], times[1]
 
 
+#: ``impactmaps ARGV`` with the foreground's wait for a running warm-up set to WAIT_AFTER_S.
+_WITH_WAIT = ("import sys; import impactmaps.solvers.background_warm_up as b; b.WAIT_AFTER_S = float(sys.argv[1]); "
+              "from impactmaps.cli import main; sys.exit(main(sys.argv[2:]))")
+
+
+def _background_done(cache: str, limit_s: float = 600.0) -> float:
+    """Wait until no background warm-up holds a lock in ``cache``; the seconds waited."""
+    import fcntl
+
+    start = time.perf_counter()
+    for lock in pathlib.Path(cache).glob("impactmaps-warm-up/*.lock"):
+        with open(lock) as handle:
+            while time.perf_counter() - start < limit_s:
+                try:
+                    fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    break
+                except OSError:
+                    time.sleep(0.2)
+    return time.perf_counter() - start
+
+
+def _timed(command: list[str], env: dict, cwd: str) -> float:
+    start = time.perf_counter()
+    subprocess.run(command, env=env, check=True, capture_output=True, cwd=cwd)
+    return time.perf_counter() - start
+
+
+def background_rows(pauses=(0.0, 10.0, 25.0)) -> list[str]:
+    """The background warm-up (:mod:`impactmaps.solvers.background_warm_up`), each on an
+    empty cache: the default chart with it and without it (its cost to the foreground);
+    ``chart`` then, after a pause, ``simulate examples/steel_plate_hertz.toml`` — the
+    simulate's wall time when it waits for the running warm-up and when it compiles
+    itself; ``simulate`` as the very first command, with and without it."""
+    case = str(ROOT / "examples" / "steel_plate_hertz.toml")
+    cli = [sys.executable, "-m", "impactmaps.cli"]
+    rows = ["| scenario (empty numba cache) | foreground wall [s] | load |", "|---|---|---|"]
+
+    def row(text, seconds):
+        rows.append(f"| {text} | **{seconds:.1f}** | {os.getloadavg()[0]:.1f} |")
+        print(rows[-1], flush=True)
+
+    for background in (False, True):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            wall = _timed([*cli, "chart", "--quiet", "--out", out], _environment(cache, background), out)
+            _background_done(cache)
+        row(f"`impactmaps chart`, background warm-up {'on' if background else 'off'}", wall)
+    for pause in pauses:
+        for wait_after in (0.0, float("inf")):
+            with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+                env = _environment(cache, True)
+                chart = _timed([*cli, "chart", "--quiet", "--out", out], env, out)
+                time.sleep(pause)
+                wall = _timed([sys.executable, "-c", _WITH_WAIT, str(wait_after), "simulate", case, "--out", "s"],
+                              env, out)
+                _background_done(cache)
+            how = "waits for the warm-up" if wait_after == 0 else "compiles itself"
+            row(f"`chart` ({chart:.1f} s), {pause:.0f} s pause, then `simulate steel_plate_hertz.toml`: {how}", wall)
+    for background in (False, True):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            wall = _timed([*cli, "simulate", case, "--out", "s"], _environment(cache, background), out)
+            _background_done(cache)
+        row(f"`simulate steel_plate_hertz.toml` first, background warm-up {'on' if background else 'off'}", wall)
+    return rows
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--skip-chart", action="store_true", help="no chart timings")
     parser.add_argument("--root", type=pathlib.Path, default=ROOT, help="the checkout to measure (default this one)")
     parser.add_argument("--print-only", action="store_true", help="print, do not write RESULTS_cold_start.md")
+    parser.add_argument("--background", action="store_true",
+                        help="only the background warm-up's scenarios (background_rows), appended to the results")
     args = parser.parse_args(argv)
     global CODE
     CODE = args.root.resolve()
     load = os.getloadavg()[0]
+    if args.background:
+        lines = ["", "## Background warm-up", "", f"`python benchmarks/bench_cold_start.py --background` (code of "
+                 f"{CODE.name}), run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average "
+                 f"{load:.1f} on {os.cpu_count()} cores", "", *background_rows()]
+        text = "\n".join(lines) + "\n"
+        if not args.print_only:
+            with open(ROOT / "benchmarks" / "RESULTS_cold_start.md", "a") as results:
+                results.write(text)
+        print(text)
+        return
     profile = profile_import()
     lines = [
         "# Cold start",

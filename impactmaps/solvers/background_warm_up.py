@@ -165,10 +165,11 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         return False
 
 
-def wait_for_background(notify=None, limit_s: float = WAIT_LIMIT_S, after_s: float = WAIT_AFTER_S,
+def wait_for_background(notify=None, limit_s: float | None = None, after_s: float | None = None,
                         directory: Path | None = None) -> float:
-    """Wait for a running warm-up of this installation (started ``after_s`` or more ago) to
-    finish, at most ``limit_s`` [s]; the time waited [s].
+    """Wait for a running warm-up of this installation (started ``after_s`` or more ago,
+    default :data:`WAIT_AFTER_S`) to finish, at most ``limit_s`` [s] (default
+    :data:`WAIT_LIMIT_S`); the time waited [s].
 
     Called before a foreground compile: when a warm-up is compiling the same kernels, their
     compiled code is in the cache when it ends (``directory``: the state directory, default
@@ -181,6 +182,8 @@ def wait_for_background(notify=None, limit_s: float = WAIT_LIMIT_S, after_s: flo
     paths = _paths(directory)
     if not paths["lock"].exists():
         return 0.0
+    limit_s = WAIT_LIMIT_S if limit_s is None else limit_s
+    after_s = WAIT_AFTER_S if after_s is None else after_s
     start = time.monotonic()
     told = False
     while True:
