@@ -126,10 +126,7 @@ def run_background(directory, sleep_s: float | None = None) -> int:
 
     from .background_warm_up import hold_lock, mark_warm
 
-    try:
-        os.nice(10)
-    except (OSError, AttributeError):  # pragma: no cover (no nice on this system)
-        pass
+    _lower_priority(10)
     handle, _ = hold_lock(directory)
     if handle is None:
         return 0
@@ -147,4 +144,24 @@ def run_background(directory, sleep_s: float | None = None) -> int:
         mark_warm(done, directory)
         print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up done: {json.dumps(done, default=str)}", flush=True)
     return 0
+
+
+def _lower_priority(nice: int) -> None:
+    """Run this process (and the workers it starts) at ``nice``: its own, and that of its
+    session's scheduling group. Linux with autogroups (``/proc/sys/kernel/sched_autogroup_enabled``)
+    shares the CPU between sessions first, and the background process is a session of its
+    own: without the group's nice it took as much CPU as the foreground command (the default
+    chart on an empty cache: 21.6 s against 5.8 s). Best effort: a system without either keeps
+    the process's nice."""
+    import os
+
+    try:
+        os.nice(nice)
+    except (OSError, AttributeError):  # pragma: no cover (no nice on this system)
+        pass
+    try:
+        with open("/proc/self/autogroup", "w") as group:
+            group.write(str(nice))
+    except OSError:
+        pass
 
