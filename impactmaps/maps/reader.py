@@ -27,7 +27,7 @@ import xarray as xr
 
 from .._checks import describe_outside, require_positive
 from .accuracy import STATUSES, AccuracyControl, PointStatus
-from .interpolator import PlaneInterpolator, grid_bilinear, interpolate_line
+from .interpolator import PlaneInterpolator, grid_bilinear, grid_bilinear_one, interpolate_line, interpolate_line_one
 from .map_family import ASYMPTOTE_PEAK_VARIABLES
 from .refinement import MAX_LEVEL, Refinement
 
@@ -355,6 +355,8 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
 
 def _read_plane(prepared: PreparedMap, logs: dict):
     """A (λ, ζ) map read in the leaves of its refinement (the grid's cells where it has none)."""
+    if logs["zeta"].size == 1:
+        return _read_plane_one(prepared, logs)
     positions = {axis: _grid_position(prepared.grids[axis], logs[axis]) for axis in ("lambda_", "zeta")}
     rows, cols = positions["lambda_"], positions["zeta"]
     values, error, codes = prepared.plane.interpolate(rows, cols)
@@ -363,6 +365,30 @@ def _read_plane(prepared: PreparedMap, logs: dict):
     for name, (axis, line, logs) in prepared.lines.items():
         values[name] = interpolate_line(line, positions[axis], logs)
     return values, {"fmax_error": error}, codes
+
+
+def _read_plane_one(prepared: PreparedMap, logs: dict):
+    """:func:`_read_plane` of one point, in Python floats where NumPy calls on one-element arrays
+    cost more than the arithmetic (the same operations in the same order: the same bits)."""
+    positions = {axis: _grid_position_one(prepared.grids[axis], float(logs[axis][0])) for axis in ("lambda_", "zeta")}
+    row, col = positions["lambda_"], positions["zeta"]
+    values, error, codes = prepared.plane.interpolate_one(row, col)
+    if prepared.times:
+        values |= grid_bilinear_one(prepared.tables, row, col, prepared.times, 1 << MAX_LEVEL)
+    for name, (axis, line, line_logs) in prepared.lines.items():
+        values[name] = interpolate_line_one(line, positions[axis], line_logs)
+    return values, {"fmax_error": error}, codes
+
+
+def _grid_position_one(grid: np.ndarray, value: float) -> float:
+    """:func:`_grid_position` of one value."""
+    upper = min(max(int(np.searchsorted(grid, value, side="left")), 0), grid.size - 1)
+    lower = min(max(upper - 1, 0), grid.size - 1)
+    if abs(float(grid[upper]) - value) <= 1e-12:
+        lower = upper
+    if upper > lower:
+        return lower + (value - float(grid[lower])) / (float(grid[upper]) - float(grid[lower]))
+    return lower + 0.0
 
 
 def _read_cube(prepared: PreparedMap, family, logs: dict):
