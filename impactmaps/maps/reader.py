@@ -20,6 +20,7 @@ a map with more axes is read on its grid, the band of each quantity the largest 
 from __future__ import annotations
 
 import itertools
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -325,17 +326,19 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
     """
     if prepared is None:
         prepared = prepare_map(dataset, family, refinement, error_grid, band_grids)
-    numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
-    for label, values in zip(labels, numbers):
-        require_positive(label, values)
-    for label, values, axis in zip(labels, numbers, prepared.axes):
-        low, high = prepared.ranges[axis]
-        if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
-            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
-            raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
-                                  f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
-    logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
-    shape = numbers[0].shape
+    logs = _one_point_logs(prepared, numbers)
+    if logs is None:
+        numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
+        for label, values in zip(labels, numbers):
+            require_positive(label, values)
+        for label, values, axis in zip(labels, numbers, prepared.axes):
+            low, high = prepared.ranges[axis]
+            if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
+                shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
+                raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is [{low:g}, "
+                                      f"{high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
+        logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
+    shape = np.shape(numbers[0])
     if prepared.plane is not None:
         values, errors, codes = _read_plane(prepared, logs)
     else:
@@ -351,6 +354,25 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
                          f"simulation{hints[1]} instead")
     return Reading({name: value.reshape(shape) for name, value in values.items()},
                    {name: value.reshape(shape) for name, value in errors.items()}, status.reshape(shape), shape)
+
+
+def _one_point_logs(prepared: PreparedMap, numbers):
+    """The logs :func:`read_values` reads a (λ, ζ) map at, for one point of scalar numbers that
+    lie inside the map (checked on Python floats, without NumPy reductions); None for any
+    other input (arrays, the plastic maps, a number the full checks refuse with their message)."""
+    if prepared.plane is None or any(np.ndim(value) != 0 for value in numbers):
+        return None
+    try:
+        values = [float(value) for value in numbers]
+    except (TypeError, ValueError, OverflowError):
+        return None
+    logs = {}
+    for value, axis in zip(values, prepared.axes):
+        low, high = prepared.ranges[axis]
+        if not (0.0 < value < math.inf and low * (1 - 1e-12) <= value <= high * (1 + 1e-12)):
+            return None
+        logs[axis] = np.log(np.array([min(max(value, low), high)]))
+    return logs
 
 
 def _read_plane(prepared: PreparedMap, logs: dict):
