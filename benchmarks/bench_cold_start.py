@@ -167,20 +167,19 @@ _WITH_WAIT = ("import sys; import impactmaps.solvers.background_warm_up as b; b.
               "from impactmaps.cli import main; sys.exit(main(sys.argv[2:]))")
 
 
-def _background_done(cache: str, limit_s: float = 600.0) -> float:
-    """Wait until no background warm-up holds a lock in ``cache``; the seconds waited."""
-    import fcntl
+def _background_done(cache: str) -> None:
+    """End the background warm-up a scenario started in ``cache`` (its session: the process
+    and its workers), so that the next scenario starts on an idle machine."""
+    import json
+    import signal
 
-    start = time.perf_counter()
     for lock in pathlib.Path(cache).glob("impactmaps-warm-up/*.lock"):
-        with open(lock) as handle:
-            while time.perf_counter() - start < limit_s:
-                try:
-                    fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                    break
-                except OSError:
-                    time.sleep(0.2)
-    return time.perf_counter() - start
+        try:
+            pid = int(json.loads(lock.read_text() or "{}")["pid"])
+            os.killpg(pid, signal.SIGTERM)  # start_new_session: its process group is its pid
+        except (OSError, ValueError, KeyError):
+            continue
+        time.sleep(1.0)
 
 
 def _timed(command: list[str], env: dict, cwd: str) -> float:
@@ -189,7 +188,7 @@ def _timed(command: list[str], env: dict, cwd: str) -> float:
     return time.perf_counter() - start
 
 
-def background_rows(pauses=(0.0, 10.0, 25.0)) -> list[str]:
+def background_rows(pauses=(0.0, 15.0)) -> list[str]:
     """The background warm-up (:mod:`impactmaps.solvers.background_warm_up`), each on an
     empty cache: the default chart with it and without it (its cost to the foreground);
     ``chart`` then, after a pause, ``simulate examples/steel_plate_hertz.toml`` — the

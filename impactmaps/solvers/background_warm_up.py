@@ -20,11 +20,11 @@ set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-u
   process ends, also when killed): at most one background warm-up at a time.
 * a **log** (``warm-up-KEY.log``): the warm-up's output and errors.
 
-A compile of the integrator in the foreground while another process's warm-up holds the
-lock waits for it (:func:`wait_for_background`, called by
-:class:`impactmaps.solvers.lazy_kernel.LazyKernel`), with one line on stderr, once the
-warm-up has run long enough that waiting is the shorter way (measured:
-:data:`WAIT_AFTER_S`).
+A compile of the integrator in the foreground while a warm-up holds the lock waits until
+the warm-up has put the integrator in the cache (:func:`wait_for_background`, called by
+:class:`impactmaps.solvers.lazy_kernel.LazyKernel`), with one line on stderr, when the
+warm-up has run long enough that waiting is the shorter way (:data:`WAIT_AFTER_S`), and
+for at most :data:`WAIT_LIMIT_S`.
 
 Off with ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` or ``impactmaps --no-background-warm-up
 COMMAND``; never on a system without ``fcntl`` (Windows: run ``impactmaps warm-up``).
@@ -45,11 +45,14 @@ __all__ = ["DISABLE_ENV", "WAIT_AFTER_S", "WAIT_LIMIT_S", "state_directory", "in
 
 #: Environment variable that turns the background warm-up off (any value but "" and "0").
 DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
-#: A foreground compile waits for a running warm-up only once it has run this long [s]:
-#: before, compiling in the foreground (at normal priority) ends sooner than the warm-up.
-WAIT_AFTER_S = 8.0
-#: Longest wait of a foreground compile for a running warm-up [s]; then it compiles itself.
-WAIT_LIMIT_S = 120.0
+#: A foreground compile waits for a running warm-up only once it has run this long [s]. On
+#: 2 idle cores the warm-up has the integrator's two variants in the cache after ≈ 25 s (in
+#: two processes at once) and a foreground compile of the one variant a run needs takes
+#: 12–14 s (``benchmarks/RESULTS_cold_start.md``): before ≈ 12 s compiling ends sooner.
+WAIT_AFTER_S = 12.0
+#: Longest wait of a foreground compile for a running warm-up [s]; then it compiles itself
+#: (the bound on what a warm-up slowed down by other work costs: it runs at nice 10).
+WAIT_LIMIT_S = 15.0
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "contact")
 
@@ -167,12 +170,12 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
 
 def wait_for_background(notify=None, limit_s: float | None = None, after_s: float | None = None,
                         directory: Path | None = None) -> float:
-    """Wait for a running warm-up of this installation (started ``after_s`` or more ago,
-    default :data:`WAIT_AFTER_S`) to finish, at most ``limit_s`` [s] (default
-    :data:`WAIT_LIMIT_S`); the time waited [s].
+    """Wait until a running warm-up of this installation (started ``after_s`` or more ago,
+    default :data:`WAIT_AFTER_S`) has the integrator in the cache or ends, at most
+    ``limit_s`` [s] (default :data:`WAIT_LIMIT_S`); the time waited [s].
 
-    Called before a foreground compile: when a warm-up is compiling the same kernels, their
-    compiled code is in the cache when it ends (``directory``: the state directory, default
+    Called before a foreground compile: when a warm-up is compiling the same kernel, its
+    compiled code is in the cache when it is done (``directory``: the state directory, default
     :func:`state_directory`). ``notify(line)`` is called once when
     waiting starts (default: one line on stderr). Returns 0 at once when the background
     warm-up is off (also in the warm-up process and its workers) or when none is running.
@@ -191,8 +194,10 @@ def wait_for_background(notify=None, limit_s: float | None = None, after_s: floa
         if handle is not None:
             handle.close()
             return time.monotonic() - start
-        started = _started(paths["lock"])
-        if started is None or time.time() - started < after_s or time.monotonic() - start > limit_s:
+        state = _state(paths["lock"])
+        started = state.get("started")
+        if (not isinstance(started, (int, float)) or "integrator_done" in state or time.time() - started < after_s
+                or time.monotonic() - start > limit_s):
             return time.monotonic() - start
         if not told:
             line = (f"impactmaps: waiting for the background warm-up to finish compiling the solver (running for "
@@ -202,12 +207,14 @@ def wait_for_background(notify=None, limit_s: float | None = None, after_s: floa
         time.sleep(0.1)
 
 
-def _started(lock: Path) -> float | None:
-    """When the warm-up holding ``lock`` started (epoch seconds), as it wrote it; None if unknown."""
+def _state(lock: Path) -> dict:
+    """What the warm-up holding ``lock`` wrote in it: ``started`` (epoch seconds), ``pid``, and
+    ``integrator_done`` once the integrator is in the cache; {} if unreadable."""
     try:
-        return float(json.loads(lock.read_text() or "{}")["started"])
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
+        state = json.loads(lock.read_text() or "{}")
+    except (OSError, ValueError):
+        return {}
+    return state if isinstance(state, dict) else {}
 
 
 def mark_warm(done: dict, directory: Path | None = None) -> None:
