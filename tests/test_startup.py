@@ -198,6 +198,7 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
     from impactmaps.solvers import background_warm_up as background
 
     monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    monkeypatch.setattr(background, "_waited", False)
     assert background.start_background(tmp_path, ["--sleep", "1.5"])
     assert _until(lambda: background.is_running(tmp_path), 30)  # the child holds the lock
     assert not background.start_background(tmp_path, ["--sleep", "1.5"])  # one at a time
@@ -205,6 +206,7 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
     waited = background.wait_for_background(lines.append, after_s=0.0, directory=tmp_path)
     assert background.is_warm(tmp_path) and not background.is_running(tmp_path)
     assert waited > 0 and len(lines) == 1 and "background warm-up" in lines[0]
+    assert background.wait_for_background(after_s=0.0, directory=tmp_path) == 0.0  # once per process
     assert not background.start_background(tmp_path, ["--sleep", "1.5"])  # warm: nothing to do
     log = next(tmp_path.glob("warm-up-*.log")).read_text()
     assert log.count("warm-up started") == 1 and "warm-up done" in log

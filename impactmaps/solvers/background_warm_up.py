@@ -35,7 +35,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -46,19 +45,24 @@ __all__ = ["DISABLE_ENV", "WAIT_AFTER_S", "WAIT_LIMIT_S", "state_directory", "in
 #: Environment variable that turns the background warm-up off (any value but "" and "0").
 DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
 #: A foreground compile waits for a running warm-up only once it has run this long [s]. On
-#: 2 idle cores the warm-up has the integrator's two variants in the cache after ≈ 25 s (in
+#: 2 idle cores the warm-up has the integrator's two variants in the cache after ≈ 27 s (in
 #: two processes at once) and a foreground compile of the one variant a run needs takes
-#: 12–14 s (``benchmarks/RESULTS_cold_start.md``): before ≈ 12 s compiling ends sooner.
-WAIT_AFTER_S = 12.0
-#: Longest wait of a foreground compile for a running warm-up [s]; then it compiles itself
-#: (the bound on what a warm-up slowed down by other work costs: it runs at nice 10).
-WAIT_LIMIT_S = 15.0
+#: 12–14 s (``benchmarks/RESULTS_cold_start.md``): before ≈ 15 s compiling ends sooner.
+WAIT_AFTER_S = 16.0
+#: Longest wait of a process for a running warm-up [s], once (its first compile; then it
+#: compiles itself): the bound on what a warm-up slowed down by other work costs — it runs
+#: at nice 10, and at load 9 on 2 cores waiting made the first simulate slower (76 s
+#: against 41 s compiling itself, ``benchmarks/RESULTS_cold_start.md``).
+WAIT_LIMIT_S = 10.0
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "contact")
 
 #: The background process (``python -c _CHILD STATE_DIRECTORY [--sleep S]``).
 _CHILD = ("import pathlib, sys; from impactmaps.solvers.warm_up import run_background; a = sys.argv[1:]; "
           "sys.exit(run_background(pathlib.Path(a[0]), float(a[2]) if a[1:2] == ['--sleep'] else None))")
+
+#: Whether this process has waited for a warm-up (it waits once at most).
+_waited = False
 
 try:  # POSIX only: the lock is released by the kernel when its holder ends, however it ends
     import fcntl
@@ -156,6 +160,8 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         paths["lock"].parent.mkdir(parents=True, exist_ok=True)
         if is_running(directory):
             return False
+        import subprocess  # here: a command on a warm cache does not need it
+
         package_parent = str(Path(__file__).resolve().parents[2])
         env = dict(os.environ, **{DISABLE_ENV: "1"})  # the warm-up and its workers never wait for their own lock
         env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
@@ -175,12 +181,14 @@ def wait_for_background(notify=None, limit_s: float | None = None, after_s: floa
     ``limit_s`` [s] (default :data:`WAIT_LIMIT_S`); the time waited [s].
 
     Called before a foreground compile: when a warm-up is compiling the same kernel, its
-    compiled code is in the cache when it is done (``directory``: the state directory, default
-    :func:`state_directory`). ``notify(line)`` is called once when
-    waiting starts (default: one line on stderr). Returns 0 at once when the background
-    warm-up is off (also in the warm-up process and its workers) or when none is running.
+    compiled code is in the cache when it is done (``directory``: the state directory,
+    default :func:`state_directory`). ``notify(line)`` is called once when waiting starts
+    (default: one line on stderr). A process waits once at most. Returns 0 at once when the
+    background warm-up is off (also in the warm-up process and its workers), when none is
+    running or when this process has waited already.
     """
-    if disabled():
+    global _waited
+    if disabled() or _waited:
         return 0.0
     paths = _paths(directory)
     if not paths["lock"].exists():
@@ -200,6 +208,7 @@ def wait_for_background(notify=None, limit_s: float | None = None, after_s: floa
                 or time.monotonic() - start > limit_s):
             return time.monotonic() - start
         if not told:
+            _waited = True
             line = (f"impactmaps: waiting for the background warm-up to finish compiling the solver (running for "
                     f"{time.time() - started:.0f} s; log {paths['log']})")
             (notify or (lambda text: print(text, file=sys.stderr, flush=True)))(line)
