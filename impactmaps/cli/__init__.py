@@ -322,7 +322,7 @@ def _background_warm_up(args) -> None:
     from ..solvers import background_warm_up
 
     if args.no_background_warm_up:
-        os.environ[background_warm_up.DISABLE_ENV] = "1"  # no start here, no wait in a compile
+        os.environ[background_warm_up.DISABLE_ENV] = "1"  # nor in the processes this command starts
     elif args.command != "warm-up":
         background_warm_up.start_background()
 

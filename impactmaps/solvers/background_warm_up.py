@@ -20,11 +20,13 @@ set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-u
   process ends, also when killed): at most one background warm-up at a time.
 * a **log** (``warm-up-KEY.log``): the warm-up's output and errors.
 
-A compile of the integrator in the foreground while a warm-up holds the lock waits until
-the warm-up has put the integrator in the cache (:func:`wait_for_background`, called by
-:class:`impactmaps.solvers.lazy_kernel.LazyKernel`), with one line on stderr, when the
-warm-up has run long enough that waiting is the shorter way (:data:`WAIT_AFTER_S`), and
-for at most :data:`WAIT_LIMIT_S`.
+A command that needs a kernel the warm-up has not yet put in the cache compiles it
+itself, at its normal priority: it does not wait for the warm-up. Measured and chosen
+(``benchmarks/RESULTS_cold_start.md``, ``bench_cold_start.py --background``): a warm-up at
+nice 10 progresses only when the machine has idle time, and every measured wait (capped,
+after the warm-up had run a while) made the first ``simulate`` slower than compiling —
+76 s against 41 s at load 9, 25 s against 19 s at load 5.5. The duplicate compile runs in
+the background at low priority and costs the command nothing measurable.
 
 Off with ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` or ``impactmaps --no-background-warm-up
 COMMAND``; never on a system without ``fcntl`` (Windows: run ``impactmaps warm-up``).
@@ -36,33 +38,19 @@ import hashlib
 import json
 import os
 import sys
-import time
 from pathlib import Path
 
-__all__ = ["DISABLE_ENV", "WAIT_AFTER_S", "WAIT_LIMIT_S", "state_directory", "installation_key", "is_warm",
-           "is_running", "start_background", "wait_for_background", "mark_warm", "hold_lock"]
+__all__ = ["DISABLE_ENV", "state_directory", "installation_key", "is_warm", "is_running", "start_background",
+           "mark_warm", "hold_lock"]
 
 #: Environment variable that turns the background warm-up off (any value but "" and "0").
 DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
-#: A foreground compile waits for a running warm-up only once it has run this long [s]. On
-#: 2 idle cores the warm-up has the integrator's two variants in the cache after ≈ 27 s (in
-#: two processes at once) and a foreground compile of the one variant a run needs takes
-#: 12–14 s (``benchmarks/RESULTS_cold_start.md``): before ≈ 15 s compiling ends sooner.
-WAIT_AFTER_S = 16.0
-#: Longest wait of a process for a running warm-up [s], once (its first compile; then it
-#: compiles itself): the bound on what a warm-up slowed down by other work costs — it runs
-#: at nice 10, and at load 9 on 2 cores waiting made the first simulate slower (76 s
-#: against 41 s compiling itself, ``benchmarks/RESULTS_cold_start.md``).
-WAIT_LIMIT_S = 10.0
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "contact")
 
 #: The background process (``python -c _CHILD STATE_DIRECTORY [--sleep S]``).
 _CHILD = ("import pathlib, sys; from impactmaps.solvers.warm_up import run_background; a = sys.argv[1:]; "
           "sys.exit(run_background(pathlib.Path(a[0]), float(a[2]) if a[1:2] == ['--sleep'] else None))")
-
-#: Whether this process has waited for a warm-up (it waits once at most).
-_waited = False
 
 try:  # POSIX only: the lock is released by the kernel when its holder ends, however it ends
     import fcntl
@@ -172,58 +160,6 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         return True
     except OSError:
         return False
-
-
-def wait_for_background(notify=None, limit_s: float | None = None, after_s: float | None = None,
-                        directory: Path | None = None) -> float:
-    """Wait until a running warm-up of this installation (started ``after_s`` or more ago,
-    default :data:`WAIT_AFTER_S`) has the integrator in the cache or ends, at most
-    ``limit_s`` [s] (default :data:`WAIT_LIMIT_S`); the time waited [s].
-
-    Called before a foreground compile: when a warm-up is compiling the same kernel, its
-    compiled code is in the cache when it is done (``directory``: the state directory,
-    default :func:`state_directory`). ``notify(line)`` is called once when waiting starts
-    (default: one line on stderr). A process waits once at most. Returns 0 at once when the
-    background warm-up is off (also in the warm-up process and its workers), when none is
-    running or when this process has waited already.
-    """
-    global _waited
-    if disabled() or _waited:
-        return 0.0
-    paths = _paths(directory)
-    if not paths["lock"].exists():
-        return 0.0
-    limit_s = WAIT_LIMIT_S if limit_s is None else limit_s
-    after_s = WAIT_AFTER_S if after_s is None else after_s
-    start = time.monotonic()
-    told = False
-    while True:
-        handle = _try_lock(paths["lock"])
-        if handle is not None:
-            handle.close()
-            return time.monotonic() - start
-        state = _state(paths["lock"])
-        started = state.get("started")
-        if (not isinstance(started, (int, float)) or "integrator_done" in state or time.time() - started < after_s
-                or time.monotonic() - start > limit_s):
-            return time.monotonic() - start
-        if not told:
-            _waited = True
-            line = (f"impactmaps: waiting for the background warm-up to finish compiling the solver (running for "
-                    f"{time.time() - started:.0f} s; log {paths['log']})")
-            (notify or (lambda text: print(text, file=sys.stderr, flush=True)))(line)
-            told = True
-        time.sleep(0.1)
-
-
-def _state(lock: Path) -> dict:
-    """What the warm-up holding ``lock`` wrote in it: ``started`` (epoch seconds), ``pid``, and
-    ``integrator_done`` once the integrator is in the cache; {} if unreadable."""
-    try:
-        state = json.loads(lock.read_text() or "{}")
-    except (OSError, ValueError):
-        return {}
-    return state if isinstance(state, dict) else {}
 
 
 def mark_warm(done: dict, directory: Path | None = None) -> None:

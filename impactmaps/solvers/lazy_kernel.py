@@ -33,9 +33,7 @@ class LazyKernel:
     Notes
     -----
     Outside :meth:`compile` the dispatcher compiles nothing: a call with other argument
-    types raises ``TypeError``, as with eager signatures. Before its first compile (or
-    cache load) of a variant, a process waits for a background warm-up that has been
-    compiling long enough (:func:`impactmaps.solvers.background_warm_up.wait_for_background`).
+    types raises ``TypeError``, as with eager signatures.
     """
 
     def __init__(self, dispatcher, signature, choose=None):
@@ -65,9 +63,6 @@ class LazyKernel:
         if variant not in self.signatures:
             raise ValueError(f"variant = {variant!r} is not one of {sorted(map(repr, self.signatures))}")
         if variant not in self._compiled:
-            from .background_warm_up import wait_for_background
-
-            wait_for_background()  # a running warm-up is compiling this: its code is in the cache when it ends
             self.dispatcher.disable_compile(False)
             try:
                 self.dispatcher.compile(self.signatures[variant])

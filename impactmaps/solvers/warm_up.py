@@ -75,7 +75,7 @@ def cache_directory() -> str:
     return str(integrate_impact.dispatcher._cache._cache_path)
 
 
-def warm_up(workers: int = 2, progress=None) -> dict:
+def warm_up(workers: int = 2) -> dict:
     """Compile every kernel of a modal run into numba's cache (or load what is there).
 
     Parameters
@@ -83,9 +83,6 @@ def warm_up(workers: int = 2, progress=None) -> dict:
     workers : int
         Processes compiling the integrator's two variants at once (1: one after the other
         in this process), ≥ 1.
-    progress : callable, optional
-        Called with ``"integrator"`` once both variants of the integrator are in the cache
-        (before the tiny impacts).
 
     Returns
     -------
@@ -113,8 +110,6 @@ def warm_up(workers: int = 2, progress=None) -> dict:
     for variant in _VARIANTS:  # loads what the workers wrote (compiles a variant whose index entry was lost)
         _compile_variant(variant)
     middle = time.perf_counter()
-    if progress is not None:
-        progress("integrator")
     _tiny_impacts()
     end = time.perf_counter()
     return {"compiled_variants": len(missing), "integrator_s": middle - start, "rest_s": end - middle,
@@ -135,21 +130,14 @@ def run_background(directory, sleep_s: float | None = None) -> int:
     handle, _ = hold_lock(directory)
     if handle is None:
         return 0
-    state = {"pid": os.getpid(), "started": time.time()}
-
-    def record(phase=None):  # the lock file says what is done (wait_for_background reads it)
-        if phase is not None:
-            state[f"{phase}_done"] = time.time()
+    with handle:  # the lock file names the process holding it
         handle.seek(0)
         handle.truncate()
-        handle.write(json.dumps(state))
+        handle.write(json.dumps({"pid": os.getpid(), "started": time.time()}))
         handle.flush()
-
-    with handle:
-        record()
         print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up started (pid {os.getpid()})", flush=True)
         if sleep_s is None:
-            done = warm_up(2, record)
+            done = warm_up(2)
         else:
             time.sleep(sleep_s)
             done = {"total_s": sleep_s}
