@@ -58,3 +58,40 @@ def test_one_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law, k
             assert one.status == np.ravel(alone.status)[at] and one.regime == np.ravel(alone.regime)[at]
             compared += 1
     assert compared > 60
+
+
+_PLASTIC_FIELDS = ("fmax_normalised", "fmax_error", "restitution", "restitution_error", "absorbed_energy_fraction",
+                   "absorbed_energy_error")
+
+
+@pytest.mark.parametrize("law", ["yc", "stronge", "epp"])
+def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law):
+    """The (β, ζ, λ) maps: one point (``reader._read_cube_one``) against the vectorised read."""
+    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+
+    rng = np.random.default_rng(29)
+    for structure, theory in sorted(PLASTIC_MAPS):
+        prepared, _ = shipped_reader(structure, theory, law)
+        numbers = []
+        for axis in ("beta", "zeta", "lambda_"):
+            low, high = prepared.ranges[axis]
+            drawn = np.exp(rng.uniform(np.log(low), np.log(high), 40))
+            numbers.append(np.concatenate([drawn, np.exp(prepared.grids[axis][:3]), [low, high]]))
+        size = min(len(n) for n in numbers)
+        beta, zeta, lam = (n[:size] for n in numbers)
+        compared = 0
+        for b, z, lam_value in zip(beta, zeta, lam):
+            def read(*point):
+                return lookup_plastic(*point, structure=structure, theory=theory, law=law)
+            try:
+                one = read(float(b), float(z), float(lam_value))
+            except ValueError:  # refused alone: refused in the vectorised read too
+                with pytest.raises(ValueError):
+                    read(np.array([b, b]), np.array([z, z]), np.array([lam_value, lam_value]))
+                continue
+            together = read(np.array([b, b]), np.array([z, z]), np.array([lam_value, lam_value]))
+            for name in _PLASTIC_FIELDS:
+                assert _bits(getattr(one, name)) == _bits(np.ravel(getattr(together, name))[0]), (name, b, z, lam_value)
+            assert one.status == np.ravel(together.status)[0]
+            compared += 1
+        assert compared > 20

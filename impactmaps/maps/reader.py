@@ -166,8 +166,6 @@ def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
     return np.moveaxis(out, -1, axis)
 
 
-
-
 def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Fractional index of each value on the (ascending) ``grid``: exact on a grid point."""
     lower, upper = _bracket(grid, values)
@@ -357,10 +355,10 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
 
 
 def _one_point_logs(prepared: PreparedMap, numbers):
-    """The logs :func:`read_values` reads a (λ, ζ) map at, for one point of scalar numbers that
-    lie inside the map (checked on Python floats, without NumPy reductions); None for any
-    other input (arrays, the plastic maps, a number the full checks refuse with their message)."""
-    if prepared.plane is None or any(np.ndim(value) != 0 for value in numbers):
+    """The logs :func:`read_values` reads a map at, for one point of scalar numbers that lie
+    inside the map (checked on Python floats, without NumPy reductions); None for any other
+    input (arrays, a number the full checks refuse with their message)."""
+    if any(np.ndim(value) != 0 for value in numbers):
         return None
     try:
         values = [float(value) for value in numbers]
@@ -415,6 +413,8 @@ def _grid_position_one(grid: np.ndarray, value: float) -> float:
 
 def _read_cube(prepared: PreparedMap, family, logs: dict):
     """A map of more axes read on its grid: multilinear in the log axes; bands over the 2ᴺ corners."""
+    if all(logs[name].size == 1 for name in family.axis_names):
+        return _read_cube_one(prepared, family, logs)
     names = family.axis_names
     grids = [prepared.grids[name] for name in names]
     points = [logs[name] for name in names]
@@ -427,6 +427,53 @@ def _read_cube(prepared: PreparedMap, family, logs: dict):
         errors[error_name] = family.interpolation.band_safety * np.max([band[c] for c in corners], axis=0)
     codes = prepared.tables["status"]
     return values, errors, [codes[c] for c in corners]
+
+
+def _read_cube_one(prepared: PreparedMap, family, logs: dict):
+    """:func:`_read_cube` of one point, in Python floats (the same operations in the same
+    order: the same bits); one-element arrays, as it returns."""
+    names = family.axis_names
+    grids = [prepared.grids[name] for name in names]
+    points = [float(logs[name][0]) for name in names]
+    corners = list(itertools.product(*(_bracket_one(grid, value) for grid, value in zip(grids, points))))
+    cell = [_cell_one(grid, value) for grid, value in zip(grids, points)]
+    values, errors = {}, {}
+    for variable, error_name in family.errors.items():
+        values[variable] = np.array([_multilinear_one(prepared.tables[variable], cell)])
+        band = prepared.band_grids[variable]
+        errors[error_name] = np.array([family.interpolation.band_safety * _max_one([float(band[c]) for c in corners])])
+    codes = prepared.tables["status"]
+    return values, errors, [codes[c].reshape(1) for c in corners]
+
+
+def _bracket_one(grid: np.ndarray, value: float) -> tuple[int, int]:
+    """:func:`_bracket` of one value."""
+    upper = min(max(int(np.searchsorted(grid, value, side="left")), 0), grid.size - 1)
+    lower = min(max(upper - 1, 0), grid.size - 1)
+    return (upper if abs(float(grid[upper]) - value) <= 1e-12 else lower), upper
+
+
+def _cell_one(grid: np.ndarray, value: float) -> tuple[int, float]:
+    """:func:`_cell` of one value."""
+    index = min(max(int(np.searchsorted(grid, value, side="right")) - 1, 0), grid.size - 2)
+    return index, (value - float(grid[index])) / (float(grid[index + 1]) - float(grid[index]))
+
+
+def _multilinear_one(table: np.ndarray, cell) -> float:
+    """:func:`_multilinear` of one point."""
+    value = 0.0
+    for corner in itertools.product(*(((index, 1 - distance), (index + 1, distance)) for index, distance in cell)):
+        indices, weights = zip(*corner)
+        weight = 1.0
+        for w in weights:
+            weight = weight * w
+        value = value + float(table[indices]) * weight
+    return value
+
+
+def _max_one(values) -> float:
+    """The largest of ``values``, NaN if one is NaN (as ``np.max``)."""
+    return math.nan if any(value != value for value in values) else max(values)
 
 
 def _cell(grid: np.ndarray, values: np.ndarray):
