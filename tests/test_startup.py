@@ -208,6 +208,17 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
     assert log.count("warm-up started") == 1 and "warm-up done" in log
 
 
+def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch):
+    from impactmaps.solvers import background_warm_up as background
+
+    monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    assert background.start_background(tmp_path, ["--sleep", "-1"])
+    assert _until(lambda: list(tmp_path.glob("*.failed")), 60)
+    assert _until(lambda: not background.is_running(tmp_path), 30)
+    assert not background.start_background(tmp_path, ["--sleep", "0"]) and not background.is_warm(tmp_path)
+    assert "a failing stand-in" in next(tmp_path.glob("*.log")).read_text()
+
+
 def test_background_warm_up_is_off_by_environment_or_option(tmp_path, monkeypatch):
     from impactmaps.solvers import background_warm_up as background
 

@@ -18,7 +18,9 @@ set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-u
   claims a warm cache that was since deleted costs only what a cold start costs anyway.
 * a **lock** (``fcntl.flock`` on ``warm-up-KEY.lock``, released by the kernel when the
   process ends, also when killed): at most one background warm-up at a time.
-* a **log** (``warm-up-KEY.log``): the warm-up's output and errors.
+* a **log** (``warm-up-KEY.log``): the warm-up's output and errors; a warm-up that
+  failed leaves ``warm-up-KEY.failed`` (then no command starts another: run
+  ``impactmaps warm-up`` to see the error).
 
 A command that needs a kernel the warm-up has not yet put in the cache compiles it
 itself, at its normal priority: it does not wait for the warm-up. Measured and chosen
@@ -93,7 +95,7 @@ def installation_key() -> str:
 def _paths(directory: Path | None = None, key: str | None = None) -> dict:
     directory = state_directory() if directory is None else Path(directory)
     key = installation_key() if key is None else key
-    return {name: directory / f"warm-up-{key}.{name}" for name in ("marker", "lock", "log")}
+    return {name: directory / f"warm-up-{key}.{name}" for name in ("marker", "failed", "lock", "log")}
 
 
 def is_warm(directory: Path | None = None) -> bool:
@@ -143,15 +145,17 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         return False
     try:
         paths = _paths(directory)
-        if paths["marker"].exists():
+        if paths["marker"].exists() or paths["failed"].exists():
             return False
         paths["lock"].parent.mkdir(parents=True, exist_ok=True)
-        if is_running(directory):
+        handle = _try_lock(paths["lock"])
+        if handle is None:  # running
             return False
+        handle.close()
         import subprocess  # here: a command on a warm cache does not need it
 
         package_parent = str(Path(__file__).resolve().parents[2])
-        env = dict(os.environ, **{DISABLE_ENV: "1"})  # the warm-up and its workers never wait for their own lock
+        env = dict(os.environ, **{DISABLE_ENV: "1"})  # the warm-up's processes start no other
         env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
         with open(paths["log"], "ab") as log:
             subprocess.Popen([sys.executable, "-c", _CHILD, str(paths["lock"].parent), *(command or [])],
@@ -162,11 +166,13 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         return False
 
 
-def mark_warm(done: dict, directory: Path | None = None) -> None:
+def mark_warm(done: dict, directory: Path | None = None, which: str = "marker") -> None:
     """Write this installation's marker (atomically; ``done``: what the warm-up reported),
-    so that no command starts a background warm-up; a marker that cannot be written is not."""
+    so that no command starts a background warm-up; a marker that cannot be written is not.
+    ``which="failed"``: the marker of a warm-up that failed (its error in ``done``; no
+    command starts another, ``impactmaps warm-up`` still runs)."""
     try:
-        marker = _paths(directory)["marker"]
+        marker = _paths(directory)[which]
         marker.parent.mkdir(parents=True, exist_ok=True)
         temporary = marker.with_name(f"{marker.name}.{os.getpid()}")
         temporary.write_text(json.dumps(done, default=str))

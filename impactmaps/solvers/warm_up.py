@@ -119,8 +119,9 @@ def warm_up(workers: int = 2) -> dict:
 def run_background(directory, sleep_s: float | None = None) -> int:
     """The background warm-up process (:mod:`impactmaps.solvers.background_warm_up`): at
     low priority, take the lock of the state ``directory`` (or end if another process holds
-    it or the cache is warm), run :func:`warm_up` (or, for tests, sleep ``sleep_s`` [s]),
-    write the marker; the exit status (0)."""
+    it or the cache is warm), run :func:`warm_up` (or, for tests, sleep ``sleep_s`` [s]; fail
+    if it is negative), write the marker (the ``failed`` marker and the error's traceback
+    in the log if it fails); the exit status (0)."""
     import json
     import os
 
@@ -136,11 +137,17 @@ def run_background(directory, sleep_s: float | None = None) -> int:
         handle.write(json.dumps({"pid": os.getpid(), "started": time.time()}))
         handle.flush()
         print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up started (pid {os.getpid()})", flush=True)
-        if sleep_s is None:
-            done = warm_up(2)
-        else:
-            time.sleep(sleep_s)
-            done = {"total_s": sleep_s}
+        try:
+            if sleep_s is None:
+                done = warm_up(2)
+            elif sleep_s < 0:  # tests: a warm-up that fails
+                raise RuntimeError("a failing stand-in of the warm-up")
+            else:
+                time.sleep(sleep_s)
+                done = {"total_s": sleep_s}
+        except Exception as error:  # noqa: BLE001 (recorded: no command starts it again)
+            mark_warm({"error": f"{type(error).__name__}: {error}"}, directory, "failed")
+            raise
         mark_warm(done, directory)
         print(f"{time.strftime('%Y-%m-%d %H:%M:%S')} warm-up done: {json.dumps(done, default=str)}", flush=True)
     return 0
