@@ -228,6 +228,6 @@ def test_background_warm_up_is_off_by_environment_or_option(tmp_path, monkeypatc
     started = []
     monkeypatch.setattr(background, "start_background", lambda *a, **k: started.append(1))
     monkeypatch.delenv(background.DISABLE_ENV)
-    assert main(["materials"]) == 0 and started == [1]  # any command starts it (once cold)
+    assert main(["materials"]) == 0 and started == [1]  # any command starts it, after its output
     assert main(["--no-background-warm-up", "materials"]) == 0 and started == [1]
-    assert os.environ[background.DISABLE_ENV] == "1"
+    assert main(["materials", "--bad-option"]) == 2 and started == [1]  # a command line refused: nothing

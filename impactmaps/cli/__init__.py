@@ -319,11 +319,9 @@ def _sweep_interrupted() -> type[Exception]:
 def _background_warm_up(args) -> None:
     """Start compiling the solver in the background if its cache is cold
     (:mod:`impactmaps.solvers.background_warm_up`; about a millisecond here), unless turned off."""
-    from ..solvers import background_warm_up
+    if not args.no_background_warm_up and args.command != "warm-up":
+        from ..solvers import background_warm_up
 
-    if args.no_background_warm_up:
-        os.environ[background_warm_up.DISABLE_ENV] = "1"  # nor in the processes this command starts
-    elif args.command != "warm-up":
         background_warm_up.start_background()
 
 
@@ -337,7 +335,14 @@ def _main(argv) -> int:
             print(dumps({"error": str(error)}))
         print(error, file=sys.stderr)
         return EXIT_BAD_INPUT
-    _background_warm_up(args)
+    status = _run(args)
+    if status != EXIT_INTERRUPTED:
+        _background_warm_up(args)  # after the command's output: it never competes with the command
+    return status
+
+
+def _run(args) -> int:
+    """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught = []
     status = None
     try:

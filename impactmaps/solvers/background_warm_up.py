@@ -3,10 +3,9 @@
 On an empty numba cache the first integrating command compiles the modal solver's
 kernels (12–14 s on 2 idle cores; ``benchmarks/RESULTS_cold_start.md``). The command
 line avoids that wait without asking the user to run ``impactmaps warm-up``: when a
-command starts and this installation's cache is not known to be warm, it starts
-:func:`impactmaps.solvers.warm_up.warm_up` in a detached process of low priority
-(``nice`` 10) and goes on with its own work at once; a later integrating command loads
-the compiled kernels.
+command has printed its output and this installation's cache is not known to be warm, it
+starts :func:`impactmaps.solvers.warm_up.warm_up` in a detached process of low priority
+(``nice`` 10) and exits; a later integrating command loads the compiled kernels.
 
 State, in :func:`state_directory` (``$NUMBA_CACHE_DIR/impactmaps-warm-up`` when that is
 set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-up``):
