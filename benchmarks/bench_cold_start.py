@@ -171,7 +171,7 @@ def _background_done(cache: str) -> None:
     for lock in pathlib.Path(cache).glob("impactmaps-warm-up/*.lock"):
         try:
             pid = int(json.loads(lock.read_text() or "{}")["pid"])
-            os.killpg(pid, signal.SIGTERM)  # start_new_session: its process group is its pid
+            os.killpg(os.getpgid(pid), signal.SIGTERM)  # its session's process group: it and its workers
         except (OSError, ValueError, KeyError):
             continue
         time.sleep(1.0)

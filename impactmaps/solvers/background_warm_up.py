@@ -156,11 +156,13 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         package_parent = str(Path(__file__).resolve().parents[2])
         env = dict(os.environ, **{DISABLE_ENV: "1"})  # the warm-up's processes start no other
         env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
-        with open(paths["log"], "ab") as log:
-            subprocess.Popen([sys.executable, "-c", _CHILD, str(paths["lock"].parent), *(command or [])],
-                             stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, env=env,
-                             start_new_session=True, close_fds=True)
-        return True
+        with open(paths["log"], "ab") as log:  # through sh, which starts it and ends at once: reaped here,
+            # the warm-up is nobody's child to wait for (no zombie, no "still running" warning)
+            started = subprocess.run(["/bin/sh", "-c", '"$@" &', "sh", sys.executable, "-c", _CHILD,
+                                      str(paths["lock"].parent), *(command or [])],
+                                     stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, env=env,
+                                     start_new_session=True, close_fds=True)
+        return started.returncode == 0
     except OSError:
         return False
 
