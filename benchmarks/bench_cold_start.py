@@ -27,7 +27,9 @@ Reported with the load average (other jobs on the machine make every number larg
 it for two checkouts in the same minutes and compare ratios, ``--root``).
 
 Run: ``python benchmarks/bench_cold_start.py [--skip-chart] [--root CHECKOUT] [--print-only]``;
-writes ``benchmarks/RESULTS_cold_start.md`` unless ``--print-only``.
+writes ``benchmarks/RESULTS_cold_start.md`` unless ``--print-only``. The commands run with
+the background warm-up off, except with ``--background``: then only the scenarios of
+:func:`background_rows` run, appended to the results.
 """
 
 from __future__ import annotations
@@ -77,9 +79,15 @@ LIGHT_COMMANDS = (("--help",), ("materials",), ("laws",),
 CODE = ROOT
 
 
-def _environment(cache: str) -> dict:
-    return dict(os.environ, NUMBA_CACHE_DIR=cache, OMP_NUM_THREADS="1",
-                PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def _environment(cache: str, background: bool = False) -> dict:
+    """The commands' environment: numba's cache at ``cache``, the background warm-up off
+    unless ``background`` (the measurements above it are of the commands alone)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache, OMP_NUM_THREADS="1",
+               PYTHONPATH=str(CODE) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env.pop("IMPACTMAPS_NO_BACKGROUND_WARMUP", None)
+    if not background:
+        env["IMPACTMAPS_NO_BACKGROUND_WARMUP"] = "1"
+    return env
 
 
 #: CPU time [s] of each command :func:`run_command` ran, in order (user + system of the child).
@@ -154,15 +162,100 @@ def time_chart(*options: str) -> tuple[float, float]:
     return times[0], times[1]
 
 
+def _background_done(cache: str) -> None:
+    """End the background warm-up a scenario started in ``cache`` (its session: the process
+    and its workers), so that the next scenario starts on an idle machine."""
+    import json
+    import signal
+
+    for lock in pathlib.Path(cache).glob("impactmaps-warm-up/*.lock"):
+        try:
+            pid = int(json.loads(lock.read_text() or "{}")["pid"])
+            os.killpg(os.getpgid(pid), signal.SIGTERM)  # its session's process group: it and its workers
+        except (OSError, ValueError, KeyError):
+            continue
+        time.sleep(1.0)
+
+
+def _timed(command: list[str], env: dict, cwd: str) -> float:
+    """Wall time [s] of ``command``; its CPU time appended to :data:`CPU_TIMES` (a background
+    warm-up it starts is not its child for long: it detaches at once)."""
+    cpu, start = _children_cpu(), time.perf_counter()
+    subprocess.run(command, env=env, check=True, capture_output=True, cwd=cwd)
+    wall = time.perf_counter() - start
+    CPU_TIMES.append(_children_cpu() - cpu)
+    return wall
+
+
+def _warm_up_finished(cache: str, limit_s: float = 900.0) -> float:
+    """Seconds until the background warm-up in ``cache`` has written its marker (at most ``limit_s``)."""
+    start = time.perf_counter()
+    while time.perf_counter() - start < limit_s and not list(pathlib.Path(cache).glob("impactmaps-warm-up/*.marker")):
+        time.sleep(0.5)
+    return time.perf_counter() - start
+
+
+def background_rows(pauses=(0.0, 20.0)) -> list[str]:
+    """The background warm-up (:mod:`impactmaps.solvers.background_warm_up`), each on an
+    empty cache: the default chart with it and without it (its cost to the foreground);
+    ``chart`` then, after a pause, ``simulate examples/steel_plate_hertz.toml`` (the wait a
+    user sees), also once the warm-up has finished; ``simulate`` as the very first command,
+    with and without it."""
+    case = str(ROOT / "examples" / "steel_plate_hertz.toml")
+    cli = [sys.executable, "-m", "impactmaps.cli"]
+    rows = ["| scenario (empty numba cache) | foreground wall [s] | its CPU [s] | load |", "|---|---|---|---|"]
+
+    def row(text, seconds):
+        rows.append(f"| {text} | **{seconds:.1f}** | {CPU_TIMES[-1]:.1f} | {os.getloadavg()[0]:.1f} |")
+        print(rows[-1], flush=True)
+
+    for background in (False, True):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            wall = _timed([*cli, "chart", "--quiet", "--out", out], _environment(cache, background), out)
+            _background_done(cache)
+        row(f"`impactmaps chart`, background warm-up {'on' if background else 'off'}", wall)
+    for pause in (*pauses, None):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            env = _environment(cache, True)
+            chart = _timed([*cli, "chart", "--quiet", "--out", out], env, out)
+            if pause is None:
+                waited = _warm_up_finished(cache)
+                text = f"the warm-up's end ({waited:.0f} s after the chart)"
+            else:
+                time.sleep(pause)
+                text = f"{pause:.0f} s"
+            wall = _timed([*cli, "simulate", case, "--out", "s"], env, out)
+            _background_done(cache)
+        row(f"`chart` ({chart:.1f} s), then after {text} `simulate steel_plate_hertz.toml`", wall)
+    for background in (False, True):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            wall = _timed([*cli, "simulate", case, "--out", "s"], _environment(cache, background), out)
+            _background_done(cache)
+        row(f"`simulate steel_plate_hertz.toml` first, background warm-up {'on' if background else 'off'}", wall)
+    return rows
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--skip-chart", action="store_true", help="no chart timings")
     parser.add_argument("--root", type=pathlib.Path, default=ROOT, help="the checkout to measure (default this one)")
     parser.add_argument("--print-only", action="store_true", help="print, do not write RESULTS_cold_start.md")
+    parser.add_argument("--background", action="store_true",
+                        help="only the background warm-up's scenarios (background_rows), appended to the results")
     args = parser.parse_args(argv)
     global CODE
     CODE = args.root.resolve()
     load = os.getloadavg()[0]
+    if args.background:
+        lines = ["", "## Background warm-up", "", f"`python benchmarks/bench_cold_start.py --background` (code of "
+                 f"{CODE.name}), run {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average "
+                 f"{load:.1f} on {os.cpu_count()} cores", "", *background_rows()]
+        text = "\n".join(lines) + "\n"
+        if not args.print_only:
+            with open(ROOT / "benchmarks" / "RESULTS_cold_start.md", "a") as results:
+                results.write(text)
+        print(text)
+        return
     profile = profile_import()
     lines = [
         "# Cold start",

@@ -178,3 +178,56 @@ def test_after_warm_up_a_simulation_compiles_nothing(tmp_path):
     assert done.returncode == 0, done.stderr
     seen = json.loads(done.stdout.strip().splitlines()[-1])
     assert seen["misses"] == [] and seen["hits"] > 0, seen
+
+
+# -- the background warm-up (a stand-in that sleeps instead of compiling) -------------------
+def _until(condition, seconds: float = 60.0) -> bool:
+    import time
+
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatch):
+    """One detached process at a time takes the lock, writes the marker when done; then
+    nothing starts again."""
+    from impactmaps.solvers import background_warm_up as background
+
+    monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    assert background.start_background(tmp_path, ["--sleep", "1.5"])
+    assert _until(lambda: background.is_running(tmp_path), 30)  # the child holds the lock
+    assert not background.start_background(tmp_path, ["--sleep", "1.5"])  # one at a time
+    assert _until(lambda: background.is_warm(tmp_path), 60)
+    assert _until(lambda: not background.is_running(tmp_path), 30)
+    assert not background.start_background(tmp_path, ["--sleep", "1.5"])  # warm: nothing to do
+    log = next(tmp_path.glob("warm-up-*.log")).read_text()
+    assert log.count("warm-up started") == 1 and "warm-up done" in log
+
+
+def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch):
+    from impactmaps.solvers import background_warm_up as background
+
+    monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    assert background.start_background(tmp_path, ["--sleep", "-1"])
+    assert _until(lambda: list(tmp_path.glob("*.failed")), 60)
+    assert _until(lambda: not background.is_running(tmp_path), 30)
+    assert not background.start_background(tmp_path, ["--sleep", "0"]) and not background.is_warm(tmp_path)
+    assert "a failing stand-in" in next(tmp_path.glob("*.log")).read_text()
+
+
+def test_background_warm_up_is_off_by_environment_or_option(tmp_path, monkeypatch):
+    from impactmaps.solvers import background_warm_up as background
+
+    monkeypatch.setenv(background.DISABLE_ENV, "1")
+    assert not background.start_background(tmp_path, ["--sleep", "0"])
+    assert list(tmp_path.iterdir()) == []
+    started = []
+    monkeypatch.setattr(background, "start_background", lambda *a, **k: started.append(1))
+    monkeypatch.delenv(background.DISABLE_ENV)
+    assert main(["materials"]) == 0 and started == [1]  # any command starts it, after its output
+    assert main(["--no-background-warm-up", "materials"]) == 0 and started == [1]
+    assert main(["materials", "--bad-option"]) == 2 and started == [1]  # a command line refused: nothing

@@ -132,6 +132,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
+    parser.add_argument("--no-background-warm-up", action="store_true",
+                        help="do not start compiling the solver in the background when its cache is cold "
+                        "(also: IMPACTMAPS_NO_BACKGROUND_WARMUP=1)")
     sub = parser.add_subparsers(dest="command", required=True)
 
     def add(name, help_text, handler):
@@ -313,6 +316,15 @@ def _sweep_interrupted() -> type[Exception]:
     return _NotRaised if store is None else store.SweepInterrupted
 
 
+def _background_warm_up(args) -> None:
+    """Start compiling the solver in the background if its cache is cold
+    (:mod:`impactmaps.solvers.background_warm_up`; about a millisecond here), unless turned off."""
+    if not args.no_background_warm_up and args.command != "warm-up":
+        from ..solvers import background_warm_up
+
+        background_warm_up.start_background()
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
     parser = build_parser()
@@ -323,6 +335,14 @@ def _main(argv) -> int:
             print(dumps({"error": str(error)}))
         print(error, file=sys.stderr)
         return EXIT_BAD_INPUT
+    status = _run(args)
+    if status != EXIT_INTERRUPTED:
+        _background_warm_up(args)  # after the command's output: it never competes with the command
+    return status
+
+
+def _run(args) -> int:
+    """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught = []
     status = None
     try:

@@ -22,6 +22,7 @@ neighbouring (λ, ζ) slice's refined leaf where there is one, then across the e
 from __future__ import annotations
 
 import itertools
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -29,7 +30,7 @@ import xarray as xr
 
 from .._checks import describe_outside, require_positive
 from .accuracy import STATUSES, AccuracyControl, PointStatus
-from .interpolator import PlaneInterpolator, grid_bilinear, interpolate_line
+from .interpolator import PlaneInterpolator, grid_bilinear, grid_bilinear_one, interpolate_line, interpolate_line_one
 from .map_family import ASYMPTOTE_PEAK_VARIABLES
 from .refinement import MAX_LEVEL, Refinement
 from .slice_refinement import SlicedRefinement, read_slices
@@ -182,8 +183,6 @@ def _nearest_known(d2: np.ndarray, axis: int) -> np.ndarray:
         nearest = known[np.abs(positions[missing, None] - known[None, :]).argmin(axis=1)]
         line[missing] = line[nearest]
     return np.moveaxis(out, -1, axis)
-
-
 
 
 def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -372,17 +371,19 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
     """
     if prepared is None:
         prepared = prepare_map(dataset, family, refinement, error_grid, band_grids)
-    numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
-    for label, values in zip(labels, numbers):
-        require_positive(label, values)
-    for label, values, axis in zip(labels, numbers, prepared.axes):
-        low, high = prepared.ranges[axis]
-        if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
-            shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
-            raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is "
-                                  f"[{low:g}, {high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
-    logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
-    shape = numbers[0].shape
+    logs = _one_point_logs(prepared, numbers)
+    if logs is None:
+        numbers = np.broadcast_arrays(*(np.asarray(value, float) for value in numbers))
+        for label, values in zip(labels, numbers):
+            require_positive(label, values)
+        for label, values, axis in zip(labels, numbers, prepared.axes):
+            low, high = prepared.ranges[axis]
+            if values.size and (values.min() < low * (1 - 1e-12) or values.max() > high * (1 + 1e-12)):  # no NaN
+                shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
+                raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is [{low:g}, "
+                                      f"{high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
+        logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
+    shape = np.shape(numbers[0])
     if prepared.plane is not None:
         values, errors, codes = _read_plane(prepared, logs)
     else:
@@ -400,8 +401,29 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
                    {name: value.reshape(shape) for name, value in errors.items()}, status.reshape(shape), shape)
 
 
+def _one_point_logs(prepared: PreparedMap, numbers):
+    """The logs :func:`read_values` reads a map at, for one point of scalar numbers that lie
+    inside the map (checked on Python floats, without NumPy reductions); None for any other
+    input (arrays, a number the full checks refuse with their message)."""
+    if any(np.ndim(value) != 0 for value in numbers):
+        return None
+    try:
+        values = [float(value) for value in numbers]
+    except (TypeError, ValueError, OverflowError):
+        return None
+    logs = {}
+    for value, axis in zip(values, prepared.axes):
+        low, high = prepared.ranges[axis]
+        if not (0.0 < value < math.inf and low * (1 - 1e-12) <= value <= high * (1 + 1e-12)):
+            return None
+        logs[axis] = np.log(np.array([min(max(value, low), high)]))
+    return logs
+
+
 def _read_plane(prepared: PreparedMap, logs: dict):
     """A (λ, ζ) map read in the leaves of its refinement (the grid's cells where it has none)."""
+    if logs["zeta"].size == 1:
+        return _read_plane_one(prepared, logs)
     positions = {axis: _grid_position(prepared.grids[axis], logs[axis]) for axis in ("lambda_", "zeta")}
     rows, cols = positions["lambda_"], positions["zeta"]
     values, error, codes = prepared.plane.interpolate(rows, cols)
@@ -412,8 +434,34 @@ def _read_plane(prepared: PreparedMap, logs: dict):
     return values, {"fmax_error": error}, codes
 
 
+def _read_plane_one(prepared: PreparedMap, logs: dict):
+    """:func:`_read_plane` of one point, in Python floats where NumPy calls on one-element arrays
+    cost more than the arithmetic (the same operations in the same order: the same bits)."""
+    positions = {axis: _grid_position_one(prepared.grids[axis], float(logs[axis][0])) for axis in ("lambda_", "zeta")}
+    row, col = positions["lambda_"], positions["zeta"]
+    values, error, codes = prepared.plane.interpolate_one(row, col)
+    if prepared.times:
+        values |= grid_bilinear_one(prepared.tables, row, col, prepared.times, 1 << MAX_LEVEL)
+    for name, (axis, line, line_logs) in prepared.lines.items():
+        values[name] = interpolate_line_one(line, positions[axis], line_logs)
+    return values, {"fmax_error": error}, codes
+
+
+def _grid_position_one(grid: np.ndarray, value: float) -> float:
+    """:func:`_grid_position` of one value."""
+    upper = min(max(int(np.searchsorted(grid, value, side="left")), 0), grid.size - 1)
+    lower = min(max(upper - 1, 0), grid.size - 1)
+    if abs(float(grid[upper]) - value) <= 1e-12:
+        lower = upper
+    if upper > lower:
+        return lower + (value - float(grid[lower])) / (float(grid[upper]) - float(grid[lower]))
+    return lower + 0.0
+
+
 def _read_cube(prepared: PreparedMap, family, logs: dict):
     """A map of more axes read on its grid: multilinear in the log axes; bands over the 2ᴺ corners."""
+    if all(logs[name].size == 1 for name in family.axis_names):
+        return _read_cube_one(prepared, family, logs)
     names = family.axis_names
     grids = [prepared.grids[name] for name in names]
     points = [logs[name] for name in names]
@@ -445,6 +493,53 @@ def _read_slices(prepared: PreparedMap, family, logs: dict, values: dict, errors
     values["fmax_normalised"] = np.where(deep, fmax, values["fmax_normalised"])
     errors["fmax_error"] = np.where(deep, family.interpolation.band_safety * (band + across), errors["fmax_error"])
     codes.extend(np.where(deep, code, 0) for code in slice_codes)
+
+
+def _read_cube_one(prepared: PreparedMap, family, logs: dict):
+    """:func:`_read_cube` of one point, in Python floats (the same operations in the same
+    order: the same bits); one-element arrays, as it returns."""
+    names = family.axis_names
+    grids = [prepared.grids[name] for name in names]
+    points = [float(logs[name][0]) for name in names]
+    corners = list(itertools.product(*(_bracket_one(grid, value) for grid, value in zip(grids, points))))
+    cell = [_cell_one(grid, value) for grid, value in zip(grids, points)]
+    values, errors = {}, {}
+    for variable, error_name in family.errors.items():
+        values[variable] = np.array([_multilinear_one(prepared.tables[variable], cell)])
+        band = prepared.band_grids[variable]
+        errors[error_name] = np.array([family.interpolation.band_safety * _max_one([float(band[c]) for c in corners])])
+    codes = prepared.tables["status"]
+    return values, errors, [codes[c].reshape(1) for c in corners]
+
+
+def _bracket_one(grid: np.ndarray, value: float) -> tuple[int, int]:
+    """:func:`_bracket` of one value."""
+    upper = min(max(int(np.searchsorted(grid, value, side="left")), 0), grid.size - 1)
+    lower = min(max(upper - 1, 0), grid.size - 1)
+    return (upper if abs(float(grid[upper]) - value) <= 1e-12 else lower), upper
+
+
+def _cell_one(grid: np.ndarray, value: float) -> tuple[int, float]:
+    """:func:`_cell` of one value."""
+    index = min(max(int(np.searchsorted(grid, value, side="right")) - 1, 0), grid.size - 2)
+    return index, (value - float(grid[index])) / (float(grid[index + 1]) - float(grid[index]))
+
+
+def _multilinear_one(table: np.ndarray, cell) -> float:
+    """:func:`_multilinear` of one point."""
+    value = 0.0
+    for corner in itertools.product(*(((index, 1 - distance), (index + 1, distance)) for index, distance in cell)):
+        indices, weights = zip(*corner)
+        weight = 1.0
+        for w in weights:
+            weight = weight * w
+        value = value + float(table[indices]) * weight
+    return value
+
+
+def _max_one(values) -> float:
+    """The largest of ``values``, NaN if one is NaN (as ``np.max``)."""
+    return math.nan if any(value != value for value in values) else max(values)
 
 
 def _cell(grid: np.ndarray, values: np.ndarray):
