@@ -1,0 +1,151 @@
+"""The whole (ζ, λ) plane of ``benchmarks/bench_plane.py``, point by point, against another checkout.
+
+Two steps:
+
+    python validation/plane_equivalence.py --solve --root /tmp/base --out /tmp/base.npz
+    python validation/plane_equivalence.py --solve --out /tmp/this.npz
+    python validation/plane_equivalence.py --compare /tmp/base.npz /tmp/this.npz \
+        --summary validation/plane_equivalence
+
+``--solve`` solves the 200 × 50 grid (ζ × λ over [1e-3, 1e3]²) of ``beam-ss-euler`` and
+``plate-ssss-kirchhoff`` serially in this process, one point per call of
+:func:`impactmaps.maps.points.solve_map_points` (what a sweep's worker computes), with the
+checkout given by ``--root`` first on the path (default: this one), and stores every
+point's map variables and its CPU time (``time.process_time``) in an ``.npz``.
+``--compare`` reads two such files (today's first) and writes, per structure and method of
+the new points: points, CPU of each, points whose F̄max differs, the largest difference,
+and the points where it exceeds the old point's stated error (``fmax_error``, at least
+1e-12) or lies outside its band ``[fmax_low, fmax_high]``; status and impact-count changes
+counted. ``--summary PREFIX`` writes ``PREFIX.md`` and ``PREFIX.csv`` (one row per point that
+changed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import pathlib
+import sys
+import time
+import warnings
+
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
+import numpy as np  # noqa: E402  (after the BLAS thread limits)
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
+VARIABLES = ("fmax_normalised", "fmax_error", "fmax_low", "fmax_high", "status", "method", "impacts",
+             "n_modes", "contact_time_normalised", "energy_transferred_fraction")
+
+
+def grid(quick: bool = False):
+    """ζ (200) and λ (50) of the plane [-]; ``quick``: 40 × 10."""
+    if quick:
+        return np.geomspace(1e-3, 1e3, 40), np.geomspace(1e-3, 1e3, 10)
+    return np.geomspace(1e-3, 1e3, 200), np.geomspace(1e-3, 1e3, 50)
+
+
+def solve(root: pathlib.Path, out: str, quick: bool) -> None:
+    """Solve the plane with the package of ``root``; store the variables and CPU per point."""
+    sys.path.insert(0, str(root))
+    from impactmaps.maps.linear_points import LINEAR
+    from impactmaps.maps.points import solve_map_points
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.solvers.modal import ModalSettings
+
+    zetas, lambdas = grid(quick)
+    stored = {"zeta": zetas, "lambda_": lambdas}
+    settings = ModalSettings()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name in STRUCTURES:
+            structure = structure_from_name(name)
+            solve_map_points(LINEAR, structure, [(1.0, 1.0)], settings)  # warm: tables, kernels
+            values = {v: np.full((lambdas.size, zetas.size), np.nan) for v in VARIABLES}
+            cpu = np.zeros((lambdas.size, zetas.size))
+            start = time.process_time()
+            for i, lam in enumerate(lambdas):
+                for j, zeta in enumerate(zetas):
+                    t0 = time.process_time()
+                    row = solve_map_points(LINEAR, structure, [(float(zeta), float(lam))], settings)[0]
+                    cpu[i, j] = time.process_time() - t0
+                    for v in VARIABLES:
+                        values[v][i, j] = row[v]
+            print(f"{name}: {time.process_time() - start:.1f} CPU-s, load {os.getloadavg()[0]:.1f}", flush=True)
+            stored |= {f"{name}/{v}": a for v, a in values.items()} | {f"{name}/cpu": cpu}
+    np.savez(out, **stored)
+
+
+def compare(old_path: str, new_path: str, summary: str | None) -> int:
+    """Print (and write) the point-by-point comparison; the number of points beyond their error."""
+    old, new = np.load(old_path), np.load(new_path)
+    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.points import METHODS
+
+    zetas, lambdas = old["zeta"], old["lambda_"]
+    lines = ["| structure | method (new) | points | CPU today [s] | CPU new [s] | F̄max differs | max abs(ΔF̄max) "
+             "| beyond today's fmax_error | outside today's band | status changed | impacts changed |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows, beyond_total = ["structure,zeta,lambda,fmax_today,fmax_new,fmax_error_today,status_today,status_new,"
+                          "impacts_today,impacts_new,method_new"], 0
+    for name in STRUCTURES:
+        o = {v: old[f"{name}/{v}"] for v in (*VARIABLES, "cpu")}
+        n = {v: new[f"{name}/{v}"] for v in (*VARIABLES, "cpu")}
+        diff = np.abs(n["fmax_normalised"] - o["fmax_normalised"])
+        differs = ~((n["fmax_normalised"] == o["fmax_normalised"])
+                    | (np.isnan(n["fmax_normalised"]) & np.isnan(o["fmax_normalised"])))
+        beyond = differs & ~(diff <= np.maximum(o["fmax_error"], 1e-12))
+        outside = differs & ~((n["fmax_normalised"] >= o["fmax_low"]) & (n["fmax_normalised"] <= o["fmax_high"]))
+        status = n["status"] != o["status"]
+        impacts = n["impacts"] != o["impacts"]
+        beyond_total += int(beyond.sum())
+        for code in [*np.unique(n["method"][np.isfinite(n["method"])].astype(int)), None]:
+            sel = np.ones_like(differs) if code is None else n["method"] == code
+            label = "all" if code is None else METHODS[code]
+            lines.append(f"| {name} | {label} | {sel.sum()} | {o['cpu'][sel].sum():.1f} | {n['cpu'][sel].sum():.1f} "
+                         f"| {(differs & sel).sum()} | {np.nanmax(np.where(sel, diff, 0.0)):.2e} "
+                         f"| {(beyond & sel).sum()} | {(outside & sel).sum()} | {(status & sel).sum()} "
+                         f"| {(impacts & sel).sum()} |")
+        for i, j in zip(*np.nonzero(differs | status | impacts)):
+            rows.append(f"{name},{zetas[j]:.6g},{lambdas[i]:.6g},{o['fmax_normalised'][i, j]:.9g},"
+                        f"{n['fmax_normalised'][i, j]:.9g},{o['fmax_error'][i, j]:.3g},"
+                        f"{STATUSES[int(o['status'][i, j])]},{STATUSES[int(n['status'][i, j])]},"
+                        f"{int(o['impacts'][i, j])},{int(n['impacts'][i, j])},{METHODS[int(n['method'][i, j])]}")
+    text = "\n".join(lines)
+    print(text)
+    print(f"points beyond today's stated error: {beyond_total}")
+    if summary:
+        pathlib.Path(f"{summary}.csv").write_text("\n".join(rows) + "\n")
+        head = (f"# The plane point by point: `{pathlib.Path(new_path).name}` against today's "
+                f"`{pathlib.Path(old_path).name}`\n\n"
+                "`python validation/plane_equivalence.py --compare OLD NEW --summary validation/plane_equivalence`"
+                f" (grid {zetas.size} ζ × {lambdas.size} λ; CPU: `time.process_time` of each point, serial)\n\n")
+        pathlib.Path(f"{summary}.md").write_text(head + text + f"\n\nPoints beyond today's stated error: "
+                                                 f"**{beyond_total}**; every changed point: `{pathlib.Path(summary).name}.csv`.\n")
+    return beyond_total
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--solve", action="store_true", help="solve the plane into --out")
+    parser.add_argument("--root", default=str(ROOT), help="checkout whose impactmaps solves (default: this)")
+    parser.add_argument("--out", help=".npz to write with --solve")
+    parser.add_argument("--quick", action="store_true", help="a 40 × 10 grid")
+    parser.add_argument("--compare", nargs=2, metavar=("TODAY", "NEW"), help="two .npz files of --solve")
+    parser.add_argument("--summary", help="write PREFIX.md and PREFIX.csv")
+    args = parser.parse_args(argv)
+    if args.solve:
+        if not args.out:
+            parser.error("--solve needs --out")
+        solve(pathlib.Path(args.root).resolve(), args.out, args.quick)
+        return 0
+    if args.compare:
+        return 1 if compare(*args.compare, args.summary) else 0
+    parser.error("give --solve or --compare")
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
