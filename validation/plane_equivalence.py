@@ -16,8 +16,8 @@ point's map variables and its CPU time (``time.process_time``) in an ``.npz``.
 the new points: points, CPU of each, points whose F̄max differs, the largest difference,
 and the points where it exceeds the old point's stated error (``fmax_error``, at least
 1e-12) or lies outside its band ``[fmax_low, fmax_high]``; status and impact-count changes
-counted. ``--summary PREFIX`` writes ``PREFIX.md`` and ``PREFIX.csv`` (one row per point that
-changed).
+counted. ``--summary PREFIX`` writes ``PREFIX.md`` and ``PREFIX.csv`` (one row per point beyond
+today's error or band, or whose status or impact count changed).
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ def grid(quick: bool = False):
     return np.geomspace(1e-3, 1e3, 200), np.geomspace(1e-3, 1e3, 50)
 
 
-def solve(root: pathlib.Path, out: str, quick: bool) -> None:
+def solve(root: pathlib.Path, out: str, quick: bool, contact_phase: str | None = None) -> None:
     """Solve the plane with the package of ``root``; store the variables and CPU per point."""
     sys.path.insert(0, str(root))
     from impactmaps.maps.linear_points import LINEAR
@@ -57,7 +57,7 @@ def solve(root: pathlib.Path, out: str, quick: bool) -> None:
 
     zetas, lambdas = grid(quick)
     stored = {"zeta": zetas, "lambda_": lambdas}
-    settings = ModalSettings()
+    settings = ModalSettings() if contact_phase is None else ModalSettings(contact_phase=contact_phase)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name in STRUCTURES:
@@ -78,7 +78,7 @@ def solve(root: pathlib.Path, out: str, quick: bool) -> None:
     np.savez(out, **stored)
 
 
-def compare(old_path: str, new_path: str, summary: str | None) -> int:
+def compare(old_path: str, new_path: str, summary: str | None, title: str | None = None) -> int:
     """Print (and write) the point-by-point comparison; the number of points beyond their error."""
     old, new = np.load(old_path), np.load(new_path)
     from impactmaps.maps.accuracy import STATUSES
@@ -108,7 +108,7 @@ def compare(old_path: str, new_path: str, summary: str | None) -> int:
                          f"| {(differs & sel).sum()} | {np.nanmax(np.where(sel, diff, 0.0)):.2e} "
                          f"| {(beyond & sel).sum()} | {(outside & sel).sum()} | {(status & sel).sum()} "
                          f"| {(impacts & sel).sum()} |")
-        for i, j in zip(*np.nonzero(differs | status | impacts)):
+        for i, j in zip(*np.nonzero(beyond | outside | status | impacts)):
             rows.append(f"{name},{zetas[j]:.6g},{lambdas[i]:.6g},{o['fmax_normalised'][i, j]:.9g},"
                         f"{n['fmax_normalised'][i, j]:.9g},{o['fmax_error'][i, j]:.3g},"
                         f"{STATUSES[int(o['status'][i, j])]},{STATUSES[int(n['status'][i, j])]},"
@@ -119,11 +119,12 @@ def compare(old_path: str, new_path: str, summary: str | None) -> int:
     if summary:
         pathlib.Path(f"{summary}.csv").write_text("\n".join(rows) + "\n")
         head = (f"# The plane point by point: `{pathlib.Path(new_path).name}` against today's "
-                f"`{pathlib.Path(old_path).name}`\n\n"
+                f"`{pathlib.Path(old_path).name}`\n\n" + (f"{title}\n\n" if title else "") +
                 "`python validation/plane_equivalence.py --compare OLD NEW --summary validation/plane_equivalence`"
                 f" (grid {zetas.size} ζ × {lambdas.size} λ; CPU: `time.process_time` of each point, serial)\n\n")
         pathlib.Path(f"{summary}.md").write_text(head + text + f"\n\nPoints beyond today's stated error: "
-                                                 f"**{beyond_total}**; every changed point: `{pathlib.Path(summary).name}.csv`.\n")
+                                                 f"**{beyond_total}**; those points and every status or impact change: "
+                                                 f"`{pathlib.Path(summary).name}.csv`.\n")
     return beyond_total
 
 
@@ -133,16 +134,19 @@ def main(argv=None) -> int:
     parser.add_argument("--root", default=str(ROOT), help="checkout whose impactmaps solves (default: this)")
     parser.add_argument("--out", help=".npz to write with --solve")
     parser.add_argument("--quick", action="store_true", help="a 40 × 10 grid")
+    parser.add_argument("--contact-phase", choices=("auto", "exact", "sampled"),
+                        help="solve with this ModalSettings.contact_phase (default: the settings' default)")
     parser.add_argument("--compare", nargs=2, metavar=("TODAY", "NEW"), help="two .npz files of --solve")
     parser.add_argument("--summary", help="write PREFIX.md and PREFIX.csv")
+    parser.add_argument("--title", help="a sentence under the summary's heading: what NEW is")
     args = parser.parse_args(argv)
     if args.solve:
         if not args.out:
             parser.error("--solve needs --out")
-        solve(pathlib.Path(args.root).resolve(), args.out, args.quick)
+        solve(pathlib.Path(args.root).resolve(), args.out, args.quick, args.contact_phase)
         return 0
     if args.compare:
-        return 1 if compare(*args.compare, args.summary) else 0
+        return 1 if compare(*args.compare, args.summary, args.title) else 0
     parser.error("give --solve or --compare")
     return 2
 
