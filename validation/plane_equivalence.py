@@ -18,6 +18,8 @@ and the points where it exceeds the old point's stated error (``fmax_error``, at
 1e-12) or lies outside its band ``[fmax_low, fmax_high]``; status and impact-count changes
 counted. ``--summary PREFIX`` writes ``PREFIX.md`` and ``PREFIX.csv`` (one row per point beyond
 today's error or band, or whose status or impact count changed).
+``--referee CSV`` (with ``--compare``) says which plane is right where they differ beyond
+the old stated error: a run three refinement levels finer at each such point.
 """
 
 from __future__ import annotations
@@ -77,6 +79,52 @@ def solve(root: pathlib.Path, out: str, quick: bool, contact_phase: str | None =
             print(f"{name}: {time.process_time() - start:.1f} CPU-s, load {os.getloadavg()[0]:.1f}", flush=True)
             stored |= {f"{name}/{v}": a for v, a in values.items()} | {f"{name}/cpu": cpu}
     np.savez(out, **stored)
+
+
+def referee(old_path: str, new_path: str, out: str) -> None:
+    """Which of two planes is right where they differ beyond the old point's stated error.
+
+    At every converged or refined point of ``old_path`` (status unchanged in ``new_path``)
+    whose F̄max the new plane moves beyond the old ``fmax_error``, one run three
+    refinement levels finer than the base (cut-off and mode floor ×8, step /8, default
+    contact phase) is the reference; writes ``out`` (CSV, one row per point) and prints
+    where each plane's value lies from it.
+    """
+    from impactmaps.maps.linear_points import LINEAR
+    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.solvers.modal import ModalSettings
+
+    old, new = np.load(old_path), np.load(new_path)
+    zetas, lambdas = old["zeta"], old["lambda_"]
+    reference = ModalSettings().refined().refined().refined()
+    rows = ["structure,zeta,lambda,fmax_old,fmax_new,fmax_error_old,reference"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name in STRUCTURES:
+            structure = structure_from_name(name)
+            target, cap = structure.build(), frequency_cap(structure)
+            table = basis_table(structure, ModalSettings().min_modes)
+            f_old, f_new, error = (old[f"{name}/fmax_normalised"], new[f"{name}/fmax_normalised"],
+                                   old[f"{name}/fmax_error"])
+            status = old[f"{name}/status"]
+            chosen = ((np.abs(f_new - f_old) > np.maximum(error, 1e-12)) & (status == new[f"{name}/status"])
+                      & (status < 2))
+            far_old, far_new, beyond_old = [], [], 0
+            for i, j in zip(*np.nonzero(chosen)):
+                point = (float(zetas[j]), float(lambdas[i]))
+                run = table_runner(LINEAR, target, table, cap, point, LINEAR.realise(target, point), [])
+                value = run(reference, 1.0).fmax_normalised
+                far_old.append(abs(f_old[i, j] - value))
+                far_new.append(abs(f_new[i, j] - value))
+                beyond_old += far_old[-1] > error[i, j]
+                rows.append(f"{name},{point[0]:.6g},{point[1]:.6g},{f_old[i, j]:.9g},{f_new[i, j]:.9g},"
+                            f"{error[i, j]:.3g},{value:.9g}")
+            if far_old:
+                print(f"{name}: {len(far_old)} points; the old value beyond its stated error from the reference at "
+                      f"{beyond_old}; the new one closer at {int(np.sum(np.array(far_new) < np.array(far_old)))}; "
+                      f"max |old − reference| {max(far_old):.1e}, max |new − reference| {max(far_new):.1e}")
+    pathlib.Path(out).write_text("\n".join(rows) + "\n")
 
 
 def compare(old_path: str, new_path: str, summary: str | None, title: str | None = None) -> int:
@@ -139,6 +187,8 @@ def main(argv=None) -> int:
                         help="solve with this ModalSettings.contact_phase (default: the settings' default)")
     parser.add_argument("--compare", nargs=2, metavar=("TODAY", "NEW"), help="two .npz files of --solve")
     parser.add_argument("--summary", help="write PREFIX.md and PREFIX.csv")
+    parser.add_argument("--referee", metavar="CSV", help="with --compare: run a reference three levels finer at the "
+                        "points the new plane moves beyond the old stated error, into this CSV")
     parser.add_argument("--title", help="a sentence under the summary's heading: what NEW is")
     args = parser.parse_args(argv)
     if args.solve:
@@ -147,6 +197,8 @@ def main(argv=None) -> int:
         solve(pathlib.Path(args.root).resolve(), args.out, args.quick, args.contact_phase)
         return 0
     if args.compare:
+        if args.referee:
+            referee(*args.compare, args.referee)
         return 1 if compare(*args.compare, args.summary, args.title) else 0
     parser.error("give --solve or --compare")
     return 2
