@@ -4,8 +4,8 @@ Two steps:
 
     python validation/plane_equivalence.py --solve --root /tmp/base --out /tmp/base.npz
     python validation/plane_equivalence.py --solve --out /tmp/this.npz
-    python validation/plane_equivalence.py --compare /tmp/base.npz /tmp/this.npz \
-        --summary validation/plane_equivalence
+    python validation/plane_equivalence.py --compare /tmp/base.npz /tmp/this.npz --summary plane_equivalence
+    python validation/plane_equivalence.py --smoke     # a 3 × 2 grid solved and compared with itself
 
 ``--solve`` solves the 200 × 50 grid (ζ × λ over [1e-3, 1e3]²) of ``beam-ss-euler`` and
 ``plate-ssss-kirchhoff`` serially in this process, one point per call of
@@ -16,15 +16,15 @@ point's map variables and its CPU time (``time.process_time``) in an ``.npz``.
 the new points: points, CPU of each, points whose F̄max differs, the largest difference,
 and the points where it exceeds the old point's stated error (``fmax_error``, at least
 1e-12) or lies outside its band ``[fmax_low, fmax_high]``; status and impact-count changes
-counted. ``--summary PREFIX`` writes ``PREFIX.md`` and ``PREFIX.csv`` (one row per point beyond
-today's error or band, or whose status or impact count changed).
-``--referee CSV`` (with ``--compare``) says which plane is right where they differ beyond
-the old stated error: a run three refinement levels finer at each such point.
+counted. ``--summary NAME`` writes ``NAME.md`` and ``NAME.csv`` into ``--out-dir`` (default
+``validation/``; one row per point beyond today's error or band, or whose status or impact
+count changed). ``--referee NAME.csv`` (with ``--compare``, into ``--out-dir``) says which
+plane is right where they differ beyond the old stated error: a run three refinement
+levels finer at each such point.
 """
 
 from __future__ import annotations
 
-import argparse
 import os
 import pathlib
 import sys
@@ -43,14 +43,17 @@ VARIABLES = ("fmax_normalised", "fmax_error", "fmax_low", "fmax_high", "status",
              "n_modes", "contact_time_normalised", "energy_transferred_fraction")
 
 
-def grid(quick: bool = False):
-    """ζ (200) and λ (50) of the plane [-]; ``quick``: 40 × 10."""
-    if quick:
-        return np.geomspace(1e-3, 1e3, 40), np.geomspace(1e-3, 1e3, 10)
-    return np.geomspace(1e-3, 1e3, 200), np.geomspace(1e-3, 1e3, 50)
+#: ζ and λ counts of the grids: the plane, ``--quick``, ``--smoke``.
+GRIDS = {"plane": (200, 50), "quick": (40, 10), "smoke": (3, 2)}
 
 
-def solve(root: pathlib.Path, out: str, quick: bool, contact_phase: str | None = None) -> None:
+def grid(size: str = "plane"):
+    """ζ and λ of the plane [-] (log grids over [1e-3, 1e3], counts :data:`GRIDS`)."""
+    zetas, lambdas = GRIDS[size]
+    return np.geomspace(1e-3, 1e3, zetas), np.geomspace(1e-3, 1e3, lambdas)
+
+
+def solve(root: pathlib.Path, out, size: str = "plane", contact_phase: str | None = None) -> None:
     """Solve the plane with the package of ``root``; store the variables and CPU per point."""
     sys.path.insert(0, str(root))
     from impactmaps.maps.linear_points import LINEAR
@@ -58,7 +61,7 @@ def solve(root: pathlib.Path, out: str, quick: bool, contact_phase: str | None =
     from impactmaps.maps.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
-    zetas, lambdas = grid(quick)
+    zetas, lambdas = grid(size)
     stored = {"zeta": zetas, "lambda_": lambdas}
     settings = ModalSettings() if contact_phase is None else ModalSettings(contact_phase=contact_phase)
     with warnings.catch_warnings():
@@ -169,7 +172,7 @@ def compare(old_path: str, new_path: str, summary: str | None, title: str | None
         pathlib.Path(f"{summary}.csv").write_text("\n".join(rows) + "\n")
         head = (f"# The plane point by point: `{pathlib.Path(new_path).name}` against today's "
                 f"`{pathlib.Path(old_path).name}`\n\n" + (f"{title}\n\n" if title else "") +
-                "`python validation/plane_equivalence.py --compare OLD NEW --summary validation/plane_equivalence`"
+                "`python validation/plane_equivalence.py --compare OLD NEW --summary plane_equivalence`"
                 f" (grid {zetas.size} ζ × {lambdas.size} λ; CPU: `time.process_time` of each point, serial)\n\n")
         pathlib.Path(f"{summary}.md").write_text(head + text + f"\n\nPoints beyond today's stated error: "
                                                  f"**{beyond_total}**; those points and every status or impact change: "
@@ -178,31 +181,39 @@ def compare(old_path: str, new_path: str, summary: str | None, title: str | None
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--solve", action="store_true", help="solve the plane into --out")
-    parser.add_argument("--root", default=str(ROOT), help="checkout whose impactmaps solves (default: this)")
-    parser.add_argument("--out", help=".npz to write with --solve")
-    parser.add_argument("--quick", action="store_true", help="a 40 × 10 grid")
-    parser.add_argument("--contact-phase", choices=("auto", "exact", "sampled"),
-                        help="solve with this ModalSettings.contact_phase (default: the settings' default)")
-    parser.add_argument("--compare", nargs=2, metavar=("TODAY", "NEW"), help="two .npz files of --solve")
-    parser.add_argument("--summary", help="write PREFIX.md and PREFIX.csv")
-    parser.add_argument("--referee", metavar="CSV", help="with --compare: run a reference three levels finer at the "
-                        "points the new plane moves beyond the old stated error, into this CSV")
-    parser.add_argument("--title", help="a sentence under the summary's heading: what NEW is")
-    args = parser.parse_args(argv)
+    from _script_options import parse
+
+    def options(parser):
+        parser.add_argument("--solve", action="store_true", help="solve the plane into --out")
+        parser.add_argument("--root", default=str(ROOT), help="checkout whose impactmaps solves (default: this)")
+        parser.add_argument("--out", help=".npz to write with --solve")
+        parser.add_argument("--quick", action="store_true", help="a 40 × 10 grid")
+        parser.add_argument("--contact-phase", choices=("auto", "exact", "sampled"),
+                            help="solve with this ModalSettings.contact_phase (default: the settings' default)")
+        parser.add_argument("--compare", nargs=2, metavar=("TODAY", "NEW"), help="two .npz files of --solve")
+        parser.add_argument("--summary", help="write NAME.md and NAME.csv into --out-dir")
+        parser.add_argument("--referee", metavar="CSV", help="with --compare: run a reference three levels finer "
+                            "at the points the new plane moves beyond the old stated error, into this CSV (--out-dir)")
+        parser.add_argument("--title", help="a sentence under the summary's heading: what NEW is")
+
+    args = parse(__doc__.splitlines()[0], argv, default_out=ROOT / "validation", add_arguments=options)
+    if args.smoke:  # a tiny plane, solved and compared with itself
+        plane = args.out_dir / "plane_smoke.npz"
+        solve(ROOT, plane, "smoke", args.contact_phase)
+        return compare(plane, plane, args.out_dir / "plane_equivalence", "smoke run")
     if args.solve:
         if not args.out:
-            parser.error("--solve needs --out")
-        solve(pathlib.Path(args.root).resolve(), args.out, args.quick, args.contact_phase)
+            raise SystemExit("--solve needs --out")
+        solve(pathlib.Path(args.root).resolve(), args.out, "quick" if args.quick else "plane", args.contact_phase)
         return 0
     if args.compare:
         if args.referee:
-            referee(*args.compare, args.referee)
-        return 1 if compare(*args.compare, args.summary, args.title) else 0
-    parser.error("give --solve or --compare")
-    return 2
+            referee(*args.compare, args.out_dir / args.referee)
+        summary = args.out_dir / args.summary if args.summary else None
+        return 1 if compare(*args.compare, summary, args.title) else 0
+    raise SystemExit("give --solve, --compare or --smoke")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    if main():
+        sys.exit(1)

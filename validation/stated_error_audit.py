@@ -12,13 +12,14 @@ and the largest. Writes a CSV of the points off by more than 10× their stated e
 more than 1e-3 (``--all``: every point drawn).
 
     python validation/plane_equivalence.py --solve --out /tmp/today.npz
-    python validation/stated_error_audit.py /tmp/today.npz [--points 600] [--seed 7] \
-        [--out validation/stated_error_audit.csv] [--all]
+    python validation/stated_error_audit.py /tmp/today.npz [--points 600] [--seed 7] [--all]
+    python validation/stated_error_audit.py --smoke    # a 3 × 2 plane, 2 points per structure
+
+The CSV is ``stated_error_audit.csv`` in ``--out-dir`` (default ``validation/``).
 """
 
 from __future__ import annotations
 
-import argparse
 import os
 import pathlib
 import sys
@@ -85,18 +86,28 @@ def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: b
 
 
 def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("plane", help=".npz of plane_equivalence.py --solve")
-    parser.add_argument("--points", type=int, default=600, help="points per structure (default 600)")
-    parser.add_argument("--seed", type=int, default=7)
-    parser.add_argument("--max-modes", type=int, default=1000, help="skip points whose retained run has more modes")
-    parser.add_argument("--out", default=str(ROOT / "validation" / "stated_error_audit.csv"))
-    parser.add_argument("--all", action="store_true", help="every point drawn in the CSV")
-    args = parser.parse_args(argv)
+    from _script_options import parse
+
+    def options(parser):
+        parser.add_argument("plane", nargs="?", help=".npz of plane_equivalence.py --solve")
+        parser.add_argument("--points", type=int, default=600, help="points per structure (default 600)")
+        parser.add_argument("--seed", type=int, default=7)
+        parser.add_argument("--max-modes", type=int, default=1000, help="skip points whose retained run has more modes")
+        parser.add_argument("--all", action="store_true", help="every point drawn in the CSV")
+
+    args = parse(__doc__.splitlines()[0], argv, default_out=ROOT / "validation", add_arguments=options)
     sys.path.insert(0, str(ROOT))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        lines = audit(args.plane, args.points, args.seed, args.max_modes, args.out, args.all)
+        plane, points = args.plane, args.points
+        if args.smoke:
+            from plane_equivalence import solve
+
+            plane, points = args.out_dir / "plane_smoke.npz", 2
+            solve(ROOT, plane, "smoke")
+        elif not plane:
+            raise SystemExit("give the .npz of plane_equivalence.py --solve (or --smoke)")
+        lines = audit(plane, points, args.seed, args.max_modes, args.out_dir / "stated_error_audit.csv", args.all)
     print("\n".join(lines))
     print(f"load average {os.getloadavg()[0]:.1f}")
 
