@@ -125,8 +125,13 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     impulse = np.concatenate(([0.0], np.cumsum(0.5 * step * (force[1:] + force[:-1]))))
     impactor_velocity = speed - impulse / mass
     deflection = causal_convolution(beam_weights, force, last + 1)
-    running_max = np.maximum.accumulate(alpha)
-    clearance = alpha - np.asarray(law.permanent_indentation(running_max), dtype=float)
+    # the clearance is read only either side of a contact edge: the law's permanent
+    # indentation (a Python loop for some laws) is evaluated there only
+    edges = np.flatnonzero(np.diff((force > 0.0).astype(int)))
+    near = np.union1d(edges, edges + 1)
+    clearance = np.zeros_like(alpha)
+    clearance[near] = alpha[near] - np.asarray(
+        law.permanent_indentation(np.maximum.accumulate(alpha)[near]), dtype=float).reshape(-1)
     intervals = contact_intervals_from_samples(time, force, clearance)
     peak_index = int(np.argmax(force))
     peak_force, peak_time = _refined_peak(time, force, peak_index)

@@ -40,7 +40,7 @@ DEFAULT_TIME_STEP = 0.01  # normalised CQ step; max error ≈ 1.3e-4 on τ ≤ 1
 MAX_CQ_STEPS = 100_000  # beyond this the step is coarsened (warning)
 #: Steps of the blocks whose history :func:`blocked_march` sums directly (compiled); longer
 #: stretches get their history from earlier blocks by FFT convolution.
-LEAF_STEPS = 128
+LEAF_STEPS = 256
 _DIRECT_PRODUCT = 1 << 16  # a cross-block convolution of at most this many products: np.convolve
 
 
@@ -92,7 +92,7 @@ def _power_of_two(count: int) -> int:
     return 1 << max(int(count) - 1, 1).bit_length()
 
 
-def blocked_march(weights, force, solve_block, leaf=LEAF_STEPS) -> int:
+def blocked_march(weights, force, solve_block, leaf=None) -> int:
     """Drive a convolution-quadrature march whose history sum is done by FFT blocks.
 
     Parameters
@@ -108,7 +108,8 @@ def blocked_march(weights, force, solve_block, leaf=LEAF_STEPS) -> int:
         the near-diagonal sum ``Σ_{lo≤k<n}`` itself; returns the step where the march stops,
         or −1 to go on.
     leaf : int, optional
-        Longest block ``solve_block`` receives [steps].
+        Longest block ``solve_block`` receives [steps]; default :data:`LEAF_STEPS` (read at
+        the call). A leaf ≥ N makes the whole march one direct O(N²) sum.
 
     Returns
     -------
@@ -122,6 +123,7 @@ def blocked_march(weights, force, solve_block, leaf=LEAF_STEPS) -> int:
     ≥ the block (no wrap-around reaches the wanted terms), the FFT of each weight prefix
     taken once per call. Cost O(N log² N).
     """
+    leaf = LEAF_STEPS if leaf is None else int(leaf)
     history = np.zeros(force.size)
     spectra = {}
 
