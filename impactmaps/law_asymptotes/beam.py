@@ -130,8 +130,9 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     edges = np.flatnonzero(np.diff((force > 0.0).astype(int)))
     near = np.union1d(edges, edges + 1)
     clearance = np.zeros_like(alpha)
-    clearance[near] = alpha[near] - np.asarray(
-        law.permanent_indentation(np.maximum.accumulate(alpha)[near]), dtype=float).reshape(-1)
+    if near.size:
+        clearance[near] = alpha[near] - np.asarray(
+            law.permanent_indentation(np.maximum.accumulate(alpha)[near]), dtype=float).reshape(-1)
     intervals = contact_intervals_from_samples(time, force, clearance)
     peak_index = int(np.argmax(force))
     peak_force, peak_time = _refined_peak(time, force, peak_index)
