@@ -3,17 +3,27 @@
 * linear contact: the closed forms of impactmaps.solvers.asymptotes / infinite_beam;
 * Hertz contact on the infinite plate: an independent integration of Zener's model in
   the Hertz scales (one parameter μ, derived in impactmaps.hertz_similarity);
-* the beam convolution quadrature: its convergence rate in the step.
+* the beam convolution quadrature: its convergence rate in the step, and its FFT history
+  sum against the direct O(N²) sum (a Python march kept here as the reference).
 """
 
 import math
 
+import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 import impactmaps as im
-from impactmaps.contact import HertzContact, LinearContact, YigitChristoforouContact
+from impactmaps.contact import (
+    HertzContact,
+    LinearContact,
+    StrongeContact,
+    YigitChristoforouContact,
+    effective_modulus,
+)
+from impactmaps.contact.epp import EppContact
 from impactmaps.hertz_similarity import hertz_numbers, zener_parameter
+from impactmaps.law_asymptotes import beam as beam_asymptote
 from impactmaps.law_asymptotes import (
     asymptote,
     halfspace_asymptote,
@@ -26,6 +36,7 @@ from impactmaps.solvers.asymptotes import (
     infinite_plate_peak,
     quasi_static_peak,
 )
+from impactmaps.solvers import infinite_beam_cq
 from impactmaps.solvers.infinite_beam import (
     infinite_beam_contact_time,
     infinite_beam_peak,
@@ -150,3 +161,60 @@ def test_asymptote_dispatch_and_summary():
         asymptote("infinite-shell", PLATE, HertzContact(1e10), MASS, 1.0)
     with pytest.raises(ValueError, match="infinite-beam"):
         asymptote("infinite-beam", PLATE, HertzContact(1e10), MASS, 1.0)
+
+
+def _direct_march(kernel, params, weights, step, speed, mass, count):
+    """The reference: the O(N²) march, history summed directly step by step (plain Python)."""
+    solve_step = beam_asymptote._solve_step.py_func
+    force, alpha = np.zeros(count + 1), np.zeros(count + 1)
+    alpha_max = impulse = 0.0
+    touched = False
+    for n in range(1, count + 1):
+        free = speed * step * n - float(np.dot(weights[n:0:-1], force[:n]))
+        alpha[n], force[n] = solve_step(kernel, params, weights[0], free, alpha_max)
+        alpha_max = max(alpha_max, alpha[n])
+        impulse += 0.5 * step * (force[n] + force[n - 1])
+        touched = touched or force[n] > 0.0
+        if touched and force[n] == 0.0 and speed - impulse / mass <= 0.0:
+            return force, alpha, n
+    return force, alpha, count
+
+
+_E_STAR = float(effective_modulus(210e9, 0.3, 210e9, 0.3))
+FFT_LAWS = {
+    "linear": LinearContact(1e8),
+    "hertz": HertzContact(4.0 / 3.0 * math.sqrt(0.01) * _E_STAR),
+    "yc": YigitChristoforouContact.from_properties(_E_STAR, 0.01, 350e6),
+    "stronge": StrongeContact(_E_STAR, 0.01, 350e6),
+    "epp": EppContact(_E_STAR, 0.01, 350e6),
+}
+_COMPARED = ("peak_force", "peak_time", "contact_time", "restitution", "max_indentation",
+             "permanent_indentation", "max_target_displacement")
+
+
+@pytest.mark.parametrize("law_name", sorted(FFT_LAWS))
+@pytest.mark.parametrize("mass", [0.01, 0.2, 5.0])  # light to heavy sphere: ζ_b from small to large
+def test_infinite_beam_fft_history_equals_direct_sum(monkeypatch, law_name, mass):
+    # 3000 steps: the FFT blocks reach three levels above the 256-step leaves (and, with
+    # 0.2 kg, re-impacts cross leaves); the runs that separate stop inside the first leaves
+    law = FFT_LAWS[law_name]
+    options = {"time_step": 0.01, "duration": 30.0}
+    fast = infinite_beam_impact_any_law(BEAM, law, mass, 2.0, **options)
+    monkeypatch.setattr(beam_asymptote, "_march", _direct_march)
+    direct = infinite_beam_impact_any_law(BEAM, law, mass, 2.0, **options)
+    assert fast.impacts == direct.impacts and fast.time_limit_reached == direct.time_limit_reached
+    for name in _COMPARED:
+        assert getattr(fast, name) == pytest.approx(getattr(direct, name), rel=1e-12, abs=0.0), name
+
+
+def test_infinite_beam_small_leaves_equal_one_leaf(monkeypatch):
+    # the blocked recursion on many levels (8-step leaves) against one leaf of every step
+    # (the compiled direct sum), through re-impacts
+    law = FFT_LAWS["yc"]
+    monkeypatch.setattr(infinite_beam_cq, "LEAF_STEPS", 8)
+    blocked = infinite_beam_impact_any_law(BEAM, law, 0.2, 2.0, duration=60.0)
+    monkeypatch.setattr(infinite_beam_cq, "LEAF_STEPS", 10**6)
+    direct = infinite_beam_impact_any_law(BEAM, law, 0.2, 2.0, duration=60.0)
+    assert blocked.impacts == direct.impacts >= 2
+    for name in _COMPARED:
+        assert getattr(blocked, name) == pytest.approx(getattr(direct, name), rel=1e-12, abs=0.0), name

@@ -160,7 +160,8 @@ def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
     and Hertz charts come from the peaks kept with the shipped results (they took 408 and
     108 asymptote integrations, 75 s, on every ``chart --law hertz``): with every asymptote
     integrator patched to raise, both charts are drawn, and the peaks equal a fresh
-    computation bit for bit."""
+    computation to the infinite-beam asymptote's round-off (its history sum is an FFT
+    convolution since the peaks were stored: 4.5e-16 relative measured; 1e-13 bounds it)."""
     import impactmaps.maps.hertz_points as hertz_points
     from impactmaps.maps.chart import make_chart
     from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
@@ -170,8 +171,8 @@ def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
         assert all(name in shipped for name in ASYMPTOTE_PEAKS)
         fresh = with_asymptote_peaks(shipped.drop_vars(list(ASYMPTOTE_PEAKS)).isel(zeta=slice(0, None, 40)))
         for name in ASYMPTOTE_PEAKS:
-            np.testing.assert_array_equal(fresh[name].values, shipped[name].isel(zeta=slice(0, None, 40)).values
-                                          if "zeta" in shipped[name].dims else shipped[name].values)
+            np.testing.assert_allclose(fresh[name].values, shipped[name].isel(zeta=slice(0, None, 40)).values
+                                       if "zeta" in shipped[name].dims else shipped[name].values, rtol=1e-13, atol=0)
 
     def no_integration(*args, **kwargs):
         raise AssertionError("an asymptote was integrated")

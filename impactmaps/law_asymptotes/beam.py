@@ -27,6 +27,11 @@ being non-decreasing in α), solved by safeguarded Newton. Second order in the s
 while the force is smooth; the kinks at separation, re-impact and yield lower the order
 locally (the tests measure the convergence).
 
+The history sum ``Σ_{k<n} W_{n−k} F_k`` is done by the FFT blocks of
+:func:`impactmaps.solvers.infinite_beam_cq.blocked_march` (O(N log² N) for N steps), the
+near-diagonal sum and the Newton solve of each step compiled (:func:`_law_block`, one
+compiled function for every law: the law's kernel is passed as a function pointer).
+
 The run stops once the sphere has separated and moves away (``ẋ ≤ 0``): the beam point
 then only moves further into the beam (``ẇ ≥ 0`` since ``F ≥ 0``), so there is no
 re-impact. If the sphere still moves forward at separation it strikes again (linear
@@ -37,12 +42,14 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
 from .._checks import require_positive
-from ..contact.base import ContactLaw
+from ..contact.base import KERNEL_TYPE, ContactLaw, kernel_pointer
 from ..solvers.halfspace import single_law_parameters
-from ..solvers.infinite_beam_cq import bdf2_weights
+from ..solvers.infinite_beam_cq import bdf2_weights, blocked_march, causal_convolution
+from ..solvers.lazy_kernel import LazyKernel
 from .result import (
     AsymptoteResult,
     contact_frequency_of,
@@ -109,16 +116,23 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     step = float(time_step) / omega
     count = max(math.ceil(float(duration) / float(time_step)), 2)
     mobility = beam_mobility_constant(beam.mass_per_length, beam.bending_stiffness)
-    beam_weights = mobility * bdf2_weights(1.5, step, count + 1)
-    weights = bdf2_weights(2.0, step, count + 1) / mass + beam_weights
+    size = 1 << count.bit_length()  # a power of two > count: the FFT blocks' weight prefixes
+    beam_weights = mobility * bdf2_weights(1.5, step, size)
+    weights = bdf2_weights(2.0, step, size) / mass + beam_weights
     force, alpha, last = _march(law.kernel, params, weights, step, speed, mass, count)
     time = step * np.arange(last + 1)
     force, alpha = force[: last + 1], alpha[: last + 1]
     impulse = np.concatenate(([0.0], np.cumsum(0.5 * step * (force[1:] + force[:-1]))))
     impactor_velocity = speed - impulse / mass
-    deflection = np.convolve(beam_weights[: last + 1], force)[: last + 1]
-    running_max = np.maximum.accumulate(alpha)
-    clearance = alpha - np.asarray(law.permanent_indentation(running_max), dtype=float)
+    deflection = causal_convolution(beam_weights, force, last + 1)
+    # the clearance is read only either side of a contact edge: the law's permanent
+    # indentation (a Python loop for some laws) is evaluated there only
+    edges = np.flatnonzero(np.diff((force > 0.0).astype(int)))
+    near = np.union1d(edges, edges + 1)
+    clearance = np.zeros_like(alpha)
+    if near.size:
+        clearance[near] = alpha[near] - np.asarray(
+            law.permanent_indentation(np.maximum.accumulate(alpha)[near]), dtype=float).reshape(-1)
     intervals = contact_intervals_from_samples(time, force, clearance)
     peak_index = int(np.argmax(force))
     peak_force, peak_time = _refined_peak(time, force, peak_index)
@@ -150,20 +164,50 @@ def _march(kernel, params, weights, step, speed, mass, count):
     """
     force = np.zeros(count + 1)
     alpha = np.zeros(count + 1)
-    alpha_max = 0.0
-    impulse = 0.0
-    touched = False
-    for n in range(1, count + 1):
-        free = speed * step * n - float(np.dot(weights[n:0:-1], force[:n]))
+    # running state of the march: α_max, impulse, touched (0/1), step, V0, m
+    state = np.array([0.0, 0.0, 0.0, step, speed, mass])
+    pointer = kernel_pointer(kernel)
+
+    def solve_block(history, lo, hi):
+        return _law_block(pointer, params, weights, history, force, alpha, state, lo, hi)
+
+    last = blocked_march(weights, force, solve_block)
+    return force, alpha, count if last < 0 else last
+
+
+@numba.njit(cache=True)
+def _law_block_kernel(kernel, params, weights, history, force, alpha, state, lo, hi):
+    """Steps ``lo ≤ n < hi``: ``α_n + W_0 F_n = V0 t_n − history[n] − Σ_{lo≤k<n} W_{n−k} F_k``.
+
+    ``state`` = (α_max, impulse, touched, step, V0, m), updated in place. Returns the step
+    where the sphere has separated and moves away, or −1.
+    """
+    alpha_max, impulse, touched = state[0], state[1], state[2] > 0.0
+    step, speed, mass = state[3], state[4], state[5]
+    stop = -1
+    for n in range(lo, hi):
+        local = 0.0
+        for k in range(lo, n):
+            local += weights[n - k] * force[k]
+        free = speed * step * n - (history[n] + local)
         alpha[n], force[n] = _solve_step(kernel, params, weights[0], free, alpha_max)
         alpha_max = max(alpha_max, alpha[n])
         impulse += 0.5 * step * (force[n] + force[n - 1])
         touched = touched or force[n] > 0.0
         if touched and force[n] == 0.0 and speed - impulse / mass <= 0.0:
-            return force, alpha, n
-    return force, alpha, count
+            stop = n
+            break
+    state[0], state[1], state[2] = alpha_max, impulse, 1.0 if touched else 0.0
+    return stop
 
 
+_VECTOR = numba.types.Array(numba.types.float64, 1, "C")
+# Compiled (or loaded from numba's cache) on the first march, not at import.
+_law_block = LazyKernel(_law_block_kernel, numba.types.int64(
+    KERNEL_TYPE, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, numba.types.int64, numba.types.int64))
+
+
+@numba.njit(cache=True)
 def _solve_step(kernel, params, implicit_weight, free, alpha_max):
     """Root α of ``α + W0 F(α; max(α_max, α)) = free`` and its force (safeguarded Newton)."""
     if free <= 0.0:
