@@ -34,7 +34,7 @@ ZETA_H_MAX = 1.0e3
 
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
-    from ..maps.plastic_points import PLASTIC_LAWS
+    from ..maps.builtin_families import PLASTIC_LAWS
     from ..maps.store_lock import store_lock
 
     if args.law in PLASTIC_LAWS:
@@ -374,7 +374,7 @@ def cmd_lookup(args) -> dict:
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
         raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
-    from ..maps.plastic_points import PLASTIC_LAWS
+    from ..maps.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
         refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")

@@ -32,11 +32,17 @@ import zipfile
 from importlib import resources
 from pathlib import Path
 
-import numpy as np
-import xarray as xr
+from typing import TYPE_CHECKING
 
-__all__ = ["PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "shipped_path",
-           "read_shipped", "read_resource"]
+import numpy as np
+
+from .map_arrays import MapArrays, MapVariable
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "unpack_arrays",
+           "shipped_path", "read_shipped", "read_resource", "read_arrays", "read_resource_arrays"]
 
 #: Suffix of a packed dataset (a NumPy ``.npz`` archive with a JSON header).
 PACKED_SUFFIX = ".npz"
@@ -78,8 +84,28 @@ def read_dataset(path) -> xr.Dataset:
     """The dataset in ``path`` (packed ``.npz`` or NetCDF), loaded into memory."""
     path = Path(path)
     if path.suffix == PACKED_SUFFIX:
-        with np.load(path, allow_pickle=False) as archive:
-            return unpack({name: archive[name] for name in archive.files})
+        return unpack(_packed_arrays(path))
+    return _read_netcdf(path)
+
+
+def read_arrays(path):
+    """The map in ``path`` for reading: a packed ``.npz`` as :class:`~impactmaps.maps.map_arrays.MapArrays`
+    (NumPy alone), a NetCDF file as the ``xarray.Dataset`` :func:`read_dataset` gives. The same values
+    either way."""
+    path = Path(path)
+    if path.suffix == PACKED_SUFFIX:
+        return unpack_arrays(_packed_arrays(path))
+    return _read_netcdf(path)
+
+
+def _packed_arrays(path: Path) -> dict:
+    with np.load(path, allow_pickle=False) as archive:
+        return {name: archive[name] for name in archive.files}
+
+
+def _read_netcdf(path: Path) -> xr.Dataset:
+    import xarray as xr  # only a NetCDF file needs it (a sweep's, or a shipped file not yet packed)
+
     with xr.open_dataset(path, engine="scipy") as opened:
         return opened.load()
 
@@ -106,6 +132,12 @@ def read_resource(source) -> xr.Dataset:
     """:func:`read_dataset` of a path or a package resource (an importlib ``Traversable``)."""
     with resources.as_file(source) as path:
         return read_dataset(path)
+
+
+def read_resource_arrays(source):
+    """:func:`read_arrays` of a path or a package resource (an importlib ``Traversable``)."""
+    with resources.as_file(source) as path:
+        return read_arrays(path)
 
 
 # -- the packed format ---------------------------------------------------------------------
@@ -160,6 +192,19 @@ def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=(), keep_exact=None) -> 
 
 def unpack(arrays: dict) -> xr.Dataset:
     """The dataset :func:`pack` stored in ``arrays``."""
+    import xarray as xr  # the Dataset is built here; a lookup reads :func:`unpack_arrays` without it
+
+    arrays = unpack_arrays(arrays)
+    coords, data_vars = {}, {}
+    for name, variable in arrays.variables.items():
+        target = coords if name in arrays.coord_names else data_vars
+        # fastpath: the arrays are NumPy's already (xarray's check of other array types imports dask.array, ~1 s)
+        target[name] = xr.Variable(variable.dims, variable.values, variable.attrs, fastpath=True)
+    return xr.Dataset(data_vars, coords=coords, attrs=arrays.attrs)
+
+
+def unpack_arrays(arrays: dict) -> MapArrays:
+    """The variables and attributes :func:`pack` stored in ``arrays``, as :class:`MapArrays` (no xarray)."""
     header = json.loads(bytes(arrays["__header__"]).decode())
     if header.get("format") != FORMAT:
         raise ValueError(f"not a packed impactmaps dataset (format {header.get('format')!r}, expected {FORMAT!r})")
@@ -190,13 +235,10 @@ def unpack(arrays: dict) -> xr.Dataset:
             where = np.unpackbits(arrays[name + ".where_stored"], count=values.size).astype(bool).reshape(shape)
             values[where] = _unshuffle(arrays[name], values.dtype, (int(where.sum()),))
         decoded[name] = values
-    coords, data_vars = {}, {}
-    for entry in header["variables"]:
-        target = coords if entry["coord"] else data_vars
-        # fastpath: the arrays are NumPy's already (xarray's check of other array types imports dask.array, ~1 s)
-        target[entry["name"]] = xr.Variable(tuple(entry["dims"]), decoded[entry["name"]], _python_attrs(entry["attrs"]),
-                                            fastpath=True)
-    return xr.Dataset(data_vars, coords=coords, attrs=_python_attrs(header["attrs"]))
+    variables = {entry["name"]: MapVariable(tuple(entry["dims"]), decoded[entry["name"]], _python_attrs(entry["attrs"]))
+                 for entry in header["variables"]}
+    return MapArrays(variables, _python_attrs(header["attrs"]),
+                     tuple(entry["name"] for entry in header["variables"] if entry["coord"]))
 
 
 def _derivable(dataset: xr.Dataset, name: str, single, bfloat16_up) -> bool:

@@ -19,21 +19,11 @@ from .. import __version__
 from ..jsonio import dumps
 from .accuracy import STATUSES
 from .points import METHODS, SOLVER_REVISION
-from .map_family import ASYMPTOTE_PEAK_VARIABLES
+from .map_family import ASYMPTOTE_PEAK_VARIABLES, ASYMPTOTE_PEAKS, map_law
 from .registry import map_family
 from .regimes import classify
 
 __all__ = ["empty_dataset", "map_law", "classify_dataset"]
-
-
-def map_law(dataset: xr.Dataset) -> str:
-    """The map family (contact law) a map dataset was swept with (a map without the attribute is linear).
-
-    The law is part of a map's identity: it is in the fingerprint (for every law but the
-    linear one, whose fingerprints predate it), in the ``contact_law`` attribute and in
-    the variables' descriptions.
-    """
-    return str(dataset.attrs.get("contact_law", "linear"))
 
 
 def empty_dataset(family, structures, axes: dict, description: dict, digest: str) -> xr.Dataset:
@@ -82,10 +72,6 @@ def empty_dataset(family, structures, axes: dict, description: dict, digest: str
         "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-#: The variables holding a (ζ, λ) map's asymptote peaks (:func:`with_asymptote_peaks`).
-ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
 
 
 def with_asymptote_peaks(dataset: xr.Dataset) -> xr.Dataset:

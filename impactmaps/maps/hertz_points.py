@@ -31,9 +31,10 @@ from ..solvers.modal_settings import ModalSettings, uses_patch
 from ..solvers.shear_range import beyond_shear_theory, has_classical_asymptote
 from ..targets.options import default_theory
 from .accuracy import AccuracyControl, exact_point
-from .map_family import RESULT_VARIABLES, Axis, MapFamily, PointPlan, register_map_family
+from .builtin_families import HERTZ_AXES, HertzLayout
+from .map_family import RESULT_VARIABLES, PointPlan, register_map_family
 from .points import PlanMethod, method_code, solve_map_points
-from .structures import SHIPPED_PLANE_MAPS, BasisTable, MapStructure
+from .structures import BasisTable, MapStructure
 
 __all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
            "hertz_contact_frequency", "hertz_summary", "solve_hertz_points"]
@@ -50,8 +51,6 @@ HERTZ_DESCRIPTIONS = {
     "reflection_time_normalised": "d²/(c t*): first wave return to the impact point (d: distance to nearest "
                                   "support/edge, c = sqrt(bending stiffness / mass per length or area))",
 }
-#: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
-HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")
 
 #: The structure (of the classical theory) whose target stands for each kind in the Hertz asymptotes (the infinite
 #: plate needs ρh and D*, the infinite beam m' and EI; the loss factor is defined on them).
@@ -199,7 +198,7 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
     return float(out) if out.ndim == 0 else out
 
 
-class HertzFamily(MapFamily):
+class HertzFamily(HertzLayout):
     """The Hertz law's maps over the Hertz numbers (ζ_h, λ_h) (module docstring).
 
     Parameters
@@ -209,12 +208,7 @@ class HertzFamily(MapFamily):
         None (the registered family): point-loaded.
     """
 
-    name = "hertz"
-    axes = (Axis("lambda_", HERTZ_AXES[0]), Axis("zeta", HERTZ_AXES[1]))
     variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
-    classifies = True
-    shipped = SHIPPED_PLANE_MAPS
-    patch_loadable = True
 
     def __init__(self, patch: float | None = None):
         self.patch = patch

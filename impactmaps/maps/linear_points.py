@@ -22,9 +22,10 @@ from ..dimensionless import realise
 from ..solvers.modal_settings import ModalSettings
 from ..targets import target_class
 from .accuracy import AccuracyControl, exact_point
-from .map_family import Axis, MapFamily, PointPlan, register_map_family
+from .builtin_families import LinearLayout
+from .map_family import PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points
-from .structures import SHIPPED_PLANE_MAPS, BasisTable, MapStructure
+from .structures import BasisTable, MapStructure
 
 __all__ = ["LinearFamily", "LINEAR", "solve_points"]
 
@@ -40,14 +41,9 @@ class LinearImpact(NamedTuple):
     stiffness: float
 
 
-class LinearFamily(MapFamily):
-    """The linear contact law's maps (module docstring)."""
-
-    name = "linear"
-    axes = (Axis("lambda_", "relative stiffness K_st/K"), Axis("zeta", "loss factor"))
-    law_in_description = False
-    classifies = True
-    shipped = SHIPPED_PLANE_MAPS
+class LinearFamily(LinearLayout):
+    """The linear contact law's maps (module docstring); its layout (axes, shipped maps):
+    :class:`~impactmaps.maps.builtin_families.LinearLayout`."""
 
     def describes(self, law) -> bool:
         return law.linear_stiffness is not None

@@ -21,13 +21,13 @@ import os
 import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from .._checks import require_choice, require_positive
 from ..targets.options import STRUCTURE_KINDS, is_shear_deformable, point_load_diverges
-from .plastic_points import PLASTIC_LAWS
+from .builtin_families import FAMILY_SLENDERNESSES, PLASTIC_LAWS, family_layout
 from .reader import (
     BAND_TOLERANCE,
     PreparedMap,
@@ -38,14 +38,14 @@ from .reader import (
     read_values,
     status_notes,
 )
-from .data_io import read_resource, read_shipped, shipped_path
-from .dataset import ASYMPTOTE_PEAKS, map_law
-from .points import warn_point_loaded_mindlin
+from .data_io import read_resource_arrays, read_shipped, shipped_path
+from .map_family import ASYMPTOTE_PEAKS, map_law
 from .refinement import Refinement
 from .slice_refinement import SlicedRefinement
 from .regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_static_peak
-from .registry import map_family
-from .structures import FAMILY_SLENDERNESSES, structure_from_name
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
            "require_map_law", "missing_shipped_map", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
@@ -57,7 +57,7 @@ ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
 
 #: (kind, theory) → structure name of the shipped (ζ, λ) maps (those of the linear family; the
 #: Hertz family ships the same structures).
-SHIPPED_MAPS = map_family("linear").shipped
+SHIPPED_MAPS = family_layout("linear").shipped
 
 
 def map_file_stem(structure_name: str, law: str = "linear") -> str:
@@ -151,6 +151,8 @@ def shipped_structure_name(structure: str, theory: str, slenderness: float | Non
     if slenderness is None or not is_shear_deformable(theory) or slenderness == SHIPPED_SLENDERNESS:
         return name
     require_choice("slenderness", float(slenderness), FAMILY_SLENDERNESSES)
+    from .structures import structure_from_name  # another slenderness's name: the structure's own rule
+
     return replace(structure_from_name(name), slenderness=float(slenderness)).name
 
 
@@ -208,6 +210,8 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         raise ValueError(f"law = {law!r}: an elastic-plastic map has a third axis β; read it with "
                          "impactmaps.lookup_plastic(beta, zeta, lambda_, ...) (lookup takes law 'linear' or 'hertz')")
     if point_load_diverges(theory):
+        from .points import warn_point_loaded_mindlin  # the Mindlin maps' warning names the sweep's mode cap
+
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
     prepared, name = shipped_reader(structure, theory, law, slenderness)
     return read_map(None, loss_factor, relative_stiffness, structure=structure, theory=theory, name=name, law=law,
@@ -240,7 +244,7 @@ def _shipped_name(structure: str, theory: str, law: str, slenderness: float | No
     a value no shipped map has (a refusal is not cached)."""
     require_choice("law", law, ALL_MAP_LAWS)
     if law in PLASTIC_LAWS:
-        shipped = map_family(law).shipped
+        shipped = family_layout(law).shipped
         require_choice("(structure, theory)", (structure, theory), tuple(shipped))
         return map_file_stem(shipped[(structure, theory)], law)
     return map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
@@ -287,9 +291,10 @@ def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
         sources = (source, stored)
     else:
         sources = tuple(None if entry is None else Path(entry[0]) for entry in identity)
-    dataset = require_map_law(read_resource(sources[0]), law, f"shipped map {name}")
-    refinement = None if sources[1] is None else refinement_of(read_resource(sources[1]), dataset, f"the shipped map {name}")
-    return prepare_map(dataset, map_family(law), refinement)
+    dataset = require_map_law(read_resource_arrays(sources[0]), law, f"shipped map {name}")
+    refinement = (None if sources[1] is None
+                  else refinement_of(read_resource_arrays(sources[1]), dataset, f"the shipped map {name}"))
+    return prepare_map(dataset, family_layout(law), refinement)
 
 
 def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
@@ -346,7 +351,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
     ValueError
         (ζ, λ) outside the map, or next to an ``unresolved`` point (no value).
     """
-    reading = read_values(dataset, map_family(law), (loss_factor, relative_stiffness),
+    reading = read_values(dataset, family_layout(law), (loss_factor, relative_stiffness),
                           ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
                           hints=(" (impactmaps point)" if law == "linear" else " (impactmaps simulate on a case file)", ""),
                           refinement=refinement, error_grid=error_grid, prepared=prepared)

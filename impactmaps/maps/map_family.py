@@ -14,12 +14,15 @@ its name. Adding a family is one module defining a subclass and one
 :func:`register_map_family` call (``docs/map_families.rst``).
 
 This module holds the interface and the registry only; the built-in families live in
-:mod:`.linear_points`, :mod:`.hertz_points` and :mod:`.plastic_points`, and
-:mod:`.registry` imports them.
+:mod:`.linear_points`, :mod:`.hertz_points` and :mod:`.plastic_points` (their layouts, what a
+map reader needs, in :mod:`.builtin_families`). The registry knows the built-in names from the
+start and imports a built-in family's module when that family is first asked for
+(:func:`map_family`): the point solvers it imports are not loaded by a lookup.
 """
 
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
 
@@ -27,7 +30,7 @@ import numpy as np
 
 from .._checks import require_choice
 
-__all__ = ["RESULT_VARIABLES", "ASYMPTOTE_PEAK_VARIABLES", "Axis", "PointPlan", "Interpolation", "MapFamily", "register_map_family",
+__all__ = ["RESULT_VARIABLES", "ASYMPTOTE_PEAK_VARIABLES", "ASYMPTOTE_PEAKS", "map_law", "Axis", "PointPlan", "Interpolation", "MapFamily", "register_map_family",
            "map_family", "available_map_families"]
 
 #: The variables of every map: name → (dtype, missing value, units, description).
@@ -57,6 +60,21 @@ ASYMPTOTE_PEAK_VARIABLES = {
     "infinite_structure_peak": ("zeta", "1", "normalised peak force of the infinite structure"),
     "quasi_static_peak": ("lambda_", "1", "normalised quasi-static peak force"),
 }
+
+#: The variables holding a (ζ, λ) map's asymptote peaks
+#: (:func:`impactmaps.maps.dataset.with_asymptote_peaks`).
+ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
+
+
+def map_law(dataset) -> str:
+    """The map family (contact law) a map dataset was swept with (a map without the attribute is linear).
+
+    The law is part of a map's identity: it is in the fingerprint (for every law but the
+    linear one, whose fingerprints predate it), in the ``contact_law`` attribute and in
+    the variables' descriptions. ``dataset``: an ``xarray.Dataset`` or a
+    :class:`~impactmaps.maps.map_arrays.MapArrays`.
+    """
+    return str(dataset.attrs.get("contact_law", "linear"))
 
 
 class Axis(NamedTuple):
@@ -241,6 +259,10 @@ class MapFamily:
 
 
 _REGISTRY: dict[str, MapFamily] = {}
+#: The built-in families: map law → the module that defines and registers it (imported on first use).
+_BUILT_IN = {"linear": "impactmaps.maps.linear_points", "hertz": "impactmaps.maps.hertz_points",
+             "yc": "impactmaps.maps.plastic_points", "stronge": "impactmaps.maps.plastic_points",
+             "epp": "impactmaps.maps.plastic_points"}
 
 
 def register_map_family(family: MapFamily) -> MapFamily:
@@ -255,13 +277,17 @@ def register_map_family(family: MapFamily) -> MapFamily:
 
 
 def available_map_families() -> tuple[str, ...]:
-    """Names of the registered families, in registration order."""
-    return tuple(_REGISTRY)
+    """Names of the families: the built-in ones (linear, hertz, then the elastic-plastic ones),
+    then those registered since, in registration order."""
+    return tuple(dict.fromkeys([*_BUILT_IN, *_REGISTRY]))
 
 
 def map_family(name) -> MapFamily:
-    """The registered family ``name`` (a family object is returned as is); ``ValueError`` if unknown."""
+    """The family ``name`` (a family object is returned as is; a built-in one's module is imported
+    the first time it is asked for); ``ValueError`` if unknown."""
     if isinstance(name, MapFamily):
         return name
     require_choice("law", name, available_map_families())
+    if name not in _REGISTRY:
+        importlib.import_module(_BUILT_IN[name])  # registers it
     return _REGISTRY[name]

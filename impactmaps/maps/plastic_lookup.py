@@ -20,24 +20,27 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
-import xarray as xr
+from typing import TYPE_CHECKING
 
 from .._checks import require_choice
+from .builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
 from .data_io import read_shipped
 from .lookup import map_file_stem, missing_shipped_map, require_map_law, shipped_reader
-from .plastic_points import PLASTIC_LAWS, YC
 from .reader import read_values
-from .registry import map_family
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "read_plastic"]
 
 #: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
 #: patch depends on the sphere radius, a fourth number).
-PLASTIC_MAPS = YC.shipped
+PLASTIC_MAPS = LAYOUTS["yc"].shipped
 #: The interpolation estimate of the plastic maps (:func:`~impactmaps.maps.reader.interpolation_error`):
 #: second differences over one neighbour a side, safety factor 4, and the factor on the
 #: whole band (:class:`~impactmaps.maps.map_family.Interpolation` of the plastic families).
-PLASTIC_REACH, PLASTIC_SAFETY, BAND_SAFETY = YC.interpolation.reach, YC.interpolation.safety, YC.interpolation.band_safety
+_YC = LAYOUTS["yc"]
+PLASTIC_REACH, PLASTIC_SAFETY, BAND_SAFETY = _YC.interpolation.reach, _YC.interpolation.safety, _YC.interpolation.band_safety
 
 
 @dataclass(frozen=True)
@@ -141,7 +144,7 @@ def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, wh
     ValueError
         As :func:`lookup_plastic`.
     """
-    reading = read_values(dataset, map_family(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
+    reading = read_values(dataset, family_layout(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
                           where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
                           prepared=prepared, refinement=refinement)
     values = reading.values | reading.errors

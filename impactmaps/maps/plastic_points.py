@@ -72,15 +72,14 @@ from ..dimensionless import realise
 from ..solvers.contact_scale import reference_contact_stiffness
 from ..solvers.modal_settings import ModalSettings
 from .accuracy import STATUSES, AccuracyControl, PointStatus
-from .map_family import RESULT_VARIABLES, Axis, Interpolation, MapFamily, PointPlan, register_map_family
+from .builtin_families import PLASTIC_ERROR_OF, PLASTIC_LAWS, PlasticLayout
+from .map_family import RESULT_VARIABLES, PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points
 from .structures import BasisTable, MapStructure
 
 __all__ = ["PLASTIC_LAWS", "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
            "plastic_law_of", "solve_plastic_points"]
 
-#: Map-law name → registered contact-law name of the elastic-plastic maps.
-PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge", "epp": "epp"}
 #: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's
 #: Poisson ratio 0.3, a rigid sphere); each changes the normalised response, so another
 #: value is another family.
@@ -94,8 +93,7 @@ PLASTIC_VARIABLES = {
     "absorbed_energy_error": ("1", "error estimate of absorbed_energy_fraction (as fmax_error)"),
 }
 #: The quantities whose error the map stores, with the name of their error variable.
-ERROR_OF = {"fmax_normalised": "fmax_error", "restitution": "restitution_error",
-            "absorbed_energy_fraction": "absorbed_energy_error"}
+ERROR_OF = PLASTIC_ERROR_OF
 
 
 @dataclass(frozen=True)
@@ -344,8 +342,9 @@ _PLASTIC_DESCRIPTIONS = {"fmax_normalised": "maximum contact force / (m V0 ω_y)
                 "reflection_time_normalised")}
 
 
-class PlasticFamily(MapFamily):
-    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y (module docstring).
+class PlasticFamily(PlasticLayout):
+    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y (module docstring);
+    its layout (axes, errors, interpolation, shipped maps): :class:`~impactmaps.maps.builtin_families.PlasticLayout`.
 
     Parameters
     ----------
@@ -353,33 +352,8 @@ class PlasticFamily(MapFamily):
         The map law (a key of :data:`PLASTIC_LAWS`).
     """
 
-    axes = (Axis("beta", "impact number β = V0/(ω_h α_y) (seed 001 eq 11)"),
-            Axis("lambda_", "relative stiffness K_st/K_y"), Axis("zeta", "loss factor ζ(m, K_y)"))
     variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
                  } | {name: ("f8", np.nan, units, text) for name, (units, text) in PLASTIC_VARIABLES.items()}
-    errors = ERROR_OF
-    #: Second differences over one neighbour a side, safety factor 4, no further factor on
-    #: the band: what the plastic maps' bands were validated with (``validation/lookup_error.py
-    #: --law yc`` and ``--law stronge``: the band covered every error of the answered points,
-    #: largest error/band 0.67 (yc) and 0.88 (stronge)).
-    interpolation = Interpolation(reach=1, safety=4.0, band_safety=1.0)
-    #: No Mindlin plate: its pressure patch depends on the sphere radius, a fourth number.
-    shipped = {
-        ("beam", "euler"): "beam-ss-euler",
-        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
-        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
-    }
-    title = "impactmaps normalised elastic-plastic impact map"
-    #: The on-demand tiles' lattice: the shipped plastic maps' grid (2 β, 6 ζ, 5 λ per decade),
-    #: on which their bands were validated.
-    tile_lattice = {"beta": 0.5, "zeta": 1.0 / 6.0, "lambda_": 0.2}
-
-    def __init__(self, name: str):
-        require_choice("map_law", name, tuple(PLASTIC_LAWS))
-        self.name = name
-
-    def __reduce__(self):
-        return (type(self), (self.name,))
 
     @property
     def method_text(self) -> str:

@@ -23,10 +23,9 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import xarray as xr
 
 from .._checks import describe_outside, require_positive
 from .accuracy import STATUSES, AccuracyControl, PointStatus
@@ -34,6 +33,9 @@ from .interpolator import PlaneInterpolator, grid_bilinear, grid_bilinear_one, i
 from .map_family import ASYMPTOTE_PEAK_VARIABLES
 from .refinement import MAX_LEVEL, Refinement
 from .slice_refinement import SlicedRefinement, read_slices
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "answer_status", "corner_status",
            "status_notes", "interpolation_error", "slice_estimates", "band_grid"]

@@ -35,12 +35,14 @@ of its base map, tolerance and depth.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
-import xarray as xr
 
 from .accuracy import STATUSES
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["MAX_LEVEL", "REFINEMENT_VARIABLES", "SURPLUS_SAFETY", "Refinement", "Leaves", "locate", "interpolate",
            "leaf_estimate", "all_leaves", "refine"]
@@ -146,6 +148,8 @@ class Refinement:
 
     def dataset(self, attrs: dict | None = None) -> xr.Dataset:
         """The refinement as a Dataset (one ``point`` dimension), to store beside its map."""
+        import xarray as xr  # only a refinement being stored builds a Dataset (a lookup reads it without)
+
         variables = {"code": ("point", self.codes.astype(np.int32 if self.codes.size == 0 or self.codes[-1] < 2**31
                                                           else np.int64))}
         variables |= {name: ("point", np.asarray(self.values[name], dtype))

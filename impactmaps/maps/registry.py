@@ -1,19 +1,16 @@
-"""The registered map families, the built-in ones loaded.
+"""The registered map families, the built-in ones by name.
 
-Importing this module registers the linear, Hertz and elastic-plastic families
-(:mod:`.linear_points`, :mod:`.hertz_points`, :mod:`.plastic_points`); a family added
-elsewhere registers itself with :func:`~impactmaps.maps.map_family.register_map_family`
-and is then found here like the others.
+The built-in families (linear, Hertz, elastic-plastic: :mod:`.linear_points`,
+:mod:`.hertz_points`, :mod:`.plastic_points`) are known by name from the start and imported
+when first asked for (:func:`~impactmaps.maps.map_family.map_family`); a family added
+elsewhere registers itself with :func:`~impactmaps.maps.map_family.register_map_family` and
+is then found here like the others. What a map reader needs of a family without its point
+solver: :func:`~impactmaps.maps.builtin_families.family_layout`.
 """
 
 from __future__ import annotations
 
-from . import linear_points  # noqa: F401, I001 (registers the built-in families, linear first)
-from . import hertz_points, plastic_points  # noqa: F401
+from .builtin_families import CUBE_LAWS, PLANE_LAWS, family_layout
 from .map_family import MapFamily, available_map_families, map_family
 
-__all__ = ["MapFamily", "map_family", "available_map_families", "PLANE_LAWS", "CUBE_LAWS"]
-
-#: The built-in families over (ζ, λ) alone, and those with axes before them (β).
-PLANE_LAWS = tuple(name for name in available_map_families() if len(map_family(name).axes) == 2)
-CUBE_LAWS = tuple(name for name in available_map_families() if len(map_family(name).axes) > 2)
+__all__ = ["MapFamily", "map_family", "available_map_families", "family_layout", "PLANE_LAWS", "CUBE_LAWS"]

@@ -18,15 +18,17 @@ the grid.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import functools
 import itertools
 
 import numpy as np
-import xarray as xr
 
 from .refinement import MAX_LEVEL, REFINEMENT_VARIABLES, Refinement, refine
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["SlicedRefinement", "refine_slices", "read_slices"]
 

@@ -23,8 +23,9 @@ from ..targets.beam import MIN_SLENDERNESS, Beam
 from ..targets.map_structure import reference_target
 from ..targets.options import STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ..targets.plate import Plate
+from .builtin_families import FAMILY_SLENDERNESSES, SHIPPED_PLANE_MAPS
 
-__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name"]
+__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MAPS", "FAMILY_SLENDERNESSES", "structure_from_name"]
 
 
 @dataclass(frozen=True)
@@ -141,12 +142,8 @@ DEFAULT_STRUCTURES = (
     MapStructure(kind="plate", theory="mindlin", supports="SSSS"),
 )
 
-#: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike.
-SHIPPED_PLANE_MAPS = {(structure.kind, structure.theory): structure.name for structure in DEFAULT_STRUCTURES}
-
-#: Slendernesses (span/thickness) of the shipped shear-deformable map families; the
-#: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.
-FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
+# SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
+# tests/test_lookup_light.py) and FAMILY_SLENDERNESSES come from .builtin_families.
 
 #: The shear-deformable family members besides the default slenderness 20.
 FAMILY_STRUCTURES = tuple(

@@ -1,0 +1,116 @@
+"""What a reader needs of the built-in map families, without their point solvers.
+
+A lookup reads a shipped map by its family's *layout* — its axes, the quantities whose
+errors it stores, how it interpolates, which maps ship — and never solves a point. The
+families themselves (:mod:`.linear_points`, :mod:`.hertz_points`, :mod:`.plastic_points`)
+subclass the layouts defined here and add the point solver, importing the contact laws,
+targets and integrators (numba, SciPy, pandas: ~0.8 s). This module imports only NumPy and
+:mod:`.map_family`, so reading a shipped map (:func:`family_layout`) costs none of that;
+:func:`impactmaps.maps.map_family.map_family` imports a built-in family's module when the
+family itself is first asked for.
+"""
+
+from __future__ import annotations
+
+from .._checks import require_choice
+from .map_family import Axis, Interpolation, MapFamily, map_family
+
+__all__ = ["SHIPPED_PLANE_MAPS", "FAMILY_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
+           "LinearLayout", "HertzLayout", "PlasticLayout", "LAYOUTS", "PLANE_LAWS", "CUBE_LAWS", "family_layout"]
+
+#: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike (the names
+#: of :data:`impactmaps.maps.structures.DEFAULT_STRUCTURES`, checked there).
+SHIPPED_PLANE_MAPS = {
+    ("beam", "euler"): "beam-ss-euler",
+    ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
+    ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
+    ("plate", "mindlin"): "plate-ssss-mindlin-s20",
+}
+
+#: Slendernesses (span/thickness) of the shipped shear-deformable map families; the
+#: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.
+FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
+
+#: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
+HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")
+
+#: Map-law name → registered contact-law name of the elastic-plastic maps.
+PLASTIC_LAWS = {"yc": "yigit-christoforou", "stronge": "stronge", "epp": "epp"}
+
+#: The quantities whose error an elastic-plastic map stores, with the name of their error variable.
+PLASTIC_ERROR_OF = {"fmax_normalised": "fmax_error", "restitution": "restitution_error",
+                    "absorbed_energy_fraction": "absorbed_energy_error"}
+
+
+class LinearLayout(MapFamily):
+    """The linear contact law's maps over (ζ, λ) (:class:`~impactmaps.maps.linear_points.LinearFamily`)."""
+
+    name = "linear"
+    axes = (Axis("lambda_", "relative stiffness K_st/K"), Axis("zeta", "loss factor"))
+    law_in_description = False
+    classifies = True
+    shipped = SHIPPED_PLANE_MAPS
+
+
+class HertzLayout(MapFamily):
+    """The Hertz law's maps over (ζ_h, λ_h) (:class:`~impactmaps.maps.hertz_points.HertzFamily`)."""
+
+    name = "hertz"
+    axes = (Axis("lambda_", HERTZ_AXES[0]), Axis("zeta", HERTZ_AXES[1]))
+    classifies = True
+    shipped = SHIPPED_PLANE_MAPS
+    patch_loadable = True
+
+
+class PlasticLayout(MapFamily):
+    """An elastic-plastic law's maps over (β, ζ, λ) (:class:`~impactmaps.maps.plastic_points.PlasticFamily`).
+
+    Parameters
+    ----------
+    name : str
+        The map law (a key of :data:`PLASTIC_LAWS`).
+    """
+
+    axes = (Axis("beta", "impact number β = V0/(ω_h α_y) (seed 001 eq 11)"),
+            Axis("lambda_", "relative stiffness K_st/K_y"), Axis("zeta", "loss factor ζ(m, K_y)"))
+    errors = PLASTIC_ERROR_OF
+    #: Second differences over one neighbour a side, safety factor 4, no further factor on
+    #: the band: what the plastic maps' bands were validated with (``validation/lookup_error.py
+    #: --law yc`` and ``--law stronge``: the band covered every error of the answered points,
+    #: largest error/band 0.67 (yc) and 0.88 (stronge)).
+    interpolation = Interpolation(reach=1, safety=4.0, band_safety=1.0)
+    #: No Mindlin plate: its pressure patch depends on the sphere radius, a fourth number.
+    shipped = {
+        ("beam", "euler"): "beam-ss-euler",
+        ("beam", "timoshenko"): "beam-ss-timoshenko-s20",
+        ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
+    }
+    title = "impactmaps normalised elastic-plastic impact map"
+    #: The on-demand tiles' lattice: the shipped plastic maps' grid (2 β, 6 ζ, 5 λ per decade),
+    #: on which their bands were validated.
+    tile_lattice = {"beta": 0.5, "zeta": 1.0 / 6.0, "lambda_": 0.2}
+
+    def __init__(self, name: str):
+        require_choice("map_law", name, tuple(PLASTIC_LAWS))
+        self.name = name
+
+    def __reduce__(self):
+        return (type(self), (self.name,))
+
+
+#: The built-in families' layouts by map law, in registration order.
+LAYOUTS = {"linear": LinearLayout(), "hertz": HertzLayout(), **{name: PlasticLayout(name) for name in PLASTIC_LAWS}}
+#: The built-in families over (ζ, λ) alone, and those with axes before them (β).
+PLANE_LAWS = tuple(name for name, layout in LAYOUTS.items() if len(layout.axes) == 2)
+CUBE_LAWS = tuple(name for name, layout in LAYOUTS.items() if len(layout.axes) > 2)
+
+
+def family_layout(name) -> MapFamily:
+    """What a map reader needs of the family ``name`` (axes, errors, interpolation, shipped maps):
+    a built-in family's layout (its point solver not imported), any other registered family
+    itself, a family object as is; ``ValueError`` for an unknown name."""
+    if isinstance(name, MapFamily):
+        return name
+    if name in LAYOUTS:
+        return LAYOUTS[name]
+    return map_family(name)
