@@ -30,7 +30,7 @@ from scipy.interpolate import RegularGridInterpolator
 from .._checks import require_in_range
 from ..targets.options import classical_theory, is_shear_deformable, point_load_diverges
 from .lookup import load_shipped_map, lookup
-from .reader import _SEVERITY, answer_status
+from .bands import SEVERITY, answer_status
 from .registry import PLANE_LAWS, map_family
 from .structures import FAMILY_SLENDERNESSES
 
@@ -166,6 +166,6 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
                          "(unresolved); run a simulation instead")
     band = float(max(low.fmax_error, high.fmax_error) + slender_error)
     # the worse member status, interpolated if the slenderness error widens the band past the tolerance
-    status = answer_status(max(low.status, high.status, key=_SEVERITY.__getitem__), band)
+    status = answer_status(max(low.status, high.status, key=SEVERITY.__getitem__), band)
     name = f"{low.map_name} ×{1.0 - weight:.3g} + {high.map_name} ×{weight:.3g} (1/s)"
     return replace(low, fmax_normalised=float(fmax), fmax_error=band, status=status, map_name=name, theory=theory)
