@@ -57,6 +57,11 @@ class LazyKernel:
         for variant in variants:
             self.compile_variant(variant)
 
+    def variant_of(self, args):
+        """The variant a call with ``args`` (all but the last argument) needs (``None`` for
+        a kernel without variants)."""
+        return None if self._choose is None else self._choose(args)
+
     def compile_variant(self, variant) -> None:
         """Compile (or load from numba's cache) one variant, named by its last argument
         (``None`` for a kernel without variants); idempotent."""

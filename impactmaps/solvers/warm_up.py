@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-__all__ = ["warm_up", "cache_directory", "run_background"]
+__all__ = ["warm_up", "cache_directory", "run_background", "variant_cached"]
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
 _VARIANTS = (None, True)
@@ -54,9 +54,20 @@ def _tiny_impacts() -> None:
         evaluate_kernel(kernel, np.ones((13, 1)), np.zeros(1), np.zeros(1))
 
 
-def _cached(variant) -> bool:
-    """Whether numba's cache holds this variant of the integrator for this machine (False
-    when that cannot be told: then it is compiled)."""
+def variant_cached(variant) -> bool:
+    """Whether numba's cache holds one variant of the integrator for this machine.
+
+    Parameters
+    ----------
+    variant : None or True
+        The integrator's ``exact_phase`` argument (:data:`impactmaps.solvers.exact_step.integrate_impact`).
+
+    Returns
+    -------
+    bool
+        True if the cache index lists it (one read of a small file); False when it does
+        not or that cannot be told (then it is compiled).
+    """
     from .exact_step import integrate_impact
 
     dispatcher = integrate_impact.dispatcher
@@ -102,7 +113,7 @@ def warm_up(workers: int = 2) -> dict:
 
     require_in_range("workers", workers, 1, 64)
     start = time.perf_counter()
-    missing = [variant for variant in _VARIANTS if not _cached(variant)]
+    missing = [variant for variant in _VARIANTS if not variant_cached(variant)]
     if workers > 1 and len(missing) > 1:
         context = multiprocessing.get_context("spawn")
         with concurrent.futures.ProcessPoolExecutor(min(int(workers), len(_VARIANTS)), mp_context=context) as pool:
