@@ -41,11 +41,14 @@ import os
 import sys
 from pathlib import Path
 
+from . import compile_helper
+
 __all__ = ["DISABLE_ENV", "state_directory", "installation_key", "is_warm", "is_running", "start_background",
            "mark_warm", "hold_lock"]
 
-#: Environment variable that turns the background warm-up off (any value but "" and "0").
-DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
+#: Environment variable that turns the background warm-up off (any value but "" and "0"),
+#: and the compile helper of the first cold run (:mod:`impactmaps.solvers.compile_helper`).
+DISABLE_ENV = compile_helper.DISABLE_ENV
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "contact")
 

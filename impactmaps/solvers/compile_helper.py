@@ -18,7 +18,7 @@ loads a cached variant or compiles it). Off under ``IMPACTMAPS_NO_BACKGROUND_WAR
 (:data:`impactmaps.solvers.background_warm_up.DISABLE_ENV`, which the tests set) and in
 processes that are themselves workers of another (``multiprocessing``: a sweep's workers
 never start one). At most one helper per process, only for the first integrating run; on a warm cache
-the check is one read of numba's cache index (:func:`impactmaps.solvers.warm_up.variant_cached`).
+the check is one read of numba's cache index (:func:`variant_cached`).
 
 No process is left behind: the helper ends with this process — at its exit
 (``atexit``), on Ctrl-C while waiting, and, on Linux, when this process is killed
@@ -36,8 +36,11 @@ import threading
 import time
 from pathlib import Path
 
-__all__ = ["WAIT_S", "start", "await_variant", "enabled"]
+__all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "variant_cached", "callee_signatures"]
 
+#: Environment variable that turns the helper off (any value but "" and "0"), and the
+#: background warm-up (:data:`impactmaps.solvers.background_warm_up.DISABLE_ENV`, the same).
+DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
 #: The longest wait for a helper [s], from its start; then this process compiles itself.
 WAIT_S = 120.0
 #: The polling interval of the wait [s].
@@ -51,12 +54,14 @@ _lock = threading.Lock()
 _state = {"decided": False, "process": None, "variants": (), "started": 0.0, "share": False}
 
 
+def _switched_on() -> bool:
+    return os.environ.get(DISABLE_ENV, "") in ("", "0")
+
+
 def enabled() -> bool:
     """Whether this process may start a helper: not turned off (the background warm-up's
     switch), and not a ``multiprocessing`` worker."""
-    from .background_warm_up import DISABLE_ENV
-
-    if os.environ.get(DISABLE_ENV, "") not in ("", "0"):
+    if not _switched_on():
         return False
     import multiprocessing
 
@@ -79,24 +84,45 @@ def start(variants, arguments: list[str] | None = None) -> bool:
             return False
         _state["decided"] = True
         try:
-            if not enabled():
+            if not _switched_on():
                 return False
-            if arguments is None:
-                from .warm_up import variant_cached
-
+            if arguments is None:  # the cache first: on a warm one, nothing more is imported
                 variants = tuple(variant for variant in variants if not variant_cached(variant))
                 if not variants:
                     return False
                 arguments = ["true" if variant else "none" for variant in variants]
-            return _launch(tuple(variants), arguments)
+            return enabled() and _launch(tuple(variants), arguments)
         except Exception:  # noqa: BLE001 (no helper: the run compiles itself)
             return False
 
 
+def variant_cached(variant) -> bool:
+    """Whether numba's cache holds one variant of the integrator for this machine.
+
+    Parameters
+    ----------
+    variant : None or True
+        The integrator's ``exact_phase`` argument (:data:`impactmaps.solvers.exact_step.integrate_impact`).
+
+    Returns
+    -------
+    bool
+        True if the cache index lists it (one read of a small file); False when it does
+        not or that cannot be told (then it is compiled).
+    """
+    from .exact_step import integrate_impact
+
+    dispatcher = integrate_impact.dispatcher
+    try:  # numba's cache index, as Dispatcher.compile consults it
+        cache = dispatcher._cache
+        key = cache._index_key(integrate_impact.signatures[variant], dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:  # noqa: BLE001 (an internal of numba changed: compile rather than guess)
+        return False
+
+
 def _launch(variants: tuple, arguments: list[str]) -> bool:
     import subprocess
-
-    from .background_warm_up import DISABLE_ENV
 
     package_parent = str(Path(__file__).resolve().parents[2])
     env = dict(os.environ, **{DISABLE_ENV: "1"})  # the helper starts no helper nor warm-up

@@ -20,7 +20,9 @@ import time
 
 import numpy as np
 
-__all__ = ["warm_up", "cache_directory", "run_background", "variant_cached"]
+from .compile_helper import variant_cached
+
+__all__ = ["warm_up", "cache_directory", "run_background"]
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
 _VARIANTS = (None, True)
@@ -52,31 +54,6 @@ def _tiny_impacts() -> None:
         kernel = contact_law_class(name).kernel
         kernel_pointer(kernel)
         evaluate_kernel(kernel, np.ones((13, 1)), np.zeros(1), np.zeros(1))
-
-
-def variant_cached(variant) -> bool:
-    """Whether numba's cache holds one variant of the integrator for this machine.
-
-    Parameters
-    ----------
-    variant : None or True
-        The integrator's ``exact_phase`` argument (:data:`impactmaps.solvers.exact_step.integrate_impact`).
-
-    Returns
-    -------
-    bool
-        True if the cache index lists it (one read of a small file); False when it does
-        not or that cannot be told (then it is compiled).
-    """
-    from .exact_step import integrate_impact
-
-    dispatcher = integrate_impact.dispatcher
-    try:  # numba's cache index, as Dispatcher.compile consults it
-        cache = dispatcher._cache
-        key = cache._index_key(integrate_impact.signatures[variant], dispatcher.targetctx.codegen())
-        return key in cache._cache_file._load_index()
-    except Exception:  # noqa: BLE001 (an internal of numba changed: compile rather than guess)
-        return False
 
 
 def cache_directory() -> str:
