@@ -1,29 +1,36 @@
-"""The second core during the first integrating command: a helper process compiles the integrator.
+"""The second core during the first integrating command: a helper process compiles with it.
 
 On an empty numba cache the first integrating command compiled everything on one core:
-the small kernels (time step, contact law, coupled top frequency; ~2–3 s) and then the
+the small kernels (time step, contact law, coupled top frequency; ~1–3 s) and then the
 exact-step integrator (:data:`impactmaps.solvers.exact_step.integrate_impact`, ~8 s with
 its callees), one after the other, ~12 s in all. When a run first knows it will integrate
-(:func:`impactmaps.solvers.modal.simulate`, after its plan) and numba's cache does not hold
-the integrator variant the run is expected to need, :func:`start` launches a helper
-process at normal priority that compiles that variant into numba's cache while this
-process goes on with the small kernels; before the run calls the integrator,
-:func:`await_variant` waits for the helper to end (at most :data:`WAIT_S` seconds from its
-start), and the integrator is then loaded from the cache. The compiled code is the code this process
-would compile: answers are bit for bit the same.
+(:func:`impactmaps.solvers.modal.simulate`, after its plan) and numba's cache lacks an
+integrator variant the run may need, :func:`start` launches a helper process at normal
+priority. The work is split so that the two processes never compile the same function:
 
-Never a wrong or missing answer: if the helper fails, is killed or is late, or compiles
-another variant than the run needs, this process compiles the variant itself (numba
-loads a cached variant or compiles it). Off under ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1``
-(:data:`impactmaps.solvers.background_warm_up.DISABLE_ENV`, which the tests set) and in
-processes that are themselves workers of another (``multiprocessing``: a sweep's workers
-never start one). At most one helper per process, only for the first integrating run; on a warm cache
-the check is one read of numba's cache index (:func:`variant_cached`).
+1. the helper compiles :data:`HELPER_CALLEES` (callees of the integrator, the same in
+   both variants) while this process goes on with its run and its small kernels;
+2. before the run calls the integrator, :func:`await_variant` compiles
+   :data:`FOREGROUND_CALLEES` here, then names the variant the run needs on the helper's
+   stdin and waits for the helper to end (at most :data:`WAIT_S` seconds from its start);
+3. the helper compiles that variant of the integrator, loading the callees of both
+   shares from numba's cache; this process then loads the integrator from the cache.
 
-No process is left behind: the helper ends with this process — at its exit
-(``atexit``), on Ctrl-C while waiting, and, on Linux, when this process is killed
-(``PR_SET_PDEATHSIG``). Two commands starting at once each start a helper compiling the
-same code; numba writes its cache files by atomic renames, and a run loads or compiles
+The compiled code is the code one process would compile: answers are bit for bit the
+same. Never a wrong or missing answer: if the helper fails, is killed or is late, this
+process compiles what is missing itself (numba loads a cached function or compiles it).
+
+Off under ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` (:data:`DISABLE_ENV`, the background
+warm-up's switch; the tests set it) and in processes that are themselves workers of
+another (``multiprocessing``: a sweep's workers never start one). At most one helper per
+process, for its first integrating run; on a warm cache the check is one read of numba's
+cache index (:func:`variant_cached`, ~0.5 ms).
+
+No process is left behind: the helper ends with this process — at its exit (``atexit``),
+on Ctrl-C (the terminal's signal reaches both; while waiting, this process ends it), and,
+on Linux, when this process is killed (``PR_SET_PDEATHSIG``). Two commands starting at
+once each start a helper compiling the same functions with the same signatures: numba
+writes its cache files by atomic renames (``os.replace``), and a run loads or compiles
 what it finds either way.
 """
 
@@ -69,13 +76,15 @@ def enabled() -> bool:
 
 
 def start(variants, arguments: list[str] | None = None) -> bool:
-    """Start the helper compiling the integrator's ``variants`` (``exact_phase`` values,
-    in order) that numba's cache lacks; True if one was started.
+    """Start the helper if numba's cache lacks one of the integrator ``variants`` the run
+    may need (``exact_phase`` values); True if one was started.
 
-    Only the first call of a process decides (later calls return False at once). Returns
-    without starting when :func:`enabled` is False or every variant is cached. Never
-    raises: a helper that cannot be started is not (the run compiles itself).
-    ``arguments`` replaces the helper's variant arguments (tests: a stand-in).
+    The helper compiles :data:`HELPER_CALLEES` (the same in every variant), then waits
+    until :func:`await_variant` names the variant the run needs. Only the first call of a
+    process decides (later calls return False at once). Returns without starting when
+    :func:`enabled` is False or every variant is cached. Never raises: a helper that
+    cannot be started is not (the run compiles itself). ``arguments`` replaces the
+    helper's arguments (tests: a stand-in, ``["sleep:S"]`` or ``["fail"]``).
     """
     if _state["decided"]:
         return False
@@ -90,7 +99,7 @@ def start(variants, arguments: list[str] | None = None) -> bool:
                 variants = tuple(variant for variant in variants if not variant_cached(variant))
                 if not variants:
                     return False
-                arguments = ["true" if variant else "none" for variant in variants]
+                arguments = ["share"]
             return enabled() and _launch(tuple(variants), arguments)
         except Exception:  # noqa: BLE001 (no helper: the run compiles itself)
             return False
@@ -131,7 +140,7 @@ def _launch(variants: tuple, arguments: list[str]) -> bool:
                                stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                env=env, close_fds=True)
     _state.update(process=process, variants=variants, started=time.monotonic(),
-                  share=arguments[:1] in (["none"], ["true"]))
+                  share=arguments == ["share"])
     _trace("launched")
     atexit.register(_stop)
     return True
@@ -146,10 +155,13 @@ def _stop() -> None:
     _release(process)
 
 
-def _release(process) -> None:
-    """Tell the helper that this process's share is in the cache (close its stdin)."""
+def _release(process, variant=False) -> None:
+    """Tell the helper that this process's share is in the cache and which ``variant`` to
+    compile (none when ``False``: then it ends): a line on its stdin, then end of file."""
     if process is not None and process.stdin is not None and not process.stdin.closed:
         try:
+            if variant is not False:
+                process.stdin.write(b"true\n" if variant else b"none\n")
             process.stdin.close()
         except OSError:
             pass
@@ -193,7 +205,7 @@ def await_variant(variant, timeout: float | None = None) -> bool:
             _trace("share-start")
             _compile_callees(FOREGROUND_CALLEES, lambda: process.poll() is not None)
             _trace("share-end")
-        _release(process)
+        _release(process, variant)
         while process.poll() is None and time.monotonic() < deadline:
             time.sleep(_POLL_S)
     except BaseException:
@@ -290,17 +302,16 @@ def _end_with_parent(parent: int) -> bool:
     return os.getppid() == parent
 
 
-def _await_release(limit_s: float) -> None:
-    """Wait until the parent closes this process's stdin (its share is compiled), at most
-    ``limit_s`` [s]."""
+def _await_release(limit_s: float) -> str:
+    """The variant the parent names once its share is compiled (``"none"``, ``"true"``;
+    ``""`` if it names none, ends, or takes more than ``limit_s`` [s])."""
     import select
 
     try:
         ready, _, _ = select.select([sys.stdin], [], [], limit_s)
-        if ready:
-            sys.stdin.buffer.read(1)
+        return sys.stdin.buffer.readline().decode().strip() if ready else ""
     except (OSError, ValueError):
-        pass
+        return ""
 
 
 #: The longest the helper waits for this process's share [s] before compiling without it.
@@ -308,30 +319,29 @@ SHARE_WAIT_S = 60.0
 
 
 def helper_main(argv: list[str]) -> int:
-    """The helper process: compile :data:`HELPER_CALLEES`, wait until the parent has
-    compiled its share (:data:`SHARE_WAIT_S` at most), then compile the integrator
-    variants named in ``argv[1:]`` (after the parent's pid) into numba's cache; the exit
-    status (0, 1 for the failing stand-in)."""
+    """The helper process (``argv``: the parent's pid, then ``share`` or a tests' stand-in):
+    compile :data:`HELPER_CALLEES`, wait until the parent has compiled its share and
+    names the variant its run needs (:data:`SHARE_WAIT_S` at most), compile that variant
+    of the integrator into numba's cache; the exit status (0, 1 for the failing stand-in)."""
     if not _end_with_parent(int(argv[0])):
         return 0
     import warnings
 
     warnings.simplefilter("ignore")
-    names = argv[1:]
-    if names and names[0] in ("none", "true"):
-        _trace("helper-start")
-        _compile_callees(HELPER_CALLEES)
-        _trace("helper-share-end")
-        _await_release(SHARE_WAIT_S)
-        _trace("helper-released")
-    for name in names:
+    for name in argv[1:]:
         if name.startswith("sleep:"):  # tests: a stand-in of the compile
             time.sleep(float(name.split(":", 1)[1]))
         elif name == "fail":
             return 1
-        else:
-            from .exact_step import integrate_impact
+        elif name == "share":
+            _trace("helper-start")
+            _compile_callees(HELPER_CALLEES)
+            _trace("helper-share-end")
+            variant = _await_release(SHARE_WAIT_S)
+            _trace("helper-released")
+            if variant in ("none", "true"):
+                from .exact_step import integrate_impact
 
-            integrate_impact.compile_variant({"none": None, "true": True}[name])
-            _trace("helper-variant-end")
+                integrate_impact.compile_variant(True if variant == "true" else None)
+                _trace("helper-variant-end")
     return 0

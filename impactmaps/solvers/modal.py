@@ -175,7 +175,7 @@ def simulate(
         if plan.method == METHODS[1]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
     cap = plan.max_frequency if plan is not None and plan.method == METHODS[1] else None
-    compile_helper.start((_expected_variant(law, settings, time_step),))  # first cold run: the 2nd core compiles
+    compile_helper.start(_possible_variants(law, settings, time_step))  # a cold first run: the 2nd core compiles
     run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
                             radius_of)
     result = run(record, cap)
@@ -188,13 +188,12 @@ def simulate(
     return result
 
 
-def _expected_variant(law: ContactLaw, settings: ModalSettings, time_step) -> bool | None:
-    """The integrator variant (``exact_phase``) a run most likely needs: the exact contact
-    phase for a linear law unless the sampled one is asked for or the step is forced
-    (:func:`~impactmaps.solvers.modal_run.run_once` decides; a wrong guess costs only the
-    helper's work, :mod:`~impactmaps.solvers.compile_helper`)."""
+def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> tuple:
+    """The integrator variants (``exact_phase``) a run may need: with the exact contact
+    phase too for a linear law unless the sampled one is asked for or the step is forced
+    (:func:`~impactmaps.solvers.modal_run.run_once` decides which)."""
     exact = linear_stiffness(law) > 0.0 and settings.contact_phase != "sampled" and time_step is None
-    return True if exact else None
+    return (None, True) if exact else (None,)
 
 
 def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float):
