@@ -9,12 +9,13 @@ integrator variant the run may need, :func:`start` launches a helper process at 
 priority. The work is split so that the two processes never compile the same function:
 
 1. the helper compiles :data:`HELPER_CALLEES` (callees of the integrator, the same in
-   both variants) while this process goes on with its run and its small kernels;
+   both variants) into numba's cache while this process goes on with its run and its
+   small kernels;
 2. before the run calls the integrator, :func:`await_variant` compiles
-   :data:`FOREGROUND_CALLEES` here, then names the variant the run needs on the helper's
-   stdin and waits for the helper to end (at most :data:`WAIT_S` seconds from its start);
-3. the helper compiles that variant of the integrator, loading the callees of both
-   shares from numba's cache; this process then loads the integrator from the cache.
+   :data:`FOREGROUND_CALLEES` here and waits for the helper to end (at most
+   :data:`WAIT_S` seconds from its start);
+3. this process compiles the variant of the integrator its run needs, loading the
+   callees of the helper's share from numba's cache.
 
 The compiled code is the code one process would compile: answers are bit for bit the
 same. Never a wrong or missing answer: if the helper fails, is killed or is late, this
@@ -79,8 +80,8 @@ def start(variants, arguments: list[str] | None = None) -> bool:
     """Start the helper if numba's cache lacks one of the integrator ``variants`` the run
     may need (``exact_phase`` values); True if one was started.
 
-    The helper compiles :data:`HELPER_CALLEES` (the same in every variant), then waits
-    until :func:`await_variant` names the variant the run needs. Only the first call of a
+    The helper compiles :data:`HELPER_CALLEES` (the same in every variant) into numba's
+    cache and ends. Only the first call of a
     process decides (later calls return False at once). Returns without starting when
     :func:`enabled` is False or every variant is cached. Never raises: a helper that
     cannot be started is not (the run compiles itself). ``arguments`` replaces the
@@ -137,7 +138,7 @@ def _launch(variants: tuple, arguments: list[str]) -> bool:
     env = dict(os.environ, **{DISABLE_ENV: "1"})  # the helper starts no helper nor warm-up
     env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
     process = subprocess.Popen([sys.executable, "-c", _CHILD, str(os.getpid()), *arguments],
-                               stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                env=env, close_fds=True)
     _state.update(process=process, variants=variants, started=time.monotonic(),
                   share=arguments == ["share"])
@@ -152,24 +153,11 @@ def _stop() -> None:
     if process is not None and process.poll() is None:
         process.kill()
         process.wait()
-    _release(process)
-
-
-def _release(process, variant=False) -> None:
-    """Tell the helper that this process's share is in the cache and which ``variant`` to
-    compile (none when ``False``: then it ends): a line on its stdin, then end of file."""
-    if process is not None and process.stdin is not None and not process.stdin.closed:
-        try:
-            if variant is not False:
-                process.stdin.write(b"true\n" if variant else b"none\n")
-            process.stdin.close()
-        except OSError:
-            pass
 
 
 def await_variant(variant, timeout: float | None = None) -> bool:
-    """Before the integrator's ``variant`` is compiled: compile this process's share of it,
-    then wait while the helper compiles the rest.
+    """Before the integrator's ``variant`` is compiled: compile this process's share of its
+    callees, then wait for the helper compiling the other share.
 
     Parameters
     ----------
@@ -183,14 +171,12 @@ def await_variant(variant, timeout: float | None = None) -> bool:
     -------
     bool
         True if a helper was waited for (it finished, failed or was ended), False at once
-        when none runs for this variant (a helper compiling another variant is ended: the
-        callees it has put in the cache serve this one too).
+        when none runs or ``variant`` was in the cache when the helper started (the
+        helper is then ended).
 
     Notes
     -----
-    Waits for the helper's end, not for the cache index to list the variant: numba writes
-    the index before the compiled code. On ``KeyboardInterrupt`` (or any error) the
-    helper is ended and the error raised.
+    On ``KeyboardInterrupt`` (or any error) the helper is ended and the error raised.
     """
     process = _state["process"]
     if process is None:
@@ -205,21 +191,20 @@ def await_variant(variant, timeout: float | None = None) -> bool:
             _trace("share-start")
             _compile_callees(FOREGROUND_CALLEES, lambda: process.poll() is not None)
             _trace("share-end")
-        _release(process, variant)
         while process.poll() is None and time.monotonic() < deadline:
             time.sleep(_POLL_S)
     except BaseException:
         _stop()
         raise
-    _stop()  # late: ended (the run compiles itself)
+    _stop()  # late: ended (this process compiles what it lacks)
     _trace("waited")
     _state["process"] = None
     return True
 
 
-#: The integrator's callees the helper compiles first (in this order), and those this
-#: process compiles meanwhile; then the helper compiles the integrator itself, which loads
-#: both from numba's cache. Chosen by measurement (``benchmarks/RESULTS_cold_start.md``):
+#: The integrator's callees the helper compiles (in this order), and those this process
+#: compiles meanwhile; then this process compiles the integrator, which loads the
+#: helper's from numba's cache. Chosen by measurement (``benchmarks/RESULTS_cold_start.md``):
 #: the two shares take about the same time, and none calls a callee of the other share
 #: but ``locate_event`` (``fill_step_coefficients``, ``predict_step``), compiled last here.
 HELPER_CALLEES = ("fill_step_coefficients", "predict_step", "free_doublings", "square_free_propagators",
@@ -302,27 +287,10 @@ def _end_with_parent(parent: int) -> bool:
     return os.getppid() == parent
 
 
-def _await_release(limit_s: float) -> str:
-    """The variant the parent names once its share is compiled (``"none"``, ``"true"``;
-    ``""`` if it names none, ends, or takes more than ``limit_s`` [s])."""
-    import select
-
-    try:
-        ready, _, _ = select.select([sys.stdin], [], [], limit_s)
-        return sys.stdin.buffer.readline().decode().strip() if ready else ""
-    except (OSError, ValueError):
-        return ""
-
-
-#: The longest the helper waits for this process's share [s] before compiling without it.
-SHARE_WAIT_S = 60.0
-
-
 def helper_main(argv: list[str]) -> int:
     """The helper process (``argv``: the parent's pid, then ``share`` or a tests' stand-in):
-    compile :data:`HELPER_CALLEES`, wait until the parent has compiled its share and
-    names the variant its run needs (:data:`SHARE_WAIT_S` at most), compile that variant
-    of the integrator into numba's cache; the exit status (0, 1 for the failing stand-in)."""
+    compile :data:`HELPER_CALLEES` into numba's cache; the exit status (0, 1 for the
+    failing stand-in)."""
     if not _end_with_parent(int(argv[0])):
         return 0
     import warnings
@@ -337,11 +305,4 @@ def helper_main(argv: list[str]) -> int:
             _trace("helper-start")
             _compile_callees(HELPER_CALLEES)
             _trace("helper-share-end")
-            variant = _await_release(SHARE_WAIT_S)
-            _trace("helper-released")
-            if variant in ("none", "true"):
-                from .exact_step import integrate_impact
-
-                integrate_impact.compile_variant(True if variant == "true" else None)
-                _trace("helper-variant-end")
     return 0
