@@ -76,13 +76,14 @@ def run(code: pathlib.Path, case: str, helper: bool, cache: str | None = None, t
     return wall, _children_cpu() - cpu, summary.get("peak_force_N", summary.get("peak_force"))
 
 
-def rounds_rows(base: pathlib.Path, rounds: int) -> list[str]:
-    configs = (("base", base, True), ("helper", ROOT, True), ("off", ROOT, False))
+def rounds_rows(base: pathlib.Path, rounds: int, extra=(), cases=CASES) -> list[str]:
+    configs = (("base", base, True), ("helper", ROOT, True), ("off", ROOT, False),
+               *((name, pathlib.Path(path).resolve(), True) for name, path in extra))
     rows = ["| round | case | configuration | wall [s] | CPU [s] | peak force [N] | load |", "|---|---|---|---|---|---|---|"]
     walls: dict = {}
     for number in range(rounds):
-        order = configs[number % 3:] + configs[:number % 3]  # alternate who goes first
-        for case in CASES:
+        order = configs[number % len(configs):] + configs[:number % len(configs)]  # alternate who goes first
+        for case in cases:
             for name, code, helper in order:
                 wall, cpu, peak = run(code, case, helper)
                 walls.setdefault((case, name), []).append((wall, cpu))
@@ -136,16 +137,21 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--base", type=pathlib.Path, required=True, help="the checkout to compare with")
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--extra", nargs="*", default=[], metavar="NAME=PATH",
+                        help="more configurations: the helper of another checkout (e.g. another split)")
+    parser.add_argument("--only-rounds", action="store_true", help="no traced, concurrent and warm runs")
+    parser.add_argument("--hertz-only", action="store_true", help="only steel_plate_hertz.toml in the rounds")
     parser.add_argument("--print-only", action="store_true", help="print, do not append to RESULTS_cold_start.md")
     args = parser.parse_args(argv)
     load = os.getloadavg()
     lines = ["", "## The compile helper: the first integrating command on 2 cores", "",
-             f"`python benchmarks/bench_compile_helper.py --base {args.base} --rounds {args.rounds}`, run "
+             f"`python benchmarks/bench_compile_helper.py {' '.join(sys.argv[1:] if argv is None else argv)}`, run "
              f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average "
              f"{load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} on {os.cpu_count()} cores at the start; "
              "`impactmaps --no-background-warm-up simulate CASE`, each on an empty numba cache.", ""]
-    lines += rounds_rows(args.base.resolve(), args.rounds)
-    for part in (traced_rows, concurrent_rows, warm_rows):
+    extra = [tuple(item.split("=", 1)) for item in args.extra]
+    lines += rounds_rows(args.base.resolve(), args.rounds, extra, CASES[:1] if args.hertz_only else CASES)
+    for part in () if args.only_rounds else (traced_rows, concurrent_rows, warm_rows):
         lines += ["", *part()]
         print(lines[-1], flush=True)
     lines += ["", f"Load average at the end: {os.getloadavg()[0]:.1f}."]
