@@ -54,8 +54,8 @@ WAIT_S = 120.0
 #: The polling interval of the wait [s].
 _POLL_S = 0.02
 
-#: The helper (``python -c _CHILD PARENT_PID VARIANT [VARIANT …]``; VARIANT ``none`` or
-#: ``true``, or ``sleep:S`` / ``fail`` for the tests' stand-ins).
+#: The helper (``python -c _CHILD PARENT_PID share``, or ``sleep:S`` / ``fail`` for the
+#: tests' stand-ins instead of ``share``).
 _CHILD = "import sys; from impactmaps.solvers.compile_helper import helper_main; sys.exit(helper_main(sys.argv[1:]))"
 
 _lock = threading.Lock()
@@ -77,15 +77,24 @@ def enabled() -> bool:
 
 
 def start(variants, arguments: list[str] | None = None) -> bool:
-    """Start the helper if numba's cache lacks one of the integrator ``variants`` the run
-    may need (``exact_phase`` values); True if one was started.
+    """Start the helper if numba's cache lacks one of the integrator variants a run may need.
 
-    The helper compiles :data:`HELPER_CALLEES` (the same in every variant) into numba's
-    cache and ends. Only the first call of a
-    process decides (later calls return False at once). Returns without starting when
-    :func:`enabled` is False or every variant is cached. Never raises: a helper that
-    cannot be started is not (the run compiles itself). ``arguments`` replaces the
-    helper's arguments (tests: a stand-in, ``["sleep:S"]`` or ``["fail"]``).
+    Parameters
+    ----------
+    variants : tuple
+        The ``exact_phase`` values (None, True) the run may call the integrator with.
+    arguments : list of str, optional
+        Replaces the helper's arguments (tests: a stand-in, ``["sleep:S"]`` or ``["fail"]``;
+        then ``variants`` are taken as not cached).
+
+    Returns
+    -------
+    bool
+        True if a helper was started. The helper compiles :data:`HELPER_CALLEES` (the same
+        in every variant) into numba's cache and ends. Only the first call of a process
+        decides (later calls return False at once); none is started when :func:`enabled`
+        is False or every variant is cached. Never raises: a helper that cannot be started
+        is not (the run compiles itself).
     """
     if _state["decided"]:
         return False
