@@ -161,3 +161,24 @@ def test_on_an_empty_cache_the_run_loads_what_the_helper_compiled(tmp_path):
     assert helped["loaded"] == list(compile_helper.HELPER_CALLEES)  # the helper's share, loaded here
     alone = json.loads(_fresh(_COLD_RUN, tmp_path / "alone", helper=False))
     assert helped["peak"] == alone["peak"] and helped["rows"] == alone["rows"]
+
+
+def test_an_interrupted_first_compile_raises_the_interrupt():
+    import numba
+
+    from impactmaps.solvers.lazy_kernel import LazyKernel
+
+    @numba.njit
+    def twice(x):
+        return 2.0 * x
+
+    kernel = LazyKernel(twice, numba.float64(numba.float64))
+
+    def interrupted(_signature):
+        raise KeyboardInterrupt
+
+    kernel.dispatcher.compile = interrupted
+    with pytest.raises(KeyboardInterrupt):  # was an AssertionError from numba's disable_compile
+        kernel(1.0)
+    del kernel.dispatcher.compile
+    assert kernel(1.5) == 3.0

@@ -71,8 +71,10 @@ class LazyKernel:
             self.dispatcher.disable_compile(False)
             try:
                 self.dispatcher.compile(self.signatures[variant])
-            finally:
-                self.dispatcher.disable_compile()
+            finally:  # numba refuses to disable a dispatcher without any signature (an
+                # interrupted first compile: Ctrl-C then raised an AssertionError, not the interrupt)
+                if self.dispatcher.signatures:
+                    self.dispatcher.disable_compile()
             self._compiled.add(variant)
 
     def __call__(self, *args):
