@@ -22,7 +22,8 @@ set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-u
   ``impactmaps warm-up`` to see the error).
 
 A command that needs a kernel the warm-up has not yet put in the cache compiles it
-itself, at its normal priority: it does not wait for the warm-up. Measured and chosen
+itself, at its normal priority (its first integrating run with a helper process on the
+second core, :mod:`impactmaps.solvers.compile_helper`): it does not wait for the warm-up. Measured and chosen
 (``benchmarks/RESULTS_cold_start.md``, ``bench_cold_start.py --background``): a warm-up at
 nice 10 progresses only when the machine has idle time, and every measured wait (capped,
 after the warm-up had run a while) made the first ``simulate`` slower than compiling —
@@ -41,11 +42,14 @@ import os
 import sys
 from pathlib import Path
 
+from . import compile_helper
+
 __all__ = ["DISABLE_ENV", "state_directory", "installation_key", "is_warm", "is_running", "start_background",
            "mark_warm", "hold_lock"]
 
-#: Environment variable that turns the background warm-up off (any value but "" and "0").
-DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
+#: Environment variable that turns the background warm-up off (any value but "" and "0"),
+#: and the compile helper of the first cold run (:mod:`impactmaps.solvers.compile_helper`).
+DISABLE_ENV = compile_helper.DISABLE_ENV
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "contact")
 

@@ -57,6 +57,11 @@ class LazyKernel:
         for variant in variants:
             self.compile_variant(variant)
 
+    def variant_of(self, args):
+        """The variant a call with ``args`` (all but the last argument) needs (``None`` for
+        a kernel without variants)."""
+        return None if self._choose is None else self._choose(args)
+
     def compile_variant(self, variant) -> None:
         """Compile (or load from numba's cache) one variant, named by its last argument
         (``None`` for a kernel without variants); idempotent."""
@@ -66,8 +71,10 @@ class LazyKernel:
             self.dispatcher.disable_compile(False)
             try:
                 self.dispatcher.compile(self.signatures[variant])
-            finally:
-                self.dispatcher.disable_compile()
+            finally:  # numba refuses to disable a dispatcher without any signature (an
+                # interrupted first compile: Ctrl-C then raised an AssertionError, not the interrupt)
+                if self.dispatcher.signatures:
+                    self.dispatcher.disable_compile()
             self._compiled.add(variant)
 
     def __call__(self, *args):

@@ -40,6 +40,7 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
+from . import compile_helper
 from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, prepare_run, run_once
 from .modal_settings import (
     CONTACT_PATCHES,
@@ -51,6 +52,7 @@ from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
     ModalSettings,
+    linear_stiffness,
     settings_dict,
     uses_patch,
     contact_radius_function,
@@ -173,6 +175,7 @@ def simulate(
         if plan.method == METHODS[1]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
     cap = plan.max_frequency if plan is not None and plan.method == METHODS[1] else None
+    compile_helper.start(_possible_variants(law, settings, time_step))  # a cold first run: the 2nd core compiles
     run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
                             radius_of)
     result = run(record, cap)
@@ -183,6 +186,14 @@ def simulate(
                         effective_radius=effective_radius)
         result = _checked(result, fine, settings.tolerance, cap, run)
     return result
+
+
+def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> tuple:
+    """The integrator variants (``exact_phase``) a run may need: with the exact contact
+    phase too for a linear law unless the sampled one is asked for or the step is forced
+    (:func:`~impactmaps.solvers.modal_run.run_once` decides which)."""
+    exact = linear_stiffness(law) > 0.0 and settings.contact_phase != "sampled" and time_step is None
+    return (None, True) if exact else (None,)
 
 
 def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float):

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import require_positive
+from . import compile_helper
 from ..contact.base import ContactLaw, kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
@@ -167,6 +168,7 @@ def _integrate(interruptible: bool, args: KernelInputs):
     does every run in a process that ignores Ctrl-C (a sweep's worker,
     :func:`impactmaps.maps.workers.init_worker`): there no interrupt can arrive to stop it.
     """
+    compile_helper.await_variant(integrate_impact.variant_of(args))  # a helper compiling it (first run only)
     if not interruptible or _interrupts_ignored():
         return integrate_impact(*args)
     import threading

@@ -20,6 +20,8 @@ import time
 
 import numpy as np
 
+from .compile_helper import variant_cached
+
 __all__ = ["warm_up", "cache_directory", "run_background"]
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
@@ -52,20 +54,6 @@ def _tiny_impacts() -> None:
         kernel = contact_law_class(name).kernel
         kernel_pointer(kernel)
         evaluate_kernel(kernel, np.ones((13, 1)), np.zeros(1), np.zeros(1))
-
-
-def _cached(variant) -> bool:
-    """Whether numba's cache holds this variant of the integrator for this machine (False
-    when that cannot be told: then it is compiled)."""
-    from .exact_step import integrate_impact
-
-    dispatcher = integrate_impact.dispatcher
-    try:  # numba's cache index, as Dispatcher.compile consults it
-        cache = dispatcher._cache
-        key = cache._index_key(integrate_impact.signatures[variant], dispatcher.targetctx.codegen())
-        return key in cache._cache_file._load_index()
-    except Exception:  # noqa: BLE001 (an internal of numba changed: compile rather than guess)
-        return False
 
 
 def cache_directory() -> str:
@@ -102,7 +90,7 @@ def warm_up(workers: int = 2) -> dict:
 
     require_in_range("workers", workers, 1, 64)
     start = time.perf_counter()
-    missing = [variant for variant in _VARIANTS if not _cached(variant)]
+    missing = [variant for variant in _VARIANTS if not variant_cached(variant)]
     if workers > 1 and len(missing) > 1:
         context = multiprocessing.get_context("spawn")
         with concurrent.futures.ProcessPoolExecutor(min(int(workers), len(_VARIANTS)), mp_context=context) as pool:
