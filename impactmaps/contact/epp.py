@@ -50,9 +50,8 @@ from .base import ContactLaw, law_option, register_contact_law
 from .first_yield import (
     first_yield_force,
     first_yield_indentation,
-    properties_for_yield_scales,
     reference_impact_number,
-    reference_yield_scales,
+    ReferenceYieldScales,
 )
 
 __all__ = ["COEFFICIENTS", "EppContact"]
@@ -140,7 +139,7 @@ def _epp_kernel(alpha, alpha_max, params):
 
 @register_contact_law
 @dataclass(frozen=True)
-class EppContact(ContactLaw):
+class EppContact(ReferenceYieldScales, ContactLaw):
     """Elastic sphere on an elastic–perfectly plastic flat, fitted to axisymmetric FE.
 
     Parameters
@@ -202,18 +201,6 @@ class EppContact(ContactLaw):
     def yield_force(self):
         """``F_y = (4/3) E* R^{1/2} δ_y^{3/2}`` [N]."""
         return first_yield_force(self.effective_modulus, self.radius, self.yield_indentation)
-
-    @property
-    def yield_scales(self):
-        """``(K_h, α_y)`` [N/m^1.5, m] of the Yigit–Christoforou law with the same E*, R, Y
-        (:func:`~impactmaps.contact.first_yield.reference_yield_scales`)."""
-        return reference_yield_scales(self.effective_modulus, self.radius, self.yield_strength)
-
-    @classmethod
-    def from_yield_scales(cls, hertz_stiffness, yield_indentation):
-        """The law at its default options whose :attr:`yield_scales` are K_h [N/m^1.5] and α_y [m]
-        (R = 1 m: :func:`~impactmaps.contact.first_yield.properties_for_yield_scales`)."""
-        return cls(*properties_for_yield_scales(hertz_stiffness, yield_indentation))
 
     def impact_number(self, impactor_mass, velocity):
         """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11),

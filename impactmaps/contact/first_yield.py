@@ -17,7 +17,7 @@ from .hertz import hertz_stiffness
 from .yigit_christoforou import YigitChristoforouContact, yield_indentation
 
 __all__ = ["first_yield_force", "first_yield_indentation", "reference_impact_number", "reference_yield_scales",
-           "properties_for_yield_scales"]
+           "properties_for_yield_scales", "ReferenceYieldScales"]
 
 
 def first_yield_indentation(effective_modulus, radius, yield_strength, pressure_factor):
@@ -56,3 +56,21 @@ def properties_for_yield_scales(hertz: float, alpha_y: float) -> tuple[float, fl
     modulus = 0.75 * hertz / math.sqrt(radius)
     strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))
     return modulus, radius, strength
+
+
+class ReferenceYieldScales:
+    """What a law set by (E*, R, Y) says of its yield scales: a mixin of the laws whose
+    ``effective_modulus`` [Pa], ``radius`` [m] and ``yield_strength`` [Pa] are their
+    properties (``stronge``, ``epp``)."""
+
+    @property
+    def yield_scales(self):
+        """``(K_h, α_y)`` [N/m^1.5, m] of the Yigit–Christoforou law with the same E*, R, Y
+        (:func:`reference_yield_scales`)."""
+        return reference_yield_scales(self.effective_modulus, self.radius, self.yield_strength)
+
+    @classmethod
+    def from_yield_scales(cls, hertz_stiffness, yield_indentation):
+        """The law at its default options whose :attr:`yield_scales` are K_h [N/m^1.5] and α_y [m]
+        (R = 1 m: :func:`properties_for_yield_scales`)."""
+        return cls(*properties_for_yield_scales(hertz_stiffness, yield_indentation))

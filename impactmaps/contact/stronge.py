@@ -77,9 +77,8 @@ from .base import ContactLaw, law_option, register_contact_law
 from .first_yield import (
     first_yield_force,
     first_yield_indentation,
-    properties_for_yield_scales,
     reference_impact_number,
-    reference_yield_scales,
+    ReferenceYieldScales,
 )
 
 __all__ = ["StrongeContact", "stronge_area_law", "stronge_continuity_coefficient"]
@@ -265,7 +264,7 @@ def _stronge_kernel(alpha, alpha_max, params):
 
 @register_contact_law
 @dataclass(frozen=True)
-class StrongeContact(ContactLaw):
+class StrongeContact(ReferenceYieldScales, ContactLaw):
     """Refined Stronge elastic-plastic sphere–flat contact, energy-consistent (seed 000).
 
     Parameters
@@ -330,18 +329,6 @@ class StrongeContact(ContactLaw):
                    **options)
 
     # -- derived quantities -------------------------------------------------------
-    @property
-    def yield_scales(self):
-        """``(K_h, α_y)`` [N/m^1.5, m] of the Yigit–Christoforou law with the same E*, R, Y
-        (:func:`~impactmaps.contact.first_yield.reference_yield_scales`)."""
-        return reference_yield_scales(self.effective_modulus, self.radius, self.yield_strength)
-
-    @classmethod
-    def from_yield_scales(cls, hertz_stiffness, yield_indentation):
-        """The law at its default options whose :attr:`yield_scales` are K_h [N/m^1.5] and α_y [m]
-        (R = 1 m: :func:`~impactmaps.contact.first_yield.properties_for_yield_scales`)."""
-        return cls(*properties_for_yield_scales(hertz_stiffness, yield_indentation))
-
     def impact_number(self, impactor_mass, velocity):
         """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11).
 
