@@ -133,9 +133,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
     parser.add_argument("--no-background-warm-up", action="store_true",
-                        help="do not compile the solver in other processes when its cache is cold: no warm-up "
-                        "in the background, no compile helper beside a first run (also: "
-                        "IMPACTMAPS_NO_BACKGROUND_WARMUP=1)")
+                        help="do not start compiling the solver in the background after the command when its "
+                        "cache is cold (IMPACTMAPS_NO_BACKGROUND_WARMUP=1 also turns off the compile "
+                        "helper of a cold first run)")
     sub = parser.add_subparsers(dest="command", required=True)
 
     def add(name, help_text, handler):
@@ -336,8 +336,6 @@ def _main(argv) -> int:
             print(dumps({"error": str(error)}))
         print(error, file=sys.stderr)
         return EXIT_BAD_INPUT
-    if args.no_background_warm_up:  # also the compile helper of a cold first run (solvers.compile_helper)
-        os.environ["IMPACTMAPS_NO_BACKGROUND_WARMUP"] = "1"
     status = _run(args)
     if status != EXIT_INTERRUPTED:
         _background_warm_up(args)  # after the command's output: it never competes with the command
