@@ -165,7 +165,9 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
             started = subprocess.run(["/bin/sh", "-c", '"$@" &', "sh", sys.executable, "-c", _CHILD,
                                       str(paths["lock"].parent), *(command or [])],
                                      stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, env=env,
-                                     start_new_session=True, close_fds=True)
+                                     start_new_session=True, close_fds=True,
+                                     cwd=package_parent)  # "-c" puts the cwd first on sys.path: a checkout there
+        # would be imported instead of this package (another installation key, another cache)
         return started.returncode == 0
     except OSError:
         return False

@@ -148,7 +148,7 @@ def _launch(variants: tuple, arguments: list[str]) -> bool:
     env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
     process = subprocess.Popen([sys.executable, "-c", _CHILD, str(os.getpid()), *arguments],
                                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                               env=env, close_fds=True)
+                               env=env, close_fds=True, cwd=package_parent)  # cwd: "-c" puts it first on sys.path
     _state.update(process=process, variants=variants, started=time.monotonic(),
                   share=arguments == ["share"])
     _trace("launched")
