@@ -182,3 +182,31 @@ def test_an_interrupted_first_compile_raises_the_interrupt():
         kernel(1.0)
     del kernel.dispatcher.compile
     assert kernel(1.5) == 3.0
+
+
+def test_cache_saves_of_a_lazy_kernel_wait_for_the_cache_lock(tmp_path):
+    """Two processes saving different specialisations of one kernel must not interleave
+    (numba names a new data file from the index it read): a save waits for the lock beside
+    the index."""
+    import fcntl
+    import threading
+    import types
+
+    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.solvers.lazy_kernel import LazyKernel
+
+    assert integrate_impact.dispatcher._cache.save_overload._impactmaps_locked
+    saved = []
+    index = tmp_path / "kernel.nbi"
+    cache = types.SimpleNamespace(_cache_file=types.SimpleNamespace(_index_path=str(index)),
+                                  save_overload=lambda sig, data: saved.append((sig, data)))
+    fake = types.SimpleNamespace(_cache=cache, py_func=lambda: None)
+    LazyKernel(fake, "sig")
+    with open(str(index) + ".lock", "a") as held:
+        fcntl.flock(held, fcntl.LOCK_EX)  # another process's save in progress
+        saver = threading.Thread(target=cache.save_overload, args=("sig", "data"))
+        saver.start()
+        saver.join(0.3)
+        assert saver.is_alive() and not saved
+    saver.join(5)
+    assert saved == [("sig", "data")]

@@ -13,7 +13,45 @@ it from the other arguments, and only the variants that calls need are compiled.
 
 from __future__ import annotations
 
+import contextlib
+
 __all__ = ["LazyKernel"]
+
+
+def _locked_cache_saves(dispatcher) -> None:
+    """Serialise the on-disk cache saves of ``dispatcher`` across processes (a POSIX file lock).
+
+    numba's ``IndexDataCacheFile.save`` names a new entry's data file from the index it has
+    just read: two processes saving *different* specialisations of one function at once (the
+    integrator's variants, compiled by ``impactmaps warm-up``'s two processes or by a sweep's
+    workers on an empty cache) could both pick one name, leaving the index naming one
+    specialisation and the file holding the other (a later load then registers the wrong
+    signature). Holding a lock beside the index for the whole save lets the second process read
+    the first one's index. Nothing changes where the cache, ``fcntl`` or numba's internals are
+    not as expected (then saves are as numba does them).
+    """
+    try:
+        import fcntl
+
+        cache = dispatcher._cache
+        lock_path = cache._cache_file._index_path + ".lock"
+        save = cache.save_overload
+    except (ImportError, AttributeError):  # no cache (cache=False), Windows, or numba changed
+        return
+    if getattr(save, "_impactmaps_locked", False):
+        return
+
+    def locked_save(sig, data):
+        with contextlib.ExitStack() as stack:
+            try:
+                handle = stack.enter_context(open(lock_path, "a"))
+                fcntl.flock(handle, fcntl.LOCK_EX)
+            except OSError:  # a read-only cache directory: numba's own save fails quietly too
+                pass
+            save(sig, data)
+
+    locked_save._impactmaps_locked = True
+    cache.save_overload = locked_save
 
 
 class LazyKernel:
@@ -46,6 +84,7 @@ class LazyKernel:
         # the variants compiled: asking the dispatcher for its signatures on every call
         # hashed their types, ~25 µs a call (a tenth of a cheap map point's run)
         self._compiled = set()
+        _locked_cache_saves(dispatcher)
 
     def compile(self, *args) -> None:
         """Compile (or load from numba's cache) the variant ``args`` need, every variant
