@@ -65,7 +65,7 @@ except ImportError:  # pragma: no cover (Windows)
 
 def disabled() -> bool:
     """Whether the background warm-up is off (:data:`DISABLE_ENV`, or no ``fcntl``)."""
-    return fcntl is None or os.environ.get(DISABLE_ENV, "") not in ("", "0")
+    return fcntl is None or compile_helper.switched_off()
 
 
 def state_directory() -> Path:
@@ -157,17 +157,13 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
         handle.close()
         import subprocess  # here: a command on a warm cache does not need it
 
-        package_parent = str(Path(__file__).resolve().parents[2])
-        env = dict(os.environ, **{DISABLE_ENV: "1"})  # the warm-up's processes start no other
-        env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
+        env, cwd = compile_helper.child_environment()  # the warm-up's processes start no other
         with open(paths["log"], "ab") as log:  # through sh, which starts it and ends at once: reaped here,
             # the warm-up is nobody's child to wait for (no zombie, no "still running" warning)
             started = subprocess.run(["/bin/sh", "-c", '"$@" &', "sh", sys.executable, "-c", _CHILD,
                                       str(paths["lock"].parent), *(command or [])],
                                      stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT, env=env,
-                                     start_new_session=True, close_fds=True,
-                                     cwd=package_parent)  # "-c" puts the cwd first on sys.path: a checkout there
-        # would be imported instead of this package (another installation key, another cache)
+                                     start_new_session=True, close_fds=True, cwd=cwd)
         return started.returncode == 0
     except OSError:
         return False

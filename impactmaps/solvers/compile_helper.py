@@ -44,7 +44,8 @@ import threading
 import time
 from pathlib import Path
 
-__all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "variant_cached", "callee_signatures"]
+__all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "switched_off", "child_environment",
+           "variant_cached", "callee_signatures"]
 
 #: Environment variable that turns the helper off (any value but "" and "0"), and the
 #: background warm-up (:data:`impactmaps.solvers.background_warm_up.DISABLE_ENV`, the same).
@@ -62,14 +63,27 @@ _lock = threading.Lock()
 _state = {"decided": False, "process": None, "variants": (), "started": 0.0, "share": False}
 
 
-def _switched_on() -> bool:
-    return os.environ.get(DISABLE_ENV, "") in ("", "0")
+def switched_off() -> bool:
+    """Whether :data:`DISABLE_ENV` turns off the compiling in other processes (the helper
+    and the background warm-up): set to anything but "" and "0"."""
+    return os.environ.get(DISABLE_ENV, "") not in ("", "0")
+
+
+def child_environment() -> tuple[dict, str]:
+    """``(env, cwd)`` of a ``python -c`` child that must import this very package and start
+    no compiling process of its own: :data:`DISABLE_ENV` set, the package's parent directory
+    first on ``PYTHONPATH`` and as the working directory (``-c`` puts the working directory
+    first on ``sys.path``: a checkout there would be imported instead, with another cache)."""
+    package_parent = str(Path(__file__).resolve().parents[2])
+    env = dict(os.environ, **{DISABLE_ENV: "1"})
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
+    return env, package_parent
 
 
 def enabled() -> bool:
     """Whether this process may start a helper: not turned off (the background warm-up's
     switch), and not a ``multiprocessing`` worker."""
-    if not _switched_on():
+    if switched_off():
         return False
     import multiprocessing
 
@@ -103,7 +117,7 @@ def start(variants, arguments: list[str] | None = None) -> bool:
             return False
         _state["decided"] = True
         try:
-            if not _switched_on():
+            if switched_off():
                 return False
             if arguments is None:  # the cache first: on a warm one, nothing more is imported
                 variants = tuple(variant for variant in variants if not variant_cached(variant))
@@ -143,12 +157,10 @@ def variant_cached(variant) -> bool:
 def _launch(variants: tuple, arguments: list[str]) -> bool:
     import subprocess
 
-    package_parent = str(Path(__file__).resolve().parents[2])
-    env = dict(os.environ, **{DISABLE_ENV: "1"})  # the helper starts no helper nor warm-up
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
+    env, cwd = child_environment()
     process = subprocess.Popen([sys.executable, "-c", _CHILD, str(os.getpid()), *arguments],
                                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                               env=env, close_fds=True, cwd=package_parent)  # cwd: "-c" puts it first on sys.path
+                               env=env, close_fds=True, cwd=cwd)
     _state.update(process=process, variants=variants, started=time.monotonic(),
                   share=arguments == ["share"])
     _trace("launched")
