@@ -48,7 +48,7 @@ import numpy as np
 from .._checks import require_positive
 from ..contact.base import KERNEL_TYPE, ContactLaw, kernel_pointer
 from ..solvers.halfspace import single_law_parameters
-from ..solvers.infinite_beam_cq import bdf2_weights, blocked_march, causal_convolution
+from ..solvers.infinite_beam_cq import bdf2_weights, blocked_march, causal_convolution, weights_size
 from ..solvers.lazy_kernel import LazyKernel
 from .result import (
     AsymptoteResult,
@@ -116,7 +116,7 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     step = float(time_step) / omega
     count = max(math.ceil(float(duration) / float(time_step)), 2)
     mobility = beam_mobility_constant(beam.mass_per_length, beam.bending_stiffness)
-    size = 1 << count.bit_length()  # a power of two > count: the FFT blocks' weight prefixes
+    size = weights_size(count)
     beam_weights = mobility * bdf2_weights(1.5, step, size)
     weights = bdf2_weights(2.0, step, size) / mass + beam_weights
     force, alpha, last = _march(law.kernel, params, weights, step, speed, mass, count)

@@ -34,7 +34,7 @@ import numpy as np
 from .._checks import require_positive
 
 __all__ = ["DEFAULT_TIME_STEP", "LEAF_STEPS", "MAX_CQ_STEPS", "InfiniteBeamImpact", "bdf2_weights",
-           "blocked_march", "causal_convolution", "cq_grid", "cq_march", "infinite_beam_impact"]
+           "blocked_march", "causal_convolution", "cq_grid", "cq_march", "infinite_beam_impact", "weights_size"]
 
 DEFAULT_TIME_STEP = 0.01  # normalised CQ step; max error ≈ 1.3e-4 on τ ≤ 10 (tests)
 MAX_CQ_STEPS = 100_000  # beyond this the step is coarsened (warning)
@@ -90,6 +90,12 @@ def _linear_block(weights, tau, prescribed, unilateral, history, force, indentat
 
 def _power_of_two(count: int) -> int:
     return 1 << max(int(count) - 1, 1).bit_length()
+
+
+def weights_size(steps: int) -> int:
+    """How many CQ weights :func:`blocked_march` reads for a march of ``steps`` steps (forces
+    ``F_0 … F_steps``): a power of two ≥ ``steps + 1``, the FFT blocks' weight prefixes."""
+    return _power_of_two(steps + 1)
 
 
 def blocked_march(weights, force, solve_block, leaf=None) -> int:
@@ -180,7 +186,7 @@ def cq_march(loss_factor: float, step: float, count: int, unilateral: bool, pres
     replaces the solve there.
     """
     c = math.sqrt(math.pi) * loss_factor
-    size = _power_of_two(count + 1)
+    size = weights_size(count)
     weights = bdf2_weights(2.0, step, size) + 2.0 * c * bdf2_weights(1.5, step, size)
     tau = step * np.arange(count + 1)
     given = np.zeros(0) if prescribed is None else np.asarray(prescribed, dtype=float)
