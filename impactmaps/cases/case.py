@@ -291,11 +291,11 @@ def _solver_kind(data, override):
     return string(entries, "kind", "solver", choices=SOLVER_KINDS, default="modal")
 
 
-def _parse_toml(text: str, label: str) -> dict:
+def _parse_toml(text: str) -> dict:
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{label}: not valid TOML: {error}") from None
+    except tomllib.TOMLDecodeError as error:  # load_case names the file, as for every other error
+        raise ValueError(f"not valid TOML: {error}") from None
     check_keys(data, "", _TOP_KEYS)
     for key in ("name", "description"):
         string(data, key, "")
@@ -329,7 +329,7 @@ def parse_case(text: str, *, name: str = "case", source: Path | None = None,
     """
     from ._fd import check_fd_target, fd_settings
 
-    data = _parse_toml(text, str(source) if source else name)
+    data = _parse_toml(text)
     kind = _solver_kind(data, solver)
     sphere, velocity = _impactor(data)
     if kind == "fd":
