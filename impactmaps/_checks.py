@@ -113,8 +113,15 @@ def require_in_range(
         right = "]" if high_inclusive and math.isfinite(high) else ")"
         raise ValueError(
             f"{name} = {_describe(value)} is invalid: valid range is "
-            f"{left}{low:g}, {high:g}{right}{_unit(unit)}"
+            f"{left}{_bound(low)}, {_bound(high)}{right}{_unit(unit)}"
         )
+
+
+def _bound(value: float) -> str:
+    """A range end as text: ``%g`` when that is the number, else ten digits (``%g`` would print
+    0.4999995 as 0.5, an end the range excludes)."""
+    short = f"{value:g}"
+    return short if float(short) == value else f"{value:.10g}"
 
 
 def require_instance(name: str, value, kinds, hint: str = "") -> None:

@@ -38,6 +38,12 @@ Checks (each sentence starts with its tag):
     (0.1–1 %) and has no converged value — the number depends on the cut-off. A contact
     law with a geometry (a sphere's Hertz or plastic law) is spread over the contact patch
     and converges (``docs/contact_patch.rst``).
+``support``
+    The impact point closer to a clamped or simply supported end or edge than the
+    structure's depth (a beam's height, a plate's thickness; skipped when not known):
+    beam and plate theories put the point load and the support reaction on one line
+    there, while the real section carries them by local shear and bearing stresses
+    (Saint-Venant: the theories hold a few depths away from such concentrations).
 ``reflections``
     An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
     is exact only until flexural waves reflected from the nearest edge return. Their
@@ -120,7 +126,8 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
     """
     checks = (_pressure(sphere, target_material, law, result), _indentation(sphere, result),
               _speed(target_material, result), _deflection(target, result),
-              _structural_theory(target, result), _point_load(target, result), _reflections(target, result))
+              _structural_theory(target, result), _point_load(target, result), _support_distance(target),
+              _reflections(target, result))
     return [message for message in checks if message]
 
 
@@ -254,6 +261,19 @@ def _point_load(target, result):
             "deflection, so this peak force falls with every doubling of the mode cut-off (0.1-1 %) and has "
             "no converged value; a contact law with a geometry (the sphere's Hertz law) spreads the force over "
             "the contact patch and converges")
+
+
+def _support_distance(target):
+    depth = getattr(target, "section_depth", None)
+    if target is None or depth is None:
+        return None
+    distance = target.distance_to_nearest_support()
+    if distance >= depth:
+        return None
+    return (f"support: the impact point is {distance:.4g} m from a supported {target.structure} boundary, "
+            f"closer than the {target.structure}'s depth {depth:.4g} m: the {target.theory} theory's point "
+            "load and support reaction overlap there (local shear and bearing stresses, not described); "
+            "strike at least one depth away from supports")
 
 
 def _reflections(target, result):

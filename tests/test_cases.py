@@ -327,7 +327,7 @@ def test_the_reference_text_is_valid():
          "material = { youngs_modulus = 2e11, poisson_ratio = 0.3, densty = 7800.0 }",
          ["impactor.material.densty", "density"]),
         ("impact_point = [0.15, 0.1]", "impact_point = [0.15, 0.25]",
-         ["target.impact_point[1]", "0.25", "(0, 0.2)"]),
+         ["target.impact_point[1]", "0.25", "[2e-07, 0.1999998]"]),
         ("impact_point = [0.15, 0.1]", "impact_point = [0.15]", ["target.impact_point", "2 entries"]),
         ("velocity = 1.0", "velocity = 1.0\nmass = 0.01\ndensity = 7000.0",
          ["impactor.mass", "impactor.density"]),

@@ -118,3 +118,35 @@ def test_point_load_on_a_mindlin_plate_is_said():
     assert point_load_messages(mindlin, hertz, replace(ModalSettings(), contact_patch="point"))
     assert not point_load_messages(mindlin, hertz)
     assert not point_load_messages(PLATE, LinearContact(3e7))
+
+
+# -- the impact point and the supports ------------------------------------------------------
+def test_an_impact_within_a_depth_of_a_support_warns_and_one_at_mid_span_does_not():
+    """Beam and plate theories put the point load and the support reaction on one line; a
+    real section carries them by local stresses over about its depth."""
+    from types import SimpleNamespace
+
+    result = SimpleNamespace(peak_force=10.0, max_indentation=1e-6, velocity=1.0, method="modal",
+                             history=None, contact_intervals=[[0.0, 1e-4]], details=None,
+                             max_target_displacement=1e-6)
+    law = law_for_sphere("hertz", SPHERE, STEEL)
+    near = im.Beam.rectangular(0.5, 0.02, 0.02, STEEL, supports="cf", impact_position=0.015)
+    mid = im.Beam.rectangular(0.5, 0.02, 0.02, STEEL, supports="cf", impact_position=0.25)
+    free_end = im.Beam.rectangular(0.5, 0.02, 0.02, STEEL, supports="cf", impact_position=0.5)
+    plate_near = im.Plate.isotropic(0.3, 0.3, 0.004, STEEL, impact_point=(0.15, 0.002))
+    plate_free = im.Plate.isotropic(0.3, 0.3, 0.004, STEEL, edges="CFFF", impact_point=(0.29, 0.001))
+    tags = {name: _tags(validity_warnings(SPHERE, STEEL, law, target, result))
+            for name, target in (("near", near), ("mid", mid), ("free end", free_end),
+                                 ("plate near", plate_near), ("plate free", plate_free))}
+    assert "support" in tags["near"] and "support" in tags["plate near"]
+    assert "support" not in tags["mid"] | tags["free end"] | tags["plate free"]
+
+
+@pytest.mark.parametrize("position", [1e-300, 1e-9, 0.5 - 1e-12])
+def test_an_impact_on_a_support_is_refused_naming_the_range(position):
+    """At 1e-300 m from a support the static compliance underflowed to zero and `check` died of
+    a ZeroDivisionError; within 1e-6 of the span the point is refused with its range."""
+    with pytest.raises(ValueError, match=r"impact_position = .* valid range is \[5e-07, 0\.4999995\]"):
+        im.Beam.rectangular(0.5, 0.02, 0.02, STEEL, supports="ss", impact_position=position)
+    with pytest.raises(ValueError, match=r"impact_point\[1\] \(y0\) = .* valid range is \[3e-07, 0\.2999997\]"):
+        im.Plate.isotropic(0.3, 0.3, 0.004, STEEL, impact_point=(0.15, min(position, 0.3 - 1e-12)))

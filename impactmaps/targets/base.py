@@ -405,6 +405,17 @@ class Target(ABC):
         hold for the target's theory (:data:`~impactmaps.targets.options.CLASSICAL_THEORIES`)."""
         return getattr(self, "theory", None) in CLASSICAL_THEORIES
 
+    @property
+    def section_depth(self) -> float | None:
+        """Depth [m] of the structure in the impact direction (a beam's height, a plate's
+        thickness); None (the default) when not known."""
+        return None
+
+    def distance_to_nearest_support(self) -> float:
+        """Distance [m] from the impact point to the nearest clamped or simply supported
+        boundary (∞, the default, without one). Finite structures override it."""
+        return math.inf
+
     def thickness_shear_frequency(self) -> float | None:
         """The thickness-shear cut-off ω_s [rad/s] of a shear-deformable theory, above a
         fraction of which it stops holding (:mod:`impactmaps.solvers.shear_range`); None

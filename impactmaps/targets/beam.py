@@ -49,6 +49,7 @@ from .base import InfiniteImpact, ModalBasis, Target
 from .beam_modes import BeamSection
 from .options import BEAM_SUPPORTS as SUPPORTS
 from .options import BEAM_THEORIES as THEORIES
+from .options import impact_coordinate_range
 
 __all__ = ["Beam", "SUPPORTS", "THEORIES", "MIN_SLENDERNESS"]
 
@@ -92,9 +93,10 @@ class Beam(Target):
         clamped–simply supported, cantilever (clamped at x = 0, free at x = L),
         free–free.
     impact_position : float, optional
-        x0 [m]; default mid-span. Must be strictly inside the span at a supported end
-        (a force on a support does no work: no impact) and may lie on a free end:
-        ``0 < x0 < L`` for ss/cc/cs, ``0 < x0 ≤ L`` for cf, ``0 ≤ x0 ≤ L`` for ff.
+        x0 [m]; default mid-span. Must keep 1e-6 L from a supported end
+        (:data:`~impactmaps.targets.options.MIN_SUPPORT_DISTANCE`: a force on a support does
+        no work) and may lie on a free end: ``1e-6 L ≤ x0 ≤ L − 1e-6 L`` for ss/cc/cs,
+        ``1e-6 L ≤ x0 ≤ L`` for cf, ``0 ≤ x0 ≤ L`` for ff.
     damping_ratio : float, optional
         Modal viscous damping ratio [-] of every elastic mode, in [0, 1); default 0.
     width, height : float, optional
@@ -155,9 +157,8 @@ class Beam(Target):
                              MIN_SLENDERNESS, math.inf)
         position = 0.5 * length if self.impact_position is None else _scalar(
             "impact_position", self.impact_position, "m")
-        left_free, right_free = self.supports[0] == "f", self.supports[1] == "f"
-        require_in_range("impact_position", position, 0.0, length,
-                         low_inclusive=left_free, high_inclusive=right_free, unit="m")
+        low, high = impact_coordinate_range(length, self.supports[0] != "f", self.supports[1] != "f")
+        require_in_range("impact_position", position, low, high, unit="m")
         for name, value in (("length", length), ("bending_stiffness", bending),
                             ("shear_stiffness", shear), ("mass_per_length", mass),
                             ("rotary_inertia", rotary), ("damping_ratio", damping),
@@ -278,6 +279,11 @@ class Beam(Target):
                                                          self.length - self.impact_position))
                      if end != "f"]
         return min(distances) if distances else math.inf
+
+    @property
+    def section_depth(self) -> float | None:
+        """The section height h [m] in the impact direction, None when not known."""
+        return self.height
 
     def distance_to_nearest_end(self) -> float:
         """Distance [m] from x0 to the nearest end, whatever its support.

@@ -6,7 +6,7 @@ command line) imports them from here.
 
 from __future__ import annotations
 
-__all__ = ["STRUCTURE_KINDS", "BEAM_THEORIES", "BEAM_SUPPORTS", "PLATE_THEORIES", "CLASSICAL_THEORIES",
+__all__ = ["MIN_SUPPORT_DISTANCE", "STRUCTURE_KINDS", "BEAM_THEORIES", "BEAM_SUPPORTS", "PLATE_THEORIES", "CLASSICAL_THEORIES",
            "DIVERGENT_POINT_LOAD_THEORIES", "SLENDERNESS_THEORIES", "SHEAR_THEORIES", "FD_BEAM_THEORY",
            "theories", "default_theory", "classical_theory", "depends_on_slenderness", "is_shear_deformable",
            "point_load_diverges"]
@@ -66,3 +66,18 @@ def point_load_diverges(theory: str) -> bool:
     """Whether the deflection under a point load is unbounded under ``theory``
     (:data:`DIVERGENT_POINT_LOAD_THEORIES`)."""
     return theory in DIVERGENT_POINT_LOAD_THEORIES
+
+
+#: Closest an impact point may lie to a supported (clamped or simply supported) end or edge,
+#: as a fraction of that span [-]. Closer, the point load and the support coincide for the
+#: model (the static compliance underflows to zero at 1e-300 m); the model stops describing
+#: the impact well before, within a section depth (:func:`impactmaps.validity.validity_warnings`).
+MIN_SUPPORT_DISTANCE = 1e-6
+
+
+def impact_coordinate_range(span: float, low_supported: bool, high_supported: bool) -> tuple:
+    """The closed range ``(low, high)`` [m] of an impact coordinate on a span [m] whose two
+    ends are supported or free: a supported end keeps the point :data:`MIN_SUPPORT_DISTANCE`
+    × span away; a free end admits the end itself."""
+    margin = MIN_SUPPORT_DISTANCE * span
+    return (margin if low_supported else 0.0, span - margin if high_supported else span)

@@ -43,7 +43,7 @@ from ..dimensionless import (
 from ..solvers import asymptotes
 from . import plate_navier, ritz
 from .base import InfiniteImpact, ModalBasis, Target
-from .options import PLATE_THEORIES
+from .options import PLATE_THEORIES, impact_coordinate_range
 from .plate_ritz import STATIC_RITZ_FUNCTIONS, classical_static_compliance, ritz_plate_modes
 from .plate_static import navier_static_compliance
 
@@ -82,7 +82,9 @@ class Plate(Target):
         (simply supported, clamped, free), e.g. "SSSS", "CCCC", "CSCS", "CFFF".
         Edge codes that leave rigid-body freedom (no "C" and at most one "S") are rejected.
     impact_point : tuple of float, optional
-        Impact point (x0, y0) [m], strictly inside the plate; default the centre.
+        Impact point (x0, y0) [m], strictly inside the plate and at least 1e-6 of the side
+        from a supported (S or C) edge
+        (:data:`~impactmaps.targets.options.MIN_SUPPORT_DISTANCE`); default the centre.
     shear_correction : float, optional
         Mindlin shear correction factor k [-] (default 5/6).
     damping_ratio : float, optional
@@ -134,25 +136,7 @@ class Plate(Target):
             require_positive("rotary_inertia_per_area", self.rotary_inertia_per_area, "kg")
         else:
             require_nonnegative("rotary_inertia_per_area", self.rotary_inertia_per_area, "kg")
-        if not (isinstance(self.edges, str) and len(self.edges) == 4
-                and all(c in ritz.EDGE_CODES for c in self.edges)):
-            raise ValueError(
-                f"edges = {self.edges!r} is not known: valid values are 4-character codes of "
-                "'S' (simply supported), 'C' (clamped), 'F' (free) for the edges "
-                "(x=0, y=0, x=a, y=b), e.g. 'SSSS', 'CCCC', 'CSCS'"
-            )
-        if ritz.has_rigid_body_freedom(self.edges):
-            raise ValueError(
-                f"edges = {self.edges!r} is not supported: the plate can move as a rigid body "
-                "(no clamped edge and at most one simply supported edge); its static point "
-                "stiffness is zero"
-            )
-        if self.theory == "mindlin" and self.edges != "SSSS":
-            raise ValueError(
-                f"theory = 'mindlin' is not supported with edges = {self.edges!r}: a Mindlin plate "
-                "has edges = 'SSSS' only (Navier modes); valid: theory = 'kirchhoff' with any edges, "
-                "or theory = 'mindlin' with edges = 'SSSS'"
-            )
+        ritz.require_edges(self.edges, self.theory)
         require_in_range("shear_correction", self.shear_correction, 0.0, math.inf,
                          low_inclusive=False)
         require_in_range("damping_ratio", self.damping_ratio, 0.0, 1.0, high_inclusive=False)
@@ -161,10 +145,12 @@ class Plate(Target):
             x0, y0 = (float(v) for v in point)
         except (TypeError, ValueError):
             raise ValueError(f"impact_point = {self.impact_point!r} is invalid: must have 2 entries (x0, y0) [m]") from None
-        require_in_range("impact_point[0] (x0)", x0, 0.0, self.length_x,
-                         low_inclusive=False, high_inclusive=False, unit="m")
-        require_in_range("impact_point[1] (y0)", y0, 0.0, self.length_y,
-                         low_inclusive=False, high_inclusive=False, unit="m")
+        # every edge keeps the point inside, a supported one 1e-6 of the span away
+        for label, value, span, low_edge, high_edge in (("impact_point[0] (x0)", x0, self.length_x, 0, 2),
+                                                         ("impact_point[1] (y0)", y0, self.length_y, 1, 3)):
+            low, high = impact_coordinate_range(span, self.edges[low_edge] != "F", self.edges[high_edge] != "F")
+            require_in_range(label, value, low, high, low_inclusive=low > 0.0,
+                             high_inclusive=high < span, unit="m")
         object.__setattr__(self, "impact_point", (x0, y0))
         for name in ("length_x", "length_y", "thickness", "D11", "D22", "D12", "D66", "A44", "A55",
                      "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio"):
@@ -224,6 +210,17 @@ class Plate(Target):
     def mass(self) -> float:
         """Total plate mass ρh a b [kg]."""
         return self.mass_per_area * self.length_x * self.length_y
+
+    def distance_to_nearest_support(self) -> float:
+        """Shortest distance [m] from the impact point to a clamped or simply supported edge."""
+        x0, y0 = self.impact_point
+        distances = (x0, y0, self.length_x - x0, self.length_y - y0)
+        return min((d for edge, d in zip(self.edges, distances) if edge != "F"), default=math.inf)
+
+    @property
+    def section_depth(self) -> float:
+        """The plate's thickness h [m]."""
+        return self.thickness
 
     def distance_to_nearest_edge(self) -> float:
         """Shortest distance [m] from the impact point to an edge (first wave return)."""

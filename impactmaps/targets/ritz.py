@@ -153,6 +153,30 @@ def has_rigid_body_freedom(edges: str) -> bool:
     return "C" not in edges and edges.count("S") <= 1
 
 
+def require_edges(edges, theory: str) -> None:
+    """Raise ``ValueError`` unless ``edges`` is a known 4-character edge code that holds the
+    plate against rigid motion (:func:`has_rigid_body_freedom`) and suits ``theory`` (a
+    Mindlin plate has Navier modes: ``"SSSS"`` only)."""
+    if not (isinstance(edges, str) and len(edges) == 4 and all(c in EDGE_CODES for c in edges)):
+        raise ValueError(
+            f"edges = {edges!r} is not known: valid values are 4-character codes of "
+            "'S' (simply supported), 'C' (clamped), 'F' (free) for the edges "
+            "(x=0, y=0, x=a, y=b), e.g. 'SSSS', 'CCCC', 'CSCS'"
+        )
+    if has_rigid_body_freedom(edges):
+        raise ValueError(
+            f"edges = {edges!r} is not supported: the plate can move as a rigid body "
+            "(no clamped edge and at most one simply supported edge); its static point "
+            "stiffness is zero"
+        )
+    if theory == "mindlin" and edges != "SSSS":
+        raise ValueError(
+            f"theory = 'mindlin' is not supported with edges = {edges!r}: a Mindlin plate "
+            "has edges = 'SSSS' only (Navier modes); valid: theory = 'kirchhoff' with any edges, "
+            "or theory = 'mindlin' with edges = 'SSSS'"
+        )
+
+
 def _stiffness_matrix(length_x, length_y, D11, D22, D12, D66, edges, n_x, n_y):
     """Kirchhoff bending stiffness matrix [N/m] in the orthonormal product basis."""
     a, b = length_x, length_y
