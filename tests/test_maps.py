@@ -421,3 +421,30 @@ def test_a_point_does_not_repeat_a_run_equal_to_an_earlier_one(monkeypatch):
     plain = controlled_point(every_run, ModalSettings(), AccuracyControl())
     for name in ("fmax_normalised", "fmax_error", "fmax_low", "fmax_high", "status", "impacts"):
         assert row[name] == plain[name], name
+
+
+def test_an_executor_holds_a_bounded_window_of_chunks():
+    """The sweep keeps four chunks per worker slot submitted, not the whole grid: a Dask client
+    that held every chunk of a 10⁶-point sweep took 1.3 GB. Same numbers as the inline run."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from impactmaps.maps.sweep import IN_FLIGHT_PER_SLOT
+
+    class Counting(ThreadPoolExecutor):
+        def __init__(self):
+            super().__init__(max_workers=1)
+            self.outstanding = self.most = 0
+
+        def submit(self, fn, *args):
+            self.outstanding += 1
+            self.most = max(self.most, self.outstanding)
+            future = super().submit(fn, *args)
+            future.add_done_callback(lambda _: setattr(self, "outstanding", self.outstanding - 1))
+            return future
+
+    local = sweep([PLATE], ZETAS, LAMBDAS[:2], max_workers=1, progress=False)
+    with Counting() as executor:
+        windowed = sweep([PLATE], ZETAS, LAMBDAS[:2], executor=executor, progress=False, pacing=Pacing(1))
+    chunks = ZETAS.size * 2
+    assert chunks > IN_FLIGHT_PER_SLOT and executor.most == IN_FLIGHT_PER_SLOT
+    np.testing.assert_array_equal(windowed["fmax_normalised"].values, local["fmax_normalised"].values)

@@ -87,6 +87,12 @@ def dask_executor(client_or_executor):
     return client_or_executor if client_or_executor is not client else client.get_executor()
 
 
+def worker_slots(executor) -> int:
+    """The threads of a Dask client's workers (at least 1): how many chunks run at once."""
+    client = getattr(executor, "_client", executor)
+    return max(1, sum(client.nthreads().values()))
+
+
 def worker_blas_threads() -> int:
     """The BLAS threads of this process (the largest over the BLAS libraries loaded; 0 if none)."""
     from threadpoolctl import threadpool_info
