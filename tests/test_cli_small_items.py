@@ -221,6 +221,30 @@ def test_fd_run_ending_in_contact_explains_its_null_restitution(tmp_path):
     assert not any(isinstance(v, float) and not math.isfinite(v) for v in summary.values())
 
 
+def test_a_long_run_is_announced_before_it_runs(tmp_path, capsys, monkeypatch):
+    """The command line printed every warning after the command's output, the long-run
+    announcement too: a 20-minute fd run said so only at its end (or never, when stopped).
+    The announcement now reaches stderr before the run starts; other warnings follow the output."""
+    import impactmaps.fd.impact as impact
+
+    text = (EXAMPLES / "steel_beam_fd_stronge.toml").read_text()
+    text = text.replace("duration = 0.03 ", "duration = 0.0003").replace("n_elements = 200", "n_elements = 20")
+    path = tmp_path / "fd.toml"
+    path.write_text(text)
+    monkeypatch.setattr(impact, "NODE_LAYER_STEPS_PER_SECOND", 1.0)  # pretend the machine is slow
+    seen_before_the_run = []
+    loop = impact.run_loop
+
+    def spy(*args, **kwargs):
+        seen_before_the_run.append(capsys.readouterr().err)
+        return loop(*args, **kwargs)
+
+    monkeypatch.setattr(impact, "run_loop", spy)
+    assert main(["fd", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert seen_before_the_run and "on a 2-core machine" in seen_before_the_run[0]
+    assert "on a 2-core machine" not in capsys.readouterr().err  # shown once
+
+
 # -- Python API type errors ------------------------------------------------------------------------
 def test_velocity_given_as_a_string_names_the_parameter():
     """simulate(..., velocity="3") failed deep inside with "unsupported operand type(s) for

@@ -286,6 +286,22 @@ def test_memory_is_bounded_and_long_runs_are_announced(monkeypatch):
         simulate_fd(beam, HERTZ, 1.0, 2.0, duration=1e-4)
 
 
+
+@pytest.mark.parametrize("options, message", [
+    (dict(duration=1e300), r"duration = 1e\+300 s is \d\.\d+e\+30\d steps .* use a shorter duration"),
+    (dict(n_elements=10**9), r"n_elements = 1000000000 with n_half_layers = 10: .* GiB"),
+    (dict(n_half_layers=10**9), r"n_elements = 100 with n_half_layers = 1000000000: .* GiB"),
+])
+def test_an_astronomical_run_or_grid_is_refused_before_anything_is_allocated(options, message):
+    """Found by fuzzing the fd command: duration = 1e300 ended in an OverflowError (the step
+    count as an integer turned into a float), n_elements = 1e9 and n_half_layers = 1e9 were
+    killed for memory while the grid was built, before the budget was asked."""
+    duration = options.pop("duration", 1e-3)
+    beam = _beam(plastic=True, **options)
+    with pytest.raises(ValueError, match=message):
+        simulate_fd(beam, HERTZ, 1.0, 2.0, duration=duration)
+
+
 # =====================================================================================
 # energy ledger
 # =====================================================================================

@@ -342,13 +342,26 @@ def _main(argv) -> int:
     return status
 
 
+def _show_warning(message, shown: set) -> None:
+    """Print a warning on stderr as one line, once per text."""
+    text = str(message)
+    if text not in shown:
+        shown.add(text)
+        print(f"warning: {plain_text(text)}", file=sys.stderr, flush=True)
+
+
 def _run(args) -> int:
     """Run the parsed command: print its output, or one line for an error; its exit status."""
-    caught = []
+    caught, shown = [], set()
+
+    def collect(message, category, *_location, **_kw):  # an announcement (a long run) is shown before the run
+        (_show_warning(message, shown) if getattr(category, "announce_at_once", False) else caught.append(message))
+
     status = None
     try:
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings():
             warnings.simplefilter("always")
+            warnings.showwarning = collect
             values = args.handler(args)
     except _sweep_interrupted() as stop:
         print(f"impactmaps {args.command}: interrupted: {stop.saved} of {stop.total} points saved; "
@@ -372,12 +385,8 @@ def _run(args) -> int:
         message, status = (f"the computation failed ({type(error).__name__}: {error_text(error)}); the input "
                            "passed the range checks, so one is missing: please report it"), EXIT_FAILED
     finally:
-        seen = set()
-        for warning in caught:
-            text = str(warning.message)
-            if text not in seen:
-                seen.add(text)
-                print(f"warning: {plain_text(text)}", file=sys.stderr)
+        for message in caught:
+            _show_warning(message, shown)
     if status is not None:
         message = plain_text(message)
         if args.json:

@@ -121,9 +121,33 @@ def grid_frequency_bound(beam) -> float:
         dx**4 * (beam.mass_per_length + 4.0 * beam.rotary_inertia_per_length / dx**2))
 
 
+#: Float arrays per node a finite-difference run holds besides its layers (the grid's
+#: matrices, the loop's state, the residual and response work arrays; rounded up).
+NODE_ARRAYS = 40
+#: Float arrays per node and section layer (stress, back stress, plastic strain, rate state).
+LAYER_ARRAYS = 4
+
+
+def require_grid_fits(beam) -> None:
+    """Refuse (``ValueError`` naming ``n_elements`` and ``n_half_layers``) a grid whose state
+    would not fit in the run budget's memory (:data:`impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`),
+    before anything is allocated."""
+    from ..solvers.run_budget import MEMORY_LIMIT_BYTES
+
+    nodes, layers = beam.n_elements + 1.0, 2.0 * beam.n_half_layers
+    state_bytes = nodes * (NODE_ARRAYS + LAYER_ARRAYS * layers) * 8.0
+    if state_bytes > MEMORY_LIMIT_BYTES:
+        raise ValueError(
+            f"n_elements = {beam.n_elements} with n_half_layers = {beam.n_half_layers}: the finite-difference "
+            f"grid's state would take {state_bytes / 2**30:.3g} GiB (limit {MEMORY_LIMIT_BYTES / 2**30:g} GiB); "
+            "use fewer elements or layers (the defaults, 200 and 10, resolve a beam impact)")
+
+
 @functools.lru_cache(maxsize=64)
 def beam_grid(beam) -> Grid:
-    """The :class:`Grid` of an FDBeam (cached: the beam is frozen and hashable)."""
+    """The :class:`Grid` of an FDBeam (cached: the beam is frozen and hashable); a grid too
+    large for memory is refused first (:func:`require_grid_fits`)."""
+    require_grid_fits(beam)
     n_el = beam.n_elements
     n = n_el + 1
     dx = beam.grid_spacing

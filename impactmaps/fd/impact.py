@@ -174,8 +174,9 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
     positions, gauge_left, gauge_weight = gauge_weights(beam, settings.gauge_positions)
     contact_stiffness, rate = contact_rate(grid, node, law, params, impactor_mass, velocity)
     dt, limit = choose_time_step(grid, settings.time_step, settings.safety_factor, rate)
-    n_steps = int(math.ceil(float(settings.duration) / dt))
-    _check_cost(n_steps, grid.n_nodes, beam.n_half_layers, settings, len(positions), dt)
+    steps = float(settings.duration) / dt  # a float: a huge duration is refused, not overflowed
+    _check_cost(steps, grid.n_nodes, beam.n_half_layers, settings, len(positions), dt)
+    n_steps = int(math.ceil(steps))
     g = STANDARD_GRAVITY if settings.gravity else 0.0
 
     n = grid.n_nodes
@@ -320,15 +321,21 @@ def _check_cost(n_steps, n_nodes, n_half_layers, settings, n_gauges, dt) -> None
     run budget of :mod:`impactmaps.solvers.run_budget`, shared with the modal solver)."""
     from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
 
-    records = n_steps // settings.history_stride + 1
+    records = n_steps / settings.history_stride + 1.0  # floats throughout: inf refuses, never overflows
     history_bytes = records * (7 + 2 * n_gauges) * 8 * 2
-    needed = math.ceil(history_bytes * settings.history_stride / MEMORY_LIMIT_BYTES)
+    needed = history_bytes * settings.history_stride / MEMORY_LIMIT_BYTES
     budget = RunBudget(
-        float(history_bytes), n_steps * n_nodes * 2 * n_half_layers / NODE_LAYER_STEPS_PER_SECOND,
-        f"the history would; use history_stride ≥ {needed} or a shorter duration",
+        min(history_bytes, 1e300), n_steps * n_nodes * 2 * n_half_layers / NODE_LAYER_STEPS_PER_SECOND,
+        (f"the history would; use history_stride ≥ {math.ceil(needed)} or a shorter duration" if needed < 1e15
+         else "the history would; use a shorter duration"),
         "the step is bounded by the grid's stability limit, ∝ Δx²; fewer elements or a shorter duration are faster")
-    refuse_or_announce(budget, f"duration = {settings.duration:g} s is {n_steps} steps of {dt:.3g} s: the "
+    refuse_or_announce(budget, f"duration = {settings.duration:g} s is {_count(n_steps)} steps of {dt:.3g} s: the "
                                f"finite-difference run of {n_nodes} nodes", stacklevel=4)
+
+
+def _count(steps: float) -> str:
+    """A step count as text: the integer, or three digits when it is astronomical."""
+    return f"{math.ceil(steps)}" if steps < 1e15 else f"{steps:.3g}"
 
 
 def _separation_velocity(result, intervals, end_time) -> float:

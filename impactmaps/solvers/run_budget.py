@@ -62,7 +62,10 @@ MAX_STEPS = 10**8
 
 
 class LongRunWarning(UserWarning):
-    """A run is estimated to take longer than :data:`LONG_RUN_SECONDS` (said before it starts)."""
+    """A run is estimated to take longer than :data:`LONG_RUN_SECONDS` (said before it starts;
+    the command line prints it at once, the other warnings after the output)."""
+
+    announce_at_once = True
 
 
 class RunBudget(NamedTuple):
