@@ -13,7 +13,15 @@ not count):
   (:mod:`impactmaps.targets.options`: ``default_theory``, ``classical_theory``,
   ``depends_on_slenderness``, ``is_shear_deformable``, ``point_load_diverges``).
 
-:data:`ALLOWED` lists the edges where a name is the point (none today); an entry names the
+* no comparison with, and no conditional choice of, a map law's name (``"linear"``,
+  ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``, ``"plastic"``) outside ``contact/`` and the
+  map-family modules (:data:`MAP_FAMILY_MODULES`): the family answers
+  (:class:`~impactmaps.maps.map_family.MapFamily`: ``file_stem``, ``exact_command``,
+  ``scaled_by_contact_frequency``, ``closed_form_asymptotes``, ``labels``, ``chart_zeta_max`` …),
+  so a new family is one module and one registration.
+
+:data:`ALLOWED` lists the edges where a name is the point (none today) and
+:data:`MAP_LAW_ALLOWED` those of the map-law names, each with its reason; an entry names the
 module and the function.
 """
 
@@ -34,6 +42,18 @@ THEORIES = frozenset(BEAM_THEORIES + PLATE_THEORIES)
 #: (module path relative to the package, enclosing function) where a finding is allowed.
 ALLOWED: frozenset[tuple[str, str]] = frozenset()
 _COMPARISONS = (ast.Eq, ast.NotEq, ast.In, ast.NotIn)
+#: Map-law names (and the word the elastic-plastic ones share).
+MAP_LAWS = frozenset({"linear", "hertz", "yc", "stronge", "epp", "plastic"})
+#: The modules that define the map families (the names are theirs to compare).
+MAP_FAMILY_MODULES = ("maps/map_family.py", "maps/builtin_families.py", "maps/linear_points.py",
+                      "maps/hertz_points.py", "maps/plastic_points.py")
+#: (module, function) → why a map-law name is compared there.
+MAP_LAW_ALLOWED = {
+    ("cases/case.py", "parse_case"): "the finite-difference solver's default contact law, named once",
+    ("cases/run.py", "case_summary"): "the vocabulary of the case's numbers (cases/numbers.py), not a map law",
+    ("targets/patch.py", "patch_transform"): "'hertz' names a pressure distribution, not a law",
+    ("targets/patch.py", "mean_square_transform"): "'hertz' names a pressure distribution, not a law",
+}
 
 
 def _law_classes() -> frozenset[str]:
@@ -82,11 +102,12 @@ def _findings(path: Path, law_classes: frozenset[str]) -> list[tuple[str, int, s
             laws = [name for name in _names(node.args[1]) if name in law_classes]
             if laws:
                 found.append(("isinstance", node.lineno, function, ast.unparse(node)))
-        if isinstance(node, ast.Compare) and any(isinstance(op, _COMPARISONS) for op in node.ops):
-            if any(s in THEORIES for operand in (node.left, *node.comparators) for s in _strings(operand)):
-                found.append(("theory", node.lineno, function, ast.unparse(node)))
-        if isinstance(node, ast.IfExp) and any(s in THEORIES for s in _strings(node.body) + _strings(node.orelse)):
-            found.append(("theory", node.lineno, function, ast.unparse(node)))  # a default chosen by name
+        for kind, names in (("theory", THEORIES), ("map law", MAP_LAWS)):
+            if isinstance(node, ast.Compare) and any(isinstance(op, _COMPARISONS) for op in node.ops):
+                if any(s in names for operand in (node.left, *node.comparators) for s in _strings(operand)):
+                    found.append((kind, node.lineno, function, ast.unparse(node)))
+            if isinstance(node, ast.IfExp) and any(s in names for s in _strings(node.body) + _strings(node.orelse)):
+                found.append((kind, node.lineno, function, ast.unparse(node)))  # a default chosen by name
         for child in ast.iter_child_nodes(node):
             visit(child, function)
 
@@ -94,15 +115,15 @@ def _findings(path: Path, law_classes: frozenset[str]) -> list[tuple[str, int, s
     return found
 
 
-def _violations(kind: str, owner: str) -> list[str]:
+def _violations(kind: str, *owners: str, allowed=ALLOWED) -> list[str]:
     law_classes = _law_classes()
     out = []
     for path in sorted(PACKAGE_ROOT.rglob("*.py")):
         relative = path.relative_to(PACKAGE_ROOT).as_posix()
-        if relative.startswith(owner + "/"):
+        if any(relative.startswith(owner + "/") or relative == owner for owner in owners):
             continue
         for found_kind, line, function, text in _findings(path, law_classes):
-            if found_kind == kind and (relative, function) not in ALLOWED:
+            if found_kind == kind and (relative, function) not in allowed:
                 out.append(f"{relative}:{line} ({function}): {text}")
     return out
 
@@ -118,6 +139,12 @@ def test_no_theory_name_compared_outside_targets():
                             "theory's name:\n" + "\n".join(violations))
 
 
+def test_no_map_law_name_compared_outside_the_families():
+    violations = _violations("map law", "contact", *MAP_FAMILY_MODULES, allowed=MAP_LAW_ALLOWED)
+    assert not violations, ("ask the map family (impactmaps.maps.map_family.MapFamily: file_stem, exact_command, "
+                            "labels, …), not the law's name:\n" + "\n".join(violations))
+
+
 def test_the_walk_sees_both_kinds(tmp_path):
     """The detector itself: each kind is caught; a docstring and a keyword argument are not."""
     source = tmp_path / "sample.py"
@@ -126,10 +153,11 @@ def test_the_walk_sees_both_kinds(tmp_path):
                       "    make(theory=\"euler\")\n"
                       "    default = \"euler\" if theory is None else theory\n"
                       "    if isinstance(law, (int, HertzContact)):\n"
-                      "        return theory in (\"timoshenko\", \"mindlin\")\n", encoding="utf-8")
+                      "        return theory in (\"timoshenko\", \"mindlin\")\n"
+                      "    return law == \"hertz\"\n", encoding="utf-8")
     found = _findings(source, frozenset({"HertzContact"}))
     assert [(kind, line, function) for kind, line, function, _ in found] == [
-        ("theory", 4, "f"), ("isinstance", 5, "f"), ("theory", 6, "f")]
+        ("theory", 4, "f"), ("isinstance", 5, "f"), ("theory", 6, "f"), ("map law", 7, "f")]
 
 
 def test_the_targets_registry_answers_the_theory_questions():

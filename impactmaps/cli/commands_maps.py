@@ -25,32 +25,24 @@ ZETA_MAX = 1.0e6
 #: zero mass, λ = 1e300 a zero contact frequency); within it every run answers (measured
 #: on beam-ss at ζ = 1e-9, λ = 1e±9).
 SIMULATED_RANGE = (1.0e-9, 1.0e9)
-#: Hertz chart ranges: λ_h below this makes the quasi-static Hertz integration fail
-#: (measured: it fails at λ_h = 1e-6 and answers at 3e-6); ζ_h above ZETA_H_MAX makes the
-#: infinite-plate Hertz asymptote run for minutes (measured: 1e3 answers, 1e4 does not).
-HERTZ_LAMBDA_MIN = 1.0e-5
-ZETA_H_MAX = 1.0e3
 
 
 def cmd_chart(args) -> dict:
     from ..maps.chart import check_chart_grid, make_chart
-    from ..maps.builtin_families import PLASTIC_LAWS
+    from ..maps.builtin_families import PLASTIC_LAWS, family_layout
     from ..maps.store_lock import store_lock
 
     if args.law in PLASTIC_LAWS:
         return _plastic_chart(args)
     refuse(args, {"--betas": "betas"}, f"with --law {args.law} (β is a number of the elastic-plastic laws "
            f"{', '.join(PLASTIC_LAWS)})")
-    if args.law == "hertz":
-        if args.lambdas is not None:
-            for value in args.lambdas:
-                check("--lambdas", value, HERTZ_LAMBDA_MIN, what="each Hertz relative stiffness λ_h",
-                      low_inclusive=True)
-        check("--zeta-range", args.zeta_range[1], high=ZETA_H_MAX, what="the largest Hertz loss factor ζ_h",
-              high_inclusive=True)
-    else:
-        check("--zeta-range", args.zeta_range[1], high=ZETA_MAX, what="the largest loss factor ζ",
-              high_inclusive=True)
+    family = family_layout(args.law)
+    if args.lambdas is not None and family.chart_lambda_min > 0.0:
+        for value in args.lambdas:
+            check("--lambdas", value, family.chart_lambda_min, what=f"each {family.labels['lambda_name']}",
+                  low_inclusive=True)
+    check("--zeta-range", args.zeta_range[1], high=family.chart_zeta_max,
+          what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
     check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
            low_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)

@@ -48,8 +48,17 @@ class LinearLayout(MapFamily):
     name = "linear"
     axes = (Axis("lambda_", "relative stiffness K_st/K"), Axis("zeta", "loss factor"))
     law_in_description = False
+    law_in_file_name = False
     classifies = True
     shipped = SHIPPED_PLANE_MAPS
+    exact_command = "impactmaps point"
+    scaled_by_contact_frequency = True
+    closed_form_asymptotes = True
+    labels = MapFamily.labels | {"zeta": "loss factor ζ", "lambda": "relative stiffness λ", "contact": "",
+              "fmax": r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$",
+              "table": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
+                       "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
+                       "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n"}
 
 
 class HertzLayout(MapFamily):
@@ -60,6 +69,20 @@ class HertzLayout(MapFamily):
     classifies = True
     shipped = SHIPPED_PLANE_MAPS
     patch_loadable = True
+    #: λ_h below 1e-5 makes the quasi-static Hertz integration fail (measured: it fails at
+    #: λ_h = 1e-6 and answers at 3e-6); ζ_h above 1e3 makes the infinite-plate Hertz
+    #: asymptote run for minutes (measured: 1e3 answers, 1e4 does not).
+    chart_lambda_min = 1.0e-5
+    chart_zeta_max = 1.0e3
+    labels = MapFamily.labels | {"zeta": "Hertz loss factor ζ_h = ζ(m, K_eq), K_eq = m V0²/α_m²",
+              "lambda": "Hertz relative stiffness λ_h = K_st/K_eq", "contact": "Hertz contact",
+              "zeta_name": "Hertz loss factor ζ_h", "lambda_name": "Hertz relative stiffness λ_h",
+              "quasi_static": r"quasi-static $\bar{F}^{5/3} + (25/16)\bar{F}^2/\lambda_h = 1$",
+              "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
+              "table": "# Normalised maximum force F̄max = Fmax/F_hs, Hertz contact\n\n"
+                       "Hertz contact F = K_h α^1.5, impact at the centre, simply supported; rows λ_h, columns ζ_h "
+                       "(impactmaps.hertz_similarity); nearest computed grid point.\n"
+                       "Peak force in newtons: F̄max · K_h α_m^1.5 with α_m = (5 m_i V0²/(4 K_h))^0.4.\n\n"}
 
 
 class PlasticLayout(MapFamily):
@@ -86,6 +109,12 @@ class PlasticLayout(MapFamily):
         ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
     }
     title = "impactmaps normalised elastic-plastic impact map"
+    fmax_at_most_one = False
+    labels = MapFamily.labels | {"zeta": "loss factor ζ(m, K_y), K_y = 1.5 K_h sqrt(α_y)", "lambda": "relative stiffness λ = K_st/K_y",
+              "contact": "elastic-plastic contact",
+              "fmax": r"$\bar{F}_{max} = F_{max} / (m_i V_0 \omega_y)$, $\omega_y = \sqrt{K_y/m_i}$",
+              "table": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω_y), elastic-plastic contact\n\n"
+                       "Nearest computed grid point.\n\n"}
     #: The on-demand tiles' lattice: the shipped plastic maps' grid (2 β, 6 ζ, 5 λ per decade),
     #: on which their bands were validated.
     tile_lattice = {"beta": 0.5, "zeta": 1.0 / 6.0, "lambda_": 0.2}

@@ -19,6 +19,7 @@ import numpy as np
 from ..plotting import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
 from ..solvers.modal import ModalSettings
 from .accuracy import STATUSES
+from .builtin_families import family_layout
 from .dataset import with_asymptote_peaks
 from .lookup import markdown_table
 from .plastic_lookup import load_plastic_map
@@ -146,26 +147,27 @@ def make_chart(
 
     figure, (ax, strip) = plt.subplots(2, 1, figsize=(9, 9), sharex=True,
                                        gridspec_kw={"height_ratios": [3, 1.3]})
-    plot_fmax_chart(dataset, ax=ax, asymptotes=law == "linear")
+    family = family_layout(law)
+    plot_fmax_chart(dataset, ax=ax, asymptotes=family.closed_form_asymptotes)
     plot_regime_strip(dataset, ax=strip)
-    if law == "hertz":
-        _hertz_axes(ax, strip, dataset)
+    if not family.closed_form_asymptotes:
+        _stored_asymptotes(ax, strip, dataset, family.labels)
     ax.set_xlabel("")
     figure.tight_layout()
     paths["png"] = out / "fmax_chart.png"
     paths["svg"] = out / "fmax_chart.svg"
     figure.savefig(paths["png"], dpi=150)
-    figure.savefig(paths["svg"])
+    _save_svg(figure, paths["svg"])
     plt.close(figure)
 
     for name in dataset["structure"].values:
         figure, ax = plt.subplots(figsize=(7, 5))
-        # the smooth map re-classifies with the linear criteria: Hertz maps show their points
-        plot_regime_map(dataset, str(name), ax=ax, smooth=law == "linear")
-        if law == "hertz":
-            ax.set_xlabel(_HERTZ_LABELS["zeta"])
-            ax.set_ylabel(_HERTZ_LABELS["lambda"])
-            ax.set_title(f"Impact regimes, Hertz contact: {name}")
+        # the smooth map re-classifies with the closed-form criteria; other maps show their points
+        plot_regime_map(dataset, str(name), ax=ax, smooth=family.closed_form_asymptotes)
+        if not family.closed_form_asymptotes:
+            ax.set_xlabel(family.labels["zeta"])
+            ax.set_ylabel(family.labels["lambda"])
+            ax.set_title(f"Impact regimes, {family.labels['contact']}: {name}")
         figure.tight_layout()
         paths[f"regime_map_{name}"] = out / f"regime_map_{name}.png"
         figure.savefig(paths[f"regime_map_{name}"], dpi=120)
@@ -174,35 +176,30 @@ def make_chart(
     coarse_zetas = [z for z in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100) if zetas[0] <= z <= zetas[-1]]
     tables = [markdown_table(dataset, str(name), zetas=coarse_zetas) for name in dataset["structure"].values]
     paths["markdown"] = out / "lookup_table.md"
-    paths["markdown"].write_text(_TABLE_HEADERS[law] + "\n\n".join(tables) + "\n")
+    paths["markdown"].write_text(family.labels["table"] + "\n\n".join(tables) + "\n")
     return paths
 
 
-_TABLE_HEADERS = {
-    "linear": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
-              "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
-              "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n",
-    "hertz": "# Normalised maximum force F̄max = Fmax/F_hs, Hertz contact\n\n"
-             "Hertz contact F = K_h α^1.5, impact at the centre, simply supported; rows λ_h, columns ζ_h "
-             "(impactmaps.hertz_similarity); nearest computed grid point.\n"
-             "Peak force in newtons: F̄max · K_h α_m^1.5 with α_m = (5 m_i V0²/(4 K_h))^0.4.\n\n",
-}
-_HERTZ_LABELS = {
-    "zeta": "Hertz loss factor ζ_h = ζ(m, K_eq), K_eq = m V0²/α_m²",
-    "lambda": "Hertz relative stiffness λ_h = K_st/K_eq",
-    "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
-}
-#: Most ζ_h points of a drawn Hertz asymptote (taken from the chart's grid).
-HERTZ_ASYMPTOTE_POINTS = 50
+def _save_svg(figure, path) -> None:
+    """Save ``figure`` as SVG, the same bytes for the same chart: no date, clip-path ids from a
+    fixed salt (matplotlib otherwise writes the time and random ids)."""
+    import matplotlib
+
+    with matplotlib.rc_context({"svg.hashsalt": "impactmaps"}):
+        figure.savefig(path, metadata={"Date": None})
 
 
-def _hertz_axes(ax, strip, dataset) -> None:
-    """The Hertz asymptotes and labels on a chart drawn by ``plot_fmax_chart(asymptotes=False)``:
-    the peaks the sweep keeps with its result (:func:`impactmaps.maps.dataset.with_asymptote_peaks`),
-    so drawing them integrates nothing."""
+#: Most ζ points of a drawn stored asymptote (taken from the chart's grid).
+STORED_ASYMPTOTE_POINTS = 50
+
+
+def _stored_asymptotes(ax, strip, dataset, labels: dict) -> None:
+    """The asymptotes and labels of a family without closed-form asymptotes on a chart drawn by
+    ``plot_fmax_chart(asymptotes=False)``: the peaks the sweep keeps with its result
+    (:func:`impactmaps.maps.dataset.with_asymptote_peaks`), so drawing them integrates nothing."""
     dataset = with_asymptote_peaks(dataset)
     zeta = dataset["zeta"].values
-    dense = np.unique(np.linspace(0, zeta.size - 1, HERTZ_ASYMPTOTE_POINTS).round().astype(int))
+    dense = np.unique(np.linspace(0, zeta.size - 1, STORED_ASYMPTOTE_POINTS).round().astype(int))
     kinds = [str(kind) for kind in dataset["kind"].values]
     for kind in sorted(set(kinds), reverse=True):
         peaks = dataset["infinite_structure_peak"].values[kinds.index(kind)]
@@ -214,11 +211,11 @@ def _hertz_axes(ax, strip, dataset) -> None:
     for lam, peak in zip(dataset["lambda_"].values, dataset["quasi_static_peak"].values[0]):
         colour = colours.get(f"λ = {lam:g}", "0.3")
         ax.axhline(float(peak), color=colour, lw=0.9, ls=":", zorder=1)
-    ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\bar{F}^{5/3} + (25/16)\bar{F}^2/\lambda_h = 1$")
+    ax.plot([], [], color="k", ls=":", lw=0.9, label=labels["quasi_static"])
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    ax.set_ylabel(_HERTZ_LABELS["fmax"])
-    ax.set_title("Normalised maximum force, Hertz contact: plates solid, beams dashed")
-    strip.set_xlabel(_HERTZ_LABELS["zeta"])
+    ax.set_ylabel(labels["fmax"])
+    ax.set_title(f"Normalised maximum force, {labels['contact']}: plates solid, beams dashed")
+    strip.set_xlabel(labels["zeta"])
 
 
 #: β of the curves of the default elastic-plastic chart (nearest grid values are drawn).
@@ -276,7 +273,7 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
     paths = {"png": out / f"fmax_chart_{law}.png", "svg": out / f"fmax_chart_{law}.svg",
              "csv": out / f"fmax_chart_{law}.csv"}
     figure.savefig(paths["png"], dpi=150)
-    figure.savefig(paths["svg"])
+    _save_svg(figure, paths["svg"])
     plt.close(figure)
     frames = []
     for dataset in maps:

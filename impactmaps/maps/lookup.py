@@ -67,7 +67,7 @@ def map_file_stem(structure_name: str, law: str = "linear") -> str:
     another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
     """
     require_choice("law", law, ALL_MAP_LAWS)
-    return structure_name if law == "linear" else f"{structure_name}-{law}"
+    return family_layout(law).file_stem(structure_name)
 
 
 @dataclass(frozen=True)
@@ -118,7 +118,7 @@ class LookupResult:
         A Hertz map's F̄max is scaled by F_hs instead
         (:func:`impactmaps.hertz_similarity.hertz_numbers`, ``force_scale``).
         """
-        if self.law != "linear":
+        if not family_layout(self.law).scaled_by_contact_frequency:
             raise ValueError(f"peak_force scales a linear map; this lookup is from the {self.law} map "
                              f"{self.map_name}: multiply fmax_normalised by hertz_numbers(...).force_scale")
         require_positive("impactor_mass", impactor_mass, "kg")
@@ -353,7 +353,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
     """
     reading = read_values(dataset, family_layout(law), (loss_factor, relative_stiffness),
                           ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
-                          hints=(" (impactmaps point)" if law == "linear" else " (impactmaps simulate on a case file)", ""),
+                          hints=(f" ({family_layout(law).exact_command})", ""),
                           refinement=refinement, error_grid=error_grid, prepared=prepared)
     values = reading.values
     fmax, error, status = values["fmax_normalised"], reading.errors["fmax_error"], reading.status

@@ -151,6 +151,29 @@ class MapFamily:
     patch_loadable : bool
         Whether its points can be loaded over the contact patch (a family of one patch
         number P, ``with_patch``); the registered family itself is point-loaded.
+    law_in_file_name : bool
+        Whether its map files carry the law after the structure's name (:meth:`file_stem`;
+        the linear maps' names predate the other laws: False).
+    exact_command : str
+        The command that answers one of its points exactly, named where a lookup refuses.
+    scaled_by_contact_frequency : bool
+        Whether F̄max = F_max/(m_i V0 ω) with ω = sqrt(K/m_i) of a contact stiffness K the
+        user gives (:meth:`~impactmaps.maps.lookup.LookupResult.peak_force`).
+    fmax_at_most_one : bool
+        Whether F̄max ≤ 1 holds for every point (a chart's force axis ends at 1.05).
+    closed_form_asymptotes : bool
+        Whether its regimes' asymptotes are the closed forms a chart draws on any grid
+        (the linear law's); otherwise a chart draws the peaks its map stores.
+    labels : dict
+        ``"zeta"``, ``"lambda"``, ``"fmax"`` (axis labels of its charts), ``"contact"``
+        (the contact in a chart title, ``""`` for none), ``"quasi_static"`` (the legend of the
+        stored quasi-static peaks), ``"table"`` (the header of its markdown lookup table),
+        ``"zeta_name"``, ``"lambda_name"`` (the numbers in words, for messages).
+    chart_zeta_max, chart_lambda_min : float
+        The range a chart of the family accepts: beyond ``chart_zeta_max`` its asymptotes
+        stop answering (the linear infinite beam's closed form loses its root near ζ = 1e250
+        and its peak is below 1e-4 beyond 1e6), below ``chart_lambda_min`` (inclusive) its
+        quasi-static peak does.
     """
 
     name: ClassVar[str]
@@ -165,6 +188,23 @@ class MapFamily:
     classifies: ClassVar[bool] = False
     tile_lattice: ClassVar[dict] = {"zeta": 0.05, "lambda_": 0.1}
     patch_loadable: ClassVar[bool] = False
+    law_in_file_name: ClassVar[bool] = True
+    exact_command: ClassVar[str] = "impactmaps simulate on a case file"
+    scaled_by_contact_frequency: ClassVar[bool] = False
+    fmax_at_most_one: ClassVar[bool] = True
+    closed_form_asymptotes: ClassVar[bool] = False
+    chart_zeta_max: ClassVar[float] = 1.0e6
+    chart_lambda_min: ClassVar[float] = 0.0
+    labels: ClassVar[dict] = {
+        "zeta": "loss factor ζ", "lambda": "relative stiffness λ", "contact": "", "quasi_static": "quasi-static",
+        "zeta_name": "loss factor ζ", "lambda_name": "relative stiffness λ",
+        "fmax": r"normalised maximum force $\bar{F}_{max}$",
+        "table": "# Normalised maximum force F̄max\n\nNearest computed grid point.\n\n"}
+
+    def file_stem(self, structure_name: str) -> str:
+        """File name (without its suffix) of the family's map of a structure:
+        ``plate-ssss-kirchhoff-hertz``, or the structure's name alone (:attr:`law_in_file_name`)."""
+        return f"{structure_name}-{self.name}" if self.law_in_file_name else structure_name
 
     @property
     def method_text(self) -> str:

@@ -350,6 +350,9 @@ class PlasticFamily(PlasticLayout):
     ----------
     name : str
         The map law (a key of :data:`PLASTIC_LAWS`).
+    law_options : dict, optional
+        The contact-law options its maps are built at (name → value; the ``epp`` family's:
+        :data:`EPP_MAP_OPTIONS`); none by default.
     """
 
     variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
@@ -360,10 +363,17 @@ class PlasticFamily(PlasticLayout):
         return (f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[self.name]} "
                 f"contact{self.law_options_text}; axes (β, λ, ζ) at the linearised stiffness K_y")
 
+    def __init__(self, name: str, law_options: dict | None = None):
+        super().__init__(name)
+        self._law_options = dict(law_options or {})
+
+    def __reduce__(self):
+        return (type(self), (self.name, self._law_options))
+
     @property
     def law_options(self) -> dict:
-        """The contact-law options the maps are built at (name → value; empty but for ``epp``)."""
-        return dict(EPP_MAP_OPTIONS) if self.name == "epp" else {}
+        """The contact-law options the maps are built at (name → value; registered with the family)."""
+        return dict(self._law_options)
 
     @property
     def law_options_text(self) -> str:
@@ -403,7 +413,7 @@ class PlasticFamily(PlasticLayout):
 
 YC = register_map_family(PlasticFamily("yc"))
 STRONGE = register_map_family(PlasticFamily("stronge"))
-EPP = register_map_family(PlasticFamily("epp"))
+EPP = register_map_family(PlasticFamily("epp", law_options=EPP_MAP_OPTIONS))
 
 
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],

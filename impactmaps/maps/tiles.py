@@ -147,13 +147,13 @@ class TileKey:
     def name(self) -> str:
         """Label of the tile, e.g. ``on-demand tile plate-ssss-mindlin-s62.5-hertz-P0.0799 ζ 0.09–0.18 λ 0.03–0.06``."""
         zetas, lambdas = self.axes
-        law = "" if self.law == "linear" else f"-{self.law}"
+        stem = map_family(self.law).file_stem(self.structure.name)
         patch = "" if self.patch is None else f"-P{self.patch:.4g}"
         if self.patch is not None and f"-s{self.structure.slenderness:g}" not in self.structure.name:
             patch = f"-s{self.structure.slenderness:g}{patch}"  # a patch scales with the thickness
         extra = "".join(f"{_SYMBOLS.get(axis.name, axis.name)} {values[0]:.3g}–{values[-1]:.3g} "
                         for axis, values in zip(_family(self).extra_axes, self.extra_axes))
-        return (f"on-demand tile {self.structure.name}{law}{patch} {extra}ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
+        return (f"on-demand tile {stem}{patch} {extra}ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
                 f"λ {lambdas[0]:.3g}–{lambdas[-1]:.3g}")
 
 

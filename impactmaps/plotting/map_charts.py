@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..maps.accuracy import STATUSES
+from ..maps.builtin_families import LAYOUTS, PlasticLayout, family_layout
+from ..maps.map_family import map_law
 from ..maps.regimes import REGIMES, classify, infinite_structure_peak, quasi_static_peak
 from .axes import axes_or_new
 
@@ -25,21 +27,10 @@ REGIME_COLOURS = {
 #: Opacity of the band drawn over sensitive stretches of a curve.
 SENSITIVE_ALPHA = 0.3
 
-#: Axis labels of a map chart per contact law of the map (``contact_law`` attribute): ζ axis,
-#: F̄max axis. The elastic-plastic laws share theirs (:mod:`impactmaps.maps.plastic_points`).
-FMAX_LABELS = {
-    "linear": ("loss factor ζ", r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$"),
-    "hertz": ("Hertz loss factor ζ_h = ζ(m, K_eq), K_eq = m V0²/α_m²",
-              r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)"),
-    "plastic": ("loss factor ζ(m, K_y), K_y = 1.5 K_h sqrt(α_y)",
-                r"$\bar{F}_{max} = F_{max} / (m_i V_0 \omega_y)$, $\omega_y = \sqrt{K_y/m_i}$"),
-}
-
-
-def _label_law(dataset) -> str:
-    """The key of :data:`FMAX_LABELS` for a map dataset (from its ``contact_law`` attribute)."""
-    law = str(dataset.attrs.get("contact_law", "linear"))
-    return law if law in FMAX_LABELS else "plastic"
+#: Map law → (ζ axis label, F̄max axis label) of its charts (the families' ``labels``); ``"plastic"``:
+#: those every elastic-plastic family shares.
+FMAX_LABELS = {name: (layout.labels["zeta"], layout.labels["fmax"]) for name, layout in LAYOUTS.items()} | {
+    "plastic": (PlasticLayout.labels["zeta"], PlasticLayout.labels["fmax"])}
 
 
 def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):
@@ -84,8 +75,8 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
         raise ValueError("dataset is an elastic-plastic map over β: select one β "
                          "(dataset.sel(beta=..., method='nearest')) or draw it with plot_plastic_chart")
     ax = axes_or_new(ax)
-    law = _label_law(dataset)
-    asymptotes = asymptotes and law == "linear"
+    family = family_layout(map_law(dataset))
+    asymptotes = asymptotes and family.closed_form_asymptotes
     structures, lambda_values = _selection(dataset, structures, lambdas)
     kinds = {name: str(dataset["kind"].sel(structure=name).item()) for name in structures}
     zeta = dataset["zeta"].values
@@ -127,10 +118,10 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
                         + (" (beams hatched)" if "beam" in kinds.values() else ""))
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
-    top = float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0)) if law == "plastic" else 0.0
+    top = 0.0 if family.fmax_at_most_one else float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0))
     ax.set_ylim(0.0, max(1.05, 1.05 * top))
-    ax.set_xlabel(FMAX_LABELS[law][0])
-    ax.set_ylabel(FMAX_LABELS[law][1])
+    ax.set_xlabel(family.labels["zeta"])
+    ax.set_ylabel(family.labels["fmax"])
     ax.set_title("Normalised maximum impact force: plates solid, beams dashed"
                  + ("; quasi-static dotted" if asymptotes else ""))
     ax.grid(True, which="both", alpha=0.25)
@@ -351,7 +342,7 @@ def _log_dense(zeta, lam, values, points=200):
 
 #: What :func:`plot_plastic_chart` draws per panel: variable, y label.
 PLASTIC_PANELS = (
-    ("fmax_normalised", FMAX_LABELS["plastic"][1]),
+    ("fmax_normalised", PlasticLayout.labels["fmax"]),
     ("restitution", "coefficient of restitution e (rebound / approach speed)"),
     ("absorbed_energy_fraction", "energy absorbed by the contact / ½ m V0²"),
 )
@@ -410,5 +401,5 @@ def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
     axes[0].set_title(f"Elastic-plastic contact ({law}), λ = K_st/K_y ≈ {float(lambda_):g} (nearest grid λ: {grid})\n"
                       "plates solid, beams dashed", fontsize=10)
     axes[0].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    axes[-1].set_xlabel(FMAX_LABELS["plastic"][0])
+    axes[-1].set_xlabel(PlasticLayout.labels["zeta"])
     return list(axes)
