@@ -73,7 +73,7 @@ print(json.dumps({"import_s": elapsed, "compile_s": first_call, "top": totals.mo
 
 #: The commands that solve nothing, timed (median of three runs each).
 LIGHT_COMMANDS = (("--help",), ("materials",), ("laws",),
-                  ("lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"))
+                  ("lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"))
 
 #: The checkout measured (``--root``; default this one).
 CODE = ROOT

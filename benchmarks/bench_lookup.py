@@ -55,10 +55,10 @@ def _reader(law: str, structure: str, theory: str):
     if law in ("linear", "hertz"):
         from impactmaps.maps.lookup import lookup
 
-        return (lambda n: lookup(n["zeta"], n["lambda_"], structure=structure, theory=theory, law=law)), None
+        return (lambda n: lookup(n["zeta"], n["lambda_"], kind=structure, theory=theory, law=law)), None
     from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
 
-    return ((lambda n: lookup_plastic(n["beta"], n["zeta"], n["lambda_"], structure=structure, theory=theory,
+    return ((lambda n: lookup_plastic(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
                                       law=law)), load_plastic_map(structure, theory, law))
 
 

@@ -25,10 +25,10 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 #: The lookups timed: linear, Hertz and an elastic-plastic map, human and JSON output.
 COMMANDS = {
-    "lookup linear": ("lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"),
-    "lookup hertz --json": ("lookup", "--structure", "beam", "--theory", "euler", "--law", "hertz", "--zeta", "0.3",
+    "lookup linear": ("lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"),
+    "lookup hertz --json": ("lookup", "--kind", "beam", "--theory", "euler", "--law", "hertz", "--zeta", "0.3",
                             "--lambda", "2", "--json"),
-    "lookup yc": ("lookup", "--structure", "plate", "--theory", "kirchhoff", "--law", "yc", "--beta", "3", "--zeta",
+    "lookup yc": ("lookup", "--kind", "plate", "--theory", "kirchhoff", "--law", "yc", "--beta", "3", "--zeta",
                   "0.5", "--lambda", "1"),
     "--help": ("--help",),
 }

@@ -32,7 +32,7 @@ print(f"(ζ, λ) = ({zeta}, {lam}) on this plate: impactor mass {impactor.impact
       f"contact stiffness {impactor.contact_stiffness:.4g} N/m")
 
 simulated = simulate_normalised(plate, zeta, lam, record=False)
-mapped = lookup(zeta, lam, structure="plate", theory="kirchhoff")
+mapped = lookup(zeta, lam, kind="plate", theory="kirchhoff")
 print(f"F̄max simulated        {simulated.fmax_normalised:.4f} ({simulated.impacts} impact(s))")
 print(f"F̄max shipped map      {mapped.fmax_normalised:.4f} (regime: {mapped.regime})")
 print(f"F̄max infinite plate   {float(infinite_structure_peak(zeta, 'plate')):.4f}")

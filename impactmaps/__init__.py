@@ -9,7 +9,7 @@ name loads its module on first use)::
 
     import impactmaps
     impactmaps.restitution(10.0)                     # e(β), Yigit–Christoforou law
-    impactmaps.lookup(1.198, 0.425, structure="plate", theory="kirchhoff")
+    impactmaps.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")
     impactmaps.simulate(target, law, mass, velocity)  # modal solver, any target
 """
 

@@ -216,7 +216,7 @@ def _target_displacement(target, result):
 
 
 def _deflection(target, result):
-    if getattr(target, "structure", None) != "plate":
+    if getattr(target, "kind", None) != "plate":
         return None
     deflection = _target_displacement(target, result)
     ratio = deflection / float(target.thickness)
@@ -248,7 +248,7 @@ def _structural_theory(target, result):
     cutoff = thickness_shear_frequency(target)
     return (f"structural theory: the first contact ({first:.4g} s) excites {frequency:.4g} rad/s, above "
             f"{SHEAR_VALIDITY_FRACTION:g} × the thickness-shear cut-off {cutoff:.4g} rad/s of this "
-            f"{target.theory} {target.structure}: waves as short as the thickness, which the theory does "
+            f"{target.theory} {target.kind}: waves as short as the thickness, which the theory does "
             "not describe")
 
 
@@ -270,8 +270,8 @@ def _support_distance(target):
     distance = target.distance_to_nearest_support()
     if distance >= depth:
         return None
-    return (f"support: the impact point is {distance:.4g} m from a supported {target.structure} boundary, "
-            f"closer than the {target.structure}'s depth {depth:.4g} m: the {target.theory} theory's point "
+    return (f"support: the impact point is {distance:.4g} m from a supported {target.kind} boundary, "
+            f"closer than the {target.kind}'s depth {depth:.4g} m: the {target.theory} theory's point "
             "load and support reaction overlap there (local shear and bearing stresses, not described); "
             "strike at least one depth away from supports")
 
@@ -282,13 +282,13 @@ def _reflections(target, result):
     distance = target.wave_return_distance()
     contact = _contact_time(result)
     if math.isinf(contact):
-        return (f"reflections: the contact never ends on the infinite {target.structure}, so waves "
+        return (f"reflections: the contact never ends on the infinite {target.kind}, so waves "
                 f"reflected {distance:.4g} m away always return during it: simulate the finite "
-                f"{target.structure}")
+                f"{target.kind}")
     group_velocity = target.flexural_group_velocity(2.0 * math.pi / contact)  # at the contact's frequency
     round_trip = 2.0 * distance / group_velocity
     if round_trip >= contact:
         return None
     return (f"reflections: flexural waves reflected {distance:.4g} m away return after "
             f"{round_trip:.4g} s, before the contact ends ({contact:.4g} s): the infinite-"
-            f"{target.structure} asymptote does not hold; simulate the finite {target.structure}")
+            f"{target.kind} asymptote does not hold; simulate the finite {target.kind}")

@@ -38,17 +38,17 @@ def a_file(tmp_path):
         (["asymptote", "infinite-beam", "--zeta", "1", "--lambda", "2"], "--lambda"),
         (["asymptote", "quasi-static", "--zeta", "1", "--lambda", "2"], "--zeta"),
         (["asymptote", "infinite-plate"], "--zeta is required"),
-        (["classify", "--zeta", "1", "--lambda", "1", "--structure", "beam", "--tolerance", "5"], "--tolerance = 5"),
-        (["classify", "--zeta", "1", "--lambda", "1", "--structure", "beam", "--tolerance", "0"], "--tolerance = 0"),
-        (["classify", "--zeta", "1", "--lambda", "1", "--structure", "beam", "--from-map", "--position", "0.3"],
+        (["classify", "--zeta", "1", "--lambda", "1", "--kind", "beam", "--tolerance", "5"], "--tolerance = 5"),
+        (["classify", "--zeta", "1", "--lambda", "1", "--kind", "beam", "--tolerance", "0"], "--tolerance = 0"),
+        (["classify", "--zeta", "1", "--lambda", "1", "--kind", "beam", "--from-map", "--position", "0.3"],
          "--position"),
-        (["classify", "--zeta", "1", "--lambda", "1", "--structure", "plate", "--from-map", "--aspect", "2"],
+        (["classify", "--zeta", "1", "--lambda", "1", "--kind", "plate", "--from-map", "--aspect", "2"],
          "--aspect"),
         (["halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "1", "--material", "structural-steel",
           "--target-material", "structural-steel", "--youngs-modulus", "1e9"], "--youngs-modulus"),
         (["halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "-1", "--material", "structural-steel",
           "--target-material", "structural-steel"], "--velocity = -1"),
-        (["lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "0", "--lambda", "1"], "--zeta = 0"),
+        (["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "0", "--lambda", "1"], "--zeta = 0"),
         (["simulate", "does-not-exist.toml"], "does-not-exist.toml"),
         (["sweep", "does-not-exist.toml"], "does-not-exist.toml"),
     ],
@@ -113,7 +113,7 @@ def test_infinite_beam_impacts_follow_the_recontact_range(zeta, impacts, repeate
 
 def test_classify_uses_tolerance_when_simulating(capsys):
     """A loose tolerance puts a transition point on an asymptote; a tight one does not."""
-    argv = ["classify", "--zeta", "1.198", "--lambda", "0.425", "--structure", "plate", "--no-check", "--json"]
+    argv = ["classify", "--zeta", "1.198", "--lambda", "0.425", "--kind", "plate", "--no-check", "--json"]
     assert main([*argv, "--tolerance", "0.01"]) == 0
     tight = json.loads(capsys.readouterr().out)["regime"]
     assert main([*argv, "--tolerance", "1"]) == 0

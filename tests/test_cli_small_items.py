@@ -114,7 +114,7 @@ def test_case_stiffness_1e300_is_refused_by_range(tmp_path, capsys):
 
 # -- contradictory options -------------------------------------------------------------------
 @pytest.mark.parametrize("argv, fragment", [
-    (["lookup", "--no-build", "--structure", "beam", "--theory", "euler", "--zeta", "0.1", "--lambda", "1"],
+    (["lookup", "--no-build", "--kind", "beam", "--theory", "euler", "--zeta", "0.1", "--lambda", "1"],
      "--no-build cannot be used without --case"),
     (["chart", "--betas", "1", "10", "--lambdas", "0.5", "2"], "--betas cannot be used with --law linear"),
     (["chart", "--law", "hertz", "--betas", "1", "--lambdas", "0.5", "2"], "--betas cannot be used with --law hertz"),
@@ -294,7 +294,7 @@ def test_lookup_with_a_plastic_law_names_the_parameter():
     from impactmaps.maps.lookup import lookup
 
     with pytest.raises(ValueError, match="law"):
-        lookup(0.1, 1.0, structure="beam", theory="euler", law="yc")
+        lookup(0.1, 1.0, kind="beam", theory="euler", law="yc")
 
 
 def test_a_combination_not_implemented_is_one_line_and_exit_2(tmp_path, capsys):

@@ -37,7 +37,7 @@ def test_simulate_numbers_fed_to_lookup_give_its_force(hertz_beam, tmp_path, cap
     assert simulated["zeta"] == pytest.approx(by_case["zeta"], rel=1e-12)
     assert simulated["lambda"] == pytest.approx(by_case["lambda"], rel=1e-12)
     assert simulated["force_scale_N"] == pytest.approx(by_case["force_scale_N"], rel=1e-12)
-    fed = _json(["lookup", "--structure", "beam", "--theory", "euler", "--law", "hertz",
+    fed = _json(["lookup", "--kind", "beam", "--theory", "euler", "--law", "hertz",
                  "--zeta", repr(simulated["zeta"]), "--lambda", repr(simulated["lambda"])], capsys)
     force = fed["fmax_normalised"] * simulated["force_scale_N"]
     assert force == pytest.approx(by_case["peak_force_N"], rel=1e-12)

@@ -244,7 +244,7 @@ def test_halfspace_target_has_no_modes_and_infinite_stiffness():
     from impactmaps.targets.halfspace import HalfSpace
 
     target = HalfSpace()
-    assert isinstance(target, Target) and target.structure == "halfspace"
+    assert isinstance(target, Target) and target.kind == "halfspace"
     basis = target.modes(1e9, min_modes=10)
     assert basis.size == 0 and basis.residual_compliance == 0.0
     assert target.static_compliance() == 0.0 and target.static_stiffness() == math.inf

@@ -195,7 +195,7 @@ def test_lookup_command_with_the_hertz_law(capsys, tmp_path):
     """`lookup --law hertz --zeta --lambda` reads the Hertz map (strict JSON with band and
     status); `--case` with a Hertz case answers in newtons, as simulate within the band; a --law that contradicts the
     case, or an unknown law, exits 2 with one line."""
-    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.3", "--lambda", "2",
+    assert main(["lookup", "--kind", "beam", "--theory", "euler", "--zeta", "0.3", "--lambda", "2",
                  "--law", "hertz", "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["map"] == "beam-ss-euler-hertz" and values["law"] == "hertz"
@@ -220,7 +220,7 @@ def test_lookup_command_with_the_hertz_law(capsys, tmp_path):
     assert main(["lookup", "--case", str(case), "--law", "linear"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--law = linear contradicts the case (hertz)" in err[0]
-    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.3", "--lambda", "2",
+    assert main(["lookup", "--kind", "beam", "--theory", "euler", "--zeta", "0.3", "--lambda", "2",
                  "--law", "stronge"]) == 2
     assert len(capsys.readouterr().err.strip().splitlines()) == 1
 

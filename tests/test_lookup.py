@@ -33,7 +33,7 @@ def test_lookup_matches_direct_simulation(structure, theory):
     stored = dataset["fmax_normalised"].isel(structure=0)
     row, column = np.argwhere(np.isfinite(stored.values))[len(dataset["zeta"]) + 10]  # a resolved grid point
     zeta, lam = dataset["zeta"].values[column], dataset["lambda_"].values[row]
-    assert lookup(zeta, lam, structure=structure, theory=theory).fmax_normalised == pytest.approx(
+    assert lookup(zeta, lam, kind=structure, theory=theory).fmax_normalised == pytest.approx(
         stored.values[row, column], abs=1e-12)
 
 
@@ -51,9 +51,9 @@ def assert_lookup_or_refusal(dataset, zetas, lambdas, direct, structure, theory,
         if near_unresolved or not np.isfinite(value):
             assert near_unresolved, f"the solver left ({zeta:g}, {lam:g}) unresolved, the map did not"
             with pytest.raises(ValueError, match="holds no value"):
-                lookup(zeta, lam, structure=structure, theory=theory)
+                lookup(zeta, lam, kind=structure, theory=theory)
             continue
-        assert abs(lookup(zeta, lam, structure=structure, theory=theory).fmax_normalised - value) <= tolerance
+        assert abs(lookup(zeta, lam, kind=structure, theory=theory).fmax_normalised - value) <= tolerance
         answered += 1
     assert answered >= len(zetas) // 2
 
@@ -66,24 +66,24 @@ def test_design_formula_is_exact_at_its_asymptotes():
 
 def test_lookup_rejects_out_of_range():
     with pytest.raises(ValueError, match="loss_factor = .* outside the shipped map"):
-        lookup(1e-4, 1.0, structure="plate", theory="kirchhoff")
+        lookup(1e-4, 1.0, kind="plate", theory="kirchhoff")
     # an array names its offending values, not all of them
     many = np.r_[np.geomspace(0.01, 100, 500), 2e3, 5e3]
     with pytest.raises(ValueError, match=r"loss_factor = array of shape \(502,\) with 2 value\(s\) outside "
                                          r"\(first \[2000.0, 5000.0\]\) is outside the shipped map") as raised:
-        lookup(many, 1.0, structure="plate", theory="kirchhoff")
+        lookup(many, 1.0, kind="plate", theory="kirchhoff")
     assert len(str(raised.value)) < 300
     with pytest.raises(ValueError, match="theory"):
-        lookup(1.0, 1.0, structure="plate", theory="euler")
+        lookup(1.0, 1.0, kind="plate", theory="euler")
 
 
 def test_lookup_and_classify_commands(capsys):
-    assert main(["lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "11.3",
+    assert main(["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "11.3",
                  "--lambda", "0.425", "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["regime"] == "quasi-static"
     assert set(values) >= {"fmax_normalised", "regime"}
-    assert main(["classify", "--zeta", "0.038", "--lambda", "0.425", "--structure", "plate", "--json"]) == 0
+    assert main(["classify", "--zeta", "0.038", "--lambda", "0.425", "--kind", "plate", "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["regime"] == "local" and values["fmax_normalised"] > 0.9
 
@@ -99,10 +99,10 @@ def test_lookup_case_gives_newtons(capsys, tmp_path):
         'material = "aluminium-6061-t6"\ntheory = "euler"\nsupports = "ss"\nimpact_position = 0.25\n'
         '[contact]\nlaw = "linear"\nstiffness = 44160.0\n'
     )
-    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--case", str(case), "--json"]) == 0
+    assert main(["lookup", "--kind", "beam", "--theory", "euler", "--case", str(case), "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["lambda"] == pytest.approx(1.0, rel=0.01)
-    found = lookup(values["zeta"], values["lambda"], structure="beam", theory="euler")
+    found = lookup(values["zeta"], values["lambda"], kind="beam", theory="euler")
     assert values["fmax_normalised"] == pytest.approx(found.fmax_normalised)
     from impactmaps.cases import load_case, run_case
 
@@ -129,11 +129,11 @@ def test_lookup_carries_the_maps_error_and_status():
     beam point is `converged` with a band of a few 1e-3 at most. (Until solver revision 8
     the plate at λ = 0.05, ζ ≈ 16–22 was sensitive: its mode floor counted degenerate
     modes twice or thrice; with the modes the impact point sees it converges.)"""
-    plate = lookup(15.4, 0.034, structure="plate", theory="kirchhoff")
+    plate = lookup(15.4, 0.034, kind="plate", theory="kirchhoff")
     assert plate.status == "sensitive" and plate.fmax_error > 5e-4
-    beam = lookup(0.1, 1.0, structure="beam", theory="euler")
+    beam = lookup(0.1, 1.0, kind="beam", theory="euler")
     assert beam.status == "converged" and beam.fmax_error < 5e-3
-    many = lookup([0.1, 15.4], [1.0, 0.034], structure="plate", theory="kirchhoff")
+    many = lookup([0.1, 15.4], [1.0, 0.034], kind="plate", theory="kirchhoff")
     assert list(many.status) == ["converged", "sensitive"]
 
 
@@ -150,7 +150,7 @@ def test_lookup_band_covers_the_direct_simulation(structure, theory):
     lambdas = np.exp(rng.uniform(np.log(0.05), np.log(20.0), 25))
     rows = solve_points(structure_from_name(SHIPPED_MAPS[(structure, theory)]),
                         list(zip(zetas, lambdas)), ModalSettings())
-    found = lookup(zetas, lambdas, structure=structure, theory=theory)
+    found = lookup(zetas, lambdas, kind=structure, theory=theory)
     direct = np.array([r["fmax_normalised"] for r in rows])
     own = np.array([r["fmax_error"] for r in rows])
     assert np.all(np.abs(found.fmax_normalised - direct) <= found.fmax_error + own)
@@ -458,8 +458,8 @@ def test_a_lookup_in_a_shipped_mindlin_map_says_it_is_a_point_load():
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        lookup(1.0, 1.0, structure="plate", theory="mindlin")
-        lookup(1.0, 1.0, structure="plate", theory="kirchhoff")
+        lookup(1.0, 1.0, kind="plate", theory="mindlin")
+        lookup(1.0, 1.0, kind="plate", theory="kirchhoff")
     said = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
     assert len(said) == 1 and str(said[0].message).startswith("point load: the shipped Mindlin maps")
 
@@ -521,7 +521,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     error and the status the point's."""
     from impactmaps.maps.lookup import BAND_TOLERANCE, answer_status
 
-    kink = lookup(0.33, 0.013, structure="beam", theory="euler")
+    kink = lookup(0.33, 0.013, kind="beam", theory="euler")
     direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]
     assert kink.status == "interpolated" and kink.fmax_error > BAND_TOLERANCE
     assert abs(kink.fmax_normalised - direct["fmax_normalised"]) <= kink.fmax_error
@@ -529,7 +529,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     converged = np.argwhere(dataset["status"].isel(structure=0).values == 0)  # STATUSES[0]
     row, column = converged[len(converged) // 2]
     zeta, lam = float(dataset["zeta"][column]), float(dataset["lambda_"][row])
-    node = lookup(zeta, lam, structure="beam", theory="euler")
+    node = lookup(zeta, lam, kind="beam", theory="euler")
     assert node.fmax_error == float(dataset["fmax_error"].isel(structure=0)[row, column])
     assert node.status == "converged"
     assert answer_status("sensitive", 0.5) == "sensitive" and answer_status("refined", 2e-3) == "interpolated"
@@ -541,15 +541,15 @@ def test_the_lookup_command_says_what_an_interpolated_or_sensitive_status_means(
     """`lookup --json` adds a ``status_note`` where the status qualifies the number
     (interpolated: known to ± the band, `impactmaps point` for 1e-3; sensitive: read the
     band) and none where the points converged and the band is within their tolerance."""
-    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.33", "--lambda", "0.013",
+    assert main(["lookup", "--kind", "beam", "--theory", "euler", "--zeta", "0.33", "--lambda", "0.013",
                  "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["status"] == "interpolated" and "impactmaps point" in values["status_note"]
-    assert main(["lookup", "--structure", "plate", "--theory", "kirchhoff", "--zeta", "15.4", "--lambda", "0.034",
+    assert main(["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "15.4", "--lambda", "0.034",
                  "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["status"] == "sensitive" and "read the band" in values["status_note"]
-    assert main(["lookup", "--structure", "beam", "--theory", "euler", "--zeta", "0.1", "--lambda", "1",
+    assert main(["lookup", "--kind", "beam", "--theory", "euler", "--zeta", "0.1", "--lambda", "1",
                  "--json"]) == 0
     values = json.loads(capsys.readouterr().out)
     assert values["status"] == "converged" and "status_note" not in values
@@ -560,7 +560,7 @@ def test_a_hertz_lookup_suggests_a_command_that_exists():
     has no contact-law option; it names `impactmaps simulate` on a case file (the linear
     lookup keeps `impactmaps point`, which computes linear map points)."""
     with pytest.raises(ValueError) as hertz:
-        lookup(1e-6, 1.0, structure="beam", theory="euler", law="hertz")
+        lookup(1e-6, 1.0, kind="beam", theory="euler", law="hertz")
     assert "impactmaps simulate" in str(hertz.value) and "impactmaps point" not in str(hertz.value)
     with pytest.raises(ValueError, match="impactmaps point"):
-        lookup(1e-6, 1.0, structure="beam", theory="euler")
+        lookup(1e-6, 1.0, kind="beam", theory="euler")

@@ -36,19 +36,19 @@ def test_one_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law, k
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            together = lookup(zeta, lam, structure=structure, theory=theory, law=law)
+            together = lookup(zeta, lam, kind=structure, theory=theory, law=law)
         except ValueError:  # an unresolved point among them: compare the points one by one only where they answer
             together = None
         compared = 0
         for index, (z, lam_value) in enumerate(zip(zeta, lam)):
             try:
-                one = lookup(float(z), float(lam_value), structure=structure, theory=theory, law=law)
+                one = lookup(float(z), float(lam_value), kind=structure, theory=theory, law=law)
                 alone = (together if together is not None else  # two points: the vectorised path
-                         lookup(np.array([z, z]), np.array([lam_value, lam_value]), structure=structure,
+                         lookup(np.array([z, z]), np.array([lam_value, lam_value]), kind=structure,
                                 theory=theory, law=law))
             except ValueError as error:  # both paths refuse the same points
                 with pytest.raises(ValueError, match="holds no value"):
-                    lookup(np.array([z, z]), np.array([lam_value, lam_value]), structure=structure, theory=theory,
+                    lookup(np.array([z, z]), np.array([lam_value, lam_value]), kind=structure, theory=theory,
                            law=law)
                 assert "holds no value" in str(error)
                 continue
@@ -82,7 +82,7 @@ def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_looku
         compared = 0
         for b, z, lam_value in zip(beta, zeta, lam):
             def read(*point):
-                return lookup_plastic(*point, structure=structure, theory=theory, law=law)
+                return lookup_plastic(*point, kind=structure, theory=theory, law=law)
             try:
                 one = read(float(b), float(z), float(lam_value))
             except ValueError:  # refused alone: refused in the vectorised read too

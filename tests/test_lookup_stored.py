@@ -110,12 +110,12 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
         numbers = _inside_points(equivalence._dataset(key), 6, number)
         if key[2] in ("linear", "hertz"):
             def call(zeta, lam, key=key):
-                found = lookup(zeta, lam, structure=key[0], theory=key[1], law=key[2], slenderness=key[3])
+                found = lookup(zeta, lam, kind=key[0], theory=key[1], law=key[2], slenderness=key[3])
                 return found.fmax_normalised, found.fmax_error, found.status, found.regime
             calls.append((call, (numbers["zeta"], numbers["lambda_"])))
         else:
             def call(beta, zeta, lam, key=key):
-                found = lookup_plastic(beta, zeta, lam, structure=key[0], theory=key[1], law=key[2])
+                found = lookup_plastic(beta, zeta, lam, kind=key[0], theory=key[1], law=key[2])
                 return found.fmax_normalised, found.fmax_error, found.status, found.restitution
             calls.append((call, (numbers["beta"], numbers["zeta"], numbers["lambda_"])))
     cases = _family_cases()
@@ -313,10 +313,10 @@ def test_the_prepared_map_follows_its_file(tmp_path, monkeypatch):
     warnings.simplefilter("ignore")
     first = lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0]
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is first
-    answer = lookup_module.lookup(1.0, 0.2, structure="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    answer = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     changed = read_dataset(copy)
     changed["fmax_normalised"] = changed["fmax_normalised"] * 2.0
     save_atomic(changed, copy)
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is not first
-    again = lookup_module.lookup(1.0, 0.2, structure="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    again = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     assert again == pytest.approx(2.0 * answer, rel=1e-12)

@@ -49,7 +49,7 @@ def test_classify_limits_and_validation():
 
     assert classify(float(infinite_plate_peak(0.5)), 0.5, 0.05, "plate") == "infinite-structure"
     assert classify(0.3, 1.0, 4.0, "plate") == "transition"
-    with pytest.raises(ValueError, match="structure"):
+    with pytest.raises(ValueError, match="kind"):
         classify(0.5, 1.0, 1.0, "shell")
     with pytest.raises(ValueError, match="tolerance"):
         classify(0.5, 1.0, 1.0, "plate", tolerance=0)

@@ -194,5 +194,40 @@ def test_load_shipped_map_names_a_plastic_map_by_its_family():
     is refused naming the structures it does (not a missing file that never existed)."""
     from impactmaps.maps.lookup import load_shipped_map
 
-    with pytest.raises(ValueError, match=r"\(structure, theory\) = \('plate', 'mindlin'\) is not known"):
+    with pytest.raises(ValueError, match=r"\(kind, theory\) = \('plate', 'mindlin'\) is not known"):
         load_shipped_map("plate", "mindlin", "yc")
+
+
+def test_one_word_for_beam_or_plate_and_the_old_spellings_still_work(capsys):
+    """``kind`` is beam or plate everywhere (docs/architecture.rst, "Words"); ``structure=``,
+    ``LookupResult.structure``, ``Target.structure`` and ``--structure`` are its old spellings:
+    the same answer, with a FutureWarning in Python."""
+    import json
+
+    import impactmaps as im
+    from impactmaps.cli import main
+    from impactmaps.maps.regimes import classify
+
+    new = im.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")
+    assert new.kind == "plate"
+    with pytest.warns(FutureWarning, match=r"lookup\(structure=\.\.\.\) is now lookup\(kind=\.\.\.\)"):
+        old = im.lookup(1.198, 0.425, structure="plate", theory="kirchhoff")
+    assert old == new
+    with pytest.warns(FutureWarning, match="LookupResult.structure is now LookupResult.kind"):
+        assert new.structure == "plate"
+    with pytest.raises(TypeError, match="both 'kind' and its old name 'structure'"):
+        im.lookup(1.198, 0.425, kind="plate", structure="plate")
+    with pytest.warns(FutureWarning):
+        assert classify(0.5, 1.0, 1.0, structure="beam") == classify(0.5, 1.0, 1.0, "beam")
+    plate = im.Plate.isotropic(0.3, 0.3, 0.004, im.IsotropicMaterial(210e9, 0.3, 7800.0))
+    with pytest.warns(FutureWarning, match="Plate.structure is now .kind"):
+        assert plate.structure == plate.kind == "plate"
+    answers = []
+    for option in ("--kind", "--structure"):
+        assert main(["lookup", option, "plate", "--theory", "kirchhoff", "--zeta", "1", "--lambda", "1", "--json"]) == 0
+        answers.append(json.loads(capsys.readouterr().out))
+    assert answers[0] == answers[1]
+    from impactmaps.cli import build_parser  # the old option is accepted, not shown
+
+    help_text = build_parser()._subparsers._group_actions[0].choices["lookup"].format_help()
+    assert "--kind" in help_text and "--structure" not in help_text

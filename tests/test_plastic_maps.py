@@ -146,7 +146,7 @@ def test_a_map_point_is_the_direct_solution():
     stored = dataset.isel(structure=0).sel(beta=beta, lambda_=lam, zeta=zeta)
     for name in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "fmax_error"):
         assert float(stored[name]) == pytest.approx(row[name], rel=1e-14, abs=1e-15), name
-    found = lookup_plastic(beta, zeta, lam, structure="beam", theory="euler", law="yc")
+    found = lookup_plastic(beta, zeta, lam, kind="beam", theory="euler", law="yc")
     assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
 
 
@@ -159,18 +159,18 @@ def test_lookup_plastic_refuses_next_to_an_unresolved_point():
     at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
     beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in zip(("beta", "lambda_", "zeta"), at))
     with pytest.raises(ValueError, match="holds no value .unresolved"):
-        lookup_plastic(beta, zeta, lam, structure="beam", theory="timoshenko")
+        lookup_plastic(beta, zeta, lam, kind="beam", theory="timoshenko")
 
 
 def test_lookup_plastic_refuses_outside_the_map():
     from impactmaps.maps.plastic_lookup import lookup_plastic
 
     with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
-        lookup_plastic(5000.0, 0.1, 0.1, structure="beam", theory="euler")
+        lookup_plastic(5000.0, 0.1, 0.1, kind="beam", theory="euler")
     with pytest.raises(ValueError, match="relative_stiffness .* outside the shipped map: valid range is"):
-        lookup_plastic(10.0, 0.1, 0.005, structure="plate", theory="kirchhoff")
-    with pytest.raises(ValueError, match="structure, theory"):
-        lookup_plastic(10.0, 0.1, 0.1, structure="plate", theory="mindlin")
+        lookup_plastic(10.0, 0.1, 0.005, kind="plate", theory="kirchhoff")
+    with pytest.raises(ValueError, match="kind, theory"):
+        lookup_plastic(10.0, 0.1, 0.1, kind="plate", theory="mindlin")
 
 
 _YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 1.0\n'
@@ -264,10 +264,10 @@ def test_lookup_command_at_given_numbers():
     from impactmaps.cli.commands_maps import cmd_lookup
     from impactmaps.maps.plastic_lookup import lookup_plastic
 
-    args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+    args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
     out = cmd_lookup(args)
-    assert out["fmax_normalised"] == lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler").fmax_normalised
+    assert out["fmax_normalised"] == lookup_plastic(100.0, 0.1, 0.5, kind="beam", theory="euler").fmax_normalised
     assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
     with pytest.raises(ValueError, match="--beta is required with --law yc"):
         cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))
@@ -451,7 +451,7 @@ def test_epp_lookups_against_committed_direct_runs():
         runs = mine[mine["status"] != "refused"]
         assert len(runs) > (140 if theory == "timoshenko" else 190), name
         found = lookup_plastic(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
-                               structure=kind, theory=theory, law="epp")
+                               kind=kind, theory=theory, law="epp")
         for variable, error in ERROR_OF.items():
             direct = runs[f"{variable}_direct"].to_numpy()
             ok = np.isfinite(direct)
@@ -477,8 +477,8 @@ def test_epp_chart_and_lookup_commands(tmp_path):
                               quiet=True)
     paths = cmd_chart(args)
     assert (tmp_path / "chart" / "fmax_chart_epp.png").exists() and "csv" in paths
-    args = argparse.Namespace(case=None, law="epp", beta=100.0, zeta=0.1, lambda_=0.5, structure="beam",
+    args = argparse.Namespace(case=None, law="epp", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
     out = cmd_lookup(args)
-    found = lookup_plastic(100.0, 0.1, 0.5, structure="beam", theory="euler", law="epp")
+    found = lookup_plastic(100.0, 0.1, 0.5, kind="beam", theory="euler", law="epp")
     assert out["fmax_normalised"] == found.fmax_normalised and out["map"] == "beam-ss-euler-epp"

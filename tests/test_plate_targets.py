@@ -72,7 +72,7 @@ def test_plate_is_a_target():
     """Interface invariant: Plate implements the Target ABC with structure 'plate'."""
     plate = Plate.isotropic(0.5, 0.4, 0.005, STEEL)
     assert isinstance(plate, Target)
-    assert plate.structure == "plate"
+    assert plate.kind == "plate"
     assert plate.impact_point == (0.25, 0.2)
     assert isinstance(plate.modes(10 * plate.fundamental_frequency()), ModalBasis)
 

@@ -171,7 +171,7 @@ def test_the_shipped_lookups_against_committed_direct_runs():
     for (structure, theory), name in SHIPPED_MAPS.items():
         runs = table[(table["map"] == name) & (table["direct_status"] != "sensitive")
                      & (table["refined_status"] != "refused")]
-        found = lookup(runs["zeta"].to_numpy(), runs["lambda"].to_numpy(), structure=structure, theory=theory)
+        found = lookup(runs["zeta"].to_numpy(), runs["lambda"].to_numpy(), kind=structure, theory=theory)
         kept = found.status != "sensitive"
         error = np.abs(found.fmax_normalised - runs["direct"].to_numpy())[kept]
         band = found.fmax_error[kept] + runs["direct_error"].to_numpy()[kept]
@@ -220,7 +220,7 @@ def test_the_hertz_lookups_against_committed_direct_runs():
         assert len(runs) > 150, name
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the Mindlin map's point-load warning
-            found = lookup(runs["zeta"].to_numpy(), runs["lambda"].to_numpy(), structure=structure,
+            found = lookup(runs["zeta"].to_numpy(), runs["lambda"].to_numpy(), kind=structure,
                            theory=theory, law="hertz")
         error = np.abs(found.fmax_normalised - runs["direct"].to_numpy())
         assert np.all(error <= found.fmax_error + runs["direct_error"].to_numpy()), name

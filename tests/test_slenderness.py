@@ -8,9 +8,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from impactmaps.maps.slenderness import family_members, lookup_slenderness, slenderness_error_grid
+from impactmaps.maps.slenderness import slenderness_members, lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.lookup import lookup
-from impactmaps.maps.structures import FAMILY_SLENDERNESSES, structure_from_name
+from impactmaps.maps.structures import MEMBER_SLENDERNESSES, structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
@@ -18,19 +18,19 @@ FAMILIES = [("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), (
 
 
 def test_members_run_from_the_thin_limit_to_the_thickest():
-    members = family_members("plate", "mindlin")
+    members = slenderness_members("plate", "mindlin")
     assert [s for _, s in members] == [None, 50.0, 20.0, 10.0]
     assert [x for x, _ in members] == sorted(x for x, _ in members)
     with pytest.raises(ValueError, match="no slenderness family"):
-        family_members("plate", "mindlin", "hertz")  # a Mindlin Hertz impact loads the contact patch
+        slenderness_members("plate", "mindlin", "hertz")  # a Mindlin Hertz impact loads the contact patch
 
 
 @pytest.mark.parametrize("structure, theory, law", FAMILIES)
 def test_a_member_slenderness_reads_that_member_exactly(structure, theory, law):
     """At s = 10, 20, 50 the interpolation weight is 0 or 1: the member's value and band."""
-    for slenderness in FAMILY_SLENDERNESSES:
-        found = lookup_slenderness(1.0, 1.0, structure=structure, theory=theory, slenderness=slenderness, law=law)
-        member = lookup(1.0, 1.0, structure=structure, theory=theory, law=law, slenderness=slenderness)
+    for slenderness in MEMBER_SLENDERNESSES:
+        found = lookup_slenderness(1.0, 1.0, kind=structure, theory=theory, slenderness=slenderness, law=law)
+        member = lookup(1.0, 1.0, kind=structure, theory=theory, law=law, slenderness=slenderness)
         assert found.fmax_normalised == member.fmax_normalised
         assert found.fmax_error == pytest.approx(member.fmax_error, rel=1e-12)
 
@@ -38,7 +38,7 @@ def test_a_member_slenderness_reads_that_member_exactly(structure, theory, law):
 @pytest.mark.parametrize("structure, theory, law", FAMILIES)
 def test_leave_one_out_error_is_finite_where_the_members_have_values(structure, theory, law):
     _, _, errors = slenderness_error_grid(structure, theory, law)
-    s20 = np.isfinite(lookup(1.0, 1.0, structure=structure, theory=theory, law=law).fmax_normalised)
+    s20 = np.isfinite(lookup(1.0, 1.0, kind=structure, theory=theory, law=law).fmax_normalised)
     assert s20 and np.isfinite(errors).sum() >= 1500  # where every member has a value
     assert np.nanmax(errors) < 0.2
 
@@ -56,7 +56,7 @@ def test_lookup_at_other_slendernesses_holds_a_direct_solve_within_its_band(stru
                              np.exp(rng.uniform(np.log(0.05), np.log(20.0), 3))):
             (direct,) = solve_points(replace(base, slenderness=slenderness), [(zeta, lam)], ModalSettings())
             try:
-                found = lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness)
+                found = lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness)
             except ValueError as error:
                 assert "holds no value" in str(error) or "unresolved" in str(error)
                 continue
@@ -67,7 +67,7 @@ def test_lookup_at_other_slendernesses_holds_a_direct_solve_within_its_band(stru
 
 def test_thicker_than_the_thickest_member_is_refused():
     with pytest.raises(ValueError, match="slenderness"):
-        lookup_slenderness(1.0, 1.0, structure="beam", theory="timoshenko", slenderness=8.0)
+        lookup_slenderness(1.0, 1.0, kind="beam", theory="timoshenko", slenderness=8.0)
 
 
 def test_lookup_case_at_slenderness_30_matches_simulate():

@@ -87,9 +87,9 @@ def test_laws_imports_the_laws_but_compiles_nothing():
 
 
 @pytest.mark.parametrize("argv", [
-    ["--structure", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"],
-    ["--structure", "beam", "--theory", "euler", "--law", "hertz", "--zeta", "0.3", "--lambda", "2", "--json"],
-    ["--structure", "plate", "--theory", "kirchhoff", "--law", "yc", "--beta", "3", "--zeta", "0.5", "--lambda", "1"],
+    ["--kind", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"],
+    ["--kind", "beam", "--theory", "euler", "--law", "hertz", "--zeta", "0.3", "--lambda", "2", "--json"],
+    ["--kind", "plate", "--theory", "kirchhoff", "--law", "yc", "--beta", "3", "--zeta", "0.5", "--lambda", "1"],
 ], ids=["linear", "hertz", "yc"])
 def test_lookup_on_a_shipped_map_imports_only_numpy(argv):
     """A lookup on a shipped map (linear, Hertz, elastic-plastic) interpolates the packed map

@@ -90,11 +90,11 @@ def _read(key, numbers: dict):
 
     structure, theory, law, slenderness = key
     if "beta" in numbers:
-        found = lookup_plastic(numbers["beta"], numbers["zeta"], numbers["lambda_"], structure=structure,
+        found = lookup_plastic(numbers["beta"], numbers["zeta"], numbers["lambda_"], kind=structure,
                                theory=theory, law=law)
         regime = np.full(np.shape(found.fmax_normalised), "")
     else:
-        found = lookup(numbers["zeta"], numbers["lambda_"], structure=structure, theory=theory, law=law,
+        found = lookup(numbers["zeta"], numbers["lambda_"], kind=structure, theory=theory, law=law,
                        slenderness=slenderness)
         regime = found.regime
     return (np.atleast_1d(found.fmax_normalised), np.atleast_1d(found.fmax_error), np.atleast_1d(found.status),

@@ -58,7 +58,7 @@ def measure(structure: str, theory: str, points: int, seed: int, law: str = "lin
     looked = []
     for zeta, lam in zip(zetas, lambdas):
         try:
-            looked.append(lookup(zeta, lam, structure=structure, theory=theory, law=law))
+            looked.append(lookup(zeta, lam, kind=structure, theory=theory, law=law))
         except ValueError:  # next to an unresolved map point (beyond a Timoshenko/Mindlin theory): refused
             looked.append(None)
     formula = design_formula(zetas, lambdas, structure, law)
@@ -127,7 +127,7 @@ def measure_plastic(structure: str, theory: str, law: str, points: int, seed: in
     found = []
     for beta, zeta, lam in zip(axes["beta"], axes["zeta"], axes["lambda_"]):
         try:
-            found.append(lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law))
+            found.append(lookup_plastic(beta, zeta, lam, kind=structure, theory=theory, law=law))
         except ValueError:  # next to an unresolved map point: refused
             found.append(None)
     for variable, error in ERROR_OF.items():

@@ -98,13 +98,13 @@ def lookups() -> dict:
     from impactmaps.maps.slenderness import lookup_slenderness
     from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup
     from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-    from impactmaps.maps.structures import FAMILY_SLENDERNESSES
+    from impactmaps.maps.structures import MEMBER_SLENDERNESSES
 
     out = {}
     rng = np.random.default_rng(27)
     maps = [(s, t, law, None) for (s, t) in SHIPPED_MAPS for law in ("linear", "hertz")]
     maps += [(s, t, law, sl) for (s, t) in (("beam", "timoshenko"), ("plate", "mindlin")) for law in ("linear", "hertz")
-             for sl in FAMILY_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
+             for sl in MEMBER_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
     for structure, theory, law, slenderness in maps:
         try:
             dataset = load_shipped_map(structure, theory, law, slenderness)
@@ -112,12 +112,12 @@ def lookups() -> dict:
             continue
         z = _log_uniform(rng, dataset["zeta"].min(), dataset["zeta"].max() * 1.02, POINTS)
         lam = _log_uniform(rng, dataset["lambda_"].min(), dataset["lambda_"].max(), POINTS)
-        answers = [_answer(lambda a=a, b=b: lookup(a, b, structure=structure, theory=theory, law=law,
+        answers = [_answer(lambda a=a, b=b: lookup(a, b, kind=structure, theory=theory, law=law,
                                                     slenderness=slenderness)) for a, b in zip(z, lam)]
-        answers.append(_answer(lambda: lookup(z[:20], lam[:20] * 0 + float(dataset["lambda_"][3]), structure=structure,
+        answers.append(_answer(lambda: lookup(z[:20], lam[:20] * 0 + float(dataset["lambda_"][3]), kind=structure,
                                               theory=theory, law=law, slenderness=slenderness)))
         grid = (dataset["zeta"].values[::17], dataset["lambda_"].values[::9])
-        answers += [_answer(lambda a=a, b=b: lookup(a, b, structure=structure, theory=theory, law=law,
+        answers += [_answer(lambda a=a, b=b: lookup(a, b, kind=structure, theory=theory, law=law,
                                                      slenderness=slenderness)) for a in grid[0] for b in grid[1]]
         out[f"lookup/{structure}-{theory}-{law}-s{slenderness}"] = _digest(answers)
     for structure, theory, law in (("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"),
@@ -127,7 +127,7 @@ def lookups() -> dict:
         z = _log_uniform(rng, dataset["zeta"].min(), dataset["zeta"].max(), 60)
         lam = _log_uniform(rng, dataset["lambda_"].min(), dataset["lambda_"].max(), 60)
         out[f"slenderness/{structure}-{theory}-{law}"] = _digest([_answer(
-            lambda a=a, b=b, c=c: lookup_slenderness(a, b, structure=structure, theory=theory, slenderness=c, law=law))
+            lambda a=a, b=b, c=c: lookup_slenderness(a, b, kind=structure, theory=theory, slenderness=c, law=law))
             for a, b, c in zip(z, lam, s)])
     for (structure, theory) in PLASTIC_MAPS:
         for law in ("yc", "stronge"):
@@ -135,11 +135,11 @@ def lookups() -> dict:
             b = _log_uniform(rng, dataset["beta"].min(), dataset["beta"].max(), POINTS)
             z = _log_uniform(rng, dataset["zeta"].min(), dataset["zeta"].max() * 1.02, POINTS)
             lam = _log_uniform(rng, dataset["lambda_"].min(), dataset["lambda_"].max(), POINTS)
-            answers = [_answer(lambda a=a, c=c, d=d: lookup_plastic(a, c, d, structure=structure, theory=theory,
+            answers = [_answer(lambda a=a, c=c, d=d: lookup_plastic(a, c, d, kind=structure, theory=theory,
                                                                      law=law)) for a, c, d in zip(b, z, lam)]
             answers.append(_answer(lambda: lookup_plastic(b[:30], z[:30] * 0 + float(dataset["zeta"][12]),
                                                           lam[:30] * 0 + float(dataset["lambda_"][12]),
-                                                          structure=structure, theory=theory, law=law)))
+                                                          kind=structure, theory=theory, law=law)))
             out[f"plastic/{structure}-{theory}-{law}"] = _digest(answers)
     return out
 
@@ -199,9 +199,9 @@ def _plastic_sweep(structure, law, betas, zetas, lambdas):
 def cli() -> dict:
     out = {}
     commands = [["lookup", "--zeta", "0.3", "--lambda", "0.2", "--json"],
-                ["lookup", "--zeta", "0.3", "--lambda", "0.2", "--law", "hertz", "--structure", "beam",
+                ["lookup", "--zeta", "0.3", "--lambda", "0.2", "--law", "hertz", "--kind", "beam",
                  "--theory", "euler", "--json"],
-                ["lookup", "--zeta", "0.1", "--lambda", "0.5", "--law", "yc", "--beta", "10", "--structure", "beam",
+                ["lookup", "--zeta", "0.1", "--lambda", "0.5", "--law", "yc", "--beta", "10", "--kind", "beam",
                  "--theory", "euler", "--json"],
                 ["lookup", "--case", "examples/steel_plate_hertz.toml", "--json", "--no-build"],
                 ["lookup", "--case", "examples/aluminium_beam_linear.toml", "--json", "--no-build"]]

@@ -40,7 +40,7 @@ from impactmaps.maps import plastic_lookup  # noqa: E402
 from impactmaps.maps.data_io import read_dataset  # noqa: E402
 from impactmaps.maps import reader  # noqa: E402
 from impactmaps.maps.registry import map_family  # noqa: E402
-from impactmaps.maps.structures import FAMILY_SLENDERNESSES  # noqa: E402
+from impactmaps.maps.structures import MEMBER_SLENDERNESSES  # noqa: E402
 
 PACKED = ROOT / "impactmaps" / "maps" / "data"
 SEED = 30
@@ -50,7 +50,7 @@ def maps() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map a lookup reads."""
     out = [(s, t, law, None) for (s, t) in lookup_module.SHIPPED_MAPS for law in ("linear", "hertz")]
     out += [(s, t, law, sl) for (s, t) in (("beam", "timoshenko"), ("plate", "mindlin")) for law in ("linear", "hertz")
-            for sl in FAMILY_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
+            for sl in MEMBER_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
     out += [(s, t, law, None) for (s, t) in plastic_lookup.PLASTIC_MAPS for law in ("yc", "stronge", "epp")]
     return out
 

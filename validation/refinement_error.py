@@ -54,8 +54,8 @@ def _read_points(structure, theory, dataset, zetas, lambdas, out) -> None:
     for zeta, lam in zip(zetas, lambdas):
         for kind in ("grid", "refined"):
             try:
-                found = (read_map(dataset, zeta, lam, structure=structure, theory=theory, name="grid")
-                         if kind == "grid" else lookup(zeta, lam, structure=structure, theory=theory))
+                found = (read_map(dataset, zeta, lam, kind=structure, theory=theory, name="grid")
+                         if kind == "grid" else lookup(zeta, lam, kind=structure, theory=theory))
                 answer = (found.fmax_normalised, found.fmax_error, found.status)
             except ValueError:  # next to an unresolved point: refused
                 answer = (np.nan, np.nan, "refused")

@@ -29,7 +29,7 @@ import pandas as pd
 from impactmaps.maps.slenderness import lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.hertz_points import solve_hertz_points
 from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map
-from impactmaps.maps.structures import FAMILY_SLENDERNESSES, structure_from_name
+from impactmaps.maps.structures import MEMBER_SLENDERNESSES, structure_from_name
 from impactmaps.maps.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
@@ -42,7 +42,7 @@ FAMILIES = (("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), (
 def measure(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
     """Random (ζ, λ, s) points: direct solve against the slenderness lookup and its band."""
     # the (ζ, λ) box every family member covers (the s = 20 maps may cover more)
-    members = [load_shipped_map(structure, theory, law, slenderness=s) for s in FAMILY_SLENDERNESSES]
+    members = [load_shipped_map(structure, theory, law, slenderness=s) for s in MEMBER_SLENDERNESSES]
     box = {axis: (max(m[axis].min().item() for m in members), min(m[axis].max().item() for m in members))
            for axis in ("zeta", "lambda_")}
     rng = np.random.default_rng(seed)
@@ -57,7 +57,7 @@ def measure(structure: str, theory: str, law: str, points: int, seed: int) -> pd
         row = {"family": f"{structure}-{theory}-{law}", "zeta": zeta, "lambda": lam, "slenderness": slenderness,
                "direct": direct["fmax_normalised"], "direct_error": direct["fmax_error"]}
         try:
-            found = lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness,
+            found = lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness,
                                        law=law)
         except ValueError:
             row.update(lookup=np.nan, band=np.nan, refused=True)

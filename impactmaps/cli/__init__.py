@@ -128,7 +128,6 @@ _ZETA_RANGE = _Deferred("impactmaps.maps.chart", "DEFAULT_ZETA_RANGE")
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
-    from ..targets.options import STRUCTURE_KINDS
 
     parser = Parser(prog="impactmaps", description=plain_text(__doc__.splitlines()[0]))
     parser.add_argument("--version", action="version", version=f"impactmaps {__version__}")
@@ -175,7 +174,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("classify", "regime of an impact at (ζ, λ)", cmd_classify)
     p.add_argument("--zeta", type=float, required=True, help=ZETA_HELP)
     p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float, required=True, help=LAMBDA_HELP)
-    p.add_argument("--structure", choices=STRUCTURE_KINDS, required=True)
+    _kind_argument(p, required=True)
     p.add_argument("--tolerance", type=float, default=0.1,
                    help="relative distance to an asymptote that counts as on it, in (0, 1] (default 0.1)")
     p.add_argument("--from-map", action="store_true", help="interpolate the shipped map instead of simulating")
@@ -183,7 +182,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = add("lookup", "F̄max and regime from the shipped maps, or for a case an on-demand map tile (no simulation)",
             cmd_lookup)
-    p.add_argument("--structure", choices=STRUCTURE_KINDS)
+    _kind_argument(p, required=False)
     _deferred_choices(p.add_argument("--theory"), _THEORIES)
     p.add_argument("--zeta", type=float, help=ZETA_HELP + "; with --law hertz the Hertz loss factor ζ_h")
     p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float,
@@ -261,6 +260,15 @@ def _tool_parsers(add) -> None:
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
+
+
+def _kind_argument(p, required: bool) -> None:
+    """``--kind beam|plate``; ``--structure``, its old name, still accepted (not shown)."""
+    from ..targets.options import STRUCTURE_KINDS
+
+    group = p.add_mutually_exclusive_group(required=required)
+    group.add_argument("--kind", choices=STRUCTURE_KINDS, help="beam or plate")
+    group.add_argument("--structure", dest="kind", choices=STRUCTURE_KINDS, help=argparse.SUPPRESS)
 
 
 def _point_arguments(p, with_target=True):

@@ -328,11 +328,11 @@ def cmd_classify(args) -> dict:
                 "with --from-map (the shipped maps are for centre impacts on SS beams and square plates)")
         check("--zeta", args.zeta, what="the loss factor ζ")
         check("--lambda", args.lambda_, what="the relative stiffness λ")
-        theory = default_theory(args.structure)
-        found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=theory,
+        theory = default_theory(args.kind)
+        found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=theory,
                        tolerance=args.tolerance)
         return {"regime": found.regime, "fmax_normalised": found.fmax_normalised, "source": f"map {found.map_name}"}
-    args.target = "beam-ss" if args.structure == "beam" else "plate-ss"
+    args.target = "beam-ss" if args.kind == "beam" else "plate-ss"
     args.theory = None
     point = cmd_point(args)
     return {"regime": point["regime"], "fmax_normalised": point["fmax_normalised"],
@@ -352,7 +352,7 @@ def cmd_lookup(args) -> dict:
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
         case = load_case(args.case)
-        for option, given, wanted in (("--structure", args.structure, case.target_type),
+        for option, given, wanted in (("--kind", args.kind, case.target_type),
                                       ("--theory", args.theory, getattr(case.target, "theory", None)),
                                       ("--law", args.law, case_map_law(case))):
             if given is not None and given != wanted:
@@ -364,8 +364,8 @@ def cmd_lookup(args) -> dict:
             f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
         return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
-    if args.zeta is None or args.lambda_ is None or args.structure is None or args.theory is None:
-        raise ValueError("give --structure, --theory, --zeta and --lambda, or --case CASE.toml")
+    if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
+        raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
     from ..maps.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
@@ -378,13 +378,13 @@ def cmd_lookup(args) -> dict:
     slenderness = getattr(args, "slenderness", None)
     try:
         if slenderness is None:
-            found = lookup(args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=law)
+            found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law)
         else:
             from ..maps.slenderness import lookup_slenderness
 
             check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest family member is 10)",
                   low_inclusive=True)
-            found = lookup_slenderness(args.zeta, args.lambda_, structure=args.structure, theory=args.theory,
+            found = lookup_slenderness(args.zeta, args.lambda_, kind=args.kind, theory=args.theory,
                                        slenderness=slenderness, law=law)
     except ValueError as error:  # name the options as the user typed them
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
@@ -404,7 +404,7 @@ def _lookup_plastic_numbers(args) -> dict:
     check("--beta", beta, what="the impact number β")
     check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
     check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
-    found = lookup_plastic(beta, args.zeta, args.lambda_, structure=args.structure, theory=args.theory, law=args.law)
+    found = lookup_plastic(beta, args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=args.law)
     return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
             "restitution": found.restitution, "restitution_error": found.restitution_error,
             "absorbed_energy_fraction": found.absorbed_energy_fraction,

@@ -68,7 +68,7 @@ def asymptote(kind: str, target, law, impactor_mass, velocity) -> AsymptoteResul
     """
     require_choice("kind", kind, ASYMPTOTES)
     needed = ASYMPTOTES[kind]
-    if needed in ("plate", "beam") and getattr(target, "structure", None) != needed:
+    if needed in ("plate", "beam") and getattr(target, "kind", None) != needed:
         raise ValueError(f"target = {type(target).__name__} is not valid for asymptote {kind!r}: "
                          f"valid targets are {needed}s")
     if kind == "infinite-plate":

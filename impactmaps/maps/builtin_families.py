@@ -15,7 +15,7 @@ from __future__ import annotations
 from .._checks import require_choice
 from .map_family import Axis, Interpolation, MapFamily, map_family
 
-__all__ = ["SHIPPED_PLANE_MAPS", "FAMILY_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
+__all__ = ["SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
            "LinearLayout", "HertzLayout", "PlasticLayout", "LAYOUTS", "PLANE_LAWS", "CUBE_LAWS", "family_layout"]
 
 #: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike (the names
@@ -27,9 +27,9 @@ SHIPPED_PLANE_MAPS = {
     ("plate", "mindlin"): "plate-ssss-mindlin-s20",
 }
 
-#: Slendernesses (span/thickness) of the shipped shear-deformable map families; the
+#: Slendernesses (span/thickness) of the slenderness members of the shipped shear-deformable maps; the
 #: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.
-FAMILY_SLENDERNESSES = (10.0, 20.0, 50.0)
+MEMBER_SLENDERNESSES = (10.0, 20.0, 50.0)
 
 #: The axes of a Hertz map: (λ_h, ζ_h) descriptions.
 HERTZ_AXES = ("Hertz relative stiffness K_st/K_eq (K_eq = m V0²/α_m²)", "Hertz loss factor ζ(m, K_eq)")

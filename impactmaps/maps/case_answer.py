@@ -104,14 +104,14 @@ def answer(found, scale: float, law: str, details: dict) -> dict:
     }
 
 
-def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
+def lookup_plastic_case(case, kind: str, theory: str, law: str) -> dict:
     """:func:`impactmaps.maps.case_lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
 
     Parameters
     ----------
     case : impactmaps.cases.Case
         With a Yigit–Christoforou, default refined Stronge or default ``epp`` law.
-    structure, theory : str
+    kind, theory : str
         The family (:func:`impactmaps.maps.case_lookup.map_for_case`).
     law : {"yc", "stronge", "epp"}
 
@@ -122,7 +122,7 @@ def lookup_plastic_case(case, structure: str, theory: str, law: str) -> dict:
     """
     def read(beta, zeta, lam):
         try:
-            return lookup_plastic(beta, zeta, lam, structure=structure, theory=theory, law=law)
+            return lookup_plastic(beta, zeta, lam, kind=kind, theory=theory, law=law)
         except (OutsideMapError, UnresolvedPointError) as error:
             raise NoMapError(case, str(error).split("; run")[0]) from None
 

@@ -31,7 +31,7 @@ from .plastic_points import PLASTIC_LAWS
 from .reader import OutsideMapError, UnresolvedPointError
 from .regimes import MAP_LAWS
 from .registry import map_family
-from .structures import FAMILY_SLENDERNESSES, structure_from_name
+from .structures import MEMBER_SLENDERNESSES, structure_from_name
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law", "case_slenderness", "lookup_case",
            "map_for_case"]
@@ -102,10 +102,10 @@ def map_for_case(case) -> tuple[str, str]:
     slenderness = key.slenderness
     if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
         family = shipped_for(key.kind, key.theory, law)
-        if not family or slenderness < min(FAMILY_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
+        if not family or slenderness < min(MEMBER_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
             refuse(f"{key.theory} {key.kind} of slenderness {slenderness:.4g} (maps: "
-                   + (f"slenderness ≥ {min(FAMILY_SLENDERNESSES):g}, interpolated between the family members "
-                      f"{', '.join(f'{v:g}' for v in FAMILY_SLENDERNESSES)} and the thin limit"
+                   + (f"slenderness ≥ {min(MEMBER_SLENDERNESSES):g}, interpolated between the slenderness members "
+                      f"{', '.join(f'{v:g}' for v in MEMBER_SLENDERNESSES)} and the thin limit"
                       if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
     wanted = replace(structure_from_name(maps[(key.kind, key.theory)]), slenderness=slenderness or SHIPPED_SLENDERNESS)
     groups = wanted.build().similarity_groups()
@@ -210,10 +210,10 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
     slenderness = case_slenderness(case)
     if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
         def read(zeta, lam):
-            return lookup_slenderness(zeta, lam, structure=structure, theory=theory, slenderness=slenderness, law=law)
+            return lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness, law=law)
     else:
         def read(zeta, lam):
-            return lookup(zeta, lam, structure=structure, theory=theory, law=law)
+            return lookup(zeta, lam, kind=structure, theory=theory, law=law)
     try:
         return scaled_answer(case, law, read)
     except (OutsideMapError, UnresolvedPointError) as error:

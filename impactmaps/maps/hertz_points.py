@@ -241,7 +241,7 @@ class HertzFamily(HertzLayout):
         ratio = settings.cutoff_ratio if self.patch is None else settings.patch_cutoff_ratio
         capped = ratio * realised.omega > cap
         if capped and self.patch is None and has_classical_asymptote(target):
-            infinite = _asymptote_row(_INFINITE[target.structure], target, zeta, lam)
+            infinite = _asymptote_row(_INFINITE[target.kind], target, zeta, lam)
             if realised.reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
                 return PointPlan(PlanMethod.ASYMPTOTE,
                                  exact_point(infinite | {"method": method_code(PlanMethod.ASYMPTOTE)}))

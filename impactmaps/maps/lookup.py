@@ -26,8 +26,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._checks import require_choice, require_positive
+from .._renamed import renamed_keyword
 from ..targets.options import STRUCTURE_KINDS, is_shear_deformable, point_load_diverges
-from .builtin_families import FAMILY_SLENDERNESSES, PLASTIC_LAWS, family_layout
+from .builtin_families import MEMBER_SLENDERNESSES, PLASTIC_LAWS, family_layout
 from .reader import (
     BAND_TOLERANCE,
     PreparedMap,
@@ -80,7 +81,8 @@ class LookupResult:
         Interpolated F̄max [-].
     regime : str or ndarray of str
         Regime from :func:`impactmaps.maps.regimes.classify` on the interpolated values.
-    structure, theory : str
+    kind, theory : str
+        Beam or plate, and its theory (``structure``: the old name of ``kind``, deprecated).
     map_name : str
         The shipped map used.
     fmax_error : float or ndarray
@@ -105,12 +107,19 @@ class LookupResult:
 
     fmax_normalised: object
     regime: object
-    structure: str
+    kind: str
     theory: str
     map_name: str
     fmax_error: object = None
     status: object = None
     law: str = "linear"
+
+    @property
+    def structure(self) -> str:
+        """Deprecated: :attr:`kind`."""
+        warnings.warn("LookupResult.structure is now LookupResult.kind (beam or plate); the old name will be removed",
+                      FutureWarning, stacklevel=2)
+        return self.kind
 
     def peak_force(self, impactor_mass, velocity, contact_stiffness):
         """Dimensional peak force F̄max · m_i V0 ω [N] (m_i [kg], V0 [m/s], K [N/m]) of a linear map.
@@ -142,26 +151,27 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
     return dataset
 
 
-def shipped_structure_name(structure: str, theory: str, slenderness: float | None = None) -> str:
+def shipped_structure_name(kind: str, theory: str, slenderness: float | None = None) -> str:
     """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable family
-    member at ``slenderness`` (one of :data:`~impactmaps.maps.structures.FAMILY_SLENDERNESSES`)."""
-    require_choice("structure", structure, STRUCTURE_KINDS)
-    require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == structure])
-    name = SHIPPED_MAPS[(structure, theory)]
+    member at ``slenderness`` (one of :data:`~impactmaps.maps.structures.MEMBER_SLENDERNESSES`)."""
+    require_choice("kind", kind, STRUCTURE_KINDS)
+    require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == kind])
+    name = SHIPPED_MAPS[(kind, theory)]
     if slenderness is None or not is_shear_deformable(theory) or slenderness == SHIPPED_SLENDERNESS:
         return name
-    require_choice("slenderness", float(slenderness), FAMILY_SLENDERNESSES)
+    require_choice("slenderness", float(slenderness), MEMBER_SLENDERNESSES)
     from .structures import structure_from_name  # another slenderness's name: the structure's own rule
 
     return replace(structure_from_name(name), slenderness=float(slenderness)).name
 
 
 @functools.lru_cache(maxsize=32)
-def load_shipped_map(structure: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
-    """The shipped map for ``structure`` in {"beam", "plate"}, its ``theory`` and contact
+@renamed_keyword("structure", "kind")
+def load_shipped_map(kind: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
+    """The shipped map for ``kind`` in {"beam", "plate"}, its ``theory`` and contact
     ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one),
     named by :func:`_shipped_name` (an elastic-plastic law: the structures its family ships)."""
-    name = _shipped_name(structure, theory, law, slenderness)
+    name = _shipped_name(kind, theory, law, slenderness)
     dataset = read_shipped(name)
     if dataset is None:
         raise missing_shipped_map(name, law)
@@ -176,7 +186,8 @@ def missing_shipped_map(name: str, law: str) -> FileNotFoundError:
                              f"`python validation/{script} {law}`")
 
 
-def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
+@renamed_keyword("structure", "kind")
+def lookup(loss_factor, relative_stiffness, *, kind: str = "plate", theory: str = "kirchhoff",
            tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear",
            slenderness: float | None = None) -> LookupResult:
     """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
@@ -191,7 +202,7 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
     loss_factor, relative_stiffness : float or array_like
         ζ and λ [-] (the Hertz numbers ζ_h, λ_h for ``law="hertz"``), inside the map's
         range (else ``ValueError`` with the range).
-    structure : {"beam", "plate"}
+    kind : {"beam", "plate"}
     theory : str
         "euler" or "timoshenko" for beams, "kirchhoff" or "mindlin" for plates.
     tolerance, local_tolerance : float
@@ -213,13 +224,13 @@ def lookup(loss_factor, relative_stiffness, *, structure: str = "plate", theory:
         from .points import warn_point_loaded_mindlin  # the Mindlin maps' warning names the sweep's mode cap
 
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
-    prepared, name = shipped_reader(structure, theory, law, slenderness)
-    return read_map(None, loss_factor, relative_stiffness, structure=structure, theory=theory, name=name, law=law,
+    prepared, name = shipped_reader(kind, theory, law, slenderness)
+    return read_map(None, loss_factor, relative_stiffness, kind=kind, theory=theory, name=name, law=law,
                     tolerance=tolerance, local_tolerance=local_tolerance, prepared=prepared)
 
 
-def shipped_reader(structure: str, theory: str, law: str = "linear", slenderness: float | None = None):
-    """The shipped map of (structure, theory, law, slenderness) prepared for reading
+def shipped_reader(kind: str, theory: str, law: str = "linear", slenderness: float | None = None):
+    """The shipped map of (kind, theory, law, slenderness) prepared for reading
     (:func:`impactmaps.maps.reader.prepare_map`: with its refinement and interpolation
     estimate, or an elastic-plastic map's band grids), and its name.
 
@@ -231,23 +242,23 @@ def shipped_reader(structure: str, theory: str, law: str = "linear", slenderness
     rewrite the shipped files in place, and a process must not answer from the old ones.
     Returns ``(PreparedMap, name)``.
     """
-    name = _shipped_name(structure, theory, law, slenderness)
+    name = _shipped_name(kind, theory, law, slenderness)
     identity = _file_identity(name)
     if identity is None:
-        return _prepare_shipped((structure, theory, law, slenderness), name, None), name
-    return _prepared_shipped((structure, theory, law, slenderness), name, identity), name
+        return _prepare_shipped((kind, theory, law, slenderness), name, None), name
+    return _prepared_shipped((kind, theory, law, slenderness), name, identity), name
 
 
 @functools.lru_cache(maxsize=256)
-def _shipped_name(structure: str, theory: str, law: str, slenderness: float | None) -> str:
-    """File stem of the shipped map of (structure, theory, law, slenderness); ``ValueError`` naming
+def _shipped_name(kind: str, theory: str, law: str, slenderness: float | None) -> str:
+    """File stem of the shipped map of (kind, theory, law, slenderness); ``ValueError`` naming
     a value no shipped map has (a refusal is not cached)."""
     require_choice("law", law, ALL_MAP_LAWS)
     if law in PLASTIC_LAWS:
         shipped = family_layout(law).shipped
-        require_choice("(structure, theory)", (structure, theory), tuple(shipped))
-        return map_file_stem(shipped[(structure, theory)], law)
-    return map_file_stem(shipped_structure_name(structure, theory, slenderness), law)
+        require_choice("(kind, theory)", (kind, theory), tuple(shipped))
+        return map_file_stem(shipped[(kind, theory)], law)
+    return map_file_stem(shipped_structure_name(kind, theory, slenderness), law)
 
 
 def _file_identity(name: str):
@@ -297,7 +308,7 @@ def _prepare_shipped(key: tuple, name: str, identity: tuple | None):
     return prepare_map(dataset, family_layout(law), refinement)
 
 
-def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, structure: str, theory: str, name: str,
+def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, kind: str, theory: str, name: str,
              law: str = "linear", tolerance: float = 0.1, local_tolerance: float = 0.1,
              error_grid: np.ndarray | None = None, refinement: Refinement | None = None,
              prepared: PreparedMap | None = None) -> LookupResult:
@@ -324,8 +335,8 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
         ``log_reflection_time`` refine the regime when present. None with ``prepared``.
     loss_factor, relative_stiffness : float or array_like
         ζ and λ [-] (ζ_h, λ_h for a Hertz map), inside the map's range.
-    structure, theory : str
-        The structure kind ("beam" or "plate", for the regime) and its theory.
+    kind, theory : str
+        The structure's kind ("beam" or "plate", for the regime) and its theory.
     name : str
         The map's name, carried by the result.
     law : {"linear", "hertz"}
@@ -352,7 +363,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
         (ζ, λ) outside the map, or next to an ``unresolved`` point (no value).
     """
     reading = read_values(dataset, family_layout(law), (loss_factor, relative_stiffness),
-                          ("loss_factor", "relative_stiffness"), where=f"{structure} {theory} map",
+                          ("loss_factor", "relative_stiffness"), where=f"{kind} {theory} map",
                           hints=(f" ({family_layout(law).exact_command})", ""),
                           refinement=refinement, error_grid=error_grid, prepared=prepared)
     values = reading.values
@@ -360,15 +371,15 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, str
     peak_time = np.exp(values["log_peak_time"]) if "log_peak_time" in values else None
     reflection = np.exp(values["log_reflection_time"]) if "log_reflection_time" in values else None
     peaks = tuple(values[name] for name in ASYMPTOTE_PEAKS) if all(name in values for name in ASYMPTOTE_PEAKS) else None
-    regime = classify(fmax, loss_factor, relative_stiffness, structure, peak_time=peak_time, reflection_time=reflection,
+    regime = classify(fmax, loss_factor, relative_stiffness, kind, peak_time=peak_time, reflection_time=reflection,
                       tolerance=tolerance, local_tolerance=local_tolerance, law=law, peaks=peaks)
     if fmax.ndim == 0:
         fmax, regime, error, status = float(fmax), regime.item(), float(error), np.asarray(status).item()
-    return LookupResult(fmax, regime, structure, theory, name, error, status, law)
+    return LookupResult(fmax, regime, kind, theory, name, error, status, law)
 
 
 @functools.lru_cache(maxsize=32)
-def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
+def load_shipped_refinement(kind: str, theory: str, law: str = "linear",
                             slenderness: float | None = None) -> Refinement | None:
     """The refinement shipped with a map (``data/refinements/NAME.npz``,
     :mod:`impactmaps.maps.refinement`), or None where the map has none.
@@ -376,11 +387,11 @@ def load_shipped_refinement(structure: str, theory: str, law: str = "linear",
     A refinement built for another version of the map (its ``base_fingerprint`` is not
     the map's fingerprint) is not used: a warning says so and the map is read alone.
     """
-    name = _shipped_name(structure, theory, law, slenderness)
+    name = _shipped_name(kind, theory, law, slenderness)
     stored = read_shipped("refinements", name)
     if stored is None:
         return None
-    return refinement_of(stored, load_shipped_map(structure, theory, law, slenderness), f"the shipped map {name}")
+    return refinement_of(stored, load_shipped_map(kind, theory, law, slenderness), f"the shipped map {name}")
 
 
 def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map") -> Refinement | None:
@@ -403,7 +414,8 @@ def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map"
     return Refinement.from_dataset(stored, fmax.values)
 
 
-def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "linear"):
+@renamed_keyword("structure", "kind")
+def design_formula(loss_factor, relative_stiffness, kind: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
     The larger of the infinite-structure peak (exact until waves return) and the
@@ -413,7 +425,7 @@ def design_formula(loss_factor, relative_stiffness, structure: str, law: str = "
     ``law="hertz"`` the same with the Hertz asymptotes over (ζ_h, λ_h), in F_max/F_hs
     (not closed forms: each is an asymptote run, :mod:`impactmaps.maps.hertz_points`).
     """
-    return np.maximum(infinite_structure_peak(loss_factor, structure, law),
+    return np.maximum(infinite_structure_peak(loss_factor, kind, law),
                       quasi_static_peak(relative_stiffness, law))
 
 

@@ -155,7 +155,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
             key = tile_for(structure, law, patch, zeta, lam, settings)
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
-                return read_map(dataset, zeta, lam, structure=structure.kind, theory=structure.theory, name=key.name,
+                return read_map(dataset, zeta, lam, kind=structure.kind, theory=structure.theory, name=key.name,
                                 law=law)
             except ValueError:  # next to an unresolved point
                 raise unresolved(key.name, f"(ζ, λ) = ({zeta:.4g}, {lam:.4g})") from None

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .._checks import require_choice
+from .._renamed import renamed_keyword
 from .builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
 from .data_io import read_shipped
 from .lookup import map_file_stem, missing_shipped_map, require_map_law, shipped_reader
@@ -74,18 +75,19 @@ class PlasticLookup:
 
 
 @functools.lru_cache(maxsize=8)
-def load_plastic_map(structure: str, theory: str, law: str) -> xr.Dataset:
-    """The shipped plastic map of ``structure`` in {"beam", "plate"}, its ``theory``, ``law`` in {"yc", "stronge", "epp"}."""
+def load_plastic_map(kind: str, theory: str, law: str) -> xr.Dataset:
+    """The shipped plastic map of ``kind`` in {"beam", "plate"}, its ``theory``, ``law`` in {"yc", "stronge", "epp"}."""
     require_choice("law", law, tuple(PLASTIC_LAWS))
-    require_choice("(structure, theory)", (structure, theory), tuple(PLASTIC_MAPS))
-    name = map_file_stem(PLASTIC_MAPS[(structure, theory)], law)
+    require_choice("(kind, theory)", (kind, theory), tuple(PLASTIC_MAPS))
+    name = map_file_stem(PLASTIC_MAPS[(kind, theory)], law)
     dataset = read_shipped(name)
     if dataset is None:
         raise missing_shipped_map(name, law)
     return require_map_law(dataset, law, f"shipped map {name}")
 
 
-def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "plate", theory: str = "kirchhoff",
+@renamed_keyword("structure", "kind")
+def lookup_plastic(beta, loss_factor, relative_stiffness, *, kind: str = "plate", theory: str = "kirchhoff",
                    law: str = "yc") -> PlasticLookup:
     """F̄max, restitution and absorbed energy at (β, ζ, λ) from a shipped plastic map.
 
@@ -94,7 +96,7 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
     beta, loss_factor, relative_stiffness : float or array_like
         β, ζ(m, K_y) and λ = K_st/K_y [-] (:func:`impactmaps.maps.plastic_points.plastic_numbers`),
         inside the map's range.
-    structure, theory : str
+    kind, theory : str
         A key of :data:`PLASTIC_MAPS`.
     law : {"yc", "stronge", "epp"}
 
@@ -109,9 +111,9 @@ def lookup_plastic(beta, loss_factor, relative_stiffness, *, structure: str = "p
         around the answer is ``unresolved`` (holds no value).
     """
     require_choice("law", law, tuple(PLASTIC_LAWS))
-    prepared, name = shipped_reader(structure, theory, law)
+    prepared, name = shipped_reader(kind, theory, law)
     return read_plastic(None, law, (beta, loss_factor, relative_stiffness), name=name,
-                        where=f"{law} map {PLASTIC_MAPS[(structure, theory)]}", prepared=prepared)
+                        where=f"{law} map {PLASTIC_MAPS[(kind, theory)]}", prepared=prepared)
 
 
 def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,

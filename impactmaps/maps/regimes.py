@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._checks import require_choice, require_in_range, require_positive
+from .._renamed import renamed_keyword
 from ..targets.options import STRUCTURE_KINDS
 from .registry import PLANE_LAWS, available_map_families, map_family
 
@@ -53,16 +54,17 @@ def quasi_static_peak(relative_stiffness, law: str = "linear"):
     return _classifying(law).quasi_static_peak(relative_stiffness)
 
 
-def infinite_structure_peak(loss_factor, structure: str, law: str = "linear"):
+@renamed_keyword("structure", "kind")
+def infinite_structure_peak(loss_factor, kind: str, law: str = "linear"):
     """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-].
 
-    ``structure``: ``"beam"`` or ``"plate"``; the asymptote is the target class's
+    ``kind``: ``"beam"`` or ``"plate"``; the asymptote is the target class's
     (:meth:`impactmaps.targets.Target.infinite_structure_peak`). With ``law="hertz"``,
     F_max/F_hs of the Hertz law on the infinite structure at ζ_h
     (:func:`impactmaps.maps.hertz_points.hertz_asymptote_peak`).
     """
-    require_choice("structure", structure, STRUCTURE_KINDS)
-    return _classifying(law).infinite_peak(loss_factor, structure)
+    require_choice("kind", kind, STRUCTURE_KINDS)
+    return _classifying(law).infinite_peak(loss_factor, kind)
 
 
 def _classifying(law):
@@ -73,11 +75,12 @@ def _classifying(law):
     return map_family(law)
 
 
+@renamed_keyword("structure", "kind")
 def classify(
     fmax,
     loss_factor,
     relative_stiffness,
-    structure: str,
+    kind: str,
     *,
     peak_time=None,
     reflection_time=None,
@@ -94,7 +97,7 @@ def classify(
         Normalised maximum force F̄max [-].
     loss_factor, relative_stiffness : array_like
         ζ and λ [-].
-    structure : {"beam", "plate"}
+    kind : {"beam", "plate"}
         Which infinite-structure asymptote applies.
     peak_time, reflection_time : array_like, optional
         Normalised time of the peak and of the first wave return (ω d²/c); when
@@ -126,7 +129,7 @@ def classify(
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
     if peaks is None:
-        peaks = (infinite_structure_peak(zeta, structure, law), quasi_static_peak(lam, law))
+        peaks = (infinite_structure_peak(zeta, kind, law), quasi_static_peak(lam, law))
     infinite, quasi = (_shaped(peak, fmax.shape) for peak in peaks)
     distance_infinite = np.abs(fmax - infinite) / infinite
     distance_quasi = np.abs(fmax - quasi) / quasi

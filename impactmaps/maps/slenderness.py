@@ -4,7 +4,7 @@ The maps of Timoshenko beams and Mindlin plates depend on the slenderness s = sp
 thickness; those of Euler beams and Kirchhoff plates do not. ζ and λ are defined with the
 classical quantities (static stiffness, infinite-structure impedance), so as s grows a
 shear-deformable map tends to the classical one. The package ships each slenderness family at
-s = 10, 20 and 50 (:data:`~impactmaps.maps.structures.FAMILY_SLENDERNESSES`; Timoshenko
+s = 10, 20 and 50 (:data:`~impactmaps.maps.structures.MEMBER_SLENDERNESSES`; Timoshenko
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
 
@@ -28,16 +28,17 @@ import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from .._checks import require_in_range
+from .._renamed import renamed_keyword
 from ..targets.options import classical_theory, is_shear_deformable, point_load_diverges
 from .lookup import load_shipped_map, lookup
 from .bands import SEVERITY, answer_status
 from .registry import PLANE_LAWS, map_family
-from .structures import FAMILY_SLENDERNESSES
+from .structures import MEMBER_SLENDERNESSES
 
-__all__ = ["family_members", "lookup_slenderness", "slenderness_error_grid", "shipped_for"]
+__all__ = ["slenderness_members", "lookup_slenderness", "slenderness_error_grid", "shipped_for"]
 
 
-def shipped_for(structure: str, theory: str, law: str) -> bool:
+def shipped_for(kind: str, theory: str, law: str) -> bool:
     """Whether a slenderness family is shipped for a (kind, theory) with the map law ``law``.
 
     A shear-deformable theory (:func:`~impactmaps.targets.options.is_shear_deformable`) of a
@@ -48,35 +49,35 @@ def shipped_for(structure: str, theory: str, law: str) -> bool:
     if law not in PLANE_LAWS or not is_shear_deformable(theory):
         return False
     family = map_family(law)
-    return (structure, theory) in family.shipped and not (family.patch_loadable and point_load_diverges(theory))
+    return (kind, theory) in family.shipped and not (family.patch_loadable and point_load_diverges(theory))
 
 
-def family_members(structure: str, theory: str, law: str = "linear") -> tuple[tuple[float, float | None], ...]:
-    """The members of a family as ``(1/s, s)`` pairs, ascending in 1/s; s None is the thin limit.
+def slenderness_members(kind: str, theory: str, law: str = "linear") -> tuple[tuple[float, float | None], ...]:
+    """The slenderness members of (kind, theory, law) as ``(1/s, s)`` pairs, ascending in 1/s; s None is the thin limit.
 
     Raises
     ------
     ValueError
-        When no family is shipped for (structure, theory, law).
+        When no family is shipped for (kind, theory, law).
     """
-    if not shipped_for(structure, theory, law):
-        raise ValueError(f"no slenderness family is shipped for a {theory} {structure} with the {law} law "
+    if not shipped_for(kind, theory, law):
+        raise ValueError(f"no slenderness family is shipped for a {theory} {kind} with the {law} law "
                          f"(families: Timoshenko beams, linear and Hertz; Mindlin plates, linear)")
-    return ((0.0, None), *((1.0 / s, s) for s in sorted(FAMILY_SLENDERNESSES, reverse=True)))
+    return ((0.0, None), *((1.0 / s, s) for s in sorted(MEMBER_SLENDERNESSES, reverse=True)))
 
 
-def _member_lookup(zeta, lam, structure: str, theory: str, slenderness: float | None, law: str):
+def _member_lookup(zeta, lam, kind: str, theory: str, slenderness: float | None, law: str):
     if slenderness is None:
-        return lookup(zeta, lam, structure=structure, theory=classical_theory(theory), law=law)
-    return lookup(zeta, lam, structure=structure, theory=theory, law=law, slenderness=slenderness)
+        return lookup(zeta, lam, kind=kind, theory=classical_theory(theory), law=law)
+    return lookup(zeta, lam, kind=kind, theory=theory, law=law, slenderness=slenderness)
 
 
-def _member_values(structure: str, theory: str, slenderness: float | None, law: str):
+def _member_values(kind: str, theory: str, slenderness: float | None, law: str):
     """(log λ grid, log ζ grid, F̄max values) of one member map."""
     if slenderness is None:
-        dataset = load_shipped_map(structure, classical_theory(theory), law)
+        dataset = load_shipped_map(kind, classical_theory(theory), law)
     else:
-        dataset = load_shipped_map(structure, theory, law, slenderness=slenderness)
+        dataset = load_shipped_map(kind, theory, law, slenderness=slenderness)
     return (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values),
             dataset["fmax_normalised"].isel(structure=0).values)
 
@@ -92,7 +93,7 @@ def _on_grid(member, grid) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=8)
-def slenderness_error_grid(structure: str, theory: str, law: str = "linear") -> tuple:
+def slenderness_error_grid(kind: str, theory: str, law: str = "linear") -> tuple:
     """Leave-one-out error of interpolation in 1/s, per grid point of the s = 20 member.
 
     Returns
@@ -103,7 +104,7 @@ def slenderness_error_grid(structure: str, theory: str, law: str = "linear") -> 
         (the latter taken on the s = 20 grid), NaN where a member has no value. A pure
         function of the shipped maps (cached).
     """
-    members = {s: _member_values(structure, theory, s, law) for _, s in family_members(structure, theory, law)}
+    members = {s: _member_values(kind, theory, s, law) for _, s in slenderness_members(kind, theory, law)}
     grid = members[20.0][:2]
     on = {s: _on_grid(values, grid) for s, values in members.items()}
 
@@ -117,7 +118,8 @@ def slenderness_error_grid(structure: str, theory: str, law: str = "linear") -> 
     return grid[0], grid[1], np.fmax(leave_20, leave_50)
 
 
-def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structure: str, theory: str,
+@renamed_keyword("structure", "kind")
+def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: str, theory: str,
                        slenderness: float, law: str = "linear"):
     """F̄max at (ζ, λ) of a shear-deformable target of any slenderness ≥ 10, with its band.
 
@@ -125,7 +127,7 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
     ----------
     loss_factor, relative_stiffness : float
         ζ and λ [-] (ζ_h, λ_h for the Hertz law).
-    structure, theory : str
+    kind, theory : str
         ``("beam", "timoshenko")`` or ``("plate", "mindlin")``.
     slenderness : float
         span / thickness [-], ≥ 10 (the thickest member).
@@ -144,25 +146,25 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, structu
         Slenderness below 10, no family for the law, or a member refusing (outside its
         range or next to an ``unresolved`` point).
     """
-    members = family_members(structure, theory, law)
-    require_in_range("slenderness", slenderness, min(FAMILY_SLENDERNESSES), np.inf)
+    members = slenderness_members(kind, theory, law)
+    require_in_range("slenderness", slenderness, min(MEMBER_SLENDERNESSES), np.inf)
     inverse = 1.0 / float(slenderness)
     for (x0, s0), (x1, s1) in zip(members, members[1:]):
         if x0 <= inverse <= x1:
             break
     weight = (inverse - x0) / (x1 - x0)
     if weight in (0.0, 1.0):  # a member itself
-        return _member_lookup(loss_factor, relative_stiffness, structure, theory, s1 if weight else s0, law)
-    low = _member_lookup(loss_factor, relative_stiffness, structure, theory, s0, law)
-    high = _member_lookup(loss_factor, relative_stiffness, structure, theory, s1, law)
+        return _member_lookup(loss_factor, relative_stiffness, kind, theory, s1 if weight else s0, law)
+    low = _member_lookup(loss_factor, relative_stiffness, kind, theory, s0, law)
+    high = _member_lookup(loss_factor, relative_stiffness, kind, theory, s1, law)
     fmax = (1.0 - weight) * low.fmax_normalised + weight * high.fmax_normalised
-    lam_grid, zeta_grid, errors = slenderness_error_grid(structure, theory, law)
+    lam_grid, zeta_grid, errors = slenderness_error_grid(kind, theory, law)
     row = int(np.argmin(np.abs(lam_grid - np.log(relative_stiffness))))
     column = int(np.argmin(np.abs(zeta_grid - np.log(loss_factor))))
     slender_error = float(errors[row, column])
     if not np.isfinite(slender_error):
         raise ValueError(f"slenderness = {slenderness:g} at (loss_factor, relative_stiffness) = "
-                         f"({loss_factor:g}, {relative_stiffness:g}): a family member holds no value next to it "
+                         f"({loss_factor:g}, {relative_stiffness:g}): a slenderness member holds no value next to it "
                          "(unresolved); run a simulation instead")
     band = float(max(low.fmax_error, high.fmax_error) + slender_error)
     # the worse member status, interpolated if the slenderness error widens the band past the tolerance

@@ -23,9 +23,9 @@ from ..targets.beam import MIN_SLENDERNESS, Beam
 from ..targets.map_structure import reference_target
 from ..targets.options import STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ..targets.plate import Plate
-from .builtin_families import FAMILY_SLENDERNESSES, SHIPPED_PLANE_MAPS
+from .builtin_families import MEMBER_SLENDERNESSES, SHIPPED_PLANE_MAPS
 
-__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MAPS", "FAMILY_SLENDERNESSES", "structure_from_name"]
+__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "structure_from_name"]
 
 
 @dataclass(frozen=True)
@@ -143,13 +143,13 @@ DEFAULT_STRUCTURES = (
 )
 
 # SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
-# tests/test_lookup_light.py) and FAMILY_SLENDERNESSES come from .builtin_families.
+# tests/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
 
 #: The shear-deformable family members besides the default slenderness 20.
 FAMILY_STRUCTURES = tuple(
     replace(structure, slenderness=slenderness)
     for structure in DEFAULT_STRUCTURES if is_shear_deformable(structure.theory)
-    for slenderness in FAMILY_SLENDERNESSES if slenderness != structure.slenderness
+    for slenderness in MEMBER_SLENDERNESSES if slenderness != structure.slenderness
 )
 
 

@@ -296,7 +296,7 @@ def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
 
 def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_factor):
     """(name, answer, peak time [s]) of the infinite-structure impact, or (None, None, nan)."""
-    kind = getattr(target, "structure", None)
+    kind = getattr(target, "kind", None)
     if kind not in ("plate", "beam") or not has_classical_asymptote(target):
         return None, None, math.nan
     omega = math.sqrt(stiffness / impactor_mass)
@@ -417,7 +417,7 @@ def _linear_history(target, impact, plan: BasisPlan, law, mass, speed, contact):
                                                      ASYMPTOTE_REFLECTION_FACTOR * impact.peak_time / omega)
     tau = np.linspace(0.0, end * omega, HISTORY_SAMPLES)
     zeta = float(target.loss_factor(mass, law.linear_stiffness))
-    shape = infinite_plate_indentation if target.structure == "plate" else infinite_beam_indentation
+    shape = infinite_plate_indentation if target.kind == "plate" else infinite_beam_indentation
     force_bar = np.maximum(np.asarray(shape(tau, zeta), dtype=float), 0.0)
     step = np.diff(tau)
     velocity_bar = 1.0 - np.concatenate(([0.0], np.cumsum(0.5 * step * (force_bar[1:] + force_bar[:-1]))))

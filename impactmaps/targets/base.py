@@ -10,6 +10,7 @@ shapes evaluated there, and the static compliance of the modes it leaves out
 from __future__ import annotations
 
 import math
+import warnings
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
@@ -311,11 +312,18 @@ class InfiniteImpact(NamedTuple):
 class Target(ABC):
     """A struck structure: supplies modes at the impact point and its static stiffness.
 
-    Subclasses are frozen dataclasses (SI units) with ``structure`` set to ``"beam"``,
+    Subclasses are frozen dataclasses (SI units) with ``kind`` set to ``"beam"``,
     ``"plate"`` or ``"halfspace"``.
     """
 
-    structure: ClassVar[str]
+    kind: ClassVar[str]
+
+    @property
+    def structure(self) -> str:
+        """Deprecated: :attr:`kind`."""
+        warnings.warn(f"{type(self).__name__}.structure is now .kind; the old name will be removed",
+                      FutureWarning, stacklevel=2)
+        return self.kind
 
     @abstractmethod
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:

@@ -111,7 +111,7 @@ class Beam(Target):
     :meth:`modes` per beam and cut-off (bounded caches of pure functions).
     """
 
-    structure: ClassVar[str] = "beam"
+    kind: ClassVar[str] = "beam"
 
     length: float
     bending_stiffness: float

@@ -31,7 +31,7 @@ class HalfSpace(Target):
     contact law, not to the target.
     """
 
-    structure: ClassVar[str] = "halfspace"
+    kind: ClassVar[str] = "halfspace"
 
     @property
     def bounded_modes(self) -> bool:

@@ -89,7 +89,7 @@ def similarity_groups(target, poisson: bool = False) -> dict:
     its modal damping ratio (the maps are undamped).
     """
     groups = {"damping_ratio": float(target.damping_ratio)}
-    if target.structure == "beam":
+    if target.kind == "beam":
         span = target.length
         if target.theory == "timoshenko":
             groups["shear stiffness L²/EI"] = target.shear_stiffness * span**2 / target.bending_stiffness
@@ -146,12 +146,12 @@ def describing_structure(target, patch_loaded: bool = False) -> tuple[StructureK
         The key, or the reason: the target type, or the first dimensionless group (:func:`similarity_groups`) in which the target differs
         from the isotropic, undamped reference of its shape.
     """
-    if target.structure == "beam":
+    if target.kind == "beam":
         key = _beam_key(target)
-    elif target.structure == "plate":
+    elif target.kind == "plate":
         key = _plate_key(target, patch_loaded)
     else:
-        return None, f"target type {target.structure!r} (maps: beams and plates)"
+        return None, f"target type {target.kind!r} (maps: beams and plates)"
     if key.poisson_ratio is not None and not -1.0 < key.poisson_ratio < 0.5:
         return None, (f"a section whose shear stiffness implies a Poisson ratio of {key.poisson_ratio:.4g} "
                       "(no isotropic rectangle has it)")

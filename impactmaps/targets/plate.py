@@ -99,7 +99,7 @@ class Plate(Target):
     * λ uses the classical static stiffness (:meth:`static_compliance`).
     """
 
-    structure: ClassVar[str] = "plate"
+    kind: ClassVar[str] = "plate"
 
     length_x: float
     length_y: float
