@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = [
+    "range_end_text",
     "require_positive",
     "require_nonnegative",
     "require_in_range",
@@ -113,11 +114,11 @@ def require_in_range(
         right = "]" if high_inclusive and math.isfinite(high) else ")"
         raise ValueError(
             f"{name} = {_describe(value)} is invalid: valid range is "
-            f"{left}{_bound(low)}, {_bound(high)}{right}{_unit(unit)}"
+            f"{left}{range_end_text(low)}, {range_end_text(high)}{right}{_unit(unit)}"
         )
 
 
-def _bound(value: float) -> str:
+def range_end_text(value: float) -> str:
     """A range end as text: ``%g`` when that is the number, else ten digits (``%g`` would print
     0.4999995 as 0.5, an end the range excludes)."""
     short = f"{value:g}"

@@ -322,3 +322,33 @@ def test_simulated_point_out_of_range_names_the_option(zeta, lam, fragment, caps
     names the user never typed. Refused by range on the options now."""
     assert main(["point", "--target", "beam-ss", "--zeta", zeta, "--lambda", lam, "--no-check"]) == 2
     assert fragment in _one_error_line(capsys)
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (["point", "--target", "plate-ss", "--zeta", "1", "--lambda", "1", "--aspect", "1e300"],
+     "--aspect = 1e+300 is invalid: the plate aspect ratio b/a must be in [0.001, 1000]"),
+    (["point", "--target", "beam-ss", "--zeta", "1", "--lambda", "1", "--position", "1e-300"],
+     "--position = 1e-300 is invalid: the impact point x0/L must be in [1e-06, 0.999999]"),
+])
+def test_fuzzed_point_options_are_refused_by_range(argv, fragment, capsys):
+    """Found by fuzzing `point`: --aspect 1e300 overflowed ("the computation failed"), 1e-300 divided
+    by zero; --position 1e-300 was refused by the target under its Python name."""
+    assert main(argv) == 2
+    assert fragment in _one_error_line(capsys)
+
+
+def test_a_command_that_warns_and_then_fails_prints_both(capsys):
+    """A warning raised before a refusal: the loop printing the warnings reused the error
+    message's name, so the refusal printed a TypeError traceback instead of its line."""
+    import warnings
+
+    from impactmaps.cli import _run
+
+    def handler(args):
+        warnings.warn("something doubtful", UserWarning)
+        raise ValueError("x = 1 is invalid")
+
+    args = SimpleNamespace(handler=handler, command="point", json=False)
+    assert _run(args) == 2
+    err = capsys.readouterr().err
+    assert "warning: something doubtful" in err and "impactmaps point: error: x = 1 is invalid" in err

@@ -63,6 +63,29 @@ def test_grid_count_is_a_whole_number(tmp_path, count, fragment, capsys):
     assert fragment in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("count, lambdas, extra, fragment", [
+    ("1e9", "[1.0]", "", "grid.zeta.count = 1000000000.0 is invalid: valid range is [1, 1000000]"),
+    ("1000000", "{min = 0.1, max = 1, count = 1000}", "",
+     "the sweep has 1e+09 points (1 structures × 1000 lambda_ × 1000000 zeta): its map would take 78.2 GiB"),
+    ("2", "[1e300]", "", "grid.lambda = [1e+300] is invalid: every value must be in [1e-09, 1e+09]"),
+    ("2", "[1e-300]", "", "grid.lambda = [1e-300] is invalid"),
+    ("2", "[1.0]", 'law = "yc"\n[grid]\nbeta = [1e300]\n', "grid.beta = [1e+300] is invalid: every value must be in [0.001, 10000]"),
+])
+def test_a_grid_beyond_the_realisable_or_the_memory_is_refused(tmp_path, count, lambdas, extra, fragment, capsys):
+    """Found by fuzzing sweep files: count = 1e9 ran (allocating gigabytes) with no word; ζ or λ of
+    1e±300 failed inside the realisation naming `impactor_mass`; β = 1e300 a law's internals."""
+    path = tmp_path / "sweep.toml"
+    text = BEAM_CONFIG.format(count=count, lambdas=lambdas)
+    if extra:  # the law goes on top, β into the [grid] table
+        law, _grid, beta, _ = extra.split("\n")
+        text = law + "\n" + text.replace("[grid]\n", "[grid]\n" + beta + "\n")
+    path.write_text(text)
+    assert main(["sweep", str(path), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert fragment in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists()
+
+
 def test_nothing_is_written_before_the_first_point(tmp_path, monkeypatch):
     def fail(*args):
         raise ValueError("solver failed")

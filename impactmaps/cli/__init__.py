@@ -393,8 +393,8 @@ def _run(args) -> int:
         message, status = (f"the computation failed ({type(error).__name__}: {error_text(error)}); the input "
                            "passed the range checks, so one is missing: please report it"), EXIT_FAILED
     finally:
-        for message in caught:
-            _show_warning(message, shown)
+        for warning in caught:
+            _show_warning(warning, shown)
     if status is not None:
         message = plain_text(message)
         if args.json:

@@ -9,7 +9,7 @@ import argparse
 import math
 from pathlib import Path
 
-from .._checks import read_text_input
+from .._checks import range_end_text, read_text_input
 from ..jsonio import dumps
 
 #: Exit status of a successful run.
@@ -69,7 +69,8 @@ def check(option: str, value, low: float = 0.0, high: float = math.inf, what: st
     above = value >= low if low_inclusive else value > low
     below = value <= high if high_inclusive else value < high
     if not (above and below):
-        interval = f"{'[' if low_inclusive else '('}{low:g}, {high:g}{']' if high_inclusive else ')'}"
+        interval = (f"{'[' if low_inclusive else '('}{range_end_text(low)}, {range_end_text(high)}"
+                    f"{']' if high_inclusive else ')'}")
         raise ValueError(f"{option} = {value:g} is invalid: {what + ' ' if what else 'it '}must be in {interval}"
                          f"{'; ' + note if note else ''}")
 

@@ -9,6 +9,8 @@ import math
 import warnings
 from dataclasses import replace
 
+from ..maps.map_family import MapFamily
+from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
@@ -18,13 +20,12 @@ __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", 
 SCHEDULER_TIMEOUT_S = 5.0
 #: Largest loss factor ζ the normalised commands accept: beyond it the infinite-structure
 #: peak is below 1e-4 of the half-space's (F̄max ≈ 0.37 ζ^(-2/3) on the beam, 0.5/ζ on the
-#: plate) and the beam's closed form loses its root (it fails near ζ = 1e250).
-ZETA_MAX = 1.0e6
-#: Range of ζ and λ a simulated point accepts (``point``, ``classify``): beyond it the
-#: realised impactor's mass or contact frequency under- or overflows (ζ = 1e-300 gave a
-#: zero mass, λ = 1e300 a zero contact frequency); within it every run answers (measured
-#: on beam-ss at ζ = 1e-9, λ = 1e±9).
-SIMULATED_RANGE = (1.0e-9, 1.0e9)
+#: plate) and the beam's closed form loses its root (it fails near ζ = 1e250); the map
+#: families' ζ range ends there too (:attr:`MapFamily.axis_ranges`).
+ZETA_MAX = MapFamily.axis_ranges["zeta"][1]
+#: Range of ζ (up to :data:`ZETA_MAX`) and λ a simulated point accepts (``point``, ``classify``):
+#: the map families' (:attr:`MapFamily.axis_ranges`, where the reason is).
+SIMULATED_RANGE = MapFamily.axis_ranges["lambda_"]
 
 
 def cmd_chart(args) -> dict:
@@ -114,10 +115,13 @@ def _point_defaults(args) -> None:
           high_inclusive=True)
     check("--lambda", args.lambda_, *SIMULATED_RANGE, "the relative stiffness λ", low_inclusive=True,
           high_inclusive=True)
-    check("--aspect", args.aspect, what="the plate aspect ratio b/a")
+    check("--aspect", args.aspect, *PLATE_ASPECT_RANGE, what="the plate aspect ratio b/a", low_inclusive=True,
+          high_inclusive=True)
     check("--slenderness", args.slenderness, 2.0, what="span/thickness", low_inclusive=True)
-    check("--position", args.position, 0.0, 1.0, "the impact point x0/L")
-    check("--position-y", args.position_y, 0.0, 1.0, "the impact point y0/b")
+    check("--position", args.position, MIN_SUPPORT_DISTANCE, 1.0 - MIN_SUPPORT_DISTANCE, "the impact point x0/L",
+          low_inclusive=True, high_inclusive=True, note="1e-6 of the span from a support")
+    check("--position-y", args.position_y, MIN_SUPPORT_DISTANCE, 1.0 - MIN_SUPPORT_DISTANCE, "the impact point y0/b",
+          low_inclusive=True, high_inclusive=True, note="1e-6 of the span from a support")
     check("--cutoff-ratio", args.cutoff_ratio, what="the mode cut-off / contact frequency")
     check("--time-step-ratio", args.time_step_ratio, what="the bound of ω Δt")
     for name, default in (("aspect", 1.0), ("slenderness", 20.0), ("position", 0.5), ("position_y", 0.5),

@@ -38,7 +38,7 @@ from ..targets.options import default_theory
 from .chart import tidy_frame
 from .registry import available_map_families, map_family
 from .structures import MapStructure
-from .sweep import sweep
+from .sweep import sweep, sweep_fingerprint
 
 __all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
@@ -61,7 +61,25 @@ def _number(name, value, *, integer=False):
     return int(value) if integer else float(value)
 
 
-def _grid(name, value):
+#: Most values one grid axis of a sweep file may have (a count of 1e9 allocated gigabytes before
+#: any check; the whole map is bounded by the sweep, :func:`impactmaps.maps.sweep.sweep`).
+MAX_AXIS_VALUES = 10**6
+
+
+def _grid(name, value, valid):
+    """The values of grid axis ``name`` from its table or list (each > 0), each inside ``valid``
+    (low, high) when given."""
+    values = _grid_values(name, value)
+    if valid is None:
+        return values
+    low, high = valid
+    if np.any(values < low) or np.any(values > high):
+        raise ValueError(f"grid.{name} = {value!r} is invalid: every value must be in [{low:g}, {high:g}] "
+                         "(beyond it the realised impactor's numbers under- or overflow)")
+    return values
+
+
+def _grid_values(name, value):
     path = f"grid.{name}"
     if isinstance(value, dict):
         unknown = set(value) - {"min", "max", "count"}
@@ -69,8 +87,8 @@ def _grid(name, value):
             raise ValueError(f"{path} = {value!r} is invalid: give min, max and count, or a list of values")
         low, high = _number(f"{path}.min", value["min"]), _number(f"{path}.max", value["max"])
         count = _number(f"{path}.count", value["count"], integer=True)
-        if count < 1:
-            raise ValueError(f"{path}.count = {value['count']!r} is invalid: valid range is [1, inf)")
+        if not 1 <= count <= MAX_AXIS_VALUES:
+            raise ValueError(f"{path}.count = {value['count']!r} is invalid: valid range is [1, {MAX_AXIS_VALUES}]")
         if low <= 0 or high < low:
             raise ValueError(f"{path} = {{min = {low:g}, max = {high:g}}} is invalid: need 0 < min ≤ max")
         return np.geomspace(low, high, count)
@@ -146,7 +164,11 @@ def load_sweep_config(path):
     grid = config.get("grid", {})
     if not isinstance(grid, dict) or "zeta" not in grid or "lambda" not in grid:
         raise ValueError(f"{path}: [grid] needs 'zeta' and 'lambda'")
-    zetas, lambdas = _grid("zeta", grid["zeta"]), _grid("lambda", grid["lambda"])
+    law = config.get("law", "linear")
+    if law not in available_map_families():
+        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
+    ranges = map_family(law).axis_ranges
+    zetas, lambdas = _grid("zeta", grid["zeta"], ranges["zeta"]), _grid("lambda", grid["lambda"], ranges["lambda_"])
     solver = config.get("solver", {})
     if not isinstance(solver, dict):
         raise ValueError(f"solver = {solver!r} is invalid: give a [solver] table")
@@ -166,13 +188,11 @@ def load_sweep_config(path):
     output = config.get("output", path.stem + "-output")
     if not isinstance(output, str) or not output:
         raise ValueError(f"output = {output!r} is invalid: give a directory name")
-    law = config.get("law", "linear")
-    if law not in available_map_families():
-        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
     extra = [axis.name for axis in map_family(law).extra_axes]
     if not set(extra) <= set(grid):
         raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
-    axes = {name: _grid(name, grid[name]) for name in extra}
+    axes = {name: _grid(name, grid[name], ranges.get(name)) for name in extra}
+    sweep_fingerprint(structures, zetas, lambdas, settings, law, axes)  # the sweep's own checks (its size)
     return structures, zetas, lambdas, settings, path.parent / output, law, axes
 
 

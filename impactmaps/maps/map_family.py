@@ -169,6 +169,12 @@ class MapFamily:
         (the contact in a chart title, ``""`` for none), ``"quasi_static"`` (the legend of the
         stored quasi-static peaks), ``"table"`` (the header of its markdown lookup table),
         ``"zeta_name"``, ``"lambda_name"`` (the numbers in words, for messages).
+    axis_ranges : dict
+        Axis name → (low, high), the closed range of values a point can be realised at: beyond
+        ζ ∈ [1e-9, 1e6], λ ∈ [1e-9, 1e9] the realised impactor's mass or contact frequency under-
+        or overflows (ζ = 1e-300 gave a zero mass, λ = 1e300 a zero contact frequency; measured
+        on beam-ss: every run answers inside); an elastic-plastic family adds β. An axis
+        without an entry takes any positive value.
     chart_zeta_max, chart_lambda_min : float
         The range a chart of the family accepts: beyond ``chart_zeta_max`` its asymptotes
         stop answering (the linear infinite beam's closed form loses its root near ζ = 1e250
@@ -193,6 +199,7 @@ class MapFamily:
     scaled_by_contact_frequency: ClassVar[bool] = False
     fmax_at_most_one: ClassVar[bool] = True
     closed_form_asymptotes: ClassVar[bool] = False
+    axis_ranges: ClassVar[dict] = {"zeta": (1.0e-9, 1.0e6), "lambda_": (1.0e-9, 1.0e9)}
     chart_zeta_max: ClassVar[float] = 1.0e6
     chart_lambda_min: ClassVar[float] = 0.0
     labels: ClassVar[dict] = {

@@ -17,11 +17,11 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from .._checks import require_choice, require_in_range, require_positive
+from .._checks import require_choice, require_in_range
 from ..targets.base import ModalBasis, Target, dropped_compliance_sums
 from ..targets.beam import MIN_SLENDERNESS, Beam
 from ..targets.map_structure import reference_target
-from ..targets.options import STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
+from ..targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ..targets.plate import Plate
 from .builtin_families import MEMBER_SLENDERNESSES, SHIPPED_PLANE_MAPS
 
@@ -62,7 +62,7 @@ class MapStructure:
     def __post_init__(self):
         require_choice("kind", self.kind, STRUCTURE_KINDS)
         require_choice("theory", self.theory, theories(self.kind))
-        require_positive("aspect_ratio", self.aspect_ratio)
+        require_in_range("aspect_ratio", self.aspect_ratio, *PLATE_ASPECT_RANGE)
         require_in_range("slenderness", self.slenderness, MIN_SLENDERNESS, np.inf)
         require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
         fractions = tuple(float(f) for f in np.atleast_1d(self.impact_fraction))

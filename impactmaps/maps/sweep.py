@@ -24,8 +24,9 @@ from typing import NamedTuple, Sequence
 import numpy as np
 import xarray as xr
 
-from .._checks import require_positive
+from .._checks import require_in_range, require_positive
 from ..solvers.modal import ModalSettings
+from ..solvers.run_budget import MEMORY_LIMIT_BYTES
 from ..targets.options import point_load_diverges
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
 from .dataset import ASYMPTOTE_PEAKS, classify_dataset, empty_dataset, map_law, with_asymptote_peaks
@@ -207,11 +208,15 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
     grids["zeta"] = np.asarray(loss_factors, dtype=float).ravel()
     labels = {"zeta": "loss_factors", "lambda_": "relative_stiffnesses"}
     for name in ("zeta", "lambda_", *sorted(extra)):
-        require_positive(labels.get(name, name), grids[name])
+        if name in family.axis_ranges:
+            require_in_range(labels.get(name, name), grids[name], *family.axis_ranges[name])
+        else:  # an axis whose family states no range: any positive value
+            require_positive(labels.get(name, name), grids[name])
     if any(values.size == 0 for values in grids.values()):
         sizes = " × ".join(f"{grids[name].size} {symbol}" for name, symbol in
                            (("zeta", "ζ"), ("lambda_", "λ"), *((name, name) for name in sorted(extra))))
         raise ValueError(f"the grid is empty ({sizes} values): give at least one of each")
+    _require_map_fits(len(structures), grids, family)
     description = {"structures": [s.as_dict() for s in structures], "zeta": grids["zeta"],
                    "lambda_": grids["lambda_"], "settings": asdict(settings), "solver_revision": SOLVER_REVISION}
     description |= {name: grids[name] for name in extra}
@@ -221,6 +226,18 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
         description["law_revision"] = family.law_revision
     axes_in_order = {name: grids[name] for name in family.axis_names}
     return SweepGrid(structures, family, axes_in_order, description, fingerprint(description))
+
+
+def _require_map_fits(structures: int, grids: dict, family: MapFamily) -> None:
+    """Refuse a grid whose map would not fit in the run budget's memory
+    (:data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`) before anything is allocated."""
+    points = float(structures) * float(np.prod([float(values.size) for values in grids.values()]))
+    point_bytes = sum(np.dtype(spec[0]).itemsize for spec in family.variables.values()) + 1  # + "done"
+    if points * point_bytes > MEMORY_LIMIT_BYTES:
+        sizes = " × ".join([f"{structures} structures", *(f"{values.size} {name}" for name, values in grids.items())])
+        raise ValueError(f"the sweep has {points:.4g} points ({sizes}): its map would take "
+                         f"{points * point_bytes / 2**30:.3g} GiB (limit {MEMORY_LIMIT_BYTES / 2**30:g} GiB); "
+                         "sweep it in parts (fewer values per axis, or several sweep files)")
 
 
 def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:

@@ -6,7 +6,7 @@ command line) imports them from here.
 
 from __future__ import annotations
 
-__all__ = ["MIN_SUPPORT_DISTANCE", "STRUCTURE_KINDS", "BEAM_THEORIES", "BEAM_SUPPORTS", "PLATE_THEORIES", "CLASSICAL_THEORIES",
+__all__ = ["MIN_SUPPORT_DISTANCE", "PLATE_ASPECT_RANGE", "STRUCTURE_KINDS", "BEAM_THEORIES", "BEAM_SUPPORTS", "PLATE_THEORIES", "CLASSICAL_THEORIES",
            "DIVERGENT_POINT_LOAD_THEORIES", "SLENDERNESS_THEORIES", "SHEAR_THEORIES", "FD_BEAM_THEORY",
            "theories", "default_theory", "classical_theory", "depends_on_slenderness", "is_shear_deformable",
            "point_load_diverges"]
@@ -81,3 +81,9 @@ def impact_coordinate_range(span: float, low_supported: bool, high_supported: bo
     × span away; a free end admits the end itself."""
     margin = MIN_SUPPORT_DISTANCE * span
     return (margin if low_supported else 0.0, span - margin if high_supported else span)
+
+
+#: Plate aspect ratios b/a a normalised map structure takes: beyond 1000 (or below 1e-3) the
+#: plate is a strip whose modes its Navier/Ritz series reach only with an overflowing count
+#: (``point --aspect 1e300`` overflowed).
+PLATE_ASPECT_RANGE = (1.0e-3, 1.0e3)
