@@ -4,7 +4,7 @@
 theory, supports, impact point, aspect ratio, slenderness, contact law — and names the
 map family that describes it exactly, or refuses with the reason (never the nearest
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
-slenderness families :func:`impactmaps.maps.slenderness.lookup_slenderness`, or the plastic
+slenderness members :func:`impactmaps.maps.slenderness.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
 to newtons with its band. A case that no shipped map describes but whose target names a
 reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
@@ -220,7 +220,7 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
         if not build:
             raise
         # the case's family has a shipped map, but its numbers lie beyond it or next to a
-        # point the family member could not resolve: a tile of the case's own structure
+        # point the slenderness member could not resolve: a tile of the case's own structure
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")

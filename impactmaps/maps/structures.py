@@ -113,7 +113,7 @@ def structure_from_name(name: str) -> MapStructure:
     for structure in DEFAULT_STRUCTURES:
         if structure.name == name:
             return structure
-    for structure in FAMILY_STRUCTURES:
+    for structure in MEMBER_STRUCTURES:
         if structure.name == name:
             return structure
     parts = name.split("-")
@@ -145,8 +145,8 @@ DEFAULT_STRUCTURES = (
 # SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
 # tests/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
 
-#: The shear-deformable family members besides the default slenderness 20.
-FAMILY_STRUCTURES = tuple(
+#: The shear-deformable slenderness members besides the default slenderness 20.
+MEMBER_STRUCTURES = tuple(
     replace(structure, slenderness=slenderness)
     for structure in DEFAULT_STRUCTURES if is_shear_deformable(structure.theory)
     for slenderness in MEMBER_SLENDERNESSES if slenderness != structure.slenderness
