@@ -152,7 +152,7 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
 
 
 def shipped_structure_name(kind: str, theory: str, slenderness: float | None = None) -> str:
-    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable family
+    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable slenderness
     member at ``slenderness`` (one of :data:`~impactmaps.maps.structures.MEMBER_SLENDERNESSES`)."""
     require_choice("kind", kind, STRUCTURE_KINDS)
     require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == kind])

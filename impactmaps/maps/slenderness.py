@@ -143,7 +143,7 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: s
     Raises
     ------
     ValueError
-        Slenderness below 10, no family for the law, or a member refusing (outside its
+        Slenderness below 10, no slenderness members for the law, or a member refusing (outside its
         range or next to an ``unresolved`` point).
     """
     members = slenderness_members(kind, theory, law)
