@@ -260,7 +260,7 @@ _REFUSED_CASE = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvel
      'height = 0.08\nmaterial = "structural-steel"\ntheory = "timoshenko"', "slenderness 6.25"),
 ])
 def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
-    """Clamped or off-centre beams, beams thicker than the thickest family member (span /
+    """Clamped or off-centre beams, beams thicker than the thickest slenderness member (span /
     height 6.25 < 10; slenderness 25 is now read from the family) and laws no map describes (a Stronge
     law with other constants; the Yigit–Christoforou law has its own maps since issue 13
     item 2) are refused by the shipped maps with the reason and a pointer to `simulate` (they used to be looked
@@ -492,7 +492,7 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
 
 def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tmp_path):
     """Issue 29 item 5: the 12.7 mm steel ball at 1 m/s on a simply supported 500 × 20 × 20 mm
-    steel Timoshenko beam (Hertz) lies next to points the shipped family member (L/h = 20)
+    steel Timoshenko beam (Hertz) lies next to points the shipped slenderness member (L/h = 20)
     could not resolve, and was refused although simulate answers; a tile of the case's own
     structure (L/h = 25) resolves it, within its band of simulate. build=False still refuses."""
     import warnings

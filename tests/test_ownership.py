@@ -231,3 +231,17 @@ def test_one_word_for_beam_or_plate_and_the_old_spellings_still_work(capsys):
 
     help_text = build_parser()._subparsers._group_actions[0].choices["lookup"].format_help()
     assert "--kind" in help_text and "--structure" not in help_text
+
+
+def test_family_alone_means_a_map_family():
+    """"Family" alone is a map family (docs/architecture.rst, "Words"); the maps of a shear-deformable
+    theory at span/thickness 10, 20, 50 are its slenderness members, in the code and in the manual."""
+    import re
+
+    stale = re.compile(r"\bfamily members?\b|\bslenderness[- ]famil|\bFAMILY_(SLENDERNESSES|STRUCTURES)\b",
+                       re.IGNORECASE)
+    docs = PACKAGE_ROOT.parent / "docs"
+    files = [*PACKAGE_ROOT.rglob("*.py"), *docs.glob("*.rst"), *docs.glob("*.md")]
+    found = [f"{path.name}:{number}: {line.strip()}" for path in files
+             for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if stale.search(line)]
+    assert not found, "say 'slenderness member(s)' (MEMBER_SLENDERNESSES, MEMBER_STRUCTURES):\n" + "\n".join(found)

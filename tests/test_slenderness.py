@@ -21,7 +21,7 @@ def test_members_run_from_the_thin_limit_to_the_thickest():
     members = slenderness_members("plate", "mindlin")
     assert [s for _, s in members] == [None, 50.0, 20.0, 10.0]
     assert [x for x, _ in members] == sorted(x for x, _ in members)
-    with pytest.raises(ValueError, match="no slenderness family"):
+    with pytest.raises(ValueError, match="no slenderness members"):
         slenderness_members("plate", "mindlin", "hertz")  # a Mindlin Hertz impact loads the contact patch
 
 

@@ -3,11 +3,11 @@
 Simply supported, impact at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
 square Kirchhoff and Mindlin plates (a/h = 20). Grid: ζ and λ from 1e-3 to 1e3 at 20 ζ and
 10 λ per decade, twice that for the four maps at L/h = a/h = 20 (both laws; the Mindlin
-family members at a/h = 10 and 50: ζ from 0.005 to 100,
+slenderness members at a/h = 10 and 50: ζ from 0.005 to 100,
 λ from 0.05 to 20; the Hertz maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the
 Mindlin one from 0.05; same densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
-theories are stored ``unresolved``. The shear-deformable families add slendernesses 10 and
-50 on the same grids (``impactmaps.maps.structures.FAMILY_STRUCTURES``): Timoshenko beams
+theories are stored ``unresolved``. The shear-deformable slenderness members add slendernesses 10 and
+50 on the same grids (``impactmaps.maps.structures.MEMBER_STRUCTURES``): Timoshenko beams
 for both laws, Mindlin plates for the linear law (a Hertz impact on a Mindlin plate loads
 the contact patch, whose radius is a third parameter).
 Resumable: re-running continues an interrupted build.
@@ -30,7 +30,7 @@ import numpy as np
 from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem
 from impactmaps.maps.slenderness import shipped_for
 from impactmaps.maps.store import save_atomic
-from impactmaps.maps.structures import DEFAULT_STRUCTURES, FAMILY_STRUCTURES
+from impactmaps.maps.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES
 from impactmaps.maps.sweep import MAP_LAWS, sweep
 
 from _script_options import parse
@@ -45,7 +45,7 @@ LAMBDAS = np.geomspace(1e-3, 1e3, 61)
 #: twice as dense, 40 ζ and 20 λ per decade (29 161 points, ~3 min on 2 cores), which
 #: divides their interpolation error by ~4 where F̄max is smooth and by ~2 at its kinks.
 #: Since 2026-11-24 the Timoshenko beam and the Mindlin plate (a/h = 20) are as dense, both
-#: laws; the family members at a/h = 10 and 50 keep 20 ζ and 10 λ per decade, the tiles'
+#: laws; the slenderness members at a/h = 10 and 50 keep 20 ζ and 10 λ per decade, the tiles'
 #: lattice.
 DENSE_MAPS = ("beam-ss-euler", "plate-ssss-kirchhoff", "beam-ss-timoshenko-s20", "plate-ssss-mindlin-s20")
 DENSE_ZETAS = np.geomspace(1e-3, 1e3, 241)
@@ -55,7 +55,7 @@ DENSE_LAMBDAS = np.geomspace(1e-3, 1e3, 121)
 #: cut-off, where the model no longer holds, and those points are ``unresolved``
 #: (:mod:`impactmaps.solvers.shear_range`); towards small λ the points just inside that
 #: limit bounce many times on 10⁴ modes (ζ = 10, λ = 0.001: 49 impacts). The
-#: Mindlin family members at a/h = 10 and 50 and the Mindlin Hertz map keep
+#: Mindlin slenderness members at a/h = 10 and 50 and the Mindlin Hertz map keep
 #: ζ ∈ [0.005, 100], λ ∈ [0.05, 20] (cost).
 MINDLIN_ZETAS = np.geomspace(0.005, 100.0, 87)
 MINDLIN_LAMBDAS = np.geomspace(0.05, 20.0, 27)
@@ -81,9 +81,9 @@ def _options(parser) -> None:
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=DATA, add_arguments=_options)
     work = WORK if args.out_dir == DATA else args.out_dir / "work"
-    families = [s for s in FAMILY_STRUCTURES if shipped_for(s.kind, s.theory, args.law)]
-    wanted = set(args.only or [*SHIPPED_MAPS.values(), *(s.name for s in families)])
-    for structure in (*DEFAULT_STRUCTURES, *families):
+    members = [s for s in MEMBER_STRUCTURES if shipped_for(s.kind, s.theory, args.law)]
+    wanted = set(args.only or [*SHIPPED_MAPS.values(), *(s.name for s in members)])
+    for structure in (*DEFAULT_STRUCTURES, *members):
         if structure.name not in wanted:
             continue
         if args.law != "linear" and structure.name in DENSE_MAPS:

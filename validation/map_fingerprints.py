@@ -3,7 +3,7 @@
 Records SHA-256 digests of (a) every shipped map file's data (variables and
 coordinates, bytes and dtypes; the refinements and shipped sweep results too), (b)
 lookups at a few hundred random points per shipped map — linear and Hertz maps
-(:func:`impactmaps.maps.lookup.lookup`), the slenderness families, the elastic-plastic
+(:func:`impactmaps.maps.lookup.lookup`), the slenderness members, the elastic-plastic
 maps (:func:`impactmaps.maps.plastic_lookup.lookup_plastic`) and a few physical cases
 (:func:`impactmaps.maps.case_lookup.lookup_case`) — each answer's value, band, status
 and regime, or its refusal's message, and (c) a short sweep of each map family (a few

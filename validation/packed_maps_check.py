@@ -1,7 +1,7 @@
 """The packed shipped maps answer as the NetCDF ones did: value, band and status at random points.
 
 For every shipped map — the (ζ, λ) maps of both laws with their refinements, the
-slenderness-family members and the elastic-plastic (β, ζ, λ) maps — the lookup's reading
+slenderness members and the elastic-plastic (β, ζ, λ) maps — the lookup's reading
 (what :func:`impactmaps.maps.reader.read_values` computes for :func:`impactmaps.maps.lookup.lookup`
 and :func:`impactmaps.maps.plastic_lookup.lookup_plastic`, taken from its steps so that a point
 next to an unresolved one is marked "refused" instead of refusing the whole batch) is taken at ``--points``

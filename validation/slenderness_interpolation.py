@@ -41,7 +41,7 @@ FAMILIES = (("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), (
 
 def measure(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
     """Random (ζ, λ, s) points: direct solve against the slenderness lookup and its band."""
-    # the (ζ, λ) box every family member covers (the s = 20 maps may cover more)
+    # the (ζ, λ) box every slenderness member covers (the s = 20 maps may cover more)
     members = [load_shipped_map(structure, theory, law, slenderness=s) for s in MEMBER_SLENDERNESSES]
     box = {axis: (max(m[axis].min().item() for m in members), min(m[axis].max().item() for m in members))
            for axis in ("zeta", "lambda_")}

@@ -153,7 +153,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     _deferred_choices(p.add_argument(
         "--law", default="linear",
-        help="contact law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
+        help="map law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
         "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
         "from the shipped maps); default linear"), _MAP_LAWS)
     p.add_argument("--betas", nargs="+", type=float, default=None,
@@ -189,12 +189,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help=LAMBDA_HELP + "; with --law hertz the Hertz relative stiffness λ_h")
     _deferred_choices(p.add_argument(
         "--law", default=None,
-        help="contact law of the map: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
+        help="map law: linear (default; ζ, λ), hertz (the Hertz numbers ζ_h, λ_h), "
         "or yc / stronge / epp (with --beta: the elastic-plastic maps over β, ζ, λ)"), _MAP_LAWS)
     p.add_argument("--beta", type=float, default=None, help="impact number β (with --law yc, stronge or epp)")
     p.add_argument("--slenderness", type=float, default=None,
                    help="span/thickness of a Timoshenko beam or Mindlin plate (≥ 10; default 20: the shipped "
-                   "map; others interpolated in 1/slenderness between the shipped family members)")
+                   "map; others interpolated in 1/slenderness between the shipped slenderness members)")
     p.add_argument("--case", type=Path, help="a physical case file: the map that describes it — a shipped map, or "
                    "an on-demand map tile built once and cached — or a refusal, the peak force in newtons with its "
                    "error band")
@@ -245,8 +245,8 @@ def build_parser() -> argparse.ArgumentParser:
 def _tool_parsers(add) -> None:
     """The subcommands around the solvers: init, check, warm-up, materials, laws."""
     p = add("init", "write a commented case file to start from (beam, plate, laminate or fd)", cmd_init)
-    p.add_argument("kind", choices=sorted(CASE_TEMPLATES), help="what the case describes")
-    p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default KIND.toml)")
+    p.add_argument("template", choices=sorted(CASE_TEMPLATES), help="what the case describes")
+    p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default TEMPLATE.toml)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing FILE")
 
     p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "

@@ -386,7 +386,7 @@ def cmd_lookup(args) -> dict:
         else:
             from ..maps.slenderness import lookup_slenderness
 
-            check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest family member is 10)",
+            check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest slenderness member is 10)",
                   low_inclusive=True)
             found = lookup_slenderness(args.zeta, args.lambda_, kind=args.kind, theory=args.theory,
                                        slenderness=slenderness, law=law)

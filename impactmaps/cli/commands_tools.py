@@ -16,7 +16,7 @@ __all__ = ["CASE_TEMPLATES", "cmd_init", "cmd_check", "cmd_warm_up"]
 
 _HEADER = """# {title}
 #
-# Written by `impactmaps init {kind}`. Check it with `impactmaps check {file}` (validates and
+# Written by `impactmaps init {template}`. Check it with `impactmaps check {file}` (validates and
 # prints the derived numbers without running), run it with `impactmaps {run} {file}`.
 # All quantities in SI units; materials from the catalogue (`impactmaps materials`).
 # Every key is documented in the user guide (docs/cases.rst); an unknown key is an error.
@@ -114,20 +114,20 @@ plastic = true
 
 
 def cmd_init(args) -> dict:
-    template = CASE_TEMPLATES[args.kind]
-    path = Path(args.file if args.file is not None else f"{args.kind}.toml")
+    template = CASE_TEMPLATES[args.template]
+    path = Path(args.file if args.file is not None else f"{args.template}.toml")
     if path.is_dir():
-        raise ValueError(f"FILE = {str(path)!r} is a directory: give a file name (e.g. {args.kind}.toml)")
+        raise ValueError(f"FILE = {str(path)!r} is a directory: give a file name (e.g. {args.template}.toml)")
     if path.exists() and not args.overwrite:
         raise ValueError(f"FILE = {str(path)!r} exists: give another name, or --overwrite to replace it")
     title, run, body = template
-    text = _HEADER.format(title=title, kind=args.kind, file=path.name, run=run) + \
+    text = _HEADER.format(title=title, template=args.template, file=path.name, run=run) + \
         f'\nname = "{title}"\n' + body
     try:
         path.write_text(text, encoding="utf-8")
     except OSError as error:
         raise ValueError(f"FILE = {str(path)!r} cannot be written: {error.strerror or error}") from None
-    return {"case": str(path), "kind": args.kind, "next": f"impactmaps check {path}; impactmaps {run} {path}"}
+    return {"case": str(path), "kind": args.template, "next": f"impactmaps check {path}; impactmaps {run} {path}"}
 
 
 def cmd_check(args) -> dict:

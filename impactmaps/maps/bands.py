@@ -16,7 +16,7 @@ __all__ = ["SEVERITY", "BAND_TOLERANCE", "INTERPOLATION_SAFETY", "answer_status"
            "interpolation_error", "slice_estimates"]
 
 
-#: Severity of a status when map points (or family members) are combined (worst wins);
+#: Severity of a status when map points (or slenderness members) are combined (worst wins);
 #: ``interpolated`` is a lookup's own status (:func:`answer_status`), never a point's.
 SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
 #: The status of each severity.

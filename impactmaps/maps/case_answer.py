@@ -112,7 +112,7 @@ def lookup_plastic_case(case, kind: str, theory: str, law: str) -> dict:
     case : impactmaps.cases.Case
         With a Yigit–Christoforou, default refined Stronge or default ``epp`` law.
     kind, theory : str
-        The family (:func:`impactmaps.maps.case_lookup.map_for_case`).
+        The map structure's kind and theory (:func:`impactmaps.maps.case_lookup.map_for_case`).
     law : {"yc", "stronge", "epp"}
 
     Returns

@@ -4,7 +4,7 @@
 theory, supports, impact point, aspect ratio, slenderness, contact law — and names the
 map family that describes it exactly, or refuses with the reason (never the nearest
 map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.lookup.lookup`, the
-slenderness families :func:`impactmaps.maps.slenderness.lookup_slenderness`, or the plastic
+slenderness members :func:`impactmaps.maps.slenderness.lookup_slenderness`, or the plastic
 maps :func:`impactmaps.maps.plastic_lookup.lookup_plastic_case`) and scales the answer
 to newtons with its band. A case that no shipped map describes but whose target names a
 reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
@@ -39,11 +39,11 @@ __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law"
 def map_for_case(case) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
 
-    A shipped map is a family of normalised structures with a linear or a Hertz contact
-    law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
+    A shipped map stands for a structure family (the targets of one map structure) with a
+    linear or a Hertz contact law (:func:`case_map_law`): simply supported beams and SSSS square plates struck at
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
     ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
-    (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same families
+    (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same structures
     except the Mindlin plate (:data:`impactmaps.maps.plastic_lookup.PLASTIC_MAPS`). The
     target names its reference structure (:meth:`Target.map_structure
     <impactmaps.targets.base.Target.map_structure>`); a case whose structure is no shipped
@@ -101,12 +101,12 @@ def map_for_case(case) -> tuple[str, str]:
                "(the maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
     slenderness = key.slenderness
     if slenderness is not None and not same(slenderness, SHIPPED_SLENDERNESS):
-        family = shipped_for(key.kind, key.theory, law)
-        if not family or slenderness < min(MEMBER_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
+        members = shipped_for(key.kind, key.theory, law)
+        if not members or slenderness < min(MEMBER_SLENDERNESSES) * (1 - CASE_MATCH_RTOL):
             refuse(f"{key.theory} {key.kind} of slenderness {slenderness:.4g} (maps: "
                    + (f"slenderness ≥ {min(MEMBER_SLENDERNESSES):g}, interpolated between the slenderness members "
                       f"{', '.join(f'{v:g}' for v in MEMBER_SLENDERNESSES)} and the thin limit"
-                      if family else f"{SHIPPED_SLENDERNESS:g}") + ")")
+                      if members else f"{SHIPPED_SLENDERNESS:g}") + ")")
     wanted = replace(structure_from_name(maps[(key.kind, key.theory)]), slenderness=slenderness or SHIPPED_SLENDERNESS)
     groups = wanted.build().similarity_groups()
     for name, value in target.similarity_groups().items():
@@ -183,7 +183,7 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
         # no map and no tile can be right: the answer depends on where the divergent
         # point-load deflection is cut (simulate: the classical residual beyond its cut-off;
         # the maps: the shear of every mode up to the sweep's mode cap). Measured on
-        # 7 random shipped-family cases: lookup below simulate by 0.2–2 % of F̄max, against
+        # 7 random cases of shipped structures: lookup below simulate by 0.2–2 % of F̄max, against
         # bands of 2e-5–3e-3
         raise NoMapError(case, "a Mindlin plate loaded at a point (a linear law, or a law without a contact radius, "
                                "or contact_patch = 'point'): its point-load deflection diverges, so the peak force "
@@ -219,8 +219,8 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
     except (OutsideMapError, UnresolvedPointError) as error:
         if not build:
             raise
-        # the case's family has a shipped map, but its numbers lie beyond it or next to a
-        # point the family member could not resolve: a tile of the case's own structure
+        # the case's structure has a shipped map, but its numbers lie beyond it or next to a
+        # point the slenderness member could not resolve: a tile of the case's own structure
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")

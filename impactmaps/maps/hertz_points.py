@@ -7,7 +7,7 @@ solved by the modal solver with the Hertz law under the same accuracy control as
 linear maps (:mod:`.accuracy`), and stored in the Hertz half-space scales: forces over
 ``F_hs = K_h α_m^{3/2}`` (the half-space value is exactly 1), times over ``t* = α_m/V0``.
 By the similarity of Hertz impacts (module :mod:`impactmaps.hertz_similarity`) one such
-point holds for every physical case of the family with the same (ζ_h, λ_h).
+point holds for every physical case of the structure family with the same (ζ_h, λ_h).
 
 The Hertz map family (:class:`HertzFamily`, registered as ``"hertz"``) is these points.
 The asymptotes of the Hertz regimes — infinite plate (Zener's model), infinite beam,
@@ -217,7 +217,7 @@ class HertzFamily(HertzLayout):
         return law.hertzian_stiffness is not None
 
     def with_patch(self, patch: float | None) -> "HertzFamily":
-        """The family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
+        """The Hertz map family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
         return HertzFamily(patch)
 
     def check(self, structure, target, settings) -> None:

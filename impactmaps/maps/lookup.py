@@ -152,7 +152,7 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
 
 
 def shipped_structure_name(kind: str, theory: str, slenderness: float | None = None) -> str:
-    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable family
+    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable slenderness
     member at ``slenderness`` (one of :data:`~impactmaps.maps.structures.MEMBER_SLENDERNESSES`)."""
     require_choice("kind", kind, STRUCTURE_KINDS)
     require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == kind])
@@ -169,7 +169,7 @@ def shipped_structure_name(kind: str, theory: str, slenderness: float | None = N
 @renamed_keyword("structure", "kind")
 def load_shipped_map(kind: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
     """The shipped map for ``kind`` in {"beam", "plate"}, its ``theory`` and contact
-    ``law`` (a Timoshenko/Mindlin family member at ``slenderness``; default the s = 20 one),
+    ``law`` (a Timoshenko/Mindlin slenderness member at ``slenderness``; default the s = 20 one),
     named by :func:`_shipped_name` (an elastic-plastic law: the structures its family ships)."""
     name = _shipped_name(kind, theory, law, slenderness)
     dataset = read_shipped(name)
@@ -210,7 +210,7 @@ def lookup(loss_factor, relative_stiffness, *, kind: str = "plate", theory: str 
     law : {"linear", "hertz"}
         Contact law of the map (F̄max = F_max/(m_i V0 ω), or F_max/F_hs for Hertz).
     slenderness : float, optional
-        Timoshenko/Mindlin only: the family member to read (10, 20 or 50; default 20).
+        Timoshenko/Mindlin only: the slenderness member to read (10, 20 or 50; default 20).
         Any other slenderness ≥ 10: :func:`impactmaps.maps.slenderness.lookup_slenderness`.
 
     Returns

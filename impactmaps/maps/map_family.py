@@ -67,11 +67,12 @@ ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
 
 
 def map_law(dataset) -> str:
-    """The map family (contact law) a map dataset was swept with (a map without the attribute is linear).
+    """The map law (the name of its map family) a map dataset was swept with (a map without the attribute is linear).
 
     The law is part of a map's identity: it is in the fingerprint (for every law but the
-    linear one, whose fingerprints predate it), in the ``contact_law`` attribute and in
-    the variables' descriptions. ``dataset``: an ``xarray.Dataset`` or a
+    linear one, whose fingerprints predate it), in the ``contact_law`` attribute (the stored
+    name of the map law, kept for the stored maps) and in the variables' descriptions.
+    ``dataset``: an ``xarray.Dataset`` or a
     :class:`~impactmaps.maps.map_arrays.MapArrays`.
     """
     return str(dataset.attrs.get("contact_law", "linear"))

@@ -1,9 +1,9 @@
-"""Slenderness families of the shear-deformable maps: a lookup at any slenderness by interpolation in 1/s.
+"""Slenderness members of the shear-deformable maps: a lookup at any slenderness by interpolation in 1/s.
 
 The maps of Timoshenko beams and Mindlin plates depend on the slenderness s = span /
 thickness; those of Euler beams and Kirchhoff plates do not. ζ and λ are defined with the
 classical quantities (static stiffness, infinite-structure impedance), so as s grows a
-shear-deformable map tends to the classical one. The package ships each slenderness family at
+shear-deformable map tends to the classical one. The package ships the slenderness members at
 s = 10, 20 and 50 (:data:`~impactmaps.maps.structures.MEMBER_SLENDERNESSES`; Timoshenko
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
@@ -39,12 +39,12 @@ __all__ = ["slenderness_members", "lookup_slenderness", "slenderness_error_grid"
 
 
 def shipped_for(kind: str, theory: str, law: str) -> bool:
-    """Whether a slenderness family is shipped for a (kind, theory) with the map law ``law``.
+    """Whether slenderness members are shipped for a (kind, theory) with the map law ``law``.
 
     A shear-deformable theory (:func:`~impactmaps.targets.options.is_shear_deformable`) of a
     shipped (ζ, λ) map of the law, struck by a point load: a law whose family loads the
     contact patch (Hertz) on a target whose point load diverges (Mindlin) has the patch
-    radius as a third number, so no family is shipped for it.
+    radius as a third number, so no members are shipped for it.
     """
     if law not in PLANE_LAWS or not is_shear_deformable(theory):
         return False
@@ -58,11 +58,11 @@ def slenderness_members(kind: str, theory: str, law: str = "linear") -> tuple[tu
     Raises
     ------
     ValueError
-        When no family is shipped for (kind, theory, law).
+        When no slenderness members are shipped for (kind, theory, law).
     """
     if not shipped_for(kind, theory, law):
-        raise ValueError(f"no slenderness family is shipped for a {theory} {kind} with the {law} law "
-                         f"(families: Timoshenko beams, linear and Hertz; Mindlin plates, linear)")
+        raise ValueError(f"no slenderness members are shipped for a {theory} {kind} with the {law} law "
+                         f"(shipped: Timoshenko beams, linear and Hertz; Mindlin plates, linear)")
     return ((0.0, None), *((1.0 / s, s) for s in sorted(MEMBER_SLENDERNESSES, reverse=True)))
 
 
@@ -143,7 +143,7 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: s
     Raises
     ------
     ValueError
-        Slenderness below 10, no family for the law, or a member refusing (outside its
+        Slenderness below 10, no slenderness members for the law, or a member refusing (outside its
         range or next to an ``unresolved`` point).
     """
     members = slenderness_members(kind, theory, law)

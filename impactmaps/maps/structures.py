@@ -1,9 +1,9 @@
 """Reference structures for normalised (ζ, λ) maps.
 
-A :class:`MapStructure` names a family of targets whose normalised response depends on
+A :class:`MapStructure` names a structure family: the targets whose normalised response depends on
 (ζ, λ) and a few shape parameters only: the kind (beam or plate), the theory, the
 supports, the aspect ratio, the slenderness and the impact point as fractions. It
-builds one concrete target (steel-like, unit span) that stands for the family; the
+builds one concrete target (steel-like, unit span) that stands for them all; the
 impactor for each (ζ, λ) is then realised on it (spec §4).
 
 For Euler beams and Kirchhoff plates the normalised response is independent of the
@@ -30,7 +30,7 @@ __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MA
 
 @dataclass(frozen=True)
 class MapStructure:
-    """A family of targets for the normalised maps.
+    """A structure family (the targets one normalised map stands for), named by its map structure.
 
     Parameters
     ----------
@@ -113,7 +113,7 @@ def structure_from_name(name: str) -> MapStructure:
     for structure in DEFAULT_STRUCTURES:
         if structure.name == name:
             return structure
-    for structure in FAMILY_STRUCTURES:
+    for structure in MEMBER_STRUCTURES:
         if structure.name == name:
             return structure
     parts = name.split("-")
@@ -145,8 +145,8 @@ DEFAULT_STRUCTURES = (
 # SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
 # tests/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
 
-#: The shear-deformable family members besides the default slenderness 20.
-FAMILY_STRUCTURES = tuple(
+#: The shear-deformable slenderness members besides the default slenderness 20.
+MEMBER_STRUCTURES = tuple(
     replace(structure, slenderness=slenderness)
     for structure in DEFAULT_STRUCTURES if is_shear_deformable(structure.theory)
     for slenderness in MEMBER_SLENDERNESSES if slenderness != structure.slenderness

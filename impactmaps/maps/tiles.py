@@ -75,7 +75,7 @@ def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
 
 def lattice_steps() -> tuple[float, float]:
     """(Δ log10 ζ, Δ log10 λ) of the global lattice, ``log10 ζ = i Δζ``: (0.05, 0.1), the grid
-    of the shipped Timoshenko family members at slenderness 10 and 50 (and every other point
+    of the shipped Timoshenko slenderness members at slenderness 10 and 50 (and every other point
     of the twice-denser maps of the four shipped structures); tiles, their fingerprints and
     their validation are on it."""
     return LATTICE_STEPS
