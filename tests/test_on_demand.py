@@ -218,3 +218,20 @@ def test_what_no_map_structure_describes_is_still_refused(target, law, expected)
     with pytest.raises(ValueError, match="no shipped map covers this case") as info:
         lookup_case(case, cache_dir="/nonexistent/never-written")
     assert expected in str(info.value) and "impactmaps simulate" in str(info.value)
+
+
+def test_a_case_no_map_point_can_be_realised_at_is_refused_before_a_tile_is_built(tmp_path, monkeypatch):
+    """Found by fuzzing `lookup --case`: a beam 1e-300 m wide has ζ ≈ 6e296; the lookup built a
+    tile there (overflows, then a zero Hertz stiffness). Numbers beyond the family's
+    ``axis_ranges`` are refused with the reason, and nothing is solved."""
+    from impactmaps.maps.case_answer import NoMapError
+
+    def no_tile(*args, **kwargs):
+        raise AssertionError("a tile was built")
+
+    monkeypatch.setattr(tiles, "build_tile", no_tile)
+    case = _case('type = "beam"\nlength = 0.5\nwidth = 1e-300\nheight = 0.02\nmaterial = "aluminium-6061-t6"\n'
+                 'supports = "cc"\n', "hertz")
+    with pytest.raises(NoMapError, match=r"no on-demand map reaches its ζ = .*e\+29\d: the hertz map points are "
+                                         r"realised for ζ in \[1e-09, 1e\+06\]"):
+        lookup_case(case, cache_dir=tmp_path)

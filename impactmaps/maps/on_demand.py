@@ -23,6 +23,8 @@ of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the neares
 
 from __future__ import annotations
 
+import math
+
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
@@ -140,8 +142,17 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
                                 f"{structure.theory} theory, or a point needs more modes than the sweep's cap of "
                                 f"{MAX_MODES} modes below its cut-off and no exact asymptote answers it)")
 
+    def realisable(**numbers):  # a tile around numbers no map point can be realised at answers nothing
+        for name, value in numbers.items():
+            low, high = map_family(law).axis_ranges.get(name, (0.0, math.inf))
+            if not low <= value <= high:
+                symbol = {"zeta": "ζ", "lambda_": "λ", "beta": "β"}.get(name, name)
+                raise NoMapError(case, f"{refusal.what}, and no on-demand map reaches its {symbol} = {value:.4g}: "
+                                       f"the {law} map points are realised for {symbol} in [{low:g}, {high:g}]")
+
     if map_family(law).extra_axes:  # an elastic-plastic family: (β, ζ, λ)
         def read(beta, zeta, lam):
+            realisable(beta=beta, zeta=zeta, lambda_=lam)
             key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,))
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
@@ -152,6 +163,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         answer = plastic_answer(case, law, read)
     else:
         def read(zeta, lam):
+            realisable(zeta=zeta, lambda_=lam)
             key = tile_for(structure, law, patch, zeta, lam, settings)
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
