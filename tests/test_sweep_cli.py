@@ -160,9 +160,12 @@ def test_sigint_during_a_real_sweep_exits_130(tmp_path):
     """Ctrl-C on the command: one line, exit 130, the finished points kept."""
     config = tmp_path / "sweep.toml"
     config.write_text(BEAM_CONFIG.format(count=5000, lambdas="[0.3, 1.0, 3.0]").replace('"beam"', '"plate"'))
+    # a terminal's Ctrl-C: SIGINT not ignored in the child, even when the test run itself was started in
+    # the background of a non-interactive shell (which ignores SIGINT, and the child inherited it)
     process = subprocess.Popen([sys.executable, "-m", "impactmaps.cli", "sweep", str(config), "--workers", "1",
                                 "--quiet"], cwd=ROOT, stderr=subprocess.PIPE, text=True,
-                               env=os.environ | {"PYTHONPATH": str(ROOT)})
+                               env=os.environ | {"PYTHONPATH": str(ROOT)},
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     netcdf = tmp_path / "out" / "sweep.nc"
     deadline = time.monotonic() + 120
     while not netcdf.exists() and process.poll() is None and time.monotonic() < deadline:
