@@ -1,15 +1,14 @@
 """Build hook: the wheel ships the modal solver's kernels compiled (numba's cache).
 
 Everything else about the package is declared in ``pyproject.toml``. A non-editable build
-(``pip install .``, ``pip wheel .``, ``python -m build``) runs, after ``build_py`` has laid
-the package out in the build tree, :func:`impactmaps.solvers.warm_up.warm_up` there: numba
-writes the compiled kernels beside the built modules (``impactmaps/*/__pycache__/*.nbi``,
-``*.nbc``), which the wheel carries. numba loads an entry of that cache when its source
-file has the same content (numba keys the index on a hash of the source file, not on its
-modification time), the same numba version, the same Python and the same CPU (name and
-features): a wheel installed where it was built (``pip install .``) starts warm; anywhere
-else numba compiles on first use, as without the cache. The wheel is tagged for this
-Python and platform (it holds machine code).
+(``pip install .``, ``pip wheel .``, ``python -m build``) runs, once ``build_py`` has laid
+the package out in the build tree, :func:`impactmaps.solvers.warm_up.compile_into_package`
+there, in a child process: numba writes the compiled kernels beside the built modules
+(``impactmaps/*/__pycache__/*.nbi``, ``*.nbc``), and the wheel carries them. numba loads
+them where the source files have the same content, numba and Python the same versions and
+the CPU the same name and features — a wheel installed where it was built, as ``pip install
+.`` does, starts warm; anywhere else numba compiles on first use, as without the cache. The
+wheel is tagged for this Python and platform (it holds machine code).
 
 ``IMPACTMAPS_BUILD_NO_KERNELS=1`` skips the compile (a wheel without the cache); a compile
 that fails leaves a wheel without the cache and a warning, never a failed build. Editable
@@ -19,6 +18,7 @@ sources, as in any checkout.
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -35,43 +35,35 @@ except ImportError:  # setuptools < 70.1
 
 #: Turns the compile off (any value but "" and "0").
 SKIP_ENV = "IMPACTMAPS_BUILD_NO_KERNELS"
-#: numba's cache files, and what its saves leave beside them (locks, interrupted writes).
-_CACHE_PATTERNS = ("*.nbi", "*.nbc", "*.nbi.lock", "*.tmp.*")
 #: The compile, in a child process importing the built package (argv[1]: the build tree).
-_WARM_UP = ("import sys; sys.path.insert(0, sys.argv[1]); "
-            "from impactmaps.solvers.warm_up import warm_up; print(warm_up(2))")
-#: Environment variables of numba's that would send the cache elsewhere or compile nothing.
+_COMPILE = ("import json, sys; sys.path.insert(0, sys.argv[1]); import impactmaps; "
+            "from pathlib import Path; assert Path(impactmaps.__file__).parent == Path(sys.argv[1], 'impactmaps'); "
+            "from impactmaps.solvers.warm_up import compile_into_package; print(json.dumps(compile_into_package()))")
+#: numba's settings that would send the cache elsewhere or compile nothing.
 _NUMBA_ENV = ("NUMBA_CACHE_DIR", "NUMBA_CACHE_LOCATOR_CLASSES", "NUMBA_DISABLE_JIT")
 
 
-def _cache_files(package: Path):
-    for pattern in _CACHE_PATTERNS:
-        yield from package.glob(f"**/__pycache__/{pattern}")
-
-
 def compile_kernels(build_lib: str) -> bool:
-    """Compile the kernels into numba's cache inside ``build_lib``; True if it worked."""
-    package = Path(build_lib, "impactmaps")
-    for stale in list(_cache_files(package)):  # a build tree kept from an earlier build
-        stale.unlink()
+    """Compile the kernels into numba's cache inside ``build_lib``; True if it worked (else
+    the build tree is left without cache files)."""
+    build = Path(build_lib).resolve()
     env = {name: value for name, value in os.environ.items() if name not in _NUMBA_ENV}
     env.update(IMPACTMAPS_NO_BACKGROUND_WARMUP="1", PYTHONDONTWRITEBYTECODE="1")
     start = time.perf_counter()
-    done = subprocess.run([sys.executable, "-c", _WARM_UP, str(Path(build_lib).resolve())], cwd=build_lib,
-                          env=env, stdin=subprocess.DEVNULL, capture_output=True, text=True)
-    for leftover in [path for path in _cache_files(package) if not path.name.endswith((".nbi", ".nbc"))]:
-        leftover.unlink()
-    if done.returncode != 0:
-        for partial in list(_cache_files(package)):
+    done = subprocess.run([sys.executable, "-c", _COMPILE, str(build)], cwd=build, env=env,
+                          stdin=subprocess.DEVNULL, capture_output=True, text=True)
+    if done.returncode == 0:
+        report = json.loads(done.stdout.strip().splitlines()[-1])
+        print(f"impactmaps: kernels compiled into the wheel in {time.perf_counter() - start:.1f} s "
+              f"({report['files']} files, {report['bytes'] / 1e6:.1f} MB)", file=sys.stderr)
+        return True
+    for pattern in ("*.nbi", "*.nbc", "*.lock", "*.tmp.*"):
+        for partial in build.glob(f"impactmaps/**/__pycache__/{pattern}"):
             partial.unlink()
-        tail = "\n".join(done.stderr.strip().splitlines()[-5:])
-        print(f"impactmaps: compiling the kernels failed; the wheel ships none (numba compiles them on first "
-              f"use):\n{tail}", file=sys.stderr)
-        return False
-    size = sum(path.stat().st_size for path in _cache_files(package))
-    print(f"impactmaps: kernels compiled into the wheel in {time.perf_counter() - start:.1f} s "
-          f"({size / 1e6:.1f} MB)", file=sys.stderr)
-    return True
+    tail = "\n".join(done.stderr.strip().splitlines()[-5:])
+    print(f"impactmaps: compiling the kernels failed; the wheel ships none (numba compiles them on first "
+          f"use):\n{tail}", file=sys.stderr)
+    return False
 
 
 class BuildPyWithKernels(build_py):
