@@ -43,6 +43,15 @@ _COMPILE = ("import json, sys; sys.path.insert(0, sys.argv[1]); import impactmap
 _NUMBA_ENV = ("NUMBA_CACHE_DIR", "NUMBA_CACHE_LOCATOR_CLASSES", "NUMBA_DISABLE_JIT")
 
 
+def remove_cache_files(build_lib: str) -> None:
+    """Remove numba's cache files (and what its saves leave) from the package in ``build_lib``:
+    setuptools keeps the build tree between builds, and a wheel built without the compile, or
+    whose compile failed, must not ship an earlier build's cache."""
+    for pattern in ("*.nbi", "*.nbc", "*.lock", "*.tmp.*"):
+        for stale in Path(build_lib).glob(f"impactmaps/**/__pycache__/{pattern}"):
+            stale.unlink()
+
+
 def compile_kernels(build_lib: str) -> bool:
     """Compile the kernels into numba's cache inside ``build_lib``; True if it worked (else
     the build tree is left without cache files)."""
@@ -57,9 +66,7 @@ def compile_kernels(build_lib: str) -> bool:
         print(f"impactmaps: kernels compiled into the wheel in {time.perf_counter() - start:.1f} s "
               f"({report['files']} files, {report['bytes'] / 1e6:.1f} MB)", file=sys.stderr)
         return True
-    for pattern in ("*.nbi", "*.nbc", "*.lock", "*.tmp.*"):
-        for partial in build.glob(f"impactmaps/**/__pycache__/{pattern}"):
-            partial.unlink()
+    remove_cache_files(build_lib)
     tail = "\n".join(done.stderr.strip().splitlines()[-5:])
     print(f"impactmaps: compiling the kernels failed; the wheel ships none (numba compiles them on first "
           f"use):\n{tail}", file=sys.stderr)
@@ -71,9 +78,11 @@ class BuildPyWithKernels(build_py):
 
     def run(self):
         super().run()
-        if getattr(self, "editable_mode", False) or os.environ.get(SKIP_ENV, "") not in ("", "0"):
+        if getattr(self, "editable_mode", False):
             return
-        compile_kernels(self.build_lib)
+        remove_cache_files(self.build_lib)
+        if os.environ.get(SKIP_ENV, "") in ("", "0"):
+            compile_kernels(self.build_lib)
 
 
 class PlatformWheel(bdist_wheel):
