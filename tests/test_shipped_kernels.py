@@ -27,12 +27,13 @@ _MODULE = "import numba\n\n\n@numba.njit(cache=True)\ndef kernel(x):\n    return
 _BUILD = "import sys; sys.path.insert(0, sys.argv[1]); import shipped_demo; print(shipped_demo.kernel(1.5))"
 #: Load each installed copy (argv: their directories): value, cache hits, cache misses.
 _LOAD = """
-import importlib.util, json, sys
+import importlib, json, sys
 out = {}
-for where in sys.argv[1:]:
-    spec = importlib.util.spec_from_file_location(f"copy{len(out)}", f"{where}/shipped_demo.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+for where in sys.argv[1:]:  # each copy imported under the built module's name, as an installed package is
+    sys.path.insert(0, where)
+    sys.modules.pop("shipped_demo", None)
+    module = importlib.import_module("shipped_demo")
+    sys.path.remove(where)
     value, stats = module.kernel(1.5), module.kernel.stats
     out[where] = [value, sum(stats.cache_hits.values()), sum(stats.cache_misses.values())]
 print(json.dumps(out))
