@@ -6,7 +6,9 @@ modification time: numba (≥ 0.68) keys a cache index on the source file's cont
 installed copy loads the shipped entries, and falls back to compiling when the source
 differs or no cache was shipped. Checked on a small module built, then "installed" by a
 copy with new modification times (two fresh interpreters, ~1.5 s); the bits of a run from
-the package's own shipped cache against a fresh compile in the slow test.
+the package's own shipped cache against a fresh compile in the slow test. A read-only
+installation: numba keeps its cache in its user-wide directory, where the shipped files are
+copied (:func:`impactmaps.solvers.compile_helper.seed_user_cache`).
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from impactmaps.solvers import warm_up
+from impactmaps.solvers import compile_helper, warm_up
 
 _MODULE = "import numba\n\n\n@numba.njit(cache=True)\ndef kernel(x):\n    return 2.0 * x + 1.0\n"
 #: Build: compile ``kernel`` into ``__pycache__`` beside the module (argv[1]: its directory).
@@ -99,6 +101,35 @@ def test_an_installed_wheel_ships_the_integrator_compiled():
     code = ("from impactmaps.solvers.compile_helper import variant_cached; "
             "print(variant_cached(None), variant_cached(True))")
     assert _run(code).split() == ["True", "True"]
+
+
+def test_shipped_cache_files_are_copied_index_by_index(tmp_path):
+    """A read-only installation: the shipped files go to numba's user-wide cache, a
+    function's data files and index, unless numba has an index of its own there."""
+    shipped = tmp_path / "package" / "solvers" / "__pycache__"
+    shipped.mkdir(parents=True)
+    for name in ("a.f-3.py311.nbi", "a.f-3.py311.1.nbc", "a.f-3.py311.2.nbc", "b.g-5.py311.nbi", "b.g-5.py311.1.nbc"):
+        (shipped / name).write_text(f"shipped {name}")
+    user = tmp_path / "user"
+    (user / "solvers").mkdir(parents=True)
+    (user / "solvers" / "b.g-5.py311.nbi").write_text("numba's own")
+    copy = compile_helper.copy_shipped_cache
+    assert copy(tmp_path / "package", lambda folder: user / folder.name) == 3
+    assert sorted(path.name for path in (user / "solvers").iterdir()) == [
+        "a.f-3.py311.1.nbc", "a.f-3.py311.2.nbc", "a.f-3.py311.nbi", "b.g-5.py311.nbi"]
+    assert (user / "solvers" / "a.f-3.py311.2.nbc").read_text() == "shipped a.f-3.py311.2.nbc"
+    assert (user / "solvers" / "b.g-5.py311.nbi").read_text() == "numba's own"
+    assert copy(tmp_path / "package", lambda folder: user / folder.name) == 0
+
+
+def test_nothing_is_copied_where_numba_reads_the_modules_directories():
+    from numba.core.caching import UserWideCacheLocator
+
+    from impactmaps.solvers.exact_step import integrate_impact
+
+    if type(integrate_impact.dispatcher._cache._impl.locator) is UserWideCacheLocator:
+        pytest.skip("a read-only installation: numba's user-wide cache is seeded")
+    assert compile_helper.seed_user_cache() == 0
 
 
 @pytest.mark.slow

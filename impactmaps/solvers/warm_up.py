@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from .compile_helper import variant_cached
+from .compile_helper import seed_user_cache, variant_cached
 
 __all__ = ["warm_up", "cache_directory", "run_background", "compile_into_package", "CACHE_PATTERNS"]
 
@@ -96,6 +96,7 @@ def warm_up(workers: int = 2) -> dict:
 
     require_in_range("workers", workers, 1, 64)
     start = time.perf_counter()
+    seed_user_cache()  # a read-only installation: what the wheel shipped, into numba's user-wide cache
     missing = [variant for variant in _VARIANTS if not variant_cached(variant)]
     if workers > 1 and len(missing) > 1:
         context = multiprocessing.get_context("spawn")
