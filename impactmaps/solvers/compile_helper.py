@@ -27,6 +27,11 @@ another (``multiprocessing``: a sweep's workers never start one). At most one he
 process, for its first integrating run; on a warm cache the check is one read of numba's
 cache index (:func:`variant_cached`, ~0.5 ms).
 
+A wheel built by ``pip install .`` ships the kernels compiled (``setup.py``), beside the
+modules; numba reads them there unless the installation is read-only, when it keeps its
+cache in its user-wide directory: :func:`seed_user_cache` (run first by :func:`start`)
+then copies the shipped files there, so that the run loads them instead of compiling.
+
 No process is left behind: the helper ends with this process — at its exit (``atexit``),
 on Ctrl-C (the terminal's signal reaches both; while waiting, this process ends it), and,
 on Linux, when this process is killed (``PR_SET_PDEATHSIG``). Two commands starting at
@@ -45,7 +50,7 @@ import time
 from pathlib import Path
 
 __all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "switched_off", "child_environment",
-           "variant_cached", "callee_signatures"]
+           "variant_cached", "callee_signatures", "seed_user_cache", "copy_shipped_cache"]
 
 #: Environment variable that turns the helper off (any value but "" and "0"), and the
 #: background warm-up (:data:`impactmaps.solvers.background_warm_up.DISABLE_ENV`, the same).
@@ -117,6 +122,7 @@ def start(variants, arguments: list[str] | None = None) -> bool:
             return False
         _state["decided"] = True
         try:
+            seed_user_cache()
             if switched_off():
                 return False
             if arguments is None:  # the cache first: on a warm one, nothing more is imported
@@ -127,6 +133,67 @@ def start(variants, arguments: list[str] | None = None) -> bool:
             return enabled() and _launch(tuple(variants), arguments)
         except Exception:  # noqa: BLE001 (no helper: the run compiles itself)
             return False
+
+
+def seed_user_cache() -> int:
+    """Copy the kernels a wheel shipped compiled into numba's user-wide cache, where numba
+    keeps its cache because the package's directories are read-only.
+
+    Returns
+    -------
+    int
+        The number of files copied: 0 unless numba uses its user-wide cache
+        (``~/.cache/numba``) for this package — it keeps a function's cache beside its module
+        when that directory is writable (then it reads the shipped files there itself), in
+        ``NUMBA_CACHE_DIR`` when that is set (a user's choice, left alone), else in its
+        user-wide cache, where it does not look for the files beside a read-only module.
+
+    Notes
+    -----
+    The entries are the same in both places (the same file names; numba keys them on the
+    source's content): a function whose index is not yet in the user-wide cache gets the
+    shipped index and data files (:func:`copy_shipped_cache`); an index already there is
+    numba's own and left alone. Called by the first integrating run of a process
+    (:func:`start`) and by :func:`impactmaps.solvers.warm_up.warm_up`; never raises.
+    """
+    try:
+        from numba.core.caching import UserWideCacheLocator
+
+        from .exact_step import integrate_impact
+
+        locator = integrate_impact.dispatcher._cache._impl.locator
+        if type(locator) is not UserWideCacheLocator:
+            return 0
+        base = Path(locator.get_cache_path()).parent
+        # the package's directory as numba sees its modules (not resolved: the cache path hashes it)
+        package = Path(integrate_impact.dispatcher.py_func.__code__.co_filename).parents[1]
+        return copy_shipped_cache(package, lambda folder: base / UserWideCacheLocator.get_suitable_cache_subpath(
+            str(folder / "__init__.py")))
+    except Exception:  # noqa: BLE001 (numba's internals changed, or a file error: numba compiles)
+        return 0
+
+
+def copy_shipped_cache(package, destination) -> int:
+    """Copy numba's cache files from the ``__pycache__`` directories under ``package`` to
+    ``destination(folder)`` (a directory for each package folder), index by index: a
+    function's data files, then its index, each by an atomic rename; skipped where the
+    destination has that index already. The number of files copied."""
+    import glob
+    import shutil
+
+    copied = 0
+    for index in sorted(Path(package).glob("**/__pycache__/*.nbi")):
+        target = Path(destination(index.parent.parent))
+        if (target / index.name).exists():
+            continue
+        target.mkdir(parents=True, exist_ok=True)
+        stem = glob.escape(index.name[:-len(".nbi")])
+        for source in [*sorted(index.parent.glob(f"{stem}.*.nbc")), index]:  # the index last: numba
+            temporary = target / f"{source.name}.tmp.{os.getpid()}"        # reads what it lists
+            shutil.copyfile(source, temporary)
+            os.replace(temporary, target / source.name)
+            copied += 1
+    return copied
 
 
 def variant_cached(variant) -> bool:

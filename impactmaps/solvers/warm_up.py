@@ -10,6 +10,8 @@ exact contact phase) in two processes at once, then, in this process, everything
 run compiles — the time-step kernels, every registered contact law's kernel and the
 vectorised law evaluation — by loading the integrators back and running two tiny impacts.
 It changes no answer: the compiled code is the code a cold run would compile.
+:func:`compile_into_package` does the same when the wheel is built (``setup.py``), into
+numba's cache beside the built modules, which the wheel ships.
 """
 
 from __future__ import annotations
@@ -20,9 +22,13 @@ import time
 
 import numpy as np
 
-from .compile_helper import variant_cached
+from .compile_helper import seed_user_cache, variant_cached
 
-__all__ = ["warm_up", "cache_directory", "run_background"]
+__all__ = ["warm_up", "cache_directory", "run_background", "compile_into_package", "CACHE_PATTERNS"]
+
+#: numba's cache files (index, data) and what its saves leave beside them (the save lock of
+#: :mod:`impactmaps.solvers.lazy_kernel`, an interrupted write's temporary file).
+CACHE_PATTERNS = ("*.nbi", "*.nbc", "*.nbi.lock", "*.tmp.*")
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
 _VARIANTS = (None, True)
@@ -90,6 +96,7 @@ def warm_up(workers: int = 2) -> dict:
 
     require_in_range("workers", workers, 1, 64)
     start = time.perf_counter()
+    seed_user_cache()  # a read-only installation: what the wheel shipped, into numba's user-wide cache
     missing = [variant for variant in _VARIANTS if not variant_cached(variant)]
     if workers > 1 and len(missing) > 1:
         context = multiprocessing.get_context("spawn")
@@ -102,6 +109,52 @@ def warm_up(workers: int = 2) -> dict:
     end = time.perf_counter()
     return {"compiled_variants": len(missing), "integrator_s": middle - start, "rest_s": end - middle,
             "total_s": end - start, "cache_directory": cache_directory()}
+
+
+def compile_into_package() -> dict:
+    """Compile every kernel of a modal run into numba's cache beside this package's modules.
+
+    The wheel's build (``setup.py``) runs it in a child process that imports the package from
+    the build tree: numba's cache files (``impactmaps/*/__pycache__/*.nbi``, ``*.nbc``) are
+    then packed into the wheel. numba loads an entry when the source file has the same
+    content (numba ≥ 0.68 keys its index on a hash of the file, not on its modification
+    time, which an installed file does not keep), numba the same version, Python the same version and the CPU the same name and
+    features; else it compiles on first use, as without the shipped cache.
+
+    Returns
+    -------
+    dict
+        What :func:`warm_up` returns, with ``files`` (number of cache files) and ``bytes``
+        (their size).
+
+    Raises
+    ------
+    ValueError
+        If ``NUMBA_CACHE_DIR`` is set (the cache would not be beside the modules).
+    """
+    import os
+    from pathlib import Path
+
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        raise ValueError(f"NUMBA_CACHE_DIR = {os.environ['NUMBA_CACHE_DIR']!r}: compile_into_package needs it unset "
+                         "(numba's cache beside the package's modules)")
+    package = Path(__file__).resolve().parents[1]
+    for stale in package_cache_files(package):  # a build tree kept from an earlier build
+        stale.unlink()
+    done = warm_up(2)
+    for leftover in package_cache_files(package):
+        if not leftover.name.endswith((".nbi", ".nbc")):
+            leftover.unlink()
+    files = package_cache_files(package)
+    return {**done, "files": len(files), "bytes": sum(path.stat().st_size for path in files)}
+
+
+def package_cache_files(package) -> list:
+    """numba's cache files (:data:`CACHE_PATTERNS`) in the ``__pycache__`` directories under
+    the directory ``package``."""
+    from pathlib import Path
+
+    return [path for pattern in CACHE_PATTERNS for path in Path(package).glob(f"**/__pycache__/{pattern}")]
 
 
 def run_background(directory, sleep_s: float | None = None) -> int:
