@@ -58,3 +58,11 @@ def test_the_cache_is_bounded():
     for k in range(modal_run.SETUP_CACHE_SIZE + 3):
         simulate(basis, law, mass * (1.0 + 1e-3 * k), 1.0, settings=settings, record=False)
     assert 0 < len(modal_run._setup_cache) <= modal_run.SETUP_CACHE_SIZE
+
+
+def test_large_bases_are_not_kept(monkeypatch):
+    basis, law, mass, settings = _case(0.038)
+    modal_run._setup_cache.clear()
+    monkeypatch.setattr(modal_run, "SETUP_CACHE_MODES", 1)
+    simulate(basis, law, mass, 1.0, settings=settings, record=False)
+    assert not modal_run._setup_cache

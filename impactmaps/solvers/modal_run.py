@@ -230,8 +230,10 @@ _ROW_CAP_NOTE = ("row cap reached: the history holds HISTORY_ROW_CAP = {rows} ro
                  "time limit (solver.duration, max_time_ratio)")
 
 
-#: Entries kept by :func:`_step_and_phase`'s set-up cache (a full cache is emptied).
+#: Entries kept by :func:`_step_and_phase`'s set-up cache (a full cache is emptied) …
 SETUP_CACHE_SIZE = 64
+#: … for bases of at most this many modes (its (n + 1)² matrices: ≤ 4.3 MB in all).
+SETUP_CACHE_MODES = 64
 _setup_cache: dict = {}
 
 
@@ -262,8 +264,11 @@ def _cached(key: tuple, compute):
 def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
     """(time step [s], coupled modes) chosen automatically (module docstring of
     :mod:`impactmaps.solvers.modal`): the exact phase where it pays, the step then only for
-    free flight. The set-up (top coupled frequency, content step, coupled modes) is cached
-    on the exact bytes of its inputs (:func:`_cached`)."""
+    free flight. The set-up (top coupled frequency, content step, coupled modes) of a basis
+    of at most :data:`SETUP_CACHE_MODES` modes is cached on the exact bytes of its inputs
+    (:func:`_cached`)."""
+    if basis.size > SETUP_CACHE_MODES:  # a large set-up is a small share of its run
+        return _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings)
     key = _setup_key(basis, stiffness, impactor_mass, omega_c, settings.force_resolution, settings.step_scale,
                      settings.time_step_ratio, settings.resolve_ratio, linear_stiffness(law))
     # the module's thresholds too (a benchmark or test may set them)
