@@ -15,7 +15,9 @@ exact linear contact phase (``coupled_modes``, an (n + 1)² ``eigh``), and the r
 
 Run for two checkouts in the same minutes to compare (``--root``):
 ``python benchmarks/bench_thin_calls.py [--targets real] [--calls 400] [--root CHECKOUT]``.
-Prints one Markdown table.
+Prints one Markdown table (the kernel's share per point) and the least share. The calls
+repeat one set of inputs: from the second on, the run's set-up comes from the exact-input
+cache of :mod:`impactmaps.solvers.modal_run` where the checkout has one.
 """
 
 from __future__ import annotations
@@ -49,8 +51,8 @@ def measure(targets: str, calls: int) -> list[tuple]:
             parts["kernel"] += time.process_time() - start
             return out
 
-        def compile(self, *args):
-            real_kernel.compile(*args)
+        def __getattr__(self, name):  # compile, variant_of …: the real kernel's
+            return getattr(real_kernel, name)
 
     def timed(name, function):
         def call(*args, **kwargs):
@@ -104,6 +106,7 @@ def main(argv=None) -> None:
     for kind, zeta, modes, call, share, setup, coupled, result in rows:
         print(f"| {kind} | {zeta} | {modes} | {call:.1f} | {100 * share:.0f} % | {100 * setup:.0f} % "
               f"({100 * coupled:.0f} %) | {100 * result:.0f} % |")
+    print(f"\nkernel share: min {100 * min(row[4] for row in rows):.0f} % (goal ≥ 80 %)")
 
 
 if __name__ == "__main__":

@@ -230,10 +230,55 @@ _ROW_CAP_NOTE = ("row cap reached: the history holds HISTORY_ROW_CAP = {rows} ro
                  "time limit (solver.duration, max_time_ratio)")
 
 
+#: Entries kept by :func:`_step_and_phase`'s set-up cache (a full cache is emptied) …
+SETUP_CACHE_SIZE = 64
+#: … for bases of at most this many modes (its (n + 1)² matrices: ≤ 4.3 MB in all).
+SETUP_CACHE_MODES = 64
+_setup_cache: dict = {}
+
+
+def _setup_key(basis: ModalBasis, *numbers: float) -> tuple:
+    """The exact inputs of a run's set-up: the bytes of the basis arrays (float64, as
+    :class:`ModalBasis` holds them; their lengths in the key) and the numbers themselves
+    (equal floats, never NaN here, are the same bits; ±0.0 only as a zero residual, where
+    either gives the same set-up)."""
+    return (basis.frequencies.tobytes(), basis.participation.tobytes(), basis.damping_ratios.tobytes(),
+            basis.frequencies.dtype.char, basis.participation.dtype.char, basis.damping_ratios.dtype.char,
+            basis.residual_compliance) + numbers
+
+
+def _cached(key: tuple, compute):
+    """``compute()``, kept under ``key`` (exact input bytes) so that a repeated run skips
+    its pure set-up: the stored value is the one ``compute()`` returns for those inputs,
+    bit for bit, so the cache cannot change an answer. Bounded by :data:`SETUP_CACHE_SIZE`.
+    The values are only read (by the kernel); never hand them to code that writes."""
+    value = _setup_cache.get(key)
+    if value is None:
+        value = compute()
+        if len(_setup_cache) >= SETUP_CACHE_SIZE:
+            _setup_cache.clear()
+        _setup_cache[key] = value
+    return value
+
+
 def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
     """(time step [s], coupled modes) chosen automatically (module docstring of
     :mod:`impactmaps.solvers.modal`): the exact phase where it pays, the step then only for
-    free flight."""
+    free flight. The set-up (top coupled frequency, content step, coupled modes) of a basis
+    of at most :data:`SETUP_CACHE_MODES` modes is cached on the exact bytes of its inputs
+    (:func:`_cached`)."""
+    if basis.size > SETUP_CACHE_MODES:  # a large set-up is a small share of its run
+        return _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings)
+    key = _setup_key(basis, stiffness, impactor_mass, omega_c, settings.force_resolution, settings.step_scale,
+                     settings.time_step_ratio, settings.resolve_ratio, linear_stiffness(law))
+    # the module's thresholds too (a benchmark or test may set them)
+    key += (settings.contact_phase, COUPLED_COST_RATIO, COUPLED_ALWAYS_MODES, COUPLED_MAX_MODES, STABLE_TOP_STEP)
+    return _cached(key,
+                   lambda: _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings))
+
+
+def _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
+    """:func:`_step_and_phase` without its cache."""
     omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
     content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
 
