@@ -69,7 +69,7 @@ def test_grid_count_is_a_whole_number(tmp_path, count, fragment, capsys):
      "the sweep has 1e+09 points (1 structures × 1000 lambda_ × 1000000 zeta): its map would take 78.2 GiB"),
     ("2", "[1e300]", "", "grid.lambda = [1e+300] is invalid: every value must be in [1e-09, 1e+09]"),
     ("2", "[1e-300]", "", "grid.lambda = [1e-300] is invalid"),
-    ("2", "[1.0]", 'law = "yc"\n[grid]\nbeta = [1e300]\n', "grid.beta = [1e+300] is invalid: every value must be in [0.001, 10000]"),
+    ("2", "[1.0]", 'law = "yc"\n[grid]\nbeta = [1e300]\n', "grid.beta = [1e+300] is invalid: every value must be in [0.001, 1e+06]"),
 ])
 def test_a_grid_beyond_the_realisable_or_the_memory_is_refused(tmp_path, count, lambdas, extra, fragment, capsys):
     """Found by fuzzing sweep files: count = 1e9 ran (allocating gigabytes) with no word; ζ or λ of
