@@ -76,26 +76,6 @@ def _coarse_plan(frequencies, force_row, eta, rate, h):
 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
-def _step_force(frequencies, force_row, eta, rate, cos_s, sin_s, eta_out, rate_out, low):
-    """:func:`_step` and the forces of the new state in one pass over the modes.
-
-    Returns (Σ_k c_k η_k, Σ_{k<low} c_k η_k) [N] of (``eta_out``, ``rate_out``): the
-    arithmetic of ``_step`` then ``_partial_force``, in the same order (bit for bit the
-    same samples), without a second pass over the state.
-    """
-    total = 0.0
-    partial = 0.0
-    for k in range(eta.shape[0]):
-        e = eta[k] * cos_s[k] + rate[k] / frequencies[k] * sin_s[k]
-        eta_out[k] = e
-        rate_out[k] = rate[k] * cos_s[k] - eta[k] * frequencies[k] * sin_s[k]
-        total += force_row[k] * e
-        if k == low - 1:
-            partial = total
-    return total, partial
-
-
-@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _skippable(frequencies, force_row, eta, rate, coarse, peak):
     """Whether the coarse step from the state (η, η̇) may be taken without the fine
     step: no instant in it can have F ≤ 0, nor F above ``peak`` [N] (:func:`_coarse_plan`)."""
@@ -151,7 +131,10 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
     wi = 0.0
     vi = 0.0
     while True:
-        f_next, _low = _step_force(frequencies, force_row, eta, rate, cos_h, sin_h, eta_next, rate_next, 0)
+        _step(frequencies, eta, rate, cos_h, sin_h, eta_next, rate_next)
+        f_next = 0.0
+        for k in range(n):
+            f_next += force_row[k] * eta_next[k]
         if f_next <= 0.0:
             steps += 1
             # the bracket starts where F > 0: at the step's start, or inside the first step
@@ -181,6 +164,9 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
             steps += 1
             taken += 1
             f_prev = force
+            for k in range(n):  # element loop: a slice assignment compiles for seconds
+                eta_prev[k] = eta[k]
+                rate_prev[k] = rate[k]
             if record:
                 history, rec = _record_inside(modes, rows, (eta, rate), t, h, q, v, history, rec)
             t += h
@@ -188,12 +174,8 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
             if force > peak:
                 peak = force
                 peak_time = t
-        if separated:
-            eta, eta_next = eta_next, eta
-            rate, rate_next = rate_next, rate
-        else:  # rotate the buffers: the state becomes the one before, the old one before scratch
-            eta_prev, eta, eta_next = eta, eta_next, eta_prev
-            rate_prev, rate, rate_next = rate, rate_next, rate_prev
+        eta, eta_next = eta_next, eta
+        rate, rate_next = rate_next, rate
         if record or separated or t >= max_time or steps >= max_steps:
             wi, vi = _to_physical(from_coupled, eta, rate, q, v)
             if record:
@@ -262,7 +244,9 @@ def _coarse_steps(modes, rows, coarse, limits, state, run, record, history, rec,
     scalars = (t, force, low_now, 0)
     done = False
     while True:
-        f_next, low_next = _step_force(frequencies, force_row, eta, rate, cos_c, sin_c, eta_next, rate_next, low)
+        _step(frequencies, eta, rate, cos_c, sin_c, eta_next, rate_next)
+        f_next = _partial_force(force_row, eta_next, n)
+        low_next = _partial_force(force_row, eta_next, low)
         if min(low_now, low_next) <= margin:  # F may reach 0 in this step
             break
         steps += 1

@@ -208,18 +208,11 @@ def predict_step(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
     two together halve the cost of a step with hundreds of modes (benchmarks/RESULTS.md).
     """
     wt = 0.0
-    if f1 == 0.0:  # every caller's case: the f1 rows add only zeros, so they are not read
-        for j in range(q.shape[0]):
-            qj = coef[0, j] * q[j] + coef[1, j] * v[j] + coef[4, j] * f0
-            vn[j] = coef[2, j] * q[j] + coef[3, j] * v[j] + coef[6, j] * f0
-            qn[j] = qj
-            wt += phi[j] * qj
-    else:
-        for j in range(q.shape[0]):
-            qj = coef[0, j] * q[j] + coef[1, j] * v[j] + coef[4, j] * f0 + coef[5, j] * f1
-            vn[j] = coef[2, j] * q[j] + coef[3, j] * v[j] + coef[6, j] * f0 + coef[7, j] * f1
-            qn[j] = qj
-            wt += phi[j] * qj
+    for j in range(q.shape[0]):
+        qj = coef[0, j] * q[j] + coef[1, j] * v[j] + coef[4, j] * f0 + coef[5, j] * f1
+        vn[j] = coef[2, j] * q[j] + coef[3, j] * v[j] + coef[6, j] * f0 + coef[7, j] * f1
+        qn[j] = qj
+        wt += phi[j] * qj
     wi_new = wi + vi * h - h * h * (f0 / 3.0 + f1 / 6.0) / mass
     vi_new = vi - 0.5 * h * (f0 + f1) / mass
     return wi_new, vi_new, wt
