@@ -72,6 +72,9 @@ class Timers:
             self.cpu[key] += time.process_time() - start
             self.count[key] += 1
             return result
+        for attribute in ("variant_of", "compile"):  # a lazy kernel's methods (modal_run calls them)
+            if hasattr(function, attribute):
+                setattr(timed, attribute, getattr(function, attribute))
         return timed
 
 
