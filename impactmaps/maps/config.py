@@ -33,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._checks import range_end_text
 from ..solvers.modal import ModalSettings
 from ..targets.options import default_theory
 from .chart import tidy_frame
@@ -74,7 +75,7 @@ def _grid(name, value, valid):
         return values
     low, high = valid
     if np.any(values < low) or np.any(values > high):
-        raise ValueError(f"grid.{name} = {value!r} is invalid: every value must be in [{low:g}, {high:g}] "
+        raise ValueError(f"grid.{name} = {value!r} is invalid: every value must be in [{range_end_text(low)}, {range_end_text(high)}] "
                          "(beyond it the realised impactor's numbers under- or overflow)")
     return values
 
