@@ -281,3 +281,47 @@ def test_quasi_static_point_takes_a_tenth_of_the_single_rate_steps():
     result = simulate(basis, law, mass, 1.0, record=False, settings=FINEST)
     assert result.details.contact_phase == "exact" and result.impacts > 100
     assert result.details.steps < 2.5e5
+
+
+def _numpy_coupled_modes(basis, stiffness, mass):
+    """The coupled modes as NumPy computed them before the set-up was compiled (2026-11-27)."""
+    effective = stiffness / (1.0 + stiffness * basis.residual_compliance)
+    gvec = np.concatenate(([1.0], -basis.participation))
+    s0 = 1.0 / np.sqrt(mass)
+    scaled = gvec.copy()
+    scaled[0] = s0 * 1.0
+    matrix = np.multiply.outer(scaled, scaled)
+    matrix *= effective
+    matrix.flat[basis.size + 2:: basis.size + 2] += basis.frequencies**2
+    eigenvalues, vectors = np.linalg.eigh(matrix)
+    from_coupled = np.array(vectors, order="C")
+    from_coupled[0] *= s0
+    to_coupled = np.array(vectors.T, order="C")
+    to_coupled[:, 0] /= s0
+    return np.sqrt(eigenvalues), effective * (gvec @ from_coupled), from_coupled, to_coupled
+
+
+def test_compiled_set_up_gives_the_numpy_bits():
+    """The compiled set-up (``_coupled_arrays``) returns NumPy's arrays bit for bit, at 300
+    random bases of 1–130 modes (so the maps and every answer keep their bits)."""
+    rng = np.random.default_rng(2026_11_27)
+    for _ in range(300):
+        n = int(rng.integers(1, 131))
+        residual = float(10 ** rng.uniform(-9, -5)) * int(rng.integers(0, 2))
+        basis = ModalBasis(np.sort(10 ** rng.uniform(0, 4, n)), rng.normal(size=n), residual)
+        stiffness, mass = float(10 ** rng.uniform(3, 9)), float(10 ** rng.uniform(-3, 1))
+        compiled = coupled_modes(basis, stiffness, mass)
+        expected = _numpy_coupled_modes(basis, stiffness, mass)
+        for got, want in zip((compiled.frequencies, compiled.force_row, compiled.from_coupled,
+                              compiled.to_coupled), expected):
+            assert np.array_equal(got, want)
+
+
+def test_compiled_set_up_takes_read_only_bases():
+    """A basis whose arrays are read-only views (a cached Ritz solution's) is copied, not refused."""
+    frequencies = np.array([1e3, 4e3, 9e3])
+    participation = np.array([1.0, -0.5, 0.25])
+    frequencies.flags.writeable = False
+    participation.flags.writeable = False
+    basis = ModalBasis(frequencies, participation, 0.0)
+    assert coupled_modes(basis, 1e6, 0.1).frequencies.shape == (4,)

@@ -63,6 +63,7 @@ import numpy as np
 from .._checks import require_positive
 from ..targets.base import ModalBasis
 from .coupled_closed_form import SAMPLED_PHASE, _advance, _clear_gap, _content_step, _first_positive, _partial_force
+from .kernel_types import kernel_array
 from .coupled_stepping import COARSE_FACTOR, COARSE_RESOLUTION, _coarse_plan, _coarse_steps, _fine_steps
 
 __all__ = ["COARSE_FACTOR", "COARSE_RESOLUTION", "CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes",
@@ -116,32 +117,57 @@ def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: fl
     """
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("impactor_mass", impactor_mass, "kg")
-    if (basis.damping_ratios > 0.0).any() or (basis.frequencies <= 0.0).any():
-        return None
-    effective = contact_stiffness / (1.0 + contact_stiffness * basis.residual_compliance)
+    applies, frequencies, force_row, from_coupled, to_coupled = _coupled_arrays(
+        kernel_array(basis.frequencies), kernel_array(basis.participation), kernel_array(basis.damping_ratios),
+        float(basis.residual_compliance), float(contact_stiffness), float(impactor_mass))
+    return CoupledModes(frequencies, force_row, from_coupled, to_coupled) if applies else None
+
+
+@numba.njit(cache=True, no_cfunc_wrapper=True)
+def _coupled_arrays(frequencies, participation, damping_ratios, residual, contact_stiffness, impactor_mass):
+    """The arrays of :class:`CoupledModes` (compiled: the set-up of a run on a few modes cost
+    ~5× its integration in NumPy's small-array calls). Returns ``(applies, Ω, c, from_coupled,
+    to_coupled)``; ``applies`` is False (empty arrays) for damped or rigid-body modes or a
+    coupled stiffness that is not positive definite.
+
+    The arithmetic is the one the NumPy version had, operation for operation (``eigh`` and
+    the product by ``gᵀ`` through the same LAPACK/BLAS routines), so the arrays are the same
+    bits (``tests/test_coupled_contact.py`` compares them).
+    """
+    size = frequencies.shape[0]
+    for j in range(size):
+        if damping_ratios[j] > 0.0 or frequencies[j] <= 0.0:
+            return False, np.empty(0), np.empty(0), np.empty((0, 0)), np.empty((0, 0))
+    effective = contact_stiffness / (1.0 + contact_stiffness * residual)
     # g = (1, −φ), M^{-1/2} = diag(s0, 1 … 1) with s0 = 1/sqrt(m_i); a product or quotient by
-    # the ones is exact, so only the impactor's entries are scaled (fewer small array
-    # operations, the same bits as the full products: tests/test_overhead.py)
-    size = basis.size
+    # the ones is exact, so only the impactor's entries are scaled
     gvec = np.empty(size + 1)
     gvec[0] = 1.0
-    np.negative(basis.participation, out=gvec[1:])
+    for j in range(size):
+        gvec[j + 1] = -participation[j]
     s0 = 1.0 / np.sqrt(impactor_mass)
     scaled = gvec.copy()  # M^{-1/2} g
     scaled[0] = s0 * 1.0
-    stiffness = np.multiply.outer(scaled, scaled)
-    stiffness *= effective
-    stiffness.flat[size + 2:: size + 2] += basis.frequencies**2  # the diagonal (its first entry takes + 0)
+    stiffness = np.empty((size + 1, size + 1))
+    for i in range(size + 1):
+        for j in range(size + 1):
+            stiffness[i, j] = (scaled[i] * scaled[j]) * effective
+    for j in range(size):
+        stiffness[j + 1, j + 1] += frequencies[j] ** 2
     eigenvalues, vectors = np.linalg.eigh(stiffness)
     if not eigenvalues[0] > 0.0:
-        return None
-    from_coupled = np.array(vectors, order="C")
-    from_coupled[0] *= s0
-    to_coupled = np.array(vectors.T, order="C")
-    to_coupled[:, 0] /= s0
-    force_row = effective * (gvec @ from_coupled)
-    return CoupledModes(np.sqrt(eigenvalues), np.ascontiguousarray(force_row),
-                        from_coupled, to_coupled)
+        return False, np.empty(0), np.empty(0), np.empty((0, 0)), np.empty((0, 0))
+    from_coupled = np.empty((size + 1, size + 1))  # element loops: copies, never views of ``vectors``
+    to_coupled = np.empty((size + 1, size + 1))
+    for i in range(size + 1):
+        for k in range(size + 1):
+            from_coupled[i, k] = vectors[i, k]
+            to_coupled[k, i] = vectors[i, k]
+    for k in range(size + 1):
+        from_coupled[0, k] *= s0
+        to_coupled[k, 0] /= s0
+    force_row = effective * np.dot(gvec, from_coupled)
+    return True, np.sqrt(eigenvalues), force_row, from_coupled, to_coupled
 
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)

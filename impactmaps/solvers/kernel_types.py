@@ -16,7 +16,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-__all__ = ["KernelModes", "KernelImpact", "KernelRun", "KernelCoupled", "KernelScalars", "MODES_TYPE",
+__all__ = ["kernel_array", "KernelModes", "KernelImpact", "KernelRun", "KernelCoupled", "KernelScalars", "MODES_TYPE",
            "IMPACT_TYPE", "RUN_TYPE", "COUPLED_TYPE", "SCALARS_TYPE"]
 
 _F8 = numba.types.float64
@@ -24,6 +24,17 @@ _I8 = numba.types.int64
 _BOOL = numba.types.boolean
 _VECTOR = numba.types.Array(_F8, 1, "C")
 _MATRIX = numba.types.Array(_F8, 2, "C")
+
+
+def kernel_array(values: np.ndarray) -> np.ndarray:
+    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
+    same array when it already is; a copy of a read-only view, such as a cached Ritz
+    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
+        flags = values.flags
+        if flags.c_contiguous and flags.writeable:
+            return values  # what np.require returns here, without its keyword handling (~1 µs a call)
+    return np.require(values, dtype=np.float64, requirements=("C", "W"))
 
 
 class KernelModes(NamedTuple):

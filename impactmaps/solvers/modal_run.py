@@ -24,7 +24,7 @@ from ..contact.base import ContactLaw, kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
 from .exact_step import integrate_impact
-from .kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars
+from .kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
 from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
@@ -198,17 +198,6 @@ def _integrate(interruptible: bool, args: KernelInputs):
     return outcome["result"]
 
 
-def _kernel_array(values: np.ndarray) -> np.ndarray:
-    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
-    same array when it already is; a copy of a read-only view, such as a cached Ritz
-    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
-    if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
-        flags = values.flags
-        if flags.c_contiguous and flags.writeable:
-            return values  # what np.require returns here, without its keyword handling (~1 µs a call)
-    return np.require(values, dtype=np.float64, requirements=("C", "W"))
-
-
 class KernelInputs(NamedTuple):
     """The arguments of :data:`~impactmaps.solvers.exact_step.integrate_impact`, by name and
     in its order: the law's kernel pointer, parameters and linear stiffness [N/m] (0 if
@@ -335,8 +324,8 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
     refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
     inputs = KernelInputs(
         kernel_pointer(law.kernel), params, linear_stiffness(law),
-        KernelModes(_kernel_array(basis.frequencies), _kernel_array(basis.participation),
-                    _kernel_array(basis.damping_ratios), float(basis.residual_compliance)),
+        KernelModes(kernel_array(basis.frequencies), kernel_array(basis.participation),
+                    kernel_array(basis.damping_ratios), float(basis.residual_compliance)),
         KernelImpact(float(impactor_mass), float(velocity)),
         KernelRun(float(time_step), float(max_time), bool(record), int(settings.max_events),
                   HISTORY_ROW_CAP, np.zeros(1, dtype=np.int64)),
