@@ -168,8 +168,9 @@ def load_sweep_config(path):
     law = config.get("law", "linear")
     if law not in available_map_families():
         raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
-    ranges = map_family(law).axis_ranges
-    zetas, lambdas = _grid("zeta", grid["zeta"], ranges["zeta"]), _grid("lambda", grid["lambda"], ranges["lambda_"])
+    family = map_family(law)
+    zetas = _grid("zeta", grid["zeta"], family.axis_range("zeta"))
+    lambdas = _grid("lambda", grid["lambda"], family.axis_range("lambda_"))
     solver = config.get("solver", {})
     if not isinstance(solver, dict):
         raise ValueError(f"solver = {solver!r} is invalid: give a [solver] table")
@@ -192,7 +193,7 @@ def load_sweep_config(path):
     extra = [axis.name for axis in map_family(law).extra_axes]
     if not set(extra) <= set(grid):
         raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
-    axes = {name: _grid(name, grid[name], ranges.get(name)) for name in extra}
+    axes = {name: _grid(name, grid[name], family.axis_range(name)) for name in extra}
     sweep_fingerprint(structures, zetas, lambdas, settings, law, axes)  # the sweep's own checks (its size)
     return structures, zetas, lambdas, settings, path.parent / output, law, axes
 

@@ -22,6 +22,8 @@ start and imports a built-in family's module when that family is first asked for
 
 from __future__ import annotations
 
+import math
+
 import importlib
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
@@ -208,6 +210,11 @@ class MapFamily:
         "zeta_name": "loss factor ζ", "lambda_name": "relative stiffness λ",
         "fmax": r"normalised maximum force $\bar{F}_{max}$",
         "table": "# Normalised maximum force F̄max\n\nNearest computed grid point.\n\n"}
+
+    def axis_range(self, name: str) -> tuple[float, float]:
+        """The closed range (low, high) a point can be realised at on axis ``name``
+        (:attr:`axis_ranges`); (0, ∞) for an axis without an entry (any positive value)."""
+        return self.axis_ranges.get(name, (0.0, math.inf))
 
     def file_stem(self, structure_name: str) -> str:
         """File name (without its suffix) of the family's map of a structure:

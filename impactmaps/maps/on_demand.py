@@ -23,7 +23,6 @@ of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the neares
 
 from __future__ import annotations
 
-import math
 
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
@@ -144,7 +143,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
 
     def realisable(**numbers):  # a tile around numbers no map point can be realised at answers nothing
         for name, value in numbers.items():
-            low, high = map_family(law).axis_ranges.get(name, (0.0, math.inf))
+            low, high = map_family(law).axis_range(name)
             if not low <= value <= high:
                 symbol = {"zeta": "ζ", "lambda_": "λ", "beta": "β"}.get(name, name)
                 raise NoMapError(case, f"{refusal.what}, and no on-demand map reaches its {symbol} = {value:.4g}: "
