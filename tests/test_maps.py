@@ -2,9 +2,17 @@
 
 from __future__ import annotations
 
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import xarray as xr
+
+import impactmaps
 
 from impactmaps.maps import linear_points
 from impactmaps.maps import points as points_module
@@ -150,6 +158,13 @@ def _blas_threads() -> list[int]:
     return [pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"]
 
 
+def _default_blas_environment(**extra) -> dict:
+    """This environment without the BLAS thread variables conftest sets (each BLAS library
+    then starts with a thread per core)."""
+    names = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+    return {name: value for name, value in os.environ.items() if name not in names} | extra
+
+
 def test_sweep_workers_run_one_blas_thread_and_leave_the_parent_alone(monkeypatch):
     """A sweep's worker processes run one BLAS thread each (NumPy's default of one per core in
     every worker oversubscribed the cores: the bench grid took 26.5 s instead of 20.9 s on 2
@@ -162,7 +177,18 @@ def test_sweep_workers_run_one_blas_thread_and_leave_the_parent_alone(monkeypatc
     assert before, "no BLAS library found by threadpoolctl"
     with ProcessPoolExecutor(max_workers=1, initializer=init_worker) as pool:
         in_worker = pool.submit(_blas_threads).result()
+    # in a fresh interpreter, where no BLAS is loaded before init_worker (a forked worker
+    # inherits the libraries this process loaded): then a run with an exact contact phase
+    package_root = str(pathlib.Path(impactmaps.__file__).resolve().parents[1])  # the package tested, installed or not
+    probe = ("import json; from impactmaps.maps.workers import init_worker; init_worker(False); "
+             "from impactmaps.solvers.warm_up import _tiny_impacts; _tiny_impacts(); "
+             "from threadpoolctl import threadpool_info; "
+             "print(json.dumps([p['num_threads'] for p in threadpool_info() if p['user_api'] == 'blas']))")
+    after_a_run = json.loads(subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, check=True, cwd=package_root,
+        env=_default_blas_environment(PYTHONPATH=package_root)).stdout.splitlines()[-1])
     assert in_worker and all(count == 1 for count in in_worker)
+    assert after_a_run and all(count == 1 for count in after_a_run)
     pools = []
 
     def recording_pool(**options):

@@ -7,7 +7,10 @@ cores as soon as two workers share them. On the 2-core development machine the
 26.5 s as a sweep with the default BLAS threads and 20.9 s with one per worker
 (2026-11-24). The limit is set with ``threadpoolctl`` (it finds the BLAS library NumPy
 and SciPy actually loaded: OpenBLAS, MKL or BLIS) and only inside the worker processes:
-the user's own process keeps its threads.
+the user's own process keeps its threads. SciPy's library is loaded first: the compiled
+set-up of the exact contact phase (``numpy.linalg.eigh`` in numba) calls LAPACK through
+SciPy, whose OpenBLAS is a library of its own, and loaded after the limit it kept a
+thread per core.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ def init_worker(ignore_interrupts: bool = True) -> None:
 
     Use as the ``initializer`` of a :class:`concurrent.futures.ProcessPoolExecutor`.
     """
+    import scipy.linalg.cython_lapack  # noqa: F401 (loads SciPy's BLAS, the one compiled kernels call, so that it is limited too)
     from threadpoolctl import threadpool_limits
 
     threadpool_limits(limits=1, user_api="blas")
