@@ -62,7 +62,15 @@ import numpy as np
 
 from .._checks import require_positive
 from ..targets.base import ModalBasis
-from .coupled_closed_form import SAMPLED_PHASE, _advance, _clear_gap, _content_step, _first_positive, _partial_force
+from .coupled_closed_form import (
+    SAMPLED_PHASE,
+    _advance,
+    _clear_gap,
+    _content_step,
+    _first_positive,
+    _least_advance,
+    _partial_force,
+)
 from .kernel_types import kernel_array
 from .coupled_stepping import COARSE_FACTOR, COARSE_RESOLUTION, _coarse_plan, _coarse_steps, _fine_steps
 
@@ -205,7 +213,8 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
         (t, wi, vi, force, peak, peak_time, steps, separated, history, rec): the state
         at the end of the phase, with ``force`` 0 after a separation. A graze (no force
         anywhere in the first step) returns with ``steps`` unchanged, a round-off moment
-        later, where the gap is strictly open.
+        later (a time strictly after t, :func:`_least_advance`), where the gap is strictly
+        open.
     """
     frequencies, force_row, from_coupled, to_coupled = (coupled.frequencies, coupled.force_row,
                                                         coupled.from_coupled, coupled.to_coupled)
@@ -225,10 +234,12 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
         # grazing: no force anywhere in the first step (a touchdown at zero closing speed
         # whose force grows at second order — a sphere resting on a structure that
         # accelerates into it — is a contact: its force is positive just after touchdown);
-        # leave with the gap strictly open, or flight would find this touchdown again
+        # leave with the gap strictly open and a later time, or flight would find this
+        # touchdown again and no time would pass (CHANGELOG, the graze spin)
         if h == 0.0:
             h = 1e-9 / frequencies[n - 1]
-        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, 0.0, h, np.empty(n), np.empty(n), q, v)
+        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, _least_advance(t, h), h, np.empty(n),
+                               np.empty(n), q, v)
         return t + s, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
     while resolved < n and frequencies[resolved] * h <= 1.0:
