@@ -16,8 +16,7 @@ import numpy as np
 from impactmaps.maps.linear_points import LINEAR
 from impactmaps.maps.points import basis_table, frequency_cap
 from impactmaps.maps.structures import structure_from_name
-from impactmaps.solvers.coupled_closed_form import _least_advance
-from impactmaps.solvers.coupled_contact import contact_phase, coupled_modes
+from impactmaps.solvers.coupled_contact import _least_advance, contact_phase, coupled_modes
 from impactmaps.solvers.exact_step import STALL_LIMIT, _progress
 from impactmaps.solvers.history_rows import HistoryRows
 from impactmaps.solvers.kernel_types import KernelCoupled, KernelModes

@@ -100,19 +100,6 @@ def _first_positive(frequencies, force_row, eta, rate, length):
     return 0.0
 
 
-@numba.njit(cache=True)
-def _least_advance(t, length):
-    """The least shift s = 10⁻¹⁴ length · 2^k [s] (k ≥ 0) that moves the time t [s]: t + s > t.
-
-    A graze leaves the contact phase this much later at least: at s = 0 it would hand the
-    flight the instant it came from, whose touchdown search can find it again.
-    """
-    s = 1e-14 * length
-    while t + s <= t:
-        s *= 2.0
-    return s
-
-
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _clear_gap(from_coupled, frequencies, eta, rate, phi, s, length, eta_s, rate_s, q, v):
     """The separation instant ``s`` [s], moved later by the least round-off amount that

@@ -68,7 +68,6 @@ from .coupled_closed_form import (
     _clear_gap,
     _content_step,
     _first_positive,
-    _least_advance,
     _partial_force,
 )
 from .kernel_types import kernel_array
@@ -176,6 +175,19 @@ def _coupled_arrays(frequencies, participation, damping_ratios, residual, contac
         to_coupled[k, 0] /= s0
     force_row = effective * np.dot(gvec, from_coupled)
     return True, np.sqrt(eigenvalues), force_row, from_coupled, to_coupled
+
+
+@numba.njit(cache=True)
+def _least_advance(t, length):
+    """The least shift s = 10⁻¹⁴ length · 2^k [s] (k ≥ 0) that moves the time t [s]: t + s > t.
+
+    A graze leaves the contact phase this much later at least: at s = 0 it would hand the
+    flight the instant it came from, whose touchdown search can find it again.
+    """
+    s = 1e-14 * length
+    while t + s <= t:
+        s *= 2.0
+    return s
 
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)
