@@ -105,14 +105,18 @@ def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state
     secant and bisection steps; Brent 1973, the ``zeroin`` algorithm) to 1e-13 h: each
     evaluation costs one pass over the modes, and a handful replace the sixty of plain
     bisection. Returns s — on the no-contact side (g ≤ α_f) of the root, or where
-    |g − α_f| ≤ 1e-11 of the bracket's gaps — and whether ``sub`` holds the step
-    coefficients over s (the last point evaluated).
+    |g − α_f| ≤ 1e-11 of the bracket's gaps (for a touchdown whose step starts with the gap
+    opening, also less than half the gap at the start: that start is the end of the previous
+    contact, not a touchdown) — and whether ``sub`` holds the step coefficients over s (the
+    last point evaluated).
     """
-    wi, _vi, q, _v = state
+    wi, vi, q, v = state
     phi = modes.participation
     wt_now = 0.0
+    vt_now = 0.0
     for j in range(q.shape[0]):
         wt_now += phi[j] * q[j]
+        vt_now += phi[j] * v[j]
     gap_now = wi - wt_now
     loaded = gap_now if separation else gap_end
     threshold = _no_force_threshold(kernel, params, linear_stiffness, alpha_max, loaded)
@@ -124,7 +128,12 @@ def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state
         return (h if separation else 0.0), False  # degenerate bracket: the step edge
     tol = 1e-13 * h
     eps = 2.220446049250313e-16
-    small = 1e-11 * max(abs(fa), abs(fb))  # a gap this close to the threshold is the root
+    small = 1e-11 * max(abs(fa), abs(fb))  # a gap this close to the threshold is the root …
+    if not separation and -fa <= small and vi < vt_now:
+        # … but not the start of a touchdown's step where the gap opens: a state just past a
+        # separation, still touching to round-off, is not the next touchdown (taking it would
+        # find that separation again and no time would pass: CHANGELOG, the graze spin)
+        small = -0.5 * fa
     last = -1.0  # the point whose coefficients ``sub`` holds
     c = a
     fc = fa

@@ -62,7 +62,14 @@ import numpy as np
 
 from .._checks import require_positive
 from ..targets.base import ModalBasis
-from .coupled_closed_form import SAMPLED_PHASE, _advance, _clear_gap, _content_step, _first_positive, _partial_force
+from .coupled_closed_form import (
+    SAMPLED_PHASE,
+    _advance,
+    _clear_gap,
+    _content_step,
+    _first_positive,
+    _partial_force,
+)
 from .kernel_types import kernel_array
 from .coupled_stepping import COARSE_FACTOR, COARSE_RESOLUTION, _coarse_plan, _coarse_steps, _fine_steps
 
@@ -170,6 +177,19 @@ def _coupled_arrays(frequencies, participation, damping_ratios, residual, contac
     return True, np.sqrt(eigenvalues), force_row, from_coupled, to_coupled
 
 
+@numba.njit(cache=True)
+def _least_advance(t, length):
+    """The least shift s = 10⁻¹⁴ length · 2^k [s] (k ≥ 0) that moves the time t [s]: t + s > t.
+
+    A graze leaves the contact phase this much later at least: at s = 0 it would hand the
+    flight the instant it came from, whose touchdown search can find it again.
+    """
+    s = 1e-14 * length
+    while t + s <= t:
+        s *= 2.0
+    return s
+
+
 @numba.njit(cache=True, no_cfunc_wrapper=True)
 def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two_rate=True):
     """One contact, from touchdown (α = 0) to separation or the run's limits.
@@ -205,7 +225,8 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
         (t, wi, vi, force, peak, peak_time, steps, separated, history, rec): the state
         at the end of the phase, with ``force`` 0 after a separation. A graze (no force
         anywhere in the first step) returns with ``steps`` unchanged, a round-off moment
-        later, where the gap is strictly open.
+        later (a time strictly after t, :func:`_least_advance`), where the gap is strictly
+        open.
     """
     frequencies, force_row, from_coupled, to_coupled = (coupled.frequencies, coupled.force_row,
                                                         coupled.from_coupled, coupled.to_coupled)
@@ -225,10 +246,12 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
         # grazing: no force anywhere in the first step (a touchdown at zero closing speed
         # whose force grows at second order — a sphere resting on a structure that
         # accelerates into it — is a contact: its force is positive just after touchdown);
-        # leave with the gap strictly open, or flight would find this touchdown again
+        # leave with the gap strictly open and a later time, or flight would find this
+        # touchdown again and no time would pass (CHANGELOG, the graze spin)
         if h == 0.0:
             h = 1e-9 / frequencies[n - 1]
-        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, 0.0, h, np.empty(n), np.empty(n), q, v)
+        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, _least_advance(t, h), h, np.empty(n),
+                               np.empty(n), q, v)
         return t + s, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
     resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
     while resolved < n and frequencies[resolved] * h <= 1.0:

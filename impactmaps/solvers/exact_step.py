@@ -27,7 +27,9 @@ One impact is a loop over four stages:
   samples (:func:`_track_peak`, :mod:`impactmaps.solvers._peak`).
 
 With a linear law and coupled modes given, every contact phase is instead propagated
-exactly through them (:func:`~impactmaps.solvers.coupled_contact.contact_phase`).
+exactly through them (:func:`~impactmaps.solvers.coupled_contact.contact_phase`); more than
+:data:`STALL_LIMIT` phases in a row that do not move the time on end the run, flagged
+(``stalled``, ``time_limit_reached``), never a creep of zero-length steps to the step budget.
 
 The kernel takes the law and named tuples of arrays and settings and returns the history,
 the contact intervals and a named tuple of scalars (:mod:`impactmaps.solvers.kernel_types`),
@@ -76,6 +78,10 @@ _MATRIX = numba.types.Array(numba.types.float64, 2, "C")
 #: :func:`_mark_contact` once for each).
 _START = np.int64(0)
 _END = np.int64(1)
+#: Contact phases in a row that may end no later than 10⁻⁹ h after the last one that moved
+#: the time on (:func:`_progress`); the next such phase ends the run as stalled (``stalled``,
+#: ``time_limit_reached``) rather than let it take zero-length steps up to its step budget.
+STALL_LIMIT = 100
 
 # The loop (:func:`_impact_loop`) keeps the step state in local variables and calls its
 # per-step stages with arrays and scalars only: a stage that takes named tuples of arrays
@@ -136,6 +142,17 @@ def _contact_event(force, f_new, starting):
     """(separation, touchdown) in a step whose force goes from ``force`` to ``f_new``;
     no touchdown is sought in the step that starts at a contact (``starting``)."""
     return force > 0.0 and f_new == 0.0, force == 0.0 and f_new > 0.0 and not starting
+
+
+@numba.njit(cache=True, inline="always")
+def _progress(t, t_mark, stalls, h):
+    """Stall guard of the exact contact phase: (stalls, t_mark) after a phase that ended at
+    t [s]. A phase that ends after ``t_mark`` moved the time on (no stall; the next one
+    must end 10⁻⁹ h [s] later still); one that does not is one more stall in a row (a
+    graze that the flight finds again at one instant: CHANGELOG, the graze spin)."""
+    if t > t_mark:
+        return np.int64(0), t + 1e-9 * h
+    return stalls + 1, t_mark
 
 
 @numba.njit(cache=True, inline="always")
@@ -305,8 +322,8 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
 
     ``modal`` = (q, v, qn, vn): the modal state at touchdown (zero) and scratch; ``output``
     = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact, peak, peak time,
-    steps, intervals written, overflow, damping work), hit_limit, (q, v) at the end,
-    history, rec).
+    steps, intervals written, overflow, damping work, stalled), hit_limit, (q, v) at the
+    end, history, rec).
     """
     omega, phi, zeta, residual = modes.frequencies, modes.participation, modes.damping_ratios, modes.residual
     h, max_time, max_steps, record, compliance_h, damped = (work.h, work.max_time, work.max_steps, work.record,
@@ -319,7 +336,7 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
     t, wi, force, alpha_max, in_contact, starting, damping = 0.0, 0.0, 0.0, 0.0, False, True, 0.0
     peak, peak_time, f_prev2, f_prev1, steps, n_intervals, overflow = 0.0, 0.0, -1.0, -1.0, np.int64(0), \
         np.int64(0), 0.0
-    hit_limit = False
+    hit_limit, stalls, t_mark = False, np.int64(0), -1.0  # the stall guard (:func:`_progress`)
     speed_bound = -1.0  # < 0: to be computed at the next free-flight step
     exact = False
     if exact_phase is not None:
@@ -334,7 +351,8 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
                     rec = _exact_contact(coupled, modes, linear_stiffness, work, (t, wi, vi, alpha_max, in_contact,
                                          peak, peak_time, steps, n_intervals, overflow), q, v, history, rec)
                 starting, speed_bound, f_prev2, f_prev1 = False, -1.0, -1.0, 0.0
-                if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0:
+                stalls, t_mark = _progress(t, t_mark, stalls, h)
+                if out_of_time(t, steps, max_time, max_steps) or overflow > 0.0 or stalls > STALL_LIMIT:
                     hit_limit = True
                     break
                 if record and rec >= history.cap:
@@ -414,20 +432,21 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
             break
         if record and rec >= history.cap:
             break
-    state = (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping)
+    state = (t, wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping,
+             stalls > STALL_LIMIT)
     return state, hit_limit, (q, v), history, rec
 
 
 @numba.njit(cache=True, inline="always")
 def _finish(modes, work, state, modal, history, rec, hit_limit, row_cap):
     """The kernel's outputs at the end of a run (closing an open contact interval)."""
-    t, _wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping = state
+    t, _wi, vi, force, alpha_max, in_contact, peak, peak_time, steps, n_intervals, overflow, damping, stalled = state
     q, v = modal
     if in_contact:
         n_intervals, _full = _mark_contact(work.intervals, n_intervals, _END, t)
     energy = structure_energy(modes.frequencies, q, v) + 0.5 * modes.residual * force * force
     scalars = KernelScalars(peak, peak_time, alpha_max, vi, energy, damping, t, hit_limit or row_cap, steps,
-                            overflow > 0.0, row_cap)
+                            overflow > 0.0, row_cap, stalled)
     return history.table[:rec].copy(), work.intervals[:n_intervals].copy(), scalars
 
 

@@ -122,7 +122,8 @@ class KernelScalars(NamedTuple):
     """The scalars of one run (SI units).
 
     ``time_limit_reached`` is also set by the stop flag, a full contact-interval table
-    (``events_overflow``) and the row cap (``row_cap_reached``).
+    (``events_overflow``), the row cap (``row_cap_reached``) and a run whose contact phases
+    stopped moving the time on (``stalled``: :data:`~impactmaps.solvers.exact_step.STALL_LIMIT`).
     """
 
     peak_force: float
@@ -136,13 +137,14 @@ class KernelScalars(NamedTuple):
     steps: int
     events_overflow: bool
     row_cap_reached: bool
+    stalled: bool
 
 
 MODES_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _VECTOR, _F8), KernelModes)
 IMPACT_TYPE = numba.types.NamedUniTuple(_F8, 2, KernelImpact)  # what numba.typeof gives a homogeneous tuple
 RUN_TYPE = numba.types.NamedTuple((_F8, _F8, _BOOL, _I8, _I8, numba.types.Array(_I8, 1, "C")), KernelRun)
 COUPLED_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8), KernelCoupled)
-SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL), KernelScalars)
+SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL, _BOOL), KernelScalars)
 
 
 class Work(NamedTuple):

@@ -23,7 +23,7 @@ from . import compile_helper
 from ..contact.base import ContactLaw, kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
-from .exact_step import integrate_impact
+from .exact_step import STALL_LIMIT, integrate_impact
 from .kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
 from .modal_settings import (
     ConvergenceWarning,
@@ -217,6 +217,10 @@ _ROW_CAP_NOTE = ("row cap reached: the history holds HISTORY_ROW_CAP = {rows} ro
                  "at t = {time:.3g} s, before re-impact became impossible (time_limit_reached; the result is not "
                  "converged); for the whole event run without the history (record=False), or shorten it with the "
                  "time limit (solver.duration, max_time_ratio)")
+#: What a stalled run says (its warning and ``convergence_note``; ``exact_step.STALL_LIMIT``).
+_STALL_NOTE = ("stalled: more than {limit} exact contact phases in a row moved the time on by nothing (a touchdown "
+               "the flight found again at one instant); the run stopped there, at t = {time:.3g} s "
+               "(time_limit_reached; the result is not converged)")
 
 
 #: Entries kept by :func:`_step_and_phase`'s set-up cache (a full cache is emptied) …
@@ -341,7 +345,9 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
                       stacklevel=4)
     result = _result(law, inputs, scalars, history if record else None, intervals, omega_c, basis.size, settings,
                      "exact" if coupled.frequencies.size else "sampled")
-    if result.time_limit_reached and not scalars.row_cap_reached:
+    if scalars.stalled:
+        warnings.warn(result.convergence_note, ConvergenceWarning, stacklevel=4)
+    elif result.time_limit_reached and not scalars.row_cap_reached:
         warnings.warn(
             f"impact run stopped at its time limit ({max_time:.3g} s) before re-impact "
             "became impossible; scalars describe a truncated event",
@@ -379,7 +385,8 @@ def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, interval
         method="modal+residual" if settings.residual_flexibility else "modal",
         settings=settings_dict(settings),
         details=ModalDetails(int(scalars.steps), phase),
-        converged=False if scalars.row_cap_reached else None,
+        converged=False if scalars.row_cap_reached or scalars.stalled else None,
         convergence_note=_ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time)
-        if scalars.row_cap_reached else "",
+        if scalars.row_cap_reached else _STALL_NOTE.format(limit=STALL_LIMIT, time=scalars.end_time)
+        if scalars.stalled else "",
     )
