@@ -75,11 +75,10 @@ def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius
     max_frequency = float(ratio * contact_frequency)
     if cap is not None:
         max_frequency = min(max_frequency, float(cap))
-    if isinstance(target, Target):  # never more modes than memory allows (simulate's plan)
-        max_frequency = budget_cutoff(target, max_frequency)
-    if isinstance(target, ModalBasis):
+    if isinstance(target, ModalBasis):  # (not a Target: no budget cut-off) the maps' runs, first
         basis = target.participating().truncate(max_frequency, int(settings.min_modes))
     elif isinstance(target, Target):
+        max_frequency = budget_cutoff(target, max_frequency)  # never more modes than memory allows (simulate's plan)
         options = {} if contact_radius is None else {"contact_radius": contact_radius}
         basis = _participating_modes(target, max_frequency, int(settings.min_modes), options)
     else:
