@@ -58,6 +58,8 @@ class LinearContact(ContactLaw):
     @property
     def linear_stiffness(self):
         """K [N/m] (a float for a single law, an array for a batch)."""
+        if type(self.stiffness) is float:  # noqa: E721 (the common single law, without NumPy: the same float)
+            return self.stiffness
         stiffness = np.asarray(self.stiffness, float)
         return float(stiffness) if stiffness.ndim == 0 else stiffness
 

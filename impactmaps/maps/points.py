@@ -113,9 +113,16 @@ def unresolved_point(row: dict) -> dict:
 def simulate(target, law, impactor_mass, velocity, **options):
     """:func:`impactmaps.solvers.modal.simulate`, imported on first use: a lookup imports this
     module but runs no point, and the integrator's module is not needed until one is run."""
+    return _modal_simulate()(target, law, impactor_mass, velocity, **options)
+
+
+@functools.cache
+def _modal_simulate():
+    """:func:`impactmaps.solvers.modal.simulate` (imported at the first call; an import
+    statement in :func:`simulate` cost ~3 µs a run)."""
     from ..solvers.modal import simulate as modal_simulate
 
-    return modal_simulate(target, law, impactor_mass, velocity, **options)
+    return modal_simulate
 
 
 def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
@@ -160,11 +167,12 @@ def table_runner(family, target, table: BasisTable, cap: float, point, realised,
         impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))
         basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
         key = table_run_key(settings, zeta_factor, basis)
-        if key not in seen:
+        scaled = seen.get(key)  # one look-up: a key hashes its settings
+        if scaled is None:
             result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
-            seen[key] = family.scaled(result, impact)
-        runs.append(seen[key])
-        return seen[key]
+            scaled = seen[key] = family.scaled(result, impact)
+        runs.append(scaled)
+        return scaled
 
     return run
 

@@ -176,14 +176,14 @@ def simulate(
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
     cap = plan.max_frequency if plan is not None and plan.method == METHODS[1] else None
     compile_helper.start(_possible_variants(law, settings, time_step))  # a cold first run: the 2nd core compiles
-    run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
-                            radius_of)
-    result = run(record, cap)
+    result = _run_at(target, law, params, impactor_mass, velocity, settings, time_step, radius_of, record, cap)
     if cap is not None:
         result = replace(result, method=METHODS[1])
     if settings.check_convergence:
         fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
                         effective_radius=effective_radius)
+        run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
+                                radius_of)
         result = _checked(result, fine, settings.tolerance, cap, run)
     return result
 

@@ -12,6 +12,7 @@ compiled integrator (:mod:`~impactmaps.solvers.exact_step`) through :class:`Kern
 
 from __future__ import annotations
 
+import math
 import warnings
 from typing import NamedTuple
 
@@ -20,7 +21,7 @@ import pandas as pd
 
 from .._checks import require_positive
 from . import compile_helper
-from ..contact.base import ContactLaw, kernel_pointer
+from ..contact.base import kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .coupled_contact import CoupledModes, coupled_modes
 from .exact_step import STALL_LIMIT, integrate_impact
@@ -74,11 +75,10 @@ def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius
     max_frequency = float(ratio * contact_frequency)
     if cap is not None:
         max_frequency = min(max_frequency, float(cap))
-    if isinstance(target, Target):  # never more modes than memory allows (simulate's plan)
-        max_frequency = budget_cutoff(target, max_frequency)
-    if isinstance(target, ModalBasis):
+    if isinstance(target, ModalBasis):  # (not a Target: no budget cut-off) the maps' runs, first
         basis = target.participating().truncate(max_frequency, int(settings.min_modes))
     elif isinstance(target, Target):
+        max_frequency = budget_cutoff(target, max_frequency)  # never more modes than memory allows (simulate's plan)
         options = {} if contact_radius is None else {"contact_radius": contact_radius}
         basis = _participating_modes(target, max_frequency, int(settings.min_modes), options)
     else:
@@ -120,23 +120,24 @@ def _participating_modes(target, max_frequency: float, min_modes: int, options: 
         requested *= 2
 
 
-def _coupled_phase(basis: ModalBasis, law: ContactLaw, impactor_mass: float, time_step: float,
+def _coupled_phase(basis: ModalBasis, stiffness: float, impactor_mass: float, time_step: float,
                    contact_frequency: float, choice: str) -> CoupledModes:
     """The coupled modes for the exact contact phase, or empty arrays for the sampled one.
 
-    ``choice`` is :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
+    ``stiffness`` is the law's :func:`linear_stiffness` [N/m] (0: not linear); ``choice`` is
+    :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
     (:mod:`~impactmaps.solvers.coupled_contact`) serves linear laws on undamped modes
     when the sampled scheme's step ``time_step`` would cost more than the set-up
     (:data:`COUPLED_COST_RATIO`): in the quasi-static corner the modes the mode
     floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
     to ~1/ω_top and a contact took ~10⁷ steps; the exact phase takes ~10².
     """
-    stiffness = linear_stiffness(law)
+    size = basis.size
     sampled_steps = np.pi / (contact_frequency * time_step)
-    cheaper = basis.size < COUPLED_ALWAYS_MODES or sampled_steps > COUPLED_COST_RATIO * (basis.size + 1) ** 2
+    cheaper = size < COUPLED_ALWAYS_MODES or sampled_steps > COUPLED_COST_RATIO * (size + 1) ** 2
     wanted = choice == "exact" or (choice == "auto" and cheaper)
     # never beyond COUPLED_MAX_MODES: the set-up holds (n + 1)² matrices
-    if stiffness > 0.0 and wanted and basis.size <= COUPLED_MAX_MODES:
+    if stiffness > 0.0 and wanted and size <= COUPLED_MAX_MODES:
         coupled = coupled_modes(basis, stiffness, impactor_mass)
         if coupled is not None:
             return coupled
@@ -254,23 +255,24 @@ def _cached(key: tuple, compute):
     return value
 
 
-def _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
+def _step_and_phase(basis, linear, impactor_mass, stiffness, omega_c, settings: ModalSettings):
     """(time step [s], coupled modes) chosen automatically (module docstring of
     :mod:`impactmaps.solvers.modal`): the exact phase where it pays, the step then only for
-    free flight. The set-up (top coupled frequency, content step, coupled modes) of a basis
+    free flight. ``linear``: the law's :func:`linear_stiffness` [N/m]; ``stiffness``: the
+    reference contact stiffness [N/m]. The set-up (top coupled frequency, content step, coupled modes) of a basis
     of at most :data:`SETUP_CACHE_MODES` modes is cached on the exact bytes of its inputs
     (:func:`_cached`)."""
     if basis.size > SETUP_CACHE_MODES:  # a large set-up is a small share of its run
-        return _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings)
+        return _step_and_phase_now(basis, linear, impactor_mass, stiffness, omega_c, settings)
     key = _setup_key(basis, stiffness, impactor_mass, omega_c, settings.force_resolution, settings.step_scale,
-                     settings.time_step_ratio, settings.resolve_ratio, linear_stiffness(law))
+                     settings.time_step_ratio, settings.resolve_ratio, linear)
     # the module's thresholds too (a benchmark or test may set them)
     key += (settings.contact_phase, COUPLED_COST_RATIO, COUPLED_ALWAYS_MODES, COUPLED_MAX_MODES, STABLE_TOP_STEP)
     return _cached(key,
-                   lambda: _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings))
+                   lambda: _step_and_phase_now(basis, linear, impactor_mass, stiffness, omega_c, settings))
 
 
-def _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings: ModalSettings):
+def _step_and_phase_now(basis, linear, impactor_mass, stiffness, omega_c, settings: ModalSettings):
     """:func:`_step_and_phase` without its cache."""
     omega_top = coupled_top_frequency(basis, stiffness, impactor_mass, rtol=1e-3)
     content = content_time_step(basis, stiffness, impactor_mass, settings.force_resolution)
@@ -280,7 +282,7 @@ def _step_and_phase_now(basis, law, impactor_mass, stiffness, omega_c, settings:
                                          max(settings.resolve_ratio / omega_top, min(content, cap)))
 
     time_step = step(STABLE_TOP_STEP / omega_top)
-    coupled = _coupled_phase(basis, law, impactor_mass, time_step, omega_c, settings.contact_phase)
+    coupled = _coupled_phase(basis, linear, impactor_mass, time_step, omega_c, settings.contact_phase)
     if coupled.frequencies.size:
         # contacts are exact: the step only serves free flight, where every mode moves
         # exactly, so the stability limit of the sampled contact loop does not apply
@@ -303,19 +305,29 @@ def prepare_run(target, law, impactor_mass, velocity, settings, record, time_ste
                 cap=None) -> RunSetup:
     """The :class:`RunSetup` of :func:`run_once` (its basis, step, exact-phase modes and
     :func:`~impactmaps.solvers.run_budget.modal_run_budget`), without integrating."""
+    return RunSetup(*_prepare(target, law, linear_stiffness(law), impactor_mass, velocity, settings, record,
+                              time_step, contact_radius, cap))
+
+
+def _prepare(target, law, linear, impactor_mass, velocity, settings, record, time_step, contact_radius,
+             cap) -> tuple:
+    """The fields of :func:`prepare_run`'s :class:`RunSetup`, as a plain tuple (``linear``: the
+    law's :func:`linear_stiffness` [N/m], asked once per run)."""
     stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
-    omega_c = float(np.sqrt(stiffness / impactor_mass))
+    # math.sqrt and np.sqrt are both the correctly rounded IEEE square root: the same bits
+    omega_c = math.sqrt(stiffness / impactor_mass)
     basis = basis_for(target, omega_c, settings, contact_radius, cap)
     automatic = time_step is None
     coupled = _NO_COUPLED_MODES
     if automatic:
-        time_step, coupled = _step_and_phase(basis, law, impactor_mass, stiffness, omega_c, settings)
+        time_step, coupled = _step_and_phase(basis, linear, impactor_mass, stiffness, omega_c, settings)
     else:
         require_positive("time_step", time_step, "s")
-    max_time = settings.max_time_ratio / omega_c
-    budget = modal_run_budget(basis.size, float(time_step), max_time, omega_c, bool(record),
-                              int(settings.max_events), not automatic)
-    return RunSetup(basis, omega_c, float(time_step), coupled, float(max_time), budget)
+    time_step = float(time_step)
+    max_time = float(settings.max_time_ratio / omega_c)
+    budget = modal_run_budget(basis.size, time_step, max_time, omega_c, bool(record), int(settings.max_events),
+                              not automatic)
+    return basis, omega_c, time_step, coupled, max_time, budget
 
 
 def run_once(target, law, params, impactor_mass, velocity, settings, record, time_step,
@@ -323,16 +335,18 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
     """One run of :func:`~impactmaps.solvers.modal.simulate` (validated inputs) with a point
     load or a patch of radius ``contact_radius`` [m], the cut-off capped at ``cap`` [rad/s]
     when given, the step automatic when ``time_step`` is ``None``."""
-    basis, omega_c, time_step, coupled, max_time, budget = prepare_run(
-        target, law, impactor_mass, velocity, settings, record, time_step, contact_radius, cap)
-    refuse_or_announce(budget, f"modal run of {basis.size} modes", stacklevel=5)
+    linear = linear_stiffness(law)
+    basis, omega_c, time_step, coupled, max_time, budget = _prepare(
+        target, law, linear, impactor_mass, velocity, settings, record, time_step, contact_radius, cap)
+    n_modes = basis.size
+    refuse_or_announce(budget, f"modal run of {n_modes} modes", stacklevel=5)
     inputs = KernelInputs(
-        kernel_pointer(law.kernel), params, linear_stiffness(law),
+        kernel_pointer(law.kernel), params, linear,
         KernelModes(kernel_array(basis.frequencies), kernel_array(basis.participation),
                     kernel_array(basis.damping_ratios), float(basis.residual_compliance)),
         KernelImpact(float(impactor_mass), float(velocity)),
-        KernelRun(float(time_step), float(max_time), bool(record), int(settings.max_events),
-                  HISTORY_ROW_CAP, np.zeros(1, dtype=np.int64)),
+        KernelRun(time_step, max_time, bool(record), int(settings.max_events), HISTORY_ROW_CAP,
+                  np.zeros(1, dtype=np.int64)),
         KernelCoupled(coupled.frequencies, coupled.force_row, coupled.from_coupled, coupled.to_coupled,
                       float(settings.time_step_ratio / omega_c), float(settings.step_scale)))
     history, intervals, scalars = _integrate(budget.seconds > INTERRUPTIBLE_SECONDS, inputs)
@@ -343,7 +357,7 @@ def run_once(target, law, params, impactor_mass, velocity, settings, record, tim
     if scalars.row_cap_reached:
         warnings.warn(_ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time), ConvergenceWarning,
                       stacklevel=4)
-    result = _result(law, inputs, scalars, history if record else None, intervals, omega_c, basis.size, settings,
+    result = _result(law, inputs, scalars, history if record else None, intervals, omega_c, n_modes, settings,
                      "exact" if coupled.frequencies.size else "sampled")
     if scalars.stalled:
         warnings.warn(result.convergence_note, ConvergenceWarning, stacklevel=4)
@@ -360,33 +374,36 @@ def _result(law, inputs: KernelInputs, scalars: KernelScalars, history, interval
     """The :class:`ImpactResult` of a kernel run (``history`` ``None`` when not recorded)."""
     mass, velocity = inputs.impact.mass, inputs.impact.velocity
     alpha_max = float(scalars.max_indentation)
-    dissipation = 0.0 if law.elastic else float(law.dissipated_energy(alpha_max))
+    elastic = law.elastic
+    dissipation = 0.0 if elastic else float(law.dissipated_energy(alpha_max))
     rebound = float(-scalars.final_velocity)
-    return ImpactResult(
-        history=_history_frame(history, mass) if history is not None else None,
-        peak_force=float(scalars.peak_force),
-        peak_time=float(scalars.peak_time),
-        contact_intervals=np.asarray(intervals),
-        max_indentation=alpha_max,
-        permanent_indentation=0.0 if law.elastic else float(law.permanent_indentation(alpha_max)),
-        rebound_velocity=rebound,
-        energy_transferred=float(scalars.structure_energy),
-        contact_dissipation=dissipation,
-        damping_work=float(scalars.damping_work),
-        energy_balance_error=energy_balance_error(
-            mass, velocity, rebound, float(scalars.structure_energy), dissipation, float(scalars.damping_work)),
-        end_time=float(scalars.end_time),
-        time_limit_reached=bool(scalars.time_limit_reached),
-        impactor_mass=float(mass),
-        velocity=float(velocity),
-        contact_frequency=omega_c,
-        n_modes=n_modes,
-        time_step=float(inputs.run.time_step),
-        method="modal+residual" if settings.residual_flexibility else "modal",
-        settings=settings_dict(settings),
-        details=ModalDetails(int(scalars.steps), phase),
-        converged=False if scalars.row_cap_reached or scalars.stalled else None,
-        convergence_note=_ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time)
-        if scalars.row_cap_reached else _STALL_NOTE.format(limit=STALL_LIMIT, time=scalars.end_time)
+    structure_energy, damping_work = float(scalars.structure_energy), float(scalars.damping_work)
+    row_cap_reached = scalars.row_cap_reached
+    return ImpactResult.from_fields({
+        "history": _history_frame(history, mass) if history is not None else None,
+        "peak_force": float(scalars.peak_force),
+        "peak_time": float(scalars.peak_time),
+        "contact_intervals": np.asarray(intervals),
+        "max_indentation": alpha_max,
+        "permanent_indentation": 0.0 if elastic else float(law.permanent_indentation(alpha_max)),
+        "rebound_velocity": rebound,
+        "energy_transferred": structure_energy,
+        "contact_dissipation": dissipation,
+        "damping_work": damping_work,
+        "energy_balance_error": energy_balance_error(mass, velocity, rebound, structure_energy, dissipation,
+                                                     damping_work),
+        "end_time": float(scalars.end_time),
+        "time_limit_reached": bool(scalars.time_limit_reached),
+        "impactor_mass": float(mass),
+        "velocity": float(velocity),
+        "contact_frequency": omega_c,
+        "n_modes": n_modes,
+        "time_step": float(inputs.run.time_step),
+        "method": "modal+residual" if settings.residual_flexibility else "modal",
+        "settings": settings_dict(settings),
+        "details": ModalDetails(int(scalars.steps), phase),
+        "converged": False if row_cap_reached or scalars.stalled else None,
+        "convergence_note": _ROW_CAP_NOTE.format(rows=HISTORY_ROW_CAP, time=scalars.end_time)
+        if row_cap_reached else _STALL_NOTE.format(limit=STALL_LIMIT, time=scalars.end_time)
         if scalars.stalled else "",
-    )
+    })

@@ -8,7 +8,7 @@ finite-difference beam all return :class:`ImpactResult`; what only one solver kn
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -51,6 +51,18 @@ def energy_balance_error(impactor_mass, velocity, rebound_velocity, *sinks) -> f
     impact = 0.5 * impactor_mass * velocity**2
     out = 0.5 * impactor_mass * rebound_velocity**2 + sum(sinks)
     return abs(impact - out) / impact
+
+
+def _total_duration(durations: np.ndarray) -> float:
+    """``np.nansum(durations)`` [s]: the same sum (NumPy's pairwise ``add.reduce``), skipping
+    the NaN-replacing copy when no duration is NaN (a NaN makes the plain sum NaN)."""
+    total = float(durations.sum())
+    return total if total == total else float(np.nansum(durations))
+
+
+def _first_duration(durations: np.ndarray) -> float:
+    """The first of ``durations`` [s], 0 when there is none."""
+    return float(durations[0]) if len(durations) else 0.0
 
 
 @dataclass(frozen=True)
@@ -152,6 +164,29 @@ class ImpactResult:
     converged: bool | None = None
     convergence_note: str = ""
 
+    @classmethod
+    def from_fields(cls, fields: dict) -> "ImpactResult":
+        """The result ``cls(**fields)`` builds, for a solver's per-run hot path.
+
+        Parameters
+        ----------
+        fields : dict
+            Every field of the class by name (SI units, as the attributes), no other key.
+
+        Returns
+        -------
+        ImpactResult
+            Equal to ``cls(**fields)``, field for field: the frozen dataclass's ``__init__``
+            sets each of the 23 fields through ``object.__setattr__`` (~3 µs a result), this
+            fills the instance's dictionary at once. Other names than the fields (a field left
+            to its default, an unknown name) go through the constructor.
+        """
+        if fields.keys() != _FIELD_NAMES:
+            return cls(**fields)
+        result = object.__new__(cls)
+        result.__dict__.update(fields)
+        return result
+
     # -- contacts -----------------------------------------------------------------------
     @property
     def impacts(self) -> int:
@@ -161,17 +196,20 @@ class ImpactResult:
     @property
     def contact_durations(self) -> np.ndarray:
         """Duration of each contact [s] (``nan`` for a contact still open at the end)."""
-        return np.diff(self.contact_intervals, axis=1).ravel()
+        intervals = self.contact_intervals
+        if type(intervals) is np.ndarray and intervals.ndim == 2 and intervals.shape[1] == 2:  # noqa: E721
+            return intervals[:, 1] - intervals[:, 0]  # np.diff's subtraction, without its ~5 µs of Python
+        return np.diff(intervals, axis=1).ravel()
 
     @property
     def total_contact_time(self) -> float:
         """Total time in contact, summed over all impacts [s]."""
-        return float(np.nansum(self.contact_durations))
+        return _total_duration(self.contact_durations)
 
     @property
     def first_contact_duration(self) -> float:
         """Duration of the first contact [s] (0 when the sphere never touched)."""
-        return float(self.contact_durations[0]) if self.impacts else 0.0
+        return _first_duration(self.contact_durations)
 
     @property
     def contact_span(self) -> float:
@@ -245,11 +283,12 @@ class ImpactResult:
 
     def normalised_summary(self) -> dict:
         """The normalised scalars of the ζ–λ maps (keys as in the map datasets)."""
+        durations = self.contact_durations  # once, for both durations (the properties' arithmetic)
         return {
             "fmax_normalised": self.fmax_normalised,
             "impacts": self.impacts,
-            "contact_time_normalised": self.contact_time_normalised,
-            "first_contact_normalised": self.first_contact_duration_normalised,
+            "contact_time_normalised": _total_duration(durations) * self.contact_frequency,
+            "first_contact_normalised": _first_duration(durations) * self.contact_frequency,
             "peak_time_normalised": self.peak_time_normalised,
             "energy_transferred_fraction": self.energy_transferred_fraction,
             "n_modes": self.n_modes,
@@ -293,3 +332,7 @@ class ImpactResult:
         if self.details is not None:
             out.update(self.details.summary())
         return out
+
+
+#: The field names of :class:`ImpactResult` (what :meth:`ImpactResult.from_fields` takes).
+_FIELD_NAMES = frozenset(f.name for f in fields(ImpactResult))

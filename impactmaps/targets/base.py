@@ -164,8 +164,10 @@ class ModalBasis:
     def cutoff_count(self, max_frequency: float, min_modes: int = 1) -> int:
         """How many modes :meth:`truncate` keeps: those with ω_j ≤ ``max_frequency`` [rad/s],
         at least ``min_modes`` and at most all."""
-        count = int(np.searchsorted(self.frequencies, max_frequency, side="right"))
-        return min(max(count, int(min_modes)), self.size)
+        frequencies = self.frequencies
+        # the array's own searchsorted: np.searchsorted's answer without its Python wrapper
+        count = int(frequencies.searchsorted(max_frequency, side="right"))
+        return min(max(count, int(min_modes)), frequencies.size)
 
     def head(self, count: int, dropped_compliance: float) -> "ModalBasis":
         """The first ``count`` modes, with ``dropped_compliance`` [m/N] — the static
