@@ -17,7 +17,8 @@ Run for two checkouts in the same minutes to compare (``--root``):
 ``python benchmarks/bench_thin_calls.py [--targets real] [--calls 400] [--root CHECKOUT]``.
 Prints one Markdown table (the kernel's share per point) and the least share. The calls
 repeat one set of inputs: from the second on, the run's set-up comes from the exact-input
-cache of :mod:`impactmaps.solvers.modal_run` where the checkout has one.
+cache of :mod:`impactmaps.solvers.modal_run` where the checkout has one; ``--fresh`` empties
+that cache before each call, as for the new points of a sweep.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def measure(targets: str, calls: int) -> list[tuple]:
+def measure(targets: str, calls: int, fresh: bool = False) -> list[tuple]:
     """(structure, ζ, modes, median call CPU [µs], kernel share, set-up share, coupled-modes
     share, result share) per bench_modal case."""
     from benchmarks.bench_modal import LOSS_FACTORS, _analytic_case, _real_case
@@ -80,6 +81,8 @@ def measure(targets: str, calls: int) -> list[tuple]:
                 for name in parts:
                     parts[name] = 0.0
                 for _ in range(calls):
+                    if fresh:  # a new input's call: the set-up computed, not read from the cache
+                        getattr(modal_run, "_setup_cache", {}).clear()
                     start = time.process_time()
                     simulate(target, law, mass, 1.0, settings=settings, record=False)
                     durations.append(time.process_time() - start)
@@ -97,11 +100,14 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--targets", choices=("analytic", "real"), default="analytic")
     parser.add_argument("--calls", type=int, default=400)
+    parser.add_argument("--fresh", action="store_true",
+                        help="empty the run set-up cache before each call (a sweep's new points)")
     parser.add_argument("--root", type=pathlib.Path, default=ROOT, help="the checkout to measure (default this one)")
     args = parser.parse_args(argv)
     sys.path.insert(0, str(args.root.resolve()))
-    rows = measure(args.targets, max(args.calls, 10))
-    print(f"`python benchmarks/bench_thin_calls.py --targets {args.targets} --calls {args.calls}` "
+    rows = measure(args.targets, max(args.calls, 10), args.fresh)
+    print(f"`python benchmarks/bench_thin_calls.py --targets {args.targets} --calls {args.calls}"
+          f"{' --fresh' if args.fresh else ''}` "
           f"(code of {args.root.resolve().name})\n")
     print(f"load average {' '.join(f'{x:.1f}' for x in os.getloadavg())}\n")
     print("| structure | ζ | modes | call CPU [µs] (median) | kernel share | set-up (coupled modes) | result |\n"
