@@ -22,9 +22,8 @@ start and imports a built-in family's module when that family is first asked for
 
 from __future__ import annotations
 
-import math
-
 import importlib
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
 

@@ -23,7 +23,6 @@ of :data:`~impactmaps.maps.sweep.MAX_MODES` below its cut-off). Never the neares
 
 from __future__ import annotations
 
-
 from ..hertz_similarity import patch_number
 from ..solvers.modal import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS

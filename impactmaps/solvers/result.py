@@ -60,10 +60,6 @@ def _total_duration(durations: np.ndarray) -> float:
     return total if total == total else float(np.nansum(durations))
 
 
-def _first_duration(durations: np.ndarray) -> float:
-    """The first of ``durations`` [s], 0 when there is none."""
-    return float(durations[0]) if len(durations) else 0.0
-
 
 @dataclass(frozen=True)
 class ImpactResult:
@@ -209,7 +205,7 @@ class ImpactResult:
     @property
     def first_contact_duration(self) -> float:
         """Duration of the first contact [s] (0 when the sphere never touched)."""
-        return _first_duration(self.contact_durations)
+        return float(self.contact_durations[0]) if self.impacts else 0.0
 
     @property
     def contact_span(self) -> float:
@@ -283,12 +279,11 @@ class ImpactResult:
 
     def normalised_summary(self) -> dict:
         """The normalised scalars of the ζ–λ maps (keys as in the map datasets)."""
-        durations = self.contact_durations  # once, for both durations (the properties' arithmetic)
         return {
             "fmax_normalised": self.fmax_normalised,
             "impacts": self.impacts,
-            "contact_time_normalised": _total_duration(durations) * self.contact_frequency,
-            "first_contact_normalised": _first_duration(durations) * self.contact_frequency,
+            "contact_time_normalised": self.contact_time_normalised,
+            "first_contact_normalised": self.first_contact_duration_normalised,
             "peak_time_normalised": self.peak_time_normalised,
             "energy_transferred_fraction": self.energy_transferred_fraction,
             "n_modes": self.n_modes,
