@@ -18,6 +18,7 @@ sources, as in any checkout.
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 import subprocess
@@ -43,11 +44,22 @@ _COMPILE = ("import json, sys; sys.path.insert(0, sys.argv[1]); import impactmap
 _NUMBA_ENV = ("NUMBA_CACHE_DIR", "NUMBA_CACHE_LOCATOR_CLASSES", "NUMBA_DISABLE_JIT")
 
 
+def cache_patterns(root: str) -> tuple:
+    """``impactmaps.solvers.warm_up.CACHE_PATTERNS`` of the package under ``root``, read from its
+    source: one list of numba's cache files, and this hook does not import the package."""
+    source = Path(root) / "impactmaps" / "solvers" / "warm_up.py"
+    for node in ast.parse(source.read_text(encoding="utf-8")).body:
+        if isinstance(node, ast.Assign) and any(getattr(target, "id", None) == "CACHE_PATTERNS"
+                                                for target in node.targets):
+            return tuple(ast.literal_eval(node.value))
+    raise RuntimeError(f"CACHE_PATTERNS not found in {source}")
+
+
 def remove_cache_files(build_lib: str) -> None:
     """Remove numba's cache files (and what its saves leave) from the package in ``build_lib``:
     setuptools keeps the build tree between builds, and a wheel built without the compile, or
     whose compile failed, must not ship an earlier build's cache."""
-    for pattern in ("*.nbi", "*.nbc", "*.lock", "*.tmp.*"):
+    for pattern in cache_patterns(build_lib):
         for stale in Path(build_lib).glob(f"impactmaps/**/__pycache__/{pattern}"):
             stale.unlink()
 

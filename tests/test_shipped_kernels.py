@@ -161,3 +161,23 @@ def test_a_run_from_the_shipped_cache_gives_the_bits_of_a_fresh_compile(tmp_path
     fresh = json.loads(fresh.stdout.splitlines()[-1])
     assert shipped[2:] == [1, 0] and fresh[2:] == [0, 1]
     assert shipped[:2] == fresh[:2]
+
+
+def test_build_hook_removes_the_cache_files_warm_up_names(tmp_path):
+    """``setup.py``'s clean-up of a build tree reads :data:`warm_up.CACHE_PATTERNS` from the
+    package's source (one list of numba's cache files) and removes exactly those."""
+    root = Path(__file__).resolve().parents[1]
+    source = (root / "setup.py").read_text(encoding="utf-8").split("\nclass ")[0]  # the functions, not setup()
+    hook: dict = {"__file__": str(root / "setup.py")}
+    exec(compile(source, "setup.py", "exec"), hook)
+    assert hook["cache_patterns"](str(root)) == warm_up.CACHE_PATTERNS
+    package = tmp_path / "impactmaps"
+    shutil.copytree(root / "impactmaps" / "solvers", package / "solvers",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    cache = package / "solvers" / "__pycache__"
+    cache.mkdir()
+    names = ("k.py311.nbi", "k.py311.1.nbc", "k.py311.nbi.lock", "k.nbc.tmp.7", "k.cpython-311.pyc")
+    for name in names:
+        (cache / name).write_text("x")
+    hook["remove_cache_files"](str(tmp_path))
+    assert sorted(path.name for path in cache.iterdir()) == ["k.cpython-311.pyc"]
