@@ -22,14 +22,13 @@ import sys
 import time
 import warnings
 
-if __name__ == "__main__":
-    for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(_name, "1")
-
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # this checkout's impactmaps, not an installed one
+if __name__ == "__main__":
+    for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_name, "1")
+    sys.path.insert(0, str(ROOT))  # this checkout's impactmaps, not an installed one
 STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
 
 
