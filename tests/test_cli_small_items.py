@@ -352,3 +352,17 @@ def test_a_command_that_warns_and_then_fails_prints_both(capsys):
     assert _run(args) == 2
     err = capsys.readouterr().err
     assert "warning: something doubtful" in err and "impactmaps point: error: x = 1 is invalid" in err
+
+
+def test_point_on_a_mindlin_plate_says_the_point_load_once(capsys):
+    """``point`` on a Mindlin plate answered "converged" with an error of 3e-5 and no word on
+    the point load that ``lookup`` and ``sweep`` warn about (its value has no converged answer:
+    ``validation/mindlin_point_load.md``); it now says the map's point-load warning, once."""
+    status = main(["point", "--target", "plate-ss", "--theory", "mindlin", "--zeta", "18.1471",
+                   "--lambda", "0.00342442", "--json"])
+    captured = capsys.readouterr()
+    assert status == 0
+    notes = [line for line in captured.err.splitlines() if line.startswith("warning: point load")]
+    assert len(notes) == 1 and "this Mindlin point strikes" in notes[0] and "no converged value" in notes[0]
+    main(["point", "--target", "plate-ss", "--zeta", "18.1471", "--lambda", "0.00342442", "--json"])
+    assert "point load" not in capsys.readouterr().err

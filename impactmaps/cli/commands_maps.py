@@ -204,8 +204,13 @@ def cmd_point(args) -> dict:
     plot = getattr(args, "plot", None)
     plot = None if plot is None else plot_file("--plot", plot)
     checked = settings.check_convergence
-    result = _simulate_point(structure, target, args, replace(settings, check_convergence=False),
-                             record=plot is not None)
+    with warnings.catch_warnings():
+        if checked and target.point_load_diverges:  # the map point's own warning below says it
+            from ..validity import ModelValidityWarning
+
+            warnings.filterwarnings("ignore", message="point load", category=ModelValidityWarning)
+        result = _simulate_point(structure, target, args, replace(settings, check_convergence=False),
+                                 record=plot is not None)
     reflection = float(target.reflection_time(result.contact_frequency))
     values = {
         "structure": structure.name,
@@ -216,6 +221,10 @@ def cmd_point(args) -> dict:
     }
     if checked:
         # the value a sweep stores for this point, with its error and status (the same bits)
+        if target.point_load_diverges:
+            from ..maps.points import warn_point_loaded_mindlin
+
+            warn_point_loaded_mindlin("this Mindlin point strikes", stacklevel=1)
         mapped = _map_point(structure, args, settings)
         if mapped["status"] == "unresolved":  # no map value: keep this run's, say why it is not vouched for
             values.update(status="unresolved", status_note=(

@@ -100,6 +100,10 @@ class YigitChristoforouContact(ContactLaw):
         Hertz stiffness K_h [N/m^1.5] (eq 7).
     yield_indentation : float or array_like
         Indentation at first yield α_y [m] (eq 9, :func:`yield_indentation`).
+    effective_radius : float, optional
+        R [m] of the pair, when known (set by the pair and property constructors): the
+        contact radius is ``sqrt(R α)``, over which a solver may spread the force (a
+        Mindlin plate, whose point load has no converged answer). Not part of the force law.
 
     Notes
     -----
@@ -109,6 +113,7 @@ class YigitChristoforouContact(ContactLaw):
 
     hertz_stiffness: float
     yield_indentation: float
+    effective_radius: float | None = None
 
     name: ClassVar[str] = "yigit-christoforou"
     elastic: ClassVar[bool] = False
@@ -118,6 +123,8 @@ class YigitChristoforouContact(ContactLaw):
     def __post_init__(self):
         require_positive("hertz_stiffness", self.hertz_stiffness, "N/m^1.5")
         require_positive("yield_indentation", self.yield_indentation, "m")
+        if self.effective_radius is not None:
+            require_positive("effective_radius", self.effective_radius, "m")
 
     @classmethod
     def from_properties(cls, effective_modulus, radius, yield_strength) -> "YigitChristoforouContact":
@@ -125,6 +132,7 @@ class YigitChristoforouContact(ContactLaw):
         return cls(
             hertz_stiffness(effective_modulus, radius),
             yield_indentation(yield_strength, radius, effective_modulus),
+            effective_radius=radius,
         )
 
     @classmethod

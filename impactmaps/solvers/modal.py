@@ -185,7 +185,18 @@ def simulate(
         run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
                                 radius_of)
         result = _checked(result, fine, settings.tolerance, cap, run)
+    if isinstance(target, Target):
+        _warn_target_validity(target, result)
     return result
+
+
+def _warn_target_validity(target: Target, result: ImpactResult) -> None:
+    """Issue :func:`impactmaps.validity.target_warnings` of a run on a structure as
+    :class:`~impactmaps.validity.ModelValidityWarning` (the checks that need no sphere)."""
+    from ..validity import ModelValidityWarning, target_warnings  # beside the solvers: on use
+
+    for message in target_warnings(target, result):
+        warnings.warn(message, ModelValidityWarning, stacklevel=3)
 
 
 def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> tuple:
