@@ -53,6 +53,7 @@ from .coupled_contact import contact_phase
 from .free_flight import (
     FREE_POWERS,
     damping_work,
+    free_damping_work,
     free_doublings,
     no_reimpact_possible,
     out_of_time,
@@ -373,7 +374,7 @@ def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, c
                                             alpha_max) == 0.0
         if free:
             if damped:
-                damping += damping_work(omega, zeta, v, vn, length)
+                damping += free_damping_work(omega, q, v, qn, vn)
             if record:
                 history, rec = record_free_inside(free_coef, k, h, (t, wi, vi, q, v), modes, work.scratch, history,
                                                   rec)

@@ -19,7 +19,7 @@ import numba
 from .history_rows import record_row
 from .oscillator_step import propagate_free
 
-__all__ = ["FREE_POWERS", "damping_work", "free_doublings", "no_reimpact_possible", "out_of_time",
+__all__ = ["FREE_POWERS", "damping_work", "free_damping_work", "free_doublings", "no_reimpact_possible", "out_of_time",
            "record_free_inside"]
 
 #: Longest free-flight step: 2^(FREE_POWERS − 1) = 1024 steps h. (Up to 2026-11-24 64 h:
@@ -67,6 +67,18 @@ def _damping_power(omega, zeta, v):
 def damping_work(omega, zeta, v, vn, length):
     """Work of the modal damping over a step of ``length`` [s] (trapezoidal rule) [J]."""
     return 0.5 * length * (_damping_power(omega, zeta, v) + _damping_power(omega, zeta, vn))
+
+
+@numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def free_damping_work(omega, q, v, qn, vn):
+    """Work of the modal damping over a free-flight step from (q, v) to (qn, vn) [J]: the
+    energy Σ ½(v_j² + ω_j² q_j²) the modes lost, exactly, since no force acts on them in flight
+    (the trapezoidal rule of :func:`damping_work` over a step of up to 1024 h missed the modes
+    that turn within it: 3 % of the impact energy at a 1 % damping ratio)."""
+    lost = 0.0
+    for j in range(q.shape[0]):
+        lost += 0.5 * ((v[j] * v[j] - vn[j] * vn[j]) + omega[j] * omega[j] * (q[j] * q[j] - qn[j] * qn[j]))
+    return lost
 
 
 @numba.njit(cache=True, inline="always")
