@@ -803,3 +803,48 @@ def test_epp_contact_modal_equals_fd():
     assert fd.contact_intervals[0, 1] - fd.contact_intervals[0, 0] == pytest.approx(
         modal.first_contact_duration, rel=1e-2)
     assert fd.permanent_indentation == pytest.approx(modal.permanent_indentation, rel=2e-2)
+
+
+def test_an_fd_case_checks_its_grid_when_asked_and_says_a_late_reimpact_is_not_converged(tmp_path):
+    """``[solver] check_convergence`` on an FD case reruns it on twice the elements. A steel ball
+    on an aluminium Rayleigh beam bounces 9 times and peaks at the 6th contact: at 200 elements
+    FD gives 167.5 N against the converged modal 187.7 N (188.3 N at 400 elements), which
+    it stated nowhere (an audit of 2026-11-27); now it says ``converged: false`` and why."""
+    import warnings
+
+    from impactmaps.cases import parse_case, run_case
+    from impactmaps.solvers.modal import ConvergenceWarning
+
+    text = """
+[impactor]
+radius = 0.02
+material = "structural-steel"
+velocity = 0.164
+[target]
+type = "beam"
+length = 0.421
+width = 0.0165
+height = 0.0103
+material = "aluminium-6061-t6"
+theory = "rayleigh"
+supports = "ss"
+impact_position = 0.2105
+[contact]
+law = "stronge"
+[solver]
+check_convergence = true
+tolerance = TOLERANCE
+duration = 0.01
+[fd]
+n_elements = 200
+n_half_layers = 10
+plastic = false
+"""
+    with pytest.warns(ConvergenceWarning, match="refined to 400 elements"):
+        result, summary = run_case(parse_case(text.replace("TOLERANCE", "0.001"), solver="fd"))
+    assert result.converged is False and summary["converged"] is False
+    assert result.peak_force == pytest.approx(167.548, rel=1e-3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ConvergenceWarning)
+        loose, _ = run_case(parse_case(text.replace("TOLERANCE", "0.05"), solver="fd"))
+    assert loose.converged is True

@@ -78,8 +78,8 @@ def _null_notes(case: Case, result: ImpactResult) -> dict:
         "beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
         "zeta": halfspace, "lambda": halfspace, "static_stiffness_N_m": halfspace,
         "zeta_linearised": halfspace, "lambda_linearised": halfspace,
-        "converged": "not checked: a finite-difference run has no convergence re-run (compare a run with more "
-                     "[fd] n_elements)" if case.solver_kind == "fd" else ("not checked: answered by the infinite-structure asymptote, exact until the first "
+        "converged": "not checked ([solver] check_convergence = false; a finite-difference run then reruns on "
+                     "twice the [fd] n_elements)" if case.solver_kind == "fd" else ("not checked: answered by the infinite-structure asymptote, exact until the first "
                       "reflection returns") if result.method == "infinite-structure-asymptote" else
         "not checked ([solver] check_convergence = false)",
         "max_deflection_m": "no history: the run gives scalars only",
@@ -98,11 +98,30 @@ def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
 
 
 def _run_fd(case: Case) -> ImpactResult:
+    """The finite-difference run of ``case``; with ``[solver] check_convergence`` also the same
+    run on twice the elements, ``converged`` set by the change of F̄max against ``[solver]
+    tolerance`` (a :class:`~impactmaps.solvers.modal.ConvergenceWarning` and
+    ``convergence_note`` say why when not: a late re-impact needs a finer grid)."""
     from ..fd import simulate_fd
+    from ..solvers.modal import ConvergenceWarning
 
     settings = replace(case.fd_settings, duration=case.duration)
-    return simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,
-                       settings=settings, material=case.target_material)
+    result = simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,
+                         settings=settings, material=case.target_material)
+    if not case.settings.check_convergence:
+        return result
+    elements = 2 * int(result.settings["beam"].n_elements)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the fine run's own warnings say nothing new
+        fine = simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,
+                           settings=replace(settings, n_elements=elements), material=case.target_material)
+    change, tolerance = abs(fine.fmax_normalised - result.fmax_normalised), case.settings.tolerance
+    if change <= tolerance:
+        return replace(result, converged=True)
+    note = (f"F̄max changed by {change:.2e} (> tolerance {tolerance:g}) when the grid was refined to {elements} "
+            "elements; the result is not converged (a late re-impact needs a finer [fd] n_elements)")
+    warnings.warn(note, ConvergenceWarning, stacklevel=3)
+    return replace(result, converged=False, convergence_note=note)
 
 
 def run_case(case: Case) -> tuple[ImpactResult, dict]:
