@@ -8,6 +8,7 @@ and the valid range.
 from __future__ import annotations
 
 import math
+import stat
 from pathlib import Path
 
 import numpy as np
@@ -136,6 +137,22 @@ def require_instance(name: str, value, kinds, hint: str = "") -> None:
                     f"{': ' + hint if hint else ''}")
 
 
+def require_flag(name: str, value) -> None:
+    """Raise ``ValueError`` unless ``value`` is a boolean (``True``/``False``, a NumPy bool):
+    a string such as ``"false"`` is refused, not read as true."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r} is invalid: valid values are true and false (a boolean, not a "
+                         f"{type(value).__name__})")
+
+
+def require_whole(name: str, value) -> None:
+    """Raise ``ValueError`` unless ``value`` is a whole number (an int, or a float without a
+    fraction; not a boolean)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer, float, np.floating)) \
+            or (isinstance(value, (float, np.floating)) and not float(value).is_integer()):
+        raise ValueError(f"{name} = {value!r} is invalid: a whole number is expected")
+
+
 def require_choice(name: str, value, choices) -> None:
     """Raise ``ValueError`` unless ``value`` is one of ``choices``."""
     choices = list(choices)
@@ -178,12 +195,23 @@ def require_isotropic_material(name: str, material) -> tuple[float, float, float
     return youngs, poisson, density
 
 
+#: The largest input file read [bytes]: case and sweep files are a few kB (memory stays bounded).
+MAX_INPUT_BYTES = 1_000_000
+
+
 def read_text_input(what: str, value) -> tuple[Path, str]:
     """The path and UTF-8 text of the input file ``value`` (``what``: e.g. ``"case file"``);
     ``ValueError`` naming it if it does not exist, is a directory, cannot be read or is not
     UTF-8 text (a TOML file is expected)."""
     path = Path(value)
     try:
+        status = path.stat()
+        if stat.S_ISREG(status.st_mode) and status.st_size > MAX_INPUT_BYTES:
+            raise ValueError(f"{what} {str(path)!r} is {status.st_size} bytes: valid range is up to "
+                             f"{MAX_INPUT_BYTES} bytes (a TOML file is expected)")
+        if not stat.S_ISREG(status.st_mode) and not stat.S_ISDIR(status.st_mode):
+            raise ValueError(f"{what} {str(path)!r} is not a regular file (a pipe or device): a TOML file is "
+                             "expected")
         return path, path.read_bytes().decode("utf-8")
     except FileNotFoundError:
         raise ValueError(f"{what} {str(path)!r} does not exist") from None

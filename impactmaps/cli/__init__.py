@@ -358,6 +358,14 @@ def _show_warning(message, shown: set) -> None:
         print(f"warning: {plain_text(text)}", file=sys.stderr, flush=True)
 
 
+def _interrupted(args, text: str) -> int:
+    """Say ``text`` (one line on stderr, and ``{"error": …}`` with ``--json``); the exit status of Ctrl-C."""
+    if getattr(args, "json", False):
+        print(dumps({"error": text}), flush=True)
+    print(f"impactmaps {args.command}: {text}", file=sys.stderr)
+    return EXIT_INTERRUPTED
+
+
 def _run(args) -> int:
     """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught, shown = [], set()
@@ -372,17 +380,14 @@ def _run(args) -> int:
             warnings.showwarning = collect
             values = args.handler(args)
     except _sweep_interrupted() as stop:
-        print(f"impactmaps {args.command}: interrupted: {stop.saved} of {stop.total} points saved; "
-              "run the same command to resume", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted(args, f"interrupted: {stop.saved} of {stop.total} points saved; run the same "
+                                  "command to resume")
     except KeyboardInterrupt:
-        print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted(args, "interrupted")
     except SystemError as error:  # Ctrl-C while compiled (numba) code returns reaches Python as this
         if not interrupted(error):
             raise
-        print(f"impactmaps {args.command}: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted(args, "interrupted")
     except BrokenPipeError:
         raise
     except (ValueError, TypeError, OSError, MemoryError) as error:

@@ -11,6 +11,7 @@ from dataclasses import replace
 
 from ..maps.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
+from ..maps.workers import MAX_WORKERS
 from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
@@ -44,8 +45,8 @@ def cmd_chart(args) -> dict:
                   low_inclusive=True)
     check("--zeta-range", args.zeta_range[1], high=family.chart_zeta_max,
           what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
-    check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
-           low_inclusive=True)
+    check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
+          low_inclusive=True, high_inclusive=True)
     check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
     out = out_dir("--out", args.out)
     with store_lock(out / "fmax_map.nc", "--out"):
@@ -75,8 +76,8 @@ def cmd_sweep(args) -> dict:
     from ..maps.config import load_sweep_config
     from ..maps.store_lock import store_lock
 
-    check("--workers", args.workers, 1.0, math.inf, "the number of worker processes",
-           low_inclusive=True)
+    check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
+          low_inclusive=True, high_inclusive=True)
     if args.scheduler is not None:
         refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
     output = load_sweep_config(text_file("sweep file", args.config))[4]  # validated before anything is written

@@ -231,12 +231,13 @@ def _map_reading(case) -> dict:
 
 def cmd_warm_up(args) -> dict:
     """Compile the modal solver's kernels into numba's cache (``impactmaps warm-up``)."""
+    from ..maps.workers import MAX_WORKERS
     from ._common import check
     from ..solvers.background_warm_up import mark_warm
     from ..solvers.warm_up import warm_up
 
     workers = 2 if args.workers is None else args.workers
-    check("--workers", workers, 1, 64, "worker processes", low_inclusive=True, high_inclusive=True)
+    check("--workers", workers, 1, MAX_WORKERS, "worker processes", low_inclusive=True, high_inclusive=True)
     done = warm_up(int(workers))
     mark_warm(done)
     return {**done, "note": "the first integrating command now loads the compiled kernels instead of compiling "

@@ -29,11 +29,10 @@ import itertools
 import math
 import tomllib
 from dataclasses import fields
-from pathlib import Path
 
 import numpy as np
 
-from .._checks import range_end_text
+from .._checks import range_end_text, read_text_input
 from ..solvers.modal import ModalSettings
 from ..targets.options import default_theory
 from .chart import tidy_frame
@@ -113,6 +112,27 @@ def _impact_fractions(value, where):
                      "[x0/a, y0/b] or a list of points")
 
 
+#: The [[structure]] keys that take a name; the others take numbers.
+_NAMED_KEYS = ("kind", "theory", "supports")
+
+
+def _require_structure_value(path: str, key: str, value) -> None:
+    """``ValueError`` naming ``path`` unless ``value`` has the type of ``key``: a string for
+    :data:`_NAMED_KEYS`, a number (not a boolean) otherwise, and a point of numbers for
+    ``impact_fraction`` (one for a beam: two numbers mean a plate's point)."""
+    def number(item):
+        return isinstance(item, (int, float)) and not isinstance(item, bool)
+
+    if key in _NAMED_KEYS:
+        if not isinstance(value, str):
+            raise ValueError(f"{path} = {value!r} is invalid: give a name (a string)")
+    elif key == "impact_fraction":
+        if not all(number(item) for item in value):
+            raise ValueError(f"{path} = {list(value)!r} is invalid: give fractions of the span in (0, 1)")
+    elif not number(value):
+        raise ValueError(f"{path} = {value!r} is invalid: give a number")
+
+
 def _structures(table, index):
     where = f"[[structure]] #{index + 1}"
     if not isinstance(table, dict):
@@ -126,9 +146,14 @@ def _structures(table, index):
     out = []
     for combination in itertools.product(*swept.values()):
         values = dict(zip(swept, combination))
+        for key, value in values.items():
+            _require_structure_value(f"{where}.{key}", key, value)
         kind = values.get("kind", "plate")
         if kind not in KIND_DEFAULTS:
             raise ValueError(f"{where}.kind = {kind!r} is invalid: choose 'beam' or 'plate'")
+        if kind == "beam" and len(values.get("impact_fraction", (0.5,))) != 1:
+            raise ValueError(f"{where}.impact_fraction = {table['impact_fraction']!r} is invalid for a beam: give "
+                             "one fraction x0/L, or a list of them as [[0.3], [0.9]]")
         values = KIND_DEFAULTS[kind] | values
         try:
             structure = MapStructure(**values)
@@ -153,12 +178,11 @@ def load_sweep_config(path):
         ``(structures, zetas, lambdas, settings, output_dir, law, axes)``: ``axes`` the grids of
         the law's axes besides ζ and λ (``{"beta": …}`` for an elastic-plastic law; else empty).
     """
-    path = Path(path)
-    with open(path, "rb") as handle:
-        try:
-            config = tomllib.load(handle)
-        except tomllib.TOMLDecodeError as error:
-            raise ValueError(f"{path} is not valid TOML: {error}") from None
+    path, text = read_text_input("sweep file", path)
+    try:
+        config = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path} is not valid TOML: {error}") from None
     unknown = set(config) - _TOP_KEYS
     if unknown:
         raise ValueError(f"unknown key(s) {sorted(unknown)} in {path}: allowed keys are {sorted(_TOP_KEYS)}")
@@ -166,7 +190,7 @@ def load_sweep_config(path):
     if not isinstance(grid, dict) or "zeta" not in grid or "lambda" not in grid:
         raise ValueError(f"{path}: [grid] needs 'zeta' and 'lambda'")
     law = config.get("law", "linear")
-    if law not in available_map_families():
+    if not isinstance(law, str) or law not in available_map_families():
         raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
     family = map_family(law)
     zetas = _grid("zeta", grid["zeta"], family.axis_range("zeta"))
@@ -191,6 +215,10 @@ def load_sweep_config(path):
     if not isinstance(output, str) or not output:
         raise ValueError(f"output = {output!r} is invalid: give a directory name")
     extra = [axis.name for axis in map_family(law).extra_axes]
+    unknown = set(grid) - {"zeta", "lambda", *extra}
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in [grid] of the {law} law: allowed keys are "
+                         f"{sorted({'zeta', 'lambda', *extra})}")
     if not set(extra) <= set(grid):
         raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
     axes = {name: _grid(name, grid[name], family.axis_range(name)) for name in extra}

@@ -26,7 +26,7 @@ import xarray as xr
 
 from .._checks import require_in_range, require_positive
 from ..solvers.modal import ModalSettings
-from ..solvers.run_budget import MEMORY_LIMIT_BYTES
+from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
 from ..targets.options import point_load_diverges
 from ..solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
 from .dataset import ASYMPTOTE_PEAKS, classify_dataset, empty_dataset, map_law, with_asymptote_peaks
@@ -48,7 +48,7 @@ from .registry import map_family
 from .shipped_results import load_shipped_result
 from .store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from .structures import MapStructure
-from .workers import init_worker
+from .workers import MAX_WORKERS, init_worker
 
 __all__ = ["sweep", "sweep_fingerprint", "solve_points", "solve_map_points", "SOLVER_REVISION", "RESULT_VARIABLES",
            "table_run_key", "MAP_LAWS", "map_law", "log_grid", "warn_point_loaded_mindlin", "SweepTask", "SweepGrid", "Pacing",
@@ -164,6 +164,8 @@ def sweep(
         carries how many of the grid's points are saved.
     """
     settings = settings or ModalSettings()
+    if max_workers is not None:
+        require_in_range("max_workers", max_workers, 1, MAX_WORKERS)
     grid = _prepare(structures, loss_factors, relative_stiffnesses, settings, law, axes)
     if any(point_load_diverges(structure.theory) for structure in grid.structures):
         warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=2)
@@ -173,10 +175,26 @@ def sweep(
               f"(impactmaps.maps.shipped_results, {grid.digest[:12]}…)", file=sys.stderr)
     done = dataset["done"].values.astype(bool)
     tasks = list(_chunks(grid, done, max(1, int(pacing.chunk_size))))
-    results = _Results(dataset, path, pacing.save_interval, sum(len(task.points) for task in tasks), progress,
-                       grid.family.variables)
+    remaining = sum(len(task.points) for task in tasks)
+    _announce(remaining, executor, max_workers)
+    results = _Results(dataset, path, pacing.save_interval, remaining, progress, grid.family.variables)
     stopped = _run(tasks, settings, executor, max_workers, results, grid.family)
     return _finish(results, stopped, grid.family)
+
+
+#: CPU of a map point [s], for the announcement of a long sweep: the mean of the linear plane
+#: (200 × 50, beam and plate: 58 CPU-s for 20 000 points, ``benchmarks/RESULTS_plane.md``).
+SECONDS_PER_POINT = 2.9e-3
+
+
+def _announce(points: int, executor: Executor | None, max_workers: int | None) -> None:
+    """Announce (:class:`~impactmaps.solvers.run_budget.LongRunWarning`) a sweep whose points
+    to compute would take longer than a minute at :data:`SECONDS_PER_POINT`, before it starts."""
+    workers = (getattr(executor, "_max_workers", None) or 1) if executor is not None else \
+        (max_workers or os.cpu_count() or 1)
+    hint = (f"{points} points to compute on {workers} worker(s) at the linear plane's mean of "
+            f"{SECONDS_PER_POINT * 1e3:.1f} ms a point; Hertz and elastic-plastic points cost more")
+    refuse_or_announce(RunBudget(0.0, points * SECONDS_PER_POINT / workers, "", hint), "this sweep", stacklevel=4)
 
 
 def sweep_fingerprint(structures: Sequence[MapStructure], loss_factors, relative_stiffnesses,

@@ -17,7 +17,11 @@ from __future__ import annotations
 
 import signal
 
-__all__ = ["init_worker"]
+#: Most worker processes a sweep starts (``max_workers``, ``--workers``): more only
+#: oversubscribe the cores, and each costs a process of memory.
+MAX_WORKERS = 64
+
+__all__ = ["init_worker", "MAX_WORKERS"]
 
 
 def init_worker(ignore_interrupts: bool = True) -> None:

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from .._checks import require_choice, require_in_range, require_positive
+from .._checks import require_choice, require_flag, require_in_range, require_positive, require_whole
 from ..contact.base import ContactLaw
 from .contact_scale import reference_contact_stiffness
 
@@ -160,6 +160,10 @@ class ModalSettings:
     def __post_init__(self):
         require_in_range("cutoff_ratio", self.cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
         require_in_range("patch_cutoff_ratio", self.patch_cutoff_ratio, 0.0, MAX_CUTOFF_RATIO, low_inclusive=False)
+        for name in ("residual_flexibility", "check_convergence"):
+            require_flag(name, getattr(self, name))
+        for name in ("min_modes", "max_events"):
+            require_whole(name, getattr(self, name))
         require_in_range("min_modes", self.min_modes, 0, MAX_MIN_MODES)
         require_in_range("time_step_ratio", self.time_step_ratio, 0, 1.0, low_inclusive=False)
         require_in_range("resolve_ratio", self.resolve_ratio, 0, 2.0, low_inclusive=False)
