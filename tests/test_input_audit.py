@@ -1,0 +1,99 @@
+"""Inputs an audit of 2026-11-27 found taken wrongly, each now refused naming what the user
+wrote (exit 2, one line) or announced: wrong TOML types, silently dropped values, unbounded
+inputs (files, workers, sweep size) and an interrupted ``--json`` run."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+from impactmaps.cli import main
+from impactmaps.solvers.modal import ModalSettings
+
+_GRID = '[grid]\nzeta = [1.0]\nlambda = [1.0]\n'
+
+
+def _one_error_line(capsys) -> str:
+    lines = [line for line in capsys.readouterr().err.splitlines() if not line.startswith("warning:")]
+    assert len(lines) == 1, lines
+    return lines[0]
+
+
+@pytest.mark.parametrize("options, named", [({"residual_flexibility": "false"}, "residual_flexibility"),
+                                            ({"check_convergence": "yes"}, "check_convergence"),
+                                            ({"max_events": 10.5}, "max_events")])
+def test_settings_refuse_a_value_of_the_wrong_type(options, named):
+    """``residual_flexibility = "false"`` ran as true (a non-empty string)."""
+    with pytest.raises(ValueError, match=named):
+        ModalSettings(**options)
+    assert ModalSettings(min_modes=4.0).min_modes == 4.0  # a whole float is a whole number
+
+
+@pytest.mark.parametrize("structure, named", [
+    ('kind = "beam"\nsupports = 3', "#1.supports = 3"),  # was a traceback (AttributeError), exit 1
+    ('kind = [["beam"]]', "#1.kind"),  # was "unhashable type: 'list'"
+    ('kind = "plate"\nimpact_fraction = ["a", "b"]', "#1.impact_fraction"),
+    ('kind = "beam"\nimpact_fraction = [0.3, 0.9]', "invalid for a beam"),  # 0.9 was dropped
+    ('kind = "beam"\nslenderness = "20"', "#1.slenderness"),
+])
+def test_a_sweep_file_refuses_wrong_types_naming_the_key(tmp_path, capsys, structure, named):
+    path = tmp_path / "sweep.toml"
+    path.write_text(f"{_GRID}[[structure]]\n{structure}\n")
+    assert main(["sweep", str(path), "--quiet", "--json"]) == 2
+    assert json.loads(capsys.readouterr().out.strip().splitlines()[-1])["error"]
+    assert main(["sweep", str(path), "--quiet"]) == 2
+    assert named in _one_error_line(capsys)
+
+
+def test_a_sweep_file_refuses_grid_keys_its_law_does_not_read(tmp_path, capsys):
+    path = tmp_path / "sweep.toml"
+    path.write_text(f"{_GRID}beta = [1.0]\n[[structure]]\nkind = \"beam\"\n")
+    assert main(["sweep", str(path), "--quiet"]) == 2
+    assert "['beta'] in [grid]" in _one_error_line(capsys)
+
+
+def test_input_files_are_bounded_and_regular(tmp_path, capsys):
+    """``check /dev/zero`` grew to 2.8 GB before running out of memory; a FIFO blocked forever."""
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    assert main(["check", str(fifo)]) == 2
+    assert "not a regular file" in _one_error_line(capsys)
+    big = tmp_path / "big.toml"
+    big.write_text("# " + "x" * 1_000_100 + "\n")
+    assert main(["sweep", str(big)]) == 2
+    assert "bytes: valid range is up to" in _one_error_line(capsys)
+
+
+def test_workers_are_bounded(tmp_path, capsys):
+    """``--workers 1000`` forked ~800 processes on 2 cores."""
+    assert main(["chart", "--workers", "1000", "--out", str(tmp_path)]) == 2
+    assert "--workers = 1000" in _one_error_line(capsys)
+    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.sweep import sweep
+
+    with pytest.raises(ValueError, match="max_workers"):
+        sweep([structure_from_name("beam-ss-euler")], [1.0], [1.0], max_workers=1000, progress=False)
+
+
+def test_a_long_sweep_is_announced_before_it_starts():
+    from impactmaps.maps import sweep as sweep_module
+    from impactmaps.solvers.run_budget import LongRunWarning
+
+    with pytest.warns(LongRunWarning, match="100000 points to compute on 2 worker"):
+        sweep_module._announce(100_000, None, 2)
+
+
+def test_an_interrupted_json_command_still_prints_json(monkeypatch, capsys):
+    """``--json`` printed nothing when interrupted: no strict parser accepts an empty output."""
+    from impactmaps.cli import commands_maps
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(commands_maps, "check", interrupted)  # the command's first step
+    status = main(["classify", "--zeta", "1", "--lambda", "1", "--kind", "beam", "--json"])
+    captured = capsys.readouterr()
+    assert status == 130
+    assert json.loads(captured.out) == {"error": "interrupted"}
