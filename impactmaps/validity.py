@@ -200,7 +200,7 @@ def _epp_calibration(sphere, target_material, law):
     elastic body's share s of the compliance (``docs/epp_calibration.rst``; the FE calibration
     holds ν 0.3–0.45 and s ≤ 0.75), both options with defaults (ν = 0.3, a rigid sphere) that
     the shipped epp maps hold."""
-    if getattr(law, "name", None) != "epp":
+    if not {"poisson_ratio", "sphere_compliance"} <= set(law.options()):  # the law calibrated on them (epp)
         return None
     softer = _softer_body(sphere.material, target_material)
     nu, share = float(law.poisson_ratio), float(law.sphere_compliance)

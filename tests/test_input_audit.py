@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import os
+from pathlib import Path
 
 import pytest
 
@@ -97,3 +98,44 @@ def test_an_interrupted_json_command_still_prints_json(monkeypatch, capsys):
     captured = capsys.readouterr()
     assert status == 130
     assert json.loads(captured.out) == {"error": "interrupted"}
+
+
+def test_sigterm_ends_a_sweep_as_ctrl_c_does_and_workers_end_with_their_parent(tmp_path):
+    """``kill`` of a sweep left its workers behind (orphans waiting for tasks forever) and its
+    lock; now SIGTERM saves and stops like Ctrl-C (exit 130), and the workers ask the kernel
+    to end them with their parent, so even ``kill -9`` leaves none."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    sweep_file = tmp_path / "big.toml"
+    sweep_file.write_text('[grid]\nzeta = {min = 0.001, max = 10, count = 100000}\nlambda = [1.0]\n'
+                          '[[structure]]\nkind = "beam"\n')
+    command = [sys.executable, "-m", "impactmaps.cli", "sweep", str(sweep_file), "--quiet", "--workers", "2"]
+    import impactmaps
+
+    package_root = str(Path(impactmaps.__file__).resolve().parents[1])  # this package, not another install
+    env = dict(os.environ, IMPACTMAPS_NO_BACKGROUND_WARMUP="1",
+               PYTHONPATH=os.pathsep.join([package_root, os.environ.get("PYTHONPATH", "")]))
+    for how in (signal.SIGTERM, signal.SIGKILL):
+        process = subprocess.Popen(command, cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                   text=True)
+        workers: list[int] = []
+        deadline = time.monotonic() + 60
+        while len(workers) < 2 and time.monotonic() < deadline:
+            time.sleep(0.2)
+            found = subprocess.run(["pgrep", "-P", str(process.pid)], capture_output=True, text=True).stdout
+            workers = [int(pid) for pid in found.split()]
+        assert len(workers) >= 2, "the sweep started no workers"
+        time.sleep(1.0)
+        process.send_signal(how)
+        _, err = process.communicate(timeout=60)
+        if how == signal.SIGTERM:
+            assert process.returncode == 130 and "points saved" in err
+        deadline = time.monotonic() + 20
+        while any(os.path.exists(f"/proc/{pid}") and "Z" not in open(f"/proc/{pid}/stat").read().split()[2]
+                  for pid in workers) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert not any(os.path.exists(f"/proc/{pid}") and "Z" not in open(f"/proc/{pid}/stat").read().split()[2]
+                       for pid in workers), f"workers left after {how.name}"

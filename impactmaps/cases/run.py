@@ -14,6 +14,7 @@ from ..jsonio import dumps, plain
 from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
 from ..solvers.result import ImpactResult
+from .._files import written_atomically
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
 from .numbers import case_dimensionless, case_numbers
@@ -200,12 +201,16 @@ def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
     if result.history is None:
         del paths["history"]
     else:
-        result.history.iloc[::stride].to_csv(paths["history"], index=False)
+        with written_atomically(paths["history"]) as part:
+            result.history.iloc[::stride].to_csv(part, index=False)
     if case.output.normalised and result.history is not None:
         paths["history_normalised"] = out / "history_normalised.csv"
-        result.normalised_history().iloc[::stride].to_csv(paths["history_normalised"], index=False)
-    paths["summary"].write_text(dumps(case_summary(case, result), indent=2) + "\n", encoding="utf-8")
-    paths["case"].write_text(case.source_text, encoding="utf-8")
+        with written_atomically(paths["history_normalised"]) as part:
+            result.normalised_history().iloc[::stride].to_csv(part, index=False)
+    with written_atomically(paths["case"]) as part:
+        part.write_text(case.source_text, encoding="utf-8")
+    with written_atomically(paths["summary"]) as part:  # last: a study's resume reads it as "done"
+        part.write_text(dumps(case_summary(case, result), indent=2) + "\n", encoding="utf-8")
     return paths
 
 

@@ -25,7 +25,9 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
 import argparse
+import contextlib
 import importlib
+import signal
 import sys
 import warnings
 from collections.abc import Sequence
@@ -222,6 +224,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="a parameter study: run the case for N values of the numeric case-file KEY from A to B "
                        "(or KEY=V1,V2,…), e.g. impactor.velocity=0.5:5:10; writes study.csv, study_forces.png and "
                        "each run in study/run_NNN (reused when the command is run again)")
+        p.add_argument("--quiet", action="store_true", help="no progress lines of a --vary study")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
     p.add_argument("--law", required=True, help="a contact law (impactmaps laws lists them)")
@@ -366,6 +369,24 @@ def _interrupted(args, text: str) -> int:
     return EXIT_INTERRUPTED
 
 
+@contextlib.contextmanager
+def _terminate_as_interrupt():
+    """SIGTERM (``kill``) ends a command as Ctrl-C does: a sweep saves what is done and stops its
+    workers instead of leaving them behind, its lock removed."""
+    def interrupt(*_):
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, interrupt)
+    except ValueError:  # not the main thread: leave SIGTERM alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def _run(args) -> int:
     """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught, shown = [], set()
@@ -375,7 +396,7 @@ def _run(args) -> int:
 
     status = None
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), _terminate_as_interrupt():
             warnings.simplefilter("always")
             warnings.showwarning = collect
             values = args.handler(args)

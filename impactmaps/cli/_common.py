@@ -126,6 +126,9 @@ def _probe_writable(option: str, directory: Path) -> None:
 
     existing = directory
     while not existing.exists():
+        if existing.is_symlink():  # a link to nothing: neither written through nor created
+            raise ValueError(f"{option} = {str(directory)!r} cannot be created: {str(existing)!r} is a link to "
+                             "a missing target")
         if existing.parent == existing:
             break
         existing = existing.parent

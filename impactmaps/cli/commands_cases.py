@@ -20,7 +20,7 @@ def _run_case_command(args, solver) -> dict:
     if getattr(args, "vary", None) is not None:
         from .study import run_study
 
-        return run_study(args.case, args.vary, out, solver=solver)
+        return run_study(args.case, args.vary, out, solver=solver, progress=not args.quiet)
     case = load_case(args.case, solver=solver)
     refuse_ignored_fd(case, args.case)
     result, summary = run_case(case)

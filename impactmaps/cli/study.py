@@ -16,6 +16,8 @@ import sys
 import tomllib
 from pathlib import Path
 
+from .._files import written_atomically
+
 __all__ = ["MAX_STUDY_RUNS", "parse_vary", "set_key", "render_toml", "run_study"]
 
 #: Most runs a study may ask for (each is a full simulation).
@@ -99,8 +101,9 @@ def render_toml(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def run_study(case_path: Path, vary: str, out: Path, solver=None) -> dict:
-    """Run the study ``vary`` of the case file ``case_path`` into ``out`` (see the module docstring)."""
+def run_study(case_path: Path, vary: str, out: Path, solver=None, progress: bool = True) -> dict:
+    """Run the study ``vary`` of the case file ``case_path`` into ``out`` (see the module docstring);
+    ``progress``: a line on stderr per run."""
     from ..cases import parse_case, run_case, write_case_outputs
     from ..jsonio import dumps
     from ._common import refuse_ignored_fd, text_file
@@ -133,16 +136,19 @@ def run_study(case_path: Path, vary: str, out: Path, solver=None) -> dict:
             result, summary = run_case(case)
             write_case_outputs(case, result, run_dir)
             state = "done"
-        print(f"[{index + 1}/{len(cases)}] {key} = {value:g}: peak force {summary.get('peak_force_N') or math.nan:.6g} N"
-              f" ({state})", file=sys.stderr)
+        if progress:
+            print(f"[{index + 1}/{len(cases)}] {key} = {value:g}: peak force {summary.get('peak_force_N') or math.nan:.6g} N"
+                  f" ({state})", file=sys.stderr)
         rows.append({key: value, **{k: summary.get(k) for k in TABLE_KEYS}})
         histories.append((value, run_dir / "history.csv"))
     table = out / "study.csv"
     import pandas as pd
 
-    pd.DataFrame(rows).to_csv(table, index=False)
+    with written_atomically(table) as part:
+        pd.DataFrame(rows).to_csv(part, index=False)
     figure = _overlay(histories, key, out / "study_forces.png")
-    (out / "study.json").write_text(dumps({"vary": key, "rows": rows}, indent=2) + "\n", encoding="utf-8")
+    with written_atomically(out / "study.json") as part:
+        part.write_text(dumps({"vary": key, "rows": rows}, indent=2) + "\n", encoding="utf-8")
     return {"vary": key, "values": values, "runs": len(cases), "reused": reused,
             "peak_force_N": [row["peak_force_N"] for row in rows], "table": str(table),
             "figure": None if figure is None else str(figure),
@@ -170,6 +176,7 @@ def _overlay(histories, key: str, path: Path):
     axes.set_title(f"force histories, {key} varied")
     axes.legend(title=key, fontsize="small", ncol=2 if len(drawn) > 8 else 1)
     figure.tight_layout()
-    figure.savefig(path, dpi=120)
+    with written_atomically(path) as part:
+        figure.savefig(part, dpi=120)
     plt.close(figure)
     return path

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._files import written_atomically
 from ..plotting import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
 from ..solvers.modal import ModalSettings
 from .accuracy import STATUSES
@@ -143,7 +144,8 @@ def make_chart(
     out.mkdir(parents=True, exist_ok=True)
 
     paths["csv"] = out / "fmax_map.csv"
-    tidy_frame(dataset).to_csv(paths["csv"], index=False)
+    with written_atomically(paths["csv"]) as part:
+        tidy_frame(dataset).to_csv(part, index=False)
 
     figure, (ax, strip) = plt.subplots(2, 1, figsize=(9, 9), sharex=True,
                                        gridspec_kw={"height_ratios": [3, 1.3]})
@@ -156,7 +158,7 @@ def make_chart(
     figure.tight_layout()
     paths["png"] = out / "fmax_chart.png"
     paths["svg"] = out / "fmax_chart.svg"
-    figure.savefig(paths["png"], dpi=150)
+    _save_png(figure, paths["png"], dpi=150)
     _save_svg(figure, paths["svg"])
     plt.close(figure)
 
@@ -170,13 +172,14 @@ def make_chart(
             ax.set_title(f"Impact regimes, {family.labels['contact']}: {name}")
         figure.tight_layout()
         paths[f"regime_map_{name}"] = out / f"regime_map_{name}.png"
-        figure.savefig(paths[f"regime_map_{name}"], dpi=120)
+        _save_png(figure, paths[f"regime_map_{name}"], dpi=120)
         plt.close(figure)
 
     coarse_zetas = [z for z in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100) if zetas[0] <= z <= zetas[-1]]
     tables = [markdown_table(dataset, str(name), zetas=coarse_zetas) for name in dataset["structure"].values]
     paths["markdown"] = out / "lookup_table.md"
-    paths["markdown"].write_text(family.labels["table"] + "\n\n".join(tables) + "\n")
+    with written_atomically(paths["markdown"]) as part:
+        part.write_text(family.labels["table"] + "\n\n".join(tables) + "\n")
     return paths
 
 
@@ -185,8 +188,14 @@ def _save_svg(figure, path) -> None:
     fixed salt (matplotlib otherwise writes the time and random ids)."""
     import matplotlib
 
-    with matplotlib.rc_context({"svg.hashsalt": "impactmaps"}):
-        figure.savefig(path, metadata={"Date": None})
+    with matplotlib.rc_context({"svg.hashsalt": "impactmaps"}), written_atomically(path) as part:
+        figure.savefig(part, metadata={"Date": None})
+
+
+def _save_png(figure, path, dpi: int) -> None:
+    """Save ``figure`` as PNG at ``dpi``, whole or not at all."""
+    with written_atomically(path) as part:
+        figure.savefig(part, dpi=dpi)
 
 
 #: Most ζ points of a drawn stored asymptote (taken from the chart's grid).
@@ -272,7 +281,7 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
     figure.tight_layout()
     paths = {"png": out / f"fmax_chart_{law}.png", "svg": out / f"fmax_chart_{law}.svg",
              "csv": out / f"fmax_chart_{law}.csv"}
-    figure.savefig(paths["png"], dpi=150)
+    _save_png(figure, paths["png"], dpi=150)
     _save_svg(figure, paths["svg"])
     plt.close(figure)
     frames = []
@@ -281,5 +290,6 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
         frames.append(tidy_frame(drawn).assign(structure=str(dataset["structure"].values[0])))
     import pandas as pd
 
-    pd.concat(frames, ignore_index=True).to_csv(paths["csv"], index=False)
+    with written_atomically(paths["csv"]) as part:
+        pd.concat(frames, ignore_index=True).to_csv(part, index=False)
     return paths

@@ -33,6 +33,7 @@ from dataclasses import fields
 import numpy as np
 
 from .._checks import range_end_text, read_text_input
+from .._files import written_atomically
 from ..solvers.modal import ModalSettings
 from ..targets.options import default_theory
 from .chart import tidy_frame
@@ -251,9 +252,12 @@ def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, ma
     structures, zetas, lambdas, settings, output, law, axes = load_sweep_config(path)
     if output.exists() and not output.is_dir():
         raise ValueError(f"output = {str(output)!r} is a file, not a directory")
-    netcdf = output / "sweep.nc"
+    netcdf, csv = output / "sweep.nc", output / "sweep.csv"
+    for path in (netcdf, csv):
+        if path.is_dir():
+            raise ValueError(f"output = {str(output)!r} holds a directory {path.name!r} where the sweep writes a file")
     dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
                     overwrite=overwrite, max_workers=max_workers, executor=executor, law=law, axes=axes)
-    csv = output / "sweep.csv"
-    tidy_frame(dataset).to_csv(csv, index=False)
+    with written_atomically(csv) as part:
+        tidy_frame(dataset).to_csv(part, index=False)
     return {"netcdf": netcdf, "csv": csv}

@@ -5,12 +5,11 @@ A map is an xarray Dataset with dims ``structure`` and the family's axes (``lamb
 (:attr:`MapFamily.variables <impactmaps.maps.map_family.MapFamily.variables>`) with
 their units and descriptions, ``done`` marking the computed points, and its provenance
 in attributes — ``fingerprint`` and ``description`` (what a stored result must match to
-be resumed), ``contact_law`` (the family's name), ``solver_revision``.
+be resumed), ``contact_law`` (the family's name), ``solver_revision``. No time stamp: the
+same sweep writes the same bytes, alone or resumed.
 """
 
 from __future__ import annotations
-
-from datetime import datetime, timezone
 
 import numpy as np
 import xarray as xr
@@ -69,7 +68,6 @@ def empty_dataset(family, structures, axes: dict, description: dict, digest: str
         "solver_revision": SOLVER_REVISION,
         "method": family.method_text,
         "contact_law": family.name,
-        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 

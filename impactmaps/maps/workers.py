@@ -41,3 +41,19 @@ def init_worker(ignore_interrupts: bool = True) -> None:
     threadpool_limits(limits=1, user_api="blas")
     if ignore_interrupts:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _end_with_parent()
+
+
+def _end_with_parent() -> None:
+    """Ask Linux to end this worker when its parent dies (``prctl(PR_SET_PDEATHSIG, SIGTERM)``):
+    a parent killed outright (SIGKILL) cannot stop its workers, which would otherwise wait for
+    tasks forever. Elsewhere nothing is done."""
+    import ctypes
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM), 0, 0, 0)  # 1: PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._files import written_atomically
 from .axes import axes_or_new
 
 __all__ = ["plot_force_history", "plot_impact_history", "save_impact_history", "plot_scaling",
@@ -125,7 +126,8 @@ def save_impact_history(result, path, *, normalised=False):
 
     figure = plot_impact_history(result, normalised=normalised)
     try:
-        figure.savefig(path, dpi=120)
+        with written_atomically(path) as part:
+            figure.savefig(part, dpi=120)
     finally:
         plt.close(figure)
     return path

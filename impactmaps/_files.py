@@ -1,0 +1,31 @@
+"""Output files written whole or not at all.
+
+:func:`written_atomically` gives a writer a temporary file beside the output (with the
+output's suffix, from which pandas and matplotlib take the format) and renames it over the
+output when the writer is done (``os.replace``): a reader, or a run interrupted while
+writing, never sees a half-written file; a failed write leaves no temporary behind.
+The sweep store's NetCDF files use :func:`impactmaps.maps.store.save_atomic` the same way.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import secrets
+from pathlib import Path
+
+__all__ = ["written_atomically"]
+
+
+@contextlib.contextmanager
+def written_atomically(path):
+    """Yield the temporary path to write ``path`` [file] through; on leaving the block it
+    replaces ``path`` in one rename (on an error it is removed and ``path`` is untouched)."""
+    path = Path(path)
+    temporary = path.with_name(f".{path.stem}.{secrets.token_hex(4)}.tmp{path.suffix}")
+    try:
+        yield temporary
+        os.replace(temporary, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
