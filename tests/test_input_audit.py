@@ -139,3 +139,55 @@ def test_sigterm_ends_a_sweep_as_ctrl_c_does_and_workers_end_with_their_parent(t
             time.sleep(0.2)
         assert not any(os.path.exists(f"/proc/{pid}") and "Z" not in open(f"/proc/{pid}/stat").read().split()[2]
                        for pid in workers), f"workers left after {how.name}"
+
+
+def test_outputs_are_replaced_whole_and_a_failed_write_leaves_no_trace(tmp_path):
+    """``sweep.csv`` was truncated in place and rewritten; a Ctrl-C then left half a file."""
+    from impactmaps._files import written_atomically
+
+    target = tmp_path / "table.csv"
+    target.write_text("old\n")
+    with pytest.raises(RuntimeError), written_atomically(target) as part:
+        part.write_text("half")
+        raise RuntimeError("interrupted")
+    assert target.read_text() == "old\n" and sorted(p.name for p in tmp_path.iterdir()) == ["table.csv"]
+    with written_atomically(target) as part:
+        assert part.suffix == ".csv" and part.parent == tmp_path
+        part.write_text("new\n")
+    assert target.read_text() == "new\n" and sorted(p.name for p in tmp_path.iterdir()) == ["table.csv"]
+
+
+def test_the_same_sweep_writes_the_same_bytes(tmp_path, capsys):
+    """A ``created`` time stamp made two identical sweeps' NetCDF files differ."""
+    path = tmp_path / "s.toml"
+    path.write_text(f'output = "one"\n{_GRID}[[structure]]\nkind = "beam"\n')
+    assert main(["sweep", str(path), "--quiet"]) == 0
+    path.write_text(f'output = "two"\n{_GRID}[[structure]]\nkind = "beam"\n')
+    assert main(["sweep", str(path), "--quiet"]) == 0
+    for name in ("sweep.nc", "sweep.csv"):
+        assert (tmp_path / "one" / name).read_bytes() == (tmp_path / "two" / name).read_bytes()
+
+
+def test_outputs_through_a_dangling_link_and_a_csv_directory_are_refused_first(tmp_path, capsys):
+    (tmp_path / "dangling").symlink_to(tmp_path / "missing")
+    assert main(["point", "--target", "beam-ss", "--zeta", "1", "--lambda", "1", "--no-check",
+                 "--plot", str(tmp_path / "dangling" / "p.png")]) == 2
+    assert "link to a missing target" in _one_error_line(capsys)
+    sweep_file = tmp_path / "s.toml"
+    sweep_file.write_text(f'output = "out"\n{_GRID}[[structure]]\nkind = "beam"\n')
+    (tmp_path / "out" / "sweep.csv").mkdir(parents=True)
+    assert main(["sweep", str(sweep_file), "--quiet"]) == 2
+    assert "holds a directory 'sweep.csv'" in _one_error_line(capsys)
+    assert not (tmp_path / "out" / "sweep.nc").exists()  # nothing computed
+
+
+def test_a_duration_that_overflows_names_the_duration(tmp_path, capsys):
+    """``duration = 1e308`` was refused as ``solver.max_time_ratio = inf``, a key the user did not write."""
+    assert main(["init", "beam", str(tmp_path / "b.toml")]) == 0
+    text = (tmp_path / "b.toml").read_text()
+    import re
+
+    (tmp_path / "b.toml").write_text(re.sub(r"(?m)^duration = [0-9.e+-]+", "duration = 1e308", text))
+    capsys.readouterr()
+    assert main(["check", str(tmp_path / "b.toml")]) == 2
+    assert "solver.duration = 1e+308" in _one_error_line(capsys)

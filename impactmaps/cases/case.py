@@ -270,6 +270,9 @@ def _solver(data, law, sphere, velocity, kind):
             raise ValueError("solver.duration and solver.max_time_ratio are exclusive: give one")
         omega = math.sqrt(reference_contact_stiffness(law, sphere.mass, velocity) / sphere.mass)
         fields["max_time_ratio"] = duration * omega
+        if not math.isfinite(fields["max_time_ratio"]):
+            raise ValueError(f"solver.duration = {duration:g} s is invalid: valid range is up to about "
+                             f"{1e300 / omega:.3g} s (times the contact frequency {omega:.4g} rad/s it must stay finite)")
     with key_path(path, tuple(modal_options)):
         settings = ModalSettings(**fields)
     return settings, duration, time_step

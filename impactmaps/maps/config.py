@@ -29,6 +29,7 @@ import itertools
 import math
 import tomllib
 from dataclasses import fields
+from pathlib import Path
 
 import numpy as np
 
@@ -213,8 +214,10 @@ def load_sweep_config(path):
     if not structures:
         raise ValueError(f"{path}: give at least one [[structure]] table")
     output = config.get("output", path.stem + "-output")
-    if not isinstance(output, str) or not output:
-        raise ValueError(f"output = {output!r} is invalid: give a directory name")
+    if not isinstance(output, str) or not output or "\x00" in output \
+            or any(len(part.encode()) > 255 for part in Path(output).parts):
+        raise ValueError(f"output = {output!r} is invalid: give a directory name (no NUL character, each part at "
+                         "most 255 bytes)")
     extra = [axis.name for axis in map_family(law).extra_axes]
     unknown = set(grid) - {"zeta", "lambda", *extra}
     if unknown:
