@@ -166,10 +166,16 @@ def test_a_run_from_the_shipped_cache_gives_the_bits_of_a_fresh_compile(tmp_path
 def test_build_hook_removes_the_cache_files_warm_up_names(tmp_path):
     """``setup.py``'s clean-up of a build tree reads :data:`warm_up.CACHE_PATTERNS` from the
     package's source (one list of numba's cache files) and removes exactly those."""
+    import ast
+
     root = Path(__file__).resolve().parents[1]
-    source = (root / "setup.py").read_text(encoding="utf-8").split("\nclass ")[0]  # the functions, not setup()
-    hook: dict = {"__file__": str(root / "setup.py")}
-    exec(compile(source, "setup.py", "exec"), hook)
+    tree = ast.parse((root / "setup.py").read_text(encoding="utf-8"))
+    # the two functions alone: setup.py's imports need the build's own packages (wheel, a recent setuptools)
+    functions = [node for node in tree.body if isinstance(node, ast.FunctionDef)
+                 and node.name in ("cache_patterns", "remove_cache_files")]
+    assert len(functions) == 2
+    hook: dict = {"ast": ast, "Path": Path}
+    exec(compile(ast.Module(body=functions, type_ignores=[]), "setup.py", "exec"), hook)
     assert hook["cache_patterns"](str(root)) == warm_up.CACHE_PATTERNS
     package = tmp_path / "impactmaps"
     shutil.copytree(root / "impactmaps" / "solvers", package / "solvers",
