@@ -191,3 +191,9 @@ def test_a_duration_that_overflows_names_the_duration(tmp_path, capsys):
     capsys.readouterr()
     assert main(["check", str(tmp_path / "b.toml")]) == 2
     assert "solver.duration = 1e+308" in _one_error_line(capsys)
+
+
+def test_an_empty_output_directory_is_refused(capsys):
+    """``--out ""`` wrote into the current directory."""
+    assert main(["chart", "--out", ""]) == 2
+    assert "--out = ''" in _one_error_line(capsys)

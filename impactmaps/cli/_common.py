@@ -90,6 +90,8 @@ def out_dir(option: str, value) -> Path:
     parent — does not accept a new file (probed by writing and removing one; nothing is
     created).
     """
+    if not str(value).strip():
+        raise ValueError(f"{option} = {str(value)!r} is invalid: give a directory (e.g. impactmaps-output)")
     out = Path(value)
     if out.exists() and not out.is_dir():
         raise ValueError(f"{option} = {str(out)!r} is a file, not a directory")
