@@ -109,9 +109,9 @@ def test_sigterm_ends_a_sweep_as_ctrl_c_does_and_workers_end_with_their_parent(t
     import sys
     import time
 
+    text = ('[grid]\nzeta = {min = 0.001, max = 10, count = 100000}\nlambda = [1.0]\n'
+            '[[structure]]\nkind = "beam"\n')
     sweep_file = tmp_path / "big.toml"
-    sweep_file.write_text('[grid]\nzeta = {min = 0.001, max = 10, count = 100000}\nlambda = [1.0]\n'
-                          '[[structure]]\nkind = "beam"\n')
     command = [sys.executable, "-m", "impactmaps.cli", "sweep", str(sweep_file), "--quiet", "--workers", "2"]
     import impactmaps
 
@@ -119,7 +119,12 @@ def test_sigterm_ends_a_sweep_as_ctrl_c_does_and_workers_end_with_their_parent(t
     env = dict(os.environ, IMPACTMAPS_NO_BACKGROUND_WARMUP="1",
                PYTHONPATH=os.pathsep.join([package_root, os.environ.get("PYTHONPATH", "")]))
     for how in (signal.SIGTERM, signal.SIGKILL):
-        process = subprocess.Popen(command, cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+        run_dir = tmp_path / how.name
+        run_dir.mkdir()
+        sweep_file = run_dir / "big.toml"
+        sweep_file.write_text(text)
+        command[-4] = str(sweep_file)
+        process = subprocess.Popen(command, cwd=run_dir, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                    text=True)
         workers: list[int] = []
         deadline = time.monotonic() + 60
@@ -128,9 +133,11 @@ def test_sigterm_ends_a_sweep_as_ctrl_c_does_and_workers_end_with_their_parent(t
             found = subprocess.run(["pgrep", "-P", str(process.pid)], capture_output=True, text=True).stdout
             workers = [int(pid) for pid in found.split()]
         assert len(workers) >= 2, "the sweep started no workers"
-        time.sleep(1.0)
+        store = run_dir / "big-output" / "sweep.nc"  # the first save: the workers run (a cold one compiles first)
+        while not store.exists() and time.monotonic() < deadline + 240:
+            time.sleep(0.2)
         process.send_signal(how)
-        _, err = process.communicate(timeout=60)
+        _, err = process.communicate(timeout=120)  # the workers hold the pipes: they too must end
         if how == signal.SIGTERM:
             assert process.returncode == 130 and "points saved" in err
         deadline = time.monotonic() + 20

@@ -30,8 +30,9 @@ def init_worker(ignore_interrupts: bool = True) -> None:
     Parameters
     ----------
     ignore_interrupts : bool
-        Ignore SIGINT in the worker (the parent catches Ctrl-C, saves what is done and
-        stops the workers).
+        A worker of the sweep's own pool: ignore SIGINT (the parent catches Ctrl-C, saves
+        what is done and stops the workers), end on SIGTERM, and end when the parent dies
+        (Linux). False for a Dask worker, whose signals stay Dask's.
 
     Use as the ``initializer`` of a :class:`concurrent.futures.ProcessPoolExecutor`.
     """
@@ -39,9 +40,12 @@ def init_worker(ignore_interrupts: bool = True) -> None:
     from threadpoolctl import threadpool_limits
 
     threadpool_limits(limits=1, user_api="blas")
-    if ignore_interrupts:
+    if ignore_interrupts:  # a worker of the sweep's own pool (a Dask worker keeps Dask's signal handling)
         signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _end_with_parent()
+        # SIGTERM ends the worker: a forked one inherits the command line's handler, which would turn it
+        # into a KeyboardInterrupt its task loop survives (then the parent's death could not end it)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        _end_with_parent()
 
 
 def _end_with_parent() -> None:
