@@ -3,8 +3,10 @@
 :func:`written_atomically` gives a writer a temporary file beside the output (with the
 output's suffix, from which pandas and matplotlib take the format) and renames it over the
 output when the writer is done (``os.replace``): a reader, or a run interrupted while
-writing, never sees a half-written file; a failed write leaves no temporary behind.
-The sweep store's NetCDF files use :func:`impactmaps.maps.store.save_atomic` the same way.
+writing, never sees a half-written file; a failed write leaves no temporary behind, and
+one a killed process left (``.NAME.XXXX.tmp.SUFFIX``) is what
+:func:`impactmaps.maps.store.remove_stale_temporaries` removes. The sweep store's files go
+through it too (:func:`impactmaps.maps.store.save_atomic`).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ def written_atomically(path):
     """Yield the temporary path to write ``path`` [file] through; on leaving the block it
     replaces ``path`` in one rename (on an error it is removed and ``path`` is untouched)."""
     path = Path(path)
-    temporary = path.with_name(f".{path.stem}.{secrets.token_hex(4)}.tmp{path.suffix}")
+    temporary = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp{path.suffix}")
     try:
         yield temporary
         os.replace(temporary, path)

@@ -17,11 +17,11 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import secrets
 from pathlib import Path
 
 import xarray as xr
 
+from .._files import written_atomically
 from ..jsonio import dumps
 from .data_io import PACKED_SUFFIX, read_dataset, write_dataset
 
@@ -62,21 +62,14 @@ def save_atomic(dataset: xr.Dataset, path: str | os.PathLike, **options) -> Path
     packed format for a ``.npz`` path (``options``: :func:`impactmaps.maps.data_io.write_dataset`'s)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.parent / f".{path.name}.{secrets.token_hex(4)}.tmp"
-    # os.open applies the umask to 0o666 like any other output (mkstemp would give 0600)
-    os.close(os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-    try:
+    with written_atomically(path) as temporary:
         write_dataset(dataset, temporary, packed=path.suffix == PACKED_SUFFIX, **options)
-        os.replace(temporary, path)
-    except BaseException:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-        raise
     return path
 
 
 def remove_stale_temporaries(path: str | os.PathLike) -> list[Path]:
-    """Delete the temporaries ``.NAME.XXXX.tmp`` that an interrupted save of ``path`` left.
+    """Delete the temporaries ``.NAME.XXXX.tmp`` (``.NAME.XXXX.tmp.SUFFIX`` since 2026-11-27,
+    :func:`impactmaps._files.written_atomically`) that an interrupted save of ``path`` left.
 
     Returns the paths removed. Only one process may write a given result file at a time.
     """
@@ -84,7 +77,7 @@ def remove_stale_temporaries(path: str | os.PathLike) -> list[Path]:
     if not path.parent.is_dir():
         return []
     removed = []
-    for stale in path.parent.glob(f".{path.name}.*.tmp"):
+    for stale in path.parent.glob(f".{path.name}.*.tmp*"):
         stale.unlink(missing_ok=True)
         removed.append(stale)
     return removed
