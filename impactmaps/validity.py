@@ -19,8 +19,7 @@ Checks (each sentence starts with its tag):
     The ``epp`` law only: its options (the yielding body's Poisson ratio ν, the elastic
     body's share s of the compliance; defaults ν = 0.3 and a rigid sphere, the shipped epp
     maps' values) differ from what this pair's materials give, or ν lies outside the
-    calibrated 0.3–0.45. Steel on steel (s = 0.5) raises the peak force ~4 % and the
-    restitution ~5 % over the defaults — more than the law's 3 % agreement with FE.
+    calibrated 0.3–0.45 (what the pair's own values change: ``docs/epp_calibration.rst``).
 ``indentation``
     ``α_max > 0.1 R``: Hertz theory assumes a contact radius small against R
     (``a = sqrt(Rα)``, so ``a/R = sqrt(α/R) > 0.3``).
@@ -41,9 +40,8 @@ Checks (each sentence starts with its tag):
     A Mindlin plate loaded at a point (a linear law, a Hertz law given by its stiffness
     alone, or ``contact_patch="point"``): its point-load deflection diverges
     logarithmically, so the peak force falls with every doubling of the mode cut-off and
-    has no converged value — the number depends on the cut-off (one impact: 0.07 % median,
-    5 % at most between the map's cut-off and ``simulate``'s; with re-impacts 5 % median,
-    22 % at most: ``validation/mindlin_point_load.md``). A contact law with a geometry (a
+    has no converged value — the number depends on the cut-off (how much, between the map's
+    cut-off and ``simulate``'s: ``validation/mindlin_point_load.md``). A contact law with a geometry (a
     sphere's Hertz or plastic law, Yigit–Christoforou's too) is spread over the contact
     patch and converges (``docs/contact_patch.rst``). :func:`impactmaps.simulate` issues
     this and the ``structural theory`` check (:func:`target_warnings`).

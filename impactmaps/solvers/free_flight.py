@@ -73,8 +73,8 @@ def damping_work(omega, zeta, v, vn, length):
 def free_damping_work(omega, q, v, qn, vn):
     """Work of the modal damping over a free-flight step from (q, v) to (qn, vn) [J]: the
     energy Σ ½(v_j² + ω_j² q_j²) the modes lost, exactly, since no force acts on them in flight
-    (the trapezoidal rule of :func:`damping_work` over a step of up to 1024 h missed the modes
-    that turn within it: 3 % of the impact energy at a 1 % damping ratio)."""
+    (the trapezoidal rule of :func:`damping_work` over a step of up to 1024 h misses the modes
+    that turn within it; ``docs/validation.rst``, the damped energy row)."""
     lost = 0.0
     for j in range(q.shape[0]):
         lost += 0.5 * ((v[j] * v[j] - vn[j] * vn[j]) + omega[j] * omega[j] * (q[j] * q[j] - qn[j] * qn[j]))

@@ -195,7 +195,7 @@ def _warn_energy_ledger(result: ImpactResult, tolerance: float) -> None:
     """A :class:`ConvergenceWarning` when the run's energy ledger (impact energy against
     rebound, structure, contact and damping) closes only beyond ``tolerance`` of the impact
     energy: its damping work, integrated by the trapezoidal rule over each step, misses the
-    modes that turn within a step (up to 3 % of the impact energy at a 1 % damping ratio)."""
+    modes that turn within a step (free flight's is exact: :func:`~impactmaps.solvers.free_flight.free_damping_work`)."""
     error = float(result.energy_balance_error)
     if not math.isfinite(error) or abs(error) <= tolerance:
         return
