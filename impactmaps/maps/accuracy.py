@@ -93,7 +93,7 @@ class AccuracyControl:
 #: the change alone covered the error against a reference four levels above the base at 69 %
 #: of 1024 random converged points of the four shipped families (74 % in issue 40's audit),
 #: the floors at ≥ 99 % of each family's (``validation/band_audit.md``, docs/accuracy.rst;
-#: calibrated on another seed). Single impacts erred by ≤ 1.7e-4 there.
+#: calibrated on another seed). Single impacts erred by ≤ 8.7e-5 there (≤ 1.7e-4 in the calibration).
 ERROR_FLOOR = 2e-4
 #: The same for a point with re-impacts [-]: a re-impact's timing moves its peak by more
 #: than the levels' change shows, up to ~1e-3 where the finer levels change the sequence.
