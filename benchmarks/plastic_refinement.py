@@ -1,6 +1,6 @@
 """What a slice-by-slice refinement of a shipped plastic map costs and buys.
 
-Reads a plastic map's refinement built by ``validation/build_refinements.py --law LAW``
+Reads a plastic map's refinement built by ``data_build/build_refinements.py --law LAW``
 (``--refinement PATH``, a ``.nc``), prints its size (points per β slice, MB as NetCDF and
 packed) and compares lookups with and without it against direct solves
 (:func:`~impactmaps.maps.plastic_points.solve_plastic_points`) at N log-uniform random

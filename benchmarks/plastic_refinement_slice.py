@@ -1,9 +1,9 @@
 """One β slice of beam-ss-euler-epp refined without a cap, against the capped refinement and the grid.
 
-Reads ``/tmp/prefine_out/beam-ss-euler-epp.nc`` (``validation/build_refinements.py --law epp
+Reads ``/tmp/prefine_out/beam-ss-euler-epp.nc`` (``data_build/build_refinements.py --law epp
 --only beam-ss-euler --max-points 2500 --out-dir /tmp/prefine_out``) and
 ``/tmp/prefine_full/beam-ss-euler-epp.nc`` (the slice β = 31.6 alone, uncapped: ``build(...,
-cells=(slice(3, 4), slice(None), slice(None)))`` of ``validation/build_refinements.py``) and
+cells=(slice(3, 4), slice(None), slice(None)))`` of ``data_build/build_refinements.py``) and
 compares lookups at 200 random (ζ, λ) at that β with direct solves; prints Markdown rows
 (``RESULTS_plastic_refinement.md``).
 

@@ -1,7 +1,7 @@
 """Issue 30 step 1: a lookup is an interpolation of what the map stores, nothing else.
 
 Every shipped (ζ, λ) map stores the asymptote peaks its regimes are judged by
-(``validation/add_asymptote_peaks.py``); a lookup interpolates F̄max, its band, its status
+(``data_build/add_asymptote_peaks.py``); a lookup interpolates F̄max, its band, its status
 and those peaks, and classifies. Checked here: with every asymptote function patched to
 raise, every shipped map still answers ``lookup`` and ``lookup_case``; the answers are
 those of the code that computed the asymptotes per point (values recorded from the base

@@ -280,7 +280,7 @@ def test_lookup_command_at_given_numbers():
 @pytest.mark.parametrize("law", ["yc", "stronge"])
 def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
     """Each shipped plastic map is the result of the sweep of its family over the grid of
-    ``validation/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
+    ``data_build/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
     build resumes from (and is checked against) the same description, and the dataset a
     sweep writes has the shipped map's layout."""
     from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
@@ -403,7 +403,7 @@ def _epp_maps():
 
 def test_shipped_epp_maps_are_complete_sweeps_stating_their_options():
     """Each shipped epp map is the sweep of the epp family over the grid of
-    ``validation/build_plastic_maps.py`` (its fingerprint), every point solved, finite values
+    ``data_build/build_plastic_maps.py`` (its fingerprint), every point solved, finite values
     and errors wherever resolved, the energy ledger closed (e² + absorbed + transferred = 1
     where the sphere separated), and its attributes state the law options it was built at."""
     from impactmaps.maps.accuracy import STATUSES

@@ -30,7 +30,7 @@ HERTZ_DIGEST = sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS,
 def _shipped(digest: str = DIGEST) -> xr.Dataset:
     dataset = load_shipped_result(digest)
     assert dataset is not None, ("no shipped result for a default chart at this solver revision: "
-                                 "run python validation/build_default_chart.py")
+                                 "run python data_build/build_default_chart.py")
     return dataset
 
 

@@ -1,10 +1,11 @@
-"""Smoke test: every ``validation/*.py`` script runs end to end on its tiny ``--smoke`` setting.
+"""Smoke test: every ``validation/*.py`` and ``data_build/*.py`` script runs end to end on its
+tiny ``--smoke`` setting.
 
 Each script is run as from the command line (``runpy.run_path`` with ``__name__ ==
-"__main__"`` and ``sys.argv = [script, "--smoke", "--out-dir", tmp]``), with the
-validation directory on ``sys.path`` (as when Python runs a script in it). It must finish,
+"__main__"`` and ``sys.argv = [script, "--smoke", "--out-dir", tmp]``), with its
+directory on ``sys.path`` (as when Python runs a script in it). It must finish,
 write its outputs into the temporary directory only (never into ``figures/``, the
-package's data or ``validation/``) and write at least one file there. The numbers a smoke
+package's data, ``validation/`` or ``data_build/``) and write at least one file there. The numbers a smoke
 run prints are not checked: the studies' results are checked by the other tests.
 ``--smoke`` is described in ``validation/_script_options.py``.
 """
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import runpy
 import sys
+import tomllib
 import warnings
 
 import pytest
@@ -20,9 +22,12 @@ import pytest
 from .helpers import ROOT
 
 VALIDATION = ROOT / "validation"
-SCRIPTS = sorted(p.name for p in VALIDATION.glob("*.py") if not p.name.startswith("_"))
+#: the scripts that build the package's shipped data: the folder pyproject.toml names
+DATA_BUILD = ROOT / tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["impactmaps"]["data-build"]
+SCRIPTS = sorted(str(p.relative_to(ROOT)) for folder in (VALIDATION, DATA_BUILD)
+                 for p in folder.glob("*.py") if not p.name.startswith("_"))
 #: the directories a full run writes into; a smoke run must leave them untouched
-GUARDED = (ROOT / "figures", ROOT / "impactmaps" / "maps" / "data", VALIDATION)
+GUARDED = (ROOT / "figures", ROOT / "impactmaps" / "maps" / "data", VALIDATION, DATA_BUILD)
 
 
 def _files(directories) -> dict:
@@ -32,20 +37,22 @@ def _files(directories) -> dict:
 
 def test_there_are_validation_scripts():
     assert len(SCRIPTS) >= 8, SCRIPTS
+    assert sum(script.startswith(DATA_BUILD.name) for script in SCRIPTS) == 6, SCRIPTS
 
 
 @pytest.mark.parametrize("script", SCRIPTS)
 def test_validation_script_smoke_run(script, tmp_path, monkeypatch, capsys):
     out_dir = tmp_path / "out"
     before = _files(GUARDED)
-    monkeypatch.syspath_prepend(str(VALIDATION))
-    monkeypatch.setattr(sys, "argv", [str(VALIDATION / script), "--smoke", "--out-dir", str(out_dir)])
+    path = ROOT / script
+    monkeypatch.syspath_prepend(str(path.parent))
+    monkeypatch.setattr(sys, "argv", [str(path), "--smoke", "--out-dir", str(out_dir)])
     monkeypatch.chdir(tmp_path)
     with warnings.catch_warnings():
         # the studies run on purpose where the solvers give notices (capped modes, Mindlin
         # thickness-shear, records that end in contact); a smoke run only checks the plumbing
         warnings.simplefilter("ignore")
-        runpy.run_path(str(VALIDATION / script), run_name="__main__")
+        runpy.run_path(str(path), run_name="__main__")
     assert capsys.readouterr().out.strip(), f"{script} printed nothing"
     assert any(path.is_file() for path in out_dir.rglob("*")), f"{script} wrote nothing into --out-dir"
     assert _files(GUARDED) == before, f"{script} --smoke wrote outside --out-dir"

@@ -1,9 +1,10 @@
 """Command-line options shared by the validation scripts: ``--smoke`` and ``--out-dir``.
 
-Every script in ``validation/`` runs in two sizes:
+Every script in ``validation/`` and ``data_build/`` (which imports this module from here)
+runs in two sizes:
 
 * full (the default): the study quoted in docs/validation.rst and ``BENCHMARKS.md``, writing its
-  figures into ``figures/`` (``build_default_maps.py``: the shipped maps;
+  figures into ``figures/`` (``data_build/build_default_maps.py``: the shipped maps;
   ``lookup_error.py``: ``validation/lookup_error.csv``);
 * ``--smoke``: the same code path on a tiny setting (seconds; the numbers it prints are
   not meaningful), used by ``tests/test_validation_scripts.py``. It writes into

@@ -10,7 +10,7 @@ before packing (``--old-data``: the ``impactmaps/maps/data`` folder of a checkou
 commit before, e.g. ``git worktree add /tmp/base b4b262f``). Per map it reports how many
 values are bit-identical, the largest change of the value, the band's change (new/old − 1:
 the refinement points' own error is stored rounded up to 8 significant bits,
-``validation/pack_map_data.py``) and how many statuses changed. The regime is not read
+``data_build/pack_map_data.py``) and how many statuses changed. The regime is not read
 here: it is classified from the value and the stored times, which are unchanged bit for bit.
 
 Writes ``packed_maps_check.csv`` (the summary) and ``packed_maps_reference.csv`` (the old

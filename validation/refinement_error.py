@@ -1,6 +1,6 @@
 """What the shipped refinements buy: lookups with and without them against direct simulation.
 
-For each refined linear map (``validation/build_refinements.py``), N log-uniform random
+For each refined linear map (``data_build/build_refinements.py``), N log-uniform random
 (ζ, λ) points over the whole map are simulated directly (the map's solver and settings,
 :func:`impactmaps.maps.sweep.solve_points`) and read from the map twice: from its grid
 alone (:func:`impactmaps.maps.lookup.read_map` without a refinement) and as ``lookup``

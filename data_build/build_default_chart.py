@@ -12,8 +12,8 @@ run (the README's first command draws the chart without compiling the integrator
 Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the defaults):
 ``tests/test_shipped_results.py`` fails until it is.
 
-    python validation/build_default_chart.py [--quiet] [--force] [--out-dir DIR]
-    python validation/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory
+    python data_build/build_default_chart.py [--quiet] [--force] [--out-dir DIR]
+    python data_build/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory
 
 ``--force`` recomputes a result that is already current. A current result without the
 asymptote peaks its regimes are judged by (:func:`impactmaps.maps.dataset.with_asymptote_peaks`)
@@ -22,7 +22,9 @@ gets them added (the chart then classifies without integrating an asymptote).
 
 from __future__ import annotations
 
+import sys
 import time
+from pathlib import Path
 
 from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
 from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
@@ -31,7 +33,8 @@ from impactmaps.maps.data_io import read_dataset
 from impactmaps.maps.store import save_atomic
 from impactmaps.maps.sweep import log_grid, sweep, sweep_fingerprint
 
-from _script_options import parse
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
 
 
 #: The contact laws whose default chart ships its sweep result.

@@ -12,8 +12,8 @@ for both laws, Mindlin plates for the linear law (a Hertz impact on a Mindlin pl
 the contact patch, whose radius is a third parameter).
 Resumable: re-running continues an interrupted build.
 
-    python validation/build_default_maps.py [--quiet] [--only NAME …] [--out-dir DIR] [--law hertz]
-    python validation/build_default_maps.py --smoke    # 3 ζ × 2 λ per map, inline, into a temporary directory
+    python data_build/build_default_maps.py [--quiet] [--only NAME …] [--out-dir DIR] [--law hertz]
+    python data_build/build_default_maps.py --smoke    # 3 ζ × 2 λ per map, inline, into a temporary directory
 
 With ``--out-dir`` the maps go there (and the resumable sweep stores into its ``work/``),
 not into the package. ``--law hertz`` builds the Hertz maps over the Hertz numbers
@@ -22,6 +22,7 @@ not into the package. ``--law hertz`` builds the Hertz maps over the Hertz numbe
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -33,7 +34,8 @@ from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES
 from impactmaps.maps.sweep import MAP_LAWS, sweep
 
-from _script_options import parse
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "impactmaps" / "maps" / "data"

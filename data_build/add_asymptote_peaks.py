@@ -11,14 +11,15 @@ attribute is left as it was (checked: the script refuses to write a map whose ot
 variables would change). Deterministic: the peaks are the family's asymptotes at the grid
 values. The plastic maps have no regimes and are left alone. A map that already stores the
 peaks is skipped. A packed map (``.npz``) is read and written as NetCDF beside it (the
-reader takes the ``.nc`` first); ``python validation/pack_map_data.py`` then packs it.
+reader takes the ``.nc`` first); ``python data_build/pack_map_data.py`` then packs it.
 
-    python validation/add_asymptote_peaks.py                 # the package's maps, in place
-    python validation/add_asymptote_peaks.py --smoke         # one linear map, copied into a temporary directory
+    python data_build/add_asymptote_peaks.py                 # the package's maps, in place
+    python data_build/add_asymptote_peaks.py --smoke         # one linear map, copied into a temporary directory
 """
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -30,7 +31,8 @@ from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, map_law, with_asymptote_pea
 from impactmaps.maps.registry import map_family
 from impactmaps.maps.store import save_atomic
 
-from _script_options import parse
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "impactmaps" / "maps" / "data"
@@ -75,7 +77,7 @@ def add_peaks(path: Path) -> str:
         else:
             target.write_bytes(original)
         raise RuntimeError(f"{path.name}: writing the peaks would change another variable (left as it was)")
-    packed = " (written as NetCDF beside it: run validation/pack_map_data.py)" if target != path else ""
+    packed = " (written as NetCDF beside it: run data_build/pack_map_data.py)" if target != path else ""
     return f"asymptote peaks added ({time.perf_counter() - start:.1f} s){packed}"
 
 

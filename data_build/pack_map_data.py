@@ -25,8 +25,8 @@ What is stored in fewer bits (each packed file's header says so; docs/install.rs
 Every file is read back and checked: exact variables bit for bit, the others within their
 rounding. ``--smoke`` packs one map, its refinement and one result into ``--out-dir``.
 
-    python validation/pack_map_data.py                 # in place: impactmaps/maps/data
-    python validation/pack_map_data.py --smoke
+    python data_build/pack_map_data.py                 # in place: impactmaps/maps/data
+    python data_build/pack_map_data.py --smoke
 """
 
 from __future__ import annotations
@@ -36,7 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
-from _script_options import parse
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps

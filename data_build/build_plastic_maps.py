@@ -11,8 +11,8 @@ law options it was built at as attributes ``law_option_poisson_ratio`` and
 ``law_option_sphere_compliance``). The Mindlin plate has no plastic map: its
 pressure patch depends on the sphere radius, a fourth number.
 
-    nice -n 19 python validation/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge epp]
-    python validation/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
+    nice -n 19 python data_build/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge epp]
+    python data_build/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
 
 Each map is a :func:`impactmaps.maps.sweep.sweep` of the plastic family, so an
 interrupted build resumes (the sweep's file is ``validation/work/NAME-LAW.sweep.nc``, or
@@ -23,6 +23,7 @@ cost the README quotes: this process's and its finished workers').
 from __future__ import annotations
 
 import resource
+import sys
 import time
 from pathlib import Path
 
@@ -36,7 +37,8 @@ from impactmaps.maps.store import save_atomic
 from impactmaps.maps.structures import DEFAULT_STRUCTURES
 from impactmaps.maps.sweep import sweep
 
-from _script_options import parse
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "impactmaps" / "maps" / "data"

@@ -11,14 +11,15 @@ that β (:mod:`impactmaps.maps.slice_refinement`; ``--max-points`` caps each sli
 Each round's new points are kept in ``validation/work/NAME.refine.npz`` as they are solved,
 so an interrupted build resumes without recomputing them.
 
-    python validation/build_refinements.py [--quiet] [--only NAME …] [--max-points N] [--law hertz|yc|stronge|epp]
-    python validation/build_refinements.py --smoke    # a few cells of one map, into a temporary directory
+    python data_build/build_refinements.py [--quiet] [--only NAME …] [--max-points N] [--law hertz|yc|stronge|epp]
+    python data_build/build_refinements.py --smoke    # a few cells of one map, into a temporary directory
 """
 
 from __future__ import annotations
 
 import os
 import resource
+import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -39,8 +40,9 @@ from impactmaps.maps.registry import map_family
 from impactmaps.maps.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
-from _script_options import parse
-from build_default_maps import DENSE_MAPS
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
+from _script_options import parse  # noqa: E402
+from build_default_maps import DENSE_MAPS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "impactmaps" / "maps" / "data"
