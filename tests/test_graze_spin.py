@@ -1,4 +1,4 @@
-"""The graze spin of the exact contact phase (CHANGELOG, Unreleased).
+"""The graze spin of the exact contact phase (fixed before 0.1.0).
 
 A plate map point whose sphere re-touches the plate a moment after its first contact ended
 (the gap re-closes within one free-flight step) took zero-length steps at the instant of
