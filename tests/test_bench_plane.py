@@ -1,4 +1,4 @@
-"""Smoke test of benchmarks/bench_plane.py: its guarded pool solves points exactly as a
+"""Smoke test of benchmarks/studies/bench_plane.py: its guarded pool solves points exactly as a
 sweep does (same bits), and a point over the per-point cap is killed and reported."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from impactmaps.solvers.modal import ModalSettings
 
 from .helpers import repository_module
 
-bench_plane = repository_module("benchmarks/bench_plane.py")
+bench_plane = repository_module("benchmarks/studies/bench_plane.py")
 
 
 def test_pool_points_equal_solve_points_and_the_cap_kills_a_slow_point():
@@ -48,7 +48,7 @@ def test_cost_section_shares_the_cpu_by_class():
 def test_profile_plane_sorts_the_runs_of_a_point_by_kind():
     from dataclasses import replace
 
-    profile_plane = repository_module("benchmarks/profile_plane.py")
+    profile_plane = repository_module("benchmarks/studies/profile_plane.py")
     base = ModalSettings()
     assert profile_plane.run_kind(base, base) == "base"
     assert profile_plane.run_kind(base.refined(), base) == "refinement 1"
@@ -57,11 +57,11 @@ def test_profile_plane_sorts_the_runs_of_a_point_by_kind():
 
 
 def test_sweep_share_times_the_compiled_code_inside_the_sweep_and_restores_it():
-    """``benchmarks/bench_sweep_share.py`` on 2 λ rows of the beam: the compiled code's CPU lies
+    """``benchmarks/studies/bench_sweep_share.py`` on 2 λ rows of the beam: the compiled code's CPU lies
     within the grid's, and the kernel and set-up are the package's own again afterwards."""
     from impactmaps.solvers import modal_run
 
-    share = repository_module("benchmarks/bench_sweep_share.py")
+    share = repository_module("benchmarks/studies/bench_sweep_share.py")
     kernels = (modal_run.integrate_impact, modal_run.coupled_modes)
     total, integrator, setup, points = share.share("beam-ss-euler", 25)
     assert points == 400

@@ -2,7 +2,7 @@
 
 * A run without coupled modes (any non-linear law, or the sampled contact phase) compiles
   the integrator's variant without the exact contact phase only: that phase is half the
-  integrator's compile time on an empty numba cache (``benchmarks/RESULTS_cold_start.md``).
+  integrator's compile time on an empty numba cache (``benchmarks/studies/RESULTS_cold_start.md``).
   Checked in a fresh interpreter, where nothing else has compiled a variant.
 * The vectorised grouping of degenerate modes gives the groups of the sequential rule it
   replaced, on random bases that include chains of close neighbours drifting beyond the

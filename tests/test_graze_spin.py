@@ -24,7 +24,7 @@ from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 
 #: The map point of the spin: ``plate-ssss-kirchhoff`` on the 200 × 50 grid of
-#: ``benchmarks/bench_plane.py`` (ζ = 434.70, λ = 0.37276), on its 2 modes.
+#: ``benchmarks/studies/bench_plane.py`` (ζ = 434.70, λ = 0.37276), on its 2 modes.
 ZETA = float(np.geomspace(1e-3, 1e3, 200)[187])
 LAMBDA = float(np.geomspace(1e-3, 1e3, 50)[21])
 
