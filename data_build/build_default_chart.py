@@ -10,7 +10,7 @@ law (ζ, λ) and the Hertz law (ζ_h, λ_h) — is computed and stored as
 revision or grid) are deleted. ``impactmaps chart`` then starts from it as from a finished
 run (the README's first command draws the chart without compiling the integrator).
 Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the defaults):
-``tests/test_shipped_results.py`` fails until it is.
+``tests/maps/test_shipped_results.py`` fails until it is.
 
     python data_build/build_default_chart.py [--quiet] [--force] [--out-dir DIR]
     python data_build/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory

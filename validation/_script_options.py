@@ -7,7 +7,7 @@ runs in two sizes:
   figures into ``figures/`` (``data_build/build_default_maps.py``: the shipped maps;
   ``lookup_error.py``: ``validation/lookup_error.csv``);
 * ``--smoke``: the same code path on a tiny setting (seconds; the numbers it prints are
-  not meaningful), used by ``tests/test_validation_scripts.py``. It writes into
+  not meaningful), used by ``tests/validation/test_validation_scripts.py``. It writes into
   ``--out-dir`` or, when that is not given, into a new temporary directory — never into
   the repository.
 

@@ -15,7 +15,7 @@ here: it is classified from the value and the stored times, which are unchanged 
 
 Writes ``packed_maps_check.csv`` (the summary) and ``packed_maps_reference.csv`` (the old
 answers at the first ``--reference`` points of each map, floats in hex), which
-``tests/test_packed_data.py`` checks the packed maps against.
+``tests/maps/test_packed_data.py`` checks the packed maps against.
 
     python validation/packed_maps_check.py --old-data /tmp/base/impactmaps/maps/data --out-dir validation
     python validation/packed_maps_check.py --smoke     # packed against packed, 40 points a map
