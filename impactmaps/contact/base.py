@@ -228,7 +228,7 @@ class ContactLaw(ABC):
 
     # -- energies ---------------------------------------------------------------
     def loading_energy(self, max_indentation, points: int = 2001):
-        """Work [J] done loading the contact from 0 to α_max [m] (composite Simpson quadrature)."""
+        """Work [J] done loading the contact from 0 to α_max [m] (Simpson on ``points`` graded points)."""
         alpha_max = np.asarray(max_indentation, dtype=float)
         s = _graded_grid(points)
         alpha = alpha_max[..., None] * s

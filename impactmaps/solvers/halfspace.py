@@ -161,7 +161,8 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     time_step : float, optional
         Sampling interval of ``history`` [s] (default: contact time / 1000).
     max_time : float, optional
-        Time limit of the integration [s]; reaching it warns.
+        Time limit of the integration [s] (default 10⁴ α_m/V0, α_m ≈ the peak
+        indentation); reaching it warns.
 
     Returns
     -------
