@@ -74,8 +74,7 @@ def _pointer_of(dispatcher) -> _KernelPointer:
 
 def kernel_pointer(kernel) -> _KernelPointer:
     """The function pointer (memoised) of a contact-law ``kernel`` for compiled solvers
-    (α, α_max [m] → force [N], stiffness [N/m]).
-    """
+    (α, α_max [m] → force [N], stiffness [N/m])."""
     if isinstance(kernel, _KernelPointer):
         return kernel
     return _pointer_of(kernel)
@@ -103,19 +102,8 @@ _evaluate_many = LazyKernel(_evaluate_many_kernel,
 def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     """Evaluate a scalar contact kernel element-wise with NumPy broadcasting.
 
-    Parameters
-    ----------
-    kernel : numba dispatcher
-        ``kernel(alpha, alpha_max, params) -> (force, stiffness)``.
-    parameters : array_like, shape (n_params, ...)
-        Parameter vector; trailing dimensions broadcast against the indentations.
-    indentation, max_indentation : array_like
-        Indentation α and history α_max [m].
-
-    Returns
-    -------
-    force, stiffness : ndarray
-        Contact force [N] and tangent stiffness dF/dα [N/m], broadcast shape.
+    ``parameters`` (n_params, ...) broadcast against ``indentation`` α and
+    ``max_indentation`` α_max [m]; returns force [N] and tangent stiffness [N/m].
     """
     params = np.asarray(parameters, dtype=float)
     alpha = np.asarray(indentation, dtype=float)
@@ -136,8 +124,7 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
 @dataclass(frozen=True)
 class LawOption:
     """One keyword option of a law's contact-pair constructor: ``name``, SI ``unit`` ("" if
-    dimensionless), ``default`` and a one-line ``meaning``.
-    """
+    dimensionless), ``default`` and a one-line ``meaning``."""
 
     name: str
     unit: str
@@ -150,8 +137,7 @@ _OPTION = "contact law option"  # dataclass-field metadata key of law_option
 
 def law_option(default, unit: str, meaning: str):
     """Declare a law field (its ``default``, SI ``unit``, one-line ``meaning``) that is also a
-    keyword option of ``from_contact_pair``.
-    """
+    keyword option of ``from_contact_pair``."""
     return field(default=default, metadata={_OPTION: (unit, meaning)})
 
 
@@ -265,7 +251,8 @@ class ContactLaw(ABC):
 
     @property
     def contact_radius_scale(self):
-        """Effective radius R [m] of the sphere–target pair when the law knows it (patch radius ``sqrt(R α)``), else ``None``."""
+        """Effective radius R [m] of the sphere–target pair when the law knows it (patch radius
+        ``sqrt(R α)``), else ``None``."""
         return getattr(self, "effective_radius", None)
 
     def impact_number(self, impactor_mass, velocity):
@@ -290,7 +277,8 @@ class ContactLaw(ABC):
 
     @property
     def yield_scales(self):
-        """``(K_h [N/m^1.5], α_y [m])`` of the Yigit–Christoforou law placing this law's impacts; ``None`` without a yield scale."""
+        """``(K_h [N/m^1.5], α_y [m])`` of the Yigit–Christoforou law placing this law's impacts; ``None`` without a
+        yield scale."""
         return None
 
     def changed_options(self) -> dict:

@@ -19,7 +19,8 @@ __all__ = ["HertzContact", "hertz_stiffness"]
 
 
 def hertz_stiffness(effective_modulus, radius):
-    """Hertz contact stiffness ``K_h = (4/3) sqrt(R) E*`` [N/m^1.5] of ``effective_modulus`` E* [Pa] and ``radius`` R [m]."""
+    """Hertz contact stiffness ``K_h = (4/3) sqrt(R) E*`` [N/m^1.5] of ``effective_modulus`` E* [Pa]
+    and ``radius`` R [m]."""
     require_positive("effective_modulus", effective_modulus, "Pa")
     require_positive("radius", radius, "m")
     return 4.0 / 3.0 * np.sqrt(np.asarray(radius, float)) * np.asarray(effective_modulus, float)
@@ -75,7 +76,8 @@ class HertzContact(ContactLaw):
 
     @classmethod
     def from_sphere(cls, radius, impactor_material, target_material) -> "HertzContact":
-        """Sphere of radius R [m] on a flat target; E* from both materials (``youngs_modulus`` [Pa], ``poisson_ratio``)."""
+        """Sphere of radius R [m] on a flat target; E* from both materials
+        (``youngs_modulus`` [Pa], ``poisson_ratio`` [-])."""
         modulus = effective_modulus(
             impactor_material.youngs_modulus,
             impactor_material.poisson_ratio,

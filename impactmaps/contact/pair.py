@@ -52,8 +52,7 @@ def material_attribute(material, attribute: str, role: str):
 
 def check_elastic_material(material, role: str, allow_rigid: bool = False) -> None:
     """Validate ``youngs_modulus`` [Pa] (> 0, or ``inf`` if ``allow_rigid``) and ``poisson_ratio`` [-]
-    of ``material`` (``ValueError`` naming ``role``).
-    """
+    of ``material`` (``ValueError`` naming ``role``)."""
     modulus = material_attribute(material, "youngs_modulus", role)
     if not (allow_rigid and np.all(np.asarray(modulus, dtype=float) == np.inf)):
         require_positive(f"{role}.youngs_modulus", modulus, "Pa")
@@ -142,21 +141,9 @@ class ContactPair:
                     yield_strength=None) -> "ContactPair":
         """The pair formed by ``sphere`` striking a target of ``target_material``.
 
-        Parameters
-        ----------
-        sphere : Sphere
-            The impactor.
-        target_material : material-like
-            ``youngs_modulus`` [Pa] (``inf``: rigid), ``poisson_ratio`` [-], optional
-            ``yield_strength`` [Pa].
-        target_radius : float, default inf
-            Radius of curvature of the target at the impact point [m] (inf: a flat).
-        yield_strength : float, optional
-            S_y [Pa] overriding the softer material's.
-
-        Returns
-        -------
-        ContactPair
+        ``target_material``: ``youngs_modulus`` [Pa] (``inf``: rigid), ``poisson_ratio`` [-],
+        optional ``yield_strength`` [Pa]; ``target_radius`` [m] (default inf, a flat);
+        ``yield_strength`` [Pa] overrides the softer material's.
         """
         if not isinstance(sphere, Sphere):
             raise ValueError(f"sphere = {sphere!r} is not a Sphere")

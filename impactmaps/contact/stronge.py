@@ -109,23 +109,13 @@ def stronge_area_law(
     plastic_pressure_factor=DEFAULT_PLASTIC_PRESSURE_FACTOR,
     plastic_indentation_ratio=DEFAULT_PLASTIC_INDENTATION_RATIO,
 ):
-    """Exponent n and offset τ [-] of the elastic-plastic area law ``A = ((x − 1 + τ)/τ)^n``.
-
-    Parameters
-    ----------
-    yield_pressure_factor, plastic_pressure_factor, plastic_indentation_ratio : float or array_like
-        ``c_y``, ``c_p`` and ``δ_p/δ_y`` [-] (see :class:`StrongeContact`).
-
-    Returns
-    -------
-    exponent, offset : ndarray
-        n and τ, broadcast shape of the arguments.
+    """Exponent n and offset τ [-] of the area law ``A = ((x − 1 + τ)/τ)^n`` for ``c_y``, ``c_p``, ``δ_p/δ_y`` [-].
 
     Raises
     ------
     ValueError
-        No such law keeps the contract for these constants (names
-        ``plastic_indentation_ratio`` and its smallest valid value).
+        No such law keeps the contract (names ``plastic_indentation_ratio`` and its
+        smallest valid value).
     """
     c_y, c_p, ratio = np.broadcast_arrays(np.asarray(yield_pressure_factor, float),
                                           np.asarray(plastic_pressure_factor, float),
@@ -262,8 +252,7 @@ class StrongeContact(ReferenceYieldScales, ContactLaw):
     # -- derived quantities -------------------------------------------------------
     def impact_number(self, impactor_mass, velocity):
         """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11), for
-        ``impactor_mass`` m_i [kg] and ``velocity`` V0 [m/s].
-        """
+        ``impactor_mass`` m_i [kg] and ``velocity`` V0 [m/s]."""
         return reference_impact_number(self.effective_modulus, self.radius, self.yield_strength, impactor_mass,
                                        velocity)
 

@@ -136,8 +136,7 @@ class YigitChristoforouContact(ContactLaw):
 
     def impact_number(self, impactor_mass, velocity):
         """Normalised impact velocity ``β = V0 / (ω α_y)`` [-] (seed 001 eq 11) for ``impactor_mass``
-        m_i [kg] and ``velocity`` V0 [m/s].
-        """
+        m_i [kg] and ``velocity`` V0 [m/s]."""
         return impact_number(velocity, self.hertz_stiffness, self.yield_indentation, impactor_mass)
 
     def velocity_for_impact_number(self, impactor_mass, impact_number):

@@ -44,7 +44,8 @@ def _array(value) -> np.ndarray:
 # Scales of the linear contact problem
 # ---------------------------------------------------------------------------------
 def contact_frequency(contact_stiffness, impactor_mass):
-    """Linear contact frequency ``ω = sqrt(K/m_i)`` [rad/s] of ``contact_stiffness`` K [N/m] and ``impactor_mass`` m_i [kg]."""
+    """Linear contact frequency ``ω = sqrt(K/m_i)`` [rad/s] of ``contact_stiffness`` K [N/m]
+    and ``impactor_mass`` m_i [kg]."""
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("impactor_mass", impactor_mass, "kg")
     return np.sqrt(_array(contact_stiffness) / _array(impactor_mass))
@@ -119,7 +120,8 @@ def contact_stiffness_for_relative_stiffness(static_stiffness, relative_stiffnes
 # Loss factors
 # ---------------------------------------------------------------------------------
 def effective_plate_stiffness(D11, D22, D12, D66):  # noqa: N803 (CLT symbols)
-    """Effective plate stiffness ``D* = ½(D12 + 2 D66 + sqrt(D11 D22))`` [N·m] (stiffnesses in N·m; D* > 0 checked)."""
+    """Effective plate stiffness ``D* = ½(D12 + 2 D66 + sqrt(D11 D22))`` [N·m] of the
+    stiffnesses [N·m]; ``ValueError`` unless D* > 0."""
     require_positive("D11", D11, "N m")
     require_positive("D22", D22, "N m")
     require_finite("D12", D12, "N m")
@@ -148,7 +150,8 @@ def loss_factor_plate(impactor_mass, contact_stiffness, mass_per_area,
 
 def impactor_mass_for_plate(loss_factor, contact_stiffness, mass_per_area,
                             effective_bending_stiffness):
-    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] for plate ``loss_factor`` ζ_p [-] (others as :func:`loss_factor_plate`)."""
+    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] for plate ``loss_factor`` ζ_p [-] (others as
+    :func:`loss_factor_plate`)."""
     require_positive("loss_factor", loss_factor)
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("mass_per_area", mass_per_area, "kg/m^2")
@@ -176,7 +179,8 @@ def loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length, bending_
 
 def loss_factor_beam_paper(impactor_mass, contact_stiffness, mass_per_length,
                            bending_stiffness):
-    """Beam loss factor as printed in seed 001 eq (38), ``2 ζ_b`` [-] (comparison only; as :func:`loss_factor_beam`)."""
+    """Beam loss factor as printed in seed 001 eq (38), ``2 ζ_b`` [-] (comparison only; as
+    :func:`loss_factor_beam`)."""
     return 2.0 * loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length,
                                   bending_stiffness)
 

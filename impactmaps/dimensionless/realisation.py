@@ -119,8 +119,7 @@ def realise(target, loss_factor, relative_stiffness) -> Realisation:
 # ---------------------------------------------------------------------------------
 def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
     """Mass ratio ``μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}`` [-] of the mid-span SS
-    Euler beam, for ζ_b, λ > 0 [-].
-    """
+    Euler beam, for ζ_b, λ > 0 [-]."""
     require_positive("loss_factor", loss_factor)
     require_positive("relative_stiffness", relative_stiffness)
     return (BEAM_LOSS_CONSTANT * _array(loss_factor)
@@ -129,8 +128,7 @@ def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
 
 def ss_euler_beam_midspan_frequency_ratio(loss_factor, relative_stiffness):
     """First beam frequency over contact frequency ``ω_1/ω = sqrt(π⁴ μ λ/48)`` [-] (mid-span SS
-    Euler beam; ζ_b, λ > 0 [-]).
-    """
+    Euler beam; ζ_b, λ > 0 [-])."""
     mu = ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness)
     return np.sqrt(math.pi**4 * mu * _array(relative_stiffness) / 48.0)
 

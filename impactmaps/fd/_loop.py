@@ -259,8 +259,7 @@ def _record(records, index, t, force, alpha, u, vs, w, vk, node, curvature):
 @numba.njit(cache=True, inline="always")
 def _close_ledger(grid, section, layers, w, curvature, moment, new_curvature):
     """Internal work of the last half step: (elastic energy before it, half-step work,
-    last plastic increment); advances the section to ``w``.
-    """
+    last plastic increment); advances the section to ``w``."""
     n = w.shape[0]
     dx = grid.dx
     _materialise(section, layers, curvature)
@@ -283,8 +282,7 @@ def _close_ledger(grid, section, layers, w, curvature, moment, new_curvature):
 @numba.njit(_INTEGRATE_SIGNATURE, cache=True)
 def _integrate(kernel, params, grid, section, layers, drive, stepping, w, v, records):
     """March ``stepping.n_steps`` steps from (w⁰, v^{−½}), updating ``w``, ``v``, ``layers``
-    and ``records`` in place.
-    """
+    and ``records`` in place."""
     n = w.shape[0]
     dt, dx, node = stepping.dt, grid.dx, drive.node
     inv_dx2 = 1.0 / (dx * dx)
@@ -391,28 +389,12 @@ def _loop_section(beam):
 
 def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v0,
              gauge_left, gauge_weight):
-    """Run the compiled loop from ``(w0, v0)`` and return its outputs.
+    """Run the compiled loop on ``beam`` and its ``grid`` from ``w0`` [m] and ``v0`` (v^{−½}) [m/s].
 
-    Parameters
-    ----------
-    beam, grid : FDBeam, Grid
-        The beam and its grid.
-    kernel, params
-        Contact kernel ``(α, α_max, params)`` and its 1-D float parameters.
-    drive, stepping : Drive, Stepping
-        Sphere and/or prescribed load; Δt [s], step count, history stride.
-    w0, v0 : ndarray
-        Initial deflection [m] and velocity v^{−½} [m/s] of every node (copied).
-    gauge_left, gauge_weight : ndarray
-        Gauge interpolation (:func:`impactmaps.fd.grid.gauge_weights`).
-
-    Returns
-    -------
-    result : LoopResult
-        Scalars of the run and final curvature.
-    state : dict
-        ``w``, ``v``, ``stress``, ``back``, ``constraint``, ``plastic_strain``,
-        ``plastic_work_node``, ``records``, ``intervals`` [SI].
+    ``kernel``/``params``: the contact kernel and its parameters; ``drive``: sphere and/or
+    prescribed load; ``stepping``: Δt [s], step count, stride; ``gauge_left``,
+    ``gauge_weight``: :func:`impactmaps.fd.grid.gauge_weights`. Returns the
+    :class:`LoopResult` and a dict of the final state and records [SI].
     """
     section = _loop_section(beam)
     n = grid.n_nodes

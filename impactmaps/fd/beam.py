@@ -114,8 +114,7 @@ class FDBeam:
     @classmethod
     def from_material(cls, length, width, height, material, **options) -> FDBeam:
         """Build from ``length``, ``width``, ``height`` [m] and a material (``youngs_modulus`` [Pa],
-        ``density`` [kg/m³], ``yield_strength`` [Pa], ``poisson_ratio``); ``**options``: other fields.
-        """
+        ``density`` [kg/m³], ``yield_strength`` [Pa], ``poisson_ratio``); ``**options``: other fields."""
         values = {}
         for attribute in ("youngs_modulus", "density", "yield_strength", "poisson_ratio"):
             try:

@@ -36,8 +36,7 @@ def kinetic_energy(grid, v) -> float:
 
 def beam_energies(grid, result, v) -> dict:
     """Beam kinetic and elastic energy and plastic work [J] at t_{N−½} from the loop's result
-    and final half-step velocities ``v`` [m/s].
-    """
+    and final half-step velocities ``v`` [m/s]."""
     before_last = result.plastic_work - result.last_plastic_increment
     plastic = before_last + 0.5 * result.last_plastic_increment
     internal = result.elastic_energy_before_last + before_last + result.half_step_work
@@ -58,8 +57,7 @@ def _unloading_work(law: ContactLaw, params, low, high, alpha_max, points=20001)
 
 def contact_energies(law: ContactLaw, alpha_max, alpha_now=None) -> dict:
     """Contact energies at ``alpha_max`` [m]: ``permanent_indentation`` [m], ``dissipation`` [J]
-    and ``stored`` [J] (recoverable from ``alpha_now``).
-    """
+    and ``stored`` [J] (recoverable from ``alpha_now``)."""
     if alpha_max <= 0.0:
         return dict(permanent_indentation=0.0, dissipation=0.0, stored=0.0)
     floor = float(law.permanent_indentation(alpha_max))
@@ -75,8 +73,7 @@ def impact_ledger(law: ContactLaw, grid, result, v, impactor_mass, velocity,
                   separation_velocity):
     """The energy ledger [J] of an impact run (:class:`~impactmaps.fd.impact.FDDetails`) and
     :func:`contact_energies`, from the final velocities ``v`` [m/s], m [kg], V0 and the
-    ``separation_velocity`` [m/s].
-    """
+    ``separation_velocity`` [m/s]."""
     impact_energy = 0.5 * impactor_mass * velocity**2
     contact = contact_energies(law, result.alpha_max,
                                result.final_alpha if result.in_contact else None)

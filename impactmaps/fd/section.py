@@ -34,23 +34,8 @@ def return_map(stress, back_stress, constraint_stress, strain_increment, youngs_
                yield_strength, hardening_modulus, constraint_saturation, constraint_rate):
     """Elastic predictor / return mapping for one layer (scalar numba kernel).
 
-    Parameters
-    ----------
-    stress, back_stress, constraint_stress : float
-        Previous σ*, total back stress β and its constraint part β_c [Pa].
-    strain_increment : float
-        Δε [-].
-    youngs_modulus, yield_strength, hardening_modulus : float
-        E, σ_y and plastic hardening modulus H [Pa].
-    constraint_saturation : float
-        β_sat [Pa] (0: none).
-    constraint_rate : float
-        γ [-].
-
-    Returns
-    -------
-    stress, back_stress, constraint_stress, plastic_strain_increment, plastic_work_density : float
-        σ, β, β_c [Pa], Δε_p [-], ΔW_p = ½(σ* + σ) Δε_p [J/m³].
+    From σ*, β, β_c [Pa] and Δε [-] with E, σ_y, H, β_sat [Pa] and γ [-], returns the new
+    ``(σ, β, β_c [Pa], Δε_p [-], ΔW_p = ½(σ* + σ) Δε_p [J/m³])``.
     """
     trial = stress + youngs_modulus * strain_increment
     relative = trial - back_stress
@@ -295,8 +280,7 @@ class LayeredSection:
 
     def moment_curvature(self, curvatures) -> np.ndarray:
         """Sagging moments [N m] along a path of ``curvatures`` κ [1/m] from the virgin state
-        (pass ``-κ`` for the usual positive plot).
-        """
+        (pass ``-κ`` for the usual positive plot)."""
         path = np.atleast_1d(np.asarray(curvatures, dtype=float))
         state = self.initial_state(1)
         moments = np.empty(path.size)

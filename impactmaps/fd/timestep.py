@@ -69,8 +69,7 @@ def choose_time_step(grid, time_step, safety_factor, rate):
 def stable_time_step(beam, law: ContactLaw, impactor_mass, velocity, impact_position=None,
                      safety_factor=0.8):
     """The default time step and the stability limit [s] of :func:`~impactmaps.fd.simulate_fd`
-    (arguments as there).
-    """
+    (arguments as there)."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     params = single_case_parameters(law, "stable_time_step")

@@ -32,8 +32,7 @@ _NEWTON_ITERATIONS = 60
 
 def beam_mobility_constant(mass_per_length, bending_stiffness) -> float:
     """``A = 1/(2 sqrt(2) m'^{3/4} (EI)^{1/4})`` [m/(N s^{1/2})] of ``mass_per_length`` m' [kg/m] and
-    ``bending_stiffness`` EI [N m²], both > 0.
-    """
+    ``bending_stiffness`` EI [N m²], both > 0."""
     require_positive("mass_per_length", mass_per_length, "kg/m")
     require_positive("bending_stiffness", bending_stiffness, "N m^2")
     return 1.0 / (2.0 * math.sqrt(2.0) * float(mass_per_length) ** 0.75
@@ -119,8 +118,7 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
 
 def _march(kernel, params, weights, step, speed, mass, count):
     """CQ steps until the sphere has separated and moves away, or ``count`` steps:
-    (force, indentation, index of the last step).
-    """
+    (force, indentation, index of the last step)."""
     force = np.zeros(count + 1)
     alpha = np.zeros(count + 1)
     # running state of the march: α_max, impulse, touched (0/1), step, V0, m
@@ -137,8 +135,7 @@ def _march(kernel, params, weights, step, speed, mass, count):
 @numba.njit(cache=True)
 def _law_block_kernel(kernel, params, weights, history, force, alpha, state, lo, hi):
     """Steps ``lo ≤ n < hi`` of ``α_n + W_0 F_n = V0 t_n − history[n] − Σ_{lo≤k<n} W_{n−k} F_k``
-    (``state`` updated in place); returns the step where the sphere moves away, or −1.
-    """
+    (``state`` updated in place); returns the step where the sphere moves away, or −1."""
     alpha_max, impulse, touched = state[0], state[1], state[2] > 0.0
     step, speed, mass = state[3], state[4], state[5]
     stop = -1

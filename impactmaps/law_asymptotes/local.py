@@ -61,8 +61,7 @@ def quasi_static_impact(target, law: ContactLaw, impactor_mass, velocity) -> Asy
 
 def halfspace_asymptote(law: ContactLaw, impactor_mass, velocity) -> AsymptoteResult:
     """Half-space impact with any single ``law`` (``impactor_mass`` m > 0 [kg], ``velocity``
-    V0 > 0 [m/s]) as an :class:`AsymptoteResult` (``method = "half-space"``).
-    """
+    V0 > 0 [m/s]) as an :class:`AsymptoteResult` (``method = "half-space"``)."""
     run = halfspace_impact(law, impactor_mass, velocity)
     separated = not run.time_limit_reached
     return AsymptoteResult(
@@ -86,8 +85,7 @@ def halfspace_asymptote(law: ContactLaw, impactor_mass, velocity) -> AsymptoteRe
 
 def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, displacement):
     """Integrate loading then unloading for a structure with ``α̇ = indentation_rate(v, F, k_t)``;
-    ``displacement(force, x − α)`` gives the struck point's displacement [m].
-    """
+    ``displacement(force, x − α)`` gives the struck point's displacement [m]."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     params = single_law_parameters(law)

@@ -14,8 +14,7 @@ __all__ = ["AsymptoteResult", "contact_frequency_of"]
 
 def contact_frequency_of(law, impactor_mass: float, velocity: float) -> float:
     """Contact frequency ω = sqrt(K_ref/m) [rad/s] used to normalise (K_ref:
-    :func:`impactmaps.solvers.contact_scale.reference_contact_stiffness`).
-    """
+    :func:`impactmaps.solvers.contact_scale.reference_contact_stiffness`)."""
     return math.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
 
 
@@ -90,8 +89,7 @@ class AsymptoteResult:
 
 def contact_intervals_from_samples(time, force, clearance=None) -> tuple:
     """Contact intervals ((start, end), …) [s] from sampled forces (end ``inf`` if open),
-    interpolated at zero crossings of ``clearance`` [m] when given.
-    """
+    interpolated at zero crossings of ``clearance`` [m] when given."""
     time = np.asarray(time, dtype=float)
     touching = np.asarray(force) > 0.0
     edges = np.flatnonzero(np.diff(touching.astype(int)))

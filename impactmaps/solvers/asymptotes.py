@@ -119,8 +119,7 @@ def _plate_inputs(tau, loss_factor):
 
 def _plate_solution(tau, zeta):
     """ᾱ and ᾱ' of ᾱ'' + 2ζᾱ' + ᾱ = 0, ᾱ(0) = 0, ᾱ'(0) = 1, each branch in a stable form
-    (continuous across ζ = 1 to rounding).
-    """
+    (continuous across ζ = 1 to rounding)."""
     value = np.empty(tau.shape)
     rate = np.empty(tau.shape)
     under, over = zeta < 1.0, zeta > 1.0

@@ -43,7 +43,8 @@ _HISTORY_SAMPLES = 1000
 
 # -- closed forms ----------------------------------------------------------------------
 def hertz_max_indentation(mass, velocity, hertz_stiffness):
-    """Maximum Hertz indentation ``α_m = (5 m V0² / (4 K_h))^{2/5}`` [m] (``mass`` [kg], ``velocity`` [m/s], ``hertz_stiffness`` [N/m^1.5])."""
+    """Maximum Hertz indentation ``α_m = (5 m V0² / (4 K_h))^{2/5}`` [m] (``mass`` [kg], ``velocity`` [m/s],
+    ``hertz_stiffness`` [N/m^1.5])."""
     require_positive("mass", mass, "kg")
     require_positive("velocity", velocity, "m/s")
     require_positive("hertz_stiffness", hertz_stiffness, "N/m^1.5")
@@ -102,8 +103,7 @@ def restitution(beta):
 
 def energy_balance_restitution(law: ContactLaw, impactor_mass, velocity):
     """Restitution [-] of a half-space impact from a single ``law``'s energies (no time stepping),
-    for ``impactor_mass`` m [kg] at ``velocity`` V0 [m/s].
-    """
+    for ``impactor_mass`` m [kg] at ``velocity`` V0 [m/s]."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     single_law_parameters(law)
@@ -254,8 +254,7 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
 def _restitution(kernel, params, scale, force_factor, alpha_max, final, x_max, tau_max, time_limit,
                  speed, options):
     """The unloading phase from the turning point in scaled variables:
-    (solution, separated, scaled end time, rebound velocity [m/s] or NaN).
-    """
+    (solution, separated, scaled end time, rebound velocity [m/s] or NaN)."""
 
     def restitution_phase(_tau, state):
         force = kernel(scale * state[0], alpha_max, params)[0]

@@ -45,8 +45,7 @@ def bdf2_weights(exponent, step, count):
 @numba.njit(cache=True)
 def _linear_block(weights, tau, prescribed, unilateral, history, force, indentation, lo, hi):
     """Steps ``lo ≤ n < hi`` of ᾱ_n = τ_n − Σ_{k≤n} W_{n−k} F̄_k (F̄ = ᾱ, or max(ᾱ, 0) if
-    unilateral; given on the ``prescribed`` nodes); returns −1.
-    """
+    unilateral; given on the ``prescribed`` nodes); returns −1."""
     known = prescribed.size
     for n in range(lo, hi):
         local = 0.0
@@ -75,22 +74,11 @@ def weights_size(steps: int) -> int:
 def blocked_march(weights, force, solve_block, leaf=None) -> int:
     """Drive a convolution-quadrature march whose history sum is done by FFT blocks.
 
-    Parameters
-    ----------
-    weights : ndarray
-        CQ weights ``W_0 … W_{M−1}``, M ≥ the smallest power of two ≥ ``force.size − 1``.
-    force : ndarray
-        Forces ``F_0 … F_N`` (``F_0 = 0``), filled in place by ``solve_block``.
-    solve_block : callable
-        ``solve_block(history, lo, hi) -> int`` solves steps ``lo ≤ n < hi`` given
-        ``history[n] = Σ_{k<lo} W_{n−k} F_k``; returns the step where the march stops, or −1.
-    leaf : int, optional
-        Longest block passed to ``solve_block`` [steps]; default :data:`LEAF_STEPS`.
-
-    Returns
-    -------
-    int
-        The step where ``solve_block`` stopped the march, or −1 if it reached ``N``.
+    ``weights``: CQ weights W_0 … W_{M−1} (M ≥ :func:`weights_size`); ``force``: F_0 … F_N
+    (F_0 = 0), filled in place by ``solve_block(history, lo, hi) -> int``, which solves
+    steps ``lo ≤ n < hi`` given ``history[n] = Σ_{k<lo} W_{n−k} F_k`` and returns the stop
+    step or −1; ``leaf``: longest block [steps] (default :data:`LEAF_STEPS`). Returns the
+    step where the march stopped, or −1 if it reached N.
     """
     leaf = LEAF_STEPS if leaf is None else int(leaf)
     history = np.zeros(force.size)
@@ -147,8 +135,7 @@ def cq_march(loss_factor: float, step: float, count: int, unilateral: bool, pres
 
 def cq_grid(duration: float, time_step: float):
     """(step, count) of a CQ grid covering ``duration`` with steps ≤ ``time_step`` [-]
-    (coarsened with a warning beyond :data:`MAX_CQ_STEPS`).
-    """
+    (coarsened with a warning beyond :data:`MAX_CQ_STEPS`)."""
     count = max(int(math.ceil(duration / time_step)), 2)
     if count > MAX_CQ_STEPS:
         warnings.warn(

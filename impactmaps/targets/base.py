@@ -126,8 +126,7 @@ class ModalBasis:
 
     def truncate(self, max_frequency: float, min_modes: int = 1) -> "ModalBasis":
         """The modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``); the
-        compliance of those left out moves to the residual.
-        """
+        compliance of those left out moves to the residual."""
         count = self.cutoff_count(max_frequency, min_modes)
         if count == self.size:
             return self
@@ -151,8 +150,7 @@ class ModalBasis:
 
     def participating(self) -> "ModalBasis":
         """The modes the impact point excites: modes with negligible φ_j dropped, degenerate
-        neighbours merged into one of participation ``sqrt(Σ φ_j²)`` (exact).
-        """
+        neighbours merged into one of participation ``sqrt(Σ φ_j²)`` (exact)."""
         if self._participating:
             return self
         merged = self.__dict__.get("_participating_basis")
@@ -192,8 +190,7 @@ class ModalBasis:
 
 def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray) -> np.ndarray:
     """Indices where a group of degenerate neighbouring modes starts (same damping,
-    frequency within :data:`DEGENERACY_TOLERANCE` of the group's first).
-    """
+    frequency within :data:`DEGENERACY_TOLERANCE` of the group's first)."""
     n = frequencies.size
     if n < 2:
         return np.arange(n)
@@ -219,8 +216,7 @@ def _split_drifting_groups(frequencies: np.ndarray, close: np.ndarray) -> np.nda
 
 def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) -> np.ndarray:
     """Cumulative static compliances [m/N] ``Σ φ_j²/ω_j²`` of the last ``i + 1`` modes,
-    summed from the highest mode down (rigid-body modes count 0).
-    """
+    summed from the highest mode down (rigid-body modes count 0)."""
     compliance = np.zeros_like(frequencies)
     elastic = frequencies > 0
     compliance[elastic] = participation[elastic] ** 2 / frequencies[elastic] ** 2
@@ -308,8 +304,7 @@ class Target(ABC):
     @property
     def point_load_diverges(self) -> bool:
         """Whether the point-load deflection is unbounded (theory in
-        :data:`~impactmaps.targets.options.DIVERGENT_POINT_LOAD_THEORIES`).
-        """
+        :data:`~impactmaps.targets.options.DIVERGENT_POINT_LOAD_THEORIES`)."""
         return getattr(self, "theory", None) in DIVERGENT_POINT_LOAD_THEORIES
 
     @property
@@ -344,8 +339,7 @@ class Target(ABC):
 
     def map_structure(self, *, patch_loaded: bool = False) -> StructureKey | None:
         """The reference structure whose normalised maps describe this target exactly, or None
-        (:func:`impactmaps.targets.map_structure.describing_structure`).
-        """
+        (:func:`impactmaps.targets.map_structure.describing_structure`)."""
         return describing_structure(self, patch_loaded)[0]
 
     def map_structure_refusal(self, *, patch_loaded: bool = False) -> str | None:

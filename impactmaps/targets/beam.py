@@ -253,8 +253,7 @@ class Beam(Target):
 
     def reflection_time(self, contact_frequency):
         """Normalised time ω d²/c [-] of the first wave return (``contact_frequency`` ω [rad/s],
-        d to the nearest support [m], ``c = sqrt(bD11/m')`` [m²/s]).
-        """
+        d to the nearest support [m], ``c = sqrt(bD11/m')`` [m²/s])."""
         distance = self.distance_to_nearest_support()
         speed = math.sqrt(self.bending_stiffness / self.mass_per_length)
         return np.asarray(contact_frequency) * distance**2 / speed
@@ -290,8 +289,7 @@ class Beam(Target):
     # -- modes ------------------------------------------------------------------------
     def mode_set(self, max_frequency: float, min_modes: int = 1) -> beam_modes.ModeSet:
         """All modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) as a
-        :class:`~impactmaps.targets.beam_modes.ModeSet`; rigid-body modes first.
-        """
+        :class:`~impactmaps.targets.beam_modes.ModeSet`; rigid-body modes first."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         require_in_range("min_modes", min_modes, 0, math.inf)
         if int(min_modes) != min_modes:
@@ -305,14 +303,12 @@ class Beam(Target):
 
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
         """Modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) seen from x0, with
-        residual compliance; free–free beams include their two rigid-body modes.
-        """
+        residual compliance; free–free beams include their two rigid-body modes."""
         return _beam_basis(self, float(max_frequency), min_modes)
 
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
         """Number of modes with ω ≤ ``max_frequency`` [rad/s] (rigid-body included), without
-        building them; a lower bound above ``limit`` may be returned early.
-        """
+        building them; a lower bound above ``limit`` may be returned early."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         section, frequency = self.section, float(max_frequency)
         wavenumber = float(beam_modes.largest_wavenumber(section, frequency))
@@ -358,7 +354,8 @@ class Beam(Target):
         return beam_modes.static_compliance(self.section, self.impact_position)
 
     def loss_factor(self, impactor_mass, contact_stiffness):
-        """Corrected beam loss factor ζ_b [-] for ``impactor_mass`` [kg] and ``contact_stiffness`` [N/m] (arrays allowed)."""
+        """Corrected beam loss factor ζ_b [-] for ``impactor_mass`` [kg] and ``contact_stiffness``
+        [N/m] (arrays allowed)."""
         return loss_factor_beam(impactor_mass, contact_stiffness, self.mass_per_length,
                                 self.bending_stiffness)
 

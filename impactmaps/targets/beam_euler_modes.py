@@ -45,8 +45,7 @@ def _bisect(function, low, high, iterations: int = 80):
 
 def euler_roots(supports: str, count: int, first: int = 1) -> np.ndarray:
     """Roots βL number ``first`` … ``count`` of the Euler frequency equation of ``supports``
-    (elastic modes; overflow-free forms, 80 bisection steps).
-    """
+    (elastic modes; overflow-free forms, 80 bisection steps)."""
     n = np.arange(max(int(first), 1), int(count) + 1, dtype=float)
     if n.size == 0:
         return np.zeros(0)
@@ -144,8 +143,7 @@ class _EulerModes(ModeSet):
 def classical_euler_modes(section: BeamSection, max_frequency: float,
                           min_modes: int = 1) -> ModeSet:
     """All Euler-beam modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``),
-    accurate for any mode number; free–free beams get their two rigid-body modes first.
-    """
+    accurate for any mode number; free–free beams get their two rigid-body modes first."""
     if section.theory != "euler":
         raise ValueError("classical_euler_modes needs theory = 'euler'")
     L, EI, rA = section.length, section.bending_stiffness, section.mass_per_length

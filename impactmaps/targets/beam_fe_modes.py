@@ -260,8 +260,7 @@ def _fe_solution(section: BeamSection, elements: int, degree: int) -> _FiniteEle
 
 def finite_element_mode_count(section: BeamSection, max_frequency: float, *, degree: int = FE_DEGREE) -> int:
     """Number of modes :func:`finite_element_modes` returns at or below ``max_frequency`` [rad/s],
-    counted by Sylvester's inertia without solving for them.
-    """
+    counted by Sylvester's inertia without solving for them."""
     require_nonnegative("max_frequency", max_frequency, "rad/s")
     elements, _ = _capped_elements(section, _elements_needed(section, max_frequency, 1, degree), degree)
     K, M, _, free, _, width = _assemble(section, elements, degree)

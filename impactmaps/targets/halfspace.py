@@ -43,7 +43,8 @@ class HalfSpace(Target):
         return math.inf
 
     def loss_factor(self, impactor_mass, contact_stiffness):
-        """Loss factor ζ = 0 [-] for every ``impactor_mass`` [kg] and ``contact_stiffness`` [N/m] (broadcast zeros)."""
+        """Loss factor ζ = 0 [-] (broadcast zeros) for every ``impactor_mass`` [kg] and
+        ``contact_stiffness`` [N/m]."""
         require_positive("impactor_mass", impactor_mass, "kg")
         require_positive("contact_stiffness", contact_stiffness, "N/m")
         return np.zeros(np.broadcast_shapes(np.shape(impactor_mass), np.shape(contact_stiffness)))

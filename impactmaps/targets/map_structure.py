@@ -25,8 +25,7 @@ STRUCTURE_MATCH_RTOL = 1e-6
 
 class StructureKey(NamedTuple):
     """The reference structure of a target; ``slenderness`` [-] and ``poisson_ratio`` [-] are
-    None where the normalised response does not depend on them.
-    """
+    None where the normalised response does not depend on them."""
 
     kind: str
     theory: str
@@ -64,8 +63,7 @@ def reference_target(target_class, key):
 
 def similarity_groups(target, poisson: bool = False) -> dict:
     """The dimensionless ratios that, besides shape, supports and impact point, fix a target's
-    normalised response.
-    """
+    normalised response."""
     groups = {"damping_ratio": float(target.damping_ratio)}
     if target.kind == "beam":
         span = target.length

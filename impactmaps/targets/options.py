@@ -41,7 +41,8 @@ def default_theory(kind: str) -> str:
 
 
 def classical_theory(theory: str) -> str:
-    """The classical thin limit of ``theory`` (Timoshenko → Euler, Mindlin → Kirchhoff; a classical theory is its own)."""
+    """The classical thin limit of ``theory`` (Timoshenko → Euler, Mindlin → Kirchhoff);
+    a classical theory is its own."""
     return SHEAR_THEORIES.get(theory, theory)
 
 
@@ -69,8 +70,7 @@ MIN_SUPPORT_DISTANCE = 1e-6
 
 def impact_coordinate_range(span: float, low_supported: bool, high_supported: bool) -> tuple:
     """The closed range ``(low, high)`` [m] of an impact coordinate on a span [m]
-    (:data:`MIN_SUPPORT_DISTANCE` × span from a supported end; a free end itself).
-    """
+    (:data:`MIN_SUPPORT_DISTANCE` × span from a supported end; a free end itself)."""
     margin = MIN_SUPPORT_DISTANCE * span
     return (margin if low_supported else 0.0, span - margin if high_supported else span)
 
