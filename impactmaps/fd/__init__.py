@@ -3,7 +3,7 @@
 :mod:`.beam` — the beam (:class:`FDBeam`) and the run options (:class:`FDSettings`);
 :mod:`.section` — the layered section (stress update, moment, moment–curvature);
 :mod:`.grid` — grid operators, supports, factorisation, the stability bound;
-:mod:`._loop` — the compiled time loop (peak refinement shared with the modal solver, :mod:`impactmaps.solvers._peak`);
+:mod:`._loop` — the compiled time loop (peak refinement shared with the modal solver, :mod:`impactmaps.solvers.integrator._peak`);
 :mod:`.energy` — the energy ledger; :mod:`.residual` — the permanent deflection;
 :mod:`.timestep` — stability limit and default step (:func:`stable_time_step`);
 :mod:`.impact` — the impact solver :func:`simulate_fd`;

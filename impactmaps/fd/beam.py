@@ -2,7 +2,7 @@
 
 :class:`FDBeam` holds a uniform rectangular beam (material, section, supports, grid and
 section resolution, damping); :class:`FDSettings` the numerical options of a run, so that
-a toolkit :class:`~impactmaps.targets.beam.Beam` plus settings describes a
+a toolkit :class:`~impactmaps.targets.beams.beam.Beam` plus settings describes a
 finite-difference case (:meth:`FDBeam.from_beam`).
 
 Equation (spec section 5, with the sign of the moment term made consistent — see below)
@@ -36,7 +36,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
-from ..targets.beam import Beam
+from ..targets.beams.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
 from .wide_section import constraint_parameters
@@ -44,7 +44,7 @@ from .wide_section import constraint_parameters
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
 
 _SUPPORTS = ("ss", "cc", "free")
-#: Support codes of :class:`impactmaps.targets.beam.Beam` as (left, right) FDBeam ends.
+#: Support codes of :class:`impactmaps.targets.beams.beam.Beam` as (left, right) FDBeam ends.
 SUPPORT_ENDS = {"ss": ("ss", "ss"), "cc": ("cc", "cc"), "cs": ("cc", "ss"),
                 "cf": ("cc", "free"), "ff": ("free", "free")}
 #: FDSettings fields that belong to the FDBeam (grid, section, damping).
@@ -174,9 +174,9 @@ class FDBeam:
 
         Parameters
         ----------
-        beam : impactmaps.targets.beam.Beam
+        beam : impactmaps.targets.beams.beam.Beam
             A rectangular isotropic beam (:meth:`Beam.rectangular
-            <impactmaps.targets.beam.Beam.rectangular>`): length, width, height and
+            <impactmaps.targets.beams.beam.Beam.rectangular>`): length, width, height and
             ``supports`` (``"ss"``, ``"cc"``, ``"cs"`` = clamped at x = 0 and simply
             supported at x = L, ``"cf"`` = cantilever clamped at x = 0, ``"ff"``) are
             taken from it. Its ``theory`` and ``damping_ratio`` are not used (the model is
@@ -195,7 +195,7 @@ class FDBeam:
             ρA ≠ ρ b h by more than 1e-9 relative, e.g. a laminate beam).
         """
         if not isinstance(beam, Beam):
-            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beam.Beam")
+            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beams.beam.Beam")
         if beam.width is None or beam.height is None:
             raise ValueError("beam.width and beam.height are None: FDBeam.from_beam needs a "
                              "rectangular beam (Beam.rectangular)")

@@ -268,7 +268,7 @@ def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) 
     ``np.cumsum`` adds sequentially, so element ``i`` has the same bits as the last
     element of the sums of those ``i + 1`` modes alone. :meth:`ModalBasis.truncate` takes
     the last element over the modes it drops; a table truncated many times computes the
-    sums once (:class:`impactmaps.maps.structures.BasisTable`).
+    sums once (:class:`impactmaps.maps.family.structures.BasisTable`).
 
     Parameters
     ----------
@@ -428,7 +428,7 @@ class Target(ABC):
 
     def thickness_shear_frequency(self) -> float | None:
         """The thickness-shear cut-off ω_s [rad/s] of a shear-deformable theory, above a
-        fraction of which it stops holding (:mod:`impactmaps.solvers.shear_range`); None
+        fraction of which it stops holding (:mod:`impactmaps.targets.shear_range`); None
         (the default) for a theory without one."""
         return None
 

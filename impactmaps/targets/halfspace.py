@@ -5,7 +5,7 @@ modes, no static compliance and takes no energy from the sphere; everything happ
 the contact. Seen through the :class:`~impactmaps.targets.base.Target` protocol it has
 an empty modal basis with zero residual compliance, an infinite static stiffness
 (λ = K_st/K = ∞) and a loss factor ζ = 0 for every impactor. The modal solver then
-integrates ``m_i α'' = −F(α; α_max)`` alone; :func:`impactmaps.solvers.halfspace.halfspace_impact`
+integrates ``m_i α'' = −F(α; α_max)`` alone; :func:`impactmaps.closed_forms.halfspace.halfspace_impact`
 solves the same problem with an adaptive Runge–Kutta method and closed forms.
 """
 

@@ -37,7 +37,7 @@ STRUCTURE_MATCH_RTOL = 1e-6
 
 
 class StructureKey(NamedTuple):
-    """The reference structure of a target (the fields of :class:`impactmaps.maps.structures.MapStructure`).
+    """The reference structure of a target (the fields of :class:`impactmaps.maps.family.structures.MapStructure`).
 
     ``slenderness`` (span/thickness [-]) and ``poisson_ratio`` [-] are None where the
     target's normalised response does not depend on them.
