@@ -3,13 +3,13 @@
 For each family of the shipped linear maps (SS Euler and Timoshenko beams, SSSS Kirchhoff and
 Mindlin plates) the script draws ``--points`` log-uniform random (ζ, λ) inside the shipped map's
 range (``--seed``, recorded in the output), solves each as a map point
-(:func:`impactmaps.maps.accuracy.controlled_point`: base run, refinements until the change is
+(:func:`impactmaps.maps.family.accuracy.controlled_point`: base run, refinements until the change is
 within 1e-3) and, at the ``converged`` and ``refined`` modal points, runs a reference
 ``--levels`` refinement levels above the base (cut-off and mode floor ×2ᵏ, step /2ᵏ; default 4:
 two to three levels above the retained run). It counts where |F̄max − reference| is within
 
 * the change alone (``fmax_error`` before issue 40: "before"),
-* the stated ``fmax_error`` (:func:`~impactmaps.maps.accuracy.stated_error`: the change, at
+* the stated ``fmax_error`` (:func:`~impactmaps.maps.family.accuracy.stated_error`: the change, at
   least 2e-4, 1e-3 with re-impacts; "after"),
 
 and where the shipped map's lookup at the same point (interpolation + its points' stated
@@ -36,12 +36,20 @@ if __name__ == "__main__":  # one BLAS thread, set before NumPy loads
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from impactmaps.maps.accuracy import ERROR_FLOOR, REIMPACT_ERROR_FLOOR, STATUSES, AccuracyControl, controlled_point, stated_error  # noqa: E402
-from impactmaps.maps.linear_points import LINEAR  # noqa: E402
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup  # noqa: E402
-from impactmaps.maps.points import basis_table, frequency_cap, table_runner  # noqa: E402
-from impactmaps.maps.structures import structure_from_name  # noqa: E402
+from impactmaps.maps.compute.linear_points import LINEAR  # noqa: E402
+from impactmaps.maps.compute.points import basis_table, table_runner  # noqa: E402
+from impactmaps.maps.family.accuracy import (  # noqa: E402
+    ERROR_FLOOR,
+    REIMPACT_ERROR_FLOOR,
+    STATUSES,
+    AccuracyControl,
+    controlled_point,
+    stated_error,
+)
+from impactmaps.maps.family.structures import MAX_MODES, structure_from_name  # noqa: E402
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup  # noqa: E402
 from impactmaps.solvers.modal import ModalSettings  # noqa: E402
+from impactmaps.solvers.mode_budget import frequency_cap  # noqa: E402
 
 from _script_options import parse  # noqa: E402
 
@@ -54,7 +62,8 @@ def audit_family(kind: str, theory: str, points: int, seed: int, levels: int) ->
     """``points`` random points of one shipped map's family, each with its error and the lookup's."""
     name = SHIPPED_MAPS[(kind, theory)]
     structure = structure_from_name(name)
-    target, cap = structure.build(), frequency_cap(structure)
+    target = structure.build()
+    cap = frequency_cap(target, MAX_MODES)
     dataset = load_shipped_map(kind, theory)
     rng = np.random.default_rng(seed)
     zetas = np.exp(rng.uniform(*np.log([dataset["zeta"].min().item(), dataset["zeta"].max().item()]), points))
