@@ -295,8 +295,10 @@ def script_graph() -> dict[str, dict[str, int]]:
     """``folder/stem`` → {``folder/stem`` it imports: line} for the scripts outside the package,
     which import a neighbour by its file name (``from level5_beam_plastic import …``)."""
     graph = {}
-    for folder in ("validation", "validation/fe", "benchmarks", "examples", "tests"):
-        directory = REPOSITORY / folder
+    folders = sorted({path.parent for top in ("validation", "benchmarks", "examples", "tests", "data_build")
+                      for path in (REPOSITORY / top).rglob("*.py")})
+    for directory in folders:
+        folder = directory.relative_to(REPOSITORY).as_posix()
         stems = {path.stem for path in directory.glob("*.py")}
         for path in sorted(directory.glob("*.py")):
             edges = graph.setdefault(f"{folder}/{path.stem}", {})
