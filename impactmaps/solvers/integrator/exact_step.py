@@ -463,7 +463,7 @@ def callee_signatures() -> dict:
     """``name → (dispatcher, argument types)`` of the integrator's callees that
     :data:`~impactmaps._compile.compile_helper.HELPER_CALLEES` and
     :data:`~impactmaps._compile.compile_helper.FOREGROUND_CALLEES` name: the exact signatures the
-    integrator types them with (``tests/test_compile_helper.py`` checks; another one would
+    integrator types them with (``tests/compile/test_compile_helper.py`` checks; another one would
     be compiled for nothing)."""
     from . import contact_events, free_flight, history_rows, oscillator_step
 
