@@ -300,10 +300,26 @@ def main(argv=None) -> int:
     it), 130 when interrupted (Ctrl-C).
     """
     try:
-        return _main(argv)
+        status = _main(argv)
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_OK
+    if status == EXIT_INTERRUPTED and argv is None:  # the program itself, not a call from Python
+        _exit_now(status)
+    return status
+
+
+def _exit_now(status: int) -> None:
+    """End the interrupted program at once: run the exit handlers and flush the output, but skip
+    the interpreter's teardown of numba, pandas and xarray (about a second on a busy machine),
+    so that a signal ends every command within a second."""
+    import atexit
+
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+    os._exit(status)
 
 
 def _silence_stdout() -> None:
