@@ -84,3 +84,70 @@ def test_an_asymptote_over_its_budget_is_refused(monkeypatch):
     monkeypatch.setattr(local, "MAX_EVALUATIONS", 50)
     with pytest.raises(ValueError, match="more than 50 evaluations"):
         local.quasi_static_impact(1e6, HertzContact(1e10), 0.01, 1.0)
+
+
+# -- item 3: memory refused from arithmetic, before allocation ---------------------------------
+def _peak_bytes(call) -> int:
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        call()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_a_3000_by_3000_sweep_is_refused_before_anything_is_allocated(tmp_path, capsys):
+    """The issue's sweep reached 3.8 GB of memory (the docs promise a refusal above 1 GiB): it is
+    refused with one line naming the size, nothing written, a few MB allocated."""
+    config = tmp_path / "big.toml"
+    config.write_text('output = "out"\n[grid]\nzeta = {min = 0.01, max = 10, count = 3000}\n'
+                      'lambda = {min = 0.01, max = 10, count = 3000}\n[[structure]]\nkind = "beam"\n')
+    status = []
+    peak = _peak_bytes(lambda: status.append(main(["sweep", str(config), "--quiet"])))
+    err = capsys.readouterr().err
+    assert status == [2], err
+    assert "9e+06 points" in err and "GiB (limit 1 GiB)" in err and err.count("\n") == 1
+    assert not (tmp_path / "out" / "sweep.nc").exists()
+    assert peak < 50 * 2**20
+
+
+def test_a_chart_of_1e8_zeta_values_is_refused_before_anything_is_allocated(tmp_path, capsys):
+    """``chart --zeta-count 100000000`` allocated 1.7 GB before refusing."""
+    status = []
+    peak = _peak_bytes(lambda: status.append(main(["chart", "--zeta-count", "100000000", "--out",
+                                                   str(tmp_path / "c"), "--quiet"])))
+    err = capsys.readouterr().err
+    assert status == [2] and "--zeta-count" in err and "GiB" in err
+    assert peak < 50 * 2**20
+
+
+@pytest.mark.slow
+def test_a_sweep_holds_at_most_map_copies_copies_of_its_map(tmp_path, monkeypatch):
+    """The refusal's arithmetic bounds what a sweep really holds: its tasks are made as they are
+    submitted (a list of them took ~165 B a point, two copies of the map) and the peak of a
+    2·10⁴-point sweep, saved to NetCDF and classified, stays below MAP_COPIES copies of its map."""
+    import numpy as np
+
+    from impactmaps.maps import sweep as sweep_module
+    from impactmaps.maps.structures import MapStructure
+
+    family = sweep_module.map_family("linear")
+
+    def fake_points(_family, _structure, points, _settings):
+        row = {name: np.array(1, dtype=spec[0]).item() for name, spec in family.variables.items()}
+        return [row | {"method": 0} for _ in points]
+
+    monkeypatch.setattr(sweep_module, "solve_map_points", fake_points)
+    count = 150
+    structure = [MapStructure(kind="beam", theory="euler", supports="ss")]
+    axis = np.geomspace(0.05, 5.0, count)
+    map_bytes = count * count * (sum(np.dtype(spec[0]).itemsize for spec in family.variables.values()) + 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep_module.sweep(structure, axis[:3], axis[:3], path=tmp_path / "w.nc", max_workers=1,
+                           progress=False)  # the modules' imports, not counted below
+        peak = _peak_bytes(lambda: sweep_module.sweep(structure, axis, axis, path=tmp_path / "s.nc", max_workers=1,
+                                                      progress=False, pacing=sweep_module.Pacing(count, 1e9)))
+    assert peak < sweep_module.MAP_COPIES * map_bytes, peak / map_bytes

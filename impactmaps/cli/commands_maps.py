@@ -47,7 +47,7 @@ def cmd_chart(args) -> dict:
           what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
     check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
           low_inclusive=True, high_inclusive=True)
-    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
+    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas, args.law)
     out = out_dir("--out", args.out)
     with store_lock(out / "fmax_map.nc", "--out"):
         paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
