@@ -151,3 +151,43 @@ def test_a_sweep_holds_at_most_map_copies_copies_of_its_map(tmp_path, monkeypatc
         peak = _peak_bytes(lambda: sweep_module.sweep(structure, axis, axis, path=tmp_path / "s.nc", max_workers=1,
                                                       progress=False, pacing=sweep_module.Pacing(count, 1e9)))
     assert peak < sweep_module.MAP_COPIES * map_bytes, peak / map_bytes
+
+
+# -- item 5: sizes that look like a unit slip ---------------------------------------------------
+def test_a_plate_thicker_than_half_its_side_is_refused_naming_the_key(tmp_path, capsys):
+    """``thickness = 3`` (3 mm typed as metres: a plate 3 m thick and 0.25 m wide) answered 3052 N;
+    now refused with one line naming target.thickness and the range that holds."""
+    path = _write(tmp_path, "plate", thickness="3")
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "target.thickness = 3 m is invalid" in err
+    assert "valid range: target.thickness ≤ 0.125 m" in err
+    assert main(["simulate", str(path), "--out", str(tmp_path / "o")]) == 2
+
+
+def test_a_ten_metre_ball_is_announced_naming_the_key(tmp_path, capsys):
+    """``radius = 10`` (a 33 000 t steel ball) was accepted without a word: a warning naming
+    impactor.radius and the ball's mass; an ordinary case has none."""
+    path = _write(tmp_path, "plate", radius="10")
+    assert main(["check", str(path), "--json"]) == 0
+    err = capsys.readouterr().err
+    assert "impactor.radius = 10 m is unusually large" in err and "3.29e+07 kg" in err
+    assert main(["check", str(_write(tmp_path, "plate")), "--json"]) == 0
+    assert "unusually large" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("kind, key, value", [("plate", "thickness", "0.1"), ("beam", "height", "0.2")])
+def test_a_thick_plate_or_deep_beam_that_holds_is_announced_not_refused(tmp_path, kind, key, value, capsys):
+    """Unusual but possible sizes are warned of (above 0.5 m), not refused; a plate of side/thickness
+    ≥ 2 and a beam of L/h ≥ 2 are valid models."""
+    from impactmaps._checks import UnusualValueWarning
+    from impactmaps.cases import parse_case
+
+    big = "0.6"
+    text = _template(kind, **{key: big, **({"length_x": "2.0", "length_y": "2.0", "impact_point": "[1.0, 1.0]"}
+                                           if kind == "plate" else {"length": "2.0", "impact_position": "1.0"})})
+    with pytest.warns(UnusualValueWarning, match=f"target.{key} = 0.6 m is unusually large"):
+        parse_case(text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UnusualValueWarning)
+        parse_case(_template(kind, **{key: value}))
