@@ -191,3 +191,62 @@ def test_a_thick_plate_or_deep_beam_that_holds_is_announced_not_refused(tmp_path
     with warnings.catch_warnings():
         warnings.simplefilter("error", UnusualValueWarning)
         parse_case(_template(kind, **{key: value}))
+
+
+# -- item 6: one set of validity warnings, printed by every command that answers a case -------
+EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples"
+
+
+def _tags(messages) -> set:
+    return {message.split(":")[0] for message in messages}
+
+
+def test_check_and_lookup_say_the_contact_yields_as_simulate_does(tmp_path, monkeypatch, capsys):
+    """The README's headline case (Hertz pressure 11× the yield pressure): ``simulate`` said the
+    contact yields, ``check`` and ``lookup --case`` did not. All three now print the same set
+    (impactmaps.validity.case_warnings), on stderr and in ``model_warnings``."""
+    from impactmaps.cases import load_case
+    from impactmaps.validity import case_warnings
+
+    case_file = EXAMPLES / "steel_plate_hertz.toml"
+    monkeypatch.setattr("impactmaps.maps.case_lookup.lookup_case",
+                        lambda case, **_kw: {"peak_force_N": 731.0, "peak_force_error_N": 1.0})
+    monkeypatch.setattr("impactmaps.cli.commands_tools._estimated_cost", lambda case, values: {})  # the modes: slow
+    answers = {}
+    for command in (["check"], ["lookup", "--case"]):
+        assert main([*command, str(case_file), "--json"]) == 0
+        captured = capsys.readouterr()
+        out = json.loads(captured.out)
+        answers[command[0]] = out["model_warnings"]
+        assert "warning: contact pressure" in captured.err
+    assert _tags(answers["check"]) == _tags(answers["lookup"]) == {"contact pressure"}
+    # simulate's set at its own peak force (731.25 N): the same sentence as lookup's at 731.0 N, to rounding
+    case = load_case(case_file)
+    assert _tags(case_warnings(case, peak_force=731.25)) == {"contact pressure"}
+    assert "4.22" in answers["lookup"][0]
+
+
+def test_the_epp_calibration_warning_is_printed_by_check_too(tmp_path, capsys):
+    """The epp calibration warning appeared in ``simulate`` only: steel on steel holds ν = 0.3 and
+    s = 0.50, not the law's default rigid sphere."""
+    path = tmp_path / "epp.toml"
+    text = _template("plate", material='"structural-steel"')
+    path.write_text(text.replace('law = "hertz"', 'law = "epp"'), encoding="utf-8")
+    assert main(["check", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "epp calibration" in _tags(out["model_warnings"])
+
+
+def test_the_contact_radius_check_is_one_of_the_set_not_a_guess_of_the_estimate(tmp_path, capsys):
+    """A contact-radius warning appeared in ``check`` only (from its cost estimate's first guess,
+    which simulate's own docs say does not apply); it is now a check of impactmaps.validity,
+    from the answer's indentation, on a Mindlin plate whose contact radius exceeds half its thickness."""
+    from impactmaps.cases import parse_case
+    from impactmaps.validity import case_warnings
+
+    thin = _template("plate", thickness="0.0005", theory='"mindlin"')
+    case = parse_case(thin)
+    messages = case_warnings(case)  # at the half-space bound
+    assert "contact radius" in _tags(messages)
+    thick = parse_case(_template("plate", theory='"mindlin"'))
+    assert "contact radius" not in _tags(case_warnings(thick))

@@ -214,3 +214,20 @@ def interrupted(error: BaseException) -> bool:
         seen.add(id(error))
         error = error.__cause__ or error.__context__
     return False
+
+
+def case_model_warnings(case, map_force) -> dict:
+    """The case's validity warnings (:func:`impactmaps.validity.case_warnings`, the set ``simulate``
+    prints) at the map's peak force [N], or at the half-space bound where no map gives one (``None``);
+    each also issued as a warning (``check``, ``lookup --case``)."""
+    import warnings
+
+    from ..validity import ModelValidityWarning, case_warnings
+
+    messages = case_warnings(case, peak_force=map_force)
+    for message in messages:
+        warnings.warn(message, ModelValidityWarning, stacklevel=3)
+    basis = ("the map's peak force" if map_force is not None else
+             "the half-space peak force, an upper bound of an elastic contact's force on the structure (the checks "
+             "that grow with the force may be pessimistic; simulate decides)")
+    return {"model_warnings": messages, "model_warnings_note": f"the checks of impactmaps.validity at {basis}"}

@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..maps.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ..maps.workers import MAX_WORKERS
-from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
+from ._common import case_model_warnings, check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -376,7 +376,8 @@ def cmd_lookup(args) -> dict:
         start = time.perf_counter()
         progress = None if args.quiet else (lambda done, total: print(
             f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
-        return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        return found | case_model_warnings(case, found.get("peak_force_N"))
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
         raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
