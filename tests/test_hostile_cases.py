@@ -250,3 +250,42 @@ def test_the_contact_radius_check_is_one_of_the_set_not_a_guess_of_the_estimate(
     assert "contact radius" in _tags(messages)
     thick = parse_case(_template("plate", theory='"mindlin"'))
     assert "contact radius" not in _tags(case_warnings(thick))
+
+
+# -- item 7: a band wider than 10 % of its value is announced -----------------------------------
+@pytest.mark.parametrize("error, announced", [(2415.0, True), (200.0, False)])
+def test_a_lookup_band_wider_than_a_tenth_of_its_value_says_simulate_it(tmp_path, monkeypatch, capsys, error,
+                                                                        announced):
+    """``peak_force_N 2421 ± 2415`` (status interpolated) was printed with no word: a warning on
+    stderr and ``band_warning`` in --json say the band is wide and to simulate the case; a band of
+    8 % is not announced."""
+    monkeypatch.setattr("impactmaps.maps.case_lookup.lookup_case", lambda case, **_kw: {
+        "peak_force_N": 2421.0, "peak_force_error_N": error, "status": "interpolated"})
+    case_file = EXAMPLES / "steel_plate_hertz.toml"
+    assert main(["lookup", "--case", str(case_file), "--json"]) == 0
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert ("band_warning" in out) is announced
+    assert ("simulate it (impactmaps simulate" in captured.err) is announced
+    if announced:
+        assert "100% of the value" in out["band_warning"]
+    assert main(["lookup", "--case", str(case_file)]) == 0
+    assert ("simulate it" in capsys.readouterr().err) is announced
+
+
+def test_a_normalised_lookup_with_a_wide_band_says_simulate_it(monkeypatch, capsys):
+    from impactmaps.maps import lookup as lookup_module
+
+    real = lookup_module.lookup
+
+    def wide(*args, **kwargs):
+        found = real(*args, **kwargs)
+        return found._replace(fmax_error=0.5 * found.fmax_normalised) if hasattr(found, "_replace") else \
+            __import__("dataclasses").replace(found, fmax_error=0.5 * found.fmax_normalised)
+
+    monkeypatch.setattr(lookup_module, "lookup", wide)
+    assert main(["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "0.5", "--lambda", "0.1",
+                 "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "50% of the value" in json.loads(captured.out)["band_warning"]
+    assert "simulate it (impactmaps point" in captured.err

@@ -231,3 +231,26 @@ def case_model_warnings(case, map_force) -> dict:
              "the half-space peak force, an upper bound of an elastic contact's force on the structure (the checks "
              "that grow with the force may be pessimistic; simulate decides)")
     return {"model_warnings": messages, "model_warnings_note": f"the checks of impactmaps.validity at {basis}"}
+
+
+#: A lookup band wider than this fraction of its value is announced ("simulate it").
+WIDE_BAND_FRACTION = 0.1
+
+
+def announce_wide_band(values: dict, value_key: str, error_key: str, advice: str) -> dict:
+    """``values`` with ``band_warning`` when the band ``values[error_key]`` is wider than
+    :data:`WIDE_BAND_FRACTION` of ``values[value_key]`` (also issued as a warning); unchanged
+    when either is missing."""
+    import math
+    import warnings
+
+    value, error = values.get(value_key), values.get(error_key)
+    if value is None or error is None or not (math.isfinite(value) and math.isfinite(error)):
+        return values
+    if abs(error) <= WIDE_BAND_FRACTION * abs(value):
+        return values
+    share = f"{abs(error) / abs(value):.0%}" if value else "more than all"
+    message = (f"the map's band {value_key} {value:.4g} ± {error:.3g} is wide ({share} of the value, above "
+               f"{WIDE_BAND_FRACTION:.0%}): the map does not pin this number down; simulate it ({advice})")
+    warnings.warn(message, UserWarning, stacklevel=3)
+    return values | {"band_warning": message}

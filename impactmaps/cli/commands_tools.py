@@ -228,8 +228,12 @@ def _map_reading(case) -> dict:
         text = text.removeprefix("no shipped map covers this case: ")
         return {"regime": None, "regime_note": "no shipped map reads this case: " + text, "map": None,
                 "map_note": "impactmaps lookup --case builds an on-demand map tile where one can describe it"}
+    from ._common import announce_wide_band
+
     reading = {"regime": found.get("regime"), "map": found.get("map"),
                "map_peak_force_N": found.get("peak_force_N"), "map_peak_force_error_N": found.get("peak_force_error_N")}
+    reading = announce_wide_band(reading, "map_peak_force_N", "map_peak_force_error_N",
+                                 f"impactmaps simulate {case.source or 'CASE.toml'}")
     if reading["regime"] is None:
         reading["regime_note"] = "the elastic-plastic maps have no regime classification"
     return reading
