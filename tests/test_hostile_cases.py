@@ -289,3 +289,57 @@ def test_a_normalised_lookup_with_a_wide_band_says_simulate_it(monkeypatch, caps
     captured = capsys.readouterr()
     assert "50% of the value" in json.loads(captured.out)["band_warning"]
     assert "simulate it (impactmaps point" in captured.err
+
+
+# -- item 12: smaller words that disagreed --------------------------------------------------------
+def test_lookup_of_a_plate_takes_the_documented_default_theory(capsys):
+    """``lookup --kind plate`` needed ``--theory``: it defaults to the classical theory (Kirchhoff),
+    the same answer as with ``--theory kirchhoff``."""
+    assert main(["lookup", "--kind", "plate", "--zeta", "0.5", "--lambda", "0.1", "--json"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    assert main(["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "0.5", "--lambda", "0.1",
+                 "--json"]) == 0
+    explicit = json.loads(capsys.readouterr().out)
+    assert default == explicit and default["map"]
+
+
+def test_init_help_names_the_file_it_writes(tmp_path, monkeypatch, capsys):
+    """``init`` wrote plate.toml while its help said TEMPLATE.toml."""
+    from impactmaps.cli import build_parser
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["init", "plate", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["case"] == "plate.toml" and (tmp_path / "plate.toml").exists()
+    init = build_parser()._subparsers._group_actions[0].choices["init"]
+    assert "plate.toml for init plate" in init.format_help().replace("\n", " ").replace("  ", " ")
+
+
+@pytest.mark.parametrize("beta, status", [(1e8, 0), (1e9, 2)])
+def test_restitution_enforces_the_documented_range(beta, status, capsys):
+    """The docs say β in (0, 1e8]; β = 1e9 was accepted."""
+    assert main(["restitution", "--beta", f"{beta:g}"]) == status
+    if status:
+        assert "--beta = 1e+09 is invalid" in capsys.readouterr().err
+
+
+def test_a_resumed_sweep_says_what_was_saved_and_overwrite_what_it_discards(tmp_path, capsys, monkeypatch):
+    from impactmaps.maps import sweep as sweep_module
+    from impactmaps.maps.structures import MapStructure
+
+    family = sweep_module.map_family("linear")
+
+    def fake_points(_family, _structure, points, _settings):
+        row = {name: __import__("numpy").array(1, dtype=spec[0]).item() for name, spec in family.variables.items()}
+        return [row | {"method": 0} for _ in points]
+
+    monkeypatch.setattr(sweep_module, "solve_map_points", fake_points)
+    structure, path = [MapStructure(kind="beam", theory="euler", supports="ss")], tmp_path / "s.nc"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sweep_module.sweep(structure, [0.5, 1.0, 2.0], [1.0], path=path, max_workers=1, progress=False)
+        capsys.readouterr()
+        sweep_module.sweep(structure, [0.5, 1.0, 2.0], [1.0], path=path, max_workers=1, progress=True)
+    assert f"resuming {path}: 3 of 3 points already saved" in capsys.readouterr().err
+    with pytest.warns(UserWarning, match="discarding 3 finished point"):
+        sweep_module.sweep(structure, [0.5, 1.0, 2.0], [1.0], path=path, max_workers=1, progress=False,
+                           overwrite=True)

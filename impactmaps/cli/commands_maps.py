@@ -380,8 +380,13 @@ def cmd_lookup(args) -> dict:
         found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
         return found | case_model_warnings(case, found.get("peak_force_N"))
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
-    if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
-        raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
+    if args.zeta is None or args.lambda_ is None or args.kind is None:
+        raise ValueError("give --kind, --zeta and --lambda (and --theory: default the classical one, euler or "
+                         "kirchhoff), or --case CASE.toml")
+    if args.theory is None:
+        from ..targets.options import default_theory
+
+        args.theory = default_theory(args.kind)
     from ..maps.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:

@@ -46,6 +46,7 @@ from .points import (
 from .regimes import MAP_LAWS
 from .registry import map_family
 from .shipped_results import load_shipped_result
+from .data_io import read_dataset
 from .store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from .structures import MapStructure
 from .workers import MAX_WORKERS, init_worker
@@ -174,6 +175,8 @@ def sweep(
         print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "
               f"(impactmaps.maps.shipped_results, {grid.digest[:12]}…)", file=sys.stderr)
     done = dataset["done"].values.astype(bool)
+    if progress and not shipped and path is not None and done.any():
+        print(f"impact map: resuming {path}: {int(done.sum())} of {done.size} points already saved", file=sys.stderr)
     chunk_size = max(1, int(pacing.chunk_size))
     missing_per_row = done.shape[-1] - np.count_nonzero(done, axis=-1)
     remaining = int(missing_per_row.sum())
@@ -295,6 +298,8 @@ def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
+        if overwrite:
+            _announce_discarded(path)
         dataset = None if overwrite else load_matching(path, grid.digest, grid.description)
     if dataset is not None:
         return dataset, False
@@ -304,6 +309,20 @@ def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:
     if path is not None:
         save_atomic(dataset, path)
     return dataset, True
+
+
+def _announce_discarded(path) -> None:
+    """Warn that ``overwrite`` discards the finished points of the result file at ``path`` (if any)."""
+    if not os.path.exists(path):
+        return
+    try:
+        finished = int(read_dataset(path)["done"].sum())
+    except Exception:  # noqa: BLE001 (unreadable: it holds no point worth counting)
+        finished = None
+    count = "its finished points" if finished is None else f"{finished} finished point(s)"
+    import warnings
+
+    warnings.warn(f"overwrite: {path} is replaced, discarding {count}", UserWarning, stacklevel=4)
 
 
 def _chunks(grid: SweepGrid, done: np.ndarray, chunk_size: int):
