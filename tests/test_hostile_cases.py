@@ -343,3 +343,22 @@ def test_a_resumed_sweep_says_what_was_saved_and_overwrite_what_it_discards(tmp_
     with pytest.warns(UserWarning, match="discarding 3 finished point"):
         sweep_module.sweep(structure, [0.5, 1.0, 2.0], [1.0], path=path, max_workers=1, progress=False,
                            overwrite=True)
+
+
+# -- item 1: the finite-difference run has a budget from arithmetic, in check as in fd ---------------
+def test_check_estimates_the_fd_run_and_fd_refuses_what_it_refuses(tmp_path, capsys):
+    """``timeout 90 impactmaps fd`` on a 100 s duration ran for 425 s: ``check`` now gives the fd
+    run's estimate from arithmetic (steps, memory, seconds) and calls the case invalid where ``fd``
+    refuses it, with the same words; nothing is integrated."""
+    path = _write(tmp_path, "fd", duration="100")
+    assert main(["check", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["estimated_method"] == "finite-difference" and out["valid"] is False
+    assert out["estimated_expected_steps"] > 1e8 and out["estimated_seconds"] > 60
+    assert main(["fd", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "may take 16.8 GiB (limit 1 GiB)" in err and "may take 16.8 GiB" in out["valid_note"]
+    path = _write(tmp_path, "fd")
+    assert main(["check", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["valid"] is True and 0 < out["estimated_seconds"] < 60

@@ -229,7 +229,7 @@ def case_model_warnings(case, map_force) -> dict:
         warnings.warn(message, ModelValidityWarning, stacklevel=3)
     basis = ("the map's peak force" if map_force is not None else
              "the half-space peak force, an upper bound of an elastic contact's force on the structure (the checks "
-             "that grow with the force may be pessimistic; simulate decides)")
+             "that grow with the force may be pessimistic; the run decides)")
     return {"model_warnings": messages, "model_warnings_note": f"the checks of impactmaps.validity at {basis}"}
 
 

@@ -184,8 +184,7 @@ def _estimated_cost(case, values: dict) -> dict:
     from ..solvers.run_budget import LONG_RUN_SECONDS, MEMORY_LIMIT_BYTES
 
     if case.solver_kind != "modal":
-        return {"estimated_cost": None, "estimated_cost_note": "the finite-difference run estimates its memory and "
-                "time when it starts (refused above 1 GiB, announced above a minute)"}
+        return _estimated_fd_cost(case, values)
     from ..solvers.modal import estimate_run
 
     import warnings
@@ -213,6 +212,35 @@ def _estimated_cost(case, values: dict) -> dict:
     if cost["time_step_s"] is None:
         out["estimated_time_step_s_note"] = "the infinite-structure solution answers: nothing is integrated"
     return out
+
+
+def _estimated_fd_cost(case, values: dict) -> dict:
+    """The finite-difference run's estimate (:func:`impactmaps.fd.estimate_fd`, arithmetic only),
+    keys ``estimated_…``; with ``[solver] check_convergence`` the re-run on twice the elements
+    counted in; a run the budget refuses makes the case invalid."""
+    from dataclasses import replace
+
+    from ..fd import estimate_fd
+    from ..solvers.run_budget import LONG_RUN_SECONDS
+
+    settings = replace(case.fd_settings, duration=case.duration)
+    cost = estimate_fd(case.target, case.law, case.impactor_mass, case.velocity, settings=settings,
+                       material=case.target_material)
+    runs, memory, seconds = 1, cost["memory_bytes"], cost["seconds"]
+    if case.settings.check_convergence:
+        fine = estimate_fd(case.target, case.law, case.impactor_mass, case.velocity, material=case.target_material,
+                           settings=replace(settings, n_elements=2 * int(case.fd_beam.n_elements)))
+        runs, memory, seconds = 2, max(memory, fine["memory_bytes"]), seconds + fine["seconds"]
+    if cost["refused"] is not None:
+        values["valid"] = False
+        values["valid_note"] = f"fd refuses this case: {cost['refused']}"
+    return {"estimated_method": "finite-difference", "estimated_time_step_s": cost["time_step_s"],
+            "estimated_expected_steps": cost["steps"], "estimated_history_rows": cost["history_rows"],
+            "estimated_memory_MiB": memory / 2**20, "estimated_seconds": seconds, "estimated_runs": runs,
+            "estimated_cost_note": (
+                "before any run, from the grid's stability limit and the run budget (impactmaps.solvers.run_budget): "
+                f"seconds on the 2-core reference machine (runs above {LONG_RUN_SECONDS:g} s are announced), runs = 2 "
+                "with the convergence check's re-run on twice the elements")}
 
 
 def _map_reading(case) -> dict:
