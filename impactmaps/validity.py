@@ -33,7 +33,7 @@ Checks (each sentence starts with its tag):
 ``structural theory``
     A Timoshenko beam or Mindlin plate struck at a contact frequency ω = π/t_c (t_c the
     first contact's duration) above a quarter of its thickness-shear cut-off
-    (:func:`impactmaps.solvers.shear_range.beyond_shear_theory`): the impact excites
+    (:func:`impactmaps.targets.shear_range.beyond_shear_theory`): the impact excites
     waves as short as the thickness, which those theories do not describe (the maps mark
     such points ``unresolved``).
 ``point load``
@@ -79,7 +79,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .contact.base import effective_modulus
-from .solvers.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
+from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [
     "DEFLECTION_RATIO_LIMIT",
@@ -183,7 +183,7 @@ class ForceAnswer:
 def force_answer(law, impactor_mass: float, velocity: float, peak_force: float | None = None) -> ForceAnswer:
     """A :class:`ForceAnswer` at ``peak_force`` [N] (a map's), or at the half-space peak force
     when ``None``; the indentation from the law's loading curve (arithmetic: bisection)."""
-    from .solvers.halfspace import single_law_parameters
+    from .closed_forms.halfspace import single_law_parameters
 
     params = single_law_parameters(law)
     bound = float(law.indentation_for_energy(0.5 * float(impactor_mass) * float(velocity) ** 2))
@@ -421,12 +421,15 @@ def _support_distance(target):
 def _contact_radius(target, law, result):
     if getattr(target, "kind", None) != "plate" or getattr(target, "theory", None) != "mindlin":
         return None
-    from .solvers.modal_settings import contact_radius_function
-
-    radius_of = contact_radius_function(law, None)
-    if radius_of is None:
+    alpha = max(float(result.max_indentation), 0.0)
+    # the contact radius as the modal solver's patch takes it (solvers.modal_settings.contact_radius_function,
+    # a layer above): the law's own loading radius (Stronge), else sqrt(R α) with the law's radius scale
+    if hasattr(law, "loading_contact_radius"):
+        radius = float(law.loading_contact_radius(alpha))
+    elif law.contact_radius_scale is not None:
+        radius = math.sqrt(float(law.contact_radius_scale) * alpha)
+    else:
         return None
-    radius = radius_of(float(result.max_indentation))
     if radius <= 0.5 * float(target.thickness):
         return None
     return (f"contact radius: {radius:.4g} m at the largest indentation exceeds half the plate thickness "
