@@ -170,7 +170,7 @@ def test_restitution_of_huge_impact_numbers_is_computed_not_overflowed(beta, cap
     its value, checked against the same energy balance in 800-digit arithmetic. The command
     takes the documented β ≤ 1e8 only (issue 40: it accepted 1e9) and refuses these with one
     line; the Python function answers them."""
-    from impactmaps.solvers.halfspace import restitution
+    from impactmaps.closed_forms.halfspace import restitution
 
     import mpmath as mp
 
