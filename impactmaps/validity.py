@@ -419,8 +419,10 @@ def _support_distance(target):
 
 
 def _contact_radius(target, law, result):
-    if getattr(target, "kind", None) != "plate" or getattr(target, "theory", None) != "mindlin":
-        return None
+    from .targets.options import is_shear_deformable
+
+    if getattr(target, "kind", None) != "plate" or not is_shear_deformable(getattr(target, "theory", "")):
+        return None  # a shear-deformable (Mindlin) plate
     alpha = max(float(result.max_indentation), 0.0)
     # the contact radius as the modal solver's patch takes it (solvers.modal_settings.contact_radius_function,
     # a layer above): the law's own loading radius (Stronge), else sqrt(R α) with the law's radius scale
