@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..maps.family.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ..maps.compute.workers import MAX_WORKERS
-from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
+from ._common import announce_wide_band, case_model_warnings, check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -47,7 +47,7 @@ def cmd_chart(args) -> dict:
           what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
     check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
           low_inclusive=True, high_inclusive=True)
-    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
+    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas, args.law)
     out = out_dir("--out", args.out)
     with store_lock(out / "fmax_map.nc", "--out"):
         paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
@@ -80,19 +80,19 @@ def cmd_sweep(args) -> dict:
           low_inclusive=True, high_inclusive=True)
     if args.scheduler is not None:
         refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
-    output = load_sweep_config(text_file("sweep file", args.config))[4]  # validated before anything is written
-    if output.exists() and not output.is_dir():
-        raise ValueError(f"{args.config}: output = {str(output)!r} is a file, not a directory")
-    output = out_dir(f"{args.config}: output", output)
+    config = load_sweep_config(text_file("sweep file", args.config))  # parsed and checked before anything is written
+    if config.output.exists() and not config.output.is_dir():
+        raise ValueError(f"{args.config}: output = {str(config.output)!r} is a file, not a directory")
+    output = out_dir(f"{args.config}: output", config.output)
     with store_lock(output / "sweep.nc", f"{args.config}: output"):
-        return _run_sweep(args)
+        return _run_sweep(args, config._replace(output=output))
 
 
-def _run_sweep(args) -> dict:
+def _run_sweep(args, config) -> dict:
     from ..maps.compute.config import run_sweep_config
 
     if args.scheduler is None:
-        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+        paths = run_sweep_config(config, progress=not args.quiet, overwrite=args.overwrite,
                                  max_workers=args.workers)
         return {key: str(value) for key, value in paths.items()}
     try:
@@ -104,7 +104,7 @@ def _run_sweep(args) -> dict:
     except (OSError, TimeoutError) as error:
         raise ValueError(f"--scheduler = {args.scheduler!r} cannot be reached: {error}") from None
     with client:
-        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+        paths = run_sweep_config(config, progress=not args.quiet, overwrite=args.overwrite,
                                  executor=client.get_executor())
     return {key: str(value) for key, value in paths.items()} | {"scheduler": args.scheduler}
 
@@ -156,7 +156,7 @@ def _structure_from_args(args):
 
 
 def _settings_from_args(args):
-    from ..solvers.modal import ModalSettings
+    from ..solvers.modal_settings import ModalSettings
 
     options = {} if args.time_step_ratio is None else {"time_step_ratio": args.time_step_ratio}
     return ModalSettings(cutoff_ratio=args.cutoff_ratio, check_convergence=not getattr(args, "no_check", False),
@@ -181,8 +181,10 @@ def _simulate_point(structure, target, args, settings, record: bool):
 def _map_point(structure, args, settings) -> dict:
     """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
     from ..maps.family.accuracy import STATUSES, AccuracyControl
-    from ..maps.compute.sweep import METHODS, RESULT_VARIABLES, solve_points
-    from ..solvers.modal import ConvergenceWarning
+    from ..maps.compute.points import METHODS
+    from ..maps.family.map_family import RESULT_VARIABLES
+    from ..maps.compute.linear_points import solve_points
+    from ..solvers.modal_settings import ConvergenceWarning
 
     control = AccuracyControl(tolerance=settings.tolerance)
     with warnings.catch_warnings():  # the status says what the refinement found
@@ -259,7 +261,7 @@ def cmd_point(args) -> dict:
 
 
 def cmd_asymptote(args) -> dict:
-    from ..closed_forms import asymptotes
+    from ..closed_forms import asymptotes, infinite_beam
 
     if getattr(args, "case", None) is not None:
         return _case_asymptote(args)
@@ -285,7 +287,7 @@ def cmd_asymptote(args) -> dict:
     if args.which == "infinite-plate":
         peak, contact = asymptotes.infinite_plate_peak(args.zeta), asymptotes.infinite_plate_contact_time(args.zeta)
     else:
-        peak, contact = asymptotes.infinite_beam_peak(args.zeta), asymptotes.infinite_beam_contact_time(args.zeta)
+        peak, contact = infinite_beam.infinite_beam_peak(args.zeta), infinite_beam.infinite_beam_contact_time(args.zeta)
     values = {"asymptote": args.which, "zeta": args.zeta, "fmax_normalised": float(peak),
               "contact_time_normalised": float(contact), "impacts": 1}
     if not math.isfinite(float(contact)):
@@ -354,14 +356,16 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..maps.read.lookup import lookup, status_notes
+    from ..maps.read.lookup import lookup
+    from ..maps.read.bands import status_notes
 
     if args.case is not None:
         import sys
         import time
 
         from ..cases import load_case
-        from ..cases.case_lookup import case_map_law, lookup_case
+        from ..cases.case_answer import case_map_law
+        from ..cases.case_lookup import lookup_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
@@ -376,10 +380,17 @@ def cmd_lookup(args) -> dict:
         start = time.perf_counter()
         progress = None if args.quiet else (lambda done, total: print(
             f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
-        return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
+        return found | case_model_warnings(case, found.get("peak_force_N"))
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
-    if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
-        raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
+    if args.zeta is None or args.lambda_ is None or args.kind is None:
+        raise ValueError("give --kind, --zeta and --lambda (and --theory: default the classical one, euler or "
+                         "kirchhoff), or --case CASE.toml")
+    if args.theory is None:
+        from ..targets.options import default_theory
+
+        args.theory = default_theory(args.kind)
     from ..maps.family.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
@@ -403,13 +414,16 @@ def cmd_lookup(args) -> dict:
     except ValueError as error:  # name the options as the user typed them
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
             from None
-    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
-            **status_notes(found.status), "regime": found.regime, "map": found.map_name, "law": law}
+    values = {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
+              **status_notes(found.status), "regime": found.regime, "map": found.map_name, "law": law}
+    return announce_wide_band(values, "fmax_normalised", "fmax_error",
+                              f"impactmaps point --zeta {args.zeta:g} --lambda {args.lambda_:g} --target {args.kind}-… "
+                              f"--theory {args.theory}, or impactmaps simulate on a case file")
 
 
 def _lookup_plastic_numbers(args) -> dict:
     """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
-    from ..maps.read.lookup import status_notes
+    from ..maps.read.bands import status_notes
     from ..maps.read.plastic_lookup import lookup_plastic
 
     beta = getattr(args, "beta", None)
@@ -419,8 +433,9 @@ def _lookup_plastic_numbers(args) -> dict:
     check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
     check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
     found = lookup_plastic(beta, args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=args.law)
-    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
+    return announce_wide_band({"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
             "restitution": found.restitution, "restitution_error": found.restitution_error,
             "absorbed_energy_fraction": found.absorbed_energy_fraction,
             "absorbed_energy_error": found.absorbed_energy_error, "status": found.status,
-            **status_notes(found.status), "map": found.map_name, "law": args.law}
+            **status_notes(found.status), "map": found.map_name, "law": args.law},
+        "fmax_normalised", "fmax_error", "simulate a case file with this law")

@@ -43,46 +43,26 @@ from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
 from .._compile import compile_helper
-from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, prepare_run, run_once
+from .modal_run import prepare_run, run_once
 from .modal_settings import (
-    CONTACT_PATCHES,
-    CONTACT_PHASES,
     DEFAULT_SETTINGS,
-    MAX_CUTOFF_RATIO,
-    MAX_EVENTS,
-    MAX_MIN_MODES,
     ConvergenceWarning,
-    ModalDetails,
     ModalSettings,
     linear_stiffness,
     settings_dict,
     uses_patch,
     contact_radius_function,
-    reference_contact_stiffness,
 )
+from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, plan_basis
 from ..result import ImpactResult
-from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
-    "ModalSettings",
-    "ModalDetails",
     "simulate",
     "simulate_normalised",
     "estimate_run",
     "simulate_batch",
-    "reference_contact_stiffness",
-    "coupled_top_frequency",
-    "content_time_step",
-    "ConvergenceWarning",
-    "CONTACT_PATCHES",
-    "CONTACT_PHASES",
-    "contact_radius_function",
 ]
-
-#: Names other modules and tests reach through this module (re-exported).
-_REEXPORTED = (HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, DEFAULT_SETTINGS, MAX_CUTOFF_RATIO, MAX_EVENTS,
-               MAX_MIN_MODES, STABLE_TOP_STEP, uses_patch)
 
 #: The peak-indentation patch radius is iterated until it moves by less than this (relative).
 PATCH_TOLERANCE = 1e-4
@@ -225,7 +205,7 @@ def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> t
     return (None, True) if exact else (None,)
 
 
-def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float):
+def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float, estimate: bool = False):
     """:func:`~impactmaps.solvers.mode_budget.plan_basis` of a run whose cut-off is ``wanted``
     [rad/s], also where the target's model, not memory, caps it.
 
@@ -239,15 +219,19 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
     """
     limit = float(target.resolution_limit())
     if wanted <= limit:
-        return plan_basis(target, law, impactor_mass, velocity, wanted)
+        return plan_basis(target, law, impactor_mass, velocity, wanted, estimate=estimate)
     return plan_basis(target, law, impactor_mass, velocity, wanted, max_modes=target.resolved_mode_count(),
-                      cap_frequency=limit)
+                      cap_frequency=limit, estimate=estimate)
 
 
 def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
                  settings: ModalSettings | None = None, record: bool = True,
                  time_step: float | None = None) -> dict:
     """What :func:`simulate` would integrate and what it would cost, without integrating.
+
+    Nothing is integrated, not even an any-law asymptote: whether the infinite-structure
+    solution answers is decided from the closed form's peak time at the law's reference
+    stiffness (``plan_basis(..., estimate=True)``).
 
     The mode budget's plan, the basis and time step of the run (for a patch load, of the
     first pass at the half-space peak indentation's radius) and the estimate of
@@ -292,7 +276,7 @@ def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float,
         contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run says these; an estimate only counts
-            plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
+            plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency), estimate=True)
         if plan.method == METHODS[2]:
             return {"method": plan.method, "modes": 0, "time_step_s": None, "expected_steps": 0,
                     "history_rows": 0, "memory_bytes": 0.0, "seconds": 0.0, "runs": 1}

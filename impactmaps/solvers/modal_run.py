@@ -21,6 +21,7 @@ import pandas as pd
 
 from .._checks import require_positive
 from .._compile import compile_helper
+from .._compile.interruptible import interrupts_ignored, run_interruptibly
 from ..contact.base import kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .integrator.coupled_contact import CoupledModes, coupled_modes
@@ -33,15 +34,15 @@ from .modal_settings import (
     ModalSettings,
     linear_stiffness,
     settings_dict,
-    reference_contact_stiffness,
 )
+from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import budget_cutoff
 from ..result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from ..result import ImpactResult, energy_balance_error
 from .run_budget import HISTORY_ROW_CAP, RunBudget, modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
-__all__ = ["run_once", "KernelInputs", "KernelScalars", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
+__all__ = ["run_once", "KernelInputs", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
            "COUPLED_COST_RATIO", "COUPLED_MAX_MODES", "COUPLED_ALWAYS_MODES"]
 
 #: The exact linear contact phase replaces the sampled one when the sampled scheme would
@@ -168,13 +169,6 @@ def _coupled_phase(basis: ModalBasis, stiffness: float, impactor_mass: float, ti
 INTERRUPTIBLE_SECONDS = 0.5
 
 
-def _interrupts_ignored() -> bool:
-    """Whether this process ignores Ctrl-C (SIGINT set to ``SIG_IGN``, as in a sweep's workers)."""
-    import signal
-
-    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN
-
-
 def _integrate(interruptible: bool, args: KernelInputs):
     """:data:`~impactmaps.solvers.integrator.exact_step.integrate_impact` on ``args`` (``args.run.stop``
     the kernel's one-element stop flag).
@@ -189,33 +183,10 @@ def _integrate(interruptible: bool, args: KernelInputs):
     :func:`impactmaps.maps.compute.workers.init_worker`): there no interrupt can arrive to stop it.
     """
     compile_helper.await_variant(integrate_impact.variant_of(args))  # a helper compiling it (first run only)
-    if not interruptible or _interrupts_ignored():
+    if not interruptible or interrupts_ignored():
         return integrate_impact(*args)
-    import threading
-
     integrate_impact.compile(*args)  # the variant this run needs; compiling holds the interpreter: do it here, not in the worker
-    outcome = {}
-    done = threading.Event()  # not Thread.join: a join interrupted by Ctrl-C can return early later
-
-    def work():
-        try:
-            outcome["result"] = integrate_impact(*args)
-        except BaseException as error:  # noqa: BLE001 (handed to the caller's thread)
-            outcome["error"] = error
-        finally:
-            done.set()
-
-    threading.Thread(target=work, name="impactmaps-modal-kernel", daemon=True).start()
-    try:
-        while not done.wait(0.1):
-            pass
-    except KeyboardInterrupt:
-        args.run.stop[0] = 1
-        done.wait()
-        raise
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["result"]
+    return run_interruptibly(lambda: integrate_impact(*args), args.run.stop, "impactmaps-modal-kernel")
 
 
 class KernelInputs(NamedTuple):
