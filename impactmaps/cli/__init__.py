@@ -237,6 +237,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--poisson-ratio", type=float, default=None, help="ν of the body without a --…material")
     p.add_argument("--density", type=float, default=None, help="ρ [kg/m³] of the body without a --…material")
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
+    p.add_argument("--law-option", action="append", default=[], metavar="NAME=VALUE",
+                   help="a numeric option of the law (impactmaps laws lists them), e.g. sphere_compliance=0.5; "
+                   "repeat for several")
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")

@@ -66,7 +66,7 @@ def cmd_halfspace(args) -> dict:
     impactor_material = material_from_args(args, "", "impactor")
     target_material = material_from_args(args, "target_", "target")
     sphere = Sphere(args.radius, impactor_material, args.mass)
-    law = law_for_sphere(args.law, sphere, target_material)
+    law = law_for_sphere(args.law, sphere, target_material, **_law_options(args.law_option))
     result = halfspace_impact(law, sphere.mass, args.velocity)
     summary = result.summary()
     return {
@@ -76,6 +76,22 @@ def cmd_halfspace(args) -> dict:
                                          "permanent_indentation_m", "restitution", "energy_loss_J")},
         "model_warnings": warn_if_invalid(sphere, target_material, law, None, result),
     }
+
+
+def _law_options(texts) -> dict:
+    """``{name: value}`` of the ``--law-option NAME=VALUE`` arguments (numbers)."""
+    options = {}
+    for text in texts or ():
+        name, sep, value = str(text).partition("=")
+        try:
+            number = float(value)
+        except ValueError:
+            number = math.nan
+        if not sep or not name.strip() or not math.isfinite(number):
+            raise ValueError(f"--law-option = {text!r} is invalid: give NAME=VALUE with a finite number "
+                             "(e.g. sphere_compliance=0.5; impactmaps laws lists each law's options)")
+        options[name.strip()] = number
+    return options
 
 
 def cmd_restitution(args) -> dict:
