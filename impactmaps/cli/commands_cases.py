@@ -104,25 +104,17 @@ def cmd_restitution(args) -> dict:
 def cmd_materials(args) -> dict:
     from dataclasses import fields
 
-    from ..materials import CATALOGUE, material
+    from ..materials import CATALOGUE, SOURCES
 
-    sources = _catalogue_sources(material.__doc__ or "")
     out = {}
     for name, entry in sorted(CATALOGUE.items()):
         values = {"kind": type(entry).__name__}
         values |= {f.name: getattr(entry, f.name) for f in fields(entry) if f.init and not f.name.startswith("_")}
-        out[name] = values | {"source": sources.get(name)}
-    return {"materials": out, "units": "SI: moduli and strengths [Pa], density [kg/m³]",
-            "sources_note": "full citations beside each entry of impactmaps.materials.CATALOGUE"}
-
-
-def _catalogue_sources(doc: str) -> dict:
-    """``{name: source}`` from the bullets ``* ``name`` — source`` of a docstring."""
-    import re
-
-    text = " ".join(line.strip() for line in doc.splitlines())
-    found = re.findall(r"\* ``([\w-]+)`` — (.*?)(?=\* ``|Raises|$)", text)
-    return {name: source.strip().rstrip(";.").replace("**", "") for name, source in found}
+        source, verified, unverified = SOURCES[name]
+        out[name] = values | {"source": source, "verified": list(verified), "unverified": dict(unverified)}
+    return {"materials": out, "units": "SI: moduli and strengths [Pa], density [kg/m³], thickness [m]",
+            "sources_note": "verified: the values read in the source; unverified: each other value with the reason "
+                            "(full citations beside each entry of impactmaps.materials.CATALOGUE)"}
 
 
 def cmd_laws(args) -> dict:

@@ -40,7 +40,7 @@ and stacking sequence (abstract, https://acnpsearch.tweb-dev.unibo.it/singlejour
 from __future__ import annotations
 
 from ._common import DEFAULT_PLY_THICKNESS, SPECIALLY_ORTHOTROPIC_RTOL
-from .catalogue import CATALOGUE, available_materials, material
+from .catalogue import CATALOGUE, SOURCES, available_materials, material
 from .isotropic import IsotropicMaterial
 from .laminate import Laminate
 from .ply import Ply
@@ -52,6 +52,7 @@ __all__ = [
     "Ply",
     "Laminate",
     "CATALOGUE",
+    "SOURCES",
     "material",
     "available_materials",
 ]
