@@ -19,11 +19,13 @@ from .map_charts import (
     FMAX_LABELS,
     PLASTIC_PANELS,
     REGIME_COLOURS,
+    NORMALISATION_NOTES,
     SENSITIVE_ALPHA,
     plot_fmax_chart,
     plot_plastic_chart,
     plot_regime_map,
     plot_regime_strip,
+    structure_label,
 )
 
 __all__ = [
@@ -40,4 +42,6 @@ __all__ = [
     "PLASTIC_PANELS",
     "REGIME_COLOURS",
     "SENSITIVE_ALPHA",
+    "NORMALISATION_NOTES",
+    "structure_label",
 ]
