@@ -8,6 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
+from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
@@ -240,3 +241,23 @@ def test_impact_history_legend_sits_above_the_force_panel():
     figure.canvas.draw()
     legend = top.get_legend().get_window_extent()
     assert legend.y0 >= top.get_window_extent().y1 - 1
+
+
+def test_plot_command_draws_a_users_sweep_and_asks_for_beta_on_a_plastic_map(dataset, tmp_path, capsys):
+    """`impactmaps plot` draws a sweep result's F̄max chart (the λ asked drawn at the grid's
+    nearest); an elastic-plastic map needs --beta and says which β it has."""
+    import json
+
+    from impactmaps.cli import main
+    from impactmaps.maps.data_io import write_dataset
+
+    path = tmp_path / "sweep.nc"
+    write_dataset(dataset, path)
+    assert main(["plot", str(tmp_path), "--lambdas", "0.3", "--json"]) == 0
+    drawn = json.loads(capsys.readouterr().out)
+    assert drawn["kind"] == "sweep" and (tmp_path / "sweep_chart.png").stat().st_size > 1000
+    shipped = Path(plotting.__file__).resolve().parents[1] / "maps" / "data" / "beam-ss-euler-epp.npz"
+    assert main(["plot", str(shipped), "--out", str(tmp_path / "epp.png")]) == 2
+    assert "--beta" in capsys.readouterr().err
+    assert main(["plot", str(shipped), "--beta", "10", "--out", str(tmp_path / "epp.png")]) == 0
+    assert (tmp_path / "epp.png").stat().st_size > 1000

@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, init, check, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, plot, init, check, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -55,6 +55,7 @@ from .commands_cases import (
     cmd_simulate,
 )
 from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
+from .plot import cmd_plot
 from .commands_maps import (
     SCHEDULER_TIMEOUT_S,
     cmd_asymptote,
@@ -220,10 +221,12 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("case", type=Path)
         p.add_argument("--out", default="impactmaps-output",
                        help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
-        p.add_argument("--vary", default=None, metavar="KEY=A:B:N",
-                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B "
-                       "(or KEY=V1,V2,…), e.g. impactor.velocity=0.5:5:10; writes study.csv, study_forces.png and "
-                       "each run in study/run_NNN (reused when the command is run again)")
+        p.add_argument("--vary", default=None, metavar="KEY=A:B:N[:log]",
+                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B, "
+                       "evenly spaced (A:B:N:log: evenly in log), or KEY=V1,V2,…, e.g. impactor.velocity=0.1:10:12:log; "
+                       "writes study.csv and study.json (every scalar of each run), study.png (peak force and "
+                       "restitution against KEY), study_forces.png and each run in study/run_NNN (reused when the "
+                       "command is run again)")
         p.add_argument("--quiet", action="store_true", help="no progress lines of a --vary study")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
@@ -243,6 +246,17 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
+
+    p = add("plot", "draw a parameter study (simulate --vary) or a sweep or chart result", cmd_plot)
+    p.add_argument("path", type=Path, help="a study's --out directory or study.csv; a sweep's output directory, "
+                   "a chart's --out directory, or a .nc/.npz map file")
+    p.add_argument("--out", default=None, help="image file (.png, .svg, .pdf; default study.png or sweep_chart.png "
+                   "beside the input)")
+    p.add_argument("--quantity", action="append", default=None, metavar="COLUMN",
+                   help="a study column to draw, one panel each (default peak_force_N and restitution); repeat")
+    p.add_argument("--lambdas", nargs="+", type=float, default=None,
+                   help="a sweep's λ values to draw (each at the grid's nearest λ; default all)")
+    p.add_argument("--beta", type=float, default=None, help="an elastic-plastic map's β to draw (the nearest grid β)")
 
     _tool_parsers(add)
     return parser

@@ -15,6 +15,7 @@ from .histories import (
     plot_scaling,
     save_impact_history,
 )
+from .studies import STUDY_QUANTITIES, plot_study
 from .map_charts import (
     FMAX_LABELS,
     PLASTIC_PANELS,
@@ -38,6 +39,8 @@ __all__ = [
     "save_impact_history",
     "plot_scaling",
     "plot_restitution",
+    "plot_study",
+    "STUDY_QUANTITIES",
     "FMAX_LABELS",
     "PLASTIC_PANELS",
     "REGIME_COLOURS",
