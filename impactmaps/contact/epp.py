@@ -156,7 +156,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
     Parameters
     ----------
     effective_modulus : float or array_like
-        E* [Pa] (seed 001 eq 8).
+        E* [Pa] (Christoforou & Yigit 1998, eq 8).
     radius : float or array_like
         Effective radius R [m].
     yield_strength : float or array_like
@@ -214,7 +214,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
         return first_yield_force(self.effective_modulus, self.radius, self.yield_indentation)
 
     def impact_number(self, impactor_mass, velocity):
-        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11),
+        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (Christoforou & Yigit 1998, eq 11),
         so that one β places an impact whichever plastic law is used.
 
         Parameters

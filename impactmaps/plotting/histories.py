@@ -136,7 +136,7 @@ def save_impact_history(result, path, *, normalised=False):
 
 
 def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):
-    """Scaling figure (seed 001 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
+    """Scaling figure (Christoforou & Yigit 1998 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
 
     Parameters
     ----------
@@ -160,7 +160,7 @@ def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None,
 
 
 def plot_restitution(beta, restitution, *, points=None, ax=None):
-    """Coefficient of restitution against the impact number β (seed 001 Figure 1).
+    """Coefficient of restitution against the impact number β (Christoforou & Yigit 1998 Figure 1).
 
     Parameters
     ----------

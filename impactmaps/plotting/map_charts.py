@@ -35,7 +35,7 @@ FMAX_LABELS = {name: (layout.labels["zeta"], layout.labels["fmax"]) for name, la
 
 
 def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):
-    """Figure 2 of seed 001: F̄max against ζ (log axis) for several λ.
+    """Figure 2 of Christoforou & Yigit 1998: F̄max against ζ (log axis) for several λ.
 
     Plates are drawn solid, beams dashed; the quasi-static values sqrt(λ/(1+λ)) as
     dotted horizontal lines, the infinite-plate and infinite-beam peaks as thick grey
