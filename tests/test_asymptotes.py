@@ -254,7 +254,7 @@ def test_infinite_beam_energy(loss_factor):
 
 def test_infinite_beam_peaks_match_mpmath_reference():
     """Peak values and times against the mpmath 30-digit de Hoog solution of ᾱ' = 0
-    (module docstring): the closed form + Brent root of ᾱ' is good to ~1e-15; hold 1e-12."""
+    (docs/physics.rst): the closed form + Brent root of ᾱ' is good to ~1e-15; hold 1e-12."""
     reference = {  # ζ: (τ_max, F̄max), mpmath 1.3, dps = 30, method = "dehoog"
         0.1: (1.3427341031445539767, 0.81205346894778302893),
         0.3: (1.0504019186853225820, 0.60077146798153053400),

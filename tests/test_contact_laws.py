@@ -395,7 +395,7 @@ def test_stronge_phase_boundaries_are_continuous():
 
 
 def test_stronge_elastic_plastic_branch_is_the_documented_area_law():
-    """The elastic-plastic branch, transcribed from the module docstring independently of
+    """The elastic-plastic branch, transcribed from docs/contact_laws.rst independently of
     the kernel: A = ((x − 1 + τ)/τ)^n, F = F_y A(1 + ln A/κ), a² = R δ_y A, with n = sτ,
     s = 1.5κ/(1 + κ) and sτ ln(1 + (x_p − 1)/τ) = ln(2x_p − 1) (checked to 1e-13); at the
     defaults n = 1.15990, τ = 1.01879; A(x_p) = 2x_p − 1 (area continuous at δ_p, 1e-12);
@@ -419,7 +419,7 @@ def test_stronge_elastic_plastic_branch_is_the_documented_area_law():
 
 
 def test_stronge_keeps_the_contract_analytically():
-    """The consistency conditions of the module docstring on a fine grid of the
+    """The consistency conditions of docs/contact_laws.rst on a fine grid of the
     elastic-plastic branch (x = δ/δ_y from 1 to 84, 200 001 points), in units F_y, δ_y:
     f ≤ x^{3/2} (loading ≤ Hertz); df/dx ≤ (3/2) ā (never stiffer than the elastic
     unloading 2E*a); recovery f/ā ≤ x (δ_r ≥ 0); δ_r non-decreasing; the second
