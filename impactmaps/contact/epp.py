@@ -12,13 +12,13 @@ them and L = ln x:
 * loading, ``x > 1``: ``F/F_y = x^{3/2} exp(−q [L − c atan(L/c)] − r L³/3) h``: the local
   exponent ``d ln F/d ln x = 3/2 − q L²/(c² + L²) − r L²`` falls smoothly from the Hertz
   3/2 to 1, reached at x_c = 1518.5, and is held at 1 beyond: there the mean pressure
-  F/(2πRδ) = (c_y/3)(F/F_y)/x Y stays at its value at x_c (3.06 Y for a rigid sphere), the fully plastic
-  plateau of an elastic–perfectly plastic solid, instead of falling as the fitted form
-  would (docs/epp_calibration.rst, *Beyond the calibrated range*); the force never
+  F/(2πRδ) = (c_y/3)(F/F_y)/x Y stays at its value at x_c (3.06 Y for a rigid sphere),
+  the fully plastic plateau of an elastic–perfectly plastic solid, instead of falling as
+  the fitted form would (docs/epp_calibration.rst, *Beyond the calibrated range*); the force never
   exceeds Hertz and never decreases; ``h = 1 + b_f ln(1/(1 − s)) L³/(c_s³ + L³)``
   raises it with the sphere's share s = E*(1 − ν_s²)/E_s of the compliance (s = 0: a
-  rigid sphere; h too is held at its x_c value beyond x_c).  The form belongs to the family of FE-fitted laws that blend the Hertz
-  curve into a plastic branch (Jackson & Green, J. Tribol. 127 (2005) 343,
+  rigid sphere; h too is held at its x_c value beyond x_c).  The form belongs to the
+  family of FE-fitted laws that blend the Hertz curve into a plastic branch (Jackson & Green, J. Tribol. 127 (2005) 343,
   doi:10.1115/1.1866166); the function and its coefficients are our own.
 * unloading and reloading below ``δ_m``: the power law about the permanent
   indentation of the Etsion family (Etsion, Kligerman & Kadin, Int. J. Solids Struct. 42
