@@ -261,3 +261,11 @@ def test_plot_command_draws_a_users_sweep_and_asks_for_beta_on_a_plastic_map(dat
     assert "--beta" in capsys.readouterr().err
     assert main(["plot", str(shipped), "--beta", "10", "--out", str(tmp_path / "epp.png")]) == 0
     assert (tmp_path / "epp.png").stat().st_size > 1000
+    capsys.readouterr()
+    (tmp_path / "junk.nc").write_text("not a map")
+    for argv in (["plot", str(tmp_path), "--out", str(tmp_path / "missing" / "x.png")],
+                 ["plot", str(tmp_path), "--out", str(tmp_path / "x.txt")],
+                 ["plot", str(tmp_path / "junk.nc")]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and "Traceback" not in err

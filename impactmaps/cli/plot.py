@@ -94,8 +94,8 @@ def draw_sweep(source: Path, path: Path, lambdas=None, beta=None) -> Path:
 
     try:
         dataset = read_dataset(source)
-    except (OSError, ValueError, KeyError) as error:
-        raise ValueError(f"{source}: not a readable map file ({error})") from None
+    except Exception as error:  # noqa: BLE001 - any reader failure is a file that is not a map
+        raise ValueError(f"{source}: not a readable map file ({(str(error).splitlines() or [''])[0].removeprefix('Error: ')})") from None
     if "fmax_normalised" not in dataset or "zeta" not in dataset.dims:
         raise ValueError(f"{source}: no F̄max over ζ in this file (not a sweep or chart result)")
     if "beta" in dataset.dims:
@@ -127,6 +127,8 @@ def cmd_plot(args) -> dict:
     out = Path(args.out) if args.out else base / ("study.png" if kind == "study" else "sweep_chart.png")
     if out.suffix.lower() not in (".png", ".svg", ".pdf"):
         raise ValueError(f"--out = {str(out)!r}: give an image file name ending in .png, .svg or .pdf")
+    if not out.parent.is_dir():
+        raise ValueError(f"--out = {str(out)!r}: its directory {str(out.parent)!r} does not exist")
     if kind == "study":
         if args.lambdas or args.beta is not None:
             raise ValueError("--lambdas and --beta choose what a sweep's chart draws, not a study's")
