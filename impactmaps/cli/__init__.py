@@ -128,6 +128,16 @@ _THEORIES = _Deferred("impactmaps.maps.lookup", "SHIPPED_MAPS", _theories)
 _ZETA_RANGE = _Deferred("impactmaps.maps.chart", "DEFAULT_ZETA_RANGE")
 
 
+#: Help of ``simulate --vary`` and ``fd --vary``.
+VARY_HELP = ("a parameter study: run the case for N values of the numeric case-file KEY from A to B, evenly "
+             "spaced (A:B:N:log: evenly in log), or KEY=V1,V2,…, e.g. impactor.velocity=0.1:10:12:log; writes "
+             "study.csv and study.json (every scalar of each run), study.png (peak force and restitution against "
+             "KEY), study_forces.png and each run in study/run_NNN (reused when the command is run again)")
+#: Help of ``halfspace --law-option``.
+LAW_OPTION_HELP = ("a numeric option of the law (impactmaps laws lists them), e.g. sphere_compliance=0.5; "
+                   "repeat for several")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``impactmaps`` command."""
     from .. import __version__
@@ -221,12 +231,7 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("case", type=Path)
         p.add_argument("--out", default="impactmaps-output",
                        help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
-        p.add_argument("--vary", default=None, metavar="KEY=A:B:N[:log]",
-                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B, "
-                       "evenly spaced (A:B:N:log: evenly in log), or KEY=V1,V2,…, e.g. impactor.velocity=0.1:10:12:log; "
-                       "writes study.csv and study.json (every scalar of each run), study.png (peak force and "
-                       "restitution against KEY), study_forces.png and each run in study/run_NNN (reused when the "
-                       "command is run again)")
+        p.add_argument("--vary", default=None, metavar="KEY=A:B:N[:log]", help=VARY_HELP)
         p.add_argument("--quiet", action="store_true", help="no progress lines of a --vary study")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
@@ -240,13 +245,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--poisson-ratio", type=float, default=None, help="ν of the body without a --…material")
     p.add_argument("--density", type=float, default=None, help="ρ [kg/m³] of the body without a --…material")
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
-    p.add_argument("--law-option", action="append", default=[], metavar="NAME=VALUE",
-                   help="a numeric option of the law (impactmaps laws lists them), e.g. sphere_compliance=0.5; "
-                   "repeat for several")
+    p.add_argument("--law-option", action="append", default=[], metavar="NAME=VALUE", help=LAW_OPTION_HELP)
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
 
+    _plot_parser(add)
+    _tool_parsers(add)
+    return parser
+
+
+def _plot_parser(add) -> None:
+    """The ``plot`` subcommand: a user's study or sweep drawn."""
     p = add("plot", "draw a parameter study (simulate --vary) or a sweep or chart result", cmd_plot)
     p.add_argument("path", type=Path, help="a study's --out directory or study.csv; a sweep's output directory, "
                    "a chart's --out directory, or a .nc/.npz map file")
@@ -257,9 +267,6 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--lambdas", nargs="+", type=float, default=None,
                    help="a sweep's λ values to draw (each at the grid's nearest λ; default all)")
     p.add_argument("--beta", type=float, default=None, help="an elastic-plastic map's β to draw (the nearest grid β)")
-
-    _tool_parsers(add)
-    return parser
 
 
 def _tool_parsers(add) -> None:

@@ -71,7 +71,7 @@ def draw_study(source: Path, path: Path, quantities=None) -> Path:
     key = str(table.columns[0])
     spacing = _spacing(table_path)
     chosen = tuple(quantities) if quantities else ("peak_force_N", "restitution")
-    axes = plot_study(table, key, chosen, log_x=(spacing == "log") if spacing in ("log", "linear") else None)
+    axes = plot_study(table, key, chosen, log_x=(spacing == "log") if spacing in ("log", "even") else None)
     figure = axes[0].figure
     figure.tight_layout()
     try:

@@ -86,11 +86,12 @@ def parse_vary(text: str) -> tuple[str, list[float]]:
 
 
 def vary_spacing(text: str) -> str:
-    """``"log"``, ``"linear"`` or ``"list"``: how :func:`parse_vary` spaces the values of ``text``."""
+    """``"log"``, ``"even"`` or ``"list"``: how :func:`parse_vary` spaces the values of ``text``
+    (evenly in log, evenly, as listed)."""
     spec = str(text).partition("=")[2]
     if ":" not in spec:
         return "list"
-    return "log" if spec.split(":")[-1].strip().lower() == "log" else "linear"
+    return "log" if spec.split(":")[-1].strip().lower() == "log" else "even"
 
 
 def study_scalars(summary: dict) -> dict:

@@ -11,6 +11,7 @@ from ..maps.accuracy import STATUSES
 from ..maps.builtin_families import LAYOUTS, PlasticLayout, family_layout
 from ..maps.map_family import map_law
 from ..maps.regimes import REGIMES, classify, infinite_structure_peak, quasi_static_peak
+from ..targets.options import depends_on_slenderness
 from .axes import axes_or_new
 
 __all__ = ["REGIME_COLOURS", "SENSITIVE_ALPHA", "FMAX_LABELS", "PLASTIC_PANELS", "NORMALISATION_NOTES",
@@ -324,7 +325,7 @@ def structure_label(dataset, structure) -> str:
     if kind == "plate" and "aspect_ratio" in one.coords:
         ratio = float(one["aspect_ratio"].item())
         extra.append("square" if ratio == 1.0 else f"aspect ratio {ratio:g}")
-    if theory in ("timoshenko", "mindlin") and "slenderness" in one.coords:
+    if depends_on_slenderness(theory) and "slenderness" in one.coords:
         extra.append(f"{'L' if kind == 'beam' else 'a'}/h = {float(one['slenderness'].item()):g}")
     return " ".join(words) + (f" ({', '.join(extra)})" if extra else "")
 

@@ -29,7 +29,7 @@ kind = "beam"
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
             "restitution", "plot", "init", "check", "warm-up", "materials", "laws")
 #: A shipped elastic-plastic map: `plot` draws it at one β.
-SHIPPED_EPP_MAP = Path(__file__).resolve().parents[1] / "impactmaps" / "maps" / "data" / "beam-ss-euler-epp.npz"
+SHIPPED_EPP_MAP = Path(__file__).resolve().parents[2] / "impactmaps" / "maps" / "data" / "beam-ss-euler-epp.npz"
 
 
 def _invocations(tmp_path):

@@ -386,7 +386,7 @@ def test_the_case_file_page_tables_every_catalogue_entry_as_it_is():
 
     from impactmaps.materials import SOURCES
 
-    text = (Path(__file__).resolve().parents[1] / "docs" / "cases.rst").read_text(encoding="utf-8")
+    text = (Path(__file__).resolve().parents[2] / "docs" / "cases.rst").read_text(encoding="utf-8")
     short = {"youngs_modulus": "E", "poisson_ratio": "ν", "density": "ρ", "yield_strength": "S_y",
              "longitudinal_modulus": "E1", "transverse_modulus": "E2", "shear_modulus": "G12", "thickness": "t",
              "transverse_shear_modulus_13": "G13", "transverse_shear_modulus_23": "G23"}
