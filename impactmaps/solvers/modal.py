@@ -190,8 +190,9 @@ def _warn_energy_ledger(result: ImpactResult, tolerance: float) -> None:
 
 def _warn_target_validity(target: Target, result: ImpactResult) -> None:
     """Issue :func:`impactmaps.validity.target_warnings` of a run on a structure as
-    :class:`~impactmaps.validity.ModelValidityWarning` (the checks that need no sphere)."""
-    from ..validity import ModelValidityWarning, target_warnings  # beside the solvers: on use
+    :class:`~impactmaps._checks.ModelValidityWarning` (the checks that need no sphere)."""
+    from .._checks import ModelValidityWarning
+    from ..validity import target_warnings  # beside the solvers: on use
 
     for message in target_warnings(target, result):
         warnings.warn(message, ModelValidityWarning, stacklevel=3)

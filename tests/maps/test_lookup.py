@@ -454,7 +454,7 @@ def test_a_lookup_in_a_shipped_mindlin_map_says_it_is_a_point_load():
     up to the sweep's cap and has no converged value — a lookup says so (a warning)."""
     import warnings
 
-    from impactmaps.validity import ModelValidityWarning
+    from impactmaps._checks import ModelValidityWarning
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

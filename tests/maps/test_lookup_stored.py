@@ -221,6 +221,11 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
         widened = np.isin(recorded_status, ["converged", "refined"]) & (band > BAND_TOLERANCE)
         np.testing.assert_array_equal(np.where(widened, "interpolated", recorded_status), status, err_msg=name)
         differ = new["regime"][answered].astype(str) != recorded[f"{name}/regime"][answered]
+        # the classifier's rule since the recording: a peak before the first reflection is never
+        # quasi-static (maps/family/regimes.py): such points may move from quasi-static to
+        # infinite-structure anywhere, not only where the interpolation reaches across a criterion
+        differ &= ~((recorded[f"{name}/regime"][answered] == "quasi-static")
+                    & (new["regime"][answered].astype(str) == "infinite-structure"))
         total += int(answered.sum())
         if differ.any():
             changed += int(differ.sum())
