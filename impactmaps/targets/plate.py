@@ -41,7 +41,7 @@ from ..dimensionless import (
     loss_factor_plate,
 )
 from ..solvers import asymptotes
-from . import plate_navier, ritz
+from . import plate_general, plate_navier, ritz
 from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES, impact_coordinate_range
 from .plate_ritz import STATIC_RITZ_FUNCTIONS, classical_static_compliance, ritz_plate_modes
@@ -117,6 +117,9 @@ class Plate(Target):
     impact_point: tuple | None = None
     shear_correction: float = 5.0 / 6.0
     damping_ratio: float = 0.0
+    D16: float = 0.0  # noqa: N815
+    D26: float = 0.0  # noqa: N815
+    A45: float = 0.0  # noqa: N815
 
     def __post_init__(self):
         require_positive("length_x", self.length_x, "m")
@@ -130,6 +133,17 @@ class Plate(Target):
                          low_inclusive=False, high_inclusive=False, unit="N·m")
         require_positive("A44", self.A44, "N/m")
         require_positive("A55", self.A55, "N/m")
+        for name in ("D16", "D26", "A45"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float, np.floating, np.integer)) and math.isfinite(value)):
+                raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
+        if np.linalg.eigvalsh(self.bending_stiffness_matrix)[0] <= 0.0:
+            raise ValueError(
+                f"D16 = {self.D16!r}, D26 = {self.D26!r} are invalid: the bending stiffness "
+                "[[D11, D12, D16], [D12, D22, D26], [D16, D26, D66]] must be positive definite")
+        if self.A45**2 >= self.A44 * self.A55:
+            raise ValueError(f"A45 = {self.A45!r} is invalid: valid range is |A45| < sqrt(A44 A55) "
+                             f"= {math.sqrt(self.A44 * self.A55):.6g} [N/m]")
         require_positive("mass_per_area", self.mass_per_area, "kg/m²")
         require_choice("theory", self.theory, PLATE_THEORIES)
         if self.theory == "mindlin":
@@ -153,7 +167,8 @@ class Plate(Target):
                              high_inclusive=high < span, unit="m")
         object.__setattr__(self, "impact_point", (x0, y0))
         for name in ("length_x", "length_y", "thickness", "D11", "D22", "D12", "D66", "A44", "A55",
-                     "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio"):
+                     "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio",
+                     "D16", "D26", "A45"):
             object.__setattr__(self, name, float(getattr(self, name)))  # hashable plain numbers
 
     # -- constructors -------------------------------------------------------------
@@ -179,21 +194,43 @@ class Plate(Target):
     def from_laminate(cls, length_x, length_y, laminate, **kwargs) -> "Plate":
         """Plate from a laminate (e.g. :class:`impactmaps.materials.Laminate`).
 
-        Uses the laminate's ``D11, D22, D12, D66`` [N·m], ``A44, A55`` [N/m],
-        ``mass_per_area`` [kg/m²], ``rotary_inertia_per_area`` [kg] and ``thickness`` [m].
-        Bending–twisting (D16, D26) and extension–bending (B) couplings are ignored by
-        the specially orthotropic model; a warning is issued when the laminate reports
-        ``is_specially_orthotropic = False``.
+        Uses the laminate's full bending stiffness (D11, D22, D12, D66, D16, D26) [N·m],
+        transverse shear stiffness (A44, A55, A45) [N/m], ``mass_per_area`` [kg/m²],
+        ``rotary_inertia_per_area`` [kg] and ``thickness`` [m]. Couplings whose ratio
+        (:meth:`~impactmaps.materials.Laminate.coupling_ratios`) is below
+        :data:`~impactmaps.materials._common.SPECIALLY_ORTHOTROPIC_RTOL` are round-off and
+        set to 0 (a specially orthotropic SSSS laminate keeps its Navier modes).
+
+        Raises
+        ------
+        ValueError
+            For an unsymmetric laminate (extension–bending coupling B ≠ 0): the plate
+            model has no membrane displacements, and dropping B would make the plate
+            stiffer than it is.
         """
-        if not bool(getattr(laminate, "is_specially_orthotropic", True)):
-            warnings.warn(
-                "laminate is not specially orthotropic: D16, D26 and B couplings are ignored "
-                "by the plate model", stacklevel=2)
+        from ..materials._common import SPECIALLY_ORTHOTROPIC_RTOL
+
+        ratios = laminate.coupling_ratios() if hasattr(laminate, "coupling_ratios") else {}
+        if ratios.get("B", 0.0) > SPECIALLY_ORTHOTROPIC_RTOL:
+            raise ValueError(
+                f"laminate is not supported: it is unsymmetric (extension–bending coupling "
+                f"max|B_ij|/sqrt(max|A_ij| max|D_ij|) = {ratios['B']:.3g}); the plate model has no "
+                "membrane displacements to carry the coupling; valid: a symmetric layup "
+                "(e.g. symmetric = true)")
+
+        def coupling(name, value):
+            return float(value) if ratios.get(name, 0.0) > SPECIALLY_ORTHOTROPIC_RTOL else 0.0
+
+        D = getattr(laminate, "D", None)
+        d16 = coupling("D16", D[0, 2]) if D is not None else 0.0
+        d26 = coupling("D26", D[1, 2]) if D is not None else 0.0
+        a45 = coupling("A45", getattr(laminate, "A45", 0.0))
         return cls(length_x=length_x, length_y=length_y, thickness=float(laminate.thickness),
                    D11=float(laminate.D11), D22=float(laminate.D22), D12=float(laminate.D12),
                    D66=float(laminate.D66), A44=float(laminate.A44), A55=float(laminate.A55),
                    mass_per_area=float(laminate.mass_per_area),
-                   rotary_inertia_per_area=float(laminate.rotary_inertia_per_area), **kwargs)
+                   rotary_inertia_per_area=float(laminate.rotary_inertia_per_area),
+                   D16=d16, D26=d26, A45=a45, **kwargs)
 
     # -- simple properties ----------------------------------------------------------
     @property
@@ -260,13 +297,81 @@ class Plate(Target):
         return InfiniteImpact(asymptotes.infinite_plate_peak(loss_factor),
                               asymptotes.infinite_plate_peak_time(loss_factor), contact, rebound)
 
+    @property
+    def bending_stiffness_matrix(self) -> np.ndarray:
+        """[[D11, D12, D16], [D12, D22, D26], [D16, D26, D66]] [N·m]."""
+        return np.array([[self.D11, self.D12, self.D16], [self.D12, self.D22, self.D26],
+                         [self.D16, self.D26, self.D66]])
+
+    @property
+    def uses_navier(self) -> bool:
+        """True for the specially orthotropic SSSS plate (Navier modes, exact)."""
+        return self.edges == "SSSS" and not plate_general.uses_general_basis(self)
+
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
+        if plate_general.uses_general_basis(self):
+            return float(plate_general.grown_solution(self, 0.0, 1).frequencies[0])
         if self.edges == "SSSS":
             return float(self._navier_frequencies(np.array([1.0]), np.array([1.0]))[0])
         args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
         n_x, n_y, _, _ = ritz.ritz_basis_size(0.0, *args)
         return float(ritz.solve_ritz_plate(*args, self.edges, n_x, n_y).frequencies[0])
+
+    def mode_table(self, count: int) -> dict:
+        """The lowest ``count`` natural frequencies with labels and the basis that gave them.
+
+        Returns
+        -------
+        dict
+            ``frequencies_hz`` (ndarray, lowest first) [Hz]; ``labels`` (list of str:
+            ``"(m, n)"`` half-waves for a Navier plate, else the mode index from 1);
+            ``method`` (str); ``basis`` (str, e.g. ``"24×24 functions per field"``);
+            ``resolved_frequency_hz`` [Hz] (``inf`` for Navier); ``resolved`` (bool: every
+            mode returned is below the resolved frequency).
+        """
+        require_in_range("count", count, 1, 100000)
+        if int(count) != count:
+            raise ValueError(f"count = {count!r} is invalid: must be an integer >= 1")
+        count = int(count)
+        two_pi = 2.0 * math.pi
+        if self.uses_navier:
+            m, n, omega, _, _ = plate_navier._lowest_modes(self, 0.0, count)
+            return {"frequencies_hz": omega / two_pi, "labels": [f"({i}, {j})" for i, j in zip(m, n)],
+                    "method": f"Navier ({self.theory})", "basis": "exact (m, n) half-waves",
+                    "resolved_frequency_hz": math.inf, "resolved": True}
+        if plate_general.uses_general_basis(self):
+            result = plate_general.grown_solution(self, 0.0, count)
+            frequencies, n_x, n_y, top = result.frequencies, result.n_x, result.n_y, result.resolved_frequency
+            method = f"Ritz, general basis ({self.theory}, w{', ψx, ψy' if self.theory == 'mindlin' else ''})"
+        else:
+            args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
+            n_x = n_y = ritz.MIN_FUNCTIONS
+            while True:
+                solution = ritz.solve_ritz_plate(*args, self.edges, n_x, n_y)
+                top = solution.resolved_frequency
+                if np.sum(solution.frequencies <= top) >= count or n_x >= ritz.MAX_FUNCTIONS:
+                    break
+                n_x = n_y = min(n_x + 4, ritz.MAX_FUNCTIONS)
+            frequencies = solution.frequencies
+            method = "Ritz (kirchhoff)"
+        omega = np.asarray(frequencies[:count], dtype=float)
+        return {"frequencies_hz": omega / two_pi, "labels": [str(i + 1) for i in range(omega.size)],
+                "method": method, "basis": f"{n_x}×{n_y} functions per field",
+                "resolved_frequency_hz": top / two_pi,
+                "resolved": bool(omega.size == count and omega[-1] <= top)}
+
+    def natural_frequencies_hz(self, count: int) -> np.ndarray:
+        """The lowest ``count`` natural frequencies [Hz] of the plate's bending modes, lowest
+        first (any theory, edges and laminate; :meth:`mode_table`). Warns when some are
+        above what the largest basis resolves."""
+        table = self.mode_table(count)
+        if not table["resolved"]:
+            warnings.warn(
+                f"count = {count}: the largest Ritz basis ({table['basis']}) resolves modes up to "
+                f"{table['resolved_frequency_hz']:.6g} Hz only; the frequencies above it "
+                f"(and any missing) are not converged", stacklevel=2)
+        return table["frequencies_hz"]
 
     # -- Target interface -------------------------------------------------------------
     def static_compliance(self) -> float:
@@ -284,6 +389,8 @@ class Plate(Target):
         CFCF/CCSS/CFFF), against 2e-3 – 5e-3 for the plain Ritz value. Used for λ also when
         ``theory="mindlin"`` (the Mindlin point-load deflection is infinite).
         """
+        if self.D16 != 0.0 or self.D26 != 0.0:
+            return plate_general.classical_compliance(self)
         return classical_static_compliance(self.length_x, self.length_y, self.D11, self.D22,
                                            self.D12, self.D66, self.edges, self.impact_point)
 
@@ -326,8 +433,10 @@ class Plate(Target):
 
     @property
     def supports_contact_patch(self) -> bool:
-        """True when :meth:`modes` can spread the load over a contact patch (SSSS plates)."""
-        return self.edges == "SSSS"
+        """True when :meth:`modes` can spread the load over a contact patch: Navier plates,
+        Mindlin plates and plates with D16/D26/A45 (the general basis); not the
+        specially orthotropic Kirchhoff Ritz plates."""
+        return self.uses_navier or plate_general.uses_general_basis(self)
 
     def modes(self, max_frequency: float, min_modes: int = 1,
               contact_radius: float | None = None) -> ModalBasis:
@@ -413,21 +522,24 @@ class Plate(Target):
         modes :meth:`modes` resolves (a bounded model, built).
         """
         require_nonnegative("max_frequency", max_frequency, "rad/s")
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return plate_navier.navier_mode_count(self, float(max_frequency), limit)
         return super().mode_count(max_frequency, limit)
 
     @property
     def bounded_modes(self) -> bool:
-        """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
-        return self.edges != "SSSS"
+        """True for the Ritz plates (all but the Navier ones): a basis of bounded size."""
+        return not self.uses_navier
 
     def resolution_limit(self) -> float:
         """Highest frequency [rad/s] the plate's modes resolve: ``inf`` for SSSS (Navier,
         exact), else what the largest Ritz basis (:data:`ritz.MAX_FUNCTIONS` per direction)
         resolves (:attr:`ritz.RitzPlateSolution.resolved_frequency`)."""
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return math.inf
+        if plate_general.uses_general_basis(self):
+            cap = plate_general.max_functions(self.theory)
+            return plate_general.resolved_frequency(self, cap, cap)
         return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
                                                self.D66, self.mass_per_area)
 
@@ -436,9 +548,10 @@ class Plate(Target):
         Navier count of its simply supported twin (same stiffnesses), which differs from
         the Ritz count by the edges' boundary-layer term only — counting the Ritz modes
         would take the largest eigen-solution (seconds)."""
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return 0
-        return plate_navier.navier_mode_count(replace(self, edges="SSSS"), self.resolution_limit(), None)
+        twin = replace(self, edges="SSSS", D16=0.0, D26=0.0, A45=0.0)
+        return plate_navier.navier_mode_count(twin, self.resolution_limit(), None)
 
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
@@ -449,8 +562,9 @@ class Plate(Target):
         if contact_radius > 0.0 and not self.supports_contact_patch:
             raise ValueError(
                 f"contact_radius = {contact_radius!r} is not supported with edges = {self.edges!r}: "
-                "the contact patch is available on plates with edges = 'SSSS' only; valid: "
-                "contact_radius = 0 (point load) on other edges")
+                "the contact patch is available on SSSS, Mindlin and coupled (D16/D26) plates; "
+                "valid: contact_radius = 0 (point load) on a specially orthotropic Kirchhoff "
+                "plate with other edges")
         return float(contact_radius)
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
@@ -492,6 +606,18 @@ def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
 @functools.lru_cache(maxsize=8)
 def _plate_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float):
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
-    if plate.edges == "SSSS":
+    if plate.uses_navier:
         return plate_navier.navier_modes(plate, max_frequency, min_modes, contact_radius)
+    if plate_general.uses_general_basis(plate):
+        basis, shape_function, result = plate_general.general_plate_modes(
+            plate, max_frequency, min_modes, contact_radius)
+        if max_frequency > result.resolved_frequency:
+            warnings.warn(
+                f"max_frequency = {max_frequency:.6g} rad/s exceeds what the largest Ritz basis "
+                f"({result.n_x}×{result.n_y} functions per field) resolves, "
+                f"{result.resolved_frequency:.6g} rad/s: modes above that are represented by "
+                "the residual compliance only", stacklevel=4)
+        if plate.theory == "mindlin" and contact_radius == 0.0:
+            plate_navier.warn_beyond_thickness_shear(plate, max_frequency, stacklevel=5)
+        return basis, shape_function
     return ritz_plate_modes(plate, max_frequency, min_modes)

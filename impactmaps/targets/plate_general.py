@@ -1,0 +1,438 @@
+"""General Rayleigh–Ritz modal basis of rectangular plates: Mindlin or Kirchhoff, any S/C/F
+edges, full bending stiffness (D11, D22, D12, D66, D16, D26) and transverse shear
+(A44, A55, A45).
+
+Each field carries its own edge condition (docs/plates_any_edges.rst, spec §3.7). Every
+field is a product of the orthonormal boundary-characteristic Legendre polynomials of
+:mod:`impactmaps.targets.ritz`, ``Σ c_il X_i(x/a) Y_l(y/b)``, with the edge-factor
+exponent chosen per field and per edge:
+
+============  =========  =================  =================
+field         F          S                  C
+============  =========  =================  =================
+w (Mindlin)   0          1                  1
+ψx            0          0 on x = const,    1
+                         1 on y = const
+ψy            0          1 on x = const,    1
+                         0 on y = const
+w (Kirchhoff) 0          1                  2
+============  =========  =================  =================
+
+(S is the "hard" simple support of the Navier solution: w = 0 and the rotation along the
+edge zero.) Each polynomial space contains the previous one, so every frequency falls
+monotonically as the basis grows. The Kirchhoff plate is in this space with two functions
+fewer per direction (ψ = −∇w is admissible), so the Mindlin basis does not lock as
+a/h grows. The energies are those of spec §3.7 with k the shear correction; every Gram
+integral is exact (Gauss–Legendre with n + 8 nodes).
+
+Unsymmetric laminates (B ≠ 0) are not modelled here; :class:`~impactmaps.targets.plate.Plate`
+refuses them (it has no membrane fields).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.polynomial import legendre
+
+from . import ritz
+
+__all__ = ["GeneralPlateSolution", "field_exponents", "solve_general_plate", "general_static_compliance",
+           "disc_quadrature", "RESOLUTION_FACTOR", "RESOLUTION_MARGIN", "MIN_FUNCTIONS", "MAX_FUNCTIONS"]
+
+#: Functions per direction per half-wave of the highest resolved mode (measured, docs).
+RESOLUTION_FACTOR = 2.0
+#: Extra functions per direction on top of ``RESOLUTION_FACTOR · m``.
+RESOLUTION_MARGIN = 6
+#: Smallest basis per direction.
+MIN_FUNCTIONS = 10
+#: Largest basis per direction for the Mindlin basis (3 n² unknowns: 3468 at 34).
+MAX_FUNCTIONS = 34
+
+
+def field_exponents(theory: str, edges: str) -> tuple:
+    """Edge-factor exponents ((ex0, ex1), (ey0, ey1)) of each field, w first (table above)."""
+    def pick(table_x, table_y):
+        return ((table_x[edges[0]], table_x[edges[2]]), (table_y[edges[1]], table_y[edges[3]]))
+
+    if theory == "kirchhoff":
+        return (pick(ritz.EDGE_CODES, ritz.EDGE_CODES),)
+    w = {"F": 0, "S": 1, "C": 1}
+    normal = {"F": 0, "S": 0, "C": 1}  # rotation about the edge: free on S
+    tangential = {"F": 0, "S": 1, "C": 1}  # rotation along the edge: zero on S
+    return (pick(w, w), pick(normal, tangential), pick(tangential, normal))
+
+
+def _values(xi, n, e0, e1):
+    """Orthonormal polynomials of exponents (e0, e1) and two derivatives at ξ, shape (len, n)."""
+    transform = ritz._orthonormalising_transform(int(n), int(e0), int(e1))
+    raw = ritz._raw_polynomials(np.atleast_1d(np.asarray(xi, dtype=float)), int(n), int(e0), int(e1))
+    return tuple(r @ transform for r in raw)
+
+
+@functools.lru_cache(maxsize=256)
+def _gram(n, exponents_a, exponents_b, order_a, order_b):
+    """∫0^1 φ_a,i^(order_a) φ_b,k^(order_b) dξ, shape (n, n) (exact)."""
+    nodes, weights = legendre.leggauss(n + 8)
+    xi = 0.5 * (nodes + 1.0)
+    va = _values(xi, n, *exponents_a)[order_a]
+    vb = _values(xi, n, *exponents_b)[order_b]
+    gram = va.T @ (0.5 * weights[:, None] * vb)
+    gram.setflags(write=False)
+    return gram
+
+
+def _strains(theory):
+    """Generalised strains as lists of (coefficient, field, ∂x order, ∂y order), and their
+    stiffness-matrix index: bending κ (3) then shear γxz, γyz (Mindlin)."""
+    if theory == "kirchhoff":
+        return [[(-1.0, 0, 2, 0)], [(-1.0, 0, 0, 2)], [(-2.0, 0, 1, 1)]]
+    return [[(1.0, 1, 1, 0)], [(1.0, 2, 0, 1)], [(1.0, 1, 0, 1), (1.0, 2, 1, 0)],
+            [(1.0, 1, 0, 0), (1.0, 0, 1, 0)], [(1.0, 2, 0, 0), (1.0, 0, 0, 1)]]
+
+
+def _material_matrix(theory, D, shear):
+    """D (3×3) or blockdiag(D, k·[[A55, A45], [A45, A44]]) [N·m, N/m]."""
+    if theory == "kirchhoff":
+        return np.asarray(D, dtype=float)
+    matrix = np.zeros((5, 5))
+    matrix[:3, :3] = D
+    matrix[3:, 3:] = shear
+    return matrix
+
+
+def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y) -> np.ndarray:
+    """Stiffness matrix [N/m] in the field-blocked orthonormal product basis (w, ψx, ψy)."""
+    a, b = float(length_x), float(length_y)
+    exponents = field_exponents(theory, edges)
+    size = n_x * n_y
+    fields = len(exponents)
+    strains = _strains(theory)
+    material = _material_matrix(theory, D, shear)
+    stiffness = np.zeros((fields * size, fields * size))
+    for s, strain_s in enumerate(strains):
+        for t, strain_t in enumerate(strains):
+            c = material[s, t]
+            if c == 0.0:
+                continue
+            for cs, fs, pxs, pys in strain_s:
+                for ct, ft, pxt, pyt in strain_t:
+                    gx = _gram(n_x, exponents[fs][0], exponents[ft][0], pxs, pxt)
+                    gy = _gram(n_y, exponents[fs][1], exponents[ft][1], pys, pyt)
+                    scale = c * cs * ct * a ** (1 - pxs - pxt) * b ** (1 - pys - pyt)
+                    stiffness[fs * size:(fs + 1) * size, ft * size:(ft + 1) * size] += scale * np.kron(gx, gy)
+    return 0.5 * (stiffness + stiffness.T)
+
+
+def _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, size):
+    area = float(length_x) * float(length_y)
+    if theory == "kirchhoff":
+        return np.full(size, mass_per_area * area)
+    return np.concatenate([np.full(size, mass_per_area * area), np.full(2 * size, rotary_inertia * area)])
+
+
+@dataclass(frozen=True)
+class GeneralPlateSolution:
+    """Ritz modes of a plate below the basis's resolved frequency.
+
+    Attributes
+    ----------
+    length_x, length_y : float
+        Sides a, b [m].
+    theory, edges : str
+        Plate theory and edge code (x = 0, y = 0, x = a, y = b).
+    n_x, n_y : int
+        Functions per direction and per field.
+    frequencies : ndarray
+        ω_j [rad/s], ascending, every Ritz mode with ω_j ≤ ``computed_up_to``.
+    coefficients : ndarray, shape (fields · n_x n_y, modes)
+        Mass-normalised eigenvectors (``∫ ρh w² + I2 (ψx² + ψy²) dA = 1``).
+    resolved_frequency : float
+        Modes up to this frequency [rad/s] are resolved (module rule).
+    computed_up_to : float
+        Highest eigenvalue requested [rad/s].
+    """
+
+    length_x: float
+    length_y: float
+    theory: str
+    edges: str
+    n_x: int
+    n_y: int
+    frequencies: np.ndarray
+    coefficients: np.ndarray
+    resolved_frequency: float
+    computed_up_to: float
+
+    def deflection_basis(self, points) -> np.ndarray:
+        """w product-basis functions at ``points`` (n_points, 2) [m] → (n_points, n_x n_y)."""
+        points = np.atleast_2d(np.asarray(points, dtype=float))
+        (ex, ey) = field_exponents(self.theory, self.edges)[0]
+        xv = _values(points[:, 0] / self.length_x, self.n_x, *ex)[0]
+        yv = _values(points[:, 1] / self.length_y, self.n_y, *ey)[0]
+        return (xv[:, :, None] * yv[:, None, :]).reshape(points.shape[0], -1)
+
+    def mode_shapes(self, points, count=None) -> np.ndarray:
+        """Mass-normalised deflections w_j at ``points`` [kg^-1/2], shape (n_points, count)."""
+        count = self.frequencies.size if count is None else int(count)
+        size = self.n_x * self.n_y
+        return self.deflection_basis(points) @ self.coefficients[:size, :count]
+
+
+def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y):
+    stiffness = stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y)
+    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, n_x * n_y)
+    scale = 1.0 / np.sqrt(mass)
+    return stiffness * scale[:, None] * scale[None, :], scale
+
+
+@functools.lru_cache(maxsize=8)
+def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
+                        n_x, n_y, resolved_frequency, computed_up_to) -> GeneralPlateSolution:
+    """Ritz eigen-solution (cached by its inputs; pure: same inputs, same bits).
+
+    Parameters
+    ----------
+    length_x, length_y : float
+        Sides a, b [m].
+    theory : {"kirchhoff", "mindlin"}
+    edges : str
+        Edge code.
+    D : tuple of tuple
+        3×3 bending stiffness [[D11, D12, D16], [D12, D22, D26], [D16, D26, D66]] [N·m].
+    shear : tuple of tuple
+        2×2 ``k [[A55, A45], [A45, A44]]`` [N/m] (ignored by Kirchhoff).
+    mass_per_area, rotary_inertia : float
+        ρh [kg/m²] and ρh³/12 [kg].
+    n_x, n_y : int
+        Functions per direction.
+    resolved_frequency, computed_up_to : float
+        The basis's resolved frequency and the highest ω computed [rad/s].
+    """
+    import scipy.linalg
+
+    matrix, scale = _standard_problem(length_x, length_y, theory, edges, np.array(D), np.array(shear),
+                                      mass_per_area, rotary_inertia, n_x, n_y)
+    upper = float(computed_up_to) ** 2
+    eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_value=(-np.inf, upper), driver="evr")
+    if eigenvalues.size == 0:
+        eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_index=(0, 0), driver="evr")
+    if eigenvalues[0] <= 0:
+        raise RuntimeError(f"Ritz plate stiffness is not positive definite (lowest eigenvalue "
+                           f"{eigenvalues[0]:.3e}); the edges leave rigid-body motion")
+    vectors = vectors * scale[:, None]
+    frequencies = np.sqrt(eigenvalues)
+    for array in (frequencies, vectors):
+        array.setflags(write=False)
+    return GeneralPlateSolution(float(length_x), float(length_y), theory, edges, int(n_x), int(n_y),
+                                frequencies, vectors, float(resolved_frequency), float(computed_up_to))
+
+
+def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load) -> float:
+    """``fᵀ K⁻¹ f`` [m/N]: static compliance in the basis for the generalised load ``f`` of
+    the w block (``load``, length n_x n_y; the other fields unloaded)."""
+    import scipy.linalg
+
+    stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y)
+    f = np.zeros(stiffness.shape[0])
+    f[:load.size] = load
+    factor = scipy.linalg.cho_factor(stiffness)
+    return float(f @ scipy.linalg.cho_solve(factor, f))
+
+
+@functools.lru_cache(maxsize=32)
+def disc_quadrature(radius: float, pressure: str = "hertz", radial_nodes: int = 24, angular_nodes: int = 48):
+    """Offsets (n, 2) [m] and weights (n,) (sum 1) averaging over a disc with the Hertz
+    pressure ``∝ sqrt(1 − r²/a²)`` (``s = sin t`` makes the integrand smooth; periodic
+    trapezoid in angle)."""
+    nodes, weights = legendre.leggauss(radial_nodes)
+    t = 0.25 * math.pi * (nodes + 1.0)
+    wt = 0.25 * math.pi * weights
+    s = np.sin(t)
+    if pressure == "hertz":
+        radial_weight = wt * s * np.cos(t) ** 2  # s sqrt(1−s²) ds, ds = cos t dt
+    else:
+        radial_weight = wt * s * np.cos(t)
+    theta = 2.0 * math.pi * np.arange(angular_nodes) / angular_nodes
+    offsets = radius * np.stack([np.outer(s, np.cos(theta)).ravel(), np.outer(s, np.sin(theta)).ravel()], axis=1)
+    w = np.repeat(radial_weight, angular_nodes)
+    w = w / w.sum()
+    offsets.setflags(write=False)
+    w.setflags(write=False)
+    return offsets, w
+
+
+# ---------------------------------------------------------------------------------
+# A Plate's general basis: size, modes, contact patch, static compliance
+# ---------------------------------------------------------------------------------
+def uses_general_basis(plate) -> bool:
+    """True when the plate needs this module: Mindlin with edges other than SSSS, or any
+    plate with bending–twisting (D16, D26) or A45 coupling (Navier is exact only for
+    specially orthotropic SSSS; Kirchhoff specially orthotropic plates on other edges use
+    :mod:`impactmaps.targets.ritz`)."""
+    coupled = plate.D16 != 0.0 or plate.D26 != 0.0 or plate.A45 != 0.0
+    return coupled or (plate.theory == "mindlin" and plate.edges != "SSSS")
+
+
+def _inputs(plate, edges=None, coupled=True):
+    """Hashable arguments of :func:`solve_general_plate` describing ``plate``."""
+    d16, d26 = (plate.D16, plate.D26) if coupled else (0.0, 0.0)
+    a45 = plate.A45 if coupled else 0.0
+    D = ((plate.D11, plate.D12, d16), (plate.D12, plate.D22, d26), (d16, d26, plate.D66))
+    k = plate.shear_correction
+    shear = ((k * plate.A55, k * a45), (k * a45, k * plate.A44))
+    return (plate.length_x, plate.length_y, plate.theory, edges or plate.edges, D, shear,
+            plate.mass_per_area, plate.rotary_inertia_per_area)
+
+
+def max_functions(theory: str) -> int:
+    """Largest basis per direction: :data:`MAX_FUNCTIONS` (Mindlin, 3 fields) or
+    :data:`impactmaps.targets.ritz.MAX_FUNCTIONS` (Kirchhoff)."""
+    return MAX_FUNCTIONS if theory == "mindlin" else ritz.MAX_FUNCTIONS
+
+
+def resolved_frequency(plate, n_x: int, n_y: int) -> float:
+    """Highest frequency [rad/s] an ``n_x × n_y`` basis resolves: the simply supported
+    frequency (same theory, couplings left out) of the mode with
+    ``(n − RESOLUTION_MARGIN)/RESOLUTION_FACTOR`` half-waves in the poorer direction."""
+    if plate.theory == "kirchhoff":
+        return ritz._resolved_frequency(n_x, n_y, plate.length_x, plate.length_y, plate.D11, plate.D22,
+                                        plate.D12, plate.D66, plate.mass_per_area)
+    from .plate_navier import mindlin_flexural
+
+    m_x = max((n_x - RESOLUTION_MARGIN) / RESOLUTION_FACTOR, 1.0)
+    m_y = max((n_y - RESOLUTION_MARGIN) / RESOLUTION_FACTOR, 1.0)
+    omega, _ = mindlin_flexural(plate, np.array([m_x, 1.0]), np.array([1.0, m_y]))
+    return float(np.min(omega))
+
+
+def basis_size(plate, max_frequency: float) -> tuple[int, int, bool]:
+    """(n_x, n_y, enough): the smallest square-ish basis resolving ``max_frequency`` [rad/s],
+    clipped to :func:`max_functions`; ``enough`` is False when even the largest does not."""
+    cap = max_functions(plate.theory)
+    n = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
+    while n < cap and resolved_frequency(plate, n, n) < max_frequency:
+        n += 2
+    n = min(n, cap)
+    return n, n, resolved_frequency(plate, n, n) >= max_frequency
+
+
+def solution(plate, n: int) -> GeneralPlateSolution:
+    """The cached general solution of ``plate`` with ``n × n`` functions."""
+    top = resolved_frequency(plate, n, n)
+    return solve_general_plate(*_inputs(plate), n, n, top, top)
+
+
+def grown_solution(plate, max_frequency: float, min_modes: int) -> GeneralPlateSolution:
+    """Smallest basis resolving ``max_frequency`` [rad/s] and at least ``min_modes`` modes
+    (or the largest basis)."""
+    n, _, _ = basis_size(plate, max_frequency)
+    cap = max_functions(plate.theory)
+    while True:
+        result = solution(plate, n)
+        if result.frequencies.size >= min_modes or n >= cap:
+            return result
+        n = min(n + 4, cap)
+
+
+def patch_weights(result: GeneralPlateSolution, point, contact_radius: float, count: int) -> np.ndarray:
+    """Participation [kg^-1/2] of the first ``count`` modes under a Hertz pressure disc of
+    ``contact_radius`` [m] centred at ``point`` (the pressure-weighted mean of each mode
+    shape; the point value when the radius is 0)."""
+    if contact_radius <= 0.0:
+        return result.mode_shapes(np.array([point]), count)[0]
+    offsets, weights = disc_quadrature(float(contact_radius))
+    return weights @ result.mode_shapes(np.asarray(point)[None, :] + offsets, count)
+
+
+def _patch_load(result: GeneralPlateSolution, point, contact_radius: float) -> np.ndarray:
+    if contact_radius <= 0.0:
+        return result.deflection_basis(np.array([point]))[0]
+    offsets, weights = disc_quadrature(float(contact_radius))
+    return weights @ result.deflection_basis(np.asarray(point)[None, :] + offsets)
+
+
+@functools.lru_cache(maxsize=32)
+def patch_static_compliance(plate, n: int, contact_radius: float) -> float:
+    """Static compliance [m/N] of ``plate`` under the Hertz patch (Mindlin: shear included),
+    ``C_basis(edges) + [C_Navier(SSSS) − C_basis(SSSS)]`` with the couplings left out of the
+    bracket: the part the polynomial basis misses is local to the load and does not depend
+    on the edges (as :meth:`Plate.static_compliance`)."""
+    from .patch import hertz_transform, mean_square_transform
+    from .plate_static import navier_patch_residual
+
+    result = solution(plate, n)
+    load = _patch_load(result, plate.impact_point, contact_radius)
+    args = _inputs(plate)
+    full = general_static_compliance(*args[:6], n, n, load)
+    ssss = _inputs(plate, "SSSS", coupled=False)
+    basis_ssss = general_static_compliance(*ssss[:6], n, n, load if plate.edges == "SSSS" else _patch_load(
+        solution_for_edges(plate, "SSSS", n), plate.impact_point, contact_radius))
+    stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
+    if plate.theory == "mindlin":
+        stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
+    exact = navier_patch_residual(plate.length_x, plate.length_y, stiffnesses, plate.impact_point,
+                                  contact_radius, hertz_transform, mean_square=mean_square_transform)
+    return full + max(exact - basis_ssss, 0.0)
+
+
+def solution_for_edges(plate, edges: str, n: int) -> GeneralPlateSolution:
+    """An unsolved stand-in carrying only the geometry of the basis for ``edges`` (for
+    evaluating basis functions)."""
+    return GeneralPlateSolution(plate.length_x, plate.length_y, plate.theory, edges, n, n,
+                                np.zeros(0), np.zeros((0, 0)), 0.0, 0.0)
+
+
+@functools.lru_cache(maxsize=32)
+def classical_compliance(plate) -> float:
+    """Classical (Kirchhoff) point compliance [m/N] of a plate with D16/D26, any edges:
+    ``C_Ritz(edges, full D) + [C_Navier(SSSS) − C_Ritz(SSSS)]`` (D16, D26 left out of the
+    bracket; :data:`impactmaps.targets.plate_ritz.STATIC_RITZ_FUNCTIONS` functions)."""
+    from .plate_ritz import STATIC_RITZ_FUNCTIONS
+    from .plate_static import navier_static_compliance
+
+    n = STATIC_RITZ_FUNCTIONS
+    a, b = plate.length_x, plate.length_y
+    stand_in = GeneralPlateSolution(a, b, "kirchhoff", plate.edges, n, n, np.zeros(0), np.zeros((0, 0)), 0.0, 0.0)
+    load = stand_in.deflection_basis(np.array([plate.impact_point]))[0]
+    D = _inputs(plate)[4]
+    full = general_static_compliance(a, b, "kirchhoff", plate.edges, D, ((1.0, 0.0), (0.0, 1.0)), n, n, load)
+    orth = (plate.D11, plate.D22, plate.D12, plate.D66)
+    navier = navier_static_compliance(a, b, *orth, plate.impact_point)
+    basis_ssss = ritz.ritz_static_compliance(a, b, *orth, "SSSS", plate.impact_point, n, n)
+    return full + (navier - basis_ssss)
+
+
+def general_plate_modes(plate, max_frequency: float, min_modes: int, contact_radius: float = 0.0):
+    """(:class:`~impactmaps.targets.base.ModalBasis`, mode-shape function, solution) of a plate
+    in the general basis: the modes with ω ≤ ``max_frequency`` [rad/s] the basis resolves
+    (at least ``min_modes``); residual compliance as documented in :meth:`Plate.modes`.
+    """
+    from .base import ModalBasis
+
+    result = grown_solution(plate, max_frequency, min_modes)
+    limit = min(max_frequency, result.resolved_frequency)
+    count = int(np.sum(result.frequencies <= limit))
+    count = max(count, min(min_modes, result.frequencies.size))
+    omega = np.asarray(result.frequencies[:count])
+    participation = patch_weights(result, plate.impact_point, contact_radius, count)
+    damping = np.full(omega.shape, float(plate.damping_ratio))
+    if contact_radius > 0.0:
+        static = patch_static_compliance(plate, result.n_x, float(contact_radius))
+        residual = max(static - float(np.sum(participation**2 / omega**2)), 0.0)
+        basis = ModalBasis(omega, participation, residual, damping)
+    elif plate.theory == "kirchhoff":
+        basis = ModalBasis.from_modes(omega, participation, plate.static_compliance(), damping)
+    else:
+        # point load on a Mindlin plate: the static deflection is infinite; the residual is the
+        # classical compliance not carried by the retained modes (≥ 0), as for Navier
+        residual = max(plate.static_compliance() - float(np.sum(participation**2 / omega**2)), 0.0)
+        basis = ModalBasis(omega, participation, residual, damping)
+
+    def shape_function(points):
+        return result.mode_shapes(points, count)
+
+    return basis, shape_function, result
