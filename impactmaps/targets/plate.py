@@ -311,7 +311,7 @@ class Plate(Target):
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
         if plate_general.uses_general_basis(self):
-            return float(plate_general.grown_solution(self, 0.0, 1).frequencies[0])
+            return float(plate_general.all_modes(self, 1)[0][0])
         if self.edges == "SSSS":
             return float(self._navier_frequencies(np.array([1.0]), np.array([1.0]))[0])
         args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
@@ -341,8 +341,9 @@ class Plate(Target):
                     "method": f"Navier ({self.theory})", "basis": "exact (m, n) half-waves",
                     "resolved_frequency_hz": math.inf, "resolved": True}
         if plate_general.uses_general_basis(self):
-            result = plate_general.grown_solution(self, 0.0, count)
-            frequencies, n_x, n_y, top = result.frequencies, result.n_x, result.n_y, result.resolved_frequency
+            frequencies, results = plate_general.all_modes(self, count)
+            n_x = n_y = max(r.n_x for r in results)
+            top = min(r.resolved_frequency for r in results)
             method = f"Ritz, general basis ({self.theory}, w{', ψx, ψy' if self.theory == 'mindlin' else ''})"
         else:
             args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
@@ -538,7 +539,7 @@ class Plate(Target):
         if self.uses_navier:
             return math.inf
         if plate_general.uses_general_basis(self):
-            cap = plate_general.max_functions(self.theory)
+            cap = plate_general.max_functions(self.theory, plate_general.class_groups(self)[0])
             return plate_general.resolved_frequency(self, cap, cap)
         return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
                                                self.D66, self.mass_per_area)

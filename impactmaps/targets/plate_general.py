@@ -104,15 +104,39 @@ def _material_matrix(theory, D, shear):
     return matrix
 
 
-def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y) -> np.ndarray:
-    """Stiffness matrix [N/m] in the field-blocked orthonormal product basis (w, ψx, ψy)."""
+def selection(theory, n_x, n_y, classes=None) -> tuple:
+    """Flat indices (i n_y + l) of the product functions kept, per field.
+
+    ``classes``: the parities (p, q) of w in x and y (0 even, 1 odd about the plate's
+    centre lines) to keep, or None for all. With the same edge on opposite sides the
+    polynomials X_i have the parity of i, so the modes split into symmetry classes; the
+    rotations have the parity of the matching derivative of w (ψx: 1 − p in x).
+    """
+    i, l = np.divmod(np.arange(n_x * n_y), n_y)
+    if classes is None:
+        everything = np.arange(n_x * n_y)
+        return (everything,) * (1 if theory == "kirchhoff" else 3)
+    classes = set(classes)
+
+    def keep(px, py):
+        return np.flatnonzero([(int(a), int(b)) in classes for a, b in zip(px, py)])
+
+    w = keep(i % 2, l % 2)
+    if theory == "kirchhoff":
+        return (w,)
+    return (w, keep(1 - i % 2, l % 2), keep(i % 2, 1 - l % 2))
+
+
+def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes=None) -> np.ndarray:
+    """Stiffness matrix [N/m] in the field-blocked orthonormal product basis (w, ψx, ψy),
+    restricted to the symmetry ``classes`` (:func:`selection`)."""
     a, b = float(length_x), float(length_y)
     exponents = field_exponents(theory, edges)
-    size = n_x * n_y
-    fields = len(exponents)
+    kept = selection(theory, n_x, n_y, classes)
+    offsets = np.concatenate([[0], np.cumsum([k.size for k in kept])])
     strains = _strains(theory)
     material = _material_matrix(theory, D, shear)
-    stiffness = np.zeros((fields * size, fields * size))
+    stiffness = np.zeros((offsets[-1], offsets[-1]))
     for s, strain_s in enumerate(strains):
         for t, strain_t in enumerate(strains):
             c = material[s, t]
@@ -123,15 +147,19 @@ def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y) -> n
                     gx = _gram(n_x, exponents[fs][0], exponents[ft][0], pxs, pxt)
                     gy = _gram(n_y, exponents[fs][1], exponents[ft][1], pys, pyt)
                     scale = c * cs * ct * a ** (1 - pxs - pxt) * b ** (1 - pys - pyt)
-                    stiffness[fs * size:(fs + 1) * size, ft * size:(ft + 1) * size] += scale * np.kron(gx, gy)
+                    ix_s, iy_s = np.divmod(kept[fs], n_y)
+                    ix_t, iy_t = np.divmod(kept[ft], n_y)
+                    block = gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
+                    stiffness[offsets[fs]:offsets[fs + 1], offsets[ft]:offsets[ft + 1]] += scale * block
     return 0.5 * (stiffness + stiffness.T)
 
 
-def _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, size):
+def _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, kept):
     area = float(length_x) * float(length_y)
-    if theory == "kirchhoff":
-        return np.full(size, mass_per_area * area)
-    return np.concatenate([np.full(size, mass_per_area * area), np.full(2 * size, rotary_inertia * area)])
+    parts = [np.full(kept[0].size, mass_per_area * area)]
+    if theory != "kirchhoff":
+        parts += [np.full(k.size, rotary_inertia * area) for k in kept[1:]]
+    return np.concatenate(parts)
 
 
 @dataclass(frozen=True)
@@ -166,32 +194,36 @@ class GeneralPlateSolution:
     coefficients: np.ndarray
     resolved_frequency: float
     computed_up_to: float
+    classes: tuple | None = None
 
     def deflection_basis(self, points) -> np.ndarray:
-        """w product-basis functions at ``points`` (n_points, 2) [m] → (n_points, n_x n_y)."""
+        """w basis functions at ``points`` (n_points, 2) [m] → (n_points, kept w functions)."""
         points = np.atleast_2d(np.asarray(points, dtype=float))
         (ex, ey) = field_exponents(self.theory, self.edges)[0]
         xv = _values(points[:, 0] / self.length_x, self.n_x, *ex)[0]
         yv = _values(points[:, 1] / self.length_y, self.n_y, *ey)[0]
-        return (xv[:, :, None] * yv[:, None, :]).reshape(points.shape[0], -1)
+        full = (xv[:, :, None] * yv[:, None, :]).reshape(points.shape[0], -1)
+        return full[:, selection(self.theory, self.n_x, self.n_y, self.classes)[0]]
 
     def mode_shapes(self, points, count=None) -> np.ndarray:
         """Mass-normalised deflections w_j at ``points`` [kg^-1/2], shape (n_points, count)."""
         count = self.frequencies.size if count is None else int(count)
-        size = self.n_x * self.n_y
-        return self.deflection_basis(points) @ self.coefficients[:size, :count]
+        basis = self.deflection_basis(points)
+        return basis @ self.coefficients[:basis.shape[1], :count]
 
 
-def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y):
-    stiffness = stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y)
-    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, n_x * n_y)
+def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
+                      classes=None):
+    stiffness = stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
+    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
+                          selection(theory, n_x, n_y, classes))
     scale = 1.0 / np.sqrt(mass)
     return stiffness * scale[:, None] * scale[None, :], scale
 
 
 @functools.lru_cache(maxsize=8)
 def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
-                        n_x, n_y, resolved_frequency, computed_up_to) -> GeneralPlateSolution:
+                        n_x, n_y, resolved_frequency, computed_up_to, classes=None) -> GeneralPlateSolution:
     """Ritz eigen-solution (cached by its inputs; pure: same inputs, same bits).
 
     Parameters
@@ -211,11 +243,13 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
         Functions per direction.
     resolved_frequency, computed_up_to : float
         The basis's resolved frequency and the highest ω computed [rad/s].
+    classes : tuple of (int, int), optional
+        Symmetry classes kept (:func:`selection`); None for all.
     """
     import scipy.linalg
 
     matrix, scale = _standard_problem(length_x, length_y, theory, edges, np.array(D), np.array(shear),
-                                      mass_per_area, rotary_inertia, n_x, n_y)
+                                      mass_per_area, rotary_inertia, n_x, n_y, classes)
     upper = float(computed_up_to) ** 2
     eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_value=(-np.inf, upper), driver="evr")
     if eigenvalues.size == 0:
@@ -228,15 +262,15 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
     for array in (frequencies, vectors):
         array.setflags(write=False)
     return GeneralPlateSolution(float(length_x), float(length_y), theory, edges, int(n_x), int(n_y),
-                                frequencies, vectors, float(resolved_frequency), float(computed_up_to))
+                                frequencies, vectors, float(resolved_frequency), float(computed_up_to), classes)
 
 
-def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load) -> float:
+def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load, classes=None) -> float:
     """``fᵀ K⁻¹ f`` [m/N]: static compliance in the basis for the generalised load ``f`` of
     the w block (``load``, length n_x n_y; the other fields unloaded)."""
     import scipy.linalg
 
-    stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y)
+    stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y, classes)
     f = np.zeros(stiffness.shape[0])
     f[:load.size] = load
     factor = scipy.linalg.cho_factor(stiffness)
@@ -288,10 +322,38 @@ def _inputs(plate, edges=None, coupled=True):
             plate.mass_per_area, plate.rotary_inertia_per_area)
 
 
-def max_functions(theory: str) -> int:
-    """Largest basis per direction: :data:`MAX_FUNCTIONS` (Mindlin, 3 fields) or
-    :data:`impactmaps.targets.ritz.MAX_FUNCTIONS` (Kirchhoff)."""
-    return MAX_FUNCTIONS if theory == "mindlin" else ritz.MAX_FUNCTIONS
+#: Largest eigenproblem per field set, in unknowns (Mindlin 3 × 34²; dense, seconds).
+MAX_UNKNOWNS = 3 * MAX_FUNCTIONS**2
+#: Largest Kirchhoff eigenproblem in unknowns (40², as :data:`impactmaps.targets.ritz.MAX_FUNCTIONS`).
+MAX_UNKNOWNS_KIRCHHOFF = ritz.MAX_FUNCTIONS**2
+
+
+def is_symmetric(plate) -> bool:
+    """True when the plate is symmetric about both centre lines (same edge on opposite
+    sides) and struck at the centre: its modes split into symmetry classes."""
+    x0, y0 = plate.impact_point
+    centred = (abs(x0 - 0.5 * plate.length_x) <= 1e-12 * plate.length_x
+               and abs(y0 - 0.5 * plate.length_y) <= 1e-12 * plate.length_y)
+    return centred and plate.edges[0] == plate.edges[2] and plate.edges[1] == plate.edges[3]
+
+
+def class_groups(plate) -> list:
+    """The symmetry classes that do not couple, as groups (all modes = their union); the
+    first holds the modes a centre impact excites. D16, D26 and A45 couple (p, q) with
+    (1 − p, 1 − q) (the plate keeps its symmetry under a half turn only)."""
+    if not is_symmetric(plate):
+        return [None]
+    if plate.D16 != 0.0 or plate.D26 != 0.0 or plate.A45 != 0.0:
+        return [((0, 0), (1, 1)), ((0, 1), (1, 0))]
+    return [((0, 0),), ((0, 1),), ((1, 0),), ((1, 1),)]
+
+
+def max_functions(theory: str, classes=None) -> int:
+    """Largest basis per direction: the eigenproblem of the kept classes holds at most
+    :data:`MAX_UNKNOWNS` (Mindlin) or :data:`MAX_UNKNOWNS_KIRCHHOFF` unknowns."""
+    fields, cap = (3, MAX_UNKNOWNS) if theory == "mindlin" else (1, MAX_UNKNOWNS_KIRCHHOFF)
+    fraction = 1.0 if classes is None else len(classes) / 4.0
+    return 2 * int(math.sqrt(cap / (fields * fraction)) / 2)
 
 
 def resolved_frequency(plate, n_x: int, n_y: int) -> float:
@@ -309,10 +371,10 @@ def resolved_frequency(plate, n_x: int, n_y: int) -> float:
     return float(np.min(omega))
 
 
-def basis_size(plate, max_frequency: float) -> tuple[int, int, bool]:
-    """(n_x, n_y, enough): the smallest square-ish basis resolving ``max_frequency`` [rad/s],
+def basis_size(plate, max_frequency: float, classes=None) -> tuple[int, int, bool]:
+    """(n_x, n_y, enough): the smallest square basis resolving ``max_frequency`` [rad/s],
     clipped to :func:`max_functions`; ``enough`` is False when even the largest does not."""
-    cap = max_functions(plate.theory)
+    cap = max_functions(plate.theory, classes)
     n = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
     while n < cap and resolved_frequency(plate, n, n) < max_frequency:
         n += 2
@@ -320,21 +382,38 @@ def basis_size(plate, max_frequency: float) -> tuple[int, int, bool]:
     return n, n, resolved_frequency(plate, n, n) >= max_frequency
 
 
-def solution(plate, n: int) -> GeneralPlateSolution:
-    """The cached general solution of ``plate`` with ``n × n`` functions."""
+def solution(plate, n: int, classes=None) -> GeneralPlateSolution:
+    """The cached general solution of ``plate`` with ``n × n`` functions (the kept classes)."""
     top = resolved_frequency(plate, n, n)
-    return solve_general_plate(*_inputs(plate), n, n, top, top)
+    return solve_general_plate(*_inputs(plate), n, n, top, top, classes)
 
 
-def grown_solution(plate, max_frequency: float, min_modes: int) -> GeneralPlateSolution:
+def grown_solution(plate, max_frequency: float, min_modes: int, classes="impact") -> GeneralPlateSolution:
     """Smallest basis resolving ``max_frequency`` [rad/s] and at least ``min_modes`` modes
-    (or the largest basis)."""
-    n, _, _ = basis_size(plate, max_frequency)
-    cap = max_functions(plate.theory)
+    (or the largest basis), in the classes a centre impact excites by default."""
+    if classes == "impact":
+        classes = class_groups(plate)[0]
+    n, _, _ = basis_size(plate, max_frequency, classes)
+    cap = max_functions(plate.theory, classes)
     while True:
-        result = solution(plate, n)
+        result = solution(plate, n, classes)
         if result.frequencies.size >= min_modes or n >= cap:
             return result
+        n = min(n + 4, cap)
+
+
+def all_modes(plate, count: int) -> tuple:
+    """(ω [rad/s] of the lowest ``count`` resolved modes of every class, sorted; the
+    solutions used): one basis size for all classes, grown until ``count`` modes are
+    resolved or the largest basis is reached (then fewer may be returned)."""
+    groups = class_groups(plate)
+    cap = min(max_functions(plate.theory, classes) for classes in groups)
+    n = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
+    while True:
+        results = [solution(plate, n, classes) for classes in groups]
+        omega = np.sort(np.concatenate([r.frequencies for r in results]))
+        if omega.size >= count or n >= cap:
+            return omega[:count], results
         n = min(n + 4, cap)
 
 
@@ -356,7 +435,7 @@ def _patch_load(result: GeneralPlateSolution, point, contact_radius: float) -> n
 
 
 @functools.lru_cache(maxsize=32)
-def patch_static_compliance(plate, n: int, contact_radius: float) -> float:
+def patch_static_compliance(plate, n: int, contact_radius: float, classes=None) -> float:
     """Static compliance [m/N] of ``plate`` under the Hertz patch (Mindlin: shear included),
     ``C_basis(edges) + [C_Navier(SSSS) − C_basis(SSSS)]`` with the couplings left out of the
     bracket: the part the polynomial basis misses is local to the load and does not depend
@@ -364,13 +443,14 @@ def patch_static_compliance(plate, n: int, contact_radius: float) -> float:
     from .patch import hertz_transform, mean_square_transform
     from .plate_static import navier_patch_residual
 
-    result = solution(plate, n)
-    load = _patch_load(result, plate.impact_point, contact_radius)
-    args = _inputs(plate)
-    full = general_static_compliance(*args[:6], n, n, load)
+    def load_for(edges):
+        stand_in = GeneralPlateSolution(plate.length_x, plate.length_y, plate.theory, edges, n, n,
+                                        np.zeros(0), np.zeros((0, 0)), 0.0, 0.0, classes)
+        return _patch_load(stand_in, plate.impact_point, contact_radius)
+
+    full = general_static_compliance(*_inputs(plate)[:6], n, n, load_for(plate.edges), classes)
     ssss = _inputs(plate, "SSSS", coupled=False)
-    basis_ssss = general_static_compliance(*ssss[:6], n, n, load if plate.edges == "SSSS" else _patch_load(
-        solution_for_edges(plate, "SSSS", n), plate.impact_point, contact_radius))
+    basis_ssss = general_static_compliance(*ssss[:6], n, n, load_for("SSSS"), classes)
     stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
     if plate.theory == "mindlin":
         stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
@@ -379,30 +459,30 @@ def patch_static_compliance(plate, n: int, contact_radius: float) -> float:
     return full + max(exact - basis_ssss, 0.0)
 
 
-def solution_for_edges(plate, edges: str, n: int) -> GeneralPlateSolution:
-    """An unsolved stand-in carrying only the geometry of the basis for ``edges`` (for
-    evaluating basis functions)."""
-    return GeneralPlateSolution(plate.length_x, plate.length_y, plate.theory, edges, n, n,
-                                np.zeros(0), np.zeros((0, 0)), 0.0, 0.0)
-
-
 @functools.lru_cache(maxsize=32)
 def classical_compliance(plate) -> float:
     """Classical (Kirchhoff) point compliance [m/N] of a plate with D16/D26, any edges:
     ``C_Ritz(edges, full D) + [C_Navier(SSSS) − C_Ritz(SSSS)]`` (D16, D26 left out of the
-    bracket; :data:`impactmaps.targets.plate_ritz.STATIC_RITZ_FUNCTIONS` functions)."""
-    from .plate_ritz import STATIC_RITZ_FUNCTIONS
+    bracket), in the largest Kirchhoff basis of the impact classes (it contains every modal
+    basis, so the residual compliance is never negative)."""
     from .plate_static import navier_static_compliance
 
-    n = STATIC_RITZ_FUNCTIONS
+    classes = class_groups(plate)[0]
+    n = max_functions("kirchhoff", classes)
     a, b = plate.length_x, plate.length_y
-    stand_in = GeneralPlateSolution(a, b, "kirchhoff", plate.edges, n, n, np.zeros(0), np.zeros((0, 0)), 0.0, 0.0)
-    load = stand_in.deflection_basis(np.array([plate.impact_point]))[0]
-    D = _inputs(plate)[4]
-    full = general_static_compliance(a, b, "kirchhoff", plate.edges, D, ((1.0, 0.0), (0.0, 1.0)), n, n, load)
+    unit = ((1.0, 0.0), (0.0, 1.0))
+
+    def load_for(edges):
+        stand_in = GeneralPlateSolution(a, b, "kirchhoff", edges, n, n, np.zeros(0), np.zeros((0, 0)),
+                                        0.0, 0.0, classes)
+        return stand_in.deflection_basis(np.array([plate.impact_point]))[0]
+
+    full = general_static_compliance(a, b, "kirchhoff", plate.edges, _inputs(plate)[4], unit, n, n,
+                                     load_for(plate.edges), classes)
     orth = (plate.D11, plate.D22, plate.D12, plate.D66)
     navier = navier_static_compliance(a, b, *orth, plate.impact_point)
-    basis_ssss = ritz.ritz_static_compliance(a, b, *orth, "SSSS", plate.impact_point, n, n)
+    basis_ssss = general_static_compliance(a, b, "kirchhoff", "SSSS", _inputs(plate, "SSSS", coupled=False)[4],
+                                           unit, n, n, load_for("SSSS"), classes)
     return full + (navier - basis_ssss)
 
 
@@ -421,7 +501,7 @@ def general_plate_modes(plate, max_frequency: float, min_modes: int, contact_rad
     participation = patch_weights(result, plate.impact_point, contact_radius, count)
     damping = np.full(omega.shape, float(plate.damping_ratio))
     if contact_radius > 0.0:
-        static = patch_static_compliance(plate, result.n_x, float(contact_radius))
+        static = patch_static_compliance(plate, result.n_x, float(contact_radius), result.classes)
         residual = max(static - float(np.sum(participation**2 / omega**2)), 0.0)
         basis = ModalBasis(omega, participation, residual, damping)
     elif plate.theory == "kirchhoff":
