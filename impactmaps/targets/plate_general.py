@@ -411,7 +411,7 @@ def all_modes(plate, count: int) -> tuple:
     n = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
     while True:
         results = [solution(plate, n, classes) for classes in groups]
-        omega = np.sort(np.concatenate([r.frequencies for r in results]))
+        omega = np.sort(np.concatenate([r.frequencies[r.frequencies <= r.resolved_frequency] for r in results]))
         if omega.size >= count or n >= cap:
             return omega[:count], results
         n = min(n + 4, cap)
