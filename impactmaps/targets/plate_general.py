@@ -265,20 +265,28 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
                                 frequencies, vectors, float(resolved_frequency), float(computed_up_to), classes)
 
 
-def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load, classes=None) -> float:
-    """``fᵀ K⁻¹ f`` [m/N]: static compliance in the basis for the generalised load ``f`` of
-    the w block (``load``, length n_x n_y; the other fields unloaded)."""
+@functools.lru_cache(maxsize=8)
+def _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes):
+    """Cholesky factor of the stiffness matrix (cached: one per plate and basis)."""
     import scipy.linalg
 
     stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y, classes)
-    f = np.zeros(stiffness.shape[0])
+    return scipy.linalg.cho_factor(stiffness), stiffness.shape[0]
+
+
+def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load, classes=None) -> float:
+    """``fᵀ K⁻¹ f`` [m/N]: static compliance in the basis for the generalised load ``f`` of
+    the w block (``load``; the other fields unloaded). The factor of K is cached."""
+    import scipy.linalg
+
+    factor, size = _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
+    f = np.zeros(size)
     f[:load.size] = load
-    factor = scipy.linalg.cho_factor(stiffness)
     return float(f @ scipy.linalg.cho_solve(factor, f))
 
 
 @functools.lru_cache(maxsize=32)
-def disc_quadrature(radius: float, pressure: str = "hertz", radial_nodes: int = 24, angular_nodes: int = 48):
+def disc_quadrature(radius: float, pressure: str = "hertz", radial_nodes: int = 16, angular_nodes: int = 32):
     """Offsets (n, 2) [m] and weights (n,) (sum 1) averaging over a disc with the Hertz
     pressure ``∝ sqrt(1 − r²/a²)`` (``s = sin t`` makes the integrand smooth; periodic
     trapezoid in angle)."""
@@ -322,10 +330,10 @@ def _inputs(plate, edges=None, coupled=True):
             plate.mass_per_area, plate.rotary_inertia_per_area)
 
 
+#: Functions per direction added to the modal basis for the static patch compliance.
+STATIC_EXTRA_FUNCTIONS = 8
 #: Largest eigenproblem per field set, in unknowns (Mindlin 3 × 34²; dense, seconds).
 MAX_UNKNOWNS = 3 * MAX_FUNCTIONS**2
-#: Largest Kirchhoff eigenproblem in unknowns (40², as :data:`impactmaps.targets.ritz.MAX_FUNCTIONS`).
-MAX_UNKNOWNS_KIRCHHOFF = ritz.MAX_FUNCTIONS**2
 
 
 def is_symmetric(plate) -> bool:
@@ -349,9 +357,11 @@ def class_groups(plate) -> list:
 
 
 def max_functions(theory: str, classes=None) -> int:
-    """Largest basis per direction: the eigenproblem of the kept classes holds at most
-    :data:`MAX_UNKNOWNS` (Mindlin) or :data:`MAX_UNKNOWNS_KIRCHHOFF` unknowns."""
-    fields, cap = (3, MAX_UNKNOWNS) if theory == "mindlin" else (1, MAX_UNKNOWNS_KIRCHHOFF)
+    """Largest basis per direction: Mindlin — the eigenproblem of the kept classes holds at
+    most :data:`MAX_UNKNOWNS` unknowns; Kirchhoff — :data:`impactmaps.targets.ritz.MAX_FUNCTIONS`."""
+    if theory == "kirchhoff":  # as the Kirchhoff Ritz plates (and the static basis of λ)
+        return ritz.MAX_FUNCTIONS
+    fields, cap = 3, MAX_UNKNOWNS
     fraction = 1.0 if classes is None else len(classes) / 4.0
     return 2 * int(math.sqrt(cap / (fields * fraction)) / 2)
 
@@ -439,7 +449,13 @@ def patch_static_compliance(plate, n: int, contact_radius: float, classes=None) 
     """Static compliance [m/N] of ``plate`` under the Hertz patch (Mindlin: shear included),
     ``C_basis(edges) + [C_Navier(SSSS) − C_basis(SSSS)]`` with the couplings left out of the
     bracket: the part the polynomial basis misses is local to the load and does not depend
-    on the edges (as :meth:`Plate.static_compliance`)."""
+    on the edges (as :meth:`Plate.static_compliance`). Solved in a basis
+    :data:`STATIC_EXTRA_FUNCTIONS` larger than the modal one ``n`` (it contains it, so the
+    residual is never negative); the factors are cached per plate. Measured (clamped
+    quasi-isotropic laminate of the worked example, patch radius 0.5 and 2 mm): n = 12
+    is within 3e-4 of n = 48, n = 24 within 3e-5."""
+    n_static = -(-(int(n) + STATIC_EXTRA_FUNCTIONS) // 8) * 8  # a multiple of 8: few factors per plate
+    n = min(n_static, max(int(n), max_functions(plate.theory, classes)))
     from .patch import hertz_transform, mean_square_transform
     from .plate_static import navier_patch_residual
 
