@@ -10,12 +10,12 @@ before packing (``--old-data``: the ``impactmaps/maps/data`` folder of a checkou
 commit before, e.g. ``git worktree add /tmp/base b4b262f``). Per map it reports how many
 values are bit-identical, the largest change of the value, the band's change (new/old − 1:
 the refinement points' own error is stored rounded up to 8 significant bits,
-``validation/pack_map_data.py``) and how many statuses changed. The regime is not read
+``data_build/pack_map_data.py``) and how many statuses changed. The regime is not read
 here: it is classified from the value and the stored times, which are unchanged bit for bit.
 
 Writes ``packed_maps_check.csv`` (the summary) and ``packed_maps_reference.csv`` (the old
 answers at the first ``--reference`` points of each map, floats in hex), which
-``tests/test_packed_data.py`` checks the packed maps against.
+``tests/maps/test_packed_data.py`` checks the packed maps against.
 
     python validation/packed_maps_check.py --old-data /tmp/base/impactmaps/maps/data --out-dir validation
     python validation/packed_maps_check.py --smoke     # packed against packed, 40 points a map

@@ -1,4 +1,4 @@
-"""The whole (ζ, λ) plane of ``benchmarks/bench_plane.py``, point by point, against another checkout.
+"""The whole (ζ, λ) plane of ``benchmarks/studies/bench_plane.py``, point by point, against another checkout.
 
 Two steps:
 

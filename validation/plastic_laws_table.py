@@ -6,7 +6,7 @@ NLGEOM to 0.05 R), the impact whose kinetic energy equals the FE cycle's absorbe
 V/V_y = sqrt(W_abs/((2/5) F_y δ_y)), is run with each registered plastic law through
 :func:`impactmaps.solvers.halfspace.halfspace_impact` (the issue-28 example: a 12.7 mm
 steel ball on aluminium, Y = 275 MPa; the normalised answers depend on V/V_y alone, as
-``tests/test_contact_epp.py`` shows for epp), and its peak force, restitution and permanent
+``tests/contact/test_contact_epp.py`` shows for epp), and its peak force, restitution and permanent
 indentation are compared with the FE's F_m, sqrt(W_rec/W_abs) and dent. Thornton's 1997
 model (closed form, ``plastic_laws_figure.thornton``) is the implementation cross-check.
 

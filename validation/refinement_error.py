@@ -1,6 +1,6 @@
 """What the shipped refinements buy: lookups with and without them against direct simulation.
 
-For each refined linear map (``validation/build_refinements.py``), N log-uniform random
+For each refined linear map (``data_build/build_refinements.py``), N log-uniform random
 (ζ, λ) points over the whole map are simulated directly (the map's solver and settings,
 :func:`impactmaps.maps.sweep.solve_points`) and read from the map twice: from its grid
 alone (:func:`impactmaps.maps.lookup.read_map` without a refinement) and as ``lookup``
@@ -8,7 +8,7 @@ reads it (with the shipped refinement). Prints a Markdown table (docs/validation
 per map, over the answered non-sensitive points, the share whose error exceeds 1e-3,
 the share whose band does (status ``interpolated``), how many bands cover the error, and
 the largest error; writes validation/refinement_error.csv, which
-``tests/test_refinement.py`` re-reads against the current maps.
+``tests/maps/test_refinement.py`` re-reads against the current maps.
 
     python validation/refinement_error.py [--points 1000] [--seed 5] [--out-dir DIR]
     python validation/refinement_error.py --smoke    # 4 points of one map (seconds)

@@ -6,7 +6,7 @@ Reads a plane solved by ``validation/plane_equivalence.py --solve`` (every point
 modal points per structure with at most ``--max-modes`` modes in their retained run (the
 reference integrates 8× as many), and runs each once at three refinement levels above the
 base (cut-off and mode floor ×8, step /8: ``ModalSettings().refined()`` three times, as
-``benchmarks/bench_plane.py``'s reference). Per structure, single- and multi-impact points
+``benchmarks/studies/bench_plane.py``'s reference). Per structure, single- and multi-impact points
 apart: the points whose |F̄max − reference| exceeds their ``fmax_error`` (×1, ×2) and 1e-3,
 and the largest. Writes a CSV of the points off by more than 10× their stated error or by
 more than 1e-3 (``--all``: every point drawn).

@@ -1,11 +1,6 @@
-"""How far each elastic-plastic law is from the continuum, as measured.
-
-The half-space impact of each plastic law against the project's quasi-static axisymmetric
-finite-element reference (an elastic sphere pressed into an elastic–perfectly plastic
-flat, docs/epp_calibration.rst): the smallest and largest relative error of the peak
-force, the restitution and the permanent indentation over the reference runs. The numbers
-are written by ``validation/plastic_laws_table.py`` into ``data/fe_agreement.csv`` and
-read here; ``impactmaps laws`` prints them.
+"""How far each elastic-plastic law is from the finite-element continuum reference
+(docs/epp_calibration.rst), read from ``data/fe_agreement.csv``
+(written by ``validation/plastic_laws_table.py``).
 """
 
 from __future__ import annotations

@@ -1,10 +1,6 @@
-"""First yield of a sphere pressed into a flat, and the impact number every elastic-plastic
-law places its impacts by (docs/physics_contract.md §1–2).
-
-First yield when the Hertz peak pressure reaches ``c_y Y``:
-``δ_y = R (π c_y Y / (2E*))²``, ``F_y = (4/3) E* R^{1/2} δ_y^{3/2}``. The impact number β
-is the Yigit–Christoforou one (seed 001 eq 11, ``α_y = 0.68 π² Y² R/E*²``) whichever law
-is used, so that one β places an impact on every plastic chart and map.
+"""First yield of a sphere pressed into a flat, and the Yigit–Christoforou impact number
+every elastic-plastic law places its impacts by (docs/physics_contract.md §1–2;
+docs/contact_laws.rst).
 """
 
 from __future__ import annotations
@@ -49,9 +45,7 @@ def reference_yield_scales(effective_modulus, radius, yield_strength) -> tuple:
 
 
 def properties_for_yield_scales(hertz: float, alpha_y: float) -> tuple[float, float, float]:
-    """``(E*, R, Y)`` [Pa, m, Pa] whose :func:`reference_yield_scales` are K_h [N/m^1.5] and
-    α_y [m]: R = 1 m (a law given by E*, R, Y depends on R alone through its contact radius),
-    ``E* = 3K_h/(4 sqrt(R))`` and Y from eq (9)."""
+    """``(E*, R, Y)`` [Pa, m, Pa] with R = 1 m whose :func:`reference_yield_scales` are K_h [N/m^1.5] and α_y [m]."""
     radius = 1.0
     modulus = 0.75 * hertz / math.sqrt(radius)
     strength = modulus * math.sqrt(alpha_y / (0.68 * math.pi**2 * radius))

@@ -1,65 +1,8 @@
 """The refined Stronge elastic-plastic sphere contact law (seed 000), made energy-consistent.
 
-Sphere of radius R on a flat of yield stress Y, effective modulus E*; ``x = δ/δ_y``,
-``A = a²/a_y²`` (contact area over its value at yield, ``a_y² = R δ_y``):
-
-* elastic, ``δ ≤ δ_y``: Hertz, ``F = (4/3) E* R^{1/2} δ^{3/2}``, ``a² = R δ``; first yield
-  when the Hertz peak pressure ``p0 = (2E*/π) sqrt(δ/R)`` reaches ``c_y Y``:
-  ``δ_y = R (π c_y Y / (2E*))²``, ``F_y = (4/3) E* R^{1/2} δ_y^{3/2} = π a_y² (2/3) c_y Y``;
-* elastic-plastic, ``δ_y < δ ≤ δ_p``: the mean contact pressure rises logarithmically with
-  the contact area from the Hertz mean pressure at yield, ``(2/3) c_y Y``, to ``c_p Y``:
-  ``F = F_y A [1 + ln A / κ]`` with ``κ = ln(2δ_p/δ_y − 1) / (3c_p/(2c_y) − 1)`` (3.1495
-  with the defaults), and the contact area grows as
-  ``A = ((x − 1 + τ)/τ)^n``, ``n = sτ``, ``s = 1.5κ/(1 + κ)``, where τ solves
-  ``sτ ln(1 + (x_p − 1)/τ) = ln(2x_p − 1)`` (τ = 1.01879, n = 1.15990 with the defaults);
-* fully plastic, ``δ > δ_p``: ``a² = R (2δ − δ_y)``, mean pressure ``c_p Y``,
-  ``F = π a² c_p Y``;
-* unloading from ``(δ_m, F_m, a_m)``: Hertz with the deformed radius
-  ``R_ℓ = 4E* a_m³/(3F_m)`` about the permanent indentation
-  ``δ_r = δ_m − 3F_m/(4E* a_m)``, i.e. ``F = F_m ((δ − δ_r)/(δ_m − δ_r))^{3/2}``;
-  reloading retraces it up to ``δ_m``.
-
-The two constants n and τ of the area law are fixed by two conditions: the force is
-tangent to the Hertz curve at δ_y (``dA/dx = s`` there, so ``dF/dx = s(1 + 1/κ) = 3/2``)
-and the contact area is continuous at δ_p (``A(x_p) = 2x_p − 1``, the fully plastic
-area). Force and contact radius are continuous at δ_y and δ_p; the force tangent is
-continuous at δ_y and drops at δ_p (from 6.78 to 5.25 F_y/δ_y with the defaults).
-
-What changed from the printed form, and why
--------------------------------------------
-The printed model (docs/physics_contract.md §2) takes ``a² = R(2δ − δ_y)`` — the fully plastic
-area — from first yield on, i.e. ``A = 2x − 1``: the area grows twice as fast as Hertz's
-at δ_y, the force tangent jumps from ``1.5`` to ``2(1 + 1/κ) = 2.635 F_y/δ_y``, the
-loading curve lies above the elastic Hertz curve for ``δ_y < δ < 16.65 δ_y`` and the
-elastic recovery ``3F_m/(4E* a_m)`` exceeds δ_m: δ_r < 0 for δ_m < 4.897 δ_y, a cycle to
-2 δ_y returns 1.308 times the work it absorbed, and a half-space impact at twice the yield
-velocity rebounds with e = 1.158 (tests/test_contact_laws.py keeps a private copy of the
-printed form that proves it). Here only the area law of the elastic-plastic phase is
-changed; the force–area relation ``F = F_y A(1 + ln A/κ)``, κ, the yield point, the
-fully plastic phase and the unloading rule are the printed ones.
-
-The law keeps the contract of docs/physics_contract.md §2 (tests/test_contact_contract.py checks it
-over random materials and δ_m up to 10⁴ δ_y). In the elastic-plastic phase, with
-``f = F/F_y`` and ``ā = a/a_y``: ``f ≤ x^{3/2}`` (loading ≤ Hertz; at yield both
-slopes are 3/2 and the curvatures 0.647 < 0.75 F_y/δ_y²); ``df/dx ≤ (3/2) ā`` (the
-loading curve is never stiffer than the elastic unloading curve ``2E* a`` that leaves
-it, so unloading returns at most what loading absorbed); the recovery ``f/ā ≤ x``
-(δ_r ≥ 0) and grows no faster than x (δ_r non-decreasing, slope 0.07 at yield). These
-hold with equality at δ_y only; the constructor checks them on a fine grid of the
-elastic-plastic branch for the given constants, and requires the fully plastic branch to
-stay below Hertz (``c_p``-line ``≤ x^{3/2}`` for all ``x ≥ x_p``): constants that break
-either are a ``ValueError`` naming the smallest valid ``plastic_indentation_ratio``.
-
-Sources of the default constants
---------------------------------
-``c_y = 1.6``: first yield under a frictionless sphere (von Mises, ν ≈ 0.3) when the
-Hertz peak pressure is ``p0 ≈ 1.60 Y`` (Johnson, *Contact Mechanics*, CUP 1985, §6.2).
-``c_p = 2.8``: mean pressure of a fully plastic spherical indentation, ``p_m ≈ 2.8–3 Y``
-(Tabor's hardness relation; Johnson 1985, §6.3–6.4). ``δ_p/δ_y = 84``: the ratio of the
-refined Stronge model as specified in docs/physics_contract.md, which attributes it to Stronge
-(*Impact Mechanics*, CUP 2000, ch. 4). We could not check 84 (nor the exact choice 2.8
-rather than 3) against the printed books; treat them as the specification's defaults,
-not as verified literature numbers. 1.60 is the standard von Mises value.
+Hertz to first yield, a logarithmic mean-pressure rise over a consistent area law to the
+fully plastic regime, Hertz unloading with the deformed radius. Equations, the change
+from the printed form and the sources of the defaults: docs/contact_laws.rst.
 """
 
 from __future__ import annotations
@@ -99,13 +42,7 @@ def stronge_continuity_coefficient(
     plastic_pressure_factor=DEFAULT_PLASTIC_PRESSURE_FACTOR,
     plastic_indentation_ratio=DEFAULT_PLASTIC_INDENTATION_RATIO,
 ):
-    """``κ = ln(2δ_p/δ_y − 1) / (3c_p/(2c_y) − 1)`` [-]: force continuous at ``δ_p``.
-
-    Derivation: at ``δ_p`` the elastic-plastic force ``F_y A_p [1 + ln A_p/κ]``
-    (``A_p = 2δ_p/δ_y − 1``, the fully plastic area over ``R δ_y``) must equal
-    ``π R δ_y A_p c_p Y``, and ``π R δ_y c_p Y / F_y = 3c_p/(2c_y)`` by the definitions
-    of ``δ_y`` and ``F_y``.
-    """
+    """``κ = ln(2δ_p/δ_y − 1) / (3c_p/(2c_y) − 1)`` [-]: force continuous at ``δ_p``."""
     c_y = np.asarray(yield_pressure_factor, float)
     c_p = np.asarray(plastic_pressure_factor, float)
     ratio = np.asarray(plastic_indentation_ratio, float)
@@ -114,11 +51,7 @@ def stronge_continuity_coefficient(
 
 @functools.lru_cache(maxsize=256)
 def _area_law(yield_pressure_factor: float, plastic_pressure_factor: float, plastic_indentation_ratio: float):
-    """(κ, n, τ) of one set of constants, or ``None`` if no area law keeps the contract.
-
-    τ solves ``sτ ln(1 + (x_p − 1)/τ) = ln(2x_p − 1)`` by bisection in ln τ (the left side
-    increases from 0 to ``s(x_p − 1)`` with τ); then the branch is checked on a grid.
-    """
+    """(κ, n, τ) of one set of constants, or ``None`` if no area law keeps the contract."""
     k = 1.5 * plastic_pressure_factor / yield_pressure_factor
     xp = plastic_indentation_ratio
     area_p = 2.0 * xp - 1.0
@@ -176,23 +109,13 @@ def stronge_area_law(
     plastic_pressure_factor=DEFAULT_PLASTIC_PRESSURE_FACTOR,
     plastic_indentation_ratio=DEFAULT_PLASTIC_INDENTATION_RATIO,
 ):
-    """Exponent n and offset τ [-] of the elastic-plastic area law ``A = ((x − 1 + τ)/τ)^n``.
-
-    Parameters
-    ----------
-    yield_pressure_factor, plastic_pressure_factor, plastic_indentation_ratio : float or array_like
-        ``c_y``, ``c_p`` and ``δ_p/δ_y`` [-] (see :class:`StrongeContact`).
-
-    Returns
-    -------
-    exponent, offset : ndarray
-        n and τ, broadcast shape of the arguments (1.15990 and 1.01879 with the defaults).
+    """Exponent n and offset τ [-] of the area law ``A = ((x − 1 + τ)/τ)^n`` for ``c_y``, ``c_p``, ``δ_p/δ_y`` [-].
 
     Raises
     ------
     ValueError
-        No such law keeps the contract (loading ≤ Hertz, ...) for these constants: names
-        ``plastic_indentation_ratio`` and its smallest valid value.
+        No such law keeps the contract (names ``plastic_indentation_ratio`` and its
+        smallest valid value).
     """
     c_y, c_p, ratio = np.broadcast_arrays(np.asarray(yield_pressure_factor, float),
                                           np.asarray(plastic_pressure_factor, float),
@@ -276,18 +199,16 @@ class StrongeContact(ReferenceYieldScales, ContactLaw):
     yield_strength : float or array_like
         Yield stress Y of the softer material [Pa].
     yield_pressure_factor : float or array_like, default 1.6
-        ``c_y``: Hertz peak pressure at first yield is ``c_y Y`` (Johnson 1985, §6.2).
+        ``c_y``: Hertz peak pressure at first yield is ``c_y Y`` [-].
     plastic_pressure_factor : float or array_like, default 2.8
-        ``c_p``: fully plastic mean contact pressure is ``c_p Y`` (Johnson 1985, §6.3);
-        must exceed ``2c_y/3`` (the mean Hertz pressure at yield) so that κ > 0.
+        ``c_p``: fully plastic mean contact pressure is ``c_p Y`` [-]; > ``2c_y/3``.
     plastic_indentation_ratio : float or array_like, default 84
-        ``δ_p/δ_y``, onset of the fully plastic regime; large enough that the law stays
-        below the Hertz curve (≥ 37.39 with the default pressure factors).
+        ``δ_p/δ_y`` [-], onset of the fully plastic regime (≥ 37.39 with the default factors).
 
-    Notes
-    -----
-    See the module docstring for the equations, what differs from the printed model
-    and why, and the sources of the defaults.
+    Raises
+    ------
+    ValueError
+        Constants for which the law would break the contact-law contract.
     """
 
     effective_modulus: float
@@ -330,19 +251,8 @@ class StrongeContact(ReferenceYieldScales, ContactLaw):
 
     # -- derived quantities -------------------------------------------------------
     def impact_number(self, impactor_mass, velocity):
-        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11).
-
-        ``β = V0/(ω α_y)`` with ``α_y = 0.68 π² Y² R/E*²`` (eq 9) and
-        ``ω = sqrt(K_h α_y^{1/2}/m_i)`` — not this law's own δ_y — so that one β places
-        an impact on the restitution chart whichever plastic law is used.
-
-        Parameters
-        ----------
-        impactor_mass : float or array_like
-            m_i [kg].
-        velocity : float or array_like
-            Impact velocity V0 [m/s].
-        """
+        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11), for
+        ``impactor_mass`` m_i [kg] and ``velocity`` V0 [m/s]."""
         return reference_impact_number(self.effective_modulus, self.radius, self.yield_strength, impactor_mass,
                                        velocity)
 
@@ -430,13 +340,7 @@ class StrongeContact(ReferenceYieldScales, ContactLaw):
         return alpha_max - self._recovery(alpha_max)
 
     def loading_energy(self, max_indentation, points: int = 0):
-        """Work [J] to load from 0 to δ_m (closed form, piecewise).
-
-        Elastic ``(2/5) F_y δ_y (δ/δ_y)^{5/2}``; elastic-plastic, with
-        ``u = (δ/δ_y − 1 + τ)/τ`` and ``A = u^n``, ``∫ F dδ =
-        F_y δ_y τ [(u^{n+1} − 1)/(n+1) + (n/κ)(u^{n+1} ln u/(n+1) − (u^{n+1} − 1)/(n+1)²)]``;
-        fully plastic ``π R c_p Y [δ² − δ_y δ]`` between δ_p and δ_m.
-        """
+        """Work [J] to load from 0 to δ_m [m] (closed form, piecewise)."""
         delta = np.clip(np.asarray(max_indentation, dtype=float), 0.0, None)
         yield_delta = self.yield_indentation
         yield_force = self.yield_force

@@ -1,20 +1,7 @@
 """Yigit–Christoforou elastic-plastic contact law (seed 001 eqs 4–10).
 
-With ``K_y = 1.5 K_h sqrt(α_y)`` (eq 10):
-
-* phase I, elastic loading, ``0 ≤ α ≤ α_y``: ``F = K_h α^{3/2}`` (eq 4);
-* phase II, elastic-plastic loading, ``α > α_y``: ``F = K_y (α − α_y) + K_h α_y^{3/2}``
-  (eq 5) — the tangent of the Hertz curve at ``α_y``, so force *and* stiffness are
-  continuous at yield;
-* phase III, elastic unloading/reloading below ``α_m > α_y``:
-  ``F = K_h (α^{3/2} − α_m^{3/2} + α_y^{3/2}) + K_y (α_m − α_y)`` (eq 6), which is
-  ``K_h (α^{3/2} − α_f^{3/2})`` with the permanent indentation
-  ``α_f^{3/2} = α_m^{3/2} − 1.5 α_y^{1/2} α_m + 0.5 α_y^{3/2}``; if ``α_m ≤ α_y`` the
-  contact is still elastic and unloading follows the Hertz curve.
-
-``α_y = 0.68 π² S_y² R / E*²`` (eq 9). In units ``a = α/α_y``, force ``K_h α_y^{3/2}``
-and energy ``K_h α_y^{5/2}``, the law has no parameters: this is why the coefficient of
-restitution of a compact impact depends on ``β`` alone (seed 001 eqs 11–12).
+Hertz to the yield indentation α_y, linear (Hertz-tangent) loading beyond, Hertz-shaped
+unloading about the permanent indentation. Equations: docs/contact_laws.rst.
 """
 
 from __future__ import annotations
@@ -40,20 +27,7 @@ YIELD_INDENTATION_COEFFICIENT = 0.68
 def yield_indentation(yield_strength, radius, effective_modulus):
     """Indentation at first yield ``α_y = 0.68 π² S_y² R / E*²`` [m] (seed 001 eq 9).
 
-    Parameters
-    ----------
-    yield_strength : float or array_like
-        Yield strength S_y of the softer material [Pa] (for composites seed 001 uses
-        ``S_y = 2 S_u``, ``S_u`` the shear strength of the fibres).
-    radius : float or array_like
-        Sphere (effective) radius R [m].
-    effective_modulus : float or array_like
-        Effective contact modulus E* [Pa] (eq 8).
-
-    Returns
-    -------
-    ndarray
-        α_y [m].
+    ``yield_strength`` S_y [Pa] of the softer material, ``radius`` R [m], ``effective_modulus`` E* [Pa].
     """
     require_positive("yield_strength", yield_strength, "Pa")
     require_positive("radius", radius, "m")
@@ -101,14 +75,7 @@ class YigitChristoforouContact(ContactLaw):
     yield_indentation : float or array_like
         Indentation at first yield α_y [m] (eq 9, :func:`yield_indentation`).
     effective_radius : float, optional
-        R [m] of the pair, when known (set by the pair and property constructors): the
-        contact radius is ``sqrt(R α)``, over which a solver may spread the force (a
-        Mindlin plate, whose point load has no converged answer). Not part of the force law.
-
-    Notes
-    -----
-    See the module docstring for the three phases. The permanent indentation and both
-    energies have closed forms (overridden here).
+        R [m] of the pair, when known (contact radius ``sqrt(R α)``); not part of the law.
     """
 
     hertz_stiffness: float
@@ -168,15 +135,8 @@ class YigitChristoforouContact(ContactLaw):
         return hertz_frequency(self.hertz_stiffness, self.yield_indentation, impactor_mass)
 
     def impact_number(self, impactor_mass, velocity):
-        """Normalised impact velocity ``β = V0 / (ω α_y)`` [-] (seed 001 eq 11).
-
-        Parameters
-        ----------
-        impactor_mass : float or array_like
-            m_i [kg].
-        velocity : float or array_like
-            Impact velocity V0 [m/s].
-        """
+        """Normalised impact velocity ``β = V0 / (ω α_y)`` [-] (seed 001 eq 11) for ``impactor_mass``
+        m_i [kg] and ``velocity`` V0 [m/s]."""
         return impact_number(velocity, self.hertz_stiffness, self.yield_indentation, impactor_mass)
 
     def velocity_for_impact_number(self, impactor_mass, impact_number):
@@ -206,11 +166,7 @@ class YigitChristoforouContact(ContactLaw):
         return np.where(plastic, self._final15(alpha_max) ** (2.0 / 3.0), 0.0)
 
     def loading_energy(self, max_indentation, points: int = 0):
-        """Work [J] to load from 0 to α_max (closed form).
-
-        ``(2/5) K_h α^{5/2}`` below yield; above, in units ``K_h α_y^{5/2}`` with
-        ``a = α_max/α_y``: ``2/5 + (a − 1) + (3/4)(a − 1)²``.
-        """
+        """Work [J] to load from 0 to α_max [m] (closed form)."""
         alpha_max = np.clip(np.asarray(max_indentation, dtype=float), 0.0, None)
         hertz = np.asarray(self.hertz_stiffness, float)
         yield_alpha = np.asarray(self.yield_indentation, float)
@@ -220,12 +176,7 @@ class YigitChristoforouContact(ContactLaw):
         return elastic + plastic
 
     def indentation_for_energy(self, energy):
-        """α_m [m] at which the loading work equals W [J] (closed-form inverse).
-
-        ``(5 W/(2 K_h))^{2/5}`` up to the yield energy ``(2/5) K_h α_y^{5/2}``; above,
-        in units of :meth:`loading_energy`, ``¾x² + x = w − 2/5`` with ``x = a_m − 1``,
-        solved without cancellation as ``x = 2(w − 2/5)/(1 + sqrt(1 + 3(w − 2/5)))``.
-        """
+        """α_m [m] at which the loading work equals W [J] (closed-form inverse)."""
         work = check_energy(energy)
         hertz = np.asarray(self.hertz_stiffness, float)
         yield_alpha = np.asarray(self.yield_indentation, float)
@@ -234,10 +185,7 @@ class YigitChristoforouContact(ContactLaw):
         return np.where(excess > 0.0, plastic, (2.5 * work / hertz) ** 0.4)
 
     def recovered_energy(self, max_indentation, points: int = 0):
-        """Work [J] returned unloading from α_max to α_f (closed form).
-
-        ``K_h [(2/5)(α_m^{5/2} − α_f^{5/2}) − α_f^{3/2} (α_m − α_f)]``.
-        """
+        """Work [J] returned unloading from α_max to α_f (closed form)."""
         alpha_max = np.clip(np.asarray(max_indentation, dtype=float), 0.0, None)
         hertz = np.asarray(self.hertz_stiffness, float)
         final = np.asarray(self.permanent_indentation(alpha_max))

@@ -1,18 +1,8 @@
 """Asymptotes of sphere impact for any registered contact law.
 
-The closed forms of :mod:`impactmaps.solvers.asymptotes` hold for linear contact only.
-Here the same four limits are computed for any :class:`~impactmaps.contact.ContactLaw`
-(Hertz, Yigit–Christoforou, Stronge, …), each returning an :class:`AsymptoteResult`:
-
-* ``"infinite-plate"`` — the plate is a dashpot ``Z = 8 sqrt(ρh D*)`` (Zener's model for
-  Hertz contact): :func:`infinite_plate_impact`;
-* ``"infinite-beam"`` — the ``t^{-1/2}`` mobility of the infinite Euler beam, by
-  convolution quadrature, with re-impacts: :func:`infinite_beam_impact_any_law`;
-* ``"quasi-static"`` — the static point stiffness in series with the law:
-  :func:`quasi_static_impact`;
-* ``"half-space"`` — rigid target: :func:`halfspace_asymptote`.
-
-:func:`asymptote` dispatches by name (the command line's ``impactmaps asymptote KIND``).
+Infinite plate (dashpot), infinite beam (convolution quadrature, re-impacts),
+quasi-static spring and half-space, each an :class:`AsymptoteResult`; :func:`asymptote`
+dispatches by name. Derivations: docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -53,8 +43,8 @@ def asymptote(kind: str, target, law, impactor_mass, velocity) -> AsymptoteResul
     kind : {"infinite-plate", "infinite-beam", "quasi-static", "half-space"}
         Which limit.
     target : Plate, Beam or None
-        The structure (a Plate for ``"infinite-plate"``, a Beam for ``"infinite-beam"``,
-        any target for ``"quasi-static"``; ignored for ``"half-space"``).
+        Plate for ``"infinite-plate"``, Beam for ``"infinite-beam"``, any target for
+        ``"quasi-static"``; ignored for ``"half-space"``.
     law : ContactLaw
         A single registered contact law.
     impactor_mass : float

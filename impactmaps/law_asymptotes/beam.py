@@ -1,41 +1,8 @@
-r"""Impact on an infinite Euler beam with any contact law (convolution quadrature).
+"""Impact on an infinite Euler beam with any contact law (convolution quadrature).
 
-The point mobility of an infinite Euler beam (docs/physics_contract.md §1, correction of seed 001
-eq 35) is a convolution with the ``t^{-1/2}`` kernel,
-
-    ẇ(t) = A ∫0^t F(s) / sqrt(π (t − s)) ds,   A = 1 / (2 sqrt(2) m'^{3/4} (EI)^{1/4}),
-
-i.e. ``ẇ = A/sqrt(π) ∫ F/sqrt(t − s)`` = ``1/(2 sqrt(2π) m' c^{1/2}) ∫ F/sqrt(t − s)``,
-``c = sqrt(EI/m')``. (The point *displacement* kernel is ``2A sqrt(t/π)``; its Laplace
-transform is ``A s^{-3/2}``: the receptance ``F/(8 EI β³)·…`` of the beam on the
-"foundation" ``m' s²`` gives ``w(0) = F s^{-3/2} (m'/(4EI))^{1/4}/(2m')``, the same A.)
-With the impactor ``m ẍ = −F`` the indentation ``α = x − w`` is
-
-    α(t) = V0 t − ∫0^t G(t − s) F(s) ds,   G(t) = t/m + 2A sqrt(t/π),
-
-(Laplace ``Ĝ(s) = s^{-2}/m + A s^{-3/2}``). With ``F = Kα`` this is the fractional
-oscillator of :mod:`impactmaps.solvers.infinite_beam` with ζ_b of docs/physics_contract.md §1
-(the tests check the constant this way, against ``infinite_beam_peak``).
-
-Scheme
-------
-Lubich's BDF2 convolution quadrature of ``Ĝ`` (the weights of
-:mod:`impactmaps.solvers.infinite_beam`), ``α_n = V0 t_n − Σ_{k≤n} W_{n−k} F_k``: at each
-step the implicit term ``W_0 F_n`` makes ``α_n + W_0 F(α_n; max(α_max, α_n)) = free_n`` a
-scalar equation with a unique root (its left side increases in α, every law's force
-being non-decreasing in α), solved by safeguarded Newton. Second order in the step
-while the force is smooth; the kinks at separation, re-impact and yield lower the order
-locally (the tests measure the convergence).
-
-The history sum ``Σ_{k<n} W_{n−k} F_k`` is done by the FFT blocks of
-:func:`impactmaps.solvers.infinite_beam_cq.blocked_march` (O(N log² N) for N steps), the
-near-diagonal sum and the Newton solve of each step compiled (:func:`_law_block`, one
-compiled function for every law: the law's kernel is passed as a function pointer).
-
-The run stops once the sphere has separated and moves away (``ẋ ≤ 0``): the beam point
-then only moves further into the beam (``ẇ ≥ 0`` since ``F ≥ 0``), so there is no
-re-impact. If the sphere still moves forward at separation it strikes again (linear
-contact: for ``ζ_r < ζ_b < ζ_crit``, :mod:`impactmaps.solvers.infinite_beam`).
+The indentation ``α(t) = V0 t − ∫0^t G(t − s) F(s) ds``, ``G(t) = t/m + 2A sqrt(t/π)``,
+marched by BDF2 convolution quadrature with a safeguarded Newton solve per step, through
+every re-impact. Derivation and scheme: docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -64,15 +31,8 @@ _NEWTON_ITERATIONS = 60
 
 
 def beam_mobility_constant(mass_per_length, bending_stiffness) -> float:
-    """``A = 1/(2 sqrt(2) m'^{3/4} (EI)^{1/4})`` [m/(N s^{1/2})] of ``ẇ = A ∫F/sqrt(π(t−s))``.
-
-    Parameters
-    ----------
-    mass_per_length : float
-        m' [kg/m], > 0.
-    bending_stiffness : float
-        EI = bD11 [N m²], > 0.
-    """
+    """``A = 1/(2 sqrt(2) m'^{3/4} (EI)^{1/4})`` [m/(N s^{1/2})] of ``mass_per_length`` m' [kg/m] and
+    ``bending_stiffness`` EI [N m²], both > 0."""
     require_positive("mass_per_length", mass_per_length, "kg/m")
     require_positive("bending_stiffness", bending_stiffness, "N m^2")
     return 1.0 / (2.0 * math.sqrt(2.0) * float(mass_per_length) ** 0.75
@@ -87,9 +47,8 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     Parameters
     ----------
     beam : Beam
-        Its ``mass_per_length`` m' [kg/m] and ``bending_stiffness`` EI [N m²] define the
-        infinite Euler beam (span, supports and theory are ignored: exact for an Euler
-        beam until reflections return, see :mod:`impactmaps.validity`).
+        Its ``mass_per_length`` m' [kg/m] and ``bending_stiffness`` EI [N m²] (span,
+        supports and theory are ignored).
     law : ContactLaw
         A single registered contact law.
     impactor_mass : float
@@ -97,14 +56,14 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
     velocity : float
         V0 > 0 [m/s].
     time_step : float, optional
-        Step in units of 1/ω [-] (ω: :func:`~impactmaps.law_asymptotes.result.contact_frequency_of`).
+        Step in units of 1/ω [-].
     duration : float, optional
         Longest run in units of 1/ω [-]; reaching it sets ``time_limit_reached``.
 
     Returns
     -------
     AsymptoteResult
-        ``method = "infinite-beam"``. Contact times are resolved to the step.
+        ``method = "infinite-beam"``; contact times resolved to the step.
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
@@ -158,10 +117,8 @@ def infinite_beam_impact_any_law(beam, law: ContactLaw, impactor_mass, velocity,
 
 
 def _march(kernel, params, weights, step, speed, mass, count):
-    """CQ steps until the sphere has separated and moves away, or ``count`` steps.
-
-    Returns (force, indentation, index of the last step taken).
-    """
+    """CQ steps until the sphere has separated and moves away, or ``count`` steps:
+    (force, indentation, index of the last step)."""
     force = np.zeros(count + 1)
     alpha = np.zeros(count + 1)
     # running state of the march: α_max, impulse, touched (0/1), step, V0, m
@@ -177,11 +134,8 @@ def _march(kernel, params, weights, step, speed, mass, count):
 
 @numba.njit(cache=True)
 def _law_block_kernel(kernel, params, weights, history, force, alpha, state, lo, hi):
-    """Steps ``lo ≤ n < hi``: ``α_n + W_0 F_n = V0 t_n − history[n] − Σ_{lo≤k<n} W_{n−k} F_k``.
-
-    ``state`` = (α_max, impulse, touched, step, V0, m), updated in place. Returns the step
-    where the sphere has separated and moves away, or −1.
-    """
+    """Steps ``lo ≤ n < hi`` of ``α_n + W_0 F_n = V0 t_n − history[n] − Σ_{lo≤k<n} W_{n−k} F_k``
+    (``state`` updated in place); returns the step where the sphere moves away, or −1."""
     alpha_max, impulse, touched = state[0], state[1], state[2] > 0.0
     step, speed, mass = state[3], state[4], state[5]
     stop = -1

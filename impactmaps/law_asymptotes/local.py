@@ -1,32 +1,8 @@
-r"""Asymptotes whose structure acts at the impact point alone: dashpot, spring, rigid.
+"""Asymptotes whose structure acts at the impact point alone: dashpot, spring, rigid.
 
-For any registered contact law ``F(α; α_max)`` the impactor (mass m, speed V0) obeys
-``m ẍ = −F``, the indentation is ``α = x − w`` and the struck point moves as
-
-* **infinite plate** — a dashpot: ``ẇ = F/Z``, ``Z = 8 sqrt(ρh D*)`` the point impedance
-  of an infinite Kirchhoff plate (seed 001 eq 30). With ``F = Kα`` this is the damped
-  oscillator ``ᾱ'' + 2ζ_p ᾱ' + ᾱ = 0``, ``2ζ_p = sqrt(mK)/Z`` (seed 001 eqs 32–34); with
-  Hertz contact it is Zener's model of a ball striking a plate (Zener, Phys. Rev. 59,
-  1941, 669; see :mod:`impactmaps.hertz_similarity` for its parameter);
-* **quasi-static** — a massless spring, the structure's static point stiffness K_st in
-  series with the contact: ``w = F/K_st`` (seed 001 eq 28 for linear contact);
-* **half-space** — ``w = 0``, delegated to :func:`impactmaps.solvers.halfspace.halfspace_impact`.
-
-For the dashpot and the spring ``α̇`` is a function of the impactor velocity and the
-contact state alone, ``α̇ = v − F/Z`` and ``α̇ = v/(1 + k_t/K_st)`` (``k_t = dF/dα``).
-In both cases α rises to one maximum and then falls monotonically until the force
-vanishes: once ``α̇ = 0`` with ``F > 0``, ``α̈ = −F/m < 0`` (dashpot: differentiate
-``α̇ = v − F/Z``; spring: ``v`` has the sign of ``α̇``), and a later zero of ``α̇`` would
-need ``α̈ ≥ 0``. So the run has two phases, as on the half-space: loading on the virgin
-curve until ``α̇ = 0``, then unloading with ``α_max`` fixed until α reaches the permanent
-indentation. At separation the plate point stops (a dashpot has no memory) and the
-spring is relaxed, so the impactor leaves for good: one impact. With linear contact on
-the infinite plate and ``ζ_p ≥ 1`` the force never vanishes (contact time ``inf``,
-restitution 0, the impactor coming to rest).
-
-Each phase is integrated with ``scipy`` DOP853 (rtol 1e-12) in variables scaled by the
-indentation the impact energy would reach on a half-space, with terminal events at the
-turning point and at separation.
+Infinite plate (``ẇ = F/Z``, ``Z = 8 sqrt(ρh D*)``), quasi-static spring (``w = F/K_st``)
+and half-space, for any contact law: a loading and an unloading phase, DOP853
+(rtol 1e-12). Why two phases suffice: docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -49,36 +25,16 @@ _REST_SPEED = 1e-10  # impactor speed / V0 below which it is taken to be at rest
 
 
 def plate_impedance(plate) -> float:
-    """Point impedance ``Z = 8 sqrt(ρh D*)`` [N s/m] of the infinite plate (seed 001 eq 30).
-
-    Parameters
-    ----------
-    plate : Plate
-        Needs ``mass_per_area`` ρh [kg/m²] and ``effective_bending_stiffness`` D* [N m].
-    """
+    """Point impedance ``Z = 8 sqrt(ρh D*)`` [N s/m] of the infinite ``plate`` (seed 001 eq 30)."""
     return 8.0 * math.sqrt(float(plate.mass_per_area) * float(plate.effective_bending_stiffness))
 
 
 def infinite_plate_impact(plate, law: ContactLaw, impactor_mass, velocity) -> AsymptoteResult:
     """Impact on an infinite plate (a dashpot of impedance ``8 sqrt(ρh D*)``), any law.
 
-    Parameters
-    ----------
-    plate : Plate
-        The plate whose ρh [kg/m²] and D* [N m] define the infinite plate (its size,
-        edges and theory are ignored: exact until reflections return, see
-        :mod:`impactmaps.validity`).
-    law : ContactLaw
-        A single registered contact law.
-    impactor_mass : float
-        m > 0 [kg].
-    velocity : float
-        V0 > 0 [m/s].
-
-    Returns
-    -------
-    AsymptoteResult
-        ``method = "infinite-plate"``.
+    ``plate`` gives ρh [kg/m²] and D* [N m] (size, edges and theory ignored); ``law`` a
+    single registered contact law; ``impactor_mass`` m > 0 [kg]; ``velocity`` V0 > 0 [m/s].
+    Returns an :class:`AsymptoteResult` (``method = "infinite-plate"``).
     """
     impedance = plate_impedance(plate)
     return _two_phase_impact(law, impactor_mass, velocity, "infinite-plate",
@@ -89,22 +45,9 @@ def infinite_plate_impact(plate, law: ContactLaw, impactor_mass, velocity) -> As
 def quasi_static_impact(target, law: ContactLaw, impactor_mass, velocity) -> AsymptoteResult:
     """Heavy-impactor asymptote: the static point stiffness in series with any law.
 
-    Parameters
-    ----------
-    target : Target or float
-        A target (its ``static_compliance()`` [m/N] at the impact point is used) or the
-        static stiffness K_st > 0 itself [N/m].
-    law : ContactLaw
-        A single registered contact law.
-    impactor_mass : float
-        m > 0 [kg].
-    velocity : float
-        V0 > 0 [m/s].
-
-    Returns
-    -------
-    AsymptoteResult
-        ``method = "quasi-static"``; with ``F = Kα``, ``F̄max = sqrt(λ/(1+λ))`` (eq 28).
+    ``target`` is a target (its ``static_compliance()`` [m/N]) or K_st > 0 [N/m]; ``law``,
+    ``impactor_mass`` [kg] and ``velocity`` [m/s] as :func:`infinite_plate_impact`.
+    Returns an :class:`AsymptoteResult` (``method = "quasi-static"``).
     """
     if isinstance(target, (int, float)):
         stiffness_static = float(target)
@@ -117,22 +60,8 @@ def quasi_static_impact(target, law: ContactLaw, impactor_mass, velocity) -> Asy
 
 
 def halfspace_asymptote(law: ContactLaw, impactor_mass, velocity) -> AsymptoteResult:
-    """Half-space impact (rigid, immovable target) with any law, as an :class:`AsymptoteResult`.
-
-    Parameters
-    ----------
-    law : ContactLaw
-        A single registered contact law.
-    impactor_mass : float
-        m > 0 [kg].
-    velocity : float
-        V0 > 0 [m/s].
-
-    Returns
-    -------
-    AsymptoteResult
-        ``method = "half-space"``, from :func:`impactmaps.solvers.halfspace.halfspace_impact`.
-    """
+    """Half-space impact with any single ``law`` (``impactor_mass`` m > 0 [kg], ``velocity``
+    V0 > 0 [m/s]) as an :class:`AsymptoteResult` (``method = "half-space"``)."""
     run = halfspace_impact(law, impactor_mass, velocity)
     separated = not run.time_limit_reached
     return AsymptoteResult(
@@ -155,11 +84,8 @@ def halfspace_asymptote(law: ContactLaw, impactor_mass, velocity) -> AsymptoteRe
 
 
 def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, displacement):
-    """Integrate loading then unloading for a structure with ``α̇ = indentation_rate(v, F, k_t)``.
-
-    ``displacement(force, x − α)`` gives the struck point's displacement [m] (the dashpot
-    integrates it: ``x − α``; the spring: ``F/K_st``).
-    """
+    """Integrate loading then unloading for a structure with ``α̇ = indentation_rate(v, F, k_t)``;
+    ``displacement(force, x − α)`` gives the struck point's displacement [m]."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     params = single_law_parameters(law)

@@ -13,11 +13,8 @@ __all__ = ["AsymptoteResult", "contact_frequency_of"]
 
 
 def contact_frequency_of(law, impactor_mass: float, velocity: float) -> float:
-    """Contact frequency ω = sqrt(K_ref/m) [rad/s] used to normalise (as the modal solver).
-
-    ``K_ref`` is :func:`impactmaps.solvers.contact_scale.reference_contact_stiffness`: the stiffness
-    of a linear law, otherwise the loading tangent at the half-space peak indentation.
-    """
+    """Contact frequency ω = sqrt(K_ref/m) [rad/s] used to normalise (K_ref:
+    :func:`impactmaps.solvers.contact_scale.reference_contact_stiffness`)."""
     return math.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
 
 
@@ -29,27 +26,22 @@ class AsymptoteResult:
     ----------
     method : str
         ``"infinite-plate"``, ``"infinite-beam"``, ``"quasi-static"`` or ``"half-space"``.
-    peak_force : float
-        Largest contact force over all impacts [N].
-    peak_time : float
-        Time of the peak force [s].
+    peak_force, peak_time : float
+        Largest contact force [N] and its time [s].
     contact_time : float
-        Time from the first touch to the last separation [s]; ``inf`` when the run ended
-        in contact (the contact never ends on the asymptotic structure, or the time limit
-        was reached, see ``time_limit_reached``).
+        First touch to last separation [s]; ``inf`` when the run ended in contact.
     restitution : float
-        Rebound speed over approach speed after the last separation [-]; 0 when the
-        impactor ends at rest in contact.
+        Rebound over approach speed after the last separation [-]; 0 at rest in contact.
     fmax_normalised : float
-        ``peak_force / (m V0 ω)`` with ω from :func:`contact_frequency_of` [-].
+        ``peak_force / (m V0 ω)`` [-].
     impacts : int
         Number of separate contacts.
     contact_intervals : tuple of (float, float)
-        Start and end of each contact [s] (end ``inf`` if still in contact at the end).
+        Start and end of each contact [s] (end ``inf`` if still in contact).
     max_indentation, permanent_indentation : float
-        α_max and the law's permanent indentation after unloading from it [m].
+        α_max and the permanent indentation after unloading from it [m].
     max_target_displacement : float
-        Largest displacement of the struck point [m] (0 for a half-space).
+        Largest displacement of the struck point [m].
     impactor_mass, velocity, contact_frequency : float
         m [kg], V0 [m/s], ω [rad/s].
     time_limit_reached : bool
@@ -96,12 +88,8 @@ class AsymptoteResult:
 
 
 def contact_intervals_from_samples(time, force, clearance=None) -> tuple:
-    """Contact intervals ((start, end), …) [s] from sampled forces (end ``inf`` if open).
-
-    With ``clearance`` (indentation minus permanent indentation [m], > 0 in contact)
-    each start and end is placed by linear interpolation of its zero crossing between
-    the samples; otherwise at the first sample in, resp. out of, contact.
-    """
+    """Contact intervals ((start, end), …) [s] from sampled forces (end ``inf`` if open),
+    interpolated at zero crossings of ``clearance`` [m] when given."""
     time = np.asarray(time, dtype=float)
     touching = np.asarray(force) > 0.0
     edges = np.flatnonzero(np.diff(touching.astype(int)))

@@ -7,7 +7,7 @@ executor of one, ``client.get_executor()``), :func:`dask_executor` first install
 :func:`impactmaps.maps.workers.init_worker` in every worker process, present and future
 (one BLAS thread per process; Ctrl-C handling stays Dask's) — and returns the client's executor. A point's answer is a pure function of the point, so
 a sweep on Dask is bit-identical to the same sweep run locally
-(``tests/test_dask_sweep.py``). Dask is the optional extra ``impactmaps[dask]``;
+(``tests/maps/test_dask_sweep.py``). Dask is the optional extra ``impactmaps[dask]``;
 the sweep imports this module only when it is given a Dask executor.
 """
 

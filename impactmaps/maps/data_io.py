@@ -20,7 +20,7 @@ which choose the format by the file's suffix:
     the 16 high bits of the float32, rounded away from zero — for error estimates, whose
     band only widens); the header records it and reading restores the original dtype.
 
-The shipped files are packed by ``validation/pack_map_data.py``; :func:`shipped_path`
+The shipped files are packed by ``data_build/pack_map_data.py``; :func:`shipped_path`
 finds a shipped file under either suffix (packed first).
 """
 

@@ -9,7 +9,7 @@ into one table of the map's and the refinement's points, its measured-surplus es
 on the lattice) and, per cell of the finest lattice,
 the leaf that holds it. A read is then an index computation, a gather and a weighted sum
 with the same operations in the same order as :func:`~impactmaps.maps.refinement.interpolate`,
-so its answers are bit-identical (``tests/test_lookup_stored.py``). The interpolator holds
+so its answers are bit-identical (``tests/maps/test_lookup_stored.py``). The interpolator holds
 copies of what it reads: changing the dataset afterwards does not change it.
 """
 

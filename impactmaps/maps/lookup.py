@@ -1,7 +1,7 @@
 """Design-rule lookups from the shipped maps: F̄max and regime without a simulation.
 
 The package ships precomputed maps (``impactmaps/maps/data/*.npz``, built by
-``validation/build_default_maps.py``) for simply supported structures struck at the
+``data_build/build_default_maps.py``) for simply supported structures struck at the
 centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
 plates (a/h = 20), each for the linear contact law (``NAME.npz``, axes ζ, λ) and for the
 Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
@@ -183,7 +183,7 @@ def missing_shipped_map(name: str, law: str) -> FileNotFoundError:
     lacks, naming the script that rebuilds it."""
     script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
     return FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
-                             f"`python validation/{script} {law}`")
+                             f"`python data_build/{script} {law}`")
 
 
 @renamed_keyword("structure", "kind")
@@ -407,7 +407,7 @@ def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map"
             or (stored.attrs.get("lambda_points"), stored.attrs.get("zeta_points")) != shape
             or sliced != bool(extra) or (sliced and tuple(np.atleast_1d(stored.attrs["slice_points"])) != extra)):
         warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
-                      "without it (rebuild with `python validation/build_refinements.py`)", UserWarning, stacklevel=3)
+                      "without it (rebuild with `python data_build/build_refinements.py`)", UserWarning, stacklevel=3)
         return None
     if sliced:  # one (λ, ζ) refinement per slice of the extra axes (β)
         return SlicedRefinement.from_dataset(stored, fmax.values)

@@ -1,7 +1,7 @@
 """Lookups in the shipped elastic-plastic maps: F̄max, restitution and absorbed energy at (β, ζ, λ).
 
 The maps (``impactmaps/maps/data/NAME-yc.npz``, ``NAME-stronge.npz`` and ``NAME-epp.npz``, built by
-``validation/build_plastic_maps.py``; numbers and scales in
+``data_build/build_plastic_maps.py``; numbers and scales in
 :mod:`impactmaps.maps.plastic_points`) are interpolated linearly in (log β, log λ, log ζ).
 Each answer carries a band: over the eight map points around it, the largest of their own
 error (refinement, or half the spread of a sensitive point) plus the local interpolation

@@ -182,7 +182,7 @@ class Refinement:
         the four corners of the cell whose centre it is (added in the order of
         :meth:`Leaves.corners`), or of the two ends of the edge whose middle it is (lower end
         first); 1 where that is not a number. The same operations as :func:`_add_points`, so
-        the same bits (checked on every shipped refinement by ``validation/pack_map_data.py``).
+        the same bits (checked on every shipped refinement by ``data_build/pack_map_data.py``).
         """
         u, v = self.position(self.codes)
         half = self.scale >> self.creation_level(u, v)

@@ -5,7 +5,7 @@ structures, grid, solver settings, contact law and solver revision — whose SHA
 the result's fingerprint (:func:`impactmaps.maps.store.fingerprint`). The package ships
 the results of the sweeps behind the default charts (``impactmaps chart`` and
 ``impactmaps chart --law hertz`` with no other option: SS Euler beam and SS square
-Kirchhoff plate, 8 λ × 200 ζ; built by ``validation/build_default_chart.py``) as
+Kirchhoff plate, 8 λ × 200 ζ; built by ``data_build/build_default_chart.py``) as
 ``data/results/<fingerprint>.npz`` (:mod:`.data_io`). A sweep whose
 fingerprint names a shipped result starts from it as from a finished run to resume: no
 point is computed again, and the values are those the same code computed (a default test

@@ -143,7 +143,7 @@ DEFAULT_STRUCTURES = (
 )
 
 # SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
-# tests/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
+# tests/maps/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
 
 #: The shear-deformable slenderness members besides the default slenderness 20.
 MEMBER_STRUCTURES = tuple(

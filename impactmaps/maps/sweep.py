@@ -183,7 +183,7 @@ def sweep(
 
 
 #: CPU of a map point [s], for the announcement of a long sweep: the mean of the linear plane
-#: (200 × 50, beam and plate: 58 CPU-s for 20 000 points, ``benchmarks/RESULTS_plane.md``).
+#: (200 × 50, beam and plate: 58 CPU-s for 20 000 points, ``benchmarks/studies/RESULTS_plane.md``).
 SECONDS_PER_POINT = 2.9e-3
 
 

@@ -3,7 +3,7 @@
 A worker solves one point after another in a single thread, so it runs with one BLAS
 thread: NumPy's default of one BLAS thread per core in *every* worker oversubscribes the
 cores as soon as two workers share them. On the 2-core development machine the
-200 × 50 grid of ``benchmarks/bench_plane.py`` (Euler beam and Kirchhoff plate) took
+200 × 50 grid of ``benchmarks/studies/bench_plane.py`` (Euler beam and Kirchhoff plate) took
 26.5 s as a sweep with the default BLAS threads and 20.9 s with one per worker
 (2026-11-24). The limit is set with ``threadpoolctl`` (it finds the BLAS library NumPy
 and SciPy actually loaded: OpenBLAS, MKL or BLIS) and only inside the worker processes:

@@ -1,18 +1,8 @@
-r"""Closed-form asymptotes of sphere impact with linear contact (seed 001 §4, spec 3.5).
+"""Closed-form asymptotes of sphere impact with linear contact (seed 001 §4, spec 3.5).
 
-Everything is normalised as in spec section 1: time ``τ = ωt`` with the contact frequency
-``ω = sqrt(K/m_i)``, force ``F̄ = F/(m_i V0 ω)``, which with linear contact equals the
-normalised indentation ``ᾱ = α ω/V0``. Functions are vectorised over τ (and over the
-parameter where it makes sense) and validate their inputs (``ValueError`` naming the
-parameter, its value and the valid range).
-
-* half-space (eq 27): the target does not move, ``F̄ = sin τ`` on [0, π];
-* quasi-static (eq 28): massless target of stiffness ``K_st = λK`` in series with the contact;
-* infinite plate (eqs 32–34): ``ᾱ'' + 2ζᾱ' + ᾱ = 0``, every ζ > 0;
-* infinite beam (eq 36 with the spec's corrected ζ): :mod:`impactmaps.solvers.infinite_beam`,
-  re-exported here.
-
-Dimensional recovery: ``F = F̄ m_i V0 ω``, ``t = τ/ω``.
+Half-space, quasi-static and infinite-plate force, peak, peak time and contact time in the
+normalised variables ``τ = ωt``, ``F̄ = F/(m_i V0 ω)``; the infinite beam is re-exported
+from :mod:`impactmaps.solvers.infinite_beam`. Inputs are validated (``ValueError``).
 """
 
 from __future__ import annotations
@@ -71,18 +61,7 @@ __all__ = [
 
 
 def halfspace_force(tau):
-    """Normalised force on a half-space (rigid, immovable target), eq 27.
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ = ω t [-], ≥ 0.
-
-    Returns
-    -------
-    ndarray
-        F̄ = sin τ for τ ≤ π, 0 after (the sphere rebounds with e = 1) [-].
-    """
+    """Normalised force on a rigid half-space, F̄ = sin τ on [0, π], 0 after [-], at τ ≥ 0 [-] (eq 27)."""
     require_nonnegative("tau", tau)
     tau = np.asarray(tau, dtype=float)
     return scalar_or_array(np.where(tau <= math.pi, np.sin(np.minimum(tau, math.pi)), 0.0))
@@ -108,21 +87,9 @@ def _quasi_static_frequency(relative_stiffness):
 
 
 def quasi_static_force(tau, relative_stiffness):
-    """Normalised quasi-static force, eq 28: ``Ω sin(Ω τ)`` with ``Ω = sqrt(λ/(1+λ))``.
+    """Normalised quasi-static force ``Ω sin(Ω τ)``, ``Ω = sqrt(λ/(1+λ))`` [-] (eq 28), zero after π/Ω.
 
-    The target is a massless spring ``K_st = λK`` in series with the contact.
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ = ω t [-], ≥ 0.
-    relative_stiffness : array_like
-        λ = K_st/K [-], > 0; broadcast against ``tau``.
-
-    Returns
-    -------
-    ndarray
-        F̄ [-]; zero after the contact time π/Ω.
+    ``tau`` τ ≥ 0 [-]; ``relative_stiffness`` λ = K_st/K > 0 [-], broadcast against ``tau``.
     """
     require_nonnegative("tau", tau)
     frequency = _quasi_static_frequency(relative_stiffness)
@@ -151,13 +118,8 @@ def _plate_inputs(tau, loss_factor):
 
 
 def _plate_solution(tau, zeta):
-    """ᾱ and ᾱ' of ᾱ'' + 2ζᾱ' + ᾱ = 0, ᾱ(0) = 0, ᾱ'(0) = 1, each branch in a stable form.
-
-    ζ < 1: e^{−ζτ} sin(ωτ)/ω, ω = sqrt((1−ζ)(1+ζ)); ζ = 1: τe^{−τ}; ζ > 1, κ = sqrt((ζ−1)(ζ+1)):
-    e^{−τ/(ζ+κ)} (1 − e^{−2κτ})/(2κ) (the ``sinh`` written with ``expm1`` so it neither
-    overflows nor cancels; ``ζ − κ = 1/(ζ+κ)``). Each branch tends to τe^{−τ} as ζ → 1 with
-    no loss of accuracy, so the solution is continuous across ζ = 1 to rounding.
-    """
+    """ᾱ and ᾱ' of ᾱ'' + 2ζᾱ' + ᾱ = 0, ᾱ(0) = 0, ᾱ'(0) = 1, each branch in a stable form
+    (continuous across ζ = 1 to rounding)."""
     value = np.empty(tau.shape)
     rate = np.empty(tau.shape)
     under, over = zeta < 1.0, zeta > 1.0
@@ -181,56 +143,23 @@ def _plate_solution(tau, zeta):
 
 
 def infinite_plate_indentation(tau, loss_factor):
-    """Normalised indentation ᾱ(τ) of the infinite-plate oscillator (eqs 32–34).
+    """Normalised indentation ᾱ(τ) = α ω/V0 [-] of ``ᾱ'' + 2ζᾱ' + ᾱ = 0`` (eqs 32–34).
 
-    ``ᾱ'' + 2ζᾱ' + ᾱ = 0``, ``ᾱ(0) = 0``, ``ᾱ'(0) = 1``, for any ζ > 0 (under-, critically and
-    over-damped). This is the linear solution; it goes negative after the first contact
-    for ζ < 1 (see :func:`infinite_plate_force`).
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ = ω t [-], ≥ 0.
-    loss_factor : array_like
-        Plate loss factor ζ_p = (1/16) sqrt(m_i K/(ρh D*)) [-] (eq 34), > 0; broadcast
-        against ``tau``.
-
-    Returns
-    -------
-    ndarray
-        ᾱ = α ω/V0 [-].
+    ``tau`` τ ≥ 0 [-]; ``loss_factor`` ζ_p > 0 [-], broadcast against ``tau``. The linear
+    solution (negative after the first contact for ζ < 1).
     """
     return scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[0])
 
 
 def infinite_plate_indentation_rate(tau, loss_factor):
-    """Normalised indentation rate ᾱ'(τ) = α̇/V0 [-] of the infinite plate (see
-    :func:`infinite_plate_indentation`; τ [-] ≥ 0, loss factor ζ_p [-] > 0).
-
-    The impactor velocity is ``ᾱ' + 2ζᾱ`` (plate point velocity ``2ζF̄``, eq 30)."""
+    """Normalised indentation rate ᾱ'(τ) = α̇/V0 [-] of the infinite plate (τ ≥ 0, ζ_p > 0)."""
     return scalar_or_array(_plate_solution(*_plate_inputs(tau, loss_factor))[1])
 
 
 def infinite_plate_force(tau, loss_factor):
-    """Normalised contact force on an infinite plate [-].
+    """Normalised contact force F̄ = F/(m_i V0 ω) [-] on an infinite plate at τ ≥ 0, ζ_p > 0.
 
-    ``F̄ = ᾱ`` up to the first zero of ᾱ (only for ζ < 1, at τ_c = π/sqrt(1−ζ²)), zero
-    after. There is no re-impact: the plate point's velocity is ``2ζF̄`` (eq 30), so it
-    stops at separation, while the impactor then moves away at velocity ``ᾱ'(τ_c) < 0``.
-    For ζ ≥ 1 the force stays positive for all τ on the infinite plate (contact time
-    ``inf``); on a finite plate reflected waves end the contact.
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ = ω t [-], ≥ 0.
-    loss_factor : array_like
-        Plate loss factor ζ_p [-], > 0.
-
-    Returns
-    -------
-    ndarray
-        F̄ = F/(m_i V0 ω) [-].
+    ``F̄ = ᾱ`` up to the first zero of ᾱ (ζ < 1 only), zero after; no re-impact.
     """
     tau, zeta = _plate_inputs(tau, loss_factor)
     value = _plate_solution(tau, zeta)[0]
@@ -246,10 +175,7 @@ def _plate_contact_time(zeta):
 
 
 def _plate_peak_time(zeta):
-    """τ_max: θ/sin θ (θ = arccos ζ) for ζ < 1, 1 at ζ = 1, η/sinh η (η = arccosh ζ) for ζ > 1.
-
-    θ/sinθ = 1/sinc(θ/π) and η/sinhη are smooth (even) in θ, η, so no cancellation near ζ = 1.
-    """
+    """τ_max: θ/sin θ (θ = arccos ζ) for ζ < 1, 1 at ζ = 1, η/sinh η (η = arccosh ζ) for ζ > 1."""
     zeta = np.asarray(zeta, dtype=float)
     theta = np.arccos(np.minimum(zeta, 1.0))
     eta = np.arccosh(np.maximum(zeta, 1.0))
@@ -259,50 +185,19 @@ def _plate_peak_time(zeta):
 
 
 def infinite_plate_peak(loss_factor):
-    """Peak normalised force on an infinite plate, closed form (spec 3.5) [-].
-
-    ``F̄max = exp(−ζ τ_max)``: ζ < 1: ``exp(−ζ arccos ζ / sqrt(1−ζ²))``; ζ = 1: ``1/e``;
-    ζ > 1: ``exp(−(ζ/sqrt(ζ²−1)) artanh(sqrt(ζ²−1)/ζ))``.
-
-    Parameters
-    ----------
-    loss_factor : array_like
-        Plate loss factor ζ_p [-], > 0.
-
-    Returns
-    -------
-    float or ndarray
-        F̄max [-].
-    """
+    """Peak normalised force F̄max = exp(−ζ τ_max) [-] on an infinite plate, for ζ_p > 0 [-]."""
     require_positive("loss_factor", loss_factor)
     zeta = np.asarray(loss_factor, dtype=float)
     return scalar_or_array(np.exp(-zeta * _plate_peak_time(zeta)))
 
 
 def infinite_plate_peak_time(loss_factor):
-    """Normalised time of the peak force on an infinite plate, τ_max = ω t_max [-].
-
-    ``arccos ζ/sqrt(1−ζ²)`` for ζ < 1, 1 at ζ = 1, ``artanh(sqrt(ζ²−1)/ζ)/sqrt(ζ²−1)`` for ζ > 1.
-
-    Parameters
-    ----------
-    loss_factor : array_like
-        Plate loss factor ζ_p [-], > 0.
-    """
+    """Normalised peak time τ_max = ω t_max [-] on an infinite plate, for ζ_p > 0 [-]."""
     require_positive("loss_factor", loss_factor)
     return scalar_or_array(_plate_peak_time(loss_factor))
 
 
 def infinite_plate_contact_time(loss_factor):
-    """Normalised contact duration on an infinite plate [-].
-
-    ``π/sqrt(1−ζ²)`` for ζ < 1; ``inf`` for ζ ≥ 1 (ᾱ > 0 for all τ on the infinite plate;
-    a finite plate ends the contact by reflections).
-
-    Parameters
-    ----------
-    loss_factor : array_like
-        Plate loss factor ζ_p [-], > 0.
-    """
+    """Normalised contact duration on an infinite plate [-]: π/sqrt(1−ζ²) for ζ < 1, ``inf`` for ζ ≥ 1."""
     require_positive("loss_factor", loss_factor)
     return scalar_or_array(_plate_contact_time(np.asarray(loss_factor, dtype=float)))

@@ -1,7 +1,7 @@
 """The warm-up in the background: the first use of the command line starts it, once.
 
 On an empty numba cache the first integrating command compiles the modal solver's
-kernels (12–14 s on 2 idle cores; ``benchmarks/RESULTS_cold_start.md``). The command
+kernels (12–14 s on 2 idle cores; ``benchmarks/studies/RESULTS_cold_start.md``). The command
 line avoids that wait without asking the user to run ``impactmaps warm-up``: when a
 command has printed its output and this installation's cache is not known to be warm, it
 starts :func:`impactmaps.solvers.warm_up.warm_up` in a detached process of low priority
@@ -24,7 +24,7 @@ set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-u
 A command that needs a kernel the warm-up has not yet put in the cache compiles it
 itself, at its normal priority (its first integrating run with a helper process on the
 second core, :mod:`impactmaps.solvers.compile_helper`): it does not wait for the warm-up. Measured and chosen
-(``benchmarks/RESULTS_cold_start.md``, ``bench_cold_start.py --background``): a warm-up at
+(``benchmarks/studies/RESULTS_cold_start.md``, ``bench_cold_start.py --background``): a warm-up at
 nice 10 progresses only when the machine has idle time, and every measured wait (capped,
 after the warm-up had run a while) made the first ``simulate`` slower than compiling —
 76 s against 41 s at load 9, 25 s against 19 s at load 5.5. The duplicate compile runs in

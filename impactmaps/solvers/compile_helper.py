@@ -292,7 +292,7 @@ def await_variant(variant, timeout: float | None = None) -> bool:
 
 #: The integrator's callees the helper compiles (in this order), and those this process
 #: compiles meanwhile; then this process compiles the integrator, which loads the
-#: helper's from numba's cache. Chosen by measurement (``benchmarks/RESULTS_cold_start.md``):
+#: helper's from numba's cache. Chosen by measurement (``benchmarks/studies/RESULTS_cold_start.md``):
 #: the two shares take about the same time, and none calls a callee of the other share
 #: but ``locate_event`` (``fill_step_coefficients``, ``predict_step``), compiled last here.
 HELPER_CALLEES = ("fill_step_coefficients", "predict_step", "free_doublings", "square_free_propagators",
@@ -303,7 +303,7 @@ FOREGROUND_CALLEES = ("record_free_inside", "no_reimpact_possible", "locate_even
 def callee_signatures() -> dict:
     """``name → (dispatcher, argument types)`` of the integrator's callees that
     :data:`HELPER_CALLEES` and :data:`FOREGROUND_CALLEES` name: the exact signatures the
-    integrator types them with (``tests/test_compile_helper.py`` checks; another one would
+    integrator types them with (``tests/compile/test_compile_helper.py`` checks; another one would
     be compiled for nothing)."""
     import numba
 
@@ -334,7 +334,7 @@ def callee_signatures() -> dict:
 
 
 #: Environment variable naming a file to which both processes append their milestones
-#: (``who event time.monotonic()``; ``benchmarks/bench_cold_start.py --helper`` reads it).
+#: (``who event time.monotonic()``; ``benchmarks/studies/bench_cold_start.py --helper`` reads it).
 TRACE_ENV = "IMPACTMAPS_COMPILE_HELPER_TRACE"
 
 

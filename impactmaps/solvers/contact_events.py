@@ -132,7 +132,7 @@ def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state
     if not separation and -fa <= small and vi < vt_now:
         # … but not the start of a touchdown's step where the gap opens: a state just past a
         # separation, still touching to round-off, is not the next touchdown (taking it would
-        # find that separation again and no time would pass: CHANGELOG, the graze spin)
+        # find that separation again and no time would pass: tests/solvers/test_graze_spin.py)
         small = -0.5 * fa
     last = -1.0  # the point whose coefficients ``sub`` holds
     c = a

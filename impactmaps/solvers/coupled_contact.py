@@ -139,7 +139,7 @@ def _coupled_arrays(frequencies, participation, damping_ratios, residual, contac
 
     The arithmetic is the one the NumPy version had, operation for operation (``eigh`` and
     the product by ``gᵀ`` through the same LAPACK/BLAS routines), so the arrays are the same
-    bits (``tests/test_coupled_contact.py`` compares them).
+    bits (``tests/solvers/test_coupled_contact.py`` compares them).
     """
     size = frequencies.shape[0]
     for j in range(size):
@@ -247,7 +247,7 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
         # whose force grows at second order — a sphere resting on a structure that
         # accelerates into it — is a contact: its force is positive just after touchdown);
         # leave with the gap strictly open and a later time, or flight would find this
-        # touchdown again and no time would pass (CHANGELOG, the graze spin)
+        # touchdown again and no time would pass (tests/solvers/test_graze_spin.py)
         if h == 0.0:
             h = 1e-9 / frequencies[n - 1]
         s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, _least_advance(t, h), h, np.empty(n),

@@ -88,7 +88,7 @@ STALL_LIMIT = 100
 # per-step stages with arrays and scalars only: a stage that takes named tuples of arrays
 # and is not simple enough for numba's reference-count pruning increfs and decrefs every
 # array in them on each call (atomic operations: the named-tuple stages of before cost a
-# cheap plate run 2× in its kernel, benchmarks/RESULTS_kernel_speed.md). The per-step
+# cheap plate run 2× in its kernel, benchmarks/studies/RESULTS_kernel_speed.md). The per-step
 # stages are plain compiled calls, not ``inline="always"``: numba's IR inlining adds
 # reference-count operations on every array argument, which cost up to 1.5× per step
 # (measured); only the helpers on scalars and the stages called once per run, per contact
@@ -150,7 +150,7 @@ def _progress(t, t_mark, stalls, h):
     """Stall guard of the exact contact phase: (stalls, t_mark) after a phase that ended at
     t [s]. A phase that ends after ``t_mark`` moved the time on (no stall; the next one
     must end 10⁻⁹ h [s] later still); one that does not is one more stall in a row (a
-    graze that the flight finds again at one instant: CHANGELOG, the graze spin)."""
+    graze that the flight finds again at one instant: tests/solvers/test_graze_spin.py)."""
     if t > t_mark:
         return np.int64(0), t + 1e-9 * h
     return stalls + 1, t_mark
@@ -319,7 +319,7 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
 def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, coupled, exact_phase, output):
     """The integrator's loop over the stages of the module docstring, its state in local
     variables (carried through stage calls, it doubled the kernel's time on a cheap plate
-    run: ``benchmarks/RESULTS_kernel_speed.md``).
+    run: ``benchmarks/studies/RESULTS_kernel_speed.md``).
 
     ``modal`` = (q, v, qn, vn): the modal state at touchdown (zero) and scratch; ``output``
     = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact, peak, peak time,

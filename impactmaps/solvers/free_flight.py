@@ -101,7 +101,7 @@ def _closing_speed_bound(omega, phi, q, v, vi):
 def _displacement(phi, q):
     """Σ φ_j q_j [m], the target at the impact point, summed in any order (SIMD): it only
     chooses a free-flight step, and in order its chain of additions took longer than the
-    step's propagation (CHANGELOG, 2026-11-27)."""
+    step's propagation (benchmarks/studies/RESULTS_map_runs.md)."""
     total = 0.0
     for j in range(q.shape[0]):
         total += phi[j] * q[j]

@@ -1,24 +1,8 @@
 """A rigid sphere on a fixed half-space (compact-body impact), and its closed forms.
 
-The target (:class:`impactmaps.targets.halfspace.HalfSpace`) does not move, so the indentation α is the impactor displacement and
-
-    m α'' = −F(α; α_max),   α(0) = 0,   α'(0) = V0,
-
-for any registered contact law (its numba kernel supplies F). :func:`halfspace_impact`
-integrates this in two phases — compression until α' = 0 (virgin loading curve), then
-restitution with α_max fixed at α_m until the indentation returns to the permanent
-indentation α_f — with an 8th-order Runge–Kutta method (``scipy`` DOP853, relative
-tolerance 1e-12) in variables scaled by the indentation the impact energy would reach,
-and locates the turning point and the separation by root finding on the dense output.
-
-Closed forms
-------------
-* Hertz (Johnson, *Contact Mechanics*, 1985, §11.4; Goldsmith, *Impact*, 1960):
-  ``α_m = (5 m V0² / (4 K_h))^{2/5}``, ``F_max = K_h α_m^{3/2}``,
-  ``t_c = 2 (α_m/V0) ∫0^1 dx / sqrt(1 − x^{5/2}) = (4/5) B(2/5, 1/2) α_m/V0
-  = 2.943275… α_m/V0``.
-* Yigit–Christoforou law: the coefficient of restitution depends on
-  ``β = V0/(ω α_y)`` alone (seed 001 Figure 1); see :func:`restitution`.
+:func:`halfspace_impact` integrates ``m α'' = −F(α; α_max)`` for any registered law
+(DOP853, rtol 1e-12, compression then restitution); Hertz closed forms and the
+Yigit–Christoforou restitution e(β). Derivations: docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -59,17 +43,8 @@ _HISTORY_SAMPLES = 1000
 
 # -- closed forms ----------------------------------------------------------------------
 def hertz_max_indentation(mass, velocity, hertz_stiffness):
-    """Maximum Hertz indentation ``α_m = (5 m V0² / (4 K_h))^{2/5}`` [m].
-
-    Parameters
-    ----------
-    mass : float or array_like
-        Impactor mass m [kg].
-    velocity : float or array_like
-        Impact velocity V0 [m/s].
-    hertz_stiffness : float or array_like
-        K_h [N/m^1.5].
-    """
+    """Maximum Hertz indentation ``α_m = (5 m V0² / (4 K_h))^{2/5}`` [m] (``mass`` [kg], ``velocity`` [m/s],
+    ``hertz_stiffness`` [N/m^1.5])."""
     require_positive("mass", mass, "kg")
     require_positive("velocity", velocity, "m/s")
     require_positive("hertz_stiffness", hertz_stiffness, "N/m^1.5")
@@ -84,27 +59,13 @@ def hertz_peak_force(mass, velocity, hertz_stiffness):
 
 
 def hertz_contact_time(mass, velocity, hertz_stiffness):
-    """Hertz contact duration ``t_c = 2.943275… α_m / V0`` [s].
-
-    The factor is ``(4/5) B(2/5, 1/2)`` (:data:`HERTZ_CONTACT_TIME_FACTOR`; Johnson 1985
-    §11.4, Goldsmith 1960). Arguments as :func:`hertz_max_indentation`.
-    """
+    """Hertz contact duration ``t_c = 2.943275… α_m / V0`` [s] (arguments as :func:`hertz_max_indentation`)."""
     alpha_max = hertz_max_indentation(mass, velocity, hertz_stiffness)
     return HERTZ_CONTACT_TIME_FACTOR * alpha_max / np.asarray(velocity, float)
 
 
 def restitution(beta):
-    """Coefficient of restitution e(β) of the Yigit–Christoforou law, closed form [-].
-
-    Energy balance in units ``a = α/α_y``, force ``K_h α_y^{3/2}``, energy
-    ``K_h α_y^{5/2}`` (in which ``½ m V0² = ½ β²``, seed 001 eqs 11–12):
-
-    * ``β² ≤ 4/5``: the impact stays elastic, ``e = 1``;
-    * otherwise ``½β² = 2/5 + (a_m − 1) + ¾ (a_m − 1)²`` gives ``a_m``; the permanent
-      indentation is ``a_f^{3/2} = a_m^{3/2} − 1.5 a_m + 0.5``; the work recovered on
-      the unloading branch ``a^{3/2} − a_f^{3/2}`` is
-      ``W_r = (2/5)(a_m^{5/2} − a_f^{5/2}) − a_f^{3/2} (a_m − a_f)``; and
-      ``e = sqrt(W_r / (½β²))``.
+    """Coefficient of restitution e(β) [-] of the Yigit–Christoforou law, closed form.
 
     Parameters
     ----------
@@ -114,15 +75,7 @@ def restitution(beta):
     Returns
     -------
     ndarray
-        e, same shape as ``beta``.
-
-    Notes
-    -----
-    Evaluated without overflow or cancellation for every finite β: with
-    ``u = 1 − (a_f/a_m)^{3/2} = 1.5 a_m^{-1/2} − 0.5 a_m^{-3/2}`` the recovered work is
-    ``a_m^{5/2} S(u)``, ``S`` taken from its Taylor series below ``u = 10⁻³`` (error
-    < 1e-18 relative there, checked against mpmath) and ``e`` assembled in logarithms; at
-    large β the restitution decays like β^{-1/2} instead of overflowing.
+        e (1 for β² ≤ 4/5), same shape as ``beta``; finite for every finite β.
     """
     require_positive("beta", beta)
     b = np.asarray(beta, dtype=float)
@@ -149,21 +102,8 @@ def restitution(beta):
 
 
 def energy_balance_restitution(law: ContactLaw, impactor_mass, velocity):
-    """Restitution [-] of a half-space impact from the law's energies (no time stepping).
-
-    ``α_m`` solves ``loading_energy(α_m) = ½ m V0²`` (Brent), then
-    ``e = sqrt(recovered_energy(α_m) / (½ m V0²))``. Exact for any law whose history is
-    α_max alone; used to check :func:`halfspace_impact`.
-
-    Parameters
-    ----------
-    law : ContactLaw
-        A single (non-batched) contact law.
-    impactor_mass : float
-        m [kg].
-    velocity : float
-        V0 [m/s].
-    """
+    """Restitution [-] of a half-space impact from a single ``law``'s energies (no time stepping),
+    for ``impactor_mass`` m [kg] at ``velocity`` V0 [m/s]."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     single_law_parameters(law)
@@ -219,11 +159,10 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     velocity : float
         Impact velocity V0 > 0 [m/s].
     time_step : float, optional
-        Sampling interval of ``history`` [s] (default: contact time / 1000). The
-        integration itself is adaptive (DOP853, rtol 1e-12) and independent of it.
+        Sampling interval of ``history`` [s] (default: contact time / 1000).
     max_time : float, optional
-        Time limit of the integration [s] (default: 10⁴ times the time the sphere
-        needs to cross its own peak indentation at V0). Reaching it issues a warning.
+        Time limit of the integration [s] (default 10⁴ α_m/V0, α_m ≈ the peak
+        indentation); reaching it warns.
 
     Returns
     -------

@@ -1,58 +1,9 @@
-r"""Sphere on an infinite Euler beam with linear contact (seed 001 eq 36, spec 3.5).
+"""Sphere on an infinite Euler beam with linear contact (seed 001 eq 36, spec 3.5).
 
-In normalised time ``τ = ωt`` (ω = sqrt(K/m_i)) and indentation ``ᾱ = α ω/V0`` the first
-contact obeys the fractional oscillator
-
-    ᾱ'' + 2ζ ∫0^τ ᾱ'(s)/sqrt(τ − s) ds + ᾱ = 0,    ᾱ(0) = 0,  ᾱ'(0) = 1,
-
-with ζ the beam loss factor as *corrected* in spec section 1 (``ζ_b``, half the value of
-seed 001's printed eq 38). With ``c = sqrt(π) ζ`` the Laplace transform is
-``A(s) = 1/(s² + 2c s^{1/2} + 1)``. Three independent evaluations are provided:
-
-``"closed-form"``
-    With ``q_j`` the four roots of ``P(q) = q⁴ + 2cq + 1``, partial fractions in
-    ``p = s^{1/2}`` and ``L⁻¹[1/(s^{1/2} − q)] = 1/sqrt(πτ) + q e^{q²τ} erfc(−q sqrt τ)`` give
-
-        ᾱ(τ) = Re Σ_j q_j/P'(q_j) · e^{q_j²τ} erfc(−q_j sqrt τ)
-
-    (the ``1/sqrt(πτ)`` terms cancel because ``Σ 1/P'(q_j) = 0``). Each factor is the
-    Faddeeva function, ``e^{u²} erfc(−u) = w(−iu)``. For the two roots with ``Re q < 0``
-    (not on the principal sheet of ``s^{1/2}``) ``Im(−iu) > 0`` and ``w`` is bounded; for the
-    two with ``Re q > 0`` (the true poles ``s = q²`` of ``A``, always a damped complex pair)
-    the equivalent ``2 e^{q²τ} − w(iu)`` is used, again with ``w`` in the upper half-plane,
-    so nothing overflows for any τ. The same sums with ``q_j^k`` give ``ᾱ' (k = 3)`` and the
-    impactor velocity ``1 − ∫ᾱ = −Re Σ q_j^{-1}/P'(q_j) w(…)`` (``k = −1``). The two roots with
-    ``Re q < 0`` collide at ``c = 2·3^{-3/4}`` (ζ ≈ 0.495010); near there their pair of terms
-    is summed as a contour integral of ``q^k w(−iq sqrt τ)/P(q)`` around both (trapezoidal
-    rule on a circle), which has no cancellation.
-``"talbot"``
-    Fixed-Talbot inversion (Abate & Valkó, Int. J. Numer. Meth. Eng. 60, 2004, 979–993)
-    of ``A(s)`` minus its two pole terms, the poles' residues being added back in closed
-    form. Without the subtraction the Talbot contour misses the poles at large τ (it
-    shrinks like 1/τ) and the inversion is wrong there.
-``"cq"``
-    Lubich's convolution quadrature (BDF2) of the receptance form
-    ``ᾱ(τ) = τ − ∫0^τ G(τ − s) F̄(s) ds``, ``G(τ) = τ + 4ζ sqrt τ``
-    (Laplace ``s^{-2} + 2c s^{-3/2}``), second order in the step. The same stepper with
-    ``F̄ = max(ᾱ, 0)`` follows separation and re-impact (:func:`infinite_beam_impact`);
-    both live in :mod:`impactmaps.solvers.infinite_beam_cq`.
-
-Findings (see the module tests):
-
-* ᾱ stays positive for all τ when ζ ≥ ζ_crit = 1.01288831287 (:func:`critical_beam_loss_factor`):
-  the first local minimum of ᾱ touches zero there; later minima are higher and
-  ``ᾱ ~ ζ τ^{-3/2} > 0`` as τ → ∞ (branch point of ``s^{1/2}``), the pole part decaying
-  exponentially.
-* Re-impact *does* happen on an infinite beam. After separation the beam point keeps
-  moving away with velocity ``2ζ ∫ F̄(s)/sqrt(τ − s) ds > 0`` that decays like τ^{-1/2}, while
-  the impactor flies at the constant velocity it had at separation. If that velocity is
-  ≤ 0 (rebound) the gap only grows; if it is > 0 the impactor catches up with the beam,
-  whose displacement grows only like sqrt τ, and strikes again. The impactor still moves
-  forward at separation for ζ_r = 0.261046261 < ζ < ζ_crit
-  (:func:`recontact_beam_loss_factor`), so :func:`infinite_beam_force` continues with the
-  convolution-quadrature stepper there. The later contacts are weak (F̄ ≲ 0.06 against a
-  first peak ≥ 0.33); in every run so far the impactor ended up riding on the beam, the
-  last contact lasting to the end of the run.
+The normalised indentation, its rate, the impactor velocity, the peak, the contact time
+and the force with re-impacts of ``ᾱ'' + 2ζ ∫0^τ ᾱ'(s)/sqrt(τ − s) ds + ᾱ = 0``, by a
+closed form (Faddeeva), fixed-Talbot inversion or convolution quadrature. Derivation and
+the critical loss factors: docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -99,11 +50,7 @@ _PAIR_CONTOUR_NODES = 32
 
 @functools.lru_cache(maxsize=256)
 def _roots(loss_factor: float):
-    """Roots of P(q) = q⁴ + 2cq + 1: (principal pair, Re q > 0; other pair; c).
-
-    Simple roots are polished by Newton's method. The other pair may be (nearly) double
-    (at c = 2·3^{-3/4}); it is then left as computed and summed by a contour integral.
-    """
+    """Roots of P(q) = q⁴ + 2cq + 1: (principal pair, Re q > 0; other pair; c)."""
     c = math.sqrt(math.pi) * loss_factor
     roots = np.roots([1.0, 0.0, 0.0, 2.0 * c, 1.0]).astype(complex)
     principal = roots[roots.real > 0]
@@ -158,11 +105,7 @@ def _moment(tau, loss_factor: float, power: int) -> np.ndarray:
 
 
 def _fixed_talbot(transform, tau: np.ndarray, nodes: int = TALBOT_NODES) -> np.ndarray:
-    """Fixed-Talbot inverse Laplace transform at τ > 0 (Abate & Valkó 2004, eq. 39).
-
-    ``transform`` maps complex s (array) to F(s); it must be analytic off the negative real
-    axis and satisfy F(conj s) = conj F(s).
-    """
+    """Fixed-Talbot inverse Laplace transform of ``transform`` at τ > 0 (Abate & Valkó 2004, eq. 39)."""
     tau = np.asarray(tau, dtype=float)[..., None]
     radius = 2.0 * nodes / (5.0 * tau)
     theta = np.pi * np.arange(1, nodes) / nodes
@@ -221,21 +164,17 @@ def _per_loss_factor(tau, loss_factor, evaluate):
 def infinite_beam_indentation(
     tau, loss_factor, method="closed-form", *, time_step=DEFAULT_TIME_STEP
 ):
-    """Normalised indentation ᾱ(τ) of the linear infinite-beam problem (eq 36).
-
-    This is the solution of the *linear* equation (no separation): it equals the
-    contact force up to the first zero (see :func:`infinite_beam_force`).
+    """Normalised indentation ᾱ(τ) of the linear infinite-beam problem (no separation).
 
     Parameters
     ----------
     tau : array_like
         Normalised time τ = ω t [-], ≥ 0.
     loss_factor : array_like
-        Beam loss factor ζ_b [-] (spec section 1), > 0; broadcast against ``tau``.
+        Beam loss factor ζ_b [-], > 0; broadcast against ``tau``.
     method : {"closed-form", "talbot", "cq"}
-        Closed form with the Faddeeva function (default, accurate to ~1e-15); fixed-Talbot
-        inversion with pole subtraction (~1e-11); BDF2 convolution quadrature on a uniform
-        grid with step ``time_step`` and cubic interpolation (error O(step²)).
+        Closed form (default, ~1e-15), fixed-Talbot (~1e-11) or BDF2 convolution
+        quadrature (O(step²)).
     time_step : float, optional
         Normalised step for ``method="cq"`` [-].
 
@@ -262,44 +201,17 @@ def infinite_beam_indentation(
 
 
 def infinite_beam_indentation_rate(tau, loss_factor):
-    """Normalised indentation rate ᾱ'(τ) = Re Σ q_j³/P'(q_j) w(−i q_j sqrt τ) (closed form).
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ [-], ≥ 0.
-    loss_factor : array_like
-        Beam loss factor ζ_b [-], > 0.
-
-    Returns
-    -------
-    ndarray
-        dᾱ/dτ = α̇/V0 [-] of the linear solution.
-    """
+    """Normalised indentation rate ᾱ'(τ) = α̇/V0 [-] at τ ≥ 0 for ζ_b > 0 (closed form)."""
     return _per_loss_factor(tau, loss_factor, lambda t, z: _moment(t, z, 3).real)
 
 
 def infinite_beam_impactor_velocity(tau, loss_factor):
-    """Impactor velocity of the linear solution, 1 − ∫0^τ ᾱ = −Re Σ q_j^{-1}/P'(q_j) w(…).
-
-    Parameters
-    ----------
-    tau : array_like
-        Normalised time τ [-], ≥ 0.
-    loss_factor : array_like
-        Beam loss factor ζ_b [-], > 0.
-
-    Returns
-    -------
-    ndarray
-        ẇ_i/V0 [-]; the beam-point velocity is this minus ᾱ'.
-    """
+    """Impactor velocity over V0, ``1 − ∫0^τ ᾱ`` [-], of the linear solution at τ ≥ 0 for ζ_b > 0."""
     return _per_loss_factor(tau, loss_factor, lambda t, z: -_moment(t, z, -1).real)
 
 
 def _brentq(*args, **options):
-    """:func:`scipy.optimize.brentq`, imported on first use (scipy.optimize takes ~0.3 s to
-    import; a map lookup imports this module but finds no root)."""
+    """``scipy.optimize.brentq``, imported on first use."""
     from scipy.optimize import brentq
 
     return brentq(*args, **options)
@@ -335,21 +247,7 @@ def _over_loss_factors(loss_factor, index):
 
 
 def infinite_beam_peak(loss_factor):
-    """Peak normalised force F̄max of the infinite beam (first local maximum of ᾱ).
-
-    Found as the first zero of the closed-form ᾱ' by Brent's method (accurate to ~1e-14;
-    later re-impacts are far weaker, F̄ ≲ 0.06).
-
-    Parameters
-    ----------
-    loss_factor : array_like
-        Beam loss factor ζ_b [-], > 0.
-
-    Returns
-    -------
-    float or ndarray
-        F̄max = F_max/(m_i V0 ω) [-].
-    """
+    """Peak normalised force F̄max = F_max/(m_i V0 ω) [-] of the infinite beam at ζ_b > 0 [-]."""
     return _over_loss_factors(loss_factor, 1)
 
 
@@ -359,58 +257,19 @@ def infinite_beam_peak_time(loss_factor):
 
 
 def infinite_beam_contact_time(loss_factor):
-    """Normalised duration of the first contact, the first zero of ᾱ [-].
-
-    ``inf`` for ζ ≥ :func:`critical_beam_loss_factor` (ᾱ > 0 for all τ: the impactor never
-    separates from an infinite beam; on a finite beam reflections end the contact). For
-    :func:`recontact_beam_loss_factor` < ζ < ζ_crit further contacts follow, see
-    :func:`infinite_beam_impact`.
-
-    Parameters
-    ----------
-    loss_factor : array_like
-        Beam loss factor ζ_b [-], > 0.
-
-    Returns
-    -------
-    float or ndarray
-        τ_c = ω t_c [-].
-    """
+    """Normalised duration τ_c = ω t_c [-] of the first contact at ζ_b > 0 (``inf`` for ζ ≥ ζ_crit)."""
     return _over_loss_factors(loss_factor, 4)
 
 
 @functools.lru_cache(maxsize=1)
 def critical_beam_loss_factor() -> float:
-    """Loss factor ζ_crit ≈ 1.01288831287 above which ᾱ(τ) > 0 for all τ > 0.
-
-    At ζ_crit the first local minimum of ᾱ (second zero of ᾱ') touches zero: solved by
-    Brent's method on ζ ↦ ᾱ(τ_min(ζ)), which increases through zero there. Later minima
-    are higher (checked to τ = 1e4 in the tests) and ``ᾱ ~ ζτ^{-3/2}`` as τ → ∞.
-    Cross-checked independently by solving ᾱ = ᾱ' = 0 with mpmath's 30-digit de Hoog
-    inversion: ζ_crit = 1.0128883128721652, τ = 2.1130419971738.
-
-    Returns
-    -------
-    float
-        ζ_crit [-] (spec's corrected beam loss factor; the paper's printed eq 38 gives 2ζ).
-    """
+    """Loss factor ζ_crit ≈ 1.01288831287 [-] above which ᾱ(τ) > 0 for all τ > 0."""
     return _brentq(lambda z: _first_contact(z)[3], 0.9, 1.1, xtol=1e-15, rtol=1e-15)
 
 
 @functools.lru_cache(maxsize=1)
 def recontact_beam_loss_factor() -> float:
-    """Loss factor ζ_r ≈ 0.261046261 above which the impactor, at the first separation, still
-    moves towards the infinite beam, so that it strikes again (up to ζ_crit).
-
-    Root of ζ ↦ 1 − ∫0^{τ_c} ᾱ dτ (impactor velocity at separation) by Brent's method.
-    Cross-checked by solving ᾱ(τ) = 0, ∫0^τ ᾱ = 1 with mpmath's 30-digit de Hoog inversion:
-    ζ_r = 0.26104626106154511, τ_c = 2.5522467471360416.
-
-    Returns
-    -------
-    float
-        ζ_r [-].
-    """
+    """Loss factor ζ_r ≈ 0.261046261 [-] above which the impactor strikes the infinite beam again (up to ζ_crit)."""
     return _brentq(_separation_velocity, 0.2, 0.3, xtol=1e-15, rtol=1e-15)
 
 
@@ -422,13 +281,10 @@ def _separation_velocity(loss_factor: float) -> float:
 
 
 def infinite_beam_force(tau, loss_factor, *, time_step=DEFAULT_TIME_STEP):
-    """Normalised contact force F̄(τ) of a sphere on an infinite beam, with re-impacts.
+    """Normalised contact force F̄ = F/(m_i V0 ω) [-] on an infinite beam, with re-impacts.
 
-    Exact (closed form) up to the first separation. After it the force is zero if the
-    impactor then moves away (ζ ≤ :func:`recontact_beam_loss_factor`: proved, the gap grows
-    monotonically); otherwise the impactor strikes again and the history is continued by
-    the unilateral convolution-quadrature stepper started from the exact first contact
-    (error O(step²) in the later contacts, whose forces are ≲ 0.06).
+    Exact up to the first separation; later contacts (ζ_r < ζ < ζ_crit) by the
+    convolution-quadrature stepper (O(step²)).
 
     Parameters
     ----------
@@ -438,11 +294,6 @@ def infinite_beam_force(tau, loss_factor, *, time_step=DEFAULT_TIME_STEP):
         Beam loss factor ζ_b [-], > 0 (scalar).
     time_step : float, optional
         Normalised step of the stepper for re-impacts [-].
-
-    Returns
-    -------
-    ndarray
-        F̄ = F/(m_i V0 ω) [-], shape of ``tau``.
     """
     require_positive("loss_factor", loss_factor)
     if np.ndim(loss_factor) != 0:

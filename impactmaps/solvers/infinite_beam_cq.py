@@ -1,25 +1,8 @@
-r"""Sphere on an infinite Euler beam by convolution quadrature: separation and re-impact.
+"""Sphere on an infinite Euler beam by convolution quadrature: separation and re-impact.
 
-The receptance form of the normalised problem (see :mod:`impactmaps.solvers.infinite_beam`)
-
-    ᾱ(τ) = τ − ∫0^τ G(τ − s) F̄(s) ds,    G(τ) = τ + 4ζ sqrt τ
-
-(Laplace ``s^{-2} + 2c s^{-3/2}``, ``c = sqrt(π) ζ``) is discretised by Lubich's
-convolution quadrature with the BDF2 generating function (Lubich, Numer. Math. 52, 1988),
-second order in the step. With ``F̄ = ᾱ`` it is the linear problem; with
-``F̄ = max(ᾱ, 0)`` it follows separation and re-impact (:func:`infinite_beam_impact`).
-
-History sum
------------
-Every step needs the history ``Σ_{k<n} W_{n−k} F_k`` of the forces already found: summed
-directly, N steps cost O(N²). :func:`blocked_march` computes it as Hairer, Lubich and
-Schlichte (SIAM J. Sci. Stat. Comput. 6, 1985) do: the steps are split in halves, recursively;
-once the first half of a block is solved, its whole contribution to the second half is one
-FFT convolution, and only blocks of :data:`LEAF_STEPS` steps sum directly (compiled) next to
-the step solve. N steps then cost O(N log² N). The answers equal the direct sum's to round-off
-(≈ 1e-13 relative measured: ``tests/test_law_asymptotes.py``); a run that fits in one leaf
-is summed in the same order as the direct sum, bit for bit. The same driver marches the
-linear problem here and any contact law in :mod:`impactmaps.law_asymptotes.beam`.
+BDF2 convolution quadrature (Lubich 1988) of the receptance form
+``ᾱ(τ) = τ − ∫0^τ G(τ − s) F̄(s) ds``, with the history sum by FFT blocks
+(:func:`blocked_march`, O(N log² N)). Method and accuracy: docs/physics.rst.
 """
 
 from __future__ import annotations
@@ -46,12 +29,7 @@ _DIRECT_PRODUCT = 1 << 16  # a cross-block convolution of at most this many prod
 
 @numba.njit(cache=True)
 def bdf2_weights(exponent, step, count):
-    """BDF2 convolution-quadrature weights of K(s) = s^{-exponent} (Lubich 1988).
-
-    Taylor coefficients of ``(δ(ξ)/h)^{-exponent}``, ``δ(ξ) = 3/2 − 2ξ + ξ²/2 = (3/2)g(ξ)``,
-    ``g = 1 − 4ξ/3 + ξ²/3``; ``f = g^{-a}`` obeys ``g f' = −a g' f``, a three-term recurrence
-    that is stable forwards (the wanted solution is the dominant one).
-    """
+    """BDF2 convolution-quadrature weights of K(s) = s^{-exponent} (Lubich 1988; stable recurrence)."""
     g1 = -4.0 / 3.0
     g2 = 1.0 / 3.0
     f = np.empty(count)
@@ -66,12 +44,8 @@ def bdf2_weights(exponent, step, count):
 
 @numba.njit(cache=True)
 def _linear_block(weights, tau, prescribed, unilateral, history, force, indentation, lo, hi):
-    """Steps ``lo ≤ n < hi`` of ᾱ_n = τ_n − Σ_{k≤n} W_{n−k} F̄_k with F̄_n = ᾱ_n, or max(ᾱ_n, 0)
-    if unilateral, except on the first ``len(prescribed)`` nodes where F̄ is given.
-
-    ``history[n]`` holds the sum over ``k < lo``; the sum over ``lo ≤ k < n`` is added here.
-    Returns −1 (the linear march never stops early).
-    """
+    """Steps ``lo ≤ n < hi`` of ᾱ_n = τ_n − Σ_{k≤n} W_{n−k} F̄_k (F̄ = ᾱ, or max(ᾱ, 0) if
+    unilateral; given on the ``prescribed`` nodes); returns −1."""
     known = prescribed.size
     for n in range(lo, hi):
         local = 0.0
@@ -93,41 +67,18 @@ def _power_of_two(count: int) -> int:
 
 
 def weights_size(steps: int) -> int:
-    """How many CQ weights :func:`blocked_march` reads for a march of ``steps`` steps (forces
-    ``F_0 … F_steps``): a power of two ≥ ``steps + 1``, the FFT blocks' weight prefixes."""
+    """Number of CQ weights :func:`blocked_march` reads for ``steps`` steps (a power of two ≥ steps + 1)."""
     return _power_of_two(steps + 1)
 
 
 def blocked_march(weights, force, solve_block, leaf=None) -> int:
     """Drive a convolution-quadrature march whose history sum is done by FFT blocks.
 
-    Parameters
-    ----------
-    weights : ndarray
-        CQ weights ``W_0 … W_{M−1}`` [unit of the marched quantity per unit of force], ``M``
-        at least the smallest power of two ≥ ``force.size − 1``.
-    force : ndarray
-        Forces ``F_0 … F_N`` (``F_0 = 0``), filled in place by ``solve_block``.
-    solve_block : callable
-        ``solve_block(history, lo, hi) -> int`` solves steps ``lo ≤ n < hi`` in order,
-        given ``history[n] = Σ_{k<lo} W_{n−k} F_k`` (a float array of ``force.size``), and adds
-        the near-diagonal sum ``Σ_{lo≤k<n}`` itself; returns the step where the march stops,
-        or −1 to go on.
-    leaf : int, optional
-        Longest block ``solve_block`` receives [steps]; default :data:`LEAF_STEPS` (read at
-        the call). A leaf ≥ N makes the whole march one direct O(N²) sum.
-
-    Returns
-    -------
-    int
-        The step where ``solve_block`` stopped the march, or −1 if it reached ``N``.
-
-    Notes
-    -----
-    Steps are split in halves recursively; when the first half of a block is solved, its
-    contribution to the second half is a circular convolution of length a power of two
-    ≥ the block (no wrap-around reaches the wanted terms), the FFT of each weight prefix
-    taken once per call. Cost O(N log² N).
+    ``weights``: CQ weights W_0 … W_{M−1} (M ≥ :func:`weights_size`); ``force``: F_0 … F_N
+    (F_0 = 0), filled in place by ``solve_block(history, lo, hi) -> int``, which solves
+    steps ``lo ≤ n < hi`` given ``history[n] = Σ_{k<lo} W_{n−k} F_k`` and returns the stop
+    step or −1; ``leaf``: longest block [steps] (default :data:`LEAF_STEPS`). Returns the
+    step where the march stopped, or −1 if it reached N.
     """
     leaf = LEAF_STEPS if leaf is None else int(leaf)
     history = np.zeros(force.size)
@@ -158,20 +109,7 @@ def _cross_block(weights, block, span, spectra):
 
 
 def causal_convolution(first, second, count):
-    """The first ``count`` terms of the convolution of two sequences (FFT when long).
-
-    Parameters
-    ----------
-    first, second : ndarray
-        Sequences of length ≥ ``count``.
-    count : int
-        Terms wanted.
-
-    Returns
-    -------
-    ndarray
-        ``c_n = Σ_{k≤n} first_{n−k} second_k``, ``0 ≤ n < count``.
-    """
+    """The first ``count`` terms ``c_n = Σ_{k≤n} first_{n−k} second_k`` of a convolution (FFT when long)."""
     first, second = first[:count], second[:count]
     if count * count <= 4 * _DIRECT_PRODUCT:
         return np.convolve(first, second)[:count]
@@ -180,11 +118,7 @@ def causal_convolution(first, second, count):
 
 
 def cq_march(loss_factor: float, step: float, count: int, unilateral: bool, prescribed=None):
-    """BDF2 CQ of the receptance form on ``count`` steps; returns (τ, F̄, ᾱ) at the nodes.
-
-    ``W`` are the weights of ``s^{-2} + 2c s^{-3/2}``; ``prescribed`` (F̄ at the first nodes)
-    replaces the solve there.
-    """
+    """BDF2 CQ of the receptance form on ``count`` steps; returns (τ, F̄, ᾱ) at the nodes."""
     c = math.sqrt(math.pi) * loss_factor
     size = weights_size(count)
     weights = bdf2_weights(2.0, step, size) + 2.0 * c * bdf2_weights(1.5, step, size)
@@ -200,8 +134,8 @@ def cq_march(loss_factor: float, step: float, count: int, unilateral: bool, pres
 
 
 def cq_grid(duration: float, time_step: float):
-    """(step, count) of a CQ grid covering ``duration`` with steps ≤ ``time_step``
-    (normalised time), coarsened with a warning beyond :data:`MAX_CQ_STEPS` steps."""
+    """(step, count) of a CQ grid covering ``duration`` with steps ≤ ``time_step`` [-]
+    (coarsened with a warning beyond :data:`MAX_CQ_STEPS`)."""
     count = max(int(math.ceil(duration / time_step)), 2)
     if count > MAX_CQ_STEPS:
         warnings.warn(
@@ -222,13 +156,13 @@ class InfiniteBeamImpact:
     tau : ndarray
         Normalised time ω t [-], uniform grid from 0.
     force : ndarray
-        Contact force F̄ = F/(m_i V0 ω) = max(ᾱ, 0) [-].
+        F̄ = F/(m_i V0 ω) = max(ᾱ, 0) [-].
     indentation : ndarray
-        ᾱ = α ω/V0 [-] (negative while separated: the gap).
+        ᾱ = α ω/V0 [-] (negative while separated).
     impactor_velocity : ndarray
-        Impactor velocity / V0 = 1 − ∫F̄ dτ (trapezoidal) [-].
+        Impactor velocity / V0 [-].
     contacts : ndarray, shape (n, 2)
-        Start and end τ of each contact (grid resolution; end = inf if still in contact).
+        Start and end τ of each contact (end = inf if still in contact).
     """
 
     tau: np.ndarray
@@ -241,21 +175,18 @@ class InfiniteBeamImpact:
 def infinite_beam_impact(
     loss_factor, duration, *, time_step=DEFAULT_TIME_STEP, prescribed_force=None
 ):
-    """Simulate impact on an infinite beam with separation and re-impact (BDF2 CQ).
+    """Impact on an infinite beam with separation and re-impact (BDF2 CQ).
 
     Parameters
     ----------
     loss_factor : float
-        Beam loss factor ζ_b [-] (spec section 1), > 0.
+        Beam loss factor ζ_b [-], > 0.
     duration : float
-        Normalised end time τ_end = ω t_end [-], > 0.
+        Normalised end time ω t_end [-], > 0.
     time_step : float, optional
-        Normalised step ω Δt [-]; global error O(step²) while in contact, lower order
-        across the kinks of F̄ at separation/re-impact.
+        Normalised step ω Δt [-] (error O(step²) while in contact).
     prescribed_force : callable, optional
-        ``(tau_array) -> force`` used on the grid nodes before the first node where it
-        returns a negative value; used by :func:`infinite_beam_force` to start from the
-        exact first contact.
+        ``(tau_array) -> force`` used before the first node where it is negative.
 
     Returns
     -------

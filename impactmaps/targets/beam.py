@@ -1,29 +1,9 @@
 """Straight uniform beams (Euler–Bernoulli, Rayleigh, Timoshenko) as impact targets.
 
-A :class:`Beam` is described by its section properties (docs/physics_contract.md §3.2, seed 001
-(16)–(17)), so that isotropic and specially orthotropic beams share one code path:
-``bending_stiffness`` bD11 (= EI), ``shear_stiffness`` k b A55 (= kGA),
-``mass_per_length`` ρA (= m' = ρbh) and ``rotary_inertia`` ρI. The beam occupies
-``0 ≤ x ≤ L`` and is struck at ``impact_position`` x0.
-
-Modes (see :mod:`impactmaps.targets.beam_modes` for methods and accuracy):
-
-* simply supported, every theory — closed form (vectorised, thousands of modes);
-* Euler, any support — the classical frequency equations (Blevins 1979, Table 8-1)
-  with mode shapes that stay accurate for any mode number;
-* Rayleigh and Timoshenko with clamped or free ends — a verified p-version
-  finite-element model, cached per section.
-
-Static compliance (for λ and the residual-flexibility correction): exact closed forms for
-every support with bending and (Timoshenko) shear compliance. A free–free beam has no
-static stiffness; for it the static compliance is defined by *inertia relief*: the
-compliance of the elastic modes only, ``Σ_elastic W_j(x0)²/ω_j²`` (the rigid-body modes
-are excluded). :meth:`Beam.static_compliance` returns that value, so λ of a free–free beam
-is the inertia-relief relative stiffness and ``residual = static − retained`` stays
-consistent.
-
-Loss factor: the corrected beam loss factor of docs/physics_contract.md §1 (``ζ_b``, half of seed 001's
-printed eq. 38), from :mod:`impactmaps.dimensionless`.
+A :class:`Beam` is described by its section properties (bD11, kbA55, ρA, ρI; docs/physics_contract.md
+§3.2). Modes: closed forms (SS, Euler with any support) or a p-version finite-element model
+(:mod:`impactmaps.targets.beam_modes`). A free–free beam's static compliance is its
+inertia-relief compliance ``Σ_elastic W_j(x0)²/ω_j²``.
 """
 
 from __future__ import annotations
@@ -78,37 +58,22 @@ class Beam(Target):
     bending_stiffness : float
         bD11 = EI [N·m²], > 0.
     shear_stiffness : float
-        Transverse shear stiffness including the correction factor, k b A55 = kGA [N],
-        > 0. Used only by ``theory="timoshenko"``; may be ``math.inf`` otherwise.
+        k b A55 = kGA [N], > 0 (used by ``"timoshenko"`` only; may be ``math.inf``).
     mass_per_length : float
         m' = ρA [kg/m], > 0.
     rotary_inertia : float
-        ρI [kg·m], ≥ 0; > 0 for ``"rayleigh"`` and ``"timoshenko"``; ignored by
-        ``"euler"``.
+        ρI [kg·m], ≥ 0; > 0 for ``"rayleigh"`` and ``"timoshenko"``.
     theory : {"euler", "rayleigh", "timoshenko"}
-        Euler–Bernoulli (no shear deformation, no rotary inertia), Rayleigh (rotary
-        inertia only) or Timoshenko (both).
+        Euler–Bernoulli, Rayleigh (rotary inertia) or Timoshenko (and shear).
     supports : {"ss", "cc", "cs", "cf", "ff"}
-        End conditions, x = 0 first: simply supported both ends, clamped–clamped,
-        clamped–simply supported, cantilever (clamped at x = 0, free at x = L),
-        free–free.
+        End conditions, x = 0 first (``"cf"``: clamped at x = 0, free at x = L).
     impact_position : float, optional
-        x0 [m]; default mid-span. Must keep 1e-6 L from a supported end
-        (:data:`~impactmaps.targets.options.MIN_SUPPORT_DISTANCE`: a force on a support does
-        no work) and may lie on a free end: ``1e-6 L ≤ x0 ≤ L − 1e-6 L`` for ss/cc/cs,
-        ``1e-6 L ≤ x0 ≤ L`` for cf, ``0 ≤ x0 ≤ L`` for ff.
+        x0 [m]; default mid-span; at least 1e-6 L from a supported end, may lie on a
+        free end.
     damping_ratio : float, optional
         Modal viscous damping ratio [-] of every elastic mode, in [0, 1); default 0.
     width, height : float, optional
-        Section width b and height h [m] when known (set by the constructors);
-        ``height`` enables the slenderness check L/h ≥ 2.
-
-    Notes
-    -----
-    Build beams of a material with :meth:`rectangular` or of a laminate with
-    :meth:`from_laminate`. The dataclass is frozen and hashable; finite-element modal
-    solutions are cached per section and mesh (not per impact point), the bases of
-    :meth:`modes` per beam and cut-off (bounded caches of pure functions).
+        Section width b and height h [m] when known; ``height`` enables the check L/h ≥ 2.
     """
 
     kind: ClassVar[str] = "beam"
@@ -170,20 +135,14 @@ class Beam(Target):
     def rectangular(cls, length, width, height, material, *, theory="timoshenko",
                     supports="ss", impact_position=None, shear_correction=5.0 / 6.0,
                     damping_ratio=0.0) -> "Beam":
-        """A solid rectangular beam b × h of an isotropic material.
-
-        Narrow-beam convention (docs/physics_contract.md §3.2): ``bD11 = EI = E b h³/12`` (plane
-        stress in the width direction; a wide beam in cylindrical bending would use
-        ``E/(1 − ν²)`` instead). ``S = k G b h`` with ``G = E/(2(1 + ν))``,
-        ``ρA = ρ b h``, ``ρI = ρ b h³/12``.
+        """A solid rectangular beam b × h of an isotropic material (``bD11 = E b h³/12``).
 
         Parameters
         ----------
         length, width, height : float
             L, b, h [m], > 0; L/h ≥ 2.
         material : object
-            Anything with ``youngs_modulus`` [Pa], ``poisson_ratio`` [-] and ``density``
-            [kg/m³], e.g. :class:`impactmaps.materials.IsotropicMaterial`.
+            With ``youngs_modulus`` [Pa], ``poisson_ratio`` [-] and ``density`` [kg/m³].
         theory, supports, impact_position, damping_ratio
             See :class:`Beam`.
         shear_correction : float
@@ -214,22 +173,15 @@ class Beam(Target):
     def from_laminate(cls, length, width, laminate, *, theory="timoshenko", supports="ss",
                       impact_position=None, shear_correction=5.0 / 6.0,
                       damping_ratio=0.0) -> "Beam":
-        """A beam of width b cut from a specially orthotropic laminate (seed 001 (16)–(17)).
-
-        ``bD11 = b·D11``, ``S = k·b·A55``, ``ρA = b·mass_per_area``,
-        ``ρI = b·rotary_inertia_per_area``, ``h = thickness``. This is the seed's
-        convention (D11 of the plate, i.e. a beam in cylindrical bending); for an
-        isotropic laminate it gives ``E/(1 − ν²)`` where :meth:`rectangular` gives E.
-        Bending–extension coupling (B ≠ 0) and D16 are ignored.
+        """A beam of width b cut from a specially orthotropic laminate (``bD11 = b·D11``, seed 001 (16)–(17)).
 
         Parameters
         ----------
         length, width : float
             L, b [m], > 0.
         laminate : object
-            Anything with ``D11`` [N·m], ``A55`` (or ``transverse_shear_stiffness[1, 1]``)
-            [N/m], ``mass_per_area`` [kg/m²], ``rotary_inertia_per_area`` [kg] and
-            ``thickness`` [m], e.g. :class:`impactmaps.materials.Laminate`.
+            With ``D11`` [N·m], ``A55`` [N/m], ``mass_per_area`` [kg/m²],
+            ``rotary_inertia_per_area`` [kg] and ``thickness`` [m].
         theory, supports, impact_position, damping_ratio, shear_correction
             See :meth:`rectangular`.
         """
@@ -286,16 +238,11 @@ class Beam(Target):
         return self.height
 
     def distance_to_nearest_end(self) -> float:
-        """Distance [m] from x0 to the nearest end, whatever its support.
-
-        Flexural waves reflect from free ends too, so this is the distance that sets the
-        first return of a reflection to the impact point.
-        """
+        """Distance [m] from x0 to the nearest end, supported or free."""
         return min(self.impact_position, self.length - self.impact_position)
 
     def thickness_shear_frequency(self) -> float | None:
-        """The thickness-shear cut-off ``sqrt(kGA/(ρI))`` [rad/s] of a Timoshenko beam; None
-        for the other theories."""
+        """Thickness-shear cut-off ``sqrt(kGA/(ρI))`` [rad/s] of a Timoshenko beam; None otherwise."""
         if self.theory != "timoshenko":
             return None
         return math.sqrt(self.shear_stiffness / self.rotary_inertia)
@@ -305,24 +252,15 @@ class Beam(Target):
         return float(self.distance_to_nearest_end())
 
     def reflection_time(self, contact_frequency):
-        """Normalised time ω d²/c [-] of the first wave return to the impact point.
-
-        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] from x0 to
-        the nearest clamped or simply supported end (:meth:`distance_to_nearest_support`),
-        ``c = sqrt(bD11/m')`` [m²/s] (so that ``ω d²/c`` is d² over the flexural
-        wavelength scale at ω).
-        """
+        """Normalised time ω d²/c [-] of the first wave return (``contact_frequency`` ω [rad/s],
+        d to the nearest support [m], ``c = sqrt(bD11/m')`` [m²/s])."""
         distance = self.distance_to_nearest_support()
         speed = math.sqrt(self.bending_stiffness / self.mass_per_length)
         return np.asarray(contact_frequency) * distance**2 / speed
 
     @classmethod
     def infinite_structure_peak(cls, loss_factor):
-        """Normalised peak force on the infinite beam F̄∞(ζ) [-] (seed 001 eq 36).
-
-        From :func:`impactmaps.solvers.asymptotes.infinite_beam_peak`, evaluated once per
-        distinct value of ``loss_factor`` ζ [-] (scalar or array; result of its shape).
-        """
+        """Normalised peak force on the infinite beam F̄∞(ζ) [-] at ``loss_factor`` ζ [-] (scalar or array)."""
         zeta = np.asarray(loss_factor, dtype=float)
         unique, inverse = np.unique(zeta, return_inverse=True)
         peaks = np.asarray(asymptotes.infinite_beam_peak(unique), dtype=float)
@@ -350,12 +288,8 @@ class Beam(Target):
 
     # -- modes ------------------------------------------------------------------------
     def mode_set(self, max_frequency: float, min_modes: int = 1) -> beam_modes.ModeSet:
-        """All modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
-
-        Returns the :class:`~impactmaps.targets.beam_modes.ModeSet` (ascending
-        ``frequencies``; ``deflection(points)`` and ``rotation(points)`` give the
-        mass-normalised W_j and Ψ_j). Rigid-body modes of a free–free beam come first.
-        """
+        """All modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) as a
+        :class:`~impactmaps.targets.beam_modes.ModeSet`; rigid-body modes first."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         require_in_range("min_modes", min_modes, 0, math.inf)
         if int(min_modes) != min_modes:
@@ -368,32 +302,13 @@ class Beam(Target):
         return beam_modes.finite_element_modes(section, max_frequency, int(min_modes))
 
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
-        """Modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) seen from x0.
-
-        Participation ``φ_j = W_j(x0)`` of the mass-normalised modes
-        (``∫ (ρA W_i W_j + ρI Ψ_i Ψ_j) dx = δ_ij``). ``residual_compliance`` is the exact
-        static compliance at x0 minus ``Σ φ_j²/ω_j²`` over the retained elastic modes
-        (:meth:`ModalBasis.from_modes`). Free–free beams include their two rigid-body
-        modes (ω = 0, undamped). The basis depends on the arguments only; the last few
-        are kept (bounded cache) for repeated calls with the same cut-off, e.g. velocity
-        sweeps on one physical target.
-        """
+        """Modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) seen from x0, with
+        residual compliance; free–free beams include their two rigid-body modes."""
         return _beam_basis(self, float(max_frequency), min_modes)
 
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
-        """Number of modes with ω ≤ ``max_frequency`` [rad/s] (rigid-body modes included).
-
-        Every support has at least ``floor(k L/π) − 1`` elastic modes below ω, k the
-        flexural wavenumber at ω (:func:`~impactmaps.targets.beam_modes.largest_wavenumber`;
-        the roots βL of every frequency equation lie within π of nπ): when that
-        exceeds ``limit`` it is returned as is. Otherwise the count is exact, without
-        building the modes: simply supported, the closed-form frequency of each branch
-        searched for its last half-wave number below ω; Euler with other supports, the
-        few roots βL next to the cut-off; Rayleigh and Timoshenko with other supports,
-        the eigenvalues of the bounded finite-element model below ω by Sylvester's inertia
-        (:func:`~impactmaps.targets.beam_fe_modes.finite_element_mode_count`: milliseconds,
-        where solving the model took up to minutes).
-        """
+        """Number of modes with ω ≤ ``max_frequency`` [rad/s] (rigid-body included), without
+        building them; a lower bound above ``limit`` may be returned early."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         section, frequency = self.section, float(max_frequency)
         wavenumber = float(beam_modes.largest_wavenumber(section, frequency))
@@ -417,9 +332,7 @@ class Beam(Target):
         return self.supports != "ss" and self.theory != "euler"
 
     def resolution_limit(self) -> float:
-        """Highest frequency [rad/s] the beam's modes resolve: ``inf`` for the closed forms
-        (SS, and Euler with any support), else what the largest finite-element model
-        resolves (:func:`~impactmaps.targets.beam_modes.finite_element_resolution_limit`)."""
+        """Highest frequency [rad/s] the beam's modes resolve (``inf`` for the closed forms)."""
         if not self.bounded_modes:
             return math.inf
         return beam_modes.finite_element_resolution_limit(self.section)
@@ -443,11 +356,7 @@ class Beam(Target):
         return self.mode_table(count)["frequencies_hz"]
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
-        """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes).
-
-        The modes (and their order) are those of :meth:`modes` with the same arguments,
-        so the deflection at ``points`` is ``mode_shapes(...) @ q``.
-        """
+        """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes), of :meth:`modes`."""
         x = np.atleast_1d(np.asarray(points, dtype=float))
         require_in_range("points", x, 0.0, self.length, unit="m")
         return self.mode_set(max_frequency, min_modes).deflection(x)
@@ -459,21 +368,12 @@ class Beam(Target):
 
     # -- statics and dimensionless groups ---------------------------------------------
     def static_compliance(self) -> float:
-        """Static point compliance 1/K_st [m/N] at x0 (exact closed form).
-
-        Bending plus, for Timoshenko, shear compliance (see
-        :func:`impactmaps.targets.beam_modes.static_compliance`). Free–free: the
-        inertia-relief compliance of the elastic modes (module docstring).
-        """
+        """Static point compliance 1/K_st [m/N] at x0 (exact; inertia relief for free–free)."""
         return beam_modes.static_compliance(self.section, self.impact_position)
 
     def loss_factor(self, impactor_mass, contact_stiffness):
-        """Beam loss factor ``ζ_b = (1/(4 sqrt(2π))) (m_i/m')^{3/4} (K/(bD11))^{1/4}`` [-].
-
-        The corrected ζ_b of docs/physics_contract.md §1 (half of seed 001's printed eq. 38), with
-        m' = ``mass_per_length`` and bD11 = ``bending_stiffness``; ``impactor_mass``
-        [kg] and ``contact_stiffness`` [N/m] may be arrays.
-        """
+        """Corrected beam loss factor ζ_b [-] for ``impactor_mass`` [kg] and ``contact_stiffness``
+        [N/m] (arrays allowed)."""
         return loss_factor_beam(impactor_mass, contact_stiffness, self.mass_per_length,
                                 self.bending_stiffness)
 

@@ -44,22 +44,8 @@ def _bisect(function, low, high, iterations: int = 80):
 
 
 def euler_roots(supports: str, count: int, first: int = 1) -> np.ndarray:
-    """Roots βL number ``first`` … ``count`` of the Euler frequency equation (elastic modes;
-    default the first ``count``).
-
-    Frequency equations (Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979,
-    Table 8-1), written overflow-free by dividing by cosh βL:
-
-    * ss: ``sin βL = 0`` → βL = nπ;
-    * cc and ff (elastic modes): ``cos βL cosh βL = 1`` → ``cos x − sech x = 0``,
-      one root in each (nπ, (n+1)π), n ≥ 1;
-    * cf: ``cos βL cosh βL = −1`` → ``cos x + sech x = 0``, one root in ((n−1)π, nπ);
-    * cs: ``tan βL = tanh βL`` → ``sin x − cos x tanh x = 0``, one root in
-      (nπ, (n+½)π).
-
-    Each root is found by 80 bisection steps (to the last bit), so high modes (βL
-    approaching (2n+1)π/2 or (4n+1)π/4 to within e^{−βL}) are exact too.
-    """
+    """Roots βL number ``first`` … ``count`` of the Euler frequency equation of ``supports``
+    (elastic modes; overflow-free forms, 80 bisection steps)."""
     n = np.arange(max(int(first), 1), int(count) + 1, dtype=float)
     if n.size == 0:
         return np.zeros(0)
@@ -115,8 +101,7 @@ def _gram(beta, L):
 
 
 class _EulerModes(ModeSet):
-    """Rigid-body modes (W = a + b (x − L/2)) followed by elastic modes
-    W = c0 cos βx + c1 sin βx + c2 e^{−βx} + c3 e^{−β(L−x)}, Ψ = −W'."""
+    """Rigid-body modes followed by elastic modes in the basis cos βx, sin βx, e^{−βx}, e^{−β(L−x)}."""
 
     def __init__(self, length, rigid_coefficients, betas, coefficients, frequencies):
         self.length = float(length)
@@ -157,17 +142,8 @@ class _EulerModes(ModeSet):
 
 def classical_euler_modes(section: BeamSection, max_frequency: float,
                           min_modes: int = 1) -> ModeSet:
-    """All Euler-beam modes with ω ≤ ``max_frequency`` (at least ``min_modes``).
-
-    ``ω_n = (β_n L)² sqrt(EI/(ρA L⁴))`` with β_n L from :func:`euler_roots`. The mode
-    shape is the null vector (SVD) of the 4×4 boundary-condition matrix in the basis
-    ``cos βx, sin βx, e^{−βx}, e^{−β(L−x)}``, whose entries are all O(1) for any β, so the
-    shapes stay accurate to round-off for any mode number (the textbook form
-    ``cosh βx − σ sinh βx`` loses all digits beyond n ≈ 12). Mass normalisation uses the
-    exact Gram integrals of that basis. Free–free beams also get the two rigid-body modes
-    (ω = 0): translation ``W = 1/sqrt(ρA L)`` and rotation
-    ``W = sqrt(12/(ρA L³)) (x − L/2)``.
-    """
+    """All Euler-beam modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``),
+    accurate for any mode number; free–free beams get their two rigid-body modes first."""
     if section.theory != "euler":
         raise ValueError("classical_euler_modes needs theory = 'euler'")
     L, EI, rA = section.length, section.bending_stiffness, section.mass_per_length

@@ -18,12 +18,11 @@ _SLICE_SIZE = 48
 
 
 def eigenpairs_below(K, M, upper, width, reference, singular):
-    """Eigenpairs (λ, M-normalised vectors) of ``K x = λ M x`` with λ < ``upper``, ascending.
+    """Eigenpairs (λ [rad²/s²], M-normalised vectors) of ``K x = λ M x`` with λ < ``upper``, ascending.
 
-    ``K``, ``M``: sparse symmetric banded matrices of half-bandwidth ``width`` [SI];
-    ``reference`` [rad²/s²]: the scale of the lowest eigenvalue; ``singular``: K has a
-    null space (free–free beam: rigid-body modes), so the dense path shifts by
-    ``reference`` and the sliced path starts just below 0.
+    ``K``, ``M``: sparse symmetric banded matrices of half-bandwidth ``width``;
+    ``reference``: the scale of the lowest eigenvalue [rad²/s²]; ``singular``: K has a
+    null space (free–free beam).
     """
     if K.shape[0] <= _DENSE_LIMIT:
         # Flexibility form (K + σM)^{-1} M: the low modes are its largest eigenvalues and
@@ -48,14 +47,7 @@ def _solve_dense(K, M, upper, shift):
 
 
 def _solve_sliced(K, M, upper, start, width):
-    """All eigenpairs with ``start`` < λ < ``upper`` by spectrum slicing.
-
-    The interval is cut into slices of about :data:`_SLICE_SIZE` eigenvalues using
-    Sylvester inertia counts; each slice is solved by shift-invert Lanczos (ARPACK,
-    ``tol = 0``) at its centre; slice boundaries are moved into the gap between computed
-    eigenvalues and the count of every slice is checked against the inertia, so no
-    eigenvalue is missed or repeated (a failed check retries the slice with more vectors).
-    """
+    """All eigenpairs with ``start`` < λ < ``upper`` by spectrum slicing (inertia-checked slices)."""
     kband, mband = _lower_band(K, width), _lower_band(M, width)
     n = K.shape[0]
 
@@ -105,22 +97,13 @@ def _solve_sliced(K, M, upper, start, width):
 
 
 def count_below(K, M, width: int, shift: float) -> int:
-    """Number of eigenvalues of ``K x = λ M x`` below ``shift`` [rad²/s²], no mode built.
-
-    ``K``, ``M``: sparse symmetric banded matrices of half-bandwidth ``width`` [SI]
-    (Sylvester's inertia of ``K − shift·M``: :func:`_count_below`).
-    """
+    """Number of eigenvalues of ``K x = λ M x`` below ``shift`` [rad²/s²] (Sylvester's inertia), no mode built."""
     return int(_count_below(_lower_band(K, width), _lower_band(M, width), float(shift)))
 
 
 @numba.njit(cache=True)
 def _count_below(stiffness_band, mass_band, shift):  # pragma: no cover - numba
-    """Number of eigenvalues of ``K x = λ M x`` below ``shift`` (Sylvester's inertia).
-
-    LDLᵀ factorisation without pivoting of the banded ``K − shift·M`` (lower band
-    storage, ``band[d, j] = A[j + d, j]``); the count is the number of negative pivots
-    (Sturm-sequence property, as used by Wittrick–Williams and subspace-iteration codes).
-    """
+    """Number of negative pivots of the banded LDLᵀ of ``K − shift·M`` (Sylvester's inertia)."""
     width = stiffness_band.shape[0] - 1
     n = stiffness_band.shape[1]
     lower = np.zeros((width + 1, n))

@@ -1,7 +1,5 @@
-"""Rayleigh and Timoshenko beams with any support: p-version finite-element modes.
-
-See :func:`finite_element_modes` for the method and its accuracy; the eigen-solution of
-the banded model is in :mod:`impactmaps.targets.beam_fe_eigen`.
+"""Rayleigh and Timoshenko beams with any support: p-version finite-element modes
+(method, accuracy and cost: docs/physics.rst, Beam targets).
 """
 
 from __future__ import annotations
@@ -38,11 +36,7 @@ FE_MAX_DOFS = 12000
 
 @lru_cache(maxsize=8)
 def _c0_basis(degree: int) -> np.ndarray:
-    """Legendre coefficients (rows) of the hierarchical C0 basis of ``degree`` on [−1, 1].
-
-    Order: (1 − ξ)/2, (1 + ξ)/2, then the integrated Legendre bubbles
-    ``(P_j − P_{j−2})/sqrt(2(2j − 1))``, j = 2..degree (zero at both ends).
-    """
+    """Legendre coefficients (rows) of the hierarchical C0 basis of ``degree`` on [−1, 1]."""
     rows = np.zeros((degree + 1, degree + 1))
     rows[0, :2] = [0.5, -0.5]
     rows[1, :2] = [0.5, 0.5]
@@ -54,12 +48,7 @@ def _c0_basis(degree: int) -> np.ndarray:
 
 @lru_cache(maxsize=8)
 def _c1_basis(degree: int) -> np.ndarray:
-    """Legendre coefficients (rows) of the hierarchical C1 basis of ``degree`` on [−1, 1].
-
-    Order: the Hermite cubics for w(−1), w'(−1), w(1), w'(1) (derivatives in ξ), then the
-    bubbles ``B_m`` with ``B_m'' = sqrt((2m+1)/2) P_m`` and zero value and slope at both
-    ends, m = 2..degree−2.
-    """
+    """Legendre coefficients (rows) of the hierarchical C1 basis of ``degree`` on [−1, 1]."""
     hermite = [
         [0.5, -0.75, 0.0, 0.25],
         [0.25, -0.25, -0.25, 0.25],
@@ -156,12 +145,7 @@ def _bubbles_per_element(theory: str, degree: int) -> int:
 
 
 def _layout(theory: str, elements: int, degree: int):
-    """Banded numbering: node e (2 unknowns), bubbles of element e, node e + 1, …
-
-    Returns the element connectivity (local order as in :func:`_assemble`), the global
-    numbers of the two nodal unknowns of every node (w and ψ, or w and w' for C1),
-    the number of unknowns and the half-bandwidth.
-    """
+    """Banded numbering: (connectivity, nodal unknowns of every node, number of unknowns, half-bandwidth)."""
     bubbles = _bubbles_per_element(theory, degree)
     stride = 2 + bubbles
     e = np.arange(elements)
@@ -247,11 +231,7 @@ def _rigid_vectors(section: BeamSection, elements: int, total: int, node_dofs) -
 
 @lru_cache(maxsize=4)  # near FE_MAX_DOFS one solution holds ~150 MB of vectors
 def _fe_solution(section: BeamSection, elements: int, degree: int) -> _FiniteElementModes:
-    """Eigen-solution of the FE model: all modes up to its resolved frequency.
-
-    A pure function of the section and the mesh, cached (bounded): a request for modes
-    always gets the solution of the mesh it needs, whatever was solved before.
-    """
+    """Eigen-solution of the FE model: all modes up to its resolved frequency (cached per section and mesh)."""
     K, M, connectivity, free, node_dofs, width = _assemble(section, elements, degree)
     Kf, Mf = K[free][:, free], M[free][:, free]
     L, EI, rA = section.length, section.bending_stiffness, section.mass_per_length
@@ -279,16 +259,8 @@ def _fe_solution(section: BeamSection, elements: int, degree: int) -> _FiniteEle
 
 
 def finite_element_mode_count(section: BeamSection, max_frequency: float, *, degree: int = FE_DEGREE) -> int:
-    """Number of modes :func:`finite_element_modes` returns at or below ``max_frequency``
-    [rad/s] (``min_modes = 1``), counted without solving for them.
-
-    The same mesh (chosen from ``max_frequency``, capped at :data:`FE_MAX_DOFS` unknowns)
-    and the same resolved frequency; the count of its eigenvalues below
-    min(``max_frequency``, resolved)² is Sylvester's inertia of the banded ``K − ω²M``
-    (milliseconds, where solving the model takes up to minutes at 12 000 unknowns).
-    Equal to the count of the solved modes except for an eigenvalue within rounding of the
-    cut-off.
-    """
+    """Number of modes :func:`finite_element_modes` returns at or below ``max_frequency`` [rad/s],
+    counted by Sylvester's inertia without solving for them."""
     require_nonnegative("max_frequency", max_frequency, "rad/s")
     elements, _ = _capped_elements(section, _elements_needed(section, max_frequency, 1, degree), degree)
     K, M, _, free, _, width = _assemble(section, elements, degree)
@@ -298,8 +270,7 @@ def finite_element_mode_count(section: BeamSection, max_frequency: float, *, deg
 
 
 def finite_element_resolution_limit(section: BeamSection, *, degree: int = FE_DEGREE) -> float:
-    """Highest frequency [rad/s] the largest finite-element model (:data:`FE_MAX_DOFS`
-    unknowns) resolves: the resolved frequency of the capped mesh."""
+    """Highest frequency [rad/s] the largest finite-element model (:data:`FE_MAX_DOFS` unknowns) resolves."""
     per_element = 2 + _bubbles_per_element(section.theory, degree)
     elements = max(2, (FE_MAX_DOFS - 2) // per_element)
     while elements > 2 and _dofs(section, elements, degree) > FE_MAX_DOFS:
@@ -336,35 +307,10 @@ def finite_element_modes(section: BeamSection, max_frequency: float, min_modes: 
                          *, degree: int = FE_DEGREE) -> ModeSet:
     """Rayleigh/Timoshenko (or, for verification, Euler) modes by p-version finite elements.
 
-    Method. Uniform mesh of ``n_e`` elements of degree ``p = degree`` (24).
-    Timoshenko: w and ψ continuous (C0), w of degree p and ψ of degree p − 1
-    (hierarchical integrated-Legendre bases; the lower degree of ψ lets the Kirchhoff
-    constraint ψ = −w' be met exactly, so there is no shear locking).
-    Rayleigh and Euler: w alone, C1 (Hermite cubics plus twice-integrated Legendre
-    bubbles), ψ = −w', consistent rotary inertia ``∫ ρI w'δw'``. Exact Gauss quadrature,
-    consistent mass. Boundary conditions: clamped w = ψ = 0 (C1: w = w' = 0), SS w = 0,
-    free nothing (M = Q = 0 are natural). Unknowns numbered element by element, so K and
-    M are banded. Eigen-solution: up to 1500 unknowns dense, in flexibility form
-    ``(K + σM)^{-1}M`` (σ > 0 only for free–free; K x = ω² M x directly would lose about
-    eps·ω_max²/ω_1² in the fundamental); above that by spectrum slicing — slices of ~48
-    eigenvalues found by Sylvester-inertia (Sturm) counts of the banded ``K − σM``, each
-    solved by shift-invert Lanczos (ARPACK, tol = 0) and its eigenvalue count checked
-    against the inertia. The two free–free rigid-body modes are put in exactly.
-
-    Accuracy. Only modes with wavenumber ``k ≤ 1.0 p/h_e`` are kept (the mesh is chosen
-    from :func:`largest_wavenumber` of ``max_frequency``). Relative frequency error
-    ≤ 3e-10 against the SS Rayleigh/Timoshenko closed forms for 5 ≤ L/h ≤ 300 and
-    ~1e-12 against the exact Timoshenko frequency equation (CC, CF, CS, FF) at L/h ≤ 100;
-    round-off in the very stiff shear term raises this to ~1e-6 for the highest modes at
-    L/h = 1000. Conforming elements: FE frequencies are upper bounds and FE partial
-    static compliances lower bounds (so the residual compliance is never negative).
-
-    Cost. About 3 (Rayleigh) or 6–8 (Timoshenko) unknowns per mode; ~0.1 s for 50 modes,
-    a few seconds for 300 and ~20 s for 1000 Timoshenko modes (single core). Solutions are
-    cached per section and mesh (the mesh follows from the request alone). At
-    most :data:`FE_MAX_DOFS` unknowns: beyond that a warning is issued and only the modes
-    the capped mesh resolves are returned (the rest is carried by the residual
-    compliance).
+    All modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) that the mesh
+    resolves; at most :data:`FE_MAX_DOFS` unknowns (beyond that a warning, and the rest is
+    carried by the residual compliance). Relative frequency error ≤ 3e-10 against the
+    closed forms for 5 ≤ L/h ≤ 300 (docs/physics.rst).
     """
     elements = _elements_needed(section, max_frequency, min_modes, degree)
     while True:

@@ -1,11 +1,4 @@
-"""The section of a straight uniform beam, its dispersion and the mode-set interface.
-
-The beam occupies ``0 ≤ x ≤ L``. Its section is described by five numbers, so that
-isotropic and specially orthotropic beams share one code path:
-``bending_stiffness`` bD11 (= EI) [N·m²], ``shear_stiffness`` S = k b A55 (= kGA) [N],
-``mass_per_length`` ρA [kg/m], ``rotary_inertia`` ρI [kg·m]. The theory decides which of
-them count (:meth:`BeamSection.effective`); see :mod:`impactmaps.targets.beam_modes`.
-"""
+"""The section of a straight uniform beam, its dispersion and the mode-set interface."""
 
 from __future__ import annotations
 
@@ -23,7 +16,7 @@ __all__ = ["BeamSection", "ModeSet", "largest_wavenumber", "frequency_at_wavenum
 # ---------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class BeamSection:
-    """The mechanical description of a uniform beam used by the mode solvers.
+    """The mechanical description of a uniform beam used by the mode solvers (build with :meth:`effective`).
 
     Attributes
     ----------
@@ -32,17 +25,13 @@ class BeamSection:
     bending_stiffness : float
         bD11 = EI [N·m²].
     shear_stiffness : float
-        S = k b A55 = kGA [N]; ``math.inf`` unless ``theory == "timoshenko"``.
+        S = kGA [N]; ``math.inf`` unless Timoshenko.
     mass_per_length : float
         ρA [kg/m].
     rotary_inertia : float
-        ρI [kg·m]; 0 when ``theory == "euler"``.
-    theory : str
-        One of :data:`impactmaps.targets.options.BEAM_THEORIES`.
-    supports : str
-        One of :data:`impactmaps.targets.options.BEAM_SUPPORTS`.
-
-    Build it with :meth:`effective`, which applies the theory (drops S and/or ρI).
+        ρI [kg·m]; 0 for Euler.
+    theory, supports : str
+        As :data:`~impactmaps.targets.options.BEAM_THEORIES`, :data:`~impactmaps.targets.options.BEAM_SUPPORTS`.
     """
 
     length: float
@@ -74,13 +63,7 @@ class BeamSection:
 
 
 def largest_wavenumber(section: BeamSection, angular_frequency):
-    """Largest real wavenumber k [rad/m] of free waves at ω (flexural branch) [rad/s].
-
-    Every branch ω(k) of the dispersion relation increases with k, so all modes with
-    ω_j ≤ ω have (asymptotic) wavenumbers ≤ this value. Euler: ``k⁴ = ω² ρA/EI``;
-    Rayleigh: ``EI k⁴ − ρI ω² k² − ρA ω² = 0``; Timoshenko:
-    ``EI S k⁴ − ω²(ρI S + ρA EI) k² + ρA ω²(ρI ω² − S) = 0`` (largest root in k²).
-    """
+    """Largest real wavenumber k [rad/m] of free flexural waves at ω [rad/s] (bounds every mode below ω)."""
     omega2 = np.asarray(angular_frequency, dtype=float) ** 2
     EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
     if section.theory == "euler":
@@ -96,16 +79,10 @@ def largest_wavenumber(section: BeamSection, angular_frequency):
 
 
 class ModeSet:
-    """Mass-normalised modes of a beam, ascending in frequency.
+    """Mass-normalised modes of a beam, ascending in frequency (``frequencies`` ω_j [rad/s]).
 
-    Attributes
-    ----------
-    frequencies : ndarray, shape (n,)
-        ω_j [rad/s], ascending (rigid-body modes first, ω = 0).
-
-    Methods ``deflection(points, count=None)`` and ``rotation(points, count=None)``
-    return W_j(x) [kg^-1/2] and Ψ_j(x) [kg^-1/2 m^-1] of the first ``count`` modes,
-    shape (n_points, count).
+    ``deflection(points, count=None)`` and ``rotation(points, count=None)`` give W_j
+    [kg^-1/2] and Ψ_j [kg^-1/2 m^-1], shape (n_points, count).
     """
 
     frequencies: np.ndarray

@@ -40,23 +40,10 @@ class _SineModes(ModeSet):
 
 def simply_supported_modes(section: BeamSection, max_frequency: float,
                            min_modes: int = 1) -> ModeSet:
-    """All modes of a simply supported beam with ω ≤ ``max_frequency`` (≥ ``min_modes``).
+    """All modes of a simply supported beam with ω ≤ ``max_frequency`` [rad/s] (≥ ``min_modes``).
 
-    ``w = W sin(k_n x)``, ``ψ = Ψ cos(k_n x)``, ``k_n = nπ/L`` (docs/physics_contract.md §3.2).
-
-    * Euler: ``ω_n = k_n² sqrt(EI/ρA)``, ``W = sqrt(2/(ρA L))``, ``Ψ = −k_n W``.
-    * Rayleigh: ``ω_n² = EI k_n⁴/(ρA + ρI k_n²)``, ``Ψ = −k_n W``,
-      ``(ρA + ρI k_n²) W² L/2 = 1``.
-    * Timoshenko: per n the 2×2 problem ``(K_n − ω² M_n)[Ψ, W] = 0`` solved in closed
-      form in the symmetric form ``M_n^{-1/2} K_n M_n^{-1/2}`` (rotation by the angle θ,
-      ``tan 2θ = 2 a12/(a11 − a22)``), the lower eigenvalue from the determinant
-      ``EI S k⁴/(ρI ρA)`` divided by the upper one (no cancellation for slender beams).
-      Both branches (flexural and shear) are returned, plus the n = 0 thickness-shear
-      mode ``w ≡ 0``, ``ψ = const``, ``ω² = S/ρI`` (it satisfies w = 0 and M = 0 at both
-      ends; its deflection is zero everywhere, so it never takes part in an impact).
-
-    The number of half-waves is fixed from :func:`largest_wavenumber` — no Python loop
-    over modes.
+    Closed form for every theory (Timoshenko: both branches and the n = 0 thickness-shear
+    mode, which never takes part in an impact); formulas in docs/physics.rst.
     """
     L = section.length
     EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
@@ -104,12 +91,7 @@ def _timoshenko_eigenvalues(section: BeamSection, k):
 
 
 def simply_supported_count(section: BeamSection, max_frequency: float) -> int:
-    """Number of modes of :func:`simply_supported_modes` with ω ≤ ``max_frequency`` [rad/s].
-
-    Without building them: per branch, a bisection over the half-wave numbers
-    1 … n (n from :func:`largest_wavenumber`, as the modes use) on the same closed-form
-    frequencies, each increasing in n; plus the n = 0 thickness-shear mode (Timoshenko).
-    """
+    """Number of modes of :func:`simply_supported_modes` with ω ≤ ``max_frequency`` [rad/s], without building them."""
     L, frequency = section.length, float(max_frequency)
     EI, rA, rI = section.bending_stiffness, section.mass_per_length, section.rotary_inertia
     n_count = max(_half_wave_count(section, frequency), 1)

@@ -471,7 +471,7 @@ class Plate(Target):
         compliance ``W²/ω²`` carried by the two shear branches is 1.2e-5 of that of the
         flexural branch for (m, n) = (1, 1) and at most 1.2% over all odd m, n ≤ 19
         (largest where the half-wavelength approaches the thickness, at the limit of
-        Mindlin theory itself); checked in ``tests/test_plate_targets.py``.
+        Mindlin theory itself); checked in ``tests/targets/test_plate_targets.py``.
 
         Residual compliance: Kirchhoff — exact classical static compliance minus the
         retained ``Σ φ²/ω²``. Mindlin — the Mindlin point-load static deflection is
