@@ -1,23 +1,16 @@
-"""Rectangular, specially orthotropic plates (Kirchhoff or Mindlin) as impact targets.
+"""Rectangular plates (Kirchhoff or Mindlin, isotropic or symmetric laminates) as impact targets.
 
-Simply supported plates (``edges="SSSS"``) use the Navier solution (docs/physics_contract.md §3.3):
-closed-form Kirchhoff frequencies, or per half-wave pair (m, n) the 3×3 Mindlin
-eigenproblem of seed 001 eqs (13)–(15). Any other combination of simply supported (S),
-clamped (C) and free (F) edges uses the Rayleigh–Ritz basis of
-:mod:`impactmaps.targets.ritz` (Kirchhoff only). The Navier modes are in
-:mod:`impactmaps.targets.plate_navier`, the Navier static series in
-:mod:`impactmaps.targets.plate_static`; this module holds the :class:`Plate` dataclass,
-its constructors and the choice between Navier and Ritz.
+Specially orthotropic SSSS plates use the Navier solution (:mod:`~impactmaps.targets.plate_navier`,
+static series :mod:`~impactmaps.targets.plate_static`); Kirchhoff plates on other S/C/F edges the
+Ritz basis of :mod:`~impactmaps.targets.ritz`; Mindlin plates on other edges and plates with
+D16, D26 or A45 the general basis (:mod:`~impactmaps.targets.plate_any_edges`). This module holds
+the :class:`Plate` dataclass, its constructors and the choice (docs/plates_any_edges.rst).
 
 Conventions: the plate occupies ``0 ≤ x ≤ a``, ``0 ≤ y ≤ b``; the edge code lists the
-edges x = 0, y = 0, x = a, y = b in that order; ``s_m(x) = sin(mπx/a)``,
-``c_m(x) = cos(mπx/a)``; A55 is the xz and A44 the yz transverse shear stiffness.
-
-Static point stiffness (for λ, docs/physics_contract.md §1 and §3.3): always the *classical*
-(shear-rigid) value, also for ``theory="mindlin"``: with transverse shear the deflection
-under a point load diverges logarithmically, so the Mindlin point stiffness is zero.
+edges x = 0, y = 0, x = a, y = b in that order; A55 is the xz and A44 the yz transverse
+shear stiffness. The static point stiffness (for λ) is always the classical (shear-rigid)
+value: a Mindlin point-load deflection diverges logarithmically.
 """
-
 from __future__ import annotations
 
 import functools
@@ -41,7 +34,7 @@ from ..dimensionless import (
     loss_factor_plate,
 )
 from ..solvers import asymptotes
-from . import plate_general, plate_navier, ritz
+from . import plate_any_edges, plate_navier, ritz
 from .base import InfiniteImpact, ModalBasis, Target
 from .options import PLATE_THEORIES, impact_coordinate_range
 from .plate_ritz import STATIC_RITZ_FUNCTIONS, classical_static_compliance, ritz_plate_modes
@@ -76,7 +69,7 @@ class Plate(Target):
         ρh³/12 [kg], ≥ 0 (> 0 for Mindlin; unused by Kirchhoff).
     theory : {"kirchhoff", "mindlin"}, optional
         Plate theory. Kirchhoff: no shear deformation, no rotary inertia. Mindlin:
-        first-order shear deformation with rotary inertia (SSSS only).
+        first-order shear deformation with rotary inertia (any edges).
     edges : str, optional
         Four characters from {"S", "C", "F"} for the edges x = 0, y = 0, x = a, y = b
         (simply supported, clamped, free), e.g. "SSSS", "CCCC", "CSCS", "CFFF".
@@ -92,10 +85,8 @@ class Plate(Target):
 
     Notes
     -----
-    * SSSS uses Navier (exact), other edges the Kirchhoff Ritz basis of
-      :mod:`impactmaps.targets.ritz` (cached, basis size chosen from ``max_frequency``).
-    * ``theory="mindlin"`` with edges other than "SSSS" raises ``ValueError`` (no Mindlin
-      Ritz basis).
+    * SSSS specially orthotropic uses Navier (exact); other plates a Ritz basis (cached,
+      sized from ``max_frequency``): :meth:`modes`.
     * λ uses the classical static stiffness (:meth:`static_compliance`).
     """
 
@@ -133,17 +124,7 @@ class Plate(Target):
                          low_inclusive=False, high_inclusive=False, unit="N·m")
         require_positive("A44", self.A44, "N/m")
         require_positive("A55", self.A55, "N/m")
-        for name in ("D16", "D26", "A45"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float, np.floating, np.integer)) and math.isfinite(value)):
-                raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
-        if np.linalg.eigvalsh(self.bending_stiffness_matrix)[0] <= 0.0:
-            raise ValueError(
-                f"D16 = {self.D16!r}, D26 = {self.D26!r} are invalid: the bending stiffness "
-                "[[D11, D12, D16], [D12, D22, D26], [D16, D26, D66]] must be positive definite")
-        if self.A45**2 >= self.A44 * self.A55:
-            raise ValueError(f"A45 = {self.A45!r} is invalid: valid range is |A45| < sqrt(A44 A55) "
-                             f"= {math.sqrt(self.A44 * self.A55):.6g} [N/m]")
+        plate_any_edges.check_couplings(self)
         require_positive("mass_per_area", self.mass_per_area, "kg/m²")
         require_choice("theory", self.theory, PLATE_THEORIES)
         if self.theory == "mindlin":
@@ -208,23 +189,7 @@ class Plate(Target):
             model has no membrane displacements, and dropping B would make the plate
             stiffer than it is.
         """
-        from ..materials._common import SPECIALLY_ORTHOTROPIC_RTOL
-
-        ratios = laminate.coupling_ratios() if hasattr(laminate, "coupling_ratios") else {}
-        if ratios.get("B", 0.0) > SPECIALLY_ORTHOTROPIC_RTOL:
-            raise ValueError(
-                f"laminate is not supported: it is unsymmetric (extension–bending coupling "
-                f"max|B_ij|/sqrt(max|A_ij| max|D_ij|) = {ratios['B']:.3g}); the plate model has no "
-                "membrane displacements to carry the coupling; valid: a symmetric layup "
-                "(e.g. symmetric = true)")
-
-        def coupling(name, value):
-            return float(value) if ratios.get(name, 0.0) > SPECIALLY_ORTHOTROPIC_RTOL else 0.0
-
-        D = getattr(laminate, "D", None)
-        d16 = coupling("D16", D[0, 2]) if D is not None else 0.0
-        d26 = coupling("D26", D[1, 2]) if D is not None else 0.0
-        a45 = coupling("A45", getattr(laminate, "A45", 0.0))
+        d16, d26, a45 = plate_any_edges.laminate_couplings(laminate)
         return cls(length_x=length_x, length_y=length_y, thickness=float(laminate.thickness),
                    D11=float(laminate.D11), D22=float(laminate.D22), D12=float(laminate.D12),
                    D66=float(laminate.D66), A44=float(laminate.A44), A55=float(laminate.A55),
@@ -306,12 +271,12 @@ class Plate(Target):
     @property
     def uses_navier(self) -> bool:
         """True for the specially orthotropic SSSS plate (Navier modes, exact)."""
-        return self.edges == "SSSS" and not plate_general.uses_general_basis(self)
+        return self.edges == "SSSS" and not plate_any_edges.uses_general_basis(self)
 
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
-        if plate_general.uses_general_basis(self):
-            return float(plate_general.all_modes(self, 1)[0][0])
+        if plate_any_edges.uses_general_basis(self):
+            return float(plate_any_edges.all_modes(self, 1)[0][0])
         if self.edges == "SSSS":
             return float(self._navier_frequencies(np.array([1.0]), np.array([1.0]))[0])
         args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
@@ -319,48 +284,12 @@ class Plate(Target):
         return float(ritz.solve_ritz_plate(*args, self.edges, n_x, n_y).frequencies[0])
 
     def mode_table(self, count: int) -> dict:
-        """The lowest ``count`` natural frequencies with labels and the basis that gave them.
-
-        Returns
-        -------
-        dict
-            ``frequencies_hz`` (ndarray, lowest first) [Hz]; ``labels`` (list of str:
-            ``"(m, n)"`` half-waves for a Navier plate, else the mode index from 1);
-            ``method`` (str); ``basis`` (str, e.g. ``"24×24 functions per field"``);
-            ``resolved_frequency_hz`` [Hz] (``inf`` for Navier); ``resolved`` (bool: every
-            mode returned is below the resolved frequency).
-        """
-        require_in_range("count", count, 1, 100000)
-        if int(count) != count:
-            raise ValueError(f"count = {count!r} is invalid: must be an integer >= 1")
-        count = int(count)
-        two_pi = 2.0 * math.pi
-        if self.uses_navier:
-            m, n, omega, _, _ = plate_navier._lowest_modes(self, 0.0, count)
-            return {"frequencies_hz": omega / two_pi, "labels": [f"({i}, {j})" for i, j in zip(m, n)],
-                    "method": f"Navier ({self.theory})", "basis": "exact (m, n) half-waves",
-                    "resolved_frequency_hz": math.inf, "resolved": True}
-        if plate_general.uses_general_basis(self):
-            frequencies, results = plate_general.all_modes(self, count)
-            n_x = n_y = max(r.n_x for r in results)
-            top = min(r.resolved_frequency for r in results)
-            method = f"Ritz, general basis ({self.theory}, w{', ψx, ψy' if self.theory == 'mindlin' else ''})"
-        else:
-            args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
-            n_x = n_y = ritz.MIN_FUNCTIONS
-            while True:
-                solution = ritz.solve_ritz_plate(*args, self.edges, n_x, n_y)
-                top = solution.resolved_frequency
-                if np.sum(solution.frequencies <= top) >= count or n_x >= ritz.MAX_FUNCTIONS:
-                    break
-                n_x = n_y = min(n_x + 4, ritz.MAX_FUNCTIONS)
-            frequencies = solution.frequencies
-            method = "Ritz (kirchhoff)"
-        omega = np.asarray(frequencies[:count], dtype=float)
-        return {"frequencies_hz": omega / two_pi, "labels": [str(i + 1) for i in range(omega.size)],
-                "method": method, "basis": f"{n_x}×{n_y} functions per field",
-                "resolved_frequency_hz": top / two_pi,
-                "resolved": bool(omega.size == count and omega[-1] <= top)}
+        """The lowest ``count`` natural frequencies with labels and the basis that gave them:
+        ``frequencies_hz`` (ndarray, lowest first) [Hz], ``labels`` (``"(m, n)"`` half-waves
+        for a Navier plate, else the index from 1), ``method``, ``basis``,
+        ``resolved_frequency_hz`` [Hz] (``inf`` for Navier) and ``resolved`` (every mode
+        returned lies below it) (:func:`~impactmaps.targets.plate_any_edges.mode_table`)."""
+        return plate_any_edges.mode_table(self, count)
 
     def natural_frequencies_hz(self, count: int) -> np.ndarray:
         """The lowest ``count`` natural frequencies [Hz] of the plate's bending modes, lowest
@@ -391,7 +320,7 @@ class Plate(Target):
         ``theory="mindlin"`` (the Mindlin point-load deflection is infinite).
         """
         if self.D16 != 0.0 or self.D26 != 0.0:
-            return plate_general.classical_compliance(self)
+            return plate_any_edges.classical_compliance(self)
         return classical_static_compliance(self.length_x, self.length_y, self.D11, self.D22,
                                            self.D12, self.D66, self.edges, self.impact_point)
 
@@ -437,65 +366,20 @@ class Plate(Target):
         """True when :meth:`modes` can spread the load over a contact patch: Navier plates,
         Mindlin plates and plates with D16/D26/A45 (the general basis); not the
         specially orthotropic Kirchhoff Ritz plates."""
-        return self.uses_navier or plate_general.uses_general_basis(self)
+        return self.uses_navier or plate_any_edges.uses_general_basis(self)
 
     def modes(self, max_frequency: float, min_modes: int = 1,
               contact_radius: float | None = None) -> ModalBasis:
-        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
+        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), seen from
+        the impact point, with the residual compliance of the rest.
 
-        SSSS, Kirchhoff: ``ω_mn² = π⁴[D11 (m/a)⁴ + 2(D12+2D66)(m/a)²(n/b)² + D22 (n/b)⁴]/ρh``,
-        ``φ = (2/sqrt(ρh a b)) s_m(x0) s_n(y0)``.
-
-        SSSS, Mindlin: for each (m, n) the 3×3 problem ``(K − ω² M)[W, X, Y] = 0`` with
-        ``w = W s_m s_n``, ``ψx = X c_m s_n``, ``ψy = Y s_m c_n``, ``p = mπ/a``,
-        ``q = nπ/b``::
-
-            K = [[kA55 p² + kA44 q², kA55 p,                  kA44 q                 ],
-                 [kA55 p,            D11 p² + D66 q² + kA55, (D12 + D66) p q        ],
-                 [kA44 q,            (D12 + D66) p q,        D66 p² + D22 q² + kA44 ]]
-            M = diag(ρh, ρh³/12, ρh³/12)
-
-        Only the lowest (flexural) branch is kept. It is found with ``numpy.linalg.eigvalsh``
-        on the stacked, mass-scaled matrices and then polished by safeguarded Newton iteration on
-        the condensed scalar equation ``g·S C⁻¹ (B − λI) g − λρh = 0`` (``g = (p, q)``,
-        ``S = diag(kA55, kA44)``, ``B`` the 2×2 bending block, ``C = B + S − λI``, ``I``
-        the rotary inertia), which is free of the cancellation that limits ``eigh`` on
-        thin plates (condition ~ (a/h)⁴). The mode is normalised with
-        ``(ρh W² + ρh³/12 (X² + Y²)) ab/4 = 1`` and ``φ = W s_m(x0) s_n(y0)``.
-
-        The two thickness-shear branches per (m, n) are omitted: their frequencies lie
-        above ``sqrt(k min(A44, A55)/(ρh³/12))`` (the thickness-shear cut-off, far above
-        the contact frequencies of interest; a warning is issued when ``max_frequency``
-        exceeds it) and a transverse point load hardly excites them. Quantitatively, for
-        an isotropic plate (ν = 0.3) with h/a = 0.1 struck at the centre, the static
-        compliance ``W²/ω²`` carried by the two shear branches is 1.2e-5 of that of the
-        flexural branch for (m, n) = (1, 1) and at most 1.2% over all odd m, n ≤ 19
-        (largest where the half-wavelength approaches the thickness, at the limit of
-        Mindlin theory itself); checked in ``tests/targets/test_plate_targets.py``.
-
-        Residual compliance: Kirchhoff — exact classical static compliance minus the
-        retained ``Σ φ²/ω²``. Mindlin — the Mindlin point-load static deflection is
-        infinite, so the residual is defined as the *classical* compliance of the
-        dropped half-wave pairs: classical static compliance minus the classical
-        (Kirchhoff) modal compliance ``Σ φ_K²/ω_K²`` of the retained (m, n). It is
-        finite, ≥ 0, and tends to zero as the cut-off grows; it omits the (log-divergent)
-        shear flexibility of the dropped modes.
-
-        Other edges (Kirchhoff Ritz): all Ritz modes with ω ≤ ``max_frequency`` that the
-        basis resolves; residual = Ritz static compliance (:meth:`static_compliance`)
-        minus the retained modal compliance. The basis size follows
-        :func:`impactmaps.targets.ritz.ritz_basis_size`; when ``max_frequency`` exceeds
-        what the largest allowed basis resolves, a warning is issued and the
-        unresolved modes are represented by the residual compliance only.
-
-        Contact patch (``contact_radius`` a_c > 0, SSSS only): the force is a Hertz
-        pressure ``∝ sqrt(1 − r²/a_c²)`` over the disc of radius a_c around the impact
-        point, and the deflection the contact sees is its pressure-weighted mean. Each
-        participation is multiplied by ``T(k a_c) = 3(sin x − x cos x)/x³``,
-        ``k = hypot(mπ/a, nπ/b)`` (:mod:`impactmaps.targets.patch`), and the residual is
-        the static compliance under the same patch of the pairs not retained, Mindlin
-        shear included (finite: the patch removes the point-load divergence). ``None``
-        or 0 is the point load (results unchanged).
+        SSSS specially orthotropic: Navier (Kirchhoff closed form; Mindlin the flexural
+        branch of the 3×3 problem per (m, n)). Kirchhoff on other edges: the Ritz basis of
+        :mod:`~impactmaps.targets.ritz`. Mindlin on other edges, or D16/D26/A45: the general
+        basis (:mod:`~impactmaps.targets.plate_any_edges`). A warning when ``max_frequency``
+        exceeds what the largest basis resolves (the rest is residual compliance) or, for a
+        Mindlin point load, the thickness-shear cut-off. Equations, residuals and measured
+        accuracy: docs/physics.rst (Plate targets) and docs/plates_any_edges.rst.
 
         Parameters
         ----------
@@ -504,9 +388,9 @@ class Plate(Target):
         min_modes : int, optional
             Minimum number of modes returned (the lowest ones), ≥ 1.
         contact_radius : float, optional
-            Contact-patch radius [m], ≥ 0 and smaller than the distance from the impact
-            point to the nearest edge; SSSS plates only (``ValueError`` for
-            Ritz plates when > 0).
+            Radius [m] of the Hertz pressure disc the load is spread over (≥ 0, smaller than
+            the distance to the nearest edge; ``None`` or 0: a point load); not on
+            specially orthotropic Kirchhoff Ritz plates (:attr:`supports_contact_patch`).
 
         Returns
         -------
@@ -538,9 +422,9 @@ class Plate(Target):
         resolves (:attr:`ritz.RitzPlateSolution.resolved_frequency`)."""
         if self.uses_navier:
             return math.inf
-        if plate_general.uses_general_basis(self):
-            cap = plate_general.max_functions(self.theory, plate_general.class_groups(self)[0])
-            return plate_general.resolved_frequency(self, cap, cap)
+        if plate_any_edges.uses_general_basis(self):
+            cap = plate_any_edges.max_functions(self.theory, plate_any_edges.class_groups(self)[0])
+            return plate_any_edges.resolved_frequency(self, cap, cap)
         return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
                                                self.D66, self.mass_per_area)
 
@@ -609,16 +493,6 @@ def _plate_modes(plate: Plate, max_frequency: float, min_modes: int, contact_rad
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
     if plate.uses_navier:
         return plate_navier.navier_modes(plate, max_frequency, min_modes, contact_radius)
-    if plate_general.uses_general_basis(plate):
-        basis, shape_function, result = plate_general.general_plate_modes(
-            plate, max_frequency, min_modes, contact_radius)
-        if max_frequency > result.resolved_frequency:
-            warnings.warn(
-                f"max_frequency = {max_frequency:.6g} rad/s exceeds what the largest Ritz basis "
-                f"({result.n_x}×{result.n_y} functions per field) resolves, "
-                f"{result.resolved_frequency:.6g} rad/s: modes above that are represented by "
-                "the residual compliance only", stacklevel=4)
-        if plate.theory == "mindlin" and contact_radius == 0.0:
-            plate_navier.warn_beyond_thickness_shear(plate, max_frequency, stacklevel=5)
-        return basis, shape_function
+    if plate_any_edges.uses_general_basis(plate):
+        return plate_any_edges.general_plate_modes(plate, max_frequency, min_modes, contact_radius)[:2]
     return ritz_plate_modes(plate, max_frequency, min_modes)

@@ -9,7 +9,7 @@ import pytest
 
 from impactmaps.cli import main
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def test_modes_of_a_navier_plate_are_labelled_by_half_waves(capsys):
