@@ -14,8 +14,8 @@ import warnings
 
 from impactmaps.cases import parse_case, run_case
 from impactmaps.solvers import mode_budget
-from impactmaps.targets import plate as plate_module
-from impactmaps.targets import plate_any_edges, plate_general
+from impactmaps.targets.plates import plate as plate_module
+from impactmaps.targets.plates import plate_any_edges, plate_general
 
 CASE = """
 [impactor]

@@ -1,12 +1,12 @@
 """Store the asymptote peaks in the shipped (ζ, λ) maps, so that a lookup computes no asymptote.
 
 A lookup's regime compares the interpolated F̄max with the infinite-structure peak at ζ and
-the quasi-static peak at λ (:func:`impactmaps.maps.regimes.classify`). Every map that the
+the quasi-static peak at λ (:func:`impactmaps.maps.family.regimes.classify`). Every map that the
 sweep writes now stores them, per structure and grid value of their axis
-(:func:`impactmaps.maps.dataset.with_asymptote_peaks`); the shipped maps were built before
+(:func:`impactmaps.maps.compute.dataset.with_asymptote_peaks`); the shipped maps were built before
 and get them here. Each map of a family with regimes (linear, Hertz) that lacks them is read,
 given ``infinite_structure_peak`` (structure, ζ) and ``quasi_static_peak`` (structure, λ),
-and written back through :func:`impactmaps.maps.store.save_atomic`; every other variable and
+and written back through :func:`impactmaps.maps.files.store.save_atomic`; every other variable and
 attribute is left as it was (checked: the script refuses to write a map whose other
 variables would change). Deterministic: the peaks are the family's asymptotes at the grid
 values. The plastic maps have no regimes and are left alone. A map that already stores the
@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.data_io import read_dataset
-from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, map_law, with_asymptote_peaks
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.store import save_atomic
+from impactmaps.maps.files.data_io import read_dataset
+from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, map_law, with_asymptote_peaks
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.files.store import save_atomic
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402

@@ -1,12 +1,12 @@
 """Build the shipped results of the default charts' sweeps (``impactmaps chart [--law hertz]``).
 
 The chart's sweep — SS Euler beam and SS square Kirchhoff plate
-(:data:`impactmaps.maps.chart.CHART_STRUCTURES`), the 8 λ of
-:data:`~impactmaps.maps.chart.DEFAULT_CHART_LAMBDAS` × 200 log-spaced ζ over
-:data:`~impactmaps.maps.chart.DEFAULT_ZETA_RANGE`, default solver settings, for the linear
+(:data:`impactmaps.plotting.chart.CHART_STRUCTURES`), the 8 λ of
+:data:`~impactmaps.plotting.chart.DEFAULT_CHART_LAMBDAS` × 200 log-spaced ζ over
+:data:`~impactmaps.plotting.chart.DEFAULT_ZETA_RANGE`, default solver settings, for the linear
 law (ζ, λ) and the Hertz law (ζ_h, λ_h) — is computed and stored as
-``impactmaps/maps/data/results/<fingerprint>.npz`` (packed, lossless: :mod:`impactmaps.maps.data_io`)
-(:mod:`impactmaps.maps.shipped_results`); results of other fingerprints (an earlier solver
+``impactmaps/maps/data/results/<fingerprint>.npz`` (packed, lossless: :mod:`impactmaps.maps.files.data_io`)
+(:mod:`impactmaps.maps.files.shipped_results`); results of other fingerprints (an earlier solver
 revision or grid) are deleted. ``impactmaps chart`` then starts from it as from a finished
 run (the README's first command draws the chart without compiling the integrator).
 Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the defaults):
@@ -16,7 +16,7 @@ Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the def
     python data_build/build_default_chart.py --smoke   # 3 ζ × 2 λ, into a temporary directory
 
 ``--force`` recomputes a result that is already current. A current result without the
-asymptote peaks its regimes are judged by (:func:`impactmaps.maps.dataset.with_asymptote_peaks`)
+asymptote peaks its regimes are judged by (:func:`impactmaps.maps.compute.dataset.with_asymptote_peaks`)
 gets them added (the chart then classifies without integrating an asymptote).
 """
 
@@ -26,12 +26,12 @@ import sys
 import time
 from pathlib import Path
 
-from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
-from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
-from impactmaps.maps.shipped_results import SHIPPED_RESULTS, shipped_result_path
-from impactmaps.maps.data_io import read_dataset
-from impactmaps.maps.store import save_atomic
-from impactmaps.maps.sweep import log_grid, sweep, sweep_fingerprint
+from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
+from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
+from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, shipped_result_path
+from impactmaps.maps.files.data_io import read_dataset
+from impactmaps.maps.files.store import save_atomic
+from impactmaps.maps.compute.sweep import log_grid, sweep, sweep_fingerprint
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402

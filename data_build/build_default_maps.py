@@ -7,7 +7,7 @@ slenderness members at a/h = 10 and 50: ζ from 0.005 to 100,
 λ from 0.05 to 20; the Hertz maps: ζ_h from 0.005 to 100, λ_h from 1e-3 to 20, the
 Mindlin one from 0.05; same densities); default solver settings. Points beyond the range of the Timoshenko/Mindlin
 theories are stored ``unresolved``. The shear-deformable slenderness members add slendernesses 10 and
-50 on the same grids (``impactmaps.maps.structures.MEMBER_STRUCTURES``): Timoshenko beams
+50 on the same grids (``impactmaps.maps.family.structures.MEMBER_STRUCTURES``): Timoshenko beams
 for both laws, Mindlin plates for the linear law (a Hertz impact on a Mindlin plate loads
 the contact patch, whose radius is a third parameter).
 Resumable: re-running continues an interrupted build.
@@ -17,7 +17,7 @@ Resumable: re-running continues an interrupted build.
 
 With ``--out-dir`` the maps go there (and the resumable sweep stores into its ``work/``),
 not into the package. ``--law hertz`` builds the Hertz maps over the Hertz numbers
-(ζ_h, λ_h) on the same grid (files ``NAME-hertz.nc``, :mod:`impactmaps.maps.hertz_points`).
+(ζ_h, λ_h) on the same grid (files ``NAME-hertz.nc``, :mod:`impactmaps.maps.compute.hertz_points`).
 """
 
 from __future__ import annotations
@@ -28,11 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
-from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem
-from impactmaps.maps.slenderness import shipped_for
-from impactmaps.maps.store import save_atomic
-from impactmaps.maps.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES
-from impactmaps.maps.sweep import MAP_LAWS, sweep
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem
+from impactmaps.maps.read.slenderness import shipped_for
+from impactmaps.maps.files.store import save_atomic
+from impactmaps.maps.family.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES
+from impactmaps.maps.compute.sweep import MAP_LAWS, sweep
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402
@@ -55,7 +55,7 @@ DENSE_LAMBDAS = np.geomspace(1e-3, 1e3, 121)
 #: The linear Mindlin plate map (a/h = 20) covers the whole plane too (318 s on 2 cores at revision 7):
 #: towards light impactors its contact frequency passes a quarter of the thickness-shear
 #: cut-off, where the model no longer holds, and those points are ``unresolved``
-#: (:mod:`impactmaps.solvers.shear_range`); towards small λ the points just inside that
+#: (:mod:`impactmaps.targets.shear_range`); towards small λ the points just inside that
 #: limit bounce many times on 10⁴ modes (ζ = 10, λ = 0.001: 49 impacts). The
 #: Mindlin slenderness members at a/h = 10 and 50 and the Mindlin Hertz map keep
 #: ζ ∈ [0.005, 100], λ ∈ [0.05, 20] (cost).

@@ -3,7 +3,7 @@
 For the Yigit–Christoforou law, the refined Stronge law (default constants) and the
 ``epp`` law (default options: the flat's ν = 0.3, a rigid sphere) on the SS
 Euler and Timoshenko (L/h = 20) beams and the SSSS square Kirchhoff plate, impact at the
-centre (:mod:`impactmaps.maps.plastic_points`: β the impact number, ζ and λ the linear
+centre (:mod:`impactmaps.maps.compute.plastic_points`: β the impact number, ζ and λ the linear
 numbers at the linearised stiffness K_y). Grid: β from 1 to 10^3.5 at 2 per decade; ζ
 from 1e-3 to 10 at 6 per decade; λ from 1e-3 (plate: 1e-2) to 10^1.5 at 5 per decade.
 Files ``NAME-yc.nc``, ``NAME-stronge.nc`` and ``NAME-epp.nc`` (an ``epp`` map states the
@@ -14,7 +14,7 @@ pressure patch depends on the sphere radius, a fourth number.
     nice -n 19 python data_build/build_plastic_maps.py [--workers 2] [--only NAME …] [--laws yc stronge epp]
     python data_build/build_plastic_maps.py --smoke    # 2 β × 2 ζ × 2 λ, one map, into a temporary directory
 
-Each map is a :func:`impactmaps.maps.sweep.sweep` of the plastic family, so an
+Each map is a :func:`impactmaps.maps.compute.sweep.sweep` of the plastic family, so an
 interrupted build resumes (the sweep's file is ``validation/work/NAME-LAW.sweep.nc``, or
 ``work/`` under ``--out-dir``). Prints the points and the CPU seconds of each map (the
 cost the README quotes: this process's and its finished workers').
@@ -29,13 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.lookup import map_file_stem
-from impactmaps.maps.plastic_points import PLASTIC_LAWS
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.store import save_atomic
-from impactmaps.maps.structures import DEFAULT_STRUCTURES
-from impactmaps.maps.sweep import sweep
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.read.lookup import map_file_stem
+from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.files.store import save_atomic
+from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
+from impactmaps.maps.compute.sweep import sweep
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402

@@ -3,11 +3,11 @@
 Each dense map (``build_default_maps.DENSE_MAPS``) is refined where linear interpolation
 between its points errs by more than the tolerance (1e-3, the points' own): cells are
 split into four, down to 8× finer per axis, and the new points are solved exactly as the
-map's own (:func:`impactmaps.maps.points.solve_map_points` of the map's family, default
-settings and accuracy control; with ``--law hertz`` the Hertz maps ``NAME-hertz.nc``). See :mod:`impactmaps.maps.refinement`.
+map's own (:func:`impactmaps.maps.compute.points.solve_map_points` of the map's family, default
+settings and accuracy control; with ``--law hertz`` the Hertz maps ``NAME-hertz.nc``). See :mod:`impactmaps.maps.family.refinement`.
 With ``--law yc``, ``stronge`` or ``epp`` the plastic maps (``PlasticFamily.shipped``) are
 refined slice by slice: each β of the map's grid as a (λ, ζ) map, its new points solved at
-that β (:mod:`impactmaps.maps.slice_refinement`; ``--max-points`` caps each slice).
+that β (:mod:`impactmaps.maps.family.slice_refinement`; ``--max-points`` caps each slice).
 Each round's new points are kept in ``validation/work/NAME.refine.npz`` as they are solved,
 so an interrupted build resumes without recomputing them.
 
@@ -27,17 +27,17 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.lookup import interpolation_error, map_file_stem
-from impactmaps.maps.reader import slice_estimates
-from impactmaps.maps.refinement import MAX_LEVEL, refine
-from impactmaps.maps.slice_refinement import refine_slices
-from impactmaps.maps.data_io import read_dataset
-from impactmaps.maps.store import save_atomic
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.points import solve_map_points
-from impactmaps.maps.plastic_points import PLASTIC_LAWS
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.workers import init_worker
+from impactmaps.maps.read.lookup import interpolation_error, map_file_stem
+from impactmaps.maps.read.reader import slice_estimates
+from impactmaps.maps.family.refinement import MAX_LEVEL, refine
+from impactmaps.maps.family.slice_refinement import refine_slices
+from impactmaps.maps.files.data_io import read_dataset
+from impactmaps.maps.files.store import save_atomic
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.points import solve_map_points
+from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.compute.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options

@@ -2,7 +2,7 @@
 
 Every map, refinement and shipped sweep result is read — a NetCDF ``.nc`` as the build
 scripts write it, or a ``.npz`` packed before — and written packed
-(:mod:`impactmaps.maps.data_io`), replacing the ``.nc``. Re-run it after merging a branch
+(:mod:`impactmaps.maps.files.data_io`), replacing the ``.nc``. Re-run it after merging a branch
 that rebuilt maps or added variables to them: it is deterministic (the same datasets give
 the same bytes) and idempotent (a packed file packs to itself).
 
@@ -13,9 +13,9 @@ What is stored in fewer bits (each packed file's header says so; docs/install.rs
   with simulations at 1e-5 and 5e-3, and F̄max is converged to 1e-3). F̄max, its band and
   status, the times the regimes read and everything else keep their bits;
   ``log_peak_time``, ``log_reflection_time``, ``fmax_low`` and ``fmax_high`` are recomputed
-  on reading where that gives their exact bits (:data:`impactmaps.maps.data_io.DERIVED`);
+  on reading where that gives their exact bits (:data:`impactmaps.maps.files.data_io.DERIVED`);
 * the refinements: ``surplus`` is not stored — it is recomputed from the points' values
-  (:meth:`impactmaps.maps.refinement.Refinement.recomputed_surplus`), checked here bit for bit
+  (:meth:`impactmaps.maps.family.refinement.Refinement.recomputed_surplus`), checked here bit for bit
   (a refinement where it is not exact keeps it) — and each point's own ``fmax_error`` is kept
   to 8 significant bits, rounded up (bfloat16: the band only widens, by < 0.8 % of that
   error), except at the points where that could carry a lookup's band over the tolerance and
@@ -42,10 +42,10 @@ from _script_options import parse  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
-from impactmaps.maps.data_io import PACKED_SUFFIX, read_dataset  # noqa: E402
-from impactmaps.maps.reader import BAND_TOLERANCE, interpolation_error  # noqa: E402
-from impactmaps.maps.refinement import Refinement, all_leaves, leaf_estimate  # noqa: E402
-from impactmaps.maps.store import save_atomic  # noqa: E402
+from impactmaps.maps.files.data_io import PACKED_SUFFIX, read_dataset  # noqa: E402
+from impactmaps.maps.read.reader import BAND_TOLERANCE, interpolation_error  # noqa: E402
+from impactmaps.maps.family.refinement import Refinement, all_leaves, leaf_estimate  # noqa: E402
+from impactmaps.maps.files.store import save_atomic  # noqa: E402
 
 DATA = ROOT / "impactmaps" / "maps" / "data"
 #: Map variables stored as float32 (read back as float64).
@@ -113,7 +113,7 @@ def status_safe(stored, base) -> np.ndarray:
 
 def read_back_bfloat16(values) -> np.ndarray:
     """``values`` as a bfloat16-up variable reads back (float32)."""
-    from impactmaps.maps.data_io import _bfloat16_up
+    from impactmaps.maps.files.data_io import _bfloat16_up
 
     return (_bfloat16_up(values).astype(np.uint32) << 16).view(np.float32)
 

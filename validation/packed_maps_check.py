@@ -2,8 +2,8 @@
 
 For every shipped map — the (ζ, λ) maps of both laws with their refinements, the
 slenderness members and the elastic-plastic (β, ζ, λ) maps — the lookup's reading
-(what :func:`impactmaps.maps.reader.read_values` computes for :func:`impactmaps.maps.lookup.lookup`
-and :func:`impactmaps.maps.plastic_lookup.lookup_plastic`, taken from its steps so that a point
+(what :func:`impactmaps.maps.read.reader.read_values` computes for :func:`impactmaps.maps.read.lookup.lookup`
+and :func:`impactmaps.maps.read.plastic_lookup.lookup_plastic`, taken from its steps so that a point
 next to an unresolved one is marked "refused" instead of refusing the whole batch) is taken at ``--points``
 log-uniform random points (seeded) from the packed data of this checkout and from the data
 before packing (``--old-data``: the ``impactmaps/maps/data`` folder of a checkout of the
@@ -35,12 +35,12 @@ from _script_options import parse
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
-from impactmaps.maps import lookup as lookup_module  # noqa: E402
-from impactmaps.maps import plastic_lookup  # noqa: E402
-from impactmaps.maps.data_io import read_dataset  # noqa: E402
-from impactmaps.maps import reader  # noqa: E402
-from impactmaps.maps.registry import map_family  # noqa: E402
-from impactmaps.maps.structures import MEMBER_SLENDERNESSES  # noqa: E402
+from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
+from impactmaps.maps.read import plastic_lookup  # noqa: E402
+from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
+from impactmaps.maps.read import reader  # noqa: E402
+from impactmaps.maps.family.registry import map_family  # noqa: E402
+from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES  # noqa: E402
 
 PACKED = ROOT / "impactmaps" / "maps" / "data"
 SEED = 30
@@ -84,7 +84,7 @@ def points(key, count: int) -> tuple:
 
 def answers(key, numbers) -> dict:
     """Every variable's value and band and the status at ``numbers``: what
-    :func:`~impactmaps.maps.reader.read_values` computes, with "refused" (and NaN) where it
+    :func:`~impactmaps.maps.read.reader.read_values` computes, with "refused" (and NaN) where it
     refuses a point next to an unresolved one (it raises for the whole call)."""
     structure, theory, law, slenderness = key
     if law in ("yc", "stronge", "epp"):

@@ -41,9 +41,11 @@ SEVERE = 10.0
 
 def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: bool = False) -> list[str]:
     """Run the references and return the Markdown summary lines (module docstring)."""
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
     data = np.load(plane)
@@ -55,7 +57,7 @@ def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: b
              "| max abs(F̄max − reference) |", "|---|---|---|---|---|---|---|"]
     for name in STRUCTURES:
         structure = structure_from_name(name)
-        target, cap = structure.build(), frequency_cap(structure)
+        target, cap = structure.build(), frequency_cap(structure.build(), MAX_MODES)
         table = basis_table(structure, ModalSettings().min_modes)
         status, modes = data[f"{name}/status"], data[f"{name}/n_modes"]
         fmax, error, impacts = data[f"{name}/fmax_normalised"], data[f"{name}/fmax_error"], data[f"{name}/impacts"]

@@ -4,13 +4,13 @@ Each measurement runs in a fresh interpreter with ``NUMBA_CACHE_DIR`` pointing a
 temporary directory (numba then compiles everything, as after a fresh install):
 
 1. ``import impactmaps.solvers.modal`` (compiles nothing since the integrator is compiled on
-   its first call, :mod:`impactmaps.solvers.lazy_kernel`), then the first integration
+   its first call, :mod:`impactmaps._compile.lazy_kernel`), then the first integration
    (``integrate_impact.compile()``) with numba's compile events recorded: the largest
    inclusive compile times per function (nested functions are counted in their callers
    too);
 2. ``impactmaps chart --quiet --out DIR`` on an empty cache (the README's first command
    after ``pip install .``: drawn from the shipped result of its sweep,
-   :mod:`impactmaps.maps.shipped_results`), then again on the now warm cache;
+   :mod:`impactmaps.maps.files.shipped_results`), then again on the now warm cache;
 3. ``impactmaps chart --zeta-count 100 --quiet`` on an empty cache and again warm: a chart
    no result is shipped for, swept on all cores (compiles the integrator, then computes);
 4. the first integrating commands, ``impactmaps simulate`` of the example cases
@@ -54,7 +54,7 @@ event.register("numba:compile", recorder)
 start = time.perf_counter()
 import impactmaps.solvers.modal  # noqa: F401
 elapsed = time.perf_counter() - start
-from impactmaps.solvers.exact_step import integrate_impact
+from impactmaps.solvers.integrator.exact_step import integrate_impact
 start = time.perf_counter()
 integrate_impact.compile()
 first_call = time.perf_counter() - start
@@ -196,7 +196,7 @@ def _warm_up_finished(cache: str, limit_s: float = 900.0) -> float:
 
 
 def background_rows(pauses=(0.0, 20.0)) -> list[str]:
-    """The background warm-up (:mod:`impactmaps.solvers.background_warm_up`), each on an
+    """The background warm-up (:mod:`impactmaps._compile.background_warm_up`), each on an
     empty cache: the default chart with it and without it (its cost to the foreground);
     ``chart`` then, after a pause, ``simulate examples/steel_plate_hertz.toml`` (the wait a
     user sees), also once the warm-up has finished; ``simulate`` as the very first command,

@@ -1,6 +1,6 @@
 """The first integrating command on an empty numba cache, with the compile helper and without.
 
-:mod:`impactmaps.solvers.compile_helper` has a helper process compile part of the
+:mod:`impactmaps._compile.compile_helper` has a helper process compile part of the
 integrator on the second core during the first cold run. Each measurement runs
 ``impactmaps --no-background-warm-up simulate CASE`` in a fresh interpreter on an empty
 ``NUMBA_CACHE_DIR``, for the example cases ``steel_plate_hertz.toml`` and

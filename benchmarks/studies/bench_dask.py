@@ -2,7 +2,7 @@
 
 Workload: a square log grid over ζ, λ ∈ [1e-3, 1e3]² for ``beam-ss-euler`` (linear law),
 ``n × n`` points with ``n = round(sqrt(--points))`` (10⁶ by default: 1000 × 1000), every
-point solved as a sweep solves it (:func:`impactmaps.maps.sweep.sweep`: base run,
+point solved as a sweep solves it (:func:`impactmaps.maps.compute.sweep.sweep`: base run,
 refinement, error and status; chunks of ``--chunk`` points per task, no result file). A
 smaller count samples the same plane on a coarser grid, so its points/s is that of the
 full grid up to the sampling of the costly corners; the 10⁶-point time is estimated from
@@ -10,7 +10,7 @@ it as 10⁶ / (points/s).
 
 For each worker count (``--workers``, default 1 and 2): a ``LocalCluster(n_workers=W,
 threads_per_worker=1, processes=True)``; its start and a warm-up sweep of a 6 × 6 grid of the
-same plane (the workers import impactmaps and load or compile every kernel the grid uses; :mod:`impactmaps.maps.dask_backend`
+same plane (the workers import impactmaps and load or compile every kernel the grid uses; :mod:`impactmaps.maps.compute.dask_backend`
 registers ``init_worker``) are timed apart from the measured sweep. The local process pool
 (``sweep(..., max_workers=2)``, after the same warm-up inline) runs the same grid as the
 reference (``--no-local`` skips it).
@@ -52,8 +52,8 @@ def grid(points: int):
 
 def run_sweep(executor, zetas, lambdas, chunk: int, max_workers=None):
     """(seconds, dataset) of one sweep of the grid."""
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import Pacing, sweep
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import Pacing, sweep
 
     start = time.perf_counter()
     dataset = sweep([structure_from_name(STRUCTURE)], zetas, lambdas, executor=executor, max_workers=max_workers,

@@ -1,6 +1,6 @@
 """Infinite-beam asymptote for any contact law: time per run against the number of CQ steps.
 
-Workload: :func:`impactmaps.law_asymptotes.infinite_beam_impact_any_law` on an Euler steel
+Workload: :func:`impactmaps.closed_forms.law_asymptotes.infinite_beam_impact_any_law` on an Euler steel
 beam (20 × 20 mm, E = 210 GPa) struck at 2 m/s by a 5 kg sphere — heavy enough that the run
 never separates, so every run takes all N = duration/step steps (duration 100/ω, step 100/N).
 Laws: Hertz (steel sphere r = 10 mm) and elastic–perfectly-plastic (yield 350 MPa, the
@@ -41,24 +41,24 @@ sys.path.insert(0, str(ROOT))
 
 import impactmaps as im  # noqa: E402
 from impactmaps.contact import HertzContact, effective_modulus  # noqa: E402
-from impactmaps.contact.epp import EppContact  # noqa: E402
-from impactmaps.law_asymptotes import beam as fast  # noqa: E402
-from impactmaps.law_asymptotes.result import contact_frequency_of  # noqa: E402
-from impactmaps.solvers import infinite_beam_cq  # noqa: E402
+from impactmaps.contact.plastic.epp import EppContact  # noqa: E402
+from impactmaps.closed_forms.law_asymptotes import beam as fast  # noqa: E402
+from impactmaps.closed_forms.law_asymptotes.result import contact_frequency_of  # noqa: E402
+from impactmaps.closed_forms import infinite_beam_cq  # noqa: E402
 
 BASE_COMMIT = "c70b96b"  # main before the FFT history sum
-BEAM_PATH = "impactmaps/law_asymptotes/beam.py"
+BEAM_PATH = "impactmaps/closed_forms/law_asymptotes/beam.py"
 FIELDS = ("peak_force", "max_indentation", "max_target_displacement")
 
 
 def old_module(commit: str):
-    """The base commit's ``law_asymptotes/beam.py`` as a module of the package (relative
+    """The base commit's ``closed_forms/law_asymptotes/beam.py`` as a module of the package (relative
     imports resolve against today's package: the pieces it imports are unchanged)."""
     source = subprocess.run(["git", "-C", str(ROOT), "show", f"{commit}:{BEAM_PATH}"],
                             capture_output=True, text=True, check=True).stdout
     path = pathlib.Path(tempfile.mkdtemp()) / "old_beam.py"
     path.write_text(source)
-    spec = importlib.util.spec_from_file_location("impactmaps.law_asymptotes._old_beam", path)
+    spec = importlib.util.spec_from_file_location("impactmaps.closed_forms.law_asymptotes._old_beam", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

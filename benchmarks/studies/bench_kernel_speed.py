@@ -26,7 +26,7 @@ _SCRIPT = r"""
 import json, statistics, sys, time, warnings
 warnings.simplefilter("ignore")
 from impactmaps.contact import contact_law
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.solvers.modal import simulate
 repeats = int(sys.argv[1])
 out = {}

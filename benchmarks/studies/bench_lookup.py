@@ -53,10 +53,10 @@ def _draw(rng, count: int, dataset=None) -> dict:
 def _reader(law: str, structure: str, theory: str):
     """``(read(numbers), dataset)``: a vectorised read of the family's shipped map."""
     if law in ("linear", "hertz"):
-        from impactmaps.maps.lookup import lookup
+        from impactmaps.maps.read.lookup import lookup
 
         return (lambda n: lookup(n["zeta"], n["lambda_"], kind=structure, theory=theory, law=law)), None
-    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
 
     return ((lambda n: lookup_plastic(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
                                       law=law)), load_plastic_map(structure, theory, law))
@@ -66,7 +66,7 @@ def _case(rng, law: str, structure: str):
     """A physical case of the family with fresh numbers inside its map."""
     from impactmaps.cases import parse_case
     from impactmaps.dimensionless import realise
-    from impactmaps.hertz_similarity import realise_hertz
+    from impactmaps.closed_forms.hertz_similarity import realise_hertz
     from impactmaps.materials import material
     from impactmaps.targets import Beam, Plate
 
@@ -111,7 +111,7 @@ def _time(call, repeat: int = 1) -> float:
 
 def measure(points: int, singles: int, cases: int) -> dict:
     """The figures of this process's code (module docstring): row → name → seconds."""
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     warnings.simplefilter("ignore")
     out = {}
@@ -153,10 +153,10 @@ def measure(points: int, singles: int, cases: int) -> dict:
 def first_lookup(law: str, structure: str, theory: str, env: dict) -> float:
     """Seconds of the first lookup in a fresh process (imports, map and refinement read)."""
     if law in ("linear", "hertz"):
-        imports = "from impactmaps.maps.lookup import lookup"
+        imports = "from impactmaps.maps.read.lookup import lookup"
         call = f"lookup(1.0, 0.1, structure={structure!r}, theory={theory!r}, law={law!r})"
     else:
-        imports = "from impactmaps.maps.plastic_lookup import lookup_plastic"
+        imports = "from impactmaps.maps.read.plastic_lookup import lookup_plastic"
         call = f"lookup_plastic(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
     script = FIRST.format(imports=imports, call=call)
     result = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, env=env,

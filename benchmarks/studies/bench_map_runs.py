@@ -34,9 +34,11 @@ CASES = (("plate-ssss-kirchhoff", 0.966, 0.001, 1), ("plate-ssss-kirchhoff", 1.8
 _SCRIPT = r"""
 import json, sys, time, warnings
 warnings.simplefilter("ignore")
-from impactmaps.maps.linear_points import LINEAR
-from impactmaps.maps.points import basis_table, frequency_cap
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.compute.linear_points import LINEAR
+from impactmaps.maps.compute.points import basis_table
+from impactmaps.maps.family.structures import MAX_MODES
+from impactmaps.solvers.mode_budget import frequency_cap
+from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.solvers.modal import ModalSettings, simulate
 repeats, cases = int(sys.argv[1]), json.loads(sys.argv[2])
 rows = []
@@ -47,7 +49,7 @@ for name, zeta, lam, level in cases:
         settings = settings.refined()
     impact = LINEAR.realise(structure.build(), (zeta, lam))
     basis = basis_table(structure, ModalSettings().min_modes).truncate(
-        min(settings.cutoff_ratio * impact.omega, frequency_cap(structure)), settings.min_modes)
+        min(settings.cutoff_ratio * impact.omega, frequency_cap(structure.build(), MAX_MODES)), settings.min_modes)
     run = lambda: simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
     result = run()
     best = float("inf")

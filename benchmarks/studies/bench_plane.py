@@ -2,12 +2,12 @@
 
 Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler`` and
 ``plate-ssss-kirchhoff``, each point solved as a sweep solves it
-(:func:`impactmaps.maps.sweep.solve_points`: default ``ModalSettings``, per-point error
+(:func:`impactmaps.maps.compute.sweep.solve_points`: default ``ModalSettings``, per-point error
 control), one point per task on a pool of worker processes (all cores), one BLAS thread
 each. One point per task keeps the per-point wall times and guards; it costs the executor
 ~0.5–2 ms a task (from the walls of the two runs below; a cheap beam point takes 0.6 ms),
 so the grid is then run again as a user runs it, through
-:func:`impactmaps.maps.sweep.sweep` (chunks of 40 points), timed on its own and checked bit
+:func:`impactmaps.maps.compute.sweep.sweep` (chunks of 40 points), timed on its own and checked bit
 for bit against the per-point results.
 
 Guards (the corners of the plane are known to blow up; that is the rest of issue 12):
@@ -71,10 +71,12 @@ FINEST_CUTOFF_FACTOR = 4
 def _solve(task) -> dict:
     """One point: ``("map", structure, ζ, λ)`` as a sweep solves it, or ``("reference", …)``:
     one run at 8× the cut-off and mode floor, 1/8 of the step."""
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import solve_points
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import solve_points
     from impactmaps.solvers.modal import ModalSettings
 
     kind, name, zeta, lambda_ = task
@@ -88,7 +90,7 @@ def _solve(task) -> dict:
         for _ in range(REFERENCE_LEVELS):  # cut-off and mode floor ×2, step /2, each time
             fine = fine.refined()
         target = structure.build()
-        run = table_runner(LINEAR, target, basis_table(structure, fine.min_modes), frequency_cap(structure),
+        run = table_runner(LINEAR, target, basis_table(structure, fine.min_modes), frequency_cap(structure.build(), MAX_MODES),
                            (zeta, lambda_), LINEAR.realise(target, (zeta, lambda_)), [])
         result = run(fine, 1.0)
         return {"fmax_normalised": result.fmax_normalised, "n_modes": result.n_modes}
@@ -184,8 +186,10 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
 def finest_mode_counts(name: str, zetas, lambdas) -> np.ndarray:
     """Modes the finest refinement level of each point would integrate (sweep's table)."""
     from impactmaps.dimensionless import realise
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import basis_table, frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.points import basis_table
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
     from impactmaps.solvers.modal import ModalSettings
 
     structure = structure_from_name(name)
@@ -195,7 +199,7 @@ def finest_mode_counts(name: str, zetas, lambdas) -> np.ndarray:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         table = basis_table(structure, FINEST_CUTOFF_FACTOR * settings.min_modes)
-    cutoffs = np.minimum(FINEST_CUTOFF_FACTOR * settings.cutoff_ratio * omegas, frequency_cap(structure))
+    cutoffs = np.minimum(FINEST_CUTOFF_FACTOR * settings.cutoff_ratio * omegas, frequency_cap(structure.build(), MAX_MODES))
     counts = np.searchsorted(np.sort(table.basis.frequencies), cutoffs, side="right")
     return np.maximum(counts, FINEST_CUTOFF_FACTOR * settings.min_modes).reshape(zz.shape)
 
@@ -244,8 +248,8 @@ def main(argv=None) -> None:
         zetas, lambdas = _grid(args.quick)
         print(json.dumps(time_sweeps(zetas, lambdas, args.workers, args.time_sweeps)))
         return
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.sweep import METHODS
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.compute.sweep import METHODS
 
     zetas, lambdas = _grid(args.quick)
     n_zeta, n_lambda = zetas.size, lambdas.size
@@ -364,12 +368,12 @@ def cost_section(finished, statuses) -> list[str]:
 
 
 def timed_sweeps(zetas, lambdas, workers: int):
-    """The grid through :func:`impactmaps.maps.sweep.sweep` as a user runs it (chunks of points
+    """The grid through :func:`impactmaps.maps.compute.sweep.sweep` as a user runs it (chunks of points
     per task, no per-point guards, never read from a shipped result): each structure alone,
     then both in one call (one pool). Returns ({"beam-ss-euler": s, …, "both": s} walls [s],
     the datasets by the same keys)."""
-    from impactmaps.maps import sweep as sweep_module
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute import sweep as sweep_module
+    from impactmaps.maps.family.structures import structure_from_name
 
     sweep_module.load_shipped_result = lambda digest, description=None: None  # compute, never read
     walls, datasets = {}, {}
@@ -397,7 +401,7 @@ def time_sweeps(zetas, lambdas, workers: int, save: str) -> dict:
 
 
 def sweep_section(finished, zetas, lambdas, workers: int) -> list[str]:
-    """The same grid through :func:`impactmaps.maps.sweep.sweep` (what a user runs: chunks of
+    """The same grid through :func:`impactmaps.maps.compute.sweep.sweep` (what a user runs: chunks of
     points per task, no per-point guards), its wall time, and whether every value equals the
     per-point tasks' bit for bit (a point is a pure function of its inputs)."""
     walls, datasets = timed_sweeps(zetas, lambdas, workers)
@@ -418,7 +422,7 @@ def sweep_section(finished, zetas, lambdas, workers: int) -> list[str]:
                     differing += not (same and int(statuses[j, i]) == row["status"])
     alone = sum(walls[name] for name in STRUCTURES)
     return ["", "## The same grid as a user's sweep", "",
-            f"`impactmaps.maps.sweep.sweep` over the grid, {workers} workers (chunks of points per task, no "
+            f"`impactmaps.maps.compute.sweep.sweep` over the grid, {workers} workers (chunks of points per task, no "
             f"per-point guards): both structures in one call (one pool) **{walls['both']:.1f} s wall**; one "
             f"structure at a time {alone:.1f} s ("
             + ", ".join(f"{name} {walls[name]:.1f} s" for name in STRUCTURES)

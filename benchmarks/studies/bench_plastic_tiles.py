@@ -19,7 +19,7 @@ import time
 import warnings
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.maps.case_lookup import lookup_case
+from impactmaps.cases.case_lookup import lookup_case
 
 _BALL = '[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
 _BEAM = ('[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\nmaterial = "aluminium-6061-t6"\n'

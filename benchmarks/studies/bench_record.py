@@ -26,7 +26,7 @@ def readme_case():
     """(plate, law, mass [kg], velocity [m/s]) of the README example."""
     from impactmaps.contact import Sphere, law_for_sphere
     from impactmaps.materials import material
-    from impactmaps.targets.plate import Plate
+    from impactmaps.targets.plates.plate import Plate
 
     plate = Plate.isotropic(0.3, 0.3, 0.004, material("aluminium-6061-t6"), theory="mindlin")
     sphere = Sphere(0.0127 / 2, material("structural-steel"))

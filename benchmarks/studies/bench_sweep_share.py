@@ -2,7 +2,7 @@
 
 Workload: the grid of ``benchmarks/studies/bench_plane.py`` (200 × 50 log grid over [1e-3, 1e3]²,
 ``beam-ss-euler`` and ``plate-ssss-kirchhoff``), solved serially in this one process as a
-sweep's worker solves it (:func:`impactmaps.maps.points.solve_map_points`, chunks of 40
+sweep's worker solves it (:func:`impactmaps.maps.compute.points.solve_map_points`, chunks of 40
 points along ζ; ``--stride k``: every k-th λ row). Two light timers (one
 ``time.process_time`` pair per call, ~1 µs) wrap the compiled integrator
 (``integrate_impact``, its numba dispatch included) and the compiled coupled-mode set-up
@@ -46,9 +46,9 @@ def _timed(function, cpu: list, slot: int):
 
 def share(name: str, stride: int) -> tuple[float, float, float, int]:
     """(CPU of the grid [s], of the integrator, of the coupled-mode set-up, points) on ``name``."""
-    from impactmaps.maps import points
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute import points
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers import modal_run
     from impactmaps.solvers.modal import ModalSettings
 

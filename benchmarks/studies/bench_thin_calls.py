@@ -5,7 +5,7 @@ For each case of :mod:`benchmarks.bench_modal` (λ = 0.425; plate and beam at ζ
 the library targets) one warm call of ``simulate(..., record=False)``, then ``--calls``
 timed calls: the median CPU time of a call (``time.process_time``, steadier than wall time
 on a shared machine) and the CPU time spent inside the integrator
-(:data:`impactmaps.solvers.exact_step.integrate_impact`, timed by a wrapper put where
+(:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`, timed by a wrapper put where
 :mod:`impactmaps.solvers.modal_run` calls it). Kernel share = kernel time / call time
 summed over the calls (issue 30 goal: ≥ 80 %). Where the rest goes, as shares of the call
 (CPU time of wrappers put where :mod:`~impactmaps.solvers.modal_run` calls them): the run's

@@ -39,9 +39,11 @@ def main(argv=None) -> None:
     args = parser.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     import impactmaps.solvers.modal_run as modal_run
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
     data = np.load(args.data)
@@ -51,7 +53,7 @@ def main(argv=None) -> None:
     picked = np.random.default_rng(args.seed).choice(len(candidates), size=min(args.runs, len(candidates)),
                                                      replace=False, p=weights / weights.sum())
     structure = structure_from_name(NAME)
-    target, cap = structure.build(), frequency_cap(structure)
+    target, cap = structure.build(), frequency_cap(structure.build(), MAX_MODES)
     table = basis_table(structure, ModalSettings().min_modes)
     levels = [ModalSettings(), ModalSettings().refined(), ModalSettings().refined().refined()]
     set_up, original, limit = [0.0], modal_run.coupled_modes, modal_run.COUPLED_MAX_MODES

@@ -2,7 +2,7 @@
 
 Workload: the grid of ``benchmarks/studies/bench_plane.py`` (200 × 50 log grid over
 [1e-3, 1e3]², ``beam-ss-euler`` and ``plate-ssss-kirchhoff``), every point solved serially
-in this process as a sweep's worker solves it (:func:`impactmaps.maps.points.solve_map_points`,
+in this process as a sweep's worker solves it (:func:`impactmaps.maps.compute.points.solve_map_points`,
 default settings and error control), with every modal run of a point recorded: its kind
 (base, refinement 1 or 2, perturbed), F̄max, impacts and CPU (``time.process_time``). Then,
 at every modal point, one extra run a level *coarser* than the base (cut-off, patch
@@ -66,10 +66,12 @@ def coarsened(settings):
 
 def solve_plane(name: str, zetas, lambdas) -> dict:
     """Every point of ``name`` with its runs: arrays over (λ, ζ) (module docstring)."""
-    from impactmaps.maps import points
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute import points
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
 
     base = ModalSettings()
     levels = {base: 0, base.refined(): 1, base.refined().refined(): 2}
@@ -94,7 +96,7 @@ def solve_plane(name: str, zetas, lambdas) -> dict:
             "status", "method", "fmax", "fmax_error", "fmax_low", "fmax_high", "reflection")}
     structure = structure_from_name(name)
     target = structure.build()
-    table, cap = points.basis_table(structure, base.min_modes), points.frequency_cap(structure)
+    table, cap = points.basis_table(structure, base.min_modes), frequency_cap(structure.build(), MAX_MODES)
     coarse = coarsened(base)
     points.table_runner = recording_runner
     try:

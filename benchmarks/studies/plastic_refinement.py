@@ -3,7 +3,7 @@
 Reads a plastic map's refinement built by ``data_build/build_refinements.py --law LAW``
 (``--refinement PATH``, a ``.nc``), prints its size (points per β slice, MB as NetCDF and
 packed) and compares lookups with and without it against direct solves
-(:func:`~impactmaps.maps.plastic_points.solve_plastic_points`) at N log-uniform random
+(:func:`~impactmaps.maps.compute.plastic_points.solve_plastic_points`) at N log-uniform random
 points: anywhere in the map's (β, ζ, λ) box, and on its β slices (β a grid value, where
 only the (λ, ζ) interpolation errs). Prints a Markdown table (``RESULTS_plastic_refinement.md``).
 
@@ -20,11 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
-from impactmaps.maps.data_io import read_dataset, write_dataset
-from impactmaps.maps.lookup import refinement_of
-from impactmaps.maps.plastic_lookup import load_plastic_map, read_plastic
-from impactmaps.maps.plastic_points import solve_plastic_points
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.files.data_io import read_dataset, write_dataset
+from impactmaps.maps.read.lookup import refinement_of
+from impactmaps.maps.read.plastic_lookup import load_plastic_map, read_plastic
+from impactmaps.maps.compute.plastic_points import solve_plastic_points
+from impactmaps.maps.family.structures import structure_from_name
 
 
 def random_points(dataset, count: int, seed: int, on_slices: bool):

@@ -17,12 +17,12 @@ import time
 
 import numpy as np
 
-from impactmaps.maps.data_io import read_dataset
-from impactmaps.maps.lookup import refinement_of
-from impactmaps.maps.plastic_lookup import load_plastic_map, read_plastic
-from impactmaps.maps.plastic_points import solve_plastic_points
-from impactmaps.maps.slice_refinement import SlicedRefinement
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.files.data_io import read_dataset
+from impactmaps.maps.read.lookup import refinement_of
+from impactmaps.maps.read.plastic_lookup import load_plastic_map, read_plastic
+from impactmaps.maps.compute.plastic_points import solve_plastic_points
+from impactmaps.maps.family.slice_refinement import SlicedRefinement
+from impactmaps.maps.family.structures import structure_from_name
 
 SLICE, POINTS = 3, 200
 

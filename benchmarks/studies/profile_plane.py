@@ -2,11 +2,11 @@
 
 Workload: the grid of ``benchmarks/studies/bench_plane.py`` (200 × 50 log grid over [1e-3, 1e3]²,
 ``beam-ss-euler`` and ``plate-ssss-kirchhoff``), solved serially in this one process as a
-sweep's worker solves it (:func:`impactmaps.maps.points.solve_map_points`, chunks of 40
+sweep's worker solves it (:func:`impactmaps.maps.compute.points.solve_map_points`, chunks of 40
 points along ζ), with ``--stride k`` every k-th λ row only. Timers wrap, without changing
 any arithmetic:
 
-* every modal run of a point (``simulate`` as :mod:`impactmaps.maps.points` calls it),
+* every modal run of a point (``simulate`` as :mod:`impactmaps.maps.compute.points` calls it),
   sorted by kind: the base run, the first and second refinement (step scale 1/2, 1/4) and
   the perturbed runs of a sensitive point; per kind its runs, CPU and mode-steps
   (Σ steps × modes integrated: the integrator's work);
@@ -80,9 +80,9 @@ class Timers:
 
 def profile(name: str, zetas, lambdas, timers: Timers) -> float:
     """Solve the grid on ``name`` serially with the timers in place; its CPU [s]."""
-    from impactmaps.maps import points
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute import points
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers import modal_run
     from impactmaps.solvers.modal import ModalSettings
 

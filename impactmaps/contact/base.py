@@ -20,7 +20,7 @@ from .._checks import (
     require_choice,
     require_nonnegative,
 )
-from ..solvers.lazy_kernel import LazyKernel
+from .._compile.lazy_kernel import LazyKernel
 from .geometry import effective_modulus, effective_radius, require_positive_or_infinite  # noqa: F401 (re-exported)
 
 __all__ = [

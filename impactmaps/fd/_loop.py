@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from ..contact.base import KERNEL_TYPE
-from ..solvers._peak import parabolic_peak
+from ..solvers.integrator._peak import parabolic_peak
 from .grid import factorise
 from .section import return_map
 

@@ -18,7 +18,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
-from ..targets.beam import Beam
+from ..targets.beams.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
 from .wide_section import constraint_parameters
@@ -26,7 +26,7 @@ from .wide_section import constraint_parameters
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
 
 _SUPPORTS = ("ss", "cc", "free")
-#: Support codes of :class:`impactmaps.targets.beam.Beam` as (left, right) FDBeam ends.
+#: Support codes of :class:`impactmaps.targets.beams.beam.Beam` as (left, right) FDBeam ends.
 SUPPORT_ENDS = {"ss": ("ss", "ss"), "cc": ("cc", "cc"), "cs": ("cc", "ss"),
                 "cf": ("cc", "free"), "ff": ("free", "free")}
 #: FDSettings fields that belong to the FDBeam (grid, section, damping).
@@ -145,7 +145,7 @@ class FDBeam:
             If ``beam`` is not a rectangular beam of ``material`` (e.g. a laminate).
         """
         if not isinstance(beam, Beam):
-            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beam.Beam")
+            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beams.beam.Beam")
         if beam.width is None or beam.height is None:
             raise ValueError("beam.width and beam.height are None: FDBeam.from_beam needs a "
                              "rectangular beam (Beam.rectangular)")

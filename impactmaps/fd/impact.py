@@ -15,9 +15,9 @@ import pandas as pd
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.contact_scale import reference_contact_stiffness
-from ..solvers.result import ImpactResult
-from ..targets.beam import Beam
+from ..contact.contact_scale import reference_contact_stiffness
+from ..result import ImpactResult
+from ..targets.beams.beam import Beam
 from ..validity import ModelValidityWarning
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, FDSettings
@@ -96,7 +96,7 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
 
     Parameters
     ----------
-    beam : FDBeam or impactmaps.targets.beam.Beam
+    beam : FDBeam or impactmaps.targets.beams.beam.Beam
         An :class:`FDBeam`, or a rectangular isotropic ``Beam`` with its ``material``.
     law : ContactLaw
         Contact law of a single case (e.g. ``law_for_sphere("stronge", sphere, beam)``).
@@ -246,7 +246,7 @@ def _fd_beam(beam, material, settings, impact_position):
                              "density [kg/m^3], yield_strength [Pa], poisson_ratio [-])")
         position = beam.impact_position if impact_position is None else impact_position
         return FDBeam.from_beam(beam, material, settings), position
-    raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beam.Beam")
+    raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beams.beam.Beam")
 
 
 #: Node-layer steps per second of the compiled loop, measured on the 2-core reference

@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.maps import tiles
-from impactmaps.maps.case_lookup import lookup_case
-from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.compute import tiles
+from impactmaps.cases.case_lookup import lookup_case
+from impactmaps.maps.family.structures import MapStructure
 
 _BALL = '[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
 
@@ -224,7 +224,7 @@ def test_a_case_no_map_point_can_be_realised_at_is_refused_before_a_tile_is_buil
     """Found by fuzzing `lookup --case`: a beam 1e-300 m wide has ζ ≈ 6e296; the lookup built a
     tile there (overflows, then a zero Hertz stiffness). Numbers beyond the family's
     ``axis_ranges`` are refused with the reason, and nothing is solved."""
-    from impactmaps.maps.case_answer import NoMapError
+    from impactmaps.cases.case_answer import NoMapError
 
     def no_tile(*args, **kwargs):
         raise AssertionError("a tile was built")

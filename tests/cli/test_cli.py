@@ -19,7 +19,7 @@ def run(capsys, *argv):
 
 
 def test_restitution(capsys):
-    from impactmaps.solvers.halfspace import restitution
+    from impactmaps.closed_forms.halfspace import restitution
 
     status, values = run(capsys, "restitution", "--beta", "10")
     assert status == 0 and values["restitution"] == pytest.approx(float(restitution(10.0)))
@@ -30,7 +30,7 @@ def test_restitution(capsys):
 def test_halfspace_hertz_matches_closed_form(capsys):
     """Hertz impact from the command line equals the classical closed forms."""
     from impactmaps.contact import effective_modulus
-    from impactmaps.solvers.halfspace import hertz_contact_time, hertz_peak_force
+    from impactmaps.closed_forms.halfspace import hertz_contact_time, hertz_peak_force
 
     status, values = run(capsys, "halfspace", "--law", "hertz", "--radius", "0.01", "--velocity", "2",
                          "--youngs-modulus", "2e11", "--poisson-ratio", "0.3", "--density", "7800")
@@ -51,7 +51,7 @@ def test_halfspace_with_catalogue_materials(capsys):
 
 
 def test_asymptotes(capsys):
-    from impactmaps.solvers.asymptotes import infinite_beam_peak
+    from impactmaps.closed_forms.asymptotes import infinite_beam_peak
 
     _, values = run(capsys, "asymptote", "infinite-beam", "--zeta", "0.3")
     assert values["fmax_normalised"] == pytest.approx(float(infinite_beam_peak(0.3)))
@@ -108,7 +108,7 @@ def test_asymptote_of_a_case_uses_its_own_law(capsys):
     model's violated assumptions listed; a limit that does not fit the case is refused."""
 
     from impactmaps.cases import load_case
-    from impactmaps.law_asymptotes import asymptote
+    from impactmaps.closed_forms.law_asymptotes import asymptote
 
     path = EXAMPLES / "steel_plate_hertz.toml"
     assert main(["asymptote", "infinite-plate", "--case", str(path), "--json"]) == 0

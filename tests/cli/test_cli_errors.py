@@ -150,7 +150,7 @@ def test_unparsable_command_lines_are_one_line_and_exit_2(argv, capsys):
 
 def test_ctrl_c_inside_compiled_code_exits_130(monkeypatch, capsys):
     """numba turns a KeyboardInterrupt into a SystemError; the command still exits 130."""
-    import impactmaps.solvers.halfspace as compact
+    import impactmaps.closed_forms.halfspace as compact
 
     def interrupted(*args, **kwargs):
         try:

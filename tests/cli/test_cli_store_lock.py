@@ -10,7 +10,7 @@ import sys
 import pytest
 
 from impactmaps.cli import main
-from impactmaps.maps.store_lock import StoreLockedError, lock_path, store_lock
+from impactmaps.maps.files.store_lock import StoreLockedError, lock_path, store_lock
 
 SWEEP_CONFIG = """
 output = "out"

@@ -71,15 +71,15 @@ def test_workers_are_bounded(tmp_path, capsys):
     """``--workers 1000`` forked ~800 processes on 2 cores."""
     assert main(["chart", "--workers", "1000", "--out", str(tmp_path)]) == 2
     assert "--workers = 1000" in _one_error_line(capsys)
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import sweep
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import sweep
 
     with pytest.raises(ValueError, match="max_workers"):
         sweep([structure_from_name("beam-ss-euler")], [1.0], [1.0], max_workers=1000, progress=False)
 
 
 def test_a_long_sweep_is_announced_before_it_starts():
-    from impactmaps.maps import sweep as sweep_module
+    from impactmaps.maps.compute import sweep as sweep_module
     from impactmaps.solvers.run_budget import LongRunWarning
 
     with pytest.warns(LongRunWarning, match="100000 points to compute on 2 worker"):

@@ -14,10 +14,10 @@ import pytest
 import xarray as xr
 
 from impactmaps.cli import main
-from impactmaps.maps import sweep as sweep_module
-from impactmaps.maps.config import load_sweep_config
-from impactmaps.maps.store import SweepInterrupted
-from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.compute import sweep as sweep_module
+from impactmaps.maps.compute.config import load_sweep_config
+from impactmaps.maps.files.store import SweepInterrupted
+from impactmaps.maps.family.structures import MapStructure
 
 from ..helpers import ROOT
 

@@ -33,8 +33,8 @@ def test_a_hertz_run_compiles_the_integrator_without_the_exact_contact_phase():
     out = _run("""
         import numba
         from impactmaps.contact import contact_law
-        from impactmaps.maps.structures import structure_from_name
-        from impactmaps.solvers.exact_step import integrate_impact
+        from impactmaps.maps.family.structures import structure_from_name
+        from impactmaps.solvers.integrator.exact_step import integrate_impact
         from impactmaps.solvers.modal import simulate
         basis = structure_from_name("beam-ss-euler").build().modes(1e5, min_modes=4)
         simulate(basis, contact_law("hertz", stiffness=1e9), 0.01, 1.0, record=False)

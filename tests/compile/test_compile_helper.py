@@ -1,4 +1,4 @@
-"""The compile helper (:mod:`impactmaps.solvers.compile_helper`): the second core compiles
+"""The compile helper (:mod:`impactmaps._compile.compile_helper`): the second core compiles
 part of the integrator during the first cold integrating run.
 
 The mechanism is tested with stand-ins of the compile (a helper that sleeps or fails), as
@@ -24,8 +24,8 @@ from pathlib import Path
 import pytest
 
 import impactmaps
-from impactmaps.solvers import compile_helper
-from impactmaps.solvers.background_warm_up import DISABLE_ENV
+from impactmaps._compile import compile_helper
+from impactmaps._compile.background_warm_up import DISABLE_ENV
 
 PACKAGE_ROOT = str(Path(impactmaps.__file__).resolve().parents[1])
 
@@ -100,7 +100,7 @@ def _ended(pid: int) -> bool:
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
 def test_the_helper_ends_when_its_parent_is_killed():
-    script = ("import os, signal, sys, time; from impactmaps.solvers import compile_helper as c; "
+    script = ("import os, signal, sys, time; from impactmaps._compile import compile_helper as c; "
               "assert c.start((None,), ['sleep:30']); time.sleep(0.5); "
               "print(c._state['process'].pid, flush=True); os.kill(os.getpid(), signal.SIGKILL)")
     env = dict(os.environ, PYTHONPATH=PACKAGE_ROOT)
@@ -118,22 +118,24 @@ def test_the_helper_ends_when_its_parent_is_killed():
 _COLD_RUN = """
     import json, numpy as np
     from impactmaps.contact import contact_law
-    from impactmaps.solvers import compile_helper
+    from impactmaps._compile import compile_helper
+    from impactmaps.solvers.integrator import exact_step
     from impactmaps.solvers.modal import simulate
     from impactmaps.targets.base import ModalBasis
     basis = ModalBasis(np.array([2e3, 9e3, 4e4]), np.array([3.0, 2.0, 1.0]), 1e-9)
     result = simulate(basis, contact_law("hertz", stiffness=1e9), 0.01, 1.0, record=True)
-    callees = compile_helper.callee_signatures()
+    callees = exact_step.callee_signatures()
     loaded = [name for name in compile_helper.HELPER_CALLEES if sum(callees[name][0].stats.cache_hits.values())]
     print(json.dumps({"peak": result.peak_force, "loaded": loaded,
                       "rows": result.history.to_numpy().tolist()}))
 """
 
 _SIGNATURES = """
-    from impactmaps.solvers import compile_helper
-    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps._compile import compile_helper
+    from impactmaps.solvers.integrator import exact_step
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
     integrate_impact.compile_variant(None)
-    for name, (dispatcher, signature) in compile_helper.callee_signatures().items():
+    for name, (dispatcher, signature) in exact_step.callee_signatures().items():
         assert dispatcher.signatures == [signature], (name, dispatcher.signatures)
     print("ok")
 """
@@ -166,7 +168,7 @@ def test_on_an_empty_cache_the_run_loads_what_the_helper_compiled(tmp_path):
 def test_an_interrupted_first_compile_raises_the_interrupt():
     import numba
 
-    from impactmaps.solvers.lazy_kernel import LazyKernel
+    from impactmaps._compile.lazy_kernel import LazyKernel
 
     @numba.njit
     def twice(x):
@@ -192,8 +194,8 @@ def test_cache_saves_of_a_lazy_kernel_wait_for_the_cache_lock(tmp_path):
     import threading
     import types
 
-    from impactmaps.solvers.exact_step import integrate_impact
-    from impactmaps.solvers.lazy_kernel import LazyKernel
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
+    from impactmaps._compile.lazy_kernel import LazyKernel
 
     assert integrate_impact.dispatcher._cache.save_overload._impactmaps_locked
     saved = []

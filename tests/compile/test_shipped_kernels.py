@@ -8,7 +8,7 @@ differs or no cache was shipped. Checked on a small module built, then "installe
 copy with new modification times (two fresh interpreters, ~1.5 s); the bits of a run from
 the package's own shipped cache against a fresh compile in the slow test. A read-only
 installation: numba keeps its cache in its user-wide directory, where the shipped files are
-copied (:func:`impactmaps.solvers.compile_helper.seed_user_cache`).
+copied (:func:`impactmaps._compile.compile_helper.seed_user_cache`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from impactmaps.solvers import compile_helper, warm_up
+from impactmaps._compile import compile_helper
+from impactmaps.solvers import warm_up
 
 _MODULE = "import numba\n\n\n@numba.njit(cache=True)\ndef kernel(x):\n    return 2.0 * x + 1.0\n"
 #: Build: compile ``kernel`` into ``__pycache__`` beside the module (argv[1]: its directory).
@@ -98,7 +99,8 @@ def test_an_installed_wheel_ships_the_integrator_compiled():
     shipped = [str(path) for dist in found for path in dist.files or () if str(path).endswith(".nbi")]
     if not shipped:
         pytest.skip("not a wheel install with the shipped kernels")
-    code = ("from impactmaps.solvers.compile_helper import variant_cached; "
+    code = ("import impactmaps.solvers.integrator.exact_step; "
+            "from impactmaps._compile.compile_helper import variant_cached; "
             "print(variant_cached(None), variant_cached(True))")
     assert _run(code).split() == ["True", "True"]
 
@@ -125,7 +127,7 @@ def test_shipped_cache_files_are_copied_index_by_index(tmp_path):
 def test_nothing_is_copied_where_numba_reads_the_modules_directories():
     from numba.core.caching import UserWideCacheLocator
 
-    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
 
     if type(integrate_impact.dispatcher._cache._impl.locator) is UserWideCacheLocator:
         pytest.skip("a read-only installation: numba's user-wide cache is seeded")
@@ -149,7 +151,7 @@ def test_a_run_from_the_shipped_cache_gives_the_bits_of_a_fresh_compile(tmp_path
     if not case.exists():
         pytest.skip("the examples are not beside the tests")
     run = ("import sys, json; sys.path.insert(0, sys.argv[1]); from impactmaps.cases import load_case, run_case; "
-           "from impactmaps.solvers.exact_step import integrate_impact; "
+           "from impactmaps.solvers.integrator.exact_step import integrate_impact; "
            "result, _ = run_case(load_case(sys.argv[2])); d = integrate_impact.dispatcher; "
            "print(json.dumps([result.history.to_numpy().tobytes().hex(), repr(result.peak_force), "
            "sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())]))")

@@ -30,7 +30,7 @@ from ..helpers import EXAMPLES
 PACKAGE_ROOT = str(Path(impactmaps.__file__).resolve().parents[1])
 #: Modules a command that solves nothing must not import.
 HEAVY = ("numba", "xarray", "pandas", "matplotlib", "scipy", "scipy.integrate", "scipy.interpolate",
-         "scipy.optimize", "impactmaps.solvers.modal", "impactmaps.solvers.exact_step", "impactmaps.maps.chart")
+         "scipy.optimize", "impactmaps.solvers.modal", "impactmaps.solvers.integrator.exact_step", "impactmaps.plotting.chart")
 
 _AFTER_COMMAND = """
     import io, contextlib, json, sys
@@ -44,7 +44,7 @@ _AFTER_COMMAND = """
     base = sys.modules.get("impactmaps.contact.base")
     if base is not None and base._evaluate_many._compiled:
         compiled.append("_evaluate_many")
-    step = sys.modules.get("impactmaps.solvers.exact_step")
+    step = sys.modules.get("impactmaps.solvers.integrator.exact_step")
     if step is not None and step.integrate_impact.dispatcher.signatures:
         compiled.append("integrate_impact")
     for name in ("linear", "hertz", "epp", "stronge", "yigit_christoforou"):
@@ -94,7 +94,7 @@ def test_laws_imports_the_laws_but_compiles_nothing():
 def test_lookup_on_a_shipped_map_imports_only_numpy(argv):
     """A lookup on a shipped map (linear, Hertz, elastic-plastic) interpolates the packed map
     with NumPy alone: no numba, xarray, pandas, SciPy or plotting, no solver, nothing
-    compiled (the families' point solvers are not imported: :mod:`impactmaps.maps.builtin_families`)."""
+    compiled (the families' point solvers are not imported: :mod:`impactmaps.maps.family.builtin_families`)."""
     seen = _after(["lookup", *argv])
     assert seen["status"] == 0
     assert seen["heavy"] == [] and seen["compiled"] == [], seen
@@ -142,7 +142,7 @@ def test_warm_up_option_is_checked(capsys):
 
 
 def test_a_variant_that_does_not_exist_is_refused():
-    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
 
     with pytest.raises(ValueError, match="variant"):
         integrate_impact.compile_variant("fast")
@@ -197,7 +197,7 @@ def _until(condition, seconds: float = 60.0) -> bool:
 def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatch):
     """One detached process at a time takes the lock, writes the marker when done; then
     nothing starts again."""
-    from impactmaps.solvers import background_warm_up as background
+    from impactmaps._compile import background_warm_up as background
 
     monkeypatch.delenv(background.DISABLE_ENV, raising=False)
     assert background.start_background(tmp_path, ["--sleep", "1.5"])
@@ -211,7 +211,7 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
 
 
 def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch):
-    from impactmaps.solvers import background_warm_up as background
+    from impactmaps._compile import background_warm_up as background
 
     monkeypatch.delenv(background.DISABLE_ENV, raising=False)
     assert background.start_background(tmp_path, ["--sleep", "-1"])
@@ -222,7 +222,7 @@ def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch)
 
 
 def test_background_warm_up_is_off_by_environment_or_option(tmp_path, monkeypatch):
-    from impactmaps.solvers import background_warm_up as background
+    from impactmaps._compile import background_warm_up as background
 
     monkeypatch.setenv(background.DISABLE_ENV, "1")
     assert not background.start_background(tmp_path, ["--sleep", "0"])

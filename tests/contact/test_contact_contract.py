@@ -54,7 +54,7 @@ from impactmaps.contact import (
 )
 from impactmaps.contact.base import evaluate_kernel
 from impactmaps.contact.hertz import HertzContact
-from impactmaps.solvers.halfspace import halfspace_impact, hertz_peak_force
+from impactmaps.closed_forms.halfspace import halfspace_impact, hertz_peak_force
 
 from ..printed_stronge import PrintedStrongeContact
 

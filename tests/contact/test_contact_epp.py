@@ -19,9 +19,9 @@ import pandas as pd
 import pytest
 
 from impactmaps.contact import ContactLaw, contact_law_class
-from impactmaps.contact.epp import EppContact
+from impactmaps.contact.plastic.epp import EppContact
 from impactmaps.contact.hertz import HertzContact, hertz_stiffness
-from impactmaps.solvers.halfspace import energy_balance_restitution, halfspace_impact
+from impactmaps.closed_forms.halfspace import energy_balance_restitution, halfspace_impact
 
 RUNS = Path(__file__).resolve().parents[2] / "validation" / "fe" / "results" / "axisym_runs.csv"
 

@@ -32,7 +32,7 @@ from impactmaps.contact import (
     stronge_continuity_coefficient,
     yield_indentation,
 )
-from impactmaps.solvers.halfspace import halfspace_impact, hertz_peak_force
+from impactmaps.closed_forms.halfspace import halfspace_impact, hertz_peak_force
 
 from ..printed_stronge import PrintedStrongeContact
 

@@ -19,7 +19,7 @@ from impactmaps.contact import (
     available_contact_laws,
     contact_law,
 )
-from impactmaps.solvers.halfspace import (
+from impactmaps.closed_forms.halfspace import (
     HERTZ_CONTACT_TIME_FACTOR,
     energy_balance_restitution,
     halfspace_impact,

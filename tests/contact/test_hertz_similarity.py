@@ -1,4 +1,4 @@
-"""Hertz similarity (impactmaps.hertz_similarity): equal (ζ_h, λ_h) give equal normalised responses.
+"""Hertz similarity (impactmaps.closed_forms.hertz_similarity): equal (ζ_h, λ_h) give equal normalised responses.
 
 Two physically different cases — different materials, sizes, K_h, impactor mass and
 speed — on one structure family (same shape ratios, supports, impact point, theory,
@@ -14,7 +14,7 @@ import pytest
 
 import impactmaps as im
 from impactmaps.contact import HertzContact, LinearContact
-from impactmaps.hertz_similarity import (
+from impactmaps.closed_forms.hertz_similarity import (
     ZENER_TO_LOSS_FACTOR,
     hertz_numbers,
     patch_number,
@@ -22,7 +22,7 @@ from impactmaps.hertz_similarity import (
     realise_hertz,
     zener_parameter,
 )
-from impactmaps.law_asymptotes import infinite_plate_impact
+from impactmaps.closed_forms.law_asymptotes import infinite_plate_impact
 
 STEEL = im.IsotropicMaterial(210e9, 0.3, 7800.0)
 ALLOY = im.IsotropicMaterial(70e9, 0.3, 2700.0)  # same ν: the family is fixed by ν too

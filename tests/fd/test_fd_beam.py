@@ -693,7 +693,7 @@ def test_from_beam_maps_the_support_codes(code, ends):
     grid options from FDSettings; the material values are copied, not recomputed."""
     from impactmaps.fd import FDSettings
     from impactmaps.materials import IsotropicMaterial
-    from impactmaps.targets.beam import Beam
+    from impactmaps.targets.beams.beam import Beam
 
     steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
     beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports=code)
@@ -708,7 +708,7 @@ def test_simulate_fd_accepts_a_toolkit_beam_and_settings():
     ways, a missing material, and a non-rectangular beam are ValueErrors."""
     from impactmaps.fd import FDSettings
     from impactmaps.materials import IsotropicMaterial
-    from impactmaps.targets.beam import Beam
+    from impactmaps.targets.beams.beam import Beam
 
     steel = IsotropicMaterial(MODULUS, 0.3, DENSITY, YIELD)
     beam = Beam.rectangular(LENGTH, WIDTH, HEIGHT, steel, theory="rayleigh", supports="cs",
@@ -747,7 +747,7 @@ def test_fd_beam_runs_epp_and_closes_its_ledger():
     contact work and the law's ∫F dα, as for the other laws), the discrete contact work
     is the law's dissipation plus stored energy, and both the contact and the beam absorb
     energy (the contact dissipates, the section yields)."""
-    from impactmaps.contact.epp import EppContact
+    from impactmaps.contact.plastic.epp import EppContact
 
     law = EppContact(E_STAR, SPHERE_RADIUS, YIELD)
     with warnings.catch_warnings():
@@ -791,7 +791,7 @@ def test_epp_contact_modal_equals_fd():
     (closed-form SS Rayleigh basis) give the same peak force and first contact duration within
     1 % and the same dent within 2 % (the tolerances of the Stronge/YC cross-check above: the
     FD grid's O(h²) error at N_l = 200)."""
-    from impactmaps.contact.epp import EppContact
+    from impactmaps.contact.plastic.epp import EppContact
     from impactmaps.solvers.modal import simulate
 
     law = EppContact(E_STAR, SPHERE_RADIUS, YIELD)

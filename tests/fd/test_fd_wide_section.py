@@ -160,7 +160,7 @@ def test_settings_and_case_key_turn_the_model_off():
     reaches the FDBeam; a non-boolean is typed like ``plastic``."""
     from impactmaps.fd import FDSettings
     from impactmaps.materials import IsotropicMaterial
-    from impactmaps.targets.beam import Beam
+    from impactmaps.targets.beams.beam import Beam
 
     steel = IsotropicMaterial(E, 0.3, 7850.0, SY)
     beam = Beam.rectangular(0.78, 0.06, 0.0278, steel, theory="rayleigh", supports="ss")

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactmaps.maps.structures import MapStructure
-from impactmaps.maps.sweep import Pacing, sweep
+from impactmaps.maps.family.structures import MapStructure
+from impactmaps.maps.compute.sweep import Pacing, sweep
 
 distributed = pytest.importorskip("distributed")  # the test extra has it; the [dask] extra for users
 
@@ -31,7 +31,7 @@ def _identical(a, b) -> None:
 def test_sweep_on_dask_process_workers_is_bit_identical_and_workers_are_set_up():
     """24 points (8 ζ × 3 λ, Euler beam, linear law) in chunks of 2 on 2 worker processes
     × 1 thread: the same bytes as the inline run; the plugin gave each worker one BLAS thread."""
-    from impactmaps.maps.dask_backend import PLUGIN_NAME, worker_blas_threads
+    from impactmaps.maps.compute.dask_backend import PLUGIN_NAME, worker_blas_threads
 
     local = sweep([BEAM], ZETAS, LAMBDAS, max_workers=1, progress=False)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
@@ -48,7 +48,7 @@ def test_sweep_on_dask_process_workers_is_bit_identical_and_workers_are_set_up()
 
 
 def test_dask_executor_refuses_what_is_not_dask():
-    from impactmaps.maps.dask_backend import dask_executor
+    from impactmaps.maps.compute.dask_backend import dask_executor
 
     with pytest.raises(ValueError, match="client_or_executor = ThreadPoolExecutor"):
         from concurrent.futures import ThreadPoolExecutor

@@ -21,14 +21,14 @@ import pytest
 import impactmaps as im
 from impactmaps.cli import main
 from impactmaps.contact import HertzContact
-from impactmaps.hertz_similarity import realise_hertz, unit_speed_stiffness
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.hertz_points import hertz_asymptote_peak, solve_hertz_points
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, require_map_law
-from impactmaps.maps.regimes import classify
-from impactmaps.maps.store import StoreMismatchError
-from impactmaps.maps.structures import MapStructure, structure_from_name
-from impactmaps.maps.sweep import _prepare, map_law, sweep
+from impactmaps.closed_forms.hertz_similarity import realise_hertz, unit_speed_stiffness
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.compute.hertz_points import hertz_asymptote_peak, solve_hertz_points
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, require_map_law
+from impactmaps.maps.family.regimes import classify
+from impactmaps.maps.files.store import StoreMismatchError
+from impactmaps.maps.family.structures import MapStructure, structure_from_name
+from impactmaps.maps.compute.sweep import _prepare, map_law, sweep
 from impactmaps.solvers.modal import ModalSettings
 
 from ..helpers import ROOT

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from impactmaps.cli import main
-from impactmaps.maps.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 #: Documented interpolation error (docs/validation.rst, "Lookup maps"): over 150 random points per map
@@ -143,7 +143,7 @@ def test_lookup_band_covers_the_direct_simulation(structure, theory):
     lookup.fmax_error (+ the direct run's own error) of a direct simulation. With the plain
     h²|f''|/8 interpolation estimate the band missed 16 % of 80 random points on the beam
     map, hence its safety factor of 4 (lookup.interpolation_error)."""
-    from impactmaps.maps.lookup import SHIPPED_MAPS
+    from impactmaps.maps.read.lookup import SHIPPED_MAPS
 
     rng = np.random.default_rng(3)
     zetas = np.exp(rng.uniform(np.log(0.005), np.log(100.0), 25))
@@ -197,7 +197,7 @@ def _hertz_case(rng, kind):
     Hertz law on a random target, (ζ_h, λ_h) drawn over slightly more than the map's range
     and realised as the impactor mass and speed (so some cases fall outside the map)."""
     from impactmaps.cases import parse_case
-    from impactmaps.hertz_similarity import realise_hertz
+    from impactmaps.closed_forms.hertz_similarity import realise_hertz
 
     target, table = _family_target(rng, kind)
     text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nmass = 1.0\nvelocity = 1.0\n'
@@ -223,7 +223,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     build, seeds, count, least = _RANDOM_CASES[law]
     rng = np.random.default_rng(seeds[0] if kind == "beam" else seeds[1])
@@ -268,7 +268,7 @@ def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
     with ``build=False``; by default the structures are answered from an on-demand map tile
     (tests/cases/test_on_demand.py), the law still refused."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     assert old in _REFUSED_CASE
     with pytest.raises(ValueError, match="no shipped map covers this case") as info:
@@ -289,7 +289,7 @@ def test_lookup_case_builds_what_no_shipped_map_describes(old, new, tmp_path):
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     text = _REFUSED_CASE.replace(old, new, 1)
     if "timoshenko" in new:
@@ -337,7 +337,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
     answered = 0
@@ -372,7 +372,7 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     rng = np.random.default_rng({"beam": 61, "plate": 62}[kind])
     answered = 0
@@ -401,7 +401,7 @@ def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
     """No plastic map for the Mindlin plate (its pressure patch adds the sphere radius as a
     number) nor for a Stronge law with other constants: refused, naming why."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvelocity = 1.0\n'
             '[target]\ntype = "plate"\nlength_x = 0.1\nlength_y = 0.1\nthickness = 0.005\n'
@@ -420,7 +420,7 @@ def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
     from pathlib import Path
 
     from impactmaps.cases import load_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     text = (Path(__file__).resolve().parents[2] / "examples" / "steel_beam_fd_stronge.toml").read_text()
     assert "[solver]\n" in text
@@ -438,7 +438,7 @@ def test_lookup_case_refuses_a_point_loaded_mindlin_plate(tmp_path):
     too, and builds no tile (a Hertz impact, spread over the patch, is answered:
     test_hertz_maps.py::test_lookup_case_on_the_steel_plate_hertz_example)."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     plate = ('[target]\ntype = "plate"\nlength_x = 0.3\nlength_y = 0.3\nthickness = 0.015\n'
              'material = "structural-steel"\ntheory = "mindlin"\n')
@@ -471,8 +471,8 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.hertz_similarity import realise_hertz
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.closed_forms.hertz_similarity import realise_hertz
+    from impactmaps.cases.case_lookup import lookup_case
 
     beam = ('[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\nmaterial = "structural-steel"\n'
             'theory = "euler"\n')
@@ -498,7 +498,7 @@ def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tm
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     case = parse_case('[impactor]\nradius = 0.00635\nmaterial = "structural-steel"\nvelocity = 1.0\n'
                       '[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\n'
@@ -519,7 +519,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     interpolation error: status ``interpolated``, the band covers the direct simulation
     and is wider than the points' tolerance. On a grid point the band is the point's own
     error and the status the point's."""
-    from impactmaps.maps.lookup import BAND_TOLERANCE, answer_status
+    from impactmaps.maps.read.lookup import BAND_TOLERANCE, answer_status
 
     kink = lookup(0.33, 0.013, kind="beam", theory="euler")
     direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]

@@ -9,16 +9,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactmaps.maps import builtin_families, map_family as family_module
-from impactmaps.maps.data_io import read_arrays, read_dataset, shipped_path
-from impactmaps.maps.lookup import refinement_of
-from impactmaps.maps.reader import prepare_map
+from impactmaps.maps.family import builtin_families, map_family as family_module
+from impactmaps.maps.files.data_io import read_arrays, read_dataset, shipped_path
+from impactmaps.maps.read.lookup import refinement_of
+from impactmaps.maps.read.reader import prepare_map
 
 
 def test_the_layouts_are_the_families_layouts():
     """Each built-in family is a subclass of its layout, with the same axes, errors,
     interpolation and shipped maps; the registry names them all, in registration order."""
-    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+    from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 
     assert family_module.available_map_families()[:5] == ("linear", "hertz", "yc", "stronge", "epp")
     for name, layout in builtin_families.LAYOUTS.items():

@@ -14,7 +14,7 @@ import warnings
 import numpy as np
 import pytest
 
-from impactmaps.maps.lookup import SHIPPED_MAPS, lookup, shipped_reader
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, lookup, shipped_reader
 
 
 def _bits(values) -> np.ndarray:
@@ -67,7 +67,7 @@ _PLASTIC_FIELDS = ("fmax_normalised", "fmax_error", "restitution", "restitution_
 @pytest.mark.parametrize("law", ["yc", "stronge", "epp"])
 def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law):
     """The (β, ζ, λ) maps: one point (``reader._read_cube_one``) against the vectorised read."""
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, lookup_plastic
 
     rng = np.random.default_rng(29)
     for structure, theory in sorted(PLASTIC_MAPS):

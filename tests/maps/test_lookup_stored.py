@@ -8,7 +8,7 @@ those of the code that computed the asymptotes per point (values recorded from t
 commit b4b262f, ``tests/data/lookup_reference.npz``: F̄max, band and status bit for bit,
 regimes equal except where the stored peaks' interpolation error can reach across a
 criterion); the prepared reader interpolates bit-identically to
-:func:`impactmaps.maps.refinement.interpolate`; the stored peaks are the asymptotes at the
+:func:`impactmaps.maps.family.refinement.interpolate`; the stored peaks are the asymptotes at the
 grid values; the cache of prepared maps follows the file.
 """
 
@@ -40,13 +40,13 @@ def _raise(*args, **kwargs):
 
 def _patch_asymptotes(monkeypatch) -> None:
     """Every entry point that computes an asymptote peak raises."""
-    import impactmaps.law_asymptotes as law_asymptotes
-    import impactmaps.law_asymptotes.beam as beam
-    import impactmaps.law_asymptotes.local as local
-    import impactmaps.maps.hertz_points as hertz_points
-    import impactmaps.maps.regimes as regimes
-    from impactmaps.maps.hertz_points import HertzFamily
-    from impactmaps.maps.linear_points import LinearFamily
+    import impactmaps.closed_forms.law_asymptotes as law_asymptotes
+    import impactmaps.closed_forms.law_asymptotes.beam as beam
+    import impactmaps.closed_forms.law_asymptotes.local as local
+    import impactmaps.maps.compute.hertz_points as hertz_points
+    import impactmaps.maps.family.regimes as regimes
+    from impactmaps.maps.compute.hertz_points import HertzFamily
+    from impactmaps.maps.compute.linear_points import LinearFamily
     from impactmaps.targets import Beam, Plate
 
     for module, names in ((law_asymptotes, ("asymptote", "infinite_beam_impact_any_law", "infinite_plate_impact",
@@ -94,10 +94,10 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     run; the default run: four of them) is read from its file and answers ``lookup`` (or
     ``lookup_plastic``) vectorised and one point at a time at in-range points, and
     ``lookup_case`` answers a case of every shipped family — the same answers as unpatched."""
-    from impactmaps.maps import lookup as lookup_module
-    from impactmaps.maps.case_lookup import lookup_case
-    from impactmaps.maps.lookup import lookup
-    from impactmaps.maps.plastic_lookup import lookup_plastic
+    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps.maps.read.lookup import lookup
+    from impactmaps.maps.read.plastic_lookup import lookup_plastic
 
     equivalence = _equivalence(monkeypatch)
     warnings.simplefilter("ignore")  # the Mindlin maps' point-load warning
@@ -144,7 +144,7 @@ def _family_cases() -> list:
     loads a patch.)"""
     from impactmaps.cases import parse_case
     from impactmaps.dimensionless import realise
-    from impactmaps.hertz_similarity import realise_hertz
+    from impactmaps.closed_forms.hertz_similarity import realise_hertz
     from impactmaps.materials import material
     from impactmaps.targets import Beam, Plate
 
@@ -187,10 +187,10 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
     and status bit for bit; a regime differs only at a point where the stored peaks'
     interpolation error (twice its largest at the grid cells' midpoints) reaches across a
     criterion, and at no more than :data:`REGIME_CHANGE_BOUND` of the points."""
-    from impactmaps.maps import lookup as lookup_module
-    from impactmaps.maps.lookup import shipped_reader
-    from impactmaps.maps.reader import read_values
-    from impactmaps.maps.registry import map_family
+    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.maps.read.lookup import shipped_reader
+    from impactmaps.maps.read.reader import read_values
+    from impactmaps.maps.family.registry import map_family
 
     equivalence = _equivalence(monkeypatch)
     recorded = np.load(REFERENCE, allow_pickle=False)
@@ -208,7 +208,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
         np.testing.assert_array_equal(new["refusal"].astype(str), recorded[f"{name}/refusal"])
         for field in ("fmax", "status"):
             np.testing.assert_array_equal(new[field][answered], recorded[f"{name}/{field}"][answered], err_msg=name)
-        # the packed refinements keep each point's own band to 8 bits, rounded up (maps/data_io.py):
+        # the packed refinements keep each point's own band to 8 bits, rounded up (maps/files/data_io.py):
         # a band only widens, by less than 2⁻⁷
         band, recorded_band = new["band"][answered], recorded[f"{name}/band"][answered]
         assert np.all(band >= recorded_band) and np.all(band <= recorded_band * (1 + 2.0**-7)), name
@@ -231,12 +231,12 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
 @pytest.mark.parametrize("name", ["plate-ssss-kirchhoff-hertz", "beam-ss-timoshenko-s20"])
 def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
     """:class:`PlaneInterpolator` (the leaves as index tables) gives bit for bit the values,
-    bands and corner statuses of :func:`impactmaps.maps.refinement.interpolate`, at random
+    bands and corner statuses of :func:`impactmaps.maps.family.refinement.interpolate`, at random
     positions, on grid lines and nodes and on the last row and column."""
-    from impactmaps.maps.interpolator import PlaneInterpolator, grid_bilinear
-    from impactmaps.maps.lookup import load_shipped_map, load_shipped_refinement
-    from impactmaps.maps.reader import interpolation_error
-    from impactmaps.maps.refinement import Refinement, interpolate
+    from impactmaps.maps.read.interpolator import PlaneInterpolator, grid_bilinear
+    from impactmaps.maps.read.lookup import load_shipped_map, load_shipped_refinement
+    from impactmaps.maps.read.reader import interpolation_error
+    from impactmaps.maps.family.refinement import Refinement, interpolate
 
     law = "hertz" if name.endswith("hertz") else "linear"
     key = ("plate", "kirchhoff", law) if name.startswith("plate") else ("beam", "timoshenko", law)
@@ -257,8 +257,8 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
         np.testing.assert_array_equal(new[1], old[1])
         for got, want in zip(new[2], old[2]):
             np.testing.assert_array_equal(got, want)
-    from impactmaps.maps import interpolator
-    from impactmaps.maps.refinement import Leaves, leaf_estimate
+    from impactmaps.maps.read import interpolator
+    from impactmaps.maps.family.refinement import Leaves, leaf_estimate
 
     indexed = interpolator._IndexedRefinement.of(refinement)
     leaves = interpolator._leaves(indexed)
@@ -279,8 +279,8 @@ def test_the_stored_peaks_are_the_asymptotes_at_the_grid_values(monkeypatch, law
     bit: the linear maps' at every grid value of the plates (closed forms) and every tenth of
     the beams (the infinite beam's root search); the Hertz maps' at three grid values each
     (each an integration: the slow run)."""
-    from impactmaps.maps.dataset import ASYMPTOTE_PEAKS
-    from impactmaps.maps.regimes import infinite_structure_peak, quasi_static_peak
+    from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS
+    from impactmaps.maps.family.regimes import infinite_structure_peak, quasi_static_peak
 
     equivalence = _equivalence(monkeypatch)
     for key in equivalence.shipped_keys():
@@ -301,9 +301,9 @@ def test_the_stored_peaks_are_the_asymptotes_at_the_grid_values(monkeypatch, law
 def test_the_prepared_map_follows_its_file(tmp_path, monkeypatch):
     """The cache of prepared shipped maps is keyed by the file's identity: a map rewritten on
     disk is read again (a cache never changes an answer), an unchanged one is not."""
-    from impactmaps.maps import lookup as lookup_module
-    from impactmaps.maps.data_io import read_dataset
-    from impactmaps.maps.store import save_atomic
+    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.maps.files.data_io import read_dataset
+    from impactmaps.maps.files.store import save_atomic
 
     name = "plate-ssss-mindlin-s10"
     sources = lookup_module._shipped_sources(name)

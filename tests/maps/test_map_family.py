@@ -13,13 +13,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactmaps.maps import sweep as sweep_module
-from impactmaps.maps.linear_points import LINEAR
-from impactmaps.maps.map_family import Axis, MapFamily, PointPlan, available_map_families, register_map_family
-from impactmaps.maps.reader import read_values
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.store import SweepInterrupted
-from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.compute import sweep as sweep_module
+from impactmaps.maps.compute.linear_points import LINEAR
+from impactmaps.maps.family.map_family import Axis, MapFamily, PointPlan, available_map_families, register_map_family
+from impactmaps.maps.read.reader import read_values
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.files.store import SweepInterrupted
+from impactmaps.maps.family.structures import MapStructure
 
 BEAM = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
 GAMMAS, ZETAS, LAMBDAS = [1.0, 3.0], [0.05, 0.5, 5.0], [0.1, 1.0]

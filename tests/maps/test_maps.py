@@ -14,14 +14,14 @@ import xarray as xr
 
 import impactmaps
 
-from impactmaps.maps import linear_points
-from impactmaps.maps import points as points_module
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps import sweep as sweep_module
-from impactmaps.maps.regimes import classify
-from impactmaps.maps.store import StoreMismatchError
-from impactmaps.maps.structures import MapStructure
-from impactmaps.maps.sweep import Pacing, solve_points, sweep
+from impactmaps.maps.compute import linear_points
+from impactmaps.maps.compute import points as points_module
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.compute import sweep as sweep_module
+from impactmaps.maps.family.regimes import classify
+from impactmaps.maps.files.store import StoreMismatchError
+from impactmaps.maps.family.structures import MapStructure
+from impactmaps.maps.compute.sweep import Pacing, solve_points, sweep
 from impactmaps.solvers.modal import ModalSettings
 
 PLATE = MapStructure(kind="plate", theory="kirchhoff", supports="SSSS")
@@ -53,7 +53,7 @@ def test_classify_limits_and_validation():
     qs = np.sqrt(lam / (1 + lam))
     assert classify(1.0, 0.01, lam, "plate") == "local"
     assert classify(qs, 50.0, lam, "plate") == "quasi-static"
-    from impactmaps.solvers.asymptotes import infinite_plate_peak
+    from impactmaps.closed_forms.asymptotes import infinite_plate_peak
 
     assert classify(float(infinite_plate_peak(0.5)), 0.5, 0.05, "plate") == "infinite-structure"
     assert classify(0.3, 1.0, 4.0, "plate") == "transition"
@@ -171,7 +171,7 @@ def test_sweep_workers_run_one_blas_thread_and_leave_the_parent_alone(monkeypatc
     cores), and the user's own process keeps its BLAS threads."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from impactmaps.maps.workers import init_worker
+    from impactmaps.maps.compute.workers import init_worker
 
     before = _blas_threads()
     assert before, "no BLAS library found by threadpoolctl"
@@ -180,7 +180,7 @@ def test_sweep_workers_run_one_blas_thread_and_leave_the_parent_alone(monkeypatc
     # in a fresh interpreter, where no BLAS is loaded before init_worker (a forked worker
     # inherits the libraries this process loaded): then a run with an exact contact phase
     package_root = str(pathlib.Path(impactmaps.__file__).resolve().parents[1])  # the package tested, installed or not
-    probe = ("import json; from impactmaps.maps.workers import init_worker; init_worker(False); "
+    probe = ("import json; from impactmaps.maps.compute.workers import init_worker; init_worker(False); "
              "from impactmaps.solvers.warm_up import _tiny_impacts; _tiny_impacts(); "
              "from threadpoolctl import threadpool_info; "
              "print(json.dumps([p['num_threads'] for p in threadpool_info() if p['user_api'] == 'blas']))")
@@ -243,8 +243,8 @@ def test_targets_answer_the_physics_of_their_kind(structure):
     sweep is made of the target's InfiniteImpact."""
     import math
 
-    from impactmaps.maps.regimes import infinite_structure_peak
-    from impactmaps.solvers import asymptotes
+    from impactmaps.maps.family.regimes import infinite_structure_peak
+    from impactmaps.closed_forms import asymptotes
 
     target = structure.build()
     omega = np.array([1e3, 2e4])
@@ -274,7 +274,7 @@ def test_basis_table_truncates_like_the_basis_it_holds():
     """A basis table is an explicit participating ModalBasis: truncating it keeps
     retained + residual equal to the target's static compliance, and a table asked for
     after a larger one holds the same modes as a fresh one (no hidden state)."""
-    from impactmaps.maps.structures import BasisTable
+    from impactmaps.maps.family.structures import BasisTable
 
     target = BEAM.build()
     table = BasisTable(target, 1e6, 4)
@@ -295,8 +295,8 @@ def test_a_point_is_a_pure_function_of_its_inputs():
     one by one, in one chunk, or in shuffled chunks after a light-impactor point that
     needs a high cut-off, every scalar is the same to the bit (the basis of every point
     is a truncation of one canonical table, never of whatever a cache happened to hold)."""
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import solve_points
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import solve_points
     from impactmaps.solvers.modal import ModalSettings
 
     rng = np.random.default_rng(12)
@@ -324,9 +324,9 @@ def test_every_point_carries_its_error_and_status():
     converged (cut-off 160–640 ω, step /8), stored as if right. Now the point is refined
     and, having no converged value, marked `sensitive` with a band that holds 0.218; a
     smooth point is `converged` with an error below the tolerance and its band around it."""
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import solve_points
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import solve_points
     from impactmaps.solvers.modal import ModalSettings
 
     beam = structure_from_name("beam-ss-euler")
@@ -345,7 +345,7 @@ def test_sensitive_band_holds_every_level_and_the_last_change():
     inside)."""
     from dataclasses import replace as replaced
 
-    from impactmaps.maps.accuracy import STATUSES, AccuracyControl, controlled_point
+    from impactmaps.maps.family.accuracy import STATUSES, AccuracyControl, controlled_point
 
     class Run:
         def __init__(self, value, impacts):
@@ -372,7 +372,7 @@ def test_sensitive_band_holds_every_level_and_the_last_change():
 def test_sensitive_band_is_at_least_the_tolerance_wide():
     """Levels that agree to 1e-4 but never in their impact count: the finest value is
     widened by the tolerance, not by the (coincidentally small) last change."""
-    from impactmaps.maps.accuracy import STATUSES, AccuracyControl, controlled_point
+    from impactmaps.maps.family.accuracy import STATUSES, AccuracyControl, controlled_point
 
     class Run:
         def __init__(self, value, impacts):
@@ -396,8 +396,8 @@ def test_a_sweep_of_a_mindlin_plate_says_it_is_a_point_load():
     """A sweep over a Mindlin plate strikes it at a point (no converged value): it says so."""
     import warnings
 
-    from impactmaps.maps.structures import MapStructure
-    from impactmaps.maps.sweep import sweep
+    from impactmaps.maps.family.structures import MapStructure
+    from impactmaps.maps.compute.sweep import sweep
     from impactmaps.validity import ModelValidityWarning
 
     mindlin = MapStructure(kind="plate", theory="mindlin", supports="SSSS", slenderness=20)
@@ -416,9 +416,11 @@ def test_a_point_does_not_repeat_a_run_equal_to_an_earlier_one(monkeypatch):
     runner that repeats every run."""
     from impactmaps.contact.linear import LinearContact
     from impactmaps.dimensionless import realise
-    from impactmaps.maps.accuracy import AccuracyControl, controlled_point
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import basis_table, frequency_cap
+    from impactmaps.maps.family.accuracy import AccuracyControl, controlled_point
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.points import basis_table
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
 
     structure = structure_from_name("beam-ss-euler")
     zeta, lam = 706.7, 0.001758
@@ -435,7 +437,7 @@ def test_a_point_does_not_repeat_a_run_equal_to_an_earlier_one(monkeypatch):
     assert len(calls) == 6  # base, two refinements, step −1 %, ζ ± 1 %
 
     target = structure.build()
-    table, cap = basis_table(structure, ModalSettings().min_modes), frequency_cap(structure)
+    table, cap = basis_table(structure, ModalSettings().min_modes), frequency_cap(structure.build(), MAX_MODES)
 
     def every_run(settings, zeta_factor):
         moved = realise(target, zeta * zeta_factor, lam)
@@ -454,7 +456,7 @@ def test_an_executor_holds_a_bounded_window_of_chunks():
     that held every chunk of a 10⁶-point sweep took 1.3 GB. Same numbers as the inline run."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from impactmaps.maps.sweep import IN_FLIGHT_PER_SLOT
+    from impactmaps.maps.compute.sweep import IN_FLIGHT_PER_SLOT
 
     class Counting(ThreadPoolExecutor):
         def __init__(self):

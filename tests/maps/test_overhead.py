@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.targets.base import ModalBasis
 
 
@@ -24,7 +24,7 @@ def _old_residual(basis: ModalBasis, count: int) -> float:
 
 @pytest.fixture(scope="module")
 def beam_table():
-    from impactmaps.maps.sweep import basis_table
+    from impactmaps.maps.compute.sweep import basis_table
 
     return basis_table(structure_from_name("beam-ss-euler"), 4)
 
@@ -119,7 +119,7 @@ def test_positive_check_of_arrays_answers_as_before(values):
 def test_coupled_stiffness_diagonal_is_added_as_before():
     """coupled_modes adds ω_j² on the diagonal through ``flat``: the same matrix, bit for bit,
     as through ``np.diag_indices`` (so the same eigenvectors)."""
-    from impactmaps.solvers.coupled_contact import coupled_modes
+    from impactmaps.solvers.integrator.coupled_contact import coupled_modes
 
     rng = np.random.default_rng(11)
     for n in (1, 4, 17, 120):

@@ -1,4 +1,4 @@
-"""The packed map files (impactmaps.maps.data_io): exact where they claim to be, small,
+"""The packed map files (impactmaps.maps.files.data_io): exact where they claim to be, small,
 deterministic, and answering the lookups as the NetCDF maps they replaced."""
 
 from __future__ import annotations
@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from impactmaps.maps import data_io
-from impactmaps.maps.refinement import Refinement, refine
-from impactmaps.maps.store import load_matching, save_atomic
+from impactmaps.maps.files import data_io
+from impactmaps.maps.family.refinement import Refinement, refine
+from impactmaps.maps.files.store import load_matching, save_atomic
 
 from ..helpers import ROOT, repository_module
 

@@ -1,7 +1,7 @@
 """Elastic-plastic maps over (β, ζ, λ): the similarity they rest on, the shipped maps, their lookup.
 
 Issue 13 item 2: for the Yigit–Christoforou and the refined Stronge law the impact number β
-is the third axis (:mod:`impactmaps.maps.plastic_points`).
+is the third axis (:mod:`impactmaps.maps.compute.plastic_points`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ def _pair(kind):
 
 
 def _normalised(target, realised):
-    from impactmaps.maps.plastic_points import plastic_summary
+    from impactmaps.maps.compute.plastic_points import plastic_summary
 
     result = simulate(target, realised.law, realised.mass, realised.velocity, settings=ModalSettings(),
                       record=False)
@@ -43,7 +43,7 @@ def test_equal_numbers_give_equal_normalised_response(kind, law, numbers):
     K_h and α_y) with equal (β, ζ, λ) give equal F_max/(m V0 ω_y), restitution, absorbed
     and transferred energy fractions, number of impacts and contact time to 1e-6: the
     similarity the plastic maps rest on (module docstring of plastic_points)."""
-    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
 
     beta, zeta, lam = numbers
     first, second = _pair(kind)
@@ -68,8 +68,8 @@ def test_a_physical_case_is_realised_by_its_numbers():
     numbers (β, ζ, λ); their realisation on the map's reference beam gives the same
     normalised answer — the route `lookup --case` takes."""
     from impactmaps.cases import parse_case
-    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
-    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+    from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 
     case = parse_case('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 0.05\n'
                       '[target]\ntype = "beam"\nlength = 0.6\nwidth = 0.02\nheight = 0.01\n'
@@ -87,8 +87,8 @@ def test_a_physical_case_is_realised_by_its_numbers():
 
 def test_numbers_refuse_other_laws():
     from impactmaps.contact.hertz import HertzContact
-    from impactmaps.contact.stronge import StrongeContact
-    from impactmaps.maps.plastic_points import plastic_law_of
+    from impactmaps.contact.plastic.stronge import StrongeContact
+    from impactmaps.maps.compute.plastic_points import plastic_law_of
 
     assert plastic_law_of(StrongeContact(1e11, 0.01, 3e8)) == "stronge"
     with pytest.raises(ValueError, match="plastic_pressure_factor"):
@@ -99,7 +99,7 @@ def test_numbers_refuse_other_laws():
 
 # -- the shipped maps ---------------------------------------------------------------------------
 def _shipped():
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
 
     return [load_plastic_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
 
@@ -110,8 +110,8 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
     theory holds: no value at all); the energy ledger closed (e² + absorbed + transferred
     = 1 wherever the sphere separated); its law recorded (it cannot be read as a linear or
     Hertz map)."""
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.lookup import require_map_law
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.read.lookup import require_map_law
 
     for dataset in _shipped():
         law = dataset.attrs["contact_law"]
@@ -120,7 +120,7 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
         assert np.all(dataset["done"].values == 1) and np.all(dataset["status"].values >= 0)
         resolved = dataset["status"].values != STATUSES.index("unresolved")
         assert resolved.mean() > 0.75  # Timoshenko beams: light impactors pass a quarter of the thickness-shear
-        # cut-off (solvers/shear_range.py), 17 % (YC) and 22 % (Stronge) of the grid; Euler and Kirchhoff: none
+        # cut-off (targets/shear_range.py), 17 % (YC) and 22 % (Stronge) of the grid; Euler and Kirchhoff: none
         for name in ("fmax_normalised", "fmax_error", "absorbed_energy_fraction", "absorbed_energy_error"):
             assert np.all(np.isfinite(dataset[name].values[resolved])), name
             assert np.all(np.isnan(dataset[name].values[~resolved])), name
@@ -136,9 +136,9 @@ def test_a_map_point_is_the_direct_solution():
     """A grid point of a shipped map is what solve_plastic_points gives for it (to a few ulp:
     the map was built with another build of the numeric libraries; same-build bit equality is
     tested by the sweep tests)."""
-    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
-    from impactmaps.maps.plastic_points import solve_plastic_points
-    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.compute.plastic_points import solve_plastic_points
+    from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 
     dataset = load_plastic_map("beam", "euler", "yc")
     beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in (("beta", 4), ("lambda_", 9), ("zeta", 12)))
@@ -152,8 +152,8 @@ def test_a_map_point_is_the_direct_solution():
 
 def test_lookup_plastic_refuses_next_to_an_unresolved_point():
     """Where the Timoshenko map holds no value (beyond its theory) the lookup refuses."""
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
 
     dataset = load_plastic_map("beam", "timoshenko", "yc").isel(structure=0)
     at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
@@ -163,7 +163,7 @@ def test_lookup_plastic_refuses_next_to_an_unresolved_point():
 
 
 def test_lookup_plastic_refuses_outside_the_map():
-    from impactmaps.maps.plastic_lookup import lookup_plastic
+    from impactmaps.maps.read.plastic_lookup import lookup_plastic
 
     with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
         lookup_plastic(5000.0, 0.1, 0.1, kind="beam", theory="euler")
@@ -239,7 +239,7 @@ def test_fmax_chart_labels_follow_the_maps_law():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from impactmaps.maps.plastic_lookup import load_plastic_map
+    from impactmaps.maps.read.plastic_lookup import load_plastic_map
     from impactmaps.plotting import FMAX_LABELS, plot_fmax_chart
 
     dataset = load_plastic_map("beam", "euler", "stronge")
@@ -248,7 +248,7 @@ def test_fmax_chart_labels_follow_the_maps_law():
     ax = plot_fmax_chart(dataset.sel(beta=100.0, method="nearest"), lambdas=[0.1, 1.0])
     assert ax.get_xlabel() == FMAX_LABELS["plastic"][0] and ax.get_ylabel() == FMAX_LABELS["plastic"][1]
     assert ax.get_ylim()[1] > 1.5  # the Stronge law's F̄max exceeds 1 (its plastic branch is stiffer than K_y)
-    from impactmaps.maps.lookup import load_shipped_map
+    from impactmaps.maps.read.lookup import load_shipped_map
 
     for law in ("linear", "hertz"):
         ax = plot_fmax_chart(load_shipped_map("beam", "euler", law), lambdas=[0.1, 1.0], asymptotes=False)
@@ -262,7 +262,7 @@ def test_lookup_command_at_given_numbers():
     import argparse
 
     from impactmaps.cli.commands_maps import cmd_lookup
-    from impactmaps.maps.plastic_lookup import lookup_plastic
+    from impactmaps.maps.read.plastic_lookup import lookup_plastic
 
     args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
@@ -283,9 +283,9 @@ def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
     ``data_build/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
     build resumes from (and is checked against) the same description, and the dataset a
     sweep writes has the shipped map's layout."""
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import sweep_fingerprint
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import sweep_fingerprint
 
     betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
     for (kind, theory), name in PLASTIC_MAPS.items():
@@ -301,9 +301,9 @@ def test_a_redefined_law_changes_the_fingerprint(monkeypatch):
     2, its energy-consistent form) gives its sweeps a new fingerprint, so a stored sweep of
     the old definition is neither resumed nor read as current; laws at revision 1 keep the
     fingerprints they had (the YC maps' above)."""
-    from impactmaps.contact.stronge import StrongeContact
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import sweep_fingerprint
+    from impactmaps.contact.plastic.stronge import StrongeContact
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import sweep_fingerprint
 
     grid = ([structure_from_name("beam-ss-euler")], [0.1, 1.0], [0.1, 1.0])
     current = sweep_fingerprint(*grid, law="stronge", axes={"beta": [10.0]})
@@ -321,7 +321,7 @@ def test_equal_numbers_give_equal_normalised_epp_response(kind, numbers):
     """The similarity of the plastic maps holds for ``epp`` too: two physically different
     impacts with equal (β, ζ, λ) give equal normalised answers to 1e-6 (its curves are fixed
     in units α_y, K_h α_y^{3/2} at fixed options; module docstring of plastic_points)."""
-    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
 
     beta, zeta, lam = numbers
     first, second = _pair(kind)
@@ -345,9 +345,9 @@ def test_an_epp_case_is_realised_by_its_numbers():
     Yigit–Christoforou α_y and the scale K_y = 1.5 K_h α_y^{1/2} fix the epp impact
     (δ_y/α_y = c_y²/2.72 and F_y = K_h δ_y^{3/2} are the same for every E*, R, Y)."""
     from impactmaps.cases import parse_case
-    from impactmaps.contact.epp import EppContact
-    from impactmaps.maps.plastic_points import plastic_numbers, realise_plastic
-    from impactmaps.maps.structures import DEFAULT_STRUCTURES
+    from impactmaps.contact.plastic.epp import EppContact
+    from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
+    from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 
     case = parse_case(_EPP_BEAM.replace("velocity = 1.0", "velocity = 0.05"))
     assert isinstance(case.law, EppContact)
@@ -371,11 +371,11 @@ def test_epp_maps_describe_only_their_options(option, value):
     so the epp maps, built at the defaults, describe an epp law only at those values: otherwise a
     lookup refuses, naming the option, its value and the maps' value."""
     from impactmaps.cases import parse_case
-    from impactmaps.contact.epp import EppContact
-    from impactmaps.contact.stronge import StrongeContact
-    from impactmaps.maps.case_lookup import lookup_case
-    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
-    from impactmaps.maps.registry import map_family
+    from impactmaps.contact.plastic.epp import EppContact
+    from impactmaps.contact.plastic.stronge import StrongeContact
+    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
+    from impactmaps.maps.family.registry import map_family
 
     assert EPP_MAP_OPTIONS == {"poisson_ratio": 0.3, "sphere_compliance": 0.0}
     family = map_family("epp")
@@ -396,7 +396,7 @@ def test_epp_maps_describe_only_their_options(option, value):
 
 
 def _epp_maps():
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
 
     return {name: load_plastic_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
 
@@ -406,10 +406,10 @@ def test_shipped_epp_maps_are_complete_sweeps_stating_their_options():
     ``data_build/build_plastic_maps.py`` (its fingerprint), every point solved, finite values
     and errors wherever resolved, the energy ledger closed (e² + absorbed + transferred = 1
     where the sphere separated), and its attributes state the law options it was built at."""
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.plastic_points import EPP_MAP_OPTIONS
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import sweep_fingerprint
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import sweep_fingerprint
 
     betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
     for name, dataset in _epp_maps().items():
@@ -440,9 +440,9 @@ def test_epp_lookups_against_committed_direct_runs():
 
     import pandas as pd
 
-    from impactmaps.maps.lookup import map_file_stem
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, lookup_plastic
-    from impactmaps.maps.plastic_points import ERROR_OF
+    from impactmaps.maps.read.lookup import map_file_stem
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.compute.plastic_points import ERROR_OF
 
     table = pd.read_csv(Path(__file__).resolve().parents[2] / "validation" / "lookup_error_epp.csv")
     for (kind, theory), name in PLASTIC_MAPS.items():
@@ -468,8 +468,8 @@ def test_epp_chart_and_lookup_commands(tmp_path):
     import argparse
 
     from impactmaps.cli.commands_maps import cmd_chart, cmd_lookup
-    from impactmaps.maps.lookup import ALL_MAP_LAWS
-    from impactmaps.maps.plastic_lookup import lookup_plastic
+    from impactmaps.maps.read.lookup import ALL_MAP_LAWS
+    from impactmaps.maps.read.plastic_lookup import lookup_plastic
 
     assert "epp" in ALL_MAP_LAWS
     args = argparse.Namespace(law="epp", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,

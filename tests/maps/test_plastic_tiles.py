@@ -20,9 +20,9 @@ import pytest
 import xarray as xr
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.maps import tiles
-from impactmaps.maps.case_lookup import lookup_case
-from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.compute import tiles
+from impactmaps.cases.case_lookup import lookup_case
+from impactmaps.maps.family.structures import MapStructure
 from impactmaps.solvers.modal import simulate
 
 #: A tile committed for the default test: the clamped–clamped aluminium beam of

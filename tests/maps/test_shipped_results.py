@@ -1,7 +1,7 @@
 """The shipped result of the default chart's sweep, and the integrator compiled on first use.
 
 The README's first command (``impactmaps chart``) draws the chart from the shipped result
-of its sweep (:mod:`impactmaps.maps.shipped_results`); these tests hold that result to
+of its sweep (:mod:`impactmaps.maps.files.shipped_results`); these tests hold that result to
 what the code computes today, and that nothing else ever takes it for an answer.
 """
 
@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from impactmaps.maps import sweep as sweep_module
-from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
-from impactmaps.maps.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.sweep import RESULT_VARIABLES, log_grid, solve_map_points, sweep, sweep_fingerprint
+from impactmaps.maps.compute import sweep as sweep_module
+from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
+from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.compute.sweep import RESULT_VARIABLES, log_grid, solve_map_points, sweep, sweep_fingerprint
 from impactmaps.solvers.modal import ModalSettings
 
 ZETAS = log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT)
@@ -96,7 +96,7 @@ def test_another_sweep_is_not_answered_by_the_shipped_result():
 def test_a_damaged_shipped_result_is_computed_instead(tmp_path, monkeypatch):
     """A shipped file that cannot be read (or does not match its name) is not used: a
     warning, and the sweep computes its points."""
-    import impactmaps.maps.shipped_results as shipped
+    import impactmaps.maps.files.shipped_results as shipped
 
     zetas, lambdas = ZETAS[[10, 20]], DEFAULT_CHART_LAMBDAS[:1]
     digest = sweep_fingerprint(CHART_STRUCTURES[:1], zetas, lambdas)
@@ -114,9 +114,9 @@ def test_the_default_chart_compiles_no_integrator(tmp_path):
     integrates nothing (the integrator has no compiled specialisation after it), and the
     first integration compiles exactly one."""
     script = textwrap.dedent(f"""
-        from impactmaps.solvers.exact_step import integrate_impact
+        from impactmaps.solvers.integrator.exact_step import integrate_impact
         assert not integrate_impact.dispatcher.signatures
-        from impactmaps.maps.chart import make_chart
+        from impactmaps.plotting.chart import make_chart
         make_chart({str(tmp_path)!r}, progress=False)
         assert not integrate_impact.dispatcher.signatures, "the default chart integrated"
         print("ok")
@@ -131,8 +131,8 @@ def test_the_integrator_has_its_specialisations_only_and_refuses_other_types():
     only (with and without the exact contact phase), and an argument of another type is
     refused instead of compiling another one."""
     from impactmaps.contact.linear import LinearContact
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.solvers.exact_step import integrate_impact
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
     from impactmaps.solvers.modal import simulate
 
     basis = structure_from_name("beam-ss-euler").build().modes(1e5, min_modes=4)
@@ -162,9 +162,9 @@ def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
     integrator patched to raise, both charts are drawn, and the peaks equal a fresh
     computation to the infinite-beam asymptote's round-off (its history sum is an FFT
     convolution since the peaks were stored: 4.5e-16 relative measured; 1e-13 bounds it)."""
-    import impactmaps.maps.hertz_points as hertz_points
-    from impactmaps.maps.chart import make_chart
-    from impactmaps.maps.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
+    import impactmaps.maps.compute.hertz_points as hertz_points
+    from impactmaps.plotting.chart import make_chart
+    from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
 
     for digest in (DIGEST, HERTZ_DIGEST):
         shipped = _shipped(digest)

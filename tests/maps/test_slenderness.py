@@ -8,10 +8,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from impactmaps.maps.slenderness import slenderness_members, lookup_slenderness, slenderness_error_grid
-from impactmaps.maps.lookup import lookup
-from impactmaps.maps.structures import MEMBER_SLENDERNESSES, structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.read.slenderness import slenderness_members, lookup_slenderness, slenderness_error_grid
+from impactmaps.maps.read.lookup import lookup
+from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES, structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 FAMILIES = [("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), ("plate", "mindlin", "linear")]
@@ -75,7 +75,7 @@ def test_lookup_case_at_slenderness_30_matches_simulate():
     from the family (it used to refuse every slenderness but 20), within its band of
     `simulate`."""
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     text = """
 name = "steel ball on a 0.6 m, 20 x 20 mm Timoshenko beam, linear contact"

@@ -2,8 +2,8 @@
 
 A small map of the ``epp`` family over (β, λ, ζ) holds a known function (kinks and a ripple in
 (λ, ζ), curved in log β); the point solver is that function, so every "fresh point solve" is
-exact. Refined slice by slice (:func:`impactmaps.maps.slice_refinement.refine_slices`) and read
-through the package's one map reader (:func:`impactmaps.maps.reader.read_values`).
+exact. Refined slice by slice (:func:`impactmaps.maps.family.slice_refinement.refine_slices`) and read
+through the package's one map reader (:func:`impactmaps.maps.read.reader.read_values`).
 """
 
 import warnings
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from impactmaps.maps.reader import prepare_map, read_values, slice_estimates
-from impactmaps.maps.refinement import Refinement
-from impactmaps.maps.registry import map_family
-from impactmaps.maps.slice_refinement import SlicedRefinement, read_slices, refine_slices
+from impactmaps.maps.read.reader import prepare_map, read_values, slice_estimates
+from impactmaps.maps.family.refinement import Refinement
+from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.family.slice_refinement import SlicedRefinement, read_slices, refine_slices
 
 EPP = map_family("epp")
 BETAS = np.array([1.0, 10.0, 100.0])
@@ -161,7 +161,7 @@ def test_unrefined_slices_and_cells_answer_as_before(built):
 def test_a_sliced_refinement_is_read_only_with_its_map(built):
     """refinement_of takes a stored sliced refinement of this map, and refuses (warning, None) one
     built for another version of it or another β grid."""
-    from impactmaps.maps.lookup import refinement_of
+    from impactmaps.maps.read.lookup import refinement_of
 
     dataset, refinement = built
     stored = refinement.dataset({"base_fingerprint": "small"})

@@ -15,10 +15,10 @@ import warnings
 import numpy as np
 import pytest
 
-from impactmaps.maps.chart import DEFAULT_CHART_LAMBDAS
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.plotting.chart import DEFAULT_CHART_LAMBDAS
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 from tests.maps.test_lookup import assert_lookup_or_refusal
 
@@ -72,7 +72,7 @@ def test_sampled_loop_is_stable_up_to_and_beyond_the_cap(name):
 
     from impactmaps.contact import LinearContact
     from impactmaps.dimensionless import realise
-    from impactmaps.maps.structures import BasisTable
+    from impactmaps.maps.family.structures import BasisTable
     from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency, simulate
 
     structure = structure_from_name(name)

@@ -13,8 +13,8 @@ import pytest  # noqa: E402
 
 from impactmaps import plotting  # noqa: E402
 from impactmaps.contact import LinearContact  # noqa: E402
-from impactmaps.maps.structures import structure_from_name  # noqa: E402
-from impactmaps.maps.sweep import sweep  # noqa: E402
+from impactmaps.maps.family.structures import structure_from_name  # noqa: E402
+from impactmaps.maps.compute.sweep import sweep  # noqa: E402
 from impactmaps.solvers.modal import simulate  # noqa: E402
 
 from ..analytic import ss_plate_impactor, ss_square_plate_basis  # noqa: E402
@@ -112,7 +112,7 @@ def test_fmax_chart_draws_sensitive_stretches_as_a_band(dataset):
     """Where the dataset marks points sensitive, the curve is a filled band between
     fmax_low and fmax_high (its colour), the line is not drawn there, and the legend
     says what the band means."""
-    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.family.accuracy import STATUSES
 
     marked = dataset.copy(deep=True)
     name, lam = "beam-ss-euler", 0.1
@@ -148,7 +148,7 @@ def test_fmax_chart_draws_sensitive_stretches_as_a_band(dataset):
 
 
 def test_fmax_chart_without_sensitive_points_has_no_band(dataset):
-    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.family.accuracy import STATUSES
 
     clean = dataset.copy(deep=True)
     clean["status"][:] = STATUSES.index("converged")

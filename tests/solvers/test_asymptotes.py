@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
-from impactmaps.solvers import asymptotes as asy
-from impactmaps.solvers import infinite_beam as ib
+from impactmaps.closed_forms import asymptotes as asy
+from impactmaps.closed_forms import infinite_beam as ib
 
 PLATE_LOSS_FACTORS = [0.01, 0.5, 0.999, 1.0, 1.001, 3.0, 30.0]
 # c = sqrt(π)ζ = 2·3^{-3/4}: the two roots of q⁴ + 2cq + 1 with Re q < 0 coincide here

@@ -11,9 +11,9 @@ import pytest
 from impactmaps.cli import main
 from impactmaps.contact import HertzContact, StrongeContact, YigitChristoforouContact, effective_modulus
 from impactmaps.materials import IsotropicMaterial
-from impactmaps.solvers.asymptotes import infinite_beam_peak
+from impactmaps.closed_forms.asymptotes import infinite_beam_peak
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
-from impactmaps.targets.beam import Beam
+from impactmaps.targets.beams.beam import Beam
 
 STEEL = IsotropicMaterial(210e9, 0.3, 7850.0, 350e6)
 

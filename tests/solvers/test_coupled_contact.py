@@ -1,4 +1,4 @@
-"""The exact linear contact phase (impactmaps.solvers.coupled_contact).
+"""The exact linear contact phase (impactmaps.solvers.integrator.coupled_contact).
 
 References: the same modal equations integrated by scipy ``solve_ivp``
 (``benchmarks/baseline_solve_ivp``), exact invariants (energy in contact, momentum), and
@@ -13,15 +13,15 @@ import numpy as np
 import pytest
 
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.coupled_contact import (
+from impactmaps.solvers.integrator.coupled_contact import (
     CONTACT_RESOLUTION,
     _coarse_plan,
     _content_step,
     contact_phase,
     coupled_modes,
 )
-from impactmaps.solvers.history_rows import HistoryRows
-from impactmaps.solvers.kernel_types import KernelCoupled, KernelModes
+from impactmaps.solvers.integrator.history_rows import HistoryRows
+from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelModes
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 

@@ -13,13 +13,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from impactmaps.maps.linear_points import LINEAR
-from impactmaps.maps.points import basis_table, frequency_cap
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.solvers.coupled_contact import _least_advance, contact_phase, coupled_modes
-from impactmaps.solvers.exact_step import STALL_LIMIT, _progress
-from impactmaps.solvers.history_rows import HistoryRows
-from impactmaps.solvers.kernel_types import KernelCoupled, KernelModes
+from impactmaps.maps.compute.linear_points import LINEAR
+from impactmaps.maps.compute.points import basis_table
+from impactmaps.maps.family.structures import MAX_MODES
+from impactmaps.solvers.mode_budget import frequency_cap
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.solvers.integrator.coupled_contact import _least_advance, contact_phase, coupled_modes
+from impactmaps.solvers.integrator.exact_step import STALL_LIMIT, _progress
+from impactmaps.solvers.integrator.history_rows import HistoryRows
+from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelModes
 from impactmaps.solvers.modal import ModalSettings, simulate
 from impactmaps.targets.base import ModalBasis
 
@@ -34,7 +36,7 @@ def _map_point_run(settings: ModalSettings):
     structure = structure_from_name("plate-ssss-kirchhoff")
     impact = LINEAR.realise(structure.build(), (ZETA, LAMBDA))
     basis = basis_table(structure, settings.min_modes).truncate(
-        min(settings.cutoff_ratio * impact.omega, frequency_cap(structure)), settings.min_modes)
+        min(settings.cutoff_ratio * impact.omega, frequency_cap(structure.build(), MAX_MODES)), settings.min_modes)
     return simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False), impact.omega
 
 

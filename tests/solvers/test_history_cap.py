@@ -14,9 +14,9 @@ import pytest
 
 from impactmaps.contact.base import kernel_pointer
 from impactmaps.contact.linear import LinearContact
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.solvers.exact_step import integrate_impact
-from impactmaps.solvers.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.solvers.integrator.exact_step import integrate_impact
+from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun
 
 _NO_COUPLED = KernelCoupled(np.zeros(0), np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)), 1e-6, 1.0)
 
@@ -65,7 +65,7 @@ def test_a_billion_kilogram_impactor_stays_under_the_row_cap():
         from impactmaps.materials import CATALOGUE
         from impactmaps.solvers.modal import simulate
         from impactmaps.solvers.run_budget import HISTORY_ROW_BYTES, HISTORY_ROW_CAP
-        from impactmaps.targets.plate import Plate
+        from impactmaps.targets.plates.plate import Plate
 
         steel = CATALOGUE["structural-steel"]
         plate = Plate.isotropic(0.25, 0.25, 0.004, steel, theory="kirchhoff")

@@ -1,4 +1,4 @@
-"""Verification of the exact-step impact integrator (impactmaps.solvers.exact_step).
+"""Verification of the exact-step impact integrator (impactmaps.solvers.integrator.exact_step).
 
 Independent references:
 
@@ -23,7 +23,7 @@ import pytest
 import scipy.linalg
 
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.oscillator_step import oscillator_step_coefficients
+from impactmaps.solvers.integrator.oscillator_step import oscillator_step_coefficients
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
 from impactmaps.targets.base import ModalBasis
 
@@ -245,7 +245,7 @@ def test_free_flight_propagators_by_squaring_are_exact(zeta):
     """The doubled free-flight steps square the one-step map instead of re-evaluating
     trigonometric functions; after six squarings they still equal the direct
     coefficients over 64 h (undamped and damped)."""
-    from impactmaps.solvers.oscillator_step import fill_step_coefficients, square_free_propagators
+    from impactmaps.solvers.integrator.oscillator_step import fill_step_coefficients, square_free_propagators
 
     omega = np.array([0.0, 0.3, 2.0, 17.0, 400.0])
     damping = np.where(omega > 0, zeta, 0.0)
@@ -332,7 +332,7 @@ def test_sampled_loop_instability_is_avoided():
     energy bound broken); the default step keeps ω_top·Δt ≤ STABLE_TOP_STEP and gives the
     resolved answer."""
     from impactmaps.dimensionless import realise
-    from impactmaps.maps.structures import BasisTable, structure_from_name
+    from impactmaps.maps.family.structures import BasisTable, structure_from_name
     from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency
 
     target = structure_from_name("plate-ssss-kirchhoff").build()
@@ -367,7 +367,7 @@ def test_parabolic_peak_recovers_the_vertex_of_a_parabola():
     """Three samples of F(t) = 2 − 3(t − 0.3)², h = 1 apart around t = 0: the refinement
     returns the vertex (2 at offset 0.3) to round-off (exact for a parabola), and the
     middle sample with offset 0 when the samples do not curve downwards."""
-    from impactmaps.solvers._peak import parabolic_peak
+    from impactmaps.solvers.integrator._peak import parabolic_peak
 
     def force(t):
         return 2.0 - 3.0 * (t - 0.3) ** 2
@@ -442,7 +442,7 @@ def test_a_damped_run_closes_its_energy_ledger_and_a_ledger_that_does_not_is_war
     from impactmaps.materials import material
     from impactmaps.solvers import modal
     from impactmaps.solvers.modal import ConvergenceWarning
-    from impactmaps.targets.beam import Beam
+    from impactmaps.targets.beams.beam import Beam
 
     aluminium = material("aluminium-6061-t6")
     sphere = Sphere(0.012972944792411378, aluminium)

@@ -1,8 +1,8 @@
-"""Asymptotes for any contact law (impactmaps.law_asymptotes) against exact references.
+"""Asymptotes for any contact law (impactmaps.closed_forms.law_asymptotes) against exact references.
 
-* linear contact: the closed forms of impactmaps.solvers.asymptotes / infinite_beam;
+* linear contact: the closed forms of impactmaps.closed_forms.asymptotes / infinite_beam;
 * Hertz contact on the infinite plate: an independent integration of Zener's model in
-  the Hertz scales (one parameter μ, derived in impactmaps.hertz_similarity);
+  the Hertz scales (one parameter μ, derived in impactmaps.closed_forms.hertz_similarity);
 * the beam convolution quadrature: its convergence rate in the step, and its FFT history
   sum against the direct O(N²) sum (a Python march kept here as the reference).
 """
@@ -21,23 +21,23 @@ from impactmaps.contact import (
     YigitChristoforouContact,
     effective_modulus,
 )
-from impactmaps.contact.epp import EppContact
-from impactmaps.hertz_similarity import hertz_numbers, zener_parameter
-from impactmaps.law_asymptotes import beam as beam_asymptote
-from impactmaps.law_asymptotes import (
+from impactmaps.contact.plastic.epp import EppContact
+from impactmaps.closed_forms.hertz_similarity import hertz_numbers, zener_parameter
+from impactmaps.closed_forms.law_asymptotes import beam as beam_asymptote
+from impactmaps.closed_forms.law_asymptotes import (
     asymptote,
     halfspace_asymptote,
     infinite_beam_impact_any_law,
     infinite_plate_impact,
     quasi_static_impact,
 )
-from impactmaps.solvers.asymptotes import (
+from impactmaps.closed_forms.asymptotes import (
     infinite_plate_contact_time,
     infinite_plate_peak,
     quasi_static_peak,
 )
-from impactmaps.solvers import infinite_beam_cq
-from impactmaps.solvers.infinite_beam import (
+from impactmaps.closed_forms import infinite_beam_cq
+from impactmaps.closed_forms.infinite_beam import (
     infinite_beam_contact_time,
     infinite_beam_peak,
     recontact_beam_loss_factor,
@@ -67,7 +67,7 @@ def test_linear_infinite_plate_matches_closed_form(stiffness):
 def _zener_reference(mu):
     """Zener's model in the Hertz scales: ᾱ' = ū − μ ᾱ^{3/2}, ū' = −(5/4) ᾱ^{3/2}.
 
-    Derivation (impactmaps.hertz_similarity): with α_m, t* = α_m/V0, F_hs = K_h α_m^{3/2},
+    Derivation (impactmaps.closed_forms.hertz_similarity): with α_m, t* = α_m/V0, F_hs = K_h α_m^{3/2},
     m ẍ = −F gives ū' = −(K_h α_m^{5/2}/(m V0²)) F̄ = −(5/4) F̄, and ẇ = F/Z gives
     w̄' = μ F̄ with μ = F_hs t*/(α_m Z). Integrated here with Radau (implicit, a different
     family from the DOP853 of the code under test), Hertz being elastic (no history).

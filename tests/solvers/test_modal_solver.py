@@ -163,7 +163,7 @@ def test_bad_input():
 def test_long_beam_reproduces_infinite_beam(zeta):
     """λ → 0 (reflections return after the peak): the SS Euler beam's F̄max equals the
     infinite-beam asymptote (eq 36, closed form) within 0.5 % (observed ≤ 1e-5)."""
-    from impactmaps.solvers.asymptotes import infinite_beam_peak
+    from impactmaps.closed_forms.asymptotes import infinite_beam_peak
 
     result = _run("beam", zeta, 1e-3)
     assert result.fmax_normalised == pytest.approx(float(infinite_beam_peak(zeta)), rel=5e-3)
@@ -173,7 +173,7 @@ def test_long_beam_reproduces_infinite_beam(zeta):
 def test_large_plate_reproduces_infinite_plate(zeta):
     """λ → 0: the SS square Kirchhoff plate's F̄max equals the infinite-plate peak
     (eqs 32–34, closed form) within 0.5 % (observed ≤ 4e-5)."""
-    from impactmaps.solvers.asymptotes import infinite_plate_peak
+    from impactmaps.closed_forms.asymptotes import infinite_plate_peak
 
     result = _run("plate", zeta, 1e-2)
     assert result.fmax_normalised == pytest.approx(float(infinite_plate_peak(zeta)), rel=5e-3)
@@ -223,8 +223,8 @@ def test_the_mode_floor_counts_the_modes_the_impact_point_sees(kind):
     tolerance. Its floor used to count modes at rest at the impact point (antisymmetric)
     and degenerate copies: 2 modes on the plate at ζ = 10.9, λ = 0.119, F̄max 0.359 where
     the map's converged point is 0.366."""
-    from impactmaps.maps.structures import structure_from_name
-    from impactmaps.maps.sweep import solve_points
+    from impactmaps.maps.family.structures import structure_from_name
+    from impactmaps.maps.compute.sweep import solve_points
     from impactmaps.materials import material
     from impactmaps.solvers.modal import simulate_normalised
     from impactmaps.targets import Beam, Plate

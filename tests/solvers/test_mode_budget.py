@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from impactmaps.contact.linear import LinearContact
-from impactmaps.maps.structures import MapStructure
+from impactmaps.maps.family.structures import MapStructure
 from impactmaps.solvers import mode_budget
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
 from impactmaps.solvers.mode_budget import ModeBudgetError, ModeBudgetWarning, plan_basis
@@ -124,7 +124,7 @@ def test_below_the_cap_the_plan_is_the_plain_modal_run():
 
 def _near_edge_plate():
     from impactmaps.materials import material
-    from impactmaps.targets.plate import Plate
+    from impactmaps.targets.plates.plate import Plate
 
     return Plate.isotropic(0.25, 0.25, 0.004, material("structural-steel"), impact_point=(0.001, 0.125))
 
@@ -158,7 +158,7 @@ def test_light_sphere_cases_on_a_kirchhoff_plate_are_answered(mass, method, tmp_
     one fits the cap (64 k modes): the modal run. Both at the Hertz half-space value to 1e-4
     (the plate barely moves in so short a contact), restitution 1."""
     from impactmaps.cases import load_case, run_case, write_case_outputs
-    from impactmaps.law_asymptotes import asymptote
+    from impactmaps.closed_forms.law_asymptotes import asymptote
 
     case = load_case(DATA / f"light_sphere_{mass}kg_kirchhoff.toml")
     with warnings.catch_warnings():
@@ -186,7 +186,7 @@ def test_case_refusal_names_the_case_key():
 
 
 def test_sweep_point_past_the_cap_takes_the_asymptote():
-    from impactmaps.maps.sweep import METHODS, solve_points
+    from impactmaps.maps.compute.sweep import METHODS, solve_points
 
     structure = STRUCTURES[0]
     with warnings.catch_warnings():

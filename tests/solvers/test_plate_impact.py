@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from impactmaps.materials import IsotropicMaterial, Laminate, material
-from impactmaps.solvers.asymptotes import infinite_plate_peak
+from impactmaps.closed_forms.asymptotes import infinite_plate_peak
 from impactmaps.solvers.modal import ModalSettings, simulate_normalised
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.plates.plate import Plate
 
 STEEL = IsotropicMaterial(210e9, 0.3, 7850.0)
 

@@ -15,8 +15,8 @@ from impactmaps.cli import main
 from impactmaps.contact.linear import LinearContact
 from impactmaps.materials import CATALOGUE
 from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
-from impactmaps.targets.beam import Beam
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.beams.beam import Beam
+from impactmaps.targets.plates.plate import Plate
 
 MINDLIN_CASE = """
 [impactor]
@@ -361,8 +361,8 @@ def test_stop_flag_ends_the_kernel_at_once():
     """The kernel's stop flag, set before the run, ends it before its first step (flagged
     like a run at its time limit)."""
     from impactmaps.contact.base import kernel_pointer
-    from impactmaps.solvers.exact_step import integrate_impact
-    from impactmaps.solvers.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun
+    from impactmaps.solvers.integrator.exact_step import integrate_impact
+    from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun
 
     law = LinearContact(1e6)
     basis = _plate("SSSS").modes(1e4)

@@ -9,7 +9,7 @@ import numpy as np
 
 from impactmaps.contact.linear import LinearContact
 from impactmaps.solvers.modal import ModalSettings, simulate
-from impactmaps.solvers.result import ImpactResult
+from impactmaps.result import ImpactResult
 
 from ..analytic import ss_beam_impactor, ss_euler_beam_basis
 

@@ -1,4 +1,4 @@
-"""Verification of the beam targets (impactmaps.targets.beam, docs/physics_contract.md §3.2, 3.4).
+"""Verification of the beam targets (impactmaps.targets.beams.beam, docs/physics_contract.md §3.2, 3.4).
 
 Every test names the exact solution or invariant it checks. References:
 Blevins, *Formulas for Natural Frequency and Mode Shape* (1979), Table 8-1 (Euler βL
@@ -20,8 +20,8 @@ from numpy.polynomial import legendre
 from impactmaps.dimensionless import realise
 from impactmaps.materials import IsotropicMaterial
 from impactmaps.solvers.modal import simulate_normalised
-from impactmaps.targets import beam_fe_eigen, beam_fe_modes, beam_modes
-from impactmaps.targets.beam import Beam
+from impactmaps.targets.beams import beam_fe_eigen, beam_fe_modes, beam_modes
+from impactmaps.targets.beams.beam import Beam
 
 STEEL = IsotropicMaterial(youngs_modulus=2.1e11, poisson_ratio=0.3, density=7850.0)
 
@@ -402,7 +402,7 @@ def test_finite_element_cap_warns_and_keeps_residual(monkeypatch):
     """Above FE_MAX_DOFS unknowns the solver warns and returns only resolved modes; the
     residual compliance then carries the rest (still ≥ 0, retained + residual = static)."""
     monkeypatch.setattr(beam_fe_modes, "FE_MAX_DOFS", 200)
-    from impactmaps.targets import beam as beam_module
+    from impactmaps.targets.beams import beam as beam_module
 
     target = beam("timoshenko", "cf", slenderness=7.0, position=0.9)
     _clear_mode_caches(beam_module)
@@ -551,7 +551,7 @@ def test_simply_supported_beam_reproduces_reference_peak_forces(theory, slendern
 def test_modes_are_kept_per_cutoff_and_bounded():
     """Repeated calls with one cut-off return the same basis object (no recomputation);
     another cut-off gives another basis; the store holds at most 8 per beam."""
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.family.structures import structure_from_name
 
     beam = structure_from_name("beam-ss-euler").build()
     first = beam.modes(1e5, min_modes=4)
@@ -560,7 +560,7 @@ def test_modes_are_kept_per_cutoff_and_bounded():
     assert other is not first and other.size >= first.size
     for k in range(20):
         beam.modes(1e5 * (1 + k), min_modes=1)
-    from impactmaps.targets import beam as beam_module
+    from impactmaps.targets.beams import beam as beam_module
 
     cache = beam_module._beam_basis.cache_info()
     assert cache.maxsize is not None and cache.currsize <= cache.maxsize <= 8
@@ -572,7 +572,7 @@ def test_modes_do_not_depend_on_earlier_requests(theory, supports):
     """The basis for one (cut-off, min_modes) is the same whatever was asked before: a
     finer finite-element solution computed first (and cached) for a larger cut-off does
     not leak into a smaller request (it used to: the FE cache kept the finest mesh)."""
-    from impactmaps.targets import beam as beam_module
+    from impactmaps.targets.beams import beam as beam_module
 
     target = beam(theory, supports, slenderness=10.0, position=0.37)
     _clear_mode_caches(beam_module)
@@ -624,7 +624,7 @@ def test_degenerate_modes_are_one_mode_to_the_impact_point():
     modes split 1e-7 apart (which stay separate); modes of other damping stay apart; a
     square plate struck at its centre keeps one mode per distinct frequency."""
     from impactmaps.contact.linear import LinearContact
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings, simulate
     from impactmaps.targets.base import ModalBasis
 
@@ -665,9 +665,9 @@ def test_finite_element_mode_count_is_the_count_of_the_solved_modes(theory, supp
     equals the number of solved modes at or below ω, rigid-body modes included."""
     import warnings
 
-    from impactmaps.maps.structures import MapStructure
+    from impactmaps.maps.family.structures import MapStructure
     from impactmaps.targets.base import Target
-    from impactmaps.targets.beam_fe_modes import finite_element_mode_count
+    from impactmaps.targets.beams.beam_fe_modes import finite_element_mode_count
 
     beam = MapStructure(kind="beam", theory=theory, supports=supports, slenderness=10,
                         impact_fraction=(0.3,)).build()

@@ -19,8 +19,8 @@ from impactmaps.targets.patch import (
     patch_transform,
     uniform_transform,
 )
-from impactmaps.targets.plate import Plate
-from impactmaps.targets.plate_static import (
+from impactmaps.targets.plates.plate import Plate
+from impactmaps.targets.plates.plate_static import (
     navier_patch_residual,
     pair_static_compliance,
     sin_pi,
@@ -135,7 +135,7 @@ def test_patch_residual_against_the_brute_force_lattice_sum():
 def test_kirchhoff_patch_residual_tends_to_the_point_residual():
     """a → 0: the Kirchhoff static patch compliance tends to the closed-form point value
     (1e-9), and it falls by O((a/L)² ln) for a finite patch."""
-    from impactmaps.targets.plate_static import navier_static_compliance
+    from impactmaps.targets.plates.plate_static import navier_static_compliance
 
     D, nu = 1.0, 0.3
     stiffnesses = (D, D, nu * D, 0.5 * (1 - nu) * D)
@@ -331,7 +331,7 @@ def _run_fields(result):
 def test_default_leaves_beams_bit_for_bit_on_the_point_load(theory):
     """Beams (Euler, Rayleigh, Timoshenko) keep the point load under the default "auto":
     the whole run, history included, is bit for bit the "point" run."""
-    from impactmaps.targets.beam import Beam
+    from impactmaps.targets.beams.beam import Beam
 
     steel = material("structural-steel")
     beam = Beam.rectangular(0.5, 0.02, 0.02, steel, theory=theory)

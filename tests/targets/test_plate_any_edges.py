@@ -1,4 +1,4 @@
-"""Mindlin and laminated plates with any edges: the general Ritz basis (impactmaps.targets.plate_general).
+"""Mindlin and laminated plates with any edges: the general Ritz basis (impactmaps.targets.plates.plate_general).
 
 Invariants of issue 39: SSSS through the general basis equals Navier; frequencies fall
 monotonically as the basis grows; a thin Mindlin plate tends to Kirchhoff; the symmetry
@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from impactmaps.materials import Laminate, material
-from impactmaps.targets import plate_any_edges, plate_general, plate_navier, ritz
+from impactmaps.targets.plates import plate_any_edges, plate_general, plate_navier, ritz
 from impactmaps.targets.patch import hertz_transform
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.plates.plate import Plate
 
 ALUMINIUM = material("aluminium-6061-t6")
 PLY = material("as4-3501-6")

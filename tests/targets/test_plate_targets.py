@@ -12,9 +12,9 @@ import pytest
 import scipy.linalg
 
 from impactmaps.materials import IsotropicMaterial, Laminate
-from impactmaps.targets import ritz
+from impactmaps.targets.plates import ritz
 from impactmaps.targets.base import ModalBasis, Target
-from impactmaps.targets.plate import Plate, navier_static_compliance
+from impactmaps.targets.plates.plate import Plate, navier_static_compliance
 
 STEEL = SimpleNamespace(youngs_modulus=200e9, poisson_ratio=0.3, density=7800.0)
 
@@ -588,7 +588,7 @@ def test_mindlin_with_other_edges_is_a_bounded_ritz_plate(edges):
 
 def test_plate_modes_are_kept_per_cutoff():
     """Repeated calls with one cut-off return the same basis object; the store is bounded."""
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.family.structures import structure_from_name
 
     plate = structure_from_name("plate-ssss-kirchhoff").build()
     first = plate.modes(1e5, min_modes=4)
@@ -596,7 +596,7 @@ def test_plate_modes_are_kept_per_cutoff():
     assert plate.modes(3e5, min_modes=4) is not first
     for k in range(40):
         plate.modes(1e5 * (1 + k), min_modes=1)
-    from impactmaps.targets import plate as plate_module
+    from impactmaps.targets.plates import plate as plate_module
 
     cache = plate_module._plate_modes.cache_info()
     assert cache.maxsize is not None and cache.currsize <= cache.maxsize <= 20
@@ -606,7 +606,7 @@ def test_plate_modes_are_kept_per_cutoff():
 def test_plate_modes_do_not_depend_on_earlier_requests(edges):
     """The basis for one (cut-off, min_modes) is the same whatever was asked before: a
     larger basis computed first (and cached) does not leak into a smaller request."""
-    from impactmaps.targets import plate as plate_module
+    from impactmaps.targets.plates import plate as plate_module
 
     plate = orthotropic_plate(edges=edges)
     plate_module._plate_modes.cache_clear()

@@ -10,16 +10,16 @@ import pytest
 
 from impactmaps.contact.linear import LinearContact
 from impactmaps.dimensionless import realise
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.materials import material
 from impactmaps.solvers import mode_budget
 from impactmaps.solvers.modal import ModalSettings
-from impactmaps.solvers.shear_range import (SHEAR_VALIDITY_FRACTION, beyond_shear_theory,
+from impactmaps.targets.shear_range import (SHEAR_VALIDITY_FRACTION, beyond_shear_theory,
                                             has_classical_asymptote, thickness_shear_frequency)
-from impactmaps.targets.beam import Beam
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.beams.beam import Beam
+from impactmaps.targets.plates.plate import Plate
 
 STEEL = material("structural-steel")
 

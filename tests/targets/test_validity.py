@@ -7,7 +7,7 @@ import pytest
 
 import impactmaps as im
 from impactmaps.contact import Sphere, law_for_sphere
-from impactmaps.law_asymptotes import infinite_plate_impact, quasi_static_impact
+from impactmaps.closed_forms.law_asymptotes import infinite_plate_impact, quasi_static_impact
 from impactmaps.validity import (
     ModelValidityWarning,
     hertz_peak_pressure,
@@ -91,7 +91,7 @@ def test_reflections_check_for_infinite_structure_asymptotes():
     run = infinite_plate_impact(large, law, SPHERE.mass, 0.1)
     assert "reflections" not in _tags(validity_warnings(SPHERE, RUBBERY, law, large, run))
     beam = im.Beam.rectangular(0.1, 0.02, 0.02, RUBBERY, theory="euler")
-    from impactmaps.law_asymptotes import infinite_beam_impact_any_law
+    from impactmaps.closed_forms.law_asymptotes import infinite_beam_impact_any_law
     run = infinite_beam_impact_any_law(beam, law, 0.5, 0.1)
     assert "reflections" in _tags(validity_warnings(SPHERE, RUBBERY, law, beam, run))
 
@@ -125,7 +125,7 @@ def test_simulate_itself_warns_where_the_structure_alone_says_the_model_fails():
     a point load on a Mindlin plate, a first contact beyond the shear theory's range; a case
     run says each of its checks once (its own list, not simulate's as well)."""
     from impactmaps.contact import LinearContact
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import simulate, simulate_normalised
 
     mindlin = im.Plate.isotropic(0.3, 0.3, 0.015, STEEL, theory="mindlin")
@@ -153,7 +153,7 @@ def test_yigit_christoforou_from_a_sphere_spreads_over_the_patch_on_a_mindlin_pl
     its peak stays at or below the elastic Hertz peak; built from its yield scales it has no
     geometry (a map's point load). Before 2026-11-27 it struck a point: 'converged' at 0.28245
     (F̄), then 0.28164 / 0.28071 / 0.27965 at 2×, 4×, 8× the cut-off, its peak above Hertz's."""
-    from impactmaps.contact.yigit_christoforou import YigitChristoforouContact
+    from impactmaps.contact.plastic.yigit_christoforou import YigitChristoforouContact
     from impactmaps.materials import material
     from impactmaps.solvers.modal import ModalSettings, simulate
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 from ..helpers import repository_module
@@ -36,7 +36,7 @@ def test_finest_mode_counts_cover_the_grid():
 
 
 def test_cost_section_shares_the_cpu_by_class():
-    from impactmaps.maps.accuracy import STATUSES
+    from impactmaps.maps.family.accuracy import STATUSES
 
     rows = [("beam-ss-euler", 0.1, 0.1, {"status": 0, "n_modes": 10, "impacts": 1, "seconds": 3.0}),
             ("beam-ss-euler", 1.0, 0.1, {"status": 2, "n_modes": 500, "impacts": 30, "seconds": 1.0})]

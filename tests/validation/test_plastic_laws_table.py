@@ -40,10 +40,10 @@ def test_epp_is_the_law_nearest_the_continuum():
 
 
 def test_the_package_ships_the_measured_ranges_and_laws_prints_them():
-    """``impactmaps.contact.fe_agreement`` (what ``impactmaps laws`` prints) holds the ranges
+    """``impactmaps.contact.plastic.fe_agreement`` (what ``impactmaps laws`` prints) holds the ranges
     of the committed table (4 decimals), for every plastic law and no elastic one."""
     from impactmaps.cli.commands_cases import cmd_laws
-    from impactmaps.contact.fe_agreement import fe_agreement
+    from impactmaps.contact.plastic.fe_agreement import fe_agreement
 
     spans = table_script.ranges(pd.read_csv(table_script.OUT))
     for law in ("epp", "stronge", "yigit-christoforou"):
