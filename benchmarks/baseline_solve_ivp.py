@@ -39,7 +39,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from impactmaps.solvers.modal import ModalSettings, basis_for
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal_run import basis_for
 from impactmaps.targets.base import ModalBasis
 
 __all__ = ["BaselineResult", "impact_basis", "solve_ivp_fmax", "baseline_like"]

@@ -154,8 +154,9 @@ def profile_points(top: int = 10) -> dict:
     import numpy as np
 
     from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT
-    from impactmaps.maps.compute.sweep import log_grid, solve_points
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.maps.compute.sweep import log_grid
+    from impactmaps.maps.compute.linear_points import solve_points
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     settings = ModalSettings()
     structures, notes = buildable_structures(CHART_STRUCTURES)

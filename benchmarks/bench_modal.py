@@ -35,7 +35,8 @@ import numpy as np  # noqa: E402
 
 from benchmarks.baseline_solve_ivp import baseline_like  # noqa: E402
 from impactmaps.contact import LinearContact  # noqa: E402
-from impactmaps.solvers.modal import ModalSettings, simulate  # noqa: E402
+from impactmaps.solvers.modal_settings import ModalSettings  # noqa: E402
+from impactmaps.solvers.modal import simulate  # noqa: E402
 
 RELATIVE_STIFFNESS = 0.425
 LOSS_FACTORS = (0.038, 1.198, 11.3)
@@ -159,7 +160,7 @@ import time
 start = time.perf_counter()
 import numpy as np
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.modal import simulate
+from impactmaps.solvers.modal import simulate  # noqa: E402
 from impactmaps.targets.base import ModalBasis
 imported = time.perf_counter()
 simulate(ModalBasis(np.array([3.0e3]), np.array([1.0]), 1e-4), LinearContact(1.0e6), 1.0, 1.0, record=False)

@@ -27,8 +27,9 @@ import numpy as np
 import xarray as xr
 
 from impactmaps.maps.files.data_io import read_dataset
-from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, map_law, with_asymptote_peaks
-from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.family.map_family import ASYMPTOTE_PEAKS, map_law
+from impactmaps.maps.compute.dataset import with_asymptote_peaks
+from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.files.store import save_atomic
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options

@@ -26,7 +26,8 @@ import sys
 import time
 from pathlib import Path
 
-from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
+from impactmaps.maps.family.map_family import ASYMPTOTE_PEAKS
+from impactmaps.maps.compute.dataset import with_asymptote_peaks
 from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, shipped_result_path
 from impactmaps.maps.files.data_io import read_dataset

@@ -32,7 +32,8 @@ from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem
 from impactmaps.maps.read.slenderness import shipped_for
 from impactmaps.maps.files.store import save_atomic
 from impactmaps.maps.family.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES
-from impactmaps.maps.compute.sweep import MAP_LAWS, sweep
+from impactmaps.maps.family.regimes import MAP_LAWS
+from impactmaps.maps.compute.sweep import sweep
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402

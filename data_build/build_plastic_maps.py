@@ -31,8 +31,8 @@ import numpy as np
 
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.read.lookup import map_file_stem
-from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
-from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
+from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.files.store import save_atomic
 from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 from impactmaps.maps.compute.sweep import sweep

@@ -27,18 +27,19 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.read.lookup import interpolation_error, map_file_stem
-from impactmaps.maps.read.reader import slice_estimates
+from impactmaps.maps.read.bands import interpolation_error
+from impactmaps.maps.read.lookup import map_file_stem
+from impactmaps.maps.read.bands import slice_estimates
 from impactmaps.maps.family.refinement import MAX_LEVEL, refine
 from impactmaps.maps.family.slice_refinement import refine_slices
 from impactmaps.maps.files.data_io import read_dataset
 from impactmaps.maps.files.store import save_atomic
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.points import solve_map_points
-from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
-from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
+from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.compute.workers import init_worker
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.solvers.modal_settings import ModalSettings
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "validation"))  # _script_options
 from _script_options import parse  # noqa: E402

@@ -125,7 +125,7 @@ class ImpactResult:
         Solver settings used (provenance).
     details : object or None
         Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
-        finite-difference beam, :class:`impactmaps.solvers.modal.ModalDetails` for the
+        finite-difference beam, :class:`impactmaps.solvers.modal_settings.ModalDetails` for the
         modal solver, ``None`` otherwise.
     converged : bool or None
         Whether F̄max moved by at most the tolerance when the cut-off was doubled and the

@@ -66,7 +66,7 @@ import warnings
 
 import numpy as np
 
-from .contact.base import effective_modulus
+from .contact.geometry import effective_modulus
 from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [

@@ -55,7 +55,7 @@ def test_every_case_key_is_documented(site):
 def test_every_sweep_key_is_documented(site):
     from impactmaps.maps.compute import config
     from impactmaps.maps.family.structures import MapStructure
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     text = _text(site, "sweeps.html")
     keys = set(config._TOP_KEYS) | {"zeta", "lambda", "min", "max", "count"}

@@ -295,8 +295,10 @@ def script_graph() -> dict[str, dict[str, int]]:
     """``folder/stem`` → {``folder/stem`` it imports: line} for the scripts outside the package,
     which import a neighbour by its file name (``from level5_beam_plastic import …``)."""
     graph = {}
-    for folder in ("validation", "validation/fe", "benchmarks", "examples", "tests"):
-        directory = REPOSITORY / folder
+    folders = sorted({path.parent for top in ("validation", "benchmarks", "examples", "tests", "data_build")
+                      for path in (REPOSITORY / top).rglob("*.py")})
+    for directory in folders:
+        folder = directory.relative_to(REPOSITORY).as_posix()
         stems = {path.stem for path in directory.glob("*.py")}
         for path in sorted(directory.glob("*.py")):
             edges = graph.setdefault(f"{folder}/{path.stem}", {})
@@ -315,3 +317,68 @@ def test_no_circles_between_scripts():
     assert "validation/fe/level5_beam_plastic" in graph["validation/fe/level5_wide_fd"]  # the walker sees them
     cycles = import_cycles(graph)
     assert not cycles, "\n".join(_describe(cycle, graph) for cycle in cycles)
+
+
+def _names(module: str) -> tuple[set[str], dict[str, str], list[str]]:
+    """(names a module defines at its top level, names it imports → from which module, its ``__all__``)."""
+    path, is_package = MODULES[module]
+    base = module if is_package else module.rpartition(".")[0]
+    defined, imported, exported = set(), {}, []
+
+    def visit(body):
+        for node in body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                defined.add(node.name)
+            elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                defined.update(name.id for target in targets for name in ast.walk(target) if isinstance(name, ast.Name))
+                if isinstance(node, ast.Assign) and any(getattr(target, "id", "") == "__all__" for target in targets):
+                    exported.extend(ast.literal_eval(node.value))
+            elif isinstance(node, ast.ImportFrom):
+                anchor = base
+                for _ in range(node.level - 1):
+                    anchor = anchor.rpartition(".")[0]
+                source = (anchor + (f".{node.module}" if node.module else "")) if node.level else node.module or ""
+                imported.update({alias.asname or alias.name: source for alias in node.names})
+            elif isinstance(node, ast.Import):
+                imported.update({(alias.asname or alias.name).split(".")[0]: "" for alias in node.names})
+            elif isinstance(node, (ast.If, ast.Try, ast.With)):
+                for field in ("body", "orelse", "finalbody"):
+                    visit(getattr(node, field, []) or [])
+                for handler in getattr(node, "handlers", []) or []:
+                    visit(handler.body)
+
+    visit(ast.parse(path.read_text(encoding="utf-8")).body)
+    return defined, imported, exported
+
+
+def re_exports() -> list[str]:
+    """Every re-export of a non-``__init__`` module: a name in its ``__all__`` that it imports,
+    and every import, anywhere in the package, of a name from a non-``__init__`` module that
+    only imports it (an old import path kept alive)."""
+    found = []
+    names = {module: _names(module) for module in MODULES if not MODULES[module][1]}
+    for module, (defined, imported, exported) in sorted(names.items()):
+        found += [f"{module}: __all__ lists {name}, imported from {imported[name]}"
+                  for name in exported if name in imported and name not in defined]
+    for module in sorted(MODULES):
+        for target, written, line, taken in _imports(module):
+            if target not in names:
+                continue
+            defined, imported, _ = names[target]
+            found += [f"{module}:{line}: takes {name} from {target}, which imports it from {imported[name]}"
+                      for name in taken if name in imported and name not in defined and f"{written}.{name}" not in MODULES]
+    return found
+
+
+def test_no_module_but_a_package_re_exports():
+    """0 re-exports from non-``__init__`` modules: a name is imported from the module that
+    defines it (a package's ``__init__`` may gather its modules' names)."""
+    found = re_exports()
+    assert not found, f"{len(found)} re-export(s):\n  " + "\n  ".join(found)
+
+
+def test_the_re_export_check_sees_one():
+    """The check itself, on a module of the package that imports names it does not define."""
+    defined, imported, _ = _names("impactmaps.solvers.modal")
+    assert "simulate" in defined and imported["ModalSettings"] == "impactmaps.solvers.modal_settings"

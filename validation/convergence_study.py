@@ -20,7 +20,8 @@ import numpy as np
 
 from impactmaps.plotting.chart import CHART_STRUCTURES
 from impactmaps.maps.family.regimes import infinite_structure_peak
-from impactmaps.solvers.modal import ModalSettings, simulate_normalised
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate_normalised
 
 from _script_options import parse
 

@@ -30,6 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from impactmaps.closed_forms import asymptotes as asy  # noqa: E402
+from impactmaps.closed_forms import infinite_beam as ib  # noqa: E402
 
 from _script_options import parse  # noqa: E402
 
@@ -47,9 +48,9 @@ def plot_beam_methods(loss_factors=LOSS_FACTORS, tau_end=8.0, ax=None):
     markers = tau[::25]
     worst_talbot = worst_cq = 0.0
     for zeta, colour in zip(loss_factors, plt.cm.viridis(np.linspace(0, 0.85, len(loss_factors)))):
-        closed = asy.infinite_beam_indentation(tau, zeta)
-        talbot = asy.infinite_beam_indentation(markers, zeta, method="talbot")
-        cq = asy.infinite_beam_indentation(tau, zeta, method="cq", time_step=CQ_STEP)
+        closed = ib.infinite_beam_indentation(tau, zeta)
+        talbot = ib.infinite_beam_indentation(markers, zeta, method="talbot")
+        cq = ib.infinite_beam_indentation(tau, zeta, method="cq", time_step=CQ_STEP)
         worst_talbot = max(worst_talbot, np.max(np.abs(talbot - closed[::25])))
         worst_cq = max(worst_cq, np.max(np.abs(cq - closed)))
         ax.plot(tau, closed, color=colour, label=f"ζ = {zeta:g}")
@@ -71,9 +72,9 @@ def plot_peak_force(ax=None):
     ax = ax or plt.figure().add_subplot()
     zeta = np.geomspace(1e-2, 1e2, 161)
     ax.semilogx(zeta, asy.infinite_plate_peak(zeta), "-", color="C0", label="infinite plate (32)")
-    ax.semilogx(zeta, asy.infinite_beam_peak(zeta), "--", color="C3", label="infinite beam (36)")
-    critical = asy.critical_beam_loss_factor()
-    ax.plot(critical, asy.infinite_beam_peak(critical), "v", color="C3", label=f"beam ζ_crit = {critical:.6f}")
+    ax.semilogx(zeta, ib.infinite_beam_peak(zeta), "--", color="C3", label="infinite beam (36)")
+    critical = ib.critical_beam_loss_factor()
+    ax.plot(critical, ib.infinite_beam_peak(critical), "v", color="C3", label=f"beam ζ_crit = {critical:.6f}")
     ax.plot(1.0, asy.infinite_plate_peak(1.0), "v", color="C0", label="plate ζ = 1 (critical damping)")
     ax.axhline(asy.halfspace_peak(), color="0.6", lw=0.8, label="half-space")
     ax.set_xlabel("loss factor ζ")
@@ -89,12 +90,12 @@ def plot_recontact(loss_factors=(0.2, 0.5, 0.8), tau_end=30.0, ax=None):
     ax = ax or plt.figure().add_subplot()
     tau = np.linspace(0, tau_end, 3001)
     for zeta in loss_factors:
-        ax.plot(tau, asy.infinite_beam_force(tau, zeta, time_step=CQ_STEP), label=f"ζ = {zeta:g}")
+        ax.plot(tau, ib.infinite_beam_force(tau, zeta, time_step=CQ_STEP), label=f"ζ = {zeta:g}")
     ax.set_ylim(0, 0.08)
     ax.set_xlabel("τ = ωt")
     ax.set_ylabel("F̄ (first peak clipped)")
     ax.set_title("Re-impact on an infinite beam (ζ_r < ζ < ζ_crit)")
-    ax.legend(title=f"ζ_r = {asy.recontact_beam_loss_factor():.5f}", fontsize=7, title_fontsize=7)
+    ax.legend(title=f"ζ_r = {ib.recontact_beam_loss_factor():.5f}", fontsize=7, title_fontsize=7)
     return ax
 
 
@@ -117,15 +118,15 @@ def main(argv=None):
     zeta = np.array(loss_factors)
     rows = zip(
         zeta,
-        asy.infinite_beam_peak(zeta),
+        ib.infinite_beam_peak(zeta),
         asy.infinite_plate_peak(zeta),
-        asy.infinite_beam_contact_time(zeta),
+        ib.infinite_beam_contact_time(zeta),
         asy.infinite_plate_contact_time(zeta),
     )
     for row in rows:
         print("{:>6g} {:>14.10f} {:>14.10f} {:>10.5f} {:>10.5f}".format(*row))
-    print(f"critical beam loss factor ζ_crit = {asy.critical_beam_loss_factor():.13f}")
-    print(f"re-impact threshold          ζ_r = {asy.recontact_beam_loss_factor():.13f}")
+    print(f"critical beam loss factor ζ_crit = {ib.critical_beam_loss_factor():.13f}")
+    print(f"re-impact threshold          ζ_r = {ib.recontact_beam_loss_factor():.13f}")
     print(f"saved {figure}")
 
 

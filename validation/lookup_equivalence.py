@@ -45,7 +45,7 @@ def shipped_keys() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map; law yc/stronge/epp: slenderness None."""
     from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem, shipped_structure_name
     from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
-    from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
+    from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 
     data = ROOT / "impactmaps" / "maps" / "data"
     keys = []
@@ -203,7 +203,7 @@ def compare(path: Path, out_dir: Path, keys) -> list[dict]:
     from impactmaps.maps.read.lookup import shipped_reader
     from impactmaps.maps.read.reader import read_values
     from impactmaps.maps.family.regimes import classify, infinite_structure_peak, quasi_static_peak
-    from impactmaps.maps.family.registry import map_family
+    from impactmaps.maps.family.map_family import map_family
 
     recorded = np.load(path, allow_pickle=False)
     rows = []

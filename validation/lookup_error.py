@@ -32,10 +32,11 @@ from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.compute.hertz_points import solve_hertz_points
 from impactmaps.maps.read.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
 from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-from impactmaps.maps.compute.plastic_points import ERROR_OF, PLASTIC_LAWS, solve_plastic_points
+from impactmaps.maps.compute.plastic_points import ERROR_OF, solve_plastic_points
+from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from _script_options import parse
 

@@ -98,7 +98,7 @@ def lookups() -> dict:
     from impactmaps.maps.read.slenderness import lookup_slenderness
     from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup
     from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-    from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES
+    from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
 
     out = {}
     rng = np.random.default_rng(27)

@@ -27,8 +27,10 @@ import pandas as pd
 
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.family.structures import MapStructure
-from impactmaps.maps.compute.sweep import METHODS, solve_points
-from impactmaps.solvers.modal import ModalSettings, simulate_normalised
+from impactmaps.maps.compute.points import METHODS
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate_normalised
 
 from _script_options import parse
 

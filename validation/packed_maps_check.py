@@ -39,8 +39,8 @@ from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
 from impactmaps.maps.read import plastic_lookup  # noqa: E402
 from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
-from impactmaps.maps.family.registry import map_family  # noqa: E402
-from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES  # noqa: E402
+from impactmaps.maps.family.map_family import map_family  # noqa: E402
+from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES  # noqa: E402
 
 PACKED = ROOT / "impactmaps" / "maps" / "data"
 SEED = 30

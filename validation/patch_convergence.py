@@ -36,7 +36,9 @@ import pandas as pd
 
 from impactmaps.contact import Sphere, law_for_sphere
 from impactmaps.materials import material
-from impactmaps.solvers.modal import ModalSettings, reference_contact_stiffness, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.contact.contact_scale import reference_contact_stiffness
+from impactmaps.solvers.modal import simulate
 from impactmaps.targets.beams.beam import Beam
 from impactmaps.targets.patch import mean_square_transform, uniform_transform
 from impactmaps.targets.plates.plate import Plate

@@ -59,7 +59,7 @@ def solve(root: pathlib.Path, out, size: str = "plane", contact_phase: str | Non
     from impactmaps.maps.compute.linear_points import LINEAR
     from impactmaps.maps.compute.points import solve_map_points
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     zetas, lambdas = grid(size)
     stored = {"zeta": zetas, "lambda_": lambdas}
@@ -98,7 +98,7 @@ def referee(old_path: str, new_path: str, out: str) -> None:
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     old, new = np.load(old_path), np.load(new_path)
     zetas, lambdas = old["zeta"], old["lambda_"]

@@ -2,7 +2,7 @@
 
 For each refined linear map (``data_build/build_refinements.py``), N log-uniform random
 (ζ, λ) points over the whole map are simulated directly (the map's solver and settings,
-:func:`impactmaps.maps.compute.sweep.solve_points`) and read from the map twice: from its grid
+:func:`impactmaps.maps.compute.linear_points.solve_points`) and read from the map twice: from its grid
 alone (:func:`impactmaps.maps.read.lookup.read_map` without a refinement) and as ``lookup``
 reads it (with the shipped refinement). Prints a Markdown table (docs/validation.rst, "What the refinements buy"):
 per map, over the answered non-sensitive points, the share whose error exceeds 1e-3,
@@ -26,9 +26,9 @@ import pandas as pd
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup, read_map
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
+from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.maps.compute.workers import init_worker
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from _script_options import parse
 

@@ -33,7 +33,7 @@ sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
 from impactmaps.maps.family.refinement import Refinement  # noqa: E402
-from impactmaps.maps.family.registry import map_family  # noqa: E402
+from impactmaps.maps.family.map_family import map_family  # noqa: E402
 
 
 def read(key, refinement, numbers):

@@ -23,7 +23,8 @@ import numpy as np
 from impactmaps.plotting.chart import CHART_STRUCTURES
 from impactmaps.plotting import plot_scaling
 from impactmaps.closed_forms.asymptotes import quasi_static_force
-from impactmaps.solvers.modal import ModalSettings, simulate_normalised
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate_normalised
 
 from _script_options import parse
 

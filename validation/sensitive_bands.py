@@ -34,7 +34,7 @@ from impactmaps.maps.compute.points import basis_table, map_plan, table_runner
 from impactmaps.maps.family.structures import MAX_MODES
 from impactmaps.solvers.mode_budget import frequency_cap
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from _script_options import parse
 

@@ -29,9 +29,10 @@ import pandas as pd
 from impactmaps.maps.read.slenderness import lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.compute.hertz_points import solve_hertz_points
 from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
-from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES, structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from _script_options import parse
 

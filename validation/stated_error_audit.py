@@ -46,7 +46,7 @@ def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: b
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     data = np.load(plane)
     zetas, lambdas = data["zeta"], data["lambda_"]

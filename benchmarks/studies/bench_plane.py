@@ -2,7 +2,7 @@
 
 Workload: a 200 × 50 log grid (ζ × λ over [1e-3, 1e3]²) for ``beam-ss-euler`` and
 ``plate-ssss-kirchhoff``, each point solved as a sweep solves it
-(:func:`impactmaps.maps.compute.sweep.solve_points`: default ``ModalSettings``, per-point error
+(:func:`impactmaps.maps.compute.linear_points.solve_points`: default ``ModalSettings``, per-point error
 control), one point per task on a pool of worker processes (all cores), one BLAS thread
 each. One point per task keeps the per-point wall times and guards; it costs the executor
 ~0.5–2 ms a task (from the walls of the two runs below; a cheap beam point takes 0.6 ms),
@@ -76,8 +76,8 @@ def _solve(task) -> dict:
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.maps.compute.sweep import solve_points
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.maps.compute.linear_points import solve_points
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     kind, name, zeta, lambda_ = task
     structure = structure_from_name(name)
@@ -190,7 +190,7 @@ def finest_mode_counts(name: str, zetas, lambdas) -> np.ndarray:
     from impactmaps.maps.compute.points import basis_table
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     structure = structure_from_name(name)
     settings = ModalSettings()
@@ -249,7 +249,7 @@ def main(argv=None) -> None:
         print(json.dumps(time_sweeps(zetas, lambdas, args.workers, args.time_sweeps)))
         return
     from impactmaps.maps.family.accuracy import STATUSES
-    from impactmaps.maps.compute.sweep import METHODS
+    from impactmaps.maps.compute.points import METHODS
 
     zetas, lambdas = _grid(args.quick)
     n_zeta, n_lambda = zetas.size, lambdas.size

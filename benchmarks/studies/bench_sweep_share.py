@@ -50,7 +50,7 @@ def share(name: str, stride: int) -> tuple[float, float, float, int]:
     from impactmaps.maps.compute.linear_points import LINEAR
     from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers import modal_run
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     settings = ModalSettings()
     zetas, lambdas = np.logspace(-3, 3, 200), np.logspace(-3, 3, 50)[::stride]

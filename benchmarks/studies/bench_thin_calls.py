@@ -38,7 +38,8 @@ def measure(targets: str, calls: int, fresh: bool = False) -> list[tuple]:
     share, result share) per bench_modal case."""
     from benchmarks.bench_modal import LOSS_FACTORS, _analytic_case, _real_case
     from impactmaps.solvers import modal_run
-    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+    from impactmaps.solvers.modal import simulate
 
     settings = ModalSettings()
     build = _analytic_case if targets == "analytic" else _real_case

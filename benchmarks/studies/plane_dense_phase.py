@@ -44,7 +44,7 @@ def main(argv=None) -> None:
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     data = np.load(args.data)
     zetas, lambdas, modes, cpu = data["zeta"], data["lambda_"], data[f"{NAME}/modes"], data[f"{NAME}/cpu"]

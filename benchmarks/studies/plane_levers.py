@@ -69,7 +69,7 @@ def solve_plane(name: str, zetas, lambdas) -> dict:
     from impactmaps.maps.compute import points
     from impactmaps.maps.compute.linear_points import LINEAR
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
     from impactmaps.maps.family.structures import MAX_MODES
     from impactmaps.solvers.mode_budget import frequency_cap
 

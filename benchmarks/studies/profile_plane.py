@@ -84,7 +84,7 @@ def profile(name: str, zetas, lambdas, timers: Timers) -> float:
     from impactmaps.maps.compute.linear_points import LINEAR
     from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers import modal_run
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     base = ModalSettings()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # as in a sweep's worker (init_worker): no kernel thread

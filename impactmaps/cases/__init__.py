@@ -61,7 +61,7 @@ the defaults (and ranges) of the target theory, supports and impact point are th
 the target classes (:meth:`impactmaps.targets.beams.beam.Beam.rectangular`,
 :meth:`impactmaps.targets.plates.plate.Plate.isotropic`), of the contact law
 (:func:`impactmaps.contact.law_options`) and of
-:class:`impactmaps.solvers.modal.ModalSettings`. ``[solver] kind = "fd"`` (or
+:class:`impactmaps.solvers.modal_settings.ModalSettings`. ``[solver] kind = "fd"`` (or
 ``impactmaps fd CASE.toml``) runs the finite-difference Rayleigh beam: the target must
 be an isotropic beam whose material has a yield strength; without ``[contact]`` the
 law is seed 000's refined Stronge law.
@@ -78,7 +78,7 @@ Dimensionless numbers of a case (:func:`case_dimensionless`)
   (from either material or ``contact.yield_strength``); else the reference stiffness
   the modal solver uses to set the contact frequency (tangent stiffness of the law on
   its loading curve at the half-space peak indentation,
-  :func:`impactmaps.solvers.modal.reference_contact_stiffness`). The summary says
+  :func:`impactmaps.contact.contact_scale.reference_contact_stiffness`). The summary says
   which (``lambda_basis``). ``None`` for a half-space (``K_st`` infinite).
 * ``zeta`` — the target's own loss factor ``target.loss_factor(m_i, K)`` with the same
   ``K`` (plate: seed 001 eq 34; beam: the corrected eq 38, docs/physics_contract.md §1). ``None`` for

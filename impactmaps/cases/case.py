@@ -2,7 +2,7 @@
 
 The format (every key, unit and default) is documented in ``docs/case-files.md`` and
 the module docstring of :mod:`impactmaps.cases`. Each section maps onto a dataclass or
-constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal.ModalSettings` (``kind
+constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal_settings.ModalSettings` (``kind
 = "modal"``) or the finite-difference settings (``kind = "fd"``), ``[target]`` onto
 :meth:`Beam.rectangular <impactmaps.targets.beams.beam.Beam.rectangular>` /
 :meth:`Plate.isotropic <impactmaps.targets.plates.plate.Plate.isotropic>`, ``[contact]`` onto
@@ -21,9 +21,11 @@ from typing import TYPE_CHECKING
 from .._checks import read_text_input, require_in_range
 from ..contact import law_options
 from ..contact.base import ContactLaw, available_contact_laws, contact_law, contact_law_class
-from ..contact.sphere import Sphere, law_for_sphere
+from ..contact.pair import Sphere
+from ..contact.sphere import law_for_sphere
 from ..materials import Laminate
-from ..solvers.modal import ModalSettings, reference_contact_stiffness
+from ..solvers.modal_settings import ModalSettings
+from ..contact.contact_scale import reference_contact_stiffness
 from ..targets.halfspace import HalfSpace
 from ._materials import isotropic_material, target_material
 from ._toml import (

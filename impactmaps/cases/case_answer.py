@@ -11,9 +11,9 @@ from __future__ import annotations
 
 from . import case_dimensionless
 from ..closed_forms.hertz_similarity import hertz_numbers
-from ..solvers.modal import uses_patch, contact_radius_function
+from ..solvers.modal_settings import uses_patch, contact_radius_function
 from ..targets.map_structure import STRUCTURE_MATCH_RTOL
-from ..maps.read.lookup import status_notes
+from ..maps.read.bands import status_notes
 from ..maps.read.plastic_lookup import lookup_plastic
 from ..maps.family.map_family import available_map_families, map_family
 from ..maps.compute.plastic_points import plastic_numbers

@@ -27,13 +27,14 @@ from .case_answer import (
 from ..maps.read.slenderness import lookup_slenderness, shipped_for
 from ..maps.read.lookup import SHIPPED_SLENDERNESS, lookup
 from .on_demand import lookup_on_demand
-from ..maps.compute.plastic_points import PLASTIC_LAWS
+from ..maps.family.builtin_families import PLASTIC_LAWS
 from ..maps.read.reader import OutsideMapError, UnresolvedPointError
 from ..maps.family.regimes import MAP_LAWS
-from ..maps.family.registry import map_family
-from ..maps.family.structures import MEMBER_SLENDERNESSES, structure_from_name
+from ..maps.family.map_family import map_family
+from ..maps.family.builtin_families import MEMBER_SLENDERNESSES
+from ..maps.family.structures import structure_from_name
 
-__all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_loads_a_patch", "case_map_law", "case_slenderness", "lookup_case",
+__all__ = [ "case_slenderness", "lookup_case",
            "map_for_case"]
 
 def map_for_case(case) -> tuple[str, str]:

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 
 from ..contact.sphere import law_for_sphere
-from ..solvers.modal import reference_contact_stiffness
+from ..contact.contact_scale import reference_contact_stiffness
 from .case import Case
 
 __all__ = ["case_dimensionless", "case_numbers", "NUMBER_BASES"]

@@ -24,13 +24,13 @@ of :data:`~impactmaps.maps.family.structures.MAX_MODES` below its cut-off). Neve
 from __future__ import annotations
 
 from ..closed_forms.hertz_similarity import patch_number
-from ..solvers.modal import ModalSettings
+from ..solvers.modal_settings import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
 from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from ..maps.read.lookup import read_map
 from ..maps.read.plastic_lookup import read_plastic
 from ..maps.family.structures import MAX_MODES
-from ..maps.family.registry import map_family
+from ..maps.family.map_family import map_family
 from ..maps.family.structures import MapStructure
 from ..maps.compute.tiles import cached_tile, tile_for
 
@@ -58,7 +58,7 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     case : impactmaps.cases.Case
         A case on a beam or a plate.
     law : str
-        The case's map law (:func:`impactmaps.cases.case_lookup.case_map_law`).
+        The case's map law (:func:`impactmaps.cases.case_answer.case_map_law`).
 
     Returns
     -------

@@ -17,9 +17,9 @@ from ..result import ImpactResult
 from .._files import written_atomically
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
-from .numbers import case_dimensionless, case_numbers
+from .numbers import case_numbers
 
-__all__ = ["run_case", "case_dimensionless", "case_summary", "write_case_outputs",
+__all__ = ["run_case", "case_summary", "write_case_outputs",
            "read_case_outputs"]
 
 
@@ -101,10 +101,10 @@ def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
 def _run_fd(case: Case) -> ImpactResult:
     """The finite-difference run of ``case``; with ``[solver] check_convergence`` also the same
     run on twice the elements, ``converged`` set by the change of F̄max against ``[solver]
-    tolerance`` (a :class:`~impactmaps.solvers.modal.ConvergenceWarning` and
+    tolerance`` (a :class:`~impactmaps.solvers.modal_settings.ConvergenceWarning` and
     ``convergence_note`` say why when not: a late re-impact needs a finer grid)."""
     from ..fd import simulate_fd
-    from ..solvers.modal import ConvergenceWarning
+    from ..solvers.modal_settings import ConvergenceWarning
 
     settings = replace(case.fd_settings, duration=case.duration)
     result = simulate_fd(case.target, case.law, case.impactor_mass, case.velocity,

@@ -80,19 +80,19 @@ def cmd_sweep(args) -> dict:
           low_inclusive=True, high_inclusive=True)
     if args.scheduler is not None:
         refuse(args, {"--workers": "workers"}, "with --scheduler (the cluster has its own workers)")
-    output = load_sweep_config(text_file("sweep file", args.config))[4]  # validated before anything is written
-    if output.exists() and not output.is_dir():
-        raise ValueError(f"{args.config}: output = {str(output)!r} is a file, not a directory")
-    output = out_dir(f"{args.config}: output", output)
+    config = load_sweep_config(text_file("sweep file", args.config))  # parsed and checked before anything is written
+    if config.output.exists() and not config.output.is_dir():
+        raise ValueError(f"{args.config}: output = {str(config.output)!r} is a file, not a directory")
+    output = out_dir(f"{args.config}: output", config.output)
     with store_lock(output / "sweep.nc", f"{args.config}: output"):
-        return _run_sweep(args)
+        return _run_sweep(args, config._replace(output=output))
 
 
-def _run_sweep(args) -> dict:
+def _run_sweep(args, config) -> dict:
     from ..maps.compute.config import run_sweep_config
 
     if args.scheduler is None:
-        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+        paths = run_sweep_config(config, progress=not args.quiet, overwrite=args.overwrite,
                                  max_workers=args.workers)
         return {key: str(value) for key, value in paths.items()}
     try:
@@ -104,7 +104,7 @@ def _run_sweep(args) -> dict:
     except (OSError, TimeoutError) as error:
         raise ValueError(f"--scheduler = {args.scheduler!r} cannot be reached: {error}") from None
     with client:
-        paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
+        paths = run_sweep_config(config, progress=not args.quiet, overwrite=args.overwrite,
                                  executor=client.get_executor())
     return {key: str(value) for key, value in paths.items()} | {"scheduler": args.scheduler}
 
@@ -156,7 +156,7 @@ def _structure_from_args(args):
 
 
 def _settings_from_args(args):
-    from ..solvers.modal import ModalSettings
+    from ..solvers.modal_settings import ModalSettings
 
     options = {} if args.time_step_ratio is None else {"time_step_ratio": args.time_step_ratio}
     return ModalSettings(cutoff_ratio=args.cutoff_ratio, check_convergence=not getattr(args, "no_check", False),
@@ -181,8 +181,10 @@ def _simulate_point(structure, target, args, settings, record: bool):
 def _map_point(structure, args, settings) -> dict:
     """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
     from ..maps.family.accuracy import STATUSES, AccuracyControl
-    from ..maps.compute.sweep import METHODS, RESULT_VARIABLES, solve_points
-    from ..solvers.modal import ConvergenceWarning
+    from ..maps.compute.points import METHODS
+    from ..maps.family.map_family import RESULT_VARIABLES
+    from ..maps.compute.linear_points import solve_points
+    from ..solvers.modal_settings import ConvergenceWarning
 
     control = AccuracyControl(tolerance=settings.tolerance)
     with warnings.catch_warnings():  # the status says what the refinement found
@@ -259,7 +261,7 @@ def cmd_point(args) -> dict:
 
 
 def cmd_asymptote(args) -> dict:
-    from ..closed_forms import asymptotes
+    from ..closed_forms import asymptotes, infinite_beam
 
     if getattr(args, "case", None) is not None:
         return _case_asymptote(args)
@@ -285,7 +287,7 @@ def cmd_asymptote(args) -> dict:
     if args.which == "infinite-plate":
         peak, contact = asymptotes.infinite_plate_peak(args.zeta), asymptotes.infinite_plate_contact_time(args.zeta)
     else:
-        peak, contact = asymptotes.infinite_beam_peak(args.zeta), asymptotes.infinite_beam_contact_time(args.zeta)
+        peak, contact = infinite_beam.infinite_beam_peak(args.zeta), infinite_beam.infinite_beam_contact_time(args.zeta)
     values = {"asymptote": args.which, "zeta": args.zeta, "fmax_normalised": float(peak),
               "contact_time_normalised": float(contact), "impacts": 1}
     if not math.isfinite(float(contact)):
@@ -354,14 +356,16 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..maps.read.lookup import lookup, status_notes
+    from ..maps.read.lookup import lookup
+    from ..maps.read.bands import status_notes
 
     if args.case is not None:
         import sys
         import time
 
         from ..cases import load_case
-        from ..cases.case_lookup import case_map_law, lookup_case
+        from ..cases.case_answer import case_map_law
+        from ..cases.case_lookup import lookup_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
@@ -409,7 +413,7 @@ def cmd_lookup(args) -> dict:
 
 def _lookup_plastic_numbers(args) -> dict:
     """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
-    from ..maps.read.lookup import status_notes
+    from ..maps.read.bands import status_notes
     from ..maps.read.plastic_lookup import lookup_plastic
 
     beta = getattr(args, "beta", None)

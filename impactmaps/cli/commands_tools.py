@@ -135,7 +135,7 @@ def cmd_init(args) -> dict:
 def cmd_check(args) -> dict:
     """Validate a case file and report its derived numbers, without running it."""
     from ..cases import case_numbers, load_case
-    from ..solvers.modal import reference_contact_stiffness
+    from ..contact.contact_scale import reference_contact_stiffness
 
     case = load_case(args.case)
     numbers = case_numbers(case)

@@ -13,19 +13,7 @@ import numpy as np
 
 from .._checks import require_nonnegative, require_positive
 from .infinite_beam import (
-    INFINITE_BEAM_METHODS,
-    InfiniteBeamImpact,
     scalar_or_array,
-    critical_beam_loss_factor,
-    infinite_beam_contact_time,
-    infinite_beam_force,
-    infinite_beam_impact,
-    infinite_beam_impactor_velocity,
-    infinite_beam_indentation,
-    infinite_beam_indentation_rate,
-    infinite_beam_peak,
-    infinite_beam_peak_time,
-    recontact_beam_loss_factor,
 )
 
 __all__ = [
@@ -42,18 +30,6 @@ __all__ = [
     "infinite_plate_peak_time",
     "infinite_plate_contact_time",
     # infinite beam (re-exported)
-    "INFINITE_BEAM_METHODS",
-    "InfiniteBeamImpact",
-    "critical_beam_loss_factor",
-    "infinite_beam_contact_time",
-    "infinite_beam_force",
-    "infinite_beam_impact",
-    "infinite_beam_impactor_velocity",
-    "infinite_beam_indentation",
-    "infinite_beam_indentation_rate",
-    "infinite_beam_peak",
-    "infinite_beam_peak_time",
-    "recontact_beam_loss_factor",
 ]
 
 

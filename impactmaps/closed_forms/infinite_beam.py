@@ -17,7 +17,6 @@ from scipy.special import wofz
 from .._checks import require_choice, require_nonnegative, require_positive
 from .infinite_beam_cq import (
     DEFAULT_TIME_STEP,
-    InfiniteBeamImpact,
     cq_grid,
     cq_march,
     infinite_beam_impact,
@@ -25,11 +24,9 @@ from .infinite_beam_cq import (
 
 __all__ = [
     "INFINITE_BEAM_METHODS",
-    "InfiniteBeamImpact",
     "critical_beam_loss_factor",
     "infinite_beam_contact_time",
     "infinite_beam_force",
-    "infinite_beam_impact",
     "infinite_beam_impactor_velocity",
     "infinite_beam_indentation",
     "infinite_beam_indentation_rate",

@@ -7,15 +7,15 @@ from .base import (
     available_contact_laws,
     contact_law,
     contact_law_class,
-    effective_modulus,
-    effective_radius,
     evaluate_kernel,
     register_contact_law,
 )
+from .geometry import effective_modulus, effective_radius
 from .hertz import HertzContact, hertz_stiffness
 from .linear import LinearContact
 from .pair import ContactPair
-from .sphere import Sphere, law_for_sphere, law_options, softer_yield_strength
+from .pair import Sphere, softer_yield_strength
+from .sphere import law_for_sphere, law_options
 from .plastic.stronge import StrongeContact, stronge_continuity_coefficient
 from .plastic.yigit_christoforou import YigitChristoforouContact, yield_indentation
 

@@ -21,7 +21,6 @@ from .._checks import (
     require_nonnegative,
 )
 from .._compile.lazy_kernel import LazyKernel
-from .geometry import effective_modulus, effective_radius, require_positive_or_infinite  # noqa: F401 (re-exported)
 
 __all__ = [
     "ContactLaw",
@@ -29,8 +28,6 @@ __all__ = [
     "contact_law",
     "contact_law_class",
     "available_contact_laws",
-    "effective_modulus",
-    "effective_radius",
     "evaluate_kernel",
     "kernel_pointer",
     "KERNEL_TYPE",

@@ -13,7 +13,8 @@ import numba
 import numpy as np
 
 from .._checks import require_positive
-from .base import ContactLaw, check_energy, effective_modulus, register_contact_law
+from .base import ContactLaw, check_energy, register_contact_law
+from .geometry import effective_modulus
 
 __all__ = ["HertzContact", "hertz_stiffness"]
 

@@ -13,12 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import require_in_range, require_positive
-from .base import (
-    LawOption,
-    effective_modulus,
-    effective_radius,
-    require_positive_or_infinite,
-)
+from .base import LawOption
+from .geometry import effective_modulus, effective_radius, require_positive_or_infinite
 
 __all__ = ["ContactPair", "PAIR_OPTIONS", "Sphere", "softer_yield_strength"]
 

@@ -5,9 +5,9 @@
 from __future__ import annotations
 
 from .base import ContactLaw, LawOption, contact_law_class
-from .pair import PAIR_OPTIONS, ContactPair, Sphere, softer_yield_strength
+from .pair import PAIR_OPTIONS, ContactPair, Sphere
 
-__all__ = ["Sphere", "law_for_sphere", "law_options", "softer_yield_strength"]
+__all__ = [ "law_for_sphere", "law_options"]
 
 
 def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> ContactLaw:

@@ -16,7 +16,7 @@ from ._common import SPECIALLY_ORTHOTROPIC_RTOL, require_scalar
 from .isotropic import IsotropicMaterial
 from .ply import Ply
 
-__all__ = ["Ply", "Laminate"]
+__all__ = [ "Laminate"]
 
 
 # ---------------------------------------------------------------------------------

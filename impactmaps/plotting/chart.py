@@ -18,12 +18,12 @@ import numpy as np
 
 from .._files import written_atomically
 from . import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
-from ..solvers.modal import ModalSettings
+from ..solvers.modal_settings import ModalSettings
 from ..maps.family.builtin_families import family_layout
 from ..maps.compute.dataset import tidy_frame, with_asymptote_peaks
 from ..maps.read.lookup import markdown_table
 from ..maps.read.plastic_lookup import load_plastic_map
-from ..maps.compute.plastic_points import PLASTIC_LAWS
+from ..maps.family.builtin_families import PLASTIC_LAWS
 from ..maps.family.structures import MapStructure
 from ..maps.compute.sweep import log_grid, sweep
 
@@ -100,7 +100,7 @@ def make_chart(
         Replace an ``fmax_map.nc`` made with another grid (or another law) instead of
         refusing it.
     law : {"linear", "hertz"}
-        Contact law (:data:`impactmaps.maps.compute.sweep.MAP_LAWS`): the linear chart over (ζ, λ)
+        Contact law (:data:`impactmaps.maps.family.regimes.MAP_LAWS`): the linear chart over (ζ, λ)
         or the Hertz chart over (ζ_h, λ_h) with F̄max = F_max/F_hs.
 
     Returns

@@ -41,46 +41,26 @@ from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
 from .._compile import compile_helper
-from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, prepare_run, run_once
+from .modal_run import prepare_run, run_once
 from .modal_settings import (
-    CONTACT_PATCHES,
-    CONTACT_PHASES,
     DEFAULT_SETTINGS,
-    MAX_CUTOFF_RATIO,
-    MAX_EVENTS,
-    MAX_MIN_MODES,
     ConvergenceWarning,
-    ModalDetails,
     ModalSettings,
     linear_stiffness,
     settings_dict,
     uses_patch,
     contact_radius_function,
-    reference_contact_stiffness,
 )
+from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, plan_basis
 from ..result import ImpactResult
-from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
-    "ModalSettings",
-    "ModalDetails",
     "simulate",
     "simulate_normalised",
     "estimate_run",
     "simulate_batch",
-    "reference_contact_stiffness",
-    "coupled_top_frequency",
-    "content_time_step",
-    "ConvergenceWarning",
-    "CONTACT_PATCHES",
-    "CONTACT_PHASES",
-    "contact_radius_function",
 ]
-
-#: Names other modules and tests reach through this module (re-exported).
-_REEXPORTED = (HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, DEFAULT_SETTINGS, MAX_CUTOFF_RATIO, MAX_EVENTS,
-               MAX_MIN_MODES, STABLE_TOP_STEP, uses_patch)
 
 #: The peak-indentation patch radius is iterated until it moves by less than this (relative).
 PATCH_TOLERANCE = 1e-4

@@ -26,21 +26,15 @@ from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .integrator.coupled_contact import CoupledModes, coupled_modes
 from .integrator.exact_step import STALL_LIMIT, integrate_impact
 from .integrator.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
-from .modal_settings import (
-    ConvergenceWarning,
-    ModalDetails,
-    ModalSettings,
-    linear_stiffness,
-    settings_dict,
-    reference_contact_stiffness,
-)
+from .modal_settings import ConvergenceWarning, ModalDetails, ModalSettings, linear_stiffness, settings_dict
+from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import budget_cutoff
 from ..result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
 from ..result import ImpactResult, energy_balance_error
 from .run_budget import HISTORY_ROW_CAP, RunBudget, modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
-__all__ = ["run_once", "KernelInputs", "KernelScalars", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
+__all__ = ["run_once", "KernelInputs", "HISTORY_COLUMNS", "INTERRUPTIBLE_SECONDS",
            "COUPLED_COST_RATIO", "COUPLED_MAX_MODES", "COUPLED_ALWAYS_MODES"]
 
 #: The exact linear contact phase replaces the sampled one when the sampled scheme would

@@ -15,10 +15,9 @@ import numpy as np
 
 from .._checks import require_choice, require_flag, require_in_range, require_positive, require_whole
 from ..contact.base import ContactLaw
-from ..contact.contact_scale import reference_contact_stiffness
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
-           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "reference_contact_stiffness",
+           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS",
            "contact_radius_function"]
 
 #: Loads the modal solver can apply: "auto" (the default) — the patch on shear-deformable

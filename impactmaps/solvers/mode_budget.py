@@ -25,7 +25,7 @@ what answers such a run (spec §3.6):
 * else a ``ValueError`` naming the impactor mass, its value and the range it needs.
 
 The modal solver (:func:`impactmaps.solvers.modal.simulate`) applies it with the memory
-cap :data:`MAX_MODES`; the map sweep (:func:`impactmaps.maps.compute.sweep.solve_points`) with
+cap :data:`MAX_MODES`; the map sweep (:func:`impactmaps.maps.compute.linear_points.solve_points`) with
 its own, smaller cost cap.
 """
 

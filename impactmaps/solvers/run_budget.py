@@ -42,7 +42,7 @@ LONG_RUN_SECONDS = 60.0
 HISTORY_ROW_BYTES = 320
 #: Most history rows a recorded modal run writes (≈ 0.3 GiB at :data:`HISTORY_ROW_BYTES`):
 #: the integrator stops a run there (``row_cap_reached``) instead of growing its history.
-#: Not a :class:`~impactmaps.solvers.modal.ModalSettings` field: the settings are part of
+#: Not a :class:`~impactmaps.solvers.modal_settings.ModalSettings` field: the settings are part of
 #: every sweep's fingerprint, so a new field would orphan the shipped results.
 HISTORY_ROW_CAP = 1_000_000
 #: Bytes per entry of the contact-interval table (start and end, float64), allocated whole.

@@ -27,7 +27,7 @@ from impactmaps.cases import (
     write_case_outputs,
 )
 from impactmaps.materials import material
-from impactmaps.solvers.modal import ConvergenceWarning
+from impactmaps.solvers.modal_settings import ConvergenceWarning
 
 from ..helpers import EXAMPLES, strict_json_loads
 
@@ -591,7 +591,7 @@ def test_solver_keys_are_the_settings_fields():
     a field added to the settings is a case key without another list to update."""
     from dataclasses import fields
 
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     for f in fields(ModalSettings):
         value = str(f.default).lower() if isinstance(f.default, bool) else repr(f.default)

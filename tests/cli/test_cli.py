@@ -51,7 +51,7 @@ def test_halfspace_with_catalogue_materials(capsys):
 
 
 def test_asymptotes(capsys):
-    from impactmaps.closed_forms.asymptotes import infinite_beam_peak
+    from impactmaps.closed_forms.infinite_beam import infinite_beam_peak
 
     _, values = run(capsys, "asymptote", "infinite-beam", "--zeta", "0.3")
     assert values["fmax_normalised"] == pytest.approx(float(infinite_beam_peak(0.3)))

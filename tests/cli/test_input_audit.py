@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from impactmaps.cli import main
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.solvers.modal_settings import ModalSettings
 
 _GRID = '[grid]\nzeta = [1.0]\nlambda = [1.0]\n'
 

@@ -28,7 +28,7 @@ from impactmaps.dimensionless import impact_number
 from impactmaps.fd.energy import kernel_curve as _kernel_curve
 from impactmaps.fd.timestep import contact_stiffness_bound as _contact_stiffness_bound
 from impactmaps.closed_forms.halfspace import energy_balance_restitution
-from impactmaps.solvers.modal import reference_contact_stiffness
+from impactmaps.contact.contact_scale import reference_contact_stiffness
 
 from .test_contact_laws import ALUMINIUM, BALL, Material  # the 12.7 mm steel ball on aluminium
 

@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from impactmaps.contact.base import effective_modulus
+from impactmaps.contact.geometry import effective_modulus
 from impactmaps.materials import (
     CATALOGUE,
     DEFAULT_PLY_THICKNESS,

@@ -594,7 +594,8 @@ def test_matches_modal_rayleigh_solution(law, mass, position):
     force differences −1.1e-3, −2.6e-4, −6.6e-5 at N_l = 100, 200, 400 (centre, Hertz):
     the FD error, order 2.0; restitution agrees to 5e-4 at N_l = 200. Asserted: order in
     [1.8, 2.2], |ΔF|/F < 5e-4 at N_l = 200, |Δe| < 1e-3, same number of impacts."""
-    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+    from impactmaps.solvers.modal import simulate
 
     # the modal run is the reference here: steps fine enough that its own error
     # (≈ 7e-6 at the default ωΔt) does not blur the FD order at N_l = 400
@@ -813,7 +814,7 @@ def test_an_fd_case_checks_its_grid_when_asked_and_says_a_late_reimpact_is_not_c
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.solvers.modal import ConvergenceWarning
+    from impactmaps.solvers.modal_settings import ConvergenceWarning
 
     text = """
 [impactor]

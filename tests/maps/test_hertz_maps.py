@@ -28,8 +28,9 @@ from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, require_
 from impactmaps.maps.family.regimes import classify
 from impactmaps.maps.files.store import StoreMismatchError
 from impactmaps.maps.family.structures import MapStructure, structure_from_name
-from impactmaps.maps.compute.sweep import _prepare, map_law, sweep
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.sweep import _prepare, sweep
+from impactmaps.maps.family.map_family import map_law
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from ..helpers import ROOT
 

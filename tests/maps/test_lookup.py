@@ -10,8 +10,8 @@ import pytest
 from impactmaps.cli import main
 from impactmaps.maps.read.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 #: Documented interpolation error (docs/validation.rst, "Lookup maps"): over 150 random points per map
 #: the largest |lookup − direct| was 0.023 (Mindlin plate); 0.03 leaves room for other seeds.
@@ -519,7 +519,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     interpolation error: status ``interpolated``, the band covers the direct simulation
     and is wider than the points' tolerance. On a grid point the band is the point's own
     error and the status the point's."""
-    from impactmaps.maps.read.lookup import BAND_TOLERANCE, answer_status
+    from impactmaps.maps.read.bands import BAND_TOLERANCE, answer_status
 
     kink = lookup(0.33, 0.013, kind="beam", theory="euler")
     direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]

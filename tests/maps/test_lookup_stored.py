@@ -190,7 +190,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
     from impactmaps.maps.read import lookup as lookup_module
     from impactmaps.maps.read.lookup import shipped_reader
     from impactmaps.maps.read.reader import read_values
-    from impactmaps.maps.family.registry import map_family
+    from impactmaps.maps.family.map_family import map_family
 
     equivalence = _equivalence(monkeypatch)
     recorded = np.load(REFERENCE, allow_pickle=False)
@@ -235,7 +235,7 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
     positions, on grid lines and nodes and on the last row and column."""
     from impactmaps.maps.read.interpolator import PlaneInterpolator, grid_bilinear
     from impactmaps.maps.read.lookup import load_shipped_map, load_shipped_refinement
-    from impactmaps.maps.read.reader import interpolation_error
+    from impactmaps.maps.read.bands import interpolation_error
     from impactmaps.maps.family.refinement import Refinement, interpolate
 
     law = "hertz" if name.endswith("hertz") else "linear"
@@ -279,7 +279,7 @@ def test_the_stored_peaks_are_the_asymptotes_at_the_grid_values(monkeypatch, law
     bit: the linear maps' at every grid value of the plates (closed forms) and every tenth of
     the beams (the infinite beam's root search); the Hertz maps' at three grid values each
     (each an integration: the slow run)."""
-    from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS
+    from impactmaps.maps.family.map_family import ASYMPTOTE_PEAKS
     from impactmaps.maps.family.regimes import infinite_structure_peak, quasi_static_peak
 
     equivalence = _equivalence(monkeypatch)

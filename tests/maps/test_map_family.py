@@ -17,7 +17,7 @@ from impactmaps.maps.compute import sweep as sweep_module
 from impactmaps.maps.compute.linear_points import LINEAR
 from impactmaps.maps.family.map_family import Axis, MapFamily, PointPlan, available_map_families, register_map_family
 from impactmaps.maps.read.reader import read_values
-from impactmaps.maps.family.registry import map_family
+from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.files.store import SweepInterrupted
 from impactmaps.maps.family.structures import MapStructure
 

@@ -21,8 +21,9 @@ from impactmaps.maps.compute import sweep as sweep_module
 from impactmaps.maps.family.regimes import classify
 from impactmaps.maps.files.store import StoreMismatchError
 from impactmaps.maps.family.structures import MapStructure
-from impactmaps.maps.compute.sweep import Pacing, solve_points, sweep
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.sweep import Pacing, sweep
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 PLATE = MapStructure(kind="plate", theory="kirchhoff", supports="SSSS")
 BEAM = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
@@ -244,14 +245,14 @@ def test_targets_answer_the_physics_of_their_kind(structure):
     import math
 
     from impactmaps.maps.family.regimes import infinite_structure_peak
-    from impactmaps.closed_forms import asymptotes
+    from impactmaps.closed_forms import asymptotes, infinite_beam
 
     target = structure.build()
     omega = np.array([1e3, 2e4])
     if structure.kind == "beam":
         distance = target.distance_to_nearest_support()
         speed = math.sqrt(target.bending_stiffness / target.mass_per_length)
-        peak = asymptotes.infinite_beam_peak
+        peak = infinite_beam.infinite_beam_peak
     else:
         distance = target.distance_to_nearest_edge()
         speed = math.sqrt(target.effective_bending_stiffness / target.mass_per_area)
@@ -296,8 +297,8 @@ def test_a_point_is_a_pure_function_of_its_inputs():
     needs a high cut-off, every scalar is the same to the bit (the basis of every point
     is a truncation of one canonical table, never of whatever a cache happened to hold)."""
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.maps.compute.sweep import solve_points
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.maps.compute.linear_points import solve_points
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     rng = np.random.default_rng(12)
     settings = ModalSettings()
@@ -326,8 +327,8 @@ def test_every_point_carries_its_error_and_status():
     smooth point is `converged` with an error below the tolerance and its band around it."""
     from impactmaps.maps.family.accuracy import STATUSES
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.maps.compute.sweep import solve_points
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.maps.compute.linear_points import solve_points
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     beam = structure_from_name("beam-ss-euler")
     hard, easy = solve_points(beam, [(10.0, 0.003162), (1.0, 0.001)], ModalSettings())

@@ -24,7 +24,7 @@ def _old_residual(basis: ModalBasis, count: int) -> float:
 
 @pytest.fixture(scope="module")
 def beam_table():
-    from impactmaps.maps.compute.sweep import basis_table
+    from impactmaps.maps.compute.points import basis_table
 
     return basis_table(structure_from_name("beam-ss-euler"), 4)
 
@@ -91,7 +91,7 @@ def test_scalar_checks_answer_as_the_array_checks(value):
 
 
 def test_a_bad_setting_still_raises_the_same_error():
-    from impactmaps.solvers.modal import ModalSettings
+    from impactmaps.solvers.modal_settings import ModalSettings
 
     with pytest.raises(ValueError, match=r"min_modes = -1 is invalid: valid range is \[0, 100000\]"):
         ModalSettings(min_modes=-1)

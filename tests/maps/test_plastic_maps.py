@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from impactmaps.materials import IsotropicMaterial
-from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate
 from impactmaps.targets import Beam, Plate
 
 STEEL = IsotropicMaterial(youngs_modulus=210e9, poisson_ratio=0.3, density=7850.0)
@@ -375,7 +376,7 @@ def test_epp_maps_describe_only_their_options(option, value):
     from impactmaps.contact.plastic.stronge import StrongeContact
     from impactmaps.cases.case_lookup import lookup_case
     from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
-    from impactmaps.maps.family.registry import map_family
+    from impactmaps.maps.family.map_family import map_family
 
     assert EPP_MAP_OPTIONS == {"poisson_ratio": 0.3, "sphere_compliance": 0.0}
     family = map_family("epp")

@@ -18,9 +18,11 @@ import xarray as xr
 from impactmaps.maps.compute import sweep as sweep_module
 from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
 from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
-from impactmaps.maps.family.registry import map_family
-from impactmaps.maps.compute.sweep import RESULT_VARIABLES, log_grid, solve_map_points, sweep, sweep_fingerprint
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.family.map_family import map_family
+from impactmaps.maps.family.map_family import RESULT_VARIABLES
+from impactmaps.maps.compute.sweep import log_grid, sweep, sweep_fingerprint
+from impactmaps.maps.compute.points import solve_map_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 ZETAS = log_grid(*DEFAULT_ZETA_RANGE, DEFAULT_ZETA_COUNT)
 DIGEST = sweep_fingerprint(CHART_STRUCTURES, ZETAS, DEFAULT_CHART_LAMBDAS)
@@ -164,7 +166,8 @@ def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
     convolution since the peaks were stored: 4.5e-16 relative measured; 1e-13 bounds it)."""
     import impactmaps.maps.compute.hertz_points as hertz_points
     from impactmaps.plotting.chart import make_chart
-    from impactmaps.maps.compute.dataset import ASYMPTOTE_PEAKS, with_asymptote_peaks
+    from impactmaps.maps.family.map_family import ASYMPTOTE_PEAKS
+    from impactmaps.maps.compute.dataset import with_asymptote_peaks
 
     for digest in (DIGEST, HERTZ_DIGEST):
         shipped = _shipped(digest)

@@ -10,9 +10,10 @@ import pytest
 
 from impactmaps.maps.read.slenderness import slenderness_members, lookup_slenderness, slenderness_error_grid
 from impactmaps.maps.read.lookup import lookup
-from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES, structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 FAMILIES = [("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), ("plate", "mindlin", "linear")]
 

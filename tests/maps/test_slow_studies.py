@@ -18,8 +18,8 @@ import pytest
 from impactmaps.plotting.chart import DEFAULT_CHART_LAMBDAS
 from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 from tests.maps.test_lookup import assert_lookup_or_refusal
 
 CHART_STRUCTURES = ("beam-ss-euler", "plate-ssss-kirchhoff")
@@ -73,7 +73,9 @@ def test_sampled_loop_is_stable_up_to_and_beyond_the_cap(name):
     from impactmaps.contact import LinearContact
     from impactmaps.dimensionless import realise
     from impactmaps.maps.family.structures import BasisTable
-    from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency, simulate
+    from impactmaps.solvers.time_step import STABLE_TOP_STEP, coupled_top_frequency
+    from impactmaps.solvers.modal_run import basis_for
+    from impactmaps.solvers.modal import simulate
 
     structure = structure_from_name(name)
     target = structure.build()

@@ -11,8 +11,9 @@ import pytest
 from impactmaps.cli import main
 from impactmaps.contact import HertzContact, StrongeContact, YigitChristoforouContact, effective_modulus
 from impactmaps.materials import IsotropicMaterial
-from impactmaps.closed_forms.asymptotes import infinite_beam_peak
-from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
+from impactmaps.closed_forms.infinite_beam import infinite_beam_peak
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate, simulate_normalised
 from impactmaps.targets.beams.beam import Beam
 
 STEEL = IsotropicMaterial(210e9, 0.3, 7850.0, 350e6)

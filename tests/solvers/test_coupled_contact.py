@@ -13,16 +13,13 @@ import numpy as np
 import pytest
 
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.integrator.coupled_contact import (
-    CONTACT_RESOLUTION,
-    _coarse_plan,
-    _content_step,
-    contact_phase,
-    coupled_modes,
-)
+from impactmaps.solvers.integrator.coupled_contact import CONTACT_RESOLUTION, contact_phase, coupled_modes
+from impactmaps.solvers.integrator.coupled_stepping import _coarse_plan
+from impactmaps.solvers.integrator.coupled_closed_form import _content_step
 from impactmaps.solvers.integrator.history_rows import HistoryRows
 from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelModes
-from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate
 from impactmaps.targets.base import ModalBasis
 
 from ..helpers import repository_module

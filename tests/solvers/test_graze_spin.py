@@ -22,7 +22,8 @@ from impactmaps.solvers.integrator.coupled_contact import _least_advance, contac
 from impactmaps.solvers.integrator.exact_step import STALL_LIMIT, _progress
 from impactmaps.solvers.integrator.history_rows import HistoryRows
 from impactmaps.solvers.integrator.kernel_types import KernelCoupled, KernelModes
-from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate
 from impactmaps.targets.base import ModalBasis
 
 #: The map point of the spin: ``plate-ssss-kirchhoff`` on the 200 × 50 grid of

@@ -24,7 +24,8 @@ import scipy.linalg
 
 from impactmaps.contact import LinearContact
 from impactmaps.solvers.integrator.oscillator_step import oscillator_step_coefficients
-from impactmaps.solvers.modal import ModalSettings, simulate, simulate_batch
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate, simulate_batch
 from impactmaps.targets.base import ModalBasis
 
 from ..analytic import (
@@ -284,7 +285,7 @@ def test_contact_end_is_located_to_second_order():
 def _exact_top_residue(basis, stiffness, mass):
     """Force amplitude (units m_i V0 ω) and frequency of the top coupled root, from the
     residue of F(s) = V0/(s² D(s)) (the same receptance D as in the module docstring)."""
-    from impactmaps.solvers.modal import coupled_top_frequency
+    from impactmaps.solvers.time_step import coupled_top_frequency
 
     omega = math.sqrt(stiffness / mass)
     top = coupled_top_frequency(basis, stiffness, mass)
@@ -298,7 +299,7 @@ def test_content_estimate_matches_exact_residue_of_the_top_mode(kind, zeta):
     """The step rule's weak-coupling amplitude of the highest mode, m φ² (ω/ω_j)³/(1+Kr)²
     (summed over modes of equal frequency), is within a factor 2 of the exact residue of
     the force at the top coupled root."""
-    from impactmaps.solvers.modal import basis_for
+    from impactmaps.solvers.modal_run import basis_for
 
     basis, law, mass = _case(kind, zeta)
     stiffness = float(law.stiffness)
@@ -333,7 +334,8 @@ def test_sampled_loop_instability_is_avoided():
     resolved answer."""
     from impactmaps.dimensionless import realise
     from impactmaps.maps.family.structures import BasisTable, structure_from_name
-    from impactmaps.solvers.modal import STABLE_TOP_STEP, basis_for, coupled_top_frequency
+    from impactmaps.solvers.time_step import STABLE_TOP_STEP, coupled_top_frequency
+    from impactmaps.solvers.modal_run import basis_for
 
     target = structure_from_name("plate-ssss-kirchhoff").build()
     impactor = realise(target, 95.64154521062957, 14.38075986535519)
@@ -441,7 +443,7 @@ def test_a_damped_run_closes_its_energy_ledger_and_a_ledger_that_does_not_is_war
     from impactmaps.contact import Sphere, law_for_sphere
     from impactmaps.materials import material
     from impactmaps.solvers import modal
-    from impactmaps.solvers.modal import ConvergenceWarning
+    from impactmaps.solvers.modal_settings import ConvergenceWarning
     from impactmaps.targets.beams.beam import Beam
 
     aluminium = material("aluminium-6061-t6")

@@ -13,7 +13,8 @@ import pandas as pd
 import pytest
 
 from impactmaps.contact import LinearContact
-from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate
 from impactmaps.targets.base import ModalBasis
 from impactmaps.targets.halfspace import HalfSpace
 
@@ -163,7 +164,7 @@ def test_bad_input():
 def test_long_beam_reproduces_infinite_beam(zeta):
     """λ → 0 (reflections return after the peak): the SS Euler beam's F̄max equals the
     infinite-beam asymptote (eq 36, closed form) within 0.5 % (observed ≤ 1e-5)."""
-    from impactmaps.closed_forms.asymptotes import infinite_beam_peak
+    from impactmaps.closed_forms.infinite_beam import infinite_beam_peak
 
     result = _run("beam", zeta, 1e-3)
     assert result.fmax_normalised == pytest.approx(float(infinite_beam_peak(zeta)), rel=5e-3)
@@ -200,7 +201,7 @@ def test_convergence_warning_when_result_moves_with_refinement():
     default settings are (no warning)."""
     import warnings
 
-    from impactmaps.solvers.modal import ConvergenceWarning
+    from impactmaps.solvers.modal_settings import ConvergenceWarning
 
     mass, stiffness = ss_beam_impactor(1.0, 0.05)
     basis = ss_euler_beam_basis(400.0 * np.sqrt(stiffness / mass))  # room to refine
@@ -224,7 +225,7 @@ def test_the_mode_floor_counts_the_modes_the_impact_point_sees(kind):
     and degenerate copies: 2 modes on the plate at ζ = 10.9, λ = 0.119, F̄max 0.359 where
     the map's converged point is 0.366."""
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.maps.compute.sweep import solve_points
+    from impactmaps.maps.compute.linear_points import solve_points
     from impactmaps.materials import material
     from impactmaps.solvers.modal import simulate_normalised
     from impactmaps.targets import Beam, Plate

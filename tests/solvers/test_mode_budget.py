@@ -15,7 +15,8 @@ import pytest
 from impactmaps.contact.linear import LinearContact
 from impactmaps.maps.family.structures import MapStructure
 from impactmaps.solvers import mode_budget
-from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate, simulate_normalised
 from impactmaps.solvers.mode_budget import ModeBudgetError, ModeBudgetWarning, plan_basis
 
 from ..helpers import DATA, ROOT
@@ -186,7 +187,8 @@ def test_case_refusal_names_the_case_key():
 
 
 def test_sweep_point_past_the_cap_takes_the_asymptote():
-    from impactmaps.maps.compute.sweep import METHODS, solve_points
+    from impactmaps.maps.compute.points import METHODS
+    from impactmaps.maps.compute.linear_points import solve_points
 
     structure = STRUCTURES[0]
     with warnings.catch_warnings():

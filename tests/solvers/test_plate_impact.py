@@ -13,7 +13,8 @@ import pytest
 
 from impactmaps.materials import IsotropicMaterial, Laminate, material
 from impactmaps.closed_forms.asymptotes import infinite_plate_peak
-from impactmaps.solvers.modal import ModalSettings, simulate_normalised
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate_normalised
 from impactmaps.targets.plates.plate import Plate
 
 STEEL = IsotropicMaterial(210e9, 0.3, 7850.0)

@@ -14,7 +14,8 @@ import pytest
 from impactmaps.cli import main
 from impactmaps.contact.linear import LinearContact
 from impactmaps.materials import CATALOGUE
-from impactmaps.solvers.modal import ModalSettings, simulate, simulate_normalised
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate, simulate_normalised
 from impactmaps.targets.beams.beam import Beam
 from impactmaps.targets.plates.plate import Plate
 
@@ -295,7 +296,7 @@ def test_long_modal_run_answers_ctrl_c():
     import threading
     import time
 
-    from impactmaps.solvers import modal
+    from impactmaps.solvers import modal_run
 
     settings = ModalSettings(time_step_ratio=1e-5, contact_phase="sampled")
     target = _plate("SSSS")
@@ -322,7 +323,7 @@ def test_long_modal_run_answers_ctrl_c():
         if thread.name == "impactmaps-modal-kernel":
             thread.join(5.0)
             assert not thread.is_alive()
-    assert modal.INTERRUPTIBLE_SECONDS < 1.0
+    assert modal_run.INTERRUPTIBLE_SECONDS < 1.0
 
 
 def test_a_process_that_ignores_ctrl_c_runs_the_kernel_without_a_thread(monkeypatch):

@@ -8,7 +8,8 @@ import dataclasses
 import numpy as np
 
 from impactmaps.contact.linear import LinearContact
-from impactmaps.solvers.modal import ModalSettings, simulate
+from impactmaps.solvers.modal_settings import ModalSettings
+from impactmaps.solvers.modal import simulate
 from impactmaps.result import ImpactResult
 
 from ..analytic import ss_beam_impactor, ss_euler_beam_basis

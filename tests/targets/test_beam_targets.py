@@ -20,7 +20,7 @@ from numpy.polynomial import legendre
 from impactmaps.dimensionless import realise
 from impactmaps.materials import IsotropicMaterial
 from impactmaps.solvers.modal import simulate_normalised
-from impactmaps.targets.beams import beam_fe_eigen, beam_fe_modes, beam_modes
+from impactmaps.targets.beams import beam_euler_modes, beam_fe_eigen, beam_fe_modes, beam_section, beam_sine_modes
 from impactmaps.targets.beams.beam import Beam
 
 STEEL = IsotropicMaterial(youngs_modulus=2.1e11, poisson_ratio=0.3, density=7850.0)
@@ -75,7 +75,7 @@ def test_euler_frequencies_match_blevins_roots(supports):
     then agree to 1e-8 relative. Free–free beams have two zero frequencies first.
     """
     target = beam("euler", supports, position=0.3)
-    roots = beam_modes.euler_roots(supports, 3)
+    roots = beam_euler_modes.euler_roots(supports, 3)
     np.testing.assert_allclose(roots, BLEVINS_ROOTS[supports], rtol=0, atol=5e-9)
     frequencies = target.modes(0.0, min_modes=5).frequencies
     scale = math.sqrt(target.bending_stiffness / (target.mass_per_length * target.length**4))
@@ -93,7 +93,7 @@ def test_euler_high_roots_follow_asymptotes():
     asymptotes = {"cc": (2 * n + 1) * np.pi / 2, "cf": (2 * n - 1) * np.pi / 2,
                   "cs": (4 * n + 1) * np.pi / 4}
     for supports, asymptote in asymptotes.items():
-        roots = beam_modes.euler_roots(supports, 200)
+        roots = beam_euler_modes.euler_roots(supports, 200)
         np.testing.assert_allclose(roots[19:], asymptote[19:], rtol=4e-16)
         assert abs(roots[0] - asymptote[0]) > 1e-4
         assert np.all(np.diff(roots) > 2.5)  # one root per interval, none skipped
@@ -215,8 +215,8 @@ def test_finite_elements_reproduce_euler_roots(supports):
     ≈ eps·ω_j²/ω_1², 4e-9 for the 40th cantilever mode. Free–free rigid modes: ω = 0."""
     section = beam("euler", supports).section
     beam_fe_modes._fe_solution.cache_clear()
-    exact = beam_modes.classical_euler_modes(section, 0.0, min_modes=40).frequencies
-    numerical = beam_modes.finite_element_modes(section, exact[-1], min_modes=40).frequencies
+    exact = beam_euler_modes.classical_euler_modes(section, 0.0, min_modes=40).frequencies
+    numerical = beam_fe_modes.finite_element_modes(section, exact[-1], min_modes=40).frequencies
     assert numerical.size >= 40
     np.testing.assert_allclose(numerical[:40], exact, rtol=1e-8, atol=0.0)
 
@@ -228,9 +228,9 @@ def test_finite_elements_reproduce_simply_supported_closed_form(theory):
     |W_j(x0)| to 1e-7 of the mode scale (participation; signs are arbitrary)."""
     section = beam(theory, "ss", slenderness=8.0).section
     beam_fe_modes._fe_solution.cache_clear()
-    exact = beam_modes.simply_supported_modes(section, 0.0, min_modes=60)
+    exact = beam_sine_modes.simply_supported_modes(section, 0.0, min_modes=60)
     limit = exact.frequencies[-1]
-    numerical = beam_modes.finite_element_modes(section, limit)
+    numerical = beam_fe_modes.finite_element_modes(section, limit)
     n = int(np.searchsorted(numerical.frequencies, limit * (1 - 1e-6)))
     assert n == len(exact) - 1
     np.testing.assert_allclose(numerical.frequencies[:n], exact.frequencies[:n], rtol=1e-9)
@@ -247,9 +247,9 @@ def test_spectrum_slicing_path_matches_closed_form(monkeypatch):
     monkeypatch.setattr(beam_fe_eigen, "_SLICE_SIZE", 12)
     section = beam("timoshenko", "ss", slenderness=8.0).section
     beam_fe_modes._fe_solution.cache_clear()
-    exact = beam_modes.simply_supported_modes(section, 0.0, min_modes=80)
+    exact = beam_sine_modes.simply_supported_modes(section, 0.0, min_modes=80)
     limit = exact.frequencies[-1]
-    numerical = beam_modes.finite_element_modes(section, limit)
+    numerical = beam_fe_modes.finite_element_modes(section, limit)
     beam_fe_modes._fe_solution.cache_clear()
     n = len(exact) - 1
     np.testing.assert_allclose(numerical.frequencies[:n], exact.frequencies[:n], rtol=1e-9)
@@ -374,7 +374,7 @@ def test_timoshenko_modal_sum_equals_static_compliance(supports):
         limit = target.mode_set(0.0, min_modes=150).frequencies[-1]
         basis = target.modes(limit)
         tail = 1.0 / (math.pi * section.shear_stiffness
-                      * float(beam_modes.largest_wavenumber(section, limit)))
+                      * float(beam_section.largest_wavenumber(section, limit)))
         static = target.static_compliance()
         assert basis.retained_compliance + tail == approx(static, rel=1e-4)
         assert basis.residual_compliance == approx(static - basis.retained_compliance,
@@ -625,7 +625,8 @@ def test_degenerate_modes_are_one_mode_to_the_impact_point():
     square plate struck at its centre keeps one mode per distinct frequency."""
     from impactmaps.contact.linear import LinearContact
     from impactmaps.maps.family.structures import structure_from_name
-    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+    from impactmaps.solvers.modal import simulate
     from impactmaps.targets.base import ModalBasis
 
     frequencies = np.array([10.0, 30.0, 30.0, 30.0 * (1 + 1e-12), 50.0])

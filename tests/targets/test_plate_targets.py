@@ -14,7 +14,8 @@ import scipy.linalg
 from impactmaps.materials import IsotropicMaterial, Laminate
 from impactmaps.targets.plates import ritz
 from impactmaps.targets.base import ModalBasis, Target
-from impactmaps.targets.plates.plate import Plate, navier_static_compliance
+from impactmaps.targets.plates.plate import Plate
+from impactmaps.targets.plates.plate_static import navier_static_compliance
 
 STEEL = SimpleNamespace(youngs_modulus=200e9, poisson_ratio=0.3, density=7800.0)
 

@@ -12,10 +12,10 @@ from impactmaps.contact.linear import LinearContact
 from impactmaps.dimensionless import realise
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
+from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.materials import material
 from impactmaps.solvers import mode_budget
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.solvers.modal_settings import ModalSettings
 from impactmaps.targets.shear_range import (SHEAR_VALIDITY_FRACTION, beyond_shear_theory,
                                             has_classical_asymptote, thickness_shear_frequency)
 from impactmaps.targets.beams.beam import Beam

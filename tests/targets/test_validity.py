@@ -103,7 +103,8 @@ def test_point_load_on_a_mindlin_plate_is_said():
     from dataclasses import replace
 
     from impactmaps.contact import LinearContact
-    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+    from impactmaps.solvers.modal import simulate
 
     mindlin = im.Plate.isotropic(0.3, 0.3, 0.015, STEEL, theory="mindlin")
     hertz = law_for_sphere("hertz", SPHERE, STEEL)
@@ -155,7 +156,8 @@ def test_yigit_christoforou_from_a_sphere_spreads_over_the_patch_on_a_mindlin_pl
     (F̄), then 0.28164 / 0.28071 / 0.27965 at 2×, 4×, 8× the cut-off, its peak above Hertz's."""
     from impactmaps.contact.plastic.yigit_christoforou import YigitChristoforouContact
     from impactmaps.materials import material
-    from impactmaps.solvers.modal import ModalSettings, simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+    from impactmaps.solvers.modal import simulate
 
     aluminium = material("aluminium-6061-t6")
     sphere = Sphere(0.025158322790160805, aluminium)

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from impactmaps.maps.family.structures import structure_from_name
-from impactmaps.maps.compute.sweep import solve_points
-from impactmaps.solvers.modal import ModalSettings
+from impactmaps.maps.compute.linear_points import solve_points
+from impactmaps.solvers.modal_settings import ModalSettings
 
 from ..helpers import repository_module
 

@@ -30,19 +30,20 @@ import math
 import tomllib
 from dataclasses import fields
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from ..._checks import range_end_text, read_text_input
 from ..._files import written_atomically
-from ...solvers.modal import ModalSettings
+from ...solvers.modal_settings import ModalSettings
 from ...targets.options import default_theory
-from ..family.registry import available_map_families, map_family
+from ..family.map_family import available_map_families, map_family
 from ..family.structures import MapStructure
 from .dataset import tidy_frame
 from .sweep import sweep, sweep_fingerprint
 
-__all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
+__all__ = ["SweepConfig", "load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
 _TOP_KEYS = {"output", "law", "grid", "solver", "structure"}
 _STRUCTURE_KEYS = {f.name for f in fields(MapStructure)}
@@ -166,7 +167,19 @@ def _structures(table, index):
     return out
 
 
-def load_sweep_config(path):
+class SweepConfig(NamedTuple):
+    """A sweep file, parsed and checked (:func:`load_sweep_config`)."""
+
+    structures: list
+    zetas: np.ndarray
+    lambdas: np.ndarray
+    settings: ModalSettings
+    output: Path
+    law: str
+    axes: dict
+
+
+def load_sweep_config(path) -> SweepConfig:
     """Parse a sweep TOML file.
 
     Parameters
@@ -176,9 +189,10 @@ def load_sweep_config(path):
 
     Returns
     -------
-    tuple
-        ``(structures, zetas, lambdas, settings, output_dir, law, axes)``: ``axes`` the grids of
-        the law's axes besides ζ and λ (``{"beta": …}`` for an elastic-plastic law; else empty).
+    SweepConfig
+        ``structures``, the grids ``zetas`` and ``lambdas``, ``settings``, the ``output``
+        directory, the ``law`` and ``axes``: the grids of the law's axes besides ζ and λ
+        (``{"beta": …}`` for an elastic-plastic law; else empty).
     """
     path, text = read_text_input("sweep file", path)
     try:
@@ -227,17 +241,17 @@ def load_sweep_config(path):
         raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
     axes = {name: _grid(name, grid[name], family.axis_range(name)) for name in extra}
     sweep_fingerprint(structures, zetas, lambdas, settings, law, axes)  # the sweep's own checks (its size)
-    return structures, zetas, lambdas, settings, path.parent / output, law, axes
+    return SweepConfig(structures, zetas, lambdas, settings, path.parent / output, law, axes)
 
 
-def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
+def run_sweep_config(config, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
                      executor=None) -> dict:
     """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory.
 
     Parameters
     ----------
-    path : path-like
-        The sweep TOML file.
+    config : SweepConfig or path-like
+        The sweep file, parsed (:func:`load_sweep_config`) or its path.
     progress : bool
         Show a progress bar.
     overwrite : bool
@@ -252,7 +266,9 @@ def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, ma
     dict
         ``{"netcdf": Path, "csv": Path}``.
     """
-    structures, zetas, lambdas, settings, output, law, axes = load_sweep_config(path)
+    if not isinstance(config, SweepConfig):
+        config = load_sweep_config(config)
+    structures, zetas, lambdas, settings, output, law, axes = config
     if output.exists() and not output.is_dir():
         raise ValueError(f"output = {str(output)!r} is a file, not a directory")
     netcdf, csv = output / "sweep.nc", output / "sweep.csv"

@@ -19,10 +19,10 @@ from ...jsonio import dumps
 from ..family.accuracy import STATUSES
 from .points import METHODS, SOLVER_REVISION
 from ..family.map_family import ASYMPTOTE_PEAK_VARIABLES, ASYMPTOTE_PEAKS, map_law
-from ..family.registry import map_family
+from ..family.map_family import map_family
 from ..family.regimes import classify
 
-__all__ = ["empty_dataset", "map_law", "classify_dataset", "tidy_frame"]
+__all__ = ["empty_dataset", "classify_dataset", "tidy_frame"]
 
 
 def empty_dataset(family, structures, axes: dict, description: dict, digest: str) -> xr.Dataset:

@@ -31,12 +31,12 @@ from ...solvers.modal_settings import ModalSettings, uses_patch
 from ...targets.shear_range import beyond_shear_theory, has_classical_asymptote
 from ...targets.options import default_theory
 from ..family.accuracy import AccuracyControl, exact_point
-from ..family.builtin_families import HERTZ_AXES, HertzLayout
+from ..family.builtin_families import HertzLayout
 from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
 from .points import PlanMethod, method_code, solve_map_points
 from ..family.structures import BasisTable, MapStructure
 
-__all__ = ["HERTZ_AXES", "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
+__all__ = [ "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
            "hertz_contact_frequency", "hertz_summary", "solve_hertz_points"]
 
 #: The map variables that are times (scaled by t* in a Hertz map, by 1/ω in a linear one).

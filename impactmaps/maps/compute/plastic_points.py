@@ -77,7 +77,7 @@ from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points
 from ..family.structures import BasisTable, MapStructure
 
-__all__ = ["PLASTIC_LAWS", "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
+__all__ = [ "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
            "plastic_law_of", "solve_plastic_points"]
 
 #: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's

@@ -25,31 +25,24 @@ import numpy as np
 import xarray as xr
 
 from ..._checks import require_in_range, require_positive
-from ...solvers.modal import ModalSettings
+from ...solvers.modal_settings import ModalSettings
 from ...solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
 from ...targets.options import point_load_diverges
-from ...solvers.mode_budget import ASYMPTOTE_REFLECTION_FACTOR  # noqa: F401 (the sweep's criterion)
-from .dataset import ASYMPTOTE_PEAKS, classify_dataset, empty_dataset, map_law, with_asymptote_peaks
-from .linear_points import solve_points
+from ..family.map_family import ASYMPTOTE_PEAKS
+from .dataset import classify_dataset, empty_dataset, with_asymptote_peaks
 from ..family.map_family import RESULT_VARIABLES, MapFamily
 from .points import (
     METHODS,
     SOLVER_REVISION,
-    basis_table,
     solve_map_points,
-    table_run_key,
-    unresolved_point,
 )
-from ..family.regimes import MAP_LAWS
-from ..family.registry import map_family
+from ..family.map_family import map_family
 from ..files.shipped_results import load_shipped_result
 from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
-from ..family.structures import MAX_MODES, MapStructure, warn_point_loaded_mindlin
+from ..family.structures import MapStructure, warn_point_loaded_mindlin
 from .workers import MAX_WORKERS, init_worker
 
-__all__ = ["sweep", "sweep_fingerprint", "solve_points", "solve_map_points", "SOLVER_REVISION", "RESULT_VARIABLES",
-           "table_run_key", "MAP_LAWS", "map_law", "log_grid", "warn_point_loaded_mindlin", "SweepTask", "SweepGrid", "Pacing",
-           "MAX_MODES", "METHODS", "basis_table", "unresolved_point", "classify_dataset"]
+__all__ = ["sweep", "sweep_fingerprint", "log_grid", "SweepTask", "SweepGrid", "Pacing"]
 
 
 def log_grid(start: float, stop: float, count: int) -> np.ndarray:

@@ -38,12 +38,12 @@ import numpy as np
 import xarray as xr
 
 from ...jsonio import dumps
-from ...solvers.modal import ModalSettings
+from ...solvers.modal_settings import ModalSettings
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, solve_map_points
-from ..family.registry import map_family
+from ..family.map_family import map_family
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
 
@@ -233,7 +233,7 @@ def _table(key: TileKey, points) -> BasisTable:
     another size would change a bounded model's points in the last bits, and the tile
     files already cached with it), never past the sweep's cap.
 
-    The sweep truncates from a table at its cap (:func:`impactmaps.maps.compute.sweep.basis_table`).
+    The sweep truncates from a table at its cap (:func:`impactmaps.maps.compute.points.basis_table`).
     For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
     other supports than SS) and Ritz plates — that table is the whole model, whose modes
     take minutes to build (a clamped Timoshenko beam). Their point compliance is finite,

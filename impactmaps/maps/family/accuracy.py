@@ -2,7 +2,7 @@
 
 A point of a map is solved at the sweep's settings and again with the mode cut-off
 doubled and the time step really halved (:meth:`ModalSettings.refined
-<impactmaps.solvers.modal.ModalSettings.refined>`). The difference is the point's error
+<impactmaps.solvers.modal_settings.ModalSettings.refined>`). The difference is the point's error
 estimate. When it exceeds the tolerance the point is refined again, within a cost cap;
 a point that still does not settle has no converged value, and the map says so with the
 spread of F̄max over small perturbations of cut-off, step and ζ instead of one number.
@@ -132,7 +132,7 @@ def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
     ----------
     run : callable
         ``run(settings, zeta_factor) -> result``: the point solved with the given
-        :class:`~impactmaps.solvers.modal.ModalSettings` at ζ × ``zeta_factor`` (an
+        :class:`~impactmaps.solvers.modal_settings.ModalSettings` at ζ × ``zeta_factor`` (an
         ImpactResult, or any object with ``fmax_normalised``, ``impacts`` and
         ``normalised_summary()``).
     settings : ModalSettings

@@ -21,14 +21,14 @@ the parent level made around it, which the leaf's interpolation at least halves 
 ~4× where F̄max is smooth) — and of the points its split neighbours placed on its edges
 (the interpolation across a neighbour's finer points is discontinuous by their surplus).
 A leaf of the map's own grid keeps the second-difference estimate
-(:func:`impactmaps.maps.read.lookup.interpolation_error`).
+(:func:`impactmaps.maps.read.bands.interpolation_error`).
 
 **Building** (:func:`refine`): every leaf whose band (its corners' own error plus its
 interpolation estimate) exceeds the tolerance is split, round after round, until every
 band is within it, the leaf is :data:`MAX_LEVEL` deep, or a corner has no converged value
 (``sensitive``: no interpolation can do better than its spread; ``unresolved``). The
 points of a round are solved together by the caller's solver (a pure function of the
-point: :func:`impactmaps.maps.compute.sweep.solve_points`), so a refinement is a pure function
+point: :func:`impactmaps.maps.compute.linear_points.solve_points`), so a refinement is a pure function
 of its base map, tolerance and depth.
 """
 
@@ -374,12 +374,12 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
         The base map's ``fmax_normalised``, ``fmax_error`` and ``status``, each a (λ, ζ) array.
     base_estimate : ndarray
         The base map's interpolation-error estimate per grid point
-        (:func:`impactmaps.maps.read.lookup.interpolation_error`) [-].
+        (:func:`impactmaps.maps.read.bands.interpolation_error`) [-].
     coordinates : callable
         ``coordinates(row, col) -> (zeta, lambda_)``: the map's axes at fractional grid
         positions (log-linear between grid points).
     solve : callable
-        ``solve(zetas, lambdas) -> list of row dicts`` (:func:`impactmaps.maps.compute.sweep.solve_points`
+        ``solve(zetas, lambdas) -> list of row dicts`` (:func:`impactmaps.maps.compute.linear_points.solve_points`
         rows): the points of a round, in order.
     tolerance : float
         Largest accepted band (own error + interpolation estimate) of a leaf [-].

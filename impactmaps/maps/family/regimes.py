@@ -33,7 +33,8 @@ import numpy as np
 from ..._checks import require_choice, require_in_range, require_positive
 from ..._renamed import renamed_keyword
 from ...targets.options import STRUCTURE_KINDS
-from .registry import PLANE_LAWS, available_map_families, map_family
+from .builtin_families import PLANE_LAWS
+from .map_family import available_map_families, map_family
 
 __all__ = ["REGIMES", "MAP_LAWS", "classify", "infinite_structure_peak", "quasi_static_peak"]
 

@@ -25,9 +25,9 @@ from ...targets.map_structure import reference_target
 from ...targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ...targets.plates.plate import Plate
 from ...validity import ModelValidityWarning
-from .builtin_families import MEMBER_SLENDERNESSES, SHIPPED_PLANE_MAPS
+from .builtin_families import MEMBER_SLENDERNESSES
 
-__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "structure_from_name",
+__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name",
            "MAX_MODES", "warn_point_loaded_mindlin"]
 
 MAX_MODES = 80_000  # cost cap on the modes (all, incl. non-participating) below the cut-off

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..family.refinement import SURPLUS_SAFETY, Leaves, Refinement
 
-__all__ = ["PlaneInterpolator", "grid_bilinear", "grid_bilinear_one", "interpolate_line", "interpolate_line_one"]
+__all__ = ["PlaneInterpolator", "grid_bilinear", "grid_bilinear_one", "interpolate_line", "interpolate_line_one", "clip", "max_one"]
 
 
 class PlaneInterpolator:
@@ -35,7 +35,7 @@ class PlaneInterpolator:
         to interpolate), each a (λ, ζ) array.
     base_estimate : ndarray
         The map's interpolation-error estimate per grid point [-]
-        (:func:`impactmaps.maps.read.reader.interpolation_error`).
+        (:func:`impactmaps.maps.read.bands.interpolation_error`).
     refinement : Refinement, optional
         The map's refinement (none: the grid's cells are the leaves).
     """
@@ -90,8 +90,8 @@ class PlaneInterpolator:
         leaf = self.cell_leaf[np.minimum(np.floor(scaled_row).astype(np.int64), self.cells[0] - 1),
                               np.minimum(np.floor(scaled_col).astype(np.int64), self.cells[1] - 1)]
         side = self.side[leaf]
-        x = _clip((scaled_row - self.u[leaf]) / side, 0.0, 1.0)
-        y = _clip((scaled_col - self.v[leaf]) / side, 0.0, 1.0)
+        x = clip((scaled_row - self.u[leaf]) / side, 0.0, 1.0)
+        y = clip((scaled_col - self.v[leaf]) / side, 0.0, 1.0)
         weights = np.array([(1.0 - x) * (1.0 - y), x * (1.0 - y), (1.0 - x) * y, x * y])
         used = weights > 0
         corners = self.corners[leaf].T
@@ -126,14 +126,14 @@ class PlaneInterpolator:
             raise KeyError("a lattice position read from the refinement holds no point")
         values = {name: np.array([_corner_sum_one(weights, used, self.tables[name][corners].tolist())])
                   for name in names}
-        own = _max_one([0.0, *(e if u else 0.0 for e, u in zip(self.tables["fmax_error"][corners].tolist(), used))])
+        own = max_one([0.0, *(e if u else 0.0 for e, u in zip(self.tables["fmax_error"][corners].tolist(), used))])
         codes = np.array([[int(c) if u else 0] for c, u in zip(self.tables["status"][corners].tolist(), used)])
         at_base = bool(self.at_base[leaf])
-        estimate = _max_one([0.0, *(e if u and at_base else 0.0 for e, u in zip(self.estimate[corners].tolist(), used))])
+        estimate = max_one([0.0, *(e if u and at_base else 0.0 for e, u in zip(self.estimate[corners].tolist(), used))])
         if sum(used) == 1:
             error = own
         else:
-            error = own + _max_one([estimate, float(self.surplus_estimate[leaf])])
+            error = own + max_one([estimate, float(self.surplus_estimate[leaf])])
         return values, np.array([error]), codes
 
 
@@ -143,8 +143,8 @@ def _corner_sum_one(weights, used, values) -> float:
     return ((0.0 + terms[0]) + terms[1] + terms[2]) + terms[3]
 
 
-def _max_one(values) -> float:
-    """The largest of ``values``, NaN if one is NaN (as ``np.max`` and ``np.maximum``)."""
+def max_one(values) -> float:
+    """The largest of ``values`` (Python floats), NaN if one is NaN (as ``np.max`` and ``np.maximum``)."""
     return math.nan if any(value != value for value in values) else max(values)
 
 
@@ -238,10 +238,10 @@ def grid_bilinear(base: dict, row: np.ndarray, col: np.ndarray, names, scale: in
     counts 0, whatever it holds): :func:`impactmaps.maps.family.refinement.interpolate` of an
     empty refinement of lattice ``scale``, operation for operation."""
     shape = np.shape(base[names[0]])
-    u = _clip(np.floor(row), 0, shape[0] - 2).astype(np.int64) * scale
-    v = _clip(np.floor(col), 0, shape[1] - 2).astype(np.int64) * scale
-    x = _clip((row * scale - u) / scale, 0.0, 1.0)
-    y = _clip((col * scale - v) / scale, 0.0, 1.0)
+    u = clip(np.floor(row), 0, shape[0] - 2).astype(np.int64) * scale
+    v = clip(np.floor(col), 0, shape[1] - 2).astype(np.int64) * scale
+    x = clip((row * scale - u) / scale, 0.0, 1.0)
+    y = clip((col * scale - v) / scale, 0.0, 1.0)
     weights = np.array([(1.0 - x) * (1.0 - y), x * (1.0 - y), (1.0 - x) * y, x * y])
     flat = (u // scale) * shape[1] + v // scale
     corners = np.array([flat, flat + shape[1], flat + 1, flat + shape[1] + 1])
@@ -295,6 +295,6 @@ def interpolate_line_one(values: np.ndarray, position: float, logs: np.ndarray) 
     return np.exp(np.array([(1.0 - fraction) * float(logs[lower]) + fraction * float(logs[lower + 1])]))
 
 
-def _clip(values, low, high):
+def clip(values, low, high):
     """``np.clip`` (the same numbers), at a fraction of its cost on small arrays."""
     return np.minimum(np.maximum(values, low), high)

@@ -8,7 +8,7 @@ Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
 :mod:`impactmaps.closed_forms.hertz_similarity`). :func:`lookup` interpolates F̄max linearly in
 (log ζ, log λ); the interpolation error against direct simulation is measured by
 ``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
-it was swept with (:func:`impactmaps.maps.compute.sweep.map_law`): a Hertz map is never read as
+it was swept with (:func:`impactmaps.maps.family.map_family.map_law`): a Hertz map is never read as
 a linear one, nor the reverse. The shear-deformable maps also ship at other slendernesses
 (:mod:`impactmaps.maps.read.slenderness`); a physical case finds its map in
 :mod:`impactmaps.cases.case_lookup`.
@@ -29,16 +29,7 @@ from ..._checks import require_choice, require_positive
 from ..._renamed import renamed_keyword
 from ...targets.options import STRUCTURE_KINDS, is_shear_deformable, point_load_diverges
 from ..family.builtin_families import MEMBER_SLENDERNESSES, PLASTIC_LAWS, family_layout
-from .reader import (
-    BAND_TOLERANCE,
-    PreparedMap,
-    answer_status,
-    corner_status,
-    interpolation_error,
-    prepare_map,
-    read_values,
-    status_notes,
-)
+from .reader import PreparedMap, prepare_map, read_values
 from ..files.data_io import read_resource_arrays, read_shipped, shipped_path
 from ..family.map_family import ASYMPTOTE_PEAKS, map_law
 from ..family.refinement import Refinement
@@ -48,9 +39,9 @@ from ..family.regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "BAND_TOLERANCE", "map_file_stem", "LookupResult", "load_shipped_map",
+__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
            "require_map_law", "missing_shipped_map", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
-           "read_map", "answer_status", "corner_status", "status_notes", "interpolation_error", "design_formula",
+           "read_map", "design_formula",
            "markdown_table"]
 
 #: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
@@ -153,7 +144,7 @@ def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.
 
 def shipped_structure_name(kind: str, theory: str, slenderness: float | None = None) -> str:
     """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable slenderness
-    member at ``slenderness`` (one of :data:`~impactmaps.maps.family.structures.MEMBER_SLENDERNESSES`)."""
+    member at ``slenderness`` (one of :data:`~impactmaps.maps.family.builtin_families.MEMBER_SLENDERNESSES`)."""
     require_choice("kind", kind, STRUCTURE_KINDS)
     require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == kind])
     name = SHIPPED_MAPS[(kind, theory)]

@@ -6,7 +6,7 @@ The maps (``impactmaps/maps/data/NAME-yc.npz``, ``NAME-stronge.npz`` and ``NAME-
 Each answer carries a band: over the eight map points around it, the largest of their own
 error (refinement, or half the spread of a sensitive point) plus the local interpolation
 error estimated from the map's second differences
-(:func:`impactmaps.maps.read.lookup.interpolation_error` along the three axes), times
+(:func:`impactmaps.maps.read.bands.interpolation_error` along the three axes), times
 :data:`BAND_SAFETY`; its coverage is measured by ``validation/lookup_error.py --law yc`` (``stronge``, ``epp``).
 A map may ship with a refinement of each β slice (``data/refinements/NAME-LAW``,
 :mod:`impactmaps.maps.family.slice_refinement`): F̄max is then read in the slices' refined leaves.
@@ -37,7 +37,7 @@ __all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "
 #: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
 #: patch depends on the sphere radius, a fourth number).
 PLASTIC_MAPS = LAYOUTS["yc"].shipped
-#: The interpolation estimate of the plastic maps (:func:`~impactmaps.maps.read.reader.interpolation_error`):
+#: The interpolation estimate of the plastic maps (:func:`~impactmaps.maps.read.bands.interpolation_error`):
 #: second differences over one neighbour a side, safety factor 4, and the factor on the
 #: whole band (:class:`~impactmaps.maps.family.map_family.Interpolation` of the plastic families).
 _YC = LAYOUTS["yc"]
@@ -57,7 +57,7 @@ class PlasticLookup:
         Worst status of the eight map points around the answer (``sensitive`` >
         ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused), and
         ``interpolated`` where they converged but the F̄max band is wider than the points'
-        tolerance (:func:`impactmaps.maps.read.lookup.answer_status`).
+        tolerance (:func:`impactmaps.maps.read.bands.answer_status`).
     map_name : str
     law : str
         ``"yc"``, ``"stronge"`` or ``"epp"``.

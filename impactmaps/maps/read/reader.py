@@ -29,25 +29,28 @@ import numpy as np
 
 from ..._checks import describe_outside, require_positive
 from ..family.accuracy import PointStatus
-from .interpolator import PlaneInterpolator, grid_bilinear, grid_bilinear_one, interpolate_line, interpolate_line_one
+from .interpolator import (
+    PlaneInterpolator,
+    clip,
+    grid_bilinear,
+    grid_bilinear_one,
+    interpolate_line,
+    interpolate_line_one,
+    max_one,
+)
 from ..family.map_family import ASYMPTOTE_PEAK_VARIABLES
 from ..family.refinement import MAX_LEVEL, Refinement
 from ..family.slice_refinement import SlicedRefinement, read_slices
 from .bands import (
-    BAND_TOLERANCE,
-    INTERPOLATION_SAFETY,
-    answer_status,
     corner_status,
     interpolation_error,
     slice_estimates,
-    status_notes,
 )
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["BAND_TOLERANCE", "INTERPOLATION_SAFETY", "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "answer_status", "corner_status",
-           "status_notes", "interpolation_error", "slice_estimates", "band_grid"]
+__all__ = [ "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "band_grid"]
 
 
 def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -59,8 +62,8 @@ def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 def _bracket(grid: np.ndarray, values: np.ndarray):
     """Indices of the grid points just below and just above each value."""
-    upper = _clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
-    lower = _clip(upper - 1, 0, grid.size - 1)
+    upper = clip(np.searchsorted(grid, values, side="left"), 0, grid.size - 1)
+    lower = clip(upper - 1, 0, grid.size - 1)
     exact = np.abs(grid[upper] - values) <= 1e-12  # np.isclose(rtol=0, atol=1e-12) of finite numbers
     return np.where(exact, upper, lower), upper
 
@@ -247,7 +250,7 @@ def read_values(dataset: xr.Dataset | None, family, numbers, labels, *, where: s
                 shown = describe_outside(values, low * (1 - 1e-12), high * (1 + 1e-12))
                 raise OutsideMapError(f"{label} = {shown} is outside the shipped map: valid range is [{low:g}, "
                                       f"{high:g}]; run a simulation{hints[0]} instead", label, shown, (low, high))
-        logs = {axis: np.log(_clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
+        logs = {axis: np.log(clip(values, *prepared.ranges[axis])).ravel() for values, axis in zip(numbers, prepared.axes)}
     shape = np.shape(numbers[0])
     if prepared.plane is not None:
         values, errors, codes = _read_plane(prepared, logs)
@@ -372,7 +375,7 @@ def _read_cube_one(prepared: PreparedMap, family, logs: dict):
     for variable, error_name in family.errors.items():
         values[variable] = np.array([_multilinear_one(prepared.tables[variable], cell)])
         band = prepared.band_grids[variable]
-        errors[error_name] = np.array([family.interpolation.band_safety * _max_one([float(band[c]) for c in corners])])
+        errors[error_name] = np.array([family.interpolation.band_safety * max_one([float(band[c]) for c in corners])])
     codes = prepared.tables["status"]
     return values, errors, [codes[c].reshape(1) for c in corners]
 
@@ -402,15 +405,10 @@ def _multilinear_one(table: np.ndarray, cell) -> float:
     return value
 
 
-def _max_one(values) -> float:
-    """The largest of ``values``, NaN if one is NaN (as ``np.max``)."""
-    return math.nan if any(value != value for value in values) else max(values)
-
-
 def _cell(grid: np.ndarray, values: np.ndarray):
     """(lower index, distance from it in cells) of each value on an ascending grid (a value on the
     last grid point is at distance 1 in the last cell)."""
-    index = _clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
+    index = clip(np.searchsorted(grid, values, side="right") - 1, 0, grid.size - 2)
     return index, (values - grid[index]) / (grid[index + 1] - grid[index])
 
 
@@ -424,8 +422,3 @@ def _multilinear(table: np.ndarray, cell) -> np.ndarray:
             weight = weight * w
         value = value + np.asarray(table[indices]) * weight
     return value
-
-
-def _clip(values, low, high):
-    """``np.clip`` (the same numbers), at a fraction of its cost on small arrays."""
-    return np.minimum(np.maximum(values, low), high)

@@ -4,7 +4,7 @@ The maps of Timoshenko beams and Mindlin plates depend on the slenderness s = sp
 thickness; those of Euler beams and Kirchhoff plates do not. ζ and λ are defined with the
 classical quantities (static stiffness, infinite-structure impedance), so as s grows a
 shear-deformable map tends to the classical one. The package ships the slenderness members at
-s = 10, 20 and 50 (:data:`~impactmaps.maps.family.structures.MEMBER_SLENDERNESSES`; Timoshenko
+s = 10, 20 and 50 (:data:`~impactmaps.maps.family.builtin_families.MEMBER_SLENDERNESSES`; Timoshenko
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
 
@@ -32,8 +32,9 @@ from ..._renamed import renamed_keyword
 from ...targets.options import classical_theory, is_shear_deformable, point_load_diverges
 from .lookup import load_shipped_map, lookup
 from .bands import SEVERITY, answer_status
-from ..family.registry import PLANE_LAWS, map_family
-from ..family.structures import MEMBER_SLENDERNESSES
+from ..family.builtin_families import PLANE_LAWS
+from ..family.map_family import map_family
+from ..family.builtin_families import MEMBER_SLENDERNESSES
 
 __all__ = ["slenderness_members", "lookup_slenderness", "slenderness_error_grid", "shipped_for"]
 

@@ -63,7 +63,6 @@ import numpy as np
 from ..._checks import require_positive
 from ...targets.base import ModalBasis
 from .coupled_closed_form import (
-    SAMPLED_PHASE,
     _advance,
     _clear_gap,
     _content_step,
@@ -71,9 +70,9 @@ from .coupled_closed_form import (
     _partial_force,
 )
 from .kernel_types import kernel_array
-from .coupled_stepping import COARSE_FACTOR, COARSE_RESOLUTION, _coarse_plan, _coarse_steps, _fine_steps
+from .coupled_stepping import _coarse_plan, _coarse_steps, _fine_steps
 
-__all__ = ["COARSE_FACTOR", "COARSE_RESOLUTION", "CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes",
+__all__ = [ "CONTACT_RESOLUTION", "CoupledModes",
            "contact_phase", "coupled_modes"]
 
 #: ε of the contact-phase step rule: coupled modes whose force amplitudes sum to at most

@@ -2,7 +2,7 @@
 
 A :class:`Beam` is described by its section properties (bD11, kbA55, ρA, ρI; docs/physics_contract.md
 §3.2). Modes: closed forms (SS, Euler with any support) or a p-version finite-element model
-(:mod:`impactmaps.targets.beams.beam_modes`). A free–free beam's static compliance is its
+(:mod:`impactmaps.targets.beams`). A free–free beam's static compliance is its
 inertia-relief compliance ``Σ_elastic W_j(x0)²/ω_j²``.
 """
 
@@ -23,15 +23,19 @@ from ..._checks import (
     require_positive,
 )
 from ...dimensionless import impactor_mass_for_beam, loss_factor_beam
-from ...closed_forms import asymptotes
-from . import beam_modes
+from ...closed_forms import infinite_beam
+from .beam_euler_modes import classical_euler_modes, euler_roots
+from .beam_fe_modes import finite_element_mode_count, finite_element_modes, finite_element_resolution_limit
+from .beam_section import ModeSet, largest_wavenumber
+from .beam_sine_modes import simply_supported_count, simply_supported_modes
+from .beam_static import static_compliance
 from ..base import InfiniteImpact, ModalBasis, Target
-from .beam_modes import BeamSection
+from .beam_section import BeamSection
 from ..options import BEAM_SUPPORTS as SUPPORTS
 from ..options import BEAM_THEORIES as THEORIES
 from ..options import impact_coordinate_range
 
-__all__ = ["Beam", "SUPPORTS", "THEORIES", "MIN_SLENDERNESS"]
+__all__ = ["Beam", "MIN_SLENDERNESS"]
 
 #: Smallest length-to-height ratio accepted (beam theory is meaningless below it).
 MIN_SLENDERNESS = 2.0
@@ -263,17 +267,17 @@ class Beam(Target):
         """Normalised peak force on the infinite beam F̄∞(ζ) [-] at ``loss_factor`` ζ [-] (scalar or array)."""
         zeta = np.asarray(loss_factor, dtype=float)
         unique, inverse = np.unique(zeta, return_inverse=True)
-        peaks = np.asarray(asymptotes.infinite_beam_peak(unique), dtype=float)
+        peaks = np.asarray(infinite_beam.infinite_beam_peak(unique), dtype=float)
         return peaks[inverse].reshape(zeta.shape)
 
     @classmethod
     def infinite_structure_impact(cls, loss_factor: float) -> InfiniteImpact:
         """Impact on the infinite beam at loss factor ζ [-] (normalised; :class:`InfiniteImpact`)."""
-        contact = asymptotes.infinite_beam_contact_time(loss_factor)
-        rebound = (asymptotes.infinite_beam_impactor_velocity(contact, loss_factor)
+        contact = infinite_beam.infinite_beam_contact_time(loss_factor)
+        rebound = (infinite_beam.infinite_beam_impactor_velocity(contact, loss_factor)
                    if np.isfinite(contact) else np.nan)
-        return InfiniteImpact(asymptotes.infinite_beam_peak(loss_factor),
-                              asymptotes.infinite_beam_peak_time(loss_factor), contact, rebound)
+        return InfiniteImpact(infinite_beam.infinite_beam_peak(loss_factor),
+                              infinite_beam.infinite_beam_peak_time(loss_factor), contact, rebound)
 
     def flexural_wave_speed(self, angular_frequency):
         """Euler flexural phase speed ``c_B = (bD11/m')^{1/4} sqrt(ω)`` [m/s] at ω [rad/s]."""
@@ -287,19 +291,19 @@ class Beam(Target):
         return 2.0 * self.flexural_wave_speed(angular_frequency)
 
     # -- modes ------------------------------------------------------------------------
-    def mode_set(self, max_frequency: float, min_modes: int = 1) -> beam_modes.ModeSet:
+    def mode_set(self, max_frequency: float, min_modes: int = 1) -> ModeSet:
         """All modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) as a
-        :class:`~impactmaps.targets.beams.beam_modes.ModeSet`; rigid-body modes first."""
+        :class:`~impactmaps.targets.beams.beam_section.ModeSet`; rigid-body modes first."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         require_in_range("min_modes", min_modes, 0, math.inf)
         if int(min_modes) != min_modes:
             raise ValueError(f"min_modes = {min_modes!r} is invalid: must be an integer")
         section = self.section
         if self.supports == "ss":
-            return beam_modes.simply_supported_modes(section, max_frequency, int(min_modes))
+            return simply_supported_modes(section, max_frequency, int(min_modes))
         if self.theory == "euler":
-            return beam_modes.classical_euler_modes(section, max_frequency, int(min_modes))
-        return beam_modes.finite_element_modes(section, max_frequency, int(min_modes))
+            return classical_euler_modes(section, max_frequency, int(min_modes))
+        return finite_element_modes(section, max_frequency, int(min_modes))
 
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
         """Modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``) seen from x0, with
@@ -311,20 +315,20 @@ class Beam(Target):
         building them; a lower bound above ``limit`` may be returned early."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         section, frequency = self.section, float(max_frequency)
-        wavenumber = float(beam_modes.largest_wavenumber(section, frequency))
+        wavenumber = float(largest_wavenumber(section, frequency))
         bound = max(math.floor(wavenumber * self.length / math.pi) - 1, 0)
         if limit is not None and bound > limit:
             return bound
         if self.supports == "ss":
-            return beam_modes.simply_supported_count(section, frequency)
+            return simply_supported_count(section, frequency)
         if self.theory == "euler":
             last = int(wavenumber * self.length / math.pi) + 2  # the roots beyond lie above the cut-off
             first = max(last - 3, 1)  # the roots before lie below it
-            roots = beam_modes.euler_roots(self.supports, last, first)
+            roots = euler_roots(self.supports, last, first)
             scale = math.sqrt(section.bending_stiffness / (section.mass_per_length * self.length**4))
             rigid = 2 if self.supports == "ff" else 0
             return rigid + first - 1 + int(np.searchsorted(roots**2 * scale, frequency, side="right"))
-        return beam_modes.finite_element_mode_count(section, frequency)
+        return finite_element_mode_count(section, frequency)
 
     @property
     def bounded_modes(self) -> bool:
@@ -335,7 +339,7 @@ class Beam(Target):
         """Highest frequency [rad/s] the beam's modes resolve (``inf`` for the closed forms)."""
         if not self.bounded_modes:
             return math.inf
-        return beam_modes.finite_element_resolution_limit(self.section)
+        return finite_element_resolution_limit(self.section)
 
     def mode_table(self, count: int) -> dict:
         """The lowest ``count`` natural frequencies [Hz] (``frequencies_hz``), with ``labels``
@@ -369,7 +373,7 @@ class Beam(Target):
     # -- statics and dimensionless groups ---------------------------------------------
     def static_compliance(self) -> float:
         """Static point compliance 1/K_st [m/N] at x0 (exact; inertia relief for free–free)."""
-        return beam_modes.static_compliance(self.section, self.impact_position)
+        return static_compliance(self.section, self.impact_position)
 
     def loss_factor(self, impactor_mass, contact_stiffness):
         """Corrected beam loss factor ζ_b [-] for ``impactor_mass`` [kg] and ``contact_stiffness``

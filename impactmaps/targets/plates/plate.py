@@ -37,11 +37,9 @@ from ...closed_forms import asymptotes
 from . import plate_any_edges, plate_navier, ritz
 from ..base import InfiniteImpact, ModalBasis, Target
 from ..options import PLATE_THEORIES, impact_coordinate_range
-from .plate_ritz import STATIC_RITZ_FUNCTIONS, classical_static_compliance, ritz_plate_modes
-from .plate_static import navier_static_compliance
+from .plate_ritz import classical_static_compliance, ritz_plate_modes
 
-__all__ = ["Plate", "classical_static_compliance", "navier_static_compliance", "PLATE_THEORIES",
-           "STATIC_RITZ_FUNCTIONS"]
+__all__ = ["Plate"]
 
 
 
