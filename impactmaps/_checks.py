@@ -21,6 +21,11 @@ __all__ = [
     "require_choice",
     "require_finite",
     "require_instance",
+    "MIN_PLATE_SIDE_RATIO",
+    "UNUSUAL_SIZES_M",
+    "UnusualValueWarning",
+    "warn_if_unusual",
+    "require_plate_proportions",
 ]
 
 
@@ -222,3 +227,40 @@ def read_text_input(what: str, value) -> tuple[Path, str]:
     except UnicodeDecodeError as error:
         raise ValueError(f"{what} {str(path)!r} is not UTF-8 text (byte {error.start}): a TOML file is "
                          "expected") from None
+
+
+# -- sense checks: sizes that look like a unit slip ------------------------------------------
+#: Smallest side/thickness of a plate any plate theory describes (a beam's L/h ≥ 2 likewise,
+#: :data:`impactmaps.targets.beam.MIN_SLENDERNESS`): below it the body is a block.
+MIN_PLATE_SIDE_RATIO = 2.0
+#: Sizes above which a value is announced as unusual [m]: an impactor radius (a steel ball of
+#: 0.5 m weighs 4 t) and a plate's thickness or a beam's depth (millimetres typed as metres).
+UNUSUAL_SIZES_M = {"radius": 0.5, "thickness": 0.5, "height": 0.5}
+
+
+class UnusualValueWarning(UserWarning):
+    """An input the model accepts but that looks like a unit slip (millimetres typed as metres)."""
+
+
+def warn_if_unusual(name: str, value: float, kind: str, note: str = "", stacklevel: int = 3) -> None:
+    """Warn (:class:`UnusualValueWarning`) when a size ``value`` [m] of ``kind`` (a key of
+    :data:`UNUSUAL_SIZES_M`) is above its usual range, naming it as the user wrote it
+    (``name``); ``note`` adds what the value implies (e.g. the ball's mass)."""
+    limit = UNUSUAL_SIZES_M[kind]
+    if value > limit:
+        import warnings
+
+        extra = f" ({note})" if note else ""
+        warnings.warn(f"{name} = {value:g} m is unusually large{extra}: above {limit:g} m; sizes are in metres "
+                      f"(did you mean {value:g} mm = {value / 1000:g} m?)", UnusualValueWarning,
+                      stacklevel=stacklevel)
+
+
+def require_plate_proportions(thickness_name: str, thickness: float, side: float) -> None:
+    """Refuse a plate whose smaller ``side`` [m] is less than :data:`MIN_PLATE_SIDE_RATIO`
+    thicknesses (``ValueError`` naming ``thickness_name`` as the user wrote it and the range)."""
+    if side / thickness < MIN_PLATE_SIDE_RATIO:
+        raise ValueError(f"{thickness_name} = {thickness:g} m is invalid for a plate whose smaller side is {side:g} m: "
+                         f"side/thickness = {side / thickness:.3g} is below {MIN_PLATE_SIDE_RATIO:g}, where no plate "
+                         f"theory holds (a block, not a plate); valid range: {thickness_name} ≤ "
+                         f"{side / MIN_PLATE_SIDE_RATIO:g} m (sizes are in metres: 3 mm is 0.003)")

@@ -51,18 +51,30 @@ Checks (each sentence starts with its tag):
     beam and plate theories put the point load and the support reaction on one line
     there, while the real section carries them by local shear and bearing stresses
     (Saint-Venant: the theories hold a few depths away from such concentrations).
+``contact radius``
+    A Mindlin plate whose contact radius at the largest indentation exceeds half its
+    thickness: Mindlin theory and its omitted thickness-shear branches are not reliable
+    under such a load.
 ``reflections``
     An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
     is exact only until flexural waves reflected from the nearest edge return. Their
     group velocity ``2 sqrt(ω) (D*/ρh)^{1/4}`` (plate) or ``2 sqrt(ω) (EI/m')^{1/4}``
     (Euler beam) is evaluated at ``ω = 2π/t_c``, the upper end of the force pulse's main
     lobe, and the round trip ``2d/c_g`` compared with the contact time.
+
+Every command that answers a case prints the same set, computed once by
+:func:`case_warnings`: ``simulate`` and ``fd`` from their run, ``lookup --case`` from the map's
+peak force, ``check`` from the map's peak force or, where no map reads the case, from the
+half-space peak force (an upper bound of an elastic contact's force on a structure: the
+checks that grow with the force are then pessimistic, and the deflection check is left to
+the run).
 """
 
 from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -75,6 +87,9 @@ __all__ = [
     "SPEED_RATIO_LIMIT",
     "YIELD_PRESSURE_FACTOR",
     "ModelValidityWarning",
+    "ForceAnswer",
+    "case_warnings",
+    "force_answer",
     "hertz_peak_pressure",
     "validity_warnings",
     "warn_if_invalid",
@@ -135,8 +150,75 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
               _indentation(sphere, result),
               _speed(target_material, result), _deflection(target, result),
               _structural_theory(target, result), _point_load(target, result), _support_distance(target),
-              _reflections(target, result))
+              _contact_radius(target, law, result), _reflections(target, result))
     return [message for message in checks if message]
+
+
+@dataclass(frozen=True)
+class ForceAnswer:
+    """An answer that gives a peak force but no run (a map's reading, or the half-space bound),
+    as :func:`validity_warnings` reads it.
+
+    Attributes
+    ----------
+    peak_force : float
+        F_max [N].
+    max_indentation : float
+        The indentation of the law's loading curve at ``peak_force`` [m].
+    velocity : float
+        V0 [m/s].
+    method : str
+        Where the force comes from (``"map"`` or ``"half-space bound"``).
+    """
+
+    peak_force: float
+    max_indentation: float
+    velocity: float
+    method: str
+    contact_intervals: tuple = ()
+    history: None = None
+    max_target_displacement: float | None = None
+
+
+def force_answer(law, impactor_mass: float, velocity: float, peak_force: float | None = None) -> ForceAnswer:
+    """A :class:`ForceAnswer` at ``peak_force`` [N] (a map's), or at the half-space peak force
+    when ``None``; the indentation from the law's loading curve (arithmetic: bisection)."""
+    from .closed_forms.halfspace import single_law_parameters
+
+    params = single_law_parameters(law)
+    bound = float(law.indentation_for_energy(0.5 * float(impactor_mass) * float(velocity) ** 2))
+    if peak_force is None:
+        return ForceAnswer(float(law.kernel(bound, bound, params)[0]), bound, float(velocity), "half-space bound")
+    low, high = 0.0, bound
+    while float(law.kernel(high, high, params)[0]) < peak_force and high < 1e6 * bound:
+        high *= 2.0
+    for _ in range(80):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if float(law.kernel(middle, middle, params)[0]) < peak_force else (low, middle)
+    return ForceAnswer(float(peak_force), high, float(velocity), "map")
+
+
+def case_warnings(case, result=None, peak_force: float | None = None) -> list[str]:
+    """The validity warnings of a case (:func:`validity_warnings`), the one set every command prints.
+
+    Parameters
+    ----------
+    case : impactmaps.cases.Case
+        The case.
+    result : ImpactResult or AsymptoteResult, optional
+        Its run (``simulate``, ``fd``).
+    peak_force : float, optional
+        Without a run: the peak force a map gives [N] (``lookup --case``, ``check``);
+        without either, the half-space peak force (its upper bound for an elastic law).
+
+    Returns
+    -------
+    list of str
+    """
+    if result is None:
+        result = force_answer(case.law, case.impactor_mass, case.velocity, peak_force)
+    target = None if case.target_type == "halfspace" else case.target
+    return validity_warnings(case.sphere, case.target_material, case.law, target, result)
 
 
 def target_warnings(target, result) -> list[str]:
@@ -276,7 +358,7 @@ def _target_displacement(target, result):
 
 
 def _deflection(target, result):
-    if getattr(target, "kind", None) != "plate":
+    if getattr(target, "kind", None) != "plate" or getattr(result, "method", None) == "half-space bound":
         return None
     deflection = _target_displacement(target, result)
     ratio = deflection / float(target.thickness)
@@ -334,6 +416,27 @@ def _support_distance(target):
             f"closer than the {target.kind}'s depth {depth:.4g} m: the {target.theory} theory's point "
             "load and support reaction overlap there (local shear and bearing stresses, not described); "
             "strike at least one depth away from supports")
+
+
+def _contact_radius(target, law, result):
+    from .targets.options import is_shear_deformable
+
+    if getattr(target, "kind", None) != "plate" or not is_shear_deformable(getattr(target, "theory", "")):
+        return None  # a shear-deformable (Mindlin) plate
+    alpha = max(float(result.max_indentation), 0.0)
+    # the contact radius as the modal solver's patch takes it (solvers.modal_settings.contact_radius_function,
+    # a layer above): the law's own loading radius (Stronge), else sqrt(R α) with the law's radius scale
+    if hasattr(law, "loading_contact_radius"):
+        radius = float(law.loading_contact_radius(alpha))
+    elif law.contact_radius_scale is not None:
+        radius = math.sqrt(float(law.contact_radius_scale) * alpha)
+    else:
+        return None
+    if radius <= 0.5 * float(target.thickness):
+        return None
+    return (f"contact radius: {radius:.4g} m at the largest indentation exceeds half the plate thickness "
+            f"{float(target.thickness):.4g} m: Mindlin theory and its omitted thickness-shear branches are not "
+            "reliable under such a load")
 
 
 def _reflections(target, result):

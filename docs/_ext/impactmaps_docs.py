@@ -15,6 +15,7 @@ import dataclasses
 import importlib
 import inspect
 import re
+import warnings
 from pathlib import Path
 
 from docutils import nodes
@@ -125,7 +126,9 @@ class CaseExample(SphinxDirective):
         source = (Path(self.env.srcdir) / self.arguments[0]).resolve()
         self.env.note_dependency(str(source))
         case = load_case(source)
-        result, summary = run_case(case)
+        with warnings.catch_warnings():  # shown below, from the summary, as the command prints them
+            warnings.simplefilter("ignore")
+            result, summary = run_case(case)
         images = Path(self.env.srcdir) / "_generated"
         images.mkdir(exist_ok=True)
         image = images / f"{source.stem}.png"
@@ -139,6 +142,13 @@ class CaseExample(SphinxDirective):
             value = summary.get(key)
             text = f"{value:.5g}" if isinstance(value, float) else str(value)
             lines += [f"   * - ``{key}``", f"     - {text}"]
+        command = "fd" if case.solver_kind == "fd" else "simulate"
+        if summary["model_warnings"]:  # what the command prints (impactmaps.validity): the page shows it too
+            lines += ["", f".. warning:: ``impactmaps {command}`` warns of this case (``model_warnings``, "
+                      ":mod:`impactmaps.validity`):", ""]
+            lines += [f"   * {message}" for message in summary["model_warnings"]]
+        else:
+            lines += ["", f"``impactmaps {command}`` prints no validity warning for this case (:mod:`impactmaps.validity`)."]
         container = nodes.container()
         self.state.nested_parse(StringList(lines, source=str(source)), self.content_offset, container)
         return container.children

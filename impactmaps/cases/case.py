@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .._checks import read_text_input, require_in_range
+from .._checks import read_text_input, require_in_range, require_plate_proportions, warn_if_unusual
 from ..contact import law_options
 from ..contact.base import ContactLaw, available_contact_laws, contact_law, contact_law_class
 from ..contact.pair import Sphere
@@ -189,6 +189,7 @@ def _impactor(data) -> tuple[Sphere, float]:
         material = replace(material, density=density)
     with key_path(path, ("radius", "mass", "material")):
         sphere = Sphere(radius, material, mass)
+    warn_if_unusual(f"{path}.radius", radius, "radius", f"a sphere of {float(sphere.mass):.3g} kg", stacklevel=4)
     return sphere, velocity
 
 
@@ -230,9 +231,20 @@ def _target(data):
             raise ValueError(f"{path}.{key} is derived from the plies for a laminated {kind}; "
                              "remove it")
     sizes = [number(entries, key, path, "m", required=True) for key in size]
+    given = dict(zip(size, sizes))
+    if kind == "plate" and "thickness" in given:  # a laminate's thickness comes from its plies (checked below)
+        require_plate_proportions(f"{path}.thickness", given["thickness"], min(given["length_x"], given["length_y"]))
     options = read_options(entries, path, keyword_options(build), _TARGET_UNITS)
     with key_path(path, tuple(entries) + ("material",)):
-        return build(*sizes, contact_material, **options), kind, contact_material
+        target = build(*sizes, contact_material, **options)
+    depth_key = "thickness" if kind == "plate" else "height"
+    depth = getattr(target, depth_key, None)
+    if depth is not None:
+        name = f"{path}.{depth_key}" + ("" if depth_key in given else " (the plies' total)")
+        if kind == "plate" and depth_key not in given:
+            require_plate_proportions(name, float(depth), min(float(target.length_x), float(target.length_y)))
+        warn_if_unusual(name, float(depth), depth_key, stacklevel=4)
+    return target, kind, contact_material
 
 
 def _contact(data, sphere, contact_material, default_law=None) -> tuple[ContactLaw, str, dict]:

@@ -15,7 +15,7 @@ from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
 from ..result import ImpactResult
 from .._files import written_atomically
-from ..validity import ModelValidityWarning, validity_warnings
+from ..validity import ModelValidityWarning, case_warnings
 from .case import Case
 from .numbers import case_numbers
 
@@ -35,7 +35,7 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     maps (for a law other than linear the solver's own normalisation moves to
     ``fmax_normalised_reference``, ``contact_time_normalised_reference``) —,
     ``model_warnings`` (the assumptions of the model the run
-    violates, :func:`impactmaps.validity.validity_warnings`) and the case identity; NaN (a quantity that does not
+    violates, :func:`impactmaps.validity.case_warnings`: the set every command prints) and the case identity; NaN (a quantity that does not
     exist for this run, e.g. the restitution of a record that ends in contact) becomes
     ``None``.
     """
@@ -54,8 +54,7 @@ def case_summary(case: Case, result: ImpactResult) -> dict:
     summary["fmax_normalised"] = float(result.peak_force) / numbers["force_scale_N"]
     summary["contact_time_normalised"] = float(result.total_contact_time) / numbers["time_scale_s"]
     summary.update(numbers)
-    summary["model_warnings"] = validity_warnings(case.sphere, case.target_material, case.law,
-                                                  case.target, result)
+    summary["model_warnings"] = case_warnings(case, result)
     summary.update({
         "case": case.name,
         "target_type": case.target_type,
@@ -148,6 +147,7 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
         try:
             with warnings.catch_warnings():  # the case's own checks below say all of them, once
                 warnings.simplefilter("ignore", ModelValidityWarning)
+                warnings.filterwarnings("ignore", message="contact radius .* exceeds half the plate thickness")
                 result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
                                   settings=case.settings, record=True, time_step=case.time_step)
         except ModeBudgetError as error:

@@ -185,7 +185,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("lookup", "F̄max and regime from the shipped maps, or for a case an on-demand map tile (no simulation)",
             cmd_lookup)
     _kind_argument(p, required=False)
-    _deferred_choices(p.add_argument("--theory"), _THEORIES)
+    _deferred_choices(p.add_argument(
+        "--theory", help="the structural theory of the map (default: the classical one, euler for a beam, kirchhoff "
+        "for a plate)"), _THEORIES)
     p.add_argument("--zeta", type=float, help=ZETA_HELP + "; with --law hertz the Hertz loss factor ζ_h")
     p.add_argument("--lambda", dest="lambda_", metavar="LAMBDA", type=float,
                    help=LAMBDA_HELP + "; with --law hertz the Hertz relative stiffness λ_h")
@@ -239,7 +241,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
-    p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) > 0 (Christoforou & Yigit 1998, eq 11)")
+    p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) in (0, 1e8] (Christoforou & Yigit 1998, eq 11)")
 
     _tool_parsers(add)
     return parser
@@ -249,7 +251,8 @@ def _tool_parsers(add) -> None:
     """The subcommands around the solvers: init, check, warm-up, materials, laws."""
     p = add("init", "write a commented case file to start from (beam, plate, laminate or fd)", cmd_init)
     p.add_argument("template", choices=sorted(CASE_TEMPLATES), help="what the case describes")
-    p.add_argument("file", nargs="?", default=None, metavar="FILE", help="the case file to write (default TEMPLATE.toml)")
+    p.add_argument("file", nargs="?", default=None, metavar="FILE",
+                   help="the case file to write (default: the template's name, e.g. plate.toml for init plate)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing FILE")
 
     p = add("check", "validate a case file without running it: its numbers (ζ, λ, β), the map that reads it, "
@@ -303,10 +306,26 @@ def main(argv=None) -> int:
     it), 130 when interrupted (Ctrl-C).
     """
     try:
-        return _main(argv)
+        status = _main(argv)
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_OK
+    if status == EXIT_INTERRUPTED and argv is None:  # the program itself, not a call from Python
+        _exit_now(status)
+    return status
+
+
+def _exit_now(status: int) -> None:
+    """End the interrupted program at once: run the exit handlers and flush the output, but skip
+    the interpreter's teardown of numba, pandas and xarray (about a second on a busy machine),
+    so that a signal ends every command within a second."""
+    import atexit
+
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+    os._exit(status)
 
 
 def _silence_stdout() -> None:

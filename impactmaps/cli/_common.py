@@ -214,3 +214,43 @@ def interrupted(error: BaseException) -> bool:
         seen.add(id(error))
         error = error.__cause__ or error.__context__
     return False
+
+
+def case_model_warnings(case, map_force) -> dict:
+    """The case's validity warnings (:func:`impactmaps.validity.case_warnings`, the set ``simulate``
+    prints) at the map's peak force [N], or at the half-space bound where no map gives one (``None``);
+    each also issued as a warning (``check``, ``lookup --case``)."""
+    import warnings
+
+    from ..validity import ModelValidityWarning, case_warnings
+
+    messages = case_warnings(case, peak_force=map_force)
+    for message in messages:
+        warnings.warn(message, ModelValidityWarning, stacklevel=3)
+    basis = ("the map's peak force" if map_force is not None else
+             "the half-space peak force, an upper bound of an elastic contact's force on the structure (the checks "
+             "that grow with the force may be pessimistic; the run decides)")
+    return {"model_warnings": messages, "model_warnings_note": f"the checks of impactmaps.validity at {basis}"}
+
+
+#: A lookup band wider than this fraction of its value is announced ("simulate it").
+WIDE_BAND_FRACTION = 0.1
+
+
+def announce_wide_band(values: dict, value_key: str, error_key: str, advice: str) -> dict:
+    """``values`` with ``band_warning`` when the band ``values[error_key]`` is wider than
+    :data:`WIDE_BAND_FRACTION` of ``values[value_key]`` (also issued as a warning); unchanged
+    when either is missing."""
+    import math
+    import warnings
+
+    value, error = values.get(value_key), values.get(error_key)
+    if value is None or error is None or not (math.isfinite(value) and math.isfinite(error)):
+        return values
+    if abs(error) <= WIDE_BAND_FRACTION * abs(value):
+        return values
+    share = f"{abs(error) / abs(value):.0%}" if value else "more than all"
+    message = (f"the map's band {value_key} {value:.4g} ± {error:.3g} is wide ({share} of the value, above "
+               f"{WIDE_BAND_FRACTION:.0%}): the map does not pin this number down; simulate it ({advice})")
+    warnings.warn(message, UserWarning, stacklevel=3)
+    return values | {"band_warning": message}

@@ -6,7 +6,6 @@ Each ``cmd_*`` takes the parsed arguments and returns the dict that ``main`` pri
 
 from __future__ import annotations
 
-import math
 import sys
 
 from ._common import check, material_from_args, out_dir, plain_text, refuse, refuse_ignored_fd, save_figure
@@ -78,10 +77,15 @@ def cmd_halfspace(args) -> dict:
     }
 
 
+#: Largest impact number ``restitution`` takes (the documented range; the closed form holds for
+#: any finite β, but β = 10⁸ is already an impact 10⁸ times the yield velocity).
+MAX_RESTITUTION_BETA = 1e8
+
+
 def cmd_restitution(args) -> dict:
     from ..closed_forms.halfspace import restitution
 
-    check("--beta", args.beta, 0.0, math.inf, "the impact number β")
+    check("--beta", args.beta, 0.0, MAX_RESTITUTION_BETA, "the impact number β", high_inclusive=True)
     return {"beta": args.beta, "restitution": float(restitution(args.beta))}
 
 

@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..maps.family.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ..maps.compute.workers import MAX_WORKERS
-from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
+from ._common import announce_wide_band, case_model_warnings, check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -47,7 +47,7 @@ def cmd_chart(args) -> dict:
           what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
     check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
           low_inclusive=True, high_inclusive=True)
-    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas)
+    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas, args.law)
     out = out_dir("--out", args.out)
     with store_lock(out / "fmax_map.nc", "--out"):
         paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
@@ -380,10 +380,17 @@ def cmd_lookup(args) -> dict:
         start = time.perf_counter()
         progress = None if args.quiet else (lambda done, total: print(
             f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
-        return lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
+        return found | case_model_warnings(case, found.get("peak_force_N"))
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
-    if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
-        raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
+    if args.zeta is None or args.lambda_ is None or args.kind is None:
+        raise ValueError("give --kind, --zeta and --lambda (and --theory: default the classical one, euler or "
+                         "kirchhoff), or --case CASE.toml")
+    if args.theory is None:
+        from ..targets.options import default_theory
+
+        args.theory = default_theory(args.kind)
     from ..maps.family.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
@@ -407,8 +414,11 @@ def cmd_lookup(args) -> dict:
     except ValueError as error:  # name the options as the user typed them
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
             from None
-    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
-            **status_notes(found.status), "regime": found.regime, "map": found.map_name, "law": law}
+    values = {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error, "status": found.status,
+              **status_notes(found.status), "regime": found.regime, "map": found.map_name, "law": law}
+    return announce_wide_band(values, "fmax_normalised", "fmax_error",
+                              f"impactmaps point --zeta {args.zeta:g} --lambda {args.lambda_:g} --target {args.kind}-… "
+                              f"--theory {args.theory}, or impactmaps simulate on a case file")
 
 
 def _lookup_plastic_numbers(args) -> dict:
@@ -423,8 +433,9 @@ def _lookup_plastic_numbers(args) -> dict:
     check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
     check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
     found = lookup_plastic(beta, args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=args.law)
-    return {"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
+    return announce_wide_band({"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
             "restitution": found.restitution, "restitution_error": found.restitution_error,
             "absorbed_energy_fraction": found.absorbed_energy_fraction,
             "absorbed_energy_error": found.absorbed_energy_error, "status": found.status,
-            **status_notes(found.status), "map": found.map_name, "law": args.law}
+            **status_notes(found.status), "map": found.map_name, "law": args.law},
+        "fmax_normalised", "fmax_error", "simulate a case file with this law")

@@ -136,6 +136,7 @@ def cmd_check(args) -> dict:
     """Validate a case file and report its derived numbers, without running it."""
     from ..cases import case_numbers, load_case
     from ..contact.contact_scale import reference_contact_stiffness
+    from ._common import case_model_warnings
 
     case = load_case(args.case)
     numbers = case_numbers(case)
@@ -164,6 +165,7 @@ def cmd_check(args) -> dict:
                                 "this case (run impactmaps fd, or set [solver] kind = \"fd\")")
     values.update(_map_reading(case))
     values.update(_estimated_cost(case, values))
+    values.update(case_model_warnings(case, values.get("map_peak_force_N")))
     notes = {"beta": f"the {case.law_name} law has no yield indentation: β is a number of the elastic-plastic laws",
              "time_limit_s": "no [solver] duration: the run stops once re-impact is impossible (or at "
                              "max_time_ratio contact times)"}
@@ -184,13 +186,16 @@ def _estimated_cost(case, values: dict) -> dict:
     from ..solvers.run_budget import LONG_RUN_SECONDS, MEMORY_LIMIT_BYTES
 
     if case.solver_kind != "modal":
-        return {"estimated_cost": None, "estimated_cost_note": "the finite-difference run estimates its memory and "
-                "time when it starts (refused above 1 GiB, announced above a minute)"}
+        return _estimated_fd_cost(case, values)
     from ..solvers.modal import estimate_run
 
+    import warnings
+
     try:
-        cost = estimate_run(case.target, case.law, case.impactor_mass, case.velocity, settings=case.settings,
-                            record=True, time_step=case.time_step)
+        with warnings.catch_warnings():  # an estimate only counts: its first guesses (the half-space contact
+            warnings.simplefilter("ignore")  # radius) warn of what the run need not meet; model_warnings say it
+            cost = estimate_run(case.target, case.law, case.impactor_mass, case.velocity, settings=case.settings,
+                                record=True, time_step=case.time_step)
     except ValueError as error:  # the run would be refused before it starts
         values["valid"] = False
         values["valid_note"] = f"simulate refuses this case: {error}"
@@ -211,6 +216,35 @@ def _estimated_cost(case, values: dict) -> dict:
     return out
 
 
+def _estimated_fd_cost(case, values: dict) -> dict:
+    """The finite-difference run's estimate (:func:`impactmaps.fd.estimate_fd`, arithmetic only),
+    keys ``estimated_…``; with ``[solver] check_convergence`` the re-run on twice the elements
+    counted in; a run the budget refuses makes the case invalid."""
+    from dataclasses import replace
+
+    from ..fd import estimate_fd
+    from ..solvers.run_budget import LONG_RUN_SECONDS
+
+    settings = replace(case.fd_settings, duration=case.duration)
+    cost = estimate_fd(case.target, case.law, case.impactor_mass, case.velocity, settings=settings,
+                       material=case.target_material)
+    runs, memory, seconds = 1, cost["memory_bytes"], cost["seconds"]
+    if case.settings.check_convergence:
+        fine = estimate_fd(case.target, case.law, case.impactor_mass, case.velocity, material=case.target_material,
+                           settings=replace(settings, n_elements=2 * int(case.fd_beam.n_elements)))
+        runs, memory, seconds = 2, max(memory, fine["memory_bytes"]), seconds + fine["seconds"]
+    if cost["refused"] is not None:
+        values["valid"] = False
+        values["valid_note"] = f"fd refuses this case: {cost['refused']}"
+    return {"estimated_method": "finite-difference", "estimated_time_step_s": cost["time_step_s"],
+            "estimated_expected_steps": cost["steps"], "estimated_history_rows": cost["history_rows"],
+            "estimated_memory_MiB": memory / 2**20, "estimated_seconds": seconds, "estimated_runs": runs,
+            "estimated_cost_note": (
+                "before any run, from the grid's stability limit and the run budget (impactmaps.solvers.run_budget): "
+                f"seconds on the 2-core reference machine (runs above {LONG_RUN_SECONDS:g} s are announced), runs = 2 "
+                "with the convergence check's re-run on twice the elements")}
+
+
 def _map_reading(case) -> dict:
     """What a shipped map says of the case (no tile is built), or why none does."""
     if case.target_type == "halfspace":
@@ -224,8 +258,12 @@ def _map_reading(case) -> dict:
         text = text.removeprefix("no shipped map covers this case: ")
         return {"regime": None, "regime_note": "no shipped map reads this case: " + text, "map": None,
                 "map_note": "impactmaps lookup --case builds an on-demand map tile where one can describe it"}
+    from ._common import announce_wide_band
+
     reading = {"regime": found.get("regime"), "map": found.get("map"),
                "map_peak_force_N": found.get("peak_force_N"), "map_peak_force_error_N": found.get("peak_force_error_N")}
+    reading = announce_wide_band(reading, "map_peak_force_N", "map_peak_force_error_N",
+                                 f"impactmaps simulate {case.source or 'CASE.toml'}")
     if reading["regime"] is None:
         reading["regime_note"] = "the elastic-plastic maps have no regime classification"
     return reading

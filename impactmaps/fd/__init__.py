@@ -6,7 +6,7 @@
 
 from .beam import FDBeam, FDSettings
 from .grid import grid_frequency_bound
-from .impact import STANDARD_GRAVITY, FDDetails, simulate_fd
+from .impact import STANDARD_GRAVITY, FDDetails, estimate_fd, simulate_fd
 from .response import FDResponse, simulate_fd_response
 from .section import (
     LayeredSection,
@@ -24,6 +24,7 @@ __all__ = [
     "LayeredSection",
     "STANDARD_GRAVITY",
     "SectionState",
+    "estimate_fd",
     "grid_frequency_bound",
     "rectangular_moment_curvature",
     "simulate_fd",

@@ -13,6 +13,7 @@ from collections import namedtuple
 import numba
 import numpy as np
 
+from .._compile.interruptible import run_interruptibly
 from ..contact.base import KERNEL_TYPE
 from ..solvers.integrator._peak import parabolic_peak
 from .grid import factorise
@@ -70,7 +71,8 @@ _RESULT_TYPE = numba.types.NamedTuple(
     (_F8, _F8, _F8, _I8, _F8, _BOOL, _F8, _F8, _F8, _F8, _F8, _F8, _F8, _F8, _F8, _I8, _F8,
      _VEC), LoopResult)
 _INTEGRATE_SIGNATURE = _RESULT_TYPE(KERNEL_TYPE, _VEC, _GRID_TYPE, _SECTION_TYPE, _LAYERS_TYPE,
-                                    _DRIVE_TYPE, _STEPPING_TYPE, _VEC, _VEC, _RECORDS_TYPE)
+                                    _DRIVE_TYPE, _STEPPING_TYPE, _VEC, _VEC, _RECORDS_TYPE,
+                                    numba.types.Array(_I8, 1, "C"))
 
 
 # =====================================================================================
@@ -279,10 +281,11 @@ def _close_ledger(grid, section, layers, w, curvature, moment, new_curvature):
 # =====================================================================================
 # The time loop
 # =====================================================================================
-@numba.njit(_INTEGRATE_SIGNATURE, cache=True)
-def _integrate(kernel, params, grid, section, layers, drive, stepping, w, v, records):
+@numba.njit(_INTEGRATE_SIGNATURE, cache=True, nogil=True)
+def _integrate(kernel, params, grid, section, layers, drive, stepping, w, v, records, stop):
     """March ``stepping.n_steps`` steps from (w⁰, v^{−½}), updating ``w``, ``v``, ``layers``
-    and ``records`` in place."""
+    and ``records`` in place; ``stop[0] != 0`` (set by another thread on Ctrl-C) ends the loop
+    at the next step, its result then incomplete and discarded by :func:`run_loop`."""
     n = w.shape[0]
     dt, dx, node = stepping.dt, grid.dx, drive.node
     inv_dx2 = 1.0 / (dx * dx)
@@ -307,6 +310,8 @@ def _integrate(kernel, params, grid, section, layers, drive, stepping, w, v, rec
     peak_step = -2
 
     for step in range(stepping.n_steps):
+        if stop[0] != 0:
+            break
         t = step * dt
         # -- section: curvature and moments at w^n; internal forces ------------------
         _curvatures(w, grid.stencil, inv_dx2, new_curvature)
@@ -411,7 +416,10 @@ def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v
                       np.full((MAX_INTERVALS, 2), np.nan))
     w = w0.copy()
     v = v0.copy()
-    result = _integrate(kernel, params, loop_grid, section, layers, drive, stepping, w, v, records)
+    stop = np.zeros(1, dtype=np.int64)
+    result = run_interruptibly(lambda: _integrate(kernel, params, loop_grid, section, layers, drive,
+                                                  stepping, w, v, records, stop), stop,
+                               "impactmaps-fd-loop")
     if result.n_intervals > MAX_INTERVALS:
         warnings.warn(f"{result.n_intervals} contacts; only the first {MAX_INTERVALS} intervals "
                       "are kept", stacklevel=3)

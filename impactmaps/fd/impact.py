@@ -9,6 +9,7 @@ import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -17,6 +18,7 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..contact.contact_scale import reference_contact_stiffness
 from ..result import ImpactResult
+from ..solvers.run_budget import refuse_or_announce
 from ..targets.beams.beam import Beam
 from ..validity import ModelValidityWarning
 from ._loop import Drive, Stepping, run_loop
@@ -32,7 +34,7 @@ from .wide_section import CALIBRATED_RATIO
 #: elastic–perfectly-plastic beam in validation/fe/level5_* (docs/validation.rst, FE level 5).
 WIDE_SECTION_RATIO = 1.0
 
-__all__ = ["FDDetails", "STANDARD_GRAVITY", "simulate_fd"]
+__all__ = ["FDDetails", "STANDARD_GRAVITY", "estimate_fd", "simulate_fd"]
 
 #: Standard acceleration of gravity [m/s²] (3rd CGPM, 1901).
 STANDARD_GRAVITY = 9.80665
@@ -126,19 +128,14 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
     ValueError
         For an invalid input, named, or a ``time_step`` above the stability limit.
     """
-    settings = _run_settings(settings, **options)
-    beam, impact_position = _fd_beam(beam, material, settings, impact_position)
-    _check_inputs(law, impactor_mass, velocity, settings)
-    params = single_case_parameters(law, "simulate_fd")
-    impactor_mass, velocity = float(impactor_mass), float(velocity)
-    grid = beam_grid(beam)
-    x0, node = node_for(beam, grid, impact_position, "impact_position")
-    positions, gauge_left, gauge_weight = gauge_weights(beam, settings.gauge_positions)
-    contact_stiffness, rate = contact_rate(grid, node, law, params, impactor_mass, velocity)
-    dt, limit = choose_time_step(grid, settings.time_step, settings.safety_factor, rate)
-    steps = float(settings.duration) / dt  # a float: a huge duration is refused, not overflowed
-    _check_cost(steps, grid.n_nodes, beam.n_half_layers, settings, len(positions), dt)
-    n_steps = int(math.ceil(steps))
+    plan = _prepare(beam, law, impactor_mass, velocity, impact_position, settings, material, options)
+    budget, what = _budget(plan)
+    refuse_or_announce(budget, what, stacklevel=3)
+    beam, settings, params, grid, x0, node = plan.beam, plan.settings, plan.params, plan.grid, plan.x0, plan.node
+    positions, gauge_left, gauge_weight = plan.positions, plan.gauge_left, plan.gauge_weight
+    contact_stiffness, dt, limit = plan.contact_stiffness, plan.dt, plan.limit
+    impactor_mass, velocity = plan.impactor_mass, plan.velocity
+    n_steps = int(math.ceil(plan.steps))
     g = STANDARD_GRAVITY if settings.gravity else 0.0
 
     n = grid.n_nodes
@@ -274,20 +271,87 @@ def _warn_if_wide_section_yields(beam, residual) -> None:
             stacklevel=3)
 
 
-def _check_cost(n_steps, n_nodes, n_half_layers, settings, n_gauges, dt) -> None:
-    """Refuse a run whose history would not fit in memory; warn before a long one."""
-    from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
+class _Plan(NamedTuple):
+    """What a run is made of, before anything is integrated (:func:`_prepare`)."""
 
+    beam: FDBeam
+    settings: FDSettings
+    params: np.ndarray
+    grid: object
+    x0: float
+    node: int
+    positions: np.ndarray
+    gauge_left: np.ndarray
+    gauge_weight: np.ndarray
+    contact_stiffness: float
+    dt: float
+    limit: float
+    steps: float
+    impactor_mass: float
+    velocity: float
+
+
+def _prepare(beam, law, impactor_mass, velocity, impact_position, settings, material, options) -> _Plan:
+    """Check the inputs of :func:`simulate_fd` and plan its run: grid, impact node, gauges, step,
+    number of steps (a float: a huge duration is refused, not overflowed). Arithmetic only."""
+    settings = _run_settings(settings, **options)
+    beam, impact_position = _fd_beam(beam, material, settings, impact_position)
+    _check_inputs(law, impactor_mass, velocity, settings)
+    params = single_case_parameters(law, "simulate_fd")
+    impactor_mass, velocity = float(impactor_mass), float(velocity)
+    grid = beam_grid(beam)
+    x0, node = node_for(beam, grid, impact_position, "impact_position")
+    positions, gauge_left, gauge_weight = gauge_weights(beam, settings.gauge_positions)
+    contact_stiffness, rate = contact_rate(grid, node, law, params, impactor_mass, velocity)
+    dt, limit = choose_time_step(grid, settings.time_step, settings.safety_factor, rate)
+    return _Plan(beam, settings, params, grid, x0, node, positions, gauge_left, gauge_weight, contact_stiffness,
+                 dt, limit, float(settings.duration) / dt, impactor_mass, velocity)
+
+
+def _budget(plan: _Plan):
+    """The run budget of a planned run and the run in words (:mod:`impactmaps.solvers.run_budget`,
+    shared with the modal solver: refused above 1 GiB of history, announced above a minute)."""
+    from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget
+
+    settings, n_steps = plan.settings, plan.steps
+    n_nodes, n_gauges = plan.grid.n_nodes, len(plan.positions)
     records = n_steps / settings.history_stride + 1.0  # floats throughout: inf refuses, never overflows
     history_bytes = records * (7 + 2 * n_gauges) * 8 * 2
     needed = history_bytes * settings.history_stride / MEMORY_LIMIT_BYTES
     budget = RunBudget(
-        min(history_bytes, 1e300), n_steps * n_nodes * 2 * n_half_layers / NODE_LAYER_STEPS_PER_SECOND,
+        min(history_bytes, 1e300), n_steps * n_nodes * 2 * plan.beam.n_half_layers / NODE_LAYER_STEPS_PER_SECOND,
         (f"the history would; use history_stride ≥ {math.ceil(needed)} or a shorter duration" if needed < 1e15
          else "the history would; use a shorter duration"),
         "the step is bounded by the grid's stability limit, ∝ Δx²; fewer elements or a shorter duration are faster")
-    refuse_or_announce(budget, f"duration = {settings.duration:g} s is {_count(n_steps)} steps of {dt:.3g} s: the "
-                               f"finite-difference run of {n_nodes} nodes", stacklevel=4)
+    what = (f"duration = {settings.duration:g} s is {_count(n_steps)} steps of {plan.dt:.3g} s: the "
+            f"finite-difference run of {n_nodes} nodes")
+    return budget, what
+
+
+def estimate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=None, *,
+                settings: FDSettings | None = None, material=None, **options) -> dict:
+    """What :func:`simulate_fd` would cost, from arithmetic alone (nothing is integrated).
+
+    Parameters are those of :func:`simulate_fd`.
+
+    Returns
+    -------
+    dict
+        ``time_step_s``, ``steps``, ``nodes``, ``history_rows``, ``memory_bytes`` (the
+        history: refused above 1 GiB) and ``seconds`` (on the 2-core reference machine:
+        announced above a minute); ``refused`` (the refusal's text, or ``None``).
+    """
+    plan = _prepare(beam, law, impactor_mass, velocity, impact_position, settings, material, options)
+    budget, what = _budget(plan)
+    from ..solvers.run_budget import MEMORY_LIMIT_BYTES
+
+    refused = None
+    if budget.memory_bytes > MEMORY_LIMIT_BYTES:
+        refused = (f"{what} may take {budget.memory_bytes / 2**30:.3g} GiB (limit "
+                   f"{MEMORY_LIMIT_BYTES / 2**30:g} GiB): {budget.advice}")
+    return {"time_step_s": plan.dt, "steps": float(math.ceil(plan.steps)) if plan.steps < 1e15 else plan.steps,
+            "nodes": int(plan.grid.n_nodes), "history_rows": plan.steps / plan.settings.history_stride + 1.0,
+            "memory_bytes": float(budget.memory_bytes), "seconds": float(budget.seconds), "refused": refused}
 
 
 def _count(steps: float) -> str:

@@ -25,7 +25,7 @@ from ..maps.read.lookup import markdown_table
 from ..maps.read.plastic_lookup import load_plastic_map
 from ..maps.family.builtin_families import PLASTIC_LAWS
 from ..maps.family.structures import MapStructure
-from ..maps.compute.sweep import log_grid, sweep
+from ..maps.compute.sweep import log_grid, require_map_fits, sweep
 
 __all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_RANGE", "DEFAULT_ZETA_COUNT", "DEFAULT_PLASTIC_BETAS",
            "DEFAULT_PLASTIC_LAMBDA", "check_chart_grid", "make_chart", "make_plastic_chart"]
@@ -42,8 +42,10 @@ DEFAULT_ZETA_RANGE = (0.005, 100.0)
 DEFAULT_ZETA_COUNT = 200
 
 
-def check_chart_grid(zeta_range, zeta_count, lambdas) -> None:
-    """Refuse a chart grid that cannot be drawn, before anything is computed.
+def check_chart_grid(zeta_range, zeta_count, lambdas, law: str = "linear",
+                     structures: int = len(CHART_STRUCTURES)) -> None:
+    """Refuse a chart grid that cannot be drawn or would not fit in memory, before anything is
+    computed or allocated.
 
     The names in the messages are the command-line options (``--zeta-count``, …).
     """
@@ -60,6 +62,9 @@ def check_chart_grid(zeta_range, zeta_count, lambdas) -> None:
                              "distinct values (the regime maps need two λ rows)")
         if np.any(~np.isfinite(values) | (values <= 0)):
             raise ValueError(f"--lambdas = {' '.join(f'{v:g}' for v in values)} is invalid: valid range is (0, inf)")
+    n_lambdas = len(DEFAULT_CHART_LAMBDAS) if lambdas is None else np.asarray(lambdas).size
+    require_map_fits(structures, {"--zeta-count": int(zeta_count), "--lambdas": n_lambdas}, law,
+                     "a smaller --zeta-count or fewer --lambdas")
 
 
 def make_chart(
@@ -113,7 +118,7 @@ def make_chart(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    check_chart_grid(zeta_range, zeta_count, lambdas)
+    check_chart_grid(zeta_range, zeta_count, lambdas, law if isinstance(law, str) else law.name, len(structures))
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise ValueError(f"--out = {str(out)!r} is a file, not a directory")

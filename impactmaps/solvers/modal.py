@@ -203,7 +203,7 @@ def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> t
     return (None, True) if exact else (None,)
 
 
-def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float):
+def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float, estimate: bool = False):
     """:func:`~impactmaps.solvers.mode_budget.plan_basis` of a run whose cut-off is ``wanted``
     [rad/s], also where the target's model, not memory, caps it.
 
@@ -217,15 +217,19 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
     """
     limit = float(target.resolution_limit())
     if wanted <= limit:
-        return plan_basis(target, law, impactor_mass, velocity, wanted)
+        return plan_basis(target, law, impactor_mass, velocity, wanted, estimate=estimate)
     return plan_basis(target, law, impactor_mass, velocity, wanted, max_modes=target.resolved_mode_count(),
-                      cap_frequency=limit)
+                      cap_frequency=limit, estimate=estimate)
 
 
 def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
                  settings: ModalSettings | None = None, record: bool = True,
                  time_step: float | None = None) -> dict:
     """What :func:`simulate` would integrate and what it would cost, without integrating.
+
+    Nothing is integrated, not even an any-law asymptote: whether the infinite-structure
+    solution answers is decided from the closed form's peak time at the law's reference
+    stiffness (``plan_basis(..., estimate=True)``).
 
     The mode budget's plan, the basis and time step of the run (for a patch load, of the
     first pass at the half-space peak indentation's radius) and the estimate of
@@ -270,7 +274,7 @@ def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float,
         contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run says these; an estimate only counts
-            plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
+            plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency), estimate=True)
         if plan.method == METHODS[2]:
             return {"method": plan.method, "modes": 0, "time_step_s": None, "expected_steps": 0,
                     "history_rows": 0, "memory_bytes": 0.0, "seconds": 0.0, "runs": 1}

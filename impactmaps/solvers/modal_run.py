@@ -21,6 +21,7 @@ import pandas as pd
 
 from .._checks import require_positive
 from .._compile import compile_helper
+from .._compile.interruptible import interrupts_ignored, run_interruptibly
 from ..contact.base import kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .integrator.coupled_contact import CoupledModes, coupled_modes
@@ -143,13 +144,6 @@ def _coupled_phase(basis: ModalBasis, stiffness: float, impactor_mass: float, ti
 INTERRUPTIBLE_SECONDS = 0.5
 
 
-def _interrupts_ignored() -> bool:
-    """Whether this process ignores Ctrl-C (SIGINT set to ``SIG_IGN``, as in a sweep's workers)."""
-    import signal
-
-    return signal.getsignal(signal.SIGINT) is signal.SIG_IGN
-
-
 def _integrate(interruptible: bool, args: KernelInputs):
     """:data:`~impactmaps.solvers.integrator.exact_step.integrate_impact` on ``args`` (``args.run.stop``
     the kernel's one-element stop flag).
@@ -164,33 +158,10 @@ def _integrate(interruptible: bool, args: KernelInputs):
     :func:`impactmaps.maps.compute.workers.init_worker`): there no interrupt can arrive to stop it.
     """
     compile_helper.await_variant(integrate_impact.variant_of(args))  # a helper compiling it (first run only)
-    if not interruptible or _interrupts_ignored():
+    if not interruptible or interrupts_ignored():
         return integrate_impact(*args)
-    import threading
-
     integrate_impact.compile(*args)  # the variant this run needs; compiling holds the interpreter: do it here, not in the worker
-    outcome = {}
-    done = threading.Event()  # not Thread.join: a join interrupted by Ctrl-C can return early later
-
-    def work():
-        try:
-            outcome["result"] = integrate_impact(*args)
-        except BaseException as error:  # noqa: BLE001 (handed to the caller's thread)
-            outcome["error"] = error
-        finally:
-            done.set()
-
-    threading.Thread(target=work, name="impactmaps-modal-kernel", daemon=True).start()
-    try:
-        while not done.wait(0.1):
-            pass
-    except KeyboardInterrupt:
-        args.run.stop[0] = 1
-        done.wait()
-        raise
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["result"]
+    return run_interruptibly(lambda: integrate_impact(*args), args.run.stop, "impactmaps-modal-kernel")
 
 
 class KernelInputs(NamedTuple):

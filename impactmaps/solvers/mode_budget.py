@@ -220,7 +220,7 @@ def budget_cutoff(target, max_frequency: float, max_modes: int = MAX_MODES) -> f
 
 def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency: float, *,
                max_modes: int = MAX_MODES, cap_frequency: float | None = None,
-               loss_factor: float | None = None) -> BasisPlan:
+               loss_factor: float | None = None, estimate: bool = False) -> BasisPlan:
     """Decide what answers a modal run on ``target`` whose cut-off is ``max_frequency``.
 
     Parameters
@@ -245,6 +245,10 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
     loss_factor : float, optional
         ζ [-] of a linear-law run when the caller knows it exactly (a map point);
         default ``target.loss_factor(m_i, K)``.
+    estimate : bool, optional
+        Plan without integrating anything (``impactmaps check``): for a law other than
+        linear, the infinite-structure peak time is the closed form's at the law's reference
+        stiffness, and the plan's ``answer`` that closed form (normalised), not the any-law run.
 
     Returns
     -------
@@ -268,7 +272,7 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
         return BasisPlan(METHODS[0], float(max_frequency), cap, omega)
     reflection = float(target.reflection_time(omega)) / omega
     name, answer, peak_time, contact_end = _infinite_structure(target, law, impactor_mass, velocity, stiffness,
-                                                               loss_factor)
+                                                               loss_factor, estimate)
     plan = BasisPlan(METHODS[0], cap, cap, omega, reflection, answer, name)
     many = (f"the cut-off {max_frequency:.4g} rad/s ({max_frequency / omega:.3g} ω) needs more than "
             f"{max_modes} modes")
@@ -297,18 +301,20 @@ def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
     return replace(plan, method=method, message=message)
 
 
-def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_factor):
+def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_factor, estimate=False):
     """(name, answer, peak time [s], contact end [s], ``inf`` if it never ends) of the
-    infinite-structure impact, or (None, None, nan, nan)."""
+    infinite-structure impact, or (None, None, nan, nan); ``estimate``: from the closed form
+    at the reference stiffness, for any law (no integration)."""
     kind = getattr(target, "kind", None)
     if kind not in ("plate", "beam") or not has_classical_asymptote(target):
         return None, None, math.nan, math.nan
     omega = math.sqrt(stiffness / impactor_mass)
-    if law.linear_stiffness is not None:
+    if law.linear_stiffness is not None or estimate:
         zeta = float(target.loss_factor(impactor_mass, stiffness)) if loss_factor is None else float(loss_factor)
         impact = target.infinite_structure_impact(zeta)
         end = float(impact.contact_time) / omega if np.isfinite(impact.contact_time) else math.inf
-        return f"infinite-{kind} (linear, closed form)", impact, float(impact.peak_time) / omega, end
+        form = "linear, closed form" if law.linear_stiffness is not None else "any law"
+        return f"infinite-{kind} ({form})", impact, float(impact.peak_time) / omega, end
     from ..closed_forms.law_asymptotes import asymptote  # scipy's integrators: only where an asymptote answers
 
     answer = asymptote(f"infinite-{kind}", target, law, impactor_mass, velocity)

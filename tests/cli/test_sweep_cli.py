@@ -66,7 +66,7 @@ def test_grid_count_is_a_whole_number(tmp_path, count, fragment, capsys):
 @pytest.mark.parametrize("count, lambdas, extra, fragment", [
     ("1e9", "[1.0]", "", "grid.zeta.count = 1000000000.0 is invalid: valid range is [1, 1000000]"),
     ("1000000", "{min = 0.1, max = 1, count = 1000}", "",
-     "the sweep has 1e+09 points (1 structures × 1000 lambda_ × 1000000 zeta): its map would take 78.2 GiB"),
+     "the sweep has 1e+09 points (1 structures × 1000 λ × 1000000 ζ): it would take 391 GiB"),
     ("2", "[1e300]", "", "grid.lambda = [1e+300] is invalid: every value must be in [1e-09, 1e+09]"),
     ("2", "[1e-300]", "", "grid.lambda = [1e-300] is invalid"),
     ("2", "[1.0]", 'law = "yc"\n[grid]\nbeta = [1e300]\n', "grid.beta = [1e+300] is invalid: every value must be in [0.001, 1e+06]"),

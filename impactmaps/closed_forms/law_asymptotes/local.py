@@ -2,7 +2,10 @@
 
 Infinite plate (``ẇ = F/Z``, ``Z = 8 sqrt(ρh D*)``), quasi-static spring (``w = F/K_st``)
 and half-space, for any contact law: a loading and an unloading phase, DOP853
-(rtol 1e-12). Why two phases suffice: docs/physics.rst (Closed forms).
+(rtol 1e-12), or Radau where the equations are stiff (a dashpot far softer than the contact:
+a plate a few micrometres thick); every integration has a budget of :data:`MAX_EVALUATIONS`
+evaluations, beyond which it is refused (``ValueError``). Why two phases suffice:
+docs/physics.rst (Closed forms).
 """
 
 from __future__ import annotations
@@ -22,6 +25,14 @@ _RELATIVE_TOLERANCE = 1e-12
 _ABSOLUTE_TOLERANCE = 1e-14  # on scaled states of order 1
 _SCALED_TIME_LIMIT = 1e4  # in units α_scale/V0; a contact lasts O(1) of them
 _REST_SPEED = 1e-10  # impactor speed / V0 below which it is taken to be at rest
+#: Scaled relaxation rate |∂α̇/∂α| above which the equations count as stiff (Radau, not DOP853).
+STIFF_RATE = 100.0
+#: Most evaluations of the equations one asymptote may take (a contact takes 10²–10⁴).
+MAX_EVALUATIONS = 200_000
+
+
+class _OverBudget(Exception):
+    """The integration used up :data:`MAX_EVALUATIONS`."""
 
 
 def plate_impedance(plate) -> float:
@@ -95,7 +106,12 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
     time_unit = scale / speed
     acceleration = scale / (mass * speed**2)  # scaled dv/dτ per newton
 
+    evaluations = [0]
+
     def rates(state, alpha_max):
+        evaluations[0] += 1
+        if evaluations[0] > MAX_EVALUATIONS:
+            raise _OverBudget
         alpha = scale * state[0]
         force, stiffness = kernel(alpha, alpha_max if alpha_max is not None else alpha, params)
         rate = indentation_rate(speed * state[1], force, stiffness) / speed
@@ -105,9 +121,13 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
         return rates(state, None)[0]
 
     turning.terminal, turning.direction = True, -1.0
-    options = {"method": "DOP853", "rtol": _RELATIVE_TOLERANCE, "atol": _ABSOLUTE_TOLERANCE}
-    loading = solve_ivp(lambda _t, s: rates(s, None), (0.0, _SCALED_TIME_LIMIT), (0.0, 1.0, 0.0),
-                        events=turning, **options)
+    stiff = _relaxation_rate(rates) > STIFF_RATE
+    options = {"method": "Radau" if stiff else "DOP853", "rtol": _RELATIVE_TOLERANCE, "atol": _ABSOLUTE_TOLERANCE}
+    try:
+        loading = solve_ivp(lambda _t, s: rates(s, None), (0.0, _SCALED_TIME_LIMIT), (0.0, 1.0, 0.0),
+                            events=turning, **options)
+    except _OverBudget:
+        raise _over_budget(method) from None
     _raise_on_failure(loading, method)
     if loading.t_events[0].size == 0:
         raise RuntimeError(f"{method} impact: the indentation still grows after "
@@ -120,8 +140,11 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
         return state[0] - final / scale
 
     separation.terminal, separation.direction = True, -1.0
-    unloading = solve_ivp(lambda _t, s: rates(s, alpha_max), (tau_peak, _SCALED_TIME_LIMIT),
-                          peak_state, events=separation, **options)
+    try:
+        unloading = solve_ivp(lambda _t, s: rates(s, alpha_max), (tau_peak, _SCALED_TIME_LIMIT),
+                              peak_state, events=separation, **options)
+    except _OverBudget:
+        raise _over_budget(method) from None
     _raise_on_failure(unloading, method)
     separated = unloading.t_events[0].size > 0
     end_state = unloading.y_events[0][0] if separated else unloading.y[:, -1]
@@ -151,6 +174,20 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
         contact_frequency=omega,
         time_limit_reached=not (separated or settled),
     )
+
+
+def _relaxation_rate(rates) -> float:
+    """|∂α̇/∂α| of the scaled equations at the half-space peak indentation, loading (how fast the
+    indentation relaxes, in units V0/α_scale; a contact lasts O(1) of them)."""
+    step = 1e-6
+    state, moved = (1.0, 1.0, 0.0), (1.0 + step, 1.0, 0.0)
+    return abs(rates(moved, None)[0] - rates(state, None)[0]) / step
+
+
+def _over_budget(method: str) -> ValueError:
+    return ValueError(f"the {method} asymptote needs more than {MAX_EVALUATIONS} evaluations of its "
+                      "equations: the contact lasts far longer than the contact scale of the law (a "
+                      "structure far softer than the contact); it is refused rather than left running")
 
 
 def _raise_on_failure(solution, method):
