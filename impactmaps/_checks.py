@@ -231,7 +231,7 @@ def read_text_input(what: str, value) -> tuple[Path, str]:
 
 # -- sense checks: sizes that look like a unit slip ------------------------------------------
 #: Smallest side/thickness of a plate any plate theory describes (a beam's L/h ≥ 2 likewise,
-#: :data:`impactmaps.targets.beam.MIN_SLENDERNESS`): below it the body is a block.
+#: :data:`impactmaps.targets.beams.beam.MIN_SLENDERNESS`): below it the body is a block.
 MIN_PLATE_SIDE_RATIO = 2.0
 #: Sizes above which a value is announced as unusual [m]: an impactor radius (a steel ball of
 #: 0.5 m weighs 4 t) and a plate's thickness or a beam's depth (millimetres typed as metres).

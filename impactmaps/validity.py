@@ -23,6 +23,10 @@ Checks (each sentence starts with its tag):
 ``indentation``
     ``α_max > 0.1 R``: Hertz theory assumes a contact radius small against R
     (``a = sqrt(Rα)``, so ``a/R = sqrt(α/R) > 0.3``).
+``epp range``
+    The ``epp`` law only: the largest indentation beyond its FE calibration (δ_m > 1000
+    δ_y or δ_m > 0.05 R). This and ``indentation`` need only the law and the run
+    (:func:`law_warnings`); :func:`impactmaps.halfspace_impact` issues them.
 ``impact speed``
     ``V0 > 0.01 c_0`` with ``c_0 = sqrt(E/ρ)`` the target's bar wave speed: the quasi-static
     contact and the slender-structure theories need impact speeds small against the
@@ -79,6 +83,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .contact.geometry import effective_modulus
+from .contact.plastic.epp import LARGEST_SPHERE_COMPLIANCE
 from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [
@@ -91,6 +96,7 @@ __all__ = [
     "case_warnings",
     "force_answer",
     "hertz_peak_pressure",
+    "law_warnings",
     "validity_warnings",
     "warn_if_invalid",
 ]
@@ -147,7 +153,7 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
         Empty when no check fails.
     """
     checks = (_pressure(sphere, target_material, law, result), _epp_calibration(sphere, target_material, law),
-              _indentation(sphere, result),
+              *law_warnings(law, result, radius=sphere.radius),
               _speed(target_material, result), _deflection(target, result),
               _structural_theory(target, result), _point_load(target, result), _support_distance(target),
               _contact_radius(target, law, result), _reflections(target, result))
@@ -221,6 +227,32 @@ def case_warnings(case, result=None, peak_force: float | None = None) -> list[st
     return validity_warnings(case.sphere, case.target_material, case.law, target, result)
 
 
+def law_warnings(law, result, radius=None) -> list[str]:
+    """The checks of :func:`validity_warnings` that need only the contact law and the run:
+    the indentation against the sphere radius and the ``epp`` law's calibrated range.
+
+    Parameters
+    ----------
+    law : ContactLaw
+        The law the run used.
+    result : ImpactResult
+        The run (its ``max_indentation`` [m]).
+    radius : float, optional
+        Sphere radius R [m]; default the law's own (its ``contact_radius_scale``; the
+        indentation check is skipped for a law without one).
+
+    Returns
+    -------
+    list of str
+        Empty when no check fails.
+    """
+    radius = law.contact_radius_scale if radius is None else radius
+    note = getattr(law, "calibration_note", None)
+    checks = (None if radius is None or np.ndim(radius) else _indentation(float(radius), result),
+              note(result.max_indentation) if note is not None and np.ndim(law.yield_strength) == 0 else None)
+    return [message for message in checks if message]
+
+
 def target_warnings(target, result) -> list[str]:
     """The checks of :func:`validity_warnings` that need only the structure and the run:
     a first contact beyond the shear theory's range, and a point load whose answer does not
@@ -258,7 +290,8 @@ def _softer_body(sphere_material, target_material):
     """``(yield strength [Pa], "impactor"|"target")`` of the body whose contact yields first,
     or None when that cannot be told.
 
-    With both strengths known, the lower one. With one known, only if that body is also
+    With both strengths known, the lower one (equal strengths: the target, the flat of the
+    contact laws' picture — an elastic sphere on a yielding flat). With one known, only if that body is also
     the elastically softer one (lower Young's modulus; a laminate: its transverse
     modulus): a body of unknown strength that is softer — a composite laminate under a
     steel ball — may yield (or crush) first, so the other body's strength says nothing.
@@ -266,7 +299,7 @@ def _softer_body(sphere_material, target_material):
     bodies = (("impactor", sphere_material), ("target", target_material))
     known = [(float(m.yield_strength), name) for name, m in bodies if getattr(m, "yield_strength", None) is not None]
     if len(known) == 2:
-        return min(known)
+        return known[1] if known[1][0] <= known[0][0] else known[0]
     if not known:
         return None
     strength, name = known[0]
@@ -295,12 +328,21 @@ def _epp_calibration(sphere, target_material, law):
         pair_share = modulus * (1.0 - float(elastic.poisson_ratio) ** 2) / float(elastic.youngs_modulus)
         pair_nu = float(yielding.poisson_ratio)
         if abs(pair_nu - nu) > 0.005 or abs(pair_share - share) > 0.02:
+            elastic_name = "target" if softer[1] == "impactor" else "impactor"
             notes.append(f"it holds poisson_ratio = {nu:g} and sphere_compliance = {share:.2f}, while this pair's "
-                         f"yielding {softer[1]} has ν = {pair_nu:g} and the elastic body carries "
-                         f"{pair_share:.2f} of the compliance (steel on steel: 0.3 and 0.50, which raise the peak "
-                         "force ~4 % and the restitution ~5 % over the defaults); set the [contact] options "
-                         f"poisson_ratio = {pair_nu:g}, sphere_compliance = {min(pair_share, 0.75):.2f}"
-                         + (" (s above 0.75 lies outside the calibration)" if pair_share > 0.75 else ""))
+                         f"yielding {softer[1]} has ν = {pair_nu:g} and the elastic {elastic_name} carries "
+                         f"{pair_share:.2f} of the compliance 1/E* (the option sphere_compliance is the elastic "
+                         "body's share; steel on steel: 0.3 and 0.50, which raise the peak force ~4 % and the "
+                         f"restitution ~5 % over the defaults); set the law options poisson_ratio = {pair_nu:g}, "
+                         f"sphere_compliance = {min(pair_share, LARGEST_SPHERE_COMPLIANCE):.2f} ([contact] in a case "
+                         "file, --law-option NAME=VALUE on the halfspace command)"
+                         + (f" (s above {LARGEST_SPHERE_COMPLIANCE} lies outside the calibration)"
+                            if pair_share > LARGEST_SPHERE_COMPLIANCE else ""))
+        if softer[1] == "impactor":
+            notes.append("the impactor yields first (its yield strength is the lower), while the law's FE "
+                         "model is an elastic sphere pressed into a yielding flat: a yielding ball is not what it "
+                         "was calibrated on (a harder ball, e.g. the catalogue's bearing-steel-52100, is what "
+                         "impact tests use)")
     if not notes:
         return None
     return "epp calibration: " + "; ".join(notes)
@@ -322,8 +364,8 @@ def _pressure(sphere, target_material, law, result):
             f"{body}, the softer body): the contact yields; use a plastic law ('epp', calibrated on finite elements; or 'stronge', 'yigit-christoforou')")
 
 
-def _indentation(sphere, result):
-    ratio = float(result.max_indentation) / float(sphere.radius)
+def _indentation(radius, result):
+    ratio = float(result.max_indentation) / radius
     if not ratio > INDENTATION_RATIO_LIMIT:
         return None
     return (f"indentation: the largest indentation {float(result.max_indentation):.4g} m is "

@@ -62,3 +62,29 @@ def test_every_sweep_key_is_documented(site):
     keys |= {f.name for f in fields(MapStructure)} | {f.name for f in fields(ModalSettings)}
     missing = sorted(key for key in keys if key not in text)
     assert not missing, f"sweep keys not documented: {missing}"
+
+
+def test_citation_file_names_the_software_and_its_papers():
+    """CITATION.cff (Citation File Format 1.2.0) parses, has the keys the format requires,
+    the package's version and licence, and cites the two papers the physics rests on."""
+    import tomllib
+
+    yaml = pytest.importorskip("yaml")
+    citation = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    assert citation["cff-version"] == "1.2.0"
+    assert citation["message"] and citation["title"] and citation["authors"]
+    assert citation["version"] == project["version"] and citation["license"] == project["license"]["text"]
+    titles = [reference["title"] for reference in citation["references"]]
+    assert "Effect of flexibility on low velocity impact response" in titles
+    assert all(reference.get("authors") for reference in citation["references"])
+
+
+def test_docs_cite_papers_not_seed_files():
+    """No page of the manual or the README points at a seeds folder or names a paper by its
+    seed number (the repository does not have them): they cite the papers."""
+    pages = [*(ROOT / "docs").rglob("*.rst"), *(ROOT / "docs").rglob("*.md"), ROOT / "README.md"]
+    for page in pages:
+        text = page.read_text(encoding="utf-8")
+        assert "seeds/" not in text, page
+        assert not re.search(r"seed[ -]00[01]", text), page

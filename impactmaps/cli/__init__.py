@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, init, check, modes, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, plot, init, check, modes, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -55,6 +55,7 @@ from .commands_cases import (
     cmd_simulate,
 )
 from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
+from .plot import cmd_plot
 from .commands_maps import (
     SCHEDULER_TIMEOUT_S,
     cmd_asymptote,
@@ -125,6 +126,16 @@ def _deferred_choices(action: argparse.Action, choices: _Deferred) -> argparse.A
 _MAP_LAWS = _Deferred("impactmaps.maps.read.lookup", "ALL_MAP_LAWS")
 _THEORIES = _Deferred("impactmaps.maps.read.lookup", "SHIPPED_MAPS", _theories)
 _ZETA_RANGE = _Deferred("impactmaps.plotting.chart", "DEFAULT_ZETA_RANGE")
+
+
+#: Help of ``simulate --vary`` and ``fd --vary``.
+VARY_HELP = ("a parameter study: run the case for N values of the numeric case-file KEY from A to B, evenly "
+             "spaced (A:B:N:log: evenly in log), or KEY=V1,V2,…, e.g. impactor.velocity=0.1:10:12:log; writes "
+             "study.csv and study.json (every scalar of each run), study.png (peak force and restitution against "
+             "KEY), study_forces.png and each run in study/run_NNN (reused when the command is run again)")
+#: Help of ``halfspace --law-option``.
+LAW_OPTION_HELP = ("a numeric option of the law (impactmaps laws lists them), e.g. sphere_compliance=0.5; "
+                   "repeat for several")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -222,10 +233,7 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("case", type=Path)
         p.add_argument("--out", default="impactmaps-output",
                        help="directory for history.csv, history.png, summary.json (default ./impactmaps-output)")
-        p.add_argument("--vary", default=None, metavar="KEY=A:B:N",
-                       help="a parameter study: run the case for N values of the numeric case-file KEY from A to B "
-                       "(or KEY=V1,V2,…), e.g. impactor.velocity=0.5:5:10; writes study.csv, study_forces.png and "
-                       "each run in study/run_NNN (reused when the command is run again)")
+        p.add_argument("--vary", default=None, metavar="KEY=A:B:N[:log]", help=VARY_HELP)
         p.add_argument("--quiet", action="store_true", help="no progress lines of a --vary study")
 
     p = add("halfspace", "sphere on a half-space with any contact law", cmd_halfspace)
@@ -239,12 +247,28 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--poisson-ratio", type=float, default=None, help="ν of the body without a --…material")
     p.add_argument("--density", type=float, default=None, help="ρ [kg/m³] of the body without a --…material")
     p.add_argument("--yield-strength", type=float, default=None, help="yield strength [Pa] (plastic laws)")
+    p.add_argument("--law-option", action="append", default=[], metavar="NAME=VALUE", help=LAW_OPTION_HELP)
 
     p = add("restitution", "coefficient of restitution e(β) of the Yigit–Christoforou law", cmd_restitution)
     p.add_argument("--beta", type=float, required=True, help="impact number β = V0/(ω_h α_y) in (0, 1e8] (Christoforou & Yigit 1998, eq 11)")
 
+    _plot_parser(add)
     _tool_parsers(add)
     return parser
+
+
+def _plot_parser(add) -> None:
+    """The ``plot`` subcommand: a user's study or sweep drawn."""
+    p = add("plot", "draw a parameter study (simulate --vary) or a sweep or chart result", cmd_plot)
+    p.add_argument("path", type=Path, help="a study's --out directory or study.csv; a sweep's output directory, "
+                   "a chart's --out directory, or a .nc/.npz map file")
+    p.add_argument("--out", default=None, help="image file (.png, .svg, .pdf; default study.png or sweep_chart.png "
+                   "beside the input)")
+    p.add_argument("--quantity", action="append", default=None, metavar="COLUMN",
+                   help="a study column to draw, one panel each (default peak_force_N and restitution); repeat")
+    p.add_argument("--lambdas", nargs="+", type=float, default=None,
+                   help="a sweep's λ values to draw (each at the grid's nearest λ; default all)")
+    p.add_argument("--beta", type=float, default=None, help="an elastic-plastic map's β to draw (the nearest grid β)")
 
 
 def _tool_parsers(add) -> None:

@@ -6,6 +6,7 @@ Each ``cmd_*`` takes the parsed arguments and returns the dict that ``main`` pri
 
 from __future__ import annotations
 
+import math
 import sys
 
 from ._common import check, material_from_args, out_dir, plain_text, refuse, refuse_ignored_fd, save_figure
@@ -65,7 +66,7 @@ def cmd_halfspace(args) -> dict:
     impactor_material = material_from_args(args, "", "impactor")
     target_material = material_from_args(args, "target_", "target")
     sphere = Sphere(args.radius, impactor_material, args.mass)
-    law = law_for_sphere(args.law, sphere, target_material)
+    law = law_for_sphere(args.law, sphere, target_material, **_law_options(args.law_option))
     result = halfspace_impact(law, sphere.mass, args.velocity)
     summary = result.summary()
     return {
@@ -75,6 +76,23 @@ def cmd_halfspace(args) -> dict:
                                          "permanent_indentation_m", "restitution", "energy_loss_J")},
         "model_warnings": warn_if_invalid(sphere, target_material, law, None, result),
     }
+
+
+def _law_options(texts) -> dict:
+    """``{name: value}`` of the ``--law-option NAME=VALUE`` arguments (numbers)."""
+    options = {}
+    for text in texts or ():
+        name, sep, value = str(text).partition("=")
+        try:
+            number = float(value)
+        except ValueError:
+            number = math.nan
+        if not sep or not name.strip() or not math.isfinite(number):
+            raise ValueError(f"--law-option = {text!r} is invalid: give NAME=VALUE with a finite number "
+                             "(e.g. sphere_compliance=0.5; impactmaps laws lists each law's options)")
+        options[name.strip()] = number
+    return options
+
 
 
 #: Largest impact number ``restitution`` takes (the documented range; the closed form holds for
@@ -92,25 +110,17 @@ def cmd_restitution(args) -> dict:
 def cmd_materials(args) -> dict:
     from dataclasses import fields
 
-    from ..materials import CATALOGUE, material
+    from ..materials import CATALOGUE, SOURCES
 
-    sources = _catalogue_sources(material.__doc__ or "")
     out = {}
     for name, entry in sorted(CATALOGUE.items()):
         values = {"kind": type(entry).__name__}
         values |= {f.name: getattr(entry, f.name) for f in fields(entry) if f.init and not f.name.startswith("_")}
-        out[name] = values | {"source": sources.get(name)}
-    return {"materials": out, "units": "SI: moduli and strengths [Pa], density [kg/m³]",
-            "sources_note": "full citations beside each entry of impactmaps.materials.CATALOGUE"}
-
-
-def _catalogue_sources(doc: str) -> dict:
-    """``{name: source}`` from the bullets ``* ``name`` — source`` of a docstring."""
-    import re
-
-    text = " ".join(line.strip() for line in doc.splitlines())
-    found = re.findall(r"\* ``([\w-]+)`` — (.*?)(?=\* ``|Raises|$)", text)
-    return {name: source.strip().rstrip(";.").replace("**", "") for name, source in found}
+        source, verified, unverified = SOURCES[name]
+        out[name] = values | {"source": source, "verified": list(verified), "unverified": dict(unverified)}
+    return {"materials": out, "units": "SI: moduli and strengths [Pa], density [kg/m³], thickness [m]",
+            "sources_note": "verified: the values read in the source; unverified: each other value with the reason "
+                            "(full citations beside each entry of impactmaps.materials.CATALOGUE)"}
 
 
 def cmd_laws(args) -> dict:

@@ -25,7 +25,7 @@ _HEADER = """# {title}
 _IMPACTOR = """
 [impactor]
 radius = 0.00635                # sphere radius R [m] (12.7 mm diameter)
-material = "structural-steel"   # catalogue name, or an inline table {{youngs_modulus, poisson_ratio, density, yield_strength}}
+material = "bearing-steel-52100"   # a hardened steel ball; catalogue name, or an inline table {{youngs_modulus, poisson_ratio, density, yield_strength}}
 # mass = 0.0084                 # [kg]; default: the solid sphere's, density x (4/3) pi R^3
 velocity = {velocity}                  # approach velocity V0 [m/s]
 """

@@ -1,11 +1,14 @@
-"""``impactmaps simulate CASE --vary KEY=A:B:N``: a parameter study of one case-file key.
+"""``impactmaps simulate CASE --vary KEY=A:B:N[:log]``: a parameter study of one case-file key.
 
 Each value of the key gives a case (the file with that key set), run exactly as
 ``simulate`` runs it, its outputs in ``OUT/study/run_NNN/``. The study writes
-``OUT/study.csv`` (one row per value: the key, the peak force, contact time,
-restitution and the law's normalised numbers) and ``OUT/study_forces.png`` (the force
-histories overlaid). A run whose directory already holds the summary of the same case
-text is reused, so a study interrupted with Ctrl-C resumes where it stopped.
+``OUT/study.csv`` and ``OUT/study.json`` (one row per value: the key and every scalar of
+the run's summary — peak force, restitution, contact durations, impacts, energies, the
+law's normalised numbers), ``OUT/study_forces.png`` (the force histories overlaid) and
+``OUT/study.png`` (peak force and restitution against the key, a log axis for a log
+study; ``impactmaps plot OUT`` draws it again, with other quantities). A run whose
+directory already holds the summary of the same case text is reused, so a study
+interrupted with Ctrl-C resumes where it stopped.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ from pathlib import Path
 
 from .._files import written_atomically
 
-__all__ = ["MAX_STUDY_RUNS", "parse_vary", "set_key", "render_toml", "run_study"]
+__all__ = ["MAX_STUDY_RUNS", "parse_vary", "vary_spacing", "set_key", "render_toml", "run_study", "study_scalars"]
 
 #: Most runs a study may ask for (each is a full simulation).
 MAX_STUDY_RUNS = 200
@@ -27,31 +30,77 @@ TABLE_KEYS = ("peak_force_N", "first_contact_duration_s", "total_contact_time_s"
               "fmax_normalised", "zeta", "lambda", "beta", "converged")
 
 
+#: Significant digits the study's values keep: A + (B − A) i/(N − 1) and the log steps carry
+#: round-off (1.9000000000000001); the values run, printed and stored are rounded to these.
+VALUE_DIGITS = 12
+
+
+def _clean(value: float) -> float:
+    """``value`` rounded to :data:`VALUE_DIGITS` significant digits (no float noise)."""
+    return float(f"{value:.{VALUE_DIGITS}g}")
+
+
 def parse_vary(text: str) -> tuple[str, list[float]]:
-    """``KEY=A:B:N`` (N values from A to B, evenly spaced) or ``KEY=V1,V2,…`` → (key, values)."""
+    """``KEY=A:B:N`` (N values from A to B, evenly spaced), ``KEY=A:B:N:log`` (evenly spaced
+    in log, A and B > 0) or ``KEY=V1,V2,…`` → (key, values), values rounded to 12
+    significant digits."""
     key, sep, spec = str(text).partition("=")
     key = key.strip()
     if not sep or not key or "." not in key:
-        raise ValueError(f"--vary = {text!r} is invalid: give SECTION.KEY=A:B:N (e.g. impactor.velocity=0.5:5:10) "
-                         "or SECTION.KEY=V1,V2,…")
+        raise ValueError(f"--vary = {text!r} is invalid: give SECTION.KEY=A:B:N (e.g. impactor.velocity=0.5:5:10), "
+                         "SECTION.KEY=A:B:N:log or SECTION.KEY=V1,V2,…")
     try:
         if ":" in spec:
-            low, high, count = spec.split(":")
+            parts = spec.split(":")
+            if len(parts) == 4 and parts[3].strip().lower() == "log":
+                parts, log = parts[:3], True
+            elif len(parts) == 3:
+                log = False
+            else:
+                raise ValueError
+            low, high, count = parts
             low, high = float(low), float(high)
             if not float(count).is_integer():
                 raise ValueError
             count = int(float(count))
             if not (math.isfinite(low) and math.isfinite(high)) or not 1 <= count <= MAX_STUDY_RUNS:
                 raise ValueError
-            values = [low + (high - low) * i / max(count - 1, 1) for i in range(count)]
+            if log:
+                if not (low > 0 and high > 0):
+                    raise ValueError(f"--vary = {text!r} is invalid: a log study needs A > 0 and B > 0") from None
+                ratio = math.log(high / low)
+                values = [low * math.exp(ratio * i / max(count - 1, 1)) for i in range(count)]
+            else:
+                values = [low + (high - low) * i / max(count - 1, 1) for i in range(count)]
+            values = [_clean(v) for v in values]
         else:
             values = [float(v) for v in spec.split(",")]
             if not all(math.isfinite(v) for v in values) or not 1 <= len(values) <= MAX_STUDY_RUNS:
                 raise ValueError
-    except ValueError:
-        raise ValueError(f"--vary = {text!r} is invalid: the values must be A:B:N (finite A, B; N an integer in "
-                         f"[1, {MAX_STUDY_RUNS}]) or a list V1,V2,… of finite numbers") from None
+    except ValueError as error:
+        if str(error).startswith("--vary"):
+            raise
+        raise ValueError(f"--vary = {text!r} is invalid: the values must be A:B:N or A:B:N:log (finite A, B; N an "
+                         f"integer in [1, {MAX_STUDY_RUNS}]) or a list V1,V2,… of finite numbers") from None
     return key, values
+
+
+def vary_spacing(text: str) -> str:
+    """``"log"``, ``"even"`` or ``"list"``: how :func:`parse_vary` spaces the values of ``text``
+    (evenly in log, evenly, as listed)."""
+    spec = str(text).partition("=")[2]
+    if ":" not in spec:
+        return "list"
+    return "log" if spec.split(":")[-1].strip().lower() == "log" else "even"
+
+
+def study_scalars(summary: dict) -> dict:
+    """The scalars of a run's summary (numbers, booleans, ``None``), in the summary's order,
+    the study table's columns first."""
+    first = {k: summary.get(k) for k in TABLE_KEYS}
+    rest = {k: v for k, v in summary.items()
+            if k not in first and (v is None or isinstance(v, (bool, int, float)))}
+    return first | rest
 
 
 def set_key(data: dict, key: str, value) -> dict:
@@ -109,6 +158,7 @@ def run_study(case_path: Path, vary: str, out: Path, solver=None, progress: bool
     from ._common import refuse_ignored_fd, text_file
 
     key, values = parse_vary(vary)
+    spacing = vary_spacing(vary)
     source = text_file("case file", case_path)
     try:
         data = tomllib.loads(source.read_text(encoding="utf-8"))
@@ -139,7 +189,7 @@ def run_study(case_path: Path, vary: str, out: Path, solver=None, progress: bool
         if progress:
             print(f"[{index + 1}/{len(cases)}] {key} = {value:g}: peak force {summary.get('peak_force_N') or math.nan:.6g} N"
                   f" ({state})", file=sys.stderr)
-        rows.append({key: value, **{k: summary.get(k) for k in TABLE_KEYS}})
+        rows.append({key: value, **study_scalars(summary)})
         histories.append((value, run_dir / "history.csv"))
     table = out / "study.csv"
     import pandas as pd
@@ -148,9 +198,15 @@ def run_study(case_path: Path, vary: str, out: Path, solver=None, progress: bool
         pd.DataFrame(rows).to_csv(part, index=False)
     figure = _overlay(histories, key, out / "study_forces.png")
     with written_atomically(out / "study.json") as part:
-        part.write_text(dumps({"vary": key, "rows": rows}, indent=2) + "\n", encoding="utf-8")
-    return {"vary": key, "values": values, "runs": len(cases), "reused": reused,
-            "peak_force_N": [row["peak_force_N"] for row in rows], "table": str(table),
+        part.write_text(dumps({"vary": key, "spacing": spacing, "rows": rows}, indent=2) + "\n", encoding="utf-8")
+    from .plot import draw_study
+
+    picture = draw_study(out, out / "study.png")
+    columns = list(dict.fromkeys(k for row in rows for k in row if k != key))
+    return {"vary": key, "spacing": spacing, "values": values, "runs": len(cases), "reused": reused,
+            "peak_force_N": [row.get("peak_force_N") for row in rows],
+            "results": {column: [row.get(column) for row in rows] for column in columns},
+            "table": str(table), "plot": str(picture),
             "figure": None if figure is None else str(figure),
             **({} if figure is not None else {"figure_note": "no run has a force history to draw"})}
 

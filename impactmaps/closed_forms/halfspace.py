@@ -168,6 +168,12 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     -------
     ImpactResult
         ``method = "half-space"``: one contact, no structure energy, ``n_modes = 0``.
+
+    Warns
+    -----
+    ModelValidityWarning
+        :func:`impactmaps.validity.law_warnings`: an indentation beyond 0.1 R, or beyond
+        the ``epp`` law's calibration (the checks the ``halfspace`` command prints too).
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
@@ -229,7 +235,7 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     )
     peak_force = max(float(kernel(alpha_max, alpha_max, params)[0]), float(history["force_N"].max()))
     dissipation = float(law.dissipated_energy(alpha_max))
-    return ImpactResult(
+    result = ImpactResult(
         history=history,
         peak_force=peak_force,
         peak_time=time_of_max,
@@ -249,6 +255,11 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
         time_step=float(time_step if time_step is not None else contact_time / _HISTORY_SAMPLES),
         method="half-space",
     )
+    from ..validity import ModelValidityWarning, law_warnings  # beside the solvers: on use
+
+    for message in law_warnings(law, result):
+        warnings.warn(message, ModelValidityWarning, stacklevel=2)
+    return result
 
 
 def _restitution(kernel, params, scale, force_factor, alpha_max, final, x_max, tau_max, time_limit,

@@ -5,7 +5,7 @@ Everything is in SI units (Pa, kg/m³, m). Three kinds of object:
 * :class:`IsotropicMaterial` — a homogeneous isotropic solid (metals; the impactor).
 * :class:`Ply` — one unidirectional, transversely isotropic lamina with its fibre angle.
 * :class:`Laminate` — a stack of plies, with the stiffness matrices of classical
-  lamination theory (CLT) that the beam and plate equations of seed 001 (13)–(17) need:
+  lamination theory (CLT) that the beam and plate equations of Christoforou & Yigit 1998 (13)–(17) need:
   ``A``, ``B``, ``D`` (3×3) and the transverse-shear stiffnesses ``A44``, ``A55``.
 
 Conventions
@@ -18,7 +18,7 @@ Conventions
 * Ply angle θ is measured from the laminate x axis to the fibre direction 1, positive
   anticlockwise seen from the struck face. Engineering shear strains (γ = 2ε).
 * Transverse shear: index 4 is the y–z plane, index 5 the x–z plane (A44 pairs with ψ_y
-  and A55 with ψ_x, seed 001 (13)–(15)). The shear correction factor k is *not* included;
+  and A55 with ψ_x, Christoforou & Yigit 1998 (13)–(15)). The shear correction factor k is *not* included;
   the targets apply it.
 
 Contact with a sphere
@@ -28,7 +28,7 @@ Hertz contact stiffness the usual engineering model (Yang & Sun 1982, ASTM STP 7
 Tan & Sun, J. Appl. Mech. 52 (1985) 6–12) treats the laminate as a transversely isotropic
 half-space whose contact compliance is ``1/E_2`` (the transverse modulus of the ply),
 i.e. ``K_h = (4/3) sqrt(R) / [(1 − ν_s²)/E_s + 1/E_2]``. This is the isotropic formula
-(seed 001 eq 8) with ``E_t = E_2`` and ``ν_t = 0``, which is what
+(Christoforou & Yigit 1998, eq 8) with ``E_t = E_2`` and ``ν_t = 0``, which is what
 :attr:`Laminate.youngs_modulus` and :attr:`Laminate.poisson_ratio` return.
 Independent support: Wu & Yen (J. Appl. Mech. 61 (1994) 60–66), from an exact 3-D
 anisotropic Green's function, find the force–indentation relation "approximately
@@ -40,7 +40,7 @@ and stacking sequence (abstract, https://acnpsearch.tweb-dev.unibo.it/singlejour
 from __future__ import annotations
 
 from ._common import DEFAULT_PLY_THICKNESS, SPECIALLY_ORTHOTROPIC_RTOL
-from .catalogue import CATALOGUE, available_materials, material
+from .catalogue import CATALOGUE, SOURCES, available_materials, material
 from .isotropic import IsotropicMaterial
 from .laminate import Laminate
 from .ply import Ply
@@ -52,6 +52,7 @@ __all__ = [
     "Ply",
     "Laminate",
     "CATALOGUE",
+    "SOURCES",
     "material",
     "available_materials",
 ]

@@ -28,7 +28,7 @@ class IsotropicMaterial:
         Mass density ρ [kg/m³], > 0.
     yield_strength : float, optional
         Uniaxial yield strength S_y [Pa], > 0 (used by the elastic–plastic contact
-        laws, seed 001 eq 9). ``None`` if not known.
+        laws, Christoforou & Yigit 1998, eq 9). ``None`` if not known.
     name : str, optional
         Label.
     """

@@ -40,8 +40,8 @@ class Laminate:
     name : str, optional
         Label.
     yield_strength : float, optional
-        Strength S_y [Pa] used by the elastic–plastic contact laws (for composites seed
-        001 takes ``S_y = 2 S_u``); ``None`` if not given.
+        Strength S_y [Pa] used by the elastic–plastic contact laws (for composites
+        Christoforou & Yigit 1998 take ``S_y = 2 S_u``); ``None`` if not given.
 
     Notes
     -----
@@ -223,7 +223,7 @@ class Laminate:
 
     @property
     def effective_bending_stiffness(self) -> float:
-        """Effective plate stiffness D* = ½(D12 + 2 D66 + sqrt(D11 D22)) [N·m] (seed 001 eq 31)."""
+        """Effective plate stiffness D* = ½(D12 + 2 D66 + sqrt(D11 D22)) [N·m] (Christoforou & Yigit 1998, eq 31)."""
         return 0.5 * (self.D12 + 2.0 * self.D66 + math.sqrt(self.D11 * self.D22))
 
     def coupling_ratios(self) -> dict:
@@ -249,7 +249,7 @@ class Laminate:
     def is_specially_orthotropic(self) -> bool:
         """True if D16, D26, B and A45 vanish to :data:`SPECIALLY_ORTHOTROPIC_RTOL`.
 
-        This is the condition under which the plate and beam equations of seed 001
+        This is the condition under which the plate and beam equations of Christoforou & Yigit 1998
         (13)–(17) are exact for the laminate. Use :meth:`coupling_ratios` to apply
         another tolerance.
         """
@@ -268,7 +268,7 @@ class Laminate:
 
     @property
     def poisson_ratio(self) -> float:
-        """Poisson ratio to use with :attr:`youngs_modulus` in ``1/E*`` (seed 001 eq 8).
+        """Poisson ratio to use with :attr:`youngs_modulus` in ``1/E*`` (Christoforou & Yigit 1998, eq 8).
 
         ``0.0`` for a composite struck face: Tan & Sun's laminate contact compliance is
         ``1/E2`` with no ``(1 − ν²)`` factor, which is the isotropic formula with ν = 0.

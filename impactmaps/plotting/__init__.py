@@ -15,15 +15,18 @@ from .histories import (
     plot_scaling,
     save_impact_history,
 )
+from .studies import STUDY_QUANTITIES, plot_study
 from .map_charts import (
     FMAX_LABELS,
     PLASTIC_PANELS,
     REGIME_COLOURS,
+    NORMALISATION_NOTES,
     SENSITIVE_ALPHA,
     plot_fmax_chart,
     plot_plastic_chart,
     plot_regime_map,
     plot_regime_strip,
+    structure_label,
 )
 
 __all__ = [
@@ -36,8 +39,12 @@ __all__ = [
     "save_impact_history",
     "plot_scaling",
     "plot_restitution",
+    "plot_study",
+    "STUDY_QUANTITIES",
     "FMAX_LABELS",
     "PLASTIC_PANELS",
     "REGIME_COLOURS",
     "SENSITIVE_ALPHA",
+    "NORMALISATION_NOTES",
+    "structure_label",
 ]

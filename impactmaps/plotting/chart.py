@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .._files import written_atomically
-from . import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip
+from . import plot_fmax_chart, plot_plastic_chart, plot_regime_map, plot_regime_strip, structure_label
 from ..solvers.modal_settings import ModalSettings
 from ..maps.family.builtin_families import family_layout
 from ..maps.compute.dataset import tidy_frame, with_asymptote_peaks
@@ -155,7 +155,7 @@ def make_chart(
         if not family.closed_form_asymptotes:
             ax.set_xlabel(family.labels["zeta"])
             ax.set_ylabel(family.labels["lambda"])
-            ax.set_title(f"Impact regimes, {family.labels['contact']}: {name}")
+            ax.set_title(f"Impact regimes, {family.labels['contact']}: {structure_label(dataset, str(name))}")
         figure.tight_layout()
         paths[f"regime_map_{name}"] = out / f"regime_map_{name}.png"
         _save_png(figure, paths[f"regime_map_{name}"], dpi=120)

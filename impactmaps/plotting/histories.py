@@ -108,10 +108,12 @@ def plot_impact_history(result, *, normalised=False, figure=None):
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     peak = result.peak_force / result.force_scale if normalised else result.peak_force
-    axes[0].plot([result.peak_time * scale], [peak], "o", color="C3", ms=5,
+    axes[0].plot([result.peak_time * scale], [peak], "o", color="C3", ms=5, zorder=4,
                  label=f"peak {peak:.4g}{'' if normalised else ' N'}")
     axes[0].plot([], [], color="#f6e3c7", lw=8, label=f"contact ({result.impacts} impact{'s' * (result.impacts != 1)})")
-    axes[0].legend(fontsize=8, loc="upper right")
+    # above the panel, never over the curves or the peak marker
+    axes[0].legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.01), ncol=2, borderaxespad=0.0,
+                   frameon=False)
     axes[-1].set_xlabel(xlabel)
     figure.tight_layout()
     return figure
@@ -134,7 +136,7 @@ def save_impact_history(result, path, *, normalised=False):
 
 
 def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):
-    """Scaling figure (seed 001 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
+    """Scaling figure (Christoforou & Yigit 1998 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
 
     Parameters
     ----------
@@ -158,7 +160,7 @@ def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None,
 
 
 def plot_restitution(beta, restitution, *, points=None, ax=None):
-    """Coefficient of restitution against the impact number β (seed 001 Figure 1).
+    """Coefficient of restitution against the impact number β (Christoforou & Yigit 1998 Figure 1).
 
     Parameters
     ----------

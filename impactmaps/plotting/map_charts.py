@@ -11,9 +11,11 @@ from ..maps.family.accuracy import STATUSES
 from ..maps.family.builtin_families import LAYOUTS, PlasticLayout, family_layout
 from ..maps.family.map_family import map_law
 from ..maps.family.regimes import REGIMES, classify, infinite_structure_peak, quasi_static_peak
+from ..targets.options import depends_on_slenderness
 from .axes import axes_or_new
 
-__all__ = ["REGIME_COLOURS", "SENSITIVE_ALPHA", "FMAX_LABELS", "PLASTIC_PANELS", "plot_fmax_chart",
+__all__ = ["REGIME_COLOURS", "SENSITIVE_ALPHA", "FMAX_LABELS", "PLASTIC_PANELS", "NORMALISATION_NOTES",
+           "structure_label", "plot_fmax_chart",
            "plot_plastic_chart", "plot_regime_strip", "plot_regime_map"]
 
 REGIME_COLOURS = {
@@ -34,17 +36,19 @@ FMAX_LABELS = {name: (layout.labels["zeta"], layout.labels["fmax"]) for name, la
 
 
 def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):
-    """Figure 2 of seed 001: F̄max against ζ (log axis) for several λ.
+    """Figure 2 of Christoforou & Yigit 1998: F̄max against ζ (log axis) for several λ.
 
     Plates are drawn solid, beams dashed; the quasi-static values sqrt(λ/(1+λ)) as
     dotted horizontal lines, the infinite-plate and infinite-beam peaks as thick grey
     curves. Regimes (``shade_regimes``): the local band F̄max ≥ 0.9 is shaded, and, when
-    the dataset has a ``regime`` variable, vertical bands mark the ζ ranges where every
-    drawn point is in one regime (local on the left, quasi-static on the right; between
-    them the regime depends on λ: see :func:`plot_regime_map`). Where the dataset has
+    the dataset has a ``regime`` variable, a vertical band marks the ζ range where every
+    drawn point is quasi-static (elsewhere the regime depends on λ: see
+    :func:`plot_regime_map`). Where the dataset has
     a ``status`` variable, stretches of ``sensitive`` points (no converged value) are
     drawn as a band between ``fmax_low`` and ``fmax_high`` in the curve's colour, not as
-    a line, with a legend entry saying what the band means.
+    a line, each sensitive point marked × (a band narrower than the line stays visible),
+    with a legend entry saying what they mean. A note under the legend defines the
+    normalisation (ω for the linear map).
 
     The axis labels follow the map's contact law (``contact_law`` attribute,
     :data:`FMAX_LABELS`): ζ, λ and F_max/(m V0 ω) for a linear map; ζ_h, λ_h and
@@ -59,7 +63,8 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     structures : list of str, optional
         Structure names to draw (default all).
     lambdas : list of float, optional
-        λ values to draw (default all in the dataset).
+        λ values to draw (default all in the dataset); each is drawn at the nearest grid
+        λ, and the legend gives that grid λ.
     asymptotes : bool
         Draw the quasi-static and infinite-structure asymptotes (linear maps only).
     shade_regimes : bool
@@ -113,9 +118,9 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     if asymptotes:
         ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
     if _has_sensitive(dataset, structures, lambda_values):
-        ax.fill_between([], [], [], color="0.5", alpha=SENSITIVE_ALPHA, lw=0,
-                        label="sensitive: no converged value,\nband = spread of " + r"$\bar{F}_{max}$"
-                        + (" (beams hatched)" if "beam" in kinds.values() else ""))
+        ax.plot([], [], ls="none", marker="x", ms=6, mew=1.3, color="0.3",
+                label="sensitive (×): no converged value;\nband = spread of " + r"$\bar{F}_{max}$"
+                + (" (beams hatched)" if "beam" in kinds.values() else ""))
     ax.set_xscale("log")
     ax.set_xlim(zeta[0], zeta[-1])
     top = 0.0 if family.fmax_at_most_one else float(np.nanmax(dataset["fmax_normalised"].values, initial=0.0))
@@ -126,7 +131,18 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
                  + ("; quasi-static dotted" if asymptotes else ""))
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    note = NORMALISATION_NOTES.get(map_law(dataset))
+    if note:
+        ax.text(1.01, 0.0, note, transform=ax.transAxes, fontsize=7.5, va="bottom", ha="left", color="0.25")
     return ax
+
+
+#: Map law → the definitions a reader of its chart needs and the axis labels do not give.
+NORMALISATION_NOTES = {
+    "linear": "ω = √(K/m_i): the angular frequency of\nthe impactor on the contact spring K\n"
+              "λ = K_st/K: static stiffness of the\nstructure at the impact point over K\n"
+              "ζ: loss factor (waves carry energy\naway; docs: chart page)",
+}
 
 
 def _sensitive_mask(curve):
@@ -169,6 +185,8 @@ def _draw_sensitive_bands(ax, zeta, curve, colour, kind="plate"):
         for edge in (low, high):
             ax.plot(zeta[span], edge[span], color=colour, lw=0.6, ls="--" if beam else "-", alpha=0.8,
                     zorder=1.6)
+    ax.plot(zeta[sensitive], 0.5 * (low[sensitive] + high[sensitive]), ls="none", marker="x", ms=6, mew=1.3,
+            color=colour, zorder=3)
     values[sensitive] = np.nan
     return values
 
@@ -184,10 +202,20 @@ def _lambda_styles(count):
 
 
 def _selection(dataset, structures, lambdas):
-    """The structures and λ values to draw (default: all of the dataset's)."""
+    """The structures and the grid λ values to draw (default: all of the dataset's).
+
+    Asked λ values are replaced by the nearest λ of the grid (nearest in log λ), each once:
+    the curves are the grid's, and their labels and asymptotes must say which λ they are
+    (labelling the asked λ drew curves below their own quasi-static line)."""
     structures = list(dataset["structure"].values) if structures is None else list(structures)
-    lambda_values = dataset["lambda_"].values if lambdas is None else np.asarray(lambdas, float)
-    return structures, lambda_values
+    grid = np.asarray(dataset["lambda_"].values, float)
+    if lambdas is None:
+        return structures, grid
+    asked = np.atleast_1d(np.asarray(lambdas, float))
+    if not np.all(np.isfinite(asked) & (asked > 0)):
+        raise ValueError(f"lambdas = {list(asked)} is invalid: give positive finite λ values")
+    nearest = [float(grid[np.argmin(np.abs(np.log(grid) - np.log(value)))]) for value in asked]
+    return structures, np.array(list(dict.fromkeys(nearest)))
 
 
 def _regime_codes(regimes):
@@ -205,7 +233,7 @@ def _shade_regime_bands(ax, dataset, structures, lambda_values):
     columns = [set(np.asarray(regimes.isel(zeta=k).values).ravel()) for k in range(zeta.size)]
     edges = np.sqrt(zeta[1:] * zeta[:-1])
     edges = np.concatenate([[zeta[0]], edges, [zeta[-1]]])
-    for name in ("local", "quasi-static"):
+    for name in ("quasi-static",):  # the local regime is the horizontal band F̄max ≥ 0.9 already
         shared = np.array([column == {name} for column in columns])
         if not shared.any():
             continue
@@ -275,6 +303,33 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     return ax
 
 
+_SUPPORTS = {"ss": "simply supported", "cc": "clamped–clamped", "cs": "clamped–simply supported",
+             "sc": "simply supported–clamped", "cf": "cantilever", "fc": "cantilever", "ff": "free–free",
+             "SSSS": "simply supported", "CCCC": "clamped"}
+_THEORIES = {"euler": "Euler–Bernoulli", "rayleigh": "Rayleigh", "timoshenko": "Timoshenko",
+             "kirchhoff": "Kirchhoff", "mindlin": "Mindlin"}
+
+
+def structure_label(dataset, structure) -> str:
+    """A reader's name for the map structure ``structure`` of ``dataset`` (its coordinates
+    ``kind``, ``supports``, ``theory``, ``aspect_ratio``, ``slenderness``), e.g. "simply
+    supported Euler–Bernoulli beam"; the name itself when they are missing."""
+    one = dataset.sel(structure=structure)
+    try:
+        kind, supports, theory = (str(one[key].item()) for key in ("kind", "supports", "theory"))
+    except (KeyError, ValueError):
+        return str(structure)
+    words = [_SUPPORTS.get(supports, f"{supports} edges" if kind == "plate" else f"{supports} supports"),
+             _THEORIES.get(theory, theory), kind]
+    extra = []
+    if kind == "plate" and "aspect_ratio" in one.coords:
+        ratio = float(one["aspect_ratio"].item())
+        extra.append("square" if ratio == 1.0 else f"aspect ratio {ratio:g}")
+    if depends_on_slenderness(theory) and "slenderness" in one.coords:
+        extra.append(f"{'L' if kind == 'beam' else 'a'}/h = {float(one['slenderness'].item()):g}")
+    return " ".join(words) + (f" ({', '.join(extra)})" if extra else "")
+
+
 def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     """Regimes of one structure on the (ζ, λ) plane (log axes).
 
@@ -318,14 +373,44 @@ def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     # cut whole segments and left the labels floating)
     dense_zeta, dense_lam, fmax = _log_dense(zeta, lam, dataset["fmax_normalised"].sel(structure=structure).values)
     contours = ax.contour(dense_zeta, dense_lam, fmax, levels=[0.3, 0.5, 0.7, 0.9], colors="k", linewidths=0.7)
-    ax.clabel(contours, fmt=r"$\bar{F}$=%.1f", fontsize=7, inline=True, inline_spacing=2)
+    # horizontal labels on a white box over their own line: rotated inline labels printed
+    # vertically or upside down along steep contours and seemed to float beside them
+    for level, segments in zip(contours.levels, contours.allsegs):
+        spot = _label_spot(segments, dense_zeta, dense_lam)
+        if spot is not None:
+            ax.text(*spot, rf"$\bar{{F}}_{{max}}$={level:.1f}", fontsize=7, ha="center", va="center", zorder=5,
+                    bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 0.6})
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("loss factor ζ")
     ax.set_ylabel("relative stiffness λ")
-    ax.set_title(f"Impact regimes: {structure}")
+    ax.set_title(f"Impact regimes: {structure_label(dataset, structure)}")
     ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=8, loc="lower left")
     return ax
+
+
+def _label_spot(segments, zeta, lam):
+    """Where a contour level's label goes: the middle (by length in log ζ, log λ) of its
+    longest line, kept away from the axes' edges (a label placed by ``clabel`` could sit
+    half outside the axes); ``None`` when the level has no line."""
+    inner = (np.log(zeta[0]) + 0.08 * np.log(zeta[-1] / zeta[0]), np.log(zeta[-1]) - 0.08 * np.log(zeta[-1] / zeta[0]),
+             np.log(lam[0]) + 0.05 * np.log(lam[-1] / lam[0]), np.log(lam[-1]) - 0.05 * np.log(lam[-1] / lam[0]))
+    best, best_length = None, 0.0
+    for segment in segments:
+        if len(segment) < 2:
+            continue
+        points = np.log(np.asarray(segment, float))
+        keep = ((points[:, 0] > inner[0]) & (points[:, 0] < inner[1]) & (points[:, 1] > inner[2])
+                & (points[:, 1] < inner[3]))
+        points = points[keep]
+        if len(points) < 2:
+            continue
+        steps = np.hypot(*np.diff(points, axis=0).T)
+        length = float(steps.sum())
+        if length > best_length:
+            along = np.concatenate([[0.0], np.cumsum(steps)])
+            best, best_length = np.exp(points[int(np.searchsorted(along, 0.5 * length))]), length
+    return None if best is None else (float(best[0]), float(best[1]))
 
 
 def _log_dense(zeta, lam, values, points=200):

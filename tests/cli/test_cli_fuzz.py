@@ -113,6 +113,8 @@ def _bases(files) -> dict:
         "halfspace": ["halfspace", "--law", "hertz", "--radius", "0.005", "--velocity", "3", "--material",
                       "structural-steel", "--target-material", "aluminium-6061-t6"],
         "restitution": ["restitution", "--beta", "10"],
+        "plot": ["plot", str(Path(__file__).resolve().parents[2] / "impactmaps" / "maps" / "data"
+                             / "beam-ss-euler-epp.npz"), "--beta", "10", "--out", str(root / "epp.png")],
         "init": ["init", "plate", str(root / "new.toml"), "--overwrite"],
         "check": ["check", str(files["valid_case"])],
         "materials": ["materials"],

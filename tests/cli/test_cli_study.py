@@ -84,3 +84,57 @@ def test_rendered_case_reads_back_the_same(example):
     """The study rewrites a case through render_toml: every shipped example survives the round trip."""
     data = tomllib.loads(example.read_text())
     assert tomllib.loads(render_toml(data)) == data
+
+
+# -- log spacing, clean values, every scalar, the plot (issue 40 item 11) ---------------------
+def test_log_spacing_and_values_without_float_noise():
+    """A:B:N:log spaces the values evenly in log from A to B exactly; every value is rounded
+    to 12 significant digits (1 + 0.1·9 prints 1.9, not 1.9000000000000001)."""
+    key, values = parse_vary("impactor.velocity=0.1:10:12:log")
+    assert key == "impactor.velocity" and len(values) == 12
+    assert values[0] == 0.1 and values[-1] == 10.0
+    ratios = [b / a for a, b in zip(values, values[1:])]
+    assert max(ratios) / min(ratios) - 1 < 1e-10
+    _, linear = parse_vary("impactor.velocity=1:2:11")
+    assert linear[9] == 1.9 and repr(linear[9]) == "1.9"
+    assert all(len(repr(v)) <= 14 for v in linear + values)
+    for spec, fragment in (("impactor.velocity=0:10:5:log", "A > 0"), ("impactor.velocity=1:10:5:lin", "A:B:N")):
+        with pytest.raises(ValueError, match="--vary") as error:
+            parse_vary(spec)
+        assert fragment in str(error.value)
+
+
+def test_study_lists_every_scalar_and_draws_itself(tmp_path, capsys):
+    """--json gives, per run, every scalar of the summary (restitution, contact durations,
+    impacts, energies …), the study writes study.png, and `impactmaps plot` draws it again
+    with a log axis for a log study; a column the study does not have is one line, exit 2."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import pandas as pd
+
+    from impactmaps.plotting import plot_study
+
+    case = tmp_path / "halfspace.toml"
+    case.write_text(HALFSPACE)
+    out = tmp_path / "out"
+    assert main(["simulate", str(case), "--vary", "impactor.velocity=0.2:5:3:log", "--out", str(out), "--json",
+                 "--quiet"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["spacing"] == "log" and summary["values"] == [0.2, 1.0, 5.0]
+    for column in ("peak_force_N", "restitution", "first_contact_duration_s", "total_contact_time_s", "impacts",
+                   "impact_energy_J", "energy_loss_J", "max_indentation_m"):
+        assert len(summary["results"][column]) == 3, column
+    assert summary["results"]["impact_energy_J"][2] / summary["results"]["impact_energy_J"][0] == \
+        pytest.approx(625.0, rel=1e-9)
+    assert Path(summary["plot"]).stat().st_size > 1000
+    assert main(["plot", str(out), "--out", str(tmp_path / "again.png"), "--json",
+                 "--quantity", "peak_force_N", "--quantity", "first_contact_duration_s"]) == 0
+    drawn = json.loads(capsys.readouterr().out)
+    assert drawn["kind"] == "study" and (tmp_path / "again.png").stat().st_size > 1000
+    axes = plot_study(pd.read_csv(out / "study.csv"), "impactor.velocity", log_x=None)
+    assert axes[0].get_xscale() == "log"  # 0.2 … 5 spans more than a decade
+    assert main(["plot", str(out), "--quantity", "nope"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "nope" in err and len(err.splitlines()) == 1
+    assert main(["plot", str(tmp_path / "missing")]) == 2

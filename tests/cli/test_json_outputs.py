@@ -7,6 +7,7 @@ covers every subcommand of the parser, so a new command cannot skip this check.
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -26,7 +27,9 @@ kind = "beam"
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
-            "restitution", "init", "check", "warm-up", "materials", "laws")
+            "restitution", "plot", "init", "check", "warm-up", "materials", "laws")
+#: A shipped elastic-plastic map: `plot` draws it at one β.
+SHIPPED_EPP_MAP = Path(__file__).resolve().parents[2] / "impactmaps" / "maps" / "data" / "beam-ss-euler-epp.npz"
 
 
 def _invocations(tmp_path):
@@ -44,6 +47,7 @@ def _invocations(tmp_path):
         "halfspace": ["halfspace", "--law", "yigit-christoforou", "--radius", "0.005", "--velocity", "3",
                       "--material", "structural-steel", "--target-material", "aluminium-6061-t6"],
         "restitution": ["restitution", "--beta", "1e8"],
+        "plot": ["plot", str(SHIPPED_EPP_MAP), "--beta", "10", "--out", str(tmp_path / "epp.png")],
         "init": ["init", "plate", str(tmp_path / "plate.toml")],
         "check": ["check", str(EXAMPLES / "steel_plate_hertz.toml")],
         # in this process: the kernels the commands above compiled are reused, the rest compiled once

@@ -12,6 +12,7 @@ force, restitution and dent.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -158,3 +159,46 @@ def test_epp_similarity():
     assert np.allclose(steel_on_aluminium, polymer_like, rtol=1e-6)
     other_poisson_ratio = normalised(55e9, 6.35e-3, 8e-3, 8.4e-3, nu=0.45)
     assert not np.allclose(steel_on_aluminium, other_poisson_ratio, rtol=1e-3)
+
+
+# -- beyond the calibrated range (issue 40 item 9) ---------------------------------------------
+@pytest.mark.parametrize("share", [0.0, 0.5])
+def test_epp_mean_pressure_levels_off_beyond_the_calibration(share):
+    """An elastic–perfectly plastic solid's mean pressure levels off at full plasticity: the
+    law's F/(2πRδ) rises to its plateau (about 3 Y for a rigid sphere) and stays there from
+    x_c = 1518.5 δ_y to 10⁶ δ_y (it fell to 1.8 Y at 10⁵ before); below x_c the law is what
+    it was (the loading exponent reaches 1 exactly at x_c)."""
+    from impactmaps.contact.plastic.epp import LOG_CAP
+
+    law = law_for(3e-3, share=share)
+    delta_y, yield_strength = float(law.yield_indentation), float(law.yield_strength)
+    delta = delta_y * np.geomspace(2e3, 1e6, 40)
+    mean_pressure = law.loading_force(delta) / (2 * np.pi * float(law.radius) * delta) / yield_strength
+    assert np.ptp(mean_pressure) < 1e-3 * mean_pressure[0]
+    if share == 0.0:
+        assert 2.8 < mean_pressure[0] < 3.1
+    x_c = math.exp(LOG_CAP)
+    below = delta_y * np.geomspace(1.0, x_c * (1 - 1e-9), 50)
+    local = np.gradient(np.log(law.loading_force(below)), np.log(below))
+    assert np.all(local[:-1] > 1.0 - 1e-3)
+    assert 0.9 < x_c / 1518.5 < 1.1 and abs(x_c - 1518.521) < 0.01
+
+
+def test_epp_half_space_impact_warns_beyond_the_calibrated_range():
+    """halfspace_impact says when the run leaves the FE calibration (δ_m > 1000 δ_y), and is
+    silent inside it: the one check (validity.law_warnings) the CLI prints too."""
+    import warnings
+
+    from impactmaps.validity import ModelValidityWarning, law_warnings
+
+    law = law_for(1e-3)
+    mass = 0.004
+    per_speed = float(law.impact_number(mass, 1.0))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        inside = halfspace_impact(law, mass, 100.0 / per_speed)
+    assert not [w for w in caught if issubclass(w.category, ModelValidityWarning)]
+    assert law_warnings(law, inside) == []
+    with pytest.warns(ModelValidityWarning, match="epp range: .*yield indentations .*calibrated to 1000"):
+        outside = halfspace_impact(law, mass, 8000.0 / per_speed)
+    assert outside.max_indentation / float(law.yield_indentation) > 1000

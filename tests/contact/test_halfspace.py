@@ -269,3 +269,46 @@ def test_modal_solver_on_halfspace_target_equals_empty_basis():
     empty = simulate(ModalBasis(np.zeros(0), np.zeros(0)), law, MASS, 3.0, record=True)
     assert result.peak_force == empty.peak_force
     assert np.array_equal(result.history.to_numpy(), empty.history.to_numpy())
+
+
+# -- the epp advice of the halfspace command (issue 40 item 9) ---------------------------------
+def _halfspace_cli(*extra):
+    import io
+    import json
+    from contextlib import redirect_stderr, redirect_stdout
+
+    from impactmaps.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with redirect_stdout(out), redirect_stderr(err):
+        code = main(["halfspace", "--law", "epp", "--radius", "0.005", "--velocity", "3", "--json", *extra])
+    return code, (json.loads(out.getvalue()) if code == 0 else None), err.getvalue()
+
+
+def test_halfspace_one_material_blames_the_flat_and_advises_an_option_it_can_set():
+    """One material for both bodies: the flat (the target) yields in the law's picture, the
+    elastic ball carries half of 1/E*; the advice names sphere_compliance = 0.50 and the
+    command's own --law-option, which then silences it."""
+    code, out, _err = _halfspace_cli("--material", "structural-steel", "--target-material", "structural-steel")
+    assert code == 0
+    advice, = [w for w in out["model_warnings"] if w.startswith("epp calibration")]
+    assert "yielding target" in advice and "elastic impactor carries 0.50" in advice
+    assert "sphere_compliance = 0.50" in advice and "--law-option" in advice
+    assert "impactor yields" not in advice
+    code, fitted, _err = _halfspace_cli("--material", "structural-steel", "--target-material", "structural-steel",
+                                        "--law-option", "sphere_compliance=0.5")
+    assert code == 0 and not [w for w in fitted["model_warnings"] if w.startswith("epp calibration")]
+    assert fitted["peak_force_N"] > out["peak_force_N"]
+
+
+def test_halfspace_soft_ball_is_named_and_bad_law_options_are_refused():
+    """A ball weaker than the plate (S235 on 6061-T6) yields first: the advice says so and
+    points to a bearing-steel ball; a malformed --law-option is one line, exit 2."""
+    code, out, _err = _halfspace_cli("--material", "structural-steel", "--target-material", "aluminium-6061-t6")
+    assert code == 0
+    advice, = [w for w in out["model_warnings"] if w.startswith("epp calibration")]
+    assert "elastic target carries 0.75" in advice and "impactor yields first" in advice
+    assert "bearing-steel-52100" in advice
+    code, _out, err = _halfspace_cli("--material", "structural-steel", "--target-material", "structural-steel",
+                                     "--law-option", "sphere_compliance=abc")
+    assert code == 2 and "--law-option" in err and len(err.strip().splitlines()) == 1

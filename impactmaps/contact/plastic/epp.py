@@ -11,11 +11,14 @@ them and L = ln x:
 * loading, ``x ≤ 1``: Hertz, ``F/F_y = x^{3/2}``;
 * loading, ``x > 1``: ``F/F_y = x^{3/2} exp(−q [L − c atan(L/c)] − r L³/3) h``: the local
   exponent ``d ln F/d ln x = 3/2 − q L²/(c² + L²) − r L²`` falls smoothly from the Hertz
-  3/2 (held constant beyond x = 10⁴, where it is still positive), so the force never
+  3/2 to 1, reached at x_c = 1518.5, and is held at 1 beyond: there the mean pressure
+  F/(2πRδ) = (c_y/3)(F/F_y)/x Y stays at its value at x_c (3.06 Y for a rigid sphere),
+  the fully plastic plateau of an elastic–perfectly plastic solid, instead of falling as
+  the fitted form would (docs/epp_calibration.rst, *Beyond the calibrated range*); the force never
   exceeds Hertz and never decreases; ``h = 1 + b_f ln(1/(1 − s)) L³/(c_s³ + L³)``
   raises it with the sphere's share s = E*(1 − ν_s²)/E_s of the compliance (s = 0: a
-  rigid sphere).  The form belongs to the family of FE-fitted laws that blend the Hertz
-  curve into a plastic branch (Jackson & Green, J. Tribol. 127 (2005) 343,
+  rigid sphere; h too is held at its x_c value beyond x_c).  The form belongs to the
+  family of FE-fitted laws that blend the Hertz curve into a plastic branch (Jackson & Green, J. Tribol. 127 (2005) 343,
   doi:10.1115/1.1866166); the function and its coefficients are our own.
 * unloading and reloading below ``δ_m``: the power law about the permanent
   indentation of the Etsion family (Etsion, Kligerman & Kadin, Int. J. Solids Struct. 42
@@ -72,8 +75,16 @@ COEFFICIENTS = {
 _ORDER = ("q", "c", "r", "b", "w", "v", "n_inf", "k", "a_nu", "a_r", "b_f", "c_s", "b_s")
 #: Largest share of 1/E* the sphere may carry (the flat must be the softer body).
 LARGEST_SPHERE_COMPLIANCE = 0.75
-#: ln x beyond which the loading exponent is held at its value there (x = 10⁴).
-LOG_CAP = math.log(1e4)
+#: ln x_c beyond which the loading exponent is held at 1 (F ∝ δ: constant mean pressure):
+#: the root of q L²/(c² + L²) + r L² = 1/2, x_c = 1518.5 (beyond the calibrated 1000 δ_y and
+#: beyond every point of the shipped epp maps, whose values it therefore leaves unchanged).
+_B = COEFFICIENTS["q"] + COEFFICIENTS["r"] * COEFFICIENTS["c"] ** 2 - 0.5
+LOG_CAP = math.sqrt((math.sqrt(_B * _B + 2.0 * COEFFICIENTS["r"] * COEFFICIENTS["c"] ** 2) - _B)
+                    / (2.0 * COEFFICIENTS["r"]))
+#: The yield indentations δ_m/δ_y to which the law was calibrated on FE (beyond: extrapolated).
+CALIBRATED_INDENTATION_RATIO = 1000.0
+#: The largest δ_m/R of the calibration.
+CALIBRATED_RADIUS_RATIO = 0.05
 
 
 def yield_shift(poisson_ratio, a_nu=None):
@@ -97,13 +108,13 @@ def _epp_loading(x, q, c, r, gain, c_s):
     big_l = min(log_x, LOG_CAP)
     deficit = q * big_l * big_l / (c * c + big_l * big_l) + r * big_l * big_l
     work = q * (big_l - c * math.atan(big_l / c)) + r * big_l ** 3 / 3.0
-    f = math.exp(1.5 * big_l - work)                      # F/F_y at min(x, 10⁴)
+    f = math.exp(1.5 * big_l - work)                      # F/F_y at min(x, x_c)
     exponent = 1.5 - deficit
-    if log_x > big_l:                                      # constant exponent beyond
+    if log_x > big_l:                                      # exponent 1 beyond x_c
         f *= math.exp(exponent * (log_x - big_l))
     cube = c_s ** 3
-    h = 1.0 + gain * log_x ** 3 / (cube + log_x ** 3)
-    dh = gain * 3.0 * log_x ** 2 * cube / (cube + log_x ** 3) ** 2 / x
+    h = 1.0 + gain * big_l ** 3 / (cube + big_l ** 3)                  # held beyond x_c too
+    dh = gain * 3.0 * log_x ** 2 * cube / (cube + log_x ** 3) ** 2 / x if log_x <= big_l else 0.0
     return f * h, f / x * exponent * h + f * dh
 
 
@@ -145,7 +156,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
     Parameters
     ----------
     effective_modulus : float or array_like
-        E* [Pa] (seed 001 eq 8).
+        E* [Pa] (Christoforou & Yigit 1998, eq 8).
     radius : float or array_like
         Effective radius R [m].
     yield_strength : float or array_like
@@ -203,7 +214,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
         return first_yield_force(self.effective_modulus, self.radius, self.yield_indentation)
 
     def impact_number(self, impactor_mass, velocity):
-        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (seed 001 eq 11),
+        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (Christoforou & Yigit 1998, eq 11),
         so that one β places an impact whichever plastic law is used.
 
         Parameters
@@ -249,6 +260,24 @@ class EppContact(ReferenceYieldScales, ContactLaw):
                 rho[i], n[i] = _epp_unloading_shape(max(xm[i] * pv[12], 1.0), pv[5], pv[6], pv[7],
                                                     pv[8], pv[9])
         return xm, rho, n, fm
+
+    def calibration_note(self, max_indentation) -> str | None:
+        """Why a run reaching ``max_indentation`` [m] lies beyond the FE calibration
+        (δ_m/δ_y > 1000 or δ_m/R > 0.05), or ``None`` inside it. A single law only."""
+        depth = float(max_indentation)
+        ratio = depth / float(yield_shift(self.poisson_ratio) * self.yield_indentation)
+        relative = depth / float(self.radius)
+        beyond = []
+        if ratio > CALIBRATED_INDENTATION_RATIO:
+            beyond.append(f"{ratio:.4g} yield indentations (calibrated to {CALIBRATED_INDENTATION_RATIO:g}"
+                          + ("; beyond 1518.5 the mean pressure is held at its fully plastic plateau"
+                             if ratio > math.exp(LOG_CAP) else "") + ")")
+        if relative > CALIBRATED_RADIUS_RATIO:
+            beyond.append(f"{relative:.3g} R (calibrated to {CALIBRATED_RADIUS_RATIO:g} R)")
+        if not beyond:
+            return None
+        return ("epp range: the largest indentation reaches " + " and ".join(beyond)
+                + ": the law extrapolates its FE calibration (docs/epp_calibration.rst)")
 
     def permanent_indentation(self, max_indentation):
         """``δ_r = δ_m ρ∞ (1 − x_m^{−s})^t`` [m] (0 up to first yield)."""

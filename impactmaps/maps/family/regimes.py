@@ -15,7 +15,10 @@ Criteria (seed 001 §5, made quantitative here; every threshold is a parameter):
    ζ = 11.3 is 6.5 % above it, hence the 10 % default.)
 4. **transition** — none of the above: both ζ and λ matter.
 
-When both asymptotes are within tolerance the nearer one wins. The same function
+When both asymptotes are within tolerance the nearer one wins, except that a peak known
+to come before the first wave returns is never quasi-static (along the curve where the
+two asymptotes cross, F̄∞(ζ) = sqrt(λ/(1+λ)), nearer-wins alone labelled such points
+quasi-static: a thin sliver through the infinite-structure area of the regime maps). The same function
 classifies a simulated result and, without simulating, a value looked up from a
 stored map (:func:`impactmaps.maps.read.lookup.lookup`).
 
@@ -137,10 +140,17 @@ def classify(
     before_reflection = True
     if peak_time is not None and reflection_time is not None:
         before_reflection = _shaped(np.asarray(peak_time) < np.asarray(reflection_time), fmax.shape)
+    known_before = False
+    if peak_time is not None and reflection_time is not None:
+        known_before = before_reflection
     on_infinite = (distance_infinite <= tolerance) & before_reflection
     on_quasi = distance_quasi <= tolerance
     code = np.where(on_quasi, _QUASI_STATIC, _TRANSITION)
-    code = np.where(on_infinite & (~on_quasi | (distance_infinite <= distance_quasi)), _INFINITE, code)
+    # a peak before the first wave returns cannot be quasi-static (no reflection has
+    # reached the contact yet): where the two asymptotes cross, F̄∞(ζ) = sqrt(λ/(1+λ)), the
+    # nearer-wins rule alone drew a quasi-static sliver through the infinite-structure area
+    code = np.where(on_infinite & (~on_quasi | (distance_infinite <= distance_quasi) | known_before),
+                    _INFINITE, code)
     code = np.where((fmax >= 1.0 - local_tolerance) & before_reflection, _LOCAL, code)
     return np.asarray(_REGIME_ARRAY[code])
 
