@@ -29,6 +29,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import sys
 import warnings
 from pathlib import Path
 
@@ -39,6 +40,7 @@ import impactmaps
 from impactmaps.targets import ritz
 
 RESULTS = Path(__file__).resolve().parents[1] / "validation" / "fe" / "results"
+sys.path.insert(0, str(RESULTS.parent))          # validation/fe: spring_integrator
 PUBLISHED = RESULTS / "level6_published_kirchhoff.csv"
 LEVEL6 = RESULTS / "level6_plates.json"
 SHAPES = RESULTS / "level6_plate_shapes.npz"
@@ -191,13 +193,27 @@ def test_mindlin_any_edges_vs_3d_solid(key):
     np.testing.assert_allclose(got, fe, rtol=MINDLIN_TOLERANCE[ratio])
 
 
+@_skip_no_level6
+@pytest.mark.parametrize("key", [k for k in _cases("solid") if "-SSSS-" in k])
+def test_ssss_mindlin_vs_3d_solid_now(key):
+    """The 3D simple support of level 6 (tangential displacement held, thickness-averaged w
+    held per node column) against the Navier Mindlin plate, which exists now: within 1 % at
+    a/h = 20 and 10 (observed −0.03 … −0.19 % and −0.13 … −0.6 %). This checks the support
+    model that the SCSC / CCSS cases use."""
+    edges, ratio, case = _solid_inputs(key)
+    plate = impactmaps.Plate.isotropic(case["length_x_m"], case["length_y_m"], case["thickness_m"],
+                                       STEEL, theory="mindlin")
+    got = np.sort(np.asarray(plate.modes(0.0, min_modes=N_MODES).frequencies[:N_MODES])) / (2 * np.pi)
+    np.testing.assert_allclose(got, np.sort(case["fe_bending_hz"]), rtol=0.01)
+
+
 # Kirchhoff − FE (relative) at a/h = 20, first 8 bending modes: measured bounds (the classical
 # plate has no shear flexibility, so it is above the 3D plate; how much grows with the mode
 # and with the clamps). Lower/upper bound over the 8 modes; see README level 6.
 # Observed (32×32×4 mesh): CCCC +2.5 … +9.1 %, SCSC +2.0 … +8.2 %, CCSS +1.6 … +7.3 %,
 # CFFF +0.2 … +4.5 %; bands = observed ± 0.5 %.
 KIRCHHOFF_BANDS = {"CCCC": (0.019, 0.097), "SCSC": (0.014, 0.087), "CCSS": (0.011, 0.078),
-                   "CFFF": (-0.003, 0.050)}
+                   "CFFF": (-0.003, 0.050), "SSSS": (0.003, 0.060)}
 
 
 @_skip_no_level6
@@ -228,3 +244,103 @@ def test_laminate_mindlin_vs_composite_shell(key):
                                            theory="mindlin", edges="CCCC")
     got = np.sort(np.asarray(plate.natural_frequencies_hz(N_MODES)))[:N_MODES]
     np.testing.assert_allclose(got, np.sort(case["fe_bending_hz"]), rtol=LAMINATE_TOLERANCE)
+
+
+# --------------------------------------------------------------------------- CCCC impact
+IMPACT = RESULTS / "level6_impact.json"
+LEVEL3_SSSS_MODES = RESULTS / "level3_modes_plate_a070_fine.json"
+PATCH_RADIUS = 7e-4
+
+
+def _impact():
+    return json.loads(IMPACT.read_text())
+
+
+def _impact_cases():
+    return _impact()["cases"] if IMPACT.exists() else []
+
+
+def _spread(fe, quantity):
+    ref = fe["reference"][quantity]
+    return max(abs(v[quantity] / ref - 1) for v in fe.values())
+
+
+@pytest.mark.skipif(not IMPACT.exists(), reason="level6_impact.json not committed")
+def test_fe_cccc_static_patch_compliance_converged():
+    """The 3D CCCC plate's patch compliance: two meshes within 0.3 % (observed 0.17 %), and
+    the edge invariant: its excess over the Kirchhoff point compliance is that of the SSSS
+    plate (the near field does not see the edges) within 2 % (observed 3.57 vs 3.54 × 10⁻⁹ m/N)."""
+    data = _impact()
+    c = data["static_patch_compliance_m_per_N"]
+    assert abs(c["cccc_a070_coarse"] / c["cccc_a070_fine"] - 1) < 3e-3
+    cccc_excess = c["cccc_a070_fine"] - data["toolkit_kirchhoff_point_compliance_m_per_N"]
+    ssss = json.loads(LEVEL3_SSSS_MODES.read_text())["static_compliance_m_per_N"]
+    ssss_excess = ssss - _kirchhoff_plate(0.2, 0.01, "SSSS").static_compliance()
+    assert cccc_excess == pytest.approx(ssss_excess, rel=0.02)
+
+
+def _patch_compliance(plate):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        basis = plate.modes(4e6, contact_radius=PATCH_RADIUS)
+    return basis.retained_compliance + basis.residual_compliance
+
+
+@pytest.mark.skipif(not IMPACT.exists(), reason="level6_impact.json not committed")
+def test_mindlin_cccc_static_patch_compliance_vs_3d():
+    """Issue 39: the static centre compliance of the CCCC Mindlin plate under the Hertz-sized
+    patch (a_c = 0.7 mm) within 2 % of the 3D solid's structural part (the FE patch compliance
+    minus the half-space compliance of the patch, which the Hertz law carries). Needs Mindlin
+    plates with any edges and the contact patch on them. NOTE: the same comparison on SSSS
+    (Navier Mindlin, which exists) is +4.4 % today (``test_mindlin_ssss_static_patch_now``)."""
+    data = _impact()
+    plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.01, STEEL, theory="mindlin", edges="CCCC")
+    fe = data["structural_patch_compliance_m_per_N"][data["reference"]]
+    assert _patch_compliance(plate) == pytest.approx(fe, rel=0.02)
+
+
+# Observed +4.4 % (toolkit Mindlin SSSS, Hertz-pressure patch 0.7 mm: 2.540e-8 m/N; 3D 2.767e-8
+# minus the half-space patch compliance 3.35e-9 = 2.433e-8); band ±0.5 %.
+SSSS_PATCH_EXCESS = (0.039, 0.049)
+
+
+def test_mindlin_ssss_static_patch_now():
+    """What the Mindlin patch model gives today on SSSS against the same 3D structural patch
+    compliance (level 3's SSSS plate): +4.4 %, outside the issue's 2 % — the Mindlin shear
+    flexibility under a patch much smaller than h (≈ ln(h/a)/(2π k G h)) that the 3D solid's
+    half-space-like near field, already in the Hertz law, does not add (README levels 3, 6).
+    Held in its band so that a change of the patch model is seen."""
+    from spring_integrator import halfspace_patch_compliance
+    fe = (json.loads(LEVEL3_SSSS_MODES.read_text())["static_compliance_m_per_N"]
+          - halfspace_patch_compliance(PATCH_RADIUS, STEEL))
+    plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.01, STEEL, theory="mindlin")
+    low, high = SSSS_PATCH_EXCESS
+    assert low < _patch_compliance(plate) / fe - 1 < high
+
+
+@pytest.mark.parametrize("case", _impact_cases(), ids=lambda c: f"cccc-mass×{c['mass_factor']:g}")
+def test_fe_cccc_impact_converged(case):
+    """FE spring model (CCCC 3D modes): mesh, step and modes move the first-contact peak and
+    duration by ≤ 1 % (observed ≤ 0.35 %)."""
+    for quantity in ("first_peak_N", "first_contact_s"):
+        assert _spread(case["fe"], quantity) <= 0.01
+
+
+@pytest.mark.parametrize("case", _impact_cases(), ids=lambda c: f"cccc-mass×{c['mass_factor']:g}")
+def test_mindlin_cccc_impact_vs_3d(case):
+    """Issue 39: spring-coupled impact on the CCCC Mindlin plate (steel 200 × 200 × 10 mm, R 10 mm
+    steel sphere, 1 m/s, 0.1–100 × the solid sphere's mass): first-contact peak and duration
+    within 3 % of the FE spring model. Needs Mindlin plates with any edges."""
+    sphere = impactmaps.Sphere(0.01, STEEL, mass=case["mass_kg"])
+    law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
+    plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.01, STEEL, theory="mindlin", edges="CCCC")
+    res = impactmaps.simulate(plate, law, case["mass_kg"], 1.0)
+    start, end = res.contact_intervals[0]
+    if res.history is None:
+        peak = res.peak_force
+    else:
+        h = res.history
+        peak = h[(h["time_s"] >= start) & (h["time_s"] <= end)]["force_N"].max()
+    ref = case["fe"]["reference"]
+    assert peak == pytest.approx(ref["first_peak_N"], rel=0.03)
+    assert end - start == pytest.approx(ref["first_contact_s"], rel=0.03)
