@@ -2,7 +2,7 @@
 
 This is the "straightforward" way to solve the problem of docs/physics_contract.md §3.4, used (a) as
 the speed baseline of :mod:`benchmarks.bench_modal` and (b) at tight tolerances as the
-independent reference of ``tests/test_integrator.py``. It shares nothing with the
+independent reference of ``tests/solvers/test_integrator.py``. It shares nothing with the
 impactmaps integrator except the modal basis, which is built exactly as
 :func:`impactmaps.solvers.modal.simulate` builds it (same cut-off, same dropped
 insignificant modes, same residual compliance of the dropped modes).

@@ -1,11 +1,11 @@
 """Chart throughput: converged (ζ, λ) points per second of the default chart.
 
-Workload: ``impactmaps.maps.chart.make_chart`` with its defaults (SS Euler beam and SS
+Workload: ``impactmaps.plotting.chart.make_chart`` with its defaults (SS Euler beam and SS
 square Kirchhoff plate struck at the centre, 8 λ from 0.05 to 20, DEFAULT_ZETA_COUNT (200) log-spaced ζ from
 0.005 to 100, default ``ModalSettings``, a local process pool over all cores), written
 into a temporary directory; and, separately, the ``sweep`` of the same grid alone (no
 files except its NetCDF, no figures). Both compute every point: the shipped result of the
-default chart's sweep (:mod:`impactmaps.maps.shipped_results`, what ``impactmaps chart``
+default chart's sweep (:mod:`impactmaps.maps.files.shipped_results`, what ``impactmaps chart``
 draws from) is switched off in the child process.
 
 Each workload runs in a fresh Python process, as the command line would. Reported:
@@ -20,7 +20,7 @@ Each workload runs in a fresh Python process, as the command line would. Reporte
 
 Targets of the issue: ≥ 200 points/s and the chart in < 60 s on the 2-core machine.
 
-If a structure of the default chart cannot be built (e.g. ``impactmaps.targets.beam``
+If a structure of the default chart cannot be built (e.g. ``impactmaps.targets.beams.beam``
 missing) the chart is run with the structures that can, and the table says so.
 
 Run: ``python benchmarks/bench_chart.py``.
@@ -116,10 +116,10 @@ def _child(kind: str, out_dir: str) -> dict:
     import numpy as np
     import xarray as xr
 
-    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, make_chart
-    from impactmaps.maps.sweep import log_grid, sweep
+    from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, make_chart
+    from impactmaps.maps.compute.sweep import log_grid, sweep
 
-    import impactmaps.maps.sweep as sweep_module
+    import impactmaps.maps.compute.sweep as sweep_module
 
     # the computation is measured, not the shipped result of the default chart's sweep
     sweep_module.load_shipped_result = lambda digest, description=None: None
@@ -153,8 +153,8 @@ def profile_points(top: int = 10) -> dict:
     return the CPU time per point: total, median, and the most expensive points."""
     import numpy as np
 
-    from impactmaps.maps.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT
-    from impactmaps.maps.sweep import log_grid, solve_points
+    from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT
+    from impactmaps.maps.compute.sweep import log_grid, solve_points
     from impactmaps.solvers.modal import ModalSettings
 
     settings = ModalSettings()
@@ -206,7 +206,7 @@ def run() -> list[dict]:
 
 def markdown(reports: list[dict]) -> str:
     """The reports as a Markdown table with the verdict against the targets."""
-    from impactmaps.maps.chart import DEFAULT_ZETA_COUNT
+    from impactmaps.plotting.chart import DEFAULT_ZETA_COUNT
 
     lines = [
         f"Default chart grid (8 λ × {DEFAULT_ZETA_COUNT} ζ per structure), default `ModalSettings`, process pool over "

@@ -1,10 +1,10 @@
 """Peak memory of a 10 000-point sweep.
 
-Workload: ``impactmaps.maps.sweep.sweep`` over 100 log-spaced ζ (0.005 … 100) × 50
+Workload: ``impactmaps.maps.compute.sweep.sweep`` over 100 log-spaced ζ (0.005 … 100) × 50
 log-spaced λ (0.05 … 20) × 2 structures (the default chart's SS Euler beam and SS
 square Kirchhoff plate), default ``ModalSettings``, ``progress=False``, the resumable
 result file in a temporary directory, the default local process pool (all cores).
-If a chart structure cannot be built (e.g. ``impactmaps.targets.beam`` missing), a
+If a chart structure cannot be built (e.g. ``impactmaps.targets.beams.beam`` missing), a
 second plate family (SSSS Kirchhoff, aspect ratio 2) stands in for it, so that the
 sweep still has 10 000 points over two basis tables; the table says so.
 
@@ -117,9 +117,9 @@ class TreeMemorySampler:
 
 def _child(out_dir: str, zeta_count: int, lambda_count: int) -> dict:
 
-    from impactmaps.maps.chart import CHART_STRUCTURES
-    from impactmaps.maps.structures import MapStructure
-    from impactmaps.maps.sweep import log_grid, sweep
+    from impactmaps.plotting.chart import CHART_STRUCTURES
+    from impactmaps.maps.family.structures import MapStructure
+    from impactmaps.maps.compute.sweep import log_grid, sweep
 
     structures, notes = buildable_structures(CHART_STRUCTURES)
     if len(structures) < len(CHART_STRUCTURES):

@@ -4,8 +4,8 @@ Cases (spec §4, scaling figures of seed 001): SS square Kirchhoff plate struck 
 centre and SS Euler beam struck at mid-span, λ = 0.425, ζ = 0.038 (local), 1.198
 (transition), 11.3 (quasi-static). Bases: the closed-form ones of ``tests/analytic.py``
 (unit structures; the normalised problem depends on (ζ, λ) only), or with
-``--targets real`` the library targets built by ``impactmaps.maps.structures`` (plate
-always; beam if ``impactmaps.targets.beam`` exists).
+``--targets real`` the library targets built by ``impactmaps.maps.family.structures`` (plate
+always; beam if ``impactmaps.targets.beams.beam`` exists).
 
 Both solvers integrate the same modes with the same residual compliance to the same
 end time (:mod:`benchmarks.baseline_solve_ivp`, DOP853, rtol 1e-8, atol 1e-10 on the
@@ -89,7 +89,7 @@ def _analytic_case(kind, zeta, settings):
 
 def _real_case(kind, zeta, settings):
     from impactmaps.dimensionless import realise
-    from impactmaps.maps.chart import CHART_STRUCTURES
+    from impactmaps.plotting.chart import CHART_STRUCTURES
 
     structure = next(s for s in CHART_STRUCTURES if s.kind == kind)
     target = structure.build()  # ImportError if the target module does not exist yet

@@ -18,11 +18,11 @@ infinite plate (F̄max depends on ζ alone) and the quasi-static spring pair
 """
 
 from impactmaps.dimensionless import realise
-from impactmaps.maps.lookup import lookup
-from impactmaps.maps.regimes import infinite_structure_peak, quasi_static_peak
+from impactmaps.maps.read.lookup import lookup
+from impactmaps.maps.family.regimes import infinite_structure_peak, quasi_static_peak
 from impactmaps.materials import material
 from impactmaps.solvers.modal import simulate_normalised
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.plates.plate import Plate
 
 zeta, lam = 1.0, 1.0
 plate = Plate.isotropic(0.3, 0.3, 0.004, material("aluminium-6061-t6"), theory="kirchhoff")

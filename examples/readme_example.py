@@ -11,7 +11,7 @@ and the energy left in the plate.
 """
 
 from impactmaps.materials import material
-from impactmaps.targets.plate import Plate
+from impactmaps.targets.plates.plate import Plate
 from impactmaps.contact import Sphere, law_for_sphere
 from impactmaps.solvers.modal import simulate
 

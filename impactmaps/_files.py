@@ -5,8 +5,8 @@ output's suffix, from which pandas and matplotlib take the format) and renames i
 output when the writer is done (``os.replace``): a reader, or a run interrupted while
 writing, never sees a half-written file; a failed write leaves no temporary behind, and
 one a killed process left (``.NAME.XXXX.tmp.SUFFIX``) is what
-:func:`impactmaps.maps.store.remove_stale_temporaries` removes. The sweep store's files go
-through it too (:func:`impactmaps.maps.store.save_atomic`).
+:func:`impactmaps.maps.files.store.remove_stale_temporaries` removes. The sweep store's files go
+through it too (:func:`impactmaps.maps.files.store.save_atomic`).
 """
 
 from __future__ import annotations

@@ -33,7 +33,7 @@ Checks (each sentence starts with its tag):
 ``structural theory``
     A Timoshenko beam or Mindlin plate struck at a contact frequency ω = π/t_c (t_c the
     first contact's duration) above a quarter of its thickness-shear cut-off
-    (:func:`impactmaps.solvers.shear_range.beyond_shear_theory`): the impact excites
+    (:func:`impactmaps.targets.shear_range.beyond_shear_theory`): the impact excites
     waves as short as the thickness, which those theories do not describe (the maps mark
     such points ``unresolved``).
 ``point load``
@@ -67,7 +67,7 @@ import warnings
 import numpy as np
 
 from .contact.base import effective_modulus
-from .solvers.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
+from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [
     "DEFLECTION_RATIO_LIMIT",

@@ -10,7 +10,7 @@ import tempfile
 for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_name, "1")
 
-# no background warm-up from the commands the tests run (tests/test_startup.py checks the
+# no background warm-up from the commands the tests run (tests/compile/test_startup.py checks the
 # mechanism with a stand-in target and its own state directory)
 os.environ["IMPACTMAPS_NO_BACKGROUND_WARMUP"] = "1"
 

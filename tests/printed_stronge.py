@@ -5,8 +5,8 @@ Its elastic-plastic branch takes the fully plastic contact area from first yield
 curve rises above the elastic Hertz curve for δ_y < δ < 16.65 δ_y, the elastic recovery
 ``3F_m/(4E* a_m)`` exceeds δ_m below 5.396 δ_y (δ_r < 0, cut to 0 by the no-tension
 rule) and a load–unload cycle below 4.897 δ_y returns more work than it absorbed.
-:mod:`impactmaps.contact.stronge` replaces that area law; this copy exists so that
-``tests/test_contact_laws.py`` can prove the flaw and ``tests/test_contact_contract.py``
+:mod:`impactmaps.contact.plastic.stronge` replaces that area law; this copy exists so that
+``tests/contact/test_contact_laws.py`` can prove the flaw and ``tests/contact/test_contact_contract.py``
 can show that the contract catches it. It is a subclass of the package's law (same
 yield point, κ, fully plastic phase and unloading rule) and is not registered.
 """

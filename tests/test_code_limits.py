@@ -79,3 +79,19 @@ def test_no_function_takes_more_than_12_parameters():
     wide = {_where(path, name): count for path in _modules() for name, _lines, count in _functions(path)
             if count > MAX_PARAMETERS}
     assert not wide, wide
+
+
+#: The most modules a folder of the package holds (``__init__.py`` not counted): a folder is one job.
+MAX_FOLDER_MODULES = 10
+
+
+def test_no_folder_holds_more_than_10_modules():
+    folders = {}
+    for path in _modules():
+        if path.name != "__init__.py":
+            folders.setdefault(path.parent, []).append(path.name)
+    largest = max(folders.items(), key=lambda item: len(item[1]))
+    print(f"\nlargest folder: {largest[0].relative_to(PACKAGE.parent)} ({len(largest[1])} modules)")
+    crowded = {str(folder.relative_to(PACKAGE.parent)): len(names) for folder, names in folders.items()
+               if len(names) > MAX_FOLDER_MODULES}
+    assert not crowded, crowded

@@ -38,7 +38,7 @@ def test_every_case_key_is_documented(site):
     from impactmaps.cases import case as case_module
     from impactmaps.cases import _materials
     from impactmaps.fd import FDSettings
-    from impactmaps.contact.stronge import StrongeContact  # noqa: F401 (its options are listed)
+    from impactmaps.contact.plastic.stronge import StrongeContact  # noqa: F401 (its options are listed)
 
     text = _text(site, "cases.html")
     keys = set(case_module._TOP_KEYS) | set(case_module._IMPACTOR_KEYS) | set(case_module._SOLVER_EXTRA)
@@ -53,8 +53,8 @@ def test_every_case_key_is_documented(site):
 
 
 def test_every_sweep_key_is_documented(site):
-    from impactmaps.maps import config
-    from impactmaps.maps.structures import MapStructure
+    from impactmaps.maps.compute import config
+    from impactmaps.maps.family.structures import MapStructure
     from impactmaps.solvers.modal import ModalSettings
 
     text = _text(site, "sweeps.html")

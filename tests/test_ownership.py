@@ -16,7 +16,7 @@ not count):
 * no comparison with, and no conditional choice of, a map law's name (``"linear"``,
   ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``, ``"plastic"``) outside ``contact/`` and the
   map-family modules (:data:`MAP_FAMILY_MODULES`): the family answers
-  (:class:`~impactmaps.maps.map_family.MapFamily`: ``file_stem``, ``exact_command``,
+  (:class:`~impactmaps.maps.family.map_family.MapFamily`: ``file_stem``, ``exact_command``,
   ``scaled_by_contact_frequency``, ``closed_form_asymptotes``, ``labels``, ``chart_zeta_max`` …),
   so a new family is one module and one registration.
 
@@ -45,8 +45,8 @@ _COMPARISONS = (ast.Eq, ast.NotEq, ast.In, ast.NotIn)
 #: Map-law names (and the word the elastic-plastic ones share).
 MAP_LAWS = frozenset({"linear", "hertz", "yc", "stronge", "epp", "plastic"})
 #: The modules that define the map families (the names are theirs to compare).
-MAP_FAMILY_MODULES = ("maps/map_family.py", "maps/builtin_families.py", "maps/linear_points.py",
-                      "maps/hertz_points.py", "maps/plastic_points.py")
+MAP_FAMILY_MODULES = ("maps/family/map_family.py", "maps/family/builtin_families.py", "maps/compute/linear_points.py",
+                      "maps/compute/hertz_points.py", "maps/compute/plastic_points.py")
 #: (module, function) → why a map-law name is compared there.
 MAP_LAW_ALLOWED = {
     ("cases/case.py", "parse_case"): "the finite-difference solver's default contact law, named once",
@@ -141,7 +141,7 @@ def test_no_theory_name_compared_outside_targets():
 
 def test_no_map_law_name_compared_outside_the_families():
     violations = _violations("map law", "contact", *MAP_FAMILY_MODULES, allowed=MAP_LAW_ALLOWED)
-    assert not violations, ("ask the map family (impactmaps.maps.map_family.MapFamily: file_stem, exact_command, "
+    assert not violations, ("ask the map family (impactmaps.maps.family.map_family.MapFamily: file_stem, exact_command, "
                             "labels, …), not the law's name:\n" + "\n".join(violations))
 
 
@@ -175,7 +175,7 @@ def test_the_targets_registry_answers_the_theory_questions():
 def test_the_laws_answer_the_map_questions():
     """The numbers a map places a law's impacts by, asked of the law."""
     from impactmaps.contact import HertzContact, LinearContact, StrongeContact, YigitChristoforouContact
-    from impactmaps.contact.epp import EppContact
+    from impactmaps.contact.plastic.epp import EppContact
 
     assert HertzContact(2e9).hertzian_stiffness == 2e9
     assert LinearContact(1e6).hertzian_stiffness is None and LinearContact(1e6).yield_scales is None
@@ -192,7 +192,7 @@ def test_the_laws_answer_the_map_questions():
 def test_load_shipped_map_names_a_plastic_map_by_its_family():
     """One namer of shipped files: a plastic law's map of a structure its family does not ship
     is refused naming the structures it does (not a missing file that never existed)."""
-    from impactmaps.maps.lookup import load_shipped_map
+    from impactmaps.maps.read.lookup import load_shipped_map
 
     with pytest.raises(ValueError, match=r"\(kind, theory\) = \('plate', 'mindlin'\) is not known"):
         load_shipped_map("plate", "mindlin", "yc")
@@ -206,7 +206,7 @@ def test_one_word_for_beam_or_plate_and_the_old_spellings_still_work(capsys):
 
     import impactmaps as im
     from impactmaps.cli import main
-    from impactmaps.maps.regimes import classify
+    from impactmaps.maps.family.regimes import classify
 
     new = im.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")
     assert new.kind == "plate"

@@ -1,12 +1,13 @@
 """Command-line options shared by the validation scripts: ``--smoke`` and ``--out-dir``.
 
-Every script in ``validation/`` runs in two sizes:
+Every script in ``validation/`` and ``data_build/`` (which imports this module from here)
+runs in two sizes:
 
 * full (the default): the study quoted in docs/validation.rst and ``BENCHMARKS.md``, writing its
-  figures into ``figures/`` (``build_default_maps.py``: the shipped maps;
+  figures into ``figures/`` (``data_build/build_default_maps.py``: the shipped maps;
   ``lookup_error.py``: ``validation/lookup_error.csv``);
 * ``--smoke``: the same code path on a tiny setting (seconds; the numbers it prints are
-  not meaningful), used by ``tests/test_validation_scripts.py``. It writes into
+  not meaningful), used by ``tests/validation/test_validation_scripts.py``. It writes into
   ``--out-dir`` or, when that is not given, into a new temporary directory — never into
   the repository.
 

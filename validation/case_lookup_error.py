@@ -5,7 +5,7 @@ random physical cases are drawn — random size and metal of the target, the imp
 numbers drawn log-uniform over (and a little beyond) the maps' range and realised as an
 impactor mass, speed and contact stiffness (plastic law: a steel ball of random radius
 and speed, its numbers where physics puts them) — and each is answered by
-:func:`impactmaps.maps.case_lookup.lookup_case` and by :func:`impactmaps.cases.run_case`
+:func:`impactmaps.cases.case_lookup.lookup_case` and by :func:`impactmaps.cases.run_case`
 (the modal simulation the lookup stands in for). Families:
 
 * ``shipped``: SS Euler beams and SSSS square Kirchhoff plates struck at the centre — the
@@ -13,7 +13,7 @@ and speed, its numbers where physics puts them) — and each is answered by
 * ``clamped beam``, ``off-centre beam`` (x0/L ∈ [0.2, 0.45]), ``oblong plate`` (b/a ∈
   [1.2, 2]), ``thick Mindlin plate`` (a/h ∈ [6, 9.5], below the shipped families): no
   shipped map describes them; lookup builds a map tile on demand where it can
-  (:mod:`impactmaps.maps.on_demand`; a plastic tile over (β, ζ, λ) for a plastic law) or
+  (:mod:`impactmaps.cases.on_demand`; a plastic tile over (β, ζ, λ) for a plastic law) or
   refuses (a linear law on a Mindlin plate is a point load, which has no converged value;
   a plastic law on a Mindlin plate has the sphere radius as a fourth number: refused).
 
@@ -39,8 +39,8 @@ import pandas as pd
 
 from impactmaps.cases import parse_case, run_case
 from impactmaps.dimensionless import realise
-from impactmaps.hertz_similarity import realise_hertz
-from impactmaps.maps.case_lookup import lookup_case
+from impactmaps.closed_forms.hertz_similarity import realise_hertz
+from impactmaps.cases.case_lookup import lookup_case
 
 from _script_options import parse
 

@@ -18,8 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from impactmaps.maps.chart import CHART_STRUCTURES
-from impactmaps.maps.regimes import infinite_structure_peak
+from impactmaps.plotting.chart import CHART_STRUCTURES
+from impactmaps.maps.family.regimes import infinite_structure_peak
 from impactmaps.solvers.modal import ModalSettings, simulate_normalised
 
 from _script_options import parse

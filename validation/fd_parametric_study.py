@@ -74,7 +74,7 @@ import pandas as pd  # noqa: E402
 from scipy.optimize import brentq  # noqa: E402
 
 from impactmaps.contact import StrongeContact, YigitChristoforouContact, effective_modulus  # noqa: E402
-from impactmaps.contact.epp import EppContact  # noqa: E402
+from impactmaps.contact.plastic.epp import EppContact  # noqa: E402
 from impactmaps.fd import FDBeam, simulate_fd  # noqa: E402
 
 from _script_options import parse  # noqa: E402

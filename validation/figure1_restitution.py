@@ -6,7 +6,7 @@ coefficient of restitution depends only on the normalised impact velocity
 
     β = V0 / (ω α_y),   ω² = K_h α_y^{1/2} / m_i        (seed 001 eqs 11–12).
 
-The curve is the closed-form energy balance (``impactmaps.solvers.halfspace.restitution``):
+The curve is the closed-form energy balance (``impactmaps.closed_forms.halfspace.restitution``):
 e = 1 for β ≤ sqrt(4/5); above, ½β² = 2/5 + (a_m − 1) + ¾(a_m − 1)² fixes a_m and e² is
 the work recovered on the unloading branch over ½β². The markers are time integrations
 (``halfspace_impact``) for two physically different impacts — a 12.7 mm steel ball on
@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from impactmaps.contact import Sphere, law_for_sphere  # noqa: E402
-from impactmaps.solvers.halfspace import halfspace_impact, restitution  # noqa: E402
+from impactmaps.closed_forms.halfspace import halfspace_impact, restitution  # noqa: E402
 
 from _script_options import parse  # noqa: E402
 

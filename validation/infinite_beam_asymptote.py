@@ -8,7 +8,7 @@ The infinite beam obeys the fractional oscillator
 oscillator ᾱ'' + 2ζᾱ' + ᾱ = 0. This script
 
 1. evaluates ᾱ(τ) of the beam for several ζ by the three independent methods of
-   :mod:`impactmaps.solvers.infinite_beam` (Faddeeva closed form, fixed-Talbot inversion,
+   :mod:`impactmaps.closed_forms.infinite_beam` (Faddeeva closed form, fixed-Talbot inversion,
    BDF2 convolution quadrature) and prints their largest differences;
 2. plots the peak force F̄max(ζ) of both infinite structures, with the half-space (1);
 3. shows the unilateral force history on the infinite beam below and inside the
@@ -29,7 +29,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from impactmaps.solvers import asymptotes as asy  # noqa: E402
+from impactmaps.closed_forms import asymptotes as asy  # noqa: E402
 
 from _script_options import parse  # noqa: E402
 

@@ -12,7 +12,7 @@ map point is refused, and its refusal is an answer too. Two modes:
   whose F̄max, band or status differ from the recorded ones (bit for bit) and the
   refusals that differ. Regimes: the regime from the stored, interpolated asymptote
   peaks against the regime from the exact peaks at the point
-  (:func:`impactmaps.maps.regimes.infinite_structure_peak`, ``quasi_static_peak``). The
+  (:func:`impactmaps.maps.family.regimes.infinite_structure_peak`, ``quasi_static_peak``). The
   exact peaks are integrated only where the regime could differ: the peaks'
   interpolation error is bounded per map by twice its largest value at the midpoints of
   the grid cells (measured, exact there), and a point whose criteria (distance to
@@ -37,15 +37,15 @@ import numpy as np
 from _script_options import parse
 
 ROOT = Path(__file__).resolve().parents[1]
-#: Regime criteria of a default lookup (:func:`impactmaps.maps.regimes.classify`).
+#: Regime criteria of a default lookup (:func:`impactmaps.maps.family.regimes.classify`).
 TOLERANCE = LOCAL_TOLERANCE = 0.1
 
 
 def shipped_keys() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map; law yc/stronge/epp: slenderness None."""
-    from impactmaps.maps.lookup import SHIPPED_MAPS, map_file_stem, shipped_structure_name
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS
-    from impactmaps.maps.plastic_points import PLASTIC_LAWS
+    from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem, shipped_structure_name
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.compute.plastic_points import PLASTIC_LAWS
 
     data = ROOT / "impactmaps" / "maps" / "data"
     keys = []
@@ -65,8 +65,8 @@ def _name(key) -> str:
 
 
 def _dataset(key):
-    from impactmaps.maps.lookup import load_shipped_map
-    from impactmaps.maps.plastic_lookup import load_plastic_map
+    from impactmaps.maps.read.lookup import load_shipped_map
+    from impactmaps.maps.read.plastic_lookup import load_plastic_map
 
     structure, theory, law, slenderness = key
     if law in ("linear", "hertz"):
@@ -85,8 +85,8 @@ def points(key, count: int) -> dict:
 
 def _read(key, numbers: dict):
     """The answer arrays at ``numbers``: (fmax, band, status, regime) or raises ValueError."""
-    from impactmaps.maps.lookup import lookup
-    from impactmaps.maps.plastic_lookup import lookup_plastic
+    from impactmaps.maps.read.lookup import lookup
+    from impactmaps.maps.read.plastic_lookup import lookup_plastic
 
     structure, theory, law, slenderness = key
     if "beta" in numbers:
@@ -147,7 +147,7 @@ def _near_missing(dataset, numbers: dict) -> np.ndarray:
 def record(path: Path, count: int, keys, regime: bool) -> None:
     """Record the answers of the code on the path at ``count`` points per map into ``path``."""
     if not regime:  # the base code integrates the asymptotes inside lookup: skip the regime there
-        import impactmaps.maps.lookup as reading
+        import impactmaps.maps.read.lookup as reading
         reading.classify = lambda fmax, *args, **kwargs: np.full(np.shape(fmax), "", dtype=object)
     stored = {}
     for key in keys:
@@ -163,8 +163,8 @@ def record(path: Path, count: int, keys, regime: bool) -> None:
 
 def peak_errors(key) -> tuple[float, float]:
     """Largest |stored-and-interpolated − exact| asymptote peak at the grid cells' midpoints (infinite, quasi-static)."""
-    from impactmaps.maps.interpolator import interpolate_line
-    from impactmaps.maps.regimes import infinite_structure_peak, quasi_static_peak
+    from impactmaps.maps.read.interpolator import interpolate_line
+    from impactmaps.maps.family.regimes import infinite_structure_peak, quasi_static_peak
 
     dataset = _dataset(key)
     structure, _, law, _ = key
@@ -200,10 +200,10 @@ def at_risk(fmax, infinite, quasi, error_infinite: float, error_quasi: float, to
 
 def compare(path: Path, out_dir: Path, keys) -> list[dict]:
     """Compare this checkout's answers with the recorded ones (module docstring); the rows written."""
-    from impactmaps.maps.lookup import shipped_reader
-    from impactmaps.maps.reader import read_values
-    from impactmaps.maps.regimes import classify, infinite_structure_peak, quasi_static_peak
-    from impactmaps.maps.registry import map_family
+    from impactmaps.maps.read.lookup import shipped_reader
+    from impactmaps.maps.read.reader import read_values
+    from impactmaps.maps.family.regimes import classify, infinite_structure_peak, quasi_static_peak
+    from impactmaps.maps.family.registry import map_family
 
     recorded = np.load(path, allow_pickle=False)
     rows = []

@@ -2,18 +2,18 @@
 
 For each shipped map, N log-uniform random (ζ, λ) points inside its range are simulated
 directly (the same solver and settings as the map) and compared with
-``impactmaps.maps.lookup.lookup`` and with ``design_formula``. Prints two Markdown
+``impactmaps.maps.read.lookup.lookup`` and with ``design_formula``. Prints two Markdown
 tables (used in docs/validation.rst: errors per map, and the design formula's error per regime,
 i.e. where it holds) and writes validation/lookup_error.csv.
 
 With ``--law hertz`` the same for the shipped Hertz maps over (ζ_h, λ_h)
-(:mod:`impactmaps.maps.hertz_points`; the design formula is then the larger of the
+(:mod:`impactmaps.maps.compute.hertz_points`; the design formula is then the larger of the
 Hertz infinite-structure and quasi-static peaks), written to
 validation/lookup_error_hertz.csv.
 
 With ``--law yc`` (``stronge`` or ``epp``) the same for the shipped elastic-plastic maps over
-(β, ζ, λ) (:mod:`impactmaps.maps.plastic_lookup`): N log-uniform random points inside each
-map's box solved directly (:func:`~impactmaps.maps.plastic_points.solve_plastic_points`)
+(β, ζ, λ) (:mod:`impactmaps.maps.read.plastic_lookup`): N log-uniform random points inside each
+map's box solved directly (:func:`~impactmaps.maps.compute.plastic_points.solve_plastic_points`)
 against the lookup of F̄max, restitution and absorbed energy with their bands, written to
 validation/lookup_error_yc.csv (``…_stronge.csv``, ``…_epp.csv``); no design formula.
 
@@ -28,13 +28,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.hertz_points import solve_hertz_points
-from impactmaps.maps.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
-from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-from impactmaps.maps.plastic_points import ERROR_OF, PLASTIC_LAWS, solve_plastic_points
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.compute.hertz_points import solve_hertz_points
+from impactmaps.maps.read.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
+from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
+from impactmaps.maps.compute.plastic_points import ERROR_OF, PLASTIC_LAWS, solve_plastic_points
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse

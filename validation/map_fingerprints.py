@@ -3,9 +3,9 @@
 Records SHA-256 digests of (a) every shipped map file's data (variables and
 coordinates, bytes and dtypes; the refinements and shipped sweep results too), (b)
 lookups at a few hundred random points per shipped map — linear and Hertz maps
-(:func:`impactmaps.maps.lookup.lookup`), the slenderness members, the elastic-plastic
-maps (:func:`impactmaps.maps.plastic_lookup.lookup_plastic`) and a few physical cases
-(:func:`impactmaps.maps.case_lookup.lookup_case`) — each answer's value, band, status
+(:func:`impactmaps.maps.read.lookup.lookup`), the slenderness members, the elastic-plastic
+maps (:func:`impactmaps.maps.read.plastic_lookup.lookup_plastic`) and a few physical cases
+(:func:`impactmaps.cases.case_lookup.lookup_case`) — each answer's value, band, status
 and regime, or its refusal's message, and (c) a short sweep of each map family (a few
 points each, serially), and a command-line ``lookup --json``. A refactoring that changes
 no behaviour leaves every digest unchanged.
@@ -73,7 +73,7 @@ def _plain(value):
 def shipped_data(limit: int | None = None) -> dict:
     out = {}
     data = Path(str(resources.files("impactmaps.maps").joinpath("data")))
-    from impactmaps.maps.data_io import read_dataset
+    from impactmaps.maps.files.data_io import read_dataset
 
     for path in sorted([*data.rglob("*.nc"), *data.rglob("*.npz")])[:limit]:
         # keyed without the suffix: a file packed (.npz) compares with its NetCDF (.nc) before
@@ -95,10 +95,10 @@ def _log_uniform(rng, low, high, count):
 
 
 def lookups() -> dict:
-    from impactmaps.maps.slenderness import lookup_slenderness
-    from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup
-    from impactmaps.maps.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-    from impactmaps.maps.structures import MEMBER_SLENDERNESSES
+    from impactmaps.maps.read.slenderness import lookup_slenderness
+    from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup
+    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
+    from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES
 
     out = {}
     rng = np.random.default_rng(27)
@@ -147,7 +147,7 @@ def lookups() -> dict:
 def cases() -> dict:
     """lookup_case on a few physical cases (shipped maps, plastic maps, refusals)."""
     from impactmaps.cases import load_case
-    from impactmaps.maps.case_lookup import lookup_case
+    from impactmaps.cases.case_lookup import lookup_case
 
     out = {}
     for name in ("steel_plate_hertz.toml", "aluminium_beam_linear.toml", "steel_beam_fd_stronge.toml",
@@ -163,8 +163,8 @@ def cases() -> dict:
 
 def short_sweeps() -> dict:
     """A few points of each family, solved serially (values and dataset layout)."""
-    from impactmaps.maps.structures import MapStructure
-    from impactmaps.maps.sweep import sweep
+    from impactmaps.maps.family.structures import MapStructure
+    from impactmaps.maps.compute.sweep import sweep
 
     out = {}
     beam = MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,))
@@ -184,13 +184,13 @@ def short_sweeps() -> dict:
 
 
 def _plastic_sweep(structure, law, betas, zetas, lambdas):
-    from impactmaps.maps import sweep as sweep_module
+    from impactmaps.maps.compute import sweep as sweep_module
 
     try:
         return sweep_module.sweep([structure], zetas, lambdas, law=law, axes={"beta": betas}, progress=False,
                                   max_workers=1).drop_vars("regime", errors="ignore")
     except TypeError:  # before the map families: the plastic pipeline of its own
-        from impactmaps.maps.plastic_points import plastic_map, solve_plastic_points
+        from impactmaps.maps.compute.plastic_points import plastic_map, solve_plastic_points
 
         points = [(b, z, l) for b in betas for l in lambdas for z in zetas]
         return plastic_map(structure, law, betas, zetas, lambdas, solve_plastic_points(structure, law, points))

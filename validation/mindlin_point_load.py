@@ -3,10 +3,10 @@
 A Mindlin plate struck at a point has a logarithmically divergent point-load deflection
 (``docs/physics_contract.md`` §8): a modal sum does not converge in the cut-off. The linear
 maps of the Mindlin plate (and ``impactmaps point``) strike a point and hold the shear of
-every mode up to the sweep's mode cap (:data:`impactmaps.maps.points.MAX_MODES`); their
+every mode up to the sweep's mode cap (:data:`impactmaps.maps.family.structures.MAX_MODES`); their
 error control refines the integration at that cap. ``simulate_normalised`` cuts the same
 sum at its own cut-off (``ModalSettings.cutoff_ratio`` × ω). This script measures the
-difference the warning of :func:`impactmaps.maps.points.warn_point_loaded_mindlin` quotes:
+difference the warning of :func:`impactmaps.maps.family.structures.warn_point_loaded_mindlin` quotes:
 N random (ζ, λ), log-uniform over the plane [1e-3, 1e3]², on the shipped Mindlin member
 (span/thickness 20); points the map leaves ``unresolved`` or answers by an asymptote are
 counted, not compared.
@@ -25,9 +25,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.structures import MapStructure
-from impactmaps.maps.sweep import METHODS, solve_points
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.family.structures import MapStructure
+from impactmaps.maps.compute.sweep import METHODS, solve_points
 from impactmaps.solvers.modal import ModalSettings, simulate_normalised
 
 from _script_options import parse

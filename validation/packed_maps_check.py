@@ -2,20 +2,20 @@
 
 For every shipped map — the (ζ, λ) maps of both laws with their refinements, the
 slenderness members and the elastic-plastic (β, ζ, λ) maps — the lookup's reading
-(what :func:`impactmaps.maps.reader.read_values` computes for :func:`impactmaps.maps.lookup.lookup`
-and :func:`impactmaps.maps.plastic_lookup.lookup_plastic`, taken from its steps so that a point
+(what :func:`impactmaps.maps.read.reader.read_values` computes for :func:`impactmaps.maps.read.lookup.lookup`
+and :func:`impactmaps.maps.read.plastic_lookup.lookup_plastic`, taken from its steps so that a point
 next to an unresolved one is marked "refused" instead of refusing the whole batch) is taken at ``--points``
 log-uniform random points (seeded) from the packed data of this checkout and from the data
 before packing (``--old-data``: the ``impactmaps/maps/data`` folder of a checkout of the
 commit before, e.g. ``git worktree add /tmp/base b4b262f``). Per map it reports how many
 values are bit-identical, the largest change of the value, the band's change (new/old − 1:
 the refinement points' own error is stored rounded up to 8 significant bits,
-``validation/pack_map_data.py``) and how many statuses changed. The regime is not read
+``data_build/pack_map_data.py``) and how many statuses changed. The regime is not read
 here: it is classified from the value and the stored times, which are unchanged bit for bit.
 
 Writes ``packed_maps_check.csv`` (the summary) and ``packed_maps_reference.csv`` (the old
 answers at the first ``--reference`` points of each map, floats in hex), which
-``tests/test_packed_data.py`` checks the packed maps against.
+``tests/maps/test_packed_data.py`` checks the packed maps against.
 
     python validation/packed_maps_check.py --old-data /tmp/base/impactmaps/maps/data --out-dir validation
     python validation/packed_maps_check.py --smoke     # packed against packed, 40 points a map
@@ -35,12 +35,12 @@ from _script_options import parse
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
-from impactmaps.maps import lookup as lookup_module  # noqa: E402
-from impactmaps.maps import plastic_lookup  # noqa: E402
-from impactmaps.maps.data_io import read_dataset  # noqa: E402
-from impactmaps.maps import reader  # noqa: E402
-from impactmaps.maps.registry import map_family  # noqa: E402
-from impactmaps.maps.structures import MEMBER_SLENDERNESSES  # noqa: E402
+from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
+from impactmaps.maps.read import plastic_lookup  # noqa: E402
+from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
+from impactmaps.maps.read import reader  # noqa: E402
+from impactmaps.maps.family.registry import map_family  # noqa: E402
+from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES  # noqa: E402
 
 PACKED = ROOT / "impactmaps" / "maps" / "data"
 SEED = 30
@@ -84,7 +84,7 @@ def points(key, count: int) -> tuple:
 
 def answers(key, numbers) -> dict:
     """Every variable's value and band and the status at ``numbers``: what
-    :func:`~impactmaps.maps.reader.read_values` computes, with "refused" (and NaN) where it
+    :func:`~impactmaps.maps.read.reader.read_values` computes, with "refused" (and NaN) where it
     refuses a point next to an unresolved one (it raises for the whole call)."""
     structure, theory, law, slenderness = key
     if law in ("yc", "stronge", "epp"):

@@ -37,10 +37,10 @@ import pandas as pd
 from impactmaps.contact import Sphere, law_for_sphere
 from impactmaps.materials import material
 from impactmaps.solvers.modal import ModalSettings, reference_contact_stiffness, simulate
-from impactmaps.targets.beam import Beam
+from impactmaps.targets.beams.beam import Beam
 from impactmaps.targets.patch import mean_square_transform, uniform_transform
-from impactmaps.targets.plate import Plate
-from impactmaps.targets.plate_static import navier_patch_residual
+from impactmaps.targets.plates.plate import Plate
+from impactmaps.targets.plates.plate_static import navier_patch_residual
 
 from _script_options import parse
 

@@ -1,4 +1,4 @@
-"""The whole (ζ, λ) plane of ``benchmarks/bench_plane.py``, point by point, against another checkout.
+"""The whole (ζ, λ) plane of ``benchmarks/studies/bench_plane.py``, point by point, against another checkout.
 
 Two steps:
 
@@ -9,7 +9,7 @@ Two steps:
 
 ``--solve`` solves the 200 × 50 grid (ζ × λ over [1e-3, 1e3]²) of ``beam-ss-euler`` and
 ``plate-ssss-kirchhoff`` serially in this process, one point per call of
-:func:`impactmaps.maps.points.solve_map_points` (what a sweep's worker computes), with the
+:func:`impactmaps.maps.compute.points.solve_map_points` (what a sweep's worker computes), with the
 checkout given by ``--root`` first on the path (default: this one), and stores every
 point's map variables and its CPU time (``time.process_time``) in an ``.npz``.
 ``--compare`` reads two such files (today's first) and writes, per structure and method of
@@ -56,9 +56,9 @@ def grid(size: str = "plane"):
 def solve(root: pathlib.Path, out, size: str = "plane", contact_phase: str | None = None) -> None:
     """Solve the plane with the package of ``root``; store the variables and CPU per point."""
     sys.path.insert(0, str(root))
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import solve_map_points
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import solve_map_points
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
     zetas, lambdas = grid(size)
@@ -93,9 +93,11 @@ def referee(old_path: str, new_path: str, out: str) -> None:
     contact phase) is the reference; writes ``out`` (CSV, one row per point) and prints
     where each plane's value lies from it.
     """
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
     old, new = np.load(old_path), np.load(new_path)
@@ -106,7 +108,7 @@ def referee(old_path: str, new_path: str, out: str) -> None:
         warnings.simplefilter("ignore")
         for name in STRUCTURES:
             structure = structure_from_name(name)
-            target, cap = structure.build(), frequency_cap(structure)
+            target, cap = structure.build(), frequency_cap(structure.build(), MAX_MODES)
             table = basis_table(structure, ModalSettings().min_modes)
             f_old, f_new, error = (old[f"{name}/fmax_normalised"], new[f"{name}/fmax_normalised"],
                                    old[f"{name}/fmax_error"])
@@ -133,8 +135,8 @@ def referee(old_path: str, new_path: str, out: str) -> None:
 def compare(old_path: str, new_path: str, summary: str | None, title: str | None = None) -> int:
     """Print (and write) the point-by-point comparison; the number of points beyond their error."""
     old, new = np.load(old_path), np.load(new_path)
-    from impactmaps.maps.accuracy import STATUSES
-    from impactmaps.maps.points import METHODS
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.maps.compute.points import METHODS
 
     zetas, lambdas = old["zeta"], old["lambda_"]
     lines = ["| structure | method (new) | points | CPU today [s] | CPU new [s] | F̄max differs | max abs(ΔF̄max) "

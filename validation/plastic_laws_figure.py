@@ -4,7 +4,7 @@ laws (Yigit–Christoforou, Stronge, epp).
 
 Scales (docs/physics_contract.md §2, c_y = 1.6): δ_y = R (π c_y Y/(2E*))², F_y = (4/3) E* R^{1/2}
 δ_y^{3/2}, and V_y with ½ m V_y² = (2/5) F_y δ_y (the Hertz impact that just reaches
-δ_y).  The laws are run through :func:`impactmaps.solvers.halfspace.halfspace_impact`
+δ_y).  The laws are run through :func:`impactmaps.closed_forms.halfspace.halfspace_impact`
 for the issue's example (a 12.7 mm steel ball on an aluminium half-space, Y = 275 MPa).
 FE points: ``validation/fe/results/axisym_runs.csv`` (rigid sphere, ν = 0.3, every
 Y/E*; the reference runs of the calibration: small strain up to δ_m = 0.012 R, NLGEOM
@@ -29,8 +29,8 @@ import pandas as pd
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 from impactmaps.contact import ContactPair, contact_law_class, effective_modulus  # noqa: E402
-from impactmaps.contact.first_yield import first_yield_force, first_yield_indentation  # noqa: E402
-from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
+from impactmaps.contact.plastic.first_yield import first_yield_force, first_yield_indentation  # noqa: E402
+from impactmaps.closed_forms.halfspace import halfspace_impact  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "validation"))
 from _script_options import parse  # noqa: E402

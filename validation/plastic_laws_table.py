@@ -4,9 +4,9 @@ For every reference run of ``validation/fe/results/axisym_runs.csv`` with a rigi
 a flat of ν = 0.3 (the runs of ``plastic_laws_figure.py``: small strain to δ_m = 0.012 R,
 NLGEOM to 0.05 R), the impact whose kinetic energy equals the FE cycle's absorbed work,
 V/V_y = sqrt(W_abs/((2/5) F_y δ_y)), is run with each registered plastic law through
-:func:`impactmaps.solvers.halfspace.halfspace_impact` (the issue-28 example: a 12.7 mm
+:func:`impactmaps.closed_forms.halfspace.halfspace_impact` (the issue-28 example: a 12.7 mm
 steel ball on aluminium, Y = 275 MPa; the normalised answers depend on V/V_y alone, as
-``tests/test_contact_epp.py`` shows for epp), and its peak force, restitution and permanent
+``tests/contact/test_contact_epp.py`` shows for epp), and its peak force, restitution and permanent
 indentation are compared with the FE's F_m, sqrt(W_rec/W_abs) and dent. Thornton's 1997
 model (closed form, ``plastic_laws_figure.thornton``) is the implementation cross-check.
 
@@ -31,7 +31,7 @@ from _script_options import parse  # noqa: E402
 from plastic_laws_figure import LAWS, fe_points, law_curves, thornton  # noqa: E402
 
 OUT = HERE / "plastic_laws_error.csv"
-#: The per-law ranges the package ships (``impactmaps.contact.fe_agreement``).
+#: The per-law ranges the package ships (``impactmaps.contact.plastic.fe_agreement``).
 PACKAGE_SUMMARY = HERE.parent / "impactmaps" / "contact" / "data" / "fe_agreement.csv"
 QUANTITIES = ("peak_force", "restitution", "permanent_indentation")
 

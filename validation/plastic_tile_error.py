@@ -6,8 +6,8 @@ Yigit–Christoforou, the refined Stronge law and ``epp``, on a random steel or 
 target: 70 % Euler beams (clamped–clamped, clamped–simply supported or cantilever, length
 0.2–1 m, struck anywhere in the middle 60 %), 30 % Kirchhoff plates (SSSS or CCCC, side
 0.1–0.5 m, aspect 0.5–2, span/thickness 30–200, struck anywhere in the middle 60 %) —
-each answered by :func:`impactmaps.maps.case_lookup.lookup_case` (a 4 × 4 × 4 tile of the
-plastic lattice, :mod:`impactmaps.maps.on_demand`) and by ``simulate``
+each answered by :func:`impactmaps.cases.case_lookup.lookup_case` (a 4 × 4 × 4 tile of the
+plastic lattice, :mod:`impactmaps.cases.on_demand`) and by ``simulate``
 (:func:`impactmaps.cases.run_case`, and once refined twice for its own error). An answer is
 inside its band when |lookup − simulate| ≤ band + the direct run's own error (its change
 when refined twice, at least 1e-3 of the force scale) for the peak force, ≤ band + 1e-3 +
@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.maps.case_lookup import lookup_case
+from impactmaps.cases.case_lookup import lookup_case
 from impactmaps.solvers.modal import simulate
 
 from _script_options import parse

@@ -1,14 +1,14 @@
 """What the shipped refinements buy: lookups with and without them against direct simulation.
 
-For each refined linear map (``validation/build_refinements.py``), N log-uniform random
+For each refined linear map (``data_build/build_refinements.py``), N log-uniform random
 (ζ, λ) points over the whole map are simulated directly (the map's solver and settings,
-:func:`impactmaps.maps.sweep.solve_points`) and read from the map twice: from its grid
-alone (:func:`impactmaps.maps.lookup.read_map` without a refinement) and as ``lookup``
+:func:`impactmaps.maps.compute.sweep.solve_points`) and read from the map twice: from its grid
+alone (:func:`impactmaps.maps.read.lookup.read_map` without a refinement) and as ``lookup``
 reads it (with the shipped refinement). Prints a Markdown table (docs/validation.rst, "What the refinements buy"):
 per map, over the answered non-sensitive points, the share whose error exceeds 1e-3,
 the share whose band does (status ``interpolated``), how many bands cover the error, and
 the largest error; writes validation/refinement_error.csv, which
-``tests/test_refinement.py`` re-reads against the current maps.
+``tests/maps/test_refinement.py`` re-reads against the current maps.
 
     python validation/refinement_error.py [--points 1000] [--seed 5] [--out-dir DIR]
     python validation/refinement_error.py --smoke    # 4 points of one map (seconds)
@@ -23,11 +23,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.accuracy import STATUSES
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map, lookup, read_map
-from impactmaps.maps.structures import structure_from_name
-from impactmaps.maps.sweep import solve_points
-from impactmaps.maps.workers import init_worker
+from impactmaps.maps.family.accuracy import STATUSES
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup, read_map
+from impactmaps.maps.family.structures import structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
+from impactmaps.maps.compute.workers import init_worker
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse

@@ -1,10 +1,10 @@
 """What dropping a refinement's deeper levels would do to the lookups: statuses, values, bands.
 
-Each shipped refinement (:mod:`impactmaps.maps.refinement`) is read at ``--points``
+Each shipped refinement (:mod:`impactmaps.maps.family.refinement`) is read at ``--points``
 log-uniform random points (seeded as ``validation/packed_maps_check.py``) in full and with
 only the points of its first ``L`` levels kept (``L`` = 2, 1: the cells of the deeper
 levels unsplit, a consistent tree), through the steps of
-:func:`impactmaps.maps.reader.read_values`. Per map and ``L``: the points kept, how many
+:func:`impactmaps.maps.read.reader.read_values`. Per map and ``L``: the points kept, how many
 answers change status, the largest change of F̄max, and how many pruned answers no longer
 cover the full answer within their band. The packed data ships the refinements whole
 (docs/install.rst, "Package data"); this is the measurement behind that.
@@ -30,10 +30,10 @@ from packed_maps_check import _logs, points
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
-from impactmaps.maps import lookup as lookup_module  # noqa: E402
-from impactmaps.maps import reader  # noqa: E402
-from impactmaps.maps.refinement import Refinement  # noqa: E402
-from impactmaps.maps.registry import map_family  # noqa: E402
+from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
+from impactmaps.maps.read import reader  # noqa: E402
+from impactmaps.maps.family.refinement import Refinement  # noqa: E402
+from impactmaps.maps.family.registry import map_family  # noqa: E402
 
 
 def read(key, refinement, numbers):

@@ -20,9 +20,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from impactmaps.maps.chart import CHART_STRUCTURES
+from impactmaps.plotting.chart import CHART_STRUCTURES
 from impactmaps.plotting import plot_scaling
-from impactmaps.solvers.asymptotes import quasi_static_force
+from impactmaps.closed_forms.asymptotes import quasi_static_force
 from impactmaps.solvers.modal import ModalSettings, simulate_normalised
 
 from _script_options import parse

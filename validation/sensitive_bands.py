@@ -2,7 +2,7 @@
 
 A map point whose F̄max does not settle within the accuracy control's two refinement
 levels is stored ``sensitive`` with a band [fmax_low, fmax_high]
-(:func:`impactmaps.maps.accuracy.controlled_point`). This study finds N random sensitive
+(:func:`impactmaps.maps.family.accuracy.controlled_point`). This study finds N random sensitive
 points per structure (log-uniform in ζ ∈ [1, 1e3], λ ∈ [1e-3, 0.05], where they lie),
 computes at each the three levels (base, 2×/½, 4×/¼), the five perturbed runs (cut-off
 ±1 %, step −1 %, ζ ±1 %) made from the base settings *and* from the finest level, and the
@@ -12,7 +12,7 @@ many points each candidate band holds the reference:
 * ``levels``: every level and the finest ± its last change, no perturbed runs;
 * ``perturbed at base`` / ``perturbed at finest``: the same plus the perturbed runs;
 * ``perturbed at base, widened by the tolerance``: the finest ± max(last change, 1e-3)
-  — the band :func:`~impactmaps.maps.accuracy.controlled_point` stores.
+  — the band :func:`~impactmaps.maps.family.accuracy.controlled_point` stores.
 
 Writes ``validation/sensitive_bands.csv`` (one row per point) and prints a Markdown table.
 
@@ -28,10 +28,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.accuracy import AccuracyControl, perturbed_runs, settled
-from impactmaps.maps.linear_points import LINEAR
-from impactmaps.maps.points import basis_table, frequency_cap, map_plan, table_runner
-from impactmaps.maps.structures import structure_from_name
+from impactmaps.maps.family.accuracy import AccuracyControl, perturbed_runs, settled
+from impactmaps.maps.compute.linear_points import LINEAR
+from impactmaps.maps.compute.points import basis_table, map_plan, table_runner
+from impactmaps.maps.family.structures import MAX_MODES
+from impactmaps.solvers.mode_budget import frequency_cap
+from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse
@@ -44,7 +46,7 @@ CONTROL = AccuracyControl()
 def sensitive_points(name: str, count: int, seed: int) -> list[dict]:
     """``count`` random sensitive points of ``name`` with their levels, perturbed runs and reference."""
     structure = structure_from_name(name)
-    target, cap = structure.build(), frequency_cap(structure)
+    target, cap = structure.build(), frequency_cap(structure.build(), MAX_MODES)
     base = ModalSettings()
     table = basis_table(structure, base.min_modes)
     levels = [base]

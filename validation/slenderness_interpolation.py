@@ -2,14 +2,14 @@
 
 For each family (Timoshenko beams: linear and Hertz laws; Mindlin plates: linear law;
 members at span/thickness 10, 20, 50 and the classical thin limit,
-:mod:`impactmaps.maps.slenderness`):
+:mod:`impactmaps.maps.read.slenderness`):
 
 1. the leave-one-out error on the grid (s = 20 predicted from s = 10 and 50, s = 50 from
-   the thin limit and s = 20; :func:`~impactmaps.maps.slenderness.slenderness_error_grid`):
+   the thin limit and s = 20; :func:`~impactmaps.maps.read.slenderness.slenderness_error_grid`):
    median, 90th percentile and maximum;
 2. N random (ζ, λ, s) points with s log-uniform in [10, 100], solved directly on the
    structure of that slenderness (the same solver and settings as the maps) and looked
-   up by :func:`~impactmaps.maps.slenderness.lookup_slenderness`: |lookup − direct| against
+   up by :func:`~impactmaps.maps.read.slenderness.lookup_slenderness`: |lookup − direct| against
    the lookup's band, refusals counted (next to ``unresolved`` points).
 
 Prints a Markdown table and writes validation/slenderness_interpolation.csv.
@@ -26,11 +26,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.slenderness import lookup_slenderness, slenderness_error_grid
-from impactmaps.maps.hertz_points import solve_hertz_points
-from impactmaps.maps.lookup import SHIPPED_MAPS, load_shipped_map
-from impactmaps.maps.structures import MEMBER_SLENDERNESSES, structure_from_name
-from impactmaps.maps.sweep import solve_points
+from impactmaps.maps.read.slenderness import lookup_slenderness, slenderness_error_grid
+from impactmaps.maps.compute.hertz_points import solve_hertz_points
+from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
+from impactmaps.maps.family.structures import MEMBER_SLENDERNESSES, structure_from_name
+from impactmaps.maps.compute.sweep import solve_points
 from impactmaps.solvers.modal import ModalSettings
 
 from _script_options import parse

@@ -6,7 +6,7 @@ Reads a plane solved by ``validation/plane_equivalence.py --solve`` (every point
 modal points per structure with at most ``--max-modes`` modes in their retained run (the
 reference integrates 8× as many), and runs each once at three refinement levels above the
 base (cut-off and mode floor ×8, step /8: ``ModalSettings().refined()`` three times, as
-``benchmarks/bench_plane.py``'s reference). Per structure, single- and multi-impact points
+``benchmarks/studies/bench_plane.py``'s reference). Per structure, single- and multi-impact points
 apart: the points whose |F̄max − reference| exceeds their ``fmax_error`` (×1, ×2) and 1e-3,
 and the largest. Writes a CSV of the points off by more than 10× their stated error or by
 more than 1e-3 (``--all``: every point drawn).
@@ -41,9 +41,11 @@ SEVERE = 10.0
 
 def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: bool = False) -> list[str]:
     """Run the references and return the Markdown summary lines (module docstring)."""
-    from impactmaps.maps.linear_points import LINEAR
-    from impactmaps.maps.points import basis_table, frequency_cap, table_runner
-    from impactmaps.maps.structures import structure_from_name
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES
+    from impactmaps.solvers.mode_budget import frequency_cap
+    from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.solvers.modal import ModalSettings
 
     data = np.load(plane)
@@ -55,7 +57,7 @@ def audit(plane: str, points: int, seed: int, max_modes: int, out: str, every: b
              "| max abs(F̄max − reference) |", "|---|---|---|---|---|---|---|"]
     for name in STRUCTURES:
         structure = structure_from_name(name)
-        target, cap = structure.build(), frequency_cap(structure)
+        target, cap = structure.build(), frequency_cap(structure.build(), MAX_MODES)
         table = basis_table(structure, ModalSettings().min_modes)
         status, modes = data[f"{name}/status"], data[f"{name}/n_modes"]
         fmax, error, impacts = data[f"{name}/fmax_normalised"], data[f"{name}/fmax_error"], data[f"{name}/impacts"]

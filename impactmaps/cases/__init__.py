@@ -58,8 +58,8 @@ Material tables: see :mod:`impactmaps.cases._materials`.
 
 Each table maps onto a constructor and its keys are that constructor's options, so
 the defaults (and ranges) of the target theory, supports and impact point are those of
-the target classes (:meth:`impactmaps.targets.beam.Beam.rectangular`,
-:meth:`impactmaps.targets.plate.Plate.isotropic`), of the contact law
+the target classes (:meth:`impactmaps.targets.beams.beam.Beam.rectangular`,
+:meth:`impactmaps.targets.plates.plate.Plate.isotropic`), of the contact law
 (:func:`impactmaps.contact.law_options`) and of
 :class:`impactmaps.solvers.modal.ModalSettings`. ``[solver] kind = "fd"`` (or
 ``impactmaps fd CASE.toml``) runs the finite-difference Rayleigh beam: the target must

@@ -2,7 +2,7 @@
 
 ``[fd]`` maps onto :class:`impactmaps.fd.FDSettings` (its keys are that dataclass's
 options, ``duration`` excepted: it is ``[solver] duration``); the finite-difference beam
-is built from the case's :class:`~impactmaps.targets.beam.Beam` by
+is built from the case's :class:`~impactmaps.targets.beams.beam.Beam` by
 :meth:`FDBeam.from_beam <impactmaps.fd.FDBeam.from_beam>`.
 """
 

@@ -4,8 +4,8 @@ The format (every key, unit and default) is documented in ``docs/case-files.md``
 the module docstring of :mod:`impactmaps.cases`. Each section maps onto a dataclass or
 constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal.ModalSettings` (``kind
 = "modal"``) or the finite-difference settings (``kind = "fd"``), ``[target]`` onto
-:meth:`Beam.rectangular <impactmaps.targets.beam.Beam.rectangular>` /
-:meth:`Plate.isotropic <impactmaps.targets.plate.Plate.isotropic>`, ``[contact]`` onto
+:meth:`Beam.rectangular <impactmaps.targets.beams.beam.Beam.rectangular>` /
+:meth:`Plate.isotropic <impactmaps.targets.plates.plate.Plate.isotropic>`, ``[contact]`` onto
 the law's own options, ``[output]`` onto :class:`OutputSettings`. The valid keys of a
 section are the options of its constructor, and the constructor checks the ranges.
 """
@@ -96,8 +96,8 @@ class Case:
     velocity : float
         Approach velocity V0 [m/s].
     target : Target
-        The struck structure (:class:`~impactmaps.targets.beam.Beam`,
-        :class:`~impactmaps.targets.plate.Plate` or a half-space).
+        The struck structure (:class:`~impactmaps.targets.beams.beam.Beam`,
+        :class:`~impactmaps.targets.plates.plate.Plate` or a half-space).
     target_type : str
         ``"beam"``, ``"plate"`` or ``"halfspace"``.
     target_material : IsotropicMaterial or Laminate
@@ -192,8 +192,8 @@ def _impactor(data) -> tuple[Sphere, float]:
 
 def _target_builder(kind: str, laminated: bool):
     """The constructor a target table maps onto, and its positional size keys."""
-    from ..targets.beam import Beam
-    from ..targets.plate import Plate
+    from ..targets.beams.beam import Beam
+    from ..targets.plates.plate import Plate
 
     if kind == "beam":
         if laminated:

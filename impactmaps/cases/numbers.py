@@ -7,10 +7,10 @@ be fed to ``lookup`` and the answers agree:
 
 * linear law — ``ζ(m, K)``, ``λ = K_st/K``, ``F/(m V0 ω)`` with ``ω = sqrt(K/m)``;
 * Hertz law — the Hertz numbers ``ζ_h``, ``λ_h`` and ``F/F_hs``
-  (:func:`impactmaps.hertz_similarity.hertz_numbers`);
+  (:func:`impactmaps.closed_forms.hertz_similarity.hertz_numbers`);
 * Yigit–Christoforou and default refined Stronge laws — ``β``, ``ζ(m, K_y)``,
   ``λ = K_st/K_y`` and ``F/(m V0 ω_y)``
-  (:func:`impactmaps.maps.plastic_points.plastic_numbers`);
+  (:func:`impactmaps.maps.compute.plastic_points.plastic_numbers`);
 * any other law — the linearised numbers of :func:`case_dimensionless`.
 
 A Hertz case also reports the linearised numbers (``zeta_linearised``,
@@ -84,7 +84,7 @@ def case_dimensionless(case: Case) -> dict:
 def _plastic(case: Case):
     """``plastic_numbers`` of the case, or None when its law is not a plastic map law."""
     try:
-        from ..maps.plastic_points import plastic_law_of, plastic_numbers
+        from ..maps.compute.plastic_points import plastic_law_of, plastic_numbers
 
         plastic_law_of(case.law)
     except (ImportError, ValueError):
@@ -118,7 +118,7 @@ def case_numbers(case: Case) -> dict:
         omega = math.sqrt(linear["contact_stiffness_N_m"] / mass)
         return numbers | {"vocabulary": "linear", "force_scale_N": mass * velocity * omega, "time_scale_s": 1.0 / omega}
     if case.law.hertzian_stiffness is not None:
-        from ..solvers.halfspace import hertz_max_indentation
+        from ..closed_forms.halfspace import hertz_max_indentation
 
         stiffness = float(case.law.hertzian_stiffness)
         alpha_m = float(hertz_max_indentation(mass, velocity, stiffness))
@@ -128,7 +128,7 @@ def case_numbers(case: Case) -> dict:
                     "zeta_linearised": linear["zeta"], "lambda_linearised": linear["lambda"],
                     "linearised_basis": linear["lambda_basis"]}
         if not halfspace:
-            from ..hertz_similarity import hertz_numbers
+            from ..closed_forms.hertz_similarity import hertz_numbers
 
             hertz = hertz_numbers(case.target, case.law, mass, velocity)
             numbers |= {"zeta": hertz.loss_factor, "lambda": hertz.relative_stiffness}

@@ -13,7 +13,7 @@ import pandas as pd
 from ..jsonio import dumps, plain
 from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
-from ..solvers.result import ImpactResult
+from ..result import ImpactResult
 from .._files import written_atomically
 from ..validity import ModelValidityWarning, validity_warnings
 from .case import Case
@@ -184,7 +184,7 @@ def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
 
     Notes
     -----
-    ``history.csv`` has the columns of :data:`impactmaps.solvers.result.HISTORY_COLUMNS`
+    ``history.csv`` has the columns of :data:`impactmaps.result.HISTORY_COLUMNS`
     and the solver's extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``;
     finite difference: the gauges). ``summary.json`` is :func:`case_summary`. A result
     without history is one the solver answered by an any-law infinite-structure

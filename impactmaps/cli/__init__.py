@@ -122,9 +122,9 @@ def _deferred_choices(action: argparse.Action, choices: _Deferred) -> argparse.A
 
 
 #: Deferred parser constants (see :class:`_Deferred`).
-_MAP_LAWS = _Deferred("impactmaps.maps.lookup", "ALL_MAP_LAWS")
-_THEORIES = _Deferred("impactmaps.maps.lookup", "SHIPPED_MAPS", _theories)
-_ZETA_RANGE = _Deferred("impactmaps.maps.chart", "DEFAULT_ZETA_RANGE")
+_MAP_LAWS = _Deferred("impactmaps.maps.read.lookup", "ALL_MAP_LAWS")
+_THEORIES = _Deferred("impactmaps.maps.read.lookup", "SHIPPED_MAPS", _theories)
+_ZETA_RANGE = _Deferred("impactmaps.plotting.chart", "DEFAULT_ZETA_RANGE")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -324,15 +324,15 @@ class _NotRaised(Exception):
 def _sweep_interrupted() -> type[Exception]:
     """The sweep store's interruption, if the store was imported (else nothing can raise it):
     the store imports xarray, which commands that never sweep do not need."""
-    store = sys.modules.get("impactmaps.maps.store")
+    store = sys.modules.get("impactmaps.maps.files.store")
     return _NotRaised if store is None else store.SweepInterrupted
 
 
 def _background_warm_up(args) -> None:
     """Start compiling the solver in the background if its cache is cold
-    (:mod:`impactmaps.solvers.background_warm_up`; about a millisecond here), unless turned off."""
+    (:mod:`impactmaps._compile.background_warm_up`; about a millisecond here), unless turned off."""
     if not args.no_background_warm_up and args.command != "warm-up":
-        from ..solvers import background_warm_up
+        from .._compile import background_warm_up
 
         background_warm_up.start_background()
 

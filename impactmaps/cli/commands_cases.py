@@ -45,7 +45,7 @@ def cmd_fd(args) -> dict:
 
 def cmd_halfspace(args) -> dict:
     from ..contact import Sphere, law_for_sphere
-    from ..solvers.halfspace import halfspace_impact
+    from ..closed_forms.halfspace import halfspace_impact
     from ..validity import warn_if_invalid
 
     if args.material is not None and args.target_material is not None:
@@ -79,7 +79,7 @@ def cmd_halfspace(args) -> dict:
 
 
 def cmd_restitution(args) -> dict:
-    from ..solvers.halfspace import restitution
+    from ..closed_forms.halfspace import restitution
 
     check("--beta", args.beta, 0.0, math.inf, "the impact number β")
     return {"beta": args.beta, "restitution": float(restitution(args.beta))}
@@ -113,7 +113,7 @@ def cmd_laws(args) -> dict:
     import inspect
 
     from ..contact import available_contact_laws, contact_law_class
-    from ..contact.fe_agreement import FE_AGREEMENT_RANGE, fe_agreement
+    from ..contact.plastic.fe_agreement import FE_AGREEMENT_RANGE, fe_agreement
 
     out = {}
     for name in available_contact_laws():

@@ -9,9 +9,9 @@ import math
 import warnings
 from dataclasses import replace
 
-from ..maps.map_family import MapFamily
+from ..maps.family.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
-from ..maps.workers import MAX_WORKERS
+from ..maps.compute.workers import MAX_WORKERS
 from ._common import check, out_dir, plot_file, refuse, save_figure, text_file
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
@@ -30,9 +30,9 @@ SIMULATED_RANGE = MapFamily.axis_ranges["lambda_"]
 
 
 def cmd_chart(args) -> dict:
-    from ..maps.chart import check_chart_grid, make_chart
-    from ..maps.builtin_families import PLASTIC_LAWS, family_layout
-    from ..maps.store_lock import store_lock
+    from ..plotting.chart import check_chart_grid, make_chart
+    from ..maps.family.builtin_families import PLASTIC_LAWS, family_layout
+    from ..maps.files.store_lock import store_lock
 
     if args.law in PLASTIC_LAWS:
         return _plastic_chart(args)
@@ -59,7 +59,7 @@ def cmd_chart(args) -> dict:
 def _plastic_chart(args) -> dict:
     """``chart --law yc|stronge``: F̄max, restitution, absorbed energy vs ζ at a few β for one λ,
     drawn from the shipped elastic-plastic maps (``--lambdas``: one λ; ``--betas``: the β)."""
-    from ..maps.chart import DEFAULT_PLASTIC_BETAS, DEFAULT_PLASTIC_LAMBDA, make_plastic_chart
+    from ..plotting.chart import DEFAULT_PLASTIC_BETAS, DEFAULT_PLASTIC_LAMBDA, make_plastic_chart
 
     refuse(args, {"--workers": "workers", "--overwrite": "overwrite"},
            "with an elastic-plastic --law (the chart is drawn from the shipped maps, nothing is swept)")
@@ -73,8 +73,8 @@ def _plastic_chart(args) -> dict:
 
 
 def cmd_sweep(args) -> dict:
-    from ..maps.config import load_sweep_config
-    from ..maps.store_lock import store_lock
+    from ..maps.compute.config import load_sweep_config
+    from ..maps.files.store_lock import store_lock
 
     check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
           low_inclusive=True, high_inclusive=True)
@@ -89,7 +89,7 @@ def cmd_sweep(args) -> dict:
 
 
 def _run_sweep(args) -> dict:
-    from ..maps.config import run_sweep_config
+    from ..maps.compute.config import run_sweep_config
 
     if args.scheduler is None:
         paths = run_sweep_config(args.config, progress=not args.quiet, overwrite=args.overwrite,
@@ -132,7 +132,7 @@ def _point_defaults(args) -> None:
 
 
 def _structure_from_args(args):
-    from ..maps.structures import MapStructure
+    from ..maps.family.structures import MapStructure
     from ..targets.options import STRUCTURE_KINDS, default_theory
 
     kind, _, supports = args.target.partition("-")
@@ -180,8 +180,8 @@ def _simulate_point(structure, target, args, settings, record: bool):
 
 def _map_point(structure, args, settings) -> dict:
     """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
-    from ..maps.accuracy import STATUSES, AccuracyControl
-    from ..maps.sweep import METHODS, RESULT_VARIABLES, solve_points
+    from ..maps.family.accuracy import STATUSES, AccuracyControl
+    from ..maps.compute.sweep import METHODS, RESULT_VARIABLES, solve_points
     from ..solvers.modal import ConvergenceWarning
 
     control = AccuracyControl(tolerance=settings.tolerance)
@@ -197,7 +197,7 @@ def _map_point(structure, args, settings) -> dict:
 
 
 def cmd_point(args) -> dict:
-    from ..maps.regimes import classify, infinite_structure_peak, quasi_static_peak
+    from ..maps.family.regimes import classify, infinite_structure_peak, quasi_static_peak
 
     structure = _structure_from_args(args)
     target = structure.build()
@@ -223,7 +223,7 @@ def cmd_point(args) -> dict:
     if checked:
         # the value a sweep stores for this point, with its error and status (the same bits)
         if target.point_load_diverges:
-            from ..maps.points import warn_point_loaded_mindlin
+            from ..maps.family.structures import warn_point_loaded_mindlin
 
             warn_point_loaded_mindlin("this Mindlin point strikes", stacklevel=1)
         mapped = _map_point(structure, args, settings)
@@ -231,7 +231,7 @@ def cmd_point(args) -> dict:
             values.update(status="unresolved", status_note=(
                 "the toolkit does not vouch for this value: the contact frequency lies beyond the range of the "
                 f"{structure.theory} theory (or the point needs more modes than the cap); see "
-                "impactmaps.solvers.shear_range"))
+                "impactmaps.targets.shear_range"))
         else:
             values.update(mapped)
         values["converged"] = values["status"] not in ("sensitive", "unresolved")
@@ -259,7 +259,7 @@ def cmd_point(args) -> dict:
 
 
 def cmd_asymptote(args) -> dict:
-    from ..solvers import asymptotes
+    from ..closed_forms import asymptotes
 
     if getattr(args, "case", None) is not None:
         return _case_asymptote(args)
@@ -298,7 +298,7 @@ def cmd_asymptote(args) -> dict:
 def _case_asymptote(args) -> dict:
     """The asymptote of a physical case, for its own contact law (``--case``)."""
     from ..cases import load_case
-    from ..law_asymptotes import asymptote
+    from ..closed_forms.law_asymptotes import asymptote
     from ..validity import warn_if_invalid
 
     refuse(args, {"--zeta": "zeta", "--lambda": "lambda_"}, "with --case (the case gives them)")
@@ -314,7 +314,7 @@ def _case_asymptote(args) -> dict:
 
 def _beam_impacts(zeta: float) -> dict:
     """How often the infinite beam is struck: once, or again after the first separation."""
-    from ..solvers.infinite_beam import (
+    from ..closed_forms.infinite_beam import (
         critical_beam_loss_factor,
         recontact_beam_loss_factor,
     )
@@ -324,7 +324,7 @@ def _beam_impacts(zeta: float) -> dict:
         return {"impacts": None, "repeated_impacts": True,
                 "impacts_note": f"{recontact:.6g} < ζ < {critical:.6g}: the sphere still moves towards the beam "
                                 "when it first separates and strikes again (at least 2 impacts; the later "
-                                "ones: impactmaps.solvers.infinite_beam.infinite_beam_force); "
+                                "ones: impactmaps.closed_forms.infinite_beam.infinite_beam_force); "
                                 "contact_time_normalised is the first contact's"}
     return {"impacts": 1, "repeated_impacts": False}
 
@@ -333,7 +333,7 @@ def cmd_classify(args) -> dict:
     check("--tolerance", args.tolerance, 0.0, 1.0, "the relative distance to an asymptote",
            high_inclusive=True)
     if args.from_map:
-        from ..maps.lookup import lookup
+        from ..maps.read.lookup import lookup
         from ..targets.options import default_theory
 
         refuse(args, {"--aspect": "aspect", "--slenderness": "slenderness", "--position": "position",
@@ -354,14 +354,14 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..maps.lookup import lookup, status_notes
+    from ..maps.read.lookup import lookup, status_notes
 
     if args.case is not None:
         import sys
         import time
 
         from ..cases import load_case
-        from ..maps.case_lookup import case_map_law, lookup_case
+        from ..cases.case_lookup import case_map_law, lookup_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
@@ -380,7 +380,7 @@ def cmd_lookup(args) -> dict:
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.kind is None or args.theory is None:
         raise ValueError("give --kind, --theory, --zeta and --lambda, or --case CASE.toml")
-    from ..maps.builtin_families import PLASTIC_LAWS
+    from ..maps.family.builtin_families import PLASTIC_LAWS
 
     if args.law in PLASTIC_LAWS:
         refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")
@@ -394,7 +394,7 @@ def cmd_lookup(args) -> dict:
         if slenderness is None:
             found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law)
         else:
-            from ..maps.slenderness import lookup_slenderness
+            from ..maps.read.slenderness import lookup_slenderness
 
             check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest slenderness member is 10)",
                   low_inclusive=True)
@@ -409,8 +409,8 @@ def cmd_lookup(args) -> dict:
 
 def _lookup_plastic_numbers(args) -> dict:
     """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
-    from ..maps.lookup import status_notes
-    from ..maps.plastic_lookup import lookup_plastic
+    from ..maps.read.lookup import status_notes
+    from ..maps.read.plastic_lookup import lookup_plastic
 
     beta = getattr(args, "beta", None)
     if beta is None:

@@ -213,7 +213,7 @@ def _map_reading(case) -> dict:
     """What a shipped map says of the case (no tile is built), or why none does."""
     if case.target_type == "halfspace":
         return {"regime": "half-space", "map": None, "map_note": "a half-space needs no map"}
-    from ..maps.case_lookup import lookup_case
+    from ..cases.case_lookup import lookup_case
 
     try:
         found = lookup_case(case, build=False)
@@ -231,9 +231,9 @@ def _map_reading(case) -> dict:
 
 def cmd_warm_up(args) -> dict:
     """Compile the modal solver's kernels into numba's cache (``impactmaps warm-up``)."""
-    from ..maps.workers import MAX_WORKERS
+    from ..maps.compute.workers import MAX_WORKERS
     from ._common import check
-    from ..solvers.background_warm_up import mark_warm
+    from .._compile.background_warm_up import mark_warm
     from ..solvers.warm_up import warm_up
 
     workers = 2 if args.workers is None else args.workers

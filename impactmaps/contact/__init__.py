@@ -1,6 +1,6 @@
 """Contact laws: one module per law, all behind :class:`ContactLaw` and one registry."""
 
-from . import epp  # noqa: F401  (registers the FE-calibrated law "epp")
+from .plastic import epp  # noqa: F401  (registers the FE-calibrated law "epp")
 from .base import (
     ContactLaw,
     LawOption,
@@ -16,8 +16,8 @@ from .hertz import HertzContact, hertz_stiffness
 from .linear import LinearContact
 from .pair import ContactPair
 from .sphere import Sphere, law_for_sphere, law_options, softer_yield_strength
-from .stronge import StrongeContact, stronge_continuity_coefficient
-from .yigit_christoforou import YigitChristoforouContact, yield_indentation
+from .plastic.stronge import StrongeContact, stronge_continuity_coefficient
+from .plastic.yigit_christoforou import YigitChristoforouContact, yield_indentation
 
 __all__ = [
     "ContactLaw",

@@ -1,21 +1,9 @@
 """The contact-law interface, the registry of laws, and contact geometry helpers.
 
 A contact law is a force–indentation relation ``F(α; α_max)`` whose only history is
-``α_max``, the largest indentation reached before the current evaluation:
-
-* ``α ≥ α_max`` — the virgin loading curve;
-* ``α < α_max`` — the elastic unloading/reloading curve that leaves ``α_max``, equal
-  to zero at and below the permanent indentation ``α_f(α_max)``;
-* ``α ≤ 0`` (or ``α ≤ α_f``) — no contact, ``F = 0`` (no tension).
-
-After each accepted evaluation the caller updates ``α_max ← max(α_max, α)``. This
-one convention covers loading, unloading, separation, reloading and re-impact.
-
-Each law is written once, as a scalar numba kernel
-``kernel(alpha, alpha_max, params) -> (force, stiffness)`` where ``params`` is the
-law's float64 parameter vector. The same kernel serves the vectorised NumPy methods of
-:class:`ContactLaw` (via :func:`evaluate_kernel`), the modal impact integrator and the
-finite-difference beam solver, so there is exactly one implementation of each law.
+``α_max``, the largest indentation reached (loading curve at ``α ≥ α_max``, the elastic
+unloading curve below, no tension). Each law is one scalar numba kernel
+``kernel(alpha, alpha_max, params) -> (force, stiffness)`` shared by every solver.
 """
 
 from __future__ import annotations
@@ -32,7 +20,7 @@ from .._checks import (
     require_choice,
     require_nonnegative,
 )
-from ..solvers.lazy_kernel import LazyKernel
+from .._compile.lazy_kernel import LazyKernel
 from .geometry import effective_modulus, effective_radius, require_positive_or_infinite  # noqa: F401 (re-exported)
 
 __all__ = [
@@ -60,13 +48,7 @@ KERNEL_TYPE = numba.types.FunctionType(numba.types.UniTuple(_F8, 2)(_F8, _F8, _V
 
 
 class _KernelPointer:
-    """A compiled kernel as a ready function pointer (numba's wrapper-address protocol).
-
-    Passing a dispatcher where a compiled solver expects :data:`KERNEL_TYPE` makes
-    numba look up the compiled wrapper's address on every call (≈ 20 µs, more than a
-    whole single-mode impact run); this object looks it up once. It keeps the
-    dispatcher alive, so the address stays valid.
-    """
+    """A compiled kernel as a ready function pointer (looked up once; keeps the dispatcher alive)."""
 
     __slots__ = ("dispatcher", "_address")
     _numba_type_ = KERNEL_TYPE
@@ -91,19 +73,8 @@ def _pointer_of(dispatcher) -> _KernelPointer:
 
 
 def kernel_pointer(kernel) -> _KernelPointer:
-    """The function pointer of a contact-law kernel, for compiled solvers (memoised).
-
-    Parameters
-    ----------
-    kernel : numba dispatcher or _KernelPointer
-        ``kernel(alpha, alpha_max, params) -> (force, stiffness)`` (α, α_max in m;
-        force in N, stiffness in N/m).
-
-    Returns
-    -------
-    _KernelPointer
-        Accepted wherever a compiled solver takes :data:`KERNEL_TYPE`.
-    """
+    """The function pointer (memoised) of a contact-law ``kernel`` for compiled solvers
+    (α, α_max [m] → force [N], stiffness [N/m])."""
     if isinstance(kernel, _KernelPointer):
         return kernel
     return _pointer_of(kernel)
@@ -131,19 +102,8 @@ _evaluate_many = LazyKernel(_evaluate_many_kernel,
 def evaluate_kernel(kernel, parameters, indentation, max_indentation):
     """Evaluate a scalar contact kernel element-wise with NumPy broadcasting.
 
-    Parameters
-    ----------
-    kernel : numba dispatcher
-        ``kernel(alpha, alpha_max, params) -> (force, stiffness)``.
-    parameters : array_like, shape (n_params, ...)
-        Parameter vector; trailing dimensions broadcast against the indentations.
-    indentation, max_indentation : array_like
-        Indentation α and history α_max [m].
-
-    Returns
-    -------
-    force, stiffness : ndarray
-        Contact force [N] and tangent stiffness dF/dα [N/m], broadcast shape.
+    ``parameters`` (n_params, ...) broadcast against ``indentation`` α and
+    ``max_indentation`` α_max [m]; returns force [N] and tangent stiffness [N/m].
     """
     params = np.asarray(parameters, dtype=float)
     alpha = np.asarray(indentation, dtype=float)
@@ -163,19 +123,8 @@ def evaluate_kernel(kernel, parameters, indentation, max_indentation):
 
 @dataclass(frozen=True)
 class LawOption:
-    """One keyword option of a law's contact-pair constructor.
-
-    Attributes
-    ----------
-    name : str
-        Keyword name.
-    unit : str
-        SI unit (``""`` for a dimensionless number).
-    default : object
-        Value used when the option is not given.
-    meaning : str
-        One line saying what it is.
-    """
+    """One keyword option of a law's contact-pair constructor: ``name``, SI ``unit`` ("" if
+    dimensionless), ``default`` and a one-line ``meaning``."""
 
     name: str
     unit: str
@@ -187,37 +136,19 @@ _OPTION = "contact law option"  # dataclass-field metadata key of law_option
 
 
 def law_option(default, unit: str, meaning: str):
-    """Declare a law parameter that is also a keyword option of ``from_contact_pair``.
-
-    Used as the default of a law's dataclass field, e.g.
-    ``yield_pressure_factor: float = law_option(1.6, "", "c_y: ...")``; this one
-    declaration gives the field its default and :meth:`ContactLaw.options` its entry.
-
-    Parameters
-    ----------
-    default : float
-        The field's default value.
-    unit : str
-        SI unit (``""`` for a dimensionless number).
-    meaning : str
-        One line saying what it is.
-    """
+    """Declare a law field (its ``default``, SI ``unit``, one-line ``meaning``) that is also a
+    keyword option of ``from_contact_pair``."""
     return field(default=default, metadata={_OPTION: (unit, meaning)})
 
 
 class ContactLaw(ABC):
-    """A stateful force–indentation law (see the module docstring for the convention).
+    """A stateful force–indentation law ``F(α; α_max)``.
 
-    Subclasses are frozen dataclasses holding the law's physical parameters (SI), set
-    the class attributes ``name`` (registry key), ``elastic`` (no dissipation) and
-    ``needs_yield_strength`` (whether :meth:`from_contact_pair` needs the pair's yield
-    strength), and provide ``kernel`` (a ``staticmethod`` wrapping a numba scalar
-    kernel), :attr:`kernel_parameters`, :meth:`permanent_indentation` and
-    :meth:`from_contact_pair`. Parameters may be arrays, so one law object describes a
-    batch of cases. ``revision`` counts changes of the law's definition that change its
-    answers; it enters the fingerprint of a map sweep of the law, so a stored result of an
-    older definition is never resumed or read as current. ``stiffness_unit`` is the unit of
-    the ``stiffness`` a law given by its stiffness alone takes (None: no such parameter).
+    Subclasses are frozen dataclasses of the law's parameters (SI, may be arrays: one
+    object, a batch of cases) with class attributes ``name``, ``elastic``,
+    ``needs_yield_strength``, ``revision`` (bumped when answers change) and
+    ``stiffness_unit``, and provide ``kernel``, :attr:`kernel_parameters`,
+    :meth:`permanent_indentation` and :meth:`from_contact_pair`.
     """
 
     name: ClassVar[str]
@@ -256,14 +187,7 @@ class ContactLaw(ABC):
 
     @classmethod
     def from_contact_pair(cls, pair, **options) -> "ContactLaw":
-        """Build the law for a :class:`~impactmaps.contact.pair.ContactPair`.
-
-        Parameters
-        ----------
-        pair : ContactPair
-            Effective modulus E* [Pa], effective radius R [m], yield strength [Pa] or None.
-        **options
-            The law's :meth:`options`.
+        """Build the law for a :class:`~impactmaps.contact.pair.ContactPair` (E* [Pa], R [m], yield strength [Pa]).
 
         Raises
         ------
@@ -290,11 +214,7 @@ class ContactLaw(ABC):
 
     # -- energies ---------------------------------------------------------------
     def loading_energy(self, max_indentation, points: int = 2001):
-        """Work [J] done on the contact loading from 0 to α_max [m] (quadrature).
-
-        Subclasses with a closed form override this. ``points`` is the number of
-        Gauss-Legendre-free composite quadrature points (Simpson on a graded grid).
-        """
+        """Work [J] done loading the contact from 0 to α_max [m] (Simpson on ``points`` graded points)."""
         alpha_max = np.asarray(max_indentation, dtype=float)
         s = _graded_grid(points)
         alpha = alpha_max[..., None] * s
@@ -331,40 +251,16 @@ class ContactLaw(ABC):
 
     @property
     def contact_radius_scale(self):
-        """Effective radius R [m] of the sphere–target pair when the law knows it, else ``None``.
-
-        It sets the radius of the contact patch, ``a = sqrt(R α)`` (Hertz), over which a
-        solver may spread the contact force (:mod:`impactmaps.targets.patch`). Laws built
-        from a contact pair carry it; a law given only by its stiffness does not.
-        """
+        """Effective radius R [m] of the sphere–target pair when the law knows it (patch radius
+        ``sqrt(R α)``), else ``None``."""
         return getattr(self, "effective_radius", None)
 
     def impact_number(self, impactor_mass, velocity):
-        """Impact number β [-] (seed 001 eq 11) of an impact by mass m_i [kg] at V0 [m/s].
-
-        ``None`` for laws without a yield indentation scale (elastic laws).
-        """
+        """Impact number β [-] of an impact by mass m_i [kg] at V0 [m/s]; ``None`` for elastic laws."""
         return None
 
     def indentation_for_energy(self, energy):
-        """Indentation α_m [m] at which the loading work equals ``energy`` [J].
-
-        The peak indentation of a rigid sphere of kinetic energy ``energy`` on a rigid
-        half-space. Laws with a closed-form inverse override this; the generic search
-        is Newton's method on ``loading_energy(α) = energy`` with the loading force as
-        the derivative, started above the root: ``loading_energy`` is convex (its
-        derivative, the virgin loading force, never decreases), so the iterates
-        decrease monotonically onto the root (to rounding).
-
-        Parameters
-        ----------
-        energy : float or array_like
-            Work done on the contact [J], ≥ 0; broadcasts against the law's batch.
-
-        Returns
-        -------
-        ndarray
-            α_m [m] (0 where ``energy`` is 0).
+        """Indentation α_m [m] at which the loading work equals ``energy`` [J] (≥ 0; 0 → 0).
 
         Raises
         ------
@@ -381,8 +277,8 @@ class ContactLaw(ABC):
 
     @property
     def yield_scales(self):
-        """``(K_h [N/m^1.5], α_y [m])`` of the Yigit–Christoforou law (seed 001 eqs 7, 9) that places an
-        elastic-plastic law's impacts (such a law also has ``from_yield_scales``); ``None`` without a yield scale."""
+        """``(K_h [N/m^1.5], α_y [m])`` of the Yigit–Christoforou law placing this law's impacts; ``None`` without a
+        yield scale."""
         return None
 
     def changed_options(self) -> dict:

@@ -20,14 +20,8 @@ def require_positive_or_infinite(name: str, value, unit: str) -> np.ndarray:
 def effective_modulus(
     youngs_modulus_1, poisson_ratio_1, youngs_modulus_2=np.inf, poisson_ratio_2=0.0
 ):
-    """Effective contact modulus E* [Pa], ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` (seed 001 eq 8).
-
-    Parameters
-    ----------
-    youngs_modulus_1, poisson_ratio_1 : float or array_like
-        Young's modulus [Pa] and Poisson ratio [-] of body 1 (the impactor).
-    youngs_modulus_2, poisson_ratio_2 : float or array_like
-        The same for body 2 (the target); ``inf`` means rigid.
+    """Effective contact modulus E* [Pa], ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` (seed 001 eq 8);
+    E [Pa] and ν [-] of the impactor (1) and target (2), ``inf`` for rigid.
     """
     require_positive("youngs_modulus_1", youngs_modulus_1, "Pa")
     require_in_range("poisson_ratio_1", poisson_ratio_1, -1.0, 0.5,

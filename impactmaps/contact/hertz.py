@@ -19,21 +19,8 @@ __all__ = ["HertzContact", "hertz_stiffness"]
 
 
 def hertz_stiffness(effective_modulus, radius):
-    """Hertz contact stiffness ``K_h = (4/3) sqrt(R) E*`` [N/m^1.5] (seed 001 eq 7).
-
-    Parameters
-    ----------
-    effective_modulus : float or array_like
-        Effective contact modulus E* [Pa] (seed 001 eq 8, see
-        :func:`impactmaps.contact.effective_modulus`).
-    radius : float or array_like
-        Effective radius R [m] (the sphere radius for a sphere on a flat).
-
-    Returns
-    -------
-    ndarray
-        K_h [N/m^1.5].
-    """
+    """Hertz contact stiffness ``K_h = (4/3) sqrt(R) E*`` [N/m^1.5] of ``effective_modulus`` E* [Pa]
+    and ``radius`` R [m]."""
     require_positive("effective_modulus", effective_modulus, "Pa")
     require_positive("radius", radius, "m")
     return 4.0 / 3.0 * np.sqrt(np.asarray(radius, float)) * np.asarray(effective_modulus, float)
@@ -56,11 +43,9 @@ class HertzContact(ContactLaw):
     Parameters
     ----------
     stiffness : float or array_like
-        Hertz stiffness K_h [N/m^1.5], ``(4/3) sqrt(R) E*`` for a sphere of radius R on
-        a flat (seed 001 eq 7; Johnson, *Contact Mechanics*, 1985, §4.2).
+        Hertz stiffness K_h [N/m^1.5].
     effective_radius : float, optional
-        R [m] of the pair, when known (set by the pair and geometry constructors): the
-        contact radius is ``sqrt(R α)``. Not part of the force law.
+        R [m] of the pair, when known (contact radius ``sqrt(R α)``); not part of the law.
     """
 
     stiffness: float
@@ -91,12 +76,8 @@ class HertzContact(ContactLaw):
 
     @classmethod
     def from_sphere(cls, radius, impactor_material, target_material) -> "HertzContact":
-        """Sphere of radius R [m] on a flat target; E* from both materials (eq 8).
-
-        ``impactor_material`` and ``target_material`` need ``youngs_modulus`` [Pa] and
-        ``poisson_ratio`` [-] attributes (for example
-        :class:`impactmaps.materials.IsotropicMaterial`).
-        """
+        """Sphere of radius R [m] on a flat target; E* from both materials
+        (``youngs_modulus`` [Pa], ``poisson_ratio`` [-])."""
         modulus = effective_modulus(
             impactor_material.youngs_modulus,
             impactor_material.poisson_ratio,

@@ -10,7 +10,7 @@ import numpy as np
 
 from .._checks import require_positive
 from .base import ContactLaw, check_energy, register_contact_law
-from .yigit_christoforou import YigitChristoforouContact
+from .plastic.yigit_christoforou import YigitChristoforouContact
 
 __all__ = ["LinearContact"]
 

@@ -1,14 +1,9 @@
 """The contact pair: what every contact law needs to know about the two bodies.
 
-A :class:`Sphere` (the impactor) pressed on a target is, for any of the laws, three numbers: the effective
-modulus E* (seed 001 eq 8), the effective radius R (``1/R = 1/R1 + 1/R2``) and the
-yield strength of the softer body (``None`` when neither yields). :class:`ContactPair`
-holds them; each registered law builds itself from one with ``from_contact_pair``.
-
-Materials are duck-typed: an object with ``youngs_modulus`` [Pa], ``poisson_ratio``
-[-], ``density`` [kg/m³] and optionally ``yield_strength`` [Pa] (``None`` or missing:
-the body is taken not to yield), for example
-:class:`impactmaps.materials.IsotropicMaterial`. The material checks live here, once.
+A :class:`ContactPair` holds the effective modulus E*, the effective radius R and the
+softer body's yield strength; :class:`Sphere` is the impactor. Materials are duck-typed
+(``youngs_modulus`` [Pa], ``poisson_ratio`` [-], ``density`` [kg/m³], optional
+``yield_strength`` [Pa]); their checks live here, once.
 """
 
 from __future__ import annotations
@@ -56,17 +51,8 @@ def material_attribute(material, attribute: str, role: str):
 
 
 def check_elastic_material(material, role: str, allow_rigid: bool = False) -> None:
-    """Validate ``youngs_modulus`` (> 0, or ``inf`` if ``allow_rigid``) and ``poisson_ratio``.
-
-    Parameters
-    ----------
-    material : material-like
-        Needs ``youngs_modulus`` [Pa] and ``poisson_ratio`` [-].
-    role : str
-        How the caller named the material (used in error messages).
-    allow_rigid : bool
-        Accept ``youngs_modulus = inf`` (a rigid body).
-    """
+    """Validate ``youngs_modulus`` [Pa] (> 0, or ``inf`` if ``allow_rigid``) and ``poisson_ratio`` [-]
+    of ``material`` (``ValueError`` naming ``role``)."""
     modulus = material_attribute(material, "youngs_modulus", role)
     if not (allow_rigid and np.all(np.asarray(modulus, dtype=float) == np.inf)):
         require_positive(f"{role}.youngs_modulus", modulus, "Pa")
@@ -83,11 +69,7 @@ def _defined_yield_strengths(materials) -> list[float]:
 
 
 def softer_yield_strength(*materials) -> float:
-    """Smallest yield strength [Pa] among materials that define one (seed 001 eq 9).
-
-    Materials whose ``yield_strength`` is ``None`` or missing are taken not to yield.
-    Raises ``ValueError`` if none of them defines a yield strength.
-    """
+    """Smallest yield strength [Pa] among materials that define one (``ValueError`` if none does)."""
     values = _defined_yield_strengths(materials)
     if not values:
         raise ValueError(_MISSING_YIELD)
@@ -139,10 +121,9 @@ class ContactPair:
     effective_modulus : float
         E* [Pa], ``1/E* = (1-ν1²)/E1 + (1-ν2²)/E2`` (seed 001 eq 8).
     effective_radius : float
-        R [m], ``1/R = 1/R1 + 1/R2`` (the sphere radius for a sphere on a flat).
+        R [m], ``1/R = 1/R1 + 1/R2``.
     yield_strength : float or None
-        Yield strength S_y of the softer body [Pa]; ``None`` if neither yields (then
-        only elastic laws can be built).
+        Yield strength S_y of the softer body [Pa]; ``None`` if neither yields.
     """
 
     effective_modulus: float
@@ -160,23 +141,9 @@ class ContactPair:
                     yield_strength=None) -> "ContactPair":
         """The pair formed by ``sphere`` striking a target of ``target_material``.
 
-        Parameters
-        ----------
-        sphere : Sphere
-            The impactor (:class:`impactmaps.contact.Sphere`).
-        target_material : material-like
-            ``youngs_modulus`` [Pa] (``inf``: a rigid target), ``poisson_ratio`` [-],
-            optional ``yield_strength`` [Pa].
-        target_radius : float, default inf
-            Radius of curvature of the target at the impact point [m] (inf: a flat).
-        yield_strength : float, optional
-            S_y [Pa] overriding the softer material's (e.g. ``2 S_u`` for composites,
-            seed 001); default the smaller yield strength the materials define, or
-            ``None`` if neither defines one.
-
-        Returns
-        -------
-        ContactPair
+        ``target_material``: ``youngs_modulus`` [Pa] (``inf``: rigid), ``poisson_ratio`` [-],
+        optional ``yield_strength`` [Pa]; ``target_radius`` [m] (default inf, a flat);
+        ``yield_strength`` [Pa] overrides the softer material's.
         """
         if not isinstance(sphere, Sphere):
             raise ValueError(f"sphere = {sphere!r} is not a Sphere")

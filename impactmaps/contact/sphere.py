@@ -1,13 +1,5 @@
-"""Any registered contact law built from a sphere and a target material.
-
-The :class:`Sphere` itself lives in :mod:`impactmaps.contact.pair` with the checks of
-the materials (it is re-exported here).
-
-Materials are duck-typed: an object with ``youngs_modulus`` [Pa], ``poisson_ratio``
-[-], ``density`` [kg/m³] and optionally ``yield_strength`` [Pa] (``None`` or missing:
-the body is taken not to yield), for example
-:class:`impactmaps.materials.IsotropicMaterial`. The checks of the materials and the
-contact geometry are in :mod:`impactmaps.contact.pair`.
+"""Any registered contact law built from a sphere and a target material
+(:func:`law_for_sphere`, :func:`law_options`).
 """
 
 from __future__ import annotations
@@ -28,30 +20,21 @@ def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> Con
     sphere : Sphere
         The impactor.
     target_material : material-like
-        Target material (``youngs_modulus`` [Pa], ``poisson_ratio`` [-], optional
-        ``yield_strength`` [Pa]); ``youngs_modulus = inf`` is a rigid target.
+        ``youngs_modulus`` [Pa] (``inf``: rigid target), ``poisson_ratio`` [-], optional
+        ``yield_strength`` [Pa].
     **options
-        ``target_radius`` [m] (default ``inf``, a flat: the target's curvature at the
-        impact point, ``1/R = 1/R_sphere + 1/R_target``); ``yield_strength`` [Pa]
-        overriding the softer material's (e.g. ``2 S_u`` for composites, seed 001);
-        then the law's own options, e.g. for ``"stronge"`` ``yield_pressure_factor``,
-        ``plastic_pressure_factor``, ``plastic_indentation_ratio``
-        (:func:`law_options` lists them with units, defaults and meanings).
+        ``target_radius`` [m] (default ``inf``, a flat), ``yield_strength`` [Pa]
+        overriding the softer material's, then the law's own options
+        (:func:`law_options`).
 
     Returns
     -------
     ContactLaw
-        ``"hertz"``: ``K_h = (4/3) sqrt(R) E*`` (eqs 7–8). ``"yigit-christoforou"``:
-        K_h and ``α_y = 0.68 π² S_y² R/E*²`` (eq 9) with S_y the smaller yield
-        strength of the two bodies. ``"linear"``: ``K = K_y = 1.5 K_h sqrt(α_y)`` (eqs
-        10, 18), which needs a yield strength. ``"stronge"``: E*, R, S_y and the
-        constants.
 
     Raises
     ------
     ValueError
-        Unknown law, a law with no contact-pair builder, an unknown option, a
-        missing yield strength, or invalid material data.
+        Unknown law or option, a missing yield strength, or invalid material data.
     """
     law_class = contact_law_class(name)  # ValueError listing the known laws
     pair_options = {key: options.pop(key) for key in PAIR_OPTIONS if key in options}
@@ -61,21 +44,7 @@ def law_for_sphere(name: str, sphere: Sphere, target_material, **options) -> Con
 
 
 def law_options(name: str) -> dict[str, LawOption]:
-    """The keyword options that matter to ``law_for_sphere(name, ...)``, each declared once.
-
-    ``target_radius`` (every law), ``yield_strength`` (laws that need a yield strength),
-    then the law's own options (:meth:`ContactLaw.options`).
-
-    Parameters
-    ----------
-    name : str
-        A registered law (``impactmaps.contact.available_contact_laws()``).
-
-    Returns
-    -------
-    dict of str to LawOption
-        In that order; iterating gives the names. Each LawOption has the unit (``""``:
-        dimensionless), the default and a one-line meaning.
+    """The keyword options of ``law_for_sphere(name, ...)`` as name → LawOption (unit, default, meaning).
 
     Raises
     ------

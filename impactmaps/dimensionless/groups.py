@@ -44,52 +44,22 @@ def _array(value) -> np.ndarray:
 # Scales of the linear contact problem
 # ---------------------------------------------------------------------------------
 def contact_frequency(contact_stiffness, impactor_mass):
-    """Linear contact frequency ``ω = sqrt(K/m_i)`` [rad/s] (seed 001, after eq 20).
-
-    Parameters
-    ----------
-    contact_stiffness : float or array_like
-        Linear contact stiffness K [N/m], > 0.
-    impactor_mass : float or array_like
-        Impactor mass m_i [kg], > 0.
-
-    Returns
-    -------
-    float or ndarray
-        ω [rad/s].
-    """
+    """Linear contact frequency ``ω = sqrt(K/m_i)`` [rad/s] of ``contact_stiffness`` K [N/m]
+    and ``impactor_mass`` m_i [kg]."""
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("impactor_mass", impactor_mass, "kg")
     return np.sqrt(_array(contact_stiffness) / _array(impactor_mass))
 
 
 def halfspace_indentation(velocity, contact_frequency):
-    """Half-space (maximum) indentation ``α* = V0/ω`` [m], the indentation scale.
-
-    Parameters
-    ----------
-    velocity : float or array_like
-        Impact velocity V0 [m/s], > 0.
-    contact_frequency : float or array_like
-        ω [rad/s], > 0.
-    """
+    """Half-space indentation ``α* = V0/ω`` [m] of ``velocity`` V0 [m/s] and ``contact_frequency`` ω [rad/s]."""
     require_positive("velocity", velocity, "m/s")
     require_positive("contact_frequency", contact_frequency, "rad/s")
     return _array(velocity) / _array(contact_frequency)
 
 
 def force_scale(impactor_mass, velocity, contact_frequency):
-    """Force scale ``m_i V0 ω`` [N], the peak force of a half-space impact (eq 26–27).
-
-    Parameters
-    ----------
-    impactor_mass : float or array_like
-        m_i [kg], > 0.
-    velocity : float or array_like
-        V0 [m/s], > 0.
-    contact_frequency : float or array_like
-        ω [rad/s], > 0.
-    """
+    """Force scale ``m_i V0 ω`` [N], the half-space peak force (m_i [kg], V0 [m/s], ω [rad/s])."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     require_positive("contact_frequency", contact_frequency, "rad/s")
@@ -97,15 +67,7 @@ def force_scale(impactor_mass, velocity, contact_frequency):
 
 
 def normalised_force(force, impactor_mass, velocity, contact_frequency):
-    """Normalised contact force ``F̄ = F/(m_i V0 ω)`` [-] (seed 001 eq 26).
-
-    Parameters
-    ----------
-    force : float or array_like
-        Contact force F [N] (finite).
-    impactor_mass, velocity, contact_frequency : float or array_like
-        See :func:`force_scale`.
-    """
+    """Normalised contact force ``F̄ = F/(m_i V0 ω)`` [-] of ``force`` F [N] (others as :func:`force_scale`)."""
     require_finite("force", force, "N")
     return _array(force) / force_scale(impactor_mass, velocity, contact_frequency)
 
@@ -114,17 +76,7 @@ def normalised_force(force, impactor_mass, velocity, contact_frequency):
 # Impact number (non-linear contact, compact bodies)
 # ---------------------------------------------------------------------------------
 def hertz_frequency(hertz_stiffness, yield_indentation, impactor_mass):
-    """Hertz contact frequency ``ω_h = sqrt(K_h α_y^{1/2}/m_i)`` [rad/s] (seed 001 eq 12).
-
-    Parameters
-    ----------
-    hertz_stiffness : float or array_like
-        K_h [N/m^{3/2}], > 0.
-    yield_indentation : float or array_like
-        α_y [m], > 0.
-    impactor_mass : float or array_like
-        m_i [kg], > 0.
-    """
+    """Hertz contact frequency ``ω_h = sqrt(K_h α_y^{1/2}/m_i)`` [rad/s] (K_h [N/m^{3/2}], α_y [m], m_i [kg])."""
     require_positive("hertz_stiffness", hertz_stiffness, "N/m^1.5")
     require_positive("yield_indentation", yield_indentation, "m")
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -133,20 +85,7 @@ def hertz_frequency(hertz_stiffness, yield_indentation, impactor_mass):
 
 
 def impact_number(velocity, hertz_stiffness, yield_indentation, impactor_mass):
-    """Characteristic impact number ``β = V0/(ω_h α_y)`` [-] (seed 001 eqs 11–12).
-
-    Parameters
-    ----------
-    velocity : float or array_like
-        V0 [m/s], > 0.
-    hertz_stiffness, yield_indentation, impactor_mass : float or array_like
-        See :func:`hertz_frequency`.
-
-    Returns
-    -------
-    float or ndarray
-        β; the contact stays elastic (e = 1) for β ≤ sqrt(4/5) (docs/physics_contract.md §2).
-    """
+    """Impact number ``β = V0/(ω_h α_y)`` [-] of ``velocity`` V0 [m/s] (others as :func:`hertz_frequency`)."""
     require_positive("velocity", velocity, "m/s")
     omega_h = hertz_frequency(hertz_stiffness, yield_indentation, impactor_mass)
     return _array(velocity) / (omega_h * _array(yield_indentation))
@@ -164,15 +103,7 @@ def velocity_for_impact_number(impact_number, hertz_stiffness, yield_indentation
 # Relative stiffness
 # ---------------------------------------------------------------------------------
 def relative_stiffness(static_stiffness, contact_stiffness):
-    """Relative stiffness ``λ = K_st/K`` [-] (seed 001 eq 29).
-
-    Parameters
-    ----------
-    static_stiffness : float or array_like
-        Static point stiffness K_st of the target at the impact point [N/m], > 0.
-    contact_stiffness : float or array_like
-        Linear contact stiffness K [N/m], > 0.
-    """
+    """Relative stiffness ``λ = K_st/K`` [-] of ``static_stiffness`` K_st and ``contact_stiffness`` K [N/m]."""
     require_positive("static_stiffness", static_stiffness, "N/m")
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     return _array(static_stiffness) / _array(contact_stiffness)
@@ -189,22 +120,8 @@ def contact_stiffness_for_relative_stiffness(static_stiffness, relative_stiffnes
 # Loss factors
 # ---------------------------------------------------------------------------------
 def effective_plate_stiffness(D11, D22, D12, D66):  # noqa: N803 (CLT symbols)
-    """Effective plate stiffness ``D* = ½(D12 + 2 D66 + sqrt(D11 D22))`` [N·m] (seed 001 eq 31).
-
-    Parameters
-    ----------
-    D11, D22 : float or array_like
-        Bending stiffnesses [N·m], > 0.
-    D12 : float or array_like
-        Bending stiffness [N·m] (finite; may be negative for auxetic layups).
-    D66 : float or array_like
-        Twisting stiffness [N·m], > 0.
-
-    Returns
-    -------
-    float or ndarray
-        D* [N·m]; equals D for an isotropic plate. Must be > 0 (checked).
-    """
+    """Effective plate stiffness ``D* = ½(D12 + 2 D66 + sqrt(D11 D22))`` [N·m] of the
+    stiffnesses [N·m]; ``ValueError`` unless D* > 0."""
     require_positive("D11", D11, "N m")
     require_positive("D22", D22, "N m")
     require_finite("D12", D12, "N m")
@@ -220,19 +137,8 @@ def loss_factor_plate(impactor_mass, contact_stiffness, mass_per_area,
                       effective_bending_stiffness):
     """Plate loss factor ``ζ_p = (1/16) sqrt(m_i K/(ρh D*))`` [-] (seed 001 eq 34).
 
-    From the infinite-plate point mobility ``ẇ = F/(8 sqrt(ρh D*))`` (seed 001 eq 30),
-    the indentation obeys ``ᾱ'' + 2ζ_p ᾱ' + ᾱ = 0`` (eq 32).
-
-    Parameters
-    ----------
-    impactor_mass : float or array_like
-        m_i [kg], > 0.
-    contact_stiffness : float or array_like
-        K [N/m], > 0.
-    mass_per_area : float or array_like
-        ρh [kg/m²], > 0.
-    effective_bending_stiffness : float or array_like
-        D* [N·m], > 0 (:func:`effective_plate_stiffness`).
+    ``impactor_mass`` m_i [kg], ``contact_stiffness`` K [N/m], ``mass_per_area`` ρh [kg/m²],
+    ``effective_bending_stiffness`` D* [N·m], all > 0.
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("contact_stiffness", contact_stiffness, "N/m")
@@ -244,15 +150,8 @@ def loss_factor_plate(impactor_mass, contact_stiffness, mass_per_area,
 
 def impactor_mass_for_plate(loss_factor, contact_stiffness, mass_per_area,
                             effective_bending_stiffness):
-    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] giving the plate loss factor ζ (docs/physics_contract.md §4).
-
-    Parameters
-    ----------
-    loss_factor : float or array_like
-        ζ_p [-], > 0.
-    contact_stiffness, mass_per_area, effective_bending_stiffness : float or array_like
-        See :func:`loss_factor_plate`.
-    """
+    """Impactor mass ``m_i = 256 ζ² ρh D*/K`` [kg] for plate ``loss_factor`` ζ_p [-] (others as
+    :func:`loss_factor_plate`)."""
     require_positive("loss_factor", loss_factor)
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("mass_per_area", mass_per_area, "kg/m^2")
@@ -262,26 +161,11 @@ def impactor_mass_for_plate(loss_factor, contact_stiffness, mass_per_area,
 
 
 def loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length, bending_stiffness):
-    """Beam loss factor ``ζ_b = (1/(4 sqrt(2π))) (m_i/m')^{3/4} (K/(b D11))^{1/4}`` [-].
+    """Corrected beam loss factor ``ζ_b = (1/(4 sqrt(2π))) (m_i/m')^{3/4} (K/(b D11))^{1/4}`` [-].
 
-    This is the **corrected** loss factor of docs/physics_contract.md §1: with it the infinite
-    Euler-beam asymptote is exactly ``ᾱ'' + 2ζ_b ∫0^τ ᾱ'(s)/sqrt(τ−s) ds + ᾱ = 0``
-    (seed 001 eq 36). Seed 001's printed eq (38) is twice this value
-    (:func:`loss_factor_beam_paper`), because its eq (35) for the infinite-beam point
-    mobility lacks a factor 1/2: the exact kernel is
-    ``ẇ(t) = 1/(2 sqrt(2π) m' c^{1/2}) ∫ F(ξ)/sqrt(t−ξ) dξ``, ``c = sqrt(bD11/m')``,
-    whose frequency response is the textbook mobility ``(1 − i)/(4 m' c_B)``.
-
-    Parameters
-    ----------
-    impactor_mass : float or array_like
-        m_i [kg], > 0.
-    contact_stiffness : float or array_like
-        K [N/m], > 0.
-    mass_per_length : float or array_like
-        m' = ρbh [kg/m], > 0.
-    bending_stiffness : float or array_like
-        b D11 (= EI for an isotropic narrow beam) [N·m²], > 0.
+    ``impactor_mass`` m_i [kg], ``contact_stiffness`` K [N/m], ``mass_per_length`` m' [kg/m],
+    ``bending_stiffness`` bD11 [N·m²], all > 0. Half of seed 001's printed eq (38)
+    (docs/physics.rst).
     """
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("contact_stiffness", contact_stiffness, "N/m")
@@ -295,41 +179,21 @@ def loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length, bending_
 
 def loss_factor_beam_paper(impactor_mass, contact_stiffness, mass_per_length,
                            bending_stiffness):
-    """Beam loss factor as printed in seed 001 eq (38): ``2 ζ_b`` [-].
-
-    Provided only for comparison with the paper; impactmaps uses
-    :func:`loss_factor_beam` everywhere (see its docstring for the correction).
-    Parameters as :func:`loss_factor_beam`.
-    """
+    """Beam loss factor as printed in seed 001 eq (38), ``2 ζ_b`` [-] (comparison only; as
+    :func:`loss_factor_beam`)."""
     return 2.0 * loss_factor_beam(impactor_mass, contact_stiffness, mass_per_length,
                                   bending_stiffness)
 
 
 def zeta_beam_paper(loss_factor):
-    """The paper's printed beam loss factor (seed 001 eq 38) for a corrected ζ_b: ``2 ζ_b`` [-].
-
-    Parameters
-    ----------
-    loss_factor : float or array_like
-        Corrected beam loss factor ζ_b of :func:`loss_factor_beam` [-], > 0.
-    """
+    """The paper's printed beam loss factor ``2 ζ_b`` [-] for a corrected ``loss_factor`` ζ_b > 0."""
     require_positive("loss_factor", loss_factor)
     return 2.0 * _array(loss_factor)
 
 
 def impactor_mass_for_beam(loss_factor, contact_stiffness, mass_per_length,
                            bending_stiffness):
-    """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (b D11/K)^{1/3}`` [kg] (docs/physics_contract.md §4).
-
-    Inverse of :func:`loss_factor_beam` (the corrected ζ_b).
-
-    Parameters
-    ----------
-    loss_factor : float or array_like
-        ζ_b [-], > 0.
-    contact_stiffness, mass_per_length, bending_stiffness : float or array_like
-        See :func:`loss_factor_beam`.
-    """
+    """Impactor mass ``m_i = m' (4 sqrt(2π) ζ)^{4/3} (b D11/K)^{1/3}`` [kg] for beam ``loss_factor`` ζ_b [-]."""
     require_positive("loss_factor", loss_factor)
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("mass_per_length", mass_per_length, "kg/m")

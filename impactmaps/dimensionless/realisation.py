@@ -48,7 +48,7 @@ class Realisation:
     contact_frequency : float or ndarray
         ω = sqrt(K/m_i) [rad/s].
     loss_factor : float or ndarray
-        ζ [-] (structure type of the target).
+        ζ [-].
     relative_stiffness : float or ndarray
         λ = K_st/K [-].
     """
@@ -81,21 +81,8 @@ class Realisation:
 
 
 def realise(target, loss_factor, relative_stiffness) -> Realisation:
-    """The impactor mass and contact stiffness that give (ζ, λ) on ``target`` (docs/physics_contract.md §4).
-
-    ``K = K_st/λ`` with ``K_st = target.static_stiffness()``, then
-    ``m_i = target.impactor_mass_for(ζ, K)``; the target's own loss-factor formula
-    decides whether ζ is a plate or a beam loss factor.
-
-    Parameters
-    ----------
-    target : impactmaps.targets.Target
-        Any target (only ``static_stiffness``, ``impactor_mass_for`` and
-        ``loss_factor`` are used).
-    loss_factor : float or array_like
-        ζ [-], > 0.
-    relative_stiffness : float or array_like
-        λ [-], > 0. Broadcast against ``loss_factor``.
+    """The impactor mass and contact stiffness giving ``loss_factor`` ζ and ``relative_stiffness``
+    λ (> 0 [-], broadcast) on ``target``: ``K = K_st/λ``, ``m_i = target.impactor_mass_for(ζ, K)``.
 
     Returns
     -------
@@ -104,8 +91,7 @@ def realise(target, loss_factor, relative_stiffness) -> Realisation:
     Raises
     ------
     RuntimeError
-        If ``target.loss_factor(m_i, K)`` does not return ζ (to 1e-9 relative): the
-        target's two formulas are not inverse to each other.
+        If the target's loss-factor formulas are not inverse to each other (1e-9 relative).
     """
     require_positive("loss_factor", loss_factor)
     require_positive("relative_stiffness", relative_stiffness)
@@ -132,18 +118,8 @@ def realise(target, loss_factor, relative_stiffness) -> Realisation:
 # Simply supported Euler beam struck at mid-span: (ζ, λ) fix everything
 # ---------------------------------------------------------------------------------
 def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
-    """Mass ratio ``μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}`` [-] (docs/physics_contract.md §4).
-
-    For a simply supported Euler–Bernoulli beam struck at mid-span
-    (``K_st = 48 EI/L³``) with the corrected beam loss factor ζ_b.
-
-    Parameters
-    ----------
-    loss_factor : float or array_like
-        ζ_b [-], > 0.
-    relative_stiffness : float or array_like
-        λ [-], > 0.
-    """
+    """Mass ratio ``μ = m_i/(m'L) = (4 sqrt(2π) ζ (λ/48)^{1/4})^{4/3}`` [-] of the mid-span SS
+    Euler beam, for ζ_b, λ > 0 [-]."""
     require_positive("loss_factor", loss_factor)
     require_positive("relative_stiffness", relative_stiffness)
     return (BEAM_LOSS_CONSTANT * _array(loss_factor)
@@ -151,34 +127,14 @@ def ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness):
 
 
 def ss_euler_beam_midspan_frequency_ratio(loss_factor, relative_stiffness):
-    """First beam frequency over contact frequency, ``ω_1/ω = sqrt(π⁴ μ λ/48)`` [-] (docs/physics_contract.md §4).
-
-    ``ω_1 = π² sqrt(EI/(m' L⁴))``; μ from :func:`ss_euler_beam_midspan_mass_ratio`.
-
-    Parameters
-    ----------
-    loss_factor : float or array_like
-        ζ_b [-], > 0.
-    relative_stiffness : float or array_like
-        λ [-], > 0.
-    """
+    """First beam frequency over contact frequency ``ω_1/ω = sqrt(π⁴ μ λ/48)`` [-] (mid-span SS
+    Euler beam; ζ_b, λ > 0 [-])."""
     mu = ss_euler_beam_midspan_mass_ratio(loss_factor, relative_stiffness)
     return np.sqrt(math.pi**4 * mu * _array(relative_stiffness) / 48.0)
 
 
 def ss_euler_beam_midspan_loss_factor(mass_ratio, relative_stiffness):
-    """Loss factor ζ_b of the mid-span SS Euler beam from ``μ = m_i/(m'L)`` and λ [-].
-
-    Inverse of :func:`ss_euler_beam_midspan_mass_ratio`:
-    ``ζ_b = μ^{3/4} / (4 sqrt(2π) (λ/48)^{1/4})``.
-
-    Parameters
-    ----------
-    mass_ratio : float or array_like
-        μ [-], > 0.
-    relative_stiffness : float or array_like
-        λ [-], > 0.
-    """
+    """Loss factor ζ_b [-] of the mid-span SS Euler beam from ``mass_ratio`` μ and λ (> 0 [-])."""
     require_positive("mass_ratio", mass_ratio)
     require_positive("relative_stiffness", relative_stiffness)
     return (_array(mass_ratio) ** 0.75

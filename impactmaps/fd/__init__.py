@@ -1,13 +1,7 @@
 """Finite-difference Rayleigh beam with a layered elastic-plastic cross-section (seed 000).
 
-:mod:`.beam` — the beam (:class:`FDBeam`) and the run options (:class:`FDSettings`);
-:mod:`.section` — the layered section (stress update, moment, moment–curvature);
-:mod:`.grid` — grid operators, supports, factorisation, the stability bound;
-:mod:`._loop` — the compiled time loop (peak refinement shared with the modal solver, :mod:`impactmaps.solvers._peak`);
-:mod:`.energy` — the energy ledger; :mod:`.residual` — the permanent deflection;
-:mod:`.timestep` — stability limit and default step (:func:`stable_time_step`);
-:mod:`.impact` — the impact solver :func:`simulate_fd`;
-:mod:`.response` — the prescribed-load solver :func:`simulate_fd_response`.
+:func:`simulate_fd` (impact), :func:`simulate_fd_response` (prescribed load),
+:class:`FDBeam`, :class:`FDSettings`, :func:`stable_time_step`. Model: docs/fd_beam.rst.
 """
 
 from .beam import FDBeam, FDSettings

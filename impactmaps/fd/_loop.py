@@ -1,25 +1,8 @@
 """The compiled time loop of the finite-difference beam (numba; private numerics).
 
-Time: central differences in velocity form,
-``(M_mass + ½Δt C_d) v^{n+½} = (M_mass − ½Δt C_d) v^{n−½} + Δt (f_ext^n − f_int(w^n))``,
-``w^{n+1} = w^n + Δt v^{n+½}``: one tridiagonal solve per step with a matrix factorised
-once (LDLᵀ, :func:`impactmaps.fd.grid.factorise`). The sphere is a rigid body advanced by
-the same scheme, ``m (v_s^{n+½} − v_s^{n−½}) = Δt (−F^n + m g)``;
-``F^n = law(α^n = u^n − w_k^n; α_max)`` with ``α_max`` the largest earlier indentation,
-updated after each step.
-
-The loop takes its inputs as numba-compatible named tuples — :class:`LoopGrid`,
-:class:`LoopSection`, :class:`LayerState`, :class:`Drive`, :class:`Stepping`,
-:class:`Records` — mutates the arrays they hold (state and records) and returns a
-:class:`LoopResult`. The contact kernel is passed as the first-class function type
-``KERNEL_TYPE`` (a function pointer, :mod:`impactmaps.contact.base`), not as a
-dispatcher, so one compiled loop serves every law and numba's on-disk cache works across
-processes. :func:`run_loop` allocates the state and records and calls the loop.
-
-The helpers are compiled with ``inline="always"``: numba inlines them into
-:func:`_integrate` at the IR level, so the loop is compiled once as one function (a cold
-compile is no slower than the former single 46-argument function) and the floating-point
-operations run in the same order as before.
+Central differences in velocity form with one factorised tridiagonal solve per step; the
+contact kernel is passed as a function pointer (``KERNEL_TYPE``), so one compiled loop
+serves every law. :func:`run_loop` allocates state and records. Scheme: docs/fd_beam.rst.
 """
 
 from __future__ import annotations
@@ -31,7 +14,7 @@ import numba
 import numpy as np
 
 from ..contact.base import KERNEL_TYPE
-from ..solvers._peak import parabolic_peak
+from ..solvers.integrator._peak import parabolic_peak
 from .grid import factorise
 from .section import return_map
 
@@ -109,10 +92,7 @@ def _curvatures(w, stencil, inv_dx2, out):
 def _section_moments(section, layers, section_weight, curvature, old_curvature, moment):
     """Update every node's section to the new curvature; return Σ c_j ΔW_p,j [J/m].
 
-    Fast path: a node that has never yielded (``virgin``) has the elastic layer stresses
-    ``σ_i = −E z_i κ`` exactly, so while its outermost layer stays below yield its moment
-    is ``−E I_h κ`` and the layers are not touched; they are filled in (at the old
-    curvature) the step the node first yields, and by :func:`_materialise` at the end.
+    Never-yielded nodes stay on an elastic fast path until they yield.
     """
     z = section.z
     youngs_modulus = section.youngs_modulus
@@ -278,9 +258,8 @@ def _record(records, index, t, force, alpha, u, vs, w, vk, node, curvature):
 
 @numba.njit(cache=True, inline="always")
 def _close_ledger(grid, section, layers, w, curvature, moment, new_curvature):
-    """Internal work of the last half step at t_N; returns (elastic energy before the last
-    step, half-step work Σ ½ c Δx (−M) Δκ, last plastic increment) and advances the
-    section (``curvature``, layers) to ``w``."""
+    """Internal work of the last half step: (elastic energy before it, half-step work,
+    last plastic increment); advances the section to ``w``."""
     n = w.shape[0]
     dx = grid.dx
     _materialise(section, layers, curvature)
@@ -302,10 +281,8 @@ def _close_ledger(grid, section, layers, w, curvature, moment, new_curvature):
 # =====================================================================================
 @numba.njit(_INTEGRATE_SIGNATURE, cache=True)
 def _integrate(kernel, params, grid, section, layers, drive, stepping, w, v, records):
-    """March ``stepping.n_steps`` steps from (w⁰, v^{−½}); ``w``, ``v``, ``layers`` and
-    ``records`` are updated in place. One straight loop (the helpers are inlined) whose
-    scalar state lives in local variables; the ledger's accumulators follow the exact
-    discrete identities of the scheme (module notes of :mod:`impactmaps.fd.energy`)."""
+    """March ``stepping.n_steps`` steps from (w⁰, v^{−½}), updating ``w``, ``v``, ``layers``
+    and ``records`` in place."""
     n = w.shape[0]
     dt, dx, node = stepping.dt, grid.dx, drive.node
     inv_dx2 = 1.0 / (dx * dx)
@@ -412,34 +389,12 @@ def _loop_section(beam):
 
 def run_loop(beam, grid, kernel, params, drive: Drive, stepping: Stepping, w0, v0,
              gauge_left, gauge_weight):
-    """Run the compiled loop from ``(w0, v0)`` and return its outputs.
+    """Run the compiled loop on ``beam`` and its ``grid`` from ``w0`` [m] and ``v0`` (v^{−½}) [m/s].
 
-    Parameters
-    ----------
-    beam : FDBeam
-        The beam (section constants).
-    grid : impactmaps.fd.grid.Grid
-        Its grid.
-    kernel, params
-        Contact kernel (a numba function of ``(α, α_max, params)``) and its 1-D float
-        parameters.
-    drive : Drive
-        Sphere and/or prescribed load at ``drive.node``.
-    stepping : Stepping
-        Δt [s], number of steps, history stride.
-    w0, v0 : ndarray
-        Initial deflection [m] and velocity v^{−½} [m/s] of every node (copied).
-    gauge_left, gauge_weight : ndarray
-        Gauge interpolation (:func:`impactmaps.fd.grid.gauge_weights`).
-
-    Returns
-    -------
-    result : LoopResult
-        Scalars of the run (``records``: number of recorded steps) and final curvature.
-    state : dict
-        ``w``, ``v`` (v^{N−½}), ``stress``, ``back``, ``constraint``, ``plastic_strain``,
-        ``plastic_work_node``, ``records`` (a :class:`Records`) and ``intervals`` (the
-        contact intervals kept, shape (k, 2)) [SI].
+    ``kernel``/``params``: the contact kernel and its parameters; ``drive``: sphere and/or
+    prescribed load; ``stepping``: Δt [s], step count, stride; ``gauge_left``,
+    ``gauge_weight``: :func:`impactmaps.fd.grid.gauge_weights`. Returns the
+    :class:`LoopResult` and a dict of the final state and records [SI].
     """
     section = _loop_section(beam)
     n = grid.n_nodes

@@ -1,25 +1,7 @@
-"""The beam of the finite-difference solver and the solver's settings (seed 000).
+"""The beam of the finite-difference solver (:class:`FDBeam`) and the run options (:class:`FDSettings`).
 
-:class:`FDBeam` holds a uniform rectangular beam (material, section, supports, grid and
-section resolution, damping); :class:`FDSettings` the numerical options of a run, so that
-a toolkit :class:`~impactmaps.targets.beam.Beam` plus settings describes a
-finite-difference case (:meth:`FDBeam.from_beam`).
-
-Equation (spec section 5, with the sign of the moment term made consistent — see below)
---------------------------------------------------------------------------------------
-::
-
-    ρA ẅ − ρI ẅ'' + C ẇ − M'' = p(x, t),    M = b ∫ σ z dz,    ε = −z w''
-
-``w`` and ``z`` point in the impact direction; ``M`` is the sagging moment
-(:mod:`impactmaps.fd.section`), so in the elastic range ``M = −EI w''`` and the equation is
-the Rayleigh beam ``ρA ẅ − ρI ẅ'' + C ẇ + EI w'''' = p``. (docs/physics_contract.md §5 writes ``+M''``
-together with ``M = b∫σz dz`` and ``ε = −z w''``; those three statements give
-``ρA ẅ − EI w'''' = p``, which is ill-posed. ``+M''`` is right only for the hogging
-moment ``M = EI w''``. The static test ``PL³/(48EI)`` pins the sign used here.)
-Shear deformation is not modelled (Rayleigh theory: no shear deflection). The grid and
-the boundary conditions are described in :mod:`impactmaps.fd.grid`, the time scheme in
-:mod:`impactmaps.fd._loop`, the energy ledger in :mod:`impactmaps.fd.energy`.
+A Rayleigh beam with a layered section; equation, sign of the moment term and boundary
+conditions: docs/fd_beam.rst.
 """
 
 from __future__ import annotations
@@ -36,7 +18,7 @@ from .._checks import (
     require_nonnegative,
     require_positive,
 )
-from ..targets.beam import Beam
+from ..targets.beams.beam import Beam
 from .grid import beam_grid
 from .section import LayeredSection
 from .wide_section import constraint_parameters
@@ -44,7 +26,7 @@ from .wide_section import constraint_parameters
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
 
 _SUPPORTS = ("ss", "cc", "free")
-#: Support codes of :class:`impactmaps.targets.beam.Beam` as (left, right) FDBeam ends.
+#: Support codes of :class:`impactmaps.targets.beams.beam.Beam` as (left, right) FDBeam ends.
 SUPPORT_ENDS = {"ss": ("ss", "ss"), "cc": ("cc", "cc"), "cs": ("cc", "ss"),
                 "cf": ("cc", "free"), "ff": ("free", "free")}
 #: FDSettings fields that belong to the FDBeam (grid, section, damping).
@@ -76,27 +58,19 @@ class FDBeam:
     hardening_modulus : float, optional
         Linear kinematic plastic modulus H [Pa] (0: elastic–perfectly plastic).
     damping_per_length : float, optional
-        Viscous damping coefficient per unit length C [N s/m²] (≥ 0).
+        Viscous damping per unit length C [N s/m²] (≥ 0).
     supports : str or (str, str), optional
-        ``"ss"`` (simply supported, default), ``"cc"`` (clamped) or ``"free"``, for both
-        ends or as a (left, right) pair.
+        ``"ss"`` (default), ``"cc"`` or ``"free"``, for both ends or a (left, right) pair.
     n_elements : int, optional
-        Number of grid intervals N_l along the span (≥ 4, default 200).
+        Grid intervals N_l along the span (≥ 4, default 200).
     n_half_layers : int, optional
         N_h, half the number of section layers (≥ 2, default 10).
     plastic : bool, optional
-        Layered elastic-plastic section if True (default). If False the section is
-        linear elastic with the exact ``EI = E b h³/12`` (no layers; the plastic work is
-        identically zero) — the model to compare with modal solutions.
+        Layered elastic-plastic section (default); False: linear elastic, exact EI.
     poisson_ratio : float, optional
-        ν [-], not used by the beam; kept so that the beam can serve as the target
-        material of a contact law, e.g. ``law_for_sphere("stronge", sphere, beam)``
-        (default 0.3).
+        ν [-], unused by the beam; for contact laws taking it as target (default 0.3).
     width_constraint : bool, optional
-        If True (default) a section wider than it is deep gets the wide-section model of
-        :mod:`impactmaps.fd.wide_section` (the plastic hinge held across the width,
-        calibrated on 3D finite elements for 1 < b/h ≤ 8.6); for b/h ≤ 1 it changes
-        nothing. False: the uniaxial layered section at every width.
+        Wide-section model for b/h > 1 (:mod:`impactmaps.fd.wide_section`, default True).
     """
 
     length: float
@@ -139,18 +113,8 @@ class FDBeam:
 
     @classmethod
     def from_material(cls, length, width, height, material, **options) -> FDBeam:
-        """Build from a material object.
-
-        Parameters
-        ----------
-        length, width, height : float
-            L, b, h [m].
-        material : material-like
-            Duck-typed: ``youngs_modulus`` [Pa], ``density`` [kg/m³], ``yield_strength``
-            [Pa] and ``poisson_ratio`` [-].
-        **options
-            Any other :class:`FDBeam` field.
-        """
+        """Build from ``length``, ``width``, ``height`` [m] and a material (``youngs_modulus`` [Pa],
+        ``density`` [kg/m³], ``yield_strength`` [Pa], ``poisson_ratio``); ``**options``: other fields."""
         values = {}
         for attribute in ("youngs_modulus", "density", "yield_strength", "poisson_ratio"):
             try:
@@ -170,32 +134,18 @@ class FDBeam:
 
     @classmethod
     def from_beam(cls, beam, material, settings: FDSettings | None = None) -> FDBeam:
-        """The finite-difference model of a toolkit beam.
+        """The finite-difference model of a rectangular isotropic toolkit ``beam`` of ``material``.
 
-        Parameters
-        ----------
-        beam : impactmaps.targets.beam.Beam
-            A rectangular isotropic beam (:meth:`Beam.rectangular
-            <impactmaps.targets.beam.Beam.rectangular>`): length, width, height and
-            ``supports`` (``"ss"``, ``"cc"``, ``"cs"`` = clamped at x = 0 and simply
-            supported at x = L, ``"cf"`` = cantilever clamped at x = 0, ``"ff"``) are
-            taken from it. Its ``theory`` and ``damping_ratio`` are not used (the model is
-            a Rayleigh beam; damping is ``settings.damping_per_length``).
-        material : material-like
-            Its material, as for :meth:`from_material` (the yield strength is needed).
-        settings : FDSettings, optional
-            Grid and section options (``n_elements``, ``n_half_layers``, ``plastic``,
-            ``hardening_modulus``, ``damping_per_length``; ``None`` fields keep the
-            :class:`FDBeam` defaults).
+        Geometry and supports come from the beam (``theory`` and ``damping_ratio`` are not
+        used); ``settings`` (:class:`FDSettings`) sets grid and section options.
 
         Raises
         ------
         ValueError
-            If ``beam`` is not a rectangular beam of ``material`` (EI ≠ E b h³/12 or
-            ρA ≠ ρ b h by more than 1e-9 relative, e.g. a laminate beam).
+            If ``beam`` is not a rectangular beam of ``material`` (e.g. a laminate).
         """
         if not isinstance(beam, Beam):
-            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beam.Beam")
+            raise ValueError(f"beam = {beam!r} is not an impactmaps.targets.beams.beam.Beam")
         if beam.width is None or beam.height is None:
             raise ValueError("beam.width and beam.height are None: FDBeam.from_beam needs a "
                              "rectangular beam (Beam.rectangular)")
@@ -235,8 +185,7 @@ class FDBeam:
 
     @property
     def bending_stiffness(self) -> float:
-        """Elastic EI of the model [N m²]: exact if ``plastic=False``, else the layered
-        (midpoint-rule) ``E I (1 − 1/(4N_h²))``."""
+        """Elastic EI of the model [N m²] (layered ``E I (1 − 1/(4N_h²))`` if plastic)."""
         if self.plastic:
             return self.youngs_modulus * self.section.layered_second_moment
         return self.youngs_modulus * self.second_moment
@@ -267,10 +216,7 @@ class FDBeam:
         return np.linspace(0.0, self.length, self.n_elements + 1)
 
     def rayleigh_frequency(self, wavenumber):
-        """Rayleigh-beam dispersion ω(k) = sqrt(EI k⁴/(ρA + ρI k²)) [rad/s] (exact EI).
-
-        For simply supported ends ``k = nπ/L`` gives the natural frequencies.
-        """
+        """Rayleigh-beam dispersion ω(k) = sqrt(EI k⁴/(ρA + ρI k²)) [rad/s] at wavenumber k [1/m]."""
         k = np.asarray(wavenumber, dtype=float)
         ei = self.youngs_modulus * self.second_moment
         return np.sqrt(ei * k**4 / (self.mass_per_length + self.rotary_inertia_per_length * k**2))
@@ -288,11 +234,7 @@ class FDBeam:
         return self.rayleigh_frequency(np.asarray(mode, dtype=float) * np.pi / self.length)
 
     def static_point_compliance(self, position=None) -> float:
-        """Static deflection per unit point load at ``position`` [m/N], SS ends only.
-
-        ``a² b²/(3 E I L)`` with ``a = x0``, ``b = L − x0`` (Rayleigh = Euler statics;
-        exact EI). Default position: mid-span (``L³/(48EI)``).
-        """
+        """Static deflection per unit point load at ``position`` [m/N] (default mid-span), SS ends only."""
         if self.supports != ("ss", "ss"):
             raise ValueError(f"supports = {self.supports!r}: static_point_compliance needs ('ss', 'ss')")
         x0 = 0.5 * self.length if position is None else float(position)
@@ -302,13 +244,7 @@ class FDBeam:
         )
 
     def stability_limit(self) -> float:
-        """Stable central-difference step of the beam alone, ``2/sqrt(λ*)`` [s].
-
-        λ* is the rigorous upper bound of the highest grid frequency squared
-        (:func:`grid_frequency_bound`; ≤ 1.2 % above the exact value for N_l ≥ 50), so
-        the step is safe for every support combination; for a Rayleigh beam it tends to
-        ``Δx/c_0``, ``c_0 = sqrt(E/ρ)`` (bar-wave CFL) when ``Δx ≪ h``.
-        """
+        """Stable central-difference step of the beam alone, ``2/sqrt(λ*)`` [s] (:func:`grid_frequency_bound`)."""
         return 2.0 / math.sqrt(beam_grid(self).max_eigenvalue)
 
 
@@ -322,19 +258,17 @@ class FDSettings:
     Parameters
     ----------
     n_elements, n_half_layers, plastic, hardening_modulus, damping_per_length, width_constraint : optional
-        Grid and section options of the :class:`FDBeam` (see there). ``None`` (default):
-        the FDBeam default, or the value of the FDBeam given to the solver; a value
-        replaces it.
+        See :class:`FDBeam`; ``None`` (default) keeps the beam's value.
     gravity : bool, optional
         Standard gravity on the sphere (default False).
     safety_factor : float, optional
         Fraction (0, 1] of the stability limit used by the default step (0.8).
     time_step : float, optional
-        Forced Δt [s] (> 0; at most the stability limit, checked by the solver).
+        Forced Δt [s] (> 0, at most the stability limit).
     history_stride : int, optional
         Record every ``history_stride``-th step (≥ 1, default 1).
     gauge_positions : sequence of float, optional
-        Gauge positions [m] (≥ 0; at most the span, checked by the solver).
+        Gauge positions [m] (in [0, span]).
     duration : float, optional
         Simulated time [s] (> 0); required by :func:`~impactmaps.fd.simulate_fd`.
     """
@@ -375,12 +309,7 @@ class FDSettings:
 
 
 def _checked_beam_options(options) -> dict:
-    """The grid and section options (an FDBeam or a dict of those set) checked and typed.
-
-    One check for :class:`FDBeam` and :class:`FDSettings`: integers ``n_elements ≥ 4``
-    and ``n_half_layers ≥ 2``, ``hardening_modulus`` [Pa] and ``damping_per_length``
-    [N s/m²] ≥ 0, ``plastic`` and ``width_constraint`` booleans.
-    """
+    """The grid and section options (an FDBeam or a dict) checked and typed (``ValueError`` otherwise)."""
     values = options if isinstance(options, dict) else {n: getattr(options, n) for n in _BEAM_OPTIONS}
     out = {}
     for name, low in (("n_elements", 4), ("n_half_layers", 2)):

@@ -1,14 +1,7 @@
 """The energy ledger of the finite-difference beam.
 
-With half-step kinetic energies the central-difference scheme (:mod:`impactmaps.fd._loop`)
-satisfies a discrete energy identity exactly, the strain-energy/plastic-work split of the
-section is exact (trapezoidal plastic work, :mod:`impactmaps.fd.section`), and the contact
-energies are the law's own (``law.dissipated_energy``, ``law.permanent_indentation`` at
-its ``α_max``). The ledger therefore closes up to the O(Δt²) difference between the
-discrete contact work ``Σ F^n (α^{n+1} − α^{n−1})/2`` (kept as the diagnostic
-``contact_work_discrete``) and the law's ``∫F dα`` — 1e-6 … 4e-5 of the impact energy in
-the tests (roundoff without contact). It is a genuine check: a support stencil
-inconsistent with the energy, or a wrong internal-force sign, breaks it.
+Discrete kinetic, elastic and plastic energies of the beam and the law's contact
+energies; the ledger closes to O(Δt²) (docs/fd_beam.rst).
 """
 
 from __future__ import annotations
@@ -25,8 +18,7 @@ _VEC = numba.types.Array(numba.types.float64, 1, "C")
 
 @numba.njit(numba.types.UniTuple(_VEC, 2)(KERNEL_TYPE, _VEC, _VEC, _VEC), cache=True)
 def kernel_curve(kernel, params, alpha, alpha_max):
-    """Force and tangent stiffness of a kernel along (α, α_max) pairs (function-pointer
-    version of :func:`impactmaps.contact.evaluate_kernel`, compiled once for all laws)."""
+    """Force [N] and tangent stiffness [N/m] of a kernel along (α, α_max) pairs [m]."""
     force = np.empty(alpha.shape[0])
     stiffness = np.empty(alpha.shape[0])
     for i in range(alpha.shape[0]):
@@ -43,13 +35,8 @@ def kinetic_energy(grid, v) -> float:
 
 
 def beam_energies(grid, result, v) -> dict:
-    """Beam kinetic and elastic energy and plastic work [J] at the end of a run.
-
-    ``result`` is the loop's :class:`~impactmaps.fd._loop.LoopResult`, ``v`` the final
-    half-step velocities. The plastic work is taken through step N−1 plus half of the last
-    increment (the ledger is taken at t_{N−½}); the elastic energy is the exact discrete
-    internal work ``Σ f_int^n·(w^{n+1} − w^{n−1})/2`` minus that plastic work.
-    """
+    """Beam kinetic and elastic energy and plastic work [J] at t_{N−½} from the loop's result
+    and final half-step velocities ``v`` [m/s]."""
     before_last = result.plastic_work - result.last_plastic_increment
     plastic = before_last + 0.5 * result.last_plastic_increment
     internal = result.elastic_energy_before_last + before_last + result.half_step_work
@@ -59,8 +46,7 @@ def beam_energies(grid, result, v) -> dict:
 
 
 def _unloading_work(law: ContactLaw, params, low, high, alpha_max, points=20001) -> float:
-    """∫ F dα [J] from ``low`` to ``high`` on the unloading curve leaving ``alpha_max``
-    (trapezoidal rule on the kernel, ``points`` nodes)."""
+    """∫ F dα [J] from ``low`` to ``high`` on the unloading curve from ``alpha_max`` (trapezoid)."""
     if high <= low:
         return 0.0
     alpha = np.linspace(low, high, points)
@@ -70,14 +56,8 @@ def _unloading_work(law: ContactLaw, params, low, high, alpha_max, points=20001)
 
 
 def contact_energies(law: ContactLaw, alpha_max, alpha_now=None) -> dict:
-    """Contact-zone energies at the law's history ``alpha_max`` [m].
-
-    Returns ``permanent_indentation`` α_f = ``law.permanent_indentation(α_max)`` [m],
-    ``dissipation`` = ``law.dissipated_energy(α_max)`` [J] (loading work minus the work
-    recovered unloading to α_f) and ``stored`` [J], the work recoverable from the current
-    indentation ``alpha_now`` on the unloading curve (0 when separated; integrated from the
-    kernel, 20001-point trapezoid).
-    """
+    """Contact energies at ``alpha_max`` [m]: ``permanent_indentation`` [m], ``dissipation`` [J]
+    and ``stored`` [J] (recoverable from ``alpha_now``)."""
     if alpha_max <= 0.0:
         return dict(permanent_indentation=0.0, dissipation=0.0, stored=0.0)
     floor = float(law.permanent_indentation(alpha_max))
@@ -91,30 +71,9 @@ def contact_energies(law: ContactLaw, alpha_max, alpha_now=None) -> dict:
 
 def impact_ledger(law: ContactLaw, grid, result, v, impactor_mass, velocity,
                   separation_velocity):
-    """The energy ledger of an impact run [J] and the contact energies.
-
-    Parameters
-    ----------
-    law : ContactLaw
-        The contact law of the run.
-    grid : impactmaps.fd.grid.Grid
-        The beam's grid.
-    result : LoopResult
-        The loop's scalars.
-    v : ndarray
-        Final half-step nodal velocities [m/s].
-    impactor_mass, velocity : float
-        m [kg], V0 [m/s].
-    separation_velocity : float
-        Sphere velocity at the last separation [m/s] (nan if none).
-
-    Returns
-    -------
-    energy : dict
-        The ledger described in :class:`~impactmaps.fd.impact.FDDetails`.
-    contact : dict
-        :func:`contact_energies` at the run's α_max.
-    """
+    """The energy ledger [J] of an impact run (:class:`~impactmaps.fd.impact.FDDetails`) and
+    :func:`contact_energies`, from the final velocities ``v`` [m/s], m [kg], V0 and the
+    ``separation_velocity`` [m/s]."""
     impact_energy = 0.5 * impactor_mass * velocity**2
     contact = contact_energies(law, result.alpha_max,
                                result.final_alpha if result.in_contact else None)

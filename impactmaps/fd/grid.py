@@ -1,32 +1,7 @@
 """The finite-difference grid of the Rayleigh beam: operators, factorisation, stability.
 
-Space: nodes ``x_j = j Δx``, ``Δx = L/N_l``, curvature ``κ_j = (w_{j−1} − 2w_j + w_{j+1})/Δx²``,
-moment from the section at each node, ``M''`` by the same second difference. Written as a
-Lagrangian system: the nodal equations are ``M_mass ẅ + C_d ẇ + f_int(w) = f_ext`` with
-
-* ``f_int = ∂U/∂w``, ``U = Σ_j c_j Δx u(κ_j)`` (``u`` the section energy per length,
-  ``∂u/∂κ = −M``), i.e. ``f_int,m = −(M_{m−1} − 2M_m + M_{m+1})/Δx`` at interior nodes;
-* ``M_mass = ρA Δx diag(m_j) + (ρI/Δx) T``: translational mass (``m_j = 1``, ½ at an end
-  node) plus rotary inertia from the slopes of the ``N_l`` intervals
-  (``½ ρI Σ Δx ((ẇ_{j+1} − ẇ_j)/Δx)²``), ``T`` the tridiagonal ``(−1, 2, −1)`` matrix with
-  one fewer interval at each end — a tridiagonal SPD matrix;
-* ``C_d = C Δx diag(m_j)``; the contact force is a **nodal point load** on the node nearest
-  the impact point (``p = F/Δx`` over that node's tributary length, as in the modal
-  solver's point load).
-
-Boundary conditions, exactly as implemented (per end):
-
-* ``"ss"`` — ``w_0 = 0`` (node removed from the unknowns) and ``M_0 = 0`` (no section at
-  the support node: ``c_0 = 0``). Equivalent to the antisymmetric ghost ``w_{−1} = −w_1``.
-* ``"cc"`` — ``w_0 = 0`` and ``w'_0 = 0`` through the symmetric ghost ``w_{−1} = w_1``:
-  ``κ_0 = 2 w_1/Δx²``, the support section counts with half its tributary length
-  (``c_0 = ½``). Its moment enters node 1 as ``−M_0/Δx``, the standard ghost-node stencil.
-* ``"free"`` — ``M_0 = 0`` (``c_0 = 0``) and ``Q_0 = 0`` through the ghosts
-  ``M_{−1} = M_1`` and ``ẅ_{−1} = ẅ_1`` (the central difference of the Rayleigh shear
-  force ``Q = M' + ρI ẅ'``, from ``ρA ẅ − (M' + ρI ẅ')' = p``, vanishes at the end
-  node); the full-node equation with these ghosts
-  is exactly the half-mass equation ``(ρAΔx/2) ẅ_0 + (ρI/Δx)(ẅ_0 − ẅ_1) = M_1/Δx``
-  produced by the Lagrangian form.
+Nodal equations ``M_mass ẅ + C_d ẇ + f_int(w) = f_ext`` with supports ``"ss"``, ``"cc"``
+or ``"free"``; stencils and boundary conditions: docs/fd_beam.rst.
 """
 
 from __future__ import annotations
@@ -55,12 +30,9 @@ __all__ = [
 class Grid:
     """The grid operators of an :class:`~impactmaps.fd.beam.FDBeam` (built once per beam).
 
-    Attributes: ``n_nodes``; ``dx`` [m]; ``constrained`` (bool per node); the weights
-    ``mass_weight`` (m_j) and ``section_weight`` (c_j); ``stencil`` (3, n), the curvature
-    coefficients (left, centre, right) to be divided by Δx²; the tridiagonal mass matrix
-    ``mass_diag``/``mass_off`` [kg]; ``damping_diag`` [N s/m]; ``max_eigenvalue`` λ*
-    [rad²/s²] (:func:`grid_frequency_bound`); ``stiffness_banded`` (3, n), the upper band
-    of the elastic stiffness K [N/m] with the model's EI.
+    Attributes: ``n_nodes``; ``dx`` [m]; ``constrained``; ``mass_weight``, ``section_weight``;
+    ``stencil`` (3, n) [1/Δx²]; ``mass_diag``/``mass_off`` [kg]; ``damping_diag`` [N s/m];
+    ``max_eigenvalue`` λ* [rad²/s²]; ``stiffness_banded`` (3, n) [N/m].
     """
 
     n_nodes: int
@@ -101,21 +73,7 @@ class Grid:
 
 
 def grid_frequency_bound(beam) -> float:
-    """Rigorous upper bound of the highest grid frequency squared, λ* [rad²/s²].
-
-    ``λ* = 16 EI / (Δx⁴ (ρA + 4ρI/Δx²))`` — the symbol of the interior operator at the
-    grid Nyquist wavenumber. Proof that ``wᵀKw ≤ λ* wᵀMw`` for every support
-    combination: with ``S = Σ c_j (Δx² κ_j)²``, ``T = Σ_intervals (Δw)²``,
-    ``P = Σ m_j w_j²``, the inequality ``(a − b)² ≤ 2a² + 2b²`` and the fact that each
-    interval enters at most two curvatures with total weight ≤ 4 (also at a clamped end,
-    where ``c_0 = ½`` and ``Δx²κ_0 = 2Δw``) give ``S ≤ 4T``; each node enters at most two
-    intervals, and an end node (mass weight ½) only one, so ``T ≤ 4P``. Hence
-    ``wᵀKw = (EI/Δx³) S ≤ (EI/Δx³) 4T`` and
-    ``wᵀMw = ρAΔx P + (ρI/Δx) T ≥ (ρAΔx/4 + ρI/Δx) T``, whose ratio is λ*. For simple
-    supports the bound exceeds the true top eigenvalue by a factor
-    ``1/sin⁴((N_l − 1)π/(2N_l))`` to leading order (1.2 % at N_l = 50, 0.05 % at 200).
-    The model's elastic EI is used (the largest tangent: layers unload elastically).
-    """
+    """Rigorous upper bound λ* [rad²/s²] of the highest grid frequency squared (proof: docs/fd_beam.rst)."""
     dx = beam.grid_spacing
     return 16.0 * beam.bending_stiffness / (
         dx**4 * (beam.mass_per_length + 4.0 * beam.rotary_inertia_per_length / dx**2))
@@ -129,9 +87,7 @@ LAYER_ARRAYS = 4
 
 
 def require_grid_fits(beam) -> None:
-    """Refuse (``ValueError`` naming ``n_elements`` and ``n_half_layers``) a grid whose state
-    would not fit in the run budget's memory (:data:`impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`),
-    before anything is allocated."""
+    """Refuse (``ValueError`` naming ``n_elements`` and ``n_half_layers``) a grid too large for memory."""
     from ..solvers.run_budget import MEMORY_LIMIT_BYTES
 
     nodes, layers = beam.n_elements + 1.0, 2.0 * beam.n_half_layers
@@ -145,8 +101,7 @@ def require_grid_fits(beam) -> None:
 
 @functools.lru_cache(maxsize=64)
 def beam_grid(beam) -> Grid:
-    """The :class:`Grid` of an FDBeam (cached: the beam is frozen and hashable); a grid too
-    large for memory is refused first (:func:`require_grid_fits`)."""
+    """The :class:`Grid` of an FDBeam (cached; a grid too large for memory is refused first)."""
     require_grid_fits(beam)
     n_el = beam.n_elements
     n = n_el + 1
@@ -207,11 +162,7 @@ def factorise(grid: Grid, time_step: float):
 
 
 def inverse_mass_at(grid: Grid, node: int) -> float:
-    """(M_mass⁻¹)_kk on the free nodes [1/kg]: the node's effective inverse mass.
-
-    The factorised matrix keeps the constrained nodes as decoupled identity rows, so one
-    O(N) tridiagonal solve with the unit vector gives the free-node inverse exactly.
-    """
+    """(M_mass⁻¹)_kk [1/kg] on the free nodes: the node's effective inverse mass."""
     pivots, lower = factorise(grid, 0.0)
     unit = np.zeros(grid.n_nodes)
     unit[node] = 1.0
@@ -231,10 +182,9 @@ def tridiagonal_solve(pivots, lower, rhs):
 
 
 def node_for(beam, grid: Grid, position, name):
-    """(x0, node): the requested load point [m] (default mid-span) and its nearest node.
+    """(x0, node): the load point [m] (default mid-span) and its nearest node.
 
-    ``ValueError`` naming ``name`` unless x0 lies in (Δx/2, L − Δx/2) next to supported
-    ends ([0, L] at free ends): a load on a supported node does no work.
+    ``ValueError`` naming ``name`` unless x0 lies in (Δx/2, L − Δx/2) next to supported ends.
     """
     x0 = 0.5 * beam.length if position is None else position
     dx = grid.dx
@@ -258,8 +208,7 @@ def gauge_weights(beam, gauge_positions):
 
 
 def gauge_columns(records, height, n_records) -> dict:
-    """History columns of the gauges: ``gauge{g}_deflection_m`` and ``gauge{g}_strain``
-    (axial strain of the far face ``z = +h/2``, ``−(h/2) w''``, tension positive)."""
+    """History columns of the gauges: ``gauge{g}_deflection_m`` and ``gauge{g}_strain`` (far face, tension +)."""
     cols = {}
     for g in range(records.gauge_w.shape[1]):
         cols[f"gauge{g}_deflection_m"] = records.gauge_w[:n_records, g]

@@ -1,10 +1,6 @@
 """Impact of a rigid sphere on the finite-difference Rayleigh beam: :func:`simulate_fd`.
 
-Gravity (``gravity=True``) acts on the sphere only, ``g = 9.80665 m/s²`` (standard gravity,
-CGPM 1901). The beam's self-weight is *not* included: deflections are measured from the
-beam's static equilibrium under its own weight (exact by superposition for the elastic
-beam; for the plastic beam the self-weight stresses — peak ρAgL²/8 ≈ 0.5 % of M_y for
-the seed-000 steel beam — are neglected).
+Gravity acts on the sphere only (docs/fd_beam.rst).
 """
 
 from __future__ import annotations
@@ -19,9 +15,9 @@ import pandas as pd
 
 from .._checks import require_positive
 from ..contact.base import ContactLaw
-from ..solvers.contact_scale import reference_contact_stiffness
-from ..solvers.result import ImpactResult
-from ..targets.beam import Beam
+from ..contact.contact_scale import reference_contact_stiffness
+from ..result import ImpactResult
+from ..targets.beams.beam import Beam
 from ..validity import ModelValidityWarning
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, FDSettings
@@ -48,33 +44,24 @@ class FDDetails:
     Attributes
     ----------
     permanent_beam_deflection : float
-        Permanent deflection at the impact node [m]: the static deflection of the
-        unloaded beam computed from the final state by an elastic unloading step
-        (``w_res = w − K_e⁻¹ f_int(w)``, the residual curvature's deflection), *not* a
-        time average, so residual vibration does not affect it.
+        Permanent deflection at the impact node [m] (elastic unloading of the final state).
     final_mean_deflection : float
-        Diagnostic: mean deflection at the impact node over the last 20 % of the record [m].
+        Mean deflection at the impact node over the last 20 % of the record [m].
     energy : dict
-        The ledger [J]: ``impact_kinetic_energy`` (½ m V0²), ``gravity_work``,
-        ``impactor_kinetic_energy`` (end of record), ``rebound_kinetic_energy`` (at the
-        final separation, not part of the balance), ``beam_kinetic_energy``,
-        ``beam_elastic_energy``, ``beam_plastic_work``, ``contact_dissipation`` (the law's
-        ``dissipated_energy(α_max)`` — loading work minus the
-        work recovered on the unloading curve), ``contact_stored_energy`` (non-zero only
-        if still in contact), ``damping_work``, ``contact_work_discrete`` (diagnostic
-        ``Σ F Δα``), and ``energy_balance_error``: (sum of the final terms − input)/impact
-        energy [-].
+        The ledger [J]: ``impact_kinetic_energy``, ``gravity_work``,
+        ``impactor_kinetic_energy``, ``rebound_kinetic_energy``, ``beam_kinetic_energy``,
+        ``beam_elastic_energy``, ``beam_plastic_work``, ``contact_dissipation``,
+        ``contact_stored_energy``, ``damping_work``, ``contact_work_discrete`` and
+        ``energy_balance_error`` (relative to the impact energy) [-].
     residual : pandas.DataFrame
         Per node: ``x_m, final_deflection_m, permanent_deflection_m,
         residual_curvature_1_m, max_plastic_strain, plastic_work_J_m``.
     impact_position, impact_node_position : float
-        Requested impact point and the node that carries the load [m].
+        Requested impact point and the loaded node [m].
     stability_limit : float
-        The estimated stability limit of the explicit scheme [s].
+        Stability limit of the explicit scheme [s].
     gauge_positions : tuple of float
-        Gauge positions [m] (history columns ``gauge{g}_deflection_m``,
-        ``gauge{g}_strain``: axial strain of the far face ``z = +h/2``, ``−(h/2) w''``,
-        tension positive).
+        Gauge positions [m] (columns ``gauge{g}_deflection_m``, ``gauge{g}_strain``).
     """
 
     permanent_beam_deflection: float
@@ -109,60 +96,35 @@ def simulate_fd(beam, law: ContactLaw, impactor_mass, velocity, impact_position=
 
     Parameters
     ----------
-    beam : FDBeam or impactmaps.targets.beam.Beam
-        The beam: an :class:`FDBeam` (grid, section, supports, damping), or a toolkit
-        rectangular isotropic ``Beam`` together with its ``material``
-        (:meth:`FDBeam.from_beam`; its ``impact_position`` is the default impact point).
+    beam : FDBeam or impactmaps.targets.beams.beam.Beam
+        An :class:`FDBeam`, or a rectangular isotropic ``Beam`` with its ``material``.
     law : ContactLaw
-        Contact law of a single case (``kernel_parameters`` one-dimensional). The
-        seed-000 model is the refined Stronge law with the beam's yield stress,
-        ``impactmaps.contact.law_for_sphere("stronge", sphere, beam)``; a linear or Hertz
-        law with ``plastic=False`` is the model that the modal Rayleigh-beam solver
-        reproduces. The loop uses ``law.kernel``; the ledger takes the contact energies
-        from the law (``dissipated_energy``, ``permanent_indentation``).
+        Contact law of a single case (e.g. ``law_for_sphere("stronge", sphere, beam)``).
     impactor_mass : float
         Sphere mass m [kg] (> 0).
     velocity : float
-        Impact velocity V0 [m/s] (> 0), in the +w direction; the sphere touches the
-        beam (α = 0) at t = 0.
+        Impact velocity V0 [m/s] (> 0), in the +w direction.
     impact_position : float, optional
-        x0 [m] (default mid-span, or the toolkit beam's ``impact_position``); the load
-        goes to the nearest node, which must not be a supported node (valid range
-        (Δx/2, L − Δx/2) with supported ends).
+        x0 [m] (default mid-span or the Beam's); loaded at the nearest node, which must
+        not be supported.
     settings : FDSettings, optional
-        All numerical options in one object; then the keywords below must be left out.
-        Its grid and section fields (when not ``None``) replace those of an FDBeam.
+        All numerical options in one object (then leave out the keywords below).
     material : material-like, optional
         The material of a toolkit ``Beam`` (required with one, refused with an FDBeam).
     **options
-        The run options below (the fields of the same names of :class:`FDSettings`);
-        another keyword is a ``TypeError``.
-    duration : float
-        Simulated time [s] (> 0, required here or in ``settings``); the run always
-        covers it (sub-impacts may occur late).
-    time_step : float, optional
-        Forced Δt [s]; must not exceed the stability limit (``ValueError`` naming both).
-        Default: ``safety_factor × limit``, capped at 0.1/ω_c (ω_c the contact–node
-        frequency at the expected peak stiffness) for accuracy.
-    safety_factor : float, optional
-        Fraction (0, 1] of the stability limit used by the default step (0.8).
-    gauge_positions : sequence of float, optional
-        Positions [m] where deflection and far-face strain are recorded.
-    gravity : bool, optional
-        Standard gravity on the sphere (drop tests); the beam's self-weight is not
-        included (module notes). Default False.
-    history_stride : int, optional
-        Record every ``history_stride``-th step (≥ 1, default 1). Scalars always use
-        every step.
+        ``duration`` [s] (required here or in ``settings``), ``time_step`` [s],
+        ``safety_factor``, ``gauge_positions`` [m], ``gravity``, ``history_stride``: as
+        in :class:`FDSettings`; another keyword is a ``TypeError``.
 
     Returns
     -------
     ImpactResult
         ``method = "finite-difference"``; ``details`` is an :class:`FDDetails`.
 
-    Notes
-    -----
-    Stability limit and default step: :mod:`impactmaps.fd.timestep`.
+    Raises
+    ------
+    ValueError
+        For an invalid input, named, or a ``time_step`` above the stability limit.
     """
     settings = _run_settings(settings, **options)
     beam, impact_position = _fd_beam(beam, material, settings, impact_position)
@@ -254,8 +216,7 @@ _RUN_OPTIONS = ("duration", "time_step", "safety_factor", "gauge_positions", "gr
 
 
 def _run_settings(settings, **keywords) -> FDSettings:
-    """The run's FDSettings: ``settings`` as given, or built from the keywords
-    (:data:`_RUN_OPTIONS`; another keyword is a ``TypeError``, as for any function)."""
+    """The run's FDSettings: ``settings`` as given, or built from the keywords."""
     unknown = sorted(set(keywords) - set(_RUN_OPTIONS))
     if unknown:
         raise TypeError(f"simulate_fd() got an unexpected keyword argument {unknown[0]!r}")
@@ -285,7 +246,7 @@ def _fd_beam(beam, material, settings, impact_position):
                              "density [kg/m^3], yield_strength [Pa], poisson_ratio [-])")
         position = beam.impact_position if impact_position is None else impact_position
         return FDBeam.from_beam(beam, material, settings), position
-    raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beam.Beam")
+    raise ValueError(f"beam = {beam!r} is not an FDBeam or an impactmaps.targets.beams.beam.Beam")
 
 
 #: Node-layer steps per second of the compiled loop, measured on the 2-core reference
@@ -294,10 +255,7 @@ NODE_LAYER_STEPS_PER_SECOND = 7e8
 
 
 def _warn_if_wide_section_yields(beam, residual) -> None:
-    """A ``ModelValidityWarning`` when the section yielded outside the range its section model
-    was checked in: b/h > :data:`WIDE_SECTION_RATIO` with the uniaxial section
-    (``width_constraint=False``), or b/h above the wide-section calibration
-    (:data:`impactmaps.fd.wide_section.CALIBRATED_RATIO`)."""
+    """A ``ModelValidityWarning`` when the section yielded outside the b/h range its model was checked in."""
     ratio = float(beam.width) / float(beam.height)
     if float(np.max(residual["max_plastic_strain"])) <= 0.0:
         return
@@ -317,8 +275,7 @@ def _warn_if_wide_section_yields(beam, residual) -> None:
 
 
 def _check_cost(n_steps, n_nodes, n_half_layers, settings, n_gauges, dt) -> None:
-    """Refuse a run whose history would not fit in memory; warn before a long one (the
-    run budget of :mod:`impactmaps.solvers.run_budget`, shared with the modal solver)."""
+    """Refuse a run whose history would not fit in memory; warn before a long one."""
     from ..solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
 
     records = n_steps / settings.history_stride + 1.0  # floats throughout: inf refuses, never overflows
@@ -339,8 +296,7 @@ def _count(steps: float) -> str:
 
 
 def _separation_velocity(result, intervals, end_time) -> float:
-    """Sphere velocity at the last separation [m/s]; nan (with a warning) if the sphere
-    never touched the beam or the record ends in contact."""
+    """Sphere velocity at the last separation [m/s]; nan (with a warning) if none."""
     if result.in_contact or intervals.shape[0] == 0:
         if intervals.shape[0] == 0:
             warnings.warn("the sphere never touched the beam", stacklevel=3)

@@ -1,8 +1,5 @@
-"""The permanent (residual) state of the finite-difference beam after an impact.
-
-The permanent deflection is the static deflection of the unloaded beam: the final state
-minus an elastic unloading step, ``w_res = w − K_e⁻¹ f_int(w)`` — the deflection that the
-residual curvature leaves — not a time average, so residual vibration does not affect it.
+"""The permanent (residual) state of the finite-difference beam after an impact:
+the final state unloaded elastically, ``w_res = w − K_e⁻¹ f_int(w)``.
 """
 
 from __future__ import annotations
@@ -17,26 +14,11 @@ __all__ = ["residual_state"]
 
 
 def residual_state(beam, grid, curvature, state):
-    """Per-node residual state: unload the final state elastically, w_res = w − K_e⁻¹ f_int(w).
+    """Per-node residual state of the final ``state`` at ``curvature`` [1/m].
 
-    Parameters
-    ----------
-    beam : FDBeam
-        The beam.
-    grid : Grid
-        Its grid.
-    curvature : ndarray
-        Final curvature of every node [1/m].
-    state : dict
-        Final ``w``, ``stress``, ``back`` and ``plastic_strain`` and the nodal
-        ``plastic_work_node`` (:func:`impactmaps.fd._loop.run_loop`).
-
-    Returns
-    -------
-    pandas.DataFrame
-        ``x_m, final_deflection_m, permanent_deflection_m, residual_curvature_1_m,
-        max_plastic_strain, plastic_work_J_m``. Warns if the elastic unloading would
-        re-yield a layer (the permanent deflection is then approximate).
+    Returns a DataFrame ``x_m, final_deflection_m, permanent_deflection_m,
+    residual_curvature_1_m, max_plastic_strain, plastic_work_J_m``; warns if the elastic
+    unloading would re-yield a layer.
     """
     n = grid.n_nodes
     w = state["w"]

@@ -1,9 +1,4 @@
-"""Response of the finite-difference beam to a prescribed load: :func:`simulate_fd_response`.
-
-The same compiled loop as the impact (:mod:`impactmaps.fd._loop`) without a sphere: a
-nodal point load history and/or an initial deflection drive the beam. Used to verify the
-beam on its own (statics, free vibration, the energy ledger).
-"""
+"""Response of the finite-difference beam to a prescribed load: :func:`simulate_fd_response`."""
 
 from __future__ import annotations
 
@@ -39,22 +34,18 @@ class FDResponse:
     Attributes
     ----------
     history : pandas.DataFrame
-        ``time_s, load_N, deflection_at_load_m, velocity_at_load_m_s`` and the gauge
-        columns as in :class:`FDDetails`.
+        ``time_s, load_N, deflection_at_load_m, velocity_at_load_m_s`` and gauge columns.
     final_deflection : ndarray
-        Deflection of every node at the end of the run [m].
+        Nodal deflections at the end [m].
     energy : dict
         ``load_work, beam_kinetic_energy, beam_elastic_energy, beam_plastic_work,
-        damping_work, energy_balance_error`` (the last relative to ``load_work`` plus the
-        initial energy) [J].
+        damping_work`` [J], ``energy_balance_error`` [-].
     time_step : float
         Δt [s].
     load_node_position : float
         Node carrying the load [m].
     residual : pandas.DataFrame or None
-        Per node residual state at the end of the run, as ``FDDetails.residual``
-        (``permanent_deflection_m``: the final state unloaded elastically, ``w − K_e⁻¹
-        f_int``, whatever load still acts); None when the run has no step.
+        Per-node residual state, as ``FDDetails.residual``; None without a step.
     """
 
     history: pd.DataFrame
@@ -75,23 +66,14 @@ def simulate_fd_response(beam: FDBeam, load=None, load_position=None, *, duratio
     beam : FDBeam
         The beam.
     load : callable, optional
-        ``load(t) -> force [N]`` vectorised over an array of times [s], applied (in the
-        +w direction) at the node nearest ``load_position``. Default: no load.
-    load_position : float, optional
-        x [m] of the load (default mid-span); same valid range as ``impact_position``.
+        Vectorised ``load(t) -> force [N]`` at the node nearest ``load_position`` [m]
+        (default mid-span). Default: no load.
     duration : float
         Simulated time [s].
-    time_step : float, optional
-        Forced Δt [s] (≤ the stability limit of the beam).
-    safety_factor : float, optional
-        Fraction of the stability limit for the default step (0.8).
+    time_step, safety_factor, gauge_positions, history_stride : optional
+        As for :func:`~impactmaps.fd.simulate_fd`.
     initial_deflection : callable or array_like, optional
-        ``w(x)`` [m] at t = 0 (callable of node positions, or values at the N_l + 1
-        nodes); the beam starts at rest. Supported nodes are set to 0.
-    gauge_positions : sequence of float, optional
-        Gauge positions [m].
-    history_stride : int, optional
-        Record every ``history_stride``-th step.
+        ``w(x)`` [m] at t = 0 (callable or N_l + 1 values); the beam starts at rest.
 
     Returns
     -------

@@ -1,53 +1,8 @@
 """Layered elastic-plastic rectangular cross-section (seed 000; spec section 5).
 
-The section of width ``b`` and height ``h`` is cut into ``2 N_h`` layers of equal
-thickness ``Δz = h / (2 N_h)``; each layer carries one uniaxial stress evaluated at its
-mid-plane ``z_i = −h/2 + (i + ½) Δz`` (midpoint rule through the thickness).
-
-Sign conventions (used throughout :mod:`impactmaps.fd`)
--------------------------------------------------------
-``w`` (deflection) and ``z`` both point in the impact direction ("down"); the impacted
-face is ``z = −h/2``. The axial strain is ``ε = −z κ`` with curvature ``κ = w''``, so a
-sagging beam (``κ < 0`` under a downward load) stretches the far face ``z = +h/2``.
-The bending moment is the sagging moment ``M = b Σ σ_i z_i Δz``; in the elastic range
-``M = −E I_h κ`` with the layered second moment ``I_h = b Σ z_i² Δz``.
-
-Midpoint rule and its error
----------------------------
-``I_h = (b h³/12)(1 − 1/(4 N_h²))`` exactly (each layer misses ``b Δz³/12``), so the
-elastic stiffness is second order in ``1/N_h``; the fully plastic moment
-``b σ_y Σ |z_i| Δz = σ_y b h²/4`` is exact for every ``N_h`` (``|z|`` is linear in each
-layer). In the elastic-plastic range the error of ``M(κ)`` is ``O(N_h⁻²)`` but not
-monotonic (the elastic-plastic interface moves across layers).
-
-Material model
---------------
-Each layer is elastic–perfectly plastic (yield stress ``σ_y``) or, with
-``hardening_modulus = H > 0``, elastic–linear **kinematic** (Prager) hardening:
-yield function ``|σ − β| ≤ σ_y`` with back stress ``β``, ``dβ = H dε_p``, so ``H`` is the
-*plastic* modulus (slope of stress against plastic strain) and the tangent modulus in
-monotonic loading is ``E_t = E H / (E + H)``. Kinematic hardening is chosen because beam
-impact unloads and reverses the stress in the plastic zone (rebound, vibration), where it
-gives the Bauschinger effect and a constant elastic range ``2 σ_y``; in monotonic loading
-it coincides with isotropic hardening. The return mapping in 1-D is exact for a strain
-increment of any size (closed form), so the stress update introduces no time-step error.
-
-A wide section (b/h > 1, :mod:`impactmaps.fd.wide_section`) adds a saturating
-(Armstrong–Frederick) kinematic back stress β_c ≤ β_sat for the plastic hinge held across
-the width; its return needs a scalar Newton solve (convex, monotone convergence), exact
-to round-off for an increment of any size. Without it (β_sat = 0) the section is the
-uniaxial one above.
-
-Energy: per unit volume the strain energy is ``σ²/(2E)`` and the plastic work increment
-is ``W_p += ½(σ_old + σ_new) Δε_p`` (trapezoidal rule). With that choice
-``½(σ_old + σ_new) Δε = Δ(σ²/(2E)) + ΔW_p`` holds *exactly* for every increment, so the
-internal work splits into elastic energy and plastic work without discretisation error.
-The trapezoid is exact for an increment that is plastic throughout (σ is linear in ε_p);
-for one that starts elastic its error is ``½(σ_old − σ_Y) Δε_p`` (σ_Y: stress where
-yielding starts), second order in the increment. With hardening, ``W_p`` includes the
-energy ``β²/(2H)`` locked in the back stress (the part truly dissipated is
-``W_p − β²/(2H)``), and a reverse flow at a stress of the "wrong" sign (``|β| > σ_y``)
-legitimately gives ``ΔW_p < 0``; without hardening ``ΔW_p ≥ 0`` always.
+``2 N_h`` layers of uniaxial stress at their mid-planes; elastic–perfectly plastic or
+linear kinematic hardening, with the optional width constraint of
+:mod:`impactmaps.fd.wide_section`. Sign conventions and derivations: docs/fd_beam.rst.
 """
 
 from __future__ import annotations
@@ -79,31 +34,8 @@ def return_map(stress, back_stress, constraint_stress, strain_increment, youngs_
                yield_strength, hardening_modulus, constraint_saturation, constraint_rate):
     """Elastic predictor / return mapping for one layer (scalar numba kernel).
 
-    The back stress is ``β = β_H + β_c``: the linear kinematic part ``dβ_H = H dε_p`` and
-    the width-constraint part (Armstrong–Frederick form) ``dβ_c = γ (β_sat sign(dε_p) −
-    β_c) |dε_p|``, which saturates at ``±β_sat`` (:mod:`impactmaps.fd.wide_section`;
-    ``β_sat = 0``: no constraint, the closed-form linear return). With the constraint the
-    plastic multiplier solves ``excess = (E + H) Δλ + a (1 − e^{−γ Δλ})`` (``a = β_sat −
-    n β_c ≥ 0``), convex and decreasing in Δλ: Newton from Δλ = 0 converges monotonically;
-    the β_c update is exact for the increment.
-
-    Parameters
-    ----------
-    stress, back_stress, constraint_stress : float
-        Stress σ*, total back stress β and its constraint part β_c at the previous step [Pa].
-    strain_increment : float
-        Total strain increment Δε [-].
-    youngs_modulus, yield_strength, hardening_modulus : float
-        E, σ_y and plastic (kinematic) hardening modulus H [Pa].
-    constraint_saturation : float
-        β_sat [Pa] (0: none).
-    constraint_rate : float
-        γ [-] (1/plastic strain).
-
-    Returns
-    -------
-    stress, back_stress, constraint_stress, plastic_strain_increment, plastic_work_density : float
-        Updated σ, β and β_c [Pa], Δε_p [-], and ΔW_p = ½(σ* + σ) Δε_p [J/m³].
+    From σ*, β, β_c [Pa] and Δε [-] with E, σ_y, H, β_sat [Pa] and γ [-], returns the new
+    ``(σ, β, β_c [Pa], Δε_p [-], ΔW_p = ½(σ* + σ) Δε_p [J/m³])``.
     """
     trial = stress + youngs_modulus * strain_increment
     relative = trial - back_stress
@@ -161,25 +93,14 @@ def stress_update(stress, back_stress, strain_increment, youngs_modulus, yield_s
                   constraint_rate=0.0):
     """Vectorised layer stress update ``σ = σ* + E Δε`` returned to ``|σ − β| ≤ σ_y``.
 
-    Parameters
-    ----------
-    stress, back_stress, strain_increment : array_like
-        Previous stress σ* [Pa], total back stress β [Pa] and strain increment Δε [-];
-        broadcast together (e.g. shape ``(n_nodes, n_layers)``).
-    youngs_modulus, yield_strength : float
-        E [Pa] and initial yield stress σ_y [Pa].
-    hardening_modulus : float, optional
-        Linear kinematic plastic modulus H [Pa] (0: perfectly plastic).
-    constraint_stress : array_like, optional
-        Previous width-constraint part β_c of the back stress [Pa] (broadcast as above).
-    constraint_saturation, constraint_rate : float, optional
-        β_sat [Pa] and γ [-] of the width constraint (:func:`return_map`; 0: none).
+    Arguments as :func:`return_map`, arrays broadcast together; ``hardening_modulus``,
+    ``constraint_stress``, ``constraint_saturation`` and ``constraint_rate`` default to 0.
 
     Returns
     -------
     stress, back_stress, plastic_strain_increment, plastic_work_density : ndarray
-        New σ [Pa], β [Pa], Δε_p [-] and plastic work per unit volume ΔW_p [J/m³]; with
-        ``constraint_saturation > 0`` the new β_c [Pa] follows as a fifth array.
+        σ, β [Pa], Δε_p [-], ΔW_p [J/m³]; with ``constraint_saturation > 0`` the new β_c
+        [Pa] follows as a fifth array.
     """
     arrays = np.broadcast_arrays(
         np.asarray(stress, float), np.asarray(back_stress, float),
@@ -204,13 +125,13 @@ class SectionState:
     Attributes
     ----------
     curvature : ndarray, shape (n_points,)
-        Curvature κ = w'' at the last update [1/m].
+        κ = w'' [1/m].
     stress, back_stress, plastic_strain : ndarray, shape (n_points, 2 N_h)
-        Layer stress σ [Pa], back stress β [Pa] and accumulated plastic strain ε_p [-].
+        σ [Pa], β [Pa], accumulated ε_p [-].
     constraint_stress : ndarray, shape (n_points, 2 N_h)
-        The width-constraint part β_c of the back stress [Pa] (0 without it).
+        Width-constraint part β_c of the back stress [Pa].
     plastic_work : ndarray, shape (n_points,)
-        Accumulated plastic work per unit length of beam [J/m].
+        Plastic work per unit length [J/m].
     """
 
     curvature: np.ndarray
@@ -227,25 +148,17 @@ class LayeredSection:
 
     Parameters
     ----------
-    width : float
-        Section width b [m].
-    height : float
-        Section height h [m] (in the impact direction).
-    youngs_modulus : float
-        Young's modulus E [Pa].
-    yield_strength : float
-        Uniaxial yield stress σ_y [Pa].
+    width, height : float
+        b and h [m] (h in the impact direction).
+    youngs_modulus, yield_strength : float
+        E and σ_y [Pa].
     hardening_modulus : float, optional
-        Linear kinematic plastic modulus H [Pa]; 0 (default) is perfectly plastic.
+        Linear kinematic plastic modulus H [Pa]; 0 (default): perfectly plastic.
     n_half_layers : int, optional
-        N_h; the section has ``2 N_h`` layers (≥ 2, default 10).
-    constraint_saturation : float, optional
-        β_sat [Pa]: the width-constraint back stress saturates at ±β_sat, so the fully
-        plastic moment tends to ``(σ_y + β_sat) b h²/4``; 0 (default): the uniaxial
-        section (:mod:`impactmaps.fd.wide_section` gives it for a wide beam).
-    constraint_rate : float, optional
-        γ [-]: the constraint back stress reaches 1 − 1/e of β_sat after a plastic strain
-        1/γ (needed > 0 when ``constraint_saturation > 0``).
+        N_h ≥ 2 (default 10).
+    constraint_saturation, constraint_rate : float, optional
+        β_sat [Pa] and γ [-] of the width constraint (:mod:`impactmaps.fd.wide_section`);
+        0 (default): uniaxial section; γ > 0 needed when β_sat > 0.
     """
 
     width: float
@@ -319,9 +232,7 @@ class LayeredSection:
 
     @property
     def limit_moment(self) -> float:
-        """Moment the section tends to at large curvature, ``(σ_y + β_sat) b h² / 4``
-        (= :attr:`plastic_moment` without the width constraint; perfectly plastic
-        layers) [N m]."""
+        """Moment at large curvature, ``(σ_y + β_sat) b h² / 4`` [N m]."""
         return (self.yield_strength + self.constraint_saturation) * self.width * self.height**2 / 4.0
 
     @property
@@ -348,21 +259,7 @@ class LayeredSection:
         return self.width * self.layer_thickness * stress @ self.layer_positions
 
     def update(self, state: SectionState, curvature) -> np.ndarray:
-        """Advance ``state`` (in place) to the new curvatures and return the moments.
-
-        Parameters
-        ----------
-        state : SectionState
-            Layer state; updated in place (stress, back stress, plastic strain,
-            plastic work, curvature).
-        curvature : array_like, shape (n_points,)
-            New curvature κ = w'' [1/m].
-
-        Returns
-        -------
-        ndarray, shape (n_points,)
-            Sagging moments M [N m].
-        """
+        """Advance ``state`` in place to ``curvature`` κ [1/m]; return sagging moments M [N m]."""
         curvature = np.asarray(curvature, dtype=float)
         z = self.layer_positions
         strain_increment = -np.outer(curvature - state.curvature, z)
@@ -382,23 +279,8 @@ class LayeredSection:
         return self.moment(stress)
 
     def moment_curvature(self, curvatures) -> np.ndarray:
-        """Moments [N m] along a curvature path starting from the virgin state.
-
-        The path is followed increment by increment with :func:`stress_update` (the
-        same update as the beam solver); for a monotonic path this is the monotonic
-        moment–curvature curve. ``curvatures`` are w'' values [1/m]; for the usual
-        positive (sagging) moment–curvature plot pass ``-κ``.
-
-        Parameters
-        ----------
-        curvatures : array_like, shape (n,)
-            Curvature path κ_1, κ_2, … [1/m].
-
-        Returns
-        -------
-        ndarray, shape (n,)
-            Sagging moment at each point of the path [N m].
-        """
+        """Sagging moments [N m] along a path of ``curvatures`` κ [1/m] from the virgin state
+        (pass ``-κ`` for the usual positive plot)."""
         path = np.atleast_1d(np.asarray(curvatures, dtype=float))
         state = self.initial_state(1)
         moments = np.empty(path.size)
@@ -408,26 +290,7 @@ class LayeredSection:
 
 
 def rectangular_moment_curvature(curvature, width, height, youngs_modulus, yield_strength):
-    """Exact monotonic moment–curvature of an elastic–perfectly plastic rectangle.
-
-    ``M = E I κ`` for ``κ ≤ κ_y`` and ``M = M_p (1 − (κ_y/κ)²/3)`` above, with
-    ``κ_y = 2σ_y/(E h)``, ``M_p = σ_y b h²/4 = 1.5 M_y`` (e.g. Lubliner, *Plasticity
-    Theory*, 2008, §4.4; any strength-of-materials text).
-
-    Parameters
-    ----------
-    curvature : array_like
-        Curvature magnitude |κ| [1/m].
-    width, height : float
-        b, h [m].
-    youngs_modulus, yield_strength : float
-        E, σ_y [Pa].
-
-    Returns
-    -------
-    ndarray
-        Moment magnitude [N m].
-    """
+    """Exact monotonic moment [N m] of an elastic–perfectly plastic b × h rectangle at |κ| [1/m]."""
     kappa = np.abs(np.asarray(curvature, dtype=float))
     kappa_y = 2.0 * yield_strength / (youngs_modulus * height)
     plastic_moment = yield_strength * width * height**2 / 4.0

@@ -1,12 +1,7 @@
 """Time step of the explicit finite-difference scheme: stability limit and contact resolution.
 
-Stability: ``Δt ≤ 2/sqrt(λ* + k_c (M⁻¹_kk + 1/m))`` with λ* the closed-form upper bound of
-the highest eigenvalue of the elastic grid operator (with rotary inertia;
-:func:`impactmaps.fd.grid.grid_frequency_bound`) and k_c the largest contact tangent
-stiffness expected (rigid-target indentation at twice the impact energy, loading and
-unloading curves). For the linearised system the bound is rigorous (Rayleigh quotients
-add); the contact part rests on the k_c estimate. The default step is ``safety × limit``,
-capped at ``0.1/ω_c`` (ω_c the contact–node frequency at k_c) for accuracy.
+``Δt ≤ 2/sqrt(λ* + k_c (M⁻¹_kk + 1/m))``; the default step is ``safety × limit``, capped at
+``0.1/ω_c`` (docs/fd_beam.rst).
 """
 
 from __future__ import annotations
@@ -39,16 +34,7 @@ def single_case_parameters(law: ContactLaw, caller: str) -> np.ndarray:
 
 
 def contact_stiffness_bound(law: ContactLaw, params, impactor_mass: float, velocity: float) -> float:
-    """Largest tangent contact stiffness [N/m] expected in the impact.
-
-    The indentation is bounded by the rigid-target value at *twice* the impact energy
-    (margin for a beam that swings back into the sphere); the bound is the largest
-    tangent on the loading curve up to it and on the unloading curve leaving it (for
-    plastic laws the unloading curve is much stiffer than the loading curve). The
-    indentation is the law's own inverse of its loading work
-    (:meth:`~impactmaps.contact.base.ContactLaw.indentation_for_energy`), rounded up to
-    a power-of-two multiple of 1 pm so the sampled tangents sit on a fixed grid.
-    """
+    """Largest tangent contact stiffness [N/m] expected in the impact (at twice its energy)."""
     target = 2.0 * 0.5 * impactor_mass * velocity**2
     reach = float(law.indentation_for_energy(target))
     alpha = 1e-12 * 2.0 ** max(0, math.ceil(math.log2(reach / 1e-12)))
@@ -68,10 +54,7 @@ def contact_rate(grid, node, law, params, impactor_mass, velocity):
 
 
 def choose_time_step(grid, time_step, safety_factor, rate):
-    """(time step, stability limit) [s]: ω_max² = λ_beam + ``rate`` (k_c (M⁻¹_kk + 1/m)).
-
-    A forced ``time_step`` above the limit is a ``ValueError`` naming both.
-    """
+    """(time step, stability limit) [s]; a forced ``time_step`` above the limit is a ``ValueError``."""
     require_in_range("safety_factor", safety_factor, 0.0, 1.0, low_inclusive=False)
     limit = 2.0 / math.sqrt(grid.max_eigenvalue + rate)
     if time_step is None:
@@ -85,20 +68,8 @@ def choose_time_step(grid, time_step, safety_factor, rate):
 
 def stable_time_step(beam, law: ContactLaw, impactor_mass, velocity, impact_position=None,
                      safety_factor=0.8):
-    """The default time step of :func:`~impactmaps.fd.simulate_fd` and the stability limit [s].
-
-    Parameters
-    ----------
-    beam : FDBeam
-        The beam.
-    law, impactor_mass, velocity, impact_position, safety_factor
-        As for :func:`~impactmaps.fd.simulate_fd`.
-
-    Returns
-    -------
-    time_step, stability_limit : float
-        ``min(safety × limit, 0.1/ω_c)`` and ``2/sqrt(λ* + k_c (M⁻¹_kk + 1/m))`` [s].
-    """
+    """The default time step and the stability limit [s] of :func:`~impactmaps.fd.simulate_fd`
+    (arguments as there)."""
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     params = single_case_parameters(law, "stable_time_step")

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..maps.accuracy import STATUSES
-from ..maps.builtin_families import LAYOUTS, PlasticLayout, family_layout
-from ..maps.map_family import map_law
-from ..maps.regimes import REGIMES, classify, infinite_structure_peak, quasi_static_peak
+from ..maps.family.accuracy import STATUSES
+from ..maps.family.builtin_families import LAYOUTS, PlasticLayout, family_layout
+from ..maps.family.map_family import map_law
+from ..maps.family.regimes import REGIMES, classify, infinite_structure_peak, quasi_static_peak
 from .axes import axes_or_new
 
 __all__ = ["REGIME_COLOURS", "SENSITIVE_ALPHA", "FMAX_LABELS", "PLASTIC_PANELS", "plot_fmax_chart",
@@ -234,7 +234,7 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
 
     Drawn under :func:`plot_fmax_chart` (same ζ axis) by ``impactmaps chart``, it shows
     where each curve is local, follows the infinite structure, is in the transition or
-    is quasi-static (criteria: :mod:`impactmaps.maps.regimes`).
+    is quasi-static (criteria: :mod:`impactmaps.maps.family.regimes`).
 
     Parameters
     ----------
@@ -286,7 +286,7 @@ def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
         Structure name.
     smooth : bool
         Classify on a dense grid (F̄max, peak and wave-return times interpolated
-        linearly in log ζ, log λ, as :func:`impactmaps.maps.lookup.lookup` does) instead
+        linearly in log ζ, log λ, as :func:`impactmaps.maps.read.lookup.lookup` does) instead
         of drawing one block per computed point; used when every point is computed.
     ax : matplotlib Axes, optional
 
@@ -359,7 +359,7 @@ def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
     ----------
     maps : sequence of xarray.Dataset
         Elastic-plastic maps of one law (dims ``structure``, ``beta``, ``lambda_``, ``zeta``;
-        :mod:`impactmaps.maps.plastic_points`).
+        :mod:`impactmaps.maps.compute.plastic_points`).
     lambda_ : float
         Relative stiffness K_st/K_y of the curves [-].
     betas : sequence of float, optional

@@ -4,7 +4,7 @@ Equations (spec §3.4): ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j(x0) F``,
 ``m_i ẅ_i = −F``, ``α = w_i − Σ φ_j q_j − r F``, ``F = F(α; α_max)`` from any registered
 contact law, with ``r`` the residual static compliance of the dropped modes in series
 with the contact (mode-acceleration correction). The integrator is
-:mod:`impactmaps.solvers.exact_step`.
+:mod:`impactmaps.solvers.integrator.exact_step`.
 
 Load: on Mindlin (shear-deformable) SSSS plates the force is, by default, the Hertz
 pressure over the contact disc of the peak indentation (participations times the
@@ -40,7 +40,7 @@ from .._checks import require_positive
 from ..contact.base import ContactLaw
 from ..contact.linear import LinearContact
 from ..targets.base import Target
-from . import compile_helper
+from .._compile import compile_helper
 from .modal_run import HISTORY_COLUMNS, INTERRUPTIBLE_SECONDS, basis_for, prepare_run, run_once
 from .modal_settings import (
     CONTACT_PATCHES,
@@ -59,7 +59,7 @@ from .modal_settings import (
     reference_contact_stiffness,
 )
 from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, plan_basis
-from .result import ImpactResult
+from ..result import ImpactResult
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
 __all__ = [
@@ -195,7 +195,7 @@ def _warn_energy_ledger(result: ImpactResult, tolerance: float) -> None:
     """A :class:`ConvergenceWarning` when the run's energy ledger (impact energy against
     rebound, structure, contact and damping) closes only beyond ``tolerance`` of the impact
     energy: its damping work, integrated by the trapezoidal rule over each step, misses the
-    modes that turn within a step (free flight's is exact: :func:`~impactmaps.solvers.free_flight.free_damping_work`)."""
+    modes that turn within a step (free flight's is exact: :func:`~impactmaps.solvers.integrator.free_flight.free_damping_work`)."""
     error = float(result.energy_balance_error)
     if not math.isfinite(error) or abs(error) <= tolerance:
         return

@@ -5,9 +5,9 @@ answers, iterates the contact patch and checks convergence): :func:`run_once` bu
 participating modes below the cut-off with their residual compliance, chooses the time
 step (:mod:`~impactmaps.solvers.time_step`) and the contact phase (exact coupled modes or
 sampled), checks the run's budget (:mod:`~impactmaps.solvers.run_budget`) and calls the
-compiled integrator (:mod:`~impactmaps.solvers.exact_step`) through :class:`KernelInputs`
-(its named tuples of :mod:`~impactmaps.solvers.kernel_types`) and
-:class:`~impactmaps.solvers.kernel_types.KernelScalars`.
+compiled integrator (:mod:`~impactmaps.solvers.integrator.exact_step`) through :class:`KernelInputs`
+(its named tuples of :mod:`~impactmaps.solvers.integrator.kernel_types`) and
+:class:`~impactmaps.solvers.integrator.kernel_types.KernelScalars`.
 """
 
 from __future__ import annotations
@@ -20,12 +20,12 @@ import numpy as np
 import pandas as pd
 
 from .._checks import require_positive
-from . import compile_helper
+from .._compile import compile_helper
 from ..contact.base import kernel_pointer
 from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
-from .coupled_contact import CoupledModes, coupled_modes
-from .exact_step import STALL_LIMIT, integrate_impact
-from .kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
+from .integrator.coupled_contact import CoupledModes, coupled_modes
+from .integrator.exact_step import STALL_LIMIT, integrate_impact
+from .integrator.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
 from .modal_settings import (
     ConvergenceWarning,
     ModalDetails,
@@ -35,8 +35,8 @@ from .modal_settings import (
     reference_contact_stiffness,
 )
 from .mode_budget import budget_cutoff
-from .result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
-from .result import ImpactResult, energy_balance_error
+from ..result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
+from ..result import ImpactResult, energy_balance_error
 from .run_budget import HISTORY_ROW_CAP, RunBudget, modal_run_budget, refuse_or_announce
 from .time_step import STABLE_TOP_STEP, content_time_step, coupled_top_frequency
 
@@ -126,7 +126,7 @@ def _coupled_phase(basis: ModalBasis, stiffness: float, impactor_mass: float, ti
 
     ``stiffness`` is the law's :func:`linear_stiffness` [N/m] (0: not linear); ``choice`` is
     :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
-    (:mod:`~impactmaps.solvers.coupled_contact`) serves linear laws on undamped modes
+    (:mod:`~impactmaps.solvers.integrator.coupled_contact`) serves linear laws on undamped modes
     when the sampled scheme's step ``time_step`` would cost more than the set-up
     (:data:`COUPLED_COST_RATIO`): in the quasi-static corner the modes the mode
     floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
@@ -157,7 +157,7 @@ def _interrupts_ignored() -> bool:
 
 
 def _integrate(interruptible: bool, args: KernelInputs):
-    """:data:`~impactmaps.solvers.exact_step.integrate_impact` on ``args`` (``args.run.stop``
+    """:data:`~impactmaps.solvers.integrator.exact_step.integrate_impact` on ``args`` (``args.run.stop``
     the kernel's one-element stop flag).
 
     A compiled loop does not see Ctrl-C (the signal is handled between Python bytecodes).
@@ -167,7 +167,7 @@ def _integrate(interruptible: bool, args: KernelInputs):
     The arithmetic is the kernel's own either way: results are bit for bit those of a direct
     call. Short runs (most map points) call the kernel directly, without a thread, and so
     does every run in a process that ignores Ctrl-C (a sweep's worker,
-    :func:`impactmaps.maps.workers.init_worker`): there no interrupt can arrive to stop it.
+    :func:`impactmaps.maps.compute.workers.init_worker`): there no interrupt can arrive to stop it.
     """
     compile_helper.await_variant(integrate_impact.variant_of(args))  # a helper compiling it (first run only)
     if not interruptible or _interrupts_ignored():
@@ -200,9 +200,9 @@ def _integrate(interruptible: bool, args: KernelInputs):
 
 
 class KernelInputs(NamedTuple):
-    """The arguments of :data:`~impactmaps.solvers.exact_step.integrate_impact`, by name and
+    """The arguments of :data:`~impactmaps.solvers.integrator.exact_step.integrate_impact`, by name and
     in its order: the law's kernel pointer, parameters and linear stiffness [N/m] (0 if
-    not linear), then the named tuples of :mod:`~impactmaps.solvers.kernel_types`."""
+    not linear), then the named tuples of :mod:`~impactmaps.solvers.integrator.kernel_types`."""
 
     kernel: object
     params: np.ndarray

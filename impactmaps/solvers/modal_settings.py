@@ -15,7 +15,7 @@ import numpy as np
 
 from .._checks import require_choice, require_flag, require_in_range, require_positive, require_whole
 from ..contact.base import ContactLaw
-from .contact_scale import reference_contact_stiffness
+from ..contact.contact_scale import reference_contact_stiffness
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
            "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "reference_contact_stiffness",
@@ -47,9 +47,9 @@ class ModalDetails:
         Steps the integrator took (contact and free flight) [-].
     contact_phase : {"exact", "sampled"}
         How contacts were integrated: ``"exact"`` through the coupled modes of a linear
-        contact (:mod:`~impactmaps.solvers.coupled_contact`), ``"sampled"`` by the
+        contact (:mod:`~impactmaps.solvers.integrator.coupled_contact`), ``"sampled"`` by the
         exact-step scheme with the force sampled once per step
-        (:mod:`~impactmaps.solvers.exact_step`).
+        (:mod:`~impactmaps.solvers.integrator.exact_step`).
     """
 
     steps: int
@@ -134,7 +134,7 @@ class ModalSettings:
         ``docs/contact_patch.rst``.
     contact_phase : {"auto", "exact", "sampled"}
         How a contact is integrated. ``"exact"``: through the coupled modes of a linear
-        contact (:mod:`~impactmaps.solvers.coupled_contact`; linear laws on at most
+        contact (:mod:`~impactmaps.solvers.integrator.coupled_contact`; linear laws on at most
         :data:`COUPLED_MAX_MODES` undamped modes without rigid-body modes, otherwise
         sampled); ``"sampled"``: the exact-step
         scheme with the force sampled once per step; ``"auto"``: the exact phase where it

@@ -14,10 +14,10 @@ what answers such a run (spec §3.6):
   infinite-structure solution — that solution, exact until the reflection returns
   (``"infinite-structure-asymptote"``): the closed forms of
   :meth:`~impactmaps.targets.base.Target.infinite_structure_impact` for a linear law,
-  the any-law asymptotes of :mod:`impactmaps.law_asymptotes` (infinite plate or beam)
+  the any-law asymptotes of :mod:`impactmaps.closed_forms.law_asymptotes` (infinite plate or beam)
   otherwise — for Euler beams and Kirchhoff plates only: these classical solutions do
   not answer for a Timoshenko beam or a Mindlin plate
-  (:func:`impactmaps.solvers.shear_range.has_classical_asymptote`);
+  (:func:`impactmaps.targets.shear_range.has_classical_asymptote`);
 * otherwise the modes up to the cap plus the residual compliance of the rest, with a
   warning (``"modal+residual-capped"``), if the cap still lies at least
   :data:`MIN_CAPPED_CUTOFF_RATIO` times above ω (the dropped modes then respond nearly
@@ -25,7 +25,7 @@ what answers such a run (spec §3.6):
 * else a ``ValueError`` naming the impactor mass, its value and the range it needs.
 
 The modal solver (:func:`impactmaps.solvers.modal.simulate`) applies it with the memory
-cap :data:`MAX_MODES`; the map sweep (:func:`impactmaps.maps.sweep.solve_points`) with
+cap :data:`MAX_MODES`; the map sweep (:func:`impactmaps.maps.compute.sweep.solve_points`) with
 its own, smaller cost cap.
 """
 
@@ -39,11 +39,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .contact_scale import reference_contact_stiffness
-from .shear_range import has_classical_asymptote
+from ..contact.contact_scale import reference_contact_stiffness
+from ..targets.shear_range import has_classical_asymptote
 
 if TYPE_CHECKING:
-    from .result import ImpactResult
+    from ..result import ImpactResult
 
 __all__ = ["MEMORY_BUDGET_BYTES", "BASELINE_BYTES", "BYTES_PER_MODE", "MAX_MODES",
            "ASYMPTOTE_REFLECTION_FACTOR", "MIN_CAPPED_CUTOFF_RATIO", "METHODS", "BasisPlan",
@@ -137,7 +137,7 @@ class BasisPlan:
         First wave return to the impact point [s] (``nan`` when not needed).
     asymptote : object or None
         The infinite-structure answer: :class:`~impactmaps.targets.base.InfiniteImpact`
-        (linear law, normalised) or :class:`~impactmaps.law_asymptotes.AsymptoteResult`.
+        (linear law, normalised) or :class:`~impactmaps.closed_forms.law_asymptotes.AsymptoteResult`.
     asymptote_name : str or None
         Which asymptote: ``"infinite-plate"`` or ``"infinite-beam"``, with
         ``" (linear, closed form)"`` or ``" (any law)"``.
@@ -304,7 +304,7 @@ def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_fa
         zeta = float(target.loss_factor(impactor_mass, stiffness)) if loss_factor is None else float(loss_factor)
         impact = target.infinite_structure_impact(zeta)
         return f"infinite-{kind} (linear, closed form)", impact, float(impact.peak_time) / omega
-    from ..law_asymptotes import asymptote  # scipy's integrators: only where an asymptote answers
+    from ..closed_forms.law_asymptotes import asymptote  # scipy's integrators: only where an asymptote answers
 
     answer = asymptote(f"infinite-{kind}", target, law, impactor_mass, velocity)
     return f"infinite-{kind} (any law)", answer, float(answer.peak_time)
@@ -351,7 +351,7 @@ def asymptote_result(plan: BasisPlan, target, law, impactor_mass: float, velocit
     linear law (closed forms); the any-law asymptotes give scalars only (``history``
     ``None``, with a warning).
     """
-    from .result import ImpactResult
+    from ..result import ImpactResult
 
     answer, omega, mass, speed = plan.asymptote, plan.contact_frequency, float(impactor_mass), float(velocity)
     if hasattr(answer, "fmax_normalised"):  # AsymptoteResult (SI)
@@ -408,9 +408,9 @@ def _linear_history(target, impact, plan: BasisPlan, law, mass, speed, contact):
     """
     import pandas as pd
 
-    from .asymptotes import infinite_plate_indentation
-    from .infinite_beam import infinite_beam_indentation
-    from .result import HISTORY_COLUMNS
+    from ..closed_forms.asymptotes import infinite_plate_indentation
+    from ..closed_forms.infinite_beam import infinite_beam_indentation
+    from ..result import HISTORY_COLUMNS
 
     omega = plan.contact_frequency
     end = contact if math.isfinite(contact) else min(plan.reflection_time,

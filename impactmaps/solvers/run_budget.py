@@ -7,7 +7,7 @@ refused with a ``ValueError`` that names the knob and the value that fits
 announced with a :class:`LongRunWarning` before it starts.
 
 Modal estimates (:func:`modal_run_budget`), per run of the compiled integrator
-(:mod:`impactmaps.solvers.exact_step`):
+(:mod:`impactmaps.solvers.integrator.exact_step`):
 
 * steps — over :data:`EXPECTED_RUN_RATIO`/ω (a run ends once re-impact is impossible:
   4 … 13 /ω in the runs measured), at most the ``ceil(max_time/Δt) + 2`` steps to the time

@@ -22,7 +22,7 @@ __all__ = ["STABLE_TOP_STEP", "content_time_step", "coupled_top_frequency"]
 #: exactly, but the contact force is sampled once per step, and the sampled loop is not
 #: unconditionally stable: runs blew up at ω_top·Δt ≈ 4 and ≈ 19 (a mode turning almost
 #: an integer number of times per step), none at ω_top·Δt ≤ 3.5 over 600 random chart
-#: points and forced steps (tests/test_integrator.py keeps the failing case).
+#: points and forced steps (tests/solvers/test_integrator.py keeps the failing case).
 STABLE_TOP_STEP = 2.0
 
 
@@ -50,7 +50,7 @@ def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass
     ``Â_j = m_i φ_j² (ω/ω_j)³ / (1 + K r)²`` — the residue of the force response
     ``V0/(s² D(s))``, ``D = 1/K + r + 1/(m_i s²) + Σ φ_j²/(s² + ω_j²)``, at the coupled
     root next to ω_j (within a factor 2 of the exact residue of the top coupled mode on
-    the benchmark cases, modes of equal frequency summed: ``tests/test_integrator.py``).
+    the benchmark cases, modes of equal frequency summed: ``tests/solvers/test_integrator.py``).
     A force linear within the step misses ``(ω_j Δt)²/8`` of each
     oscillation; the step returned is the longest with
     ``Σ_{ω_j > 2ω} min(Â_j, 1) (ω_j Δt)²/8 ≤ tolerance`` (slower oscillations belong to

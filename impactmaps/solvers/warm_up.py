@@ -5,7 +5,7 @@ numba compiles a kernel on its first call and keeps the machine code in its cach
 in milliseconds. On an empty cache the first integrating command pays for the compile
 (the exact-step integrator alone takes ~9 s on one idle core). :func:`warm_up` does that
 work once, right after installation (``impactmaps warm-up``): the two variants of the
-integrator (:data:`impactmaps.solvers.exact_step.integrate_impact`, with and without the
+integrator (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`, with and without the
 exact contact phase) in two processes at once, then, in this process, everything else a
 run compiles — the time-step kernels, every registered contact law's kernel and the
 vectorised law evaluation — by loading the integrators back and running two tiny impacts.
@@ -22,12 +22,12 @@ import time
 
 import numpy as np
 
-from .compile_helper import seed_user_cache, variant_cached
+from .._compile.compile_helper import seed_user_cache, variant_cached
 
 __all__ = ["warm_up", "cache_directory", "run_background", "compile_into_package", "CACHE_PATTERNS"]
 
 #: numba's cache files (index, data) and what its saves leave beside them (the save lock of
-#: :mod:`impactmaps.solvers.lazy_kernel`, an interrupted write's temporary file).
+#: :mod:`impactmaps._compile.lazy_kernel`, an interrupted write's temporary file).
 CACHE_PATTERNS = ("*.nbi", "*.nbc", "*.nbi.lock", "*.tmp.*")
 
 #: The integrator variants (``exact_phase`` argument), compiled one per process.
@@ -36,7 +36,7 @@ _VARIANTS = (None, True)
 
 def _compile_variant(variant) -> float:
     """Compile (or load) one variant of the integrator; its wall time [s]."""
-    from .exact_step import integrate_impact
+    from .integrator.exact_step import integrate_impact
 
     start = time.perf_counter()
     integrate_impact.compile_variant(variant)
@@ -64,7 +64,7 @@ def _tiny_impacts() -> None:
 
 def cache_directory() -> str:
     """Where numba keeps the integrator's compiled code (the cache :func:`warm_up` fills)."""
-    from .exact_step import integrate_impact
+    from .integrator.exact_step import integrate_impact
 
     return str(integrate_impact.dispatcher._cache._cache_path)
 
@@ -93,6 +93,7 @@ def warm_up(workers: int = 2) -> dict:
     this returns.
     """
     from .._checks import require_in_range
+    from .integrator import exact_step  # noqa: F401 (registers the integrator with the compile helper)
 
     require_in_range("workers", workers, 1, 64)
     start = time.perf_counter()
@@ -158,7 +159,7 @@ def package_cache_files(package) -> list:
 
 
 def run_background(directory, sleep_s: float | None = None) -> int:
-    """The background warm-up process (:mod:`impactmaps.solvers.background_warm_up`): at
+    """The background warm-up process (:mod:`impactmaps._compile.background_warm_up`): at
     low priority, take the lock of the state ``directory`` (or end if another process holds
     it or the cache is warm), run :func:`warm_up` (or, for tests, sleep ``sleep_s`` [s]; fail
     if it is negative), write the marker (the ``failed`` marker and the error's traceback
@@ -166,7 +167,7 @@ def run_background(directory, sleep_s: float | None = None) -> int:
     import json
     import os
 
-    from .background_warm_up import hold_lock, mark_warm
+    from .._compile.background_warm_up import hold_lock, mark_warm
 
     _lower_priority(10)
     handle, _ = hold_lock(directory)

@@ -1,7 +1,7 @@
 """Targets: anything that supplies modes at the impact point (beams, plates, half-space).
 
 The classes are imported on first use (``impactmaps.targets.Beam`` loads
-:mod:`impactmaps.targets.beam`), so a module that needs only :mod:`.options` (the
+:mod:`impactmaps.targets.beams.beam`), so a module that needs only :mod:`.options` (the
 command line's parser) does not import the modal solvers.
 """
 
@@ -15,11 +15,11 @@ from .options import STRUCTURE_KINDS
 __all__ = ["Beam", "HalfSpace", "InfiniteImpact", "ModalBasis", "Plate", "Target", "target_class"]
 
 _EXPORTS = {
-    "Beam": ".beam",
+    "Beam": ".beams.beam",
     "HalfSpace": ".halfspace",
     "InfiniteImpact": ".base",
     "ModalBasis": ".base",
-    "Plate": ".plate",
+    "Plate": ".plates.plate",
     "Target": ".base",
 }
 

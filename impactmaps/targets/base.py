@@ -1,10 +1,7 @@
 """What a target must supply to the impact solvers.
 
-A target is anything the sphere strikes. The modal solver needs only what the target
-looks like *from the impact point*: its natural frequencies, the mass-normalised mode
-shapes evaluated there, and the static compliance of the modes it leaves out
-(:class:`ModalBasis`). The dimensionless framework needs the static point stiffness
-(for λ) and the loss-factor formula of the structure type (for ζ).
+The modal solver needs the modes seen from the impact point (:class:`ModalBasis`); the
+dimensionless framework needs the static point stiffness (λ) and the loss factor (ζ).
 """
 
 from __future__ import annotations
@@ -46,12 +43,9 @@ class ModalBasis:
     frequencies : ndarray, shape (n,)
         Natural frequencies ω_j [rad/s], ascending; zero for rigid-body modes.
     participation : ndarray, shape (n,)
-        Mass-normalised mode shapes at the impact point φ_j(x0) [kg^-1/2], so that the
-        target deflection there is ``w_t = Σ φ_j q_j`` and ``q̈_j + ω_j² q_j = φ_j F``.
+        Mass-normalised mode shapes at the impact point φ_j(x0) [kg^-1/2].
     residual_compliance : float
-        Static compliance [m/N] at the impact point of the modes *not* retained
-        (exact static compliance minus ``Σ φ_j²/ω_j²`` over retained elastic modes);
-        added in series with the contact (residual-flexibility correction, spec 3.4).
+        Static compliance [m/N] at the impact point of the modes not retained.
     damping_ratios : ndarray, shape (n,)
         Modal viscous damping ratios [-] (default zeros).
     """
@@ -93,13 +87,10 @@ class ModalBasis:
     @classmethod
     def from_validated(cls, frequencies, participation, residual_compliance, damping_ratios, *,
                        participating: bool = False) -> "ModalBasis":
-        """A basis made of parts of an already validated one, without re-checking them.
+        """A basis from parts of a validated one, without re-checking them (hot paths).
 
-        For the solvers' hot paths (truncating or filtering a validated basis); the
-        arrays — frequencies [rad/s], participations [kg^-1/2], damping ratios [-] — must
-        be float64, 1-D, of equal length, and satisfy the class invariants; the residual
-        compliance is in m/N. ``participating``: the modes are known to be as
-        :meth:`participating` leaves them (it then returns the basis itself at once).
+        Arrays as the attributes (float64, 1-D, equal length); ``participating``: the modes
+        are already as :meth:`participating` leaves them.
         """
         basis = object.__new__(cls)
         object.__setattr__(basis, "frequencies", np.ascontiguousarray(frequencies))
@@ -112,28 +103,15 @@ class ModalBasis:
     @classmethod
     def from_modes(cls, frequencies, participation, static_compliance: float,
                    damping_ratios=None, *, retained_compliance: float | None = None) -> "ModalBasis":
-        """The basis of some modes of a target whose exact static compliance is known.
+        """The basis of some modes of a target whose exact static compliance [m/N] is known.
 
-        The residual compliance is ``static_compliance − retained`` [m/N], with
-        ``retained = Σ φ_j²/ω_j²`` over the elastic modes given (:attr:`retained_compliance`)
-        unless ``retained_compliance`` is passed (a Mindlin plate counts the classical
-        compliance of its retained half-wave pairs). A negative residual smaller than
-        :data:`RESIDUAL_ROUND_OFF` times the static compliance is round-off and set to 0.
-
-        Parameters
-        ----------
-        frequencies, participation, damping_ratios
-            As the attributes of :class:`ModalBasis` [rad/s], [kg^-1/2], [-].
-        static_compliance : float
-            Exact static point compliance [m/N] of the target at the impact point.
-        retained_compliance : float, optional
-            Static compliance [m/N] counted as carried by the given modes.
+        The residual compliance is ``static_compliance − retained_compliance`` (default
+        ``Σ φ_j²/ω_j²``); a negative residual within round-off is set to 0.
 
         Raises
         ------
         RuntimeError
-            When the retained compliance exceeds the static one by more than round-off
-            (the modes are wrong).
+            When the retained compliance exceeds the static one by more than round-off.
         """
         basis = cls(frequencies, participation, 0.0, damping_ratios)
         retained = basis.retained_compliance if retained_compliance is None else float(retained_compliance)
@@ -147,14 +125,8 @@ class ModalBasis:
         return cls.from_validated(basis.frequencies, basis.participation, residual, basis.damping_ratios)
 
     def truncate(self, max_frequency: float, min_modes: int = 1) -> "ModalBasis":
-        """The modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``, if present).
-
-        The static compliance ``φ_j²/ω_j²`` of the elastic modes left out is added to the
-        residual compliance, so retained + residual stays the target's static compliance
-        (residual-flexibility correction). The frequencies must be ascending. The left-out
-        compliances are summed from the highest mode down (smallest terms first,
-        :func:`dropped_compliance_sums`).
-        """
+        """The modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``); the
+        compliance of those left out moves to the residual."""
         count = self.cutoff_count(max_frequency, min_modes)
         if count == self.size:
             return self
@@ -162,16 +134,14 @@ class ModalBasis:
         return self.head(count, float(tail[-1]))
 
     def cutoff_count(self, max_frequency: float, min_modes: int = 1) -> int:
-        """How many modes :meth:`truncate` keeps: those with ω_j ≤ ``max_frequency`` [rad/s],
-        at least ``min_modes`` and at most all."""
+        """How many modes :meth:`truncate` keeps."""
         frequencies = self.frequencies
         # the array's own searchsorted: np.searchsorted's answer without its Python wrapper
         count = int(frequencies.searchsorted(max_frequency, side="right"))
         return min(max(count, int(min_modes)), frequencies.size)
 
     def head(self, count: int, dropped_compliance: float) -> "ModalBasis":
-        """The first ``count`` modes, with ``dropped_compliance`` [m/N] — the static
-        compliance of the others (:func:`dropped_compliance_sums`) — added to the residual."""
+        """The first ``count`` modes, ``dropped_compliance`` [m/N] added to the residual."""
         # the head of a participating basis is one (its largest φ² is not larger; a
         # degenerate group has one frequency, so a head keeps it whole or not at all)
         return ModalBasis.from_validated(self.frequencies[:count], self.participation[:count],
@@ -179,18 +149,8 @@ class ModalBasis:
                                          self.damping_ratios[:count], participating=self._participating)
 
     def participating(self) -> "ModalBasis":
-        """The modes as the impact point sees them (same residual compliance).
-
-        A mode with ``φ_j² ≤`` :data:`PARTICIPATION_THRESHOLD` ``· max φ²`` is never
-        excited by the contact force (e.g. antisymmetric modes at a centre impact); it is
-        dropped and its (negligible) compliance is not moved to the residual. Modes of one
-        frequency and damping ratio (degenerate, :data:`DEGENERACY_TOLERANCE`) are merged
-        into one of participation ``sqrt(Σ φ_j²)``: driven by the same contact force they
-        move as one coordinate ``Q = Σ φ_j q_j / sqrt(Σ φ_j²)``, exactly, and the impact
-        point's deflection is ``sqrt(Σ φ_j²) Q`` (a square plate struck at its centre has
-        ~3 modes per distinct frequency; the solver's cost is per mode). Only neighbours
-        merge (the bases of the targets are in ascending order).
-        """
+        """The modes the impact point excites: modes with negligible φ_j dropped, degenerate
+        neighbours merged into one of participation ``sqrt(Σ φ_j²)`` (exact)."""
         if self._participating:
             return self
         merged = self.__dict__.get("_participating_basis")
@@ -229,14 +189,8 @@ class ModalBasis:
 
 
 def _degenerate_group_starts(frequencies: np.ndarray, damping_ratios: np.ndarray) -> np.ndarray:
-    """Indices where a group of degenerate modes starts (frequencies [rad/s]): a mode joins
-    the group before it when its frequency lies within :data:`DEGENERACY_TOLERANCE` of the
-    group's first and its damping ratio equals the previous mode's (only neighbours merge:
-    in a basis not in ascending order, equal frequencies apart stay apart).
-
-    Vectorised: the groups of neighbours that are close are the answer when every mode lies
-    within the tolerance of its group's first (the usual case); a chain of close neighbours
-    that drifts further is split by the sequential rule (:func:`_split_drifting_groups`)."""
+    """Indices where a group of degenerate neighbouring modes starts (same damping,
+    frequency within :data:`DEGENERACY_TOLERANCE` of the group's first)."""
     n = frequencies.size
     if n < 2:
         return np.arange(n)
@@ -261,26 +215,8 @@ def _split_drifting_groups(frequencies: np.ndarray, close: np.ndarray) -> np.nda
 
 
 def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) -> np.ndarray:
-    """Static compliances [m/N] of the modes from the highest down, summed one by one.
-
-    Element ``i`` is ``Σ φ_j²/ω_j²`` over the last ``i + 1`` modes (rigid-body modes,
-    ω_j = 0, count 0), added in order from the highest mode down — smallest terms first;
-    ``np.cumsum`` adds sequentially, so element ``i`` has the same bits as the last
-    element of the sums of those ``i + 1`` modes alone. :meth:`ModalBasis.truncate` takes
-    the last element over the modes it drops; a table truncated many times computes the
-    sums once (:class:`impactmaps.maps.structures.BasisTable`).
-
-    Parameters
-    ----------
-    frequencies : ndarray, shape (n,)
-        ω_j [rad/s], ≥ 0.
-    participation : ndarray, shape (n,)
-        φ_j [kg^-1/2].
-
-    Returns
-    -------
-    ndarray, shape (n,)
-    """
+    """Cumulative static compliances [m/N] ``Σ φ_j²/ω_j²`` of the last ``i + 1`` modes,
+    summed from the highest mode down (rigid-body modes count 0)."""
     compliance = np.zeros_like(frequencies)
     elastic = frequencies > 0
     compliance[elastic] = participation[elastic] ** 2 / frequencies[elastic] ** 2
@@ -290,8 +226,7 @@ def dropped_compliance_sums(frequencies: np.ndarray, participation: np.ndarray) 
 class InfiniteImpact(NamedTuple):
     """Linear-contact impact on the infinite structure of a target's kind (normalised).
 
-    Forces by ``m_i V0 ω``, times by ``1/ω`` and velocities by ``V0`` (ω the contact
-    frequency sqrt(K/m_i)); exact until the first wave returns from a boundary.
+    Forces by ``m_i V0 ω``, times by ``1/ω``, velocities by ``V0`` (ω = sqrt(K/m_i)).
 
     Attributes
     ----------
@@ -302,7 +237,7 @@ class InfiniteImpact(NamedTuple):
     contact_time : float
         ω t_c of the separation [-] (NaN if the impactor never separates).
     rebound_velocity : float
-        Impactor velocity at separation over V0 [-] (NaN if there is no separation).
+        Impactor velocity at separation over V0 [-] (NaN if no separation).
     """
 
     peak_force: float
@@ -312,11 +247,7 @@ class InfiniteImpact(NamedTuple):
 
 
 class Target(ABC):
-    """A struck structure: supplies modes at the impact point and its static stiffness.
-
-    Subclasses are frozen dataclasses (SI units) with ``kind`` set to ``"beam"``,
-    ``"plate"`` or ``"halfspace"``.
-    """
+    """A struck structure (frozen dataclass, SI units; ``kind`` "beam", "plate" or "halfspace")."""
 
     kind: ClassVar[str]
 
@@ -329,59 +260,27 @@ class Target(ABC):
 
     @abstractmethod
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
-        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
-
-        The returned basis carries the residual compliance of the modes left out.
-        """
+        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), with residual compliance."""
 
     @property
     def bounded_modes(self) -> bool:
-        """True when the target's modes come from a model of bounded size (a Ritz plate, a
-        finite-element beam, the half-space): no cut-off makes it build more than that
-        model. False by default: the mode count grows without bound with the cut-off
-        (Navier plates, closed-form beams) and :mod:`impactmaps.solvers.mode_budget`
-        guards it."""
+        """True when the modes come from a model of bounded size (Ritz plate, FE beam, half-space)."""
         return False
 
     def resolution_limit(self) -> float:
-        """Highest natural frequency [rad/s] the target's largest model resolves.
-
-        ``inf`` by default: the modes are exact at any cut-off (Navier plates, closed-form
-        beams). A target of bounded size (:attr:`bounded_modes`) returns what its largest
-        model resolves (a Ritz plate at its largest basis, a finite-element beam at its
-        largest mesh); a cut-off above it is capped there, and
-        :func:`impactmaps.solvers.modal.simulate` treats the run as capped (another model
-        answers, or the capped basis is reported as such).
-        """
+        """Highest natural frequency [rad/s] the target's largest model resolves (``inf`` by default)."""
         return math.inf
 
     def resolved_mode_count(self) -> int:
-        """Number of modes below :meth:`resolution_limit` (0 when the limit is infinite): what
-        the largest model can integrate. By default :meth:`mode_count` at the limit;
-        a target whose count would need its largest eigen-solution may estimate it."""
+        """Number of modes below :meth:`resolution_limit` (0 when the limit is infinite)."""
         limit = self.resolution_limit()
         return int(self.mode_count(limit)) if math.isfinite(limit) else 0
 
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
         """Number of modes with ω_j ≤ ``max_frequency`` [rad/s], participating or not.
 
-        The modes :meth:`modes` returns at that cut-off (when it lies above the
-        fundamental). Exact; once the count is certain to exceed ``limit``, counting may
-        stop early and return a lower bound that exceeds ``limit``. This default builds
-        the modes, which suits targets whose model has a bounded size (Ritz plates,
-        finite-element beams, the half-space); targets whose mode count grows without
-        bound (Navier plates, closed-form beams) count without building them.
-
-        Parameters
-        ----------
-        max_frequency : float
-            Cut-off ω_max [rad/s], ≥ 0.
-        limit : int, optional
-            Counting may stop once the count exceeds it (default: count everything).
-
-        Returns
-        -------
-        int
+        Counting may stop early once the count exceeds ``limit`` (the result is then a
+        lower bound above ``limit``).
         """
         basis = self.modes(float(max_frequency), min_modes=1)
         return int(np.searchsorted(basis.frequencies, float(max_frequency), side="right"))
@@ -404,80 +303,56 @@ class Target(ABC):
 
     @property
     def point_load_diverges(self) -> bool:
-        """Whether the deflection under a point load is unbounded, so that a point-load peak
-        force has no converged value in the mode cut-off (the contact patch answers): a
-        target whose ``theory`` is one of :data:`~impactmaps.targets.options.DIVERGENT_POINT_LOAD_THEORIES`."""
+        """Whether the point-load deflection is unbounded (theory in
+        :data:`~impactmaps.targets.options.DIVERGENT_POINT_LOAD_THEORIES`)."""
         return getattr(self, "theory", None) in DIVERGENT_POINT_LOAD_THEORIES
 
     @property
     def has_classical_asymptote(self) -> bool:
-        """Whether the closed-form infinite-structure solutions (:meth:`infinite_structure_peak`)
-        hold for the target's theory (:data:`~impactmaps.targets.options.CLASSICAL_THEORIES`)."""
+        """Whether :meth:`infinite_structure_peak` holds for the target's theory."""
         return getattr(self, "theory", None) in CLASSICAL_THEORIES
 
     @property
     def section_depth(self) -> float | None:
-        """Depth [m] of the structure in the impact direction (a beam's height, a plate's
-        thickness); None (the default) when not known."""
+        """Depth [m] in the impact direction (beam height, plate thickness); None if unknown."""
         return None
 
     def distance_to_nearest_support(self) -> float:
-        """Distance [m] from the impact point to the nearest clamped or simply supported
-        boundary (∞, the default, without one). Finite structures override it."""
+        """Distance [m] from the impact point to the nearest support (∞ without one)."""
         return math.inf
 
     def thickness_shear_frequency(self) -> float | None:
-        """The thickness-shear cut-off ω_s [rad/s] of a shear-deformable theory, above a
-        fraction of which it stops holding (:mod:`impactmaps.solvers.shear_range`); None
-        (the default) for a theory without one."""
+        """Thickness-shear cut-off ω_s [rad/s] of a shear-deformable theory; None otherwise."""
         return None
 
     def wave_return_distance(self) -> float:
-        """Distance [m] from the impact point to the nearest boundary that reflects flexural
-        waves back to it. Finite structures (beams, plates) override it."""
+        """Distance [m] to the nearest boundary reflecting flexural waves back to the impact point."""
         raise NotImplementedError(f"{type(self).__name__} has no boundary")
 
     def flexural_group_velocity(self, angular_frequency):
-        """Group velocity [m/s] of the flexural waves at ``angular_frequency`` ω [rad/s] in the
-        classical (shear-rigid) theory, ``2 sqrt(ω) (D/m)^(1/4)`` with D/m the bending
-        stiffness over the mass per length or area. Finite structures override it."""
+        """Classical flexural group velocity [m/s] at ``angular_frequency`` ω [rad/s]."""
         raise NotImplementedError(f"{type(self).__name__} has no flexural waves")
 
     def reflection_time(self, contact_frequency):
-        """Normalised time ω d²/c [-] of the first wave return to the impact point.
-
-        ``contact_frequency`` ω [rad/s] (may be an array); d the distance [m] to the
-        boundary whose reflection comes back first and ``c = sqrt(bending stiffness /
-        mass per length or area)`` [m²/s]. Finite structures (beams, plates) override it.
-        """
+        """Normalised time ω d²/c [-] of the first wave return (``contact_frequency`` ω [rad/s])."""
         raise NotImplementedError(f"{type(self).__name__} has no wave-return time")
 
     def map_structure(self, *, patch_loaded: bool = False) -> StructureKey | None:
-        """The reference structure whose normalised maps describe this target exactly, or None.
-
-        :func:`impactmaps.targets.map_structure.describing_structure`: the isotropic,
-        undamped unit-span beam or plate of the target's theory, supports, aspect, impact
-        point (and slenderness, Poisson ratio where they matter) with the target's
-        dimensionless groups; ``patch_loaded``: the impact is loaded over the contact patch.
-        :meth:`map_structure_refusal` says why there is none.
-        """
+        """The reference structure whose normalised maps describe this target exactly, or None
+        (:func:`impactmaps.targets.map_structure.describing_structure`)."""
         return describing_structure(self, patch_loaded)[0]
 
     def map_structure_refusal(self, *, patch_loaded: bool = False) -> str | None:
-        """Why no reference structure describes this target (:meth:`map_structure`), or None."""
+        """Why no reference structure describes this target, or None."""
         return describing_structure(self, patch_loaded)[1]
 
     def similarity_groups(self) -> dict:
-        """The dimensionless groups that, with shape, supports and impact point, fix the target's
-        normalised response (:func:`impactmaps.targets.map_structure.similarity_groups`)."""
+        """The dimensionless groups fixing the target's normalised response."""
         return similarity_groups(self)
 
     @classmethod
     def infinite_structure_peak(cls, loss_factor):
-        """Normalised peak force F̄∞(ζ) [-] on the infinite structure of this kind.
-
-        ``loss_factor`` ζ [-] may be an array. Finite structures override it.
-        """
+        """Normalised peak force F̄∞(ζ) [-] on the infinite structure; ``loss_factor`` ζ [-] may be an array."""
         raise NotImplementedError(f"{cls.__name__} has no infinite-structure asymptote")
 
     @classmethod

@@ -1,12 +1,7 @@
 """A fixed half-space: the target of a compact-body impact (docs/physics_contract.md §3.1).
 
-The struck body is so large and stiff that it does not move: its surface point has no
-modes, no static compliance and takes no energy from the sphere; everything happens in
-the contact. Seen through the :class:`~impactmaps.targets.base.Target` protocol it has
-an empty modal basis with zero residual compliance, an infinite static stiffness
-(λ = K_st/K = ∞) and a loss factor ζ = 0 for every impactor. The modal solver then
-integrates ``m_i α'' = −F(α; α_max)`` alone; :func:`impactmaps.solvers.halfspace.halfspace_impact`
-solves the same problem with an adaptive Runge–Kutta method and closed forms.
+No modes, zero static compliance (λ = ∞) and ζ = 0 for every impactor: everything happens
+in the contact.
 """
 
 from __future__ import annotations
@@ -25,11 +20,7 @@ __all__ = ["HalfSpace"]
 
 @dataclass(frozen=True)
 class HalfSpace(Target):
-    """A fixed, rigid half-space: the target does not move at the impact point.
-
-    The contact properties of its surface (modulus, yield strength) belong to the
-    contact law, not to the target.
-    """
+    """A fixed, rigid half-space (its surface properties belong to the contact law)."""
 
     kind: ClassVar[str] = "halfspace"
 
@@ -39,20 +30,7 @@ class HalfSpace(Target):
         return True
 
     def modes(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
-        """No modes at any frequency: an empty basis with zero residual compliance.
-
-        Parameters
-        ----------
-        max_frequency : float
-            Cut-off ω_max [rad/s], ≥ 0 (no mode lies below any cut-off).
-        min_modes : int, optional
-            Ignored: a half-space has no modes to retain.
-
-        Returns
-        -------
-        ModalBasis
-            ``size == 0``, ``residual_compliance == 0`` [m/N].
-        """
+        """An empty basis with zero residual compliance, at any ``max_frequency`` ≥ 0 [rad/s]."""
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         return ModalBasis.from_validated(np.empty(0), np.empty(0), 0.0, np.empty(0))
 
@@ -65,32 +43,19 @@ class HalfSpace(Target):
         return math.inf
 
     def loss_factor(self, impactor_mass, contact_stiffness):
-        """Loss factor ζ = 0 [-] for every impactor: no energy leaves through the target.
-
-        Parameters
-        ----------
-        impactor_mass : float or array_like
-            m_i [kg], > 0.
-        contact_stiffness : float or array_like
-            K [N/m], > 0.
-
-        Returns
-        -------
-        ndarray
-            Zeros of the broadcast shape of the inputs.
-        """
+        """Loss factor ζ = 0 [-] (broadcast zeros) for every ``impactor_mass`` [kg] and
+        ``contact_stiffness`` [N/m]."""
         require_positive("impactor_mass", impactor_mass, "kg")
         require_positive("contact_stiffness", contact_stiffness, "N/m")
         return np.zeros(np.broadcast_shapes(np.shape(impactor_mass), np.shape(contact_stiffness)))
 
     def impactor_mass_for(self, loss_factor, contact_stiffness):
-        """No impactor mass realises a loss factor on a half-space (ζ = 0 for all masses).
+        """No impactor mass realises a loss factor on a half-space.
 
         Raises
         ------
         ValueError
-            Always: the valid range of ``loss_factor`` on a half-space is {0}, which
-            every mass gives.
+            Always (ζ = 0 for every mass).
         """
         raise ValueError(
             f"loss_factor = {loss_factor!r} cannot be realised on a half-space: its loss "

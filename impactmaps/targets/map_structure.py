@@ -1,22 +1,9 @@
 """Which reference structure describes a target: the question the maps ask of a target.
 
-A normalised map is computed on a *reference structure*: an isotropic, undamped, unit-span
-beam or plate (steel-like: E = 210 GPa, ρ = 7850 kg/m³) of some theory, supports, aspect
-ratio, slenderness, impact point and Poisson ratio (:class:`StructureKey`;
-:func:`reference_target` builds it). Its map describes a target exactly when the target
-has the same shape and the same dimensionless groups (:func:`similarity_groups`): the
-normalised response of a modal impact depends on nothing else. :func:`describing_structure`
-answers for any target which reference that is — or why there is none (an orthotropic or
-laminated plate, structural damping, a beam section no rectangle of any Poisson ratio has,
-a half-space) — and :meth:`impactmaps.targets.base.Target.map_structure` asks it.
-
-The slenderness and the Poisson ratio are part of the key only where the response depends
-on them: a Timoshenko or Rayleigh beam (slenderness from its rotary inertia, ν from its
-shear stiffness, as a rectangle with shear correction 5/6 has them; a Rayleigh beam has no
-ν), a Mindlin plate, a
-plate with other edges than SSSS (ν), a plate loaded over the contact patch (the patch
-scales with the thickness); elsewhere the key holds ``None`` and a reference is built at
-:data:`REFERENCE_SLENDERNESS` and :data:`REFERENCE_POISSON`.
+:func:`describing_structure` returns the :class:`StructureKey` of the isotropic, undamped,
+unit-span reference with the target's shape and dimensionless groups
+(:func:`similarity_groups`), or why there is none; :func:`reference_target` builds it.
+See docs/map_families.rst.
 """
 
 from __future__ import annotations
@@ -37,11 +24,8 @@ STRUCTURE_MATCH_RTOL = 1e-6
 
 
 class StructureKey(NamedTuple):
-    """The reference structure of a target (the fields of :class:`impactmaps.maps.structures.MapStructure`).
-
-    ``slenderness`` (span/thickness [-]) and ``poisson_ratio`` [-] are None where the
-    target's normalised response does not depend on them.
-    """
+    """The reference structure of a target; ``slenderness`` [-] and ``poisson_ratio`` [-] are
+    None where the normalised response does not depend on them."""
 
     kind: str
     theory: str
@@ -63,9 +47,7 @@ class ReferenceMaterial:
 
 
 def reference_target(target_class, key):
-    """The reference target of ``key`` (any object with the :class:`StructureKey` fields; None
-    slenderness or Poisson ratio: the reference values): unit span, steel-like,
-    thickness = span/slenderness, built by ``target_class`` (``Beam`` or ``Plate``)."""
+    """The unit-span, steel-like reference target of ``key`` built by ``target_class``."""
     slenderness = REFERENCE_SLENDERNESS if key.slenderness is None else key.slenderness
     poisson = REFERENCE_POISSON if key.poisson_ratio is None else key.poisson_ratio
     material = ReferenceMaterial(poisson_ratio=poisson)
@@ -81,13 +63,7 @@ def reference_target(target_class, key):
 
 def similarity_groups(target, poisson: bool = False) -> dict:
     """The dimensionless ratios that, besides shape, supports and impact point, fix a target's
-    normalised response.
-
-    Kirchhoff plates: D22/D11 and (D12 + 2 D66)/D11 (the Navier frequencies), with
-    ``poisson`` also D12/D11; Mindlin plates add D12/D11 and the shear and rotary-inertia
-    ratios; Timoshenko beams the shear and rotary-inertia ratios, Rayleigh beams the latter; every target
-    its modal damping ratio (the maps are undamped).
-    """
+    normalised response."""
     groups = {"damping_ratio": float(target.damping_ratio)}
     if target.kind == "beam":
         span = target.length
@@ -133,18 +109,8 @@ def _plate_key(plate, patch_loaded: bool) -> StructureKey:
 def describing_structure(target, patch_loaded: bool = False) -> tuple[StructureKey | None, str | None]:
     """The reference structure that describes ``target`` exactly, or why none does.
 
-    Parameters
-    ----------
-    target : Target
-    patch_loaded : bool
-        Whether the impact loads the target over the contact patch (its radius scales with
-        the thickness, so the slenderness is part of the key).
-
-    Returns
-    -------
-    (StructureKey, None) or (None, str)
-        The key, or the reason: the target type, or the first dimensionless group (:func:`similarity_groups`) in which the target differs
-        from the isotropic, undamped reference of its shape.
+    ``patch_loaded``: the impact loads the target over the contact patch. Returns
+    ``(StructureKey, None)`` or ``(None, reason)``.
     """
     if target.kind == "beam":
         key = _beam_key(target)

@@ -1,8 +1,4 @@
-"""The named choices of the targets, written once: structure kinds, theories, supports.
-
-Every module that validates or lists these (targets, map structures, case files, the
-command line) imports them from here.
-"""
+"""The named choices of the targets, written once: structure kinds, theories, supports."""
 
 from __future__ import annotations
 
@@ -40,20 +36,18 @@ def theories(kind: str) -> tuple[str, ...]:
 
 
 def default_theory(kind: str) -> str:
-    """The theory a structure of ``kind`` takes when none is given: the classical one
-    (``"beam"`` → Euler–Bernoulli, ``"plate"`` → Kirchhoff)."""
+    """The classical theory of ``kind`` (``"beam"`` → Euler–Bernoulli, ``"plate"`` → Kirchhoff)."""
     return next(theory for theory in theories(kind) if theory in CLASSICAL_THEORIES)
 
 
 def classical_theory(theory: str) -> str:
-    """The classical (shear-rigid) thin limit of a shear-deformable ``theory``
-    (Timoshenko → Euler, Mindlin → Kirchhoff); a classical theory is its own."""
+    """The classical thin limit of ``theory`` (Timoshenko → Euler, Mindlin → Kirchhoff);
+    a classical theory is its own."""
     return SHEAR_THEORIES.get(theory, theory)
 
 
 def depends_on_slenderness(theory: str) -> bool:
-    """Whether the normalised response under ``theory`` depends on the slenderness
-    (:data:`SLENDERNESS_THEORIES`)."""
+    """Whether the normalised response under ``theory`` depends on the slenderness."""
     return theory in SLENDERNESS_THEORIES
 
 
@@ -63,8 +57,7 @@ def is_shear_deformable(theory: str) -> bool:
 
 
 def point_load_diverges(theory: str) -> bool:
-    """Whether the deflection under a point load is unbounded under ``theory``
-    (:data:`DIVERGENT_POINT_LOAD_THEORIES`)."""
+    """Whether the point-load deflection is unbounded under ``theory``."""
     return theory in DIVERGENT_POINT_LOAD_THEORIES
 
 
@@ -76,9 +69,8 @@ MIN_SUPPORT_DISTANCE = 1e-6
 
 
 def impact_coordinate_range(span: float, low_supported: bool, high_supported: bool) -> tuple:
-    """The closed range ``(low, high)`` [m] of an impact coordinate on a span [m] whose two
-    ends are supported or free: a supported end keeps the point :data:`MIN_SUPPORT_DISTANCE`
-    × span away; a free end admits the end itself."""
+    """The closed range ``(low, high)`` [m] of an impact coordinate on a span [m]
+    (:data:`MIN_SUPPORT_DISTANCE` × span from a supported end; a free end itself)."""
     margin = MIN_SUPPORT_DISTANCE * span
     return (margin if low_supported else 0.0, span - margin if high_supported else span)
 

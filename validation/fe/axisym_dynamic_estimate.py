@@ -7,7 +7,7 @@ switch.  The axisymmetric model uses the same contact code, so the dynamic run w
 not attempted again.  Instead this script compares, for the issue's example (12.7 mm
 steel ball on an aluminium half-space, Y = 275 MPa) at V/V_y = 3, 30 and 300, the
 contact duration t_c of the quasi-static ``epp`` impact
-(:func:`impactmaps.solvers.halfspace.halfspace_impact`) with
+(:func:`impactmaps.closed_forms.halfspace.halfspace_impact`) with
 
 * the time a longitudinal wave needs to cross the ball, 2R/c_L (Love's criterion for
   a quasi-static impact: t_c ≫ 2R/c_L);
@@ -33,8 +33,8 @@ from scipy.optimize import brentq
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
 from impactmaps.contact import ContactPair, effective_modulus  # noqa: E402
-from impactmaps.contact.epp import EppContact  # noqa: E402
-from impactmaps.solvers.halfspace import halfspace_impact  # noqa: E402
+from impactmaps.contact.plastic.epp import EppContact  # noqa: E402
+from impactmaps.closed_forms.halfspace import halfspace_impact  # noqa: E402
 
 BALL = dict(E=200e9, nu=0.3, rho=7800.0, R=6.35e-3)
 FLAT = dict(E=70e9, nu=0.33, rho=2700.0, Y=275e6)

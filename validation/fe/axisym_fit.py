@@ -1,7 +1,7 @@
 """Fit the coefficients of the ``epp`` contact law to the axisymmetric FE runs.
 
 Reads ``results/axisym_runs.csv`` (written by ``axisym_indent.py``) and fits the
-thirteen coefficients of :mod:`impactmaps.contact.epp` by weighted least squares on the
+thirteen coefficients of :mod:`impactmaps.contact.plastic.epp` by weighted least squares on the
 quantities the law is judged by, per run (δ_m/δ_y = x_m), each divided by its
 tolerance — first the sum of squares, then the sum of sixth powers (close to the
 minimax of the worst point):
@@ -29,7 +29,7 @@ from scipy.optimize import least_squares
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
-from impactmaps.contact import epp  # noqa: E402
+from impactmaps.contact.plastic import epp  # noqa: E402
 
 ORDER = epp._ORDER
 

@@ -61,7 +61,7 @@ FE_END = 0.0145                                   # s: dynamic step end (last co
 LOAD_DT = 5e-6                                    # s: sampling of the prescribed load
 JSON = ct.RESULTS / "level5_beam_plastic.json"
 FORCE_CSV = ct.RESULTS / "level5_force.csv"
-#: The force of the coupled FD impact with the wide-section model (``fd-wide``).
+#: The force of the coupled FD impact with the wide-section model (``level5_wide_fd.py``).
 FORCE_WIDE_CSV = ct.RESULTS / "level5_force_wide.csv"
 # FE meshes: (elements through the depth nz, across the half width ny, element length in
 # the mid-span zone |x - L/2| <= ZONE in units of h/nz, growth factor outside the zone).
@@ -416,7 +416,6 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = p.add_subparsers(dest="what", required=True)
     sub.add_parser("fd")
-    sub.add_parser("fd-wide")
     fe = sub.add_parser("fe")
     fe.add_argument("--mesh", default="coarse", choices=sorted(MESHES))
     fe.add_argument("--dt", type=float, default=5e-6)
@@ -435,9 +434,6 @@ def main(argv=None):
     a = p.parse_args(argv)
     if a.what == "fd":
         run_fd(a)
-    elif a.what == "fd-wide":
-        from level5_wide_fd import run_fd_wide
-        run_fd_wide(a)
     else:
         run_fe(a)
 

@@ -1,5 +1,5 @@
 """Level 5, the FD beam's wide-section model against the 3D reference (run as
-``python validation/fe/level5_beam_plastic.py fd-wide``).
+``python validation/fe/level5_wide_fd.py``).
 
 Under the committed force (FORCE_CSV, the uniaxial coupled impact): the FD beam with and
 without the wide-section model on six grids against the FE reference; the sensitivity to
@@ -93,5 +93,9 @@ def run_fd_wide(_args):
                 print(key, study[key], flush=True)
     data["fd_wide"] = dict(prescribed=study, coupled_own_force=coupled, reference=REFERENCE,
                            constraint_strain_sensitivity=sensitivity,
-                           command="python validation/fe/level5_beam_plastic.py fd-wide")
+                           command="python validation/fe/level5_wide_fd.py")
     save(data)
+
+
+if __name__ == "__main__":
+    run_fd_wide(None)

@@ -1,0 +1,382 @@
+"""The second core during the first integrating command: a helper process compiles with it.
+
+On an empty numba cache the first integrating command compiled everything on one core:
+the small kernels (time step, contact law, coupled top frequency; ~1–3 s) and then the
+exact-step integrator (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`, ~8 s with
+its callees), one after the other, ~12 s in all. When a run first knows it will integrate
+(:func:`impactmaps.solvers.modal.simulate`, after its plan) and numba's cache lacks an
+integrator variant the run may need, :func:`start` launches a helper process at normal
+priority. The work is split so that the two processes never compile the same function:
+
+1. the helper compiles :data:`HELPER_CALLEES` (callees of the integrator, the same in
+   both variants) into numba's cache while this process goes on with its run and its
+   small kernels;
+2. before the run calls the integrator, :func:`await_variant` compiles
+   :data:`FOREGROUND_CALLEES` here and waits for the helper to end (at most
+   :data:`WAIT_S` seconds from its start);
+3. this process compiles the variant of the integrator its run needs, loading the
+   callees of the helper's share from numba's cache.
+
+The compiled code is the code one process would compile: answers are bit for bit the
+same. Never a wrong or missing answer: if the helper fails, is killed or is late, this
+process compiles what is missing itself (numba loads a cached function or compiles it).
+
+Off under ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` (:data:`DISABLE_ENV`, the background
+warm-up's switch; the tests set it) and in processes that are themselves workers of
+another (``multiprocessing``: a sweep's workers never start one). At most one helper per
+process, for its first integrating run; on a warm cache the check is one read of numba's
+cache index (:func:`variant_cached`, ~0.5 ms).
+
+A wheel built by ``pip install .`` ships the kernels compiled (``setup.py``), beside the
+modules; numba reads them there unless the installation is read-only, when it keeps its
+cache in its user-wide directory: :func:`seed_user_cache` (run first by :func:`start`)
+then copies the shipped files there, so that the run loads them instead of compiling.
+
+No process is left behind: the helper ends with this process — at its exit (``atexit``),
+on Ctrl-C (the terminal's signal reaches both; while waiting, this process ends it), and,
+on Linux, when this process is killed (``PR_SET_PDEATHSIG``). Two commands starting at
+once each start a helper compiling the same functions with the same signatures: numba
+writes its cache files by atomic renames (``os.replace``), and a run loads or compiles
+what it finds either way.
+"""
+
+from __future__ import annotations
+
+import atexit
+import os
+import sys
+import threading
+import time
+from pathlib import Path
+
+__all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "switched_off", "child_environment",
+           "variant_cached", "register_integrator", "end_with_parent", "seed_user_cache", "copy_shipped_cache"]
+
+#: Environment variable that turns the helper off (any value but "" and "0"), and the
+#: background warm-up (:data:`impactmaps._compile.background_warm_up.DISABLE_ENV`, the same).
+DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
+#: The longest wait for a helper [s], from its start; then this process compiles itself.
+WAIT_S = 120.0
+#: The polling interval of the wait [s].
+_POLL_S = 0.02
+
+#: The helper (``python -c _CHILD PARENT_PID share``, or ``sleep:S`` / ``fail`` for the
+#: tests' stand-ins instead of ``share``).
+_CHILD = ("import importlib, sys; sys.argv[1] and importlib.import_module(sys.argv[1]); "
+          "from impactmaps._compile.compile_helper import helper_main; sys.exit(helper_main(sys.argv[2:]))")
+
+_lock = threading.Lock()
+_state = {"decided": False, "process": None, "variants": (), "started": 0.0, "share": False}
+#: The integrator this plumbing compiles for, registered by the module that defines it
+#: (:func:`register_integrator`): nothing here imports the solvers.
+_integrator = {"kernel": None, "callees": dict, "module": ""}
+
+
+def register_integrator(kernel, callee_signatures, module: str) -> None:
+    """Register the exact-step integrator (a :class:`~impactmaps._compile.lazy_kernel.LazyKernel`),
+    the function giving its callees' signatures (``name → (dispatcher, argument types)``) and
+    the name of the module defining both (the helper process imports it); called by that module."""
+    _integrator.update(kernel=kernel, callees=callee_signatures, module=module)
+
+
+def switched_off() -> bool:
+    """Whether :data:`DISABLE_ENV` turns off the compiling in other processes (the helper
+    and the background warm-up): set to anything but "" and "0"."""
+    return os.environ.get(DISABLE_ENV, "") not in ("", "0")
+
+
+def child_environment() -> tuple[dict, str]:
+    """``(env, cwd)`` of a ``python -c`` child that must import this very package and start
+    no compiling process of its own: :data:`DISABLE_ENV` set, the package's parent directory
+    first on ``PYTHONPATH`` and as the working directory (``-c`` puts the working directory
+    first on ``sys.path``: a checkout there would be imported instead, with another cache)."""
+    package_parent = str(Path(__file__).resolve().parents[2])
+    env = dict(os.environ, **{DISABLE_ENV: "1"})
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
+    return env, package_parent
+
+
+def enabled() -> bool:
+    """Whether this process may start a helper: not turned off (the background warm-up's
+    switch), and not a ``multiprocessing`` worker."""
+    if switched_off():
+        return False
+    import multiprocessing
+
+    return multiprocessing.parent_process() is None
+
+
+def start(variants, arguments: list[str] | None = None) -> bool:
+    """Start the helper if numba's cache lacks one of the integrator variants a run may need.
+
+    Parameters
+    ----------
+    variants : tuple
+        The ``exact_phase`` values (None, True) the run may call the integrator with.
+    arguments : list of str, optional
+        Replaces the helper's arguments (tests: a stand-in, ``["sleep:S"]`` or ``["fail"]``;
+        then ``variants`` are taken as not cached).
+
+    Returns
+    -------
+    bool
+        True if a helper was started. The helper compiles :data:`HELPER_CALLEES` (the same
+        in every variant) into numba's cache and ends. Only the first call of a process
+        decides (later calls return False at once); none is started when :func:`enabled`
+        is False or every variant is cached. Never raises: a helper that cannot be started
+        is not (the run compiles itself).
+    """
+    if _state["decided"]:
+        return False
+    with _lock:
+        if _state["decided"]:
+            return False
+        _state["decided"] = True
+        try:
+            seed_user_cache()
+            if switched_off():
+                return False
+            if arguments is None:  # the cache first: on a warm one, nothing more is imported
+                variants = tuple(variant for variant in variants if not variant_cached(variant))
+                if not variants:
+                    return False
+                arguments = ["share"]
+            return enabled() and _launch(tuple(variants), arguments)
+        except Exception:  # noqa: BLE001 (no helper: the run compiles itself)
+            return False
+
+
+def seed_user_cache() -> int:
+    """Copy the kernels a wheel shipped compiled into numba's user-wide cache, where numba
+    keeps its cache because the package's directories are read-only.
+
+    Returns
+    -------
+    int
+        The number of files copied: 0 unless numba uses its user-wide cache
+        (``~/.cache/numba``) for this package — it keeps a function's cache beside its module
+        when that directory is writable (then it reads the shipped files there itself), in
+        ``NUMBA_CACHE_DIR`` when that is set (a user's choice, left alone), else in its
+        user-wide cache, where it does not look for the files beside a read-only module.
+
+    Notes
+    -----
+    The entries are the same in both places (the same file names; numba keys them on the
+    source's content): a function whose index is not yet in the user-wide cache gets the
+    shipped index and data files (:func:`copy_shipped_cache`); an index already there is
+    numba's own and left alone. Called by the first integrating run of a process
+    (:func:`start`) and by :func:`impactmaps.solvers.warm_up.warm_up`; never raises.
+    """
+    try:
+        from numba.core.caching import UserWideCacheLocator
+
+        integrate_impact = _integrator["kernel"]
+        locator = integrate_impact.dispatcher._cache._impl.locator
+        if type(locator) is not UserWideCacheLocator:
+            return 0
+        base = Path(locator.get_cache_path()).parent
+        # the package's directory as numba sees its modules (not resolved: the cache path hashes it)
+        depth = len(_integrator["module"].split(".")) - 2
+        package = Path(integrate_impact.dispatcher.py_func.__code__.co_filename).parents[depth]
+        return copy_shipped_cache(package, lambda folder: base / UserWideCacheLocator.get_suitable_cache_subpath(
+            str(folder / "__init__.py")))
+    except Exception:  # noqa: BLE001 (numba's internals changed, or a file error: numba compiles)
+        return 0
+
+
+def copy_shipped_cache(package, destination) -> int:
+    """Copy numba's cache files from the ``__pycache__`` directories under ``package`` to
+    ``destination(folder)`` (a directory for each package folder), index by index: a
+    function's data files, then its index, each by an atomic rename; skipped where the
+    destination has that index already. The number of files copied."""
+    import glob
+    import shutil
+
+    copied = 0
+    for index in sorted(Path(package).glob("**/__pycache__/*.nbi")):
+        target = Path(destination(index.parent.parent))
+        if (target / index.name).exists():
+            continue
+        target.mkdir(parents=True, exist_ok=True)
+        stem = glob.escape(index.name[:-len(".nbi")])
+        for source in [*sorted(index.parent.glob(f"{stem}.*.nbc")), index]:  # the index last: numba
+            temporary = target / f"{source.name}.tmp.{os.getpid()}"        # reads what it lists
+            shutil.copyfile(source, temporary)
+            os.replace(temporary, target / source.name)
+            copied += 1
+    return copied
+
+
+def variant_cached(variant) -> bool:
+    """Whether numba's cache holds one variant of the integrator for this machine.
+
+    Parameters
+    ----------
+    variant : None or True
+        The integrator's ``exact_phase`` argument (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`).
+
+    Returns
+    -------
+    bool
+        True if the cache index lists it (one read of a small file); False when it does
+        not or that cannot be told (then it is compiled).
+    """
+    integrate_impact = _integrator["kernel"]
+    try:
+        dispatcher = integrate_impact.dispatcher  # numba's cache index, as Dispatcher.compile consults it
+        cache = dispatcher._cache
+        key = cache._index_key(integrate_impact.signatures[variant], dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:  # noqa: BLE001 (an internal of numba changed: compile rather than guess)
+        return False
+
+
+def _launch(variants: tuple, arguments: list[str]) -> bool:
+    import subprocess
+
+    env, cwd = child_environment()
+    process = subprocess.Popen([sys.executable, "-c", _CHILD, _integrator["module"], str(os.getpid()), *arguments],
+                               stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               env=env, close_fds=True, cwd=cwd)
+    _state.update(process=process, variants=variants, started=time.monotonic(),
+                  share=arguments == ["share"])
+    _trace("launched")
+    atexit.register(_stop)
+    return True
+
+
+def _stop() -> None:
+    """End the helper if it still runs (and reap it)."""
+    process = _state["process"]
+    if process is not None and process.poll() is None:
+        process.kill()
+        process.wait()
+
+
+def await_variant(variant, timeout: float | None = None) -> bool:
+    """Before the integrator's ``variant`` is compiled: compile this process's share of its
+    callees, then wait for the helper compiling the other share.
+
+    Parameters
+    ----------
+    variant : None or True
+        The integrator variant the run needs (``exact_phase``).
+    timeout : float, optional
+        The longest wait [s] from the helper's start (default :data:`WAIT_S`); a helper
+        still running then is ended.
+
+    Returns
+    -------
+    bool
+        True if a helper was waited for (it finished, failed or was ended), False at once
+        when none runs or ``variant`` was in the cache when the helper started (the
+        helper is then ended).
+
+    Notes
+    -----
+    On ``KeyboardInterrupt`` (or any error) the helper is ended and the error raised.
+    """
+    process = _state["process"]
+    if process is None:
+        return False
+    if variant not in _state["variants"]:
+        _stop()
+        _state["process"] = None
+        return False
+    deadline = _state["started"] + (WAIT_S if timeout is None else timeout)
+    try:
+        if _state["share"]:  # not for the tests' stand-ins
+            _trace("share-start")
+            _compile_callees(FOREGROUND_CALLEES, lambda: process.poll() is not None)
+            _trace("share-end")
+        while process.poll() is None and time.monotonic() < deadline:
+            time.sleep(_POLL_S)
+    except BaseException:
+        _stop()
+        raise
+    _stop()  # late: ended (this process compiles what it lacks)
+    _trace("waited")
+    _state["process"] = None
+    return True
+
+
+#: The integrator's callees the helper compiles (in this order), and those this process
+#: compiles meanwhile; then this process compiles the integrator, which loads the
+#: helper's from numba's cache. Chosen by measurement (``benchmarks/studies/RESULTS_cold_start.md``):
+#: the two shares take about the same time, and none calls a callee of the other share
+#: but ``locate_event`` (``fill_step_coefficients``, ``predict_step``), compiled last here.
+HELPER_CALLEES = ("fill_step_coefficients", "predict_step", "free_doublings", "square_free_propagators",
+                  "solve_end_force", "damping_work")
+FOREGROUND_CALLEES = ("record_free_inside", "no_reimpact_possible", "locate_event")
+
+
+#: Environment variable naming a file to which both processes append their milestones
+#: (``who event time.monotonic()``; ``benchmarks/studies/bench_cold_start.py --helper`` reads it).
+TRACE_ENV = "IMPACTMAPS_COMPILE_HELPER_TRACE"
+
+
+def _trace(event: str) -> None:
+    path = os.environ.get(TRACE_ENV)
+    if path:
+        with open(path, "a") as trace:
+            trace.write(f"{os.getpid()} {event} {time.monotonic():.4f}\n")
+
+
+def _compile_callees(names, stop=lambda: False) -> None:
+    """Compile the callees ``names`` into numba's cache, in order, until ``stop()`` (best
+    effort: one that fails to compile is left to the integrator's compile)."""
+    import warnings
+
+    signatures = _integrator["callees"]()
+    for name in names:
+        if stop():
+            return
+        dispatcher, signature = signatures[name]
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                dispatcher.compile(signature)
+        except Exception:  # noqa: BLE001 (the integrator's compile compiles it)
+            pass
+
+
+def end_with_parent(signal_number: int, parent: int | None = None) -> bool:
+    """Ask Linux to send this process ``signal_number`` when its parent ends
+    (``prctl(PR_SET_PDEATHSIG)``; elsewhere nothing is done).
+
+    Returns
+    -------
+    bool
+        False if ``parent`` (a pid) is given and is no longer this process's parent.
+    """
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            ctypes.CDLL(None, use_errno=True).prctl(1, int(signal_number), 0, 0, 0)  # 1: PR_SET_PDEATHSIG
+        except Exception:  # noqa: BLE001 (the process ends when it is done)
+            pass
+    return parent is None or os.getppid() == parent
+
+
+def helper_main(argv: list[str]) -> int:
+    """The helper process (``argv``: the parent's pid, then ``share`` or a tests' stand-in):
+    compile :data:`HELPER_CALLEES` into numba's cache; the exit status (0, 1 for the
+    failing stand-in)."""
+    import signal
+
+    if not end_with_parent(signal.SIGKILL, int(argv[0])):
+        return 0
+    import warnings
+
+    warnings.simplefilter("ignore")
+    for name in argv[1:]:
+        if name.startswith("sleep:"):  # tests: a stand-in of the compile
+            time.sleep(float(name.split(":", 1)[1]))
+        elif name == "fail":
+            return 1
+        elif name == "share":
+            _trace("helper-start")
+            _compile_callees(HELPER_CALLEES)
+            _trace("helper-share-end")
+    return 0

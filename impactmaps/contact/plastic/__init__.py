@@ -1,0 +1,1 @@
+"""The elastic-plastic contact laws (Yigit–Christoforou, Stronge, the FE-calibrated epp) and the first yield they share."""

@@ -1,0 +1,266 @@
+"""``impactmaps sweep CONFIG.toml``: sweeps described in a TOML file.
+
+Example::
+
+    output = "my-sweep"                 # directory (relative to the config file)
+    law = "linear"                      # or "hertz": axes ζ_h, λ_h, F_max/F_hs; "yc", "stronge": β too
+    [grid]
+    zeta = { min = 0.01, max = 10, count = 30 }      # or an explicit list
+    lambda = [0.1, 1.0, 10.0]
+    # beta = { min = 1, max = 1000, count = 7 }      # the elastic-plastic laws' impact numbers
+    [solver]                            # optional ModalSettings fields
+    cutoff_ratio = 40
+    [[structure]]                       # one table per structure (fields of MapStructure)
+    kind = "plate"
+    theory = "mindlin"
+    supports = "SSSS"
+    aspect_ratio = [1.0, 2.0]           # a list sweeps that parameter too
+    slenderness = 20
+
+Every key, its unit and its default are documented in the user guide
+(``docs/sweeps.rst``). The defaults of ``theory``, ``supports`` and
+``impact_fraction`` follow ``kind``: a beam is ``euler``, ``ss``, struck at mid-span;
+a plate ``kirchhoff``, ``SSSS``, struck at the centre.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import tomllib
+from dataclasses import fields
+from pathlib import Path
+
+import numpy as np
+
+from ..._checks import range_end_text, read_text_input
+from ..._files import written_atomically
+from ...solvers.modal import ModalSettings
+from ...targets.options import default_theory
+from ..family.registry import available_map_families, map_family
+from ..family.structures import MapStructure
+from .dataset import tidy_frame
+from .sweep import sweep, sweep_fingerprint
+
+__all__ = ["load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
+
+_TOP_KEYS = {"output", "law", "grid", "solver", "structure"}
+_STRUCTURE_KEYS = {f.name for f in fields(MapStructure)}
+_SOLVER_KEYS = {f.name for f in fields(ModalSettings)}
+
+#: Defaults of a ``[[structure]]`` table that depend on its ``kind``.
+KIND_DEFAULTS = {
+    "beam": {"theory": default_theory("beam"), "supports": "ss", "impact_fraction": (0.5,)},
+    "plate": {"theory": default_theory("plate"), "supports": "SSSS", "impact_fraction": (0.5, 0.5)},
+}
+
+
+def _number(name, value, *, integer=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{name} = {value!r} is invalid: give a finite number")
+    if integer and value != int(value):
+        raise ValueError(f"{name} = {value!r} is invalid: give a whole number ≥ 1")
+    return int(value) if integer else float(value)
+
+
+#: Most values one grid axis of a sweep file may have (a count of 1e9 allocated gigabytes before
+#: any check; the whole map is bounded by the sweep, :func:`impactmaps.maps.compute.sweep.sweep`).
+MAX_AXIS_VALUES = 10**6
+
+
+def _grid(name, value, valid):
+    """The values of grid axis ``name`` from its table or list (each > 0), each inside ``valid``
+    (low, high) when given."""
+    values = _grid_values(name, value)
+    if valid is None:
+        return values
+    low, high = valid
+    if np.any(values < low) or np.any(values > high):
+        raise ValueError(f"grid.{name} = {value!r} is invalid: every value must be in [{range_end_text(low)}, {range_end_text(high)}] "
+                         "(beyond it the realised impactor's numbers under- or overflow)")
+    return values
+
+
+def _grid_values(name, value):
+    path = f"grid.{name}"
+    if isinstance(value, dict):
+        unknown = set(value) - {"min", "max", "count"}
+        if unknown or not {"min", "max", "count"} <= set(value):
+            raise ValueError(f"{path} = {value!r} is invalid: give min, max and count, or a list of values")
+        low, high = _number(f"{path}.min", value["min"]), _number(f"{path}.max", value["max"])
+        count = _number(f"{path}.count", value["count"], integer=True)
+        if not 1 <= count <= MAX_AXIS_VALUES:
+            raise ValueError(f"{path}.count = {value['count']!r} is invalid: valid range is [1, {MAX_AXIS_VALUES}]")
+        if low <= 0 or high < low:
+            raise ValueError(f"{path} = {{min = {low:g}, max = {high:g}}} is invalid: need 0 < min ≤ max")
+        return np.geomspace(low, high, count)
+    if isinstance(value, list) and value:
+        values = np.array([_number(f"{path}[{k}]", v) for k, v in enumerate(value)])
+        if np.any(values <= 0):
+            raise ValueError(f"{path} = {value!r} is invalid: every value must be > 0")
+        return values
+    raise ValueError(f"{path} = {value!r} is invalid: give min, max and count, or a non-empty list of values")
+
+
+def _impact_fractions(value, where):
+    """The impact points of a table: a number, one point [x, y], or a list of points."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return [(float(value),)]
+    if isinstance(value, list) and value and all(isinstance(v, list) for v in value):
+        return [tuple(v) for v in value]
+    if isinstance(value, list) and value and not any(isinstance(v, (list, dict)) for v in value):
+        return [tuple(value)]
+    raise ValueError(f"{where}.impact_fraction = {value!r} is invalid: give a fraction x0/L, a point "
+                     "[x0/a, y0/b] or a list of points")
+
+
+#: The [[structure]] keys that take a name; the others take numbers.
+_NAMED_KEYS = ("kind", "theory", "supports")
+
+
+def _require_structure_value(path: str, key: str, value) -> None:
+    """``ValueError`` naming ``path`` unless ``value`` has the type of ``key``: a string for
+    :data:`_NAMED_KEYS`, a number (not a boolean) otherwise, and a point of numbers for
+    ``impact_fraction`` (one for a beam: two numbers mean a plate's point)."""
+    def number(item):
+        return isinstance(item, (int, float)) and not isinstance(item, bool)
+
+    if key in _NAMED_KEYS:
+        if not isinstance(value, str):
+            raise ValueError(f"{path} = {value!r} is invalid: give a name (a string)")
+    elif key == "impact_fraction":
+        if not all(number(item) for item in value):
+            raise ValueError(f"{path} = {list(value)!r} is invalid: give fractions of the span in (0, 1)")
+    elif not number(value):
+        raise ValueError(f"{path} = {value!r} is invalid: give a number")
+
+
+def _structures(table, index):
+    where = f"[[structure]] #{index + 1}"
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} = {table!r} is invalid: give a table of MapStructure keys")
+    unknown = set(table) - _STRUCTURE_KEYS
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}: allowed keys are {sorted(_STRUCTURE_KEYS)}")
+    swept = {k: (v if isinstance(v, list) else [v]) for k, v in table.items() if k != "impact_fraction"}
+    if "impact_fraction" in table:
+        swept["impact_fraction"] = _impact_fractions(table["impact_fraction"], where)
+    out = []
+    for combination in itertools.product(*swept.values()):
+        values = dict(zip(swept, combination))
+        for key, value in values.items():
+            _require_structure_value(f"{where}.{key}", key, value)
+        kind = values.get("kind", "plate")
+        if kind not in KIND_DEFAULTS:
+            raise ValueError(f"{where}.kind = {kind!r} is invalid: choose 'beam' or 'plate'")
+        if kind == "beam" and len(values.get("impact_fraction", (0.5,))) != 1:
+            raise ValueError(f"{where}.impact_fraction = {table['impact_fraction']!r} is invalid for a beam: give "
+                             "one fraction x0/L, or a list of them as [[0.3], [0.9]]")
+        values = KIND_DEFAULTS[kind] | values
+        try:
+            structure = MapStructure(**values)
+            structure.build()  # supports and theory are checked by the target: fail before any output
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"{where}: {error}") from None
+        out.append(structure)
+    return out
+
+
+def load_sweep_config(path):
+    """Parse a sweep TOML file.
+
+    Parameters
+    ----------
+    path : path-like
+        The TOML file (format: module docstring and the user guide).
+
+    Returns
+    -------
+    tuple
+        ``(structures, zetas, lambdas, settings, output_dir, law, axes)``: ``axes`` the grids of
+        the law's axes besides ζ and λ (``{"beta": …}`` for an elastic-plastic law; else empty).
+    """
+    path, text = read_text_input("sweep file", path)
+    try:
+        config = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path} is not valid TOML: {error}") from None
+    unknown = set(config) - _TOP_KEYS
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {path}: allowed keys are {sorted(_TOP_KEYS)}")
+    grid = config.get("grid", {})
+    if not isinstance(grid, dict) or "zeta" not in grid or "lambda" not in grid:
+        raise ValueError(f"{path}: [grid] needs 'zeta' and 'lambda'")
+    law = config.get("law", "linear")
+    if not isinstance(law, str) or law not in available_map_families():
+        raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
+    family = map_family(law)
+    zetas = _grid("zeta", grid["zeta"], family.axis_range("zeta"))
+    lambdas = _grid("lambda", grid["lambda"], family.axis_range("lambda_"))
+    solver = config.get("solver", {})
+    if not isinstance(solver, dict):
+        raise ValueError(f"solver = {solver!r} is invalid: give a [solver] table")
+    unknown = set(solver) - _SOLVER_KEYS
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in [solver]: allowed keys are {sorted(_SOLVER_KEYS)}")
+    try:
+        settings = ModalSettings(**solver)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"[solver]: {error}") from None
+    tables = config.get("structure", [])
+    if not isinstance(tables, list):
+        tables = [tables]
+    structures = [s for index, table in enumerate(tables) for s in _structures(table, index)]
+    if not structures:
+        raise ValueError(f"{path}: give at least one [[structure]] table")
+    output = config.get("output", path.stem + "-output")
+    if not isinstance(output, str) or not output or "\x00" in output \
+            or any(len(part.encode()) > 255 for part in Path(output).parts):
+        raise ValueError(f"output = {output!r} is invalid: give a directory name (no NUL character, each part at "
+                         "most 255 bytes)")
+    extra = [axis.name for axis in map_family(law).extra_axes]
+    unknown = set(grid) - {"zeta", "lambda", *extra}
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in [grid] of the {law} law: allowed keys are "
+                         f"{sorted({'zeta', 'lambda', *extra})}")
+    if not set(extra) <= set(grid):
+        raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
+    axes = {name: _grid(name, grid[name], family.axis_range(name)) for name in extra}
+    sweep_fingerprint(structures, zetas, lambdas, settings, law, axes)  # the sweep's own checks (its size)
+    return structures, zetas, lambdas, settings, path.parent / output, law, axes
+
+
+def run_sweep_config(path, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
+                     executor=None) -> dict:
+    """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory.
+
+    Parameters
+    ----------
+    path : path-like
+        The sweep TOML file.
+    progress : bool
+        Show a progress bar.
+    overwrite : bool
+        Replace an existing ``sweep.nc`` made by another configuration.
+    max_workers : int, optional
+        Local worker processes (default: all cores).
+    executor : concurrent.futures.Executor, optional
+        Where the points run (e.g. a Dask client's ``get_executor()``).
+
+    Returns
+    -------
+    dict
+        ``{"netcdf": Path, "csv": Path}``.
+    """
+    structures, zetas, lambdas, settings, output, law, axes = load_sweep_config(path)
+    if output.exists() and not output.is_dir():
+        raise ValueError(f"output = {str(output)!r} is a file, not a directory")
+    netcdf, csv = output / "sweep.nc", output / "sweep.csv"
+    for path in (netcdf, csv):
+        if path.is_dir():
+            raise ValueError(f"output = {str(output)!r} holds a directory {path.name!r} where the sweep writes a file")
+    dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
+                    overwrite=overwrite, max_workers=max_workers, executor=executor, law=law, axes=axes)
+    with written_atomically(csv) as part:
+        tidy_frame(dataset).to_csv(part, index=False)
+    return {"netcdf": netcdf, "csv": csv}

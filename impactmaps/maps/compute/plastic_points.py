@@ -1,0 +1,449 @@
+r"""Map points with an elastic-plastic contact law: (β, ζ, λ) realised, simulated, scaled.
+
+Which numbers fix a plastic-law impact
+--------------------------------------
+Both elastic-plastic laws of docs/physics_contract.md §2 are a fixed shape scaled by one length and
+one force: ``F = K_h α_y^{3/2} g(α/α_y)``.
+
+* Yigit–Christoforou: ``g(a) = a^{3/2}`` to yield, ``1 + (3/2)(a − 1)`` beyond, and
+  unloading ``a^{3/2} − a_f^{3/2}`` with ``a_f`` a function of ``a_m`` alone (the law has
+  no parameter in these units, :mod:`impactmaps.contact.plastic.yigit_christoforou`).
+* Refined Stronge with E*, R, Y: ``δ_y/α_y = c_y²/2.72`` and ``F_y = K_h δ_y^{3/2}``
+  (``K_h = (4/3) E* R^{1/2}``); its loading branches are functions of ``δ/δ_y`` times
+  ``F_y`` (the fully plastic one: ``π R δ_y (2d − 1) c_p Y = F_y (3c_p/(2c_y))(2d − 1)``),
+  and its unloading recovery ``3F_m/(4E* a_m) = δ_y f_m/sqrt(2d_m − 1)`` is one too. So
+  for fixed constants (c_y, c_p, δ_p/δ_y) ``g`` is again fixed; R on its own appears only
+  in the contact radius, which the modal solver uses for the pressure patch of Mindlin
+  plates alone (docs/physics_contract.md §8).
+
+With ``x̄ = x/α*``, ``τ = ω_y t``, ``F̄ = F/(m V0 ω_y)`` — the linear scales of the
+linearised stiffness ``K_y = (3/2) K_h α_y^{1/2}`` (seed 001 eqs 10, 18), ``ω_y =
+sqrt(K_y/m)``, ``α* = V0/ω_y`` — the impactor equation is ``x̄'' = −F̄`` and the law reads
+``F̄ = (α_y/α*)(2/3) g(ᾱ α*/α_y)``: one number, ``α*/α_y``. Since
+``β = V0/(ω_h α_y)`` with ``ω_h² = K_h α_y^{1/2}/m = (2/3) ω_y²`` (seed 001 eqs 11, 12),
+``α*/α_y = β sqrt(2/3)``: the law's number **is** the impact number β. The structure
+enters through ``K_y`` exactly as a linear spring ``K`` does (docs/physics_contract.md §1, §4): its
+point receptance in these scales depends on ``ζ = ζ(m, K_y)`` and ``λ = K_st/K_y``.
+Hence a plastic-law impact on a structure family is fixed by **(β, ζ, λ)** with ζ and λ
+the linear numbers at ``K_y`` — the numbers ``impactmaps simulate`` already prints for a
+plastic case (``beta``, ``zeta``, ``lambda``, ``lambda_basis`` = K_y) — and for large β,
+where the loading curve is nearly the line ``K_y α``, the map approaches the linear map
+at (ζ, λ) (the offset ``F_y/2`` of the post-yield line is ``1/(sqrt(6) β)`` in F̄).
+
+The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou law with the
+same E*, R, Y: :meth:`impactmaps.contact.plastic.stronge.StrongeContact.impact_number`), with
+its default constants only: other constants are another family.
+
+The ``epp`` law (:mod:`impactmaps.contact.plastic.epp`) is the same kind: its yield scales
+``δ_y = R (π c_y Y/(2E*))²`` (c_y = 1.6) and ``F_y = K_h δ_y^{3/2}`` are those of the
+Stronge law, so ``δ_y/α_y = c_y²/2.72`` and, in units α_y and ``K_h α_y^{3/2}``, its
+curves are fixed for fixed options — the flat's ``poisson_ratio`` and the
+``sphere_compliance`` both change them, so its maps are built at the law's defaults
+(:data:`EPP_MAP_OPTIONS`: ν = 0.3, a rigid sphere) and describe only that law. β and
+K_y are again those of the Yigit–Christoforou law with the same E*, R, Y
+(:meth:`impactmaps.contact.plastic.epp.EppContact.impact_number`).
+
+The map families ``"yc"``, ``"stronge"`` and ``"epp"`` (:class:`PlasticFamily`) are these points.
+
+Stored quantities
+-----------------
+``fmax_normalised = F_max/(m V0 ω_y)``; times × ω_y; ``restitution`` = rebound speed /
+V0; ``absorbed_energy_fraction`` = energy dissipated in the contact
+(``law.dissipated_energy(α_max)``, exact for these laws: the history is α_max alone)
+over ½ m V0²; ``energy_transferred_fraction`` = vibration energy left in the structure
+over ½ m V0² (``e² + absorbed + transferred = 1``). Each of F̄max, restitution and
+absorbed energy carries an error estimate from the accuracy control of
+:mod:`.accuracy` (the change between the last two refinement levels, or half the
+spread of a sensitive point).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..._checks import require_choice, require_positive
+from ...contact.base import contact_law_class
+from ...contact.plastic.epp import EppContact
+from ...dimensionless import realise
+from ...contact.contact_scale import reference_contact_stiffness
+from ...solvers.modal_settings import ModalSettings
+from ..family.accuracy import STATUSES, AccuracyControl, PointStatus
+from ..family.builtin_families import PLASTIC_ERROR_OF, PLASTIC_LAWS, PlasticLayout
+from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
+from .points import PlanMethod, map_plan, method_code, solve_map_points
+from ..family.structures import BasisTable, MapStructure
+
+__all__ = ["PLASTIC_LAWS", "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
+           "plastic_law_of", "solve_plastic_points"]
+
+#: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's
+#: Poisson ratio 0.3, a rigid sphere); each changes the normalised response, so another
+#: value is another family.
+EPP_MAP_OPTIONS = {name: option.default for name, option in EppContact.options().items()}
+
+#: The variables a plastic map adds to the F̄max ones: name → (units, description).
+PLASTIC_VARIABLES = {
+    "restitution": ("1", "impactor rebound speed / V0 (nan if the run ended in contact)"),
+    "restitution_error": ("1", "error estimate of restitution (as fmax_error)"),
+    "absorbed_energy_fraction": ("1", "energy dissipated in the contact / impact energy ½ m V0²"),
+    "absorbed_energy_error": ("1", "error estimate of absorbed_energy_fraction (as fmax_error)"),
+}
+#: The quantities whose error the map stores, with the name of their error variable.
+ERROR_OF = PLASTIC_ERROR_OF
+
+
+@dataclass(frozen=True)
+class PlasticNumbers:
+    """The similarity numbers and scales of one elastic-plastic impact (SI units).
+
+    Attributes
+    ----------
+    impact_number : float
+        β = V0/(ω_h α_y) [-] (seed 001 eq 11).
+    loss_factor : float
+        ζ = ζ(m, K_y) of the target [-].
+    relative_stiffness : float
+        λ = K_st/K_y [-].
+    linearised_stiffness : float
+        K_y = 1.5 K_h sqrt(α_y) [N/m].
+    force_scale : float
+        m V0 ω_y [N], ω_y = sqrt(K_y/m).
+    time_scale : float
+        1/ω_y [s].
+    """
+
+    impact_number: float
+    loss_factor: float
+    relative_stiffness: float
+    linearised_stiffness: float
+    force_scale: float
+    time_scale: float
+
+
+def plastic_law_of(law) -> str:
+    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to, or ValueError.
+
+    A law with other than its default options (:meth:`~impactmaps.contact.ContactLaw.changed_options`:
+    the constants of a Stronge law, the options of an ``epp`` law, :data:`EPP_MAP_OPTIONS`) is
+    another family: refused, naming the option, its value and the maps' value.
+    """
+    name = getattr(law, "name", None)
+    map_law = next((key for key, law_name in PLASTIC_LAWS.items() if law_name == name), None)
+    if map_law is None:
+        raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
+                         f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+    defaults = law.options()
+    changed = [f"{option} = {_option_text(value)} (the maps' value: {float(defaults[option].default):g})"
+               for option, value in law.changed_options().items()]
+    if changed:
+        raise ValueError(f"contact law {name!r} with {', '.join(changed)}: the normalised response depends on "
+                         f"these options and the {map_law} maps are built at their defaults")
+    return map_law
+
+
+def _option_text(value) -> str:
+    """A law option's value as the user gave it (a number, or an array's values)."""
+    values = np.unique(np.asarray(value, float))
+    return f"{values[0]:g}" if values.size == 1 else "[" + ", ".join(f"{v:g}" for v in values) + "]"
+
+
+def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
+    """β, ζ(m, K_y) and λ = K_st/K_y of an elastic-plastic impact (module docstring).
+
+    Parameters
+    ----------
+    target : Plate or Beam
+        Needs ``loss_factor(m, K)`` and ``static_compliance()``.
+    law : YigitChristoforouContact, StrongeContact or EppContact
+    mass : float
+        Impactor mass m > 0 [kg].
+    velocity : float
+        Impact velocity V0 > 0 [m/s].
+
+    Returns
+    -------
+    PlasticNumbers
+    """
+    plastic_law_of(law)
+    require_positive("mass", mass, "kg")
+    require_positive("velocity", velocity, "m/s")
+    m, v = float(mass), float(velocity)
+    hertz, alpha_y = (float(scale) for scale in law.yield_scales)
+    stiffness = 1.5 * hertz * math.sqrt(alpha_y)
+    omega = math.sqrt(stiffness / m)
+    return PlasticNumbers(
+        impact_number=v * math.sqrt(1.5) / (omega * alpha_y),
+        loss_factor=float(target.loss_factor(m, stiffness)),
+        relative_stiffness=float(1.0 / (target.static_compliance() * stiffness)),
+        linearised_stiffness=stiffness,
+        force_scale=m * v * omega,
+        time_scale=1.0 / omega,
+    )
+
+
+def _law_from(map_law: str, hertz: float, alpha_y: float):
+    """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y,
+    at its default options (:meth:`~impactmaps.contact.ContactLaw.from_yield_scales`; for an
+    ``epp`` law those are :data:`EPP_MAP_OPTIONS`)."""
+    return contact_law_class(PLASTIC_LAWS[map_law]).from_yield_scales(hertz, alpha_y)
+
+
+@dataclass(frozen=True)
+class PlasticRealisation:
+    """An impact realising (β, ζ, λ) on a target: law, impactor mass, speed and numbers.
+
+    ``omega`` is the contact frequency [rad/s] of the law's reference stiffness at 1 m/s
+    (what a map point's cut-off is a multiple of); ``reflection`` the first wave return
+    to the impact point × ω_y [-] (None when not asked for).
+    """
+
+    law: object
+    mass: float
+    velocity: float
+    numbers: PlasticNumbers
+    omega: float = math.nan
+    reflection: float | None = None
+
+
+def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: float,
+                    velocity: float = 1.0) -> PlasticRealisation:
+    """The elastic-plastic impact with numbers (β, ζ, λ) on ``target`` at speed ``velocity``.
+
+    ``K_y = K_st/λ`` and ``m`` from ζ (:func:`impactmaps.dimensionless.realise`); then
+    ``α_y = sqrt(3/2) V0/(ω_y β)`` and ``K_h = K_y/(1.5 sqrt(α_y))``.
+
+    Parameters
+    ----------
+    target : Plate or Beam
+    map_law : {"yc", "stronge", "epp"}
+    beta, zeta, lambda_ : float
+        Impact number, loss factor and relative stiffness at K_y, > 0 [-].
+    velocity : float
+        V0 > 0 [m/s] (any: the numbers fix the normalised response).
+
+    Returns
+    -------
+    PlasticRealisation
+    """
+    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
+    require_positive("beta", beta)
+    require_positive("velocity", velocity, "m/s")
+    impactor = realise(target, zeta, lambda_)
+    mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
+    alpha_y = math.sqrt(1.5) * float(velocity) / (float(impactor.contact_frequency) * float(beta))
+    law = _law_from(map_law, stiffness / (1.5 * math.sqrt(alpha_y)), alpha_y)
+    numbers = plastic_numbers(target, law, mass, velocity)
+    omega = math.sqrt(reference_contact_stiffness(law, mass, 1.0) / mass)
+    return PlasticRealisation(law, mass, float(velocity), numbers, omega,
+                              float(target.reflection_time(1.0 / numbers.time_scale)))
+
+
+class _PlasticScaled:
+    """A modal (or asymptote) result read in the plastic scales (what ``controlled_point`` reads)."""
+
+    def __init__(self, result, realised: PlasticRealisation):
+        self.result, self.realised = result, realised
+
+    @property
+    def fmax_normalised(self) -> float:
+        """F_max/(m V0 ω_y) [-]."""
+        return self.result.peak_force / self.realised.numbers.force_scale
+
+    @property
+    def impacts(self) -> int:
+        """Number of separate contacts [-]."""
+        return self.result.impacts
+
+    def normalised_summary(self) -> dict:
+        """The map scalars: forces over m V0 ω_y, times × ω_y, the energy fractions."""
+        return plastic_summary(self.result, self.realised)
+
+
+def plastic_summary(result, realised: PlasticRealisation) -> dict:
+    """The map scalars of a modal run of a realised plastic impact (keys of the map variables).
+
+    Parameters
+    ----------
+    result : ImpactResult
+    realised : PlasticRealisation
+
+    Returns
+    -------
+    dict
+        ``result.normalised_summary()`` with F̄max = F_max/(m V0 ω_y), times × ω_y, plus
+        ``restitution`` and ``absorbed_energy_fraction``.
+    """
+    summary = result.normalised_summary()
+    to_yield_time = 1.0 / (result.contact_frequency * realised.numbers.time_scale)
+    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised"):
+        summary[key] = summary[key] * to_yield_time
+    impact_energy = 0.5 * realised.mass * realised.velocity**2
+    return summary | {
+        "fmax_normalised": result.peak_force / realised.numbers.force_scale,
+        "restitution": float(result.rebound_velocity / realised.velocity),
+        "absorbed_energy_fraction": float(result.contact_dissipation / impact_energy),
+    }
+
+
+def _asymptote_row(plan, realised: PlasticRealisation) -> dict:
+    """The map scalars of the any-law infinite-structure answer of a plan."""
+    impact, scale = plan.asymptote, realised.numbers.time_scale
+    durations = [(end - start) / scale for start, end in impact.contact_intervals]
+    separated = np.isfinite(impact.contact_time) and np.isfinite(impact.restitution)
+    fmax = impact.peak_force / realised.numbers.force_scale
+    absorbed = float(realised.law.dissipated_energy(impact.max_indentation)) / (
+        0.5 * realised.mass * realised.velocity**2)
+    restitution = float(impact.restitution) if separated else np.nan
+    return {
+        "fmax_normalised": fmax,
+        "impacts": int(impact.impacts),
+        "contact_time_normalised": float(sum(durations)) if separated else np.nan,
+        "first_contact_normalised": durations[0] if np.isfinite(durations[0]) else np.nan,
+        "peak_time_normalised": impact.peak_time / scale,
+        "energy_transferred_fraction": 1.0 - restitution**2 - absorbed if separated else np.nan,
+        "n_modes": 0,
+        "time_limit_reached": int(impact.time_limit_reached),
+        "restitution": restitution,
+        "absorbed_energy_fraction": absorbed,
+        "fmax_error": 0.0, "fmax_low": fmax, "fmax_high": fmax, "status": STATUSES.index(PointStatus.ASYMPTOTIC),
+        "restitution_error": 0.0, "absorbed_energy_error": 0.0,
+    }
+
+
+def _companion_errors(runs: list, status: int, levels: int) -> dict:
+    """Errors of restitution and absorbed energy from the runs ``controlled_point`` made.
+
+    As its F̄max error (:func:`impactmaps.maps.family.accuracy.controlled_point`): the change
+    between the last two refinement levels (converged, refined), or half the spread of
+    every value seen — the ``levels`` refinement levels, the perturbed runs, and the
+    finest value ± its last change (sensitive).
+    """
+    out = {}
+    for key in ("restitution", "absorbed_energy_fraction"):
+        values = np.array([run.normalised_summary()[key] for run in runs])
+        if STATUSES[status] == PointStatus.SENSITIVE:
+            finest, change = values[levels - 1], abs(values[levels - 1] - values[levels - 2])
+            seen = np.concatenate([values, [finest - change, finest + change]])
+            error = 0.5 * (np.max(seen) - np.min(seen)) if np.all(np.isfinite(seen)) else np.nan
+        else:
+            error = abs(values[-1] - values[-2])
+        out[ERROR_OF[key]] = float(error)
+    return out
+
+
+#: The descriptions a plastic map gives the variables it shares with the others.
+_PLASTIC_DESCRIPTIONS = {"fmax_normalised": "maximum contact force / (m V0 ω_y), ω_y = sqrt(K_y/m)"} | {
+    key: RESULT_VARIABLES[key][3].replace("× ω", "× ω_y").replace("ω d²", "ω_y d²")
+    for key in ("contact_time_normalised", "first_contact_normalised", "peak_time_normalised",
+                "reflection_time_normalised")}
+
+
+class PlasticFamily(PlasticLayout):
+    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y (module docstring);
+    its layout (axes, errors, interpolation, shipped maps): :class:`~impactmaps.maps.family.builtin_families.PlasticLayout`.
+
+    Parameters
+    ----------
+    name : str
+        The map law (a key of :data:`PLASTIC_LAWS`).
+    law_options : dict, optional
+        The contact-law options its maps are built at (name → value; the ``epp`` family's:
+        :data:`EPP_MAP_OPTIONS`); none by default.
+    """
+
+    variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
+                 } | {name: ("f8", np.nan, units, text) for name, (units, text) in PLASTIC_VARIABLES.items()}
+
+    @property
+    def method_text(self) -> str:
+        return (f"modal impact solver (exact-step integrator, residual flexibility), {PLASTIC_LAWS[self.name]} "
+                f"contact{self.law_options_text}; axes (β, λ, ζ) at the linearised stiffness K_y")
+
+    def __init__(self, name: str, law_options: dict | None = None):
+        super().__init__(name)
+        self._law_options = dict(law_options or {})
+
+    def __reduce__(self):
+        return (type(self), (self.name, self._law_options))
+
+    @property
+    def law_options(self) -> dict:
+        """The contact-law options the maps are built at (name → value; registered with the family)."""
+        return dict(self._law_options)
+
+    @property
+    def law_options_text(self) -> str:
+        """`` (name = value, …)`` of :attr:`law_options`, or ``""``."""
+        options = self.law_options
+        return " (" + ", ".join(f"{name} = {value:g}" for name, value in options.items()) + ")" if options else ""
+
+    @property
+    def law_revision(self) -> int:
+        return contact_law_class(PLASTIC_LAWS[self.name]).revision
+
+    def describes(self, law) -> bool:
+        return getattr(law, "name", None) == PLASTIC_LAWS[self.name] and plastic_law_of(law) == self.name
+
+    def realise(self, target, point) -> PlasticRealisation:
+        beta, zeta, lam = (float(value) for value in point)
+        return realise_plastic(target, self.name, beta, zeta, lam)
+
+    def plan(self, target, realised: PlasticRealisation, point, cap: float, settings) -> PointPlan:
+        plan = map_plan(target, realised.law, realised.mass, realised.omega, settings.cutoff_ratio * realised.omega,
+                        cap, None)
+        if plan is None:  # beyond the shear-deformable theory, or no method within the mode cap
+            return PointPlan(None)
+        if plan.method == PlanMethod.ASYMPTOTE:
+            return PointPlan(plan.method, _asymptote_row(plan, realised) | {"method": method_code(plan.method)})
+        return PointPlan(plan.method)
+
+    def scaled(self, result, realised: PlasticRealisation) -> _PlasticScaled:
+        return _PlasticScaled(result, realised)
+
+    def companion_errors(self, runs: list, status: int, levels: int) -> dict:
+        return _companion_errors(runs, status, levels)
+
+    def unresolved_extras(self) -> dict:
+        return {name: np.nan for name in PLASTIC_VARIABLES}
+
+
+YC = register_map_family(PlasticFamily("yc"))
+STRONGE = register_map_family(PlasticFamily("stronge"))
+EPP = register_map_family(PlasticFamily("epp", law_options=EPP_MAP_OPTIONS))
+
+
+def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
+                         settings: ModalSettings | None = None, table: BasisTable | None = None,
+                         control: AccuracyControl = AccuracyControl()) -> list[dict]:
+    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) on ``structure``.
+
+    :func:`impactmaps.maps.compute.points.solve_map_points` of the plastic family ``map_law``: the
+    same cut-off rule as the linear maps (modes up to ``settings.cutoff_ratio`` times the
+    run's contact frequency, clipped to the structure's mode cap, plus residual
+    flexibility), the same answer beyond the cap (the any-law infinite-structure
+    asymptote where it holds) and the same accuracy control; a point beyond what a
+    Timoshenko theory holds, or one nothing answers within the mode cap, is
+    ``unresolved`` (every value missing).
+
+    Parameters
+    ----------
+    structure : MapStructure
+    map_law : {"yc", "stronge", "epp"}
+    points : sequence of (β, ζ, λ)
+    settings : ModalSettings, optional
+    table : BasisTable, optional
+    control : AccuracyControl, optional
+
+    Returns
+    -------
+    list of dict
+        One dict per point: the map scalars (module docstring), their errors, ``status``,
+        ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
+    """
+    require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
+    family = {"yc": YC, "stronge": STRONGE, "epp": EPP}[map_law]
+    return solve_map_points(family, structure, points, settings, table, control)

@@ -1,0 +1,215 @@
+"""The map point solver: one point of any map family realised, simulated and controlled.
+
+A point of a map is a pure function of (family, structure, its numbers, settings): the
+family (:class:`~impactmaps.maps.family.map_family.MapFamily`) realises it as a physical impact
+on the structure's reference target, says how it is answered (:meth:`MapFamily.plan
+<impactmaps.maps.family.map_family.MapFamily.plan>`: ``unresolved``, an exact asymptote, or the
+modal runs) and reads a run in its scales; :func:`solve_map_points` does the rest for
+every family alike — modes up to ``settings.cutoff_ratio`` times the contact frequency,
+truncated from one basis table per structure built at :func:`~impactmaps.solvers.mode_budget.frequency_cap`
+(:func:`basis_table`), with the residual flexibility of the rest, under the accuracy
+control of :mod:`.accuracy`. No orchestration here: the sweep
+(:mod:`impactmaps.maps.compute.sweep`), the tiles and the refinement call it.
+"""
+
+from __future__ import annotations
+
+import functools
+import warnings
+from collections.abc import Sequence
+from dataclasses import replace
+from enum import StrEnum
+
+from ...solvers.modal_settings import ModalSettings
+from ...solvers.mode_budget import METHODS as BUDGET_METHODS
+from ...solvers.mode_budget import ModeBudgetError, plan_basis
+from ...solvers.mode_budget import frequency_cap
+from ...targets.shear_range import beyond_shear_theory
+from ..family.accuracy import STATUSES, AccuracyControl, PointStatus, controlled_point
+from ..family.map_family import RESULT_VARIABLES
+from ..family.structures import MAX_MODES, BasisTable, MapStructure
+
+__all__ = ["SOLVER_REVISION", "METHODS", "PlanMethod", "method_code", "basis_table",
+           "map_plan", "unresolved_point", "table_run_key", "table_runner", "solve_map_points"]
+
+SOLVER_REVISION = 8  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide; 8: degenerate modes merged, so the mode floor counts modes the impact point sees; free flight up to 1024 h; two-rate exact contact phase)
+
+#: Per-point method codes (the ``method`` variable; CF flag_values/flag_meanings).
+METHODS = BUDGET_METHODS
+
+
+class PlanMethod(StrEnum):
+    """The model that answers a map point (the names of :data:`METHODS`)."""
+
+    MODAL = "modal+residual"
+    CAPPED = "modal+residual-capped"
+    ASYMPTOTE = "infinite-structure-asymptote"
+
+
+assert tuple(PlanMethod) == METHODS, "PlanMethod must list the mode budget's methods in their order"
+
+
+def method_code(method: str) -> int:
+    """The ``method`` code of a model's name [-]."""
+    return METHODS.index(method)
+
+
+@functools.lru_cache(maxsize=8)
+def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
+    """The one basis table every point on ``structure`` is truncated from.
+
+    Built once at :func:`~impactmaps.solvers.mode_budget.frequency_cap` — never at a cut-off that depends on which
+    points a worker happened to compute before — so a point's modes, and therefore its
+    result, are a pure function of (structure, point, settings): the same bits alone, in
+    any chunk, in any order, after a resume. Cached (bounded) as a pure function.
+    """
+    with warnings.catch_warnings():
+        # the table reaches past the Mindlin thickness-shear cut-off; a point whose own
+        # cut-off does is unresolved (map_plan)
+        warnings.simplefilter("ignore", UserWarning)
+        return BasisTable(structure.build(), frequency_cap(structure.build(), MAX_MODES), min_modes)
+
+
+def map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, zeta: float | None):
+    """The :class:`~impactmaps.solvers.mode_budget.BasisPlan` of one map point, or None.
+
+    None — the point is ``unresolved`` — when its contact frequency ``omega`` [rad/s] lies
+    beyond what the target's shear-deformable theory holds
+    (:func:`~impactmaps.targets.shear_range.beyond_shear_theory`), or when the mode budget
+    answers it only by capping the modes (the cut-off could not be refined) or not at all.
+    """
+    if beyond_shear_theory(target, omega):
+        return None
+    try:
+        plan = plan_basis(target, law, mass, 1.0, wanted, max_modes=MAX_MODES, cap_frequency=cap, loss_factor=zeta)
+    except ModeBudgetError:
+        return None
+    # a capped run cannot have its cut-off doubled, so its refinement would only halve the
+    # step and call it converged: the map does not vouch for it
+    return None if plan.method == PlanMethod.CAPPED else plan
+
+
+def unresolved_point(row: dict) -> dict:
+    """A map point no model here vouches for: every result missing, status ``unresolved``."""
+    missing = {name: spec[1] for name, spec in RESULT_VARIABLES.items()}
+    return row | missing | {"reflection_time_normalised": row["reflection_time_normalised"],
+                            "status": STATUSES.index(PointStatus.UNRESOLVED)}
+
+
+def simulate(target, law, impactor_mass, velocity, **options):
+    """:func:`impactmaps.solvers.modal.simulate`, imported on first use: a lookup imports this
+    module but runs no point, and the integrator's module is not needed until one is run."""
+    return _modal_simulate()(target, law, impactor_mass, velocity, **options)
+
+
+@functools.cache
+def _modal_simulate():
+    """:func:`impactmaps.solvers.modal.simulate` (imported at the first call; an import
+    statement in :func:`simulate` cost ~3 µs a run)."""
+    from ...solvers.modal import simulate as modal_simulate
+
+    return modal_simulate
+
+
+def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
+    """What a run of one map point on a basis table depends on: the ζ factor, the modes
+    (a truncation of the table is fixed by its size) and every setting but the cut-off
+    ratios, which act only through the modes. A point's runner returns the earlier
+    result for a key it has seen: a sensitive point's cut-off perturbed by ±1 % often
+    keeps the same modes (the mode floor, or no mode in the 2 % window), and that run is
+    the base run, bit for bit.
+
+    Parameters
+    ----------
+    settings : ModalSettings
+        The run's settings.
+    zeta_factor : float
+        Factor on the point's ζ [-] (1 but for a sensitive point's perturbed runs).
+    basis : ModalBasis
+        The modes the run integrates, truncated from the point's basis table.
+
+    Returns
+    -------
+    tuple
+        Hashable: equal keys mean runs with the same bits.
+    """
+    return zeta_factor, basis.size, _without_cutoffs(settings)
+
+
+@functools.lru_cache(maxsize=256)
+def _without_cutoffs(settings: ModalSettings) -> ModalSettings:
+    """``settings`` with both cut-off ratios set to 1 (a pure function of frozen settings, cached)."""
+    return replace(settings, cutoff_ratio=1.0, patch_cutoff_ratio=1.0)
+
+
+def table_runner(family, target, table: BasisTable, cap: float, point, realised, runs: list):
+    """``run(settings, zeta_factor)`` of one point: the realised impact on modes truncated from
+    ``table`` at ``settings.cutoff_ratio`` times its contact frequency (clipped to ``cap``
+    [rad/s]), read in the family's scales. A run equal to an earlier one is not repeated
+    (:func:`table_run_key`); every result is appended to ``runs``."""
+    seen = {}
+
+    def run(settings: ModalSettings, zeta_factor: float):
+        impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))
+        basis = table.truncate(min(settings.cutoff_ratio * impact.omega, cap), settings.min_modes)
+        key = table_run_key(settings, zeta_factor, basis)
+        scaled = seen.get(key)  # one look-up: a key hashes its settings
+        if scaled is None:
+            result = simulate(basis, impact.law, impact.mass, impact.velocity, settings=settings, record=False)
+            scaled = seen[key] = family.scaled(result, impact)
+        runs.append(scaled)
+        return scaled
+
+    return run
+
+
+def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], settings: ModalSettings | None = None,
+                     table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
+    """Solve points of a map family on ``structure``: one dict of map variables per point.
+
+    Parameters
+    ----------
+    family : MapFamily
+        Realises, plans and scales the points (:mod:`impactmaps.maps.family.map_family`).
+    structure : MapStructure
+    points : sequence of tuple
+        Each point's numbers, ``(ζ, λ)`` or with the family's extra axes first
+        (``(β, ζ, λ)``) [-].
+    settings : ModalSettings, optional
+        Solver settings (default ``ModalSettings()``).
+    table : BasisTable, optional
+        The modes to truncate from; default :func:`basis_table` of ``structure``.
+    control : AccuracyControl, optional
+        Tolerance and cost cap of the per-point refinement (:mod:`impactmaps.maps.family.accuracy`).
+
+    Returns
+    -------
+    list of dict
+        The family's map variables of each point plus its coordinates (``zeta``,
+        ``lambda_``, …), ``status`` and ``method`` codes. A point no model vouches for
+        (beyond a Timoshenko/Mindlin theory's range, or more modes than :data:`MAX_MODES`
+        below its cut-off and no exact asymptote) is ``unresolved``: every value missing.
+    """
+    settings = settings or ModalSettings()
+    target = structure.build()
+    family.check(structure, target, settings)
+    cap = frequency_cap(structure.build(), MAX_MODES)
+    if table is None and family.uses_table():
+        table = basis_table(structure, settings.min_modes)
+    rows = []
+    for point, realised in zip(points, family.realise_points(target, points)):
+        row = family.point_coordinates(point) | {"reflection_time_normalised": float(realised.reflection)}
+        plan = family.plan(target, realised, point, cap, settings)
+        if plan.method is None:
+            rows.append(unresolved_point(row) | family.unresolved_extras())
+            continue
+        if plan.asymptote is not None:
+            rows.append(row | plan.asymptote)
+            continue
+        runs = []
+        run = family.runner(target, table, cap, point, realised, runs) or table_runner(
+            family, target, table, cap, point, realised, runs)
+        answer = controlled_point(run, settings, control)
+        companions = family.companion_errors(runs, answer["status"], int(control.max_refinements) + 1)
+        rows.append(row | answer | companions | {"method": method_code(plan.method)})
+    return rows

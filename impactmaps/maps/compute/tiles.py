@@ -1,0 +1,339 @@
+"""Map tiles: small maps on a global lattice, built on demand and cached on disk.
+
+A tile is the 4 points a side of the global log lattice of its map family around a
+point — ``log10 ζ = i Δζ``, ``log10 λ = j Δλ``, and ``log10 β = k Δβ`` for an
+elastic-plastic family (:attr:`MapFamily.tile_lattice
+<impactmaps.maps.family.map_family.MapFamily.tile_lattice>`: the lattice of the shipped linear
+maps, (Δζ, Δλ) = (0.05, 0.1) (:func:`lattice_steps`), for the linear and Hertz families,
+4 × 4 points; the shipped plastic maps' grid, (Δβ, Δζ, Δλ) = (0.5, 1/6, 0.2), for the
+plastic ones, 4 × 4 × 4 points) — for one structure and law (and, for a Hertz law on a
+patch-loaded target, one patch number P: :mod:`impactmaps.closed_forms.hertz_similarity`). Every point
+is solved exactly as the shipped maps solve theirs (:func:`impactmaps.maps.compute.points.solve_map_points`
+of the family, the same settings and accuracy control), so it carries its error and
+status, and the tile is read with the shipped maps' interpolation and band
+(:func:`impactmaps.maps.read.lookup.read_map`, :func:`impactmaps.maps.read.reader.read_values`):
+the point's cell is the tile's middle one, so the band's second differences have a
+neighbour on each side.
+
+A tile is a pure function of its :class:`TileKey`. The cache (:func:`cache_directory`)
+holds one NetCDF file per tile, named by the key's fingerprint
+(:func:`impactmaps.maps.files.store.fingerprint` of :meth:`TileKey.description`, which holds
+the solver revision), written atomically; a file is used only if its recorded
+fingerprint and the digest of its data match (anything else — corrupted, foreign,
+older solver — is rebuilt and replaced), and at most :data:`MAX_CACHED_TILES` are kept
+(the least recently used are removed). A cached tile gives the same bits as a fresh one.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import math
+import os
+import warnings
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ...jsonio import dumps
+from ...solvers.modal import ModalSettings
+from ...targets.shear_range import beyond_shear_theory
+from ..family.accuracy import AccuracyControl
+from ...solvers.mode_budget import frequency_cap
+from .points import SOLVER_REVISION, solve_map_points
+from ..family.registry import map_family
+from ..files.store import fingerprint, save_atomic
+from ..family.structures import MAX_MODES, BasisTable, MapStructure
+
+__all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
+           "lattice_steps", "tile_for", "build_tile", "cached_tile"]
+
+#: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
+LATTICE_STEPS = (0.05, 0.1)
+
+#: Environment variable naming the cache directory of the tiles.
+CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
+#: Most tiles the cache keeps (the least recently used beyond it are removed).
+MAX_CACHED_TILES = 256
+#: Lattice points per axis of a tile.
+TILE_POINTS = 4
+#: Version of the tile file layout (part of the fingerprint).
+_TILE_FORMAT = 1
+
+
+def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
+    """The tile cache: ``cache_dir`` if given, else ``$IMPACTMAPS_CACHE_DIR``, else
+    ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps``."""
+    if cache_dir is not None:
+        return Path(cache_dir)
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "impactmaps"
+
+
+def lattice_steps() -> tuple[float, float]:
+    """(Δ log10 ζ, Δ log10 λ) of the global lattice, ``log10 ζ = i Δζ``: (0.05, 0.1), the grid
+    of the shipped Timoshenko slenderness members at slenderness 10 and 50 (and every other point
+    of the twice-denser maps of the four shipped structures); tiles, their fingerprints and
+    their validation are on it."""
+    return LATTICE_STEPS
+
+
+@dataclass(frozen=True)
+class TileKey:
+    """Everything that determines a tile.
+
+    Attributes
+    ----------
+    structure : MapStructure
+    law : str
+        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
+    patch : float or None
+        Patch number P = sqrt(R α_m)/h of a patch-loaded Hertz tile [-]; None: point load.
+    zeta_index, lambda_index : int
+        Lattice index of the tile's first ζ and λ (``log10 ζ = zeta_index · Δζ``).
+    settings : ModalSettings
+    control : AccuracyControl
+    extra_indices : tuple of int
+        Lattice index of the tile's first value on each axis of the family before (λ, ζ)
+        (β of an elastic-plastic family); empty for a (ζ, λ) family.
+    """
+
+    structure: MapStructure
+    law: str
+    patch: float | None
+    zeta_index: int
+    lambda_index: int
+    settings: ModalSettings = ModalSettings()
+    control: AccuracyControl = AccuracyControl()
+    extra_indices: tuple = ()
+
+    @property
+    def axes(self) -> tuple[np.ndarray, np.ndarray]:
+        """The tile's ζ and λ values [-], ascending."""
+        steps = _family(self).tile_lattice
+        return tuple(_values(steps[name], start) for name, start in (("zeta", self.zeta_index),
+                                                                      ("lambda_", self.lambda_index)))
+
+    @property
+    def extra_axes(self) -> tuple[np.ndarray, ...]:
+        """The tile's values on the family's axes before (λ, ζ) (β …) [-], ascending; empty for (ζ, λ)."""
+        family = _family(self)
+        return tuple(_values(family.tile_lattice[axis.name], start)
+                     for axis, start in zip(family.extra_axes, self.extra_indices))
+
+    def description(self) -> dict:
+        """JSON-ready description (the fingerprint's input; stored in the tile)."""
+        lattice = _family(self).tile_lattice
+        extra = {}
+        if self.extra_indices:  # (a (ζ, λ) tile's description predates the extra axes)
+            extra = {"extra_indices": {axis.name: index for axis, index in
+                                       zip(_family(self).extra_axes, self.extra_indices)},
+                     "extra_lattice": {axis.name: lattice[axis.name] for axis in _family(self).extra_axes}}
+        return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
+                "zeta_index": self.zeta_index, "lambda_index": self.lambda_index,
+                "lattice": [lattice["zeta"], lattice["lambda_"]], **extra,
+                "points_per_axis": TILE_POINTS, "settings": asdict(self.settings), "accuracy": asdict(self.control),
+                "solver_revision": SOLVER_REVISION, "tile_format": _TILE_FORMAT}
+
+    @property
+    def fingerprint(self) -> str:
+        """:func:`~impactmaps.maps.files.store.fingerprint` of :meth:`description`."""
+        return fingerprint(self.description())
+
+    @property
+    def name(self) -> str:
+        """Label of the tile, e.g. ``on-demand tile plate-ssss-mindlin-s62.5-hertz-P0.0799 ζ 0.09–0.18 λ 0.03–0.06``."""
+        zetas, lambdas = self.axes
+        stem = map_family(self.law).file_stem(self.structure.name)
+        patch = "" if self.patch is None else f"-P{self.patch:.4g}"
+        if self.patch is not None and f"-s{self.structure.slenderness:g}" not in self.structure.name:
+            patch = f"-s{self.structure.slenderness:g}{patch}"  # a patch scales with the thickness
+        extra = "".join(f"{_SYMBOLS.get(axis.name, axis.name)} {values[0]:.3g}–{values[-1]:.3g} "
+                        for axis, values in zip(_family(self).extra_axes, self.extra_axes))
+        return (f"on-demand tile {stem}{patch} {extra}ζ {zetas[0]:.3g}–{zetas[-1]:.3g} "
+                f"λ {lambdas[0]:.3g}–{lambdas[-1]:.3g}")
+
+
+#: How a tile's name writes an axis before (λ, ζ).
+_SYMBOLS = {"beta": "β"}
+
+
+def _values(step: float, start: int) -> np.ndarray:
+    """The :data:`TILE_POINTS` lattice values ``10^(step (start + i))`` [-]."""
+    return 10.0 ** (step * (start + np.arange(TILE_POINTS)))
+
+
+def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor: float, relative_stiffness: float,
+             settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl(),
+             extra: tuple = ()) -> TileKey:
+    """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)
+    and, for a family with more axes, their values ``extra`` (β …, in the family's order)."""
+    lattice = map_family(law).tile_lattice
+    names = [axis.name for axis in map_family(law).extra_axes]
+    if len(extra) != len(names):
+        raise ValueError(f"extra = {tuple(extra)!r}: the {law} tiles need a value of each of {names}")
+    first = [_first_index(value, lattice[name]) for value, name in
+             zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
+    return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]))
+
+
+def _first_index(value: float, step: float) -> int:
+    """Lattice index of the first of :data:`TILE_POINTS` values whose middle cell holds ``value``."""
+    return math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
+
+
+def build_tile(key: TileKey, progress=None) -> xr.Dataset:
+    """Solve the tile's points (serially) and return it as a one-structure map dataset.
+
+    The dataset has the family's variables (:attr:`MapFamily.variables
+    <impactmaps.maps.family.map_family.MapFamily.variables>`) over (``structure``, its extra axes
+    (β …), ``lambda_``, ``zeta``), ``log_peak_time`` and
+    ``log_reflection_time`` as the shipped maps, and the attributes ``fingerprint``,
+    ``description``, ``data_digest`` and ``contact_law``. ``progress(done, total)``, if
+    given, is called after each (λ, ζ) plane of points (16 points).
+    """
+    zetas, lambdas = key.axes
+    extra = key.extra_axes
+    points = [(*(float(v) for v in values), float(zeta), float(lam))
+              for values in itertools.product(*extra) for lam in lambdas for zeta in zetas]
+    family = _family(key)
+    # None: the sweep's own table; patch-loaded points build their modes under each patch
+    table = _table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
+    rows, chunk = [], TILE_POINTS**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
+    for start in range(0, len(points), chunk):
+        rows += solve_map_points(family, key.structure, points[start:start + chunk], key.settings, table, key.control)
+        if progress is not None:
+            progress(len(rows), len(points))
+    shape = (1, *(values.size for values in extra), lambdas.size, zetas.size)
+    dims = ("structure", *(axis.name for axis in family.extra_axes), "lambda_", "zeta")
+    data = {name: (dims, np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
+            for name, spec in family.variables.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):  # unresolved points: NaN stays NaN
+        for name in ("peak_time", "reflection_time"):  # log-times, as the shipped maps interpolate them
+            dims, values, _ = data[f"{name}_normalised"]
+            data[f"log_{name}"] = (dims, np.log(values))
+    coords = {"structure": [key.structure.name], **{axis.name: values for axis, values in
+                                                     zip(family.extra_axes, extra)}, "lambda_": lambdas, "zeta": zetas}
+    dataset = xr.Dataset(data, coords=coords)
+    dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
+                          "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
+                          "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
+    return dataset
+
+
+def _table(key: TileKey, points) -> BasisTable:
+    """The modes the points of a tile of a bounded model truncate from: up to the largest
+    cut-off any of them can use (its finest refinement level, with a margin of
+    (1 + p)/(1 − p) for the perturbed runs — since solver revision 7 these start from the
+    base settings and stay below the finest level, but the margin stays: a table of
+    another size would change a bounded model's points in the last bits, and the tile
+    files already cached with it), never past the sweep's cap.
+
+    The sweep truncates from a table at its cap (:func:`impactmaps.maps.compute.sweep.basis_table`).
+    For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
+    other supports than SS) and Ritz plates — that table is the whole model, whose modes
+    take minutes to build (a clamped Timoshenko beam). Their point compliance is finite,
+    and truncation moves the modes left out into the residual, so a smaller table gives
+    the same points to rounding (and to the models' 3e-10 accuracy). Not so for a
+    point-loaded Mindlin plate: its shear deflection under a point load diverges, and the
+    residual of a truncated table holds the shear of the modes up to the table's top; its
+    tiles keep the sweep's table (Navier modes, quick). A pure function of the key, like the
+    tile. Points the sweep leaves unresolved or answers by an asymptote (beyond the shear
+    theory, or past the cap) use no modes and set no cut-off.
+    """
+    target = key.structure.build()
+    cap = frequency_cap(key.structure.build(), MAX_MODES)
+    omegas = [impact.omega for impact in _family(key).realise_points(target, points)]
+    p = key.control.perturbation  # the margin of the docstring
+    finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
+    wanted = [finest * omega for omega in omegas
+              if key.settings.cutoff_ratio * omega <= cap and not beyond_shear_theory(target, omega)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # as basis_table: a point's own cut-off is warned about
+        return BasisTable(target, min(max(wanted, default=0.0), cap),
+                          key.settings.min_modes * 2**key.control.max_refinements)
+
+
+def _family(key: TileKey):
+    """The map family of a tile's points (patch-loaded Hertz points: its patch number)."""
+    family = map_family(key.law)
+    return family if key.patch is None else family.with_patch(key.patch)
+
+
+def _data_digest(dataset: xr.Dataset) -> str:
+    """SHA-256 of the tile's coordinates and variables (names, dtypes and bytes)."""
+    digest = hashlib.sha256()
+    for name in ("zeta", "lambda_", *sorted(dataset.data_vars)):
+        values = np.ascontiguousarray(dataset[name].values)
+        digest.update(f"{name}:{values.dtype.str}:{values.shape}".encode())
+        digest.update(values.tobytes())
+    return digest.hexdigest()
+
+
+def tile_path(key: TileKey, cache_dir=None) -> Path:
+    """The cache file of a tile [path]."""
+    return cache_directory(cache_dir) / f"tile-{key.fingerprint[:32]}.nc"
+
+
+def _read(path: Path, key: TileKey) -> xr.Dataset | None:
+    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None."""
+    try:
+        with xr.open_dataset(path, engine="scipy") as opened:
+            dataset = opened.load()
+    except Exception:  # missing, truncated, not NetCDF: rebuilt
+        return None
+    if dataset.attrs.get("fingerprint") != key.fingerprint or dataset.attrs.get("data_digest") != _data_digest(dataset):
+        return None
+    return dataset
+
+
+def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
+    """The tile of ``key`` from the cache, or built and cached.
+
+    Parameters
+    ----------
+    key : TileKey
+    cache_dir : path-like, optional
+        The cache (default :func:`cache_directory`).
+    notify : callable, optional
+        Called with one line of text before a tile is built (and if it cannot be cached).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (points) while a tile is built.
+
+    Returns
+    -------
+    (xarray.Dataset, Path or None)
+        The tile and its cache file (None when the cache could not be written: the
+        answer is the same, only not kept).
+    """
+    path = tile_path(key, cache_dir)
+    dataset = _read(path, key)
+    if dataset is not None:
+        try:
+            os.utime(path)  # recently used: kept longest
+        except OSError:
+            pass
+        return dataset, path
+    if notify is not None:
+        notify(f"building an on-demand map tile of {TILE_POINTS ** (2 + len(key.extra_indices))} points for {key.name[len('on-demand tile '):]} "
+               f"…; cached in {path}")
+    dataset = build_tile(key, progress)
+    try:
+        save_atomic(dataset, path)
+        _prune(path.parent)
+    except OSError as error:
+        if notify is not None:
+            notify(f"the tile could not be cached ({error}); answering from it all the same")
+        return dataset, None
+    return dataset, path
+
+
+def _prune(directory: Path) -> None:
+    """Remove the least recently used tiles beyond :data:`MAX_CACHED_TILES`."""
+    tiles = sorted(directory.glob("tile-*.nc"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
+    for stale in tiles[MAX_CACHED_TILES:]:
+        stale.unlink(missing_ok=True)

@@ -1,0 +1,1 @@
+"""What a map is: the families, their layouts and registry, statuses, regimes, structures and the refinement tree."""

@@ -1,0 +1,207 @@
+"""Reference structures for normalised (ζ, λ) maps.
+
+A :class:`MapStructure` names a structure family: the targets whose normalised response depends on
+(ζ, λ) and a few shape parameters only: the kind (beam or plate), the theory, the
+supports, the aspect ratio, the slenderness and the impact point as fractions. It
+builds one concrete target (steel-like, unit span) that stands for them all; the
+impactor for each (ζ, λ) is then realised on it (spec §4).
+
+For Euler beams and Kirchhoff plates the normalised response is independent of the
+slenderness; for Timoshenko beams and Mindlin plates it is not, so the slenderness is
+part of the key (default span/thickness = 20).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import asdict, dataclass, replace
+
+import numpy as np
+
+from ..._checks import require_choice, require_in_range
+from ...targets.base import ModalBasis, Target, dropped_compliance_sums
+from ...targets.beams.beam import MIN_SLENDERNESS, Beam
+from ...targets.map_structure import reference_target
+from ...targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
+from ...targets.plates.plate import Plate
+from ...validity import ModelValidityWarning
+from .builtin_families import MEMBER_SLENDERNESSES, SHIPPED_PLANE_MAPS
+
+__all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "structure_from_name",
+           "MAX_MODES", "warn_point_loaded_mindlin"]
+
+MAX_MODES = 80_000  # cost cap on the modes (all, incl. non-participating) below the cut-off
+
+
+@dataclass(frozen=True)
+class MapStructure:
+    """A structure family (the targets one normalised map stands for), named by its map structure.
+
+    Parameters
+    ----------
+    kind : {"beam", "plate"}
+    theory : str
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES`; plate: one of
+        :data:`~impactmaps.targets.options.PLATE_THEORIES`.
+    supports : str
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: 4-letter
+        edge code, e.g. "SSSS".
+    aspect_ratio : float
+        Plate b/a [-] (ignored for beams).
+    slenderness : float
+        Span over thickness, L/h or a/h [-].
+    impact_fraction : tuple of float
+        Impact point as a fraction of the span(s): (x0/L,) or (x0/a, y0/b).
+    poisson_ratio : float
+        Poisson ratio of the reference material [-].
+    """
+
+    kind: str = "plate"
+    theory: str = "kirchhoff"
+    supports: str = "SSSS"
+    aspect_ratio: float = 1.0
+    slenderness: float = 20.0
+    impact_fraction: tuple = (0.5, 0.5)
+    poisson_ratio: float = 0.3
+
+    def __post_init__(self):
+        require_choice("kind", self.kind, STRUCTURE_KINDS)
+        require_choice("theory", self.theory, theories(self.kind))
+        require_in_range("aspect_ratio", self.aspect_ratio, *PLATE_ASPECT_RANGE)
+        require_in_range("slenderness", self.slenderness, MIN_SLENDERNESS, np.inf)
+        require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, low_inclusive=False, high_inclusive=False)
+        fractions = tuple(float(f) for f in np.atleast_1d(self.impact_fraction))
+        expected = 1 if self.kind == "beam" else 2
+        if len(fractions) == 2 and self.kind == "beam":
+            fractions = fractions[:1]
+        if len(fractions) != expected:
+            raise ValueError(
+                f"impact_fraction = {self.impact_fraction!r} is invalid: a {self.kind} needs "
+                f"{expected} fraction(s) of the span in (0, 1)"
+            )
+        require_in_range("impact_fraction", fractions, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+        object.__setattr__(self, "impact_fraction", fractions)
+        if self.kind == "plate":
+            object.__setattr__(self, "supports", self.supports.upper())
+        else:
+            object.__setattr__(self, "supports", self.supports.lower())
+
+    @property
+    def name(self) -> str:
+        """Short label, e.g. ``beam-ss-euler`` or ``plate-ssss-kirchhoff``."""
+        base = f"{self.kind}-{self.supports.lower()}-{self.theory}"
+        extras = []
+        if self.kind == "plate" and self.aspect_ratio != 1.0:
+            extras.append(f"ar{self.aspect_ratio:g}")
+        if depends_on_slenderness(self.theory):
+            extras.append(f"s{self.slenderness:g}")
+        centre = (0.5,) if self.kind == "beam" else (0.5, 0.5)
+        if self.impact_fraction != centre:
+            extras.append("x" + "-".join(f"{f:g}" for f in self.impact_fraction))
+        return "-".join([base, *extras])
+
+    def as_dict(self) -> dict:
+        """Plain dict of the fields (for provenance attributes)."""
+        return asdict(self)
+
+    def build(self) -> Target:
+        """The concrete reference target: unit span, steel-like, thickness = span/slenderness.
+
+        A new (equal) target each call: targets hold no state, their modes are cached by
+        value (:mod:`impactmaps.targets`).
+        """
+        return reference_target(Beam if self.kind == "beam" else Plate, self)
+
+
+def structure_from_name(name: str) -> MapStructure:
+    """Parse the short names of the shipped maps (``beam-ss-euler`` …)."""
+    for structure in DEFAULT_STRUCTURES:
+        if structure.name == name:
+            return structure
+    for structure in MEMBER_STRUCTURES:
+        if structure.name == name:
+            return structure
+    parts = name.split("-")
+    slenderness = {}
+    if len(parts) == 4 and parts[3].startswith("s"):
+        try:
+            slenderness = {"slenderness": float(parts[3][1:])}
+        except ValueError:
+            pass
+        else:
+            parts = parts[:3]
+    if len(parts) == 3:
+        kind, supports, theory = parts
+        return MapStructure(kind=kind, supports=supports, theory=theory,
+                            impact_fraction=(0.5,) if kind == "beam" else (0.5, 0.5), **slenderness)
+    raise ValueError(
+        f"structure = {name!r} is not known: use kind-supports-theory[-sSLENDERNESS], e.g. "
+        "'beam-ss-euler', 'plate-ssss-kirchhoff' or 'plate-ssss-mindlin-s50'"
+    )
+
+
+DEFAULT_STRUCTURES = (
+    MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
+    MapStructure(kind="beam", theory="timoshenko", supports="ss", impact_fraction=(0.5,)),
+    MapStructure(kind="plate", theory="kirchhoff", supports="SSSS"),
+    MapStructure(kind="plate", theory="mindlin", supports="SSSS"),
+)
+
+# SHIPPED_PLANE_MAPS ((kind, theory) → the name of each of DEFAULT_STRUCTURES, checked by
+# tests/maps/test_lookup_light.py) and MEMBER_SLENDERNESSES come from .builtin_families.
+
+#: The shear-deformable slenderness members besides the default slenderness 20.
+MEMBER_STRUCTURES = tuple(
+    replace(structure, slenderness=slenderness)
+    for structure in DEFAULT_STRUCTURES if is_shear_deformable(structure.theory)
+    for slenderness in MEMBER_SLENDERNESSES if slenderness != structure.slenderness
+)
+
+
+class BasisTable:
+    """All modes of a target up to some frequency, truncatable without recomputation.
+
+    Sweeps realise many impactors on one target; each needs the modes below its own
+    cut-off. The table computes the modes once, at the largest cut-off, keeps those
+    that participate (:meth:`ModalBasis.participating`), and :meth:`truncate` slices
+    them (:meth:`ModalBasis.truncate`: the compliance of the sliced-off modes joins the
+    residual, so the residual-flexibility correction stays exact).
+
+    Attributes
+    ----------
+    basis : ModalBasis
+        The participating modes up to ``max_frequency`` [rad/s].
+    max_frequency : float
+        Cut-off [rad/s] the table was computed for.
+    """
+
+    def __init__(self, target: Target, max_frequency: float, min_modes: int = 1):
+        self.basis = target.modes(max_frequency, min_modes=min_modes).participating()
+        self.max_frequency = max_frequency
+        # the compliance every truncation drops, summed once (the same bits as a truncation
+        # summing its own dropped modes: dropped_compliance_sums)
+        self._dropped_sums = dropped_compliance_sums(self.basis.frequencies, self.basis.participation)
+
+    def truncate(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
+        """Modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), with exact residual.
+
+        Bit for bit ``self.basis.truncate(max_frequency, min_modes)``, in O(log n).
+        """
+        count = self.basis.cutoff_count(max_frequency, min_modes)
+        if count == self.basis.size:
+            return self.basis
+        return self.basis.head(count, float(self._dropped_sums[self.basis.size - 1 - count]))
+
+
+def warn_point_loaded_mindlin(who: str, stacklevel: int = 2) -> None:
+    """Say that a map of a Mindlin plate is a point load, whose answer depends on where its
+    divergent shear deflection is cut (``docs/contact_patch.rst``, section Maps).
+
+    ``who``: the subject of the sentence, e.g. "the shipped Mindlin maps strike".
+    """
+    warnings.warn(f"point load: {who} the plate at a point, whose deflection diverges; the map's F̄max holds the "
+                  f"shear of every mode up to the sweep's cap of {MAX_MODES} modes and has no converged value, and "
+                  "its error is that of the integration at the cap: simulate, which cuts the shear at its own "
+                  "cut-off, differs by 0.07 % (median) to 5 % with one impact and by 5 % (median) to 22 % with "
+                  "re-impacts (validation/mindlin_point_load.md); a sphere's Hertz impact spread over its contact "
+                  "patch converges: `impactmaps lookup --case`", ModelValidityWarning, stacklevel=stacklevel + 1)

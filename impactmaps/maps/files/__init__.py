@@ -1,0 +1,1 @@
+"""Map files: packed arrays, the resumable store and its lock, shipped results."""

@@ -1,0 +1,300 @@
+"""Reading and writing map datasets: NetCDF for results, compressed archives for shipped data.
+
+Every map file of the package goes through :func:`read_dataset` / :func:`write_dataset`,
+which choose the format by the file's suffix:
+
+* ``.nc`` — NetCDF3 (64-bit offsets) through SciPy: what a sweep, a chart or an
+  on-demand tile writes for the user, and what every earlier release shipped. Read and
+  written as before.
+* ``.npz`` — a *packed* map (:func:`pack`): a zip of NumPy arrays, deflated, written with
+  fixed zip timestamps so the same dataset always gives the same bytes. It needs nothing
+  beyond NumPy — HDF5 (h5netcdf, h5py) or zarr would have added a dependency for the same
+  deflate. What makes it small (``docs/install.rst``, "Package data"):
+
+  - numbers are stored byte-plane by byte-plane (the high bytes of neighbouring values
+    repeat, which deflate finds);
+  - a variable that is a function of others (``log_peak_time`` = log of
+    ``peak_time_normalised``, ``fmax_low`` = F̄max − ``fmax_error``, …: :data:`DERIVED`) is
+    stored only where the function does not give its exact bits, and recomputed on reading;
+  - the packer may store named variables in fewer bits (``single``: float32; ``bfloat16_up``:
+    the 16 high bits of the float32, rounded away from zero — for error estimates, whose
+    band only widens); the header records it and reading restores the original dtype.
+
+The shipped files are packed by ``data_build/pack_map_data.py``; :func:`shipped_path`
+finds a shipped file under either suffix (packed first).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import zipfile
+from importlib import resources
+from pathlib import Path
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .map_arrays import MapArrays, MapVariable
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "unpack_arrays",
+           "shipped_path", "read_shipped", "read_resource", "read_arrays", "read_resource_arrays"]
+
+#: Suffix of a packed dataset (a NumPy ``.npz`` archive with a JSON header).
+PACKED_SUFFIX = ".npz"
+#: Format tag in a packed file's header.
+FORMAT = "impactmaps-packed-1"
+#: Variables recomputed from others on reading: name → (operation, inputs). Stored only
+#: where the recomputation misses the exact bits (and in full where an input is absent).
+DERIVED = {
+    "log_peak_time": ("log", ("peak_time_normalised",)),
+    "log_reflection_time": ("log", ("reflection_time_normalised",)),
+    "fmax_low": ("minus", ("fmax_normalised", "fmax_error")),
+    "fmax_high": ("plus", ("fmax_normalised", "fmax_error")),
+}
+_OPERATIONS = {"log": np.log, "minus": np.subtract, "plus": np.add}
+#: Fixed timestamp of every zip entry (the earliest zip can hold): same dataset, same bytes.
+_ZIP_TIME = (1980, 1, 1, 0, 0, 0)
+
+
+def write_dataset(dataset: xr.Dataset, path, *, packed: bool | None = None, single=(), bfloat16_up=(),
+                  keep_exact=None) -> Path:
+    """Write ``dataset`` to ``path``: packed (:func:`pack`, with the lossy options ``single``,
+    ``bfloat16_up``, ``keep_exact``) if ``packed`` — by default, if the path ends in ``.npz`` —
+    else NetCDF3. Not atomic (:func:`impactmaps.maps.files.store.save_atomic` is). Returns the path."""
+    path = Path(path)
+    if not (path.suffix == PACKED_SUFFIX if packed is None else packed):
+        dataset.to_netcdf(path, engine="scipy", format="NETCDF3_64BIT")
+        return path
+    arrays = pack(dataset, single=single, bfloat16_up=bfloat16_up, keep_exact=keep_exact)
+    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=9) as archive:
+        for name in sorted(arrays):
+            buffer = io.BytesIO()
+            np.lib.format.write_array(buffer, arrays[name], allow_pickle=False)
+            archive.writestr(zipfile.ZipInfo(f"{name}.npy", date_time=_ZIP_TIME), buffer.getvalue(),
+                             compress_type=zipfile.ZIP_DEFLATED, compresslevel=9)
+    return path
+
+
+def read_dataset(path) -> xr.Dataset:
+    """The dataset in ``path`` (packed ``.npz`` or NetCDF), loaded into memory."""
+    path = Path(path)
+    if path.suffix == PACKED_SUFFIX:
+        return unpack(_packed_arrays(path))
+    return _read_netcdf(path)
+
+
+def read_arrays(path):
+    """The map in ``path`` for reading: a packed ``.npz`` as :class:`~impactmaps.maps.files.map_arrays.MapArrays`
+    (NumPy alone), a NetCDF file as the ``xarray.Dataset`` :func:`read_dataset` gives. The same values
+    either way."""
+    path = Path(path)
+    if path.suffix == PACKED_SUFFIX:
+        return unpack_arrays(_packed_arrays(path))
+    return _read_netcdf(path)
+
+
+def _packed_arrays(path: Path) -> dict:
+    with np.load(path, allow_pickle=False) as archive:
+        return {name: archive[name] for name in archive.files}
+
+
+def _read_netcdf(path: Path) -> xr.Dataset:
+    import xarray as xr  # only a NetCDF file needs it (a sweep's, or a shipped file not yet packed)
+
+    with xr.open_dataset(path, engine="scipy") as opened:
+        return opened.load()
+
+
+def shipped_path(*parts: str):
+    """The shipped data file ``data/<parts>`` as an importlib resource, or None; ``parts`` end
+    in the stem. A ``.nc`` (a file rebuilt by a build script and not yet packed, or an earlier
+    release's) is read before the ``.npz`` beside it: packing in place removes the ``.nc``."""
+    folder = resources.files("impactmaps.maps").joinpath("data", *parts[:-1])
+    for suffix in (".nc", PACKED_SUFFIX):
+        source = folder.joinpath(parts[-1] + suffix)
+        if source.is_file():
+            return source
+    return None
+
+
+def read_shipped(*parts: str) -> xr.Dataset | None:
+    """The shipped dataset ``data/<parts>`` (:func:`shipped_path`), or None if there is none."""
+    source = shipped_path(*parts)
+    return None if source is None else read_resource(source)
+
+
+def read_resource(source) -> xr.Dataset:
+    """:func:`read_dataset` of a path or a package resource (an importlib ``Traversable``)."""
+    with resources.as_file(source) as path:
+        return read_dataset(path)
+
+
+def read_resource_arrays(source):
+    """:func:`read_arrays` of a path or a package resource (an importlib ``Traversable``)."""
+    with resources.as_file(source) as path:
+        return read_arrays(path)
+
+
+# -- the packed format ---------------------------------------------------------------------
+def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=(), keep_exact=None) -> dict:
+    """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored variable.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+    single : sequence of str
+        Float variables stored as float32 (read back as their dtype).
+    bfloat16_up : sequence of str
+        Non-negative float variables stored as the 16 high bits of their float32, rounded
+        up (a stored error estimate only grows, by less than 2⁻⁷ of itself).
+    keep_exact : dict of str to ndarray of bool, optional
+        For a ``bfloat16_up`` variable, where to keep its float32 value exactly (stored apart).
+
+    Returns
+    -------
+    dict of str to ndarray
+    """
+    arrays, variables = {}, []
+    for name in [*dataset.coords, *dataset.data_vars]:
+        item = dataset[name]
+        values = np.asarray(item.values)
+        entry = {"name": name, "dims": list(item.dims), "shape": list(values.shape), "dtype": values.dtype.str,
+                 "attrs": _json_attrs(item.attrs), "coord": name in dataset.coords}
+        if values.dtype.kind in "OUS":
+            entry |= {"codec": "text", "values": [str(v) for v in values.ravel()]}
+        elif name in bfloat16_up:
+            entry["codec"] = "bfloat16_up"
+            arrays[name] = _shuffle(_bfloat16_up(values))
+            exact = np.asarray((keep_exact or {}).get(name, np.zeros(values.shape, bool)), bool)
+            if exact.any():
+                arrays[name + ".where_exact"] = np.packbits(exact.ravel())
+                arrays[name + ".exact"] = _shuffle(np.asarray(values, np.float32)[exact])
+        elif name in DERIVED and _derivable(dataset, name, single, bfloat16_up):
+            entry["codec"] = "derived"
+            exact = _derived(dataset, name).view(np.uint64) == values.view(np.uint64)
+            if not exact.all():
+                arrays[name + ".where_stored"] = np.packbits(~exact.ravel())
+                arrays[name] = _shuffle(values[~exact])
+        else:
+            stored = values.astype(np.float32) if name in single and values.dtype.kind == "f" else values
+            entry |= {"codec": "shuffle", "stored_dtype": stored.dtype.str}
+            arrays[name] = _shuffle(stored)
+        variables.append(entry)
+    header = {"format": FORMAT, "attrs": _json_attrs(dataset.attrs), "variables": variables}
+    arrays["__header__"] = np.frombuffer(json.dumps(header, sort_keys=True).encode(), np.uint8)
+    return arrays
+
+
+def unpack(arrays: dict) -> xr.Dataset:
+    """The dataset :func:`pack` stored in ``arrays``."""
+    import xarray as xr  # the Dataset is built here; a lookup reads :func:`unpack_arrays` without it
+
+    arrays = unpack_arrays(arrays)
+    coords, data_vars = {}, {}
+    for name, variable in arrays.variables.items():
+        target = coords if name in arrays.coord_names else data_vars
+        # fastpath: the arrays are NumPy's already (xarray's check of other array types imports dask.array, ~1 s)
+        target[name] = xr.Variable(variable.dims, variable.values, variable.attrs, fastpath=True)
+    return xr.Dataset(data_vars, coords=coords, attrs=arrays.attrs)
+
+
+def unpack_arrays(arrays: dict) -> MapArrays:
+    """The variables and attributes :func:`pack` stored in ``arrays``, as :class:`MapArrays` (no xarray)."""
+    header = json.loads(bytes(arrays["__header__"]).decode())
+    if header.get("format") != FORMAT:
+        raise ValueError(f"not a packed impactmaps dataset (format {header.get('format')!r}, expected {FORMAT!r})")
+    decoded, derived = {}, []
+    for entry in header["variables"]:
+        shape, dtype, codec, name = tuple(entry["shape"]), np.dtype(entry["dtype"]), entry["codec"], entry["name"]
+        if codec == "text":
+            decoded[name] = np.array(entry["values"], dtype=object if dtype.kind == "O" else dtype).reshape(shape)
+        elif codec == "bfloat16_up":
+            high = _unshuffle(arrays[name], np.dtype("<u2"), shape)
+            single_values = (high.astype(np.uint32) << 16).view(np.float32)
+            if name + ".where_exact" in arrays:
+                where = np.unpackbits(arrays[name + ".where_exact"], count=single_values.size).astype(bool)
+                single_values = single_values.ravel()
+                single_values[where] = _unshuffle(arrays[name + ".exact"], np.float32, (int(where.sum()),))
+                single_values = single_values.reshape(shape)
+            decoded[name] = single_values.astype(dtype)
+        elif codec == "derived":
+            derived.append(entry)
+        else:
+            decoded[name] = _unshuffle(arrays[name], np.dtype(entry["stored_dtype"]), shape).astype(dtype)
+    for entry in derived:  # their inputs are decoded above
+        name, shape = entry["name"], tuple(entry["shape"])
+        operation, inputs = DERIVED[name]
+        with np.errstate(all="ignore"):
+            values = np.asarray(_OPERATIONS[operation](*(decoded[i] for i in inputs)), np.dtype(entry["dtype"]))
+        if name + ".where_stored" in arrays:
+            where = np.unpackbits(arrays[name + ".where_stored"], count=values.size).astype(bool).reshape(shape)
+            values[where] = _unshuffle(arrays[name], values.dtype, (int(where.sum()),))
+        decoded[name] = values
+    variables = {entry["name"]: MapVariable(tuple(entry["dims"]), decoded[entry["name"]], _python_attrs(entry["attrs"]))
+                 for entry in header["variables"]}
+    return MapArrays(variables, _python_attrs(header["attrs"]),
+                     tuple(entry["name"] for entry in header["variables"] if entry["coord"]))
+
+
+def _derivable(dataset: xr.Dataset, name: str, single, bfloat16_up) -> bool:
+    """Whether ``name`` can be recomputed from inputs that are stored exactly, with its shape and dtype."""
+    inputs = DERIVED[name][1]
+    return all(i in dataset.data_vars and i not in single and i not in bfloat16_up and i not in DERIVED
+               and dataset[i].dims == dataset[name].dims and dataset[i].dtype == dataset[name].dtype
+               for i in inputs) and dataset[name].dtype == np.float64
+
+
+def _derived(dataset: xr.Dataset, name: str) -> np.ndarray:
+    operation, inputs = DERIVED[name]
+    with np.errstate(all="ignore"):
+        return np.asarray(_OPERATIONS[operation](*(dataset[i].values for i in inputs)), np.float64)
+
+
+def _shuffle(values: np.ndarray) -> np.ndarray:
+    """The bytes of ``values`` (little-endian), plane by plane: all first bytes, then all second bytes, …"""
+    values = np.ascontiguousarray(values, dtype=values.dtype.newbyteorder("<"))
+    return values.view(np.uint8).reshape(-1, values.dtype.itemsize).T.ravel()
+
+
+def _unshuffle(planes: np.ndarray, dtype: np.dtype, shape) -> np.ndarray:
+    dtype = np.dtype(dtype).newbyteorder("<")
+    raw = np.ascontiguousarray(np.asarray(planes, np.uint8).reshape(dtype.itemsize, -1).T)
+    return raw.view(dtype).reshape(shape).astype(dtype.newbyteorder("="))
+
+
+def _bfloat16_up(values: np.ndarray) -> np.ndarray:
+    """The 16 high bits of float32(values), rounded away from zero (NaN and ±inf kept)."""
+    bits = np.asarray(values, np.float32).view(np.uint32)
+    high = (bits >> 16).astype(np.uint32)
+    finite = np.isfinite(np.asarray(values, np.float32))
+    high = np.where(finite & ((bits & 0xFFFF) != 0), high + 1, high)
+    return high.astype(np.uint16)
+
+
+def _json_attrs(attrs: dict) -> dict:
+    out = {}
+    for key, value in attrs.items():
+        if isinstance(value, np.ndarray):
+            out[key] = {"__ndarray__": value.tolist(), "dtype": value.dtype.str}
+        elif isinstance(value, np.generic):
+            out[key] = {"__scalar__": value.item(), "dtype": value.dtype.str}
+        else:
+            out[key] = value
+    return out
+
+
+def _python_attrs(attrs: dict) -> dict:
+    out = {}
+    for key, value in attrs.items():
+        if isinstance(value, dict) and "__ndarray__" in value:
+            out[key] = np.array(value["__ndarray__"], dtype=value["dtype"])
+        elif isinstance(value, dict) and "__scalar__" in value:
+            out[key] = np.dtype(value["dtype"]).type(value["__scalar__"])
+        else:
+            out[key] = value
+    return out

@@ -1,0 +1,283 @@
+"""Exact propagation of a linear contact phase through the coupled modes (numba).
+
+While a *linear* contact ``F = K α`` is closed, impactor, contact spring (in series with
+the residual compliance r of the dropped modes, ``K_e = K/(1 + K r)``) and the retained
+undamped modes form one linear system,
+
+    M ẍ + K_c x = 0,   x = (w_i, q_1 … q_n),   M = diag(m_i, 1 … 1),
+    K_c = diag(0, ω_1² … ω_n²) + K_e g gᵀ,   g = (1, −φ_1 … −φ_n),
+
+with the contact force ``F = K_e gᵀ x``. ``K_c`` is positive definite (every ω_j > 0 and
+``g`` has a component on the impactor), so with ``M^{-1/2} K_c M^{-1/2} = U Ω² Uᵀ`` the
+coupled coordinates ``η = Uᵀ M^{1/2} x`` move as independent undamped oscillators and
+
+    F(t) = Σ_k c_k (η_k cos Ω_k t + (η̇_k/Ω_k) sin Ω_k t),   c = K_e gᵀ M^{-1/2} U,
+
+exactly, for any step. The contact phase then needs no stability limit and no force
+interpolation: the step only has to *sample* F(t) finely enough to see its peak and its
+end, which are then located on the closed form (the root of F' by the Illinois method
+for the peak, the root of F for the separation). The step follows the content of the
+force at the start of each contact, amplitude ``A_k = |c_k| sqrt(η_k² + (η̇_k/Ω_k)²)`` per
+coupled mode: the fastest modes whose amplitudes sum to at most ε/2 of ``Σ A_k``
+(:data:`CONTACT_RESOLUTION` ε) are left unsampled, every other mode is sampled at
+``Ω_k h ≤ 1`` and the mode of largest amplitude at ``Ω_k h ≤`` :data:`SAMPLED_PHASE`
+(times the settings' step scale; a recorded run adds exact rows inside the steps). The peak is located on
+the sampled modes and evaluated with all of them, so what the unsampled ripple can move
+the peak by is at most ``2 Σ_unsampled A_k ≤ ε Σ A_k``. This is what answers the quasi-static corner (heavy impactor, soft contact): there
+the modes the mode floor keeps lie far above the contact frequency and forced the
+sampled scheme of :mod:`impactmaps.solvers.integrator.exact_step` to ~10⁷ steps per contact.
+
+Two rates. That fine step h is only needed near the peak and near the separation;
+elsewhere the phase takes coarse steps H = N h, N the whole number of fine steps in the
+content step of :data:`COARSE_RESOLUTION` (no step scale: H does not change the result),
+when N ≥ :data:`COARSE_FACTOR` (else it keeps h throughout, exactly the single-rate
+loop). The amplitudes A_k are constant through a contact, so with F_low the force of the
+coupled modes with Ω_k H ≤ 1, ``B`` the A_k of the others and ``m = H²/8 Σ_low A_k Ω_k²``
+(the chord error of F_low), F anywhere in a coarse step lies within ``B + m`` of the
+range of the two F_low samples. A coarse step is taken only where that proves no instant
+in it has F ≤ 0 and none has F above the peak already found (provisionally, while later
+samples may still raise that peak enough); every other stretch is scanned at h from a
+coarse sample, the sample before it recomputed exactly, until a sample from which the
+coarse step is proven again. The coarse samples lie on the fine grid, so the fine
+windows see the samples, sampled maxima and first sample with F ≤ 0 of the single-rate
+loop, and every candidate of the peak it would find in a coarse step is below the peak
+found: the two-rate phase returns the single-rate peak, peak time and separation up to
+round-off (the fast modes reach a sample along another path: ≤ 2·10⁻¹⁴ relative in one
+contact, ~10⁻¹¹ after the 144 chattering contacts of a quasi-static map point, measured),
+with 8–11× fewer steps at the finest level of the quasi-static map points (3–4× less CPU
+for a whole point). (A run that ends at its time limit in contact may overrun it by one
+coarse step.)
+
+Free flight between contacts stays with :mod:`impactmaps.solvers.integrator.exact_step` (exact
+there already); :func:`coupled_modes` says when this phase applies (undamped modes, all
+ω_j > 0, linear law).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from ..._checks import require_positive
+from ...targets.base import ModalBasis
+from .coupled_closed_form import (
+    SAMPLED_PHASE,
+    _advance,
+    _clear_gap,
+    _content_step,
+    _first_positive,
+    _partial_force,
+)
+from .kernel_types import kernel_array
+from .coupled_stepping import COARSE_FACTOR, COARSE_RESOLUTION, _coarse_plan, _coarse_steps, _fine_steps
+
+__all__ = ["COARSE_FACTOR", "COARSE_RESOLUTION", "CONTACT_RESOLUTION", "SAMPLED_PHASE", "CoupledModes",
+           "contact_phase", "coupled_modes"]
+
+#: ε of the contact-phase step rule: coupled modes whose force amplitudes sum to at most
+#: ε/2 of the force content are not sampled (module docstring) [-].
+CONTACT_RESOLUTION = 1e-5
+
+
+@dataclass(frozen=True)
+class CoupledModes:
+    """The coupled modes of impactor + linear contact + retained modes.
+
+    Attributes
+    ----------
+    frequencies : ndarray, shape (n + 1,)
+        Ω_k [rad/s], ascending.
+    force_row : ndarray, shape (n + 1,)
+        c_k [N/m·sqrt(kg)]: ``F = Σ c_k η_k``.
+    from_coupled : ndarray, shape (n + 1, n + 1)
+        ``x = from_coupled @ η`` (x = (w_i, q_1 … q_n)).
+    to_coupled : ndarray, shape (n + 1, n + 1)
+        ``η = to_coupled @ x``.
+    """
+
+    frequencies: np.ndarray
+    force_row: np.ndarray
+    from_coupled: np.ndarray
+    to_coupled: np.ndarray
+
+
+def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: float) -> CoupledModes | None:
+    """The coupled modes of a linear contact phase, or ``None`` where they do not apply.
+
+    Parameters
+    ----------
+    basis : ModalBasis
+        Retained modes (mass-normalised participations φ_j [1/sqrt(kg)]) and residual
+        compliance r [m/N].
+    contact_stiffness : float
+        K [N/m] of the linear law.
+    impactor_mass : float
+        m_i [kg].
+
+    Returns
+    -------
+    CoupledModes or None
+        ``None`` for damped modes or rigid-body modes (ω_j = 0): the phase is then left
+        to the sampled scheme.
+    """
+    require_positive("contact_stiffness", contact_stiffness, "N/m")
+    require_positive("impactor_mass", impactor_mass, "kg")
+    applies, frequencies, force_row, from_coupled, to_coupled = _coupled_arrays(
+        kernel_array(basis.frequencies), kernel_array(basis.participation), kernel_array(basis.damping_ratios),
+        float(basis.residual_compliance), float(contact_stiffness), float(impactor_mass))
+    return CoupledModes(frequencies, force_row, from_coupled, to_coupled) if applies else None
+
+
+@numba.njit(cache=True, no_cfunc_wrapper=True)
+def _coupled_arrays(frequencies, participation, damping_ratios, residual, contact_stiffness, impactor_mass):
+    """The arrays of :class:`CoupledModes` (compiled: the set-up of a run on a few modes cost
+    ~5× its integration in NumPy's small-array calls). Returns ``(applies, Ω, c, from_coupled,
+    to_coupled)``; ``applies`` is False (empty arrays) for damped or rigid-body modes or a
+    coupled stiffness that is not positive definite.
+
+    The arithmetic is the one the NumPy version had, operation for operation (``eigh`` and
+    the product by ``gᵀ`` through the same LAPACK/BLAS routines), so the arrays are the same
+    bits (``tests/solvers/test_coupled_contact.py`` compares them).
+    """
+    size = frequencies.shape[0]
+    for j in range(size):
+        if damping_ratios[j] > 0.0 or frequencies[j] <= 0.0:
+            return False, np.empty(0), np.empty(0), np.empty((0, 0)), np.empty((0, 0))
+    effective = contact_stiffness / (1.0 + contact_stiffness * residual)
+    # g = (1, −φ), M^{-1/2} = diag(s0, 1 … 1) with s0 = 1/sqrt(m_i); a product or quotient by
+    # the ones is exact, so only the impactor's entries are scaled
+    gvec = np.empty(size + 1)
+    gvec[0] = 1.0
+    for j in range(size):
+        gvec[j + 1] = -participation[j]
+    s0 = 1.0 / np.sqrt(impactor_mass)
+    scaled = gvec.copy()  # M^{-1/2} g
+    scaled[0] = s0 * 1.0
+    stiffness = np.empty((size + 1, size + 1))
+    for i in range(size + 1):
+        for j in range(size + 1):
+            stiffness[i, j] = (scaled[i] * scaled[j]) * effective
+    for j in range(size):
+        stiffness[j + 1, j + 1] += frequencies[j] ** 2
+    eigenvalues, vectors = np.linalg.eigh(stiffness)
+    if not eigenvalues[0] > 0.0:
+        return False, np.empty(0), np.empty(0), np.empty((0, 0)), np.empty((0, 0))
+    from_coupled = np.empty((size + 1, size + 1))  # element loops: copies, never views of ``vectors``
+    to_coupled = np.empty((size + 1, size + 1))
+    for i in range(size + 1):
+        for k in range(size + 1):
+            from_coupled[i, k] = vectors[i, k]
+            to_coupled[k, i] = vectors[i, k]
+    for k in range(size + 1):
+        from_coupled[0, k] *= s0
+        to_coupled[k, 0] /= s0
+    force_row = effective * np.dot(gvec, from_coupled)
+    return True, np.sqrt(eigenvalues), force_row, from_coupled, to_coupled
+
+
+@numba.njit(cache=True)
+def _least_advance(t, length):
+    """The least shift s = 10⁻¹⁴ length · 2^k [s] (k ≥ 0) that moves the time t [s]: t + s > t.
+
+    A graze leaves the contact phase this much later at least: at s = 0 it would hand the
+    flight the instant it came from, whose touchdown search can find it again.
+    """
+    s = 1e-14 * length
+    while t + s <= t:
+        s *= 2.0
+    return s
+
+
+@numba.njit(cache=True, no_cfunc_wrapper=True)
+def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two_rate=True):
+    """One contact, from touchdown (α = 0) to separation or the run's limits.
+
+    Parameters
+    ----------
+    coupled : KernelCoupled
+        The coupled modes (:class:`CoupledModes`), the longest spacing of the recorded
+        rows in contact [s] (the settings' ``time_step_ratio/ω``: a recorded run adds
+        exact rows inside its steps, so its history is as fine as the sampled scheme's
+        and its scalars are those of the run without a record) and the factor on the step
+        (the settings' ``step_scale``) (:class:`~impactmaps.solvers.integrator.kernel_types.KernelCoupled`).
+    modes : KernelModes
+        Retained modes [rad/s], participations and residual [m/N]
+        (:class:`~impactmaps.solvers.integrator.kernel_types.KernelModes`).
+    limits : tuple
+        (max_time [s], max_steps): the run's time limit and step budget.
+    start : tuple
+        (t [s], w_i [m], v_i [m/s], peak [N], peak time [s], steps) at touchdown: time,
+        impactor state, largest force so far and steps taken so far.
+    q, v : ndarray
+        Modal state at touchdown, overwritten with the state at the end.
+    record, history, rec
+        Whether to record, the :class:`~impactmaps.solvers.integrator.history_rows.HistoryRows` and its
+        next row.
+    two_rate : bool
+        Take coarse steps where they are proven to change nothing (module docstring);
+        ``False`` keeps the fine step throughout (the reference the tests compare with).
+
+    Returns
+    -------
+    tuple
+        (t, wi, vi, force, peak, peak_time, steps, separated, history, rec): the state
+        at the end of the phase, with ``force`` 0 after a separation. A graze (no force
+        anywhere in the first step) returns with ``steps`` unchanged, a round-off moment
+        later (a time strictly after t, :func:`_least_advance`), where the gap is strictly
+        open.
+    """
+    frequencies, force_row, from_coupled, to_coupled = (coupled.frequencies, coupled.force_row,
+                                                        coupled.from_coupled, coupled.to_coupled)
+    omega, phi, residual = modes.frequencies, modes.participation, modes.residual
+    t, wi, vi, peak, peak_time, steps = start
+    n = frequencies.shape[0]
+    eta = np.empty(n)
+    rate = np.empty(n)
+    for k in range(n):
+        eta[k] = to_coupled[k, 0] * wi
+        rate[k] = to_coupled[k, 0] * vi
+        for j in range(1, n):
+            eta[k] += to_coupled[k, j] * q[j - 1]
+            rate[k] += to_coupled[k, j] * v[j - 1]
+    h = coupled.step_scale * _content_step(frequencies, force_row, eta, rate, CONTACT_RESOLUTION)
+    if h == 0.0 or _first_positive(frequencies, force_row, eta, rate, h) == 0.0:
+        # grazing: no force anywhere in the first step (a touchdown at zero closing speed
+        # whose force grows at second order — a sphere resting on a structure that
+        # accelerates into it — is a contact: its force is positive just after touchdown);
+        # leave with the gap strictly open and a later time, or flight would find this
+        # touchdown again and no time would pass (tests/solvers/test_graze_spin.py)
+        if h == 0.0:
+            h = 1e-9 / frequencies[n - 1]
+        s, wi, vi = _clear_gap(from_coupled, frequencies, eta, rate, phi, _least_advance(t, h), h, np.empty(n),
+                               np.empty(n), q, v)
+        return t + s, wi, vi, 0.0, peak, peak_time, steps, True, history, rec
+    resolved = 0  # coupled modes sampled at least 2π times per period (ascending Ω)
+    while resolved < n and frequencies[resolved] * h <= 1.0:
+        resolved += 1
+    phase_modes = (frequencies, force_row, from_coupled)
+    rows = (coupled.row_spacing, omega, phi, residual)
+    fine = (h, np.cos(frequencies * h), np.sin(frequencies * h), resolved)
+    coarse = _coarse_plan(frequencies, force_row, eta, rate, h) if two_rate else \
+        (0, 0.0, np.empty(0), np.empty(0), 0, 0.0)
+    state = (eta, rate, np.empty(n), np.empty(n))
+    run = (t, 0.0, -1.0, peak, peak_time, steps)  # no force, and no sample before touchdown
+    while True:
+        state, run, separated, stopped, wi, vi, history, rec = _fine_steps(
+            phase_modes, rows, fine, coarse, limits, state, run, record, history, rec, q, v)
+        t, force, f_prev, peak, peak_time, steps = run
+        if not stopped:
+            return t, wi, vi, force, peak, peak_time, steps, separated, history, rec
+        eta, rate, (t, force, peak, peak_time, steps), done, wi, vi, history, rec = _coarse_steps(
+            phase_modes, rows, coarse, limits, (state[0], state[1]), (t, force, peak, peak_time, steps),
+            record, history, rec, q, v)
+        if done:
+            return t, wi, vi, force, peak, peak_time, steps, False, history, rec
+        # a fine window from a coarse sample: the sample one fine step before, exactly
+        eta_prev = np.empty(n)
+        rate_prev = np.empty(n)
+        _advance(frequencies, eta, rate, -h, eta_prev, rate_prev)
+        f_prev = _partial_force(force_row, eta_prev, n)
+        state = (eta, rate, eta_prev, rate_prev)
+        run = (t, force, f_prev if f_prev > 0.0 else -1.0, peak, peak_time, steps)

@@ -1,0 +1,171 @@
+"""What goes into and comes out of the compiled modal integrator, by name (numba named tuples).
+
+:data:`impactmaps.solvers.integrator.exact_step.integrate_impact` takes the contact law as its kernel
+pointer, parameter vector and linear stiffness, then four named tuples — the modes
+(:class:`KernelModes`), the impactor (:class:`KernelImpact`), the run's step and limits
+(:class:`KernelRun`) and the coupled modes of an exact linear contact phase
+(:class:`KernelCoupled`) — and returns the history, the contact intervals and a
+:class:`KernelScalars`. The ``*_TYPE`` constants are their numba types, from which the
+kernel's signatures are built (compiled lazily, :mod:`impactmaps._compile.lazy_kernel`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+__all__ = ["kernel_array", "KernelModes", "KernelImpact", "KernelRun", "KernelCoupled", "KernelScalars", "MODES_TYPE",
+           "IMPACT_TYPE", "RUN_TYPE", "COUPLED_TYPE", "SCALARS_TYPE"]
+
+_F8 = numba.types.float64
+_I8 = numba.types.int64
+_BOOL = numba.types.boolean
+_VECTOR = numba.types.Array(_F8, 1, "C")
+_MATRIX = numba.types.Array(_F8, 2, "C")
+
+
+def kernel_array(values: np.ndarray) -> np.ndarray:
+    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
+    same array when it already is; a copy of a read-only view, such as a cached Ritz
+    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
+        flags = values.flags
+        if flags.c_contiguous and flags.writeable:
+            return values  # what np.require returns here, without its keyword handling (~1 µs a call)
+    return np.require(values, dtype=np.float64, requirements=("C", "W"))
+
+
+class KernelModes(NamedTuple):
+    """The retained modes at the impact point.
+
+    Attributes
+    ----------
+    frequencies : ndarray
+        ω_j [rad/s], ascending (C-contiguous float64, as all arrays here).
+    participation : ndarray
+        φ_j(x0) [1/sqrt(kg)], mass-normalised mode shapes at the impact point.
+    damping_ratios : ndarray
+        ζ_j [-].
+    residual : float
+        Residual compliance of the dropped modes [m/N].
+    """
+
+    frequencies: np.ndarray
+    participation: np.ndarray
+    damping_ratios: np.ndarray
+    residual: float
+
+
+class KernelImpact(NamedTuple):
+    """The impactor: ``mass`` [kg] and approach ``velocity`` [m/s]."""
+
+    mass: float
+    velocity: float
+
+
+class KernelRun(NamedTuple):
+    """The step and the limits of one run.
+
+    Attributes
+    ----------
+    time_step : float
+        h [s].
+    max_time : float
+        Time limit [s].
+    record : bool
+        Store the history (free-flight steps are the doubled ones, so rows are not
+        uniformly spaced there); otherwise only the scalars.
+    max_events : int
+        Capacity of the contact-interval table; a run with more contacts stops there,
+        flagged like a run at its time limit.
+    max_rows : int
+        Most history rows a recorded run writes; a run that reaches them stops there
+        (``row_cap_reached``), flagged like a run at its time limit.
+    stop : ndarray
+        int64, one element; the run ends at its next step once another thread sets it
+        non-zero (Ctrl-C); read only, it changes no arithmetic.
+    """
+
+    time_step: float
+    max_time: float
+    record: bool
+    max_events: int
+    max_rows: int
+    stop: np.ndarray
+
+
+class KernelCoupled(NamedTuple):
+    """The coupled modes of a linear contact (:class:`~impactmaps.solvers.integrator.coupled_contact.CoupledModes`),
+    empty arrays for the sampled contact phase.
+
+    Attributes
+    ----------
+    frequencies, force_row, from_coupled, to_coupled : ndarray
+        Ω_k [rad/s], c_k, and the transforms x = from_coupled η, η = to_coupled x.
+    row_spacing : float
+        Longest spacing of recorded rows in an exact contact phase [s].
+    step_scale : float
+        Factor on the contact phase's step [-].
+    """
+
+    frequencies: np.ndarray
+    force_row: np.ndarray
+    from_coupled: np.ndarray
+    to_coupled: np.ndarray
+    row_spacing: float
+    step_scale: float
+
+
+class KernelScalars(NamedTuple):
+    """The scalars of one run (SI units).
+
+    ``time_limit_reached`` is also set by the stop flag, a full contact-interval table
+    (``events_overflow``), the row cap (``row_cap_reached``) and a run whose contact phases
+    stopped moving the time on (``stalled``: :data:`~impactmaps.solvers.integrator.exact_step.STALL_LIMIT`).
+    """
+
+    peak_force: float
+    peak_time: float
+    max_indentation: float
+    final_velocity: float
+    structure_energy: float
+    damping_work: float
+    end_time: float
+    time_limit_reached: bool
+    steps: int
+    events_overflow: bool
+    row_cap_reached: bool
+    stalled: bool
+
+
+MODES_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _VECTOR, _F8), KernelModes)
+IMPACT_TYPE = numba.types.NamedUniTuple(_F8, 2, KernelImpact)  # what numba.typeof gives a homogeneous tuple
+RUN_TYPE = numba.types.NamedTuple((_F8, _F8, _BOOL, _I8, _I8, numba.types.Array(_I8, 1, "C")), KernelRun)
+COUPLED_TYPE = numba.types.NamedTuple((_VECTOR, _VECTOR, _MATRIX, _MATRIX, _F8, _F8), KernelCoupled)
+SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL, _BOOL), KernelScalars)
+
+
+class Work(NamedTuple):
+    """What the integrator's stages share through a run (internal to the kernel): the step
+    h [s], time limit [s], step budget, whether to record, the step's compliance [m/N],
+    whether any mode is damped, the step coefficients over h (8, n), scratch for sub-steps
+    (``sub`` (8, n), ``q_try``, ``v_try``), the free-flight propagators over 2^k h
+    (:data:`~impactmaps.solvers.integrator.free_flight.FREE_POWERS`, 4, n) with their ready flags,
+    scratch for recorded free flight (4, n) and the contact-interval table (max_events, 2)."""
+
+    h: float
+    max_time: float
+    max_steps: int
+    record: bool
+    compliance_h: float
+    damped: bool
+    coef: np.ndarray
+    sub: np.ndarray
+    q_try: np.ndarray
+    v_try: np.ndarray
+    free_coef: np.ndarray
+    free_ready: np.ndarray
+    scratch: np.ndarray
+    intervals: np.ndarray

@@ -1,0 +1,1 @@
+"""Plates: the Plate target (Kirchhoff, Mindlin), its Navier, Ritz and static solutions."""
