@@ -37,9 +37,9 @@ import numpy as np
 import pytest
 
 import impactmaps
-from impactmaps.targets import ritz
+from impactmaps.targets.plates import ritz
 
-RESULTS = Path(__file__).resolve().parents[1] / "validation" / "fe" / "results"
+RESULTS = Path(__file__).resolve().parents[2] / "validation" / "fe" / "results"
 sys.path.insert(0, str(RESULTS.parent))          # validation/fe: spring_integrator
 PUBLISHED = RESULTS / "level6_published_kirchhoff.csv"
 LEVEL6 = RESULTS / "level6_plates.json"
