@@ -7,6 +7,10 @@ writing, never sees a half-written file; a failed write leaves no temporary behi
 one a killed process left (``.NAME.XXXX.tmp.SUFFIX``) is what
 :func:`impactmaps.maps.files.store.remove_stale_temporaries` removes. The sweep store's files go
 through it too (:func:`impactmaps.maps.files.store.save_atomic`).
+
+:func:`cache_directory` is the one cache directory of the package: the on-demand map tiles
+(:mod:`impactmaps.maps.compute.tiles`) and the plate bases
+(:mod:`impactmaps.targets.plates.basis_cache`) are kept there.
 """
 
 from __future__ import annotations
@@ -16,7 +20,21 @@ import os
 import secrets
 from pathlib import Path
 
-__all__ = ["written_atomically"]
+__all__ = ["CACHE_ENV", "cache_directory", "written_atomically"]
+
+#: Environment variable naming the cache directory (tiles, plate bases).
+CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
+
+
+def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
+    """The cache: ``cache_dir`` if given, else ``$IMPACTMAPS_CACHE_DIR``, else
+    ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps``."""
+    if cache_dir is not None:
+        return Path(cache_dir)
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "impactmaps"
 
 
 @contextlib.contextmanager

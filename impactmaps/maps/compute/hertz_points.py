@@ -307,9 +307,14 @@ def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Rea
 
     The patch radius is iterated by :func:`~impactmaps.solvers.modal.simulate` on the
     target; the cut-off ``patch_cutoff_ratio`` · ω is clipped to ``cap`` [rad/s] as the
-    point-loaded runs clip theirs.
+    point-loaded runs clip theirs. A plate of the general Ritz basis runs on the one basis
+    resolving ``cap`` (:func:`~impactmaps.targets.plates.shared_basis.shared_basis`): the
+    points of a tile or a sweep share it instead of building one per cut-off.
     """
     from ...solvers.modal import simulate  # the integrator: only where a point is computed
+    from ...targets.plates.shared_basis import shared_basis
+
+    target = shared_basis(target, cap)  # a general-basis plate: one basis (at the cap) for every run and point
 
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))

@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ... import _files
 from ...jsonio import dumps
 from ...solvers.modal_settings import ModalSettings
 from ...targets.shear_range import beyond_shear_theory
@@ -54,24 +55,21 @@ __all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "Til
 LATTICE_STEPS = (0.05, 0.1)
 
 #: Environment variable naming the cache directory of the tiles.
-CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
+CACHE_ENV = _files.CACHE_ENV
 #: Most tiles the cache keeps (the least recently used beyond it are removed).
 MAX_CACHED_TILES = 256
 #: Lattice points per axis of a tile.
 TILE_POINTS = 4
-#: Version of the tile file layout (part of the fingerprint).
-_TILE_FORMAT = 1
+#: Version of the tile files (part of the fingerprint): their layout and the point rules
+#: SOLVER_REVISION does not cover (2: patch-loaded points on a plate of the general Ritz
+#: basis share the basis resolving the cap, :mod:`impactmaps.targets.plates.shared_basis`).
+_TILE_FORMAT = 2
 
 
 def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
     """The tile cache: ``cache_dir`` if given, else ``$IMPACTMAPS_CACHE_DIR``, else
-    ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps``."""
-    if cache_dir is not None:
-        return Path(cache_dir)
-    if os.environ.get(CACHE_ENV):
-        return Path(os.environ[CACHE_ENV])
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "impactmaps"
+    ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps`` (:func:`impactmaps._files.cache_directory`)."""
+    return _files.cache_directory(cache_dir)
 
 
 def lattice_steps() -> tuple[float, float]:

@@ -121,11 +121,13 @@ def solution(plate, n: int, classes=None) -> GeneralPlateSolution:
 
 def grown_solution(plate, max_frequency: float, min_modes: int, classes="impact") -> GeneralPlateSolution:
     """Smallest basis resolving ``max_frequency`` [rad/s] and at least ``min_modes`` modes
-    (or the largest basis), in the classes a centre impact excites by default."""
+    (or the largest basis), in the classes a centre impact excites by default; never
+    smaller than a pinned plate's ``basis_functions`` (:mod:`.shared_basis`)."""
     if classes == "impact":
         classes = class_groups(plate)[0]
     n, _, _ = basis_size(plate, max_frequency, classes)
     cap = max_functions(plate.theory, classes)
+    n = max(n, min(getattr(plate, "basis_functions", 0), cap))  # a pinned basis (shared_basis.PinnedBasisPlate)
     while True:
         result = solution(plate, n, classes)
         if result.frequencies.size >= min_modes or n >= cap:

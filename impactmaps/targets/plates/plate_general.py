@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import legendre
 
-from . import ritz
+from . import basis_cache, ritz
 
 __all__ = ["GeneralPlateSolution", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
            "general_static_compliance", "disc_quadrature", "RESOLUTION_FACTOR", "RESOLUTION_MARGIN",
@@ -74,6 +74,14 @@ def _values(xi, n, e0, e1):
     transform = ritz._orthonormalising_transform(int(n), int(e0), int(e1))
     raw = ritz._raw_polynomials(np.atleast_1d(np.asarray(xi, dtype=float)), int(n), int(e0), int(e1))
     return tuple(r @ transform for r in raw)
+
+
+def _deflection_values(xi, n, e0, e1):
+    """The values alone of :func:`_values` (the same bits; no derivative evaluated)."""
+    xi = np.atleast_1d(np.asarray(xi, dtype=float))
+    transform = ritz._orthonormalising_transform(int(n), int(e0), int(e1))
+    g0 = ritz._edge_factor(xi, int(e0), int(e1))[0]
+    return (g0[:, None] * legendre.legvander(2.0 * xi - 1.0, int(n) - 1)) @ transform
 
 
 @functools.lru_cache(maxsize=256)
@@ -200,8 +208,8 @@ class GeneralPlateSolution:
         """w basis functions at ``points`` (n_points, 2) [m] → (n_points, kept w functions)."""
         points = np.atleast_2d(np.asarray(points, dtype=float))
         (ex, ey) = field_exponents(self.theory, self.edges)[0]
-        xv = _values(points[:, 0] / self.length_x, self.n_x, *ex)[0]
-        yv = _values(points[:, 1] / self.length_y, self.n_y, *ey)[0]
+        xv = _deflection_values(points[:, 0] / self.length_x, self.n_x, *ex)
+        yv = _deflection_values(points[:, 1] / self.length_y, self.n_y, *ey)
         full = (xv[:, :, None] * yv[:, None, :]).reshape(points.shape[0], -1)
         return full[:, selection(self.theory, self.n_x, self.n_y, self.classes)[0]]
 
@@ -224,7 +232,8 @@ def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area
 @functools.lru_cache(maxsize=8)
 def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
                         n_x, n_y, resolved_frequency, classes=None) -> GeneralPlateSolution:
-    """Ritz eigen-solution (cached by its inputs; pure: same inputs, same bits).
+    """Ritz eigen-solution (cached by its inputs in the process and on disk,
+    :mod:`~impactmaps.targets.plates.basis_cache`; pure: same inputs, same bits).
 
     Parameters
     ----------
@@ -246,6 +255,21 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
     classes : tuple of (int, int), optional
         Symmetry classes kept (:func:`selection`); None for all.
     """
+    inputs = {"length_x": length_x, "length_y": length_y, "theory": theory, "edges": edges, "D": D, "shear": shear,
+              "mass_per_area": mass_per_area, "rotary_inertia": rotary_inertia, "n_x": n_x, "n_y": n_y,
+              "resolved_frequency": resolved_frequency, "classes": classes}
+    arrays = basis_cache.cached_arrays("general-modes", inputs, lambda: _eigen_solution(
+        length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y, resolved_frequency,
+        classes))
+    frequencies, vectors = arrays["frequencies"], arrays["coefficients"]
+    return GeneralPlateSolution(float(length_x), float(length_y), theory, edges, int(n_x), int(n_y),
+                                frequencies, vectors, float(resolved_frequency), classes)
+
+
+def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
+                    resolved_frequency, classes) -> dict:
+    """{"frequencies": ω_j [rad/s], "coefficients": mass-normalised eigenvectors} of
+    :func:`solve_general_plate` (the dense eigenproblem: the expensive part)."""
     import scipy.linalg
 
     matrix, scale = _standard_problem(length_x, length_y, theory, edges, np.array(D), np.array(shear),
@@ -257,12 +281,7 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
     if eigenvalues[0] <= 0:
         raise RuntimeError(f"Ritz plate stiffness is not positive definite (lowest eigenvalue "
                            f"{eigenvalues[0]:.3e}); the edges leave rigid-body motion")
-    vectors = vectors * scale[:, None]
-    frequencies = np.sqrt(eigenvalues)
-    for array in (frequencies, vectors):
-        array.setflags(write=False)
-    return GeneralPlateSolution(float(length_x), float(length_y), theory, edges, int(n_x), int(n_y),
-                                frequencies, vectors, float(resolved_frequency), classes)
+    return {"frequencies": np.sqrt(eigenvalues), "coefficients": vectors * scale[:, None]}
 
 
 @functools.lru_cache(maxsize=8)
