@@ -402,11 +402,13 @@ class Plate(Target):
 
         SSSS: counted without building them (:func:`plate_navier.navier_mode_count`; a
         lower bound above ``limit`` once the count exceeds it). Other edges: the Ritz
-        modes :meth:`modes` resolves (a bounded model, built).
+        modes :meth:`modes` resolves (built; the general basis: in its largest basis).
         """
         require_nonnegative("max_frequency", max_frequency, "rad/s")
         if self.uses_navier:
             return plate_navier.navier_mode_count(self, float(max_frequency), limit)
+        if plate_any_edges.uses_general_basis(self):  # one eigen-solution for every count
+            return plate_any_edges.resolved_count(self, float(max_frequency))
         return super().mode_count(max_frequency, limit)
 
     @property

@@ -27,7 +27,7 @@ from .plate_general import (
 )
 
 __all__ = ["uses_general_basis", "class_groups", "max_functions", "resolved_frequency", "basis_size", "solution",
-           "grown_solution", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
+           "grown_solution", "resolved_count", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
            "general_plate_modes", "check_couplings", "laminate_couplings", "mode_table", "MAX_UNKNOWNS", "STATIC_EXTRA_FUNCTIONS"]
 
 
@@ -133,6 +133,16 @@ def grown_solution(plate, max_frequency: float, min_modes: int, classes="impact"
         if result.frequencies.size >= min_modes or n >= cap:
             return result
         n = min(n + 4, cap)
+
+
+def resolved_count(plate, max_frequency: float) -> int:
+    """Number of modes with ω ≤ ``max_frequency`` [rad/s] in the largest basis of the classes
+    a centre impact excites (at most the modes it resolves): one eigen-solution, kept on
+    disk, for every count (:func:`impactmaps.solvers.mode_budget.frequency_cap` probes many)."""
+    classes = class_groups(plate)[0]
+    result = solution(plate, max_functions(plate.theory, classes), classes)
+    top = min(float(max_frequency), result.resolved_frequency)
+    return int(np.searchsorted(result.frequencies, top, side="right"))
 
 
 def all_modes(plate, count: int) -> tuple:

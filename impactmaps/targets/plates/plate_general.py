@@ -130,7 +130,7 @@ def selection(theory, n_x, n_y, classes=None) -> tuple:
     classes = set(classes)
 
     def keep(px, py):
-        return np.flatnonzero([(int(a), int(b)) in classes for a, b in zip(px, py)])
+        return np.flatnonzero(np.isin(2 * px + py, [2 * a + b for a, b in classes]))
 
     w = keep(i % 2, l % 2)
     if theory == "kirchhoff":
@@ -210,8 +210,8 @@ class GeneralPlateSolution:
         (ex, ey) = field_exponents(self.theory, self.edges)[0]
         xv = _deflection_values(points[:, 0] / self.length_x, self.n_x, *ex)
         yv = _deflection_values(points[:, 1] / self.length_y, self.n_y, *ey)
-        full = (xv[:, :, None] * yv[:, None, :]).reshape(points.shape[0], -1)
-        return full[:, selection(self.theory, self.n_x, self.n_y, self.classes)[0]]
+        i, l = np.divmod(selection(self.theory, self.n_x, self.n_y, self.classes)[0], self.n_y)
+        return xv[:, i] * yv[:, l]  # the kept columns of the products X_i Y_l
 
     def mode_shapes(self, points, count=None) -> np.ndarray:
         """Mass-normalised deflections w_j at ``points`` [kg^-1/2], shape (n_points, count)."""
@@ -301,7 +301,7 @@ def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, 
     factor, size = _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
     f = np.zeros(size)
     f[:load.size] = load
-    return float(f @ scipy.linalg.cho_solve(factor, f))
+    return float(f @ scipy.linalg.cho_solve(factor, f, check_finite=False))  # a factor of finite K
 
 
 @functools.lru_cache(maxsize=32)
