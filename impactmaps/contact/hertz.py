@@ -91,6 +91,16 @@ class HertzContact(ContactLaw):
     def kernel_parameters(self) -> np.ndarray:
         return np.asarray(self.stiffness, dtype=float)[None, ...]
 
+    def tangent_stiffness(self, indentation, max_indentation=0.0):
+        """Tangent stiffness ``1.5 K_h sqrt(α)`` [N/m] for α > 0 [m], else 0: the kernel's
+        arithmetic in NumPy (the same bits), so that reading a Hertz map loads no compiled kernel."""
+        alpha = np.asarray(indentation, dtype=float)
+        stiffness = np.asarray(self.stiffness, dtype=float)
+        with np.errstate(invalid="ignore"):
+            values = np.where(alpha <= 0.0, 0.0, 1.5 * stiffness * np.sqrt(alpha))
+        shape = np.broadcast_shapes(alpha.shape, np.shape(max_indentation), stiffness.shape)
+        return np.array(np.broadcast_to(values, shape))
+
     @property
     def hertzian_stiffness(self):
         """K_h [N/m^1.5] (:attr:`stiffness`)."""
