@@ -1,4 +1,4 @@
-"""Speed of the clamped Mindlin laminate (issue 39 item 7), next to its SSSS Navier twin.
+"""Speed of the clamped Mindlin laminate and of lookups on clamped plates (issue 39 item 7).
 
 Measures, in one process each (a fresh interpreter per measurement, the numba kernels
 already in their cache):
@@ -7,16 +7,23 @@ already in their cache):
   quasi-isotropic laminate): warm kernels, the basis built in the run ("warm incl. basis"),
   then the same run again in the process (basis cached);
 * the same with ``edges = "SSSS"`` and the couplings of a cross-ply (Navier);
-* ``lookup --case`` of a clamped plate new to the tile cache (the tile is built), then
-  again (cached tile).
+* ``lookup --case`` of a clamped Mindlin plate (150 × 100 × 3 mm 6061-T6, 20 mm steel ball,
+  5.4 m/s: :data:`LOOKUP_CASE`) with an empty cache (the plate's basis and the tile are
+  built), again (the tile cached), and at another speed (a new tile of the same plate: its
+  basis read from the disk cache); each a fresh process (interpreter and imports
+  included), and in one process after its imports: the first lookup call and the next
+  ones (the tile cached on disk).
 
-Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py  (writes nothing; prints a
-Markdown table for benchmarks/RESULTS_plates_any_edges.md). Wall-clock times depend on the
-machine's load: the table says what the load average was.
+Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT]  (writes
+nothing; prints Markdown for benchmarks/RESULTS_plates_any_edges.md; ``--root`` times
+another checkout, e.g. main before a change). Wall-clock times depend on the machine's
+load: the load average is printed before and after.
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
 import subprocess
 import sys
@@ -27,6 +34,41 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "drop_weight_quasi_isotropic.toml"
+
+#: The lookup case: the clamped plate of issue 39 as a Mindlin plate.
+LOOKUP_CASE = """
+name = "20 mm steel ball, 5.4 m/s, clamped 150 x 100 x 3 mm 6061-T6 plate (Mindlin)"
+[impactor]
+radius = 0.01
+material = "structural-steel"
+velocity = {velocity}
+[target]
+type = "plate"
+length_x = 0.15
+length_y = 0.10
+thickness = 0.003
+material = "aluminium-6061-t6"
+theory = "mindlin"
+edges = "CCCC"
+[contact]
+law = "hertz"
+"""
+
+_IN_PROCESS = textwrap.dedent("""
+    import contextlib, io, sys, time, warnings
+    warnings.simplefilter("ignore")
+    t0 = time.perf_counter()
+    from impactmaps.cli import main
+    import impactmaps.cases.case_lookup, impactmaps.cases.on_demand  # the lookup's own imports
+    t1 = time.perf_counter()
+    calls = []
+    for _ in range(3):
+        start = time.perf_counter()
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            main(["lookup", "--case", sys.argv[1], "--json"])
+        calls.append(time.perf_counter() - start)
+    print(f"{t1 - t0:.3f} " + " ".join(f"{t:.4f}" for t in calls))
+""")
 
 _RUN_TWICE = textwrap.dedent("""
     import sys, time, warnings
@@ -64,42 +106,67 @@ def _twin(text: str) -> str:
             .replace("angles_deg = [45, 0, -45, 90, 45, 0, -45, 90]", "angles_deg = [0, 90, 0, 90, 0, 90, 0, 90]"))
 
 
-def _run(code: str, *args: str) -> str:
-    env = dict(os.environ, PYTHONPATH=str(ROOT), OPENBLAS_NUM_THREADS="2", OMP_NUM_THREADS="2")
-    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, env=env,
-                          check=True).stdout.strip()
+def _environment(root: Path, **extra) -> dict:
+    return dict(os.environ, PYTHONPATH=str(root), OPENBLAS_NUM_THREADS="2", OMP_NUM_THREADS="2", **extra)
 
 
-def _lookup(case: Path, cache: Path) -> float:
-    env = dict(os.environ, PYTHONPATH=str(ROOT), IMPACTMAPS_CACHE_DIR=str(cache))
+def _run(root: Path, code: str, *args: str, **extra) -> str:
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                          env=_environment(root, **extra), check=True).stdout.strip()
+
+
+def _lookup(root: Path, case: Path, cache: Path) -> tuple[float, str]:
+    """(wall time [s], peak force answer) of ``impactmaps lookup --case`` in a fresh process."""
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "impactmaps.cli", "lookup", "--case", str(case), "--json"],
-                   capture_output=True, text=True, env=env)
-    return time.perf_counter() - start
+    done = subprocess.run([sys.executable, "-m", "impactmaps.cli", "lookup", "--case", str(case), "--json"],
+                          capture_output=True, text=True, env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache)))
+    seconds = time.perf_counter() - start
+    try:
+        answer = json.loads(done.stdout)
+        return seconds, f"{answer['peak_force_N']:.2f} ± {answer['peak_force_error_N']:.1f} N"
+    except (ValueError, KeyError):
+        return seconds, "refused: " + (done.stderr.strip().splitlines() or ["?"])[-1][:120]
+
+
+def _load() -> str:
+    return " ".join(f"{value:.1f}" for value in os.getloadavg())
 
 
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--root", type=Path, default=ROOT, help="the checkout to time (default: this one)")
+    root = parser.parse_args().root.resolve()
+    example = root / "examples" / "drop_weight_quasi_isotropic.toml"
+    before = _load()
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
         warm = folder / "warm.toml"
         warm.write_text(_WARM_CASE)
         twin = folder / "twin.toml"
-        twin.write_text(_twin(EXAMPLE.read_text()))
+        twin.write_text(_twin(example.read_text()))
         rows = []
-        for label, path in (("clamped Mindlin [45/0/-45/90]2s (general basis)", EXAMPLE),
+        for label, path in (("clamped Mindlin [45/0/-45/90]2s (general basis)", example),
                             ("SSSS Mindlin [0/90]4s (Navier)", twin)):
-            first, second, peak, modes, method = _run(_RUN_TWICE, str(path), str(warm)).split()
+            first, second, peak, modes, method = _run(root, _RUN_TWICE, str(path), str(warm)).split()
             rows.append(f"| {label} | {float(first):.2f} | {float(second):.3f} | {peak} | {modes} | {method} |")
+        case, other = folder / "case.toml", folder / "other.toml"
+        case.write_text(LOOKUP_CASE.format(velocity=5.4))
+        other.write_text(LOOKUP_CASE.format(velocity=3.0))
         cache = folder / "cache"
-        first_lookup = _lookup(EXAMPLE, cache)
-        cached_lookup = _lookup(EXAMPLE, cache)
-    load = os.getloadavg()
-    print(f"load average during the run: {load[0]:.1f} {load[1]:.1f} {load[2]:.1f} ({os.cpu_count()} cores)\n")
+        lookups = [("new plate, empty cache (basis and tile built)", *_lookup(root, case, cache)),
+                   ("again (tile cached)", *_lookup(root, case, cache)),
+                   ("same plate at 3.0 m/s (a new tile; the basis on disk)", *_lookup(root, other, cache))]
+        imports, *calls = _run(root, _IN_PROCESS, str(case), IMPACTMAPS_CACHE_DIR=str(cache)).split()
+    after = _load()
+    print(f"load average (1, 5, 15 min) before: {before}; after: {after} ({os.cpu_count()} cores, shared)\n")
     print("| case | simulate, warm incl. basis [s] | simulate, basis cached [s] | peak [N] | modes | method |")
     print("|---|---|---|---|---|---|")
     print("\n".join(rows))
-    print(f"\nlookup --case (clamped example, new tile): {first_lookup:.2f} s; cached: {cached_lookup:.2f} s "
-          "(each a fresh process: includes the interpreter and imports)")
+    print("\n| lookup --case, clamped Mindlin 150 × 100 × 3 mm (fresh process each) | wall [s] | answer |")
+    print("|---|---|---|")
+    print("\n".join(f"| {label} | {seconds:.2f} | {answer} |" for label, seconds, answer in lookups))
+    print(f"\nIn one process (tile cached on disk): imports {float(imports):.2f} s; lookup calls "
+          + ", ".join(f"{float(t):.3f}" for t in calls) + " s (first, second, third)")
 
 
 if __name__ == "__main__":

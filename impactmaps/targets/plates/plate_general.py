@@ -158,11 +158,30 @@ def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, clas
                     gx = _gram(n_x, exponents[fs][0], exponents[ft][0], pxs, pxt)
                     gy = _gram(n_y, exponents[fs][1], exponents[ft][1], pys, pyt)
                     scale = c * cs * ct * a ** (1 - pxs - pxt) * b ** (1 - pys - pyt)
-                    ix_s, iy_s = np.divmod(kept[fs], n_y)
-                    ix_t, iy_t = np.divmod(kept[ft], n_y)
-                    block = gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
+                    block = _product_block(gx, gy, kept[fs], kept[ft], n_y)
                     stiffness[offsets[fs]:offsets[fs + 1], offsets[ft]:offsets[ft + 1]] += scale * block
     return 0.5 * (stiffness + stiffness.T)
+
+
+def _factors(kept, n_y):
+    """(x indices, y indices) of kept flat indices ``i n_y + l`` that are their product set
+    (all functions, or one symmetry class), else None."""
+    ix, iy = np.divmod(kept, n_y)
+    xs, ys = np.unique(ix), np.unique(iy)
+    if xs.size * ys.size == kept.size and np.array_equal(kept, (xs[:, None] * n_y + ys[None, :]).ravel()):
+        return xs, ys
+    return None
+
+
+def _product_block(gx, gy, kept_s, kept_t, n_y):
+    """``gx[i_s, i_t] gy[l_s, l_t]`` over the kept rows and columns: a Kronecker product when
+    both are product sets (the same products, no gathering of the full block), else gathered."""
+    rows, columns = _factors(kept_s, n_y), _factors(kept_t, n_y)
+    if rows is not None and columns is not None:
+        return np.kron(gx[np.ix_(rows[0], columns[0])], gy[np.ix_(rows[1], columns[1])])
+    ix_s, iy_s = np.divmod(kept_s, n_y)
+    ix_t, iy_t = np.divmod(kept_t, n_y)
+    return gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
 
 
 def _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, kept):
