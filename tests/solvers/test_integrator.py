@@ -331,12 +331,7 @@ def test_sampled_loop_instability_is_avoided():
     impact point: (1,3) and (3,1) are one degenerate mode there): forcing ω_top·Δt ≈ 18.8, where the top mode
     turns 2.99 times per step, makes the sampled contact loop unstable (F̄max > 1, the
     energy bound broken); the default step keeps ω_top·Δt ≤ STABLE_TOP_STEP and gives the
-    resolved answer.
-
-    The modes are kept without residual flexibility: with it the mode floor keeps no mode above
-    10⁴ ω (:func:`~impactmaps.solvers.modal_run.static_floor`, issue 40 item 4) and the basis
-    would hold the (1,1) mode alone; without it those modes are all the basis has above the
-    contact, and the floor keeps them."""
+    resolved answer."""
     from impactmaps.dimensionless import realise
     from impactmaps.maps.family.structures import BasisTable, structure_from_name
     from impactmaps.solvers.time_step import STABLE_TOP_STEP, coupled_top_frequency
@@ -346,27 +341,26 @@ def test_sampled_loop_instability_is_avoided():
     impactor = realise(target, 95.64154521062957, 14.38075986535519)
     mass, stiffness = float(impactor.impactor_mass), float(impactor.contact_stiffness)
     omega = math.sqrt(stiffness / mass)
-    bare = {"residual_flexibility": False}
-    basis = basis_for(BasisTable(target, 1e9, 3).truncate(40 * omega, 3), omega, ModalSettings(**bare))
+    basis = basis_for(BasisTable(target, 1e9, 3).truncate(40 * omega, 3), omega, ModalSettings())
     assert basis.size == 3 and basis.frequencies.max() > 4e4 * omega
     law = LinearContact(stiffness)
     top = coupled_top_frequency(basis, stiffness, mass)
-    settings = ModalSettings(max_time_ratio=50, **bare)
+    settings = ModalSettings(max_time_ratio=50)
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the blow-up may also hit the time or event limits
         unstable = simulate(basis, law, mass, 1.0, record=False, time_step=18.8 / top, settings=settings)
     assert not unstable.fmax_normalised <= 1.0
-    sampled = ModalSettings(contact_phase="sampled", **bare)
+    sampled = ModalSettings(contact_phase="sampled")
     default = simulate(basis, law, mass, 1.0, record=False, settings=sampled)
     resolved = simulate(basis, law, mass, 1.0, record=False,
-                        settings=ModalSettings(force_resolution=0.0, contact_phase="sampled", **bare))
+                        settings=ModalSettings(force_resolution=0.0, contact_phase="sampled"))
     assert default.time_step * top <= STABLE_TOP_STEP * (1 + 1e-9)
     assert default.impacts == resolved.impacts == 1
     assert default.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)
     # the exact contact phase (the default here) has no stability limit to keep
-    exact = simulate(basis, law, mass, 1.0, record=False, settings=ModalSettings(**bare))
+    exact = simulate(basis, law, mass, 1.0, record=False)
     assert exact.details.contact_phase == "exact" and exact.impacts == 1
     assert exact.fmax_normalised == pytest.approx(resolved.fmax_normalised, abs=1e-5)
 
