@@ -1,24 +1,12 @@
 """Budgets before work: what a run will hold and how long it will take, checked before it starts.
 
-One mechanism for every solver (the modal solver, :func:`modal_run_budget`, and the
-finite-difference beam): a run whose estimated memory exceeds :data:`MEMORY_LIMIT_BYTES` is
-refused with a ``ValueError`` that names the knob and the value that fits
-(:func:`refuse_or_announce`); a run estimated to take longer than :data:`LONG_RUN_SECONDS` is
-announced with a :class:`LongRunWarning` before it starts.
-
-Modal estimates (:func:`modal_run_budget`), per run of the compiled integrator
-(:mod:`impactmaps.solvers.integrator.exact_step`):
-
-* steps — over :data:`EXPECTED_RUN_RATIO`/ω (a run ends once re-impact is impossible:
-  4 … 13 /ω in the runs measured), at most the ``ceil(max_time/Δt) + 2`` steps to the time
-  limit; with a forced step they may not exceed :data:`MAX_STEPS` (the automatic step is
-  never refused for its count: it follows the modes the contact excites);
-* memory — the contact-interval table, allocated whole (``max_events`` × 16 B); the
-  history of a recorded run, one row per expected step (:data:`HISTORY_ROW_BYTES` per
-  row: the kernel's growing array, its copy and the DataFrame), at most
-  :data:`HISTORY_ROW_CAP` rows — the kernel writes no more (a run that reaches them stops
-  there, flagged); the modes (:data:`BYTES_PER_MODE`);
-* time — :data:`SECONDS_PER_MODE_STEP` per mode and expected step.
+For every solver, a run estimated above :data:`MEMORY_LIMIT_BYTES` is refused with a
+``ValueError`` naming the knob and the value that fits, and one estimated above
+:data:`LONG_RUN_SECONDS` is announced with a :class:`LongRunWarning`
+(:func:`refuse_or_announce`). :func:`modal_run_budget` estimates a modal run: steps over
+:data:`EXPECTED_RUN_RATIO`/ω, the interval table, the history (at most
+:data:`HISTORY_ROW_CAP` rows) and the modes, at :data:`SECONDS_PER_MODE_STEP` per mode
+and step.
 """
 
 from __future__ import annotations
@@ -78,8 +66,7 @@ class RunBudget(NamedTuple):
     seconds : float
         Estimated run time [s].
     advice : str
-        The knob to change and the value that fits, for the refusal (empty when the
-        run fits: only a refusal reads it).
+        The knob to change and the value that fits, for a refusal.
     hint : str
         What makes the run faster, for the announcement (may be empty).
     """
@@ -134,8 +121,8 @@ def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_fr
     Raises
     ------
     ValueError
-        A forced step with more than :data:`MAX_STEPS` expected steps (absurdly short),
-        naming ``time_step`` and the value that fits (memory included).
+        A forced step with more than :data:`MAX_STEPS` expected steps, naming
+        ``time_step`` and the value that fits.
     """
     steps = math.ceil(max_time / time_step) + 2
     expected = min(steps, math.ceil(EXPECTED_RUN_RATIO / (contact_frequency * time_step)) + 2)

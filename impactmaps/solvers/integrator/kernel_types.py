@@ -1,12 +1,9 @@
 """What goes into and comes out of the compiled modal integrator, by name (numba named tuples).
 
-:data:`impactmaps.solvers.integrator.exact_step.integrate_impact` takes the contact law as its kernel
-pointer, parameter vector and linear stiffness, then four named tuples — the modes
-(:class:`KernelModes`), the impactor (:class:`KernelImpact`), the run's step and limits
-(:class:`KernelRun`) and the coupled modes of an exact linear contact phase
-(:class:`KernelCoupled`) — and returns the history, the contact intervals and a
-:class:`KernelScalars`. The ``*_TYPE`` constants are their numba types, from which the
-kernel's signatures are built (compiled lazily, :mod:`impactmaps._compile.lazy_kernel`).
+The integrator takes the contact law (kernel pointer, parameters, linear stiffness) and
+:class:`KernelModes`, :class:`KernelImpact`, :class:`KernelRun`, :class:`KernelCoupled`,
+and returns the history, the contact intervals and :class:`KernelScalars`; the ``*_TYPE``
+constants are their numba types.
 """
 
 from __future__ import annotations
@@ -27,9 +24,9 @@ _MATRIX = numba.types.Array(_F8, 2, "C")
 
 
 def kernel_array(values: np.ndarray) -> np.ndarray:
-    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
-    same array when it already is; a copy of a read-only view, such as a cached Ritz
-    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    """``values`` as C-contiguous, writeable float64 (the same array when it already is, else a
+    copy), as the kernel's signature takes them.
+    """
     if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
         flags = values.flags
         if flags.c_contiguous and flags.writeable:
@@ -75,17 +72,13 @@ class KernelRun(NamedTuple):
     max_time : float
         Time limit [s].
     record : bool
-        Store the history (free-flight steps are the doubled ones, so rows are not
-        uniformly spaced there); otherwise only the scalars.
+        Store the history; otherwise only the scalars.
     max_events : int
-        Capacity of the contact-interval table; a run with more contacts stops there,
-        flagged like a run at its time limit.
+        Capacity of the contact-interval table; a run with more contacts stops there.
     max_rows : int
-        Most history rows a recorded run writes; a run that reaches them stops there
-        (``row_cap_reached``), flagged like a run at its time limit.
+        Most history rows a recorded run writes (``row_cap_reached`` when reached).
     stop : ndarray
-        int64, one element; the run ends at its next step once another thread sets it
-        non-zero (Ctrl-C); read only, it changes no arithmetic.
+        int64, one element: the run ends at its next step once set non-zero (Ctrl-C).
     """
 
     time_step: float
@@ -119,11 +112,8 @@ class KernelCoupled(NamedTuple):
 
 
 class KernelScalars(NamedTuple):
-    """The scalars of one run (SI units).
-
-    ``time_limit_reached`` is also set by the stop flag, a full contact-interval table
-    (``events_overflow``), the row cap (``row_cap_reached``) and a run whose contact phases
-    stopped moving the time on (``stalled``: :data:`~impactmaps.solvers.integrator.exact_step.STALL_LIMIT`).
+    """The scalars of one run (SI units); ``time_limit_reached`` is also set by the stop flag,
+    ``events_overflow``, ``row_cap_reached`` and ``stalled``.
     """
 
     peak_force: float
@@ -148,12 +138,9 @@ SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL, _B
 
 
 class Work(NamedTuple):
-    """What the integrator's stages share through a run (internal to the kernel): the step
-    h [s], time limit [s], step budget, whether to record, the step's compliance [m/N],
-    whether any mode is damped, the step coefficients over h (8, n), scratch for sub-steps
-    (``sub`` (8, n), ``q_try``, ``v_try``), the free-flight propagators over 2^k h
-    (:data:`~impactmaps.solvers.integrator.free_flight.FREE_POWERS`, 4, n) with their ready flags,
-    scratch for recorded free flight (4, n) and the contact-interval table (max_events, 2)."""
+    """What the integrator's stages share through a run (internal): step, limits, step
+    coefficients, scratch arrays, free-flight propagators and the contact-interval table.
+    """
 
     h: float
     max_time: float
