@@ -1,12 +1,8 @@
 """Sweeps of any map family over its axes → labelled xarray Datasets, resumable.
 
-A sweep solves every point of a grid — structures × the family's axes (λ, ζ; β first
-for an elastic-plastic family) — with :func:`~impactmaps.maps.compute.points.solve_map_points`.
-Work is split into chunks of points sharing one structure and every axis but ζ; each
-chunk is solved in a worker (any :class:`concurrent.futures.Executor`: local processes
-by default, a Dask cluster given its ``dask.distributed.Client``: :mod:`.dask_backend`).
-Finished chunks are written to the result file atomically as they complete, so an
-interrupted sweep resumes where it stopped, whatever the family.
+Points are solved in chunks (one structure, every axis but ζ) by any
+:class:`concurrent.futures.Executor` or a Dask client (:mod:`.dask_backend`); finished
+chunks are saved atomically, so an interrupted sweep resumes where it stopped.
 """
 
 from __future__ import annotations
@@ -59,8 +55,7 @@ class Pacing(NamedTuple):
     Attributes
     ----------
     chunk_size : int
-        Points per task (at most, within one row of ζ). Each task costs the executor
-        ~0.5–2 ms of pickling and queueing, as much as a few cheap points.
+        Points per task (at most, within one row of ζ).
     save_interval : float
         Minimum seconds between two saves of the result file (the final save always happens).
     """
@@ -113,46 +108,37 @@ def sweep(
     settings : ModalSettings, optional
         Solver settings (part of the result's fingerprint).
     path : path-like, optional
-        NetCDF result file. Finished points are saved there atomically as they
-        complete (nothing is written before the first point is done); re-running with
-        the same path computes only the missing points. A file made with other
-        settings is refused (``ValueError`` naming the keys that changed) unless
-        ``overwrite``. Temporaries of an interrupted save are removed.
+        NetCDF result file, saved atomically as points complete; re-running with the same
+        path computes only the missing points. A file made with other settings is refused
+        (``ValueError`` naming the keys that changed) unless ``overwrite``.
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
-        Where chunks run. A Dask client (or its ``get_executor()``) first gets
-        :func:`~impactmaps.maps.compute.workers.init_worker` on every worker
-        (:mod:`impactmaps.maps.compute.dask_backend`). Default: a local process pool over the
-        machine's cores.
+        Where chunks run (default: a local process pool over the machine's cores).
     max_workers : int, optional
         Size of the default process pool (default: ``os.cpu_count()``); 1 runs inline.
     progress : bool
         Show a tqdm progress bar.
     pacing : Pacing
-        Points per task and seconds between saves (:class:`Pacing`).
+        Points per task and seconds between saves.
     overwrite : bool
-        Replace an existing result file instead of resuming it (it is replaced when
-        the first point is saved).
+        Replace an existing result file instead of resuming it.
     law : str or MapFamily
-        The map family (:mod:`impactmaps.maps.family.map_family`; a registered name:
-        ``"linear"`` — ζ, λ of docs/physics_contract.md and F̄max = F_max/(m V0 ω), times × ω;
-        ``"hertz"`` — the Hertz numbers ζ_h, λ_h (:mod:`impactmaps.closed_forms.hertz_similarity`),
-        F̄max = F_max/F_hs, times / t*; ``"yc"``, ``"stronge"`` — the elastic-plastic
-        numbers β, ζ, λ at K_y (:mod:`impactmaps.maps.compute.plastic_points`)).
+        The map family: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"`` or a
+        registered one (docs/map_families.rst).
     axes : dict, optional
-        The grids of the family's axes before λ and ζ, name → values [-] (``{"beta": …}``
-        for an elastic-plastic family).
+        The grids of the family's axes before λ and ζ, name → values [-] (``{"beta": …}``).
 
     Returns
     -------
     xarray.Dataset
-        Dims ``structure`` and the family's axes; its variables, ``done`` and, for a
-        family with regimes, ``regime``; units and provenance in attributes.
+        Dims ``structure`` and the family's axes; its variables, ``done`` and, with
+        regimes, ``regime``; units and provenance in attributes.
 
     Raises
     ------
     SweepInterrupted
-        (a ``KeyboardInterrupt``) on Ctrl-C, after saving the finished points; it
-        carries how many of the grid's points are saved.
+        (a ``KeyboardInterrupt``) on Ctrl-C, after saving the finished points.
+    ValueError
+        Bad grids or settings, or a map too large for the memory budget.
     """
     settings = settings or ModalSettings()
     if max_workers is not None:
@@ -269,7 +255,7 @@ def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "li
     ------
     ValueError
         When :data:`MAP_COPIES` copies of the map exceed
-        :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`, before anything is allocated.
+        :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`.
     """
     family = map_family(family) if isinstance(family, str) else family
     points = float(structures) * float(np.prod([float(size) for size in sizes.values()]))
@@ -283,8 +269,8 @@ def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "li
 
 def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:
     """(dataset, shipped): the stored result at ``path`` if it matches the grid's fingerprint
-    (and not ``overwrite``), else the package's shipped result of this sweep
-    (:mod:`.shipped_results`, then written to ``path``; ``shipped`` True), else an empty one."""
+    (and not ``overwrite``), else the shipped result of this sweep, else an empty one.
+    """
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
@@ -442,10 +428,9 @@ IN_FLIGHT_PER_SLOT = 4
 
 def _run_on_executor(executor: Executor, tasks, settings: ModalSettings, results: _Results, stop: list,
                      family, slots: int) -> None:
-    """Keep four chunks per worker slot submitted to ``executor`` (no worker waits for the parent);
-    absorb them as they complete and submit the next, until ``stop``. The window bounds what the
-    executor holds (a Dask client kept ~50 kB per task: 1.3 GB for a 10⁶-point sweep submitted
-    at once)."""
+    """Keep four chunks per worker slot submitted to ``executor`` (bounding what it holds),
+    absorbing them as they complete, until ``stop``.
+    """
     pending = iter(tasks)
     window = IN_FLIGHT_PER_SLOT * max(1, slots)
     futures = {}

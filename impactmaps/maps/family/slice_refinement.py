@@ -1,18 +1,8 @@
 """Refinement of a map with axes beyond (λ, ζ): one (λ, ζ) refinement per slice of its extra axes.
 
-An elastic-plastic map has axes (β, λ, ζ): for each β of its grid, a (λ, ζ) map. Where
-linear interpolation in (λ, ζ) errs (kinks, re-impact ridges), each such *slice* is refined
-exactly as a (λ, ζ) map is (:func:`impactmaps.maps.family.refinement.refine`): its cells split
-where their band exceeds the tolerance, the new points solved by the family's point solver
-at the slice's β. A :class:`SlicedRefinement` holds one
-:class:`~impactmaps.maps.family.refinement.Refinement` per slice (slices in the C order of the
-extra axes) and is stored as one dataset with a ``slice`` index per point.
-
-The reader (:func:`impactmaps.maps.read.reader.read_values`) answers each neighbouring slice from
-its refinement leaf and interpolates across the extra axes as on the grid; the band of
-F̄max holds each slice's leaf band and the extra axes' own interpolation estimate. Only
-F̄max is refined: a family's other quantities (restitution, absorbed energy) are read on
-the grid.
+A :class:`SlicedRefinement` holds one :class:`~impactmaps.maps.family.refinement.Refinement`
+per slice (e.g. per β of an elastic-plastic map, C order of the extra axes), stored as
+one dataset with a ``slice`` index per point. Only F̄max is refined.
 """
 
 from __future__ import annotations
@@ -81,9 +71,9 @@ class SlicedRefinement:
 
     @classmethod
     def from_dataset(cls, dataset: xr.Dataset, base_fmax: np.ndarray | None = None) -> "SlicedRefinement":
-        """The refinement stored by :meth:`dataset`; ``base_fmax``, the base map's F̄max on its grid
-        (extra axes, λ, ζ), recomputes the surplus of one stored without it
-        (:meth:`Refinement.from_dataset`)."""
+        """The refinement stored by :meth:`dataset`; ``base_fmax`` (the base map's F̄max on its
+        grid) recomputes a missing surplus.
+        """
         extra = tuple(int(n) for n in np.atleast_1d(dataset.attrs["slice_points"]))
         index = np.asarray(dataset["slice"].values, int)
         base = None if base_fmax is None else np.reshape(base_fmax, (-1, *np.shape(base_fmax)[-2:]))
@@ -104,13 +94,12 @@ def refine_slices(bases: list, estimates: list, coordinates: Callable, solve: Ca
         Per slice (C order of the extra axes), its ``fmax_normalised``, ``fmax_error`` and
         ``status``, each a (λ, ζ) array.
     estimates : list of ndarray
-        Per slice, the (λ, ζ) interpolation-error estimate per grid point [-]
-        (:func:`impactmaps.maps.read.bands.slice_estimates`).
+        Per slice, the (λ, ζ) interpolation-error estimate per grid point [-].
     coordinates : callable
         ``coordinates(row, col) -> (zeta, lambda_)`` of the map's (λ, ζ) grid.
     solve : callable
-        ``solve(zetas, lambdas, extra) -> list of row dicts``: the points of a round at the
-        slice's extra-axis values ``extra`` (a tuple, e.g. ``(β,)``).
+        ``solve(zetas, lambdas, extra) -> list of row dicts`` at the slice's extra-axis
+        values ``extra`` (e.g. ``(β,)``).
     extra_values : list of tuple
         Per slice, the values of its extra axes.
     extra_shape : tuple of int, optional
@@ -121,7 +110,6 @@ def refine_slices(bases: list, estimates: list, coordinates: Callable, solve: Ca
     Returns
     -------
     SlicedRefinement
-        A pure function of the base map, the tolerance and the depth.
     """
     extra_shape = (len(bases),) if extra_shape is None else extra_shape
     slices = []
@@ -139,28 +127,25 @@ def read_slices(planes, shape: tuple, rows: np.ndarray, cols: np.ndarray, bracke
     Parameters
     ----------
     planes : sequence of PlaneInterpolator
-        Each slice prepared for reading (:class:`impactmaps.maps.read.interpolator.PlaneInterpolator`),
-        in the C order of the extra axes.
+        Each slice prepared for reading, in the C order of the extra axes.
     shape : tuple of int
         The extra axes' grid shape.
     rows, cols : ndarray
         Positions in grid units along λ and ζ.
     brackets : list of (ndarray, ndarray, ndarray)
-        Per extra axis: the grid indices just below and just above each position (equal on a
-        grid value) and the fraction of the way between them.
+        Per extra axis: the grid indices below and above each position and the fraction
+        between them.
 
     Returns
     -------
     fmax : ndarray
-        Σ over the neighbouring slices of weight × the slice's leaf interpolation [-].
+        The weighted sum of the neighbouring slices' leaf interpolations [-].
     band : ndarray
-        The largest band of those slices (own error plus leaf estimate; own error on a
-        lattice point) [-].
+        The largest band of those slices [-].
     deep : ndarray of bool
-        Whether a neighbouring slice reads the position in a refined leaf (elsewhere the
-        grid answers).
+        Whether a neighbouring slice reads the position in a refined leaf.
     between : ndarray of bool
-        Whether more than one slice weighs (the position lies between slices).
+        Whether more than one slice weighs.
     corner_codes : list of ndarray
         The status codes of each slice's leaf corners (0 where one has no weight).
     """
