@@ -1,13 +1,9 @@
 """One case: a physical impact read from a case file and built into impactmaps objects.
 
-The format (every key, unit and default) is documented in ``docs/case-files.md`` and
-the module docstring of :mod:`impactmaps.cases`. Each section maps onto a dataclass or
-constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal_settings.ModalSettings` (``kind
-= "modal"``) or the finite-difference settings (``kind = "fd"``), ``[target]`` onto
-:meth:`Beam.rectangular <impactmaps.targets.beams.beam.Beam.rectangular>` /
-:meth:`Plate.isotropic <impactmaps.targets.plates.plate.Plate.isotropic>`, ``[contact]`` onto
-the law's own options, ``[output]`` onto :class:`OutputSettings`. The valid keys of a
-section are the options of its constructor, and the constructor checks the ranges.
+Each section maps onto a constructor whose options are its valid keys and which checks
+the ranges: ``[solver]`` onto :class:`~impactmaps.solvers.modal_settings.ModalSettings`
+or the finite-difference settings, ``[target]`` onto the target's, ``[contact]`` onto
+the law's, ``[output]`` onto :class:`OutputSettings` (the format: docs/cases.rst).
 """
 
 from __future__ import annotations
@@ -98,8 +94,7 @@ class Case:
     velocity : float
         Approach velocity V0 [m/s].
     target : Target
-        The struck structure (:class:`~impactmaps.targets.beams.beam.Beam`,
-        :class:`~impactmaps.targets.plates.plate.Plate` or a half-space).
+        The struck structure (beam, plate or half-space).
     target_type : str
         ``"beam"``, ``"plate"`` or ``"halfspace"``.
     target_material : IsotropicMaterial or Laminate
@@ -114,11 +109,9 @@ class Case:
     solver_kind : str
         ``"modal"`` or ``"fd"`` (finite-difference Rayleigh beam).
     settings : ModalSettings
-        Modal solver settings (``solver.duration`` already converted to
-        ``max_time_ratio``).
+        Modal solver settings.
     fd_settings : FDSettings or None
-        Finite-difference settings (``[fd]``; ``None`` when the file has none and the
-        solver is modal).
+        Finite-difference settings (``[fd]``), or ``None``.
     duration : float or None
         Requested time limit [s] (``None``: the solver default; required by ``fd``).
     time_step : float or None

@@ -26,18 +26,10 @@ __all__ = ["run_case", "case_summary", "write_case_outputs",
 def case_summary(case: Case, result: ImpactResult) -> dict:
     """The JSON-ready summary of a run of ``case`` (keys carry their units).
 
-    ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``,
-    ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
-    ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
-    |target displacement| at the impact point [m]), the dimensionless numbers of
-    :func:`impactmaps.cases.numbers.case_numbers` — ``zeta``, ``lambda``, ``beta``,
-    ``fmax_normalised`` and ``contact_time_normalised`` in the vocabulary of the law's
-    maps (for a law other than linear the solver's own normalisation moves to
-    ``fmax_normalised_reference``, ``contact_time_normalised_reference``) —,
-    ``model_warnings`` (the assumptions of the model the run
-    violates, :func:`impactmaps.validity.case_warnings`: the set every command prints) and the case identity; NaN (a quantity that does not
-    exist for this run, e.g. the restitution of a record that ends in contact) becomes
-    ``None``.
+    ``result.summary()`` plus ``max_deflection_m`` [m], the numbers of
+    :func:`impactmaps.cases.numbers.case_numbers` in the vocabulary of the law's maps,
+    ``model_warnings`` (:func:`impactmaps.validity.case_warnings`) and the case identity;
+    NaN becomes ``None`` (keys: docs/output_keys.rst).
     """
     summary = dict(result.summary())
     if result.history is not None and len(result.history):
@@ -98,10 +90,9 @@ def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
 
 
 def _run_fd(case: Case) -> ImpactResult:
-    """The finite-difference run of ``case``; with ``[solver] check_convergence`` also the same
-    run on twice the elements, ``converged`` set by the change of F̄max against ``[solver]
-    tolerance`` (a :class:`~impactmaps.solvers.modal_settings.ConvergenceWarning` and
-    ``convergence_note`` say why when not: a late re-impact needs a finer grid)."""
+    """The finite-difference run of ``case``; with ``[solver] check_convergence`` also checked
+    against twice the elements (``converged`` set against ``[solver] tolerance``).
+    """
     from ..fd import simulate_fd
     from ..solvers.modal_settings import ConvergenceWarning
 
@@ -180,16 +171,7 @@ def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
     dict
         ``{"history": Path, "summary": Path, "case": Path}`` and, with
         ``output.normalised = true``, ``"history_normalised": Path``; without
-        ``"history"`` (and its normalised twin) when the result has none.
-
-    Notes
-    -----
-    ``history.csv`` has the columns of :data:`impactmaps.result.HISTORY_COLUMNS`
-    and the solver's extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``;
-    finite difference: the gauges). ``summary.json`` is :func:`case_summary`. A result
-    without history is one the solver answered by an any-law infinite-structure
-    asymptote (:mod:`impactmaps.solvers.mode_budget`, scalars only): only the summary
-    and the case are written.
+        ``"history"`` when the result has none (an asymptote's scalars only).
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case")
