@@ -1,9 +1,5 @@
-"""Strict JSON for every output: plain Python values, no NaN or Infinity.
-
-One sanitiser serves the command line, case summaries and sweep metadata. A
-non-finite float (a quantity that does not exist for this run, such as the
-restitution of a run that ended in contact) becomes ``null``; the writers that know
-why add a companion key saying so.
+"""Strict JSON for every output: plain Python values, no NaN or Infinity (a non-finite float
+becomes ``null``).
 """
 
 from __future__ import annotations

@@ -1,8 +1,6 @@
 """The result of one impact, whichever solver produced it: labelled histories plus scalars.
 
-One type, one vocabulary. The modal solver, the half-space solver and the
-finite-difference beam all return :class:`ImpactResult`; what only one solver knows
-(the finite-difference beam's residual state and full energy ledger) travels in
+Every solver returns :class:`ImpactResult`; what only one solver knows travels in
 ``details``.
 """
 
@@ -68,13 +66,9 @@ class ImpactResult:
     Attributes
     ----------
     history : pandas.DataFrame or None
-        Time histories, one row per recorded step, columns :data:`HISTORY_COLUMNS`
-        (``time_s, force_N, indentation_m, impactor_displacement_m,
-        impactor_velocity_m_s, target_displacement_m, target_velocity_m_s``; the target
-        displacement is that of the struck point, zero for a half-space) and solver
-        extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``; finite
-        difference: ``gauge{g}_deflection_m, gauge{g}_strain``). ``None`` when the run
-        kept scalars only.
+        Time histories, one row per recorded step: :data:`HISTORY_COLUMNS` (SI units in
+        the names; the target's displacement is the struck point's) and solver extras.
+        ``None`` when the run kept scalars only.
     peak_force : float
         Largest contact force over the whole event, all impacts [N].
     peak_time : float
@@ -97,9 +91,7 @@ class ImpactResult:
     damping_work : float
         Energy dissipated by structural damping [J].
     energy_balance_error : float
-        Residual of the energy ledger relative to the impact energy [-]: impact
-        energy against rebound, structure, contact, damping (and, for the
-        finite-difference beam, plastic bending work and gravity work).
+        Residual of the energy ledger relative to the impact energy [-].
     impactor_mass, velocity : float
         m_i [kg] and V0 [m/s].
     contact_frequency : float
@@ -109,31 +101,25 @@ class ImpactResult:
         Time at which the run stopped [s].
     time_limit_reached : bool
         True when the run stopped at its time limit while the event could still go on
-        (in contact, or with a re-impact still possible); the scalars then describe a
-        truncated event.
+        (the scalars then describe a truncated event).
     time_step : float
         Integration (or sampling, for the adaptive half-space solver) time step [s].
     method : str
         The model that produced the result: ``"modal"``, ``"modal+residual"``,
         ``"half-space"`` or ``"finite-difference"``.
     n_modes : int
-        Number of modes integrated, as the impact point sees them: modes that do not move
-        there are left out and degenerate ones count once (:meth:`ModalBasis.participating
-        <impactmaps.targets.base.ModalBasis.participating>`; 0 for the half-space and
-        finite-difference solvers).
+        Number of modes integrated, as the impact point sees them (degenerate ones once;
+        0 for the half-space and finite-difference solvers).
     settings : dict
         Solver settings used (provenance).
     details : object or None
-        Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
-        finite-difference beam, :class:`impactmaps.solvers.modal_settings.ModalDetails` for the
-        modal solver, ``None`` otherwise.
+        Solver-specific extras (:class:`impactmaps.fd.FDDetails`,
+        :class:`impactmaps.solvers.modal_settings.ModalDetails`) or ``None``.
     converged : bool or None
         Whether F̄max moved by at most the tolerance when the cut-off was doubled and the
-        step halved, and, for a capped basis, when the cap was halved
-        (``ModalSettings.check_convergence``); ``None``: not checked.
+        step halved (``ModalSettings.check_convergence``); ``None``: not checked.
     convergence_note : str
-        Why the result is not converged (empty otherwise); ``summary()`` writes it as
-        ``converged_note``.
+        Why the result is not converged (empty otherwise).
     """
 
     history: pd.DataFrame | None
@@ -172,10 +158,8 @@ class ImpactResult:
         Returns
         -------
         ImpactResult
-            Equal to ``cls(**fields)``, field for field: the frozen dataclass's ``__init__``
-            sets each of the 23 fields through ``object.__setattr__`` (~3 µs a result), this
-            fills the instance's dictionary at once. Other names than the fields (a field left
-            to its default, an unknown name) go through the constructor.
+            Equal to ``cls(**fields)``, field for field (other names go through the
+            constructor).
         """
         if fields.keys() != _FIELD_NAMES:
             return cls(**fields)
@@ -293,9 +277,7 @@ class ImpactResult:
     def summary(self) -> dict:
         """The scalars as a flat dict with unit-suffixed keys (JSON-ready).
 
-        ``nan`` values (quantities that do not exist for this run, such as the
-        restitution of a run that ended in contact) are kept as ``nan`` here; the
-        writers turn them into ``null`` (:func:`impactmaps.jsonio.dumps`).
+        Quantities that do not exist for this run are ``nan`` (the writers write ``null``).
         """
         out = {
             "peak_force_N": float(self.peak_force),

@@ -1,6 +1,6 @@
 """One unidirectional, transversely isotropic lamina with its fibre angle.
 
-Conventions: see :mod:`impactmaps.materials`.
+Conventions: docs/physics.rst, "Laminates".
 """
 
 from __future__ import annotations
@@ -39,20 +39,13 @@ class Ply:
     angle_deg : float, optional
         Fibre angle θ from the laminate x axis [degrees], default 0.
     transverse_shear_modulus_13 : float, optional
-        G13 [Pa], > 0. Default ``G12`` — exact for a transversely isotropic ply
-        (the 1–3 plane is equivalent to the 1–2 plane).
+        G13 [Pa], > 0. Default ``G12`` (exact for a transversely isotropic ply).
     transverse_shear_modulus_23 : float, optional
-        G23 [Pa], > 0. Default ``G12``. This is a **simplifying assumption**, common in
-        impact analyses of laminates, not a material law: for a transversely isotropic
-        ply ``G23 = E2 / (2(1 + ν23))``, typically 60–90 % of G12. It only enters the
-        transverse-shear stiffness (Mindlin/Timoshenko); give it when known.
+        G23 [Pa], > 0. Default ``G12``, a simplifying assumption (for a transversely
+        isotropic ply ``G23 = E2 / (2(1 + ν23))``); give it when known.
     name : str, optional
         Label.
 
-    Notes
-    -----
-    The defaults of G13 and G23 are resolved in ``__post_init__``, so the attributes
-    always hold the values actually used.
     """
 
     longitudinal_modulus: float
