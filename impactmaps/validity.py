@@ -38,44 +38,30 @@ INFINITE_STRUCTURE_METHODS = ("infinite-plate", "infinite-beam")
 
 
 def hertz_peak_pressure(force, effective_modulus, radius):
-    """Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` [Pa].
-
-    Parameters
-    ----------
-    force : float or array_like
-        Contact force F ≥ 0 [N].
-    effective_modulus : float
-        E* [Pa].
-    radius : float
-        Effective radius R [m].
+    """Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` [Pa] of a force F ≥ 0 [N] (scalar or
+    array), E* [Pa] and effective radius R [m].
     """
     force = np.asarray(force, dtype=float)
     return np.cbrt(6.0 * force * effective_modulus**2 / (math.pi**3 * radius**2))
 
 
 def validity_warnings(sphere, target_material, law, target, result) -> list[str]:
-    """The model assumptions a finished run violates, one sentence each.
+    """The model assumptions a finished run violates, one sentence each (empty: none).
 
     Parameters
     ----------
     sphere : Sphere
-        The impactor (radius R [m], material with E [Pa], ν, optional S_y [Pa]).
+        The impactor (radius [m], material with E [Pa], ν, optional S_y [Pa]).
     target_material : material-like
         ``youngs_modulus`` [Pa], ``poisson_ratio``, optional ``density`` [kg/m³] and
         ``yield_strength`` [Pa].
     law : ContactLaw
-        The law the run used (the pressure check applies to elastic laws).
+        The law the run used.
     target : Plate, Beam or None
         The structure (None for a half-space).
     result : ImpactResult or AsymptoteResult
-        Needs ``peak_force`` [N], ``max_indentation`` [m], ``velocity`` [m/s],
-        ``method``; optionally a ``history`` with ``target_displacement_m``,
-        ``max_target_displacement`` [m], ``contact_time`` or ``contact_intervals`` [s].
-
-    Returns
-    -------
-    list of str
-        Empty when no check fails.
+        Its ``peak_force`` [N], ``max_indentation`` [m], ``velocity`` [m/s], ``method`` and,
+        when present, history, displacement and contact times.
     """
     checks = (_pressure(sphere, target_material, law, result), _epp_calibration(sphere, target_material, law),
               *law_warnings(law, result, radius=sphere.radius),
@@ -87,19 +73,9 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
 
 @dataclass(frozen=True)
 class ForceAnswer:
-    """An answer that gives a peak force but no run (a map's reading, or the half-space bound),
-    as :func:`validity_warnings` reads it.
-
-    Attributes
-    ----------
-    peak_force : float
-        F_max [N].
-    max_indentation : float
-        The indentation of the law's loading curve at ``peak_force`` [m].
-    velocity : float
-        V0 [m/s].
-    method : str
-        Where the force comes from (``"map"`` or ``"half-space bound"``).
+    """A peak force without a run (a map's reading, or the half-space bound), as
+    :func:`validity_warnings` reads it: ``peak_force`` [N], ``max_indentation`` on the law's
+    loading curve [m], ``velocity`` [m/s], ``method`` (``"map"`` or ``"half-space bound"``).
     """
 
     peak_force: float
@@ -131,21 +107,9 @@ def force_answer(law, impactor_mass: float, velocity: float, peak_force: float |
 
 
 def case_warnings(case, result=None, peak_force: float | None = None) -> list[str]:
-    """The validity warnings of a case (:func:`validity_warnings`), the one set every command prints.
-
-    Parameters
-    ----------
-    case : impactmaps.cases.Case
-        The case.
-    result : ImpactResult or AsymptoteResult, optional
-        Its run (``simulate``, ``fd``).
-    peak_force : float, optional
-        Without a run: the peak force a map gives [N] (``lookup --case``, ``check``);
-        without either, the half-space peak force (its upper bound for an elastic law).
-
-    Returns
-    -------
-    list of str
+    """The validity warnings of a case, the one set every command prints: from its ``result``
+    (``simulate``, ``fd``), else from a map's ``peak_force`` [N], else from the half-space
+    peak force (an upper bound for an elastic law).
     """
     if result is None:
         result = force_answer(case.law, case.impactor_mass, case.velocity, peak_force)
@@ -154,20 +118,9 @@ def case_warnings(case, result=None, peak_force: float | None = None) -> list[st
 
 
 def target_warnings(target, result) -> list[str]:
-    """The checks that need only the structure and the run: a first contact beyond the shear
-    theory's range, and a non-converging Mindlin point load.
-
-    Parameters
-    ----------
-    target : Target
-        The structure.
-    result : ImpactResult
-        The run (its ``contact_intervals`` [s], ``method`` and ``settings``).
-
-    Returns
-    -------
-    list of str
-        Empty when no check fails.
+    """The checks that need only the structure and the run (its ``contact_intervals`` [s],
+    ``method``, ``settings``): a first contact beyond the shear theory's range, and a
+    non-converging Mindlin point load. Empty when none fails.
     """
     return [message for message in (_structural_theory(target, result), _point_load(target, result)) if message]
 

@@ -72,20 +72,9 @@ def enabled() -> bool:
 
 
 def start(variants, arguments: list[str] | None = None) -> bool:
-    """Start the helper if numba's cache lacks one of the integrator variants a run may need.
-
-    Parameters
-    ----------
-    variants : tuple
-        The ``exact_phase`` values (None, True) the run may call the integrator with.
-    arguments : list of str, optional
-        Replaces the helper's arguments (tests: ``["sleep:S"]`` or ``["fail"]``; then
-        ``variants`` count as not cached).
-
-    Returns
-    -------
-    bool
-        True if a helper was started; only a process's first call decides. Never raises.
+    """Start the helper if numba's cache lacks one of the integrator ``variants`` (the
+    ``exact_phase`` values, None or True) a run may need; True if started. Only a process's
+    first call decides; never raises. ``arguments`` replaces the helper's (tests).
     """
     if _state["decided"]:
         return False
@@ -108,14 +97,8 @@ def start(variants, arguments: list[str] | None = None) -> bool:
 
 
 def seed_user_cache() -> int:
-    """Copy the kernels a wheel shipped compiled into numba's user-wide cache (used when the
-    package's directories are read-only).
-
-    Returns
-    -------
-    int
-        The number of files copied: 0 unless numba uses its user-wide cache for this
-        package. An index already there is left alone; never raises.
+    """Copy the kernels a wheel shipped compiled into numba's user-wide cache (when the
+    package's directories are read-only); the number of files copied. Never raises.
     """
     try:
         from numba.core.caching import UserWideCacheLocator
@@ -158,17 +141,8 @@ def copy_shipped_cache(package, destination) -> int:
 
 
 def variant_cached(variant) -> bool:
-    """Whether numba's cache holds one variant of the integrator for this machine.
-
-    Parameters
-    ----------
-    variant : None or True
-        The integrator's ``exact_phase`` argument.
-
-    Returns
-    -------
-    bool
-        True if the cache index lists it; False when not, or when that cannot be told.
+    """Whether numba's cache index lists the integrator ``variant`` (``exact_phase``: None or
+    True) for this machine; False when not, or when that cannot be told.
     """
     integrate_impact = _integrator["kernel"]
     try:
@@ -203,22 +177,9 @@ def _stop() -> None:
 
 
 def await_variant(variant, timeout: float | None = None) -> bool:
-    """Compile this process's share of the integrator's callees, then wait for the helper.
-
-    Parameters
-    ----------
-    variant : None or True
-        The integrator variant the run needs (``exact_phase``).
-    timeout : float, optional
-        The longest wait [s] from the helper's start (default :data:`WAIT_S`); a helper
-        still running then is ended.
-
-    Returns
-    -------
-    bool
-        True if a helper was waited for; False at once when none runs or ``variant`` was
-        cached when it started. On ``KeyboardInterrupt`` (or any error) the helper is ended
-        and the error raised.
+    """Compile this process's share of the integrator's callees, then wait for the helper (at
+    most ``timeout`` [s] from its start, default :data:`WAIT_S`, then end it). True if a
+    helper was waited for; on any error the helper is ended and the error raised.
     """
     process = _state["process"]
     if process is None:
@@ -286,12 +247,8 @@ def _compile_callees(names, stop=lambda: False) -> None:
 
 def end_with_parent(signal_number: int, parent: int | None = None) -> bool:
     """Ask Linux to send this process ``signal_number`` when its parent ends
-    (``prctl(PR_SET_PDEATHSIG)``; elsewhere nothing is done).
-
-    Returns
-    -------
-    bool
-        False if ``parent`` (a pid) is given and is no longer this process's parent.
+    (``prctl(PR_SET_PDEATHSIG)``; elsewhere nothing); False if ``parent`` (a pid) is given
+    and is no longer this process's parent.
     """
     if sys.platform.startswith("linux"):
         try:

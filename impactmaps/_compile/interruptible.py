@@ -25,21 +25,9 @@ def interrupts_ignored() -> bool:
 
 
 def run_interruptibly(call, stop, name: str = "impactmaps-compiled-loop"):
-    """``call()`` in a worker thread, stopped through ``stop`` on Ctrl-C.
-
-    Parameters
-    ----------
-    call : callable
-        A call of a compiled loop that releases the GIL and returns once ``stop[0] != 0``.
-    stop : ndarray
-        The loop's one-element integer stop flag (0: run on).
-    name : str, optional
-        The worker thread's name.
-
-    Returns
-    -------
-    object
-        What ``call`` returns (bit for bit a direct call).
+    """``call()`` (a compiled loop that releases the GIL and returns once ``stop[0] != 0``) in a
+    worker thread named ``name``, stopped through its one-element flag ``stop`` on Ctrl-C;
+    returns what ``call`` returns, bit for bit a direct call.
 
     Raises
     ------

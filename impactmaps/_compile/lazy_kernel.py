@@ -42,23 +42,17 @@ def _locked_cache_saves(dispatcher) -> None:
 
 
 class LazyKernel:
-    """Call a numba dispatcher compiled for fixed signatures only, compiling each on first use.
+    """Call a numba dispatcher compiled for fixed signatures only, compiling each on first use
+    (a call with other argument types raises ``TypeError``, as with eager signatures).
 
     Parameters
     ----------
     dispatcher : numba.core.registry.CPUDispatcher
         An ``njit`` function given without signature (``cache=True`` recommended).
     signature : numba signature or dict
-        The one signature it is compiled for; or ``{variant: signature}`` with ``choose``,
-        where ``variant`` is the value of the dispatcher's last argument.
+        The one signature; or ``{variant: signature}``, ``variant`` the dispatcher's last
+        argument, chosen by ``choose(args)`` from the caller's arguments.
     choose : callable, optional
-        ``choose(args) -> variant`` for the arguments a caller passes (all but the last);
-        the call is then ``dispatcher(*args, variant)``.
-
-    Notes
-    -----
-    Outside :meth:`compile` the dispatcher compiles nothing: a call with other argument
-    types raises ``TypeError``, as with eager signatures.
     """
 
     def __init__(self, dispatcher, signature, choose=None):

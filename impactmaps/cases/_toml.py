@@ -178,18 +178,9 @@ def _kind(annotation, default) -> str:
 
 
 def keyword_options(build) -> dict[str, str]:
-    """The keyword options of a dataclass or constructor and their TOML value kinds.
-
-    Parameters
-    ----------
-    build : type or callable
-        A dataclass or a function (a function forwarding ``**kwargs`` to its dataclass also
-        offers the dataclass's options).
-
-    Returns
-    -------
-    dict
-        ``{name: kind}``, kind one of ``"number", "integer", "boolean", "string", "numbers"``.
+    """``{name: kind}`` of the keyword options of a dataclass or function ``build`` (also a
+    dataclass's options forwarded by ``**kwargs``), kind one of ``"number"``, ``"integer"``,
+    ``"boolean"``, ``"string"``, ``"numbers"``.
     """
     if dataclasses.is_dataclass(build) and isinstance(build, type):
         hints = typing.get_type_hints(build)

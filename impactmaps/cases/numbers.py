@@ -26,15 +26,10 @@ NUMBER_BASES = {
 
 
 def case_dimensionless(case: Case) -> dict:
-    """The linearised dimensionless numbers of a case (which K: docs/output_keys.rst).
-
-    Returns
-    -------
-    dict
-        ``beta``, ``lambda``, ``zeta`` [-] or ``None``; ``lambda_basis``;
-        ``contact_stiffness_N_m``; ``reference_contact_stiffness_N_m``;
-        ``static_stiffness_N_m`` (``None`` for a half-space); ``impactor_mass_kg``;
-        ``velocity_m_s``.
+    """The linearised dimensionless numbers of a case (which K: docs/output_keys.rst):
+    ``beta``, ``lambda``, ``zeta`` [-] or ``None``, ``lambda_basis``,
+    ``contact_stiffness_N_m``, ``reference_contact_stiffness_N_m``, ``static_stiffness_N_m``
+    (``None`` for a half-space), ``impactor_mass_kg``, ``velocity_m_s``.
     """
     mass, velocity, law = case.impactor_mass, case.velocity, case.law
     reference = float(reference_contact_stiffness(law, mass, velocity))
@@ -82,19 +77,11 @@ def _plastic(case: Case):
 
 
 def case_numbers(case: Case) -> dict:
-    """The normalised numbers of ``case`` under the names its law's maps use.
-
-    Parameters
-    ----------
-    case : Case
-
-    Returns
-    -------
-    dict
-        ``vocabulary`` (``"linear"``, ``"hertz"``, ``"plastic"`` or ``"linearised"``),
-        ``beta``, ``zeta``, ``lambda`` [-] (``None`` where not defined), ``lambda_basis``,
-        ``force_scale_N``, ``time_scale_s``, ``contact_stiffness_N_m``, a Hertz case's
-        linearised numbers, and the other keys of :func:`case_dimensionless`.
+    """The normalised numbers of ``case`` under the names its law's maps use: ``vocabulary``
+    (``"linear"``, ``"hertz"``, ``"plastic"``, ``"linearised"``), ``beta``, ``zeta``,
+    ``lambda`` [-] (``None`` where undefined), ``lambda_basis``, ``force_scale_N``,
+    ``time_scale_s``, ``contact_stiffness_N_m``, a Hertz case's linearised numbers and the
+    other keys of :func:`case_dimensionless` (docs/output_keys.rst).
     """
     linear = case_dimensionless(case)
     mass, velocity = case.impactor_mass, case.velocity

@@ -117,19 +117,9 @@ def _run_fd(case: Case) -> ImpactResult:
 
 
 def run_case(case: Case) -> tuple[ImpactResult, dict]:
-    """Run the solver a case asks for (``case.solver_kind``).
-
-    Parameters
-    ----------
-    case : Case
-
-    Returns
-    -------
-    result : ImpactResult
-        Full result with histories.
-    summary : dict
-        :func:`case_summary` of the run (JSON-ready); each of its ``model_warnings`` is
-        also issued as a :class:`~impactmaps._checks.ModelValidityWarning`.
+    """Run the solver ``case.solver_kind`` asks for; returns the full ``result`` (with
+    histories) and its :func:`case_summary` (each ``model_warnings`` entry also issued as a
+    :class:`~impactmaps._checks.ModelValidityWarning`).
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case (build one with load_case or parse_case)")
@@ -156,23 +146,9 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
 
 
 def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
-    """Write the histories, the summary and a copy of the case file to ``out_dir``.
-
-    Parameters
-    ----------
-    case : Case
-        The case that was run.
-    result : ImpactResult
-        Its result (with histories).
-    out_dir : str or Path
-        Output directory (created if needed).
-
-    Returns
-    -------
-    dict
-        ``{"history": Path, "summary": Path, "case": Path}`` and, with
-        ``output.normalised = true``, ``"history_normalised": Path``; without
-        ``"history"`` when the result has none (an asymptote's scalars only).
+    """Write the histories, the summary and a copy of the case file of a run of ``case`` to
+    ``out_dir`` (created if needed); returns ``{"history", "summary", "case"}`` paths (with
+    ``"history_normalised"`` when ``output.normalised``; no history when the result has none).
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case")

@@ -78,15 +78,12 @@ class Laminate:
         ply : Ply
             The ply material and thickness (its own angle is ignored).
         angles_deg : sequence of float
-            Fibre angles [degrees] from the struck face towards the mid-plane when
-            ``symmetric`` is true (then mirrored: ``[0, 90]`` gives ``[0/90/90/0]``),
-            or through the whole thickness when false.
+            Fibre angles [degrees] from the struck face: to the mid-plane when ``symmetric``
+            (then mirrored: ``[0, 90]`` gives ``[0/90/90/0]``), else through the thickness.
         symmetric : bool, optional
             Mirror the angles about the mid-plane (default True).
-        name : str, optional
-            Label.
-        yield_strength : float, optional
-            See :class:`Laminate`.
+        name, yield_strength : optional
+            As for :class:`Laminate`.
         """
         if not isinstance(ply, Ply):
             raise ValueError(f"ply = {ply!r} is not a Ply")
@@ -225,14 +222,9 @@ class Laminate:
         return 0.5 * (self.D12 + 2.0 * self.D66 + math.sqrt(self.D11 * self.D22))
 
     def coupling_ratios(self) -> dict:
-        """Relative size of the terms that a specially orthotropic model neglects.
-
-        Returns
-        -------
-        dict
-            ``"D16"``, ``"D26"``: ``|D16|/sqrt(D11 D22)`` etc.; ``"B"``:
-            ``max|B_ij| / sqrt(max|A_ij| · max|D_ij|)``; ``"A45"``:
-            ``|A45|/sqrt(A44 A55)``. All dimensionless.
+        """Relative size [-] of the terms a specially orthotropic model neglects: ``"D16"``,
+        ``"D26"`` (``|D16|/sqrt(D11 D22)`` …), ``"B"`` (``max|B_ij| / sqrt(max|A_ij| max|D_ij|)``)
+        and ``"A45"`` (``|A45|/sqrt(A44 A55)``).
         """
         d_scale = math.sqrt(self.D11 * self.D22)
         b_scale = math.sqrt(np.max(np.abs(self.A)) * np.max(np.abs(self.D)))

@@ -25,13 +25,11 @@ class Ply:
     longitudinal_modulus : float
         E1, Young's modulus along the fibres [Pa], > 0.
     transverse_modulus : float
-        E2, Young's modulus across the fibres in the ply plane [Pa], > 0. Also taken as
-        the out-of-plane modulus E3 (transverse isotropy) for contact.
+        E2, Young's modulus across the fibres [Pa], > 0 (also the out-of-plane E3).
     shear_modulus : float
         G12, in-plane shear modulus [Pa], > 0.
     poisson_ratio : float
-        ν12, major Poisson ratio [-]; must satisfy ``ν12² < E1/E2`` (positive-definite
-        compliance, i.e. ``1 − ν12 ν21 > 0``).
+        ν12, major Poisson ratio [-], ``ν12² < E1/E2``.
     density : float
         ρ [kg/m³], > 0.
     thickness : float, optional
@@ -45,7 +43,6 @@ class Ply:
         isotropic ply ``G23 = E2 / (2(1 + ν23))``); give it when known.
     name : str, optional
         Label.
-
     """
 
     longitudinal_modulus: float

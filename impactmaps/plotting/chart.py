@@ -76,7 +76,8 @@ def make_chart(
     """Compute and draw the F̄max(ζ, λ) chart for SS beams and square plates.
 
     Writes into ``out_dir``: ``fmax_map.nc`` (the resumable sweep result), ``fmax_map.csv``,
-    ``fmax_chart.png`` and ``.svg``, ``regime_map_<structure>.png`` and ``lookup_table.md``.
+    ``fmax_chart.png`` and ``.svg``, ``regime_map_<structure>.png`` and ``lookup_table.md``;
+    returns their paths by kind.
 
     Parameters
     ----------
@@ -84,24 +85,18 @@ def make_chart(
     zeta_range : (float, float)
         Smallest and largest loss factor ζ.
     zeta_count : int
-        Number of log-spaced ζ values per curve (default :data:`DEFAULT_ZETA_COUNT`).
+        Number of log-spaced ζ values per curve.
     lambdas : sequence of float, optional
         Relative stiffnesses λ (default :data:`DEFAULT_CHART_LAMBDAS`).
     structures : sequence of MapStructure
     settings : ModalSettings, optional
     progress : bool
-        Show a progress bar.
     max_workers : int, optional
         Local worker processes (default: all cores).
     overwrite : bool
-        Replace an ``fmax_map.nc`` made with another grid or law instead of refusing it.
+        Replace an ``fmax_map.nc`` of another grid or law instead of refusing it.
     law : {"linear", "hertz"}
         The linear chart over (ζ, λ) or the Hertz chart over (ζ_h, λ_h).
-
-    Returns
-    -------
-    dict
-        Paths of the files written, keyed by kind.
     """
     import matplotlib
 
@@ -211,11 +206,9 @@ DEFAULT_PLASTIC_LAMBDA = 0.1
 
 def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = "yc",
                        lambda_: float = DEFAULT_PLASTIC_LAMBDA, betas=DEFAULT_PLASTIC_BETAS) -> dict:
-    """Draw the elastic-plastic chart from the shipped maps: F̄max, e and absorbed energy vs ζ.
-
-    Curves at the grid β and λ nearest to those asked, for the SS Euler beam and the SSSS
-    square Kirchhoff plate; writes ``fmax_chart_{law}.png``, ``.svg`` and ``.csv`` into
-    ``out_dir``.
+    """Draw the elastic-plastic chart from the shipped maps: F̄max, e and absorbed energy vs ζ
+    for the SS Euler beam and the SSSS square Kirchhoff plate; writes
+    ``fmax_chart_{law}.png``, ``.svg`` and ``.csv`` into ``out_dir`` and returns their paths.
 
     Parameters
     ----------
@@ -223,14 +216,9 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
     law : {"yc", "stronge"}
         Yigit–Christoforou or the refined Stronge law (default constants).
     lambda_ : float
-        K_st/K_y of the curves, inside the maps' λ range [-].
+        K_st/K_y of the curves, inside the maps' λ range [-] (nearest grid λ).
     betas : sequence of float
-        Impact numbers of the curves, inside the maps' β range [-].
-
-    Returns
-    -------
-    dict
-        Paths of the files written, keyed by kind.
+        Impact numbers inside the maps' β range [-] (nearest grid β).
     """
     import matplotlib
 

@@ -1,6 +1,5 @@
-"""Charts of the (ζ, λ) maps: F̄max against ζ, the regimes, the elastic-plastic panels.
-
-Every function takes ``ax=None`` (a new figure when missing) and returns the Axes.
+"""Charts of the (ζ, λ) maps: F̄max against ζ, the regimes, the elastic-plastic panels
+(each takes ``ax=None`` and returns the Axes).
 """
 
 from __future__ import annotations
@@ -236,22 +235,9 @@ def _runs(mask):
 
 
 def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
-    """The regime of every point of a chart: one row per (structure, λ), ζ along x
-    (criteria: :mod:`impactmaps.maps.family.regimes`).
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep result with a ``regime`` variable.
-    structures : list of str, optional
-        Structure names (default all).
-    lambdas : list of float, optional
-        λ values (default all).
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """The regime of every point of a chart: one row per (structure, λ), ζ along x, from a
+    sweep result ``dataset`` with a ``regime`` variable (``structures``, ``lambdas``:
+    default all).
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -306,23 +292,9 @@ def structure_label(dataset, structure) -> str:
 
 
 def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
-    """Regimes of one structure on the (ζ, λ) plane (log axes).
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep result with a ``regime`` variable.
-    structure : str
-        Structure name.
-    smooth : bool
-        Classify on a dense grid (F̄max, peak and wave-return times interpolated
-        linearly in log ζ, log λ, as :func:`impactmaps.maps.read.lookup.lookup` does) instead
-        of drawing one block per computed point; used when every point is computed.
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """Regimes of the structure named ``structure`` on the (ζ, λ) plane (log axes), from a
+    sweep result with a ``regime`` variable; ``smooth``: classify on a dense grid
+    interpolated as a lookup does (when every point is computed), else one block per point.
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch

@@ -18,12 +18,7 @@ integrated (at least ``min_modes`` of them, but with residual flexibility none a
 coupled contact phase in round-off, :func:`~impactmaps.solvers.modal_run.static_floor`),
 where ``ω`` is the contact frequency; the rest enter through ``r``.
 
-Time step: ``Δt = min(time_step_ratio/ω, max(resolve_ratio/ω_top, Δt_content))``.
-``ω_top`` is the highest natural frequency of the coupled impactor–contact–structure
-system in contact (it lies above the highest retained mode by the interlacing of the
-point receptance); resolving it resolves every oscillation of the contact force.
-``Δt_content`` (:func:`~impactmaps.solvers.time_step.content_time_step`) resolves the
-oscillations the force actually carries (docs/speed.rst).
+Time step: :mod:`~impactmaps.solvers.time_step` (docs/physics.rst, "The exact-step integrator").
 """
 
 from __future__ import annotations
@@ -206,28 +201,15 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
 def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
                  settings: ModalSettings | None = None, record: bool = True,
                  time_step: float | None = None) -> dict:
-    """What :func:`simulate` would integrate and what it would cost, without integrating.
-
-    Parameters
-    ----------
-    target : Target or ModalBasis
-        As for :func:`simulate`.
-    law : ContactLaw
-        Contact law with scalar parameters.
-    impactor_mass, velocity : float
-        m_i [kg] and V0 [m/s], > 0.
-    settings : ModalSettings, optional
-        As for :func:`simulate`.
-    record, time_step
-        As for :func:`simulate`.
+    """What :func:`simulate` would integrate and what it would cost, without integrating
+    (arguments as for :func:`simulate`).
 
     Returns
     -------
     dict
-        ``method`` (see :func:`simulate`), ``modes``, ``time_step_s``, ``expected_steps``,
-        ``history_rows``, ``memory_bytes``, ``seconds`` (reference machine, compilation
-        excluded) and ``runs`` (2 with the convergence check's re-run counted in). An
-        infinite-structure answer has ``modes`` 0 and no step.
+        ``method``, ``modes``, ``time_step_s``, ``expected_steps``, ``history_rows``,
+        ``memory_bytes``, ``seconds`` (compilation excluded) and ``runs`` (2 with the
+        convergence check's re-run); an infinite-structure answer has ``modes`` 0.
     """
     from .run_budget import EXPECTED_RUN_RATIO
 
@@ -354,7 +336,7 @@ def simulate_batch(
     record: bool = False,
     max_workers: int | None = None,
 ) -> list[ImpactResult]:
-    """Simulate many independent impacts, in parallel threads (the kernel releases the GIL).
+    """Simulate many independent impacts in parallel threads (the kernel releases the GIL).
 
     Parameters
     ----------
@@ -370,7 +352,7 @@ def simulate_batch(
     Returns
     -------
     list of ImpactResult
-        In the order of ``cases``; identical to running :func:`simulate` one by one.
+        In the order of ``cases``, identical to :func:`simulate` one by one.
     """
     import os
     from concurrent.futures import ThreadPoolExecutor

@@ -1,9 +1,6 @@
-"""Settings and facts of a modal run: :class:`ModalSettings`, the contact frequency, the patch.
-
-What every part of the modal solver (:mod:`impactmaps.solvers.modal`) reads: the numerical
-settings with their ranges, the extras a run reports (:class:`ModalDetails`), the reference
-contact stiffness that sets the contact frequency, and which load (point or patch) a run
-takes.
+"""Settings and facts of a modal run: :class:`ModalSettings` (the numerical settings with
+their ranges), :class:`ModalDetails`, the reference contact stiffness that sets the
+contact frequency, and which load (point or patch) a run takes.
 """
 
 from __future__ import annotations
@@ -38,14 +35,8 @@ MAX_EVENTS = 10_000_000
 
 @dataclass(frozen=True)
 class ModalDetails:
-    """Extras of a modal run (``ImpactResult.details``).
-
-    Attributes
-    ----------
-    steps : int
-        Steps the integrator took (contact and free flight) [-].
-    contact_phase : {"exact", "sampled"}
-        How contacts were integrated (see :attr:`ModalSettings.contact_phase`).
+    """Extras of a modal run (``ImpactResult.details``): ``steps`` the integrator took [-] and
+    ``contact_phase`` (``"exact"`` or ``"sampled"``, see :attr:`ModalSettings.contact_phase`).
     """
 
     steps: int

@@ -1,12 +1,8 @@
 """Budgets before work: what a run will hold and how long it will take, checked before it starts.
 
-For every solver, a run estimated above :data:`MEMORY_LIMIT_BYTES` is refused with a
-``ValueError`` naming the knob and the value that fits, and one estimated above
-:data:`LONG_RUN_SECONDS` is announced with a :class:`LongRunWarning`
-(:func:`refuse_or_announce`). :func:`modal_run_budget` estimates a modal run: steps over
-:data:`EXPECTED_RUN_RATIO`/ω, the interval table, the history (at most
-:data:`HISTORY_ROW_CAP` rows) and the modes, at :data:`SECONDS_PER_MODE_STEP` per mode
-and step.
+A run estimated above :data:`MEMORY_LIMIT_BYTES` is refused (``ValueError`` naming the
+knob and the value that fits); one above :data:`LONG_RUN_SECONDS` is announced
+(:class:`LongRunWarning`). :func:`modal_run_budget` estimates a modal run.
 """
 
 from __future__ import annotations
@@ -57,18 +53,8 @@ class LongRunWarning(UserWarning):
 
 
 class RunBudget(NamedTuple):
-    """The estimate of one run.
-
-    Attributes
-    ----------
-    memory_bytes : float
-        Largest memory the run may take [B].
-    seconds : float
-        Estimated run time [s].
-    advice : str
-        The knob to change and the value that fits, for a refusal.
-    hint : str
-        What makes the run faster, for the announcement (may be empty).
+    """The estimate of one run: ``memory_bytes`` [B], ``seconds`` [s], ``advice`` (the knob and
+    the value that fits, for a refusal) and ``hint`` (what makes it faster, may be empty).
     """
 
     memory_bytes: float
@@ -79,16 +65,8 @@ class RunBudget(NamedTuple):
 
 def refuse_or_announce(budget: RunBudget, what: str, stacklevel: int = 3) -> None:
     """Refuse (``ValueError``) a run above :data:`MEMORY_LIMIT_BYTES`, announce
-    (:class:`LongRunWarning`) one estimated above :data:`LONG_RUN_SECONDS`.
-
-    Parameters
-    ----------
-    budget : RunBudget
-        The estimate.
-    what : str
-        The run in words, to start the messages with.
-    stacklevel : int, optional
-        For the warning.
+    (:class:`LongRunWarning`, at ``stacklevel``) one above :data:`LONG_RUN_SECONDS`;
+    ``what`` names the run in the messages.
     """
     if budget.memory_bytes > MEMORY_LIMIT_BYTES:
         raise ValueError(f"{what} may take {budget.memory_bytes / 2**30:.3g} GiB (limit "
@@ -101,22 +79,9 @@ def refuse_or_announce(budget: RunBudget, what: str, stacklevel: int = 3) -> Non
 
 def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_frequency: float, record: bool,
                      max_events: int, forced_step: bool) -> RunBudget:
-    """The :class:`RunBudget` of one run of the modal integrator.
-
-    Parameters
-    ----------
-    n_modes : int
-        Modes integrated.
-    time_step, max_time : float
-        Step Δt and time limit [s].
-    contact_frequency : float
-        ω [rad/s].
-    record : bool
-        Whether the history is kept.
-    max_events : int
-        Capacity of the contact-interval table.
-    forced_step : bool
-        Whether ``time_step`` was given by the user (then it is the knob to name).
+    """The :class:`RunBudget` of one run of the modal integrator: ``n_modes`` modes, step
+    ``time_step`` and limit ``max_time`` [s], contact frequency ω [rad/s], ``record`` (history
+    kept), ``max_events`` (interval-table capacity), ``forced_step`` (the user gave the step).
 
     Raises
     ------

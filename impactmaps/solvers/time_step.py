@@ -37,23 +37,9 @@ def coupled_top_frequency(
 def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass: float,
                       tolerance: float) -> float:
     """Longest step [s] that resolves the structural oscillations of the contact force
-    (docs/physics.rst).
-
-    Parameters
-    ----------
-    basis : ModalBasis
-        Retained modes and residual compliance r [m/N].
-    contact_stiffness : float
-        Linear(ised) contact stiffness K [N/m].
-    impactor_mass : float
-        m_i [kg].
-    tolerance : float
-        Tolerated error, in units of m_i V0 ω [-].
-
-    Returns
-    -------
-    float
-        Δt [s]; ``inf`` when no mode lies above 2ω.
+    (docs/physics.rst): ``basis`` (modes, residual r [m/N]), linear(ised) contact stiffness
+    K [N/m], impactor mass m_i [kg], ``tolerance`` in units of m_i V0 ω [-]; ``inf`` when no
+    mode lies above 2ω.
     """
     if tolerance <= 0:
         return 0.0

@@ -61,19 +61,10 @@ def cache_directory() -> str:
 
 
 def warm_up(workers: int = 2) -> dict:
-    """Compile every kernel of a modal run into numba's cache (or load what is there).
-
-    Parameters
-    ----------
-    workers : int
-        Processes compiling the integrator's two variants at once (1: one after the other
-        in this process), ≥ 1.
-
-    Returns
-    -------
-    dict
-        ``compiled_variants`` (integrator variants not yet cached), ``integrator_s``,
-        ``rest_s``, ``total_s`` (wall times [s]) and ``cache_directory``. Idempotent.
+    """Compile every kernel of a modal run into numba's cache (or load what is there), the
+    integrator's two variants in ``workers`` ≥ 1 processes; idempotent. Returns
+    ``compiled_variants``, ``integrator_s``, ``rest_s``, ``total_s`` (wall times [s]) and
+    ``cache_directory``.
     """
     from .._checks import require_in_range
     from .integrator import exact_step  # noqa: F401 (registers the integrator with the compile helper)
@@ -97,12 +88,7 @@ def warm_up(workers: int = 2) -> dict:
 
 def compile_into_package() -> dict:
     """Compile every kernel of a modal run into numba's cache beside this package's modules
-    (the wheel build ships those files; numba loads them for the same sources, versions and CPU).
-
-    Returns
-    -------
-    dict
-        What :func:`warm_up` returns, with ``files`` (number of cache files) and ``bytes``.
+    (shipped in the wheel); returns :func:`warm_up`'s dict with ``files`` and ``bytes``.
 
     Raises
     ------

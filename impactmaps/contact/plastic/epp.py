@@ -182,14 +182,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
 
     def impact_number(self, impactor_mass, velocity):
         """β [-] of the Yigit–Christoforou law with the same E*, R and Y (Christoforou & Yigit
-        1998, eq 11).
-
-        Parameters
-        ----------
-        impactor_mass : float or array_like
-            m_i [kg].
-        velocity : float or array_like
-            Impact velocity V0 [m/s].
+        1998, eq 11), for ``impactor_mass`` m_i [kg] at ``velocity`` V0 [m/s].
         """
         return reference_impact_number(self.effective_modulus, self.radius, self.yield_strength, impactor_mass,
                                        velocity)

@@ -161,18 +161,9 @@ class SweepConfig(NamedTuple):
 
 
 def load_sweep_config(path) -> SweepConfig:
-    """Parse a sweep TOML file.
-
-    Parameters
-    ----------
-    path : path-like
-        The TOML file (format: docs/sweeps.rst).
-
-    Returns
-    -------
-    SweepConfig
-        ``structures``, the grids ``zetas`` and ``lambdas``, ``settings``, the ``output``
-        directory, the ``law`` and ``axes`` (the law's other grids, e.g. ``{"beta": …}``).
+    """Parse the sweep TOML file at ``path`` (format: docs/sweeps.rst) into a
+    :class:`SweepConfig`: ``structures``, ``zetas``, ``lambdas``, ``settings``, ``output``,
+    ``law`` and ``axes`` (the law's other grids).
 
     Raises
     ------
@@ -231,25 +222,11 @@ def load_sweep_config(path) -> SweepConfig:
 
 def run_sweep_config(config, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
                      executor=None) -> dict:
-    """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory.
-
-    Parameters
-    ----------
-    config : SweepConfig or path-like
-        The sweep file, parsed (:func:`load_sweep_config`) or its path.
-    progress : bool
-        Show a progress bar.
-    overwrite : bool
-        Replace an existing ``sweep.nc`` made by another configuration.
-    max_workers : int, optional
-        Local worker processes (default: all cores).
-    executor : concurrent.futures.Executor, optional
-        Where the points run (e.g. a Dask client's ``get_executor()``).
-
-    Returns
-    -------
-    dict
-        ``{"netcdf": Path, "csv": Path}``.
+    """Run the sweep of a TOML file (``config``: a :class:`SweepConfig` or its path); write
+    NetCDF and tidy CSV into its output directory and return ``{"netcdf": Path, "csv":
+    Path}``. ``overwrite`` replaces a ``sweep.nc`` of another configuration;
+    ``max_workers``, ``executor`` and ``progress`` as for
+    :func:`~impactmaps.maps.compute.sweep.sweep`.
     """
     if not isinstance(config, SweepConfig):
         config = load_sweep_config(config)

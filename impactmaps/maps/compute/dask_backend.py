@@ -50,18 +50,9 @@ class InitWorker(WorkerPlugin):
 
 
 def dask_executor(client_or_executor):
-    """The executor of a Dask client, with :class:`InitWorker` registered on its cluster.
-
-    Parameters
-    ----------
-    client_or_executor : dask.distributed.Client or distributed.client.ClientExecutor
-        A connected client (e.g. ``Client(LocalCluster(n_workers=2, threads_per_worker=1))``)
-        or its ``get_executor()``.
-
-    Returns
-    -------
-    concurrent.futures.Executor
-        ``client.get_executor()``: what :func:`impactmaps.maps.compute.sweep.sweep` submits chunks to.
+    """``client.get_executor()`` of a Dask client (or the executor itself), with
+    :class:`InitWorker` registered on its cluster: what
+    :func:`impactmaps.maps.compute.sweep.sweep` submits chunks to.
 
     Raises
     ------

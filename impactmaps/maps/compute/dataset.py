@@ -22,20 +22,8 @@ __all__ = ["empty_dataset", "classify_dataset", "tidy_frame"]
 
 
 def empty_dataset(family, structures, axes: dict, description: dict, digest: str) -> xr.Dataset:
-    """A map of ``family`` with no point computed.
-
-    Parameters
-    ----------
-    family : MapFamily
-    structures : sequence of MapStructure
-    axes : dict
-        Axis name → values [-], for every axis of the family.
-    description, digest : dict, str
-        The sweep's description and its fingerprint (attributes).
-
-    Returns
-    -------
-    xarray.Dataset
+    """A map of ``family`` over ``structures`` and ``axes`` (name → values [-], every axis) with
+    no point computed; ``description`` and its fingerprint ``digest`` as attributes.
     """
     dims = ("structure", *family.axis_names)
     shape = (len(structures), *(len(axes[name]) for name in family.axis_names))

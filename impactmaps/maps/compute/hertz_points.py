@@ -99,20 +99,9 @@ def hertz_contact_frequency(target, zeta_h: float, lambda_h: float) -> float:
 
 
 def hertz_summary(result, numbers) -> dict:
-    """The normalised scalars of a modal Hertz run in the Hertz scales (keys of the map variables).
-
-    Parameters
-    ----------
-    result : ImpactResult
-        A modal run with the Hertz law.
-    numbers : HertzNumbers
-        Its scales (:func:`impactmaps.closed_forms.hertz_similarity.hertz_numbers`).
-
-    Returns
-    -------
-    dict
-        ``result.normalised_summary()`` with F̄max = F_max/F_hs and the times
-        (:data:`HERTZ_TIME_KEYS`) in units of t* instead of 1/ω.
+    """The map scalars of a modal Hertz run ``result`` in the Hertz scales of ``numbers``
+    (:class:`~impactmaps.closed_forms.hertz_similarity.HertzNumbers`): F̄max = F_max/F_hs and
+    the times (:data:`HERTZ_TIME_KEYS`) in units of t*.
     """
     summary = result.normalised_summary()
     to_hertz_time = 1.0 / (result.contact_frequency * numbers.time_scale)
@@ -156,21 +145,9 @@ def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> fl
 
 
 def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
-    """F_max/F_hs of a Hertz asymptote at (ζ_h, λ_h) [-] (vectorised; cached per value).
-
-    Parameters
-    ----------
-    which : {"infinite", "quasi-static"}
-        The infinite plate or beam (a function of ζ_h alone) or the quasi-static spring
-        (of λ_h alone: ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``).
-    kind : {"beam", "plate"}
-        Which infinite structure.
-    zeta_h, lambda_h : float or array_like
-        Hertz numbers, > 0 [-]; the one the asymptote does not depend on is ignored.
-
-    Returns
-    -------
-    float or ndarray
+    """F_max/F_hs [-] of a Hertz asymptote (vectorised, cached): ``which`` "infinite" (plate
+    or beam by ``kind``, a function of ``zeta_h``) or "quasi-static" (of ``lambda_h``:
+    ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``); Hertz numbers > 0.
     """
     if which not in ("infinite", "quasi-static"):
         raise ValueError(f"which = {which!r} is invalid: choose 'infinite' or 'quasi-static'")
@@ -262,19 +239,10 @@ HERTZ = register_map_family(HertzFamily())
 def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                        table: BasisTable | None = None, control: AccuracyControl = AccuracyControl(),
                        patch: float | None = None) -> list[dict]:
-    """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``.
-
-    :func:`impactmaps.maps.compute.points.solve_map_points` of the Hertz family: the linear
-    maps' cut-off rule and accuracy control; past the mode cap the infinite-structure
-    asymptote answers where the first wave returns late enough, else the point is
-    ``unresolved``. With ``patch`` = P the points are loaded over the Hertz patch (cut-off
-    ``settings.patch_cutoff_ratio`` · ω, no asymptote).
-
-    Returns
-    -------
-    list of dict
-        One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
-        plus ``zeta``, ``lambda_``.
+    """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``
+    (:func:`impactmaps.maps.compute.points.solve_map_points` of the Hertz family; with
+    ``patch`` = P, loaded over the Hertz patch, without asymptote): one dict per point, the
+    map variables in Hertz scales plus ``zeta``, ``lambda_``.
     """
     return solve_map_points(HERTZ.with_patch(patch), structure, points, settings, table, control)
 

@@ -102,22 +102,9 @@ LINEAR = register_map_family(LinearFamily())
 
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                  table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
-    """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``
-    (:func:`impactmaps.maps.compute.points.solve_map_points` of the linear family).
-
-    Parameters
-    ----------
-    structure : MapStructure
-    points : sequence of (loss_factor, relative_stiffness)
-    settings : ModalSettings
-    table : BasisTable, optional
-        The modes to truncate from (default: the structure's basis table).
-    control : AccuracyControl, optional
-
-    Returns
-    -------
-    list of dict
-        One dict of normalised scalars per point (keys of ``RESULT_VARIABLES`` plus
-        ``zeta``, ``lambda_``); an ``unresolved`` point has its values missing.
+    """Simulate the linear-contact impacts realising each (ζ, λ) of ``points`` on ``structure``
+    (:func:`impactmaps.maps.compute.points.solve_map_points` of the linear family, ``table``
+    and ``control`` as there): one dict of normalised scalars per point (keys of
+    ``RESULT_VARIABLES`` plus ``zeta``, ``lambda_``).
     """
     return solve_map_points(LINEAR, structure, points, settings, table, control)

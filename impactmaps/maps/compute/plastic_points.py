@@ -1,9 +1,7 @@
 r"""Map points with an elastic-plastic contact law: (β, ζ, λ) realised, simulated, scaled.
 
-A plastic-law impact on a structure family is fixed by (β, ζ, λ), ζ and λ taken at the
-linearised stiffness K_y; forces are stored over m V0 ω_y, times × ω_y. The map families
-``"yc"``, ``"stronge"`` and ``"epp"`` (:class:`PlasticFamily`) are these points; the
-derivation and the stored quantities: docs/plastic_maps.rst.
+The ``"yc"``, ``"stronge"`` and ``"epp"`` map families (:class:`PlasticFamily`): ζ and λ
+at the linearised stiffness K_y, forces over m V0 ω_y, times × ω_y (docs/plastic_maps.rst).
 """
 
 from __future__ import annotations
@@ -47,22 +45,16 @@ ERROR_OF = PLASTIC_ERROR_OF
 
 @dataclass(frozen=True)
 class PlasticNumbers:
-    """The similarity numbers and scales of one elastic-plastic impact (SI units).
+    """The similarity numbers and scales of one elastic-plastic impact.
 
     Attributes
     ----------
-    impact_number : float
-        β = V0/(ω_h α_y) [-] (seed 001 eq 11).
-    loss_factor : float
-        ζ = ζ(m, K_y) of the target [-].
-    relative_stiffness : float
-        λ = K_st/K_y [-].
+    impact_number, loss_factor, relative_stiffness : float
+        β = V0/(ω_h α_y), ζ(m, K_y) and λ = K_st/K_y [-].
     linearised_stiffness : float
         K_y = 1.5 K_h sqrt(α_y) [N/m].
-    force_scale : float
-        m V0 ω_y [N], ω_y = sqrt(K_y/m).
-    time_scale : float
-        1/ω_y [s].
+    force_scale, time_scale : float
+        m V0 ω_y [N] and 1/ω_y [s], ω_y = sqrt(K_y/m).
     """
 
     impact_number: float
@@ -100,21 +92,8 @@ def _option_text(value) -> str:
 
 
 def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
-    """β, ζ(m, K_y) and λ = K_st/K_y of an elastic-plastic impact (docs/plastic_maps.rst).
-
-    Parameters
-    ----------
-    target : Plate or Beam
-        Needs ``loss_factor(m, K)`` and ``static_compliance()``.
-    law : YigitChristoforouContact, StrongeContact or EppContact
-    mass : float
-        Impactor mass m > 0 [kg].
-    velocity : float
-        Impact velocity V0 > 0 [m/s].
-
-    Returns
-    -------
-    PlasticNumbers
+    """:class:`PlasticNumbers` of an elastic-plastic impact of ``law`` on ``target`` (a Plate or
+    Beam) by an impactor of ``mass`` m > 0 [kg] at ``velocity`` V0 > 0 [m/s].
     """
     plastic_law_of(law)
     require_positive("mass", mass, "kg")
@@ -159,20 +138,9 @@ class PlasticRealisation:
 
 def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: float,
                     velocity: float = 1.0) -> PlasticRealisation:
-    """The elastic-plastic impact with numbers (β, ζ, λ) on ``target`` at speed ``velocity``.
-
-    Parameters
-    ----------
-    target : Plate or Beam
-    map_law : {"yc", "stronge", "epp"}
-    beta, zeta, lambda_ : float
-        Impact number, loss factor and relative stiffness at K_y, > 0 [-].
-    velocity : float
-        V0 > 0 [m/s] (any: the numbers fix the normalised response).
-
-    Returns
-    -------
-    PlasticRealisation
+    """The elastic-plastic impact (a :class:`PlasticRealisation`) with numbers ``beta``,
+    ``zeta``, ``lambda_`` (> 0, at K_y) on ``target`` for ``map_law`` ("yc", "stronge",
+    "epp"), at any speed ``velocity`` > 0 [m/s] (the numbers fix the normalised response).
     """
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
     require_positive("beta", beta)
@@ -209,18 +177,9 @@ class _PlasticScaled:
 
 
 def plastic_summary(result, realised: PlasticRealisation) -> dict:
-    """The map scalars of a modal run of a realised plastic impact (keys of the map variables).
-
-    Parameters
-    ----------
-    result : ImpactResult
-    realised : PlasticRealisation
-
-    Returns
-    -------
-    dict
-        ``result.normalised_summary()`` with F̄max = F_max/(m V0 ω_y), times × ω_y, plus
-        ``restitution`` and ``absorbed_energy_fraction``.
+    """The map scalars of a modal run ``result`` of a realised plastic impact: its normalised
+    summary with F̄max = F_max/(m V0 ω_y), times × ω_y, ``restitution`` and
+    ``absorbed_energy_fraction``.
     """
     summary = result.normalised_summary()
     to_yield_time = 1.0 / (result.contact_frequency * realised.numbers.time_scale)
@@ -284,15 +243,9 @@ _PLASTIC_DESCRIPTIONS = {"fmax_normalised": "maximum contact force / (m V0 ω_y)
 
 
 class PlasticFamily(PlasticLayout):
-    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y.
-
-    Parameters
-    ----------
-    name : str
-        The map law (a key of :data:`PLASTIC_LAWS`).
-    law_options : dict, optional
-        The contact-law options its maps are built at (name → value; the ``epp`` family's:
-        :data:`EPP_MAP_OPTIONS`); none by default.
+    """An elastic-plastic law's maps over (β, ζ, λ) at K_y: ``name`` the map law (a key of
+    :data:`PLASTIC_LAWS`), ``law_options`` the law options its maps are built at (the ``epp``
+    family's: :data:`EPP_MAP_OPTIONS`).
     """
 
     variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
@@ -359,26 +312,16 @@ EPP = register_map_family(PlasticFamily("epp", law_options=EPP_MAP_OPTIONS))
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
                          settings: ModalSettings | None = None, table: BasisTable | None = None,
                          control: AccuracyControl = AccuracyControl()) -> list[dict]:
-    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) on ``structure``.
-
-    :func:`impactmaps.maps.compute.points.solve_map_points` for the plastic family
-    ``map_law``: same cut-off rule, asymptote and accuracy control as the linear maps.
-
-    Parameters
-    ----------
-    structure : MapStructure
-    map_law : {"yc", "stronge", "epp"}
-    points : sequence of (β, ζ, λ)
-    settings : ModalSettings, optional
-    table : BasisTable, optional
-    control : AccuracyControl, optional
+    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) of ``points`` on
+    ``structure`` (:func:`impactmaps.maps.compute.points.solve_map_points` of the family
+    ``map_law``).
 
     Returns
     -------
     list of dict
         One dict per point: the map scalars, their errors, ``status``, ``method``,
-        ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``; an unresolved
-        point has every value missing.
+        ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_`` (an unresolved
+        point's values missing).
     """
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
     family = {"yc": YC, "stronge": STRONGE, "epp": EPP}[map_law]

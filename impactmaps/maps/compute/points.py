@@ -100,22 +100,8 @@ def _modal_simulate():
 
 
 def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
-    """What a run of one map point on a basis table depends on (a runner reuses the result of
-    an equal key: same bits).
-
-    Parameters
-    ----------
-    settings : ModalSettings
-        The run's settings.
-    zeta_factor : float
-        Factor on the point's ζ [-] (1 but for a sensitive point's perturbed runs).
-    basis : ModalBasis
-        The modes the run integrates, truncated from the point's basis table.
-
-    Returns
-    -------
-    tuple
-        Hashable: equal keys mean runs with the same bits.
+    """What a run of one map point on a basis table depends on (``settings``, the ζ factor
+    ``zeta_factor`` [-], the truncated ``basis``): equal keys mean runs with the same bits.
     """
     return zeta_factor, basis.size, _without_cutoffs(settings)
 
@@ -154,23 +140,20 @@ def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], s
     Parameters
     ----------
     family : MapFamily
-        Realises, plans and scales the points.
     structure : MapStructure
     points : sequence of tuple
-        Each point's numbers, ``(ζ, λ)`` or with the family's extra axes first
-        (``(β, ζ, λ)``) [-].
+        Each point's numbers, ``(ζ, λ)`` or with the family's extra axes first [-].
     settings : ModalSettings, optional
-        Solver settings (default ``ModalSettings()``).
     table : BasisTable, optional
-        The modes to truncate from; default :func:`basis_table` of ``structure``.
+        The modes to truncate from (default :func:`basis_table`).
     control : AccuracyControl, optional
         Tolerance and cost cap of the per-point refinement.
 
     Returns
     -------
     list of dict
-        The family's map variables of each point plus its coordinates, ``status`` and
-        ``method`` codes; an ``unresolved`` point has every value missing.
+        Each point's map variables, coordinates, ``status`` and ``method`` codes (an
+        ``unresolved`` point's values missing).
     """
     settings = settings or ModalSettings()
     target = structure.build()

@@ -50,14 +50,8 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 
 
 class Pacing(NamedTuple):
-    """How a sweep's work is cut and saved; the values do not depend on it.
-
-    Attributes
-    ----------
-    chunk_size : int
-        Points per task (at most, within one row of ζ).
-    save_interval : float
-        Minimum seconds between two saves of the result file (the final save always happens).
+    """How a sweep's work is cut and saved (the values do not depend on it): ``chunk_size``
+    points per task, ``save_interval`` minimum seconds between saves.
     """
 
     chunk_size: int = 40
@@ -108,37 +102,32 @@ def sweep(
     settings : ModalSettings, optional
         Solver settings (part of the result's fingerprint).
     path : path-like, optional
-        NetCDF result file, saved atomically as points complete; re-running with the same
-        path computes only the missing points. A file made with other settings is refused
-        (``ValueError`` naming the keys that changed) unless ``overwrite``.
+        Result file, saved atomically as points complete; a re-run computes only the
+        missing points.
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
-        Where chunks run (default: a local process pool over the machine's cores).
+        Where chunks run (default: a local process pool of ``max_workers``, 1 inline).
     max_workers : int, optional
-        Size of the default process pool (default: ``os.cpu_count()``); 1 runs inline.
     progress : bool
         Show a tqdm progress bar.
     pacing : Pacing
-        Points per task and seconds between saves.
     overwrite : bool
-        Replace an existing result file instead of resuming it.
+        Replace a result file made by another sweep instead of refusing it.
     law : str or MapFamily
-        The map family: ``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"`` or a
-        registered one (docs/map_families.rst).
+        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``, …).
     axes : dict, optional
-        The grids of the family's axes before λ and ζ, name → values [-] (``{"beta": …}``).
+        The grids of the family's axes before λ and ζ (``{"beta": …}``) [-].
 
     Returns
     -------
     xarray.Dataset
-        Dims ``structure`` and the family's axes; its variables, ``done`` and, with
-        regimes, ``regime``; units and provenance in attributes.
+        Dims ``structure`` and the family's axes; its variables, ``done`` and ``regime``.
 
     Raises
     ------
     SweepInterrupted
-        (a ``KeyboardInterrupt``) on Ctrl-C, after saving the finished points.
+        On Ctrl-C, after saving the finished points.
     ValueError
-        Bad grids or settings, or a map too large for the memory budget.
+        Bad grids or settings, a result file of another sweep, or a map too large.
     """
     settings = settings or ModalSettings()
     if max_workers is not None:
@@ -238,24 +227,9 @@ MAP_COPIES = 5.0
 
 def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "linear",
                      advice: str = "sweep it in parts (fewer values per axis, or several sweep files)") -> None:
-    """Refuse a sweep whose map would not fit in the run budget's memory, from arithmetic alone.
-
-    Parameters
-    ----------
-    structures : int
-        Number of structures.
-    sizes : dict
-        Axis name → number of values.
-    family : MapFamily or str, optional
-        The map family (its variables' sizes).
-    advice : str, optional
-        What to change, for the refusal.
-
-    Raises
-    ------
-    ValueError
-        When :data:`MAP_COPIES` copies of the map exceed
-        :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`.
+    """Refuse (``ValueError``, with ``advice``) a sweep of ``structures`` structures and axis
+    ``sizes`` (name → count) whose :data:`MAP_COPIES` copies of the ``family``'s map would
+    exceed :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`, before allocating.
     """
     family = map_family(family) if isinstance(family, str) else family
     points = float(structures) * float(np.prod([float(size) for size in sizes.values()]))

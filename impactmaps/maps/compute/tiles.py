@@ -66,22 +66,10 @@ def lattice_steps() -> tuple[float, float]:
 
 @dataclass(frozen=True)
 class TileKey:
-    """Everything that determines a tile.
-
-    Attributes
-    ----------
-    structure : MapStructure
-    law : str
-        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
-    patch : float or None
-        Patch number P = sqrt(R α_m)/h of a patch-loaded Hertz tile [-]; None: point load.
-    zeta_index, lambda_index : int
-        Lattice index of the tile's first ζ and λ (``log10 ζ = zeta_index · Δζ``).
-    settings : ModalSettings
-    control : AccuracyControl
-    extra_indices : tuple of int
-        Lattice index of the tile's first value on each axis of the family before (λ, ζ)
-        (β of an elastic-plastic family); empty for a (ζ, λ) family.
+    """Everything that determines a tile: ``structure``, ``law`` (the map family), ``patch``
+    (P = sqrt(R α_m)/h [-] of a patch-loaded Hertz tile; None: point load), ``zeta_index``,
+    ``lambda_index`` and ``extra_indices`` (lattice indices of its first values, ``log10 ζ =
+    zeta_index · Δζ``), ``settings`` and ``control``.
     """
 
     structure: MapStructure
@@ -258,22 +246,9 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
 
 
 def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
-    """The tile of ``key`` from the cache, or built and cached.
-
-    Parameters
-    ----------
-    key : TileKey
-    cache_dir : path-like, optional
-        The cache (default :func:`cache_directory`).
-    notify : callable, optional
-        Called with one line of text before a tile is built (and if it cannot be cached).
-    progress : callable, optional
-        Called as ``progress(done, total)`` (points) while a tile is built.
-
-    Returns
-    -------
-    (xarray.Dataset, Path or None)
-        The tile and its cache file (None when it could not be written).
+    """The tile of ``key`` and its cache file (None when it could not be written), from the
+    cache ``cache_dir`` (default :func:`cache_directory`) or built and cached; ``notify``
+    gets one line before a build, ``progress(done, total)`` the build's points.
     """
     path = tile_path(key, cache_dir)
     dataset = _read(path, key)

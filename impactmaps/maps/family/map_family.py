@@ -80,17 +80,9 @@ class PointPlan(NamedTuple):
 
 @dataclass(frozen=True)
 class Interpolation:
-    """How a family's lookups interpolate and bound their error.
-
-    Attributes
-    ----------
-    reach : int
-        Neighbours each side over which a second difference is the largest
-        (:func:`impactmaps.maps.read.bands.interpolation_error`).
-    safety : float
-        Factor on the leading-order interpolation error ``h² |f''| / 8``.
-    band_safety : float
-        Factor on the whole band (own error + interpolation estimate) of a cube lookup.
+    """How a family's lookups interpolate and bound their error: ``reach`` (neighbours each
+    side over which a second difference is the largest), ``safety`` (factor on the
+    leading-order error ``h² |f''| / 8``) and ``band_safety`` (factor on a cube lookup's band).
     """
 
     reach: int = 2
@@ -107,43 +99,31 @@ class MapFamily:
         The map law, e.g. ``"hertz"`` (the ``contact_law`` attribute of its maps).
     axes : tuple of Axis
         Every axis of a point, slowest first; the last two are ``lambda_`` and ``zeta``.
-    variables : dict
-        The map's variables (:data:`RESULT_VARIABLES` layout).
-    errors : dict
-        The interpolated quantities of a lookup → the name of their error variable.
+    variables, errors : dict
+        The map's variables (:data:`RESULT_VARIABLES` layout); interpolated quantity → its
+        error variable.
     interpolation : Interpolation
     shipped : dict
-        (structure kind, theory) → structure name of the maps the package ships.
-    law_in_description : bool
-        Whether the law is a key of a sweep's description (linear: False).
+        (structure kind, theory) → structure name of the shipped maps.
+    law_in_description, law_in_file_name : bool
+        Whether the law enters a sweep's description and the map files' names (linear: False).
     law_revision : int
         The law's :attr:`ContactLaw.revision`; above 1 it enters the fingerprint.
-    title, method_text : str
-        The ``title`` and ``method`` attributes of its maps.
-    classifies : bool
-        Whether its points have regimes (:meth:`infinite_peak`, :meth:`quasi_static_peak`).
+    title, method_text, exact_command : str
+        The maps' ``title`` and ``method`` attributes; the command that answers a point exactly.
+    classifies, patch_loadable, closed_form_asymptotes : bool
+        Whether its points have regimes, can be patch-loaded, and have closed-form asymptotes.
     tile_lattice : dict
         Axis name → Δ log10 of the lattice of its on-demand tiles.
-    patch_loadable : bool
-        Whether its points can be loaded over the contact patch (``with_patch``).
-    law_in_file_name : bool
-        Whether its map files carry the law after the structure's name (linear: False).
-    exact_command : str
-        The command that answers one of its points exactly, named where a lookup refuses.
-    scaled_by_contact_frequency : bool
-        Whether F̄max = F_max/(m_i V0 ω), ω = sqrt(K/m_i) of a user-given stiffness K.
-    fmax_at_most_one : bool
-        Whether F̄max ≤ 1 holds for every point.
-    closed_form_asymptotes : bool
-        Whether a chart draws its asymptotes as closed forms (else the stored peaks).
+    scaled_by_contact_frequency, fmax_at_most_one : bool
+        Whether F̄max = F_max/(m_i V0 ω) with a user-given K, and whether F̄max ≤ 1 always.
     labels : dict
-        ``"zeta"``, ``"lambda"``, ``"fmax"``, ``"contact"``, ``"quasi_static"``, ``"table"``,
-        ``"zeta_name"``, ``"lambda_name"``: the texts of its charts, tables and messages.
+        The texts of its charts, tables and messages (``"zeta"``, ``"lambda"``, ``"fmax"``, …).
     axis_ranges : dict
-        Axis name → (low, high), the closed range a point can be realised at (ζ ∈ [1e-9,
-        1e6], λ ∈ [1e-9, 1e9]); an axis without an entry takes any positive value.
+        Axis name → (low, high), the range a point can be realised at (ζ ∈ [1e-9, 1e6],
+        λ ∈ [1e-9, 1e9]; no entry: any positive value).
     chart_zeta_max, chart_lambda_min : float
-        The range a chart of the family accepts (where its asymptotes answer).
+        The range a chart of the family accepts.
     """
 
     name: ClassVar[str]

@@ -51,12 +51,12 @@ class Refinement:
     shape : tuple of int
         The base map's grid (number of λ, number of ζ).
     codes : ndarray of int64
-        Sorted lattice keys of the points, ``U · width + V`` with ``U``, ``V`` the point's
-        λ and ζ positions in units of 1/2^max_level of a grid step.
+        Sorted lattice keys ``U · width + V`` of the points (λ and ζ positions in
+        1/2^max_level of a grid step).
     values : dict of str to ndarray
         :data:`REFINEMENT_VARIABLES` of each point, in the order of ``codes``.
     max_level : int
-        Depth of the lattice (:data:`MAX_LEVEL` when built by :func:`refine`).
+        Depth of the lattice.
     """
 
     shape: tuple[int, int]
@@ -228,8 +228,7 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     ----------
     refinement : Refinement
     base : dict of str to ndarray
-        The base map's variables, each a (λ, ζ) array (``fmax_error`` and ``status``
-        besides ``names``).
+        The base map's (λ, ζ) arrays (``names``, ``fmax_error``, ``status``).
     base_estimate : ndarray
         The base map's interpolation-error estimate per grid point [-].
     row, col : ndarray
@@ -242,11 +241,9 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     values : dict of str to ndarray
         Each of ``names`` at the positions.
     error : ndarray
-        The band half-width [-]: the largest own error of the corners that weigh, plus the
-        leaf's interpolation estimate (:func:`leaf_estimate`); only the own error on a
-        lattice point.
+        The band half-width [-]: the corners' largest own error plus the leaf's estimate.
     corner_codes : list of ndarray
-        The status code of each corner (``converged`` where a corner has no weight).
+        The status code of each corner (``converged`` where it has no weight).
     """
     base = dict(base) | {"surplus": np.zeros(refinement.shape)}
     leaves = locate(refinement, row, col)
@@ -336,29 +333,21 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
     Parameters
     ----------
     base : dict of str to ndarray
-        The base map's ``fmax_normalised``, ``fmax_error`` and ``status``, each a (λ, ζ) array.
+        The base map's ``fmax_normalised``, ``fmax_error`` and ``status`` as (λ, ζ) arrays.
     base_estimate : ndarray
-        The base map's interpolation-error estimate per grid point
-        (:func:`impactmaps.maps.read.bands.interpolation_error`) [-].
+        The base map's interpolation-error estimate per grid point [-].
     coordinates : callable
-        ``coordinates(row, col) -> (zeta, lambda_)``: the map's axes at fractional grid
-        positions (log-linear between grid points).
+        ``coordinates(row, col) -> (zeta, lambda_)`` at fractional grid positions.
     solve : callable
-        ``solve(zetas, lambdas) -> list of row dicts`` (:func:`impactmaps.maps.compute.linear_points.solve_points`
-        rows): the points of a round, in order.
+        ``solve(zetas, lambdas) -> list of row dicts``: the points of a round, in order.
     tolerance : float
-        Largest accepted band (own error + interpolation estimate) of a leaf [-].
+        Largest accepted band of a leaf [-].
     max_level : int
         Deepest split.
     max_points : int, optional
-        Cost cap: once this many points were added, splitting stops (the largest bands
-        are split first, so the cap leaves the smallest ones).
+        Cost cap on the points added (the largest bands are split first).
     progress : callable, optional
         ``progress(round, new_points, total_points)`` after each round.
-
-    Returns
-    -------
-    Refinement
     """
     shape = base["fmax_normalised"].shape
     refinement = Refinement.empty(shape, max_level)

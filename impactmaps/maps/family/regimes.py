@@ -63,7 +63,8 @@ def classify(
     law: str = "linear",
     peaks=None,
 ):
-    """Regime of each impact from its normalised peak force (vectorised).
+    """Regime of each impact from its normalised peak force (vectorised), one of
+    :data:`REGIMES` per point (criteria: docs/chart.rst).
 
     Parameters
     ----------
@@ -74,24 +75,17 @@ def classify(
     kind : {"beam", "plate"}
         Which infinite-structure asymptote applies.
     peak_time, reflection_time : array_like, optional
-        Normalised time of the peak and of the first wave return (ω d²/c); when
-        given, the infinite-structure regime also requires the peak to come first.
+        Normalised peak time and first wave return; when given, the infinite-structure
+        regime requires the peak first.
     tolerance : float
         Relative distance to an asymptote that counts as "on" it.
     local_tolerance : float
         ``1 − F̄max`` below which the response is local.
     law : {"linear", "hertz"}
-        Whose asymptotes: the linear law's (ζ, λ, F̄max = F_max/(m V0 ω)) or the Hertz
-        law's (ζ_h, λ_h, F̄max = F_max/F_hs).
+        Whose asymptotes (and numbers).
     peaks : (array_like, array_like), optional
-        The infinite-structure and quasi-static peaks at these points when already known
-        (:func:`infinite_structure_peak` and :func:`quasi_static_peak` of the same numbers,
-        e.g. stored with a map); computed otherwise.
-
-    Returns
-    -------
-    ndarray of str
-        One of :data:`REGIMES` per point.
+        The infinite-structure and quasi-static peaks when already known (e.g. stored
+        with a map).
     """
     require_in_range("tolerance", tolerance, 0.0, 1.0, low_inclusive=False)
     require_in_range("local_tolerance", local_tolerance, 0.0, 1.0, low_inclusive=False)

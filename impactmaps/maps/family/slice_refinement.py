@@ -25,14 +25,9 @@ __all__ = ["SlicedRefinement", "refine_slices", "read_slices"]
 
 @dataclass(frozen=True)
 class SlicedRefinement:
-    """One :class:`~impactmaps.maps.family.refinement.Refinement` per slice of a map's extra axes.
-
-    Attributes
-    ----------
-    extra_shape : tuple of int
-        The number of grid values of each extra axis (β: the number of β of the map).
-    slices : tuple of Refinement
-        The refinement of each (λ, ζ) slice, in the C order of the extra axes' grid indices.
+    """One :class:`~impactmaps.maps.family.refinement.Refinement` per slice of a map's extra
+    axes: ``extra_shape`` (grid values per extra axis) and ``slices`` (C order of the extra
+    axes' grid indices).
     """
 
     extra_shape: tuple
@@ -86,30 +81,24 @@ class SlicedRefinement:
 
 def refine_slices(bases: list, estimates: list, coordinates: Callable, solve: Callable, extra_values: list,
                   extra_shape: tuple | None = None, **options) -> SlicedRefinement:
-    """Refine every (λ, ζ) slice of a map with extra axes (:func:`~impactmaps.maps.family.refinement.refine` each).
+    """Refine every (λ, ζ) slice of a map with extra axes (:func:`~impactmaps.maps.family.refinement.refine`
+    each); returns a :class:`SlicedRefinement`.
 
     Parameters
     ----------
-    bases : list of dict
-        Per slice (C order of the extra axes), its ``fmax_normalised``, ``fmax_error`` and
-        ``status``, each a (λ, ζ) array.
-    estimates : list of ndarray
-        Per slice, the (λ, ζ) interpolation-error estimate per grid point [-].
+    bases, estimates : list
+        Per slice (C order): its ``fmax_normalised``, ``fmax_error``, ``status`` (λ, ζ)
+        arrays, and its interpolation-error estimate per grid point [-].
     coordinates : callable
-        ``coordinates(row, col) -> (zeta, lambda_)`` of the map's (λ, ζ) grid.
+        ``coordinates(row, col) -> (zeta, lambda_)`` of the (λ, ζ) grid.
     solve : callable
-        ``solve(zetas, lambdas, extra) -> list of row dicts`` at the slice's extra-axis
-        values ``extra`` (e.g. ``(β,)``).
+        ``solve(zetas, lambdas, extra) -> list of row dicts`` at extra-axis values ``extra``.
     extra_values : list of tuple
         Per slice, the values of its extra axes.
     extra_shape : tuple of int, optional
-        The extra axes' grid shape (default: one axis, one value per slice).
+        The extra axes' grid shape (default: one axis).
     **options
-        ``tolerance``, ``max_level``, ``max_points`` (per slice), ``progress``, as :func:`refine` takes them.
-
-    Returns
-    -------
-    SlicedRefinement
+        ``tolerance``, ``max_level``, ``max_points`` (per slice), ``progress``.
     """
     extra_shape = (len(bases),) if extra_shape is None else extra_shape
     slices = []
@@ -127,25 +116,20 @@ def read_slices(planes, shape: tuple, rows: np.ndarray, cols: np.ndarray, bracke
     Parameters
     ----------
     planes : sequence of PlaneInterpolator
-        Each slice prepared for reading, in the C order of the extra axes.
+        Each slice prepared for reading (C order of the extra axes).
     shape : tuple of int
         The extra axes' grid shape.
     rows, cols : ndarray
         Positions in grid units along λ and ζ.
     brackets : list of (ndarray, ndarray, ndarray)
-        Per extra axis: the grid indices below and above each position and the fraction
-        between them.
+        Per extra axis: grid indices below and above each position and the fraction between.
 
     Returns
     -------
-    fmax : ndarray
-        The weighted sum of the neighbouring slices' leaf interpolations [-].
-    band : ndarray
-        The largest band of those slices [-].
-    deep : ndarray of bool
-        Whether a neighbouring slice reads the position in a refined leaf.
-    between : ndarray of bool
-        Whether more than one slice weighs.
+    fmax, band : ndarray
+        The weighted F̄max of the neighbouring slices and their largest band [-].
+    deep, between : ndarray of bool
+        Whether a slice reads the position in a refined leaf; whether several slices weigh.
     corner_codes : list of ndarray
         The status codes of each slice's leaf corners (0 where one has no weight).
     """

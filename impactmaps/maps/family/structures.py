@@ -29,17 +29,15 @@ MAX_MODES = 80_000  # cost cap on the modes (all, incl. non-participating) below
 
 @dataclass(frozen=True)
 class MapStructure:
-    """A structure family (the targets one normalised map stands for), named by its map structure.
+    """A structure family (the targets one normalised map stands for).
 
     Parameters
     ----------
     kind : {"beam", "plate"}
-    theory : str
-        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES`; plate: one of
-        :data:`~impactmaps.targets.options.PLATE_THEORIES`.
-    supports : str
-        Beam: one of :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: 4-letter
-        edge code, e.g. "SSSS".
+    theory, supports : str
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES` and
+        :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: one of
+        :data:`~impactmaps.targets.options.PLATE_THEORIES` and an edge code, e.g. "SSSS".
     aspect_ratio : float
         Plate b/a [-] (ignored for beams).
     slenderness : float
@@ -152,14 +150,8 @@ MEMBER_STRUCTURES = tuple(
 
 class BasisTable:
     """All participating modes of a target up to some frequency, truncatable without
-    recomputation (the sliced-off modes join the residual exactly).
-
-    Attributes
-    ----------
-    basis : ModalBasis
-        The participating modes up to ``max_frequency`` [rad/s].
-    max_frequency : float
-        Cut-off [rad/s] the table was computed for.
+    recomputation: ``basis`` (the modes up to ``max_frequency`` [rad/s]) and
+    ``max_frequency``.
     """
 
     def __init__(self, target: Target, max_frequency: float, min_modes: int = 1):

@@ -125,22 +125,10 @@ def read_resource_arrays(source):
 
 # -- the packed format ---------------------------------------------------------------------
 def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=(), keep_exact=None) -> dict:
-    """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored variable.
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-    single : sequence of str
-        Float variables stored as float32 (read back as their dtype).
-    bfloat16_up : sequence of str
-        Non-negative float variables stored as the 16 high bits of their float32, rounded
-        up (a stored error estimate only grows, by less than 2⁻⁷ of itself).
-    keep_exact : dict of str to ndarray of bool, optional
-        For a ``bfloat16_up`` variable, where to keep its float32 value exactly (stored apart).
-
-    Returns
-    -------
-    dict of str to ndarray
+    """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored
+    variable. ``single``: variables stored as float32; ``bfloat16_up``: non-negative ones
+    stored as the 16 high bits of their float32, rounded up (an error estimate only grows,
+    by < 2⁻⁷); ``keep_exact``: where such a variable keeps its float32 value.
     """
     arrays, variables = {}, []
     for name in [*dataset.coords, *dataset.data_vars]:

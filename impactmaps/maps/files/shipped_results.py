@@ -32,20 +32,9 @@ def shipped_result_path(digest: str) -> Path:
 
 
 def load_shipped_result(digest: str, description: dict | None = None) -> xr.Dataset | None:
-    """The shipped result of the sweep with fingerprint ``digest``, or ``None``.
-
-    Parameters
-    ----------
-    digest : str
-        Fingerprint of the sweep description.
-    description : dict, optional
-        The description itself (a mismatch names the keys that changed).
-
-    Returns
-    -------
-    xarray.Dataset or None
-        ``None`` when none is shipped, or (with a warning) one that cannot be read or does
-        not match its name.
+    """The shipped result of the sweep with fingerprint ``digest``, or ``None`` when none is
+    shipped or (with a warning) one cannot be read or does not match; ``description`` names
+    the keys that changed.
     """
     try:
         return load_matching(shipped_result_path(digest), digest, description)

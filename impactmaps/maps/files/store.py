@@ -27,16 +27,8 @@ class StoreMismatchError(ValueError):
 
 
 class SweepInterrupted(KeyboardInterrupt):
-    """A sweep was interrupted (Ctrl-C); the points finished so far are saved.
-
-    Attributes
-    ----------
-    saved : int
-        Points of the grid computed and saved (including those of earlier runs).
-    total : int
-        Points of the whole grid.
-    path : Path or None
-        The result file (``None`` when the sweep had no file).
+    """A sweep was interrupted (Ctrl-C) after saving: ``saved`` of ``total`` grid points are in
+    ``path`` (``None`` without a file).
     """
 
     def __init__(self, saved: int, total: int, path=None):
@@ -91,26 +83,14 @@ def _differences(old, new, prefix: str = "") -> list[str]:
 
 def load_matching(path: str | os.PathLike, expected_fingerprint: str,
                   description: dict | None = None) -> xr.Dataset | None:
-    """Load a result file if it exists and was made by the same sweep description.
-
-    Parameters
-    ----------
-    path : path-like
-        The result file.
-    expected_fingerprint : str
-        :func:`fingerprint` of the sweep description.
-    description : dict, optional
-        The description itself; when given, a refusal names the keys that changed.
-
-    Returns
-    -------
-    xarray.Dataset or None
-        ``None`` if there is no file.
+    """The result file at ``path`` if it exists and was made by the sweep of
+    ``expected_fingerprint``; ``None`` without a file.
 
     Raises
     ------
     StoreMismatchError
-        (a ``ValueError``) if the file is unreadable or its fingerprint differs.
+        (a ``ValueError``) if the file is unreadable or its fingerprint differs, naming the
+        keys of ``description`` that changed when it is given.
     """
     path = Path(path)
     if not path.exists():

@@ -87,15 +87,11 @@ def _ramp_gap(modes, mass, state, force, s, work):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state, force, gap_end, separation,
                  work, h):
-    """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts.
-
-    The law is (``kernel``, ``params``, ``linear_stiffness``) at ``alpha_max`` [m];
-    ``modes`` the :class:`~impactmaps.solvers.integrator.kernel_types.KernelModes`, ``mass``
-    [kg]; ``state`` = (w_i, v_i, q, v) and ``force`` [N] at the step's start; ``gap_end`` [m]
-    the predicted gap at its end; ``work`` scratch. The root of the predicted gap minus
-    α_f is found by Brent's method (Brent 1973, ``zeroin``) to 1e-13 h. Returns s (on the
-    no-contact side of the root, or within 1e-11 of the bracket's gaps) and whether ``sub``
-    holds the step coefficients over s.
+    """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts, by
+    Brent's method on the predicted gap minus the no-force indentation (to 1e-13 h); the law
+    (``kernel``, ``params``, ``linear_stiffness``) at ``alpha_max`` [m], ``state`` = (w_i,
+    v_i, q, v) and ``force`` [N] at the step's start, ``gap_end`` [m] at its end. Returns s
+    and whether ``sub`` holds the step coefficients over s.
     """
     wi, vi, q, v = state
     phi = modes.participation

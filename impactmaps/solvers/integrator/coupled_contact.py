@@ -36,18 +36,9 @@ CONTACT_RESOLUTION = 1e-5
 
 @dataclass(frozen=True)
 class CoupledModes:
-    """The coupled modes of impactor + linear contact + retained modes.
-
-    Attributes
-    ----------
-    frequencies : ndarray, shape (n + 1,)
-        Ω_k [rad/s], ascending.
-    force_row : ndarray, shape (n + 1,)
-        c_k [N/m·sqrt(kg)]: ``F = Σ c_k η_k``.
-    from_coupled : ndarray, shape (n + 1, n + 1)
-        ``x = from_coupled @ η`` (x = (w_i, q_1 … q_n)).
-    to_coupled : ndarray, shape (n + 1, n + 1)
-        ``η = to_coupled @ x``.
+    """The coupled modes of impactor + linear contact + retained modes: ``frequencies`` Ω_k
+    [rad/s] ascending, ``force_row`` c_k (``F = Σ c_k η_k``), ``from_coupled`` (x =
+    from_coupled @ η, x = (w_i, q_1 … q_n)) and ``to_coupled`` (η = to_coupled @ x).
     """
 
     frequencies: np.ndarray
@@ -57,21 +48,9 @@ class CoupledModes:
 
 
 def coupled_modes(basis: ModalBasis, contact_stiffness: float, impactor_mass: float) -> CoupledModes | None:
-    """The coupled modes of a linear contact phase, or ``None`` where they do not apply.
-
-    Parameters
-    ----------
-    basis : ModalBasis
-        Retained modes (participations φ_j [1/sqrt(kg)]) and residual compliance r [m/N].
-    contact_stiffness : float
-        K [N/m] of the linear law.
-    impactor_mass : float
-        m_i [kg].
-
-    Returns
-    -------
-    CoupledModes or None
-        ``None`` for damped or rigid-body modes (ω_j = 0): the sampled scheme runs.
+    """The :class:`CoupledModes` of a linear contact phase on ``basis`` (φ_j [1/sqrt(kg)], r
+    [m/N]) with ``contact_stiffness`` K [N/m] and ``impactor_mass`` m_i [kg]; ``None`` for
+    damped or rigid-body modes (then the sampled scheme runs).
     """
     require_positive("contact_stiffness", contact_stiffness, "N/m")
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -138,29 +117,24 @@ def contact_phase(coupled, modes, limits, start, q, v, record, history, rec, two
 
     Parameters
     ----------
-    coupled : KernelCoupled
-        The coupled modes, the longest spacing of recorded rows in contact [s] and the
-        step factor (:class:`~impactmaps.solvers.integrator.kernel_types.KernelCoupled`).
-    modes : KernelModes
-        Retained modes [rad/s], participations and residual [m/N].
+    coupled, modes : KernelCoupled, KernelModes
+        The coupled modes and the retained modes.
     limits : tuple
-        (max_time [s], max_steps): the run's time limit and step budget.
+        (max_time [s], max_steps).
     start : tuple
         (t [s], w_i [m], v_i [m/s], peak [N], peak time [s], steps) at touchdown.
     q, v : ndarray
         Modal state at touchdown, overwritten with the state at the end.
     record, history, rec
-        Whether to record, the
-        :class:`~impactmaps.solvers.integrator.history_rows.HistoryRows` and its next row.
+        Whether to record, the history rows and the next row.
     two_rate : bool
-        Take coarse steps where proven to change nothing; ``False`` keeps the fine step.
+        Take coarse steps where proven to change nothing.
 
     Returns
     -------
     tuple
-        (t, wi, vi, force, peak, peak_time, steps, separated, history, rec) at the end of
-        the phase (``force`` 0 after a separation). A graze returns ``steps`` unchanged, a
-        round-off moment later (:func:`_least_advance`).
+        (t, wi, vi, force, peak, peak_time, steps, separated, history, rec) at the end
+        (``force`` 0 after a separation; a graze returns ``steps`` unchanged).
     """
     frequencies, force_row, from_coupled, to_coupled = (coupled.frequencies, coupled.force_row,
                                                         coupled.from_coupled, coupled.to_coupled)

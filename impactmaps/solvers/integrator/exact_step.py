@@ -235,26 +235,12 @@ def _exact_phase(args) -> bool | None:
 def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coupled, exact_phase):
     """Integrate one impact from first touch until re-impact is impossible.
 
-    Parameters
-    ----------
-    kernel, params : contact-law kernel and its parameter vector.
-    linear_stiffness : K [N/m] if the law is linear (closed-form contact solve), else 0.
-    modes, impact, run, coupled : KernelModes, KernelImpact, KernelRun, KernelCoupled
-        The modes, the impactor, the step and limits, and the coupled modes of a linear
-        contact (:mod:`impactmaps.solvers.integrator.kernel_types`); when these are given
-        (non-empty), every contact phase is propagated exactly through them and the step
-        serves free flight.
-    exact_phase : None or True
-        None: the variant without the exact contact phase (its branch is pruned when
-        compiling, so :func:`~impactmaps.solvers.integrator.coupled_contact.contact_phase` is not
-        compiled), for runs without coupled modes; True: with it (:data:`integrate_impact`).
-
-    Returns
-    -------
-    history : (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure (at most
-        ``run.max_rows`` rows; one row without ``run.record``).
-    intervals : (n_intervals, 2) array of contact start/end times [s].
-    scalars : KernelScalars
+    ``kernel``, ``params``: the contact law; ``linear_stiffness``: K [N/m] of a linear law,
+    else 0; ``modes``, ``impact``, ``run``, ``coupled``: the named tuples of
+    :mod:`~impactmaps.solvers.integrator.kernel_types` (non-empty ``coupled``: every contact
+    phase exact); ``exact_phase``: None compiles the variant without that phase, True with it.
+    Returns ``history`` ((rows, 8): t, F, α, w_i, v_i, w_t, v_t, E_structure; at most
+    ``run.max_rows``), ``intervals`` ((n, 2) contact start/end [s]) and :class:`KernelScalars`.
     """
     work = _workspace(modes, impact, run)
     history = new_history(min(work.max_steps + 1, 4096) if run.record else 1, run.max_rows)

@@ -35,18 +35,9 @@ def kernel_array(values: np.ndarray) -> np.ndarray:
 
 
 class KernelModes(NamedTuple):
-    """The retained modes at the impact point.
-
-    Attributes
-    ----------
-    frequencies : ndarray
-        ω_j [rad/s], ascending (C-contiguous float64, as all arrays here).
-    participation : ndarray
-        φ_j(x0) [1/sqrt(kg)], mass-normalised mode shapes at the impact point.
-    damping_ratios : ndarray
-        ζ_j [-].
-    residual : float
-        Residual compliance of the dropped modes [m/N].
+    """The retained modes at the impact point (C-contiguous float64 arrays): ``frequencies``
+    ω_j [rad/s] ascending, ``participation`` φ_j(x0) [1/sqrt(kg)], ``damping_ratios`` ζ_j [-],
+    ``residual`` compliance of the dropped modes [m/N].
     """
 
     frequencies: np.ndarray
@@ -63,22 +54,9 @@ class KernelImpact(NamedTuple):
 
 
 class KernelRun(NamedTuple):
-    """The step and the limits of one run.
-
-    Attributes
-    ----------
-    time_step : float
-        h [s].
-    max_time : float
-        Time limit [s].
-    record : bool
-        Store the history; otherwise only the scalars.
-    max_events : int
-        Capacity of the contact-interval table; a run with more contacts stops there.
-    max_rows : int
-        Most history rows a recorded run writes (``row_cap_reached`` when reached).
-    stop : ndarray
-        int64, one element: the run ends at its next step once set non-zero (Ctrl-C).
+    """The step and limits of one run: ``time_step`` h [s], ``max_time`` [s], ``record``,
+    ``max_events`` (interval-table capacity), ``max_rows`` (history cap) and ``stop`` (int64
+    flag: the run ends at its next step once it is non-zero).
     """
 
     time_step: float
@@ -90,17 +68,9 @@ class KernelRun(NamedTuple):
 
 
 class KernelCoupled(NamedTuple):
-    """The coupled modes of a linear contact (:class:`~impactmaps.solvers.integrator.coupled_contact.CoupledModes`),
-    empty arrays for the sampled contact phase.
-
-    Attributes
-    ----------
-    frequencies, force_row, from_coupled, to_coupled : ndarray
-        Ω_k [rad/s], c_k, and the transforms x = from_coupled η, η = to_coupled x.
-    row_spacing : float
-        Longest spacing of recorded rows in an exact contact phase [s].
-    step_scale : float
-        Factor on the contact phase's step [-].
+    """The coupled modes of a linear contact (empty arrays for the sampled phase):
+    ``frequencies`` Ω_k [rad/s], ``force_row`` c_k, ``from_coupled``, ``to_coupled``,
+    ``row_spacing`` of recorded rows [s] and ``step_scale`` [-].
     """
 
     frequencies: np.ndarray
