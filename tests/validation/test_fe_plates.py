@@ -312,6 +312,26 @@ def test_mindlin_ssss_static_patch_vs_3d():
     assert _patch_compliance(plate) == pytest.approx(fe, rel=5e-3)
 
 
+def test_the_contract_patch_model_without_the_near_field_is_too_compliant(monkeypatch):
+    """The flaw the near-field correction removes (docs/physics_contract.md §8, Correction):
+    the Hertz patch on a Mindlin plate *without* the near-field weights (the plate treated as
+    if it were not isotropic: the contract's §8 as first written) is more than 3 % more
+    compliant than the 3D solid's structural part (measured +4.4 % SSSS, +9 % CCCC): the local
+    deformation counted twice, once by the Hertz law and once by the plate's shear."""
+    from spring_integrator import halfspace_patch_compliance
+
+    from impactmaps.targets.plates import near_field, plate as plate_module
+    ssss_fe = (json.loads(LEVEL3_SSSS_MODES.read_text())["static_compliance_m_per_N"]
+               - halfspace_patch_compliance(PATCH_RADIUS, STEEL))
+    plate_module._plate_modes.cache_clear()  # a basis cached with the weights must not answer
+    try:
+        monkeypatch.setattr(near_field, "isotropic_constants", lambda plate: None)
+        unweighted = _patch_compliance(impactmaps.Plate.isotropic(0.2, 0.2, 0.01, STEEL, theory="mindlin"))
+    finally:
+        plate_module._plate_modes.cache_clear()  # nor one cached without them afterwards
+    assert unweighted > 1.03 * ssss_fe
+
+
 @pytest.mark.parametrize("case", _impact_cases(), ids=lambda c: f"cccc-mass×{c['mass_factor']:g}")
 def test_fe_cccc_impact_converged(case):
     """FE spring model (CCCC 3D modes): mesh, step and modes move the first-contact peak and
