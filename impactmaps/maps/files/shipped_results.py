@@ -1,17 +1,9 @@
 """Sweep results shipped with the package, found by the fingerprint of their sweep.
 
-A sweep (:func:`impactmaps.maps.compute.sweep.sweep`) is a pure function of its description —
-structures, grid, solver settings, contact law and solver revision — whose SHA-256 is
-the result's fingerprint (:func:`impactmaps.maps.files.store.fingerprint`). The package ships
-the results of the sweeps behind the default charts (``impactmaps chart`` and
-``impactmaps chart --law hertz`` with no other option: SS Euler beam and SS square
-Kirchhoff plate, 8 λ × 200 ζ; built by ``data_build/build_default_chart.py``) as
-``data/results/<fingerprint>.npz`` (:mod:`.data_io`). A sweep whose
-fingerprint names a shipped result starts from it as from a finished run to resume: no
-point is computed again, and the values are those the same code computed (a default test
-recomputes a sample of its points; the slow test all of them). Any other grid, setting or
-solver revision has another fingerprint and is computed: a shipped result never answers
-for a sweep it was not made by.
+A sweep is a pure function of its description, whose SHA-256 is its fingerprint; the
+package ships the results behind the default charts as ``data/results/<fingerprint>.npz``.
+A sweep whose fingerprint names one starts from it as from a finished run; any other
+sweep is computed.
 """
 
 from __future__ import annotations
@@ -40,21 +32,9 @@ def shipped_result_path(digest: str) -> Path:
 
 
 def load_shipped_result(digest: str, description: dict | None = None) -> xr.Dataset | None:
-    """The shipped result of the sweep with fingerprint ``digest``, or ``None``.
-
-    Parameters
-    ----------
-    digest : str
-        Fingerprint of the sweep description.
-    description : dict, optional
-        The description itself (a mismatch names the keys that changed).
-
-    Returns
-    -------
-    xarray.Dataset or None
-        ``None`` when the package ships no result for this sweep — or ships one that cannot
-        be read or does not match its name (a damaged installation): then a warning says
-        so and the sweep computes its points, as for any other sweep.
+    """The shipped result of the sweep with fingerprint ``digest``, or ``None`` when none is
+    shipped or (with a warning) one cannot be read or does not match; ``description`` names
+    the keys that changed.
     """
     try:
         return load_matching(shipped_result_path(digest), digest, description)
