@@ -114,7 +114,7 @@ def _environment(root: Path, **extra) -> dict:
 
 
 def _run(root: Path, code: str, *args: str, **extra) -> str:
-    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=root,
                           env=_environment(root, **extra), check=True).stdout.strip()
 
 
@@ -122,7 +122,8 @@ def _lookup(root: Path, case: Path, cache: Path) -> tuple[float, str]:
     """(wall time [s], peak force answer) of ``impactmaps lookup --case`` in a fresh process."""
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "impactmaps.cli", "lookup", "--case", str(case), "--json"],
-                          capture_output=True, text=True, env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache)))
+                          capture_output=True, text=True, cwd=root,  # -m and -c import from the working directory
+                          env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache)))
     seconds = time.perf_counter() - start
     try:
         answer = json.loads(done.stdout)
@@ -150,7 +151,8 @@ def main() -> None:
         rows = []
         for label, path in (("clamped Mindlin [45/0/-45/90]2s (general basis)", example),
                             ("SSSS Mindlin [0/90]4s (Navier)", twin)):
-            first, second, peak, modes, method = _run(root, _RUN_TWICE, str(path), str(warm)).split()
+            first, second, peak, modes, method = _run(root, _RUN_TWICE, str(path), str(warm),
+                                                      IMPACTMAPS_CACHE_DIR=str(folder / "simulate-cache")).split()
             rows.append(f"| {label} | {float(first):.2f} | {float(second):.3f} | {peak} | {modes} | {method} |")
         case, other = folder / "case.toml", folder / "other.toml"
         case.write_text(LOOKUP_CASE.format(velocity=5.4))
