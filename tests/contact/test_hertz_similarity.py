@@ -84,7 +84,9 @@ def test_patch_loaded_mindlin_plates_with_equal_hertz_and_patch_numbers_respond_
     case = realise_hertz(small, zeta_h, lambda_h, HertzContact(1.2e10))
     other = HertzContact(1.2e10, effective_radius=radius_for_patch_number(small, case.numbers, 0.5 * patch))
     moved = _normalised(im.simulate(small, other, case.mass, case.velocity, record=False), case.numbers)
-    assert abs(moved[0] - runs[0][0]) > 1e-4  # 1e5 times the similarity's agreement
+    # 1e4 times the similarity's agreement (with the 3D-consistent near field the patch radius
+    # matters less than it did: half the patch number moved F̄max by 1e-4 before, 5e-5 now)
+    assert abs(moved[0] - runs[0][0]) > 1e-5
 
 
 def test_realise_hertz_inverts_hertz_numbers():

@@ -174,11 +174,13 @@ def test_yigit_christoforou_from_a_sphere_spreads_over_the_patch_on_a_mindlin_pl
         for _ in range(2):
             settings = settings.refined()
             runs.append(simulate(plate, law, sphere.mass, 0.2390484560758856, settings=settings, record=False))
+        # Hertz at the refined settings too: the peaks are compared where both runs are
+        # converged well below the 1e-4 asked (at the default level each is ~3e-4 off)
         hertz = simulate(plate, law_for_sphere("hertz", sphere, aluminium), sphere.mass, 0.2390484560758856,
-                         record=False)
+                         settings=settings, record=False)
     values = [run.fmax_normalised for run in runs]
     assert max(values) - min(values) < 1e-3
-    assert runs[0].peak_force <= hertz.peak_force * (1.0 + 1e-4)
+    assert runs[-1].peak_force <= hertz.peak_force * (1.0 + 1e-4)
 
 
 def test_epp_says_when_its_options_are_not_this_pairs():
