@@ -40,7 +40,6 @@ import json
 import multiprocessing
 import os
 import pathlib
-import queue
 import subprocess
 import sys
 import time
@@ -96,23 +95,22 @@ def _solve(task) -> dict:
         return {"fmax_normalised": result.fmax_normalised, "n_modes": result.n_modes}
 
 
-def _worker(tasks, results, stop, wid) -> None:
+def _worker(conn) -> None:
+    """Run the tasks the driver sends on this worker's own pipe (``None`` ends it); report
+    ``start``, then ``done`` or ``fail``, on the same pipe."""
     while True:
-        item = tasks.get()
+        item = conn.recv()
         if item is None:
             return
         index, task = item
-        if stop.is_set():  # over the budget: the task is not run
-            results.put(("skip", wid, index))
-            continue
-        results.put(("start", wid, index, time.time()))
+        conn.send(("start", index, time.time()))
         start, cpu = time.perf_counter(), time.process_time()
         try:
             row = _solve(task)
-            results.put(("done", wid, index, row, time.perf_counter() - start, time.process_time() - cpu))
+            conn.send(("done", index, row, time.perf_counter() - start, time.process_time() - cpu))
         except Exception as error:  # reported as a failed point, the run goes on
-            results.put(("fail", wid, index, f"{type(error).__name__}: {error}", time.perf_counter() - start,
-                         time.process_time() - cpu))
+            conn.send(("fail", index, f"{type(error).__name__}: {error}", time.perf_counter() - start,
+                       time.process_time() - cpu))
 
 
 # -- driver side ---------------------------------------------------------------------------
@@ -121,65 +119,70 @@ def run_tasks(tasks, workers: int, point_cap: float, budget: float) -> list[dict
     its worker (which is replaced); after ``budget`` s no task starts. One outcome per task:
     ``{"state": "done"|"timeout"|"fail"|"budget", "row", "seconds", "cpu", "error"}``: ``seconds``
     the task's wall time, ``cpu`` the worker process's CPU time during it (``time.process_time``
-    in the worker; until 2026-11-26 the table's CPU column summed the wall times)."""
+    in the worker). Each worker has a pipe of its own: a worker killed mid-task (or mid-message)
+    takes its pipe with it and leaves no lock of a shared queue held for the others."""
+    from multiprocessing.connection import wait
+
     context = multiprocessing.get_context("fork")
-    task_queue, result_queue, stop = context.Queue(), context.Queue(), context.Event()
-    for index, task in enumerate(tasks):
-        task_queue.put((index, task))
     outcomes = [{"state": "budget"} for _ in tasks]
-    processes, running = {}, {}
-    next_id = 0
-
-    def spawn():
-        nonlocal next_id
-        process = context.Process(target=_worker, args=(task_queue, result_queue, stop, next_id), daemon=True)
-        process.start()
-        processes[next_id] = process
-        next_id += 1
-
-    for _ in range(workers):
-        spawn()
+    workers_by_conn, running = {}, {}
+    next_task = 0
     started = time.time()
-    remaining = len(tasks)
-    stopping = False
-    while remaining > 0 and processes:
-        if not stopping and time.time() - started > budget:
-            stopping = True
-            stop.set()  # the workers skip the tasks still queued: they stay "budget"
-        try:
-            message = result_queue.get(timeout=0.2)
-        except queue.Empty:
-            message = None
-        if message is not None:
-            kind, wid, index = message[:3]
-            if kind == "start":
-                running[wid] = (index, message[3])
-            elif kind == "skip":
-                remaining -= 1
-            else:
-                running.pop(wid, None)
-                remaining -= 1
-                if kind == "done":
-                    outcomes[index] = {"state": "done", "row": message[3], "seconds": message[4], "cpu": message[5]}
-                else:
-                    outcomes[index] = {"state": "fail", "error": message[3], "seconds": message[4],
-                                       "cpu": message[5]}
-        now = time.time()
-        for wid, (index, since) in list(running.items()):
-            if now - since > point_cap:
-                killed = processes.pop(wid)
-                killed.kill()
-                killed.join(timeout=5)  # reaped: its CPU time counts in RUSAGE_CHILDREN
-                running.pop(wid)
-                outcomes[index] = {"state": "timeout", "seconds": now - since}
-                remaining -= 1
+
+    def dispatch(conn) -> None:
+        nonlocal next_task
+        if next_task < len(tasks) and time.time() - started <= budget:
+            conn.send((next_task, tasks[next_task]))
+            next_task += 1
+        else:
+            conn.send(None)
+            workers_by_conn.pop(conn)[0].join(timeout=5)
+            conn.close()
+
+    def spawn() -> None:
+        ours, theirs = context.Pipe()
+        process = context.Process(target=_worker, args=(theirs,), daemon=True)
+        process.start()
+        theirs.close()
+        workers_by_conn[ours] = (process,)
+        dispatch(ours)
+
+    for _ in range(min(workers, len(tasks))):
+        spawn()
+    while workers_by_conn:
+        for conn in wait(list(workers_by_conn), timeout=0.2):
+            try:
+                message = conn.recv()
+            except EOFError:  # the worker died: its task failed, a new worker takes the next one
+                process = workers_by_conn.pop(conn)[0]
+                process.join(timeout=5)
+                if conn in running:
+                    index, since = running.pop(conn)
+                    outcomes[index] = {"state": "fail", "error": f"worker died (exit {process.exitcode})",
+                                       "seconds": time.time() - since}
+                conn.close()
                 spawn()
-    for _ in processes:
-        task_queue.put(None)
-    for process in processes.values():
-        process.join(timeout=5)
-        if process.is_alive():
-            process.kill()
+                continue
+            kind, index = message[:2]
+            if kind == "start":
+                running[conn] = (index, message[2])
+                continue
+            running.pop(conn, None)
+            if kind == "done":
+                outcomes[index] = {"state": "done", "row": message[2], "seconds": message[3], "cpu": message[4]}
+            else:
+                outcomes[index] = {"state": "fail", "error": message[2], "seconds": message[3], "cpu": message[4]}
+            dispatch(conn)
+        now = time.time()
+        for conn, (index, since) in list(running.items()):
+            if now - since > point_cap:
+                process = workers_by_conn.pop(conn)[0]
+                process.kill()
+                process.join(timeout=5)  # reaped: its CPU time counts in RUSAGE_CHILDREN
+                running.pop(conn)
+                conn.close()
+                outcomes[index] = {"state": "timeout", "seconds": now - since}
+                spawn()
     return outcomes
 
 
