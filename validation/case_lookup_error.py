@@ -40,7 +40,7 @@ import pandas as pd
 from impactmaps.cases import parse_case, run_case
 from impactmaps.dimensionless import realise
 from impactmaps.closed_forms.hertz_similarity import realise_hertz
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 
 from _script_options import parse
 
@@ -102,7 +102,7 @@ def measure(law: str, family: str, count: int, rng, cache_dir: Path) -> list[dic
         row = {"law": law, "family": family}
         start = time.perf_counter()
         try:
-            found = lookup_case(case, cache_dir=cache_dir)
+            found = lookup(case=case, cache_dir=cache_dir)
         except ValueError as error:
             rows.append(row | {"answered": False, "reason": str(error).split(";")[0][:120]})
             continue

@@ -30,8 +30,10 @@ import pandas as pd
 
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.compute.hertz_points import solve_hertz_points
-from impactmaps.maps.read.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
-from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
+from impactmaps.maps.read.lookup import design_formula
+from impactmaps.maps.files.shipped import ALL_MAP_LAWS, SHIPPED_MAPS, load_shipped_map, map_file_stem
+from impactmaps import lookup
+from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
 from impactmaps.maps.compute.plastic_points import ERROR_OF, solve_plastic_points
 from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 from impactmaps.maps.family.structures import structure_from_name
@@ -117,7 +119,7 @@ def main(argv=None) -> None:
 
 def measure_plastic(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
     """Random-point comparison of a plastic map's lookup against direct solves (all three quantities)."""
-    dataset = load_plastic_map(structure, theory, law)
+    dataset = load_shipped_map(structure, theory, law)
     rng = np.random.default_rng(seed)
     axes = {axis: np.exp(rng.uniform(*np.log([dataset[axis].min().item(), dataset[axis].max().item()]), points))
             for axis in ("beta", "zeta", "lambda_")}
@@ -128,7 +130,7 @@ def measure_plastic(structure: str, theory: str, law: str, points: int, seed: in
     found = []
     for beta, zeta, lam in zip(axes["beta"], axes["zeta"], axes["lambda_"]):
         try:
-            found.append(lookup_plastic(beta, zeta, lam, kind=structure, theory=theory, law=law))
+            found.append(lookup(beta, zeta, lam, kind=structure, theory=theory, law=law))
         except ValueError:  # next to an unresolved map point: refused
             found.append(None)
     for variable, error in ERROR_OF.items():

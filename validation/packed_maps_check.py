@@ -66,7 +66,7 @@ def use_data(folder: Path) -> None:
 
     lookup_module.read_shipped = plastic_lookup.read_shipped = read_shipped
     for cached in (lookup_module.load_shipped_map, lookup_module.load_shipped_refinement,
-                   plastic_lookup.load_plastic_map):
+                   plastic_lookup.load_shipped_map):
         cached.cache_clear()
 
 
@@ -74,7 +74,7 @@ def points(key, count: int) -> tuple:
     """The random numbers of a map (seeded by its key): (ζ, λ) or (β, ζ, λ), log-uniform inside it."""
     structure, theory, law, slenderness = key
     plastic = law in ("yc", "stronge", "epp")
-    dataset = (plastic_lookup.load_plastic_map(structure, theory, law) if plastic
+    dataset = (plastic_lookup.load_shipped_map(structure, theory, law) if plastic
                else lookup_module.load_shipped_map(structure, theory, law, slenderness))
     rng = np.random.default_rng([SEED, *map(ord, "-".join(map(str, key)))])
     axes = (["beta"] if plastic else []) + ["zeta", "lambda_"]
@@ -88,7 +88,7 @@ def answers(key, numbers) -> dict:
     refuses a point next to an unresolved one (it raises for the whole call)."""
     structure, theory, law, slenderness = key
     if law in ("yc", "stronge", "epp"):
-        dataset = plastic_lookup.load_plastic_map(structure, theory, law)
+        dataset = plastic_lookup.load_shipped_map(structure, theory, law)
         logs = _logs(dataset, ("beta", "zeta", "lambda_"), numbers)
         values, errors, codes = reader._read_cube(reader.prepare_map(dataset, map_family(law)), map_family(law), logs)
     else:

@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 from impactmaps.solvers.modal import simulate
 
 from _script_options import parse
@@ -72,7 +72,7 @@ def measure(case, law: str, cache_dir) -> dict:
     row = {"law": law, "target": case.target.map_structure().kind}
     start = time.perf_counter()
     try:
-        found = lookup_case(case, cache_dir=cache_dir)
+        found = lookup(case=case, cache_dir=cache_dir)
     except ValueError as error:
         return row | {"answered": False, "reason": str(error).split(";")[0][:160]}
     row |= {"answered": True, "lookup_seconds": time.perf_counter() - start, "map": found["map"],

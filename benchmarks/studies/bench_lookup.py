@@ -53,13 +53,14 @@ def _draw(rng, count: int, dataset=None) -> dict:
 def _reader(law: str, structure: str, theory: str):
     """``(read(numbers), dataset)``: a vectorised read of the family's shipped map."""
     if law in ("linear", "hertz"):
-        from impactmaps.maps.read.lookup import lookup
+        from impactmaps import lookup
 
         return (lambda n: lookup(n["zeta"], n["lambda_"], kind=structure, theory=theory, law=law)), None
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.files.shipped import load_shipped_map
+    from impactmaps import lookup
 
-    return ((lambda n: lookup_plastic(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
-                                      law=law)), load_plastic_map(structure, theory, law))
+    return ((lambda n: lookup(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
+                                      law=law)), load_shipped_map(structure, theory, law))
 
 
 def _case(rng, law: str, structure: str):
@@ -111,7 +112,7 @@ def _time(call, repeat: int = 1) -> float:
 
 def measure(points: int, singles: int, cases: int) -> dict:
     """The figures of this process's code (module docstring): row → name → seconds."""
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     warnings.simplefilter("ignore")
     out = {}
@@ -134,14 +135,14 @@ def measure(points: int, singles: int, cases: int) -> dict:
             answered += 1
             case = _case(rng, law, structure)
             try:
-                lookup_case(case, build=False)  # a case outside the map (plastic numbers fall where they fall)
+                lookup(case=case, build=False)  # a case outside the map (plastic numbers fall where they fall)
             except ValueError:
                 continue
             drawn.append(case)
         fresh_cases = [_case(rng, law, structure) for _ in range(cases)] if law in ("linear", "hertz") else drawn
-        case_fresh = _time(lambda: [lookup_case(case, build=False) for case in fresh_cases]) / len(fresh_cases)
+        case_fresh = _time(lambda: [lookup(case=case, build=False) for case in fresh_cases]) / len(fresh_cases)
         cpu["case_fresh"] = _CPU["last"] / len(fresh_cases)
-        case_again = _time(lambda: lookup_case(fresh_cases[0], build=False), 50)
+        case_again = _time(lambda: lookup(case=fresh_cases[0], build=False), 50)
         cpu["case_again"] = _CPU["last"]
         out[row] = {"vector": vector, "single_fresh": single_fresh, "single_again": single_again,
                     "case_fresh": case_fresh, "case_again": case_again, "points": points, "singles": singles,
@@ -157,7 +158,7 @@ def first_lookup(law: str, structure: str, theory: str, env: dict) -> float:
         call = f"lookup(1.0, 0.1, structure={structure!r}, theory={theory!r}, law={law!r})"
     else:
         imports = "from impactmaps.maps.read.plastic_lookup import lookup_plastic"
-        call = f"lookup_plastic(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
+        call = f"lookup(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
     script = FIRST.format(imports=imports, call=call)
     result = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, env=env,
                             cwd="/")

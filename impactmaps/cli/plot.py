@@ -89,7 +89,7 @@ def draw_sweep(source: Path, path: Path, lambdas=None, beta=None) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..maps.data_io import read_dataset
+    from ..maps.files.data_io import read_dataset
     from ..plotting import plot_fmax_chart
 
     try:

@@ -95,9 +95,7 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     ``lookup_plastic``) vectorised and one point at a time at in-range points, and
     ``lookup_case`` answers a case of every shipped family — the same answers as unpatched."""
     from impactmaps.maps.read import lookup as lookup_module
-    from impactmaps.cases.case_lookup import lookup_case
-    from impactmaps.maps.read.lookup import lookup
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps import lookup
 
     equivalence = _equivalence(monkeypatch)
     warnings.simplefilter("ignore")  # the Mindlin maps' point-load warning
@@ -115,7 +113,7 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
             calls.append((call, (numbers["zeta"], numbers["lambda_"])))
         else:
             def call(beta, zeta, lam, key=key):
-                found = lookup_plastic(beta, zeta, lam, kind=key[0], theory=key[1], law=key[2])
+                found = lookup(beta, zeta, lam, kind=key[0], theory=key[1], law=key[2])
                 return found.fmax_normalised, found.fmax_error, found.status, found.restitution
             calls.append((call, (numbers["beta"], numbers["zeta"], numbers["lambda_"])))
     cases = _family_cases()
@@ -126,14 +124,14 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     with monkeypatch.context() as patches:
         _patch_asymptotes(patches)
         answered = [(call(*arguments), call(*(values[0] for values in arguments))) for call, arguments in calls]
-        case_answers = [lookup_case(case, build=False) for case in cases]
+        case_answers = [lookup(case=case, build=False) for case in cases]
     for (call, arguments), (many, single) in zip(calls, answered):
         assert np.all(np.isfinite(many[0])) and np.all(np.isin(many[2], ["converged", "refined", "interpolated",
                                                                           "sensitive", "asymptotic"]))
         for got, want, one in zip(many, call(*arguments), single):
             np.testing.assert_array_equal(got, want)
             assert one == np.asarray(want)[0]
-    assert [lookup_case(case, build=False) for case in cases] == case_answers
+    assert [lookup(case=case, build=False) for case in cases] == case_answers
 
 
 def _family_cases() -> list:
@@ -234,7 +232,7 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
     bands and corner statuses of :func:`impactmaps.maps.family.refinement.interpolate`, at random
     positions, on grid lines and nodes and on the last row and column."""
     from impactmaps.maps.read.interpolator import PlaneInterpolator, grid_bilinear
-    from impactmaps.maps.read.lookup import load_shipped_map, load_shipped_refinement
+    from impactmaps.maps.files.shipped import load_shipped_map, load_shipped_refinement
     from impactmaps.maps.read.bands import interpolation_error
     from impactmaps.maps.family.refinement import Refinement, interpolate
 

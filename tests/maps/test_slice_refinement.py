@@ -162,7 +162,7 @@ def test_unrefined_slices_and_cells_answer_as_before(built):
 def test_a_sliced_refinement_is_read_only_with_its_map(built):
     """refinement_of takes a stored sliced refinement of this map, and refuses (warning, None) one
     built for another version of it or another β grid."""
-    from impactmaps.maps.read.lookup import refinement_of
+    from impactmaps.maps.files.shipped import refinement_of
 
     dataset, refinement = built
     stored = refinement.dataset({"base_fingerprint": "small"})

@@ -38,7 +38,7 @@ from .points import (
 )
 from ..family.map_family import map_family
 from ..files.data_io import read_dataset
-from ..files.shipped_results import load_shipped_result
+from ..files.shipped import load_shipped_result
 from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from ..family.structures import MapStructure, warn_point_loaded_mindlin
 from .workers import MAX_WORKERS, init_worker
@@ -163,7 +163,7 @@ def sweep(
     dataset, shipped = _resume(path, overwrite, grid)
     if shipped and progress:
         print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "
-              f"(impactmaps.maps.files.shipped_results, {grid.digest[:12]}…)", file=sys.stderr)
+              f"(impactmaps.maps.files.shipped, {grid.digest[:12]}…)", file=sys.stderr)
     done = dataset["done"].values.astype(bool)
     if progress and not shipped and path is not None and done.any():
         print(f"impact map: resuming {path}: {int(done.sum())} of {done.size} points already saved", file=sys.stderr)
@@ -284,7 +284,7 @@ def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "li
 def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:
     """(dataset, shipped): the stored result at ``path`` if it matches the grid's fingerprint
     (and not ``overwrite``), else the package's shipped result of this sweep
-    (:mod:`.shipped_results`, then written to ``path``; ``shipped`` True), else an empty one."""
+    (:mod:`impactmaps.maps.files.shipped`, then written to ``path``; ``shipped`` True), else an empty one."""
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)

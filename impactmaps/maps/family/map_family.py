@@ -74,7 +74,7 @@ def map_law(dataset) -> str:
     linear one, whose fingerprints predate it), in the ``contact_law`` attribute (the stored
     name of the map law, kept for the stored maps) and in the variables' descriptions.
     ``dataset``: an ``xarray.Dataset`` or a
-    :class:`~impactmaps.maps.files.map_arrays.MapArrays`.
+    :class:`~impactmaps.maps.files.data_io.MapArrays`.
     """
     return str(dataset.attrs.get("contact_law", "linear"))
 

@@ -1,8 +1,9 @@
-"""Lookups in the shipped elastic-plastic maps: F̄max, restitution and absorbed energy at (β, ζ, λ).
+"""Reading an elastic-plastic map: F̄max, restitution and absorbed energy at (β, ζ, λ).
 
 The maps (``impactmaps/maps/data/NAME-yc.npz``, ``NAME-stronge.npz`` and ``NAME-epp.npz``, built by
 ``data_build/build_plastic_maps.py``; numbers and scales in
-:mod:`impactmaps.maps.compute.plastic_points`) are interpolated linearly in (log β, log λ, log ζ).
+:mod:`impactmaps.maps.compute.plastic_points`) are interpolated linearly in (log β, log λ, log ζ)
+(:func:`impactmaps.lookup` with the law ``"yc"``, ``"stronge"`` or ``"epp"``).
 Each answer carries a band: over the eight map points around it, the largest of their own
 error (refinement, or half the spread of a sensitive point) plus the local interpolation
 error estimated from the map's second differences
@@ -17,22 +18,16 @@ without its band.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
-
 from typing import TYPE_CHECKING
 
-from ..._checks import require_choice
-from ..._renamed import renamed_keyword
-from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
-from ..files.data_io import read_shipped
-from .lookup import map_file_stem, missing_shipped_map, require_map_law, shipped_reader
+from ..family.builtin_families import LAYOUTS, family_layout
 from .reader import read_values
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "load_plastic_map", "lookup_plastic", "read_plastic"]
+__all__ = ["PLASTIC_MAPS", "BAND_SAFETY", "PlasticLookup", "read_plastic"]
 
 #: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
 #: patch depends on the sphere radius, a fourth number).
@@ -74,48 +69,6 @@ class PlasticLookup:
     law: str
 
 
-@functools.lru_cache(maxsize=8)
-def load_plastic_map(kind: str, theory: str, law: str) -> xr.Dataset:
-    """The shipped plastic map of ``kind`` in {"beam", "plate"}, its ``theory``, ``law`` in {"yc", "stronge", "epp"}."""
-    require_choice("law", law, tuple(PLASTIC_LAWS))
-    require_choice("(kind, theory)", (kind, theory), tuple(PLASTIC_MAPS))
-    name = map_file_stem(PLASTIC_MAPS[(kind, theory)], law)
-    dataset = read_shipped(name)
-    if dataset is None:
-        raise missing_shipped_map(name, law)
-    return require_map_law(dataset, law, f"shipped map {name}")
-
-
-@renamed_keyword("structure", "kind")
-def lookup_plastic(beta, loss_factor, relative_stiffness, *, kind: str = "plate", theory: str = "kirchhoff",
-                   law: str = "yc") -> PlasticLookup:
-    """F̄max, restitution and absorbed energy at (β, ζ, λ) from a shipped plastic map.
-
-    Parameters
-    ----------
-    beta, loss_factor, relative_stiffness : float or array_like
-        β, ζ(m, K_y) and λ = K_st/K_y [-] (:func:`impactmaps.maps.compute.plastic_points.plastic_numbers`),
-        inside the map's range.
-    kind, theory : str
-        A key of :data:`PLASTIC_MAPS`.
-    law : {"yc", "stronge", "epp"}
-
-    Returns
-    -------
-    PlasticLookup
-
-    Raises
-    ------
-    ValueError
-        Outside the map's range (naming the number and the range), or where a map point
-        around the answer is ``unresolved`` (holds no value).
-    """
-    require_choice("law", law, tuple(PLASTIC_LAWS))
-    prepared, name = shipped_reader(kind, theory, law)
-    return read_plastic(None, law, (beta, loss_factor, relative_stiffness), name=name,
-                        where=f"{law} map {PLASTIC_MAPS[(kind, theory)]}", prepared=prepared)
-
-
 def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,
                  band_grids: dict | None = None, prepared=None, refinement=None) -> PlasticLookup:
     """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
@@ -144,7 +97,8 @@ def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, wh
     Raises
     ------
     ValueError
-        As :func:`lookup_plastic`.
+        Outside the map's range (naming the number and the range), or where a map point
+        around the answer is ``unresolved`` (holds no value).
     """
     reading = read_values(dataset, family_layout(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
                           where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
