@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from .._renamed import renamed_keyword
 from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS
 from ..maps.family.map_family import map_family
 from ..maps.family.structures import structure_from_name
@@ -28,6 +29,7 @@ from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, case_m
 __all__ = ["lookup", "case_slenderness", "map_for_case"]
 
 
+@renamed_keyword("structure", "kind")
 def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = None, law: str | None = None,
            slenderness: float | None = None, tolerance: float = 0.1, local_tolerance: float = 0.1,
            build: bool = True, cache_dir=None, notify=None, progress=None):
@@ -80,7 +82,7 @@ def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = No
         if cache_dir is not None or notify is not None or progress is not None:
             raise ValueError("cache_dir, notify and progress are for the map tile of a case (give case=...)")
         kind = "plate" if kind is None else kind
-        theory = (default_theory(kind) if kind in ("beam", "plate") else "kirchhoff") if theory is None else theory
+        theory = default_theory(kind) if theory is None else theory
         return point_answer(*numbers, kind=kind, theory=theory, law=law or "linear", slenderness=slenderness,
                             tolerance=tolerance, local_tolerance=local_tolerance)
     given = [name for name, value in (("numbers", numbers or None), ("kind", kind), ("theory", theory), ("law", law),
@@ -88,7 +90,7 @@ def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = No
     if given:
         raise ValueError(f"{', '.join(given)} with case: the case gives its numbers and the map that describes it "
                          "(leave them out)")
-    return _case_answer(case, build, cache_dir, notify, progress)
+    return _case_answer(case, build=build, cache_dir=cache_dir, notify=notify, progress=progress)
 
 def map_for_case(case) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.

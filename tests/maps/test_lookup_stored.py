@@ -185,7 +185,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
     and status bit for bit; a regime differs only at a point where the stored peaks'
     interpolation error (twice its largest at the grid cells' midpoints) reaches across a
     criterion, and at no more than :data:`REGIME_CHANGE_BOUND` of the points."""
-    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.maps.files.shipped import shipped_name
     from impactmaps.maps.read.lookup import shipped_reader
     from impactmaps.maps.read.reader import read_values
     from impactmaps.maps.family.map_family import map_family
@@ -197,7 +197,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
                if path.suffix in (".nc", ".npz")}
     for key in equivalence.shipped_keys():
         name = equivalence._name(key)
-        if not every and name not in _QUICK_MAPS and lookup_module._shipped_name(*key) in refined:
+        if not every and name not in _QUICK_MAPS and shipped_name(*key) in refined:
             continue
         numbers = {axis: recorded[f"{name}/{axis}"] for axis in ("beta", "zeta", "lambda_")
                    if f"{name}/{axis}" in recorded}
@@ -311,10 +311,10 @@ def test_the_prepared_map_follows_its_file(tmp_path, monkeypatch):
     warnings.simplefilter("ignore")
     first = lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0]
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is first
-    answer = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    answer = lookup_module.point_answer(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     changed = read_dataset(copy)
     changed["fmax_normalised"] = changed["fmax_normalised"] * 2.0
     save_atomic(changed, copy)
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is not first
-    again = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    again = lookup_module.point_answer(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     assert again == pytest.approx(2.0 * answer, rel=1e-12)

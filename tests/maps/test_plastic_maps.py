@@ -163,18 +163,18 @@ def test_lookup_plastic_refuses_next_to_an_unresolved_point():
     at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
     beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in zip(("beta", "lambda_", "zeta"), at))
     with pytest.raises(ValueError, match="holds no value .unresolved"):
-        lookup(beta, zeta, lam, kind="beam", theory="timoshenko")
+        lookup(beta, zeta, lam, kind="beam", theory="timoshenko", law="yc")
 
 
 def test_lookup_plastic_refuses_outside_the_map():
     from impactmaps import lookup
 
     with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
-        lookup(5000.0, 0.1, 0.1, kind="beam", theory="euler")
+        lookup(5000.0, 0.1, 0.1, kind="beam", theory="euler", law="yc")
     with pytest.raises(ValueError, match="relative_stiffness .* outside the shipped map: valid range is"):
-        lookup(10.0, 0.1, 0.005, kind="plate", theory="kirchhoff")
+        lookup(10.0, 0.1, 0.005, kind="plate", theory="kirchhoff", law="yc")
     with pytest.raises(ValueError, match="kind, theory"):
-        lookup(10.0, 0.1, 0.1, kind="plate", theory="mindlin")
+        lookup(10.0, 0.1, 0.1, kind="plate", theory="mindlin", law="yc")
 
 
 _YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 1.0\n'
@@ -271,7 +271,7 @@ def test_lookup_command_at_given_numbers():
     args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
     out = cmd_lookup(args)
-    assert out["fmax_normalised"] == lookup(100.0, 0.1, 0.5, kind="beam", theory="euler").fmax_normalised
+    assert out["fmax_normalised"] == lookup(100.0, 0.1, 0.5, kind="beam", theory="euler", law="yc").fmax_normalised
     assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
     with pytest.raises(ValueError, match="--beta is required with --law yc"):
         cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))

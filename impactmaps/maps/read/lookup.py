@@ -140,7 +140,7 @@ def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: 
     size = 3 if law in PLASTIC_LAWS else 2
     if len(numbers) != size:
         axes = "(beta, zeta, lambda)" if size == 3 else "(zeta, lambda)"
-        raise ValueError(f"a point of the {law} maps is {size} numbers {axes}, not {len(numbers)}")
+        raise ValueError(f"law = {law!r}: a point of its maps is {size} numbers {axes}, not {len(numbers)}")
     if size == 3:
         if slenderness is not None:
             raise ValueError(f"slenderness = {slenderness!r}: the {law} maps are at slenderness 20 only (leave it out)")
