@@ -69,6 +69,7 @@ _EXPORTS = {
     "hertz_numbers": "impactmaps.closed_forms.hertz_similarity",
     "realise_hertz": "impactmaps.closed_forms.hertz_similarity",
     "validity_warnings": "impactmaps.validity",
+    "ModelValidityWarning": "impactmaps._checks",
     "warn_if_invalid": "impactmaps.validity",
     # accuracy of map points
     "AccuracyControl": "impactmaps.maps.family.accuracy",

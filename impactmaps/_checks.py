@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = [
+    "ModelValidityWarning",
     "range_end_text",
     "require_positive",
     "require_nonnegative",
@@ -236,6 +237,10 @@ MIN_PLATE_SIDE_RATIO = 2.0
 #: Sizes above which a value is announced as unusual [m]: an impactor radius (a steel ball of
 #: 0.5 m weighs 4 t) and a plate's thickness or a beam's depth (millimetres typed as metres).
 UNUSUAL_SIZES_M = {"radius": 0.5, "thickness": 0.5, "height": 0.5}
+
+
+class ModelValidityWarning(UserWarning):
+    """A physical case lies outside the assumptions of the impact model."""
 
 
 class UnusualValueWarning(UserWarning):

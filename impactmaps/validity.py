@@ -82,34 +82,28 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import ModelValidityWarning
 from .contact.geometry import effective_modulus
+from .contact.range_checks import law_warnings
 from .contact.plastic.epp import LARGEST_SPHERE_COMPLIANCE
 from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
 
 __all__ = [
     "DEFLECTION_RATIO_LIMIT",
-    "INDENTATION_RATIO_LIMIT",
     "SPEED_RATIO_LIMIT",
     "YIELD_PRESSURE_FACTOR",
-    "ModelValidityWarning",
     "ForceAnswer",
     "case_warnings",
     "force_answer",
     "hertz_peak_pressure",
-    "law_warnings",
     "validity_warnings",
     "warn_if_invalid",
 ]
 
 YIELD_PRESSURE_FACTOR = 1.6  # mean contact pressure at yield / S_y of the softer body
-INDENTATION_RATIO_LIMIT = 0.1  # α_max / R
 SPEED_RATIO_LIMIT = 0.01  # V0 / sqrt(E/ρ) of the target
 DEFLECTION_RATIO_LIMIT = 0.5  # plate deflection / thickness
 INFINITE_STRUCTURE_METHODS = ("infinite-plate", "infinite-beam")
-
-
-class ModelValidityWarning(UserWarning):
-    """A physical case lies outside the assumptions of the impact model."""
 
 
 def hertz_peak_pressure(force, effective_modulus, radius):
@@ -227,32 +221,6 @@ def case_warnings(case, result=None, peak_force: float | None = None) -> list[st
     return validity_warnings(case.sphere, case.target_material, case.law, target, result)
 
 
-def law_warnings(law, result, radius=None) -> list[str]:
-    """The checks of :func:`validity_warnings` that need only the contact law and the run:
-    the indentation against the sphere radius and the ``epp`` law's calibrated range.
-
-    Parameters
-    ----------
-    law : ContactLaw
-        The law the run used.
-    result : ImpactResult
-        The run (its ``max_indentation`` [m]).
-    radius : float, optional
-        Sphere radius R [m]; default the law's own (its ``contact_radius_scale``; the
-        indentation check is skipped for a law without one).
-
-    Returns
-    -------
-    list of str
-        Empty when no check fails.
-    """
-    radius = law.contact_radius_scale if radius is None else radius
-    note = getattr(law, "calibration_note", None)
-    checks = (None if radius is None or np.ndim(radius) else _indentation(float(radius), result),
-              note(result.max_indentation) if note is not None and np.ndim(law.yield_strength) == 0 else None)
-    return [message for message in checks if message]
-
-
 def target_warnings(target, result) -> list[str]:
     """The checks of :func:`validity_warnings` that need only the structure and the run:
     a first contact beyond the shear theory's range, and a point load whose answer does not
@@ -362,15 +330,6 @@ def _pressure(sphere, target_material, law, result):
     return (f"contact pressure: the elastic Hertz peak pressure {pressure:.4g} Pa exceeds the "
             f"yield pressure {limit:.4g} Pa ({YIELD_PRESSURE_FACTOR} S_y, with S_y = {strength:.4g} Pa of the "
             f"{body}, the softer body): the contact yields; use a plastic law ('epp', calibrated on finite elements; or 'stronge', 'yigit-christoforou')")
-
-
-def _indentation(radius, result):
-    ratio = float(result.max_indentation) / radius
-    if not ratio > INDENTATION_RATIO_LIMIT:
-        return None
-    return (f"indentation: the largest indentation {float(result.max_indentation):.4g} m is "
-            f"{ratio:.3g} sphere radii (limit {INDENTATION_RATIO_LIMIT}): Hertz-type contact "
-            "laws assume a contact radius small against the sphere radius")
 
 
 def _speed(target_material, result):

@@ -15,7 +15,8 @@ from ..solvers.modal import simulate
 from ..solvers.mode_budget import ModeBudgetError
 from ..result import ImpactResult
 from .._files import written_atomically
-from ..validity import ModelValidityWarning, case_warnings
+from .._checks import ModelValidityWarning
+from ..validity import case_warnings
 from .case import Case
 from .numbers import case_numbers
 
@@ -137,7 +138,7 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
         Full result with histories.
     summary : dict
         :func:`case_summary` of the run (JSON-ready); each of its ``model_warnings`` is
-        also issued as a :class:`~impactmaps.validity.ModelValidityWarning`.
+        also issued as a :class:`~impactmaps._checks.ModelValidityWarning`.
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case (build one with load_case or parse_case)")

@@ -1,7 +1,7 @@
 """The ``impactmaps`` command line. Every subcommand accepts ``--json``.
 
 Subcommands: chart (the main job), point, asymptote, classify, lookup, sweep,
-simulate, fd, halfspace, restitution, plot, init, check, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
+simulate, fd, halfspace, restitution, plot, init, check, modes, warm-up, materials, laws. ``impactmaps SUBCOMMAND --help``
 documents each. Bad input exits with status 2 and one line naming the option as typed,
 its value and the valid range; Ctrl-C exits with status 130 (a sweep saves its points
 first). With ``--json`` the output is strict JSON: a quantity that does not exist
@@ -289,6 +289,9 @@ def _tool_parsers(add) -> None:
                    help="processes compiling at once (default 2; 1 compiles in this process)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
+    from .commands_modes import add_modes_command
+
+    add_modes_command(add)
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
 
 

@@ -222,7 +222,8 @@ def case_model_warnings(case, map_force) -> dict:
     each also issued as a warning (``check``, ``lookup --case``)."""
     import warnings
 
-    from ..validity import ModelValidityWarning, case_warnings
+    from .._checks import ModelValidityWarning
+    from ..validity import case_warnings
 
     messages = case_warnings(case, peak_force=map_force)
     for message in messages:

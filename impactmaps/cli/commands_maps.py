@@ -209,7 +209,7 @@ def cmd_point(args) -> dict:
     checked = settings.check_convergence
     with warnings.catch_warnings():
         if checked and target.point_load_diverges:  # the map point's own warning below says it
-            from ..validity import ModelValidityWarning
+            from .._checks import ModelValidityWarning
 
             warnings.filterwarnings("ignore", message="point load", category=ModelValidityWarning)
         result = _simulate_point(structure, target, args, replace(settings, check_convergence=False),

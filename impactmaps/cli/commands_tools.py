@@ -59,6 +59,7 @@ length_y = 0.25                 # [m]
 thickness = 0.004               # [m]
 material = "structural-steel"
 edges = "SSSS"                  # one letter per edge: S (simply supported), C (clamped), F (free)
+# edges = "CCCC"                # a clamped plate: any edges with either theory
 theory = "kirchhoff"            # "kirchhoff" or "mindlin"
 impact_point = [0.125, 0.125]   # [x0, y0] [m] (here the centre)
 
@@ -76,8 +77,9 @@ length_x = 0.2                  # [m]
 length_y = 0.2                  # [m]
 theory = "mindlin"              # laminates: first-order shear deformation
 edges = "SSSS"
+# edges = "CCCC"                # a clamped window (the drop-weight test: examples/drop_weight_quasi_isotropic.toml)
 impact_point = [0.1, 0.1]       # [m]
-# the stacking sequence: a catalogue ply, its angles [deg], mirrored when symmetric
+# the stacking sequence (D16, D26 kept; an unsymmetric layup, B ≠ 0, is refused): a catalogue ply, its angles [deg], mirrored when symmetric
 layup = { ply = "t300-934", angles_deg = [0, 90, 0, 90, 0], symmetric = true, ply_thickness = 0.000269 }
 # yield_strength = 3.0e8        # the laminate's contact strength [Pa], for the plastic laws
 

@@ -172,7 +172,7 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     Warns
     -----
     ModelValidityWarning
-        :func:`impactmaps.validity.law_warnings`: an indentation beyond 0.1 R, or beyond
+        :func:`impactmaps.contact.range_checks.law_warnings`: an indentation beyond 0.1 R, or beyond
         the ``epp`` law's calibration (the checks the ``halfspace`` command prints too).
     """
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -255,7 +255,8 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
         time_step=float(time_step if time_step is not None else contact_time / _HISTORY_SAMPLES),
         method="half-space",
     )
-    from ..validity import ModelValidityWarning, law_warnings  # beside the solvers: on use
+    from .._checks import ModelValidityWarning
+    from ..contact.range_checks import law_warnings
 
     for message in law_warnings(law, result):
         warnings.warn(message, ModelValidityWarning, stacklevel=2)

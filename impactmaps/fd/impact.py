@@ -20,7 +20,7 @@ from ..contact.contact_scale import reference_contact_stiffness
 from ..result import ImpactResult
 from ..solvers.run_budget import refuse_or_announce
 from ..targets.beams.beam import Beam
-from ..validity import ModelValidityWarning
+from .._checks import ModelValidityWarning
 from ._loop import Drive, Stepping, run_loop
 from .beam import FDBeam, FDSettings
 from .energy import impact_ledger

@@ -13,8 +13,10 @@ patch's modal transform, residual under the same patch; :attr:`ModalSettings.con
 converges in the cut-off. Every other target takes the point load.
 
 Mode cut-off rule: every participating mode with ``ω_j ≤ cutoff_ratio · ω`` is
-integrated (at least ``min_modes`` of them), where ``ω`` is the contact frequency; the
-rest enter through ``r``.
+integrated (at least ``min_modes`` of them, but with residual flexibility none above
+``MAX_CUTOFF_RATIO · ω`` = 10⁴ ω: those respond statically, and kept they swamped the
+coupled contact phase in round-off, :func:`~impactmaps.solvers.modal_run.static_floor`),
+where ``ω`` is the contact frequency; the rest enter through ``r``.
 
 Time step: ``Δt = min(time_step_ratio/ω, max(resolve_ratio/ω_top, Δt_content))``.
 ``ω_top`` is the highest natural frequency of the coupled impactor–contact–structure
@@ -188,8 +190,9 @@ def _warn_energy_ledger(result: ImpactResult, tolerance: float) -> None:
 
 def _warn_target_validity(target: Target, result: ImpactResult) -> None:
     """Issue :func:`impactmaps.validity.target_warnings` of a run on a structure as
-    :class:`~impactmaps.validity.ModelValidityWarning` (the checks that need no sphere)."""
-    from ..validity import ModelValidityWarning, target_warnings  # beside the solvers: on use
+    :class:`~impactmaps._checks.ModelValidityWarning` (the checks that need no sphere)."""
+    from .._checks import ModelValidityWarning
+    from ..validity import target_warnings  # beside the solvers: on use
 
     for message in target_warnings(target, result):
         warnings.warn(message, ModelValidityWarning, stacklevel=3)

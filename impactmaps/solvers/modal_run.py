@@ -27,7 +27,14 @@ from ..targets.base import DEGENERACY_TOLERANCE, ModalBasis, Target
 from .integrator.coupled_contact import CoupledModes, coupled_modes
 from .integrator.exact_step import STALL_LIMIT, integrate_impact
 from .integrator.kernel_types import KernelCoupled, KernelImpact, KernelModes, KernelRun, KernelScalars, kernel_array
-from .modal_settings import ConvergenceWarning, ModalDetails, ModalSettings, linear_stiffness, settings_dict
+from .modal_settings import (
+    MAX_CUTOFF_RATIO,
+    ConvergenceWarning,
+    ModalDetails,
+    ModalSettings,
+    linear_stiffness,
+    settings_dict,
+)
 from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import budget_cutoff
 from ..result import HISTORY_COLUMNS as COMMON_HISTORY_COLUMNS
@@ -71,13 +78,17 @@ def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius
     if cap is not None:
         max_frequency = min(max_frequency, float(cap))
     if isinstance(target, ModalBasis):  # (not a Target: no budget cut-off) the maps' runs, first
-        basis = target.participating().truncate(max_frequency, int(settings.min_modes))
+        basis = target.participating()
     elif isinstance(target, Target):
         max_frequency = budget_cutoff(target, max_frequency)  # never more modes than memory allows (simulate's plan)
         options = {} if contact_radius is None else {"contact_radius": contact_radius}
         basis = _participating_modes(target, max_frequency, int(settings.min_modes), options)
     else:
         raise ValueError(f"target = {target!r} is not a Target or a ModalBasis")
+    floor = int(settings.min_modes)
+    if settings.residual_flexibility:  # its residual carries the static modes
+        floor = static_floor(basis, contact_frequency, floor)
+    basis = basis.truncate(max_frequency, floor)
     if settings.residual_flexibility:
         return basis  # its residual is the one asked for
     return ModalBasis.from_validated(basis.frequencies, basis.participation, 0.0, basis.damping_ratios)
@@ -85,6 +96,20 @@ def basis_for(target, contact_frequency, settings: ModalSettings, contact_radius
 
 #: How far :func:`_participating_modes` raises the modes it asks a target for (× min_modes).
 _FLOOR_REQUEST_LIMIT = 64
+
+
+def static_floor(basis: ModalBasis, contact_frequency: float, min_modes: int) -> int:
+    """The mode floor a run keeps: ``min_modes``, but never a mode above
+    :data:`~impactmaps.solvers.modal_settings.MAX_CUTOFF_RATIO` (10⁴) times the contact
+    frequency ``contact_frequency`` [rad/s].
+
+    Such a mode responds statically to (10⁻⁴)² = 10⁻⁸ and the residual compliance carries
+    it. Kept, it made refinement diverge: the coupled contact phase's eigenproblem spans
+    (ω_max/ω)², and where the floor kept modes 10⁹ times above the contact frequency (SS
+    Euler beam, ζ = 440.656, λ = 912.912: 128 modes at the fifth refinement) its round-off
+    swamped the contact mode (F̄max 0.99997, then 1.0000, 6.6e-6 for the exact 0.99945).
+    """
+    return min(int(min_modes), basis.cutoff_count(MAX_CUTOFF_RATIO * float(contact_frequency), 0))
 
 
 def _participating_modes(target, max_frequency: float, min_modes: int, options: dict) -> ModalBasis:

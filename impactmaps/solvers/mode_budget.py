@@ -271,12 +271,14 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
     if not exceeds:
         return BasisPlan(METHODS[0], float(max_frequency), cap, omega)
     reflection = float(target.reflection_time(omega)) / omega
-    name, answer, peak_time = _infinite_structure(target, law, impactor_mass, velocity, stiffness,
-                                                  loss_factor, estimate)
+    name, answer, peak_time, contact_end = _infinite_structure(target, law, impactor_mass, velocity, stiffness,
+                                                               loss_factor, estimate)
     plan = BasisPlan(METHODS[0], cap, cap, omega, reflection, answer, name)
     many = (f"the cut-off {max_frequency:.4g} rad/s ({max_frequency / omega:.3g} ω) needs more than "
             f"{max_modes} modes")
-    if answer is not None and reflection >= ASYMPTOTE_REFLECTION_FACTOR * peak_time:
+    # exact for the whole event only: the contact must also end before the reflection returns
+    whole_event = math.isfinite(contact_end) and reflection >= contact_end
+    if answer is not None and reflection >= ASYMPTOTE_REFLECTION_FACTOR * peak_time and whole_event:
         return _replace(plan, METHODS[2], f"{many}; the first reflection returns after "
                         f"{reflection / peak_time:.3g} peak times: answered by the {name} asymptote")
     if cap >= MIN_CAPPED_CUTOFF_RATIO * omega:
@@ -288,8 +290,9 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
                "closed forms are those of Euler beams and Kirchhoff plates")
     else:
         returns = f"{reflection / peak_time:.3g} peak times" if answer is not None else "too early"
-        why = (f"a wave reflected from the boundary returns after {returns}, before the "
-               f"{ASYMPTOTE_REFLECTION_FACTOR:g} the infinite-structure solution needs")
+        why = (f"a wave reflected from the boundary returns after {returns} ({reflection:.3g} s), before the "
+               f"{ASYMPTOTE_REFLECTION_FACTOR:g} peak times and the end of the contact "
+               f"({contact_end:.3g} s) the infinite-structure solution needs")
     raise ModeBudgetError(f"its contact frequency {omega:.4g} rad/s is too high ({many}, and {why})",
                           impactor_mass, highest, stiffness)
 
@@ -299,21 +302,24 @@ def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:
 
 
 def _infinite_structure(target, law, impactor_mass, velocity, stiffness, loss_factor, estimate=False):
-    """(name, answer, peak time [s]) of the infinite-structure impact, or (None, None, nan);
-    ``estimate``: from the closed form at the reference stiffness, for any law (no integration)."""
+    """(name, answer, peak time [s], contact end [s], ``inf`` if it never ends) of the
+    infinite-structure impact, or (None, None, nan, nan); ``estimate``: from the closed form
+    at the reference stiffness, for any law (no integration)."""
     kind = getattr(target, "kind", None)
     if kind not in ("plate", "beam") or not has_classical_asymptote(target):
-        return None, None, math.nan
+        return None, None, math.nan, math.nan
     omega = math.sqrt(stiffness / impactor_mass)
     if law.linear_stiffness is not None or estimate:
         zeta = float(target.loss_factor(impactor_mass, stiffness)) if loss_factor is None else float(loss_factor)
         impact = target.infinite_structure_impact(zeta)
+        end = float(impact.contact_time) / omega if np.isfinite(impact.contact_time) else math.inf
         form = "linear, closed form" if law.linear_stiffness is not None else "any law"
-        return f"infinite-{kind} ({form})", impact, float(impact.peak_time) / omega
+        return f"infinite-{kind} ({form})", impact, float(impact.peak_time) / omega, end
     from ..closed_forms.law_asymptotes import asymptote  # scipy's integrators: only where an asymptote answers
 
     answer = asymptote(f"infinite-{kind}", target, law, impactor_mass, velocity)
-    return f"infinite-{kind} (any law)", answer, float(answer.peak_time)
+    end = float(answer.contact_time) if np.isfinite(answer.contact_time) else math.inf
+    return f"infinite-{kind} (any law)", answer, float(answer.peak_time), end
 
 
 # -- the infinite-structure answer as an ImpactResult ------------------------------------------

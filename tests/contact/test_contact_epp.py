@@ -186,10 +186,11 @@ def test_epp_mean_pressure_levels_off_beyond_the_calibration(share):
 
 def test_epp_half_space_impact_warns_beyond_the_calibrated_range():
     """halfspace_impact says when the run leaves the FE calibration (δ_m > 1000 δ_y), and is
-    silent inside it: the one check (validity.law_warnings) the CLI prints too."""
+    silent inside it: the one check (contact.range_checks.law_warnings) the CLI prints too."""
     import warnings
 
-    from impactmaps.validity import ModelValidityWarning, law_warnings
+    from impactmaps._checks import ModelValidityWarning
+    from impactmaps.contact.range_checks import law_warnings
 
     law = law_for(1e-3)
     mass = 0.004

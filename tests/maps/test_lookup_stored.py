@@ -20,6 +20,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
+from impactmaps.maps.read.bands import BAND_TOLERANCE
+
 from ..helpers import DATA, ROOT, VALIDATION, repository_module
 
 REFERENCE = DATA / "lookup_reference.npz"
@@ -204,13 +207,23 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
         new = equivalence.answers(key, numbers)
         answered = recorded[f"{name}/refusal"] == ""
         np.testing.assert_array_equal(new["refusal"].astype(str), recorded[f"{name}/refusal"])
-        for field in ("fmax", "status"):
-            np.testing.assert_array_equal(new[field][answered], recorded[f"{name}/{field}"][answered], err_msg=name)
+        np.testing.assert_array_equal(new["fmax"][answered], recorded[f"{name}/fmax"][answered], err_msg=name)
         # the packed refinements keep each point's own band to 8 bits, rounded up (maps/files/data_io.py):
-        # a band only widens, by less than 2⁻⁷
+        # a band only widens, by less than 2⁻⁷ — and since issue 40 by the floors of the points' own
+        # error (maps/family/accuracy.stated_error, applied when a map is read), by at most the larger floor
         band, recorded_band = new["band"][answered], recorded[f"{name}/band"][answered]
-        assert np.all(band >= recorded_band) and np.all(band <= recorded_band * (1 + 2.0**-7)), name
+        assert np.all(band >= recorded_band), name
+        assert np.all(band <= recorded_band * (1 + 2.0**-7) + REIMPACT_ERROR_FLOOR), name
+        # a status changes only where the floors widened a converged answer's band past the tolerance
+        status, recorded_status = new["status"][answered].astype(str), recorded[f"{name}/status"][answered].astype(str)
+        widened = np.isin(recorded_status, ["converged", "refined"]) & (band > BAND_TOLERANCE)
+        np.testing.assert_array_equal(np.where(widened, "interpolated", recorded_status), status, err_msg=name)
         differ = new["regime"][answered].astype(str) != recorded[f"{name}/regime"][answered]
+        # the classifier's rule since the recording: a peak before the first reflection is never
+        # quasi-static (maps/family/regimes.py): such points may move from quasi-static to
+        # infinite-structure anywhere, not only where the interpolation reaches across a criterion
+        differ &= ~((recorded[f"{name}/regime"][answered] == "quasi-static")
+                    & (new["regime"][answered].astype(str) == "infinite-structure"))
         total += int(answered.sum())
         if differ.any():
             changed += int(differ.sum())

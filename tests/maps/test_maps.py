@@ -399,7 +399,7 @@ def test_a_sweep_of_a_mindlin_plate_says_it_is_a_point_load():
 
     from impactmaps.maps.family.structures import MapStructure
     from impactmaps.maps.compute.sweep import sweep
-    from impactmaps.validity import ModelValidityWarning
+    from impactmaps._checks import ModelValidityWarning
 
     mindlin = MapStructure(kind="plate", theory="mindlin", supports="SSSS", slenderness=20)
     with warnings.catch_warnings(record=True) as caught:

@@ -241,3 +241,38 @@ def test_the_mode_floor_counts_the_modes_the_impact_point_sees(kind):
     point = solve_points(structure_from_name(name), [(zeta, lam)], ModalSettings())[0]
     assert result.n_modes == ModalSettings().min_modes
     assert abs(result.fmax_normalised - point["fmax_normalised"]) <= 1e-3 + point["fmax_error"]
+
+
+def test_refinement_converges_where_the_mode_floor_lies_far_above_the_contact_frequency():
+    """Issue 40 item 4: the SS Euler beam at ζ = 440.656, λ = 912.912 (fundamental 1.9e4 times
+    the contact frequency) drifted from the exact √(λ/(1+λ)) as the accuracy control refined
+    (0.99997 at step/32, 6.6e-6 at step/128: the mode floor's modes, 10⁹ ω up, swamped the
+    coupled eigenproblem in round-off). Now every level stays on the limit."""
+    import warnings
+
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import basis_table, table_runner
+    from impactmaps.maps.family.structures import MAX_MODES, structure_from_name
+    from impactmaps.solvers.mode_budget import frequency_cap
+
+    structure = structure_from_name("beam-ss-euler")
+    target, point = structure.build(), (440.656, 912.912)
+    run = table_runner(LINEAR, target, basis_table(structure, ModalSettings().min_modes),
+                       frequency_cap(target, MAX_MODES), point, LINEAR.realise(target, point), [])
+    exact = np.sqrt(point[1] / (1.0 + point[1]))
+    level, errors = ModalSettings(), []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(8):  # down to step/128, cut-off and mode floor ×128
+            errors.append(abs(run(level, 1.0).fmax_normalised - exact))
+            level = level.refined()
+    assert max(errors) < 1e-9, errors
+
+
+def test_the_mode_floor_keeps_no_mode_beyond_the_static_ratio():
+    from impactmaps.solvers.modal_run import static_floor
+
+    basis = ModalBasis(np.array([1.0, 10.0, 100.0, 1e3]), np.ones(4), 0.0)
+    assert static_floor(basis, 0.01, 4) == 3  # 1e3 rad/s lies beyond 1e4 × 0.01
+    assert static_floor(basis, 1.0, 4) == 4
+    assert static_floor(basis, 1.0, 2) == 2

@@ -578,12 +578,13 @@ def test_bad_input_messages_list_choices_and_range():
 
 
 @pytest.mark.parametrize("edges", ["CCCC", "CSCS", "CFFF", "SSSC"])
-def test_mindlin_with_other_edges_is_refused_by_value(edges):
-    """Scope: Mindlin is Navier (SSSS) only; other edges are a ValueError naming the option,
-    its value and what is supported (never NotImplementedError, which the CLI shows as a
-    traceback)."""
-    with pytest.raises(ValueError, match=f"theory = 'mindlin'.*edges = '{edges}'.*'SSSS'"):
-        orthotropic_plate(theory="mindlin", edges=edges)
+def test_mindlin_with_other_edges_is_a_bounded_ritz_plate(edges):
+    """Mindlin plates take any edges (issue 39; they were refused before): the general Ritz
+    basis, bounded, with frequencies below the Kirchhoff ones of the same plate."""
+    plate = orthotropic_plate(theory="mindlin", edges=edges)
+    assert plate.bounded_modes and not plate.uses_navier
+    kirchhoff = orthotropic_plate(theory="kirchhoff", edges=edges)
+    assert np.all(plate.natural_frequencies_hz(4) < kirchhoff.natural_frequencies_hz(4))
 
 
 def test_plate_modes_are_kept_per_cutoff():

@@ -8,8 +8,8 @@ import pytest
 import impactmaps as im
 from impactmaps.contact import Sphere, law_for_sphere
 from impactmaps.closed_forms.law_asymptotes import infinite_plate_impact, quasi_static_impact
+from impactmaps._checks import ModelValidityWarning
 from impactmaps.validity import (
-    ModelValidityWarning,
     hertz_peak_pressure,
     validity_warnings,
     warn_if_invalid,

@@ -219,7 +219,7 @@ def test_a_section_outside_the_checked_range_is_announced():
     first contact."""
     import warnings
 
-    from impactmaps.validity import ModelValidityWarning
+    from impactmaps._checks import ModelValidityWarning
 
     with pytest.warns(ModelValidityWarning, match="width/height = 2.16"):
         result = l5.fd_impact(50, 4, duration=0.003)

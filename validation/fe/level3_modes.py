@@ -125,12 +125,14 @@ def patch_weights(tri_ids, tri_xyz):
     return ids, w / w.sum(), float(area.sum())
 
 
-def build_deck(mesh, length, height, patch_ids, patch_w, n_modes, plate_width=None):
+def build_deck(mesh, length, height, patch_ids, patch_w, n_modes, plate_width=None,
+               clamped=False):
     """Quarter-model deck: static patch load step + *FREQUENCY step.
 
     Beam (``plate_width`` None): end face x = L/2 held in z.  Plate (square, side
     ``length`` = ``plate_width``): the side faces x = a/2 and y = a/2 held in z and in
-    their tangential direction (the hard simple support of level 1).
+    their tangential direction (the hard simple support of level 1); with ``clamped`` the
+    side faces held in x, y and z (the 3D clamp of level 6, PHYSICS.md §3.7).
     """
     x, y, z = mesh.coords.T
     tol = 1e-9
@@ -147,7 +149,10 @@ def build_deck(mesh, length, height, patch_ids, patch_w, n_modes, plate_width=No
     w("*BOUNDARY\nXSYM,1,1\nYSYM,2,2\nEND,3,3\n")
     if plate_width is not None:
         ct.write_nset(F, "YEND", mesh.nodes_where(np.isclose(y, plate_width / 2, atol=tol)))
-        w("*BOUNDARY\nEND,2,2\nYEND,1,1\nYEND,3,3\n")
+        if clamped:
+            w("*BOUNDARY\nEND,1,2\nYEND,1,3\n")
+        else:
+            w("*BOUNDARY\nEND,2,2\nYEND,1,1\nYEND,3,3\n")
     w("*STEP\n*STATIC\n*CLOAD\n")
     for node, weight in zip(patch_ids, patch_w):
         w(f"{node},3,{-weight:.12e}\n")
@@ -156,14 +161,15 @@ def build_deck(mesh, length, height, patch_ids, patch_w, n_modes, plate_width=No
     return "*HEADING\nlevel 3 quarter beam modes\n" + "".join(parts)
 
 
-def run(tag, length, width, height, patch_radius, refine, far_size, n_modes, plate=False):
+def run(tag, length, width, height, patch_radius, refine, far_size, n_modes, plate=False,
+        clamped=False):
     t0 = time.perf_counter()
     mesh, tri_ids, tri_xyz = quarter_beam_mesh(length, width, height, patch_radius,
                                                refine, far_size)
     mesh_time = time.perf_counter() - t0
     patch_ids, patch_w, patch_area = patch_weights(tri_ids, tri_xyz)
     deck = build_deck(mesh, length, height, patch_ids, patch_w, n_modes,
-                      plate_width=width if plate else None)
+                      plate_width=width if plate else None, clamped=clamped)
     dat, wall = ct.run_ccx(deck, tag, ct.WORK / "level3")
     text = dat.read_text()
     blocks = ct.parse_node_prints(text, "PATCH")
@@ -174,7 +180,7 @@ def run(tag, length, width, height, patch_radius, refine, far_size, n_modes, pla
     phi_patch = np.array([mean(b) for b in modes]) / 2.0
     out = ct.RESULTS / f"level3_modes_{tag}.npz"
     np.savez(out, omega=omega, participation=phi_patch, static_compliance=compliance)
-    meta = dict(tag=tag, structure="plate SSSS" if plate else "beam SS", length_m=length, width_m=width, height_m=height,
+    meta = dict(tag=tag, structure=("plate CCCC" if clamped else "plate SSSS") if plate else "beam SS", length_m=length, width_m=width, height_m=height,
                 patch_radius_m=patch_radius, patch_area_quarter_m2=patch_area,
                 patch_area_exact_quarter_m2=np.pi * patch_radius ** 2 / 4,
                 element_type=mesh.element_type, size_on_patch_m=patch_radius / refine,
@@ -205,9 +211,13 @@ def main():
     p.add_argument("--modes", type=int, default=60)
     p.add_argument("--plate", action="store_true",
                    help="square SSSS plate of side --length (= --width), thickness --height")
+    p.add_argument("--clamped", action="store_true",
+                   help="with --plate: the side faces fully held (CCCC, the 3D clamp)")
     a = p.parse_args()
+    if a.clamped and not a.plate:
+        p.error("--clamped needs --plate")
     run(a.tag, a.length, a.width, a.height, a.patch_radius, a.refine, a.far_size, a.modes,
-        plate=a.plate)
+        plate=a.plate, clamped=a.clamped)
 
 
 if __name__ == "__main__":

@@ -242,7 +242,9 @@ class HertzFamily(HertzLayout):
         capped = ratio * realised.omega > cap
         if capped and self.patch is None and has_classical_asymptote(target):
             infinite = _asymptote_row(_INFINITE[target.kind], target, zeta, lam)
-            if realised.reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]:
+            ends = infinite["contact_time_normalised"]  # exact for the whole event only (NaN: never ends)
+            if (realised.reflection >= ASYMPTOTE_REFLECTION_FACTOR * infinite["peak_time_normalised"]
+                    and realised.reflection >= ends):
                 return PointPlan(PlanMethod.ASYMPTOTE,
                                  exact_point(infinite | {"method": method_code(PlanMethod.ASYMPTOTE)}))
         if capped:  # its cut-off could not be refined: the map does not vouch for it

@@ -24,7 +24,7 @@ from ...targets.beams.beam import MIN_SLENDERNESS, Beam
 from ...targets.map_structure import reference_target
 from ...targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ...targets.plates.plate import Plate
-from ...validity import ModelValidityWarning
+from ..._checks import ModelValidityWarning
 from .builtin_families import MEMBER_SLENDERNESSES
 
 __all__ = ["MapStructure", "BasisTable", "DEFAULT_STRUCTURES", "structure_from_name",

@@ -208,7 +208,7 @@ def _file_identity(name: str):
 @functools.lru_cache(maxsize=64)
 def _shipped_sources(name: str) -> tuple[str, str]:
     """File-system paths of the shipped map ``name`` and of its refinement
-    (:func:`~impactmaps.maps.files.data_io.shipped_path`; "" where there is none)."""
+    (:func:`~impactmaps.maps.files.shipped.shipped_path`; "" where there is none)."""
     sources = (shipped_path(name), shipped_path("refinements", name))
     return tuple("" if source is None else str(source) for source in sources)
 

@@ -21,6 +21,7 @@ neighbouring (λ, ζ) slice's refined leaf where there is one, then across the e
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from typing import TYPE_CHECKING, NamedTuple
@@ -28,7 +29,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from ..._checks import describe_outside, require_positive
-from ..family.accuracy import PointStatus
+from ..family.accuracy import PointStatus, stated_error
 from .interpolator import (
     PlaneInterpolator,
     clip,
@@ -157,6 +158,12 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefi
         times = tuple(name for name in ("log_peak_time", "log_reflection_time") if name in dataset)
         tables = {name: np.array(dataset[name].isel(structure=0).values)
                   for name in ["fmax_normalised", *times, "fmax_error", "status"]}
+        # a map stored before the error floor states its points' bare change: floored here (idempotent)
+        tables["fmax_error"] = stated_error(tables["fmax_error"], tables["status"],
+                                            dataset["impacts"].isel(structure=0).values if "impacts" in dataset else None)
+        if refinement is not None and refinement.codes.size:
+            refinement = dataclasses.replace(refinement, values=refinement.values | {"fmax_error": stated_error(
+                refinement.values["fmax_error"], refinement.values["status"])})
         if error_grid is None:
             error_grid = interpolation_error(tables["fmax_normalised"])
         plane = PlaneInterpolator({name: tables[name] for name in ("fmax_normalised", "fmax_error", "status")},
@@ -183,7 +190,7 @@ def _slice_planes(dataset: xr.Dataset, tables: dict, family, refinement: SlicedR
         raise ValueError(f"refinement: a map of grid {fmax.shape} takes a SlicedRefinement of that grid, "
                          f"not {getattr(refinement, 'shape', refinement)}")
     plane, extra = slice_estimates(fmax, family)
-    own = np.asarray(dataset[family.errors["fmax_normalised"]].isel(structure=0).values)
+    own = stated_error(np.asarray(dataset[family.errors["fmax_normalised"]].isel(structure=0).values), tables["status"])
     flat = {name: np.reshape(values, (-1, *fmax.shape[-2:]))
             for name, values in (("fmax_normalised", fmax), ("fmax_error", own), ("status", tables["status"]))}
     plane = np.reshape(plane, (-1, *fmax.shape[-2:]))

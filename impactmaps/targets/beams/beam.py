@@ -341,6 +341,24 @@ class Beam(Target):
             return math.inf
         return finite_element_resolution_limit(self.section)
 
+    def mode_table(self, count: int) -> dict:
+        """The lowest ``count`` natural frequencies [Hz] (``frequencies_hz``), with ``labels``
+        (the mode index from 1), ``method``, ``basis``, ``resolved_frequency_hz`` [Hz] and
+        ``resolved``, as :meth:`impactmaps.targets.plates.plate.Plate.mode_table`. Rigid-body modes
+        (free-free) are listed at 0 Hz."""
+        require_in_range("count", count, 1, 100000)
+        omega = np.asarray(self.modes(0.0, min_modes=int(count)).frequencies[:int(count)], dtype=float)
+        limit = float(self.resolution_limit())
+        return {"frequencies_hz": omega / (2.0 * math.pi), "labels": [str(i + 1) for i in range(omega.size)],
+                "method": f"{self.theory}, supports {self.supports}",
+                "basis": "finite elements" if self.bounded_modes else "closed form",
+                "resolved_frequency_hz": limit / (2.0 * math.pi),
+                "resolved": bool(omega.size == int(count) and (omega.size == 0 or omega[-1] <= limit))}
+
+    def natural_frequencies_hz(self, count: int) -> np.ndarray:
+        """The lowest ``count`` natural frequencies [Hz] of the beam, lowest first."""
+        return self.mode_table(count)["frequencies_hz"]
+
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
         """Mass-normalised deflection shapes W_j at ``points`` [m], shape (n_points, n_modes), of :meth:`modes`."""
         x = np.atleast_1d(np.asarray(points, dtype=float))

@@ -1,23 +1,16 @@
-"""Rectangular, specially orthotropic plates (Kirchhoff or Mindlin) as impact targets.
+"""Rectangular plates (Kirchhoff or Mindlin, isotropic or symmetric laminates) as impact targets.
 
-Simply supported plates (``edges="SSSS"``) use the Navier solution (docs/physics_contract.md §3.3):
-closed-form Kirchhoff frequencies, or per half-wave pair (m, n) the 3×3 Mindlin
-eigenproblem of seed 001 eqs (13)–(15). Any other combination of simply supported (S),
-clamped (C) and free (F) edges uses the Rayleigh–Ritz basis of
-:mod:`impactmaps.targets.plates.ritz` (Kirchhoff only). The Navier modes are in
-:mod:`impactmaps.targets.plates.plate_navier`, the Navier static series in
-:mod:`impactmaps.targets.plates.plate_static`; this module holds the :class:`Plate` dataclass,
-its constructors and the choice between Navier and Ritz.
+Specially orthotropic SSSS plates use the Navier solution (:mod:`~impactmaps.targets.plates.plate_navier`,
+static series :mod:`~impactmaps.targets.plates.plate_static`); Kirchhoff plates on other S/C/F edges the
+Ritz basis of :mod:`~impactmaps.targets.plates.ritz`; Mindlin plates on other edges and plates with
+D16, D26 or A45 the general basis (:mod:`~impactmaps.targets.plates.plate_any_edges`). This module holds
+the :class:`Plate` dataclass, its constructors and the choice (docs/plates_any_edges.rst).
 
 Conventions: the plate occupies ``0 ≤ x ≤ a``, ``0 ≤ y ≤ b``; the edge code lists the
-edges x = 0, y = 0, x = a, y = b in that order; ``s_m(x) = sin(mπx/a)``,
-``c_m(x) = cos(mπx/a)``; A55 is the xz and A44 the yz transverse shear stiffness.
-
-Static point stiffness (for λ, docs/physics_contract.md §1 and §3.3): always the *classical*
-(shear-rigid) value, also for ``theory="mindlin"``: with transverse shear the deflection
-under a point load diverges logarithmically, so the Mindlin point stiffness is zero.
+edges x = 0, y = 0, x = a, y = b in that order; A55 is the xz and A44 the yz transverse
+shear stiffness. The static point stiffness (for λ) is always the classical (shear-rigid)
+value: a Mindlin point-load deflection diverges logarithmically.
 """
-
 from __future__ import annotations
 
 import functools
@@ -41,7 +34,7 @@ from ...dimensionless import (
     loss_factor_plate,
 )
 from ...closed_forms import asymptotes
-from . import plate_navier, ritz
+from . import plate_any_edges, plate_navier, ritz
 from ..base import InfiniteImpact, ModalBasis, Target
 from ..options import PLATE_THEORIES, impact_coordinate_range
 from .plate_ritz import classical_static_compliance, ritz_plate_modes
@@ -74,7 +67,7 @@ class Plate(Target):
         ρh³/12 [kg], ≥ 0 (> 0 for Mindlin; unused by Kirchhoff).
     theory : {"kirchhoff", "mindlin"}, optional
         Plate theory. Kirchhoff: no shear deformation, no rotary inertia. Mindlin:
-        first-order shear deformation with rotary inertia (SSSS only).
+        first-order shear deformation with rotary inertia (any edges).
     edges : str, optional
         Four characters from {"S", "C", "F"} for the edges x = 0, y = 0, x = a, y = b
         (simply supported, clamped, free), e.g. "SSSS", "CCCC", "CSCS", "CFFF".
@@ -90,10 +83,8 @@ class Plate(Target):
 
     Notes
     -----
-    * SSSS uses Navier (exact), other edges the Kirchhoff Ritz basis of
-      :mod:`impactmaps.targets.plates.ritz` (cached, basis size chosen from ``max_frequency``).
-    * ``theory="mindlin"`` with edges other than "SSSS" raises ``ValueError`` (no Mindlin
-      Ritz basis).
+    * SSSS specially orthotropic uses Navier (exact); other plates a Ritz basis (cached,
+      sized from ``max_frequency``): :meth:`modes`.
     * λ uses the classical static stiffness (:meth:`static_compliance`).
     """
 
@@ -115,6 +106,9 @@ class Plate(Target):
     impact_point: tuple | None = None
     shear_correction: float = 5.0 / 6.0
     damping_ratio: float = 0.0
+    D16: float = 0.0  # noqa: N815
+    D26: float = 0.0  # noqa: N815
+    A45: float = 0.0  # noqa: N815
 
     def __post_init__(self):
         require_positive("length_x", self.length_x, "m")
@@ -128,6 +122,7 @@ class Plate(Target):
                          low_inclusive=False, high_inclusive=False, unit="N·m")
         require_positive("A44", self.A44, "N/m")
         require_positive("A55", self.A55, "N/m")
+        plate_any_edges.check_couplings(self)
         require_positive("mass_per_area", self.mass_per_area, "kg/m²")
         require_choice("theory", self.theory, PLATE_THEORIES)
         if self.theory == "mindlin":
@@ -151,7 +146,8 @@ class Plate(Target):
                              high_inclusive=high < span, unit="m")
         object.__setattr__(self, "impact_point", (x0, y0))
         for name in ("length_x", "length_y", "thickness", "D11", "D22", "D12", "D66", "A44", "A55",
-                     "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio"):
+                     "mass_per_area", "rotary_inertia_per_area", "shear_correction", "damping_ratio",
+                     "D16", "D26", "A45"):
             object.__setattr__(self, name, float(getattr(self, name)))  # hashable plain numbers
 
     # -- constructors -------------------------------------------------------------
@@ -177,21 +173,27 @@ class Plate(Target):
     def from_laminate(cls, length_x, length_y, laminate, **kwargs) -> "Plate":
         """Plate from a laminate (e.g. :class:`impactmaps.materials.Laminate`).
 
-        Uses the laminate's ``D11, D22, D12, D66`` [N·m], ``A44, A55`` [N/m],
-        ``mass_per_area`` [kg/m²], ``rotary_inertia_per_area`` [kg] and ``thickness`` [m].
-        Bending–twisting (D16, D26) and extension–bending (B) couplings are ignored by
-        the specially orthotropic model; a warning is issued when the laminate reports
-        ``is_specially_orthotropic = False``.
+        Uses the laminate's full bending stiffness (D11, D22, D12, D66, D16, D26) [N·m],
+        transverse shear stiffness (A44, A55, A45) [N/m], ``mass_per_area`` [kg/m²],
+        ``rotary_inertia_per_area`` [kg] and ``thickness`` [m]. Couplings whose ratio
+        (:meth:`~impactmaps.materials.Laminate.coupling_ratios`) is below
+        :data:`~impactmaps.materials._common.SPECIALLY_ORTHOTROPIC_RTOL` are round-off and
+        set to 0 (a specially orthotropic SSSS laminate keeps its Navier modes).
+
+        Raises
+        ------
+        ValueError
+            For an unsymmetric laminate (extension–bending coupling B ≠ 0): the plate
+            model has no membrane displacements, and dropping B would make the plate
+            stiffer than it is.
         """
-        if not bool(getattr(laminate, "is_specially_orthotropic", True)):
-            warnings.warn(
-                "laminate is not specially orthotropic: D16, D26 and B couplings are ignored "
-                "by the plate model", stacklevel=2)
+        d16, d26, a45 = plate_any_edges.laminate_couplings(laminate)
         return cls(length_x=length_x, length_y=length_y, thickness=float(laminate.thickness),
                    D11=float(laminate.D11), D22=float(laminate.D22), D12=float(laminate.D12),
                    D66=float(laminate.D66), A44=float(laminate.A44), A55=float(laminate.A55),
                    mass_per_area=float(laminate.mass_per_area),
-                   rotary_inertia_per_area=float(laminate.rotary_inertia_per_area), **kwargs)
+                   rotary_inertia_per_area=float(laminate.rotary_inertia_per_area),
+                   D16=d16, D26=d26, A45=a45, **kwargs)
 
     # -- simple properties ----------------------------------------------------------
     @property
@@ -258,13 +260,46 @@ class Plate(Target):
         return InfiniteImpact(asymptotes.infinite_plate_peak(loss_factor),
                               asymptotes.infinite_plate_peak_time(loss_factor), contact, rebound)
 
+    @property
+    def bending_stiffness_matrix(self) -> np.ndarray:
+        """[[D11, D12, D16], [D12, D22, D26], [D16, D26, D66]] [N·m]."""
+        return np.array([[self.D11, self.D12, self.D16], [self.D12, self.D22, self.D26],
+                         [self.D16, self.D26, self.D66]])
+
+    @property
+    def uses_navier(self) -> bool:
+        """True for the specially orthotropic SSSS plate (Navier modes, exact)."""
+        return self.edges == "SSSS" and not plate_any_edges.uses_general_basis(self)
+
     def fundamental_frequency(self) -> float:
         """Lowest natural frequency ω_1 [rad/s] of the plate (any theory and edges)."""
+        if plate_any_edges.uses_general_basis(self):
+            return float(plate_any_edges.all_modes(self, 1)[0][0])
         if self.edges == "SSSS":
             return float(self._navier_frequencies(np.array([1.0]), np.array([1.0]))[0])
         args = (self.length_x, self.length_y, self.D11, self.D22, self.D12, self.D66, self.mass_per_area)
         n_x, n_y, _, _ = ritz.ritz_basis_size(0.0, *args)
         return float(ritz.solve_ritz_plate(*args, self.edges, n_x, n_y).frequencies[0])
+
+    def mode_table(self, count: int) -> dict:
+        """The lowest ``count`` natural frequencies with labels and the basis that gave them:
+        ``frequencies_hz`` (ndarray, lowest first) [Hz], ``labels`` (``"(m, n)"`` half-waves
+        for a Navier plate, else the index from 1), ``method``, ``basis``,
+        ``resolved_frequency_hz`` [Hz] (``inf`` for Navier) and ``resolved`` (every mode
+        returned lies below it) (:func:`~impactmaps.targets.plates.plate_any_edges.mode_table`)."""
+        return plate_any_edges.mode_table(self, count)
+
+    def natural_frequencies_hz(self, count: int) -> np.ndarray:
+        """The lowest ``count`` natural frequencies [Hz] of the plate's bending modes, lowest
+        first (any theory, edges and laminate; :meth:`mode_table`). Warns when some are
+        above what the largest basis resolves."""
+        table = self.mode_table(count)
+        if not table["resolved"]:
+            warnings.warn(
+                f"count = {count}: the largest Ritz basis ({table['basis']}) resolves modes up to "
+                f"{table['resolved_frequency_hz']:.6g} Hz only; the frequencies above it "
+                f"(and any missing) are not converged", stacklevel=2)
+        return table["frequencies_hz"]
 
     # -- Target interface -------------------------------------------------------------
     def static_compliance(self) -> float:
@@ -282,6 +317,8 @@ class Plate(Target):
         CFCF/CCSS/CFFF), against 2e-3 – 5e-3 for the plain Ritz value. Used for λ also when
         ``theory="mindlin"`` (the Mindlin point-load deflection is infinite).
         """
+        if self.D16 != 0.0 or self.D26 != 0.0:
+            return plate_any_edges.classical_compliance(self)
         return classical_static_compliance(self.length_x, self.length_y, self.D11, self.D22,
                                            self.D12, self.D66, self.edges, self.impact_point)
 
@@ -324,66 +361,23 @@ class Plate(Target):
 
     @property
     def supports_contact_patch(self) -> bool:
-        """True when :meth:`modes` can spread the load over a contact patch (SSSS plates)."""
-        return self.edges == "SSSS"
+        """True when :meth:`modes` can spread the load over a contact patch: Navier plates,
+        Mindlin plates and plates with D16/D26/A45 (the general basis); not the
+        specially orthotropic Kirchhoff Ritz plates."""
+        return self.uses_navier or plate_any_edges.uses_general_basis(self)
 
     def modes(self, max_frequency: float, min_modes: int = 1,
               contact_radius: float | None = None) -> ModalBasis:
-        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``).
+        """All modes with ω_j ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), seen from
+        the impact point, with the residual compliance of the rest.
 
-        SSSS, Kirchhoff: ``ω_mn² = π⁴[D11 (m/a)⁴ + 2(D12+2D66)(m/a)²(n/b)² + D22 (n/b)⁴]/ρh``,
-        ``φ = (2/sqrt(ρh a b)) s_m(x0) s_n(y0)``.
-
-        SSSS, Mindlin: for each (m, n) the 3×3 problem ``(K − ω² M)[W, X, Y] = 0`` with
-        ``w = W s_m s_n``, ``ψx = X c_m s_n``, ``ψy = Y s_m c_n``, ``p = mπ/a``,
-        ``q = nπ/b``::
-
-            K = [[kA55 p² + kA44 q², kA55 p,                  kA44 q                 ],
-                 [kA55 p,            D11 p² + D66 q² + kA55, (D12 + D66) p q        ],
-                 [kA44 q,            (D12 + D66) p q,        D66 p² + D22 q² + kA44 ]]
-            M = diag(ρh, ρh³/12, ρh³/12)
-
-        Only the lowest (flexural) branch is kept. It is found with ``numpy.linalg.eigvalsh``
-        on the stacked, mass-scaled matrices and then polished by safeguarded Newton iteration on
-        the condensed scalar equation ``g·S C⁻¹ (B − λI) g − λρh = 0`` (``g = (p, q)``,
-        ``S = diag(kA55, kA44)``, ``B`` the 2×2 bending block, ``C = B + S − λI``, ``I``
-        the rotary inertia), which is free of the cancellation that limits ``eigh`` on
-        thin plates (condition ~ (a/h)⁴). The mode is normalised with
-        ``(ρh W² + ρh³/12 (X² + Y²)) ab/4 = 1`` and ``φ = W s_m(x0) s_n(y0)``.
-
-        The two thickness-shear branches per (m, n) are omitted: their frequencies lie
-        above ``sqrt(k min(A44, A55)/(ρh³/12))`` (the thickness-shear cut-off, far above
-        the contact frequencies of interest; a warning is issued when ``max_frequency``
-        exceeds it) and a transverse point load hardly excites them. Quantitatively, for
-        an isotropic plate (ν = 0.3) with h/a = 0.1 struck at the centre, the static
-        compliance ``W²/ω²`` carried by the two shear branches is 1.2e-5 of that of the
-        flexural branch for (m, n) = (1, 1) and at most 1.2% over all odd m, n ≤ 19
-        (largest where the half-wavelength approaches the thickness, at the limit of
-        Mindlin theory itself); checked in ``tests/targets/test_plate_targets.py``.
-
-        Residual compliance: Kirchhoff — exact classical static compliance minus the
-        retained ``Σ φ²/ω²``. Mindlin — the Mindlin point-load static deflection is
-        infinite, so the residual is defined as the *classical* compliance of the
-        dropped half-wave pairs: classical static compliance minus the classical
-        (Kirchhoff) modal compliance ``Σ φ_K²/ω_K²`` of the retained (m, n). It is
-        finite, ≥ 0, and tends to zero as the cut-off grows; it omits the (log-divergent)
-        shear flexibility of the dropped modes.
-
-        Other edges (Kirchhoff Ritz): all Ritz modes with ω ≤ ``max_frequency`` that the
-        basis resolves; residual = Ritz static compliance (:meth:`static_compliance`)
-        minus the retained modal compliance. The basis size follows
-        :func:`impactmaps.targets.plates.ritz.ritz_basis_size`; when ``max_frequency`` exceeds
-        what the largest allowed basis resolves, a warning is issued and the
-        unresolved modes are represented by the residual compliance only.
-
-        Contact patch (``contact_radius`` a_c > 0, SSSS only): the force is a Hertz
-        pressure ``∝ sqrt(1 − r²/a_c²)`` over the disc of radius a_c around the impact
-        point, and the deflection the contact sees is its pressure-weighted mean. Each
-        participation is multiplied by ``T(k a_c) = 3(sin x − x cos x)/x³``,
-        ``k = hypot(mπ/a, nπ/b)`` (:mod:`impactmaps.targets.patch`), and the residual is
-        the static compliance under the same patch of the pairs not retained, Mindlin
-        shear included (finite: the patch removes the point-load divergence). ``None``
-        or 0 is the point load (results unchanged).
+        SSSS specially orthotropic: Navier (Kirchhoff closed form; Mindlin the flexural
+        branch of the 3×3 problem per (m, n)). Kirchhoff on other edges: the Ritz basis of
+        :mod:`~impactmaps.targets.plates.ritz`. Mindlin on other edges, or D16/D26/A45: the general
+        basis (:mod:`~impactmaps.targets.plates.plate_any_edges`). A warning when ``max_frequency``
+        exceeds what the largest basis resolves (the rest is residual compliance) or, for a
+        Mindlin point load, the thickness-shear cut-off. Equations, residuals and measured
+        accuracy: docs/physics.rst (Plate targets) and docs/plates_any_edges.rst.
 
         Parameters
         ----------
@@ -392,9 +386,9 @@ class Plate(Target):
         min_modes : int, optional
             Minimum number of modes returned (the lowest ones), ≥ 1.
         contact_radius : float, optional
-            Contact-patch radius [m], ≥ 0 and smaller than the distance from the impact
-            point to the nearest edge; SSSS plates only (``ValueError`` for
-            Ritz plates when > 0).
+            Radius [m] of the Hertz pressure disc the load is spread over (≥ 0, smaller than
+            the distance to the nearest edge; ``None`` or 0: a point load); not on
+            specially orthotropic Kirchhoff Ritz plates (:attr:`supports_contact_patch`).
 
         Returns
         -------
@@ -411,21 +405,24 @@ class Plate(Target):
         modes :meth:`modes` resolves (a bounded model, built).
         """
         require_nonnegative("max_frequency", max_frequency, "rad/s")
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return plate_navier.navier_mode_count(self, float(max_frequency), limit)
         return super().mode_count(max_frequency, limit)
 
     @property
     def bounded_modes(self) -> bool:
-        """True for the Ritz plates (edges other than SSSS): a basis of bounded size."""
-        return self.edges != "SSSS"
+        """True for the Ritz plates (all but the Navier ones): a basis of bounded size."""
+        return not self.uses_navier
 
     def resolution_limit(self) -> float:
         """Highest frequency [rad/s] the plate's modes resolve: ``inf`` for SSSS (Navier,
         exact), else what the largest Ritz basis (:data:`ritz.MAX_FUNCTIONS` per direction)
         resolves (:attr:`ritz.RitzPlateSolution.resolved_frequency`)."""
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return math.inf
+        if plate_any_edges.uses_general_basis(self):
+            cap = plate_any_edges.max_functions(self.theory, plate_any_edges.class_groups(self)[0])
+            return plate_any_edges.resolved_frequency(self, cap, cap)
         return ritz.largest_resolved_frequency(self.length_x, self.length_y, self.D11, self.D22, self.D12,
                                                self.D66, self.mass_per_area)
 
@@ -434,9 +431,10 @@ class Plate(Target):
         Navier count of its simply supported twin (same stiffnesses), which differs from
         the Ritz count by the edges' boundary-layer term only — counting the Ritz modes
         would take the largest eigen-solution (seconds)."""
-        if self.edges == "SSSS":
+        if self.uses_navier:
             return 0
-        return plate_navier.navier_mode_count(replace(self, edges="SSSS"), self.resolution_limit(), None)
+        twin = replace(self, edges="SSSS", D16=0.0, D26=0.0, A45=0.0)
+        return plate_navier.navier_mode_count(twin, self.resolution_limit(), None)
 
     def _checked_contact_radius(self, contact_radius) -> float:
         """``contact_radius`` [m] validated (0.0 for a point load)."""
@@ -447,8 +445,9 @@ class Plate(Target):
         if contact_radius > 0.0 and not self.supports_contact_patch:
             raise ValueError(
                 f"contact_radius = {contact_radius!r} is not supported with edges = {self.edges!r}: "
-                "the contact patch is available on plates with edges = 'SSSS' only; valid: "
-                "contact_radius = 0 (point load) on other edges")
+                "the contact patch is available on SSSS, Mindlin and coupled (D16/D26) plates; "
+                "valid: contact_radius = 0 (point load) on a specially orthotropic Kirchhoff "
+                "plate with other edges")
         return float(contact_radius)
 
     def mode_shapes(self, points, max_frequency: float, min_modes: int = 1) -> np.ndarray:
@@ -490,6 +489,8 @@ def _checked_request(max_frequency, min_modes) -> tuple[float, int]:
 @functools.lru_cache(maxsize=8)
 def _plate_modes(plate: Plate, max_frequency: float, min_modes: int, contact_radius: float):
     """(:class:`ModalBasis`, mode-shape function of points) of :meth:`Plate.modes` (cached)."""
-    if plate.edges == "SSSS":
+    if plate.uses_navier:
         return plate_navier.navier_modes(plate, max_frequency, min_modes, contact_radius)
+    if plate_any_edges.uses_general_basis(plate):
+        return plate_any_edges.general_plate_modes(plate, max_frequency, min_modes, contact_radius)[:2]
     return ritz_plate_modes(plate, max_frequency, min_modes)

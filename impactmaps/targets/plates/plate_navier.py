@@ -20,7 +20,7 @@ from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
 
 
 __all__ = ["kirchhoff_eigenvalues", "mindlin_flexural", "navier_frequencies", "navier_mode_count",
-           "navier_modes", "navier_pairs"]
+           "navier_modes", "navier_pairs", "lowest_modes"]
 
 #: Half-wave numbers m counted at once by :func:`navier_mode_count` (bounds its memory).
 COUNT_CHUNK = 65536
@@ -311,6 +311,13 @@ def _lowest_modes(plate, max_frequency: float, min_modes: int):
     x0, y0 = plate.impact_point
     participation = amplitude * sin_pi(m * x0 / plate.length_x) * sin_pi(n * y0 / plate.length_y)
     return m, n, omega[keep], amplitude, participation
+
+
+def lowest_modes(plate, count: int):
+    """(m, n, ω [rad/s]) of the ``count`` lowest modes of an SSSS plate, ascending (ties by m,
+    then n): the labels and frequencies of ``impactmaps modes``."""
+    m, n, omega, _, _ = _lowest_modes(plate, 0.0, int(count))
+    return m, n, omega
 
 
 def _shape_function(plate, m, n, amplitude):

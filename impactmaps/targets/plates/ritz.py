@@ -19,9 +19,10 @@ frequencies decrease monotonically towards the exact ones as the basis grows, an
 point compliance obtained by a static solve with the Ritz stiffness matrix *increases*
 monotonically towards the exact one (both are minimum-energy statements).
 
-Only the Kirchhoff (shear-rigid, no rotary inertia) theory is implemented here; the
-Mindlin plate is available for simply supported edges through the Navier solution in
-:mod:`impactmaps.targets.plates.plate`.
+Only the specially orthotropic Kirchhoff (shear-rigid, no rotary inertia) plate is solved
+here; Mindlin plates on edges other than SSSS and plates with D16, D26 or A45 use the
+general basis of :mod:`impactmaps.targets.plates.plate_general` (same polynomials, one set per
+field).
 
 Basis-size rule (:func:`ritz_basis_size`): in each direction, take the largest number of
 half-waves ``m`` of a simply supported mode ``(m, 1)`` (or ``(1, n)``) with a frequency at
@@ -155,8 +156,7 @@ def has_rigid_body_freedom(edges: str) -> bool:
 
 def require_edges(edges, theory: str) -> None:
     """Raise ``ValueError`` unless ``edges`` is a known 4-character edge code that holds the
-    plate against rigid motion (:func:`has_rigid_body_freedom`) and suits ``theory`` (a
-    Mindlin plate has Navier modes: ``"SSSS"`` only)."""
+    plate against rigid motion (:func:`has_rigid_body_freedom`); any theory.""" 
     if not (isinstance(edges, str) and len(edges) == 4 and all(c in EDGE_CODES for c in edges)):
         raise ValueError(
             f"edges = {edges!r} is not known: valid values are 4-character codes of "
@@ -168,12 +168,6 @@ def require_edges(edges, theory: str) -> None:
             f"edges = {edges!r} is not supported: the plate can move as a rigid body "
             "(no clamped edge and at most one simply supported edge); its static point "
             "stiffness is zero"
-        )
-    if theory == "mindlin" and edges != "SSSS":
-        raise ValueError(
-            f"theory = 'mindlin' is not supported with edges = {edges!r}: a Mindlin plate "
-            "has edges = 'SSSS' only (Navier modes); valid: theory = 'kirchhoff' with any edges, "
-            "or theory = 'mindlin' with edges = 'SSSS'"
         )
 
 
