@@ -44,7 +44,7 @@ TOLERANCE = LOCAL_TOLERANCE = 0.1
 def shipped_keys() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map; law yc/stronge/epp: slenderness None."""
     from impactmaps.maps.files.shipped import SHIPPED_MAPS, map_file_stem, shipped_structure_name
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 
     data = ROOT / "impactmaps" / "maps" / "data"

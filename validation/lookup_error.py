@@ -12,7 +12,7 @@ Hertz infinite-structure and quasi-static peaks), written to
 validation/lookup_error_hertz.csv.
 
 With ``--law yc`` (``stronge`` or ``epp``) the same for the shipped elastic-plastic maps over
-(β, ζ, λ) (:mod:`impactmaps.maps.read.plastic_lookup`): N log-uniform random points inside each
+(β, ζ, λ) (:mod:`impactmaps.maps.read.lookup`): N log-uniform random points inside each
 map's box solved directly (:func:`~impactmaps.maps.compute.plastic_points.solve_plastic_points`)
 against the lookup of F̄max, restitution and absorbed energy with their bands, written to
 validation/lookup_error_yc.csv (``…_stronge.csv``, ``…_epp.csv``); no design formula.
@@ -33,7 +33,7 @@ from impactmaps.maps.compute.hertz_points import solve_hertz_points
 from impactmaps.maps.read.lookup import design_formula
 from impactmaps.maps.files.shipped import ALL_MAP_LAWS, SHIPPED_MAPS, load_shipped_map, map_file_stem
 from impactmaps import lookup
-from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+from impactmaps.maps.read.lookup import PLASTIC_MAPS
 from impactmaps.maps.compute.plastic_points import ERROR_OF, solve_plastic_points
 from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 from impactmaps.maps.family.structures import structure_from_name

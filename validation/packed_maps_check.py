@@ -35,7 +35,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
 from impactmaps.maps.files import shipped  # noqa: E402
-from impactmaps.maps.read import plastic_lookup  # noqa: E402
+from impactmaps.maps.read import lookup as plastic_lookup  # noqa: E402
 from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
 from impactmaps.maps.family.map_family import map_family  # noqa: E402

@@ -157,7 +157,7 @@ def first_lookup(law: str, structure: str, theory: str, env: dict) -> float:
         imports = "from impactmaps.maps.read.lookup import lookup"
         call = f"lookup(1.0, 0.1, structure={structure!r}, theory={theory!r}, law={law!r})"
     else:
-        imports = "from impactmaps.maps.read.plastic_lookup import lookup_plastic"
+        imports = "from impactmaps.maps.read.lookup import lookup_plastic"
         call = f"lookup(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
     script = FIRST.format(imports=imports, call=call)
     result = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, env=env,

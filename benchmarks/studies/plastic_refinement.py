@@ -22,7 +22,7 @@ import numpy as np
 
 from impactmaps.maps.files.data_io import read_dataset, write_dataset
 from impactmaps.maps.files.shipped import refinement_of
-from impactmaps.maps.read.plastic_lookup import read_plastic
+from impactmaps.maps.read.lookup import read_plastic
 from impactmaps.maps.files.shipped import load_shipped_map
 from impactmaps.maps.compute.plastic_points import solve_plastic_points
 from impactmaps.maps.family.structures import structure_from_name

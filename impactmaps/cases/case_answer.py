@@ -13,7 +13,7 @@ from .numbers import case_dimensionless
 from ..closed_forms.hertz_similarity import hertz_numbers
 from ..solvers.modal_settings import uses_patch, contact_radius_function
 from ..targets.map_structure import STRUCTURE_MATCH_RTOL
-from ..maps.read.bands import status_notes
+from ..maps.family.accuracy import status_notes
 from ..maps.read.lookup import point_answer
 from ..maps.family.map_family import available_map_families, map_family
 from ..maps.compute.plastic_points import plastic_numbers

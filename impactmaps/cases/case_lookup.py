@@ -66,7 +66,7 @@ def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = No
     -------
     LookupResult, PlasticLookup or dict
         At a point: a :class:`~impactmaps.maps.read.lookup.LookupResult`, or a
-        :class:`~impactmaps.maps.read.plastic_lookup.PlasticLookup` for an elastic-plastic law.
+        :class:`~impactmaps.maps.read.lookup.PlasticLookup` for an elastic-plastic law.
         For a case: a dict with ``peak_force_N`` and its band ``peak_force_error_N``,
         ``fmax_normalised``, ``fmax_error``, ``status``, ``zeta``, ``lambda``, ``map``, ``law``,
         ``force_scale_N`` (``regime`` for a linear or Hertz law; ``beta``, ``restitution`` and
@@ -100,7 +100,7 @@ def map_for_case(case) -> tuple[str, str]:
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
     ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
     (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same structures
-    except the Mindlin plate (:data:`impactmaps.maps.read.plastic_lookup.PLASTIC_MAPS`). The
+    except the Mindlin plate (:data:`impactmaps.maps.read.lookup.PLASTIC_MAPS`). The
     target names its reference structure (:meth:`Target.map_structure
     <impactmaps.targets.base.Target.map_structure>`); a case whose structure is no shipped
     map's is refused, never looked up in the nearest map.

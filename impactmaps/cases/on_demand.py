@@ -8,7 +8,7 @@ any supports, impact point, aspect ratio, slenderness and Poisson ratio;
 around the case's numbers, built once and cached (:mod:`impactmaps.maps.compute.tiles`): (ζ, λ) for
 a linear or Hertz law, (β, ζ, λ) for an elastic-plastic one (Yigit–Christoforou, default
 Stronge, default ``epp``; read as the shipped plastic maps,
-:func:`impactmaps.maps.read.plastic_lookup.read_plastic`). A Hertz impact that ``simulate``
+:func:`impactmaps.maps.read.lookup.read_plastic`). A Hertz impact that ``simulate``
 loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
 patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.closed_forms.hertz_similarity`); its tile is of
 that P.
@@ -28,7 +28,7 @@ from ..solvers.modal_settings import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
 from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from ..maps.read.lookup import read_map
-from ..maps.read.plastic_lookup import read_plastic
+from ..maps.read.lookup import read_plastic
 from ..maps.family.structures import MAX_MODES
 from ..maps.family.map_family import map_family
 from ..maps.family.structures import MapStructure

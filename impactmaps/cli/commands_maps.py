@@ -357,7 +357,7 @@ def cmd_classify(args) -> dict:
 
 def cmd_lookup(args) -> dict:
     from ..cases.case_lookup import lookup
-    from ..maps.read.bands import status_notes
+    from ..maps.family.accuracy import status_notes
 
     if args.case is not None:
         import sys
@@ -417,7 +417,7 @@ def cmd_lookup(args) -> dict:
 
 def _lookup_plastic_numbers(args, lookup) -> dict:
     """``lookup --law yc|stronge|epp --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
-    from ..maps.read.bands import status_notes
+    from ..maps.family.accuracy import status_notes
 
     beta = getattr(args, "beta", None)
     if beta is None:

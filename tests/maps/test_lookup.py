@@ -522,7 +522,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     and is wider than the points' tolerance. On a grid point the band is the point's own
     error and the status the point's."""
     from impactmaps.maps.family.accuracy import stated_error
-    from impactmaps.maps.read.bands import BAND_TOLERANCE, answer_status
+    from impactmaps.maps.family.accuracy import BAND_TOLERANCE, answer_status
 
     kink = lookup(0.33, 0.013, kind="beam", theory="euler")
     direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]

@@ -69,7 +69,7 @@ _PLASTIC_FIELDS = ("fmax_normalised", "fmax_error", "restitution", "restitution_
 @pytest.mark.parametrize("law", ["yc", "stronge", "epp"])
 def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law):
     """The (β, ζ, λ) maps: one point (``reader._read_cube_one``) against the vectorised read."""
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps import lookup
 
     rng = np.random.default_rng(29)

@@ -21,7 +21,7 @@ import pytest
 import xarray as xr
 
 from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
-from impactmaps.maps.read.bands import BAND_TOLERANCE
+from impactmaps.maps.family.accuracy import BAND_TOLERANCE
 
 from ..helpers import DATA, ROOT, VALIDATION, repository_module
 
@@ -246,7 +246,7 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
     positions, on grid lines and nodes and on the last row and column."""
     from impactmaps.maps.read.interpolator import PlaneInterpolator, grid_bilinear
     from impactmaps.maps.files.shipped import load_shipped_map, load_shipped_refinement
-    from impactmaps.maps.read.bands import interpolation_error
+    from impactmaps.maps.read.interpolator import interpolation_error
     from impactmaps.maps.family.refinement import Refinement, interpolate
 
     law = "hertz" if name.endswith("hertz") else "linear"

@@ -100,7 +100,7 @@ def test_numbers_refuse_other_laws():
 
 # -- the shipped maps ---------------------------------------------------------------------------
 def _shipped():
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps.maps.files.shipped import load_shipped_map
 
     return [load_shipped_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
@@ -287,7 +287,7 @@ def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
     ``data_build/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
     build resumes from (and is checked against) the same description, and the dataset a
     sweep writes has the shipped map's layout."""
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps.maps.files.shipped import load_shipped_map
     from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.maps.compute.sweep import sweep_fingerprint
@@ -401,7 +401,7 @@ def test_epp_maps_describe_only_their_options(option, value):
 
 
 def _epp_maps():
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps.maps.files.shipped import load_shipped_map
 
     return {name: load_shipped_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
@@ -447,7 +447,7 @@ def test_epp_lookups_against_committed_direct_runs():
     import pandas as pd
 
     from impactmaps.maps.files.shipped import map_file_stem
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps import lookup
     from impactmaps.maps.compute.plastic_points import ERROR_OF
 

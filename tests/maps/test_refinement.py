@@ -7,7 +7,7 @@ import pytest
 from scipy.interpolate import RegularGridInterpolator
 
 from impactmaps.maps.family.accuracy import STATUSES
-from impactmaps.maps.read.bands import interpolation_error
+from impactmaps.maps.read.interpolator import interpolation_error
 from impactmaps.maps.family.refinement import Refinement, interpolate, locate, refine
 
 from ..helpers import ROOT

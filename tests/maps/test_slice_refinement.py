@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 from impactmaps.maps.read.reader import prepare_map, read_values
-from impactmaps.maps.read.bands import slice_estimates
+from impactmaps.maps.read.interpolator import slice_estimates
 from impactmaps.maps.family.refinement import Refinement
 from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.family.slice_refinement import SlicedRefinement, read_slices, refine_slices

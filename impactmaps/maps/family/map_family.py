@@ -107,7 +107,7 @@ class Interpolation:
     ----------
     reach : int
         Neighbours each side over which a second difference is the largest
-        (:func:`impactmaps.maps.read.bands.interpolation_error`).
+        (:func:`impactmaps.maps.read.interpolator.interpolation_error`).
     safety : float
         Factor on the leading-order interpolation error ``h² |f''| / 8``.
     band_safety : float

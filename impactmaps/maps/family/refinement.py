@@ -21,7 +21,7 @@ the parent level made around it, which the leaf's interpolation at least halves 
 ~4× where F̄max is smooth) — and of the points its split neighbours placed on its edges
 (the interpolation across a neighbour's finer points is discontinuous by their surplus).
 A leaf of the map's own grid keeps the second-difference estimate
-(:func:`impactmaps.maps.read.bands.interpolation_error`).
+(:func:`impactmaps.maps.read.interpolator.interpolation_error`).
 
 **Building** (:func:`refine`): every leaf whose band (its corners' own error plus its
 interpolation estimate) exceeds the tolerance is split, round after round, until every
@@ -374,7 +374,7 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
         The base map's ``fmax_normalised``, ``fmax_error`` and ``status``, each a (λ, ζ) array.
     base_estimate : ndarray
         The base map's interpolation-error estimate per grid point
-        (:func:`impactmaps.maps.read.bands.interpolation_error`) [-].
+        (:func:`impactmaps.maps.read.interpolator.interpolation_error`) [-].
     coordinates : callable
         ``coordinates(row, col) -> (zeta, lambda_)``: the map's axes at fractional grid
         positions (log-linear between grid points).

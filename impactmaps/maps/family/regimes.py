@@ -50,11 +50,10 @@ _LOCAL, _INFINITE, _TRANSITION, _QUASI_STATIC = range(len(REGIMES))
 
 
 def quasi_static_peak(relative_stiffness, law: str = "linear"):
-    """Quasi-static normalised peak force [-]: sqrt(λ/(1+λ)) (eq 28) for the linear law.
-
-    With ``law="hertz"``, F_max/F_hs of the Hertz law in series with the static
-    stiffness at λ_h (:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`).
-    """
+    """Quasi-static normalised peak force [-] of the map law ``law``'s family: the linear law's is
+    the closed form sqrt(λ/(1+λ)) (eq 28, :func:`impactmaps.closed_forms.asymptotes.quasi_static_peak`);
+    the Hertz law's F_max/F_hs in series with the static stiffness at λ_h
+    (:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`)."""
     return _classifying(law).quasi_static_peak(relative_stiffness)
 
 

@@ -105,7 +105,7 @@ def refine_slices(bases: list, estimates: list, coordinates: Callable, solve: Ca
         ``status``, each a (λ, ζ) array.
     estimates : list of ndarray
         Per slice, the (λ, ζ) interpolation-error estimate per grid point [-]
-        (:func:`impactmaps.maps.read.bands.slice_estimates`).
+        (:func:`impactmaps.maps.read.interpolator.slice_estimates`).
     coordinates : callable
         ``coordinates(row, col) -> (zeta, lambda_)`` of the map's (λ, ζ) grid.
     solve : callable

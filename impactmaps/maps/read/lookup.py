@@ -4,12 +4,20 @@ The package ships precomputed maps (:mod:`impactmaps.maps.files.shipped`) for si
 supported structures struck at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
 square Kirchhoff and Mindlin plates (a/h = 20), for the linear contact law (axes ζ, λ), the
 Hertz law (ζ_h, λ_h; F̄max = F_max/F_hs, :mod:`impactmaps.closed_forms.hertz_similarity`) and
-the elastic-plastic laws (β, ζ, λ; :mod:`impactmaps.maps.read.plastic_lookup`). :func:`point_answer`
+the elastic-plastic laws (β, ζ, λ; :func:`read_plastic`). :func:`point_answer`
 reads any of them at a point, and the shear-deformable ones at any slenderness ≥ 10
 (:mod:`impactmaps.maps.read.slenderness`); :func:`impactmaps.lookup`
 (:func:`impactmaps.cases.case_lookup.lookup`) is the public door, which also answers a
 physical case. The interpolation error against direct simulation is measured by
 ``validation/lookup_error.py`` and quoted in the README.
+
+An elastic-plastic map is interpolated linearly in (log β, log λ, log ζ); each answer's band
+is, over the eight map points around it, the largest of their own error plus the local
+interpolation error from the map's second differences along the three axes
+(:func:`impactmaps.maps.read.interpolator.interpolation_error`), times :data:`BAND_SAFETY`;
+its coverage is measured by ``validation/lookup_error.py --law yc`` (``stronge``, ``epp``).
+A map may ship with a refinement of each β slice
+(:mod:`impactmaps.maps.family.slice_refinement`): F̄max is then read in its refined leaves.
 """
 
 from __future__ import annotations
@@ -26,7 +34,7 @@ import numpy as np
 from ..._checks import require_positive
 from ..._renamed import renamed_keyword
 from ...targets.options import point_load_diverges
-from ..family.builtin_families import PLASTIC_LAWS, family_layout
+from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
 from ..family.map_family import ASYMPTOTE_PEAKS
 from ..family.refinement import Refinement
 from ..family.regimes import classify, infinite_structure_peak, quasi_static_peak
@@ -37,7 +45,8 @@ from .reader import PreparedMap, prepare_map, read_values
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["LookupResult", "point_answer", "shipped_reader", "read_map", "design_formula", "markdown_table"]
+__all__ = ["LookupResult", "PlasticLookup", "PLASTIC_MAPS", "BAND_SAFETY", "point_answer", "shipped_reader", "read_map",
+           "read_plastic", "design_formula", "markdown_table"]
 
 
 @dataclass(frozen=True)
@@ -106,6 +115,88 @@ class LookupResult:
         return np.asarray(self.fmax_normalised) * np.asarray(impactor_mass) * np.asarray(velocity) * omega
 
 
+#: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
+#: patch depends on the sphere radius, a fourth number).
+PLASTIC_MAPS = LAYOUTS["yc"].shipped
+#: The interpolation estimate of the plastic maps (:func:`~impactmaps.maps.read.interpolator.interpolation_error`):
+#: second differences over one neighbour a side, safety factor 4, and the factor on the
+#: whole band (:class:`~impactmaps.maps.family.map_family.Interpolation` of the plastic families).
+_YC = LAYOUTS["yc"]
+PLASTIC_REACH, PLASTIC_SAFETY, BAND_SAFETY = _YC.interpolation.reach, _YC.interpolation.safety, _YC.interpolation.band_safety
+
+
+@dataclass(frozen=True)
+class PlasticLookup:
+    """Outcome of a lookup in a plastic map (scalars or arrays, all [-]).
+
+    Attributes
+    ----------
+    fmax_normalised, fmax_error : F_max/(m V0 ω_y) and its band half-width.
+    restitution, restitution_error : rebound speed / V0 and its band half-width.
+    absorbed_energy_fraction, absorbed_energy_error : contact dissipation / ½ m V0² and its band.
+    status : str or ndarray of str
+        Worst status of the eight map points around the answer (``sensitive`` >
+        ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused), and
+        ``interpolated`` where they converged but the F̄max band is wider than the points'
+        tolerance (:func:`impactmaps.maps.family.accuracy.answer_status`).
+    map_name : str
+    law : str
+        ``"yc"``, ``"stronge"`` or ``"epp"``.
+    """
+
+    fmax_normalised: object
+    fmax_error: object
+    restitution: object
+    restitution_error: object
+    absorbed_energy_fraction: object
+    absorbed_energy_error: object
+    status: object
+    map_name: str
+    law: str
+
+
+def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,
+                 band_grids: dict | None = None, prepared=None, refinement=None) -> PlasticLookup:
+    """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset or None
+        A map of the plastic family ``law`` over (β, λ, ζ) (None when ``prepared`` is given).
+    law : {"yc", "stronge", "epp"}
+    numbers : (β, ζ, λ)
+        Floats or arrays [-].
+    name, where : str
+        The map's name (the answer's ``map_name``) and how a refusal names it.
+    band_grids : dict, optional
+        :func:`~impactmaps.maps.read.reader.band_grid` of each interpolated quantity, when known.
+    prepared : PreparedMap, optional
+        The map already prepared (:func:`~impactmaps.maps.read.reader.prepare_map`).
+    refinement : SlicedRefinement, optional
+        The refinement of each β slice of ``dataset``
+        (:mod:`impactmaps.maps.family.slice_refinement`): F̄max is read in the slices' refined leaves.
+
+    Returns
+    -------
+    PlasticLookup
+
+    Raises
+    ------
+    ValueError
+        Outside the map's range (naming the number and the range), or where a map point
+        around the answer is ``unresolved`` (holds no value).
+    """
+    reading = read_values(dataset, family_layout(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
+                          where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
+                          prepared=prepared, refinement=refinement)
+    values = reading.values | reading.errors
+    status = reading.status
+    if not reading.shape:
+        values = {key: float(value) for key, value in values.items()}
+        status = str(status)
+    return PlasticLookup(status=status, map_name=name, law=law, **values)
+
+
 def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: str = "linear",
                  slenderness: float | None = None, tolerance: float = 0.1, local_tolerance: float = 0.1):
     """The shipped map's answer at a point: what :func:`impactmaps.lookup` returns for numbers.
@@ -130,7 +221,7 @@ def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: 
     Returns
     -------
     LookupResult or PlasticLookup
-        A :class:`~impactmaps.maps.read.plastic_lookup.PlasticLookup` for an elastic-plastic law.
+        A :class:`PlasticLookup` for an elastic-plastic law.
 
     Raises
     ------
@@ -144,8 +235,6 @@ def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: 
     if size == 3:
         if slenderness is not None:
             raise ValueError(f"slenderness = {slenderness!r}: the {law} maps are at slenderness 20 only (leave it out)")
-        from .plastic_lookup import PLASTIC_MAPS, read_plastic
-
         prepared, name = shipped_reader(kind, theory, law)
         return read_plastic(None, law, numbers, name=name, where=f"{law} map {PLASTIC_MAPS[(kind, theory)]}",
                             prepared=prepared)

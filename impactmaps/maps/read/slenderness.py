@@ -31,7 +31,7 @@ from ...targets.options import classical_theory, is_shear_deformable, point_load
 from ..family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS
 from ..family.map_family import map_family
 from ..files.shipped import load_shipped_map
-from .bands import SEVERITY, answer_status
+from ..family.accuracy import SEVERITY, answer_status
 
 __all__ = ["slenderness_members", "read_slenderness", "slenderness_error_grid", "shipped_for"]
 
