@@ -10,10 +10,7 @@ and the energy left in the plate.
     python examples/readme_example.py
 """
 
-from impactmaps.materials import material
-from impactmaps.targets.plates.plate import Plate
-from impactmaps.contact import Sphere, law_for_sphere
-from impactmaps.solvers.modal import simulate
+from impactmaps import Plate, Sphere, law_for_sphere, material, simulate
 
 plate = Plate.isotropic(0.3, 0.3, 0.004, material("aluminium-6061-t6"), theory="mindlin")
 sphere = Sphere(0.0127 / 2, material("structural-steel"))

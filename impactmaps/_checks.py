@@ -51,12 +51,8 @@ def describe_outside(value, low: float, high: float) -> str:
 
 
 def require_finite(name: str, value, unit: str = "") -> None:
-    """Raise ``ValueError`` unless every element of ``value`` is a finite real number.
-
-    A string is refused even when it spells a number (``"3"``): NumPy would convert it
-    here, and the arithmetic after the check would fail with a ``TypeError`` naming no
-    parameter.
-    """
+    """Raise ``ValueError`` unless every element of ``value`` is a finite real number (a
+    string is refused, even one that spells a number)."""
     if isinstance(value, (str, bytes)) or (isinstance(value, np.ndarray) and value.dtype.kind in "USO"):
         raise ValueError(f"{name} = {value!r} is a {type(value).__name__}, not a number{_unit(unit)}")
     try:
@@ -101,11 +97,8 @@ def require_in_range(
     high_inclusive: bool = True,
     unit: str = "",
 ) -> None:
-    """Raise ``ValueError`` unless every element of ``value`` lies in the interval.
-
-    The interval is ``[low, high]`` with each end open or closed as requested;
-    ``low``/``high`` may be ``-inf``/``inf``.
-    """
+    """Raise ``ValueError`` unless every element of ``value`` lies in ``[low, high]``, each end
+    open or closed as requested (``-inf``/``inf`` allowed)."""
     if _real_scalar(value) and _real_scalar(low) and _real_scalar(high) and math.isfinite(value):
         scalar = float(value)  # the common scalar case, without NumPy (NaN, ±inf: the checks below)
         below = scalar < low if low_inclusive else scalar <= low

@@ -1,9 +1,5 @@
-"""Strict JSON for every output: plain Python values, no NaN or Infinity.
-
-One sanitiser serves the command line, case summaries and sweep metadata. A
-non-finite float (a quantity that does not exist for this run, such as the
-restitution of a run that ended in contact) becomes ``null``; the writers that know
-why add a companion key saying so.
+"""Strict JSON for every output: plain Python values, no NaN or Infinity (a non-finite float
+becomes ``null``).
 """
 
 from __future__ import annotations
@@ -18,18 +14,9 @@ __all__ = ["plain", "dumps"]
 
 
 def plain(value):
-    """A copy of ``value`` made of JSON types only (``dict``, ``list``, ``str``, numbers,
-    ``bool``, ``None``); non-finite floats become ``None``, unknown objects their ``str``.
-
-    Parameters
-    ----------
-    value : object
-        Nested dicts, lists, tuples, NumPy arrays and scalars, paths, strings.
-
-    Returns
-    -------
-    object
-        The JSON-ready copy.
+    """A JSON-ready copy of ``value`` (nested dicts, lists, tuples, NumPy arrays and scalars,
+    paths, strings) made of JSON types only; non-finite floats become ``None``, unknown
+    objects their ``str``.
     """
     if isinstance(value, dict):
         return {str(k): plain(v) for k, v in value.items()}
@@ -49,17 +36,7 @@ def plain(value):
 
 
 def dumps(value, **options) -> str:
-    """Strict JSON text of ``value`` (via :func:`plain`; ``allow_nan=False``).
-
-    Parameters
-    ----------
-    value : object
-        Anything :func:`plain` accepts.
-    **options
-        Passed to :func:`json.dumps` (``indent``, ``sort_keys``).
-
-    Returns
-    -------
-    str
+    """Strict JSON text of ``value`` (via :func:`plain`; ``allow_nan=False``); ``options`` go to
+    :func:`json.dumps`.
     """
     return json.dumps(plain(value), allow_nan=False, **options)

@@ -1,8 +1,6 @@
 """The result of one impact, whichever solver produced it: labelled histories plus scalars.
 
-One type, one vocabulary. The modal solver, the half-space solver and the
-finite-difference beam all return :class:`ImpactResult`; what only one solver knows
-(the finite-difference beam's residual state and full energy ledger) travels in
+Every solver returns :class:`ImpactResult`; what only one solver knows travels in
 ``details``.
 """
 
@@ -31,22 +29,9 @@ HISTORY_COLUMNS = (
 
 
 def energy_balance_error(impactor_mass, velocity, rebound_velocity, *sinks) -> float:
-    """|E_in − (E_rebound + Σ sinks)| / E_in [-] of one impact.
-
-    Parameters
-    ----------
-    impactor_mass : float
-        m_i [kg].
-    velocity : float
-        Approach velocity V0 [m/s].
-    rebound_velocity : float
-        Rebound velocity [m/s].
-    *sinks : float
-        The other energies at the end of the run [J] (structure, contact, damping).
-
-    Returns
-    -------
-    float
+    """|E_in − (E_rebound + Σ sinks)| / E_in [-] of one impact of ``impactor_mass`` m_i [kg] at
+    ``velocity`` V0 [m/s] rebounding at ``rebound_velocity`` [m/s]; ``sinks``: the other
+    energies at the end [J].
     """
     impact = 0.5 * impactor_mass * velocity**2
     out = 0.5 * impactor_mass * rebound_velocity**2 + sum(sinks)
@@ -68,72 +53,46 @@ class ImpactResult:
     Attributes
     ----------
     history : pandas.DataFrame or None
-        Time histories, one row per recorded step, columns :data:`HISTORY_COLUMNS`
-        (``time_s, force_N, indentation_m, impactor_displacement_m,
-        impactor_velocity_m_s, target_displacement_m, target_velocity_m_s``; the target
-        displacement is that of the struck point, zero for a half-space) and solver
-        extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``; finite
-        difference: ``gauge{g}_deflection_m, gauge{g}_strain``). ``None`` when the run
-        kept scalars only.
-    peak_force : float
-        Largest contact force over the whole event, all impacts [N].
-    peak_time : float
-        Time of the peak force [s].
+        Time histories, one row per recorded step: :data:`HISTORY_COLUMNS` (SI units in
+        the names; the target's displacement is the struck point's) and solver extras.
+        ``None`` when the run kept scalars only.
+    peak_force, peak_time : float
+        Largest contact force over the whole event [N] and its time [s].
     contact_intervals : ndarray, shape (k, 2)
         Start and end time of each contact [s]; ``k`` is the number of impacts.
-    max_indentation : float
-        Largest indentation reached α_max [m].
-    permanent_indentation : float
-        Permanent indentation the contact law leaves after unloading from α_max [m]
-        (0 for elastic laws).
+    max_indentation, permanent_indentation : float
+        α_max and the permanent indentation after unloading from it [m].
     rebound_velocity : float
         Impactor velocity away from the target after its last separation [m/s];
         ``nan`` when the run ended before the sphere separated (a warning says so).
-    energy_transferred : float
-        Energy left in the structure at the end: vibration (kinetic + elastic) [J].
-    contact_dissipation : float
-        Energy dissipated in the contact zone, the law's own
-        ``dissipated_energy(α_max)`` [J].
-    damping_work : float
-        Energy dissipated by structural damping [J].
+    energy_transferred, contact_dissipation, damping_work : float
+        Vibration energy left in the structure, energy dissipated in the contact
+        (``law.dissipated_energy(α_max)``) and by structural damping [J].
     energy_balance_error : float
-        Residual of the energy ledger relative to the impact energy [-]: impact
-        energy against rebound, structure, contact, damping (and, for the
-        finite-difference beam, plastic bending work and gravity work).
+        Residual of the energy ledger relative to the impact energy [-].
     impactor_mass, velocity : float
         m_i [kg] and V0 [m/s].
     contact_frequency : float
         ω [rad/s] used to normalise: ``sqrt(K/m_i)`` for a linear law, the loading
         tangent at the half-space peak indentation for a nonlinear law.
-    end_time : float
-        Time at which the run stopped [s].
+    end_time, time_step : float
+        Time the run stopped [s]; integration (or sampling) time step [s].
     time_limit_reached : bool
-        True when the run stopped at its time limit while the event could still go on
-        (in contact, or with a re-impact still possible); the scalars then describe a
-        truncated event.
-    time_step : float
-        Integration (or sampling, for the adaptive half-space solver) time step [s].
+        The run stopped at its time limit while the event could still go on.
     method : str
         The model that produced the result: ``"modal"``, ``"modal+residual"``,
         ``"half-space"`` or ``"finite-difference"``.
     n_modes : int
-        Number of modes integrated, as the impact point sees them: modes that do not move
-        there are left out and degenerate ones count once (:meth:`ModalBasis.participating
-        <impactmaps.targets.base.ModalBasis.participating>`; 0 for the half-space and
-        finite-difference solvers).
+        Number of modes integrated, as the impact point sees them (degenerate ones once;
+        0 for the half-space and finite-difference solvers).
     settings : dict
         Solver settings used (provenance).
     details : object or None
-        Solver-specific extras: :class:`impactmaps.fd.FDDetails` for the
-        finite-difference beam, :class:`impactmaps.solvers.modal_settings.ModalDetails` for the
-        modal solver, ``None`` otherwise.
-    converged : bool or None
-        Whether F̄max moved by at most the tolerance when the cut-off was doubled and the
-        step halved, and, for a capped basis, when the cap was halved
-        (``ModalSettings.check_convergence``); ``None``: not checked.
-    convergence_note : str
-        Why the result is not converged (empty otherwise); ``summary()`` writes it as
-        ``converged_note``.
+        Solver-specific extras (:class:`impactmaps.fd.FDDetails`,
+        :class:`impactmaps.solvers.modal_settings.ModalDetails`) or ``None``.
+    converged, convergence_note : bool or None, str
+        Whether F̄max held when the cut-off was doubled and the step halved (``None``:
+        not checked), and why not.
     """
 
     history: pd.DataFrame | None
@@ -162,20 +121,8 @@ class ImpactResult:
 
     @classmethod
     def from_fields(cls, fields: dict) -> "ImpactResult":
-        """The result ``cls(**fields)`` builds, for a solver's per-run hot path.
-
-        Parameters
-        ----------
-        fields : dict
-            Every field of the class by name (SI units, as the attributes), no other key.
-
-        Returns
-        -------
-        ImpactResult
-            Equal to ``cls(**fields)``, field for field: the frozen dataclass's ``__init__``
-            sets each of the 23 fields through ``object.__setattr__`` (~3 µs a result), this
-            fills the instance's dictionary at once. Other names than the fields (a field left
-            to its default, an unknown name) go through the constructor.
+        """The result ``cls(**fields)`` builds, field for field, for a solver's hot path (``fields``:
+        every field by name; other names go through the constructor).
         """
         if fields.keys() != _FIELD_NAMES:
             return cls(**fields)
@@ -293,9 +240,7 @@ class ImpactResult:
     def summary(self) -> dict:
         """The scalars as a flat dict with unit-suffixed keys (JSON-ready).
 
-        ``nan`` values (quantities that do not exist for this run, such as the
-        restitution of a run that ended in contact) are kept as ``nan`` here; the
-        writers turn them into ``null`` (:func:`impactmaps.jsonio.dumps`).
+        Quantities that do not exist for this run are ``nan`` (the writers write ``null``).
         """
         out = {
             "peak_force_N": float(self.peak_force),

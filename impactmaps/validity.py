@@ -1,77 +1,8 @@
 r"""Where the impact model's assumptions fail, said out loud.
 
-The solvers model an elastic sphere on a linear structure through a point contact law.
-:func:`validity_warnings` checks a finished run against the assumptions behind that
-picture and returns one sentence per violated assumption (empty: none found);
-:func:`warn_if_invalid` issues them as :class:`ModelValidityWarning` (a ``UserWarning``).
-
-Checks (each sentence starts with its tag):
-
-``contact pressure``
-    Elastic law only. Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` (Johnson,
-    *Contact Mechanics*, 1985, §4.2) above the mean pressure at full plasticity, taken as
-    ``1.6 S_y`` of the softer body (the yield-pressure factor of seed 001 eq 9's
-    derivation): the contact yields, a plastic law should be used. The softer body is
-    the one of lower yield strength; when only one strength is known, that body counts
-    only if it is also the elastically softer one (a steel ball's strength says nothing
-    about a composite laminate of unknown strength under it).
-``epp calibration``
-    The ``epp`` law only: its options (the yielding body's Poisson ratio ν, the elastic
-    body's share s of the compliance; defaults ν = 0.3 and a rigid sphere, the shipped epp
-    maps' values) differ from what this pair's materials give, or ν lies outside the
-    calibrated 0.3–0.45 (what the pair's own values change: ``docs/epp_calibration.rst``).
-``indentation``
-    ``α_max > 0.1 R``: Hertz theory assumes a contact radius small against R
-    (``a = sqrt(Rα)``, so ``a/R = sqrt(α/R) > 0.3``).
-``epp range``
-    The ``epp`` law only: the largest indentation beyond its FE calibration (δ_m > 1000
-    δ_y or δ_m > 0.05 R). This and ``indentation`` need only the law and the run
-    (:func:`law_warnings`); :func:`impactmaps.halfspace_impact` issues them.
-``impact speed``
-    ``V0 > 0.01 c_0`` with ``c_0 = sqrt(E/ρ)`` the target's bar wave speed: the quasi-static
-    contact and the slender-structure theories need impact speeds small against the
-    wave speeds (stress-wave effects, plastic waves, penetration).
-``plate deflection``
-    Plate deflection above half the thickness: membrane stretching (large deflection)
-    stiffens the plate, which linear plate theory ignores.
-``structural theory``
-    A Timoshenko beam or Mindlin plate struck at a contact frequency ω = π/t_c (t_c the
-    first contact's duration) above a quarter of its thickness-shear cut-off
-    (:func:`impactmaps.targets.shear_range.beyond_shear_theory`): the impact excites
-    waves as short as the thickness, which those theories do not describe (the maps mark
-    such points ``unresolved``).
-``point load``
-    A Mindlin plate loaded at a point (a linear law, a Hertz law given by its stiffness
-    alone, or ``contact_patch="point"``): its point-load deflection diverges
-    logarithmically, so the peak force falls with every doubling of the mode cut-off and
-    has no converged value — the number depends on the cut-off (how much, between the map's
-    cut-off and ``simulate``'s: ``validation/mindlin_point_load.md``). A contact law with a geometry (a
-    sphere's Hertz or plastic law, Yigit–Christoforou's too) is spread over the contact
-    patch and converges (``docs/contact_patch.rst``). :func:`impactmaps.simulate` issues
-    this and the ``structural theory`` check (:func:`target_warnings`).
-``support``
-    The impact point closer to a clamped or simply supported end or edge than the
-    structure's depth (a beam's height, a plate's thickness; skipped when not known):
-    beam and plate theories put the point load and the support reaction on one line
-    there, while the real section carries them by local shear and bearing stresses
-    (Saint-Venant: the theories hold a few depths away from such concentrations).
-``contact radius``
-    A Mindlin plate whose contact radius at the largest indentation exceeds half its
-    thickness: Mindlin theory and its omitted thickness-shear branches are not reliable
-    under such a load.
-``reflections``
-    An infinite-structure asymptote (``method`` ``"infinite-plate"``/``"infinite-beam"``)
-    is exact only until flexural waves reflected from the nearest edge return. Their
-    group velocity ``2 sqrt(ω) (D*/ρh)^{1/4}`` (plate) or ``2 sqrt(ω) (EI/m')^{1/4}``
-    (Euler beam) is evaluated at ``ω = 2π/t_c``, the upper end of the force pulse's main
-    lobe, and the round trip ``2d/c_g`` compared with the contact time.
-
-Every command that answers a case prints the same set, computed once by
-:func:`case_warnings`: ``simulate`` and ``fd`` from their run, ``lookup --case`` from the map's
-peak force, ``check`` from the map's peak force or, where no map reads the case, from the
-half-space peak force (an upper bound of an elastic contact's force on a structure: the
-checks that grow with the force are then pessimistic, and the deflection check is left to
-the run).
+:func:`validity_warnings` checks a finished run and returns one sentence per violated
+assumption; :func:`warn_if_invalid` issues them as :class:`ModelValidityWarning`. The
+checks and their limits: docs/physics.rst, "Model validity checks".
 """
 
 from __future__ import annotations
@@ -107,44 +38,30 @@ INFINITE_STRUCTURE_METHODS = ("infinite-plate", "infinite-beam")
 
 
 def hertz_peak_pressure(force, effective_modulus, radius):
-    """Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` [Pa].
-
-    Parameters
-    ----------
-    force : float or array_like
-        Contact force F ≥ 0 [N].
-    effective_modulus : float
-        E* [Pa].
-    radius : float
-        Effective radius R [m].
+    """Hertz peak pressure ``p0 = (6 F E*²/(π³ R²))^{1/3}`` [Pa] of a force F ≥ 0 [N] (scalar or
+    array), E* [Pa] and effective radius R [m].
     """
     force = np.asarray(force, dtype=float)
     return np.cbrt(6.0 * force * effective_modulus**2 / (math.pi**3 * radius**2))
 
 
 def validity_warnings(sphere, target_material, law, target, result) -> list[str]:
-    """The model assumptions a finished run violates, one sentence each.
+    """The model assumptions a finished run violates, one sentence each (empty: none).
 
     Parameters
     ----------
     sphere : Sphere
-        The impactor (radius R [m], material with E [Pa], ν, optional S_y [Pa]).
+        The impactor (radius [m], material with E [Pa], ν, optional S_y [Pa]).
     target_material : material-like
         ``youngs_modulus`` [Pa], ``poisson_ratio``, optional ``density`` [kg/m³] and
         ``yield_strength`` [Pa].
     law : ContactLaw
-        The law the run used (the pressure check applies to elastic laws).
+        The law the run used.
     target : Plate, Beam or None
         The structure (None for a half-space).
     result : ImpactResult or AsymptoteResult
-        Needs ``peak_force`` [N], ``max_indentation`` [m], ``velocity`` [m/s],
-        ``method``; optionally a ``history`` with ``target_displacement_m``,
-        ``max_target_displacement`` [m], ``contact_time`` or ``contact_intervals`` [s].
-
-    Returns
-    -------
-    list of str
-        Empty when no check fails.
+        Its ``peak_force`` [N], ``max_indentation`` [m], ``velocity`` [m/s], ``method`` and,
+        when present, history, displacement and contact times.
     """
     checks = (_pressure(sphere, target_material, law, result), _epp_calibration(sphere, target_material, law),
               *law_warnings(law, result, radius=sphere.radius),
@@ -156,19 +73,9 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
 
 @dataclass(frozen=True)
 class ForceAnswer:
-    """An answer that gives a peak force but no run (a map's reading, or the half-space bound),
-    as :func:`validity_warnings` reads it.
-
-    Attributes
-    ----------
-    peak_force : float
-        F_max [N].
-    max_indentation : float
-        The indentation of the law's loading curve at ``peak_force`` [m].
-    velocity : float
-        V0 [m/s].
-    method : str
-        Where the force comes from (``"map"`` or ``"half-space bound"``).
+    """A peak force without a run (a map's reading, or the half-space bound), as
+    :func:`validity_warnings` reads it: ``peak_force`` [N], ``max_indentation`` on the law's
+    loading curve [m], ``velocity`` [m/s], ``method`` (``"map"`` or ``"half-space bound"``).
     """
 
     peak_force: float
@@ -182,7 +89,8 @@ class ForceAnswer:
 
 def force_answer(law, impactor_mass: float, velocity: float, peak_force: float | None = None) -> ForceAnswer:
     """A :class:`ForceAnswer` at ``peak_force`` [N] (a map's), or at the half-space peak force
-    when ``None``; the indentation from the law's loading curve (arithmetic: bisection)."""
+    when ``None``; the indentation [m] from the law's loading curve.
+    """
     from .closed_forms.halfspace import single_law_parameters
 
     params = single_law_parameters(law)
@@ -199,21 +107,9 @@ def force_answer(law, impactor_mass: float, velocity: float, peak_force: float |
 
 
 def case_warnings(case, result=None, peak_force: float | None = None) -> list[str]:
-    """The validity warnings of a case (:func:`validity_warnings`), the one set every command prints.
-
-    Parameters
-    ----------
-    case : impactmaps.cases.Case
-        The case.
-    result : ImpactResult or AsymptoteResult, optional
-        Its run (``simulate``, ``fd``).
-    peak_force : float, optional
-        Without a run: the peak force a map gives [N] (``lookup --case``, ``check``);
-        without either, the half-space peak force (its upper bound for an elastic law).
-
-    Returns
-    -------
-    list of str
+    """The validity warnings of a case, the one set every command prints: from its ``result``
+    (``simulate``, ``fd``), else from a map's ``peak_force`` [N], else from the half-space
+    peak force (an upper bound for an elastic law).
     """
     if result is None:
         result = force_answer(case.law, case.impactor_mass, case.velocity, peak_force)
@@ -222,22 +118,9 @@ def case_warnings(case, result=None, peak_force: float | None = None) -> list[st
 
 
 def target_warnings(target, result) -> list[str]:
-    """The checks of :func:`validity_warnings` that need only the structure and the run:
-    a first contact beyond the shear theory's range, and a point load whose answer does not
-    converge (a Mindlin plate struck without a contact patch). :func:`impactmaps.simulate`
-    issues them; a case run (:func:`impactmaps.cases.run_case`) issues all checks.
-
-    Parameters
-    ----------
-    target : Target
-        The structure.
-    result : ImpactResult
-        The run (its ``contact_intervals`` [s], ``method`` and ``settings``).
-
-    Returns
-    -------
-    list of str
-        Empty when no check fails.
+    """The checks that need only the structure and the run (its ``contact_intervals`` [s],
+    ``method``, ``settings``): a first contact beyond the shear theory's range, and a
+    non-converging Mindlin point load. Empty when none fails.
     """
     return [message for message in (_structural_theory(target, result), _point_load(target, result)) if message]
 
@@ -255,14 +138,8 @@ def warn_if_invalid(sphere, target_material, law, target, result, *, stacklevel=
 
 
 def _softer_body(sphere_material, target_material):
-    """``(yield strength [Pa], "impactor"|"target")`` of the body whose contact yields first,
-    or None when that cannot be told.
-
-    With both strengths known, the lower one (equal strengths: the target, the flat of the
-    contact laws' picture — an elastic sphere on a yielding flat). With one known, only if that body is also
-    the elastically softer one (lower Young's modulus; a laminate: its transverse
-    modulus): a body of unknown strength that is softer — a composite laminate under a
-    steel ball — may yield (or crush) first, so the other body's strength says nothing.
+    """``(yield strength [Pa], "impactor"|"target")`` of the body whose contact yields first, or
+    None when that cannot be told (one strength known and that body not the softer).
     """
     bodies = (("impactor", sphere_material), ("target", target_material))
     known = [(float(m.yield_strength), name) for name, m in bodies if getattr(m, "yield_strength", None) is not None]
@@ -277,10 +154,9 @@ def _softer_body(sphere_material, target_material):
 
 
 def _epp_calibration(sphere, target_material, law):
-    """The ``epp`` law's options against the pair it is used for: the yielding body's ν and the
-    elastic body's share s of the compliance (``docs/epp_calibration.rst``; the FE calibration
-    holds ν 0.3–0.45 and s ≤ 0.75), both options with defaults (ν = 0.3, a rigid sphere) that
-    the shipped epp maps hold."""
+    """The ``epp`` law's options (ν, sphere_compliance) against the pair it is used for
+    (docs/epp_calibration.rst).
+    """
     if not {"poisson_ratio", "sphere_compliance"} <= set(law.options()):  # the law calibrated on them (epp)
         return None
     softer = _softer_body(sphere.material, target_material)

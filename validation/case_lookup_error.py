@@ -5,7 +5,7 @@ random physical cases are drawn — random size and metal of the target, the imp
 numbers drawn log-uniform over (and a little beyond) the maps' range and realised as an
 impactor mass, speed and contact stiffness (plastic law: a steel ball of random radius
 and speed, its numbers where physics puts them) — and each is answered by
-:func:`impactmaps.cases.case_lookup.lookup_case` and by :func:`impactmaps.cases.run_case`
+:func:`impactmaps.lookup` (``case=``) and by :func:`impactmaps.cases.run_case`
 (the modal simulation the lookup stands in for). Families:
 
 * ``shipped``: SS Euler beams and SSSS square Kirchhoff plates struck at the centre — the

@@ -2,7 +2,7 @@
 
 For each shipped map, N log-uniform random (ζ, λ) points inside its range are simulated
 directly (the same solver and settings as the map) and compared with
-``impactmaps.maps.read.lookup.lookup`` and with ``design_formula``. Prints two Markdown
+``impactmaps.lookup`` and with ``design_formula``. Prints two Markdown
 tables (used in docs/validation.rst: errors per map, and the design formula's error per regime,
 i.e. where it holds) and writes validation/lookup_error.csv.
 

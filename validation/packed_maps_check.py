@@ -35,7 +35,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
 from impactmaps.maps.files import shipped  # noqa: E402
-from impactmaps.maps.read import lookup as plastic_lookup  # noqa: E402
+from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
 from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
 from impactmaps.maps.family.map_family import map_family  # noqa: E402
@@ -50,7 +50,7 @@ def maps() -> list[tuple]:
     out = [(s, t, law, None) for (s, t) in shipped.SHIPPED_MAPS for law in ("linear", "hertz")]
     out += [(s, t, law, sl) for (s, t) in (("beam", "timoshenko"), ("plate", "mindlin")) for law in ("linear", "hertz")
             for sl in MEMBER_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
-    out += [(s, t, law, None) for (s, t) in plastic_lookup.PLASTIC_MAPS for law in ("yc", "stronge", "epp")]
+    out += [(s, t, law, None) for (s, t) in lookup_module.PLASTIC_MAPS for law in ("yc", "stronge", "epp")]
     return out
 
 
@@ -117,7 +117,7 @@ def compare(key, old: dict, new: dict) -> dict:
     ratio = np.concatenate([(new[k] / old[k])[old[k] > 0] for k in bands])
     return {"map": shipped.map_file_stem(
                 shipped.shipped_structure_name(key[0], key[1], key[3]) if key[2] not in ("yc", "stronge", "epp")
-                else plastic_lookup.PLASTIC_MAPS[(key[0], key[1])], key[2]),
+                else lookup_module.PLASTIC_MAPS[(key[0], key[1])], key[2]),
             "points": old["status"].size, "refused": int(np.sum(old["status"] == "refused")),
             "values_bit_identical": int(same.sum()), "max_value_change": f"{change:.3g}",
             "bands_bit_identical": int(np.all([old[k].view(np.uint64) == new[k].view(np.uint64) for k in bands],

@@ -6,7 +6,7 @@ Yigit–Christoforou, the refined Stronge law and ``epp``, on a random steel or 
 target: 70 % Euler beams (clamped–clamped, clamped–simply supported or cantilever, length
 0.2–1 m, struck anywhere in the middle 60 %), 30 % Kirchhoff plates (SSSS or CCCC, side
 0.1–0.5 m, aspect 0.5–2, span/thickness 30–200, struck anywhere in the middle 60 %) —
-each answered by :func:`impactmaps.cases.case_lookup.lookup_case` (a 4 × 4 × 4 tile of the
+each answered by :func:`impactmaps.lookup` (``case=``) (a 4 × 4 × 4 tile of the
 plastic lattice, :mod:`impactmaps.cases.on_demand`) and by ``simulate``
 (:func:`impactmaps.cases.run_case`, and once refined twice for its own error). An answer is
 inside its band when |lookup − simulate| ≤ band + the direct run's own error (its change

@@ -9,7 +9,7 @@ members at span/thickness 10, 20, 50 and the classical thin limit,
    median, 90th percentile and maximum;
 2. N random (ζ, λ, s) points with s log-uniform in [10, 100], solved directly on the
    structure of that slenderness (the same solver and settings as the maps) and looked
-   up by :func:`~impactmaps.maps.read.slenderness.lookup_slenderness`: |lookup − direct| against
+   up by :func:`impactmaps.lookup` (``slenderness=``): |lookup − direct| against
    the lookup's band, refusals counted (next to ``unresolved`` points).
 
 Prints a Markdown table and writes validation/slenderness_interpolation.csv.

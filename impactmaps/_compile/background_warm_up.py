@@ -1,37 +1,10 @@
 """The warm-up in the background: the first use of the command line starts it, once.
 
-On an empty numba cache the first integrating command compiles the modal solver's
-kernels (12–14 s on 2 idle cores; ``benchmarks/studies/RESULTS_cold_start.md``). The command
-line avoids that wait without asking the user to run ``impactmaps warm-up``: when a
-command has printed its output and this installation's cache is not known to be warm, it
-starts :func:`impactmaps.solvers.warm_up.warm_up` in a detached process of low priority
-(``nice`` 10) and exits; a later integrating command loads the compiled kernels.
-
-State, in :func:`state_directory` (``$NUMBA_CACHE_DIR/impactmaps-warm-up`` when that is
-set, else ``$XDG_CACHE_HOME/impactmaps/warm-up`` or ``~/.cache/impactmaps/warm-up``):
-
-* a **marker** per installation, written when a warm-up has finished: its name is a hash
-  of the impactmaps version, the package's directory and the newest modification time of
-  its solver and contact-law sources (numba's cache is keyed by the sources), numba's
-  installed files and the Python version (:func:`installation_key`). A marker that
-  claims a warm cache that was since deleted costs only what a cold start costs anyway.
-* a **lock** (``fcntl.flock`` on ``warm-up-KEY.lock``, released by the kernel when the
-  process ends, also when killed): at most one background warm-up at a time.
-* a **log** (``warm-up-KEY.log``): the warm-up's output and errors; a warm-up that
-  failed leaves ``warm-up-KEY.failed`` (then no command starts another: run
-  ``impactmaps warm-up`` to see the error).
-
-A command that needs a kernel the warm-up has not yet put in the cache compiles it
-itself, at its normal priority (its first integrating run with a helper process on the
-second core, :mod:`impactmaps._compile.compile_helper`): it does not wait for the warm-up. Measured and chosen
-(``benchmarks/studies/RESULTS_cold_start.md``, ``bench_cold_start.py --background``): a warm-up at
-nice 10 progresses only when the machine has idle time, and every measured wait (capped,
-after the warm-up had run a while) made the first ``simulate`` slower than compiling —
-76 s against 41 s at load 9, 25 s against 19 s at load 5.5. The duplicate compile runs in
-the background at low priority and costs the command nothing measurable.
-
-Off with ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` or ``impactmaps --no-background-warm-up
-COMMAND``; never on a system without ``fcntl`` (Windows: run ``impactmaps warm-up``).
+When a command has printed its output and this installation's cache is not known to be
+warm, :func:`start_background` starts :func:`impactmaps.solvers.warm_up.warm_up` in a
+detached process at nice 10 and exits. State (a marker per installation, a lock, a log)
+lives in :func:`state_directory`. Off with ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1``, and
+without ``fcntl``. Where and why: docs/install.rst, docs/_cold_start.rst.
 """
 
 from __future__ import annotations
@@ -132,18 +105,14 @@ def is_running(directory: Path | None = None) -> bool:
 
 def start_background(directory: Path | None = None, command: list[str] | None = None) -> bool:
     """Start the warm-up in a detached, low-priority process if this installation's cache is
-    not warm and no warm-up is running; True if one was started.
+    not warm and no warm-up is running; True if one was started. Never raises.
 
     Parameters
     ----------
     directory : path, optional
         The state directory (default :func:`state_directory`).
     command : list of str, optional
-        Arguments of the process after its state directory (tests pass ``["--sleep", "S"]``
-        for a cheap stand-in of the warm-up).
-
-    Returns in about a millisecond; never raises (a warm-up that cannot be started is not
-    started: the first integrating command then compiles, as without it).
+        Arguments of the process after its state directory (tests: ``["--sleep", "S"]``).
     """
     if disabled():
         return False
@@ -171,10 +140,9 @@ def start_background(directory: Path | None = None, command: list[str] | None = 
 
 
 def mark_warm(done: dict, directory: Path | None = None, which: str = "marker") -> None:
-    """Write this installation's marker (atomically; ``done``: what the warm-up reported),
-    so that no command starts a background warm-up; a marker that cannot be written is not.
-    ``which="failed"``: the marker of a warm-up that failed (its error in ``done``; no
-    command starts another, ``impactmaps warm-up`` still runs)."""
+    """Write this installation's marker atomically (``done``: what the warm-up reported;
+    ``which="failed"``: a failed warm-up's marker); a marker that cannot be written is not.
+    """
     try:
         marker = _paths(directory)[which]
         marker.parent.mkdir(parents=True, exist_ok=True)
@@ -186,10 +154,9 @@ def mark_warm(done: dict, directory: Path | None = None, which: str = "marker") 
 
 
 def hold_lock(directory: Path | None = None):
-    """``(lock, paths)``: an open file holding this installation's warm-up lock (None if
-    another process holds it, or the marker says the cache is warm) and the state paths
-    (``marker``, ``lock``, ``log``). The background process holds it while it warms up
-    (:func:`impactmaps.solvers.warm_up.run_background`)."""
+    """``(lock, paths)``: an open file holding this installation's warm-up lock (None if another
+    process holds it or the cache is warm) and the state paths (``marker``, ``lock``, ``log``).
+    """
     paths = _paths(directory)
     paths["lock"].parent.mkdir(parents=True, exist_ok=True)
     handle = _try_lock(paths["lock"])

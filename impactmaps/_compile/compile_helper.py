@@ -1,43 +1,9 @@
 """The second core during the first integrating command: a helper process compiles with it.
 
-On an empty numba cache the first integrating command compiled everything on one core:
-the small kernels (time step, contact law, coupled top frequency; ~1–3 s) and then the
-exact-step integrator (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`, ~8 s with
-its callees), one after the other, ~12 s in all. When a run first knows it will integrate
-(:func:`impactmaps.solvers.modal.simulate`, after its plan) and numba's cache lacks an
-integrator variant the run may need, :func:`start` launches a helper process at normal
-priority. The work is split so that the two processes never compile the same function:
-
-1. the helper compiles :data:`HELPER_CALLEES` (callees of the integrator, the same in
-   both variants) into numba's cache while this process goes on with its run and its
-   small kernels;
-2. before the run calls the integrator, :func:`await_variant` compiles
-   :data:`FOREGROUND_CALLEES` here and waits for the helper to end (at most
-   :data:`WAIT_S` seconds from its start);
-3. this process compiles the variant of the integrator its run needs, loading the
-   callees of the helper's share from numba's cache.
-
-The compiled code is the code one process would compile: answers are bit for bit the
-same. Never a wrong or missing answer: if the helper fails, is killed or is late, this
-process compiles what is missing itself (numba loads a cached function or compiles it).
-
-Off under ``IMPACTMAPS_NO_BACKGROUND_WARMUP=1`` (:data:`DISABLE_ENV`, the background
-warm-up's switch; the tests set it) and in processes that are themselves workers of
-another (``multiprocessing``: a sweep's workers never start one). At most one helper per
-process, for its first integrating run; on a warm cache the check is one read of numba's
-cache index (:func:`variant_cached`, ~0.5 ms).
-
-A wheel built by ``pip install .`` ships the kernels compiled (``setup.py``), beside the
-modules; numba reads them there unless the installation is read-only, when it keeps its
-cache in its user-wide directory: :func:`seed_user_cache` (run first by :func:`start`)
-then copies the shipped files there, so that the run loads them instead of compiling.
-
-No process is left behind: the helper ends with this process — at its exit (``atexit``),
-on Ctrl-C (the terminal's signal reaches both; while waiting, this process ends it), and,
-on Linux, when this process is killed (``PR_SET_PDEATHSIG``). Two commands starting at
-once each start a helper compiling the same functions with the same signatures: numba
-writes its cache files by atomic renames (``os.replace``), and a run loads or compiles
-what it finds either way.
+On an empty numba cache, :func:`start` launches a helper that compiles
+:data:`HELPER_CALLEES` while this process runs; :func:`await_variant` compiles
+:data:`FOREGROUND_CALLEES` and waits for it. Answers are bit for bit the same; the
+helper never outlives this process. How and why: docs/_cold_start.rst.
 """
 
 from __future__ import annotations
@@ -74,8 +40,8 @@ _integrator = {"kernel": None, "callees": dict, "module": ""}
 
 def register_integrator(kernel, callee_signatures, module: str) -> None:
     """Register the exact-step integrator (a :class:`~impactmaps._compile.lazy_kernel.LazyKernel`),
-    the function giving its callees' signatures (``name → (dispatcher, argument types)``) and
-    the name of the module defining both (the helper process imports it); called by that module."""
+    its callees' signatures (``name → (dispatcher, argument types)``) and its module's name.
+    """
     _integrator.update(kernel=kernel, callees=callee_signatures, module=module)
 
 
@@ -86,10 +52,9 @@ def switched_off() -> bool:
 
 
 def child_environment() -> tuple[dict, str]:
-    """``(env, cwd)`` of a ``python -c`` child that must import this very package and start
-    no compiling process of its own: :data:`DISABLE_ENV` set, the package's parent directory
-    first on ``PYTHONPATH`` and as the working directory (``-c`` puts the working directory
-    first on ``sys.path``: a checkout there would be imported instead, with another cache)."""
+    """``(env, cwd)`` of a ``python -c`` child that imports this very package and starts no
+    compiling process of its own (:data:`DISABLE_ENV` set, the package's parent first).
+    """
     package_parent = str(Path(__file__).resolve().parents[2])
     env = dict(os.environ, **{DISABLE_ENV: "1"})
     env["PYTHONPATH"] = os.pathsep.join(filter(None, (package_parent, os.environ.get("PYTHONPATH"))))
@@ -107,24 +72,9 @@ def enabled() -> bool:
 
 
 def start(variants, arguments: list[str] | None = None) -> bool:
-    """Start the helper if numba's cache lacks one of the integrator variants a run may need.
-
-    Parameters
-    ----------
-    variants : tuple
-        The ``exact_phase`` values (None, True) the run may call the integrator with.
-    arguments : list of str, optional
-        Replaces the helper's arguments (tests: a stand-in, ``["sleep:S"]`` or ``["fail"]``;
-        then ``variants`` are taken as not cached).
-
-    Returns
-    -------
-    bool
-        True if a helper was started. The helper compiles :data:`HELPER_CALLEES` (the same
-        in every variant) into numba's cache and ends. Only the first call of a process
-        decides (later calls return False at once); none is started when :func:`enabled`
-        is False or every variant is cached. Never raises: a helper that cannot be started
-        is not (the run compiles itself).
+    """Start the helper if numba's cache lacks one of the integrator ``variants`` (the
+    ``exact_phase`` values, None or True) a run may need; True if started. Only a process's
+    first call decides; never raises. ``arguments`` replaces the helper's (tests).
     """
     if _state["decided"]:
         return False
@@ -147,25 +97,8 @@ def start(variants, arguments: list[str] | None = None) -> bool:
 
 
 def seed_user_cache() -> int:
-    """Copy the kernels a wheel shipped compiled into numba's user-wide cache, where numba
-    keeps its cache because the package's directories are read-only.
-
-    Returns
-    -------
-    int
-        The number of files copied: 0 unless numba uses its user-wide cache
-        (``~/.cache/numba``) for this package — it keeps a function's cache beside its module
-        when that directory is writable (then it reads the shipped files there itself), in
-        ``NUMBA_CACHE_DIR`` when that is set (a user's choice, left alone), else in its
-        user-wide cache, where it does not look for the files beside a read-only module.
-
-    Notes
-    -----
-    The entries are the same in both places (the same file names; numba keys them on the
-    source's content): a function whose index is not yet in the user-wide cache gets the
-    shipped index and data files (:func:`copy_shipped_cache`); an index already there is
-    numba's own and left alone. Called by the first integrating run of a process
-    (:func:`start`) and by :func:`impactmaps.solvers.warm_up.warm_up`; never raises.
+    """Copy the kernels a wheel shipped compiled into numba's user-wide cache (when the
+    package's directories are read-only); the number of files copied. Never raises.
     """
     try:
         from numba.core.caching import UserWideCacheLocator
@@ -186,9 +119,9 @@ def seed_user_cache() -> int:
 
 def copy_shipped_cache(package, destination) -> int:
     """Copy numba's cache files from the ``__pycache__`` directories under ``package`` to
-    ``destination(folder)`` (a directory for each package folder), index by index: a
-    function's data files, then its index, each by an atomic rename; skipped where the
-    destination has that index already. The number of files copied."""
+    ``destination(folder)``, each by an atomic rename, skipping indexes already there;
+    the number of files copied.
+    """
     import glob
     import shutil
 
@@ -208,18 +141,8 @@ def copy_shipped_cache(package, destination) -> int:
 
 
 def variant_cached(variant) -> bool:
-    """Whether numba's cache holds one variant of the integrator for this machine.
-
-    Parameters
-    ----------
-    variant : None or True
-        The integrator's ``exact_phase`` argument (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`).
-
-    Returns
-    -------
-    bool
-        True if the cache index lists it (one read of a small file); False when it does
-        not or that cannot be told (then it is compiled).
+    """Whether numba's cache index lists the integrator ``variant`` (``exact_phase``: None or
+    True) for this machine; False when not, or when that cannot be told.
     """
     integrate_impact = _integrator["kernel"]
     try:
@@ -254,27 +177,9 @@ def _stop() -> None:
 
 
 def await_variant(variant, timeout: float | None = None) -> bool:
-    """Before the integrator's ``variant`` is compiled: compile this process's share of its
-    callees, then wait for the helper compiling the other share.
-
-    Parameters
-    ----------
-    variant : None or True
-        The integrator variant the run needs (``exact_phase``).
-    timeout : float, optional
-        The longest wait [s] from the helper's start (default :data:`WAIT_S`); a helper
-        still running then is ended.
-
-    Returns
-    -------
-    bool
-        True if a helper was waited for (it finished, failed or was ended), False at once
-        when none runs or ``variant`` was in the cache when the helper started (the
-        helper is then ended).
-
-    Notes
-    -----
-    On ``KeyboardInterrupt`` (or any error) the helper is ended and the error raised.
+    """Compile this process's share of the integrator's callees, then wait for the helper (at
+    most ``timeout`` [s] from its start, default :data:`WAIT_S`, then end it). True if a
+    helper was waited for; on any error the helper is ended and the error raised.
     """
     process = _state["process"]
     if process is None:
@@ -342,12 +247,8 @@ def _compile_callees(names, stop=lambda: False) -> None:
 
 def end_with_parent(signal_number: int, parent: int | None = None) -> bool:
     """Ask Linux to send this process ``signal_number`` when its parent ends
-    (``prctl(PR_SET_PDEATHSIG)``; elsewhere nothing is done).
-
-    Returns
-    -------
-    bool
-        False if ``parent`` (a pid) is given and is no longer this process's parent.
+    (``prctl(PR_SET_PDEATHSIG)``; elsewhere nothing); False if ``parent`` (a pid) is given
+    and is no longer this process's parent.
     """
     if sys.platform.startswith("linux"):
         try:
@@ -360,9 +261,9 @@ def end_with_parent(signal_number: int, parent: int | None = None) -> bool:
 
 
 def helper_main(argv: list[str]) -> int:
-    """The helper process (``argv``: the parent's pid, then ``share`` or a tests' stand-in):
-    compile :data:`HELPER_CALLEES` into numba's cache; the exit status (0, 1 for the
-    failing stand-in)."""
+    """The helper process (``argv``: the parent's pid, then ``share`` or a tests' stand-in);
+    returns the exit status (0, 1 for the failing stand-in).
+    """
     import signal
 
     if not end_with_parent(signal.SIGKILL, int(argv[0])):

@@ -1,10 +1,8 @@
 """Compiled loops that Ctrl-C and SIGTERM stop at once.
 
-A compiled (numba) loop does not see a signal: Python handles signals between bytecodes,
-so a loop of minutes ignores Ctrl-C for minutes. :func:`run_interruptibly` runs such a
-loop (compiled with ``nogil=True`` and reading a one-element stop flag at every step) in a
-worker thread while the calling thread waits in short slices; on ``KeyboardInterrupt`` it
-sets the flag, waits for the loop to return (one step) and re-raises.
+A numba loop does not see a signal; :func:`run_interruptibly` runs it (``nogil=True``,
+reading a one-element stop flag) in a worker thread, sets the flag on
+``KeyboardInterrupt``, waits one step and re-raises.
 """
 
 from __future__ import annotations
@@ -22,35 +20,20 @@ WAIT_SLICE_S = 0.1
 
 
 def interrupts_ignored() -> bool:
-    """Whether no Python handler would see Ctrl-C or SIGTERM (a sweep's workers ignore SIGINT and
-    leave SIGTERM at its default): then nothing can interrupt a loop. A command started in the
-    background of a script inherits an ignored SIGINT but still handles SIGTERM."""
+    """Whether no Python handler would see Ctrl-C or SIGTERM (then nothing can interrupt a loop)."""
     return not any(callable(signal.getsignal(number)) for number in _STOPPING_SIGNALS)
 
 
 def run_interruptibly(call, stop, name: str = "impactmaps-compiled-loop"):
-    """``call()`` in a worker thread, stopped through ``stop`` on Ctrl-C.
-
-    Parameters
-    ----------
-    call : callable
-        A call of a compiled loop that releases the GIL and returns once ``stop[0] != 0``.
-    stop : ndarray
-        The loop's one-element integer stop flag (0: run on).
-    name : str, optional
-        The worker thread's name.
-
-    Returns
-    -------
-    object
-        What ``call`` returns; the arithmetic is the loop's own (bit for bit a direct call).
+    """``call()`` (a compiled loop that releases the GIL and returns once ``stop[0] != 0``) in a
+    worker thread named ``name``, stopped through its one-element flag ``stop`` on Ctrl-C;
+    returns what ``call`` returns, bit for bit a direct call.
 
     Raises
     ------
     KeyboardInterrupt
-        On Ctrl-C (or a signal handler that raises it) while the loop runs, once the loop
-        has returned. Outside the main thread, or where Ctrl-C is ignored, ``call`` runs
-        directly: no signal can arrive there.
+        On Ctrl-C while the loop runs, once it has returned (outside the main thread, or
+        where Ctrl-C is ignored, ``call`` runs directly).
     """
     if interrupts_ignored() or threading.current_thread() is not threading.main_thread():
         return call()

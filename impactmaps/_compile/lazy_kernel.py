@@ -1,14 +1,8 @@
 """A numba kernel compiled for the signatures it is called with, on first call, not at import.
 
-An eager signature (``numba.njit(signature)``) compiles when the module is imported: every
-command that merely imports a solver then pays for it (the exact-step integrator takes
-seconds to compile on an empty cache), also the ones that never integrate (the chart drawn
-from a shipped result, ``lookup``, ``--help``). :class:`LazyKernel` keeps what eager
-signatures give — a fixed set of specialisations, arguments of another type refused —
-and compiles (or loads from numba's on-disk cache) a specialisation when a call first
-needs it. A kernel with several variants (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`)
-takes a trailing variant argument that the caller does not pass: ``choose(args)`` derives
-it from the other arguments, and only the variants that calls need are compiled.
+:class:`LazyKernel` keeps what eager signatures give (a fixed set of specialisations,
+other argument types refused) without making every import pay for the compile; a
+kernel's variants are derived from its other arguments and compiled only when needed.
 """
 
 from __future__ import annotations
@@ -19,16 +13,9 @@ __all__ = ["LazyKernel"]
 
 
 def _locked_cache_saves(dispatcher) -> None:
-    """Serialise the on-disk cache saves of ``dispatcher`` across processes (a POSIX file lock).
-
-    numba's ``IndexDataCacheFile.save`` names a new entry's data file from the index it has
-    just read: two processes saving *different* specialisations of one function at once (the
-    integrator's variants, compiled by ``impactmaps warm-up``'s two processes or by a sweep's
-    workers on an empty cache) could both pick one name, leaving the index naming one
-    specialisation and the file holding the other (a later load then registers the wrong
-    signature). Holding a lock beside the index for the whole save lets the second process read
-    the first one's index. Nothing changes where the cache, ``fcntl`` or numba's internals are
-    not as expected (then saves are as numba does them).
+    """Serialise the on-disk cache saves of ``dispatcher`` across processes (a POSIX file lock
+    beside the index), so that two processes saving different specialisations at once do not
+    pick one data-file name. A no-op where the cache, ``fcntl`` or numba's internals differ.
     """
     try:
         import fcntl
@@ -55,23 +42,17 @@ def _locked_cache_saves(dispatcher) -> None:
 
 
 class LazyKernel:
-    """Call a numba dispatcher compiled for fixed signatures only, compiling each on first use.
+    """Call a numba dispatcher compiled for fixed signatures only, compiling each on first use
+    (a call with other argument types raises ``TypeError``, as with eager signatures).
 
     Parameters
     ----------
     dispatcher : numba.core.registry.CPUDispatcher
         An ``njit`` function given without signature (``cache=True`` recommended).
     signature : numba signature or dict
-        The one signature it is compiled for; or ``{variant: signature}`` with ``choose``,
-        where ``variant`` is the value of the dispatcher's last argument.
+        The one signature; or ``{variant: signature}``, ``variant`` the dispatcher's last
+        argument, chosen by ``choose(args)`` from the caller's arguments.
     choose : callable, optional
-        ``choose(args) -> variant`` for the arguments a caller passes (all but the last);
-        the call is then ``dispatcher(*args, variant)``.
-
-    Notes
-    -----
-    Outside :meth:`compile` the dispatcher compiles nothing: a call with other argument
-    types raises ``TypeError``, as with eager signatures.
     """
 
     def __init__(self, dispatcher, signature, choose=None):

@@ -1,12 +1,8 @@
 """TOML tables onto constructor arguments, with errors that name the key path.
 
-One helper, :func:`read_options`, maps a table onto the keyword options of a
-dataclass or constructor: the valid keys *are* the options (unknown keys are listed
-with the valid ones), each value is checked against the option's type (number,
-integer, boolean, string, list of numbers), and ranges are left to the
-constructor's own ``__post_init__`` — whose ``ValueError`` :class:`key_path` rewrites
-so the message starts with the key path the user wrote (``solver.cutoff_ratio = -1.0
-is invalid: …``).
+:func:`read_options` maps a table onto the keyword options of a dataclass or
+constructor (unknown keys listed with the valid ones, kinds checked); ranges are the
+constructor's, whose ``ValueError`` :class:`key_path` prefixes with the key path.
 """
 
 from __future__ import annotations
@@ -71,10 +67,8 @@ UNIT_LIMITS = {"m": 1.0e4, "m/s": 1.0e4, "kg": 1.0e9, "Pa": 1.0e13, "kg/m^3": 1.
 
 def number(data, key, path, unit="", *, default=None, required=False, low=0.0, high=math.inf,
            low_inclusive=False, high_inclusive=True, integer=False):
-    """A number from ``data[key]`` validated into a range (ValueError naming the key path).
-
-    Without an explicit ``high``, a number with a unit in :data:`UNIT_LIMITS` is bounded
-    by that unit's limit.
+    """A number from ``data[key]`` validated into a range (ValueError naming the key path);
+    without ``high``, bounded by its unit's :data:`UNIT_LIMITS` entry.
     """
     if high == math.inf and unit in UNIT_LIMITS:
         high = UNIT_LIMITS[unit]
@@ -142,11 +136,8 @@ _LEADING_NAME = re.compile(r"[A-Za-z_]\w*")
 
 
 class key_path:
-    """Context manager: a ValueError raised inside names the key path.
-
-    A message that starts with one of ``keys`` (the constructor's parameter name, as
-    the package's validators write it) gets ``path.`` in front of it; any other
-    message is prefixed with ``path: ``.
+    """Context manager: a ValueError raised inside names the key path (``path.`` before a
+    message starting with one of ``keys``, else ``path: ``).
     """
 
     def __init__(self, path: str, keys=()):
@@ -187,19 +178,9 @@ def _kind(annotation, default) -> str:
 
 
 def keyword_options(build) -> dict[str, str]:
-    """The keyword options of a dataclass or constructor and their TOML value kinds.
-
-    Parameters
-    ----------
-    build : type or callable
-        A dataclass (its ``init`` fields with defaults) or a function (its parameters
-        with defaults); a function that forwards ``**kwargs`` to its dataclass
-        (``Plate.isotropic``) also offers the dataclass's options.
-
-    Returns
-    -------
-    dict
-        ``{name: kind}``, kind one of ``"number", "integer", "boolean", "string", "numbers"``.
+    """``{name: kind}`` of the keyword options of a dataclass or function ``build`` (also a
+    dataclass's options forwarded by ``**kwargs``), kind one of ``"number"``, ``"integer"``,
+    ``"boolean"``, ``"string"``, ``"numbers"``.
     """
     if dataclasses.is_dataclass(build) and isinstance(build, type):
         hints = typing.get_type_hints(build)
@@ -224,10 +205,8 @@ def keyword_options(build) -> dict[str, str]:
 
 
 def read_options(data: dict, path: str, options: dict[str, str], units=None) -> dict:
-    """The values of ``data`` for the keys in ``options``, each checked for its kind.
-
-    Keys absent from ``data`` are left out (the constructor's default applies). Ranges
-    are not checked here: the constructor does that (run it inside :class:`key_path`).
+    """The values of ``data`` for the keys in ``options``, each checked for its kind (absent
+    keys left out; ranges are the constructor's).
     """
     units = units or {}
     out = {}

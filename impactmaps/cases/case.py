@@ -1,13 +1,9 @@
 """One case: a physical impact read from a case file and built into impactmaps objects.
 
-The format (every key, unit and default) is documented in ``docs/case-files.md`` and
-the module docstring of :mod:`impactmaps.cases`. Each section maps onto a dataclass or
-constructor: ``[solver]`` onto :class:`impactmaps.solvers.modal_settings.ModalSettings` (``kind
-= "modal"``) or the finite-difference settings (``kind = "fd"``), ``[target]`` onto
-:meth:`Beam.rectangular <impactmaps.targets.beams.beam.Beam.rectangular>` /
-:meth:`Plate.isotropic <impactmaps.targets.plates.plate.Plate.isotropic>`, ``[contact]`` onto
-the law's own options, ``[output]`` onto :class:`OutputSettings`. The valid keys of a
-section are the options of its constructor, and the constructor checks the ranges.
+Each section maps onto a constructor whose options are its valid keys and which checks
+the ranges: ``[solver]`` onto :class:`~impactmaps.solvers.modal_settings.ModalSettings`
+or the finite-difference settings, ``[target]`` onto the target's, ``[contact]`` onto
+the law's, ``[output]`` onto :class:`OutputSettings` (the format: docs/cases.rst).
 """
 
 from __future__ import annotations
@@ -91,46 +87,30 @@ class Case:
 
     Attributes
     ----------
-    name : str
-        Label (``name`` key, default the file stem).
+    name, description : str
+        Label (default the file stem) and free text.
     sphere : Sphere
         The impactor (radius [m], material, mass [kg]).
     velocity : float
         Approach velocity V0 [m/s].
-    target : Target
-        The struck structure (:class:`~impactmaps.targets.beams.beam.Beam`,
-        :class:`~impactmaps.targets.plates.plate.Plate` or a half-space).
-    target_type : str
-        ``"beam"``, ``"plate"`` or ``"halfspace"``.
+    target, target_type : Target, str
+        The struck structure and its type (``"beam"``, ``"plate"``, ``"halfspace"``).
     target_material : IsotropicMaterial or Laminate
         The target's material as seen by the contact law.
-    law : ContactLaw
-        The contact law (built from the contact pair unless a stiffness was given).
-    law_name : str
-        Registered name of the law.
+    law, law_name : ContactLaw, str
+        The contact law and its registered name.
     contact_options : dict
-        Options passed to the law builder (``target_radius`` [m], ``yield_strength``
-        [Pa], Stronge constants).
+        Options passed to the law builder (``target_radius`` [m], ``yield_strength`` [Pa], …).
     solver_kind : str
         ``"modal"`` or ``"fd"`` (finite-difference Rayleigh beam).
-    settings : ModalSettings
-        Modal solver settings (``solver.duration`` already converted to
-        ``max_time_ratio``).
-    fd_settings : FDSettings or None
-        Finite-difference settings (``[fd]``; ``None`` when the file has none and the
-        solver is modal).
-    duration : float or None
-        Requested time limit [s] (``None``: the solver default; required by ``fd``).
-    time_step : float or None
-        Forced time step [s] (``None``: automatic).
+    settings, fd_settings : ModalSettings, FDSettings or None
+        The solvers' settings.
+    duration, time_step : float or None
+        Time limit and forced time step [s] (``None``: the solver's choice).
     output : OutputSettings
         What to write besides the summary.
-    description : str
-        Free text from the file.
-    source : Path or None
-        The case file.
-    source_text : str
-        The case file's text (copied to the outputs).
+    source, source_text : Path or None, str
+        The case file and its text.
     """
 
     name: str
@@ -321,28 +301,14 @@ def _parse_toml(text: str) -> dict:
 
 def parse_case(text: str, *, name: str = "case", source: Path | None = None,
                solver: str | None = None) -> Case:
-    """Build a :class:`Case` from the text of a case file.
-
-    Parameters
-    ----------
-    text : str
-        TOML text.
-    name : str, optional
-        Default label when the file has no ``name`` key.
-    source : Path, optional
-        Where the text came from (provenance only).
-    solver : {"modal", "fd"}, optional
-        Override ``[solver] kind`` (``impactmaps fd`` passes ``"fd"``).
-
-    Returns
-    -------
-    Case
+    """Build a :class:`Case` from the TOML ``text`` of a case file (``name``: default label;
+    ``source``: provenance; ``solver``: override ``[solver] kind``).
 
     Raises
     ------
     ValueError
-        Invalid TOML, an unknown key, or a missing/invalid value; the message names the
-        key path, the value and the valid range.
+        Invalid TOML, an unknown key, or a missing/invalid value, naming the key path, the
+        value and the valid range.
     """
     from ._fd import check_fd_target, fd_settings
 
@@ -369,24 +335,13 @@ def parse_case(text: str, *, name: str = "case", source: Path | None = None,
 
 
 def load_case(path, *, solver: str | None = None) -> Case:
-    """Read and validate a case file.
-
-    Parameters
-    ----------
-    path : str or Path
-        The TOML case file.
-    solver : {"modal", "fd"}, optional
-        Override ``[solver] kind``.
-
-    Returns
-    -------
-    Case
+    """Read and validate the case file at ``path`` (``solver``: override ``[solver] kind``).
 
     Raises
     ------
     ValueError
-        Missing file, invalid TOML, unknown keys or invalid values; the message starts
-        with the file name and names the key path.
+        Missing file, invalid TOML, unknown keys or invalid values, starting with the file
+        name and naming the key path.
     """
     source, text = read_text_input("case file", path)
     try:

@@ -1,20 +1,9 @@
 """The normalised numbers of a case in the vocabulary of its contact law's maps.
 
-Every command that prints ``zeta``, ``lambda``, ``beta`` or ``fmax_normalised`` for a
-physical case means by them what the maps of the case's contact law mean
-(``docs/output_keys.rst`` has the table), so that a number printed by ``simulate`` can
-be fed to ``lookup`` and the answers agree:
-
-* linear law — ``ζ(m, K)``, ``λ = K_st/K``, ``F/(m V0 ω)`` with ``ω = sqrt(K/m)``;
-* Hertz law — the Hertz numbers ``ζ_h``, ``λ_h`` and ``F/F_hs``
-  (:func:`impactmaps.closed_forms.hertz_similarity.hertz_numbers`);
-* Yigit–Christoforou and default refined Stronge laws — ``β``, ``ζ(m, K_y)``,
-  ``λ = K_st/K_y`` and ``F/(m V0 ω_y)``
-  (:func:`impactmaps.maps.compute.plastic_points.plastic_numbers`);
-* any other law — the linearised numbers of :func:`case_dimensionless`.
-
-A Hertz case also reports the linearised numbers (``zeta_linearised``,
-``lambda_linearised``, basis ``linearised_basis``), never under the map names.
+A number printed for a case (``zeta``, ``lambda``, ``beta``, ``fmax_normalised``) means
+what the maps of its law mean, so ``simulate`` and ``lookup`` agree: linear (ζ, λ, ω),
+Hertz (ζ_h, λ_h, F_hs), plastic (β, ζ and λ at K_y), else the linearised numbers
+(docs/output_keys.rst).
 """
 
 from __future__ import annotations
@@ -37,15 +26,10 @@ NUMBER_BASES = {
 
 
 def case_dimensionless(case: Case) -> dict:
-    """The dimensionless numbers of a case (see :mod:`impactmaps.cases`: which K is used).
-
-    Returns
-    -------
-    dict
-        ``beta`` [-] or ``None``; ``lambda`` [-] or ``None``; ``zeta`` [-] or ``None``;
-        ``lambda_basis`` (which contact stiffness); ``contact_stiffness_N_m`` (that K);
-        ``reference_contact_stiffness_N_m`` (the solver's); ``static_stiffness_N_m``
-        (``None`` for a half-space); ``impactor_mass_kg``; ``velocity_m_s``.
+    """The linearised dimensionless numbers of a case (which K: docs/output_keys.rst):
+    ``beta``, ``lambda``, ``zeta`` [-] or ``None``, ``lambda_basis``,
+    ``contact_stiffness_N_m``, ``reference_contact_stiffness_N_m``, ``static_stiffness_N_m``
+    (``None`` for a half-space), ``impactor_mass_kg``, ``velocity_m_s``.
     """
     mass, velocity, law = case.impactor_mass, case.velocity, case.law
     reference = float(reference_contact_stiffness(law, mass, velocity))
@@ -93,22 +77,11 @@ def _plastic(case: Case):
 
 
 def case_numbers(case: Case) -> dict:
-    """The normalised numbers of ``case`` under the names its law's maps use.
-
-    Parameters
-    ----------
-    case : Case
-
-    Returns
-    -------
-    dict
-        ``vocabulary`` (``"linear"``, ``"hertz"``, ``"plastic"`` or ``"linearised"``),
-        ``beta``, ``zeta``, ``lambda`` [-] (``None`` where the law or a half-space has
-        none), ``lambda_basis`` (what they are), ``force_scale_N`` and ``time_scale_s``
-        (``fmax_normalised = F_max/force_scale_N``, ``contact_time_normalised =
-        t_c/time_scale_s``), ``contact_stiffness_N_m`` (the linear or linearised
-        stiffness), and for a Hertz case ``zeta_linearised``, ``lambda_linearised``,
-        ``linearised_basis``; plus the other keys of :func:`case_dimensionless`.
+    """The normalised numbers of ``case`` under the names its law's maps use: ``vocabulary``
+    (``"linear"``, ``"hertz"``, ``"plastic"``, ``"linearised"``), ``beta``, ``zeta``,
+    ``lambda`` [-] (``None`` where undefined), ``lambda_basis``, ``force_scale_N``,
+    ``time_scale_s``, ``contact_stiffness_N_m``, a Hertz case's linearised numbers and the
+    other keys of :func:`case_dimensionless` (docs/output_keys.rst).
     """
     linear = case_dimensionless(case)
     mass, velocity = case.impactor_mass, case.velocity

@@ -27,18 +27,10 @@ __all__ = ["run_case", "case_summary", "write_case_outputs",
 def case_summary(case: Case, result: ImpactResult) -> dict:
     """The JSON-ready summary of a run of ``case`` (keys carry their units).
 
-    ``result.summary()`` (``peak_force_N``, ``contact_intervals_s``,
-    ``first_contact_duration_s``, ``total_contact_time_s``, ``impacts``,
-    ``restitution``, ``energy_transferred_J``, …) plus ``max_deflection_m`` (largest
-    |target displacement| at the impact point [m]), the dimensionless numbers of
-    :func:`impactmaps.cases.numbers.case_numbers` — ``zeta``, ``lambda``, ``beta``,
-    ``fmax_normalised`` and ``contact_time_normalised`` in the vocabulary of the law's
-    maps (for a law other than linear the solver's own normalisation moves to
-    ``fmax_normalised_reference``, ``contact_time_normalised_reference``) —,
-    ``model_warnings`` (the assumptions of the model the run
-    violates, :func:`impactmaps.validity.case_warnings`: the set every command prints) and the case identity; NaN (a quantity that does not
-    exist for this run, e.g. the restitution of a record that ends in contact) becomes
-    ``None``.
+    ``result.summary()`` plus ``max_deflection_m`` [m], the numbers of
+    :func:`impactmaps.cases.numbers.case_numbers` in the vocabulary of the law's maps,
+    ``model_warnings`` (:func:`impactmaps.validity.case_warnings`) and the case identity;
+    NaN becomes ``None`` (keys: docs/output_keys.rst).
     """
     summary = dict(result.summary())
     if result.history is not None and len(result.history):
@@ -99,10 +91,9 @@ def _with_null_notes(summary: dict, case: Case, result: ImpactResult) -> dict:
 
 
 def _run_fd(case: Case) -> ImpactResult:
-    """The finite-difference run of ``case``; with ``[solver] check_convergence`` also the same
-    run on twice the elements, ``converged`` set by the change of F̄max against ``[solver]
-    tolerance`` (a :class:`~impactmaps.solvers.modal_settings.ConvergenceWarning` and
-    ``convergence_note`` say why when not: a late re-impact needs a finer grid)."""
+    """The finite-difference run of ``case``; with ``[solver] check_convergence`` also checked
+    against twice the elements (``converged`` set against ``[solver] tolerance``).
+    """
     from ..fd import simulate_fd
     from ..solvers.modal_settings import ConvergenceWarning
 
@@ -126,19 +117,9 @@ def _run_fd(case: Case) -> ImpactResult:
 
 
 def run_case(case: Case) -> tuple[ImpactResult, dict]:
-    """Run the solver a case asks for (``case.solver_kind``).
-
-    Parameters
-    ----------
-    case : Case
-
-    Returns
-    -------
-    result : ImpactResult
-        Full result with histories.
-    summary : dict
-        :func:`case_summary` of the run (JSON-ready); each of its ``model_warnings`` is
-        also issued as a :class:`~impactmaps._checks.ModelValidityWarning`.
+    """Run the solver ``case.solver_kind`` asks for; returns the full ``result`` (with
+    histories) and its :func:`case_summary` (each ``model_warnings`` entry also issued as a
+    :class:`~impactmaps._checks.ModelValidityWarning`).
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case (build one with load_case or parse_case)")
@@ -165,32 +146,9 @@ def run_case(case: Case) -> tuple[ImpactResult, dict]:
 
 
 def write_case_outputs(case: Case, result: ImpactResult, out_dir) -> dict:
-    """Write the histories, the summary and a copy of the case file to ``out_dir``.
-
-    Parameters
-    ----------
-    case : Case
-        The case that was run.
-    result : ImpactResult
-        Its result (with histories).
-    out_dir : str or Path
-        Output directory (created if needed).
-
-    Returns
-    -------
-    dict
-        ``{"history": Path, "summary": Path, "case": Path}`` and, with
-        ``output.normalised = true``, ``"history_normalised": Path``; without
-        ``"history"`` (and its normalised twin) when the result has none.
-
-    Notes
-    -----
-    ``history.csv`` has the columns of :data:`impactmaps.result.HISTORY_COLUMNS`
-    and the solver's extras (modal: ``structure_energy_J, impactor_kinetic_energy_J``;
-    finite difference: the gauges). ``summary.json`` is :func:`case_summary`. A result
-    without history is one the solver answered by an any-law infinite-structure
-    asymptote (:mod:`impactmaps.solvers.mode_budget`, scalars only): only the summary
-    and the case are written.
+    """Write the histories, the summary and a copy of the case file of a run of ``case`` to
+    ``out_dir`` (created if needed); returns ``{"history", "summary", "case"}`` paths (with
+    ``"history_normalised"`` when ``output.normalised``; no history when the result has none).
     """
     if not isinstance(case, Case):
         raise ValueError(f"case = {case!r} is not a Case")

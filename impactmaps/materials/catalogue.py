@@ -231,9 +231,7 @@ def available_materials() -> tuple:
 def material(name: str):
     """The catalogue material ``name`` (an :class:`IsotropicMaterial` or a :class:`Ply`).
 
-    Each entry's source, the values read in it and the reason for each value not read:
-    :data:`SOURCES` (``impactmaps materials`` prints them; full citations beside each entry
-    of :data:`CATALOGUE`; the table in docs/cases.rst, *Materials*).
+    Each entry's sources: :data:`SOURCES` (``impactmaps materials``; docs/cases.rst).
 
     Raises
     ------

@@ -27,8 +27,7 @@ class IsotropicMaterial:
     density : float
         Mass density ρ [kg/m³], > 0.
     yield_strength : float, optional
-        Uniaxial yield strength S_y [Pa], > 0 (used by the elastic–plastic contact
-        laws, Christoforou & Yigit 1998, eq 9). ``None`` if not known.
+        Uniaxial yield strength S_y [Pa], > 0 (the plastic contact laws'); ``None``: unknown.
     name : str, optional
         Label.
     """
@@ -66,11 +65,8 @@ class IsotropicMaterial:
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
     def as_ply(self, thickness: float, angle_deg: float = 0.0) -> Ply:
-        """This material as an isotropic :class:`Ply` of the given thickness [m].
-
-        ``E1 = E2 = E``, ``G12 = G13 = G23 = G``, ``ν12 = ν``, so that CLT reproduces
-        the isotropic plate: ``D11 = E h³/(12(1 − ν²))``, ``A44 = A55 = G h``.
-        """
+        """This material as an isotropic :class:`Ply` of the given thickness [m] (CLT then
+        reproduces the isotropic plate)."""
         shear = self.shear_modulus
         return Ply(
             longitudinal_modulus=self.youngs_modulus,

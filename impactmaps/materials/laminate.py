@@ -1,6 +1,6 @@
 """Laminates (stacks of :class:`~impactmaps.materials.ply.Ply`) with the stiffness matrices of classical lamination theory.
 
-Conventions: see :mod:`impactmaps.materials`.
+Conventions: docs/physics.rst, "Laminates".
 """
 
 from __future__ import annotations
@@ -34,9 +34,8 @@ class Laminate:
     Parameters
     ----------
     plies : sequence of Ply
-        Plies from the struck face (z = −h/2) to the back face (z = +h/2); see the
-        module docstring for the sign conventions. An isotropic plate is a laminate of
-        one isotropic ply (:meth:`from_isotropic`).
+        Plies from the struck face (z = −h/2) to the back face (z = +h/2) (an isotropic
+        plate: one isotropic ply, :meth:`from_isotropic`).
     name : str, optional
         Label.
     yield_strength : float, optional
@@ -79,15 +78,12 @@ class Laminate:
         ply : Ply
             The ply material and thickness (its own angle is ignored).
         angles_deg : sequence of float
-            Fibre angles [degrees] from the struck face towards the mid-plane when
-            ``symmetric`` is true (then mirrored: ``[0, 90]`` gives ``[0/90/90/0]``),
-            or through the whole thickness when false.
+            Fibre angles [degrees] from the struck face: to the mid-plane when ``symmetric``
+            (then mirrored: ``[0, 90]`` gives ``[0/90/90/0]``), else through the thickness.
         symmetric : bool, optional
             Mirror the angles about the mid-plane (default True).
-        name : str, optional
-            Label.
-        yield_strength : float, optional
-            See :class:`Laminate`.
+        name, yield_strength : optional
+            As for :class:`Laminate`.
         """
         if not isinstance(ply, Ply):
             raise ValueError(f"ply = {ply!r} is not a Ply")
@@ -103,9 +99,8 @@ class Laminate:
     @classmethod
     def from_isotropic(cls, material: IsotropicMaterial, thickness: float,
                        name: str = "") -> "Laminate":
-        """A homogeneous isotropic plate of thickness ``thickness`` [m] as a one-ply laminate.
-
-        The yield strength of ``material`` is carried over.
+        """A homogeneous isotropic plate of thickness ``thickness`` [m] as a one-ply laminate (with
+        the material's yield strength).
         """
         if not isinstance(material, IsotropicMaterial):
             raise ValueError(f"material = {material!r} is not an IsotropicMaterial")
@@ -227,14 +222,9 @@ class Laminate:
         return 0.5 * (self.D12 + 2.0 * self.D66 + math.sqrt(self.D11 * self.D22))
 
     def coupling_ratios(self) -> dict:
-        """Relative size of the terms that a specially orthotropic model neglects.
-
-        Returns
-        -------
-        dict
-            ``"D16"``, ``"D26"``: ``|D16|/sqrt(D11 D22)`` etc.; ``"B"``:
-            ``max|B_ij| / sqrt(max|A_ij| · max|D_ij|)``; ``"A45"``:
-            ``|A45|/sqrt(A44 A55)``. All dimensionless.
+        """Relative size [-] of the terms a specially orthotropic model neglects: ``"D16"``,
+        ``"D26"`` (``|D16|/sqrt(D11 D22)`` …), ``"B"`` (``max|B_ij| / sqrt(max|A_ij| max|D_ij|)``)
+        and ``"A45"`` (``|A45|/sqrt(A44 A55)``).
         """
         d_scale = math.sqrt(self.D11 * self.D22)
         b_scale = math.sqrt(np.max(np.abs(self.A)) * np.max(np.abs(self.D)))
@@ -247,32 +237,21 @@ class Laminate:
 
     @property
     def is_specially_orthotropic(self) -> bool:
-        """True if D16, D26, B and A45 vanish to :data:`SPECIALLY_ORTHOTROPIC_RTOL`.
-
-        This is the condition under which the plate and beam equations of Christoforou & Yigit 1998
-        (13)–(17) are exact for the laminate. Use :meth:`coupling_ratios` to apply
-        another tolerance.
+        """True if D16, D26, B and A45 vanish to :data:`SPECIALLY_ORTHOTROPIC_RTOL` (where the
+        plate and beam equations of Christoforou & Yigit 1998 (13)–(17) are exact).
         """
         return all(v <= SPECIALLY_ORTHOTROPIC_RTOL for v in self.coupling_ratios().values())
 
     # -- contact ------------------------------------------------------------------------
     @property
     def youngs_modulus(self) -> float:
-        """Contact modulus of the struck face [Pa]: E2 of ``plies[0]``.
-
-        The transverse modulus stands for the out-of-plane modulus of a transversely
-        isotropic ply (Yang & Sun 1982; Tan & Sun 1985; see the module docstring).
-        For an isotropic ply it is simply E.
-        """
+        """Contact modulus of the struck face [Pa]: E2 of ``plies[0]`` (E for an isotropic ply)."""
         return self.plies[0].transverse_modulus
 
     @property
     def poisson_ratio(self) -> float:
-        """Poisson ratio to use with :attr:`youngs_modulus` in ``1/E*`` (Christoforou & Yigit 1998, eq 8).
-
-        ``0.0`` for a composite struck face: Tan & Sun's laminate contact compliance is
-        ``1/E2`` with no ``(1 − ν²)`` factor, which is the isotropic formula with ν = 0.
-        If the struck ply is isotropic (:attr:`Ply.is_isotropic`), its own ν.
+        """Poisson ratio to use with :attr:`youngs_modulus` in ``1/E*``: 0 for a composite struck
+        face (Tan & Sun's ``1/E2``), the ply's own ν for an isotropic one.
         """
         top = self.plies[0]
         return top.poisson_ratio if top.is_isotropic else 0.0

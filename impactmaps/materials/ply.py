@@ -1,6 +1,6 @@
 """One unidirectional, transversely isotropic lamina with its fibre angle.
 
-Conventions: see :mod:`impactmaps.materials`.
+Conventions: docs/physics.rst, "Laminates".
 """
 
 from __future__ import annotations
@@ -25,13 +25,11 @@ class Ply:
     longitudinal_modulus : float
         E1, Young's modulus along the fibres [Pa], > 0.
     transverse_modulus : float
-        E2, Young's modulus across the fibres in the ply plane [Pa], > 0. Also taken as
-        the out-of-plane modulus E3 (transverse isotropy) for contact.
+        E2, Young's modulus across the fibres [Pa], > 0 (also the out-of-plane E3).
     shear_modulus : float
         G12, in-plane shear modulus [Pa], > 0.
     poisson_ratio : float
-        ν12, major Poisson ratio [-]; must satisfy ``ν12² < E1/E2`` (positive-definite
-        compliance, i.e. ``1 − ν12 ν21 > 0``).
+        ν12, major Poisson ratio [-], ``ν12² < E1/E2``.
     density : float
         ρ [kg/m³], > 0.
     thickness : float, optional
@@ -39,20 +37,12 @@ class Ply:
     angle_deg : float, optional
         Fibre angle θ from the laminate x axis [degrees], default 0.
     transverse_shear_modulus_13 : float, optional
-        G13 [Pa], > 0. Default ``G12`` — exact for a transversely isotropic ply
-        (the 1–3 plane is equivalent to the 1–2 plane).
+        G13 [Pa], > 0. Default ``G12`` (exact for a transversely isotropic ply).
     transverse_shear_modulus_23 : float, optional
-        G23 [Pa], > 0. Default ``G12``. This is a **simplifying assumption**, common in
-        impact analyses of laminates, not a material law: for a transversely isotropic
-        ply ``G23 = E2 / (2(1 + ν23))``, typically 60–90 % of G12. It only enters the
-        transverse-shear stiffness (Mindlin/Timoshenko); give it when known.
+        G23 [Pa], > 0. Default ``G12``, a simplifying assumption (for a transversely
+        isotropic ply ``G23 = E2 / (2(1 + ν23))``); give it when known.
     name : str, optional
         Label.
-
-    Notes
-    -----
-    The defaults of G13 and G23 are resolved in ``__post_init__``, so the attributes
-    always hold the values actually used.
     """
 
     longitudinal_modulus: float

@@ -1,9 +1,6 @@
-"""Matplotlib charts. Every function takes ``ax=None`` (a new figure when missing)
-and returns the Axes.
-
-:mod:`~impactmaps.plotting.map_charts` draws the (ζ, λ) maps (F̄max chart, regimes,
-elastic-plastic panels); :mod:`~impactmaps.plotting.histories` single impacts (force
-histories, scaling, restitution).
+"""Matplotlib charts, each taking ``ax=None`` and returning the Axes: the (ζ, λ) maps
+(:mod:`~impactmaps.plotting.map_charts`) and single impacts
+(:mod:`~impactmaps.plotting.histories`).
 """
 
 from __future__ import annotations

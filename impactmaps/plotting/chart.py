@@ -1,13 +1,8 @@
 """The main job: the normalised maximum-force chart (seed 001 Figure 2) with its data.
 
-``law="hertz"`` draws the same chart for the Hertz law: axes ζ_h, λ_h and
-F̄max = F_max/F_hs (:mod:`impactmaps.closed_forms.hertz_similarity`), with the Hertz asymptotes
-(Zener's infinite plate, the infinite beam, the quasi-static spring) of
-:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`.
-
-For the elastic-plastic laws (``"yc"``, ``"stronge"``) :func:`make_plastic_chart` draws
-F̄max, restitution and absorbed energy against ζ at a few β for one λ from the shipped
-(β, λ, ζ) maps (:mod:`impactmaps.maps.compute.plastic_points`) — no sweep: the maps are the data.
+:func:`make_chart` sweeps and draws it for the linear law (ζ, λ) or the Hertz law
+(ζ_h, λ_h, F̄max = F_max/F_hs); :func:`make_plastic_chart` draws the elastic-plastic
+panels from the shipped (β, λ, ζ) maps, with no sweep.
 """
 
 from __future__ import annotations
@@ -44,10 +39,8 @@ DEFAULT_ZETA_COUNT = 200
 
 def check_chart_grid(zeta_range, zeta_count, lambdas, law: str = "linear",
                      structures: int = len(CHART_STRUCTURES)) -> None:
-    """Refuse a chart grid that cannot be drawn or would not fit in memory, before anything is
-    computed or allocated.
-
-    The names in the messages are the command-line options (``--zeta-count``, …).
+    """Refuse (``ValueError`` naming the command-line option) a chart grid that cannot be drawn
+    or would not fit in memory, before anything is computed.
     """
     low, high = (float(v) for v in zeta_range)
     if not (0.0 < low < high < np.inf):
@@ -82,9 +75,9 @@ def make_chart(
 ) -> dict:
     """Compute and draw the F̄max(ζ, λ) chart for SS beams and square plates.
 
-    Writes into ``out_dir``: ``fmax_map.nc`` (the resumable sweep result, NetCDF),
-    ``fmax_map.csv`` (tidy), ``fmax_chart.png`` and ``.svg`` (Figure 2),
-    ``regime_map_<structure>.png`` and ``lookup_table.md``.
+    Writes into ``out_dir``: ``fmax_map.nc`` (the resumable sweep result), ``fmax_map.csv``,
+    ``fmax_chart.png`` and ``.svg``, ``regime_map_<structure>.png`` and ``lookup_table.md``;
+    returns their paths by kind.
 
     Parameters
     ----------
@@ -92,26 +85,18 @@ def make_chart(
     zeta_range : (float, float)
         Smallest and largest loss factor ζ.
     zeta_count : int
-        Number of log-spaced ζ values per curve (default :data:`DEFAULT_ZETA_COUNT`, 200).
+        Number of log-spaced ζ values per curve.
     lambdas : sequence of float, optional
         Relative stiffnesses λ (default :data:`DEFAULT_CHART_LAMBDAS`).
     structures : sequence of MapStructure
     settings : ModalSettings, optional
     progress : bool
-        Show a progress bar.
     max_workers : int, optional
         Local worker processes (default: all cores).
     overwrite : bool
-        Replace an ``fmax_map.nc`` made with another grid (or another law) instead of
-        refusing it.
+        Replace an ``fmax_map.nc`` of another grid or law instead of refusing it.
     law : {"linear", "hertz"}
-        Contact law (:data:`impactmaps.maps.family.regimes.MAP_LAWS`): the linear chart over (ζ, λ)
-        or the Hertz chart over (ζ_h, λ_h) with F̄max = F_max/F_hs.
-
-    Returns
-    -------
-    dict
-        Paths of the files written, keyed by kind.
+        The linear chart over (ζ, λ) or the Hertz chart over (ζ_h, λ_h).
     """
     import matplotlib
 
@@ -189,9 +174,9 @@ STORED_ASYMPTOTE_POINTS = 50
 
 
 def _stored_asymptotes(ax, strip, dataset, labels: dict) -> None:
-    """The asymptotes and labels of a family without closed-form asymptotes on a chart drawn by
-    ``plot_fmax_chart(asymptotes=False)``: the peaks the sweep keeps with its result
-    (:func:`impactmaps.maps.compute.dataset.with_asymptote_peaks`), so drawing them integrates nothing."""
+    """The asymptotes and labels of a family without closed-form asymptotes: the peaks its
+    sweep stored with the result.
+    """
     dataset = with_asymptote_peaks(dataset)
     zeta = dataset["zeta"].values
     dense = np.unique(np.linspace(0, zeta.size - 1, STORED_ASYMPTOTE_POINTS).round().astype(int))
@@ -221,12 +206,9 @@ DEFAULT_PLASTIC_LAMBDA = 0.1
 
 def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = "yc",
                        lambda_: float = DEFAULT_PLASTIC_LAMBDA, betas=DEFAULT_PLASTIC_BETAS) -> dict:
-    """Draw the elastic-plastic chart from the shipped maps: F̄max, e and absorbed energy vs ζ.
-
-    Curves at the grid β nearest to each of ``betas`` and the grid λ nearest to
-    ``lambda_``, for the SS Euler beam (dashed) and the SSSS square Kirchhoff plate (solid)
-    (:func:`impactmaps.plotting.plot_plastic_chart`). Writes ``fmax_chart_{law}.png`` and
-    ``.svg`` and the drawn points as ``fmax_chart_{law}.csv`` into ``out_dir``.
+    """Draw the elastic-plastic chart from the shipped maps: F̄max, e and absorbed energy vs ζ
+    for the SS Euler beam and the SSSS square Kirchhoff plate; writes
+    ``fmax_chart_{law}.png``, ``.svg`` and ``.csv`` into ``out_dir`` and returns their paths.
 
     Parameters
     ----------
@@ -234,14 +216,9 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
     law : {"yc", "stronge"}
         Yigit–Christoforou or the refined Stronge law (default constants).
     lambda_ : float
-        K_st/K_y of the curves, inside the maps' λ range [-].
+        K_st/K_y of the curves, inside the maps' λ range [-] (nearest grid λ).
     betas : sequence of float
-        Impact numbers of the curves, inside the maps' β range [-].
-
-    Returns
-    -------
-    dict
-        Paths of the files written, keyed by kind.
+        Impact numbers inside the maps' β range [-] (nearest grid β).
     """
     import matplotlib
 

@@ -1,7 +1,5 @@
-"""Plots of single impacts: force and deflection histories, scaling, restitution.
-
-Every function that draws on one Axes takes ``ax=None`` (a new figure when missing) and
-returns the Axes.
+"""Plots of single impacts: force and deflection histories, scaling, restitution (each
+takes ``ax=None`` and returns the Axes it drew on).
 """
 
 from __future__ import annotations
@@ -25,14 +23,10 @@ def plot_force_history(results, *, labels=None, normalised=True, quantity="force
     normalised : bool
         Plot F̄ against τ (else N against ms).
     quantity : {"force", "deflection"}
-        ``deflection`` plots the target displacement at the impact point.
+        ``deflection``: the target displacement at the impact point.
     ax : matplotlib Axes, optional
     styles : sequence of dict, optional
         Matplotlib keyword arguments per result.
-
-    Returns
-    -------
-    matplotlib.axes.Axes
     """
     ax = axes_or_new(ax)
     if not isinstance(results, (list, tuple)):
@@ -62,10 +56,8 @@ def plot_force_history(results, *, labels=None, normalised=True, quantity="force
 
 
 def plot_impact_history(result, *, normalised=False, figure=None):
-    """Force, indentation and target deflection of one run against time, contacts marked.
-
-    Three stacked panels sharing the time axis; each contact interval is shaded, and
-    the peak force is marked.
+    """Force, indentation and target deflection of one recorded run against time, in three
+    stacked panels, contacts shaded and the peak marked; returns the Figure.
 
     Parameters
     ----------
@@ -75,10 +67,6 @@ def plot_impact_history(result, *, normalised=False, figure=None):
         Plot τ = ωt, F̄ = F/(m_i V0 ω), α/α*, w/α* (else ms, N, µm, µm).
     figure : matplotlib Figure, optional
         Figure to draw into (default: a new one).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     import matplotlib.pyplot as plt
 
@@ -136,19 +124,9 @@ def save_impact_history(result, path, *, normalised=False):
 
 
 def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None, ax=None):
-    """Scaling figure (Christoforou & Yigit 1998 Figs 3–8): plate (solid) and beam (dashed) with equal (λ, ζ).
-
-    Parameters
-    ----------
-    plate_result, beam_result : ImpactResult
-    quantity : {"force", "deflection"}
-    asymptote : tuple of (tau, values, label), optional
-        A reference curve (e.g. quasi-static eq 28) drawn dotted.
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """Scaling figure (Christoforou & Yigit 1998 Figs 3–8): ``plate_result`` (solid) and
+    ``beam_result`` (dashed) with equal (λ, ζ); ``quantity`` "force" or "deflection";
+    ``asymptote`` an optional (tau, values, label) reference curve drawn dotted.
     """
     ax = plot_force_history([plate_result, beam_result], labels=["plate", "beam"], quantity=quantity,
                             styles=[{"color": "k", "ls": "-"}, {"color": "k", "ls": "--"}], ax=ax)
@@ -160,19 +138,9 @@ def plot_scaling(plate_result, beam_result, *, quantity="force", asymptote=None,
 
 
 def plot_restitution(beta, restitution, *, points=None, ax=None):
-    """Coefficient of restitution against the impact number β (Christoforou & Yigit 1998 Figure 1).
-
-    Parameters
-    ----------
-    beta, restitution : array_like
-        The curve (closed form).
-    points : tuple of (beta, restitution), optional
-        Numerical results drawn as markers.
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """Coefficient of restitution against the impact number β (Christoforou & Yigit 1998
+    Figure 1): the closed-form curve (``beta``, ``restitution``) and optional numerical
+    ``points`` (beta, restitution) as markers.
     """
     ax = axes_or_new(ax)
     ax.semilogx(beta, restitution, "k-", label="closed form")

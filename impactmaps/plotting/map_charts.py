@@ -1,6 +1,5 @@
-"""Charts of the (ζ, λ) maps: F̄max against ζ, the regimes, the elastic-plastic panels.
-
-Every function takes ``ax=None`` (a new figure when missing) and returns the Axes.
+"""Charts of the (ζ, λ) maps: F̄max against ζ, the regimes, the elastic-plastic panels
+(each takes ``ax=None`` and returns the Axes).
 """
 
 from __future__ import annotations
@@ -38,23 +37,10 @@ FMAX_LABELS = {name: (layout.labels["zeta"], layout.labels["fmax"]) for name, la
 def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, shade_regimes=True, ax=None):
     """Figure 2 of Christoforou & Yigit 1998: F̄max against ζ (log axis) for several λ.
 
-    Plates are drawn solid, beams dashed; the quasi-static values sqrt(λ/(1+λ)) as
-    dotted horizontal lines, the infinite-plate and infinite-beam peaks as thick grey
-    curves. Regimes (``shade_regimes``): the local band F̄max ≥ 0.9 is shaded, and, when
-    the dataset has a ``regime`` variable, a vertical band marks the ζ range where every
-    drawn point is quasi-static (elsewhere the regime depends on λ: see
-    :func:`plot_regime_map`). Where the dataset has
-    a ``status`` variable, stretches of ``sensitive`` points (no converged value) are
-    drawn as a band between ``fmax_low`` and ``fmax_high`` in the curve's colour, not as
-    a line, each sensitive point marked × (a band narrower than the line stays visible),
-    with a legend entry saying what they mean. A note under the legend defines the
-    normalisation (ω for the linear map).
-
-    The axis labels follow the map's contact law (``contact_law`` attribute,
-    :data:`FMAX_LABELS`): ζ, λ and F_max/(m V0 ω) for a linear map; ζ_h, λ_h and
-    F_max/F_hs for a Hertz map; ζ, λ at K_y and F_max/(m V0 ω_y) for an elastic-plastic
-    map at one β (``dataset.sel(beta=…)``; over β see :func:`plot_plastic_chart`). The
-    asymptotes drawn here are the linear law's: only a linear map gets them.
+    Plates solid, beams dashed; the quasi-static and infinite-structure peaks as asymptotes
+    (linear maps only); ``sensitive`` points as a band between ``fmax_low`` and ``fmax_high``,
+    marked ×. Axis labels follow the map's contact law (:data:`FMAX_LABELS`); an
+    elastic-plastic map is drawn at one β (see :func:`plot_plastic_chart`).
 
     Parameters
     ----------
@@ -63,12 +49,11 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     structures : list of str, optional
         Structure names to draw (default all).
     lambdas : list of float, optional
-        λ values to draw (default all in the dataset); each is drawn at the nearest grid
-        λ, and the legend gives that grid λ.
+        λ values to draw (default all), each at the nearest grid λ (the legend's).
     asymptotes : bool
         Draw the quasi-static and infinite-structure asymptotes (linear maps only).
     shade_regimes : bool
-        Shade the local band and the regime bands along ζ.
+        Shade the local band (F̄max ≥ 0.9) and the quasi-static band along ζ.
     ax : matplotlib Axes, optional
 
     Returns
@@ -162,13 +147,7 @@ def _has_sensitive(dataset, structures, lambda_values):
 
 def _draw_sensitive_bands(ax, zeta, curve, colour, kind="plate"):
     """Fill between ``fmax_low`` and ``fmax_high`` over each run of sensitive points of one
-    curve (widened to its neighbours, so band and line join), in the curve's colour; a
-    beam's band is hatched and both edges are drawn thin in the curve's line style (plates
-    solid, beams dashed), so a plate's band and a beam's of the same λ stay apart where
-    they overlap.
-
-    Returns the curve's F̄max with NaN at the sensitive points: the line is not drawn where
-    the band stands for it (it would print one number where no converged value exists).
+    curve (a beam's band hatched); returns the curve's F̄max with NaN where a band stands.
     """
     values = np.array(curve["fmax_normalised"].values, dtype=float)
     sensitive = _sensitive_mask(curve)
@@ -202,11 +181,9 @@ def _lambda_styles(count):
 
 
 def _selection(dataset, structures, lambdas):
-    """The structures and the grid λ values to draw (default: all of the dataset's).
-
-    Asked λ values are replaced by the nearest λ of the grid (nearest in log λ), each once:
-    the curves are the grid's, and their labels and asymptotes must say which λ they are
-    (labelling the asked λ drew curves below their own quasi-static line)."""
+    """The structures and the grid λ values to draw (default all): each asked λ replaced
+    by the grid's nearest in log λ, once.
+    """
     structures = list(dataset["structure"].values) if structures is None else list(structures)
     grid = np.asarray(dataset["lambda_"].values, float)
     if lambdas is None:
@@ -258,25 +235,9 @@ def _runs(mask):
 
 
 def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
-    """The regime of every point of a chart: one row per (structure, λ), ζ along x.
-
-    Drawn under :func:`plot_fmax_chart` (same ζ axis) by ``impactmaps chart``, it shows
-    where each curve is local, follows the infinite structure, is in the transition or
-    is quasi-static (criteria: :mod:`impactmaps.maps.family.regimes`).
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep result with a ``regime`` variable.
-    structures : list of str, optional
-        Structure names (default all).
-    lambdas : list of float, optional
-        λ values (default all).
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """The regime of every point of a chart: one row per (structure, λ), ζ along x, from a
+    sweep result ``dataset`` with a ``regime`` variable (``structures``, ``lambdas``:
+    default all).
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -311,9 +272,9 @@ _THEORIES = {"euler": "Euler–Bernoulli", "rayleigh": "Rayleigh", "timoshenko":
 
 
 def structure_label(dataset, structure) -> str:
-    """A reader's name for the map structure ``structure`` of ``dataset`` (its coordinates
-    ``kind``, ``supports``, ``theory``, ``aspect_ratio``, ``slenderness``), e.g. "simply
-    supported Euler–Bernoulli beam"; the name itself when they are missing."""
+    """A reader's name for the map structure ``structure`` of ``dataset``, e.g. "simply
+    supported Euler–Bernoulli beam"; the name itself when its coordinates are missing.
+    """
     one = dataset.sel(structure=structure)
     try:
         kind, supports, theory = (str(one[key].item()) for key in ("kind", "supports", "theory"))
@@ -331,23 +292,9 @@ def structure_label(dataset, structure) -> str:
 
 
 def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
-    """Regimes of one structure on the (ζ, λ) plane (log axes).
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        A sweep result with a ``regime`` variable.
-    structure : str
-        Structure name.
-    smooth : bool
-        Classify on a dense grid (F̄max, peak and wave-return times interpolated
-        linearly in log ζ, log λ, as :func:`impactmaps.maps.read.lookup.lookup` does) instead
-        of drawing one block per computed point; used when every point is computed.
-    ax : matplotlib Axes, optional
-
-    Returns
-    -------
-    matplotlib.axes.Axes
+    """Regimes of the structure named ``structure`` on the (ζ, λ) plane (log axes), from a
+    sweep result with a ``regime`` variable; ``smooth``: classify on a dense grid
+    interpolated as a lookup does (when every point is computed), else one block per point.
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -390,9 +337,9 @@ def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
 
 
 def _label_spot(segments, zeta, lam):
-    """Where a contour level's label goes: the middle (by length in log ζ, log λ) of its
-    longest line, kept away from the axes' edges (a label placed by ``clabel`` could sit
-    half outside the axes); ``None`` when the level has no line."""
+    """Where a contour level's label goes: the middle of its longest line, away from the
+    axes' edges; ``None`` when the level has no line.
+    """
     inner = (np.log(zeta[0]) + 0.08 * np.log(zeta[-1] / zeta[0]), np.log(zeta[-1]) - 0.08 * np.log(zeta[-1] / zeta[0]),
              np.log(lam[0]) + 0.05 * np.log(lam[-1] / lam[0]), np.log(lam[-1]) - 0.05 * np.log(lam[-1] / lam[0]))
     best, best_length = None, 0.0
@@ -436,20 +383,17 @@ PLASTIC_PANELS = (
 def plot_plastic_chart(maps, lambda_, *, betas=None, axes=None):
     """F̄max, restitution and absorbed energy against ζ at a few β for one λ (elastic-plastic maps).
 
-    One curve per (β, structure): plates solid, beams dashed, one colour per β; each map
-    is read at the grid λ nearest to ``lambda_``. Sensitive points (no converged F̄max)
-    are drawn as the band ``fmax_low``–``fmax_high`` on the F̄max panel.
+    One curve per (β, structure): plates solid, beams dashed, one colour per β; sensitive
+    points as the band ``fmax_low``–``fmax_high``.
 
     Parameters
     ----------
     maps : sequence of xarray.Dataset
-        Elastic-plastic maps of one law (dims ``structure``, ``beta``, ``lambda_``, ``zeta``;
-        :mod:`impactmaps.maps.compute.plastic_points`).
+        Elastic-plastic maps of one law (dims ``structure``, ``beta``, ``lambda_``, ``zeta``).
     lambda_ : float
-        Relative stiffness K_st/K_y of the curves [-].
+        Relative stiffness K_st/K_y of the curves [-] (nearest grid λ).
     betas : sequence of float, optional
-        Impact numbers (default: every second β of the first map); each map is read at the
-        nearest grid β.
+        Impact numbers (default: every second β of the first map; nearest grid β).
     axes : sequence of three matplotlib Axes, optional
         F̄max, restitution and absorbed-energy panels (default: a new figure).
 

@@ -37,8 +37,7 @@ def plot_study(table, key: str, quantities=("peak_force_N", "restitution"), *, l
     quantities : sequence of str
         Columns to draw, one panel each (labels: :data:`STUDY_QUANTITIES`).
     log_x : bool, optional
-        Log x axis (default: when the values are positive and span more than a decade). On a
-        log x axis, a positive quantity spanning more than a factor 30 gets a log y axis.
+        Log x axis (default: positive values spanning more than a decade).
     axes : sequence of matplotlib Axes, optional
         One per quantity (default: a new figure with the panels stacked, x shared).
 

@@ -18,15 +18,7 @@ integrated (at least ``min_modes`` of them, but with residual flexibility none a
 coupled contact phase in round-off, :func:`~impactmaps.solvers.modal_run.static_floor`),
 where ``ω`` is the contact frequency; the rest enter through ``r``.
 
-Time step: ``Δt = min(time_step_ratio/ω, max(resolve_ratio/ω_top, Δt_content))``.
-``ω_top`` is the highest natural frequency of the coupled impactor–contact–structure
-system in contact (it lies above the highest retained mode by the interlacing of the
-point receptance); resolving it resolves every oscillation of the contact force.
-``Δt_content`` (:func:`~impactmaps.solvers.time_step.content_time_step`, capped at ``STABLE_TOP_STEP/ω_top``) is the
-step that resolves the oscillations the force actually carries: a light impactor on a
-plate couples only weakly to the modes near the cut-off, their share of the force is
-~1e-7, and the step need not follow them (the local plate case of the benchmarks takes
-305 steps instead of 775, at the same F̄max to 1e-5).
+Time step: :mod:`~impactmaps.solvers.time_step` (docs/physics.rst, "The exact-step integrator").
 """
 
 from __future__ import annotations
@@ -86,8 +78,7 @@ def simulate(
     ----------
     target : Target or ModalBasis
         The struck structure (beam, plate, half-space, …) or directly its modes at the
-        impact point (:class:`impactmaps.targets.halfspace.HalfSpace` is the same as an
-        empty :class:`ModalBasis` with zero residual).
+        impact point (a :class:`ModalBasis` is integrated as given).
     law : ContactLaw
         Any registered contact law with scalar parameters.
     impactor_mass : float
@@ -100,39 +91,32 @@ def simulate(
         Keep full time histories (``False`` keeps scalars only, for sweeps).
     time_step : float, optional
         Force this time step [s] instead of the automatic choice (every phase then runs
-        the sampled scheme, also a linear contact that would take the exact phase).
+        the sampled scheme).
     effective_radius : float, optional
-        Effective radius R [m] of the sphere–target contact for the contact patch
-        (``settings.contact_patch``, default ``"auto"``) when the law carries none
-        (:func:`contact_radius_function`); ignored for point loads.
+        Effective radius R [m] for the contact patch when the law carries none; ignored
+        for point loads.
 
     Returns
     -------
     ImpactResult
-        Where the patch was applied (``settings.contact_patch``), ``result.settings``
-        also holds ``contact_radius_m``, the converged patch radius [m].
-        ``method`` says what answered: ``"modal+residual"`` (or ``"modal"`` without
-        the residual), ``"modal+residual-capped"`` or ``"infinite-structure-asymptote"``.
+        ``method`` says what answered: ``"modal+residual"`` (``"modal"`` without the
+        residual), ``"modal+residual-capped"`` or ``"infinite-structure-asymptote"``;
+        with a patch, ``result.settings["contact_radius_m"]`` is its radius [m].
 
     Raises
     ------
     ValueError
-        Bad input, or an impact no method answers within the memory cap.
+        Bad input, an impact no method answers within the mode cap, or a run above the
+        1 GiB memory budget (naming the knob and the value that fits).
 
     Notes
     -----
-    Memory is bounded for every input: when the cut-off of a :class:`Target` lies above
-    more than :data:`~impactmaps.solvers.mode_budget.MAX_MODES` modes (counted, not
-    built), :func:`~impactmaps.solvers.mode_budget.plan_basis` decides — the
-    infinite-structure solution if no reflection returns before the contact is over,
-    else the modes up to the cap plus residual compliance (a
-    :class:`~impactmaps.solvers.mode_budget.ModeBudgetWarning`), else a ``ValueError``.
-    The same holds where the target's own model caps the cut-off (a Ritz plate, a
-    finite-element beam: :meth:`~impactmaps.targets.base.Target.resolution_limit`).
-    A :class:`ModalBasis` target is integrated as given. Before each integration the
-    run's memory and time are estimated (:mod:`~impactmaps.solvers.run_budget`): above
-    1 GiB the run is refused (``ValueError`` naming the knob and the value that fits),
-    above a minute it is announced (:class:`~impactmaps.solvers.run_budget.LongRunWarning`).
+    Memory is bounded for every input: above :data:`~impactmaps.solvers.mode_budget.MAX_MODES`
+    modes, or the target's :meth:`~impactmaps.targets.base.Target.resolution_limit`,
+    :func:`~impactmaps.solvers.mode_budget.plan_basis` picks the infinite-structure solution,
+    a capped basis (:class:`~impactmaps.solvers.mode_budget.ModeBudgetWarning`) or a refusal.
+    A run estimated above a minute issues
+    :class:`~impactmaps.solvers.run_budget.LongRunWarning`.
     """
     settings = settings or DEFAULT_SETTINGS
     require_positive("impactor_mass", impactor_mass, "kg")
@@ -174,10 +158,9 @@ def simulate(
 
 
 def _warn_energy_ledger(result: ImpactResult, tolerance: float) -> None:
-    """A :class:`ConvergenceWarning` when the run's energy ledger (impact energy against
-    rebound, structure, contact and damping) closes only beyond ``tolerance`` of the impact
-    energy: its damping work, integrated by the trapezoidal rule over each step, misses the
-    modes that turn within a step (free flight's is exact: :func:`~impactmaps.solvers.integrator.free_flight.free_damping_work`)."""
+    """A :class:`ConvergenceWarning` when the run's energy ledger closes only beyond
+    ``tolerance`` [-] of the impact energy.
+    """
     error = float(result.energy_balance_error)
     if not math.isfinite(error) or abs(error) <= tolerance:
         return
@@ -199,24 +182,14 @@ def _warn_target_validity(target: Target, result: ImpactResult) -> None:
 
 
 def _possible_variants(law: ContactLaw, settings: ModalSettings, time_step) -> tuple:
-    """The integrator variants (``exact_phase``) a run may need: with the exact contact
-    phase too for a linear law unless the sampled one is asked for or the step is forced
-    (:func:`~impactmaps.solvers.modal_run.run_once` decides which)."""
+    """The integrator variants (``exact_phase``) a run may need."""
     exact = linear_stiffness(law) > 0.0 and settings.contact_phase != "sampled" and time_step is None
     return (None, True) if exact else (None,)
 
 
 def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: float, estimate: bool = False):
     """:func:`~impactmaps.solvers.mode_budget.plan_basis` of a run whose cut-off is ``wanted``
-    [rad/s], also where the target's model, not memory, caps it.
-
-    A target of bounded size resolves modes up to :meth:`Target.resolution_limit` only (a
-    Ritz plate's largest basis, a finite-element beam's largest mesh): a cut-off above it
-    is a capped basis like one above the memory cap — the infinite-structure solution if
-    no reflection returns before the contact is over, else the modes up to the limit
-    (residual flexibility for the rest) if it lies far enough above ω, else a refusal
-    naming the impactor mass that fits. (Before, such a run silently integrated the
-    resolved modes and let the residual stand in for the rest.)
+    [rad/s], also where the target's :meth:`Target.resolution_limit` (not memory) caps it.
     """
     limit = float(target.resolution_limit())
     if wanted <= limit:
@@ -228,40 +201,15 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
 def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
                  settings: ModalSettings | None = None, record: bool = True,
                  time_step: float | None = None) -> dict:
-    """What :func:`simulate` would integrate and what it would cost, without integrating.
-
-    Nothing is integrated, not even an any-law asymptote: whether the infinite-structure
-    solution answers is decided from the closed form's peak time at the law's reference
-    stiffness (``plan_basis(..., estimate=True)``).
-
-    The mode budget's plan, the basis and time step of the run (for a patch load, of the
-    first pass at the half-space peak indentation's radius) and the estimate of
-    :func:`~impactmaps.solvers.run_budget.modal_run_budget`: the figures that decide whether
-    a run is refused (above 1 GiB) or announced (above a minute).
-
-    Parameters
-    ----------
-    target : Target or ModalBasis
-        As for :func:`simulate`.
-    law : ContactLaw
-        Contact law with scalar parameters.
-    impactor_mass, velocity : float
-        m_i [kg] and V0 [m/s], > 0.
-    settings : ModalSettings, optional
-        As for :func:`simulate`.
-    record, time_step
-        As for :func:`simulate`.
+    """What :func:`simulate` would integrate and what it would cost, without integrating
+    (arguments as for :func:`simulate`).
 
     Returns
     -------
     dict
-        ``method`` (what answers: see :func:`simulate`), ``modes``, ``time_step_s``,
-        ``expected_steps`` (over ``EXPECTED_RUN_RATIO``/ω or to the time limit),
-        ``history_rows`` (0 without a history), ``memory_bytes``, ``seconds`` (on the
-        2-core reference machine; compilation on an empty numba cache not included) and
-        ``runs`` (1, or the convergence check's re-run at twice the cut-off counted in:
-        2, with ``memory_bytes`` and ``seconds`` of both). An infinite-structure answer
-        integrates nothing: ``modes`` 0 and no step.
+        ``method``, ``modes``, ``time_step_s``, ``expected_steps``, ``history_rows``,
+        ``memory_bytes``, ``seconds`` (compilation excluded) and ``runs`` (2 with the
+        convergence check's re-run); an infinite-structure answer has ``modes`` 0.
     """
     from .run_budget import EXPECTED_RUN_RATIO
 
@@ -307,9 +255,9 @@ def _run_at(target, law, params, impactor_mass, velocity, settings, time_step, r
 
 
 def _checked(result: ImpactResult, fine: ImpactResult, tolerance: float, cap, run) -> ImpactResult:
-    """``result`` with ``converged`` set: F̄max against the ``fine`` run (twice the cut-off,
-    half the step), and, for a capped basis (``cap`` [rad/s]), against a run at half the cap
-    — what is actually capped; a warning and ``convergence_note`` say why when not."""
+    """``result`` with ``converged`` set: F̄max against the ``fine`` run and, for a capped
+    basis (``cap`` [rad/s]), against a run at half the cap.
+    """
     changes = [(abs(fine.fmax_normalised - result.fmax_normalised), "the cut-off was doubled and the step halved")]
     if cap is not None:
         with warnings.catch_warnings():
@@ -329,16 +277,9 @@ def _checked(result: ImpactResult, fine: ImpactResult, tolerance: float, cap, ru
 
 def _run_with_patch(target, law, params, impactor_mass, velocity, settings, record, time_step,
                     radius_of, cap=None) -> ImpactResult:
-    """:func:`~impactmaps.solvers.modal_run.run_once` under the Hertz patch of the peak indentation,
-    by fixed-point iteration.
-
-    From the half-space peak indentation: run → α_max → ``a = radius_of(α_max)`` → run,
-    until a moves by < :data:`PATCH_TOLERANCE`; the passes record no history, the run at the
-    settled radius records it when asked. The warnings of the passes are held back
-    and only those of the last run (the converged radius) are issued: the first guess
-    (a rigid target's α_max) can be several times the converged radius on a compliant
-    plate and would raise a "contact radius exceeds half the thickness" warning that
-    does not apply. ``result.settings["contact_radius_m"]`` is the radius used [m].
+    """:func:`~impactmaps.solvers.modal_run.run_once` under the Hertz patch of the peak
+    indentation, by fixed-point iteration on its radius (to :data:`PATCH_TOLERANCE`); only
+    the last run's warnings are issued.
     """
     radius = radius_of(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
     for _ in range(PATCH_PASSES):
@@ -372,12 +313,8 @@ def simulate_normalised(
     settings: ModalSettings | None = None,
     record: bool = True,
 ) -> ImpactResult:
-    """Simulate the linear-contact impact that realises (ζ, λ) on ``target``.
-
-    The impactor is built by the inverse of the dimensionless framework (spec §4):
-    ``K = K_st/λ`` and ``m_i`` from the structure's loss-factor formula; the velocity
-    is 1 m/s (the linear problem scales with it). Use the normalised properties of
-    the result (``fmax_normalised``, ``normalised_history()``).
+    """Simulate the linear-contact impact that realises (ζ, λ) on ``target`` at V0 = 1 m/s
+    (read the result's normalised properties).
     """
     from ..dimensionless import realise
 
@@ -399,7 +336,7 @@ def simulate_batch(
     record: bool = False,
     max_workers: int | None = None,
 ) -> list[ImpactResult]:
-    """Simulate many independent impacts, in parallel threads (the kernel releases the GIL).
+    """Simulate many independent impacts in parallel threads (the kernel releases the GIL).
 
     Parameters
     ----------
@@ -415,7 +352,7 @@ def simulate_batch(
     Returns
     -------
     list of ImpactResult
-        In the order of ``cases``; identical to running :func:`simulate` one by one.
+        In the order of ``cases``, identical to :func:`simulate` one by one.
     """
     import os
     from concurrent.futures import ThreadPoolExecutor

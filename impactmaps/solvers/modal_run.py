@@ -1,13 +1,9 @@
 """One run of the modal integrator: the basis, the step, the contact phase, the kernel call.
 
-The per-run worker of :func:`impactmaps.solvers.modal.simulate` (which decides what
-answers, iterates the contact patch and checks convergence): :func:`run_once` builds the
-participating modes below the cut-off with their residual compliance, chooses the time
-step (:mod:`~impactmaps.solvers.time_step`) and the contact phase (exact coupled modes or
-sampled), checks the run's budget (:mod:`~impactmaps.solvers.run_budget`) and calls the
-compiled integrator (:mod:`~impactmaps.solvers.integrator.exact_step`) through :class:`KernelInputs`
-(its named tuples of :mod:`~impactmaps.solvers.integrator.kernel_types`) and
-:class:`~impactmaps.solvers.integrator.kernel_types.KernelScalars`.
+:func:`run_once`, the per-run worker of :func:`impactmaps.solvers.modal.simulate`, builds
+the participating modes below the cut-off with their residual, chooses the time step
+and the contact phase, checks the run's budget and calls the compiled integrator
+through :class:`KernelInputs`.
 """
 
 from __future__ import annotations
@@ -114,15 +110,8 @@ def static_floor(basis: ModalBasis, contact_frequency: float, min_modes: int) ->
 
 def _participating_modes(target, max_frequency: float, min_modes: int, options: dict) -> ModalBasis:
     """The participating modes of ``target`` below ``max_frequency`` [rad/s], at least
-    ``min_modes`` of them when it has them.
-
-    The floor counts the modes the impact point sees (:meth:`ModalBasis.participating`:
-    a mode at rest there is dropped, degenerate ones merge), as the maps' basis tables
-    do: asked for four modes, an SS beam struck at mid-span gives two that move it and a
-    square plate struck at its centre one or two, which left heavy impactors
-    under-resolved (plate ζ = 10.9, λ = 0.119: F̄max 0.359 on 2 modes, 0.366 converged).
-    More modes are asked for (doubling) until enough participate — whole: a degenerate group
-    is kept with all its copies, as the maps' tables keep it — or the target has no more.
+    ``min_modes`` of them (counted as the impact point sees them, degenerate groups whole)
+    when it has them: more are asked for, doubling, until enough participate.
     """
     every = target.modes(max_frequency, min_modes=min_modes, **options)
     basis = every.participating()
@@ -143,14 +132,9 @@ def _participating_modes(target, max_frequency: float, min_modes: int, options: 
 def _coupled_phase(basis: ModalBasis, stiffness: float, impactor_mass: float, time_step: float,
                    contact_frequency: float, choice: str) -> CoupledModes:
     """The coupled modes for the exact contact phase, or empty arrays for the sampled one.
-
-    ``stiffness`` is the law's :func:`linear_stiffness` [N/m] (0: not linear); ``choice`` is
-    :attr:`ModalSettings.contact_phase`. With ``"auto"`` the exact phase
-    (:mod:`~impactmaps.solvers.integrator.coupled_contact`) serves linear laws on undamped modes
-    when the sampled scheme's step ``time_step`` would cost more than the set-up
-    (:data:`COUPLED_COST_RATIO`): in the quasi-static corner the modes the mode
-    floor keeps lie ~10⁴ ω above the contact, the stability limit holds the sampled step
-    to ~1/ω_top and a contact took ~10⁷ steps; the exact phase takes ~10².
+    ``stiffness``: the law's :func:`linear_stiffness` [N/m] (0: not linear); ``choice``:
+    :attr:`ModalSettings.contact_phase` (``"auto"``: exact where the sampled step
+    ``time_step`` [s] would cost more, :data:`COUPLED_COST_RATIO`).
     """
     size = basis.size
     sampled_steps = np.pi / (contact_frequency * time_step)
@@ -170,17 +154,9 @@ INTERRUPTIBLE_SECONDS = 0.5
 
 
 def _integrate(interruptible: bool, args: KernelInputs):
-    """:data:`~impactmaps.solvers.integrator.exact_step.integrate_impact` on ``args`` (``args.run.stop``
-    the kernel's one-element stop flag).
-
-    A compiled loop does not see Ctrl-C (the signal is handled between Python bytecodes).
-    When ``interruptible``, the kernel (which releases the GIL) runs in a worker thread
-    while this thread waits in 0.1 s slices; on ``KeyboardInterrupt`` it sets the stop flag,
-    which the kernel reads at every step, waits for the kernel to return and re-raises.
-    The arithmetic is the kernel's own either way: results are bit for bit those of a direct
-    call. Short runs (most map points) call the kernel directly, without a thread, and so
-    does every run in a process that ignores Ctrl-C (a sweep's worker,
-    :func:`impactmaps.maps.compute.workers.init_worker`): there no interrupt can arrive to stop it.
+    """:data:`~impactmaps.solvers.integrator.exact_step.integrate_impact` on ``args``; when
+    ``interruptible``, in a worker thread that Ctrl-C stops through ``args.run.stop`` (bit
+    for bit a direct call).
     """
     compile_helper.await_variant(integrate_impact.variant_of(args))  # a helper compiling it (first run only)
     if not interruptible or interrupts_ignored():
@@ -222,20 +198,16 @@ _setup_cache: dict = {}
 
 
 def _setup_key(basis: ModalBasis, *numbers: float) -> tuple:
-    """The exact inputs of a run's set-up: the bytes of the basis arrays (float64, as
-    :class:`ModalBasis` holds them; their lengths in the key) and the numbers themselves
-    (equal floats, never NaN here, are the same bits; ±0.0 only as a zero residual, where
-    either gives the same set-up)."""
+    """The exact inputs of a run's set-up: the bytes of the basis arrays and the numbers."""
     return (basis.frequencies.tobytes(), basis.participation.tobytes(), basis.damping_ratios.tobytes(),
             basis.frequencies.dtype.char, basis.participation.dtype.char, basis.damping_ratios.dtype.char,
             basis.residual_compliance) + numbers
 
 
 def _cached(key: tuple, compute):
-    """``compute()``, kept under ``key`` (exact input bytes) so that a repeated run skips
-    its pure set-up: the stored value is the one ``compute()`` returns for those inputs,
-    bit for bit, so the cache cannot change an answer. Bounded by :data:`SETUP_CACHE_SIZE`.
-    The values are only read (by the kernel); never hand them to code that writes."""
+    """``compute()``, kept under ``key`` (exact input bytes; at most :data:`SETUP_CACHE_SIZE`),
+    so a repeated run skips its pure set-up. The values are read-only.
+    """
     value = _setup_cache.get(key)
     if value is None:
         value = compute()
@@ -246,12 +218,10 @@ def _cached(key: tuple, compute):
 
 
 def _step_and_phase(basis, linear, impactor_mass, stiffness, omega_c, settings: ModalSettings):
-    """(time step [s], coupled modes) chosen automatically (module docstring of
-    :mod:`impactmaps.solvers.modal`): the exact phase where it pays, the step then only for
-    free flight. ``linear``: the law's :func:`linear_stiffness` [N/m]; ``stiffness``: the
-    reference contact stiffness [N/m]. The set-up (top coupled frequency, content step, coupled modes) of a basis
-    of at most :data:`SETUP_CACHE_MODES` modes is cached on the exact bytes of its inputs
-    (:func:`_cached`)."""
+    """(time step [s], coupled modes) chosen automatically; ``linear``: the law's
+    :func:`linear_stiffness` [N/m]; ``stiffness``: the reference contact stiffness [N/m].
+    The set-up of a basis of at most :data:`SETUP_CACHE_MODES` modes is cached.
+    """
     if basis.size > SETUP_CACHE_MODES:  # a large set-up is a small share of its run
         return _step_and_phase_now(basis, linear, impactor_mass, stiffness, omega_c, settings)
     key = _setup_key(basis, stiffness, impactor_mass, omega_c, settings.force_resolution, settings.step_scale,

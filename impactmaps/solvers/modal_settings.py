@@ -1,9 +1,6 @@
-"""Settings and facts of a modal run: :class:`ModalSettings`, the contact frequency, the patch.
-
-What every part of the modal solver (:mod:`impactmaps.solvers.modal`) reads: the numerical
-settings with their ranges, the extras a run reports (:class:`ModalDetails`), the reference
-contact stiffness that sets the contact frequency, and which load (point or patch) a run
-takes.
+"""Settings and facts of a modal run: :class:`ModalSettings` (the numerical settings with
+their ranges), :class:`ModalDetails`, the reference contact stiffness that sets the
+contact frequency, and which load (point or patch) a run takes.
 """
 
 from __future__ import annotations
@@ -38,17 +35,8 @@ MAX_EVENTS = 10_000_000
 
 @dataclass(frozen=True)
 class ModalDetails:
-    """Extras of a modal run (``ImpactResult.details``).
-
-    Attributes
-    ----------
-    steps : int
-        Steps the integrator took (contact and free flight) [-].
-    contact_phase : {"exact", "sampled"}
-        How contacts were integrated: ``"exact"`` through the coupled modes of a linear
-        contact (:mod:`~impactmaps.solvers.integrator.coupled_contact`), ``"sampled"`` by the
-        exact-step scheme with the force sampled once per step
-        (:mod:`~impactmaps.solvers.integrator.exact_step`).
+    """Extras of a modal run (``ImpactResult.details``): ``steps`` the integrator took [-] and
+    ``contact_phase`` (``"exact"`` or ``"sampled"``, see :attr:`ModalSettings.contact_phase`).
     """
 
     steps: int
@@ -73,14 +61,8 @@ class ModalSettings:
         Integrate modes with ω_j ≤ ``cutoff_ratio`` · ω (contact frequency); in
         (0, :data:`MAX_CUTOFF_RATIO`].
     patch_cutoff_ratio : float
-        The same for a run under the contact patch (``contact_patch``): the patch's
-        modal transform suppresses the modes above a few times the contact frequency
-        (their participation falls like (k a)⁻²) and the residual compliance under the
-        patch carries them statically, so fewer modes suffice. Default 20: on the README
-        plate 20 ω lies within 5e-5 of 40–160 ω (987 modes and 726 steps instead of 3129
-        and 1398), on a thick plate (a/h = 10) within 3e-5, on the shear-soft laminate of
-        ``examples/composite_plate_sun_chen.toml`` within 1.2e-4 (10 ω: 2e-3 there;
-        ``validation/patch_convergence.py``).
+        The same for a run under the contact patch (``contact_patch``), whose modal
+        transform suppresses the high modes (convergence: ``docs/contact_patch.rst``).
     min_modes : int
         Integrate at least this many participating modes; in [0, :data:`MAX_MIN_MODES`].
     residual_flexibility : bool
@@ -96,10 +78,8 @@ class ModalSettings:
     max_time_ratio : float
         Time limit in units of 1/ω.
     max_events : int
-        Most contacts a run follows, in [1, :data:`MAX_EVENTS`] (the table is allocated
-        whole); a run with more stops there, with a warning and
-        ``time_limit_reached`` set (a sphere resting on a structure can chatter through
-        millions of contacts that carry no force).
+        Most contacts a run follows, in [1, :data:`MAX_EVENTS`]; a run with more stops
+        there, with a warning and ``time_limit_reached`` set.
     check_convergence : bool
         Re-run with twice the cut-off and half the step and warn
         (:class:`ConvergenceWarning`) if F̄max moves by more than ``tolerance``.
@@ -107,38 +87,21 @@ class ModalSettings:
         Convergence tolerance on F̄max.
     step_scale : float
         Factor in (0, 1] applied to the automatically chosen time step after every rule,
-        the stability cap included, so that a refinement really shortens the step also
-        where the stability limit sets it (:meth:`refined` halves it).
+        the stability cap included (:meth:`refined` halves it).
     contact_patch : {"auto", "point", "hertz-peak"}
         ``"point"``: the force acts at the impact point. ``"hertz-peak"``: on targets
-        that support it (``target.supports_contact_patch``, SSSS plates) and with a
-        contact law that has a geometry (:func:`contact_radius_function`), the force is
-        a Hertz pressure over the contact disc of the peak indentation,
-        ``a = sqrt(R α_max)``, found by fixed-point iteration (run → α_max → a → run,
-        from the half-space α_max, until a moves by < :data:`PATCH_TOLERANCE`); each
-        mode's participation is multiplied by the patch's modal transform and the
-        residual is the static compliance under the patch. Otherwise the point load.
-        ``"auto"`` (default): ``"hertz-peak"`` on shear-deformable targets that support
-        it (Mindlin SSSS plates), whose point-load deflection diverges logarithmically so
-        that a point-load peak force never converges in the cut-off (≈ −1 % per doubling
-        on the README example); the point load elsewhere — Kirchhoff plates and Euler,
-        Rayleigh and Timoshenko beams, bit for bit as ``"point"`` (their point-load
-        compliance is finite: the patch would move their peak force by O((k a)²) only;
-        a Timoshenko beam's shear deflection under a point load is finite, see
-        ``docs/contact_patch.rst``), laws without a contact geometry (linear laws, the
-        maps' normalised runs) and :class:`ModalBasis` targets. The converged patch
-        result lies 3.8 … 5.9 % under the 3D spring-coupled FE plate of
-        ``validation/fe`` (the point load at 40 ω: 2.7 … 3.4 %, but it keeps falling
-        with the cut-off): the remaining Mindlin-vs-3D near-field difference, see
-        ``docs/contact_patch.rst``.
+        that support it (SSSS plates) and with a contact law that has a geometry
+        (:func:`contact_radius_function`), a Hertz pressure over the contact disc of the
+        peak indentation, found by fixed-point iteration (to :data:`PATCH_TOLERANCE`).
+        ``"auto"`` (default): ``"hertz-peak"`` on Mindlin SSSS plates, whose point-load
+        peak force never converges in the cut-off; the point load elsewhere
+        (``docs/contact_patch.rst``).
     contact_phase : {"auto", "exact", "sampled"}
         How a contact is integrated. ``"exact"``: through the coupled modes of a linear
-        contact (:mod:`~impactmaps.solvers.integrator.coupled_contact`; linear laws on at most
-        :data:`COUPLED_MAX_MODES` undamped modes without rigid-body modes, otherwise
-        sampled); ``"sampled"``: the exact-step
-        scheme with the force sampled once per step; ``"auto"``: the exact phase where it
-        costs less (:data:`COUPLED_COST_RATIO`, :data:`COUPLED_MAX_MODES`). A forced
-        ``time_step`` always runs the sampled scheme.
+        contact (linear laws on at most :data:`COUPLED_MAX_MODES` undamped modes,
+        otherwise sampled); ``"sampled"``: the exact-step scheme with the force sampled
+        once per step; ``"auto"``: the exact phase where it costs less. A forced
+        ``time_step`` always samples.
     """
 
     cutoff_ratio: float = 40.0
@@ -176,12 +139,7 @@ class ModalSettings:
 
     def refined(self) -> "ModalSettings":
         """Settings with twice the cut-off, twice the modes and half the time step (the
-        cut-off and the modes at most :data:`MAX_CUTOFF_RATIO` and :data:`MAX_MIN_MODES`).
-
-        The step rules are applied to the larger basis and the step they give is then
-        halved (:attr:`step_scale`), so the step is really halved even where the
-        stability limit sets it.
-        """
+        cut-off and the modes at most :data:`MAX_CUTOFF_RATIO` and :data:`MAX_MIN_MODES`)."""
         return _refined(self)
 
 
@@ -221,11 +179,8 @@ def linear_stiffness(law: ContactLaw) -> float:
 def contact_radius_function(law: ContactLaw, effective_radius: float | None = None):
     """α [m] → contact radius a [m] of ``law``, or ``None`` when the law has no geometry.
 
-    A law with ``loading_contact_radius`` (Stronge) uses it; otherwise
-    ``a = sqrt(R α)`` with R the ``effective_radius`` given [m], else the law's
-    :attr:`~impactmaps.contact.base.ContactLaw.contact_radius_scale`. Laws without
-    either (a linear law, or a Hertz law built from its stiffness alone) give ``None``:
-    the point load.
+    A law's ``loading_contact_radius`` (Stronge), else ``a = sqrt(R α)`` with R the
+    ``effective_radius`` [m] or the law's ``contact_radius_scale``.
     """
     if hasattr(law, "loading_contact_radius"):
         return lambda alpha: float(law.loading_contact_radius(alpha))

@@ -1,24 +1,8 @@
 """Budgets before work: what a run will hold and how long it will take, checked before it starts.
 
-One mechanism for every solver (the modal solver, :func:`modal_run_budget`, and the
-finite-difference beam): a run whose estimated memory exceeds :data:`MEMORY_LIMIT_BYTES` is
-refused with a ``ValueError`` that names the knob and the value that fits
-(:func:`refuse_or_announce`); a run estimated to take longer than :data:`LONG_RUN_SECONDS` is
-announced with a :class:`LongRunWarning` before it starts.
-
-Modal estimates (:func:`modal_run_budget`), per run of the compiled integrator
-(:mod:`impactmaps.solvers.integrator.exact_step`):
-
-* steps — over :data:`EXPECTED_RUN_RATIO`/ω (a run ends once re-impact is impossible:
-  4 … 13 /ω in the runs measured), at most the ``ceil(max_time/Δt) + 2`` steps to the time
-  limit; with a forced step they may not exceed :data:`MAX_STEPS` (the automatic step is
-  never refused for its count: it follows the modes the contact excites);
-* memory — the contact-interval table, allocated whole (``max_events`` × 16 B); the
-  history of a recorded run, one row per expected step (:data:`HISTORY_ROW_BYTES` per
-  row: the kernel's growing array, its copy and the DataFrame), at most
-  :data:`HISTORY_ROW_CAP` rows — the kernel writes no more (a run that reaches them stops
-  there, flagged); the modes (:data:`BYTES_PER_MODE`);
-* time — :data:`SECONDS_PER_MODE_STEP` per mode and expected step.
+A run estimated above :data:`MEMORY_LIMIT_BYTES` is refused (``ValueError`` naming the
+knob and the value that fits); one above :data:`LONG_RUN_SECONDS` is announced
+(:class:`LongRunWarning`). :func:`modal_run_budget` estimates a modal run.
 """
 
 from __future__ import annotations
@@ -69,19 +53,8 @@ class LongRunWarning(UserWarning):
 
 
 class RunBudget(NamedTuple):
-    """The estimate of one run.
-
-    Attributes
-    ----------
-    memory_bytes : float
-        Largest memory the run may take [B].
-    seconds : float
-        Estimated run time [s].
-    advice : str
-        The knob to change and the value that fits, for the refusal (empty when the
-        run fits: only a refusal reads it).
-    hint : str
-        What makes the run faster, for the announcement (may be empty).
+    """The estimate of one run: ``memory_bytes`` [B], ``seconds`` [s], ``advice`` (the knob and
+    the value that fits, for a refusal) and ``hint`` (what makes it faster, may be empty).
     """
 
     memory_bytes: float
@@ -92,16 +65,8 @@ class RunBudget(NamedTuple):
 
 def refuse_or_announce(budget: RunBudget, what: str, stacklevel: int = 3) -> None:
     """Refuse (``ValueError``) a run above :data:`MEMORY_LIMIT_BYTES`, announce
-    (:class:`LongRunWarning`) one estimated above :data:`LONG_RUN_SECONDS`.
-
-    Parameters
-    ----------
-    budget : RunBudget
-        The estimate.
-    what : str
-        The run in words, to start the messages with.
-    stacklevel : int, optional
-        For the warning.
+    (:class:`LongRunWarning`, at ``stacklevel``) one above :data:`LONG_RUN_SECONDS`;
+    ``what`` names the run in the messages.
     """
     if budget.memory_bytes > MEMORY_LIMIT_BYTES:
         raise ValueError(f"{what} may take {budget.memory_bytes / 2**30:.3g} GiB (limit "
@@ -114,28 +79,15 @@ def refuse_or_announce(budget: RunBudget, what: str, stacklevel: int = 3) -> Non
 
 def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_frequency: float, record: bool,
                      max_events: int, forced_step: bool) -> RunBudget:
-    """The :class:`RunBudget` of one run of the modal integrator.
-
-    Parameters
-    ----------
-    n_modes : int
-        Modes integrated.
-    time_step, max_time : float
-        Step Δt and time limit [s].
-    contact_frequency : float
-        ω [rad/s].
-    record : bool
-        Whether the history is kept.
-    max_events : int
-        Capacity of the contact-interval table.
-    forced_step : bool
-        Whether ``time_step`` was given by the user (then it is the knob to name).
+    """The :class:`RunBudget` of one run of the modal integrator: ``n_modes`` modes, step
+    ``time_step`` and limit ``max_time`` [s], contact frequency ω [rad/s], ``record`` (history
+    kept), ``max_events`` (interval-table capacity), ``forced_step`` (the user gave the step).
 
     Raises
     ------
     ValueError
-        A forced step with more than :data:`MAX_STEPS` expected steps (absurdly short),
-        naming ``time_step`` and the value that fits (memory included).
+        A forced step with more than :data:`MAX_STEPS` expected steps, naming
+        ``time_step`` and the value that fits.
     """
     steps = math.ceil(max_time / time_step) + 2
     expected = min(steps, math.ceil(EXPECTED_RUN_RATIO / (contact_frequency * time_step)) + 2)

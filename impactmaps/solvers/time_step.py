@@ -1,12 +1,8 @@
 """The time step of the modal solver: what the contact force carries, and stability.
 
-``ω_top`` is the highest natural frequency of the coupled impactor–contact–structure
-system in contact (:func:`coupled_top_frequency`; it lies above the highest retained mode
-by the interlacing of the point receptance): resolving it resolves every oscillation of
-the contact force. :func:`content_time_step` is the longer step that resolves only the
-oscillations the force actually carries, capped at ``STABLE_TOP_STEP/ω_top``.
-:func:`impactmaps.solvers.modal.simulate` takes
-``Δt = min(time_step_ratio/ω, max(resolve_ratio/ω_top, Δt_content))``.
+:func:`coupled_top_frequency` gives ω_top, :func:`content_time_step` the step that
+resolves the oscillations the force carries; the rule and its derivation: docs/physics.rst,
+"The exact-step integrator".
 """
 
 from __future__ import annotations
@@ -29,12 +25,9 @@ STABLE_TOP_STEP = 2.0
 def coupled_top_frequency(
     basis: ModalBasis, contact_stiffness: float, impactor_mass: float, rtol: float = 1e-10
 ) -> float:
-    """Highest natural frequency [rad/s] of impactor + contact spring + retained modes.
-
-    Root above the highest retained mode of the point-receptance equation
-    ``1/K + r + Σ φ_j²/(ω_j² − ω²) − 1/(m_i ω²) = 0`` (the roots interlace the modal
-    frequencies, and exactly one lies above the last one), to relative tolerance
-    ``rtol`` in ω².
+    """Highest natural frequency [rad/s] of impactor + contact spring + retained modes: the
+    root of the point-receptance equation above the highest retained mode, to relative
+    tolerance ``rtol`` in ω².
     """
     series = 1.0 / contact_stiffness + basis.residual_compliance
     return float(_top_root(basis.frequencies, basis.participation, series, float(impactor_mass),
@@ -43,34 +36,10 @@ def coupled_top_frequency(
 
 def content_time_step(basis: ModalBasis, contact_stiffness: float, impactor_mass: float,
                       tolerance: float) -> float:
-    """Longest step [s] that resolves the structural oscillations of the contact force.
-
-    To first order in the coupling, structural mode j puts into the contact force an
-    oscillation at ω_j of amplitude (in units of m_i V0 ω)
-    ``Â_j = m_i φ_j² (ω/ω_j)³ / (1 + K r)²`` — the residue of the force response
-    ``V0/(s² D(s))``, ``D = 1/K + r + 1/(m_i s²) + Σ φ_j²/(s² + ω_j²)``, at the coupled
-    root next to ω_j (within a factor 2 of the exact residue of the top coupled mode on
-    the benchmark cases, modes of equal frequency summed: ``tests/solvers/test_integrator.py``).
-    A force linear within the step misses ``(ω_j Δt)²/8`` of each
-    oscillation; the step returned is the longest with
-    ``Σ_{ω_j > 2ω} min(Â_j, 1) (ω_j Δt)²/8 ≤ tolerance`` (slower oscillations belong to
-    the main contact pulse, resolved by ``time_step_ratio``).
-
-    Parameters
-    ----------
-    basis : ModalBasis
-        Retained modes and residual compliance r [m/N].
-    contact_stiffness : float
-        Linear(ised) contact stiffness K [N/m].
-    impactor_mass : float
-        m_i [kg].
-    tolerance : float
-        Tolerated error, in units of m_i V0 ω [-].
-
-    Returns
-    -------
-    float
-        Δt [s]; ``inf`` when no mode lies above 2ω.
+    """Longest step [s] that resolves the structural oscillations of the contact force
+    (docs/physics.rst): ``basis`` (modes, residual r [m/N]), linear(ised) contact stiffness
+    K [N/m], impactor mass m_i [kg], ``tolerance`` in units of m_i V0 ω [-]; ``inf`` when no
+    mode lies above 2ω.
     """
     if tolerance <= 0:
         return 0.0

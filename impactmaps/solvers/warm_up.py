@@ -1,17 +1,8 @@
 """Compile the modal solver's kernels into numba's on-disk cache ahead of the first run.
 
-numba compiles a kernel on its first call and keeps the machine code in its cache
-(``__pycache__`` beside the sources, or ``NUMBA_CACHE_DIR``); every later process loads it
-in milliseconds. On an empty cache the first integrating command pays for the compile
-(the exact-step integrator alone takes ~9 s on one idle core). :func:`warm_up` does that
-work once, right after installation (``impactmaps warm-up``): the two variants of the
-integrator (:data:`impactmaps.solvers.integrator.exact_step.integrate_impact`, with and without the
-exact contact phase) in two processes at once, then, in this process, everything else a
-run compiles — the time-step kernels, every registered contact law's kernel and the
-vectorised law evaluation — by loading the integrators back and running two tiny impacts.
-It changes no answer: the compiled code is the code a cold run would compile.
-:func:`compile_into_package` does the same when the wheel is built (``setup.py``), into
-numba's cache beside the built modules, which the wheel ships.
+:func:`warm_up` (``impactmaps warm-up``) compiles the integrator's two variants in two
+processes, then every other kernel a run compiles; :func:`compile_into_package` does the
+same into the package when a wheel is built. No answer changes (docs/install.rst).
 """
 
 from __future__ import annotations
@@ -70,27 +61,10 @@ def cache_directory() -> str:
 
 
 def warm_up(workers: int = 2) -> dict:
-    """Compile every kernel of a modal run into numba's cache (or load what is there).
-
-    Parameters
-    ----------
-    workers : int
-        Processes compiling the integrator's two variants at once (1: one after the other
-        in this process), ≥ 1.
-
-    Returns
-    -------
-    dict
-        ``compiled_variants`` (integrator variants that were not in the cache),
-        ``integrator_s`` (wall time of their compile [s]), ``rest_s`` (the tiny impacts
-        and law kernels [s]), ``total_s`` and ``cache_directory``.
-
-    Notes
-    -----
-    Idempotent: on a warm cache it loads everything and takes about a second. Two
-    processes writing the same cache index at the same instant can lose one entry; the
-    tiny impacts then compile that variant again here, so the cache is complete when
-    this returns.
+    """Compile every kernel of a modal run into numba's cache (or load what is there), the
+    integrator's two variants in ``workers`` ≥ 1 processes; idempotent. Returns
+    ``compiled_variants``, ``integrator_s``, ``rest_s``, ``total_s`` (wall times [s]) and
+    ``cache_directory``.
     """
     from .._checks import require_in_range
     from .integrator import exact_step  # noqa: F401 (registers the integrator with the compile helper)
@@ -113,20 +87,8 @@ def warm_up(workers: int = 2) -> dict:
 
 
 def compile_into_package() -> dict:
-    """Compile every kernel of a modal run into numba's cache beside this package's modules.
-
-    The wheel's build (``setup.py``) runs it in a child process that imports the package from
-    the build tree: numba's cache files (``impactmaps/*/__pycache__/*.nbi``, ``*.nbc``) are
-    then packed into the wheel. numba loads an entry when the source file has the same
-    content (numba ≥ 0.68 keys its index on a hash of the file, not on its modification
-    time, which an installed file does not keep), numba the same version, Python the same version and the CPU the same name and
-    features; else it compiles on first use, as without the shipped cache.
-
-    Returns
-    -------
-    dict
-        What :func:`warm_up` returns, with ``files`` (number of cache files) and ``bytes``
-        (their size).
+    """Compile every kernel of a modal run into numba's cache beside this package's modules
+    (shipped in the wheel); returns :func:`warm_up`'s dict with ``files`` and ``bytes``.
 
     Raises
     ------
@@ -159,11 +121,10 @@ def package_cache_files(package) -> list:
 
 
 def run_background(directory, sleep_s: float | None = None) -> int:
-    """The background warm-up process (:mod:`impactmaps._compile.background_warm_up`): at
-    low priority, take the lock of the state ``directory`` (or end if another process holds
-    it or the cache is warm), run :func:`warm_up` (or, for tests, sleep ``sleep_s`` [s]; fail
-    if it is negative), write the marker (the ``failed`` marker and the error's traceback
-    in the log if it fails); the exit status (0)."""
+    """The background warm-up process: at low priority, under the lock of the state
+    ``directory``, run :func:`warm_up` (tests: sleep ``sleep_s`` [s], fail if negative) and
+    write the marker; the exit status (0).
+    """
     import json
     import os
 
@@ -196,12 +157,9 @@ def run_background(directory, sleep_s: float | None = None) -> int:
 
 
 def _lower_priority(nice: int) -> None:
-    """Run this process (and the workers it starts) at ``nice``: its own, and that of its
-    session's scheduling group. Linux with autogroups (``/proc/sys/kernel/sched_autogroup_enabled``)
-    shares the CPU between sessions first, and the background process is a session of its
-    own: without the group's nice it took as much CPU as the foreground command (the default
-    chart on an empty cache: 21.6 s against 5.8 s). Best effort: a system without either keeps
-    the process's nice."""
+    """Run this process (and its workers) at ``nice``, and its session's scheduling group
+    (Linux autogroups); best effort.
+    """
     import os
 
     try:

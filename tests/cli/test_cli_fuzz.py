@@ -117,6 +117,7 @@ def _bases(files) -> dict:
                              / "beam-ss-euler-epp.npz"), "--beta", "10", "--out", str(root / "epp.png")],
         "init": ["init", "plate", str(root / "new.toml"), "--overwrite"],
         "check": ["check", str(files["valid_case"])],
+        "modes": ["modes", str(files["valid_case"]), "--count", "4"],
         "materials": ["materials"],
         "laws": ["laws"],
         "warm-up": ["warm-up", "--workers", "1"],

@@ -27,7 +27,7 @@ kind = "beam"
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",
-            "restitution", "plot", "init", "check", "warm-up", "materials", "laws")
+            "restitution", "plot", "init", "check", "modes", "warm-up", "materials", "laws")
 #: A shipped elastic-plastic map: `plot` draws it at one β.
 SHIPPED_EPP_MAP = Path(__file__).resolve().parents[2] / "impactmaps" / "maps" / "data" / "beam-ss-euler-epp.npz"
 
@@ -50,6 +50,7 @@ def _invocations(tmp_path):
         "plot": ["plot", str(SHIPPED_EPP_MAP), "--beta", "10", "--out", str(tmp_path / "epp.png")],
         "init": ["init", "plate", str(tmp_path / "plate.toml")],
         "check": ["check", str(EXAMPLES / "steel_plate_hertz.toml")],
+        "modes": ["modes", str(EXAMPLES / "steel_plate_hertz.toml"), "--count", "8"],
         # in this process: the kernels the commands above compiled are reused, the rest compiled once
         "warm-up": ["warm-up", "--workers", "1"],
         "materials": ["materials"],

@@ -3,7 +3,7 @@
 Every shipped (ζ, λ) map stores the asymptote peaks its regimes are judged by
 (``data_build/add_asymptote_peaks.py``); a lookup interpolates F̄max, its band, its status
 and those peaks, and classifies. Checked here: with every asymptote function patched to
-raise, every shipped map still answers ``lookup`` and ``lookup_case``; the answers are
+raise, every shipped map still answers ``lookup`` of numbers and of a case; the answers are
 those of the code that computed the asymptotes per point (values recorded from the base
 commit b4b262f, ``tests/data/lookup_reference.npz``: F̄max, band and status bit for bit,
 regimes equal except where the stored peaks' interpolation error can reach across a
@@ -95,8 +95,8 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     """Must show (issue 30): with the law asymptotes' entry points, the regimes module's peak
     functions and the families' and targets' peaks all raising, every shipped map (the slow
     run; the default run: four of them) is read from its file and answers ``lookup`` (or
-    ``lookup_plastic``) vectorised and one point at a time at in-range points, and
-    ``lookup_case`` answers a case of every shipped family — the same answers as unpatched."""
+    ``lookup(β, ζ, λ, law=…)``) vectorised and one point at a time at in-range points, and
+    ``lookup(case=…)`` answers a case of every shipped family — the same answers as unpatched."""
     from impactmaps.maps.read import lookup as lookup_module
     from impactmaps import lookup
 
@@ -138,10 +138,10 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
 
 
 def _family_cases() -> list:
-    """One physical case of each shipped family ``lookup_case`` reads: linear and Hertz on the SS
+    """One physical case of each shipped family ``lookup(case=…)`` reads: linear and Hertz on the SS
     Euler beam, the SSSS Kirchhoff plate and SS Timoshenko beams at slenderness 20 and 30;
     Yigit–Christoforou, Stronge and epp on the Euler beam, the Kirchhoff plate and the s = 20
-    Timoshenko beam. (Mindlin plates: lookup_case refuses point loads, and a Hertz contact
+    Timoshenko beam. (Mindlin plates: lookup refuses point loads, and a Hertz contact
     loads a patch.)"""
     from impactmaps.cases import parse_case
     from impactmaps.dimensionless import realise

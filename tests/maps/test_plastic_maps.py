@@ -43,7 +43,7 @@ def test_equal_numbers_give_equal_normalised_response(kind, law, numbers):
     """Two physically different impacts (other size, material, impactor mass and speed,
     K_h and α_y) with equal (β, ζ, λ) give equal F_max/(m V0 ω_y), restitution, absorbed
     and transferred energy fractions, number of impacts and contact time to 1e-6: the
-    similarity the plastic maps rest on (module docstring of plastic_points)."""
+    similarity the plastic maps rest on (docs/plastic_maps.rst)."""
     from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
 
     beta, zeta, lam = numbers
@@ -325,7 +325,7 @@ _EPP_BEAM = _YC_BEAM.replace('law = "yigit-christoforou"', 'law = "epp"')
 def test_equal_numbers_give_equal_normalised_epp_response(kind, numbers):
     """The similarity of the plastic maps holds for ``epp`` too: two physically different
     impacts with equal (β, ζ, λ) give equal normalised answers to 1e-6 (its curves are fixed
-    in units α_y, K_h α_y^{3/2} at fixed options; module docstring of plastic_points)."""
+    in units α_y, K_h α_y^{3/2} at fixed options; docs/plastic_maps.rst)."""
     from impactmaps.maps.compute.plastic_points import plastic_numbers, realise_plastic
 
     beta, zeta, lam = numbers

@@ -1,42 +1,10 @@
 """``epp``: sphere on an elastic–perfectly plastic flat, calibrated on axisymmetric FE.
 
-Normalised by the first-yield scales of docs/physics_contract.md §2 (``c_y = 1.6``)::
-
-    δ_y = R (π c_y Y / (2E*))²,   F_y = (4/3) E* R^{1/2} δ_y^{3/2},   x = δ/δ_y
-
-The law works in its own yield scales κ δ_y, κ^{3/2} F_y, κ = (1 + a_ν (ν − 0.3))²
-(the flat's Poisson ratio ν shifts first yield; κ = 1 at ν = 0.3).  With x measured in
-them and L = ln x:
-
-* loading, ``x ≤ 1``: Hertz, ``F/F_y = x^{3/2}``;
-* loading, ``x > 1``: ``F/F_y = x^{3/2} exp(−q [L − c atan(L/c)] − r L³/3) h``: the local
-  exponent ``d ln F/d ln x = 3/2 − q L²/(c² + L²) − r L²`` falls smoothly from the Hertz
-  3/2 to 1, reached at x_c = 1518.5, and is held at 1 beyond: there the mean pressure
-  F/(2πRδ) = (c_y/3)(F/F_y)/x Y stays at its value at x_c (3.06 Y for a rigid sphere),
-  the fully plastic plateau of an elastic–perfectly plastic solid, instead of falling as
-  the fitted form would (docs/epp_calibration.rst, *Beyond the calibrated range*); the force never
-  exceeds Hertz and never decreases; ``h = 1 + b_f ln(1/(1 − s)) L³/(c_s³ + L³)``
-  raises it with the sphere's share s = E*(1 − ν_s²)/E_s of the compliance (s = 0: a
-  rigid sphere; h too is held at its x_c value beyond x_c).  The form belongs to the
-  family of FE-fitted laws that blend the Hertz curve into a plastic branch (Jackson & Green, J. Tribol. 127 (2005) 343,
-  doi:10.1115/1.1866166); the function and its coefficients are our own.
-* unloading and reloading below ``δ_m``: the power law about the permanent
-  indentation of the Etsion family (Etsion, Kligerman & Kadin, Int. J. Solids Struct. 42
-  (2005) 3716), ``F = F_m ((δ − δ_r)/(δ_m − δ_r))^n``, with, at
-  ``x_u = x_m / ((1 + a_r (ν − 0.3))² (1 + b_s s))``,
-  ``(δ_m − δ_r)/δ_m = (1 + b (x_u − 1)^w)^{−v/w}`` and ``n = n∞ + (3/2 − n∞) x_u^{−k}``
-  (``δ_r = 0``, ``n = 3/2`` at first yield: continuous with Hertz).
-
-All coefficients (:data:`COEFFICIENTS`) were fitted by ``validation/fe/axisym_fit.py``
-to the project's own CalculiX runs (``validation/fe/results/axisym_runs.csv``; model,
-convergence, limits and errors in ``docs/epp_calibration.rst``).  Calibrated range:
-1 ≤ δ_m/δ_y ≤ 1000, δ_m ≤ 0.05 R, Y/E* from 1e-3 to 1e-2, ν of the flat 0.3–0.45, rigid
-to equal-modulus spheres (s ≤ 0.5); beyond, the forms extrapolate.
-
-Similarity: in units δ_y, F_y the response depends on ν and s alone — a half-space
-impact's restitution, F_max/F_y and δ_r/δ_y are functions of V/V_y, ν and s, with
-``½ m V_y² = (2/5) F_y δ_y``; Y/E* enters only through the scales (the FE's
-normalised response moves by < 1 % between Y/E* = 1e-3 and 1e-2 at equal δ_m/δ_y).
+Normalised by the first-yield scales of docs/physics_contract.md §2 (``c_y = 1.6``):
+``δ_y = R (π c_y Y / (2E*))²``, ``F_y = (4/3) E* R^{1/2} δ_y^{3/2}``. Hertz to first yield,
+an FE-fitted plastic loading branch and an Etsion-type power-law unloading; coefficients
+(:data:`COEFFICIENTS`), calibrated range (1 ≤ δ_m/δ_y ≤ 1000, δ_m ≤ 0.05 R, ν 0.3–0.45,
+s ≤ 0.5) and errors: docs/epp_calibration.rst.
 """
 
 from __future__ import annotations
@@ -88,19 +56,18 @@ CALIBRATED_RADIUS_RATIO = 0.05
 
 
 def yield_shift(poisson_ratio, a_nu=None):
-    """κ(ν) = (1 + a_ν (ν − 0.3))² [-]: the law's yield indentation is κ δ_y and its
-    yield force κ^{3/2} F_y, i.e. first yield at a Hertz peak pressure
-    c_y (1 + a_ν (ν − 0.3)) Y instead of c_y Y (κ = 1 for ν = 0.3)."""
+    """κ(ν) = (1 + a_ν (ν − 0.3))² [-]: the law's yield indentation is κ δ_y and its yield
+    force κ^{3/2} F_y (κ = 1 for ν = 0.3).
+    """
     a = COEFFICIENTS["a_nu"] if a_nu is None else a_nu
     return (1.0 + a * (np.asarray(poisson_ratio, float) - 0.3)) ** 2
 
 
 @numba.njit(cache=True)
 def _epp_loading(x, q, c, r, gain, c_s):
-    """(F/F_y, d(F/F_y)/dx) on the virgin loading curve at x = δ/δ_y > 0.
-
-    ``gain`` = b_f ln(1/(1 − s)) (s the sphere's share of 1/E*) multiplies the force by
-    ``1 + gain L³/(c_s³ + L³)``."""
+    """(F/F_y, d(F/F_y)/dx) on the virgin loading curve at x = δ/δ_y > 0 (``gain`` = b_f
+    ln(1/(1 − s))).
+    """
     root = math.sqrt(x)
     if x <= 1.0:
         return x * root, 1.5 * root
@@ -164,7 +131,7 @@ class EppContact(ReferenceYieldScales, ContactLaw):
 
     Notes
     -----
-    Forms, coefficients, calibrated range and similarity: module docstring.
+    Forms, coefficients, calibrated range and similarity: docs/epp_calibration.rst.
     """
 
     effective_modulus: float
@@ -214,15 +181,8 @@ class EppContact(ReferenceYieldScales, ContactLaw):
         return first_yield_force(self.effective_modulus, self.radius, self.yield_indentation)
 
     def impact_number(self, impactor_mass, velocity):
-        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (Christoforou & Yigit 1998, eq 11),
-        so that one β places an impact whichever plastic law is used.
-
-        Parameters
-        ----------
-        impactor_mass : float or array_like
-            m_i [kg].
-        velocity : float or array_like
-            Impact velocity V0 [m/s].
+        """β [-] of the Yigit–Christoforou law with the same E*, R and Y (Christoforou & Yigit
+        1998, eq 11), for ``impactor_mass`` m_i [kg] at ``velocity`` V0 [m/s].
         """
         return reference_impact_number(self.effective_modulus, self.radius, self.yield_strength, impactor_mass,
                                        velocity)

@@ -1,26 +1,7 @@
 """``impactmaps sweep CONFIG.toml``: sweeps described in a TOML file.
 
-Example::
-
-    output = "my-sweep"                 # directory (relative to the config file)
-    law = "linear"                      # or "hertz": axes ζ_h, λ_h, F_max/F_hs; "yc", "stronge": β too
-    [grid]
-    zeta = { min = 0.01, max = 10, count = 30 }      # or an explicit list
-    lambda = [0.1, 1.0, 10.0]
-    # beta = { min = 1, max = 1000, count = 7 }      # the elastic-plastic laws' impact numbers
-    [solver]                            # optional ModalSettings fields
-    cutoff_ratio = 40
-    [[structure]]                       # one table per structure (fields of MapStructure)
-    kind = "plate"
-    theory = "mindlin"
-    supports = "SSSS"
-    aspect_ratio = [1.0, 2.0]           # a list sweeps that parameter too
-    slenderness = 20
-
-Every key, its unit and its default are documented in the user guide
-(``docs/sweeps.rst``). The defaults of ``theory``, ``supports`` and
-``impact_fraction`` follow ``kind``: a beam is ``euler``, ``ss``, struck at mid-span;
-a plate ``kirchhoff``, ``SSSS``, struck at the centre.
+:func:`load_sweep_config` parses a file once into a :class:`SweepConfig`;
+:func:`run_sweep_config` runs it. Every key, its unit and its default: docs/sweeps.rst.
 """
 
 from __future__ import annotations
@@ -120,9 +101,9 @@ _NAMED_KEYS = ("kind", "theory", "supports")
 
 
 def _require_structure_value(path: str, key: str, value) -> None:
-    """``ValueError`` naming ``path`` unless ``value`` has the type of ``key``: a string for
-    :data:`_NAMED_KEYS`, a number (not a boolean) otherwise, and a point of numbers for
-    ``impact_fraction`` (one for a beam: two numbers mean a plate's point)."""
+    """``ValueError`` naming ``path`` unless ``value`` has the type of ``key`` (a string for
+    :data:`_NAMED_KEYS`, a number otherwise, a point of numbers for ``impact_fraction``).
+    """
     def number(item):
         return isinstance(item, (int, float)) and not isinstance(item, bool)
 
@@ -180,19 +161,14 @@ class SweepConfig(NamedTuple):
 
 
 def load_sweep_config(path) -> SweepConfig:
-    """Parse a sweep TOML file.
+    """Parse the sweep TOML file at ``path`` (format: docs/sweeps.rst) into a
+    :class:`SweepConfig`: ``structures``, ``zetas``, ``lambdas``, ``settings``, ``output``,
+    ``law`` and ``axes`` (the law's other grids).
 
-    Parameters
-    ----------
-    path : path-like
-        The TOML file (format: module docstring and the user guide).
-
-    Returns
-    -------
-    SweepConfig
-        ``structures``, the grids ``zetas`` and ``lambdas``, ``settings``, the ``output``
-        directory, the ``law`` and ``axes``: the grids of the law's axes besides ζ and λ
-        (``{"beta": …}`` for an elastic-plastic law; else empty).
+    Raises
+    ------
+    ValueError
+        A missing file, invalid TOML, an unknown key or an invalid value, naming the key.
     """
     path, text = read_text_input("sweep file", path)
     try:
@@ -246,25 +222,11 @@ def load_sweep_config(path) -> SweepConfig:
 
 def run_sweep_config(config, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
                      executor=None) -> dict:
-    """Run the sweep of a TOML file; write NetCDF and tidy CSV into its output directory.
-
-    Parameters
-    ----------
-    config : SweepConfig or path-like
-        The sweep file, parsed (:func:`load_sweep_config`) or its path.
-    progress : bool
-        Show a progress bar.
-    overwrite : bool
-        Replace an existing ``sweep.nc`` made by another configuration.
-    max_workers : int, optional
-        Local worker processes (default: all cores).
-    executor : concurrent.futures.Executor, optional
-        Where the points run (e.g. a Dask client's ``get_executor()``).
-
-    Returns
-    -------
-    dict
-        ``{"netcdf": Path, "csv": Path}``.
+    """Run the sweep of a TOML file (``config``: a :class:`SweepConfig` or its path); write
+    NetCDF and tidy CSV into its output directory and return ``{"netcdf": Path, "csv":
+    Path}``. ``overwrite`` replaces a ``sweep.nc`` of another configuration;
+    ``max_workers``, ``executor`` and ``progress`` as for
+    :func:`~impactmaps.maps.compute.sweep.sweep`.
     """
     if not isinstance(config, SweepConfig):
         config = load_sweep_config(config)

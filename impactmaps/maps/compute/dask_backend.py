@@ -1,14 +1,8 @@
 """Sweeps on a Dask cluster: the workers set up as the local pool's, the chunks as futures.
 
-:func:`impactmaps.maps.compute.sweep.sweep` runs its chunks on any
-:class:`concurrent.futures.Executor`. Given a ``dask.distributed.Client`` (or the
-executor of one, ``client.get_executor()``), :func:`dask_executor` first installs
-:class:`InitWorker` on the cluster — a worker plugin that runs
-:func:`impactmaps.maps.compute.workers.init_worker` in every worker process, present and future
-(one BLAS thread per process; Ctrl-C handling stays Dask's) — and returns the client's executor. A point's answer is a pure function of the point, so
-a sweep on Dask is bit-identical to the same sweep run locally
-(``tests/maps/test_dask_sweep.py``). Dask is the optional extra ``impactmaps[dask]``;
-the sweep imports this module only when it is given a Dask executor.
+:func:`dask_executor` installs :class:`InitWorker` (one BLAS thread per worker) on a
+``dask.distributed.Client``'s cluster and returns its executor; a sweep on Dask is
+bit-identical to the same sweep run locally. Optional extra ``impactmaps[dask]``.
 """
 
 from __future__ import annotations
@@ -32,18 +26,13 @@ def is_dask(executor) -> bool:
 
 
 def _worker_setup() -> None:
-    """:func:`init_worker` in a Dask worker process: one BLAS thread. SIGINT is left as Dask
-    set it: a nanny stops its worker process with it (a LocalCluster's worker that ignored
-    it lived until killed 4 s later, with a warning, when the cluster closed)."""
+    """:func:`init_worker` in a Dask worker process: one BLAS thread (SIGINT left as Dask set it)."""
     init_worker(ignore_interrupts=False)
 
 
 class InitWorker(WorkerPlugin):
-    """Dask worker plugin: :func:`impactmaps.maps.compute.workers.init_worker` on each worker at start
-    (registered by :func:`dask_executor`; workers that join later run it too).
-
-    A worker that is a thread of the process that created the plugin (a cluster with
-    ``processes=False``) is left alone: its BLAS threads are the user's own.
+    """Dask worker plugin: :func:`impactmaps.maps.compute.workers.init_worker` on each worker at
+    start, also workers that join later (a thread worker of this process is left alone).
     """
 
     name = PLUGIN_NAME
@@ -61,18 +50,9 @@ class InitWorker(WorkerPlugin):
 
 
 def dask_executor(client_or_executor):
-    """The executor of a Dask client, with :class:`InitWorker` registered on its cluster.
-
-    Parameters
-    ----------
-    client_or_executor : dask.distributed.Client or distributed.client.ClientExecutor
-        A connected client (e.g. ``Client(LocalCluster(n_workers=2, threads_per_worker=1))``)
-        or its ``get_executor()``.
-
-    Returns
-    -------
-    concurrent.futures.Executor
-        ``client.get_executor()``: what :func:`impactmaps.maps.compute.sweep.sweep` submits chunks to.
+    """``client.get_executor()`` of a Dask client (or the executor itself), with
+    :class:`InitWorker` registered on its cluster: what
+    :func:`impactmaps.maps.compute.sweep.sweep` submits chunks to.
 
     Raises
     ------

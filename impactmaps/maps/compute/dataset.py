@@ -1,12 +1,8 @@
 """The map dataset of any family: its layout, its law and its regimes.
 
-A map is an xarray Dataset with dims ``structure`` and the family's axes (``lambda_``,
-``zeta``; ``beta`` first for an elastic-plastic family), the family's variables
-(:attr:`MapFamily.variables <impactmaps.maps.family.map_family.MapFamily.variables>`) with
-their units and descriptions, ``done`` marking the computed points, and its provenance
-in attributes — ``fingerprint`` and ``description`` (what a stored result must match to
-be resumed), ``contact_law`` (the family's name), ``solver_revision``. No time stamp: the
-same sweep writes the same bytes, alone or resumed.
+A map is an xarray Dataset with dims ``structure`` and the family's axes, its variables
+with units, ``done`` marking computed points, and provenance attributes
+(``fingerprint``, ``description``, ``contact_law``, ``solver_revision``; no time stamp).
 """
 
 from __future__ import annotations
@@ -26,20 +22,8 @@ __all__ = ["empty_dataset", "classify_dataset", "tidy_frame"]
 
 
 def empty_dataset(family, structures, axes: dict, description: dict, digest: str) -> xr.Dataset:
-    """A map of ``family`` with no point computed.
-
-    Parameters
-    ----------
-    family : MapFamily
-    structures : sequence of MapStructure
-    axes : dict
-        Axis name → values [-], for every axis of the family.
-    description, digest : dict, str
-        The sweep's description and its fingerprint (attributes).
-
-    Returns
-    -------
-    xarray.Dataset
+    """A map of ``family`` over ``structures`` and ``axes`` (name → values [-], every axis) with
+    no point computed; ``description`` and its fingerprint ``digest`` as attributes.
     """
     dims = ("structure", *family.axis_names)
     shape = (len(structures), *(len(axes[name]) for name in family.axis_names))
@@ -73,13 +57,10 @@ def empty_dataset(family, structures, axes: dict, description: dict, digest: str
 
 
 def with_asymptote_peaks(dataset: xr.Dataset) -> xr.Dataset:
-    """``dataset`` with the asymptote peaks its regimes are judged by: the infinite-structure
-    peak of each structure at each ζ and the quasi-static peak at each λ (the map family's,
-    :meth:`~impactmaps.maps.family.map_family.MapFamily.asymptote_peaks`, the numbers of
-    :func:`impactmaps.maps.family.regimes.infinite_structure_peak` and ``quasi_static_peak``),
-    computed once per grid and kept with the map, so classifying it again (another
-    tolerance, a resumed or re-read result) or looking a point up in it integrates no
-    asymptote. A map that holds them is returned as is."""
+    """``dataset`` with the asymptote peaks its regimes are judged by (the family's
+    :meth:`~impactmaps.maps.family.map_family.MapFamily.asymptote_peaks`), computed once per
+    grid; a map that holds them is returned as is.
+    """
     if all(name in dataset for name in ASYMPTOTE_PEAKS):
         return dataset
     family = map_family(map_law(dataset))
@@ -94,9 +75,9 @@ def with_asymptote_peaks(dataset: xr.Dataset) -> xr.Dataset:
 
 
 def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
-    """Regime label of every computed point of a (ζ, λ) map (see :mod:`.regimes`);
-    ``""`` where a point is not computed or ``unresolved``. The asymptote peaks are the
-    map's own (:func:`with_asymptote_peaks`) when it holds them."""
+    """Regime label of every computed point of a (ζ, λ) map; ``""`` where not computed or
+    ``unresolved``.
+    """
     labels = np.full(dataset["fmax_normalised"].shape, "", dtype=object)
     criteria.setdefault("law", map_law(dataset))
     peaked = with_asymptote_peaks(dataset)
@@ -118,12 +99,8 @@ def classify_dataset(dataset: xr.Dataset, **criteria) -> xr.DataArray:
 
 
 def tidy_frame(dataset):
-    """A sweep dataset as a tidy pandas DataFrame (one row per computed point).
-
-    The ``method`` column holds the model's name (``modal+residual``,
-    ``modal+residual-capped``, ``infinite-structure-asymptote``; empty for an
-    ``unresolved`` point) and ``status`` the status's name
-    (:data:`impactmaps.maps.family.accuracy.STATUSES`), not their codes.
+    """A sweep dataset as a tidy pandas DataFrame (one row per computed point), ``method`` and
+    ``status`` as names, not codes.
     """
     frame = dataset.drop_vars(["kind", "theory", "supports", "aspect_ratio", "slenderness"]).to_dataframe().reset_index()
     frame = frame[frame["done"] == 1].drop(columns="done")

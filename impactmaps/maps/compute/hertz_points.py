@@ -1,18 +1,10 @@
 """Map points with the Hertz law: (ζ_h, λ_h) realised, simulated and scaled by the Hertz half-space.
 
-A Hertz map point is the impact that realises the Hertz loss factor ζ_h and relative
-stiffness λ_h on the structure's reference target (:func:`impactmaps.closed_forms.hertz_similarity.
-realise_hertz`, struck at 1 m/s: :func:`~impactmaps.closed_forms.hertz_similarity.unit_speed_stiffness`),
-solved by the modal solver with the Hertz law under the same accuracy control as the
-linear maps (:mod:`.accuracy`), and stored in the Hertz half-space scales: forces over
-``F_hs = K_h α_m^{3/2}`` (the half-space value is exactly 1), times over ``t* = α_m/V0``.
-By the similarity of Hertz impacts (module :mod:`impactmaps.closed_forms.hertz_similarity`) one such
-point holds for every physical case of the structure family with the same (ζ_h, λ_h).
-
-The Hertz map family (:class:`HertzFamily`, registered as ``"hertz"``) is these points.
-The asymptotes of the Hertz regimes — infinite plate (Zener's model), infinite beam,
-quasi-static — are those of :mod:`impactmaps.closed_forms.law_asymptotes`, run on a realisation of
-(ζ_h, λ_h) and scaled the same way: :func:`hertz_asymptote_peak`.
+A point is the impact realising (ζ_h, λ_h) on the structure's reference target at 1 m/s,
+solved under the linear maps' accuracy control and stored over ``F_hs = K_h α_m^{3/2}``
+(forces) and ``t* = α_m/V0`` (times); by Hertz similarity it holds for every case with the
+same numbers (:mod:`impactmaps.closed_forms.hertz_similarity`). :class:`HertzFamily` is the
+``"hertz"`` map family.
 """
 
 from __future__ import annotations
@@ -62,10 +54,8 @@ _INFINITE = {"plate": "infinite-plate", "beam": "infinite-beam"}
 
 
 class _Realised:
-    """The impact realising (ζ_h, λ_h) on a target at 1 m/s: law, mass, speed, scales.
-
-    With a patch number P the law also carries the effective radius R that gives it
-    (:func:`~impactmaps.closed_forms.hertz_similarity.radius_for_patch_number`), for a patch-loaded run.
+    """The impact realising (ζ_h, λ_h) on a target at 1 m/s: law (with the effective radius of
+    a patch number P), mass, speed, scales.
     """
 
     def __init__(self, target, zeta_h: float, lambda_h: float, patch: float | None = None):
@@ -109,20 +99,9 @@ def hertz_contact_frequency(target, zeta_h: float, lambda_h: float) -> float:
 
 
 def hertz_summary(result, numbers) -> dict:
-    """The normalised scalars of a modal Hertz run in the Hertz scales (keys of the map variables).
-
-    Parameters
-    ----------
-    result : ImpactResult
-        A modal run with the Hertz law.
-    numbers : HertzNumbers
-        Its scales (:func:`impactmaps.closed_forms.hertz_similarity.hertz_numbers`).
-
-    Returns
-    -------
-    dict
-        ``result.normalised_summary()`` with F̄max = F_max/F_hs and the times
-        (:data:`HERTZ_TIME_KEYS`) in units of t* instead of 1/ω.
+    """The map scalars of a modal Hertz run ``result`` in the Hertz scales of ``numbers``
+    (:class:`~impactmaps.closed_forms.hertz_similarity.HertzNumbers`): F̄max = F_max/F_hs and
+    the times (:data:`HERTZ_TIME_KEYS`) in units of t*.
     """
     summary = result.normalised_summary()
     to_hertz_time = 1.0 / (result.contact_frequency * numbers.time_scale)
@@ -166,21 +145,9 @@ def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> fl
 
 
 def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
-    """F_max/F_hs of a Hertz asymptote at (ζ_h, λ_h) [-] (vectorised; cached per value).
-
-    Parameters
-    ----------
-    which : {"infinite", "quasi-static"}
-        The infinite plate or beam (a function of ζ_h alone) or the quasi-static spring
-        (of λ_h alone: ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``).
-    kind : {"beam", "plate"}
-        Which infinite structure.
-    zeta_h, lambda_h : float or array_like
-        Hertz numbers, > 0 [-]; the one the asymptote does not depend on is ignored.
-
-    Returns
-    -------
-    float or ndarray
+    """F_max/F_hs [-] of a Hertz asymptote (vectorised, cached): ``which`` "infinite" (plate
+    or beam by ``kind``, a function of ``zeta_h``) or "quasi-static" (of ``lambda_h``:
+    ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``); Hertz numbers > 0.
     """
     if which not in ("infinite", "quasi-static"):
         raise ValueError(f"which = {which!r} is invalid: choose 'infinite' or 'quasi-static'")
@@ -199,7 +166,7 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
 
 
 class HertzFamily(HertzLayout):
-    """The Hertz law's maps over the Hertz numbers (ζ_h, λ_h) (module docstring).
+    """The Hertz law's maps over the Hertz numbers (ζ_h, λ_h).
 
     Parameters
     ----------
@@ -272,42 +239,17 @@ HERTZ = register_map_family(HertzFamily())
 def solve_hertz_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                        table: BasisTable | None = None, control: AccuracyControl = AccuracyControl(),
                        patch: float | None = None) -> list[dict]:
-    """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``.
-
-    :func:`impactmaps.maps.compute.points.solve_map_points` of the Hertz family: the same cut-off
-    rule as the linear maps (modes up to ``settings.cutoff_ratio`` times the contact
-    frequency, clipped to :func:`~impactmaps.solvers.mode_budget.frequency_cap`, plus residual
-    flexibility) and the same accuracy control. Where the cut-off would pass the cap,
-    the infinite-structure asymptote of the Hertz law answers if the first wave returns
-    after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (Euler beams and Kirchhoff
-    plates); otherwise — the cut-off could not be refined — and where the contact
-    frequency lies beyond what a Timoshenko/Mindlin theory holds, the point is
-    ``unresolved``.
-
-    With a patch number ``patch`` = P = sqrt(R α_m)/h (:mod:`impactmaps.closed_forms.hertz_similarity`)
-    the points are patch-loaded: each is realised with the R that gives P, and solved by
-    :func:`~impactmaps.solvers.modal.simulate` on the structure's target under the Hertz
-    patch of its peak indentation (the structure must load one under
-    ``settings.contact_patch``: Mindlin SSSS plates by default), with the cut-off
-    ``settings.patch_cutoff_ratio`` · ω clipped to the same cap; the same accuracy
-    control. No asymptote answers a patch-loaded point: where the cut-off passes the cap
-    it is ``unresolved``.
-
-    Returns
-    -------
-    list of dict
-        One dict per point: the map variables in Hertz scales (F_max/F_hs, times/t*)
-        plus ``zeta``, ``lambda_``.
+    """Simulate the Hertz impacts realising each (ζ_h, λ_h) on ``structure``
+    (:func:`impactmaps.maps.compute.points.solve_map_points` of the Hertz family; with
+    ``patch`` = P, loaded over the Hertz patch, without asymptote): one dict per point, the
+    map variables in Hertz scales plus ``zeta``, ``lambda_``.
     """
     return solve_map_points(HERTZ.with_patch(patch), structure, points, settings, table, control)
 
 
 def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Realised):
-    """``run(settings, zeta_factor)`` of one patch-loaded Hertz point, read in the Hertz scales.
-
-    The patch radius is iterated by :func:`~impactmaps.solvers.modal.simulate` on the
-    target; the cut-off ``patch_cutoff_ratio`` · ω is clipped to ``cap`` [rad/s] as the
-    point-loaded runs clip theirs.
+    """``run(settings, zeta_factor)`` of one patch-loaded Hertz point, read in the Hertz scales,
+    its cut-off clipped to ``cap`` [rad/s].
     """
     from ...solvers.modal import simulate  # the integrator: only where a point is computed
 

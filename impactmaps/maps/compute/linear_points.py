@@ -1,13 +1,8 @@
 """The linear map family: (ζ, λ) of docs/physics_contract.md §4, F̄max = F_max/(m V0 ω), times × ω.
 
-A point (ζ, λ) is the impactor of :func:`impactmaps.dimensionless.realise` on the
-structure's reference target (a linear spring K struck at 1 m/s); its run is read
-directly (the modal result's normalised summary). Where the cut-off would need more
-modes than the cap, the infinite-structure solution answers if the first wave returns
-after ``ASYMPTOTE_REFLECTION_FACTOR`` times its peak time (the mode budget,
-:func:`impactmaps.maps.compute.points.map_plan`). The regimes' asymptotes are the closed forms:
-the target class's infinite plate (eq 32) or beam (eq 36), and the quasi-static
-``sqrt(λ/(1+λ))`` (eq 28).
+A point is the impactor of :func:`impactmaps.dimensionless.realise` on the structure's
+reference target (a linear spring K at 1 m/s); past the mode cap the infinite-structure
+solution answers where exact for the peak. Regime asymptotes: eqs 28, 32, 36.
 """
 
 from __future__ import annotations
@@ -107,26 +102,9 @@ LINEAR = register_map_family(LinearFamily())
 
 def solve_points(structure: MapStructure, points: Sequence[tuple[float, float]], settings: ModalSettings,
                  table: BasisTable | None = None, control: AccuracyControl = AccuracyControl()) -> list[dict]:
-    """Simulate the linear-contact impacts realising each (ζ, λ) on ``structure``.
-
-    :func:`impactmaps.maps.compute.points.solve_map_points` of the linear family: modes up to
-    ``settings.cutoff_ratio · ω`` with the residual flexibility of the rest; beyond the
-    mode cap the infinite-structure solution where it is exact for the peak, else
-    ``unresolved``, as are points beyond what a Timoshenko/Mindlin theory holds.
-
-    Parameters
-    ----------
-    structure : MapStructure
-    points : sequence of (loss_factor, relative_stiffness)
-    settings : ModalSettings
-    table : BasisTable, optional
-        The modes to truncate from (default: the structure's basis table).
-    control : AccuracyControl, optional
-
-    Returns
-    -------
-    list of dict
-        One dict of normalised scalars per point (keys of ``RESULT_VARIABLES`` plus
-        ``zeta``, ``lambda_``).
+    """Simulate the linear-contact impacts realising each (ζ, λ) of ``points`` on ``structure``
+    (:func:`impactmaps.maps.compute.points.solve_map_points` of the linear family, ``table``
+    and ``control`` as there): one dict of normalised scalars per point (keys of
+    ``RESULT_VARIABLES`` plus ``zeta``, ``lambda_``).
     """
     return solve_map_points(LINEAR, structure, points, settings, table, control)

@@ -1,60 +1,7 @@
 r"""Map points with an elastic-plastic contact law: (β, ζ, λ) realised, simulated, scaled.
 
-Which numbers fix a plastic-law impact
---------------------------------------
-Both elastic-plastic laws of docs/physics_contract.md §2 are a fixed shape scaled by one length and
-one force: ``F = K_h α_y^{3/2} g(α/α_y)``.
-
-* Yigit–Christoforou: ``g(a) = a^{3/2}`` to yield, ``1 + (3/2)(a − 1)`` beyond, and
-  unloading ``a^{3/2} − a_f^{3/2}`` with ``a_f`` a function of ``a_m`` alone (the law has
-  no parameter in these units, :mod:`impactmaps.contact.plastic.yigit_christoforou`).
-* Refined Stronge with E*, R, Y: ``δ_y/α_y = c_y²/2.72`` and ``F_y = K_h δ_y^{3/2}``
-  (``K_h = (4/3) E* R^{1/2}``); its loading branches are functions of ``δ/δ_y`` times
-  ``F_y`` (the fully plastic one: ``π R δ_y (2d − 1) c_p Y = F_y (3c_p/(2c_y))(2d − 1)``),
-  and its unloading recovery ``3F_m/(4E* a_m) = δ_y f_m/sqrt(2d_m − 1)`` is one too. So
-  for fixed constants (c_y, c_p, δ_p/δ_y) ``g`` is again fixed; R on its own appears only
-  in the contact radius, which the modal solver uses for the pressure patch of Mindlin
-  plates alone (docs/physics_contract.md §8).
-
-With ``x̄ = x/α*``, ``τ = ω_y t``, ``F̄ = F/(m V0 ω_y)`` — the linear scales of the
-linearised stiffness ``K_y = (3/2) K_h α_y^{1/2}`` (seed 001 eqs 10, 18), ``ω_y =
-sqrt(K_y/m)``, ``α* = V0/ω_y`` — the impactor equation is ``x̄'' = −F̄`` and the law reads
-``F̄ = (α_y/α*)(2/3) g(ᾱ α*/α_y)``: one number, ``α*/α_y``. Since
-``β = V0/(ω_h α_y)`` with ``ω_h² = K_h α_y^{1/2}/m = (2/3) ω_y²`` (seed 001 eqs 11, 12),
-``α*/α_y = β sqrt(2/3)``: the law's number **is** the impact number β. The structure
-enters through ``K_y`` exactly as a linear spring ``K`` does (docs/physics_contract.md §1, §4): its
-point receptance in these scales depends on ``ζ = ζ(m, K_y)`` and ``λ = K_st/K_y``.
-Hence a plastic-law impact on a structure family is fixed by **(β, ζ, λ)** with ζ and λ
-the linear numbers at ``K_y`` — the numbers ``impactmaps simulate`` already prints for a
-plastic case (``beta``, ``zeta``, ``lambda``, ``lambda_basis`` = K_y) — and for large β,
-where the loading curve is nearly the line ``K_y α``, the map approaches the linear map
-at (ζ, λ) (the offset ``F_y/2`` of the post-yield line is ``1/(sqrt(6) β)`` in F̄).
-
-The Stronge law is mapped in the same numbers (β of the Yigit–Christoforou law with the
-same E*, R, Y: :meth:`impactmaps.contact.plastic.stronge.StrongeContact.impact_number`), with
-its default constants only: other constants are another family.
-
-The ``epp`` law (:mod:`impactmaps.contact.plastic.epp`) is the same kind: its yield scales
-``δ_y = R (π c_y Y/(2E*))²`` (c_y = 1.6) and ``F_y = K_h δ_y^{3/2}`` are those of the
-Stronge law, so ``δ_y/α_y = c_y²/2.72`` and, in units α_y and ``K_h α_y^{3/2}``, its
-curves are fixed for fixed options — the flat's ``poisson_ratio`` and the
-``sphere_compliance`` both change them, so its maps are built at the law's defaults
-(:data:`EPP_MAP_OPTIONS`: ν = 0.3, a rigid sphere) and describe only that law. β and
-K_y are again those of the Yigit–Christoforou law with the same E*, R, Y
-(:meth:`impactmaps.contact.plastic.epp.EppContact.impact_number`).
-
-The map families ``"yc"``, ``"stronge"`` and ``"epp"`` (:class:`PlasticFamily`) are these points.
-
-Stored quantities
------------------
-``fmax_normalised = F_max/(m V0 ω_y)``; times × ω_y; ``restitution`` = rebound speed /
-V0; ``absorbed_energy_fraction`` = energy dissipated in the contact
-(``law.dissipated_energy(α_max)``, exact for these laws: the history is α_max alone)
-over ½ m V0²; ``energy_transferred_fraction`` = vibration energy left in the structure
-over ½ m V0² (``e² + absorbed + transferred = 1``). Each of F̄max, restitution and
-absorbed energy carries an error estimate from the accuracy control of
-:mod:`.accuracy` (the change between the last two refinement levels, or half the
-spread of a sensitive point).
+The ``"yc"``, ``"stronge"`` and ``"epp"`` map families (:class:`PlasticFamily`): ζ and λ
+at the linearised stiffness K_y, forces over m V0 ω_y, times × ω_y (docs/plastic_maps.rst).
 """
 
 from __future__ import annotations
@@ -98,22 +45,16 @@ ERROR_OF = PLASTIC_ERROR_OF
 
 @dataclass(frozen=True)
 class PlasticNumbers:
-    """The similarity numbers and scales of one elastic-plastic impact (SI units).
+    """The similarity numbers and scales of one elastic-plastic impact.
 
     Attributes
     ----------
-    impact_number : float
-        β = V0/(ω_h α_y) [-] (seed 001 eq 11).
-    loss_factor : float
-        ζ = ζ(m, K_y) of the target [-].
-    relative_stiffness : float
-        λ = K_st/K_y [-].
+    impact_number, loss_factor, relative_stiffness : float
+        β = V0/(ω_h α_y), ζ(m, K_y) and λ = K_st/K_y [-].
     linearised_stiffness : float
         K_y = 1.5 K_h sqrt(α_y) [N/m].
-    force_scale : float
-        m V0 ω_y [N], ω_y = sqrt(K_y/m).
-    time_scale : float
-        1/ω_y [s].
+    force_scale, time_scale : float
+        m V0 ω_y [N] and 1/ω_y [s], ω_y = sqrt(K_y/m).
     """
 
     impact_number: float
@@ -125,11 +66,10 @@ class PlasticNumbers:
 
 
 def plastic_law_of(law) -> str:
-    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to, or ValueError.
+    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to.
 
-    A law with other than its default options (:meth:`~impactmaps.contact.ContactLaw.changed_options`:
-    the constants of a Stronge law, the options of an ``epp`` law, :data:`EPP_MAP_OPTIONS`) is
-    another family: refused, naming the option, its value and the maps' value.
+    Raises ValueError for a law with other than its default options (another family), naming
+    the option, its value and the maps' value.
     """
     name = getattr(law, "name", None)
     map_law = next((key for key, law_name in PLASTIC_LAWS.items() if law_name == name), None)
@@ -152,21 +92,8 @@ def _option_text(value) -> str:
 
 
 def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
-    """β, ζ(m, K_y) and λ = K_st/K_y of an elastic-plastic impact (module docstring).
-
-    Parameters
-    ----------
-    target : Plate or Beam
-        Needs ``loss_factor(m, K)`` and ``static_compliance()``.
-    law : YigitChristoforouContact, StrongeContact or EppContact
-    mass : float
-        Impactor mass m > 0 [kg].
-    velocity : float
-        Impact velocity V0 > 0 [m/s].
-
-    Returns
-    -------
-    PlasticNumbers
+    """:class:`PlasticNumbers` of an elastic-plastic impact of ``law`` on ``target`` (a Plate or
+    Beam) by an impactor of ``mass`` m > 0 [kg] at ``velocity`` V0 > 0 [m/s].
     """
     plastic_law_of(law)
     require_positive("mass", mass, "kg")
@@ -186,9 +113,9 @@ def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
 
 
 def _law_from(map_law: str, hertz: float, alpha_y: float):
-    """The contact law of ``map_law`` with Hertz stiffness K_h and eq (9) yield indentation α_y,
-    at its default options (:meth:`~impactmaps.contact.ContactLaw.from_yield_scales`; for an
-    ``epp`` law those are :data:`EPP_MAP_OPTIONS`)."""
+    """The contact law of ``map_law`` with Hertz stiffness K_h [N/m^1.5] and yield indentation
+    α_y [m], at its default options (an ``epp`` law: :data:`EPP_MAP_OPTIONS`).
+    """
     return contact_law_class(PLASTIC_LAWS[map_law]).from_yield_scales(hertz, alpha_y)
 
 
@@ -211,23 +138,9 @@ class PlasticRealisation:
 
 def realise_plastic(target, map_law: str, beta: float, zeta: float, lambda_: float,
                     velocity: float = 1.0) -> PlasticRealisation:
-    """The elastic-plastic impact with numbers (β, ζ, λ) on ``target`` at speed ``velocity``.
-
-    ``K_y = K_st/λ`` and ``m`` from ζ (:func:`impactmaps.dimensionless.realise`); then
-    ``α_y = sqrt(3/2) V0/(ω_y β)`` and ``K_h = K_y/(1.5 sqrt(α_y))``.
-
-    Parameters
-    ----------
-    target : Plate or Beam
-    map_law : {"yc", "stronge", "epp"}
-    beta, zeta, lambda_ : float
-        Impact number, loss factor and relative stiffness at K_y, > 0 [-].
-    velocity : float
-        V0 > 0 [m/s] (any: the numbers fix the normalised response).
-
-    Returns
-    -------
-    PlasticRealisation
+    """The elastic-plastic impact (a :class:`PlasticRealisation`) with numbers ``beta``,
+    ``zeta``, ``lambda_`` (> 0, at K_y) on ``target`` for ``map_law`` ("yc", "stronge",
+    "epp"), at any speed ``velocity`` > 0 [m/s] (the numbers fix the normalised response).
     """
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
     require_positive("beta", beta)
@@ -264,18 +177,9 @@ class _PlasticScaled:
 
 
 def plastic_summary(result, realised: PlasticRealisation) -> dict:
-    """The map scalars of a modal run of a realised plastic impact (keys of the map variables).
-
-    Parameters
-    ----------
-    result : ImpactResult
-    realised : PlasticRealisation
-
-    Returns
-    -------
-    dict
-        ``result.normalised_summary()`` with F̄max = F_max/(m V0 ω_y), times × ω_y, plus
-        ``restitution`` and ``absorbed_energy_fraction``.
+    """The map scalars of a modal run ``result`` of a realised plastic impact: its normalised
+    summary with F̄max = F_max/(m V0 ω_y), times × ω_y, ``restitution`` and
+    ``absorbed_energy_fraction``.
     """
     summary = result.normalised_summary()
     to_yield_time = 1.0 / (result.contact_frequency * realised.numbers.time_scale)
@@ -315,12 +219,8 @@ def _asymptote_row(plan, realised: PlasticRealisation) -> dict:
 
 
 def _companion_errors(runs: list, status: int, levels: int) -> dict:
-    """Errors of restitution and absorbed energy from the runs ``controlled_point`` made.
-
-    As its F̄max error (:func:`impactmaps.maps.family.accuracy.controlled_point`): the change
-    between the last two refinement levels (converged, refined), or half the spread of
-    every value seen — the ``levels`` refinement levels, the perturbed runs, and the
-    finest value ± its last change (sensitive).
+    """Errors of restitution and absorbed energy from the runs ``controlled_point`` made, as
+    its F̄max error (last change between refinement levels, or half the spread).
     """
     out = {}
     for key in ("restitution", "absorbed_energy_fraction"):
@@ -343,16 +243,9 @@ _PLASTIC_DESCRIPTIONS = {"fmax_normalised": "maximum contact force / (m V0 ω_y)
 
 
 class PlasticFamily(PlasticLayout):
-    """An elastic-plastic law's maps over (β, ζ, λ) at the linearised stiffness K_y (module docstring);
-    its layout (axes, errors, interpolation, shipped maps): :class:`~impactmaps.maps.family.builtin_families.PlasticLayout`.
-
-    Parameters
-    ----------
-    name : str
-        The map law (a key of :data:`PLASTIC_LAWS`).
-    law_options : dict, optional
-        The contact-law options its maps are built at (name → value; the ``epp`` family's:
-        :data:`EPP_MAP_OPTIONS`); none by default.
+    """An elastic-plastic law's maps over (β, ζ, λ) at K_y: ``name`` the map law (a key of
+    :data:`PLASTIC_LAWS`), ``law_options`` the law options its maps are built at (the ``epp``
+    family's: :data:`EPP_MAP_OPTIONS`).
     """
 
     variables = {name: spec[:3] + (_PLASTIC_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()
@@ -419,30 +312,16 @@ EPP = register_map_family(PlasticFamily("epp", law_options=EPP_MAP_OPTIONS))
 def solve_plastic_points(structure: MapStructure, map_law: str, points: Sequence[tuple[float, float, float]],
                          settings: ModalSettings | None = None, table: BasisTable | None = None,
                          control: AccuracyControl = AccuracyControl()) -> list[dict]:
-    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) on ``structure``.
-
-    :func:`impactmaps.maps.compute.points.solve_map_points` of the plastic family ``map_law``: the
-    same cut-off rule as the linear maps (modes up to ``settings.cutoff_ratio`` times the
-    run's contact frequency, clipped to the structure's mode cap, plus residual
-    flexibility), the same answer beyond the cap (the any-law infinite-structure
-    asymptote where it holds) and the same accuracy control; a point beyond what a
-    Timoshenko theory holds, or one nothing answers within the mode cap, is
-    ``unresolved`` (every value missing).
-
-    Parameters
-    ----------
-    structure : MapStructure
-    map_law : {"yc", "stronge", "epp"}
-    points : sequence of (β, ζ, λ)
-    settings : ModalSettings, optional
-    table : BasisTable, optional
-    control : AccuracyControl, optional
+    """Simulate the elastic-plastic impacts realising each (β, ζ, λ) of ``points`` on
+    ``structure`` (:func:`impactmaps.maps.compute.points.solve_map_points` of the family
+    ``map_law``).
 
     Returns
     -------
     list of dict
-        One dict per point: the map scalars (module docstring), their errors, ``status``,
-        ``method``, ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_``.
+        One dict per point: the map scalars, their errors, ``status``, ``method``,
+        ``reflection_time_normalised`` and ``beta``, ``zeta``, ``lambda_`` (an unresolved
+        point's values missing).
     """
     require_choice("map_law", map_law, tuple(PLASTIC_LAWS))
     family = {"yc": YC, "stronge": STRONGE, "epp": EPP}[map_law]

@@ -1,15 +1,9 @@
 """The map point solver: one point of any map family realised, simulated and controlled.
 
-A point of a map is a pure function of (family, structure, its numbers, settings): the
-family (:class:`~impactmaps.maps.family.map_family.MapFamily`) realises it as a physical impact
-on the structure's reference target, says how it is answered (:meth:`MapFamily.plan
-<impactmaps.maps.family.map_family.MapFamily.plan>`: ``unresolved``, an exact asymptote, or the
-modal runs) and reads a run in its scales; :func:`solve_map_points` does the rest for
-every family alike — modes up to ``settings.cutoff_ratio`` times the contact frequency,
-truncated from one basis table per structure built at :func:`~impactmaps.solvers.mode_budget.frequency_cap`
-(:func:`basis_table`), with the residual flexibility of the rest, under the accuracy
-control of :mod:`.accuracy`. No orchestration here: the sweep
-(:mod:`impactmaps.maps.compute.sweep`), the tiles and the refinement call it.
+A point is a pure function of (family, structure, its numbers, settings): the family
+realises, plans and scales it; :func:`solve_map_points` runs it on modes truncated from
+one basis table per structure (:func:`basis_table`) under the accuracy control. The
+sweep, the tiles and the refinement call it.
 """
 
 from __future__ import annotations
@@ -56,12 +50,9 @@ def method_code(method: str) -> int:
 
 @functools.lru_cache(maxsize=8)
 def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
-    """The one basis table every point on ``structure`` is truncated from.
-
-    Built once at :func:`~impactmaps.solvers.mode_budget.frequency_cap` — never at a cut-off that depends on which
-    points a worker happened to compute before — so a point's modes, and therefore its
-    result, are a pure function of (structure, point, settings): the same bits alone, in
-    any chunk, in any order, after a resume. Cached (bounded) as a pure function.
+    """The one basis table every point on ``structure`` is truncated from, built at
+    :func:`~impactmaps.solvers.mode_budget.frequency_cap` so that a point's result does not
+    depend on chunking or order (cached).
     """
     with warnings.catch_warnings():
         # the table reaches past the Mindlin thickness-shear cut-off; a point whose own
@@ -71,12 +62,9 @@ def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
 
 
 def map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, zeta: float | None):
-    """The :class:`~impactmaps.solvers.mode_budget.BasisPlan` of one map point, or None.
-
-    None — the point is ``unresolved`` — when its contact frequency ``omega`` [rad/s] lies
-    beyond what the target's shear-deformable theory holds
-    (:func:`~impactmaps.targets.shear_range.beyond_shear_theory`), or when the mode budget
-    answers it only by capping the modes (the cut-off could not be refined) or not at all.
+    """The :class:`~impactmaps.solvers.mode_budget.BasisPlan` of one map point, or None
+    (``unresolved``): ``omega`` [rad/s] beyond the target's shear theory, or the mode budget
+    answering only by capping the modes or not at all.
     """
     if beyond_shear_theory(target, omega):
         return None
@@ -112,26 +100,8 @@ def _modal_simulate():
 
 
 def table_run_key(settings: ModalSettings, zeta_factor: float, basis) -> tuple:
-    """What a run of one map point on a basis table depends on: the ζ factor, the modes
-    (a truncation of the table is fixed by its size) and every setting but the cut-off
-    ratios, which act only through the modes. A point's runner returns the earlier
-    result for a key it has seen: a sensitive point's cut-off perturbed by ±1 % often
-    keeps the same modes (the mode floor, or no mode in the 2 % window), and that run is
-    the base run, bit for bit.
-
-    Parameters
-    ----------
-    settings : ModalSettings
-        The run's settings.
-    zeta_factor : float
-        Factor on the point's ζ [-] (1 but for a sensitive point's perturbed runs).
-    basis : ModalBasis
-        The modes the run integrates, truncated from the point's basis table.
-
-    Returns
-    -------
-    tuple
-        Hashable: equal keys mean runs with the same bits.
+    """What a run of one map point on a basis table depends on (``settings``, the ζ factor
+    ``zeta_factor`` [-], the truncated ``basis``): equal keys mean runs with the same bits.
     """
     return zeta_factor, basis.size, _without_cutoffs(settings)
 
@@ -170,25 +140,20 @@ def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], s
     Parameters
     ----------
     family : MapFamily
-        Realises, plans and scales the points (:mod:`impactmaps.maps.family.map_family`).
     structure : MapStructure
     points : sequence of tuple
-        Each point's numbers, ``(ζ, λ)`` or with the family's extra axes first
-        (``(β, ζ, λ)``) [-].
+        Each point's numbers, ``(ζ, λ)`` or with the family's extra axes first [-].
     settings : ModalSettings, optional
-        Solver settings (default ``ModalSettings()``).
     table : BasisTable, optional
-        The modes to truncate from; default :func:`basis_table` of ``structure``.
+        The modes to truncate from (default :func:`basis_table`).
     control : AccuracyControl, optional
-        Tolerance and cost cap of the per-point refinement (:mod:`impactmaps.maps.family.accuracy`).
+        Tolerance and cost cap of the per-point refinement.
 
     Returns
     -------
     list of dict
-        The family's map variables of each point plus its coordinates (``zeta``,
-        ``lambda_``, …), ``status`` and ``method`` codes. A point no model vouches for
-        (beyond a Timoshenko/Mindlin theory's range, or more modes than :data:`MAX_MODES`
-        below its cut-off and no exact asymptote) is ``unresolved``: every value missing.
+        Each point's map variables, coordinates, ``status`` and ``method`` codes (an
+        ``unresolved`` point's values missing).
     """
     settings = settings or ModalSettings()
     target = structure.build()

@@ -1,12 +1,8 @@
 """Sweeps of any map family over its axes → labelled xarray Datasets, resumable.
 
-A sweep solves every point of a grid — structures × the family's axes (λ, ζ; β first
-for an elastic-plastic family) — with :func:`~impactmaps.maps.compute.points.solve_map_points`.
-Work is split into chunks of points sharing one structure and every axis but ζ; each
-chunk is solved in a worker (any :class:`concurrent.futures.Executor`: local processes
-by default, a Dask cluster given its ``dask.distributed.Client``: :mod:`.dask_backend`).
-Finished chunks are written to the result file atomically as they complete, so an
-interrupted sweep resumes where it stopped, whatever the family.
+Points are solved in chunks (one structure, every axis but ζ) by any
+:class:`concurrent.futures.Executor` or a Dask client (:mod:`.dask_backend`); finished
+chunks are saved atomically, so an interrupted sweep resumes where it stopped.
 """
 
 from __future__ import annotations
@@ -54,15 +50,8 @@ def log_grid(start: float, stop: float, count: int) -> np.ndarray:
 
 
 class Pacing(NamedTuple):
-    """How a sweep's work is cut and saved; the values do not depend on it.
-
-    Attributes
-    ----------
-    chunk_size : int
-        Points per task (at most, within one row of ζ). Each task costs the executor
-        ~0.5–2 ms of pickling and queueing, as much as a few cheap points.
-    save_interval : float
-        Minimum seconds between two saves of the result file (the final save always happens).
+    """How a sweep's work is cut and saved (the values do not depend on it): ``chunk_size``
+    points per task, ``save_interval`` minimum seconds between saves.
     """
 
     chunk_size: int = 40
@@ -113,46 +102,32 @@ def sweep(
     settings : ModalSettings, optional
         Solver settings (part of the result's fingerprint).
     path : path-like, optional
-        NetCDF result file. Finished points are saved there atomically as they
-        complete (nothing is written before the first point is done); re-running with
-        the same path computes only the missing points. A file made with other
-        settings is refused (``ValueError`` naming the keys that changed) unless
-        ``overwrite``. Temporaries of an interrupted save are removed.
+        Result file, saved atomically as points complete; a re-run computes only the
+        missing points.
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
-        Where chunks run. A Dask client (or its ``get_executor()``) first gets
-        :func:`~impactmaps.maps.compute.workers.init_worker` on every worker
-        (:mod:`impactmaps.maps.compute.dask_backend`). Default: a local process pool over the
-        machine's cores.
+        Where chunks run (default: a local process pool of ``max_workers``, 1 inline).
     max_workers : int, optional
-        Size of the default process pool (default: ``os.cpu_count()``); 1 runs inline.
     progress : bool
         Show a tqdm progress bar.
     pacing : Pacing
-        Points per task and seconds between saves (:class:`Pacing`).
     overwrite : bool
-        Replace an existing result file instead of resuming it (it is replaced when
-        the first point is saved).
+        Replace a result file made by another sweep instead of refusing it.
     law : str or MapFamily
-        The map family (:mod:`impactmaps.maps.family.map_family`; a registered name:
-        ``"linear"`` — ζ, λ of docs/physics_contract.md and F̄max = F_max/(m V0 ω), times × ω;
-        ``"hertz"`` — the Hertz numbers ζ_h, λ_h (:mod:`impactmaps.closed_forms.hertz_similarity`),
-        F̄max = F_max/F_hs, times / t*; ``"yc"``, ``"stronge"`` — the elastic-plastic
-        numbers β, ζ, λ at K_y (:mod:`impactmaps.maps.compute.plastic_points`)).
+        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``, …).
     axes : dict, optional
-        The grids of the family's axes before λ and ζ, name → values [-] (``{"beta": …}``
-        for an elastic-plastic family).
+        The grids of the family's axes before λ and ζ (``{"beta": …}``) [-].
 
     Returns
     -------
     xarray.Dataset
-        Dims ``structure`` and the family's axes; its variables, ``done`` and, for a
-        family with regimes, ``regime``; units and provenance in attributes.
+        Dims ``structure`` and the family's axes; its variables, ``done`` and ``regime``.
 
     Raises
     ------
     SweepInterrupted
-        (a ``KeyboardInterrupt``) on Ctrl-C, after saving the finished points; it
-        carries how many of the grid's points are saved.
+        On Ctrl-C, after saving the finished points.
+    ValueError
+        Bad grids or settings, a result file of another sweep, or a map too large.
     """
     settings = settings or ModalSettings()
     if max_workers is not None:
@@ -252,24 +227,9 @@ MAP_COPIES = 5.0
 
 def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "linear",
                      advice: str = "sweep it in parts (fewer values per axis, or several sweep files)") -> None:
-    """Refuse a sweep whose map would not fit in the run budget's memory, from arithmetic alone.
-
-    Parameters
-    ----------
-    structures : int
-        Number of structures.
-    sizes : dict
-        Axis name → number of values.
-    family : MapFamily or str, optional
-        The map family (its variables' sizes).
-    advice : str, optional
-        What to change, for the refusal.
-
-    Raises
-    ------
-    ValueError
-        When :data:`MAP_COPIES` copies of the map exceed
-        :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`, before anything is allocated.
+    """Refuse (``ValueError``, with ``advice``) a sweep of ``structures`` structures and axis
+    ``sizes`` (name → count) whose :data:`MAP_COPIES` copies of the ``family``'s map would
+    exceed :data:`~impactmaps.solvers.run_budget.MEMORY_LIMIT_BYTES`, before allocating.
     """
     family = map_family(family) if isinstance(family, str) else family
     points = float(structures) * float(np.prod([float(size) for size in sizes.values()]))
@@ -283,8 +243,8 @@ def require_map_fits(structures: int, sizes: dict, family: MapFamily | str = "li
 
 def _resume(path, overwrite: bool, grid: SweepGrid) -> tuple[xr.Dataset, bool]:
     """(dataset, shipped): the stored result at ``path`` if it matches the grid's fingerprint
-    (and not ``overwrite``), else the package's shipped result of this sweep
-    (:mod:`impactmaps.maps.files.shipped`, then written to ``path``; ``shipped`` True), else an empty one."""
+    (and not ``overwrite``), else the shipped result of this sweep, else an empty one.
+    """
     dataset = None
     if path is not None:
         remove_stale_temporaries(path)
@@ -442,10 +402,9 @@ IN_FLIGHT_PER_SLOT = 4
 
 def _run_on_executor(executor: Executor, tasks, settings: ModalSettings, results: _Results, stop: list,
                      family, slots: int) -> None:
-    """Keep four chunks per worker slot submitted to ``executor`` (no worker waits for the parent);
-    absorb them as they complete and submit the next, until ``stop``. The window bounds what the
-    executor holds (a Dask client kept ~50 kB per task: 1.3 GB for a 10⁶-point sweep submitted
-    at once)."""
+    """Keep four chunks per worker slot submitted to ``executor`` (bounding what it holds),
+    absorbing them as they complete, until ``stop``.
+    """
     pending = iter(tasks)
     window = IN_FLIGHT_PER_SLOT * max(1, slots)
     futures = {}

@@ -1,27 +1,10 @@
 """Map tiles: small maps on a global lattice, built on demand and cached on disk.
 
-A tile is the 4 points a side of the global log lattice of its map family around a
-point — ``log10 ζ = i Δζ``, ``log10 λ = j Δλ``, and ``log10 β = k Δβ`` for an
-elastic-plastic family (:attr:`MapFamily.tile_lattice
-<impactmaps.maps.family.map_family.MapFamily.tile_lattice>`: the lattice of the shipped linear
-maps, (Δζ, Δλ) = (0.05, 0.1) (:func:`lattice_steps`), for the linear and Hertz families,
-4 × 4 points; the shipped plastic maps' grid, (Δβ, Δζ, Δλ) = (0.5, 1/6, 0.2), for the
-plastic ones, 4 × 4 × 4 points) — for one structure and law (and, for a Hertz law on a
-patch-loaded target, one patch number P: :mod:`impactmaps.closed_forms.hertz_similarity`). Every point
-is solved exactly as the shipped maps solve theirs (:func:`impactmaps.maps.compute.points.solve_map_points`
-of the family, the same settings and accuracy control), so it carries its error and
-status, and the tile is read with the shipped maps' interpolation and band
-(:func:`impactmaps.maps.read.lookup.read_map`, :func:`impactmaps.maps.read.reader.read_values`):
-the point's cell is the tile's middle one, so the band's second differences have a
-neighbour on each side.
-
-A tile is a pure function of its :class:`TileKey`. The cache (:func:`cache_directory`)
-holds one NetCDF file per tile, named by the key's fingerprint
-(:func:`impactmaps.maps.files.store.fingerprint` of :meth:`TileKey.description`, which holds
-the solver revision), written atomically; a file is used only if its recorded
-fingerprint and the digest of its data match (anything else — corrupted, foreign,
-older solver — is rebuilt and replaced), and at most :data:`MAX_CACHED_TILES` are kept
-(the least recently used are removed). A cached tile gives the same bits as a fresh one.
+A tile is 4 points a side of its family's global log lattice
+(:attr:`~impactmaps.maps.family.map_family.MapFamily.tile_lattice`) around a point, for one
+structure and law, solved and read exactly as the shipped maps. A tile is a pure function
+of its :class:`TileKey`; the cache keeps one verified NetCDF file per key (at most
+:data:`MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
 """
 
 from __future__ import annotations
@@ -75,31 +58,18 @@ def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
 
 
 def lattice_steps() -> tuple[float, float]:
-    """(Δ log10 ζ, Δ log10 λ) of the global lattice, ``log10 ζ = i Δζ``: (0.05, 0.1), the grid
-    of the shipped Timoshenko slenderness members at slenderness 10 and 50 (and every other point
-    of the twice-denser maps of the four shipped structures); tiles, their fingerprints and
-    their validation are on it."""
+    """(Δ log10 ζ, Δ log10 λ) = (0.05, 0.1) of the global lattice ``log10 ζ = i Δζ``, the
+    grid of the shipped Timoshenko slenderness members.
+    """
     return LATTICE_STEPS
 
 
 @dataclass(frozen=True)
 class TileKey:
-    """Everything that determines a tile.
-
-    Attributes
-    ----------
-    structure : MapStructure
-    law : str
-        The map family (``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``, ``"epp"``).
-    patch : float or None
-        Patch number P = sqrt(R α_m)/h of a patch-loaded Hertz tile [-]; None: point load.
-    zeta_index, lambda_index : int
-        Lattice index of the tile's first ζ and λ (``log10 ζ = zeta_index · Δζ``).
-    settings : ModalSettings
-    control : AccuracyControl
-    extra_indices : tuple of int
-        Lattice index of the tile's first value on each axis of the family before (λ, ζ)
-        (β of an elastic-plastic family); empty for a (ζ, λ) family.
+    """Everything that determines a tile: ``structure``, ``law`` (the map family), ``patch``
+    (P = sqrt(R α_m)/h [-] of a patch-loaded Hertz tile; None: point load), ``zeta_index``,
+    ``lambda_index`` and ``extra_indices`` (lattice indices of its first values, ``log10 ζ =
+    zeta_index · Δζ``), ``settings`` and ``control``.
     """
 
     structure: MapStructure
@@ -189,12 +159,10 @@ def _first_index(value: float, step: float) -> int:
 def build_tile(key: TileKey, progress=None) -> xr.Dataset:
     """Solve the tile's points (serially) and return it as a one-structure map dataset.
 
-    The dataset has the family's variables (:attr:`MapFamily.variables
-    <impactmaps.maps.family.map_family.MapFamily.variables>`) over (``structure``, its extra axes
-    (β …), ``lambda_``, ``zeta``), ``log_peak_time`` and
-    ``log_reflection_time`` as the shipped maps, and the attributes ``fingerprint``,
+    The dataset has the family's variables over (``structure``, its extra axes,
+    ``lambda_``, ``zeta``), as the shipped maps, and the attributes ``fingerprint``,
     ``description``, ``data_digest`` and ``contact_law``. ``progress(done, total)``, if
-    given, is called after each (λ, ζ) plane of points (16 points).
+    given, is called after each (λ, ζ) plane of points.
     """
     zetas, lambdas = key.axes
     extra = key.extra_axes
@@ -226,24 +194,10 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
 
 
 def _table(key: TileKey, points) -> BasisTable:
-    """The modes the points of a tile of a bounded model truncate from: up to the largest
-    cut-off any of them can use (its finest refinement level, with a margin of
-    (1 + p)/(1 − p) for the perturbed runs — since solver revision 7 these start from the
-    base settings and stay below the finest level, but the margin stays: a table of
-    another size would change a bounded model's points in the last bits, and the tile
-    files already cached with it), never past the sweep's cap.
-
-    The sweep truncates from a table at its cap (:func:`impactmaps.maps.compute.points.basis_table`).
-    For the targets of bounded size — finite-element beams (Timoshenko, Rayleigh with
-    other supports than SS) and Ritz plates — that table is the whole model, whose modes
-    take minutes to build (a clamped Timoshenko beam). Their point compliance is finite,
-    and truncation moves the modes left out into the residual, so a smaller table gives
-    the same points to rounding (and to the models' 3e-10 accuracy). Not so for a
-    point-loaded Mindlin plate: its shear deflection under a point load diverges, and the
-    residual of a truncated table holds the shear of the modes up to the table's top; its
-    tiles keep the sweep's table (Navier modes, quick). A pure function of the key, like the
-    tile. Points the sweep leaves unresolved or answers by an asymptote (beyond the shear
-    theory, or past the cap) use no modes and set no cut-off.
+    """The modes a tile's points of a bounded model truncate from: up to the largest cut-off any
+    of them can use (with the perturbed runs' margin (1 + p)/(1 − p)), never past the sweep's
+    cap. A smaller table than the sweep's gives the same points to rounding where the point
+    compliance is finite; a point-loaded Mindlin plate keeps the sweep's table.
     """
     target = key.structure.build()
     cap = frequency_cap(key.structure.build(), MAX_MODES)
@@ -292,23 +246,9 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
 
 
 def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
-    """The tile of ``key`` from the cache, or built and cached.
-
-    Parameters
-    ----------
-    key : TileKey
-    cache_dir : path-like, optional
-        The cache (default :func:`cache_directory`).
-    notify : callable, optional
-        Called with one line of text before a tile is built (and if it cannot be cached).
-    progress : callable, optional
-        Called as ``progress(done, total)`` (points) while a tile is built.
-
-    Returns
-    -------
-    (xarray.Dataset, Path or None)
-        The tile and its cache file (None when the cache could not be written: the
-        answer is the same, only not kept).
+    """The tile of ``key`` and its cache file (None when it could not be written), from the
+    cache ``cache_dir`` (default :func:`cache_directory`) or built and cached; ``notify``
+    gets one line before a build, ``progress(done, total)`` the build's points.
     """
     path = tile_path(key, cache_dir)
     dataset = _read(path, key)

@@ -1,23 +1,9 @@
-"""What a map family is: its axes, its points, its variables, its asymptotes — and the registry.
+"""What a map family is (its axes, points, variables and asymptotes) and the registry.
 
-A *map family* is one contact law's normalised impact map: the numbers that fix an
-impact of that law on a structure family (ζ, λ for every law; β too for an
-elastic-plastic one), how a point with those numbers is realised as a physical impact
-on a :class:`~impactmaps.maps.family.structures.MapStructure`'s reference target and how its
-result is scaled back, which variables its map stores, the asymptotes its regimes are
-measured against, how its lookups interpolate and which maps the package ships of it.
-Each family is one :class:`MapFamily` object registered under its name (the map law:
-``"linear"``, ``"hertz"``, ``"yc"``, ``"stronge"``); the sweep
-(:func:`impactmaps.maps.compute.sweep.sweep`), the point solver (:mod:`impactmaps.maps.compute.points`),
-the map reader (:mod:`impactmaps.maps.read.reader`) and the regimes ask the family, never
-its name. Adding a family is one module defining a subclass and one
-:func:`register_map_family` call (``docs/map_families.rst``).
-
-This module holds the interface and the registry only; the built-in families live in
-:mod:`.linear_points`, :mod:`.hertz_points` and :mod:`.plastic_points` (their layouts, what a
-map reader needs, in :mod:`.builtin_families`). The registry knows the built-in names from the
-start and imports a built-in family's module when that family is first asked for
-(:func:`map_family`): the point solvers it imports are not loaded by a lookup.
+A map family is one contact law's normalised impact map; each is a :class:`MapFamily`
+registered under its map law (``"linear"``, ``"hertz"``, ``"yc"``, …). The built-in
+families are imported when first asked for (:func:`map_family`). Adding a family:
+docs/map_families.rst.
 """
 
 from __future__ import annotations
@@ -68,12 +54,8 @@ ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
 
 
 def map_law(dataset) -> str:
-    """The map law (the name of its map family) a map dataset was swept with (a map without the attribute is linear).
-
-    The law is part of a map's identity: it is in the fingerprint (for every law but the
-    linear one, whose fingerprints predate it), in the ``contact_law`` attribute (the stored
-    name of the map law, kept for the stored maps) and in the variables' descriptions.
-    ``dataset``: an ``xarray.Dataset`` or a
+    """The map law (its family's name) a map dataset was swept with; ``"linear"`` without the
+    attribute. ``dataset``: an ``xarray.Dataset`` or a
     :class:`~impactmaps.maps.files.data_io.MapArrays`.
     """
     return str(dataset.attrs.get("contact_law", "linear"))
@@ -87,12 +69,9 @@ class Axis(NamedTuple):
 
 
 class PointPlan(NamedTuple):
-    """How one map point is answered (:meth:`MapFamily.plan`).
-
-    ``method`` None: ``unresolved`` (no model vouches for the point). ``asymptote`` a dict
-    of map scalars: the point is that exact answer (with its method code and error
-    columns). Otherwise the modal runs under the accuracy control, ``method`` naming the
-    model (a :data:`~impactmaps.maps.compute.points.METHODS` entry).
+    """How one map point is answered (:meth:`MapFamily.plan`): ``method`` None is
+    ``unresolved``; an ``asymptote`` dict is the point's exact answer; otherwise modal runs
+    under the accuracy control, ``method`` naming the model.
     """
 
     method: str | None
@@ -101,17 +80,9 @@ class PointPlan(NamedTuple):
 
 @dataclass(frozen=True)
 class Interpolation:
-    """How a family's lookups interpolate and bound their error.
-
-    Attributes
-    ----------
-    reach : int
-        Neighbours each side over which a second difference is the largest
-        (:func:`impactmaps.maps.read.interpolator.interpolation_error`).
-    safety : float
-        Factor on the leading-order interpolation error ``h² |f''| / 8``.
-    band_safety : float
-        Factor on the whole band (own error + interpolation estimate) of a cube lookup.
+    """How a family's lookups interpolate and bound their error: ``reach`` (neighbours each
+    side over which a second difference is the largest), ``safety`` (factor on the
+    leading-order error ``h² |f''| / 8``) and ``band_safety`` (factor on a cube lookup's band).
     """
 
     reach: int = 2
@@ -120,68 +91,39 @@ class Interpolation:
 
 
 class MapFamily:
-    """One contact law's normalised maps (see the module docstring). Subclass and register.
+    """One contact law's normalised maps. Subclass and register.
 
     Attributes
     ----------
     name : str
-        The map law, e.g. ``"hertz"`` (the ``contact_law`` attribute of its maps, their
-        file suffix).
+        The map law, e.g. ``"hertz"`` (the ``contact_law`` attribute of its maps).
     axes : tuple of Axis
-        Every axis of a point, slowest first; the last two are always ``lambda_`` and
-        ``zeta`` (a (ζ, λ) family has just those two; an elastic-plastic one ``beta`` first).
-    variables : dict
-        The map's variables (:data:`RESULT_VARIABLES` layout), the family's descriptions.
-    errors : dict
-        The interpolated quantities of a lookup → the name of their error variable.
+        Every axis of a point, slowest first; the last two are ``lambda_`` and ``zeta``.
+    variables, errors : dict
+        The map's variables (:data:`RESULT_VARIABLES` layout); interpolated quantity → its
+        error variable.
     interpolation : Interpolation
     shipped : dict
-        (structure kind, theory) → structure name of the maps the package ships.
-    law_in_description : bool
-        Whether the law is a key of a sweep's description (the linear family's
-        fingerprints predate it: False).
+        (structure kind, theory) → structure name of the shipped maps.
+    law_in_description, law_in_file_name : bool
+        Whether the law enters a sweep's description and the map files' names (linear: False).
     law_revision : int
-        The revision of the family's contact law (:attr:`ContactLaw.revision`); above 1 it
-        is a key of a sweep's description, so its fingerprint changes with the law.
-    title, method_text : str
-        The ``title`` and ``method`` attributes of its maps.
-    classifies : bool
-        Whether its points have regimes (:meth:`infinite_peak`, :meth:`quasi_static_peak`).
+        The law's :attr:`ContactLaw.revision`; above 1 it enters the fingerprint.
+    title, method_text, exact_command : str
+        The maps' ``title`` and ``method`` attributes; the command that answers a point exactly.
+    classifies, patch_loadable, closed_form_asymptotes : bool
+        Whether its points have regimes, can be patch-loaded, and have closed-form asymptotes.
     tile_lattice : dict
-        Axis name → Δ log10 of the global lattice of its on-demand tiles
-        (:mod:`impactmaps.maps.compute.tiles`), every axis.
-    patch_loadable : bool
-        Whether its points can be loaded over the contact patch (a family of one patch
-        number P, ``with_patch``); the registered family itself is point-loaded.
-    law_in_file_name : bool
-        Whether its map files carry the law after the structure's name (:meth:`file_stem`;
-        the linear maps' names predate the other laws: False).
-    exact_command : str
-        The command that answers one of its points exactly, named where a lookup refuses.
-    scaled_by_contact_frequency : bool
-        Whether F̄max = F_max/(m_i V0 ω) with ω = sqrt(K/m_i) of a contact stiffness K the
-        user gives (:meth:`~impactmaps.maps.read.lookup.LookupResult.peak_force`).
-    fmax_at_most_one : bool
-        Whether F̄max ≤ 1 holds for every point (a chart's force axis ends at 1.05).
-    closed_form_asymptotes : bool
-        Whether its regimes' asymptotes are the closed forms a chart draws on any grid
-        (the linear law's); otherwise a chart draws the peaks its map stores.
+        Axis name → Δ log10 of the lattice of its on-demand tiles.
+    scaled_by_contact_frequency, fmax_at_most_one : bool
+        Whether F̄max = F_max/(m_i V0 ω) with a user-given K, and whether F̄max ≤ 1 always.
     labels : dict
-        ``"zeta"``, ``"lambda"``, ``"fmax"`` (axis labels of its charts), ``"contact"``
-        (the contact in a chart title, ``""`` for none), ``"quasi_static"`` (the legend of the
-        stored quasi-static peaks), ``"table"`` (the header of its markdown lookup table),
-        ``"zeta_name"``, ``"lambda_name"`` (the numbers in words, for messages).
+        The texts of its charts, tables and messages (``"zeta"``, ``"lambda"``, ``"fmax"``, …).
     axis_ranges : dict
-        Axis name → (low, high), the closed range of values a point can be realised at: beyond
-        ζ ∈ [1e-9, 1e6], λ ∈ [1e-9, 1e9] the realised impactor's mass or contact frequency under-
-        or overflows (ζ = 1e-300 gave a zero mass, λ = 1e300 a zero contact frequency; measured
-        on beam-ss: every run answers inside); an elastic-plastic family adds β. An axis
-        without an entry takes any positive value.
+        Axis name → (low, high), the range a point can be realised at (ζ ∈ [1e-9, 1e6],
+        λ ∈ [1e-9, 1e9]; no entry: any positive value).
     chart_zeta_max, chart_lambda_min : float
-        The range a chart of the family accepts: beyond ``chart_zeta_max`` its asymptotes
-        stop answering (the linear infinite beam's closed form loses its root near ζ = 1e250
-        and its peak is below 1e-4 beyond 1e6), below ``chart_lambda_min`` (inclusive) its
-        quasi-static peak does.
+        The range a chart of the family accepts.
     """
 
     name: ClassVar[str]
@@ -254,9 +196,9 @@ class MapFamily:
         return [self.realise(target, point) for point in points]
 
     def realise(self, target, point) -> Any:
-        """The impact realising one point on ``target``: an object with ``law``, ``mass``,
-        ``velocity`` [SI], ``omega`` (contact frequency [rad/s], what the cut-off is a
-        multiple of) and ``reflection`` (first wave return in the family's time unit)."""
+        """The impact realising one point on ``target``: ``law``, ``mass``, ``velocity`` [SI],
+        ``omega`` (contact frequency [rad/s]) and ``reflection`` (first wave return, family time unit).
+        """
         raise NotImplementedError
 
     def point_coordinates(self, point) -> dict:
@@ -302,10 +244,9 @@ class MapFamily:
         raise ValueError(f"the {self.name} maps have no regimes")
 
     def asymptote_peaks(self, kind: str, loss_factors, relative_stiffnesses) -> dict:
-        """The :data:`ASYMPTOTE_PEAK_VARIABLES` a map of this family stores for a structure of
-        ``kind`` on its grid (ζ values, λ values) [-]: name → values along its axis. What the
-        map's lookups judge their regimes by, computed once when the map is built; a family
-        without regimes stores none ({})."""
+        """The :data:`ASYMPTOTE_PEAK_VARIABLES` stored for a structure of ``kind`` on the grid
+        (ζ, λ values) [-]: name → values along its axis ({} without regimes).
+        """
         if not self.classifies:
             return {}
         return {"infinite_structure_peak": np.asarray(self.infinite_peak(loss_factors, kind), float),

@@ -1,35 +1,9 @@
 """Adaptive refinement of a (ζ, λ) map where linear interpolation between its points errs.
 
-F̄max has kinks and narrow re-impact ridges that a regular grid cannot resolve at any
-affordable density: where two impacts' peaks cross, or a re-impact appears, its
-interpolation errs by up to a few 1e-2 between points that each converged to 1e-3. A
-:class:`Refinement` adds points only there. Each cell of the map's grid (in grid units
-of (log λ, log ζ)) may be *split* into four children by the points at its centre and
-the middles of its edges; a child may be split again, down to :data:`MAX_LEVEL` levels
-(cells 2^MAX_LEVEL times finer per axis). All points lie on one integer lattice, the
-map's grid subdivided 2^MAX_LEVEL times, and are keyed by their lattice position; a
-cell is split exactly when its centre is a point.
-
-**Reading** (:func:`locate`, :func:`interpolate`): the answer at (ζ, λ) interpolates
-bilinearly between the four corners of the smallest cell that holds it (its *leaf*).
-Its interpolation error is measured, not modelled: every point added carries its
-*surplus*, how far the coarser interpolation missed it (the centre against the mean of
-the parent's corners, an edge middle against the mean of the edge's ends). A refined
-leaf's estimate (:func:`leaf_estimate`) is :data:`SURPLUS_SAFETY` times the largest
-surplus of the points that split its parent and the parent's eight neighbours — the error
-the parent level made around it, which the leaf's interpolation at least halves (a kink;
-~4× where F̄max is smooth) — and of the points its split neighbours placed on its edges
-(the interpolation across a neighbour's finer points is discontinuous by their surplus).
-A leaf of the map's own grid keeps the second-difference estimate
-(:func:`impactmaps.maps.read.interpolator.interpolation_error`).
-
-**Building** (:func:`refine`): every leaf whose band (its corners' own error plus its
-interpolation estimate) exceeds the tolerance is split, round after round, until every
-band is within it, the leaf is :data:`MAX_LEVEL` deep, or a corner has no converged value
-(``sensitive``: no interpolation can do better than its spread; ``unresolved``). The
-points of a round are solved together by the caller's solver (a pure function of the
-point: :func:`impactmaps.maps.compute.linear_points.solve_points`), so a refinement is a pure function
-of its base map, tolerance and depth.
+A :class:`Refinement` splits grid cells into four children (down to :data:`MAX_LEVEL`
+levels) on one integer lattice; :func:`refine` builds it, :func:`locate` and
+:func:`interpolate` read it, and each leaf's error is measured from the surpluses of
+the added points (:func:`leaf_estimate`). The method: docs/accuracy.rst.
 """
 
 from __future__ import annotations
@@ -77,12 +51,12 @@ class Refinement:
     shape : tuple of int
         The base map's grid (number of λ, number of ζ).
     codes : ndarray of int64
-        Sorted lattice keys of the points, ``U · width + V`` with ``U``, ``V`` the point's
-        λ and ζ positions in units of 1/2^max_level of a grid step.
+        Sorted lattice keys ``U · width + V`` of the points (λ and ζ positions in
+        1/2^max_level of a grid step).
     values : dict of str to ndarray
         :data:`REFINEMENT_VARIABLES` of each point, in the order of ``codes``.
     max_level : int
-        Depth of the lattice (:data:`MAX_LEVEL` when built by :func:`refine`).
+        Depth of the lattice.
     """
 
     shape: tuple[int, int]
@@ -161,9 +135,9 @@ class Refinement:
 
     @classmethod
     def from_dataset(cls, dataset: xr.Dataset, base_fmax: np.ndarray | None = None) -> "Refinement":
-        """The refinement stored by :meth:`dataset`; one stored without ``surplus`` (a packed
-        shipped file) gets it recomputed from ``base_fmax``, the base map's F̄max as a (λ, ζ)
-        array (:meth:`recomputed_surplus`)."""
+        """The refinement stored by :meth:`dataset`; a packed file's missing ``surplus`` is
+        recomputed from ``base_fmax``, the base map's F̄max as a (λ, ζ) array.
+        """
         shape = (int(dataset.attrs["lambda_points"]), int(dataset.attrs["zeta_points"]))
         stored = [name for name in REFINEMENT_VARIABLES if name in dataset]
         out = cls(shape, np.asarray(dataset["code"].values, np.int64),
@@ -176,13 +150,8 @@ class Refinement:
         return cls(shape, out.codes, out.values | {"surplus": out.recomputed_surplus(base_fmax)}, out.max_level)
 
     def recomputed_surplus(self, base_fmax: np.ndarray) -> np.ndarray:
-        """Each point's surplus as :func:`refine` measured it, from the stored values (float32).
-
-        The point's F̄max against the interpolation of the cell or edge that made it: the mean of
-        the four corners of the cell whose centre it is (added in the order of
-        :meth:`Leaves.corners`), or of the two ends of the edge whose middle it is (lower end
-        first); 1 where that is not a number. The same operations as :func:`_add_points`, so
-        the same bits (checked on every shipped refinement by ``data_build/pack_map_data.py``).
+        """Each point's surplus as :func:`refine` measured it, from the stored values (float32):
+        the same operations as :func:`_add_points`, so the same bits; 1 where not a number.
         """
         u, v = self.position(self.codes)
         half = self.scale >> self.creation_level(u, v)
@@ -259,8 +228,7 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     ----------
     refinement : Refinement
     base : dict of str to ndarray
-        The base map's variables, each a (λ, ζ) array (``fmax_error`` and ``status``
-        besides ``names``).
+        The base map's (λ, ζ) arrays (``names``, ``fmax_error``, ``status``).
     base_estimate : ndarray
         The base map's interpolation-error estimate per grid point [-].
     row, col : ndarray
@@ -273,11 +241,9 @@ def interpolate(refinement: Refinement, base: dict, base_estimate: np.ndarray, r
     values : dict of str to ndarray
         Each of ``names`` at the positions.
     error : ndarray
-        The band half-width [-]: the largest own error of the corners that weigh, plus the
-        leaf's interpolation estimate (:func:`leaf_estimate`); only the own error on a
-        lattice point.
+        The band half-width [-]: the corners' largest own error plus the leaf's estimate.
     corner_codes : list of ndarray
-        The status code of each corner (``converged`` where a corner has no weight).
+        The status code of each corner (``converged`` where it has no weight).
     """
     base = dict(base) | {"surplus": np.zeros(refinement.shape)}
     leaves = locate(refinement, row, col)
@@ -319,14 +285,10 @@ def all_leaves(refinement: Refinement) -> Leaves:
 def leaf_estimate(refinement: Refinement, leaves: Leaves, base_estimate: np.ndarray, used=None) -> np.ndarray:
     """Interpolation-error estimate of each leaf [-].
 
-    A leaf of the map's grid (level 0): the largest of ``base_estimate`` (the map's own,
-    per grid point) at its corners (those ``used``, when given: a position on a grid line
-    reads only the line's two points). A deeper leaf: :data:`SURPLUS_SAFETY` (3) times the
-    largest surplus of the points that split its parent and the parent's eight
-    neighbours (the error the parent level made around the leaf; its neighbours, because
-    surpluses measured at a few points alias F̄max's ripples, as the map's second
-    differences do). Every leaf: the same factor on the surplus of any point on the
-    middle of its edges (a split neighbour's: the interpolation is discontinuous there by it).
+    A level-0 leaf: the largest ``base_estimate`` at its corners (those ``used``, when
+    given). A deeper leaf: :data:`SURPLUS_SAFETY` times the largest surplus of the points
+    that split its parent and the parent's eight neighbours; every leaf also the surplus of
+    points on its edge middles.
     """
     scale = refinement.scale
     estimate = np.zeros(leaves.u.shape)
@@ -371,29 +333,21 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
     Parameters
     ----------
     base : dict of str to ndarray
-        The base map's ``fmax_normalised``, ``fmax_error`` and ``status``, each a (λ, ζ) array.
+        The base map's ``fmax_normalised``, ``fmax_error`` and ``status`` as (λ, ζ) arrays.
     base_estimate : ndarray
-        The base map's interpolation-error estimate per grid point
-        (:func:`impactmaps.maps.read.interpolator.interpolation_error`) [-].
+        The base map's interpolation-error estimate per grid point [-].
     coordinates : callable
-        ``coordinates(row, col) -> (zeta, lambda_)``: the map's axes at fractional grid
-        positions (log-linear between grid points).
+        ``coordinates(row, col) -> (zeta, lambda_)`` at fractional grid positions.
     solve : callable
-        ``solve(zetas, lambdas) -> list of row dicts`` (:func:`impactmaps.maps.compute.linear_points.solve_points`
-        rows): the points of a round, in order.
+        ``solve(zetas, lambdas) -> list of row dicts``: the points of a round, in order.
     tolerance : float
-        Largest accepted band (own error + interpolation estimate) of a leaf [-].
+        Largest accepted band of a leaf [-].
     max_level : int
         Deepest split.
     max_points : int, optional
-        Cost cap: once this many points were added, splitting stops (the largest bands
-        are split first, so the cap leaves the smallest ones).
+        Cost cap on the points added (the largest bands are split first).
     progress : callable, optional
         ``progress(round, new_points, total_points)`` after each round.
-
-    Returns
-    -------
-    Refinement
     """
     shape = base["fmax_normalised"].shape
     refinement = Refinement.empty(shape, max_level)

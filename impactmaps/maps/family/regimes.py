@@ -1,32 +1,8 @@
 """Which regime an impact is in: local, infinite-structure, transition or quasi-static.
 
-Criteria (seed 001 §5, made quantitative here; every threshold is a parameter):
-
-1. **local** — the response is that of the half-space: ``F̄max ≥ 1 − local_tolerance``
-   (default 0.1; seed 001 calls ζ = 0.038, where F̄max ≈ 0.94, locally dominated) and
-   the peak comes before the first wave returns (when the times are known: a heavy
-   impactor on a stiff structure also reaches F̄max ≈ 1, but quasi-statically).
-2. **infinite-structure** — not local, F̄max within ``tolerance`` (relative, default
-   10 %) of the infinite-plate or infinite-beam peak F̄∞(ζ), and the peak occurs before
-   the first wave returns from the supports (``peak_time < reflection_time``, when
-   those are known): the size of the structure does not matter, ζ alone governs.
-3. **quasi-static** — F̄max within ``tolerance`` of ``sqrt(λ/(1+λ))`` (eq 28): λ alone
-   governs. (Beams approach it slowly: the seed's "fully global" beam at λ = 0.425,
-   ζ = 11.3 is 6.5 % above it, hence the 10 % default.)
-4. **transition** — none of the above: both ζ and λ matter.
-
-When both asymptotes are within tolerance the nearer one wins, except that a peak known
-to come before the first wave returns is never quasi-static (along the curve where the
-two asymptotes cross, F̄∞(ζ) = sqrt(λ/(1+λ)), nearer-wins alone labelled such points
-quasi-static: a thin sliver through the infinite-structure area of the regime maps). The same function
-classifies a simulated result and, without simulating, a value looked up from a
-stored map (:func:`impactmaps.maps.read.lookup.lookup`).
-
-With ``law="hertz"`` the point is a Hertz map point (ζ_h, λ_h, F̄max = F_max/F_hs,
-times over t*; :mod:`impactmaps.closed_forms.hertz_similarity`) and the asymptotes are those of the
-Hertz law (:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`): the half-space
-is again F̄max = 1, the infinite plate is Zener's model, the infinite beam the
-``t^{-1/2}`` mobility and the quasi-static peak solves ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``.
+:func:`classify` compares F̄max with the half-space, infinite-structure and quasi-static
+peaks of the linear or the Hertz law (thresholds are parameters); it classifies a run
+and a value looked up from a map alike. The criteria: docs/chart.rst, "The regime map".
 """
 
 from __future__ import annotations
@@ -50,21 +26,16 @@ _LOCAL, _INFINITE, _TRANSITION, _QUASI_STATIC = range(len(REGIMES))
 
 
 def quasi_static_peak(relative_stiffness, law: str = "linear"):
-    """Quasi-static normalised peak force [-] of the map law ``law``'s family: the linear law's is
-    the closed form sqrt(λ/(1+λ)) (eq 28, :func:`impactmaps.closed_forms.asymptotes.quasi_static_peak`);
-    the Hertz law's F_max/F_hs in series with the static stiffness at λ_h
-    (:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`)."""
+    """Quasi-static normalised peak force [-]: sqrt(λ/(1+λ)) (eq 28) for the linear law; with
+    ``law="hertz"``, F_max/F_hs of the Hertz law in series with the static stiffness at λ_h.
+    """
     return _classifying(law).quasi_static_peak(relative_stiffness)
 
 
 @renamed_keyword("structure", "kind")
 def infinite_structure_peak(loss_factor, kind: str, law: str = "linear"):
-    """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-].
-
-    ``kind``: ``"beam"`` or ``"plate"``; the asymptote is the target class's
-    (:meth:`impactmaps.targets.Target.infinite_structure_peak`). With ``law="hertz"``,
-    F_max/F_hs of the Hertz law on the infinite structure at ζ_h
-    (:func:`impactmaps.maps.compute.hertz_points.hertz_asymptote_peak`).
+    """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-]; ``kind``:
+    ``"beam"`` or ``"plate"``. With ``law="hertz"``, F_max/F_hs at ζ_h.
     """
     require_choice("kind", kind, STRUCTURE_KINDS)
     return _classifying(law).infinite_peak(loss_factor, kind)
@@ -92,7 +63,8 @@ def classify(
     law: str = "linear",
     peaks=None,
 ):
-    """Regime of each impact from its normalised peak force (vectorised).
+    """Regime of each impact from its normalised peak force (vectorised), one of
+    :data:`REGIMES` per point (criteria: docs/chart.rst).
 
     Parameters
     ----------
@@ -103,24 +75,17 @@ def classify(
     kind : {"beam", "plate"}
         Which infinite-structure asymptote applies.
     peak_time, reflection_time : array_like, optional
-        Normalised time of the peak and of the first wave return (ω d²/c); when
-        given, the infinite-structure regime also requires the peak to come first.
+        Normalised peak time and first wave return; when given, the infinite-structure
+        regime requires the peak first.
     tolerance : float
         Relative distance to an asymptote that counts as "on" it.
     local_tolerance : float
         ``1 − F̄max`` below which the response is local.
     law : {"linear", "hertz"}
-        Whose asymptotes: the linear law's (ζ, λ, F̄max = F_max/(m V0 ω)) or the Hertz
-        law's (ζ_h, λ_h, F̄max = F_max/F_hs).
+        Whose asymptotes (and numbers).
     peaks : (array_like, array_like), optional
-        The infinite-structure and quasi-static peaks at these points when already known
-        (:func:`infinite_structure_peak` and :func:`quasi_static_peak` of the same numbers,
-        e.g. stored with a map); computed otherwise.
-
-    Returns
-    -------
-    ndarray of str
-        One of :data:`REGIMES` per point.
+        The infinite-structure and quasi-static peaks when already known (e.g. stored
+        with a map).
     """
     require_in_range("tolerance", tolerance, 0.0, 1.0, low_inclusive=False)
     require_in_range("local_tolerance", local_tolerance, 0.0, 1.0, low_inclusive=False)

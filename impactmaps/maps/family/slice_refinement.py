@@ -1,18 +1,8 @@
 """Refinement of a map with axes beyond (λ, ζ): one (λ, ζ) refinement per slice of its extra axes.
 
-An elastic-plastic map has axes (β, λ, ζ): for each β of its grid, a (λ, ζ) map. Where
-linear interpolation in (λ, ζ) errs (kinks, re-impact ridges), each such *slice* is refined
-exactly as a (λ, ζ) map is (:func:`impactmaps.maps.family.refinement.refine`): its cells split
-where their band exceeds the tolerance, the new points solved by the family's point solver
-at the slice's β. A :class:`SlicedRefinement` holds one
-:class:`~impactmaps.maps.family.refinement.Refinement` per slice (slices in the C order of the
-extra axes) and is stored as one dataset with a ``slice`` index per point.
-
-The reader (:func:`impactmaps.maps.read.reader.read_values`) answers each neighbouring slice from
-its refinement leaf and interpolates across the extra axes as on the grid; the band of
-F̄max holds each slice's leaf band and the extra axes' own interpolation estimate. Only
-F̄max is refined: a family's other quantities (restitution, absorbed energy) are read on
-the grid.
+A :class:`SlicedRefinement` holds one :class:`~impactmaps.maps.family.refinement.Refinement`
+per slice (e.g. per β of an elastic-plastic map, C order of the extra axes), stored as
+one dataset with a ``slice`` index per point. Only F̄max is refined.
 """
 
 from __future__ import annotations
@@ -35,14 +25,9 @@ __all__ = ["SlicedRefinement", "refine_slices", "read_slices"]
 
 @dataclass(frozen=True)
 class SlicedRefinement:
-    """One :class:`~impactmaps.maps.family.refinement.Refinement` per slice of a map's extra axes.
-
-    Attributes
-    ----------
-    extra_shape : tuple of int
-        The number of grid values of each extra axis (β: the number of β of the map).
-    slices : tuple of Refinement
-        The refinement of each (λ, ζ) slice, in the C order of the extra axes' grid indices.
+    """One :class:`~impactmaps.maps.family.refinement.Refinement` per slice of a map's extra
+    axes: ``extra_shape`` (grid values per extra axis) and ``slices`` (C order of the extra
+    axes' grid indices).
     """
 
     extra_shape: tuple
@@ -81,9 +66,9 @@ class SlicedRefinement:
 
     @classmethod
     def from_dataset(cls, dataset: xr.Dataset, base_fmax: np.ndarray | None = None) -> "SlicedRefinement":
-        """The refinement stored by :meth:`dataset`; ``base_fmax``, the base map's F̄max on its grid
-        (extra axes, λ, ζ), recomputes the surplus of one stored without it
-        (:meth:`Refinement.from_dataset`)."""
+        """The refinement stored by :meth:`dataset`; ``base_fmax`` (the base map's F̄max on its
+        grid) recomputes a missing surplus.
+        """
         extra = tuple(int(n) for n in np.atleast_1d(dataset.attrs["slice_points"]))
         index = np.asarray(dataset["slice"].values, int)
         base = None if base_fmax is None else np.reshape(base_fmax, (-1, *np.shape(base_fmax)[-2:]))
@@ -96,32 +81,24 @@ class SlicedRefinement:
 
 def refine_slices(bases: list, estimates: list, coordinates: Callable, solve: Callable, extra_values: list,
                   extra_shape: tuple | None = None, **options) -> SlicedRefinement:
-    """Refine every (λ, ζ) slice of a map with extra axes (:func:`~impactmaps.maps.family.refinement.refine` each).
+    """Refine every (λ, ζ) slice of a map with extra axes (:func:`~impactmaps.maps.family.refinement.refine`
+    each); returns a :class:`SlicedRefinement`.
 
     Parameters
     ----------
-    bases : list of dict
-        Per slice (C order of the extra axes), its ``fmax_normalised``, ``fmax_error`` and
-        ``status``, each a (λ, ζ) array.
-    estimates : list of ndarray
-        Per slice, the (λ, ζ) interpolation-error estimate per grid point [-]
-        (:func:`impactmaps.maps.read.interpolator.slice_estimates`).
+    bases, estimates : list
+        Per slice (C order): its ``fmax_normalised``, ``fmax_error``, ``status`` (λ, ζ)
+        arrays, and its interpolation-error estimate per grid point [-].
     coordinates : callable
-        ``coordinates(row, col) -> (zeta, lambda_)`` of the map's (λ, ζ) grid.
+        ``coordinates(row, col) -> (zeta, lambda_)`` of the (λ, ζ) grid.
     solve : callable
-        ``solve(zetas, lambdas, extra) -> list of row dicts``: the points of a round at the
-        slice's extra-axis values ``extra`` (a tuple, e.g. ``(β,)``).
+        ``solve(zetas, lambdas, extra) -> list of row dicts`` at extra-axis values ``extra``.
     extra_values : list of tuple
         Per slice, the values of its extra axes.
     extra_shape : tuple of int, optional
-        The extra axes' grid shape (default: one axis, one value per slice).
+        The extra axes' grid shape (default: one axis).
     **options
-        ``tolerance``, ``max_level``, ``max_points`` (per slice), ``progress``, as :func:`refine` takes them.
-
-    Returns
-    -------
-    SlicedRefinement
-        A pure function of the base map, the tolerance and the depth.
+        ``tolerance``, ``max_level``, ``max_points`` (per slice), ``progress``.
     """
     extra_shape = (len(bases),) if extra_shape is None else extra_shape
     slices = []
@@ -139,28 +116,20 @@ def read_slices(planes, shape: tuple, rows: np.ndarray, cols: np.ndarray, bracke
     Parameters
     ----------
     planes : sequence of PlaneInterpolator
-        Each slice prepared for reading (:class:`impactmaps.maps.read.interpolator.PlaneInterpolator`),
-        in the C order of the extra axes.
+        Each slice prepared for reading (C order of the extra axes).
     shape : tuple of int
         The extra axes' grid shape.
     rows, cols : ndarray
         Positions in grid units along λ and ζ.
     brackets : list of (ndarray, ndarray, ndarray)
-        Per extra axis: the grid indices just below and just above each position (equal on a
-        grid value) and the fraction of the way between them.
+        Per extra axis: grid indices below and above each position and the fraction between.
 
     Returns
     -------
-    fmax : ndarray
-        Σ over the neighbouring slices of weight × the slice's leaf interpolation [-].
-    band : ndarray
-        The largest band of those slices (own error plus leaf estimate; own error on a
-        lattice point) [-].
-    deep : ndarray of bool
-        Whether a neighbouring slice reads the position in a refined leaf (elsewhere the
-        grid answers).
-    between : ndarray of bool
-        Whether more than one slice weighs (the position lies between slices).
+    fmax, band : ndarray
+        The weighted F̄max of the neighbouring slices and their largest band [-].
+    deep, between : ndarray of bool
+        Whether a slice reads the position in a refined leaf; whether several slices weigh.
     corner_codes : list of ndarray
         The status codes of each slice's leaf corners (0 where one has no weight).
     """

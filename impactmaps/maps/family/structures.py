@@ -1,14 +1,8 @@
 """Reference structures for normalised (ζ, λ) maps.
 
-A :class:`MapStructure` names a structure family: the targets whose normalised response depends on
-(ζ, λ) and a few shape parameters only: the kind (beam or plate), the theory, the
-supports, the aspect ratio, the slenderness and the impact point as fractions. It
-builds one concrete target (steel-like, unit span) that stands for them all; the
-impactor for each (ζ, λ) is then realised on it (spec §4).
-
-For Euler beams and Kirchhoff plates the normalised response is independent of the
-slenderness; for Timoshenko beams and Mindlin plates it is not, so the slenderness is
-part of the key (default span/thickness = 20).
+A :class:`MapStructure` names a structure family (kind, theory, supports, aspect ratio,
+slenderness, impact point as fractions) and builds one steel-like unit-span target that
+stands for them all; :class:`BasisTable` holds its modes for many impactors.
 """
 
 from __future__ import annotations
@@ -35,17 +29,15 @@ MAX_MODES = 80_000  # cost cap on the modes (all, incl. non-participating) below
 
 @dataclass(frozen=True)
 class MapStructure:
-    """A structure family (the targets one normalised map stands for), named by its map structure.
+    """A structure family (the targets one normalised map stands for).
 
     Parameters
     ----------
     kind : {"beam", "plate"}
-    theory : str
-        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES`; plate: one of
-        :data:`~impactmaps.targets.options.PLATE_THEORIES`.
-    supports : str
-        Beam: one of :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: 4-letter
-        edge code, e.g. "SSSS".
+    theory, supports : str
+        Beam: one of :data:`~impactmaps.targets.options.BEAM_THEORIES` and
+        :data:`~impactmaps.targets.options.BEAM_SUPPORTS`; plate: one of
+        :data:`~impactmaps.targets.options.PLATE_THEORIES` and an edge code, e.g. "SSSS".
     aspect_ratio : float
         Plate b/a [-] (ignored for beams).
     slenderness : float
@@ -105,10 +97,8 @@ class MapStructure:
         return asdict(self)
 
     def build(self) -> Target:
-        """The concrete reference target: unit span, steel-like, thickness = span/slenderness.
-
-        A new (equal) target each call: targets hold no state, their modes are cached by
-        value (:mod:`impactmaps.targets`).
+        """The concrete reference target: unit span, steel-like, thickness = span/slenderness (a
+        new, equal target each call).
         """
         return reference_target(Beam if self.kind == "beam" else Plate, self)
 
@@ -159,20 +149,9 @@ MEMBER_STRUCTURES = tuple(
 
 
 class BasisTable:
-    """All modes of a target up to some frequency, truncatable without recomputation.
-
-    Sweeps realise many impactors on one target; each needs the modes below its own
-    cut-off. The table computes the modes once, at the largest cut-off, keeps those
-    that participate (:meth:`ModalBasis.participating`), and :meth:`truncate` slices
-    them (:meth:`ModalBasis.truncate`: the compliance of the sliced-off modes joins the
-    residual, so the residual-flexibility correction stays exact).
-
-    Attributes
-    ----------
-    basis : ModalBasis
-        The participating modes up to ``max_frequency`` [rad/s].
-    max_frequency : float
-        Cut-off [rad/s] the table was computed for.
+    """All participating modes of a target up to some frequency, truncatable without
+    recomputation: ``basis`` (the modes up to ``max_frequency`` [rad/s]) and
+    ``max_frequency``.
     """
 
     def __init__(self, target: Target, max_frequency: float, min_modes: int = 1):
@@ -183,9 +162,8 @@ class BasisTable:
         self._dropped_sums = dropped_compliance_sums(self.basis.frequencies, self.basis.participation)
 
     def truncate(self, max_frequency: float, min_modes: int = 1) -> ModalBasis:
-        """Modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), with exact residual.
-
-        Bit for bit ``self.basis.truncate(max_frequency, min_modes)``, in O(log n).
+        """Modes with ω ≤ ``max_frequency`` [rad/s] (at least ``min_modes``), with exact residual:
+        bit for bit ``self.basis.truncate(max_frequency, min_modes)``, in O(log n).
         """
         count = self.basis.cutoff_count(max_frequency, min_modes)
         if count == self.basis.size:
@@ -194,10 +172,8 @@ class BasisTable:
 
 
 def warn_point_loaded_mindlin(who: str, stacklevel: int = 2) -> None:
-    """Say that a map of a Mindlin plate is a point load, whose answer depends on where its
-    divergent shear deflection is cut (``docs/contact_patch.rst``, section Maps).
-
-    ``who``: the subject of the sentence, e.g. "the shipped Mindlin maps strike".
+    """Warn that a map of a Mindlin plate is a point load, whose answer depends on its cut-off
+    (``docs/contact_patch.rst``); ``who`` is the sentence's subject.
     """
     warnings.warn(f"point load: {who} the plate at a point, whose deflection diverges; the map's F̄max holds the "
                   f"shear of every mode up to the sweep's cap of {MAX_MODES} modes and has no converged value, and "

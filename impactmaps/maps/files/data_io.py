@@ -1,27 +1,10 @@
 """Reading and writing map datasets: NetCDF for results, compressed archives for shipped data.
 
-Every map file of the package goes through :func:`read_dataset` / :func:`write_dataset`,
-which choose the format by the file's suffix:
-
-* ``.nc`` — NetCDF3 (64-bit offsets) through SciPy: what a sweep, a chart or an
-  on-demand tile writes for the user, and what every earlier release shipped. Read and
-  written as before.
-* ``.npz`` — a *packed* map (:func:`pack`): a zip of NumPy arrays, deflated, written with
-  fixed zip timestamps so the same dataset always gives the same bytes. It needs nothing
-  beyond NumPy — HDF5 (h5netcdf, h5py) or zarr would have added a dependency for the same
-  deflate. What makes it small (``docs/install.rst``, "Package data"):
-
-  - numbers are stored byte-plane by byte-plane (the high bytes of neighbouring values
-    repeat, which deflate finds);
-  - a variable that is a function of others (``log_peak_time`` = log of
-    ``peak_time_normalised``, ``fmax_low`` = F̄max − ``fmax_error``, …: :data:`DERIVED`) is
-    stored only where the function does not give its exact bits, and recomputed on reading;
-  - the packer may store named variables in fewer bits (``single``: float32; ``bfloat16_up``:
-    the 16 high bits of the float32, rounded away from zero — for error estimates, whose
-    band only widens); the header records it and reading restores the original dtype.
-
-The shipped files are packed by ``data_build/pack_map_data.py`` and found by
-:mod:`impactmaps.maps.files.shipped`.
+:func:`read_dataset` / :func:`write_dataset` choose the format by suffix: ``.nc``
+(NetCDF3 through SciPy, what a sweep, chart or tile writes) or ``.npz``, a packed map
+(:func:`pack`: byte planes, derived variables recomputed, optional float32/bfloat16
+variables; same dataset, same bytes; docs/install.rst, "Package data").
+Shipped files are found by :mod:`impactmaps.maps.files.shipped`.
 """
 
 from __future__ import annotations
@@ -63,9 +46,9 @@ _ZIP_TIME = (1980, 1, 1, 0, 0, 0)
 
 def write_dataset(dataset: xr.Dataset, path, *, packed: bool | None = None, single=(), bfloat16_up=(),
                   keep_exact=None) -> Path:
-    """Write ``dataset`` to ``path``: packed (:func:`pack`, with the lossy options ``single``,
-    ``bfloat16_up``, ``keep_exact``) if ``packed`` — by default, if the path ends in ``.npz`` —
-    else NetCDF3. Not atomic (:func:`impactmaps.maps.files.store.save_atomic` is). Returns the path."""
+    """Write ``dataset`` to ``path``: packed (:func:`pack`) if ``packed`` (default: a ``.npz``
+    path), else NetCDF3. Not atomic. Returns the path.
+    """
     path = Path(path)
     if not (path.suffix == PACKED_SUFFIX if packed is None else packed):
         dataset.to_netcdf(path, engine="scipy", format="NETCDF3_64BIT")
@@ -89,9 +72,9 @@ def read_dataset(path) -> xr.Dataset:
 
 
 def read_arrays(path):
-    """The map in ``path`` for reading: a packed ``.npz`` as :class:`~impactmaps.maps.files.data_io.MapArrays`
-    (NumPy alone), a NetCDF file as the ``xarray.Dataset`` :func:`read_dataset` gives. The same values
-    either way."""
+    """The map in ``path``: a packed ``.npz`` as :class:`~impactmaps.maps.files.data_io.MapArrays`
+    (NumPy alone), a NetCDF file as an ``xarray.Dataset``; the same values either way.
+    """
     path = Path(path)
     if path.suffix == PACKED_SUFFIX:
         return unpack_arrays(_packed_arrays(path))
@@ -191,22 +174,10 @@ class MapArrays:
 
 # -- the packed format ---------------------------------------------------------------------
 def pack(dataset: xr.Dataset, *, single=(), bfloat16_up=(), keep_exact=None) -> dict:
-    """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored variable.
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-    single : sequence of str
-        Float variables stored as float32 (read back as their dtype).
-    bfloat16_up : sequence of str
-        Non-negative float variables stored as the 16 high bits of their float32, rounded
-        up (a stored error estimate only grows, by less than 2⁻⁷ of itself).
-    keep_exact : dict of str to ndarray of bool, optional
-        For a ``bfloat16_up`` variable, where to keep its float32 value exactly (stored apart).
-
-    Returns
-    -------
-    dict of str to ndarray
+    """The arrays of a packed file: ``__header__`` (JSON, as bytes) and one array per stored
+    variable. ``single``: variables stored as float32; ``bfloat16_up``: non-negative ones
+    stored as the 16 high bits of their float32, rounded up (an error estimate only grows,
+    by < 2⁻⁷); ``keep_exact``: where such a variable keeps its float32 value.
     """
     arrays, variables = {}, []
     for name in [*dataset.coords, *dataset.data_vars]:

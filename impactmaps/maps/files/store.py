@@ -1,15 +1,8 @@
-"""A resumable, atomic store for sweep results (one NetCDF file, or a packed ``.npz``: :mod:`.data_io`).
+"""A resumable, atomic store for sweep results (one NetCDF file, or a packed ``.npz``).
 
-The file holds the whole result grid; points not yet computed are marked in the
-``done`` variable. Every save writes a temporary file beside the target and renames it
-over the target (``os.replace``), so a reader never sees a half-written file and an
-interrupted sweep loses at most the points in flight. Each file carries the
-fingerprint of what produced it (structures, grid, solver settings, solver revision);
-resuming with different settings is refused rather than mixing results, and the
-refusal names the keys that changed. Temporaries left by a process killed during a
-save are removed by :func:`remove_stale_temporaries` (one sweep per result file at a
-time). Files are created with the permissions of ordinary outputs (0666 less the
-umask, 0644 usually).
+The file holds the whole grid, ``done`` marking computed points; every save writes a
+temporary and renames it over the file. Each file carries the fingerprint of what
+produced it: resuming with other settings is refused, naming the keys that changed.
 """
 
 from __future__ import annotations
@@ -34,16 +27,8 @@ class StoreMismatchError(ValueError):
 
 
 class SweepInterrupted(KeyboardInterrupt):
-    """A sweep was interrupted (Ctrl-C); the points finished so far are saved.
-
-    Attributes
-    ----------
-    saved : int
-        Points of the grid computed and saved (including those of earlier runs).
-    total : int
-        Points of the whole grid.
-    path : Path or None
-        The result file (``None`` when the sweep had no file).
+    """A sweep was interrupted (Ctrl-C) after saving: ``saved`` of ``total`` grid points are in
+    ``path`` (``None`` without a file).
     """
 
     def __init__(self, saved: int, total: int, path=None):
@@ -68,10 +53,8 @@ def save_atomic(dataset: xr.Dataset, path: str | os.PathLike, **options) -> Path
 
 
 def remove_stale_temporaries(path: str | os.PathLike) -> list[Path]:
-    """Delete the temporaries ``.NAME.XXXX.tmp`` (``.NAME.XXXX.tmp.SUFFIX`` since 2026-11-27,
-    :func:`impactmaps._files.written_atomically`) that an interrupted save of ``path`` left.
-
-    Returns the paths removed. Only one process may write a given result file at a time.
+    """Delete the temporaries ``.NAME.XXXX.tmp[.SUFFIX]`` an interrupted save of ``path`` left;
+    returns the paths removed.
     """
     path = Path(path)
     if not path.parent.is_dir():
@@ -100,26 +83,14 @@ def _differences(old, new, prefix: str = "") -> list[str]:
 
 def load_matching(path: str | os.PathLike, expected_fingerprint: str,
                   description: dict | None = None) -> xr.Dataset | None:
-    """Load a result file if it exists and was made by the same sweep description.
-
-    Parameters
-    ----------
-    path : path-like
-        The result file.
-    expected_fingerprint : str
-        :func:`fingerprint` of the sweep description.
-    description : dict, optional
-        The description itself; when given, a refusal names the keys that changed.
-
-    Returns
-    -------
-    xarray.Dataset or None
-        ``None`` if there is no file.
+    """The result file at ``path`` if it exists and was made by the sweep of
+    ``expected_fingerprint``; ``None`` without a file.
 
     Raises
     ------
     StoreMismatchError
-        (a ``ValueError``) if the file is unreadable or its fingerprint differs.
+        (a ``ValueError``) if the file is unreadable or its fingerprint differs, naming the
+        keys of ``description`` that changed when it is given.
     """
     path = Path(path)
     if not path.exists():

@@ -1,11 +1,6 @@
-"""One writer per sweep store: a lock file beside the store while a sweep writes it.
-
-Two sweeps writing one store at once would interleave their saves (each rewrites the
-whole file from the points it holds), so the second is refused. The lock is the file
-``<store>.lock`` holding ``host pid``; it is created atomically (``O_CREAT | O_EXCL``)
-and removed when the writer finishes, fails or is interrupted. A lock left by a writer
-that was killed (``kill -9``, a crash) is recognised — same host, its process gone —
-and taken over; a lock from another host is respected (its process cannot be checked).
+"""One writer per sweep store: a lock file ``<store>.lock`` (``host pid``, created
+atomically) while a sweep writes it; a second writer is refused. A lock left by a dead
+process on this host is taken over; another host's lock is respected.
 """
 
 from __future__ import annotations
@@ -53,20 +48,13 @@ def _stale(lock: Path) -> bool:
 
 @contextlib.contextmanager
 def store_lock(store, option: str = "the store"):
-    """Hold the lock of the sweep store ``store`` for the ``with`` block.
-
-    Parameters
-    ----------
-    store : path-like
-        The store file (``sweep.nc``, ``fmax_map.nc``); its directory is created if needed.
-    option : str
-        How the error message names the store's origin (e.g. ``"--out"``).
+    """Hold the lock of the sweep store file ``store`` for the ``with`` block (its directory is
+    created); ``option`` names the store's origin in messages (e.g. ``"--out"``).
 
     Raises
     ------
     StoreLockedError
-        A live process holds the lock (the message names the store, the process and the
-        lock file to remove if no sweep runs).
+        A live process holds the lock (naming it and the lock file).
     ValueError
         The store's directory is a file.
     """

@@ -1,10 +1,8 @@
 """The contact force at the end of a step and the instants where contact starts or ends.
 
-Both are roots in one unknown. The end force solves ``F1 = F(α_pred − C F1; α_max)``
-(the predicted indentation minus what the force itself takes back through the step's
-compliance ``C``): closed form for a linear law, safeguarded Newton otherwise. A contact
-event is where the gap predicted with the force ramped to zero crosses the law's
-no-force indentation; it is found by Brent's method on the step's sub-interval.
+The end force solves ``F1 = F(α_pred − C F1; α_max)`` (closed form for a linear law,
+safeguarded Newton otherwise); a contact event is where the gap predicted with the force
+ramped to zero crosses the law's no-force indentation (Brent's method).
 """
 
 from __future__ import annotations
@@ -54,10 +52,8 @@ def solve_end_force(kernel, params, linear_stiffness, alpha_pred, compliance, al
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _no_force_threshold(kernel, params, linear_stiffness, alpha_max, alpha_loaded):
-    """Indentation α_f(α_max) at and below which the law gives no force [m].
-
-    0 for elastic laws; the permanent indentation for plastic ones. Found by bisection
-    on the kernel between α = 0 (never a force) and ``alpha_loaded`` (a force).
+    """Indentation α_f(α_max) [m] at and below which the law gives no force (0 for elastic laws),
+    by bisection between 0 and ``alpha_loaded``.
     """
     if linear_stiffness > 0.0:
         return 0.0
@@ -91,24 +87,11 @@ def _ramp_gap(modes, mass, state, force, s, work):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, state, force, gap_end, separation,
                  work, h):
-    """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts.
-
-    The law is (``kernel``, ``params``, ``linear_stiffness``) with the largest indentation
-    so far ``alpha_max`` [m]; ``modes`` the :class:`~impactmaps.solvers.integrator.kernel_types.KernelModes`,
-    ``mass`` the impactor's [kg]; ``state`` = (w_i, v_i, q, v) at the step's start and
-    ``force`` [N] there; ``gap_end`` the predicted gap at its end [m]; ``work`` = (sub,
-    q_try, v_try) scratch for :func:`_ramp_gap`.
-
-    The predicted gap g(s) (force ramped from its current value to 0 over s) crosses the
-    no-force threshold α_f of the law. The root is bracketed by s = 0 and s = h
-    (gap ``gap_end``) and found by Brent's method (inverse quadratic interpolation,
-    secant and bisection steps; Brent 1973, the ``zeroin`` algorithm) to 1e-13 h: each
-    evaluation costs one pass over the modes, and a handful replace the sixty of plain
-    bisection. Returns s — on the no-contact side (g ≤ α_f) of the root, or where
-    |g − α_f| ≤ 1e-11 of the bracket's gaps (for a touchdown whose step starts with the gap
-    opening, also less than half the gap at the start: that start is the end of the previous
-    contact, not a touchdown) — and whether ``sub`` holds the step coefficients over s (the
-    last point evaluated).
+    """Time s ∈ [0, h] into the step at which contact ends (``separation``) or starts, by
+    Brent's method on the predicted gap minus the no-force indentation (to 1e-13 h); the law
+    (``kernel``, ``params``, ``linear_stiffness``) at ``alpha_max`` [m], ``state`` = (w_i,
+    v_i, q, v) and ``force`` [N] at the step's start, ``gap_end`` [m] at its end. Returns s
+    and whether ``sub`` holds the step coefficients over s.
     """
     wi, vi, q, v = state
     phi = modes.participation

@@ -1,11 +1,8 @@
 """Closed forms of the coupled oscillators of a linear contact phase (numba).
 
-While the contact is closed every coupled coordinate moves as an undamped oscillator,
-``η_k(s) = η_k cos Ω_k s + (η̇_k/Ω_k) sin Ω_k s``, and the force is ``F = Σ c_k η_k``
-(:mod:`impactmaps.solvers.integrator.coupled_contact`). Here: F and its rate at any instant, their
-roots (Illinois method), exact propagation, the force amplitudes and the content step
-they set, the physical state of a coupled one, and exact recorded rows inside a step.
-The stepping loops that use them are in :mod:`impactmaps.solvers.integrator.coupled_stepping`.
+F = Σ c_k η_k and its rate at any instant, their roots (Illinois method), exact
+propagation, the force amplitudes and the content step they set, and exact recorded
+rows inside a step; the stepping loops are in :mod:`.coupled_stepping`.
 """
 
 from __future__ import annotations
@@ -38,9 +35,9 @@ def _force(frequencies, force_row, eta, rate, s):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _force_rate(frequencies, force_row, eta, rate, s, count):
-    """dF/dt(s) [N/s] a time s [s] after the state (η, η̇), of the first ``count``
-    coupled modes (the sampled ones: the peak search leaves out the ripple of modes the
-    step does not resolve, whose derivative would dominate)."""
+    """dF/dt(s) [N/s] a time s [s] after the state (η, η̇), of the first ``count`` (sampled)
+    coupled modes.
+    """
     total = 0.0
     for k in range(count):
         x = frequencies[k] * s
@@ -89,9 +86,9 @@ def _root(frequencies, force_row, eta, rate, start, length, derivative, count):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _first_positive(frequencies, force_row, eta, rate, length):
-    """An instant in (0, length] [s] where F > 0, by halving from ``length``; 0 if none
-    is found down to length/2⁶⁰ (the force of a contact that begins tangentially grows
-    as ½ F''(0) s²)."""
+    """An instant in (0, length] [s] where F > 0, by halving from ``length``; 0 if none is found
+    down to length/2⁶⁰.
+    """
     s = length
     for _ in range(60):
         if _force(frequencies, force_row, eta, rate, s) > 0.0:
@@ -102,14 +99,9 @@ def _first_positive(frequencies, force_row, eta, rate, length):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _clear_gap(from_coupled, frequencies, eta, rate, phi, s, length, eta_s, rate_s, q, v):
-    """The separation instant ``s`` [s], moved later by the least round-off amount that
-    makes the physical gap w_i − Σ φ_j q_j strictly open; returns it with w_i [m] and
-    v_i [m/s] there (the modes' state in q, v; the coupled state in η_s, η̇_s).
-
-    F(s) ≤ 0 on the closed form does not guarantee it in the physical coordinates, whose
-    difference cancels; a gap left at +0 would make the free flight's touchdown search
-    find the same instant again (a degenerate bracket) and the run would ping-pong
-    between contact and flight without advancing.
+    """The separation instant ``s`` [s], moved later by the least round-off that makes the
+    physical gap strictly open (else the flight would find the same instant again); returns
+    it with w_i [m] and v_i [m/s] there (modes in q, v; coupled state in η_s, η̇_s).
     """
     shift = 1e-14 * length
     wi = 0.0
@@ -150,10 +142,9 @@ def _amplitudes(frequencies, force_row, eta, rate):
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)
 def _content_step(frequencies, force_row, eta, rate, resolution):
-    """The contact step [s] for the state (η, η̇): :data:`SAMPLED_PHASE`/Ω of the coupled
-    mode of largest amplitude, and at most 1/Ω of the fastest mode that must be sampled
-    (the fastest modes whose amplitudes sum to at most ``resolution``/2 of the total are
-    left unsampled; module docstring); 0 when the state carries no force at all."""
+    """The contact step [s] for the state (η, η̇): :data:`SAMPLED_PHASE`/Ω of the largest
+    amplitude's mode, at most 1/Ω of the fastest sampled mode; 0 when no force is carried.
+    """
     amplitude = _amplitudes(frequencies, force_row, eta, rate)
     total = 0.0
     for k in range(eta.shape[0]):
@@ -193,10 +184,10 @@ def _to_physical(from_coupled, eta, rate, q, v):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record_inside(modes, rows, start, t, length, q, v, history, rec):
-    """Record exact rows inside a step of ``length`` [s] from time t [s] and state
-    ``start`` = (η, η̇), at most ``rows[0]`` [s] apart (the step's end row is written by
-    the caller); ``modes`` = (Ω, c, from_coupled), ``rows`` = (row spacing [s], ω, φ,
-    residual [m/N]); q and v serve as scratch. Returns the history and the next row."""
+    """Record exact rows at most ``rows[0]`` [s] apart inside a step of ``length`` [s] from t [s]
+    and ``start`` = (η, η̇); ``modes`` = (Ω, c, from_coupled), ``rows`` = (spacing [s], ω, φ,
+    residual [m/N]). Returns the history and the next row.
+    """
     frequencies, force_row, from_coupled = modes
     spacing, omega, phi, residual = rows
     eta, rate = start

@@ -1,11 +1,8 @@
 """Two-rate stepping of a linear contact phase (numba).
 
-The fine step h samples the force as :func:`impactmaps.solvers.integrator.coupled_contact.contact_phase`
-always did; coarse steps H = N h are taken only where a bound on the force proves that
-no sample of the fine step inside them could end the contact or raise the peak (the
-module docstring of :mod:`impactmaps.solvers.integrator.coupled_contact` states the rule and what it
-guarantees). :func:`_fine_steps` is the single-rate loop, :func:`_coarse_steps` the coarse
-one; :func:`_coarse_plan` sets H and the bound.
+:func:`_fine_steps` is the single-rate loop at the fine step h; :func:`_coarse_steps`
+takes coarse steps H = N h where a bound proves they change nothing; :func:`_coarse_plan`
+sets H and the bound (docs/physics.rst, "Exact linear contact phase").
 """
 
 from __future__ import annotations
@@ -46,15 +43,10 @@ _OF_RATE = np.bool_(True)
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)
 def _coarse_plan(frequencies, force_row, eta, rate, h):
-    """The coarse rate of a contact whose fine step is h [s].
-
-    Returns ``(every, H, cos Ω_k H, sin Ω_k H, low, margin)``: H = every·h [s], the
-    whole number of fine steps in the content step of :data:`COARSE_RESOLUTION` (so the
-    coarse samples lie on the fine grid); the ``low`` slowest coupled modes have
-    Ω_k H ≤ 1; ``margin`` [N] = Σ A_k of the others + H²/8 Σ_low A_k Ω_k² bounds how far
-    F lies below (above) the smaller (larger) of the two samples of F_low = Σ_low c_k η_k
-    anywhere in a coarse step (the ripple of the fast modes, and the chord error of the
-    slow ones). ``every`` is 0 (a single rate) under :data:`COARSE_FACTOR`.
+    """The coarse rate of a contact whose fine step is h [s]: ``(every, H, cos Ω_k H,
+    sin Ω_k H, low, margin)`` with H = every·h [s], ``low`` the slowest coupled modes with
+    Ω_k H ≤ 1 and ``margin`` [N] the bound on F about the F_low samples; ``every`` is 0
+    (single rate) under :data:`COARSE_FACTOR`.
     """
     content = _content_step(frequencies, force_row, eta, rate, COARSE_RESOLUTION)
     every = int(content / h)
@@ -104,16 +96,10 @@ def _record_step(modes, rows, start, end, t, length, force, history, rec, q, v):
 def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, rec, q, v):
     """Steps of the fine step h: the single-rate loop of the contact phase.
 
-    ``state`` = (η, η̇, η_prev, η̇_prev) at time t and one step before; ``run`` = (t,
-    F(t), F one step before (< 0: none), peak, peak time, steps). A sample where F ≤ 0
-    ends the contact at the root of F in the step before it; a sampled maximum of F
-    is refined to the root of the rate of the ``resolved`` coupled modes over the two
-    steps around it, and evaluated with all modes. With ``coarse[0]`` = 0 the loop runs
-    to the separation or the run's limits; otherwise it also stops (``stopped``) at the
-    first sample after its start, its maximum test done, from which the coarse step is
-    :func:`_skippable`.
-
-    Returns (state, run, separated, stopped, wi, vi, history, rec).
+    ``state`` = (η, η̇, η_prev, η̇_prev); ``run`` = (t, F(t), F one step before (< 0: none),
+    peak, peak time, steps). With ``coarse[0]`` = 0 it runs to the separation or the limits;
+    otherwise it also stops (``stopped``) at the first sample from which the coarse step is
+    :func:`_skippable`. Returns (state, run, separated, stopped, wi, vi, history, rec).
     """
     frequencies, force_row, from_coupled = modes
     _row_spacing, omega, phi, residual = rows
@@ -188,10 +174,10 @@ def _fine_steps(modes, rows, fine, coarse, limits, state, run, record, history, 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _settle(modes, rows, coarse, anchor, scalars, peak, flush, record, history, rec, q, v):
-    """Move the anchor (the first coarse sample not yet proven skippable, ``anchor`` =
-    (η, η̇, scratch, scratch), ``scalars`` = (t, F, F_low, pending coarse steps after it))
-    over the coarse steps that ``peak`` [N] now proves free of a larger force (all of
-    them if ``flush``), recording them. Returns (scalars, history, rec)."""
+    """Move the anchor (``anchor`` = (η, η̇, scratch, scratch), ``scalars`` = (t, F, F_low,
+    pending coarse steps)) over the coarse steps ``peak`` [N] now proves free of a larger
+    force (all if ``flush``), recording them. Returns (scalars, history, rec).
+    """
     frequencies, force_row, _from_coupled = modes
     _every, length, cos_c, sin_c, low, margin = coarse
     eta_a, rate_a, eta_s, rate_s = anchor
@@ -217,17 +203,9 @@ def _settle(modes, rows, coarse, anchor, scalars, peak, flush, record, history, 
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _coarse_steps(modes, rows, coarse, limits, state, run, record, history, rec, q, v):
-    """Coarse steps H from a sample where the fine loop stopped, to the start of the next
-    fine window or the run's limits.
-
-    A coarse step is taken (and recorded) outright when :func:`_skippable`; one whose
-    F_low samples leave room for a force above the peak found so far is taken
-    provisionally, from an anchor, until later
-    samples raise the peak enough (:func:`_settle`). A fine window is due from the anchor
-    (else from the current sample) when a step may hold F ≤ 0, or when a step is
-    skippable while provisional steps remain before it. ``state`` = (η, η̇) and ``run`` =
-    (t, F, peak, peak time, steps) at the start. Returns (η, η̇, run, done, wi, vi, history, rec): the window's start, or
-    (``done``) the state at the run's limits.
+    """Coarse steps H from where the fine loop stopped, to the next fine window or the run's
+    limits (provisional steps settled by :func:`_settle`). ``state`` = (η, η̇), ``run`` = (t,
+    F, peak, peak time, steps). Returns (η, η̇, run, done, wi, vi, history, rec).
     """
     frequencies, force_row, from_coupled = modes
     _every, length, cos_c, sin_c, low, margin = coarse

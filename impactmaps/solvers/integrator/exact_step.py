@@ -1,42 +1,9 @@
 """The exact-step modal impact integrator (numba).
 
-Between two instants the contact force is taken to vary linearly. For such a force
-every modal coordinate ``q̈_j + 2ζ_jω_j q̇_j + ω_j² q_j = φ_j F(t)`` and the impactor
-``m ẅ_i = −F`` are advanced *exactly* (:mod:`impactmaps.solvers.integrator.oscillator_step`), so no
-mode limits the step by its own stability and the step follows the contact force, not
-the highest mode. (The force is sampled once per step, and the sampled contact loop
-itself is stable only while the highest coupled frequency turns well under half a
-period per step: ``modal.STABLE_TOP_STEP``.)
-
-One impact is a loop over four stages:
-
-* **free flight** (no contact force): the step doubles up to 1024× as long as a bound on
-  the closing speed proves that no touchdown fits inside it, and the run ends as soon as
-  the gap exceeds the largest displacement the free vibration can reach at the impact
-  point (:mod:`impactmaps.solvers.integrator.free_flight`). A recorded run's history rows are spaced
-  up to 64 h apart in free flight (every step h in contact) and its scalars are those of
-  the run without a record;
-* **event location**: contact start and separation are roots of the predicted gap
-  inside the step (Brent's method); the step is cut there and the next one starts at the
-  event (:mod:`impactmaps.solvers.integrator.contact_events`, :func:`_advance_to_event`);
-* **step acceptance**: otherwise the force at the end of the step is found implicitly
-  from the contact law (closed form for a linear law, safeguarded Newton otherwise), with
-  the residual flexibility of the dropped modes in series with the contact, and the
-  step is completed with it (:func:`_accept_step`);
-* **peak tracking**: the largest force, refined by a parabola through three uniform
-  samples (:func:`_track_peak`, :mod:`impactmaps.solvers.integrator._peak`).
-
-With a linear law and coupled modes given, every contact phase is instead propagated
-exactly through them (:func:`~impactmaps.solvers.integrator.coupled_contact.contact_phase`); more than
-:data:`STALL_LIMIT` phases in a row that do not move the time on end the run, flagged
-(``stalled``, ``time_limit_reached``), never a creep of zero-length steps to the step budget.
-
-The kernel takes the law and named tuples of arrays and settings and returns the history,
-the contact intervals and a named tuple of scalars (:mod:`impactmaps.solvers.integrator.kernel_types`),
-so one compiled kernel serves single runs, batches and sweeps;
-:mod:`impactmaps.solvers.modal_run` calls it. A recorded run writes at most
-``run.max_rows`` history rows: one that reaches them stops there, flagged
-(``row_cap_reached``, ``time_limit_reached``).
+Modes and impactor are advanced exactly for a force linear within each step, so the
+step follows the contact force, not the highest mode; a loop over free flight, event
+location, step acceptance and peak tracking (a linear law's contact phases exactly
+through the coupled modes). The stages: docs/physics.rst, "The exact-step integrator".
 """
 
 from __future__ import annotations
@@ -101,11 +68,9 @@ STALL_LIMIT = 100
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _advance_to_event(modes, mass, start, force, s, ready, sub, qn, vn):
-    """Event stage: advance from ``start`` = (w_i, v_i, q, v) over s [s] with the force
-    ramped from ``force`` [N] to 0; modes into (qn, vn).
-
-    ``ready`` says that ``sub`` already holds the step coefficients over s (left there by
-    the event search). Returns the impactor displacement and velocity at the event.
+    """Event stage: advance from ``start`` = (w_i, v_i, q, v) over s [s] with the force ramped
+    from ``force`` [N] to 0, modes into (qn, vn) (``ready``: ``sub`` holds the coefficients
+    over s); returns the impactor displacement [m] and velocity [m/s] at the event.
     """
     wi, vi, q, v = start
     omega, zeta, phi = modes.frequencies, modes.damping_ratios, modes.participation
@@ -149,9 +114,8 @@ def _contact_event(force, f_new, starting):
 @numba.njit(cache=True, inline="always")
 def _progress(t, t_mark, stalls, h):
     """Stall guard of the exact contact phase: (stalls, t_mark) after a phase that ended at
-    t [s]. A phase that ends after ``t_mark`` moved the time on (no stall; the next one
-    must end 10⁻⁹ h [s] later still); one that does not is one more stall in a row (a
-    graze that the flight finds again at one instant: tests/solvers/test_graze_spin.py)."""
+    t [s] (the next one must end 10⁻⁹ h [s] after ``t_mark``).
+    """
     if t > t_mark:
         return np.int64(0), t + 1e-9 * h
     return stalls + 1, t_mark
@@ -159,12 +123,9 @@ def _progress(t, t_mark, stalls, h):
 
 @numba.njit(cache=True, inline="always")
 def _track_peak(peak, peak_time, f_prev2, f_prev1, force, t, h, uniform):
-    """Peak-tracking stage after a step ending at t with ``force``.
-
-    The largest sample, or the vertex of the parabola through the last three samples
-    when they are uniform (h apart) and the middle one is a local maximum. Returns
-    (peak, peak_time, f_prev2, f_prev1); the previous samples are reset across an event
-    (−1 marks “no uniform sample”).
+    """Peak-tracking stage after a step ending at t [s] with ``force`` [N]: the largest
+    sample, or the vertex of the parabola through three uniform samples; returns (peak,
+    peak_time, f_prev2, f_prev1) (−1 marks “no uniform sample”).
     """
     if force > peak:
         peak = force
@@ -221,9 +182,9 @@ def _workspace(modes, impact, run):
 def _exact_contact(coupled, modes, linear_stiffness, work, start, q, v, history, rec):
     """Exact contact stage: one contact phase through the coupled modes from the touchdown
     at ``start`` = (t, w_i, v_i, α_max, in contact, peak, peak time, steps, intervals
-    written, overflow) (:func:`~impactmaps.solvers.integrator.coupled_contact.contact_phase`); q and v
-    are overwritten with the state at its end. Returns the same tuple with the force (0 after
-    a separation) after v_i, then history, rec."""
+    written, overflow); q and v overwritten. Returns the same tuple with the force after
+    v_i, then history, rec.
+    """
     t0, wi, vi, alpha_max, in_contact, peak, peak_time, before, n_intervals, overflow = start
     t, wi, vi, force, peak, peak_time, steps, separated, history, rec = contact_phase(
         coupled, modes, (work.max_time, work.max_steps), (t0, wi, vi, peak, peak_time, before), q, v, work.record,
@@ -241,13 +202,10 @@ def _exact_contact(coupled, modes, linear_stiffness, work, start, q, v, history,
 
 @numba.njit(cache=True, inline="always")
 def _cut_at_event(law, modes, mass, work, start, force, gap_end, separation):
-    """Event stage of a sampled step from ``start`` = (w_i, v_i, q, v, qn, vn) with the force
-    ``force`` [N]: the instant s [s] of the separation or touchdown inside the step
-    (``law`` = (kernel, params, linear stiffness, α_max); ``gap_end`` the predicted gap at
-    the step's end [m]) and, when s > 0, the state there (modes into qn, vn).
-
-    Returns (s, swap, w_i, v_i, damping work over s [J]); ``swap`` says that the state at s
-    is in (qn, vn) (False: the event is at the step's start and nothing moved)."""
+    """Event stage of a sampled step from ``start`` = (w_i, v_i, q, v, qn, vn) with ``force``
+    [N]: returns (s [s], swap, w_i, v_i, damping work over s [J]) of the separation or
+    touchdown inside the step (``swap``: the state at s is in (qn, vn)).
+    """
     kernel, params, linear_stiffness, alpha_max = law
     wi, vi, q, v, qn, vn = start
     s, ready = locate_event(kernel, params, linear_stiffness, alpha_max, modes, mass, (wi, vi, q, v), force,
@@ -277,26 +235,12 @@ def _exact_phase(args) -> bool | None:
 def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coupled, exact_phase):
     """Integrate one impact from first touch until re-impact is impossible.
 
-    Parameters
-    ----------
-    kernel, params : contact-law kernel and its parameter vector.
-    linear_stiffness : K [N/m] if the law is linear (closed-form contact solve), else 0.
-    modes, impact, run, coupled : KernelModes, KernelImpact, KernelRun, KernelCoupled
-        The modes, the impactor, the step and limits, and the coupled modes of a linear
-        contact (:mod:`impactmaps.solvers.integrator.kernel_types`); when these are given
-        (non-empty), every contact phase is propagated exactly through them and the step
-        serves free flight.
-    exact_phase : None or True
-        None: the variant without the exact contact phase (its branch is pruned when
-        compiling, so :func:`~impactmaps.solvers.integrator.coupled_contact.contact_phase` is not
-        compiled), for runs without coupled modes; True: with it (:data:`integrate_impact`).
-
-    Returns
-    -------
-    history : (n_records, 8) array — t, F, α, w_i, v_i, w_t, v_t, E_structure (at most
-        ``run.max_rows`` rows; one row without ``run.record``).
-    intervals : (n_intervals, 2) array of contact start/end times [s].
-    scalars : KernelScalars
+    ``kernel``, ``params``: the contact law; ``linear_stiffness``: K [N/m] of a linear law,
+    else 0; ``modes``, ``impact``, ``run``, ``coupled``: the named tuples of
+    :mod:`~impactmaps.solvers.integrator.kernel_types` (non-empty ``coupled``: every contact
+    phase exact); ``exact_phase``: None compiles the variant without that phase, True with it.
+    Returns ``history`` ((rows, 8): t, F, α, w_i, v_i, w_t, v_t, E_structure; at most
+    ``run.max_rows``), ``intervals`` ((n, 2) contact start/end [s]) and :class:`KernelScalars`.
     """
     work = _workspace(modes, impact, run)
     history = new_history(min(work.max_steps + 1, 4096) if run.record else 1, run.max_rows)
@@ -318,14 +262,10 @@ def _integrate_impact(kernel, params, linear_stiffness, modes, impact, run, coup
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _impact_loop(kernel, params, linear_stiffness, modes, impact, modal, work, coupled, exact_phase, output):
-    """The integrator's loop over the stages of the module docstring, its state in local
-    variables (carried through stage calls, it doubled the kernel's time on a cheap plate
-    run: ``benchmarks/studies/RESULTS_kernel_speed.md``).
-
-    ``modal`` = (q, v, qn, vn): the modal state at touchdown (zero) and scratch; ``output``
-    = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact, peak, peak time,
-    steps, intervals written, overflow, damping work, stalled), hit_limit, (q, v) at the
-    end, history, rec).
+    """The integrator's loop over its stages, the state in local variables. ``modal`` = (q, v,
+    qn, vn), ``output`` = (history, rec, stop). Returns ((t, w_i, v_i, F, α_max, in contact,
+    peak, peak time, steps, intervals written, overflow, damping work, stalled), hit_limit,
+    (q, v), history, rec).
     """
     omega, phi, zeta, residual = modes.frequencies, modes.participation, modes.damping_ratios, modes.residual
     h, max_time, max_steps, record, compliance_h, damped = (work.h, work.max_time, work.max_steps, work.record,
@@ -460,11 +400,9 @@ integrate_impact = LazyKernel(_integrate_impact, _SIGNATURES, _exact_phase)
 
 
 def callee_signatures() -> dict:
-    """``name → (dispatcher, argument types)`` of the integrator's callees that
-    :data:`~impactmaps._compile.compile_helper.HELPER_CALLEES` and
-    :data:`~impactmaps._compile.compile_helper.FOREGROUND_CALLEES` name: the exact signatures the
-    integrator types them with (``tests/compile/test_compile_helper.py`` checks; another one would
-    be compiled for nothing)."""
+    """``name → (dispatcher, argument types)`` of the integrator's callees the compile helper
+    names: the exact signatures the integrator types them with.
+    """
     from . import contact_events, free_flight, history_rows, oscillator_step
 
     f8, i8, flag = numba.types.float64, numba.types.int64, numba.types.boolean

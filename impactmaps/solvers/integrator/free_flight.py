@@ -1,13 +1,8 @@
 """The free-flight stage of the exact-step modal integrator (numba).
 
-With no contact force every modal coordinate and the impactor move exactly over any step,
-so the step doubles up to 2^(:data:`FREE_POWERS` − 1) = 1024 h as long as a bound on the
-closing speed proves that no touchdown fits inside it (:func:`free_doublings`), and the run
-ends once the gap exceeds the largest displacement the free vibration can reach at the
-impact point (:func:`no_reimpact_possible`). A recorded run takes the same steps and
-records the exact state at the end of each, and inside a step longer than 64 h every
-64 h (:func:`record_free_inside`), so its scalars are those of the run without a record.
-The loop that calls this stage is :mod:`impactmaps.solvers.integrator.exact_step`.
+With no contact force the step doubles up to 2^(:data:`FREE_POWERS` − 1) h while no
+touchdown can fit (:func:`free_doublings`), and the run ends once re-impact is impossible
+(:func:`no_reimpact_possible`); a recorded run records exact rows inside long steps.
 """
 
 from __future__ import annotations
@@ -31,10 +26,9 @@ _RECORD_POWER = 6
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def no_reimpact_possible(omega, phi, q, v, wi, vi):
-    """True once the impactor moves away and its gap exceeds the largest displacement the
-    free vibration can ever reach at x0: |w_t| ≤ Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (sum of
-    modal amplitudes; damping only shrinks them), relative to the rigid-body motion.
-    This bound is ≤ the Cauchy–Schwarz bound sqrt(2 E_s Σφ²/ω²) (docs/physics_contract.md §3.6)."""
+    """True once the impactor moves away and its gap exceeds the largest displacement the free
+    vibration can reach at x0, Σ|φ_j| sqrt(q_j² + (v_j/ω_j)²) (docs/physics_contract.md §3.6).
+    """
     rigid_w = 0.0
     rigid_v = 0.0
     for j in range(q.shape[0]):  # no chain of additions but for the (few) rigid-body modes
@@ -71,10 +65,9 @@ def damping_work(omega, zeta, v, vn, length):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def free_damping_work(omega, q, v, qn, vn):
-    """Work of the modal damping over a free-flight step from (q, v) to (qn, vn) [J]: the
-    energy Σ ½(v_j² + ω_j² q_j²) the modes lost, exactly, since no force acts on them in flight
-    (the trapezoidal rule of :func:`damping_work` over a step of up to 1024 h misses the modes
-    that turn within it; ``docs/validation.rst``, the damped energy row)."""
+    """Work of the modal damping over a free-flight step from (q, v) to (qn, vn) [J], exactly:
+    the modal energy lost.
+    """
     lost = 0.0
     for j in range(q.shape[0]):
         lost += 0.5 * ((v[j] * v[j] - vn[j] * vn[j]) + omega[j] * omega[j] * (q[j] * q[j] - qn[j] * qn[j]))
@@ -99,9 +92,7 @@ def _closing_speed_bound(omega, phi, q, v, vi):
 
 @numba.njit(cache=True, fastmath={"reassoc"}, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _displacement(phi, q):
-    """Σ φ_j q_j [m], the target at the impact point, summed in any order (SIMD): it only
-    chooses a free-flight step, and in order its chain of additions took longer than the
-    step's propagation (benchmarks/studies/RESULTS_map_runs.md)."""
+    """Σ φ_j q_j [m], the target at the impact point, summed in any order (SIMD)."""
     total = 0.0
     for j in range(q.shape[0]):
         total += phi[j] * q[j]
@@ -111,13 +102,8 @@ def _displacement(phi, q):
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def free_doublings(omega, phi, q, v, wi, vi, h, speed_bound):
     """How many times k < :data:`FREE_POWERS` the free-flight step h [s] may double from the
-    state (w_i, v_i, q, v), and the closing-speed bound [m/s] of this flight (``speed_bound``
-    < 0: not computed yet; then computed here).
-
-    With no contact force every mode moves exactly over any step, so the step may grow
-    as long as contact cannot start inside it: the gap −α shrinks at most at
-    ``speed_bound`` V (:func:`_closing_speed_bound`), hence a step of 2^k h with
-    2^k h V < −α cannot contain a touchdown. Returns (k, speed_bound).
+    state (w_i, v_i, q, v) with no touchdown inside (2^k h V < −α), and the closing-speed
+    bound V [m/s] (``speed_bound`` < 0: computed here). Returns (k, speed_bound).
     """
     if speed_bound < 0.0:
         speed_bound = _closing_speed_bound(omega, phi, q, v, vi)
@@ -130,10 +116,9 @@ def free_doublings(omega, phi, q, v, wi, vi, h, speed_bound):
 
 @numba.njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def record_free_inside(free_coef, k, h, start, modes, scratch, history, rec):
-    """Record exact rows every 2^_RECORD_POWER h inside a free-flight step of 2^k h [s]
-    from ``start`` = (t [s], w_i, v_i, q, v), which is not touched; ``modes`` the
-    :class:`~impactmaps.solvers.integrator.kernel_types.KernelModes`, ``scratch`` (4, n). Returns the
-    history and the next row."""
+    """Record exact rows every 2^_RECORD_POWER h inside a free-flight step of 2^k h [s] from
+    ``start`` = (t [s], w_i, v_i, q, v); ``scratch`` (4, n). Returns the history and the next row.
+    """
     if k <= _RECORD_POWER:
         return history, rec
     t, wi, vi, q, v = start

@@ -1,12 +1,9 @@
 """What goes into and comes out of the compiled modal integrator, by name (numba named tuples).
 
-:data:`impactmaps.solvers.integrator.exact_step.integrate_impact` takes the contact law as its kernel
-pointer, parameter vector and linear stiffness, then four named tuples — the modes
-(:class:`KernelModes`), the impactor (:class:`KernelImpact`), the run's step and limits
-(:class:`KernelRun`) and the coupled modes of an exact linear contact phase
-(:class:`KernelCoupled`) — and returns the history, the contact intervals and a
-:class:`KernelScalars`. The ``*_TYPE`` constants are their numba types, from which the
-kernel's signatures are built (compiled lazily, :mod:`impactmaps._compile.lazy_kernel`).
+The integrator takes the contact law (kernel pointer, parameters, linear stiffness) and
+:class:`KernelModes`, :class:`KernelImpact`, :class:`KernelRun`, :class:`KernelCoupled`,
+and returns the history, the contact intervals and :class:`KernelScalars`; the ``*_TYPE``
+constants are their numba types.
 """
 
 from __future__ import annotations
@@ -27,9 +24,9 @@ _MATRIX = numba.types.Array(_F8, 2, "C")
 
 
 def kernel_array(values: np.ndarray) -> np.ndarray:
-    """``values`` as the kernel's signature takes them: C-contiguous, writeable float64 (the
-    same array when it already is; a copy of a read-only view, such as a cached Ritz
-    solution's frequencies, which the compiled signature would refuse with a TypeError)."""
+    """``values`` as C-contiguous, writeable float64 (the same array when it already is, else a
+    copy), as the kernel's signature takes them.
+    """
     if type(values) is np.ndarray and values.dtype == np.float64:  # noqa: E721 (a subclass takes np.require)
         flags = values.flags
         if flags.c_contiguous and flags.writeable:
@@ -38,18 +35,9 @@ def kernel_array(values: np.ndarray) -> np.ndarray:
 
 
 class KernelModes(NamedTuple):
-    """The retained modes at the impact point.
-
-    Attributes
-    ----------
-    frequencies : ndarray
-        ω_j [rad/s], ascending (C-contiguous float64, as all arrays here).
-    participation : ndarray
-        φ_j(x0) [1/sqrt(kg)], mass-normalised mode shapes at the impact point.
-    damping_ratios : ndarray
-        ζ_j [-].
-    residual : float
-        Residual compliance of the dropped modes [m/N].
+    """The retained modes at the impact point (C-contiguous float64 arrays): ``frequencies``
+    ω_j [rad/s] ascending, ``participation`` φ_j(x0) [1/sqrt(kg)], ``damping_ratios`` ζ_j [-],
+    ``residual`` compliance of the dropped modes [m/N].
     """
 
     frequencies: np.ndarray
@@ -66,26 +54,9 @@ class KernelImpact(NamedTuple):
 
 
 class KernelRun(NamedTuple):
-    """The step and the limits of one run.
-
-    Attributes
-    ----------
-    time_step : float
-        h [s].
-    max_time : float
-        Time limit [s].
-    record : bool
-        Store the history (free-flight steps are the doubled ones, so rows are not
-        uniformly spaced there); otherwise only the scalars.
-    max_events : int
-        Capacity of the contact-interval table; a run with more contacts stops there,
-        flagged like a run at its time limit.
-    max_rows : int
-        Most history rows a recorded run writes; a run that reaches them stops there
-        (``row_cap_reached``), flagged like a run at its time limit.
-    stop : ndarray
-        int64, one element; the run ends at its next step once another thread sets it
-        non-zero (Ctrl-C); read only, it changes no arithmetic.
+    """The step and limits of one run: ``time_step`` h [s], ``max_time`` [s], ``record``,
+    ``max_events`` (interval-table capacity), ``max_rows`` (history cap) and ``stop`` (int64
+    flag: the run ends at its next step once it is non-zero).
     """
 
     time_step: float
@@ -97,17 +68,9 @@ class KernelRun(NamedTuple):
 
 
 class KernelCoupled(NamedTuple):
-    """The coupled modes of a linear contact (:class:`~impactmaps.solvers.integrator.coupled_contact.CoupledModes`),
-    empty arrays for the sampled contact phase.
-
-    Attributes
-    ----------
-    frequencies, force_row, from_coupled, to_coupled : ndarray
-        Ω_k [rad/s], c_k, and the transforms x = from_coupled η, η = to_coupled x.
-    row_spacing : float
-        Longest spacing of recorded rows in an exact contact phase [s].
-    step_scale : float
-        Factor on the contact phase's step [-].
+    """The coupled modes of a linear contact (empty arrays for the sampled phase):
+    ``frequencies`` Ω_k [rad/s], ``force_row`` c_k, ``from_coupled``, ``to_coupled``,
+    ``row_spacing`` of recorded rows [s] and ``step_scale`` [-].
     """
 
     frequencies: np.ndarray
@@ -119,11 +82,8 @@ class KernelCoupled(NamedTuple):
 
 
 class KernelScalars(NamedTuple):
-    """The scalars of one run (SI units).
-
-    ``time_limit_reached`` is also set by the stop flag, a full contact-interval table
-    (``events_overflow``), the row cap (``row_cap_reached``) and a run whose contact phases
-    stopped moving the time on (``stalled``: :data:`~impactmaps.solvers.integrator.exact_step.STALL_LIMIT`).
+    """The scalars of one run (SI units); ``time_limit_reached`` is also set by the stop flag,
+    ``events_overflow``, ``row_cap_reached`` and ``stalled``.
     """
 
     peak_force: float
@@ -148,12 +108,9 @@ SCALARS_TYPE = numba.types.NamedTuple((_F8,) * 7 + (_BOOL, _I8, _BOOL, _BOOL, _B
 
 
 class Work(NamedTuple):
-    """What the integrator's stages share through a run (internal to the kernel): the step
-    h [s], time limit [s], step budget, whether to record, the step's compliance [m/N],
-    whether any mode is damped, the step coefficients over h (8, n), scratch for sub-steps
-    (``sub`` (8, n), ``q_try``, ``v_try``), the free-flight propagators over 2^k h
-    (:data:`~impactmaps.solvers.integrator.free_flight.FREE_POWERS`, 4, n) with their ready flags,
-    scratch for recorded free flight (4, n) and the contact-interval table (max_events, 2)."""
+    """What the integrator's stages share through a run (internal): step, limits, step
+    coefficients, scratch arrays, free-flight propagators and the contact-interval table.
+    """
 
     h: float
     max_time: float

@@ -1,12 +1,9 @@
 """Exact one-step maps of a damped oscillator under a force linear in time.
 
-For ``q̈ + 2ζωq̇ + ω²q = f(t)`` with ``f`` going linearly from ``f0`` to ``f1`` over a step
-``h``, the state at the end of the step is a linear combination of ``q0, v0, f0, f1``
-with eight coefficients that depend on ω, ζ and h only. Undamped modes use the closed
-forms in ``S = sin x/x``, ``C1 = (1 − cos x)/x²``, ``S3 = (x − sin x)/x³`` (x = ωh, Taylor
-series below 1); damped ones the exponential of the augmented 4×4 system. These maps
-are what makes the integrator of :mod:`impactmaps.solvers.integrator.exact_step` exact between
-force samples.
+For ``q̈ + 2ζωq̇ + ω²q = f(t)``, f linear from ``f0`` to ``f1`` over a step h, the end state
+is a linear combination of ``q0, v0, f0, f1`` with eight coefficients of ω, ζ and h:
+closed forms (Taylor series below ωh = 1) for undamped modes, the exponential of the
+augmented 4×4 system for damped ones.
 """
 
 from __future__ import annotations
@@ -147,11 +144,8 @@ def oscillator_step_coefficients(omega, zeta, h, out):
 @numba.njit(cache=True, no_cfunc_wrapper=True)
 def fill_step_coefficients(omega, zeta, phi, h, coef):
     """Per-mode step coefficients into ``coef[k, j]`` (k = 0…7 as in
-    :func:`oscillator_step_coefficients`); the force rows are pre-multiplied by φ_j.
-
-    Undamped modes with ω_j h below ``_SERIES_LIMIT`` (all of them in a typical step)
-    go through one branch-free loop that the compiler vectorises; the others through
-    :func:`oscillator_step_coefficients`.
+    :func:`oscillator_step_coefficients`), force rows pre-multiplied by φ_j (undamped modes
+    below ``_SERIES_LIMIT`` in one vectorised loop).
     """
     n = omega.shape[0]
     for j in range(n):
@@ -178,11 +172,8 @@ def fill_step_coefficients(omega, zeta, phi, h, coef):
 
 @numba.njit(cache=True, no_cfunc_wrapper=True)
 def square_free_propagators(free_coef, free_ready, k):
-    """Free-vibration propagators over 2^k h from those over 2^(k−1) h, by squaring.
-
-    Each mode's homogeneous step map [[c0, c1], [c2, c3]] over 2t is the square of the
-    map over t (exact for damped modes too), so the doubled free-flight steps need no
-    trigonometric functions. ``free_coef`` is (powers, 4, n).
+    """Free-vibration propagators over 2^k h from those over 2^(k−1) h, by squaring (exact,
+    damped modes too); ``free_coef`` is (powers, 4, n).
     """
     for p in range(1, k + 1):
         if free_ready[p]:
@@ -202,10 +193,7 @@ def square_free_propagators(free_coef, free_ready, k):
 @numba.njit(cache=True, fastmath={"reassoc", "contract"}, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def predict_step(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
     """Advance impactor and modes over h with force f0 → f1; return (wi, vi, w_target).
-
-    ``coef`` is (8, n): one row per coefficient, so the loop over modes reads contiguous
-    memory, and re-association of the sum is allowed so that it vectorises (SIMD); the
-    two together halve the cost of a step with hundreds of modes (benchmarks/RESULTS.md).
+    ``coef`` is (8, n), one row per coefficient (contiguous, SIMD).
     """
     wt = 0.0
     for j in range(q.shape[0]):
@@ -220,9 +208,8 @@ def predict_step(coef, h, mass, wi, vi, q, v, phi, f0, f1, qn, vn):
 
 @numba.njit(cache=True, fastmath={"reassoc", "contract"}, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def propagate_free(rows, h, wi, vi, q, v, phi, qn, vn):
-    """Free flight over h (no contact force): impactor drifts, modes follow ``rows`` (4, n).
-
-    Returns the impactor displacement and the target displacement Σ φ_j q_j at the end.
+    """Free flight over h (no contact force) with modal rows ``rows`` (4, n); returns the
+    impactor displacement and the target displacement Σ φ_j q_j at the end [m].
     """
     wt = 0.0
     for j in range(q.shape[0]):
