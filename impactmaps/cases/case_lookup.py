@@ -18,13 +18,11 @@ from dataclasses import replace
 from .._renamed import renamed_keyword
 from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS
 from ..maps.family.map_family import map_family
-from ..maps.family.structures import structure_from_name
 from ..maps.files.shipped import SHIPPED_SLENDERNESS
 from ..maps.read.lookup import point_answer
 from ..maps.read.reader import OutsideMapError, UnresolvedPointError
 from ..maps.read.slenderness import shipped_for
 from ..targets.options import default_theory
-from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, case_map_law, plastic_case_answer, scaled_answer
 
 __all__ = ["lookup", "case_slenderness", "map_for_case"]
 
@@ -121,6 +119,9 @@ def map_for_case(case) -> tuple[str, str]:
         aspect, theory, slenderness, patch load) and suggesting ``impactmaps simulate``;
         a ``ValueError`` for a contact law no map describes (:func:`case_map_law`).
     """
+    from ..maps.family.structures import structure_from_name  # the targets: loaded for a case
+    from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, case_map_law
+
     def refuse(what: str):
         raise NoMapError(case, what)
 
@@ -184,6 +185,8 @@ def _point_loaded_mindlin(case) -> bool:
     """Whether ``simulate`` strikes this case's target at a point (no contact patch) where its
     point-load deflection diverges (a Mindlin plate: :attr:`Target.point_load_diverges
     <impactmaps.targets.base.Target.point_load_diverges>`)."""
+    from .case_answer import case_loads_a_patch
+
     return case.target.point_load_diverges and case.solver_kind == "modal" and not case_loads_a_patch(case)
 
 
@@ -234,6 +237,7 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
         naming what no map covers), or its numbers lie outside the map or next to an
         unresolved point (the message names them and suggests ``impactmaps simulate``).
     """
+    from .case_answer import CASE_MATCH_RTOL, NoMapError, case_map_law, plastic_case_answer, scaled_answer
     from .on_demand import answer_on_demand  # builds tiles: the build side of the maps, loaded when needed
 
     law = case_map_law(case)
