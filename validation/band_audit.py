@@ -89,7 +89,7 @@ def audit_family(kind: str, theory: str, points: int, seed: int, levels: int) ->
             rows.append(row | {"status": "unresolved" if plan.method is None else "asymptotic"})
             continue
         run = table_runner(LINEAR, target, table, cap, point, realised, [])
-        answer = controlled_point(run, base, AccuracyControl(), floor=False)
+        answer = controlled_point(run, base, AccuracyControl())
         row |= {"status": STATUSES[answer["status"]], "impacts": answer["impacts"], "fmax": answer["fmax_normalised"],
                 "change": answer["fmax_error"],
                 "fmax_error": stated_error(answer["fmax_error"], answer["status"], answer["impacts"])}

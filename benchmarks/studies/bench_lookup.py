@@ -2,8 +2,8 @@
 
 For each shipped map family (linear and Hertz on the SS Euler beam and the SSSS Kirchhoff
 plate; Yigit–Christoforou, Stronge and epp on the plate) in one process: ``lookup`` (or
-``lookup_plastic``) of N fresh random points at once (per point), of fresh points one at
-a time and of one point repeated; ``lookup_case`` of fresh physical cases one at a time
+``lookup(β, ζ, λ, law=…)``) of N fresh random points at once (per point), of fresh points one at
+a time and of one point repeated; ``lookup(case=…)`` of fresh physical cases one at a time
 and of one case again; and, in a fresh process each, the first lookup (imports, the map
 and its refinement read). With ``--base PATH`` the same measurements run with the code at
 PATH (a checkout of another commit, first on ``PYTHONPATH``) and with this checkout,

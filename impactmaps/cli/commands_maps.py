@@ -179,8 +179,9 @@ def _simulate_point(structure, target, args, settings, record: bool):
 
 
 def _map_point(structure, args, settings) -> dict:
-    """The (--zeta, --lambda) point exactly as a sweep stores it: value, error, status."""
-    from ..maps.family.accuracy import STATUSES, AccuracyControl
+    """The (--zeta, --lambda) point as a sweep stores it (value, status: the same bits), its
+    error stated with its floor (:func:`~impactmaps.maps.family.accuracy.stated_row`)."""
+    from ..maps.family.accuracy import STATUSES, AccuracyControl, stated_row
     from ..maps.compute.points import METHODS
     from ..maps.family.map_family import RESULT_VARIABLES
     from ..maps.compute.linear_points import solve_points
@@ -189,8 +190,8 @@ def _map_point(structure, args, settings) -> dict:
     control = AccuracyControl(tolerance=settings.tolerance)
     with warnings.catch_warnings():  # the status says what the refinement found
         warnings.simplefilter("ignore", ConvergenceWarning)
-        row = solve_points(structure, [(args.zeta, args.lambda_)], replace(settings, check_convergence=False),
-                           control=control)[0]
+        row = stated_row(solve_points(structure, [(args.zeta, args.lambda_)],
+                                      replace(settings, check_convergence=False), control=control)[0])
     values = {name: (int(row[name]) if dtype.startswith("i") else float(row[name]))
               for name, (dtype, *_rest) in RESULT_VARIABLES.items() if name in row}
     values["status"] = STATUSES[values["status"]]

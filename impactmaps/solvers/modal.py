@@ -14,7 +14,7 @@ converges in the cut-off. Every other target takes the point load.
 
 Mode cut-off rule: every participating mode with ``ω_j ≤ cutoff_ratio · ω`` is
 integrated (at least ``min_modes`` of them, but with residual flexibility none above
-``MAX_CUTOFF_RATIO · ω`` = 10⁴ ω: those respond statically, and kept they swamped the
+``STATIC_FLOOR_RATIO · ω`` = 10⁶ ω: those respond statically, and kept they swamped the
 coupled contact phase in round-off, :func:`~impactmaps.solvers.modal_run.static_floor`),
 where ``ω`` is the contact frequency; the rest enter through ``r``.
 

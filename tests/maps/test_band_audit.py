@@ -60,3 +60,33 @@ def test_a_shipped_map_is_read_with_the_floor():
     found = lookup(10.0, 0.01, kind="beam", theory="euler")
     assert found.status in ("converged", "refined", "interpolated")
     assert found.fmax_error >= ERROR_FLOOR
+
+
+def test_a_point_stores_the_measured_change_and_states_it_with_the_floor():
+    """A converged point stores the change its refinement measured (the same bits as a shipped
+    result computed before the floors); :func:`stated_row` (the ``point`` command) states it with
+    its floor, F̄max ∓ the stated error as its low and high; a sensitive point is left as stored."""
+    from impactmaps.maps.family.accuracy import AccuracyControl, controlled_point, stated_row
+    from impactmaps.solvers.modal_settings import ModalSettings
+
+    class Run:
+        def __init__(self, value, impacts):
+            self.fmax_normalised, self.impacts = value, impacts
+
+        def normalised_summary(self):
+            return {"fmax_normalised": self.fmax_normalised, "impacts": self.impacts}
+
+    for impacts, floor in ((1, ERROR_FLOOR), (2, REIMPACT_ERROR_FLOOR)):
+        row = controlled_point(lambda settings, _factor: Run(0.5 + 1e-5 * (settings.cutoff_ratio > 40.0), impacts),
+                               ModalSettings(), AccuracyControl())
+        assert STATUSES[row["status"]] == "converged"
+        assert row["fmax_error"] == pytest.approx(1e-5, rel=1e-9)
+        assert row["fmax_low"] == row["fmax_normalised"] - row["fmax_error"]
+        told = stated_row(row)
+        assert told["fmax_error"] == floor
+        fmax = row["fmax_normalised"]
+        assert (told["fmax_low"], told["fmax_high"]) == (fmax - floor, fmax + floor)
+        assert told["fmax_normalised"] == row["fmax_normalised"] and stated_row(told) == told
+    sensitive = {"fmax_normalised": 0.5, "fmax_error": 1e-5, "fmax_low": 0.4, "fmax_high": 0.6,
+                 "status": STATUSES.index("sensitive"), "impacts": 3}
+    assert stated_row(sensitive) == sensitive

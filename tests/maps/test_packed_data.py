@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
 from impactmaps.maps.files import data_io
+from impactmaps.maps.family.accuracy import BAND_TOLERANCE
 from impactmaps.maps.family.refinement import Refinement, refine
 from impactmaps.maps.files.store import load_matching, save_atomic
 
@@ -146,7 +148,7 @@ def test_the_packed_maps_answer_as_the_netcdf_maps_did(monkeypatch):
     """At the points of ``validation/packed_maps_reference.csv`` (the answers of the maps before
     packing, by ``validation/packed_maps_check.py``): every value bit for bit, every status the
     same, every band as wide or wider by less than 2⁻⁷ (the refinement points' own error, kept
-    to 8 bits rounded up). The full check, 10⁴ points a map: ``validation/packed_maps_check.csv``."""
+    to 8 bits rounded up) — but for the error floors of issue 40 (below). The full check, 10⁴ points a map: ``validation/packed_maps_check.csv``."""
     monkeypatch.syspath_prepend(str(ROOT / "validation"))  # the script imports _script_options
     check = repository_module("validation/packed_maps_check.py")
     rows = _reference_rows()
@@ -159,12 +161,20 @@ def test_the_packed_maps_answer_as_the_netcdf_maps_did(monkeypatch):
         numbers = tuple(np.array([float.fromhex(row["numbers"].split()[i]) for row in chosen])
                         for i in range(len(chosen[0]["numbers"].split())))
         new = check.answers(key, numbers)
-        assert list(new["status"]) == [row["status"] for row in chosen], key
+        # since issue 40 the reader states a converged point's fmax_error with its floor
+        # (maps/family/accuracy.stated_error; the reference predates it): fmax_error widens by at
+        # most the larger floor, and a status changes only where that widened a converged answer's
+        # band past the tolerance, to "interpolated" (as tests/maps/test_lookup_stored.py)
+        recorded = np.array([row["status"] for row in chosen])
+        widened = np.isin(recorded, ["converged", "refined"]) & (new["fmax_error"] > BAND_TOLERANCE)
+        assert list(new["status"]) == list(np.where(widened, "interpolated", recorded)), key
         for name, values in new.items():
             if name == "status":
                 continue
             old = np.array([float.fromhex(row[name]) for row in chosen])
             if name.endswith("_error"):
-                assert np.all((values >= old) & (values <= old * (1 + 2.0**-7)) | (np.isnan(old) & np.isnan(values)))
+                floor = REIMPACT_ERROR_FLOOR if name == "fmax_error" else 0.0
+                assert np.all((values >= old) & (values <= old * (1 + 2.0**-7) + floor)
+                              | (np.isnan(old) & np.isnan(values))), (key, name)
             else:
                 assert values.tobytes() == old.tobytes(), (key, name)

@@ -247,7 +247,10 @@ def test_refinement_converges_where_the_mode_floor_lies_far_above_the_contact_fr
     """Issue 40 item 4: the SS Euler beam at ζ = 440.656, λ = 912.912 (fundamental 1.9e4 times
     the contact frequency) drifted from the exact √(λ/(1+λ)) as the accuracy control refined
     (0.99997 at step/32, 6.6e-6 at step/128: the mode floor's modes, 10⁹ ω up, swamped the
-    coupled eigenproblem in round-off). Now every level stays on the limit."""
+    coupled eigenproblem in round-off). Now every level stays on the limit: within 5.4e-8 of it,
+    where the floor's modes between 1.9e4 and 10⁶ ω (kept, as the shipped maps were computed:
+    :data:`~impactmaps.solvers.modal_run.STATIC_FLOOR_RATIO`) put the base level 5.2e-8 off,
+    and the levels within 1e-8 of each other."""
     import warnings
 
     from impactmaps.maps.compute.linear_points import LINEAR
@@ -266,13 +269,14 @@ def test_refinement_converges_where_the_mode_floor_lies_far_above_the_contact_fr
         for _ in range(8):  # down to step/128, cut-off and mode floor ×128
             errors.append(abs(run(level, 1.0).fmax_normalised - exact))
             level = level.refined()
-    assert max(errors) < 1e-9, errors
+    assert max(errors) < 1e-7 and max(errors) - min(errors) < 1e-8, errors
 
 
 def test_the_mode_floor_keeps_no_mode_beyond_the_static_ratio():
-    from impactmaps.solvers.modal_run import static_floor
+    from impactmaps.solvers.modal_run import STATIC_FLOOR_RATIO, static_floor
 
+    assert STATIC_FLOOR_RATIO == 1e6
     basis = ModalBasis(np.array([1.0, 10.0, 100.0, 1e3]), np.ones(4), 0.0)
-    assert static_floor(basis, 0.01, 4) == 3  # 1e3 rad/s lies beyond 1e4 × 0.01
-    assert static_floor(basis, 1.0, 4) == 4
+    assert static_floor(basis, 1e-4, 4) == 3  # 1e3 rad/s lies beyond 1e6 × 1e-4
+    assert static_floor(basis, 1e-2, 4) == 4
     assert static_floor(basis, 1.0, 2) == 2

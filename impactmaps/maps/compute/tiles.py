@@ -30,6 +30,11 @@ from ..family.map_family import map_family
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
 
+#: Revision of the contact-patch model in a patch tile's key (absent before 1: the Mindlin near
+#: field of :mod:`impactmaps.targets.plates.near_field`), so a cached tile never answers for
+#: another model.
+PATCH_MODEL_REVISION = 1
+
 __all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
            "lattice_steps", "tile_for", "build_tile", "cached_tile"]
 
@@ -103,6 +108,8 @@ class TileKey:
             extra = {"extra_indices": {axis.name: index for axis, index in
                                        zip(_family(self).extra_axes, self.extra_indices)},
                      "extra_lattice": {axis.name: lattice[axis.name] for axis in _family(self).extra_axes}}
+        if self.patch is not None:  # the patch model's revision (1: 3D-consistent near field, near_field)
+            extra["patch_model"] = PATCH_MODEL_REVISION
         return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
                 "zeta_index": self.zeta_index, "lambda_index": self.lambda_index,
                 "lattice": [lattice["zeta"], lattice["lambda_"]], **extra,

@@ -11,11 +11,12 @@ Statuses (the ``status`` variable of a map; ``STATUSES[code]``):
 
 ``converged``
     The first refinement moved F̄max by at most the tolerance and kept the number of
-    impacts; the stored value is the refined one and ``fmax_error`` is that move, at
-    least its floor (:func:`stated_error`: 2e-4, 1e-3 with re-impacts).
+    impacts; the stored value is the refined one and ``fmax_error`` is that move (stored
+    as measured; what a user is told is at least its floor, :func:`stated_error`: 2e-4,
+    1e-3 with re-impacts).
 ``refined``
     It took more refinements (cut-off ×2ᵏ, step /2ᵏ) to settle; the stored value is the
-    finest and ``fmax_error`` the last move, at least its floor.
+    finest and ``fmax_error`` the last move (stated with its floor, as ``converged``).
 ``sensitive``
     No converged value within the cost cap (many re-impacts whose order flips with any
     change of the model): ``fmax_low``/``fmax_high`` bound every value seen (every
@@ -41,9 +42,9 @@ import numpy as np
 
 from ..._checks import require_in_range, require_positive
 
-__all__ = ["STATUSES", "PointStatus", "AccuracyControl", "ERROR_FLOOR", "REIMPACT_ERROR_FLOOR", "stated_error", "controlled_point",
-           "exact_point", "perturbed_runs", "settled", "SEVERITY", "BAND_TOLERANCE", "answer_status", "corner_status",
-           "status_notes"]
+__all__ = ["STATUSES", "PointStatus", "AccuracyControl", "ERROR_FLOOR", "REIMPACT_ERROR_FLOOR", "stated_error", "stated_row",
+           "controlled_point", "exact_point", "perturbed_runs", "settled", "SEVERITY", "BAND_TOLERANCE", "answer_status",
+           "corner_status", "status_notes"]
 
 
 class PointStatus(StrEnum):
@@ -106,15 +107,30 @@ def stated_error(error, status, impacts=None):
 
     Where the point is ``converged`` or ``refined`` (status codes of :data:`STATUSES`), at
     least :data:`ERROR_FLOOR`, or :data:`REIMPACT_ERROR_FLOOR` where it has more than one
-    impact (``impacts``; not given: one); elsewhere the error as given. Arrays or scalars.
-    Idempotent, so it is applied where a point is solved (:func:`controlled_point`) and again
-    where a map is read, to the maps stored before the floors (the shipped maps).
+    impact (``impacts``; not given: one); elsewhere the error as given. Arrays or scalars;
+    idempotent.
+
+    Maps, sweeps and shipped results store the change as measured (:func:`controlled_point`),
+    so a stored point is the same bits however it was computed; the floor is applied where an
+    error is stated to a user: when a map is read (a lookup's band) and by :func:`stated_row`
+    (the ``point`` command).
     """
     given, status = np.asarray(error), np.asarray(status)
     floor = np.where(np.asarray(impacts if impacts is not None else 1) > 1, REIMPACT_ERROR_FLOOR, ERROR_FLOOR)
     settled_point = (status == STATUSES.index("converged")) | (status == STATUSES.index("refined"))
     out = np.where(settled_point & np.isfinite(given), np.maximum(given, floor), given).astype(given.dtype)
     return out.item() if out.ndim == 0 else out
+
+
+def stated_row(row: dict) -> dict:
+    """A map point's row (:func:`controlled_point`) as a user is told it: ``fmax_error`` with
+    its floor (:func:`stated_error`) and, where the floor widened it, ``fmax_low``/``fmax_high``
+    F̄max ∓ that error."""
+    error = stated_error(row["fmax_error"], row["status"], row.get("impacts"))
+    if not error > row["fmax_error"]:
+        return dict(row)
+    fmax = row["fmax_normalised"]
+    return row | {"fmax_error": error, "fmax_low": fmax - error, "fmax_high": fmax + error}
 
 
 def _row(result, status: str, error: float, low: float, high: float) -> dict:
@@ -159,7 +175,7 @@ def perturbed_runs(run: Callable, settings, perturbation: float) -> list:
     ]
 
 
-def controlled_point(run: Callable, settings, control: AccuracyControl, floor: bool = True) -> dict:
+def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
     """Solve one point to the tolerance, or mark it, with its error.
 
     Parameters
@@ -172,15 +188,13 @@ def controlled_point(run: Callable, settings, control: AccuracyControl, floor: b
     settings : ModalSettings
         The base settings of the sweep.
     control : AccuracyControl
-    floor : bool
-        State the error of a converged or refined point with its floor (:func:`stated_error`);
-        False gives the change alone (the band audit's "before").
 
     Returns
     -------
     dict
         The normalised scalars of the retained run (``normalised_summary``) plus
-        ``fmax_error``, ``fmax_low``, ``fmax_high`` and the ``status`` code.
+        ``fmax_error``, ``fmax_low``, ``fmax_high`` and the ``status`` code; the error of a
+        settled point is the change as measured, without its floor (:func:`stated_row`).
     """
     results = [run(settings, 1.0)]
     level = settings
@@ -190,8 +204,6 @@ def controlled_point(run: Callable, settings, control: AccuracyControl, floor: b
         if settled(results[-1], results[-2], control):
             fine = results[-1].fmax_normalised
             change = abs(fine - results[-2].fmax_normalised)
-            if floor:
-                change = stated_error(change, STATUSES.index("converged"), results[-1].impacts)
             return _row(results[-1], "converged" if count == 1 else "refined",
                         change, fine - change, fine + change)
     # the perturbations of cut-off, step and ζ are made from the base settings, and the

@@ -13,7 +13,7 @@ import warnings
 
 import numpy as np
 
-from . import ritz
+from . import near_field, ritz
 from ..._checks import require_in_range
 from .plate_general import (
     MAX_FUNCTIONS,
@@ -240,6 +240,13 @@ def general_plate_modes(plate, max_frequency: float, min_modes: int, contact_rad
     if contact_radius > 0.0:
         static = patch_static_compliance(plate, result.n_x, float(contact_radius), result.classes)
         residual = max(static - float(np.sum(participation**2 / omega**2)), 0.0)
+        if plate.theory == "mindlin" and near_field.isotropic_constants(plate) is not None:
+            # the 3D-consistent near field (near_field): each retained mode weighted by ρ(k) at
+            # its flexural wavenumber, the residual by the SSSS pairs beyond the last one
+            participation = participation * np.sqrt(near_field.near_field_factor(
+                plate, near_field.flexural_wavenumber(plate, omega)))
+            residual = max(residual + near_field.residual_change(
+                plate, float(contact_radius), float(near_field.flexural_wavenumber(plate, omega[-1]))), 0.0)
         basis = ModalBasis(omega, participation, residual, damping)
     elif plate.theory == "kirchhoff":
         basis = ModalBasis.from_modes(omega, participation, plate.static_compliance(), damping)

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..base import ModalBasis
 from ..patch import hertz_transform, mean_square_transform
+from . import near_field
 from .plate_static import navier_patch_residual, pair_static_compliance, sin_pi
 
 
@@ -277,9 +278,16 @@ def _patch_basis(plate, max_frequency: float, min_modes: int, contact_radius: fl
             "are not reliable under such a load", stacklevel=4)
     m, n, omega, amplitude, participation = _lowest_modes(plate, max_frequency, min_modes)
     a, b = plate.length_x, plate.length_y
-    participation = participation * hertz_transform(np.hypot(m * math.pi / a, n * math.pi / b) * contact_radius)
+    k = np.hypot(m * math.pi / a, n * math.pi / b)
+    participation = participation * hertz_transform(k * contact_radius)
     stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
     residual = 0.0
+    factor = None
+    if plate.theory == "mindlin" and near_field.isotropic_constants(plate) is not None:
+        def factor(wavenumber):
+            return near_field.near_field_factor(plate, wavenumber)
+
+        participation = participation * np.sqrt(factor(k))
     if plate.theory == "mindlin":
         stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
         # φ = W s_m s_n T, so (4/(ab)) s_m² s_n² T² = φ² (4/(ab W²))
@@ -287,7 +295,7 @@ def _patch_basis(plate, max_frequency: float, min_modes: int, contact_radius: fl
             m * math.pi / a, n * math.pi / b, *stiffnesses)
         residual = max(float(np.sum(static - participation**2 / omega**2)), 0.0)
     residual += navier_patch_residual(a, b, stiffnesses, plate.impact_point, contact_radius,
-                                      hertz_transform, m, n, mean_square=mean_square_transform)
+                                      hertz_transform, m, n, mean_square=mean_square_transform, factor=factor)
     basis = ModalBasis(omega, participation, residual, np.full(omega.shape, float(plate.damping_ratio)))
     return basis, _shape_function(plate, m, n, amplitude)
 

@@ -196,7 +196,7 @@ def pair_static_compliance(p, q, D11, D22, D12, D66, shear_xz=math.inf, shear_yz
 
 
 def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact_radius,
-                          transform, retained_m=(), retained_n=(), *, mean_square=None) -> float:
+                          transform, retained_m=(), retained_n=(), *, mean_square=None, factor=None) -> float:
     """Static compliance [m/N] of the half-wave pairs *not* retained, under a contact patch.
 
     ``Σ_{(m,n) not retained} (4/(ab)) s_m(x0)² s_n(y0)² T(k a)² C(p, q)`` with
@@ -225,6 +225,9 @@ def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact
         The retained half-wave pairs (left out of the sum).
     mean_square : callable, optional
         ⟨T²⟩(k a) for large k a (default: T² itself).
+    factor : callable, optional
+        Weight ρ(k) [-] of each pair's compliance (default 1;
+        :func:`~impactmaps.targets.plates.near_field.near_field_factor`).
 
     Returns
     -------
@@ -238,7 +241,9 @@ def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact
     retained_n = np.asarray(retained_n, dtype=np.int64)
 
     def compliance(p, q):
-        return pair_static_compliance(p, q, *stiffnesses)
+        if factor is None:
+            return pair_static_compliance(p, q, *stiffnesses)
+        return pair_static_compliance(p, q, *stiffnesses) * factor(np.hypot(p, q))
 
     cap = _PATCH_LATTICE_TERMS * math.pi / max(a, b)
     k_lattice = min(_PATCH_LATTICE_KA / radius, cap)
