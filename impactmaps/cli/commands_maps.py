@@ -364,7 +364,7 @@ def cmd_lookup(args) -> dict:
         import sys
         import time
 
-        from ..cases import load_case
+        from ..cases.case import load_case
         from ..cases.case_answer import case_map_law
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
