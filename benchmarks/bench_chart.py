@@ -5,7 +5,7 @@ square Kirchhoff plate struck at the centre, 8 λ from 0.05 to 20, DEFAULT_ZETA_
 0.005 to 100, default ``ModalSettings``, a local process pool over all cores), written
 into a temporary directory; and, separately, the ``sweep`` of the same grid alone (no
 files except its NetCDF, no figures). Both compute every point: the shipped result of the
-default chart's sweep (:mod:`impactmaps.maps.files.shipped_results`, what ``impactmaps chart``
+default chart's sweep (:mod:`impactmaps.maps.files.shipped`, what ``impactmaps chart``
 draws from) is switched off in the child process.
 
 Each workload runs in a fresh Python process, as the command line would. Reported:

@@ -6,7 +6,7 @@ The chart's sweep — SS Euler beam and SS square Kirchhoff plate
 :data:`~impactmaps.plotting.chart.DEFAULT_ZETA_RANGE`, default solver settings, for the linear
 law (ζ, λ) and the Hertz law (ζ_h, λ_h) — is computed and stored as
 ``impactmaps/maps/data/results/<fingerprint>.npz`` (packed, lossless: :mod:`impactmaps.maps.files.data_io`)
-(:mod:`impactmaps.maps.files.shipped_results`); results of other fingerprints (an earlier solver
+(:mod:`impactmaps.maps.files.shipped`); results of other fingerprints (an earlier solver
 revision or grid) are deleted. ``impactmaps chart`` then starts from it as from a finished
 run (the README's first command draws the chart without compiling the integrator).
 Re-run after anything that changes the fingerprint (``SOLVER_REVISION``, the defaults):
@@ -29,7 +29,7 @@ from pathlib import Path
 from impactmaps.maps.family.map_family import ASYMPTOTE_PEAKS
 from impactmaps.maps.compute.dataset import with_asymptote_peaks
 from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
-from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, shipped_result_path
+from impactmaps.maps.files.shipped import SHIPPED_RESULTS, shipped_result_path
 from impactmaps.maps.files.data_io import read_dataset
 from impactmaps.maps.files.store import save_atomic
 from impactmaps.maps.compute.sweep import log_grid, sweep, sweep_fingerprint

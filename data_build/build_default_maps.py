@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, map_file_stem
 from impactmaps.maps.read.slenderness import shipped_for
 from impactmaps.maps.files.store import save_atomic
 from impactmaps.maps.family.structures import DEFAULT_STRUCTURES, MEMBER_STRUCTURES

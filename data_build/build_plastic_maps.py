@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from impactmaps.maps.family.accuracy import STATUSES
-from impactmaps.maps.read.lookup import map_file_stem
+from impactmaps.maps.files.shipped import map_file_stem
 from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.files.store import save_atomic

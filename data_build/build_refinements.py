@@ -27,9 +27,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from impactmaps.maps.read.bands import interpolation_error
-from impactmaps.maps.read.lookup import map_file_stem
-from impactmaps.maps.read.bands import slice_estimates
+from impactmaps.maps.read.interpolator import interpolation_error
+from impactmaps.maps.files.shipped import map_file_stem
+from impactmaps.maps.read.interpolator import slice_estimates
 from impactmaps.maps.family.refinement import MAX_LEVEL, refine
 from impactmaps.maps.family.slice_refinement import refine_slices
 from impactmaps.maps.files.data_io import read_dataset

@@ -43,7 +43,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
 from impactmaps.maps.files.data_io import PACKED_SUFFIX, read_dataset  # noqa: E402
-from impactmaps.maps.read.bands import BAND_TOLERANCE, interpolation_error  # noqa: E402
+from impactmaps.maps.family.accuracy import BAND_TOLERANCE  # noqa: E402
+from impactmaps.maps.read.interpolator import interpolation_error  # noqa: E402
 from impactmaps.maps.family.refinement import Refinement, all_leaves, leaf_estimate  # noqa: E402
 from impactmaps.maps.files.store import save_atomic  # noqa: E402
 

@@ -18,7 +18,7 @@ infinite plate (F̄max depends on ζ alone) and the quasi-static spring pair
 """
 
 from impactmaps.dimensionless import realise
-from impactmaps.maps.read.lookup import lookup
+from impactmaps import lookup
 from impactmaps.maps.family.regimes import infinite_structure_peak, quasi_static_peak
 from impactmaps.materials import material
 from impactmaps.solvers.modal import simulate_normalised

@@ -9,7 +9,7 @@ name loads its module on first use)::
 
     import impactmaps
     impactmaps.restitution(10.0)                     # e(β), Yigit–Christoforou law
-    impactmaps.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")
+    impactmaps.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")  # or lookup(case=load_case(...))
     impactmaps.simulate(target, law, mass, velocity)  # modal solver, any target
 """
 
@@ -55,8 +55,7 @@ _EXPORTS = {
     "sweep": "impactmaps.maps.compute.sweep",
     "MapStructure": "impactmaps.maps.family.structures",
     "classify": "impactmaps.maps.family.regimes",
-    "lookup": "impactmaps.maps.read.lookup",
-    "lookup_plastic": "impactmaps.maps.read.plastic_lookup",
+    "lookup": "impactmaps.cases.case_lookup",
     "design_formula": "impactmaps.maps.read.lookup",
     "make_chart": "impactmaps.plotting.chart",
     # cases

@@ -192,7 +192,7 @@ def test_the_laws_answer_the_map_questions():
 def test_load_shipped_map_names_a_plastic_map_by_its_family():
     """One namer of shipped files: a plastic law's map of a structure its family does not ship
     is refused naming the structures it does (not a missing file that never existed)."""
-    from impactmaps.maps.read.lookup import load_shipped_map
+    from impactmaps.maps.files.shipped import load_shipped_map
 
     with pytest.raises(ValueError, match=r"\(kind, theory\) = \('plate', 'mindlin'\) is not known"):
         load_shipped_map("plate", "mindlin", "yc")

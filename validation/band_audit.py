@@ -47,7 +47,8 @@ from impactmaps.maps.family.accuracy import (  # noqa: E402
     stated_error,
 )
 from impactmaps.maps.family.structures import MAX_MODES, structure_from_name  # noqa: E402
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup  # noqa: E402
+from impactmaps import lookup  # noqa: E402
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
 from impactmaps.solvers.modal import ModalSettings  # noqa: E402
 from impactmaps.solvers.mode_budget import frequency_cap  # noqa: E402
 

@@ -5,7 +5,7 @@ random physical cases are drawn — random size and metal of the target, the imp
 numbers drawn log-uniform over (and a little beyond) the maps' range and realised as an
 impactor mass, speed and contact stiffness (plastic law: a steel ball of random radius
 and speed, its numbers where physics puts them) — and each is answered by
-:func:`impactmaps.cases.case_lookup.lookup_case` and by :func:`impactmaps.cases.run_case`
+:func:`impactmaps.lookup` (``case=``) and by :func:`impactmaps.cases.run_case`
 (the modal simulation the lookup stands in for). Families:
 
 * ``shipped``: SS Euler beams and SSSS square Kirchhoff plates struck at the centre — the
@@ -40,7 +40,7 @@ import pandas as pd
 from impactmaps.cases import parse_case, run_case
 from impactmaps.dimensionless import realise
 from impactmaps.closed_forms.hertz_similarity import realise_hertz
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 
 from _script_options import parse
 
@@ -102,7 +102,7 @@ def measure(law: str, family: str, count: int, rng, cache_dir: Path) -> list[dic
         row = {"law": law, "family": family}
         start = time.perf_counter()
         try:
-            found = lookup_case(case, cache_dir=cache_dir)
+            found = lookup(case=case, cache_dir=cache_dir)
         except ValueError as error:
             rows.append(row | {"answered": False, "reason": str(error).split(";")[0][:120]})
             continue

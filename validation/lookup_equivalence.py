@@ -43,8 +43,8 @@ TOLERANCE = LOCAL_TOLERANCE = 0.1
 
 def shipped_keys() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map; law yc/stronge/epp: slenderness None."""
-    from impactmaps.maps.read.lookup import SHIPPED_MAPS, map_file_stem, shipped_structure_name
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS
+    from impactmaps.maps.files.shipped import SHIPPED_MAPS, map_file_stem, shipped_structure_name
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
     from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 
     data = ROOT / "impactmaps" / "maps" / "data"
@@ -65,13 +65,12 @@ def _name(key) -> str:
 
 
 def _dataset(key):
-    from impactmaps.maps.read.lookup import load_shipped_map
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map
+    from impactmaps.maps.files.shipped import load_shipped_map
 
     structure, theory, law, slenderness = key
     if law in ("linear", "hertz"):
         return load_shipped_map(structure, theory, law, slenderness)
-    return load_plastic_map(structure, theory, law)
+    return load_shipped_map(structure, theory, law)
 
 
 def points(key, count: int) -> dict:
@@ -85,12 +84,11 @@ def points(key, count: int) -> dict:
 
 def _read(key, numbers: dict):
     """The answer arrays at ``numbers``: (fmax, band, status, regime) or raises ValueError."""
-    from impactmaps.maps.read.lookup import lookup
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps import lookup
 
     structure, theory, law, slenderness = key
     if "beta" in numbers:
-        found = lookup_plastic(numbers["beta"], numbers["zeta"], numbers["lambda_"], kind=structure,
+        found = lookup(numbers["beta"], numbers["zeta"], numbers["lambda_"], kind=structure,
                                theory=theory, law=law)
         regime = np.full(np.shape(found.fmax_normalised), "")
     else:

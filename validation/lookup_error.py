@@ -2,7 +2,7 @@
 
 For each shipped map, N log-uniform random (ζ, λ) points inside its range are simulated
 directly (the same solver and settings as the map) and compared with
-``impactmaps.maps.read.lookup.lookup`` and with ``design_formula``. Prints two Markdown
+``impactmaps.lookup`` and with ``design_formula``. Prints two Markdown
 tables (used in docs/validation.rst: errors per map, and the design formula's error per regime,
 i.e. where it holds) and writes validation/lookup_error.csv.
 
@@ -12,7 +12,7 @@ Hertz infinite-structure and quasi-static peaks), written to
 validation/lookup_error_hertz.csv.
 
 With ``--law yc`` (``stronge`` or ``epp``) the same for the shipped elastic-plastic maps over
-(β, ζ, λ) (:mod:`impactmaps.maps.read.plastic_lookup`): N log-uniform random points inside each
+(β, ζ, λ) (:mod:`impactmaps.maps.read.lookup`): N log-uniform random points inside each
 map's box solved directly (:func:`~impactmaps.maps.compute.plastic_points.solve_plastic_points`)
 against the lookup of F̄max, restitution and absorbed energy with their bands, written to
 validation/lookup_error_yc.csv (``…_stronge.csv``, ``…_epp.csv``); no design formula.
@@ -30,8 +30,10 @@ import pandas as pd
 
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.compute.hertz_points import solve_hertz_points
-from impactmaps.maps.read.lookup import ALL_MAP_LAWS, SHIPPED_MAPS, design_formula, load_shipped_map, lookup, map_file_stem
-from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
+from impactmaps.maps.read.lookup import design_formula
+from impactmaps.maps.files.shipped import ALL_MAP_LAWS, SHIPPED_MAPS, load_shipped_map, map_file_stem
+from impactmaps import lookup
+from impactmaps.maps.read.lookup import PLASTIC_MAPS
 from impactmaps.maps.compute.plastic_points import ERROR_OF, solve_plastic_points
 from impactmaps.maps.family.builtin_families import PLASTIC_LAWS
 from impactmaps.maps.family.structures import structure_from_name
@@ -117,7 +119,7 @@ def main(argv=None) -> None:
 
 def measure_plastic(structure: str, theory: str, law: str, points: int, seed: int) -> pd.DataFrame:
     """Random-point comparison of a plastic map's lookup against direct solves (all three quantities)."""
-    dataset = load_plastic_map(structure, theory, law)
+    dataset = load_shipped_map(structure, theory, law)
     rng = np.random.default_rng(seed)
     axes = {axis: np.exp(rng.uniform(*np.log([dataset[axis].min().item(), dataset[axis].max().item()]), points))
             for axis in ("beta", "zeta", "lambda_")}
@@ -128,7 +130,7 @@ def measure_plastic(structure: str, theory: str, law: str, points: int, seed: in
     found = []
     for beta, zeta, lam in zip(axes["beta"], axes["zeta"], axes["lambda_"]):
         try:
-            found.append(lookup_plastic(beta, zeta, lam, kind=structure, theory=theory, law=law))
+            found.append(lookup(beta, zeta, lam, kind=structure, theory=theory, law=law))
         except ValueError:  # next to an unresolved map point: refused
             found.append(None)
     for variable, error in ERROR_OF.items():

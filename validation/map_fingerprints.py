@@ -2,10 +2,9 @@
 
 Records SHA-256 digests of (a) every shipped map file's data (variables and
 coordinates, bytes and dtypes; the refinements and shipped sweep results too), (b)
-lookups at a few hundred random points per shipped map — linear and Hertz maps
-(:func:`impactmaps.maps.read.lookup.lookup`), the slenderness members, the elastic-plastic
-maps (:func:`impactmaps.maps.read.plastic_lookup.lookup_plastic`) and a few physical cases
-(:func:`impactmaps.cases.case_lookup.lookup_case`) — each answer's value, band, status
+lookups (:func:`impactmaps.lookup`) at a few hundred random points per shipped map — linear
+and Hertz maps, the slenderness members and slendernesses between them, the elastic-plastic
+maps — and of a few physical cases, each answer's value, band, status
 and regime, or its refusal's message, and (c) a short sweep of each map family (a few
 points each, serially), and a command-line ``lookup --json``. A refactoring that changes
 no behaviour leaves every digest unchanged.
@@ -95,10 +94,11 @@ def _log_uniform(rng, low, high, count):
 
 
 def lookups() -> dict:
-    from impactmaps.maps.read.slenderness import lookup_slenderness
-    from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map, lookup_plastic
-    from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
+    from impactmaps import lookup
+    from impactmaps.maps.family.builtin_families import LAYOUTS, MEMBER_SLENDERNESSES
+    from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
+
+    PLASTIC_MAPS = LAYOUTS["yc"].shipped
 
     out = {}
     rng = np.random.default_rng(27)
@@ -127,17 +127,17 @@ def lookups() -> dict:
         z = _log_uniform(rng, dataset["zeta"].min(), dataset["zeta"].max(), 60)
         lam = _log_uniform(rng, dataset["lambda_"].min(), dataset["lambda_"].max(), 60)
         out[f"slenderness/{structure}-{theory}-{law}"] = _digest([_answer(
-            lambda a=a, b=b, c=c: lookup_slenderness(a, b, kind=structure, theory=theory, slenderness=c, law=law))
+            lambda a=a, b=b, c=c: lookup(a, b, kind=structure, theory=theory, slenderness=c, law=law))
             for a, b, c in zip(z, lam, s)])
     for (structure, theory) in PLASTIC_MAPS:
         for law in ("yc", "stronge"):
-            dataset = load_plastic_map(structure, theory, law)
+            dataset = load_shipped_map(structure, theory, law)
             b = _log_uniform(rng, dataset["beta"].min(), dataset["beta"].max(), POINTS)
             z = _log_uniform(rng, dataset["zeta"].min(), dataset["zeta"].max() * 1.02, POINTS)
             lam = _log_uniform(rng, dataset["lambda_"].min(), dataset["lambda_"].max(), POINTS)
-            answers = [_answer(lambda a=a, c=c, d=d: lookup_plastic(a, c, d, kind=structure, theory=theory,
+            answers = [_answer(lambda a=a, c=c, d=d: lookup(a, c, d, kind=structure, theory=theory,
                                                                      law=law)) for a, c, d in zip(b, z, lam)]
-            answers.append(_answer(lambda: lookup_plastic(b[:30], z[:30] * 0 + float(dataset["zeta"][12]),
+            answers.append(_answer(lambda: lookup(b[:30], z[:30] * 0 + float(dataset["zeta"][12]),
                                                           lam[:30] * 0 + float(dataset["lambda_"][12]),
                                                           kind=structure, theory=theory, law=law)))
             out[f"plastic/{structure}-{theory}-{law}"] = _digest(answers)
@@ -145,16 +145,16 @@ def lookups() -> dict:
 
 
 def cases() -> dict:
-    """lookup_case on a few physical cases (shipped maps, plastic maps, refusals)."""
+    """lookup(case=...) on a few physical cases (shipped maps, plastic maps, refusals)."""
+    from impactmaps import lookup
     from impactmaps.cases import load_case
-    from impactmaps.cases.case_lookup import lookup_case
 
     out = {}
     for name in ("steel_plate_hertz.toml", "aluminium_beam_linear.toml", "steel_beam_fd_stronge.toml",
                  "composite_plate_sun_chen.toml"):
         case = load_case(ROOT / "examples" / name)
         try:
-            answer = lookup_case(case, build=False)
+            answer = lookup(case=case, build=False)
         except ValueError as error:
             answer = {"refused": str(error)}
         out[f"case/{name}"] = _digest(json.loads(json.dumps(answer, default=str).replace(str(ROOT), "ROOT")))

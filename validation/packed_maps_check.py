@@ -2,8 +2,7 @@
 
 For every shipped map — the (ζ, λ) maps of both laws with their refinements, the
 slenderness members and the elastic-plastic (β, ζ, λ) maps — the lookup's reading
-(what :func:`impactmaps.maps.read.reader.read_values` computes for :func:`impactmaps.maps.read.lookup.lookup`
-and :func:`impactmaps.maps.read.plastic_lookup.lookup_plastic`, taken from its steps so that a point
+(what :func:`impactmaps.maps.read.reader.read_values` computes for :func:`impactmaps.lookup`, taken from its steps so that a point
 next to an unresolved one is marked "refused" instead of refusing the whole batch) is taken at ``--points``
 log-uniform random points (seeded) from the packed data of this checkout and from the data
 before packing (``--old-data``: the ``impactmaps/maps/data`` folder of a checkout of the
@@ -35,8 +34,8 @@ from _script_options import parse
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
+from impactmaps.maps.files import shipped  # noqa: E402
 from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
-from impactmaps.maps.read import plastic_lookup  # noqa: E402
 from impactmaps.maps.files.data_io import read_dataset  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
 from impactmaps.maps.family.map_family import map_family  # noqa: E402
@@ -48,10 +47,10 @@ SEED = 30
 
 def maps() -> list[tuple]:
     """(structure, theory, law, slenderness) of every shipped map a lookup reads."""
-    out = [(s, t, law, None) for (s, t) in lookup_module.SHIPPED_MAPS for law in ("linear", "hertz")]
+    out = [(s, t, law, None) for (s, t) in shipped.SHIPPED_MAPS for law in ("linear", "hertz")]
     out += [(s, t, law, sl) for (s, t) in (("beam", "timoshenko"), ("plate", "mindlin")) for law in ("linear", "hertz")
             for sl in MEMBER_SLENDERNESSES if sl != 20.0 and not (t == "mindlin" and law == "hertz")]
-    out += [(s, t, law, None) for (s, t) in plastic_lookup.PLASTIC_MAPS for law in ("yc", "stronge", "epp")]
+    out += [(s, t, law, None) for (s, t) in lookup_module.PLASTIC_MAPS for law in ("yc", "stronge", "epp")]
     return out
 
 
@@ -64,9 +63,8 @@ def use_data(folder: Path) -> None:
                 return read_dataset(path)
         return None
 
-    lookup_module.read_shipped = plastic_lookup.read_shipped = read_shipped
-    for cached in (lookup_module.load_shipped_map, lookup_module.load_shipped_refinement,
-                   plastic_lookup.load_plastic_map):
+    shipped.read_shipped = read_shipped
+    for cached in (shipped.load_shipped_map, shipped.load_shipped_refinement):
         cached.cache_clear()
 
 
@@ -74,8 +72,8 @@ def points(key, count: int) -> tuple:
     """The random numbers of a map (seeded by its key): (ζ, λ) or (β, ζ, λ), log-uniform inside it."""
     structure, theory, law, slenderness = key
     plastic = law in ("yc", "stronge", "epp")
-    dataset = (plastic_lookup.load_plastic_map(structure, theory, law) if plastic
-               else lookup_module.load_shipped_map(structure, theory, law, slenderness))
+    dataset = (shipped.load_shipped_map(structure, theory, law) if plastic
+               else shipped.load_shipped_map(structure, theory, law, slenderness))
     rng = np.random.default_rng([SEED, *map(ord, "-".join(map(str, key)))])
     axes = (["beta"] if plastic else []) + ["zeta", "lambda_"]
     return tuple(np.exp(rng.uniform(np.log(dataset[a].values.min()), np.log(dataset[a].values.max()), count))
@@ -88,12 +86,12 @@ def answers(key, numbers) -> dict:
     refuses a point next to an unresolved one (it raises for the whole call)."""
     structure, theory, law, slenderness = key
     if law in ("yc", "stronge", "epp"):
-        dataset = plastic_lookup.load_plastic_map(structure, theory, law)
+        dataset = shipped.load_shipped_map(structure, theory, law)
         logs = _logs(dataset, ("beta", "zeta", "lambda_"), numbers)
         values, errors, codes = reader._read_cube(reader.prepare_map(dataset, map_family(law)), map_family(law), logs)
     else:
-        dataset = lookup_module.load_shipped_map(structure, theory, law, slenderness)
-        refinement = lookup_module.load_shipped_refinement(structure, theory, law, slenderness)
+        dataset = shipped.load_shipped_map(structure, theory, law, slenderness)
+        refinement = shipped.load_shipped_refinement(structure, theory, law, slenderness)
         logs = _logs(dataset, ("zeta", "lambda_"), numbers)
         values, errors, codes = reader._read_plane(reader.prepare_map(dataset, map_family(law), refinement), logs)
         values = {"fmax_normalised": values["fmax_normalised"]}
@@ -117,9 +115,9 @@ def compare(key, old: dict, new: dict) -> dict:
     same = np.all([old[k].view(np.uint64) == new[k].view(np.uint64) for k in values], axis=0)
     change = max(float(np.nanmax(np.abs(new[k] - old[k]), initial=0.0)) for k in values)
     ratio = np.concatenate([(new[k] / old[k])[old[k] > 0] for k in bands])
-    return {"map": lookup_module.map_file_stem(
-                lookup_module.shipped_structure_name(key[0], key[1], key[3]) if key[2] not in ("yc", "stronge", "epp")
-                else plastic_lookup.PLASTIC_MAPS[(key[0], key[1])], key[2]),
+    return {"map": shipped.map_file_stem(
+                shipped.shipped_structure_name(key[0], key[1], key[3]) if key[2] not in ("yc", "stronge", "epp")
+                else lookup_module.PLASTIC_MAPS[(key[0], key[1])], key[2]),
             "points": old["status"].size, "refused": int(np.sum(old["status"] == "refused")),
             "values_bit_identical": int(same.sum()), "max_value_change": f"{change:.3g}",
             "bands_bit_identical": int(np.all([old[k].view(np.uint64) == new[k].view(np.uint64) for k in bands],

@@ -6,7 +6,7 @@ Yigit–Christoforou, the refined Stronge law and ``epp``, on a random steel or 
 target: 70 % Euler beams (clamped–clamped, clamped–simply supported or cantilever, length
 0.2–1 m, struck anywhere in the middle 60 %), 30 % Kirchhoff plates (SSSS or CCCC, side
 0.1–0.5 m, aspect 0.5–2, span/thickness 30–200, struck anywhere in the middle 60 %) —
-each answered by :func:`impactmaps.cases.case_lookup.lookup_case` (a 4 × 4 × 4 tile of the
+each answered by :func:`impactmaps.lookup` (``case=``) (a 4 × 4 × 4 tile of the
 plastic lattice, :mod:`impactmaps.cases.on_demand`) and by ``simulate``
 (:func:`impactmaps.cases.run_case`, and once refined twice for its own error). An answer is
 inside its band when |lookup − simulate| ≤ band + the direct run's own error (its change
@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 from impactmaps.solvers.modal import simulate
 
 from _script_options import parse
@@ -72,7 +72,7 @@ def measure(case, law: str, cache_dir) -> dict:
     row = {"law": law, "target": case.target.map_structure().kind}
     start = time.perf_counter()
     try:
-        found = lookup_case(case, cache_dir=cache_dir)
+        found = lookup(case=case, cache_dir=cache_dir)
     except ValueError as error:
         return row | {"answered": False, "reason": str(error).split(";")[0][:160]}
     row |= {"answered": True, "lookup_seconds": time.perf_counter() - start, "map": found["map"],

@@ -24,7 +24,9 @@ import numpy as np
 import pandas as pd
 
 from impactmaps.maps.family.accuracy import STATUSES
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, lookup, read_map
+from impactmaps.maps.read.lookup import read_map
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
+from impactmaps import lookup
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.maps.compute.workers import init_worker

@@ -30,7 +30,7 @@ from packed_maps_check import _logs, points
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # this checkout's impactmaps
 
-from impactmaps.maps.read import lookup as lookup_module  # noqa: E402
+from impactmaps.maps.files import shipped as lookup_module  # noqa: E402
 from impactmaps.maps.read import reader  # noqa: E402
 from impactmaps.maps.family.refinement import Refinement  # noqa: E402
 from impactmaps.maps.family.map_family import map_family  # noqa: E402

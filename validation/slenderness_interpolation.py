@@ -9,7 +9,7 @@ members at span/thickness 10, 20, 50 and the classical thin limit,
    median, 90th percentile and maximum;
 2. N random (ζ, λ, s) points with s log-uniform in [10, 100], solved directly on the
    structure of that slenderness (the same solver and settings as the maps) and looked
-   up by :func:`~impactmaps.maps.read.slenderness.lookup_slenderness`: |lookup − direct| against
+   up by :func:`impactmaps.lookup` (``slenderness=``): |lookup − direct| against
    the lookup's band, refusals counted (next to ``unresolved`` points).
 
 Prints a Markdown table and writes validation/slenderness_interpolation.csv.
@@ -26,9 +26,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from impactmaps.maps.read.slenderness import lookup_slenderness, slenderness_error_grid
+from impactmaps.maps.read.slenderness import slenderness_error_grid
+from impactmaps import lookup
 from impactmaps.maps.compute.hertz_points import solve_hertz_points
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
 from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
@@ -58,7 +59,7 @@ def measure(structure: str, theory: str, law: str, points: int, seed: int) -> pd
         row = {"family": f"{structure}-{theory}-{law}", "zeta": zeta, "lambda": lam, "slenderness": slenderness,
                "direct": direct["fmax_normalised"], "direct_error": direct["fmax_error"]}
         try:
-            found = lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness,
+            found = lookup(zeta, lam, kind=structure, theory=theory, slenderness=slenderness,
                                        law=law)
         except ValueError:
             row.update(lookup=np.nan, band=np.nan, refused=True)

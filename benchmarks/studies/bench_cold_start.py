@@ -10,7 +10,7 @@ temporary directory (numba then compiles everything, as after a fresh install):
    too);
 2. ``impactmaps chart --quiet --out DIR`` on an empty cache (the README's first command
    after ``pip install .``: drawn from the shipped result of its sweep,
-   :mod:`impactmaps.maps.files.shipped_results`), then again on the now warm cache;
+   :mod:`impactmaps.maps.files.shipped`), then again on the now warm cache;
 3. ``impactmaps chart --zeta-count 100 --quiet`` on an empty cache and again warm: a chart
    no result is shipped for, swept on all cores (compiles the integrator, then computes);
 4. the first integrating commands, ``impactmaps simulate`` of the example cases

@@ -2,8 +2,8 @@
 
 For each shipped map family (linear and Hertz on the SS Euler beam and the SSSS Kirchhoff
 plate; Yigit–Christoforou, Stronge and epp on the plate) in one process: ``lookup`` (or
-``lookup_plastic``) of N fresh random points at once (per point), of fresh points one at
-a time and of one point repeated; ``lookup_case`` of fresh physical cases one at a time
+``lookup(β, ζ, λ, law=…)``) of N fresh random points at once (per point), of fresh points one at
+a time and of one point repeated; ``lookup(case=…)`` of fresh physical cases one at a time
 and of one case again; and, in a fresh process each, the first lookup (imports, the map
 and its refinement read). With ``--base PATH`` the same measurements run with the code at
 PATH (a checkout of another commit, first on ``PYTHONPATH``) and with this checkout,
@@ -53,13 +53,14 @@ def _draw(rng, count: int, dataset=None) -> dict:
 def _reader(law: str, structure: str, theory: str):
     """``(read(numbers), dataset)``: a vectorised read of the family's shipped map."""
     if law in ("linear", "hertz"):
-        from impactmaps.maps.read.lookup import lookup
+        from impactmaps import lookup
 
         return (lambda n: lookup(n["zeta"], n["lambda_"], kind=structure, theory=theory, law=law)), None
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.files.shipped import load_shipped_map
+    from impactmaps import lookup
 
-    return ((lambda n: lookup_plastic(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
-                                      law=law)), load_plastic_map(structure, theory, law))
+    return ((lambda n: lookup(n["beta"], n["zeta"], n["lambda_"], kind=structure, theory=theory,
+                                      law=law)), load_shipped_map(structure, theory, law))
 
 
 def _case(rng, law: str, structure: str):
@@ -111,7 +112,7 @@ def _time(call, repeat: int = 1) -> float:
 
 def measure(points: int, singles: int, cases: int) -> dict:
     """The figures of this process's code (module docstring): row → name → seconds."""
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     warnings.simplefilter("ignore")
     out = {}
@@ -134,14 +135,14 @@ def measure(points: int, singles: int, cases: int) -> dict:
             answered += 1
             case = _case(rng, law, structure)
             try:
-                lookup_case(case, build=False)  # a case outside the map (plastic numbers fall where they fall)
+                lookup(case=case, build=False)  # a case outside the map (plastic numbers fall where they fall)
             except ValueError:
                 continue
             drawn.append(case)
         fresh_cases = [_case(rng, law, structure) for _ in range(cases)] if law in ("linear", "hertz") else drawn
-        case_fresh = _time(lambda: [lookup_case(case, build=False) for case in fresh_cases]) / len(fresh_cases)
+        case_fresh = _time(lambda: [lookup(case=case, build=False) for case in fresh_cases]) / len(fresh_cases)
         cpu["case_fresh"] = _CPU["last"] / len(fresh_cases)
-        case_again = _time(lambda: lookup_case(fresh_cases[0], build=False), 50)
+        case_again = _time(lambda: lookup(case=fresh_cases[0], build=False), 50)
         cpu["case_again"] = _CPU["last"]
         out[row] = {"vector": vector, "single_fresh": single_fresh, "single_again": single_again,
                     "case_fresh": case_fresh, "case_again": case_again, "points": points, "singles": singles,
@@ -153,11 +154,11 @@ def measure(points: int, singles: int, cases: int) -> dict:
 def first_lookup(law: str, structure: str, theory: str, env: dict) -> float:
     """Seconds of the first lookup in a fresh process (imports, map and refinement read)."""
     if law in ("linear", "hertz"):
-        imports = "from impactmaps.maps.read.lookup import lookup"
+        imports = "from impactmaps import lookup"
         call = f"lookup(1.0, 0.1, structure={structure!r}, theory={theory!r}, law={law!r})"
     else:
-        imports = "from impactmaps.maps.read.plastic_lookup import lookup_plastic"
-        call = f"lookup_plastic(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
+        imports = "from impactmaps import lookup"
+        call = f"lookup(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
     script = FIRST.format(imports=imports, call=call)
     result = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, env=env,
                             cwd="/")

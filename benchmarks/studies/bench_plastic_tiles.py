@@ -19,7 +19,7 @@ import time
 import warnings
 
 from impactmaps.cases import parse_case, run_case
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 
 _BALL = '[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
 _BEAM = ('[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\nmaterial = "aluminium-6061-t6"\n'
@@ -53,15 +53,15 @@ def _timed(call):
 def main() -> None:
     warnings.simplefilter("ignore")  # validity warnings of the direct runs
     with tempfile.TemporaryDirectory() as warm:
-        lookup_case(_case(*next(iter(CASES.values()))), cache_dir=warm)
+        lookup(case=_case(*next(iter(CASES.values()))), cache_dir=warm)
     print("| case | first lookup (tile built) wall / CPU [s] | cached lookup [ms] | simulate [ms] "
           "| F_max lookup ± band vs simulate [N] | e lookup ± band vs simulate | status |")
     print("|---|---|---|---|---|---|---|")
     for name, spec in CASES.items():
         case = _case(*spec)
         with tempfile.TemporaryDirectory() as cache:
-            found, wall, cpu = _timed(lambda: lookup_case(case, cache_dir=cache))
-            _, cached, _ = _timed(lambda: lookup_case(case, cache_dir=cache))
+            found, wall, cpu = _timed(lambda: lookup(case=case, cache_dir=cache))
+            _, cached, _ = _timed(lambda: lookup(case=case, cache_dir=cache))
         (_, summary), direct, _ = _timed(lambda: run_case(case))
         print(f"| {name} | {wall:.1f} / {cpu:.1f} | {cached * 1e3:.0f} | {direct * 1e3:.0f} "
               f"| {found['peak_force_N']:.0f} ± {found['peak_force_error_N']:.0f} vs {summary['peak_force_N']:.0f} "

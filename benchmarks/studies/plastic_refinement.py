@@ -21,8 +21,9 @@ from pathlib import Path
 import numpy as np
 
 from impactmaps.maps.files.data_io import read_dataset, write_dataset
-from impactmaps.maps.read.lookup import refinement_of
-from impactmaps.maps.read.plastic_lookup import load_plastic_map, read_plastic
+from impactmaps.maps.files.shipped import refinement_of
+from impactmaps.maps.read.lookup import read_plastic
+from impactmaps.maps.files.shipped import load_shipped_map
 from impactmaps.maps.compute.plastic_points import solve_plastic_points
 from impactmaps.maps.family.structures import structure_from_name
 
@@ -76,7 +77,7 @@ def main(argv=None) -> None:
     structure_name = name.rsplit("-", 1)[0]
     structure, theory = {"beam-ss-euler": ("beam", "euler"), "beam-ss-timoshenko-s20": ("beam", "timoshenko"),
                          "plate-ssss-kirchhoff": ("plate", "kirchhoff")}[structure_name]
-    dataset = load_plastic_map(structure, theory, law)
+    dataset = load_shipped_map(structure, theory, law)
     refinement = refinement_of(stored, dataset, name)
     with tempfile.TemporaryDirectory() as folder:
         packed = Path(folder) / f"{name}.npz"

@@ -18,8 +18,9 @@ import time
 import numpy as np
 
 from impactmaps.maps.files.data_io import read_dataset
-from impactmaps.maps.read.lookup import refinement_of
-from impactmaps.maps.read.plastic_lookup import load_plastic_map, read_plastic
+from impactmaps.maps.files.shipped import refinement_of
+from impactmaps.maps.read.lookup import read_plastic
+from impactmaps.maps.files.shipped import load_shipped_map
 from impactmaps.maps.compute.plastic_points import solve_plastic_points
 from impactmaps.maps.family.slice_refinement import SlicedRefinement
 from impactmaps.maps.family.structures import structure_from_name
@@ -28,7 +29,7 @@ SLICE, POINTS = 3, 200
 
 
 def main() -> None:
-    dataset = load_plastic_map("beam", "euler", "epp")
+    dataset = load_shipped_map("beam", "euler", "epp")
     capped = refinement_of(read_dataset("/tmp/prefine_out/beam-ss-euler-epp.nc"), dataset)
     alone = SlicedRefinement.from_dataset(read_dataset("/tmp/prefine_full/beam-ss-euler-epp.nc"))
     full = SlicedRefinement(capped.extra_shape, tuple(alone.slices[0] if k == SLICE else part

@@ -11,21 +11,17 @@ an unknown key lists the allowed keys. :func:`run_case` runs it,
 
 from __future__ import annotations
 
-from .case import (
-    SOLVER_KINDS,
-    TARGET_TYPES,
-    Case,
-    OutputSettings,
-    load_case,
-    parse_case,
-)
-from .numbers import case_dimensionless, case_numbers
-from .run import (
-    case_summary,
-    read_case_outputs,
-    run_case,
-    write_case_outputs,
-)
+import importlib
+
+#: The package's names, each loaded from its module on first use (importing ``impactmaps.cases``
+#: stays cheap: a lookup reaches :mod:`impactmaps.cases.case_lookup` without the solver that
+#: :func:`run_case` needs).
+_EXPORTS = {
+    "Case": "case", "OutputSettings": "case", "SOLVER_KINDS": "case", "TARGET_TYPES": "case",
+    "load_case": "case", "parse_case": "case",
+    "case_dimensionless": "numbers", "case_numbers": "numbers",
+    "run_case": "run", "case_summary": "run", "write_case_outputs": "run", "read_case_outputs": "run",
+}
 
 __all__ = [
     "Case",
@@ -41,3 +37,16 @@ __all__ = [
     "write_case_outputs",
     "read_case_outputs",
 ]
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'impactmaps.cases' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted([*globals(), *__all__])

@@ -1,26 +1,26 @@
 """What every answer for a physical case shares: its map law, its refusal, its scaling to newtons.
 
-:func:`impactmaps.cases.case_lookup.lookup_case` answers a case from a shipped map or an
+:func:`impactmaps.lookup` (:mod:`impactmaps.cases.case_lookup`) answers a case from a shipped map or an
 on-demand tile (:mod:`impactmaps.cases.on_demand`); both name the case's map law
 (:func:`case_map_law`), compare its dimensionless groups with a map structure's
 (:meth:`impactmaps.targets.base.Target.similarity_groups`), refuse with a :class:`NoMapError` and scale the reading to
-newtons (:func:`scaled_answer`, :func:`lookup_plastic_case`) through this module.
+newtons (:func:`scaled_answer`, :func:`plastic_case_answer`) through this module.
 """
 
 from __future__ import annotations
 
-from . import case_dimensionless
+from .numbers import case_dimensionless
 from ..closed_forms.hertz_similarity import hertz_numbers
 from ..solvers.modal_settings import uses_patch, contact_radius_function
 from ..targets.map_structure import STRUCTURE_MATCH_RTOL
-from ..maps.read.bands import status_notes
-from ..maps.read.plastic_lookup import lookup_plastic
+from ..maps.family.accuracy import status_notes
+from ..maps.read.lookup import point_answer
 from ..maps.family.map_family import available_map_families, map_family
 from ..maps.compute.plastic_points import plastic_numbers
 from ..maps.read.reader import OutsideMapError, UnresolvedPointError
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "scaled_answer",
-           "answer", "lookup_plastic_case", "plastic_answer"]
+           "answer", "plastic_case_answer", "plastic_answer"]
 
 
 #: Relative tolerance within which a case "is" a shipped map's structure (impact point,
@@ -71,7 +71,7 @@ def case_loads_a_patch(case) -> bool:
 
 
 def scaled_answer(case, law: str, read) -> dict:
-    """The answer of :func:`lookup_case` from ``read(ζ, λ) -> LookupResult``, a reading of a
+    """The answer for a case from ``read(ζ, λ) -> LookupResult``, a reading of a
     linear or Hertz map at the case's numbers, scaled to newtons: the Hertz numbers
     (ζ_h, λ_h, F_hs) where the case's law is a Hertz law (its ``hertzian_stiffness``)."""
     if case.law.hertzian_stiffness is not None:
@@ -89,7 +89,7 @@ def scaled_answer(case, law: str, read) -> dict:
 
 
 def answer(found, scale: float, law: str, details: dict) -> dict:
-    """The dict of :func:`lookup_case`: peak force [N] with its band, ``details``, the map and scale."""
+    """The dict of a case's answer: peak force [N] with its band, ``details``, the map and scale."""
     return {
         "peak_force_N": found.fmax_normalised * scale,
         "peak_force_error_N": found.fmax_error * scale,
@@ -104,8 +104,8 @@ def answer(found, scale: float, law: str, details: dict) -> dict:
     }
 
 
-def lookup_plastic_case(case, kind: str, theory: str, law: str) -> dict:
-    """:func:`impactmaps.cases.case_lookup.lookup_case` of an elastic-plastic case: the (β, ζ, λ) map of its law.
+def plastic_case_answer(case, kind: str, theory: str, law: str) -> dict:
+    """The answer for an elastic-plastic case from the shipped (β, ζ, λ) map of its law.
 
     Parameters
     ----------
@@ -118,11 +118,11 @@ def lookup_plastic_case(case, kind: str, theory: str, law: str) -> dict:
     Returns
     -------
     dict
-        See :func:`impactmaps.cases.case_lookup.lookup_case`.
+        See :func:`impactmaps.lookup`.
     """
     def read(beta, zeta, lam):
         try:
-            return lookup_plastic(beta, zeta, lam, kind=kind, theory=theory, law=law)
+            return point_answer(beta, zeta, lam, kind=kind, theory=theory, law=law)
         except (OutsideMapError, UnresolvedPointError) as error:
             raise NoMapError(case, str(error).split("; run")[0]) from None
 
@@ -130,7 +130,7 @@ def lookup_plastic_case(case, kind: str, theory: str, law: str) -> dict:
 
 
 def plastic_answer(case, law: str, read) -> dict:
-    """The answer of :func:`impactmaps.cases.case_lookup.lookup_case` for an elastic-plastic case
+    """The answer of :func:`impactmaps.lookup` for an elastic-plastic case
     from ``read(β, ζ, λ) -> PlasticLookup``, a reading of a plastic map (shipped or a tile) at
     the case's numbers (:func:`impactmaps.maps.compute.plastic_points.plastic_numbers`), scaled to
     newtons and joules."""

@@ -1,12 +1,11 @@
-"""A physical case's lookup: which shipped map describes it, and its peak force in newtons.
+"""The one lookup: a point of any map family, a slenderness, or a physical case, without a simulation.
 
+:func:`lookup` (``impactmaps.lookup``) answers numbers from the shipped maps
+(:func:`impactmaps.maps.read.lookup.point_answer`) and a case from the map that describes it.
 :func:`map_for_case` reads from a case everything that selects a map — structure kind,
 theory, supports, impact point, aspect ratio, slenderness, contact law — and names the
 map family that describes it exactly, or refuses with the reason (never the nearest
-map). :func:`lookup_case` then reads the map (:func:`impactmaps.maps.read.lookup.lookup`, the
-slenderness members :func:`impactmaps.maps.read.slenderness.lookup_slenderness`, or the plastic
-maps :func:`impactmaps.maps.read.plastic_lookup.lookup_plastic_case`) and scales the answer
-to newtons with its band. A case that no shipped map describes but whose target names a
+map); the map's answer is then scaled to newtons with its band. A case that no shipped map describes but whose target names a
 reference structure (:meth:`Target.map_structure <impactmaps.targets.base.Target.map_structure>`)
 is answered from a map tile built on demand and cached (:mod:`impactmaps.cases.on_demand`),
 for the linear, Hertz and elastic-plastic laws alike.
@@ -16,26 +15,80 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .case_answer import (
-    CASE_MATCH_RTOL,
-    NoMapError,
-    case_loads_a_patch,
-    case_map_law,
-    lookup_plastic_case,
-    scaled_answer,
-)
-from ..maps.read.slenderness import lookup_slenderness, shipped_for
-from ..maps.read.lookup import SHIPPED_SLENDERNESS, lookup
-from .on_demand import lookup_on_demand
-from ..maps.family.builtin_families import PLASTIC_LAWS
-from ..maps.read.reader import OutsideMapError, UnresolvedPointError
-from ..maps.family.regimes import MAP_LAWS
+from .._renamed import renamed_keyword
+from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS
 from ..maps.family.map_family import map_family
-from ..maps.family.builtin_families import MEMBER_SLENDERNESSES
-from ..maps.family.structures import structure_from_name
+from ..maps.files.shipped import SHIPPED_SLENDERNESS
+from ..maps.read.lookup import point_answer
+from ..maps.read.reader import OutsideMapError, UnresolvedPointError
+from ..maps.read.slenderness import shipped_for
+from ..targets.options import default_theory
 
-__all__ = [ "case_slenderness", "lookup_case",
-           "map_for_case"]
+__all__ = ["lookup", "case_slenderness", "map_for_case"]
+
+
+@renamed_keyword("structure", "kind")
+def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = None, law: str | None = None,
+           slenderness: float | None = None, tolerance: float = 0.1, local_tolerance: float = 0.1,
+           build: bool = True, cache_dir=None, notify=None, progress=None):
+    """F̄max with its band and status from the maps, without a simulation: at a point, or for a case.
+
+    Parameters
+    ----------
+    *numbers : float or array_like
+        The point [-]: (ζ, λ) for the linear law, (ζ_h, λ_h) for the Hertz law, (β, ζ, λ) for an
+        elastic-plastic law, inside the shipped map's range. None with ``case``.
+    case : impactmaps.cases.Case, optional
+        A physical case, answered from the map that describes it (:func:`map_for_case`), else
+        from a map tile built on demand and cached (:mod:`impactmaps.cases.on_demand`).
+    kind : {"beam", "plate"}
+        Default "plate".
+    theory : str
+        "euler" or "timoshenko" (beams), "kirchhoff" or "mindlin" (plates); default the
+        kind's classical theory.
+    law : {"linear", "hertz", "yc", "stronge", "epp"}
+        The map's contact law; default "linear".
+    slenderness : float, optional
+        Timoshenko/Mindlin, linear or Hertz law: span/thickness ≥ 10 (default the shipped 20),
+        interpolated in 1/s between the slenderness members.
+    tolerance, local_tolerance : float
+        Regime criteria (:func:`impactmaps.maps.family.regimes.classify`).
+    build : bool
+        A case no shipped map describes: answer it from an on-demand tile (False: refuse it).
+    cache_dir : path-like, optional
+        A case's tile cache (default :func:`impactmaps.maps.compute.tiles.cache_directory`).
+    notify, progress : callable, optional
+        A case's tile build: ``notify(line)`` before it, ``progress(done, total)`` while it runs.
+
+    Returns
+    -------
+    LookupResult, PlasticLookup or dict
+        At a point: a :class:`~impactmaps.maps.read.lookup.LookupResult`, or a
+        :class:`~impactmaps.maps.read.lookup.PlasticLookup` for an elastic-plastic law.
+        For a case: a dict with ``peak_force_N`` and its band ``peak_force_error_N``,
+        ``fmax_normalised``, ``fmax_error``, ``status``, ``zeta``, ``lambda``, ``map``, ``law``,
+        ``force_scale_N`` (``regime`` for a linear or Hertz law; ``beta``, ``restitution`` and
+        ``absorbed_energy_J`` with their bands for an elastic-plastic one; ``cache_file`` for a tile).
+
+    Raises
+    ------
+    ValueError
+        Numbers outside the map or next to an ``unresolved`` point, a value no map has, or a case
+        no map describes (a :class:`~impactmaps.cases.case_answer.NoMapError` naming why).
+    """
+    if case is None:
+        if cache_dir is not None or notify is not None or progress is not None:
+            raise ValueError("cache_dir, notify and progress are for the map tile of a case (give case=...)")
+        kind = "plate" if kind is None else kind
+        theory = default_theory(kind) if theory is None else theory
+        return point_answer(*numbers, kind=kind, theory=theory, law=law or "linear", slenderness=slenderness,
+                            tolerance=tolerance, local_tolerance=local_tolerance)
+    given = [name for name, value in (("numbers", numbers or None), ("kind", kind), ("theory", theory), ("law", law),
+                                      ("slenderness", slenderness)) if value is not None]
+    if given:
+        raise ValueError(f"{', '.join(given)} with case: the case gives its numbers and the map that describes it "
+                         "(leave them out)")
+    return _case_answer(case, build=build, cache_dir=cache_dir, notify=notify, progress=progress)
 
 def map_for_case(case) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
@@ -45,7 +98,7 @@ def map_for_case(case) -> tuple[str, str]:
     the centre, Euler and Kirchhoff theory (any size: the normalised response depends on
     ζ and λ only) or Timoshenko and Mindlin at span/thickness 20. The elastic-plastic laws
     (Yigit–Christoforou, default Stronge, default ``epp``) have maps for the same structures
-    except the Mindlin plate (:data:`impactmaps.maps.read.plastic_lookup.PLASTIC_MAPS`). The
+    except the Mindlin plate (:data:`impactmaps.maps.read.lookup.PLASTIC_MAPS`). The
     target names its reference structure (:meth:`Target.map_structure
     <impactmaps.targets.base.Target.map_structure>`); a case whose structure is no shipped
     map's is refused, never looked up in the nearest map.
@@ -57,7 +110,7 @@ def map_for_case(case) -> tuple[str, str]:
     Returns
     -------
     (str, str)
-        ``structure`` and ``theory`` for :func:`lookup`.
+        ``structure`` and ``theory`` of the map.
 
     Raises
     ------
@@ -66,6 +119,9 @@ def map_for_case(case) -> tuple[str, str]:
         aspect, theory, slenderness, patch load) and suggesting ``impactmaps simulate``;
         a ``ValueError`` for a contact law no map describes (:func:`case_map_law`).
     """
+    from ..maps.family.structures import structure_from_name  # the targets: loaded for a case
+    from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, case_map_law
+
     def refuse(what: str):
         raise NoMapError(case, what)
 
@@ -95,7 +151,7 @@ def map_for_case(case) -> tuple[str, str]:
     if not same(key.aspect_ratio, reference.aspect_ratio):
         refuse(f"plate aspect ratio {key.aspect_ratio:g} (maps: square)")
     if (key.kind, key.theory) not in maps:
-        refuse(f"{key.kind} theory {key.theory!r} (maps{'' if law in MAP_LAWS else f' for the {law} law'}: "
+        refuse(f"{key.kind} theory {key.theory!r} (maps{'' if law in PLANE_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == key.kind) + ")")
     if map_family(law).patch_loadable and case_loads_a_patch(case):
         refuse(f"a Hertz impact on a {key.theory.capitalize()} plate, which simulate loads over the contact patch "
@@ -129,11 +185,13 @@ def _point_loaded_mindlin(case) -> bool:
     """Whether ``simulate`` strikes this case's target at a point (no contact patch) where its
     point-load deflection diverges (a Mindlin plate: :attr:`Target.point_load_diverges
     <impactmaps.targets.base.Target.point_load_diverges>`)."""
+    from .case_answer import case_loads_a_patch
+
     return case.target.point_load_diverges and case.solver_kind == "modal" and not case_loads_a_patch(case)
 
 
-def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=None) -> dict:
-    """Peak force of a physical case from the map that describes it, or refuse.
+def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress=None) -> dict:
+    """Peak force of a physical case from the map that describes it, or refuse (:func:`lookup`).
 
     A shipped map (:func:`map_for_case`) answers if one describes the case and holds its
     numbers. Otherwise (or when the numbers lie beyond the shipped map) a
@@ -141,7 +199,7 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
     any supports, impact point, aspect and slenderness; a Hertz impact under the contact
     patch adds its patch number; an elastic-plastic law its β, except on a Mindlin plate)
     is answered from an on-demand map tile, built once and cached
-    (:func:`impactmaps.cases.on_demand.lookup_on_demand`); anything else is refused.
+    (:func:`impactmaps.cases.on_demand.answer_on_demand`); anything else is refused.
 
     Parameters
     ----------
@@ -179,8 +237,11 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
         naming what no map covers), or its numbers lie outside the map or next to an
         unresolved point (the message names them and suggests ``impactmaps simulate``).
     """
+    from .case_answer import CASE_MATCH_RTOL, NoMapError, case_map_law, plastic_case_answer, scaled_answer
+    from .on_demand import answer_on_demand  # builds tiles: the build side of the maps, loaded when needed
+
     law = case_map_law(case)
-    if law in MAP_LAWS and _point_loaded_mindlin(case):
+    if law in PLANE_LAWS and _point_loaded_mindlin(case):
         # no map and no tile can be right: the answer depends on where the divergent
         # point-load deflection is cut (simulate: the classical residual beyond its cut-off;
         # the maps: the shear of every mode up to the sweep's mode cap). Measured on
@@ -197,24 +258,23 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
     except NoMapError as refusal:
         if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either
-        return lookup_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
+        return answer_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
     if law in PLASTIC_LAWS:
         try:
-            return lookup_plastic_case(case, structure, theory, law)
+            return plastic_case_answer(case, structure, theory, law)
         except NoMapError as error:
             if not build:
                 raise
             # beyond the shipped plastic map, or next to a point it could not resolve: a tile answers or refuses
             beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} {law} map or next "
                                       f"to a point it could not resolve ({error.what})")
-        return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
+        return answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
     slenderness = case_slenderness(case)
-    if slenderness is not None and abs(slenderness - SHIPPED_SLENDERNESS) > CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
-        def read(zeta, lam):
-            return lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness, law=law)
-    else:
-        def read(zeta, lam):
-            return lookup(zeta, lam, kind=structure, theory=theory, law=law)
+    if slenderness is None or abs(slenderness - SHIPPED_SLENDERNESS) <= CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
+        slenderness = None  # the shipped map
+
+    def read(zeta, lam):
+        return point_answer(zeta, lam, kind=structure, theory=theory, law=law, slenderness=slenderness)
     try:
         return scaled_answer(case, law, read)
     except (OutsideMapError, UnresolvedPointError) as error:
@@ -225,6 +285,6 @@ def lookup_case(case, build: bool = True, cache_dir=None, notify=None, progress=
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")
-    return lookup_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
+    return answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
 
 

@@ -1,6 +1,6 @@
 """On-demand maps: the answer for a case that no shipped map describes.
 
-The shipped maps cover a few structure families (:mod:`impactmaps.cases.case_lookup`). A
+The shipped maps cover a few structure families (:func:`impactmaps.lookup`). A
 case whose target names a reference structure (:meth:`Target.map_structure
 <impactmaps.targets.base.Target.map_structure>`: an isotropic, undamped beam or plate of
 any supports, impact point, aspect ratio, slenderness and Poisson ratio;
@@ -8,7 +8,7 @@ any supports, impact point, aspect ratio, slenderness and Poisson ratio;
 around the case's numbers, built once and cached (:mod:`impactmaps.maps.compute.tiles`): (ζ, λ) for
 a linear or Hertz law, (β, ζ, λ) for an elastic-plastic one (Yigit–Christoforou, default
 Stronge, default ``epp``; read as the shipped plastic maps,
-:func:`impactmaps.maps.read.plastic_lookup.read_plastic`). A Hertz impact that ``simulate``
+:func:`impactmaps.maps.read.lookup.read_plastic`). A Hertz impact that ``simulate``
 loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
 patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.closed_forms.hertz_similarity`); its tile is of
 that P.
@@ -28,13 +28,13 @@ from ..solvers.modal_settings import ModalSettings
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
 from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from ..maps.read.lookup import read_map
-from ..maps.read.plastic_lookup import read_plastic
+from ..maps.read.lookup import read_plastic
 from ..maps.family.structures import MAX_MODES
 from ..maps.family.map_family import map_family
 from ..maps.family.structures import MapStructure
 from ..maps.compute.tiles import cached_tile, tile_for
 
-__all__ = ["case_structure", "lookup_on_demand"]
+__all__ = ["case_structure", "answer_on_demand"]
 
 #: Significant digits kept of a case's shape numbers and patch number: cases that agree
 #: to them share a tile (far below CASE_MATCH_RTOL, which the structure is checked to).
@@ -97,8 +97,8 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
     return structure, number
 
 
-def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None, progress=None) -> dict:
-    """:func:`impactmaps.cases.case_lookup.lookup_case` of a case no shipped map describes.
+def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify=None, progress=None) -> dict:
+    """:func:`impactmaps.lookup` of a case no shipped map describes: from a map tile.
 
     Parameters
     ----------
@@ -118,7 +118,7 @@ def lookup_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     Returns
     -------
     dict
-        The keys of ``lookup_case`` (an elastic-plastic case: with ``restitution``,
+        The keys of a case's answer (:func:`impactmaps.lookup`) (an elastic-plastic case: with ``restitution``,
         ``absorbed_energy_J`` and their bands), ``map`` naming the tile, plus ``cache_file``
         (the tile's file) and, for a patch-loaded Hertz case, ``patch_number``.
 

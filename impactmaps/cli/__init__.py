@@ -123,8 +123,8 @@ def _deferred_choices(action: argparse.Action, choices: _Deferred) -> argparse.A
 
 
 #: Deferred parser constants (see :class:`_Deferred`).
-_MAP_LAWS = _Deferred("impactmaps.maps.read.lookup", "ALL_MAP_LAWS")
-_THEORIES = _Deferred("impactmaps.maps.read.lookup", "SHIPPED_MAPS", _theories)
+_MAP_LAWS = _Deferred("impactmaps.maps.files.shipped", "ALL_MAP_LAWS")
+_THEORIES = _Deferred("impactmaps.maps.files.shipped", "SHIPPED_MAPS", _theories)
 _ZETA_RANGE = _Deferred("impactmaps.plotting.chart", "DEFAULT_ZETA_RANGE")
 
 

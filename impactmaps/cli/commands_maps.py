@@ -336,7 +336,7 @@ def cmd_classify(args) -> dict:
     check("--tolerance", args.tolerance, 0.0, 1.0, "the relative distance to an asymptote",
            high_inclusive=True)
     if args.from_map:
-        from ..maps.read.lookup import lookup
+        from ..cases.case_lookup import lookup
         from ..targets.options import default_theory
 
         refuse(args, {"--aspect": "aspect", "--slenderness": "slenderness", "--position": "position",
@@ -357,16 +357,15 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..maps.read.lookup import lookup
-    from ..maps.read.bands import status_notes
+    from ..cases.case_lookup import lookup
+    from ..maps.family.accuracy import status_notes
 
     if args.case is not None:
         import sys
         import time
 
-        from ..cases import load_case
+        from ..cases.case import load_case
         from ..cases.case_answer import case_map_law
-        from ..cases.case_lookup import lookup_case
 
         refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
                "with --case (the case gives its numbers)")
@@ -381,7 +380,7 @@ def cmd_lookup(args) -> dict:
         start = time.perf_counter()
         progress = None if args.quiet else (lambda done, total: print(
             f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
-        found = lookup_case(case, build=not args.no_build, notify=notify, progress=progress)
+        found = lookup(case=case, build=not args.no_build, notify=notify, progress=progress)
         found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
         return found | case_model_warnings(case, found.get("peak_force_N"))
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
@@ -396,22 +395,17 @@ def cmd_lookup(args) -> dict:
 
     if args.law in PLASTIC_LAWS:
         refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")
-        return _lookup_plastic_numbers(args)
+        return _lookup_plastic_numbers(args, lookup)
     refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the {', '.join(PLASTIC_LAWS)} maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
     law = args.law or "linear"
     slenderness = getattr(args, "slenderness", None)
+    if slenderness is not None:
+        check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest slenderness member is 10)",
+              low_inclusive=True)
     try:
-        if slenderness is None:
-            found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law)
-        else:
-            from ..maps.read.slenderness import lookup_slenderness
-
-            check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest slenderness member is 10)",
-                  low_inclusive=True)
-            found = lookup_slenderness(args.zeta, args.lambda_, kind=args.kind, theory=args.theory,
-                                       slenderness=slenderness, law=law)
+        found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law, slenderness=slenderness)
     except ValueError as error:  # name the options as the user typed them
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
             from None
@@ -422,10 +416,9 @@ def cmd_lookup(args) -> dict:
                               f"--theory {args.theory}, or impactmaps simulate on a case file")
 
 
-def _lookup_plastic_numbers(args) -> dict:
-    """``lookup --law yc|stronge --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
-    from ..maps.read.bands import status_notes
-    from ..maps.read.plastic_lookup import lookup_plastic
+def _lookup_plastic_numbers(args, lookup) -> dict:
+    """``lookup --law yc|stronge|epp --beta B --zeta Z --lambda L``: the plastic map at (β, ζ, λ)."""
+    from ..maps.family.accuracy import status_notes
 
     beta = getattr(args, "beta", None)
     if beta is None:
@@ -433,7 +426,7 @@ def _lookup_plastic_numbers(args) -> dict:
     check("--beta", beta, what="the impact number β")
     check("--zeta", args.zeta, what="the loss factor ζ(m, K_y)")
     check("--lambda", args.lambda_, what="the relative stiffness K_st/K_y")
-    found = lookup_plastic(beta, args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=args.law)
+    found = lookup(beta, args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=args.law)
     return announce_wide_band({"fmax_normalised": found.fmax_normalised, "fmax_error": found.fmax_error,
             "restitution": found.restitution, "restitution_error": found.restitution_error,
             "absorbed_energy_fraction": found.absorbed_energy_fraction,

@@ -249,10 +249,10 @@ def _map_reading(case) -> dict:
     """What a shipped map says of the case (no tile is built), or why none does."""
     if case.target_type == "halfspace":
         return {"regime": "half-space", "map": None, "map_note": "a half-space needs no map"}
-    from ..cases.case_lookup import lookup_case
+    from ..cases.case_lookup import lookup
 
     try:
-        found = lookup_case(case, build=False)
+        found = lookup(case=case, build=False)
     except ValueError as error:
         text = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
         text = text.removeprefix("no shipped map covers this case: ")

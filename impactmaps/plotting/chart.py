@@ -17,7 +17,7 @@ from ..solvers.modal_settings import ModalSettings
 from ..maps.family.builtin_families import family_layout
 from ..maps.compute.dataset import tidy_frame, with_asymptote_peaks
 from ..maps.read.lookup import markdown_table
-from ..maps.read.plastic_lookup import load_plastic_map
+from ..maps.files.shipped import load_shipped_map
 from ..maps.family.builtin_families import PLASTIC_LAWS
 from ..maps.family.structures import MapStructure
 from ..maps.compute.sweep import log_grid, require_map_fits, sweep
@@ -228,7 +228,7 @@ def make_plastic_chart(out_dir: Path | str = "impactmaps-output", *, law: str = 
     if law not in PLASTIC_LAWS:
         raise ValueError(f"--law = {law!r} is invalid for the elastic-plastic chart: choose "
                          + " or ".join(PLASTIC_LAWS))
-    maps = [load_plastic_map(s.kind, s.theory, law) for s in CHART_STRUCTURES]
+    maps = [load_shipped_map(s.kind, s.theory, law) for s in CHART_STRUCTURES]
     for name, values, axis in (("--lambdas", [lambda_], "lambda_"), ("--betas", list(betas), "beta")):
         low = max(float(m[axis].min()) for m in maps) * (1 - 1e-12)
         high = min(float(m[axis].max()) for m in maps) * (1 + 1e-12)

@@ -19,7 +19,7 @@ import pytest
 
 from impactmaps.cases import parse_case, run_case
 from impactmaps.maps.compute import tiles
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 from impactmaps.maps.family.structures import MapStructure
 
 _BALL = '[impactor]\nradius = {radius!r}\nmaterial = "structural-steel"\nvelocity = {velocity!r}\n'
@@ -104,7 +104,7 @@ def _check_against_simulate(cases, cache_dir) -> int:
     answered = 0
     for case in cases:
         try:
-            found = lookup_case(case, cache_dir=cache_dir)
+            found = lookup(case=case, cache_dir=cache_dir)
         except ValueError as error:
             assert "holds no value next to it" in str(error) and "impactmaps simulate" in str(error), str(error)
             continue
@@ -141,9 +141,9 @@ def test_a_cached_tile_answers_the_same_bits_as_a_fresh_one(tmp_path):
     (only the cache file differs); the build is announced once, the cache answers silently."""
     case = _case(_CLAMPED_BEAM, "hertz")
     lines = []
-    fresh = lookup_case(case, cache_dir=tmp_path / "a", notify=lines.append)
-    cached = lookup_case(case, cache_dir=tmp_path / "a", notify=lines.append)
-    again = lookup_case(case, cache_dir=tmp_path / "b")
+    fresh = lookup(case=case, cache_dir=tmp_path / "a", notify=lines.append)
+    cached = lookup(case=case, cache_dir=tmp_path / "a", notify=lines.append)
+    again = lookup(case=case, cache_dir=tmp_path / "b")
     assert len(lines) == 1 and lines[0].startswith("building an on-demand map tile of 16 points for beam-cc-euler")
     assert fresh == cached
     assert {**again, "cache_file": fresh["cache_file"]} == fresh
@@ -153,30 +153,30 @@ def test_a_cached_tile_answers_the_same_bits_as_a_fresh_one(tmp_path):
 def test_a_corrupted_or_foreign_cache_file_is_rebuilt_not_used(tmp_path):
     case = _case(_CLAMPED_BEAM, "linear")
     lines = []
-    answer = lookup_case(case, cache_dir=tmp_path, notify=lines.append)
+    answer = lookup(case=case, cache_dir=tmp_path, notify=lines.append)
     path = tmp_path / answer["cache_file"].rsplit("/", 1)[-1]
     path.write_bytes(path.read_bytes()[:200])  # truncated
-    assert lookup_case(case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 2
-    other = lookup_case(_case(_CLAMPED_BEAM.replace('"cc"', '"cs"'), "linear"), cache_dir=tmp_path / "other")
+    assert lookup(case=case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 2
+    other = lookup(case=_case(_CLAMPED_BEAM.replace('"cc"', '"cs"'), "linear"), cache_dir=tmp_path / "other")
     path.write_bytes((tmp_path / "other" / other["cache_file"].rsplit("/", 1)[-1]).read_bytes())  # foreign tile
-    assert lookup_case(case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 3
+    assert lookup(case=case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 3
     import xarray as xr
 
     with xr.open_dataset(path, engine="scipy") as opened:  # right fingerprint, altered data
         tampered = opened.load()
     tampered["fmax_normalised"] = tampered["fmax_normalised"] * 1.01
     tiles.save_atomic(tampered, path)
-    assert lookup_case(case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 4
+    assert lookup(case=case, cache_dir=tmp_path, notify=lines.append) == answer and len(lines) == 4
 
 
 def test_the_cache_is_bounded_and_found_where_the_environment_says(tmp_path, monkeypatch):
     monkeypatch.setattr(tiles, "MAX_CACHED_TILES", 2)
     for supports in ("cc", "cs", "cf"):
-        lookup_case(_case(_CLAMPED_BEAM.replace('"cc"', f'"{supports}"'), "linear"), cache_dir=tmp_path)
+        lookup(case=_case(_CLAMPED_BEAM.replace('"cc"', f'"{supports}"'), "linear"), cache_dir=tmp_path)
     assert len(list(tmp_path.glob("tile-*.nc"))) == 2
     monkeypatch.setenv("IMPACTMAPS_CACHE_DIR", str(tmp_path / "env"))
     assert tiles.cache_directory() == tmp_path / "env"
-    assert lookup_case(_case(_CLAMPED_BEAM, "linear"))["cache_file"].startswith(str(tmp_path / "env"))
+    assert lookup(case=_case(_CLAMPED_BEAM, "linear"))["cache_file"].startswith(str(tmp_path / "env"))
     monkeypatch.delenv("IMPACTMAPS_CACHE_DIR")
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
     assert tiles.cache_directory() == tmp_path / "xdg" / "impactmaps"
@@ -216,7 +216,7 @@ def test_what_no_map_structure_describes_is_still_refused(target, law, expected)
     refused, naming why and pointing to simulate."""
     case = _case(target, law)
     with pytest.raises(ValueError, match="no shipped map covers this case") as info:
-        lookup_case(case, cache_dir="/nonexistent/never-written")
+        lookup(case=case, cache_dir="/nonexistent/never-written")
     assert expected in str(info.value) and "impactmaps simulate" in str(info.value)
 
 
@@ -234,4 +234,4 @@ def test_a_case_no_map_point_can_be_realised_at_is_refused_before_a_tile_is_buil
                  'supports = "cc"\n', "hertz")
     with pytest.raises(NoMapError, match=r"no on-demand map reaches its ζ = .*e\+29\d: the hertz map points are "
                                          r"realised for ζ in \[1e-09, 1e\+06\]"):
-        lookup_case(case, cache_dir=tmp_path)
+        lookup(case=case, cache_dir=tmp_path)

@@ -290,10 +290,10 @@ def test_beam_material_given_by_name_names_the_parameter():
 
 def test_lookup_with_a_plastic_law_names_the_parameter():
     """lookup(..., law="yc") → a NumPy TypeError about boolean indexing: the yc maps have a
-    β axis, so lookup (ζ, λ only) must refuse the law and point to lookup_plastic."""
-    from impactmaps.maps.read.lookup import lookup
+    β axis, so a lookup of two numbers must refuse, naming the law and the three numbers."""
+    from impactmaps import lookup
 
-    with pytest.raises(ValueError, match="law"):
+    with pytest.raises(ValueError, match=r"law = 'yc': a point of its maps is 3 numbers \(beta, zeta, lambda\)"):
         lookup(0.1, 1.0, kind="beam", theory="euler", law="yc")
 
 

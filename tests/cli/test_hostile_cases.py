@@ -215,7 +215,7 @@ def test_check_and_lookup_say_the_contact_yields_as_simulate_does(tmp_path, monk
     from impactmaps.validity import case_warnings
 
     case_file = EXAMPLES / "steel_plate_hertz.toml"
-    monkeypatch.setattr("impactmaps.cases.case_lookup.lookup_case",
+    monkeypatch.setattr("impactmaps.cases.case_lookup._case_answer",
                         lambda case, **_kw: {"peak_force_N": 731.0, "peak_force_error_N": 1.0})
     monkeypatch.setattr("impactmaps.cli.commands_tools._estimated_cost", lambda case, values: {})  # the modes: slow
     answers = {}
@@ -265,7 +265,7 @@ def test_a_lookup_band_wider_than_a_tenth_of_its_value_says_simulate_it(tmp_path
     """``peak_force_N 2421 ± 2415`` (status interpolated) was printed with no word: a warning on
     stderr and ``band_warning`` in --json say the band is wide and to simulate the case; a band of
     8 % is not announced."""
-    monkeypatch.setattr("impactmaps.cases.case_lookup.lookup_case", lambda case, **_kw: {
+    monkeypatch.setattr("impactmaps.cases.case_lookup._case_answer", lambda case, **_kw: {
         "peak_force_N": 2421.0, "peak_force_error_N": error, "status": "interpolated"})
     case_file = EXAMPLES / "steel_plate_hertz.toml"
     assert main(["lookup", "--case", str(case_file), "--json"]) == 0
@@ -280,16 +280,16 @@ def test_a_lookup_band_wider_than_a_tenth_of_its_value_says_simulate_it(tmp_path
 
 
 def test_a_normalised_lookup_with_a_wide_band_says_simulate_it(monkeypatch, capsys):
-    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.cases import case_lookup as lookup_module
 
-    real = lookup_module.lookup
+    real = lookup_module.point_answer
 
     def wide(*args, **kwargs):
         found = real(*args, **kwargs)
         return found._replace(fmax_error=0.5 * found.fmax_normalised) if hasattr(found, "_replace") else \
             __import__("dataclasses").replace(found, fmax_error=0.5 * found.fmax_normalised)
 
-    monkeypatch.setattr(lookup_module, "lookup", wide)
+    monkeypatch.setattr(lookup_module, "point_answer", wide)
     assert main(["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "0.5", "--lambda", "0.1",
                  "--json"]) == 0
     captured = capsys.readouterr()

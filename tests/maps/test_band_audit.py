@@ -55,7 +55,7 @@ def test_stated_error_is_idempotent_and_floors_only_settled_points():
 
 def test_a_shipped_map_is_read_with_the_floor():
     """The shipped maps store the bare change (built before the floors): the reader floors it."""
-    from impactmaps.maps.read.lookup import lookup
+    from impactmaps import lookup
 
     found = lookup(10.0, 0.01, kind="beam", theory="euler")
     assert found.status in ("converged", "refined", "interpolated")

@@ -24,7 +24,7 @@ from impactmaps.contact import HertzContact
 from impactmaps.closed_forms.hertz_similarity import realise_hertz, unit_speed_stiffness
 from impactmaps.maps.family.accuracy import STATUSES
 from impactmaps.maps.compute.hertz_points import hertz_asymptote_peak, solve_hertz_points
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map, require_map_law
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map, require_map_law
 from impactmaps.maps.family.regimes import classify
 from impactmaps.maps.files.store import StoreMismatchError
 from impactmaps.maps.family.structures import MapStructure, structure_from_name

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from impactmaps.cli import main
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, design_formula, load_shipped_map, lookup
+from impactmaps.maps.read.lookup import design_formula
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
+from impactmaps import lookup
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.solvers.modal_settings import ModalSettings
@@ -143,7 +145,7 @@ def test_lookup_band_covers_the_direct_simulation(structure, theory):
     lookup.fmax_error (+ the direct run's own error) of a direct simulation. With the plain
     h²|f''|/8 interpolation estimate the band missed 16 % of 80 random points on the beam
     map, hence its safety factor of 4 (lookup.interpolation_error)."""
-    from impactmaps.maps.read.lookup import SHIPPED_MAPS
+    from impactmaps.maps.files.shipped import SHIPPED_MAPS
 
     rng = np.random.default_rng(3)
     zetas = np.exp(rng.uniform(np.log(0.005), np.log(100.0), 25))
@@ -223,7 +225,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     build, seeds, count, least = _RANDOM_CASES[law]
     rng = np.random.default_rng(seeds[0] if kind == "beam" else seeds[1])
@@ -231,7 +233,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
     for _ in range(count):
         case = build(rng, kind)
         try:
-            found = lookup_case(case)
+            found = lookup(case=case)
         except ValueError as error:
             assert "outside the shipped map" in str(error)
             continue
@@ -268,11 +270,11 @@ def test_lookup_case_refuses_what_no_map_describes(old, new, expected):
     with ``build=False``; by default the structures are answered from an on-demand map tile
     (tests/cases/test_on_demand.py), the law still refused."""
     from impactmaps.cases import parse_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     assert old in _REFUSED_CASE
     with pytest.raises(ValueError, match="no shipped map covers this case") as info:
-        lookup_case(parse_case(_REFUSED_CASE.replace(old, new, 1)), build=False)
+        lookup(case=parse_case(_REFUSED_CASE.replace(old, new, 1)), build=False)
     assert expected in str(info.value) and "impactmaps simulate" in str(info.value)
 
 
@@ -289,16 +291,16 @@ def test_lookup_case_builds_what_no_shipped_map_describes(old, new, tmp_path):
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     text = _REFUSED_CASE.replace(old, new, 1)
     if "timoshenko" in new:
         with pytest.raises(ValueError, match="slenderness 6.25.*holds no value next to it.*range of the timoshenko "
                            "theory.*sweep's cap of 80000 modes.*impactmaps simulate"):
-            lookup_case(parse_case(text), cache_dir=tmp_path)
+            lookup(case=parse_case(text), cache_dir=tmp_path)
         text = text.replace("radius = 0.005", "radius = 0.02")
     case = parse_case(text)
-    found = lookup_case(case, cache_dir=tmp_path)
+    found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile") and found["cache_file"].startswith(str(tmp_path))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -337,14 +339,14 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
     answered = 0
     for _ in range(count):
         case = _plastic_case(rng, kind, law)
         try:
-            found = lookup_case(case, build=False)  # the shipped maps (beyond them: plastic tiles, test_plastic_tiles)
+            found = lookup(case=case, build=False)  # the shipped maps (beyond them: plastic tiles, test_plastic_tiles)
         except ValueError as error:
             assert "no shipped map covers this case" in str(error)
             assert "outside the shipped map" in str(error) or "holds no value" in str(error)
@@ -372,14 +374,14 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
     import warnings
 
     from impactmaps.cases import run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 61, "plate": 62}[kind])
     answered = 0
     for _ in range(count):
         case = _plastic_case(rng, kind, "epp")
         try:
-            found = lookup_case(case, build=False)  # the shipped maps (beyond them: plastic tiles, test_plastic_tiles)
+            found = lookup(case=case, build=False)  # the shipped maps (beyond them: plastic tiles, test_plastic_tiles)
         except ValueError as error:
             assert "no shipped map covers this case" in str(error)
             assert "outside the shipped map" in str(error) or "holds no value" in str(error)
@@ -401,17 +403,17 @@ def test_plastic_lookup_refuses_the_mindlin_plate_and_other_stronge_constants():
     """No plastic map for the Mindlin plate (its pressure patch adds the sphere radius as a
     number) nor for a Stronge law with other constants: refused, naming why."""
     from impactmaps.cases import parse_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     text = ('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nvelocity = 1.0\n'
             '[target]\ntype = "plate"\nlength_x = 0.1\nlength_y = 0.1\nthickness = 0.005\n'
             'material = "structural-steel"\ntheory = "mindlin"\n[contact]\nlaw = "yigit-christoforou"\n')
     with pytest.raises(ValueError, match="no shipped map covers this case.*theory 'mindlin'.*simulate"):
-        lookup_case(parse_case(text))
+        lookup(case=parse_case(text))
     stronge = text.replace('theory = "mindlin"', 'theory = "kirchhoff"').replace(
         'law = "yigit-christoforou"', 'law = "stronge"\nplastic_pressure_factor = 3.0')
     with pytest.raises(ValueError, match="no shipped map covers this case.*plastic_pressure_factor.*simulate"):
-        lookup_case(parse_case(stronge))
+        lookup(case=parse_case(stronge))
 
 
 def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
@@ -420,14 +422,14 @@ def test_lookup_case_refuses_a_finite_difference_case(tmp_path):
     from pathlib import Path
 
     from impactmaps.cases import load_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     text = (Path(__file__).resolve().parents[2] / "examples" / "steel_beam_fd_stronge.toml").read_text()
     assert "[solver]\n" in text
     path = tmp_path / "fd.toml"
     path.write_text(text.replace("[solver]\n", '[solver]\nkind = "fd"\n', 1))
     with pytest.raises(ValueError, match="no shipped map covers this case: solver.kind = 'fd'.*impactmaps simulate"):
-        lookup_case(load_case(path))
+        lookup(case=load_case(path))
 
 
 def test_lookup_case_refuses_a_point_loaded_mindlin_plate(tmp_path):
@@ -438,14 +440,14 @@ def test_lookup_case_refuses_a_point_loaded_mindlin_plate(tmp_path):
     too, and builds no tile (a Hertz impact, spread over the patch, is answered:
     test_hertz_maps.py::test_lookup_case_on_the_steel_plate_hertz_example)."""
     from impactmaps.cases import parse_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     plate = ('[target]\ntype = "plate"\nlength_x = 0.3\nlength_y = 0.3\nthickness = 0.015\n'
              'material = "structural-steel"\ntheory = "mindlin"\n')
     linear = parse_case('[impactor]\nradius = 0.005\nmaterial = "structural-steel"\nmass = 0.05\nvelocity = 1.0\n'
                         f'{plate}[contact]\nlaw = "linear"\nstiffness = 3e7\n')
     with pytest.raises(ValueError, match="Mindlin plate loaded at a point.*no converged value"):
-        lookup_case(linear, cache_dir=tmp_path)
+        lookup(case=linear, cache_dir=tmp_path)
     assert not any(tmp_path.iterdir())
 
 
@@ -472,7 +474,7 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
 
     from impactmaps.cases import parse_case, run_case
     from impactmaps.closed_forms.hertz_similarity import realise_hertz
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     beam = ('[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\nmaterial = "structural-steel"\n'
             'theory = "euler"\n')
@@ -481,8 +483,8 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
     case = parse_case(text.replace("mass = 1.0", f"mass = {impact.mass!r}").replace("velocity = 1.0",
                                                                                       f"velocity = {impact.velocity!r}"))
     with pytest.raises(ValueError, match="outside the shipped map"):
-        lookup_case(case, build=False)
-    found = lookup_case(case, cache_dir=tmp_path)
+        lookup(case=case, build=False)
+    found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile beam-ss-euler-hertz")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -498,14 +500,14 @@ def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tm
     import warnings
 
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     case = parse_case('[impactor]\nradius = 0.00635\nmaterial = "structural-steel"\nvelocity = 1.0\n'
                       '[target]\ntype = "beam"\nlength = 0.5\nwidth = 0.02\nheight = 0.02\n'
                       'material = "structural-steel"\ntheory = "timoshenko"\n[contact]\nlaw = "hertz"\n')
     with pytest.raises(ValueError, match="could not resolve|holds no value"):
-        lookup_case(case, build=False)
-    found = lookup_case(case, cache_dir=tmp_path)
+        lookup(case=case, build=False)
+    found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile beam-ss-timoshenko-s25-hertz")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -520,7 +522,7 @@ def test_a_lookup_between_converged_points_says_when_interpolation_widens_its_ba
     and is wider than the points' tolerance. On a grid point the band is the point's own
     error and the status the point's."""
     from impactmaps.maps.family.accuracy import stated_error
-    from impactmaps.maps.read.bands import BAND_TOLERANCE, answer_status
+    from impactmaps.maps.family.accuracy import BAND_TOLERANCE, answer_status
 
     kink = lookup(0.33, 0.013, kind="beam", theory="euler")
     direct = solve_points(structure_from_name("beam-ss-euler"), [(0.33, 0.013)], ModalSettings())[0]

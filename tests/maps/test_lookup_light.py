@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from impactmaps.maps.family import builtin_families, map_family as family_module
-from impactmaps.maps.files.data_io import read_arrays, read_dataset, shipped_path
-from impactmaps.maps.read.lookup import refinement_of
+from impactmaps.maps.files.data_io import read_arrays, read_dataset
+from impactmaps.maps.files.shipped import shipped_path
+from impactmaps.maps.files.shipped import refinement_of
 from impactmaps.maps.read.reader import prepare_map
 
 

@@ -14,7 +14,9 @@ import warnings
 import numpy as np
 import pytest
 
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, lookup, shipped_reader
+from impactmaps.maps.read.lookup import shipped_reader
+from impactmaps.maps.files.shipped import SHIPPED_MAPS
+from impactmaps import lookup
 
 
 def _bits(values) -> np.ndarray:
@@ -67,7 +69,8 @@ _PLASTIC_FIELDS = ("fmax_normalised", "fmax_error", "restitution", "restitution_
 @pytest.mark.parametrize("law", ["yc", "stronge", "epp"])
 def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_lookup(law):
     """The (β, ζ, λ) maps: one point (``reader._read_cube_one``) against the vectorised read."""
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
+    from impactmaps import lookup
 
     rng = np.random.default_rng(29)
     for structure, theory in sorted(PLASTIC_MAPS):
@@ -82,7 +85,7 @@ def test_one_plastic_point_at_a_time_reads_the_same_bits_as_the_vectorised_looku
         compared = 0
         for b, z, lam_value in zip(beta, zeta, lam):
             def read(*point):
-                return lookup_plastic(*point, kind=structure, theory=theory, law=law)
+                return lookup(*point, kind=structure, theory=theory, law=law)
             try:
                 one = read(float(b), float(z), float(lam_value))
             except ValueError:  # refused alone: refused in the vectorised read too

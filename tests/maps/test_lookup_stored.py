@@ -3,7 +3,7 @@
 Every shipped (ζ, λ) map stores the asymptote peaks its regimes are judged by
 (``data_build/add_asymptote_peaks.py``); a lookup interpolates F̄max, its band, its status
 and those peaks, and classifies. Checked here: with every asymptote function patched to
-raise, every shipped map still answers ``lookup`` and ``lookup_case``; the answers are
+raise, every shipped map still answers ``lookup`` of numbers and of a case; the answers are
 those of the code that computed the asymptotes per point (values recorded from the base
 commit b4b262f, ``tests/data/lookup_reference.npz``: F̄max, band and status bit for bit,
 regimes equal except where the stored peaks' interpolation error can reach across a
@@ -21,7 +21,7 @@ import pytest
 import xarray as xr
 
 from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
-from impactmaps.maps.read.bands import BAND_TOLERANCE
+from impactmaps.maps.family.accuracy import BAND_TOLERANCE
 
 from ..helpers import DATA, ROOT, VALIDATION, repository_module
 
@@ -95,12 +95,10 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     """Must show (issue 30): with the law asymptotes' entry points, the regimes module's peak
     functions and the families' and targets' peaks all raising, every shipped map (the slow
     run; the default run: four of them) is read from its file and answers ``lookup`` (or
-    ``lookup_plastic``) vectorised and one point at a time at in-range points, and
-    ``lookup_case`` answers a case of every shipped family — the same answers as unpatched."""
+    ``lookup(β, ζ, λ, law=…)``) vectorised and one point at a time at in-range points, and
+    ``lookup(case=…)`` answers a case of every shipped family — the same answers as unpatched."""
     from impactmaps.maps.read import lookup as lookup_module
-    from impactmaps.cases.case_lookup import lookup_case
-    from impactmaps.maps.read.lookup import lookup
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps import lookup
 
     equivalence = _equivalence(monkeypatch)
     warnings.simplefilter("ignore")  # the Mindlin maps' point-load warning
@@ -118,7 +116,7 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
             calls.append((call, (numbers["zeta"], numbers["lambda_"])))
         else:
             def call(beta, zeta, lam, key=key):
-                found = lookup_plastic(beta, zeta, lam, kind=key[0], theory=key[1], law=key[2])
+                found = lookup(beta, zeta, lam, kind=key[0], theory=key[1], law=key[2])
                 return found.fmax_normalised, found.fmax_error, found.status, found.restitution
             calls.append((call, (numbers["beta"], numbers["zeta"], numbers["lambda_"])))
     cases = _family_cases()
@@ -129,21 +127,21 @@ def test_every_shipped_map_answers_with_the_asymptotes_patched_to_raise(monkeypa
     with monkeypatch.context() as patches:
         _patch_asymptotes(patches)
         answered = [(call(*arguments), call(*(values[0] for values in arguments))) for call, arguments in calls]
-        case_answers = [lookup_case(case, build=False) for case in cases]
+        case_answers = [lookup(case=case, build=False) for case in cases]
     for (call, arguments), (many, single) in zip(calls, answered):
         assert np.all(np.isfinite(many[0])) and np.all(np.isin(many[2], ["converged", "refined", "interpolated",
                                                                           "sensitive", "asymptotic"]))
         for got, want, one in zip(many, call(*arguments), single):
             np.testing.assert_array_equal(got, want)
             assert one == np.asarray(want)[0]
-    assert [lookup_case(case, build=False) for case in cases] == case_answers
+    assert [lookup(case=case, build=False) for case in cases] == case_answers
 
 
 def _family_cases() -> list:
-    """One physical case of each shipped family ``lookup_case`` reads: linear and Hertz on the SS
+    """One physical case of each shipped family ``lookup(case=…)`` reads: linear and Hertz on the SS
     Euler beam, the SSSS Kirchhoff plate and SS Timoshenko beams at slenderness 20 and 30;
     Yigit–Christoforou, Stronge and epp on the Euler beam, the Kirchhoff plate and the s = 20
-    Timoshenko beam. (Mindlin plates: lookup_case refuses point loads, and a Hertz contact
+    Timoshenko beam. (Mindlin plates: lookup refuses point loads, and a Hertz contact
     loads a patch.)"""
     from impactmaps.cases import parse_case
     from impactmaps.dimensionless import realise
@@ -190,7 +188,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
     and status bit for bit; a regime differs only at a point where the stored peaks'
     interpolation error (twice its largest at the grid cells' midpoints) reaches across a
     criterion, and at no more than :data:`REGIME_CHANGE_BOUND` of the points."""
-    from impactmaps.maps.read import lookup as lookup_module
+    from impactmaps.maps.files.shipped import shipped_name
     from impactmaps.maps.read.lookup import shipped_reader
     from impactmaps.maps.read.reader import read_values
     from impactmaps.maps.family.map_family import map_family
@@ -202,7 +200,7 @@ def test_lookups_answer_what_the_asymptote_computing_lookups_answered(monkeypatc
                if path.suffix in (".nc", ".npz")}
     for key in equivalence.shipped_keys():
         name = equivalence._name(key)
-        if not every and name not in _QUICK_MAPS and lookup_module._shipped_name(*key) in refined:
+        if not every and name not in _QUICK_MAPS and shipped_name(*key) in refined:
             continue
         numbers = {axis: recorded[f"{name}/{axis}"] for axis in ("beta", "zeta", "lambda_")
                    if f"{name}/{axis}" in recorded}
@@ -247,8 +245,8 @@ def test_the_prepared_reader_interpolates_as_the_refinement_reader(name):
     bands and corner statuses of :func:`impactmaps.maps.family.refinement.interpolate`, at random
     positions, on grid lines and nodes and on the last row and column."""
     from impactmaps.maps.read.interpolator import PlaneInterpolator, grid_bilinear
-    from impactmaps.maps.read.lookup import load_shipped_map, load_shipped_refinement
-    from impactmaps.maps.read.bands import interpolation_error
+    from impactmaps.maps.files.shipped import load_shipped_map, load_shipped_refinement
+    from impactmaps.maps.read.interpolator import interpolation_error
     from impactmaps.maps.family.refinement import Refinement, interpolate
 
     law = "hertz" if name.endswith("hertz") else "linear"
@@ -326,10 +324,10 @@ def test_the_prepared_map_follows_its_file(tmp_path, monkeypatch):
     warnings.simplefilter("ignore")
     first = lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0]
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is first
-    answer = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    answer = lookup_module.point_answer(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     changed = read_dataset(copy)
     changed["fmax_normalised"] = changed["fmax_normalised"] * 2.0
     save_atomic(changed, copy)
     assert lookup_module.shipped_reader("plate", "mindlin", "linear", 10.0)[0] is not first
-    again = lookup_module.lookup(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
+    again = lookup_module.point_answer(1.0, 0.2, kind="plate", theory="mindlin", slenderness=10.0).fmax_normalised
     assert again == pytest.approx(2.0 * answer, rel=1e-12)

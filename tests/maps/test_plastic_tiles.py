@@ -21,7 +21,7 @@ import xarray as xr
 
 from impactmaps.cases import parse_case, run_case
 from impactmaps.maps.compute import tiles
-from impactmaps.cases.case_lookup import lookup_case
+from impactmaps import lookup
 from impactmaps.maps.family.structures import MapStructure
 from impactmaps.solvers.modal import simulate
 
@@ -64,7 +64,7 @@ def test_plastic_lookup_on_a_clamped_beam_with_epp_is_answered_within_its_band_o
     shutil.copy(_COMMITTED_TILE, tmp_path)
     lines = []
     case = _case()
-    found = lookup_case(case, cache_dir=tmp_path, notify=lines.append)
+    found = lookup(case=case, cache_dir=tmp_path, notify=lines.append)
     assert lines == [], "the committed tile answers: nothing is built"
     assert found["map"].startswith("on-demand tile beam-cc-euler-epp β ") and found["law"] == "epp"
     assert found["cache_file"] == str(tmp_path / _COMMITTED_TILE.name)
@@ -114,7 +114,7 @@ def test_a_plastic_impact_on_a_mindlin_plate_stays_refused(tmp_path):
             '[target]\ntype = "plate"\nlength_x = 0.2\nlength_y = 0.2\nthickness = 0.01\n'
             'material = "structural-steel"\ntheory = "mindlin"\n[contact]\nlaw = "{law}"\n')
     with pytest.raises(ValueError, match="no shipped map covers this case.*theory 'mindlin'.*fourth number"):
-        lookup_case(_case(text=text), cache_dir=tmp_path)
+        lookup(case=_case(text=text), cache_dir=tmp_path)
     assert not list(tmp_path.glob("tile-*.nc"))
 
 
@@ -123,7 +123,7 @@ def test_the_committed_tile_is_what_a_fresh_build_gives(tmp_path):
     """The default test's tile, rebuilt: the same fingerprint and the same bits (built in four
     (λ, ζ) planes, each reported to ``progress``)."""
     calls = []
-    found = lookup_case(_case(), cache_dir=tmp_path, progress=lambda done, total: calls.append((done, total)))
+    found = lookup(case=_case(), cache_dir=tmp_path, progress=lambda done, total: calls.append((done, total)))
     assert calls == [(16, 64), (32, 64), (48, 64), (64, 64)]
     fresh = Path(found["cache_file"])
     assert fresh.name == _COMMITTED_TILE.name
@@ -149,7 +149,7 @@ def test_plastic_lookups_on_structures_without_a_shipped_map_match_simulate(law,
     clamped–simply supported beam struck off-centre and a Timoshenko beam of slenderness 25
     (the shipped plastic map is at 20): each answered from a tile, within its bands of simulate."""
     case = _case(law, velocity, radius, _CLAMPED.replace(*edit) if edit else _CLAMPED)
-    found = lookup_case(case, cache_dir=tmp_path)
+    found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile ")
     _check_within_band(case, found)
 
@@ -164,7 +164,7 @@ def test_a_plastic_case_beyond_the_shipped_map_is_answered_from_a_tile(tmp_path)
         "height = 0.02", "height = 0.03")
     case = _case("epp", 1.0, 0.001, text)
     with pytest.raises(ValueError, match="outside the shipped map"):
-        lookup_case(case, build=False)
-    found = lookup_case(case, cache_dir=tmp_path)
+        lookup(case=case, build=False)
+    found = lookup(case=case, cache_dir=tmp_path)
     assert found["zeta"] < 1e-3 and found["map"].startswith("on-demand tile beam-ss-euler-epp β ")
     _check_within_band(case, found)

@@ -7,7 +7,7 @@ import pytest
 from scipy.interpolate import RegularGridInterpolator
 
 from impactmaps.maps.family.accuracy import STATUSES
-from impactmaps.maps.read.bands import interpolation_error
+from impactmaps.maps.read.interpolator import interpolation_error
 from impactmaps.maps.family.refinement import Refinement, interpolate, locate, refine
 
 from ..helpers import ROOT
@@ -145,7 +145,7 @@ def test_a_refinement_is_read_only_with_the_map_it_was_built_from():
     """The shipped refinement of the Euler beam map matches its map; a refinement whose
     recorded map fingerprint differs (the map was rebuilt since) is not used: a warning,
     and the map is read alone."""
-    from impactmaps.maps.read.lookup import load_shipped_map, load_shipped_refinement, refinement_of
+    from impactmaps.maps.files.shipped import load_shipped_map, load_shipped_refinement, refinement_of
 
     shipped = load_shipped_refinement("beam", "euler")
     assert shipped is not None and shipped.codes.size > 10000
@@ -165,7 +165,8 @@ def test_the_shipped_lookups_against_committed_direct_runs():
     the quasi-static ripple; the grid alone missed by 0.034 against a band of 0.017)."""
     import pandas as pd
 
-    from impactmaps.maps.read.lookup import SHIPPED_MAPS, lookup
+    from impactmaps.maps.files.shipped import SHIPPED_MAPS
+    from impactmaps import lookup
 
     table = pd.read_csv(ROOT / "validation" / "refinement_error.csv")
     for (structure, theory), name in SHIPPED_MAPS.items():
@@ -211,7 +212,8 @@ def test_the_hertz_lookups_against_committed_direct_runs():
     the grid alone: 36, 31, 21, 12)."""
     import pandas as pd
 
-    from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_refinement, lookup, map_file_stem
+    from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_refinement, map_file_stem
+    from impactmaps import lookup
 
     table = pd.read_csv(ROOT / "validation" / "lookup_error_hertz.csv")
     for (structure, theory), name in SHIPPED_MAPS.items():

@@ -1,7 +1,7 @@
 """The shipped result of the default chart's sweep, and the integrator compiled on first use.
 
 The README's first command (``impactmaps chart``) draws the chart from the shipped result
-of its sweep (:mod:`impactmaps.maps.files.shipped_results`); these tests hold that result to
+of its sweep (:mod:`impactmaps.maps.files.shipped`); these tests hold that result to
 what the code computes today, and that nothing else ever takes it for an answer.
 """
 
@@ -17,7 +17,7 @@ import xarray as xr
 
 from impactmaps.maps.compute import sweep as sweep_module
 from impactmaps.plotting.chart import CHART_STRUCTURES, DEFAULT_CHART_LAMBDAS, DEFAULT_ZETA_COUNT, DEFAULT_ZETA_RANGE
-from impactmaps.maps.files.shipped_results import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
+from impactmaps.maps.files.shipped import SHIPPED_RESULTS, load_shipped_result, shipped_result_path
 from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.family.map_family import RESULT_VARIABLES
 from impactmaps.maps.compute.sweep import log_grid, sweep, sweep_fingerprint
@@ -98,7 +98,7 @@ def test_another_sweep_is_not_answered_by_the_shipped_result():
 def test_a_damaged_shipped_result_is_computed_instead(tmp_path, monkeypatch):
     """A shipped file that cannot be read (or does not match its name) is not used: a
     warning, and the sweep computes its points."""
-    import impactmaps.maps.files.shipped_results as shipped
+    import impactmaps.maps.files.shipped as shipped
 
     zetas, lambdas = ZETAS[[10, 20]], DEFAULT_CHART_LAMBDAS[:1]
     digest = sweep_fingerprint(CHART_STRUCTURES[:1], zetas, lambdas)

@@ -8,8 +8,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from impactmaps.maps.read.slenderness import slenderness_members, lookup_slenderness, slenderness_error_grid
-from impactmaps.maps.read.lookup import lookup
+from impactmaps.maps.read.slenderness import slenderness_members, slenderness_error_grid
+from impactmaps import lookup
 from impactmaps.maps.family.builtin_families import MEMBER_SLENDERNESSES
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
@@ -30,7 +30,7 @@ def test_members_run_from_the_thin_limit_to_the_thickest():
 def test_a_member_slenderness_reads_that_member_exactly(structure, theory, law):
     """At s = 10, 20, 50 the interpolation weight is 0 or 1: the member's value and band."""
     for slenderness in MEMBER_SLENDERNESSES:
-        found = lookup_slenderness(1.0, 1.0, kind=structure, theory=theory, slenderness=slenderness, law=law)
+        found = lookup(1.0, 1.0, kind=structure, theory=theory, slenderness=slenderness, law=law)
         member = lookup(1.0, 1.0, kind=structure, theory=theory, law=law, slenderness=slenderness)
         assert found.fmax_normalised == member.fmax_normalised
         assert found.fmax_error == pytest.approx(member.fmax_error, rel=1e-12)
@@ -57,7 +57,7 @@ def test_lookup_at_other_slendernesses_holds_a_direct_solve_within_its_band(stru
                              np.exp(rng.uniform(np.log(0.05), np.log(20.0), 3))):
             (direct,) = solve_points(replace(base, slenderness=slenderness), [(zeta, lam)], ModalSettings())
             try:
-                found = lookup_slenderness(zeta, lam, kind=structure, theory=theory, slenderness=slenderness)
+                found = lookup(zeta, lam, kind=structure, theory=theory, slenderness=slenderness)
             except ValueError as error:
                 assert "holds no value" in str(error) or "unresolved" in str(error)
                 continue
@@ -68,7 +68,7 @@ def test_lookup_at_other_slendernesses_holds_a_direct_solve_within_its_band(stru
 
 def test_thicker_than_the_thickest_member_is_refused():
     with pytest.raises(ValueError, match="slenderness"):
-        lookup_slenderness(1.0, 1.0, kind="beam", theory="timoshenko", slenderness=8.0)
+        lookup(1.0, 1.0, kind="beam", theory="timoshenko", slenderness=8.0)
 
 
 def test_lookup_case_at_slenderness_30_matches_simulate():
@@ -76,7 +76,7 @@ def test_lookup_case_at_slenderness_30_matches_simulate():
     from the family (it used to refuse every slenderness but 20), within its band of
     `simulate`."""
     from impactmaps.cases import parse_case, run_case
-    from impactmaps.cases.case_lookup import lookup_case
+    from impactmaps import lookup
 
     text = """
 name = "steel ball on a 0.6 m, 20 x 20 mm Timoshenko beam, linear contact"
@@ -97,7 +97,7 @@ law = "linear"
 stiffness = 2e7
 """
     case = parse_case(text)
-    answer = lookup_case(case)
+    answer = lookup(case=case)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the model-validity notice (steel yields under so stiff a contact)
         result, _ = run_case(case)

@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 from impactmaps.maps.read.reader import prepare_map, read_values
-from impactmaps.maps.read.bands import slice_estimates
+from impactmaps.maps.read.interpolator import slice_estimates
 from impactmaps.maps.family.refinement import Refinement
 from impactmaps.maps.family.map_family import map_family
 from impactmaps.maps.family.slice_refinement import SlicedRefinement, read_slices, refine_slices
@@ -162,7 +162,7 @@ def test_unrefined_slices_and_cells_answer_as_before(built):
 def test_a_sliced_refinement_is_read_only_with_its_map(built):
     """refinement_of takes a stored sliced refinement of this map, and refuses (warning, None) one
     built for another version of it or another β grid."""
-    from impactmaps.maps.read.lookup import refinement_of
+    from impactmaps.maps.files.shipped import refinement_of
 
     dataset, refinement = built
     stored = refinement.dataset({"base_fingerprint": "small"})

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from impactmaps.plotting.chart import DEFAULT_CHART_LAMBDAS
-from impactmaps.maps.read.lookup import SHIPPED_MAPS, load_shipped_map
+from impactmaps.maps.files.shipped import SHIPPED_MAPS, load_shipped_map
 from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.solvers.modal_settings import ModalSettings

@@ -12,6 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...closed_forms.asymptotes import quasi_static_peak
 from ...contact.linear import LinearContact
 from ...dimensionless import realise
 from ...solvers.modal_settings import ModalSettings
@@ -75,8 +76,7 @@ class LinearFamily(LinearLayout):
         return target_class(kind).infinite_structure_peak(loss_factor)
 
     def quasi_static_peak(self, relative_stiffness):
-        lam = np.asarray(relative_stiffness, dtype=float)
-        return np.sqrt(lam / (1.0 + lam))
+        return quasi_static_peak(relative_stiffness)
 
 
 def infinite_structure_row(target, zeta: float) -> dict:

@@ -34,7 +34,7 @@ from .points import (
 )
 from ..family.map_family import map_family
 from ..files.data_io import read_dataset
-from ..files.shipped_results import load_shipped_result
+from ..files.shipped import load_shipped_result
 from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from ..family.structures import MapStructure, warn_point_loaded_mindlin
 from .workers import MAX_WORKERS, init_worker
@@ -138,7 +138,7 @@ def sweep(
     dataset, shipped = _resume(path, overwrite, grid)
     if shipped and progress:
         print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "
-              f"(impactmaps.maps.files.shipped_results, {grid.digest[:12]}…)", file=sys.stderr)
+              f"(impactmaps.maps.files.shipped, {grid.digest[:12]}…)", file=sys.stderr)
     done = dataset["done"].values.astype(bool)
     if progress and not shipped and path is not None and done.any():
         print(f"impact map: resuming {path}: {int(done.sum())} of {done.size} points already saved", file=sys.stderr)

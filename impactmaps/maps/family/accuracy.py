@@ -43,8 +43,8 @@ import numpy as np
 from ..._checks import require_in_range, require_positive
 
 __all__ = ["STATUSES", "PointStatus", "AccuracyControl", "ERROR_FLOOR", "REIMPACT_ERROR_FLOOR", "stated_error", "stated_row",
-           "controlled_point",
-           "exact_point", "perturbed_runs", "settled"]
+           "controlled_point", "exact_point", "perturbed_runs", "settled", "SEVERITY", "BAND_TOLERANCE", "answer_status",
+           "corner_status", "status_notes"]
 
 
 class PointStatus(StrEnum):
@@ -219,3 +219,59 @@ def controlled_point(run: Callable, settings, control: AccuracyControl) -> dict:
     values = [r.fmax_normalised for r in results + perturbed] + [finest - widening, finest + widening]
     low, high = min(values), max(values)
     return _row(results[-1], "sensitive", 0.5 * (high - low), low, high)
+
+
+# -- the status of an answer read between map points (a lookup's) ------------------------------
+
+#: Severity of a status when map points (or slenderness members) are combined (worst wins);
+#: ``interpolated`` is a lookup's own status (:func:`answer_status`), never a point's.
+SEVERITY = {"asymptotic": 0, "converged": 0, "refined": 1, "interpolated": 2, "sensitive": 3, "unresolved": 4}
+#: The status of each severity.
+BY_SEVERITY = np.array(["converged", "refined", "interpolated", "sensitive", "unresolved"])
+#: Severity of each status code (:data:`STATUSES`).
+CODE_SEVERITY = np.array([SEVERITY[name] for name in STATUSES])
+#: The map points' refinement tolerance (``AccuracyControl().tolerance``): a lookup whose
+#: band is wider is ``interpolated``, even where every point around it converged.
+BAND_TOLERANCE = AccuracyControl().tolerance
+
+
+def answer_status(point_status, band):
+    """The status of an interpolated answer from its map points' worst status and its band.
+
+    ``interpolated`` where the points converged (``converged``, ``refined``) but the band
+    — their own error plus the interpolation (or slenderness) error between them — is wider
+    than :data:`BAND_TOLERANCE`: the points are right, the value between them is known only
+    to ± the band (near a re-impact kink of F̄max the interpolation errs by up to a few
+    1e-2). Otherwise the points' status. Scalars give a ``str``, arrays an array.
+    """
+    status = np.asarray(point_status)
+    widened = ((status == "converged") | (status == "refined")) & (np.asarray(band) > BAND_TOLERANCE)
+    out = np.where(widened, "interpolated", status)
+    return out.item() if out.ndim == 0 else out
+
+
+def corner_status(corner_codes, band):
+    """The status of an answer read between map points: the worst of the points' statuses
+    (``corner_codes``: one array of status codes of :data:`STATUSES`
+    per corner around the answers), ``interpolated`` where the ``band`` makes it so
+    (:func:`answer_status`)."""
+    worst = np.max(CODE_SEVERITY[np.asarray(corner_codes)], axis=0)
+    return answer_status(BY_SEVERITY[worst], band)
+
+
+#: What a lookup's status means for its number, where that needs saying.
+_STATUS_NOTES = {
+    "interpolated": "the map points around this one converged, but between them F̄max is known only to "
+                    "± fmax_error (interpolation across the map's kinks or curvature); a simulation computes "
+                    "it to 1e-3 (`impactmaps point` for the linear law, `impactmaps simulate` on a case file for "
+                    "any law)",
+    "sensitive": "no converged value: re-impacts whose order flips with any change of the model; read the band "
+                 "(± fmax_error), not the number",
+}
+
+
+def status_notes(status) -> dict:
+    """``{"status_note": text}`` for a status whose number needs a word (``interpolated``,
+    ``sensitive``), else ``{}``; what the command line prints beside a lookup's status."""
+    note = _STATUS_NOTES.get(str(status)) if np.ndim(status) == 0 else None
+    return {"status_note": note} if note else {}

@@ -56,7 +56,7 @@ ASYMPTOTE_PEAKS = tuple(ASYMPTOTE_PEAK_VARIABLES)
 def map_law(dataset) -> str:
     """The map law (its family's name) a map dataset was swept with; ``"linear"`` without the
     attribute. ``dataset``: an ``xarray.Dataset`` or a
-    :class:`~impactmaps.maps.files.map_arrays.MapArrays`.
+    :class:`~impactmaps.maps.files.data_io.MapArrays`.
     """
     return str(dataset.attrs.get("contact_law", "linear"))
 

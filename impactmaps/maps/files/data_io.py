@@ -4,7 +4,7 @@
 (NetCDF3 through SciPy, what a sweep, chart or tile writes) or ``.npz``, a packed map
 (:func:`pack`: byte planes, derived variables recomputed, optional float32/bfloat16
 variables; same dataset, same bytes; docs/install.rst, "Package data").
-:func:`shipped_path` finds a shipped file under either suffix.
+Shipped files are found by :mod:`impactmaps.maps.files.shipped`.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import json
 import zipfile
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
@@ -19,13 +20,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .map_arrays import MapArrays, MapVariable
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "unpack_arrays",
-           "shipped_path", "read_shipped", "read_resource", "read_arrays", "read_resource_arrays"]
+__all__ = ["MapVariable", "MapArrays", "PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "unpack_arrays",
+           "read_resource", "read_arrays", "read_resource_arrays"]
 
 #: Suffix of a packed dataset (a NumPy ``.npz`` archive with a JSON header).
 PACKED_SUFFIX = ".npz"
@@ -72,7 +72,7 @@ def read_dataset(path) -> xr.Dataset:
 
 
 def read_arrays(path):
-    """The map in ``path``: a packed ``.npz`` as :class:`~impactmaps.maps.files.map_arrays.MapArrays`
+    """The map in ``path``: a packed ``.npz`` as :class:`~impactmaps.maps.files.data_io.MapArrays`
     (NumPy alone), a NetCDF file as an ``xarray.Dataset``; the same values either way.
     """
     path = Path(path)
@@ -93,24 +93,6 @@ def _read_netcdf(path: Path) -> xr.Dataset:
         return opened.load()
 
 
-def shipped_path(*parts: str):
-    """The shipped data file ``data/<parts>`` (``parts`` ending in the stem) as an importlib
-    resource, or None; a ``.nc`` is read before the ``.npz`` beside it.
-    """
-    folder = resources.files("impactmaps.maps").joinpath("data", *parts[:-1])
-    for suffix in (".nc", PACKED_SUFFIX):
-        source = folder.joinpath(parts[-1] + suffix)
-        if source.is_file():
-            return source
-    return None
-
-
-def read_shipped(*parts: str) -> xr.Dataset | None:
-    """The shipped dataset ``data/<parts>`` (:func:`shipped_path`), or None if there is none."""
-    source = shipped_path(*parts)
-    return None if source is None else read_resource(source)
-
-
 def read_resource(source) -> xr.Dataset:
     """:func:`read_dataset` of a path or a package resource (an importlib ``Traversable``)."""
     with resources.as_file(source) as path:
@@ -121,6 +103,73 @@ def read_resource_arrays(source):
     """:func:`read_arrays` of a path or a package resource (an importlib ``Traversable``)."""
     with resources.as_file(source) as path:
         return read_arrays(path)
+
+
+# -- a map's arrays without xarray --------------------------------------------------------
+# A shipped map is read with NumPy alone: MapArrays holds its decoded variables and attributes,
+# offering only what the readers ask of a dataset, with the values xarray would give.
+
+
+@dataclass(frozen=True)
+class MapVariable:
+    """One variable: its dimension names, its values (an ndarray) and its attributes."""
+
+    dims: tuple
+    values: np.ndarray
+    attrs: dict = field(default_factory=dict)
+
+    @property
+    def shape(self) -> tuple:
+        """The values' shape."""
+        return self.values.shape
+
+    @property
+    def dtype(self) -> np.dtype:
+        """The values' dtype."""
+        return self.values.dtype
+
+    def isel(self, **indexers) -> MapVariable:
+        """The variable at integer positions along named dimensions (an int drops the dimension)."""
+        values, dims = self.values, list(self.dims)
+        index = [slice(None)] * len(dims)
+        for dim, position in indexers.items():
+            index[dims.index(dim)] = position
+        kept = tuple(dim for dim, position in zip(dims, index) if not isinstance(position, (int, np.integer)))
+        return MapVariable(kept, values[tuple(index)], self.attrs)
+
+
+@dataclass(frozen=True)
+class MapArrays:
+    """A map file's variables (coordinates and data alike) and attributes (module docstring)."""
+
+    variables: dict
+    attrs: dict = field(default_factory=dict)
+    coord_names: tuple = ()
+
+    def __contains__(self, name) -> bool:
+        return name in self.variables
+
+    def __getitem__(self, name) -> MapVariable:
+        return self.variables[name]
+
+    @property
+    def sizes(self) -> dict:
+        """Dimension name → length."""
+        out = {}
+        for variable in self.variables.values():
+            out.update(zip(variable.dims, variable.values.shape))
+        return out
+
+    def isel(self, **indexers) -> MapArrays:
+        """Every variable at the positions along the named dimensions (those without them as they are)."""
+        return MapArrays({name: variable.isel(**{dim: position for dim, position in indexers.items()
+                                                  if dim in variable.dims})
+                          for name, variable in self.variables.items()}, self.attrs, self.coord_names)
+
+    def drop_vars(self, name: str) -> MapArrays:
+        """The same arrays without the variable ``name``."""
+        return MapArrays({key: value for key, value in self.variables.items() if key != name}, self.attrs,
+                         tuple(key for key in self.coord_names if key != name))
 
 
 # -- the packed format ---------------------------------------------------------------------

@@ -1,17 +1,23 @@
-"""Design-rule lookups from the shipped maps: F̄max and regime without a simulation.
+"""Answers from the shipped maps at a point: F̄max, its band, status and regime without a simulation.
 
-The package ships precomputed maps (``impactmaps/maps/data/*.npz``, built by
-``data_build/build_default_maps.py``) for simply supported structures struck at the
-centre: SS Euler and Timoshenko beams (L/h = 20), SS square Kirchhoff and Mindlin
-plates (a/h = 20), each for the linear contact law (``NAME.npz``, axes ζ, λ) and for the
-Hertz law (``NAME-hertz.npz``, axes ζ_h, λ_h, F̄max = F_max/F_hs:
-:mod:`impactmaps.closed_forms.hertz_similarity`). :func:`lookup` interpolates F̄max linearly in
-(log ζ, log λ); the interpolation error against direct simulation is measured by
-``validation/lookup_error.py`` and quoted in the README. A map is read only as the law
-it was swept with (:func:`impactmaps.maps.family.map_family.map_law`): a Hertz map is never read as
-a linear one, nor the reverse. The shear-deformable maps also ship at other slendernesses
-(:mod:`impactmaps.maps.read.slenderness`); a physical case finds its map in
-:mod:`impactmaps.cases.case_lookup`.
+The package ships precomputed maps (:mod:`impactmaps.maps.files.shipped`) for simply
+supported structures struck at the centre: SS Euler and Timoshenko beams (L/h = 20), SS
+square Kirchhoff and Mindlin plates (a/h = 20), for the linear contact law (axes ζ, λ), the
+Hertz law (ζ_h, λ_h; F̄max = F_max/F_hs, :mod:`impactmaps.closed_forms.hertz_similarity`) and
+the elastic-plastic laws (β, ζ, λ; :func:`read_plastic`). :func:`point_answer`
+reads any of them at a point, and the shear-deformable ones at any slenderness ≥ 10
+(:mod:`impactmaps.maps.read.slenderness`); :func:`impactmaps.lookup`
+(:func:`impactmaps.cases.case_lookup.lookup`) is the public door, which also answers a
+physical case. The interpolation error against direct simulation is measured by
+``validation/lookup_error.py`` and quoted in the README.
+
+An elastic-plastic map is interpolated linearly in (log β, log λ, log ζ); each answer's band
+is, over the eight map points around it, the largest of their own error plus the local
+interpolation error from the map's second differences along the three axes
+(:func:`impactmaps.maps.read.interpolator.interpolation_error`), times :data:`BAND_SAFETY`;
+its coverage is measured by ``validation/lookup_error.py --law yc`` (``stronge``, ``epp``).
+A map may ship with a refinement of each β slice
+(:mod:`impactmaps.maps.family.slice_refinement`): F̄max is then read in its refined leaves.
 """
 
 from __future__ import annotations
@@ -19,47 +25,28 @@ from __future__ import annotations
 import functools
 import os
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..._checks import require_choice, require_positive
+from ..._checks import require_positive
 from ..._renamed import renamed_keyword
-from ...targets.options import STRUCTURE_KINDS, is_shear_deformable, point_load_diverges
-from ..family.builtin_families import MEMBER_SLENDERNESSES, PLASTIC_LAWS, family_layout
-from .reader import PreparedMap, prepare_map, read_values
-from ..files.data_io import read_resource_arrays, read_shipped, shipped_path
-from ..family.map_family import ASYMPTOTE_PEAKS, map_law
+from ...targets.options import point_load_diverges
+from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
+from ..family.map_family import ASYMPTOTE_PEAKS
 from ..family.refinement import Refinement
-from ..family.slice_refinement import SlicedRefinement
-from ..family.regimes import MAP_LAWS, classify, infinite_structure_peak, quasi_static_peak
+from ..family.regimes import classify, infinite_structure_peak, quasi_static_peak
+from ..files.data_io import read_resource_arrays
+from ..files.shipped import missing_shipped_map, refinement_of, require_map_law, shipped_name, shipped_path
+from .reader import PreparedMap, prepare_map, read_values
 
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["SHIPPED_MAPS", "SHIPPED_SLENDERNESS", "map_file_stem", "LookupResult", "load_shipped_map",
-           "require_map_law", "missing_shipped_map", "shipped_structure_name", "shipped_reader", "load_shipped_refinement", "refinement_of", "lookup",
-           "read_map", "design_formula",
-           "markdown_table"]
-
-#: Every law a shipped map can be swept with: the (ζ, λ) laws and the elastic-plastic (β, ζ, λ) ones.
-ALL_MAP_LAWS = MAP_LAWS + tuple(PLASTIC_LAWS)
-
-#: (kind, theory) → structure name of the shipped (ζ, λ) maps (those of the linear family; the
-#: Hertz family ships the same structures).
-SHIPPED_MAPS = family_layout("linear").shipped
-
-
-def map_file_stem(structure_name: str, law: str = "linear") -> str:
-    """File name (without its suffix) of the shipped map of a structure for a contact law.
-
-    The linear maps keep the structure's name (``plate-ssss-kirchhoff``); a map of
-    another law carries it as a suffix (``plate-ssss-kirchhoff-hertz``).
-    """
-    require_choice("law", law, ALL_MAP_LAWS)
-    return family_layout(law).file_stem(structure_name)
+__all__ = ["LookupResult", "PlasticLookup", "PLASTIC_MAPS", "BAND_SAFETY", "point_answer", "shipped_reader", "read_map",
+           "read_plastic", "design_formula", "markdown_table"]
 
 
 @dataclass(frozen=True)
@@ -128,97 +115,148 @@ class LookupResult:
         return np.asarray(self.fmax_normalised) * np.asarray(impactor_mass) * np.asarray(velocity) * omega
 
 
-def require_map_law(dataset: xr.Dataset, law: str, name: str = "the map") -> xr.Dataset:
-    """``dataset`` if it was swept with the contact law ``law``, else ``ValueError``.
+#: (kind, theory) → structure name of the shipped plastic maps (no Mindlin plate: its pressure
+#: patch depends on the sphere radius, a fourth number).
+PLASTIC_MAPS = LAYOUTS["yc"].shipped
+#: The interpolation estimate of the plastic maps (:func:`~impactmaps.maps.read.interpolator.interpolation_error`):
+#: second differences over one neighbour a side, safety factor 4, and the factor on the
+#: whole band (:class:`~impactmaps.maps.family.map_family.Interpolation` of the plastic families).
+_YC = LAYOUTS["yc"]
+PLASTIC_REACH, PLASTIC_SAFETY, BAND_SAFETY = _YC.interpolation.reach, _YC.interpolation.safety, _YC.interpolation.band_safety
 
-    A Hertz map read as a linear one (or the reverse) would give a number with the wrong
-    force scale and the wrong axes: it is refused, naming both laws.
+
+@dataclass(frozen=True)
+class PlasticLookup:
+    """Outcome of a lookup in a plastic map (scalars or arrays, all [-]).
+
+    Attributes
+    ----------
+    fmax_normalised, fmax_error : F_max/(m V0 ω_y) and its band half-width.
+    restitution, restitution_error : rebound speed / V0 and its band half-width.
+    absorbed_energy_fraction, absorbed_energy_error : contact dissipation / ½ m V0² and its band.
+    status : str or ndarray of str
+        Worst status of the eight map points around the answer (``sensitive`` >
+        ``refined`` > ``converged``/``asymptotic``; an ``unresolved`` one is refused), and
+        ``interpolated`` where they converged but the F̄max band is wider than the points'
+        tolerance (:func:`impactmaps.maps.family.accuracy.answer_status`).
+    map_name : str
+    law : str
+        ``"yc"``, ``"stronge"`` or ``"epp"``.
     """
-    require_choice("law", law, ALL_MAP_LAWS)
-    found = map_law(dataset)
-    if found != law:
-        raise ValueError(f"{name} is a map for the {found} contact law, not the {law} law: its axes and "
-                         f"force scale differ (refusing to read it as a {law} map)")
-    return dataset
+
+    fmax_normalised: object
+    fmax_error: object
+    restitution: object
+    restitution_error: object
+    absorbed_energy_fraction: object
+    absorbed_energy_error: object
+    status: object
+    map_name: str
+    law: str
 
 
-def shipped_structure_name(kind: str, theory: str, slenderness: float | None = None) -> str:
-    """Name of the shipped map structure: ``SHIPPED_MAPS``, or a shear-deformable slenderness
-    member at ``slenderness`` (one of :data:`~impactmaps.maps.family.builtin_families.MEMBER_SLENDERNESSES`)."""
-    require_choice("kind", kind, STRUCTURE_KINDS)
-    require_choice("theory", theory, [t for (s, t) in SHIPPED_MAPS if s == kind])
-    name = SHIPPED_MAPS[(kind, theory)]
-    if slenderness is None or not is_shear_deformable(theory) or slenderness == SHIPPED_SLENDERNESS:
-        return name
-    require_choice("slenderness", float(slenderness), MEMBER_SLENDERNESSES)
-    from ..family.structures import structure_from_name  # another slenderness's name: the structure's own rule
-
-    return replace(structure_from_name(name), slenderness=float(slenderness)).name
-
-
-@functools.lru_cache(maxsize=32)
-@renamed_keyword("structure", "kind")
-def load_shipped_map(kind: str, theory: str, law: str = "linear", slenderness: float | None = None) -> xr.Dataset:
-    """The shipped map for ``kind`` in {"beam", "plate"}, its ``theory`` and contact
-    ``law`` (a Timoshenko/Mindlin slenderness member at ``slenderness``; default the s = 20 one),
-    named by :func:`_shipped_name` (an elastic-plastic law: the structures its family ships)."""
-    name = _shipped_name(kind, theory, law, slenderness)
-    dataset = read_shipped(name)
-    if dataset is None:
-        raise missing_shipped_map(name, law)
-    return require_map_law(dataset, law, f"shipped map {name}")
-
-
-def missing_shipped_map(name: str, law: str) -> FileNotFoundError:
-    """The error for a shipped map ``name`` of the contact law ``law`` that the installation
-    lacks, naming the script that rebuilds it."""
-    script = "build_plastic_maps.py --laws" if law in PLASTIC_LAWS else "build_default_maps.py --law"
-    return FileNotFoundError(f"shipped map {name} is missing from the installation; rebuild it with "
-                             f"`python data_build/{script} {law}`")
-
-
-@renamed_keyword("structure", "kind")
-def lookup(loss_factor, relative_stiffness, *, kind: str = "plate", theory: str = "kirchhoff",
-           tolerance: float = 0.1, local_tolerance: float = 0.1, law: str = "linear",
-           slenderness: float | None = None) -> LookupResult:
-    """F̄max and regime at (ζ, λ) from the shipped map, without simulating.
-
-    An interpolation of what the map stores, nothing else: F̄max, its band and status
-    (:func:`read_map`) and the asymptote peaks the regime is judged by, stored with the
-    map when it was built (:func:`impactmaps.maps.compute.dataset.with_asymptote_peaks`). The
-    map is prepared for reading once per file (:func:`shipped_reader`).
+def read_plastic(dataset: xr.Dataset | None, law: str, numbers, *, name: str, where: str,
+                 band_grids: dict | None = None, prepared=None, refinement=None) -> PlasticLookup:
+    """A plastic map (shipped, or an on-demand tile) read at ``numbers`` = (β, ζ, λ) [-].
 
     Parameters
     ----------
-    loss_factor, relative_stiffness : float or array_like
-        ζ and λ [-] (the Hertz numbers ζ_h, λ_h for ``law="hertz"``), inside the map's
-        range (else ``ValueError`` with the range).
-    kind : {"beam", "plate"}
-    theory : str
-        "euler" or "timoshenko" for beams, "kirchhoff" or "mindlin" for plates.
-    tolerance, local_tolerance : float
-        Regime criteria (see :func:`impactmaps.maps.family.regimes.classify`).
-    law : {"linear", "hertz"}
-        Contact law of the map (F̄max = F_max/(m_i V0 ω), or F_max/F_hs for Hertz).
-    slenderness : float, optional
-        Timoshenko/Mindlin only: the slenderness member to read (10, 20 or 50; default 20).
-        Any other slenderness ≥ 10: :func:`impactmaps.maps.read.slenderness.lookup_slenderness`.
+    dataset : xarray.Dataset or None
+        A map of the plastic family ``law`` over (β, λ, ζ) (None when ``prepared`` is given).
+    law : {"yc", "stronge", "epp"}
+    numbers : (β, ζ, λ)
+        Floats or arrays [-].
+    name, where : str
+        The map's name (the answer's ``map_name``) and how a refusal names it.
+    band_grids : dict, optional
+        :func:`~impactmaps.maps.read.reader.band_grid` of each interpolated quantity, when known.
+    prepared : PreparedMap, optional
+        The map already prepared (:func:`~impactmaps.maps.read.reader.prepare_map`).
+    refinement : SlicedRefinement, optional
+        The refinement of each β slice of ``dataset``
+        (:mod:`impactmaps.maps.family.slice_refinement`): F̄max is read in the slices' refined leaves.
 
     Returns
     -------
-    LookupResult
+    PlasticLookup
+
+    Raises
+    ------
+    ValueError
+        Outside the map's range (naming the number and the range), or where a map point
+        around the answer is ``unresolved`` (holds no value).
     """
-    if law in PLASTIC_LAWS:
-        raise ValueError(f"law = {law!r}: an elastic-plastic map has a third axis β; read it with "
-                         "impactmaps.lookup_plastic(beta, zeta, lambda_, ...) (lookup takes law 'linear' or 'hertz')")
+    reading = read_values(dataset, family_layout(law), numbers, ("beta", "loss_factor", "relative_stiffness"),
+                          where=where, hints=(" (impactmaps simulate)",) * 2, band_grids=band_grids,
+                          prepared=prepared, refinement=refinement)
+    values = reading.values | reading.errors
+    status = reading.status
+    if not reading.shape:
+        values = {key: float(value) for key, value in values.items()}
+        status = str(status)
+    return PlasticLookup(status=status, map_name=name, law=law, **values)
+
+
+def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: str = "linear",
+                 slenderness: float | None = None, tolerance: float = 0.1, local_tolerance: float = 0.1):
+    """The shipped map's answer at a point: what :func:`impactmaps.lookup` returns for numbers.
+
+    Parameters
+    ----------
+    *numbers : float or array_like
+        The point in the order of the map's axes [-]: (ζ, λ) for the linear law, (ζ_h, λ_h) for
+        the Hertz law, (β, ζ, λ) for an elastic-plastic law; inside the map's range (else
+        ``ValueError`` with the range).
+    kind : {"beam", "plate"}
+    theory : str
+        "euler" or "timoshenko" for beams, "kirchhoff" or "mindlin" for plates.
+    law : {"linear", "hertz", "yc", "stronge", "epp"}
+    slenderness : float, optional
+        Timoshenko/Mindlin, linear or Hertz law: span/thickness ≥ 10, interpolated in 1/s
+        between the slenderness members (:mod:`impactmaps.maps.read.slenderness`); default the
+        shipped 20.
+    tolerance, local_tolerance : float
+        Regime criteria (:func:`impactmaps.maps.family.regimes.classify`).
+
+    Returns
+    -------
+    LookupResult or PlasticLookup
+        A :class:`PlasticLookup` for an elastic-plastic law.
+
+    Raises
+    ------
+    ValueError
+        A point outside the map or next to an ``unresolved`` point, a value no shipped map has.
+    """
+    size = 3 if law in PLASTIC_LAWS else 2
+    if len(numbers) != size:
+        axes = "(beta, zeta, lambda)" if size == 3 else "(zeta, lambda)"
+        raise ValueError(f"law = {law!r}: a point of its maps is {size} numbers {axes}, not {len(numbers)}")
+    if size == 3:
+        if slenderness is not None:
+            raise ValueError(f"slenderness = {slenderness!r}: the {law} maps are at slenderness 20 only (leave it out)")
+        prepared, name = shipped_reader(kind, theory, law)
+        return read_plastic(None, law, numbers, name=name, where=f"{law} map {PLASTIC_MAPS[(kind, theory)]}",
+                            prepared=prepared)
+    if slenderness is not None:
+        from .slenderness import read_slenderness
+
+        def member(theory, slenderness):
+            return _plane_answer(*numbers, kind, theory, law, slenderness, tolerance, local_tolerance)
+
+        return read_slenderness(member, *numbers, kind=kind, theory=theory, slenderness=slenderness, law=law)
+    return _plane_answer(*numbers, kind, theory, law, None, tolerance, local_tolerance)
+
+
+def _plane_answer(loss_factor, relative_stiffness, kind, theory, law, slenderness, tolerance, local_tolerance):
+    """The shipped (ζ, λ) map of (kind, theory, law), at a slenderness member, read at (ζ, λ)."""
     if point_load_diverges(theory):
         from ..family.structures import warn_point_loaded_mindlin  # the Mindlin maps' warning names the sweep's mode cap
 
-        warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=3)
+        warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=4)
     prepared, name = shipped_reader(kind, theory, law, slenderness)
     return read_map(None, loss_factor, relative_stiffness, kind=kind, theory=theory, name=name, law=law,
                     tolerance=tolerance, local_tolerance=local_tolerance, prepared=prepared)
-
 
 def shipped_reader(kind: str, theory: str, law: str = "linear", slenderness: float | None = None):
     """The shipped map of (kind, theory, law, slenderness) prepared for reading
@@ -233,23 +271,11 @@ def shipped_reader(kind: str, theory: str, law: str = "linear", slenderness: flo
     rewrite the shipped files in place, and a process must not answer from the old ones.
     Returns ``(PreparedMap, name)``.
     """
-    name = _shipped_name(kind, theory, law, slenderness)
+    name = shipped_name(kind, theory, law, slenderness)
     identity = _file_identity(name)
     if identity is None:
         return _prepare_shipped((kind, theory, law, slenderness), name, None), name
     return _prepared_shipped((kind, theory, law, slenderness), name, identity), name
-
-
-@functools.lru_cache(maxsize=256)
-def _shipped_name(kind: str, theory: str, law: str, slenderness: float | None) -> str:
-    """File stem of the shipped map of (kind, theory, law, slenderness); ``ValueError`` naming
-    a value no shipped map has (a refusal is not cached)."""
-    require_choice("law", law, ALL_MAP_LAWS)
-    if law in PLASTIC_LAWS:
-        shipped = family_layout(law).shipped
-        require_choice("(kind, theory)", (kind, theory), tuple(shipped))
-        return map_file_stem(shipped[(kind, theory)], law)
-    return map_file_stem(shipped_structure_name(kind, theory, slenderness), law)
 
 
 def _file_identity(name: str):
@@ -271,7 +297,7 @@ def _file_identity(name: str):
 @functools.lru_cache(maxsize=64)
 def _shipped_sources(name: str) -> tuple[str, str]:
     """File-system paths of the shipped map ``name`` and of its refinement
-    (:func:`~impactmaps.maps.files.data_io.shipped_path`; "" where there is none)."""
+    (:func:`~impactmaps.maps.files.shipped.shipped_path`; "" where there is none)."""
     sources = (shipped_path(name), shipped_path("refinements", name))
     return tuple("" if source is None else str(source) for source in sources)
 
@@ -305,7 +331,7 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, kin
              prepared: PreparedMap | None = None) -> LookupResult:
     """F̄max, its band, status and regime at (ζ, λ) from any (ζ, λ) map ``dataset``.
 
-    The one reading of a map: :func:`lookup` applies it to the shipped maps,
+    The one reading of a map: :func:`point_answer` applies it to the shipped maps,
     :mod:`impactmaps.cases.on_demand` to the tiles it builds. F̄max is interpolated
     bilinearly in (log λ, log ζ) between the four corners of the smallest cell that holds
     (ζ, λ): a cell of the map's grid, or of its ``refinement`` where F̄max needed finer
@@ -369,42 +395,6 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, kin
     return LookupResult(fmax, regime, kind, theory, name, error, status, law)
 
 
-@functools.lru_cache(maxsize=32)
-def load_shipped_refinement(kind: str, theory: str, law: str = "linear",
-                            slenderness: float | None = None) -> Refinement | None:
-    """The refinement shipped with a map (``data/refinements/NAME.npz``,
-    :mod:`impactmaps.maps.family.refinement`), or None where the map has none.
-
-    A refinement built for another version of the map (its ``base_fingerprint`` is not
-    the map's fingerprint) is not used: a warning says so and the map is read alone.
-    """
-    name = _shipped_name(kind, theory, law, slenderness)
-    stored = read_shipped("refinements", name)
-    if stored is None:
-        return None
-    return refinement_of(stored, load_shipped_map(kind, theory, law, slenderness), f"the shipped map {name}")
-
-
-def refinement_of(stored: xr.Dataset, dataset: xr.Dataset, name: str = "the map") -> Refinement | None:
-    """The refinement ``stored`` (:meth:`Refinement.dataset`; a
-    :class:`~impactmaps.maps.family.slice_refinement.SlicedRefinement` for a map with extra axes) if it
-    was built from the map ``dataset`` (its ``base_fingerprint`` is the map's fingerprint and its
-    lattice the map's grid); else None, with a warning: the map is then read alone."""
-    fmax = dataset["fmax_normalised"].isel(structure=0)
-    extra = tuple(size for dim, size in zip(fmax.dims, fmax.shape) if dim not in ("lambda_", "zeta"))
-    shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
-    sliced = "slice" in stored
-    if (stored.attrs.get("base_fingerprint") != dataset.attrs.get("fingerprint")
-            or (stored.attrs.get("lambda_points"), stored.attrs.get("zeta_points")) != shape
-            or sliced != bool(extra) or (sliced and tuple(np.atleast_1d(stored.attrs["slice_points"])) != extra)):
-        warnings.warn(f"the refinement of {name} was built for another version of the map; reading the map "
-                      "without it (rebuild with `python data_build/build_refinements.py`)", UserWarning, stacklevel=3)
-        return None
-    if sliced:  # one (λ, ζ) refinement per slice of the extra axes (β)
-        return SlicedRefinement.from_dataset(stored, fmax.values)
-    return Refinement.from_dataset(stored, fmax.values)
-
-
 @renamed_keyword("structure", "kind")
 def design_formula(loss_factor, relative_stiffness, kind: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
@@ -433,7 +423,3 @@ def markdown_table(dataset: xr.Dataset, structure: str, *, lambdas=None, zetas=N
         for lam, row in zip(data["lambda_"].values, data.values)
     ]
     return "\n".join([f"**{structure}** — F̄max", "", header, rule, *rows])
-
-
-#: Slenderness of the shipped shear-deformable maps (span/height, span/thickness).
-SHIPPED_SLENDERNESS = 20.0

@@ -42,11 +42,8 @@ from .interpolator import (
 from ..family.map_family import ASYMPTOTE_PEAK_VARIABLES
 from ..family.refinement import MAX_LEVEL, Refinement
 from ..family.slice_refinement import SlicedRefinement, read_slices
-from .bands import (
-    corner_status,
-    interpolation_error,
-    slice_estimates,
-)
+from ..family.accuracy import corner_status
+from .interpolator import interpolation_error, slice_estimates
 
 if TYPE_CHECKING:
     import xarray as xr

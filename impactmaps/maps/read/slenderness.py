@@ -8,8 +8,8 @@ s = 10, 20 and 50 (:data:`~impactmaps.maps.family.builtin_families.MEMBER_SLENDE
 beams for the linear and the Hertz law, Mindlin plates for the linear law) and the
 classical map is its thin limit, 1/s = 0.
 
-:func:`lookup_slenderness` reads the two members whose 1/s bracket the requested one at
-(ζ, λ) (each with :func:`~impactmaps.maps.read.lookup.lookup`: its own band and status) and
+:func:`read_slenderness` (:func:`impactmaps.lookup` with a ``slenderness``) reads the two
+members whose 1/s bracket the requested one at (ζ, λ) (each its own band and status) and
 interpolates linearly in 1/s. Its band adds to the larger member band the slenderness
 interpolation error, estimated per grid point by leaving a member out
 (:func:`slenderness_error_grid`): s = 20 predicted from s = 10 and 50, and s = 50 from
@@ -25,18 +25,15 @@ import functools
 from dataclasses import replace
 
 import numpy as np
-from scipy.interpolate import RegularGridInterpolator
 
 from ..._checks import require_in_range
-from ..._renamed import renamed_keyword
 from ...targets.options import classical_theory, is_shear_deformable, point_load_diverges
-from .lookup import load_shipped_map, lookup
-from .bands import SEVERITY, answer_status
-from ..family.builtin_families import PLANE_LAWS
+from ..family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS
 from ..family.map_family import map_family
-from ..family.builtin_families import MEMBER_SLENDERNESSES
+from ..files.shipped import load_shipped_map
+from ..family.accuracy import SEVERITY, answer_status
 
-__all__ = ["slenderness_members", "lookup_slenderness", "slenderness_error_grid", "shipped_for"]
+__all__ = ["slenderness_members", "read_slenderness", "slenderness_error_grid", "shipped_for"]
 
 
 def shipped_for(kind: str, theory: str, law: str) -> bool:
@@ -67,12 +64,6 @@ def slenderness_members(kind: str, theory: str, law: str = "linear") -> tuple[tu
     return ((0.0, None), *((1.0 / s, s) for s in sorted(MEMBER_SLENDERNESSES, reverse=True)))
 
 
-def _member_lookup(zeta, lam, kind: str, theory: str, slenderness: float | None, law: str):
-    if slenderness is None:
-        return lookup(zeta, lam, kind=kind, theory=classical_theory(theory), law=law)
-    return lookup(zeta, lam, kind=kind, theory=theory, law=law, slenderness=slenderness)
-
-
 def _member_values(kind: str, theory: str, slenderness: float | None, law: str):
     """(log λ grid, log ζ grid, F̄max values) of one member map."""
     if slenderness is None:
@@ -88,6 +79,8 @@ def _on_grid(member, grid) -> np.ndarray:
     lam, zeta, values = member
     if np.array_equal(lam, grid[0]) and np.array_equal(zeta, grid[1]):
         return values
+    from scipy.interpolate import RegularGridInterpolator  # only where two members' grids differ
+
     interpolate = RegularGridInterpolator((lam, zeta), values, bounds_error=False, fill_value=np.nan)
     mesh = np.stack(np.meshgrid(grid[0], grid[1], indexing="ij"), axis=-1)
     return interpolate(mesh)
@@ -119,13 +112,15 @@ def slenderness_error_grid(kind: str, theory: str, law: str = "linear") -> tuple
     return grid[0], grid[1], np.fmax(leave_20, leave_50)
 
 
-@renamed_keyword("structure", "kind")
-def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: str, theory: str,
-                       slenderness: float, law: str = "linear"):
+def read_slenderness(read_member, loss_factor: float, relative_stiffness: float, *, kind: str, theory: str,
+                     slenderness: float, law: str = "linear"):
     """F̄max at (ζ, λ) of a shear-deformable target of any slenderness ≥ 10, with its band.
 
     Parameters
     ----------
+    read_member : callable
+        ``read_member(theory, slenderness) -> LookupResult``: a member map read at (ζ, λ)
+        (slenderness None: the classical theory's map, the thin limit).
     loss_factor, relative_stiffness : float
         ζ and λ [-] (ζ_h, λ_h for the Hertz law).
     kind, theory : str
@@ -137,7 +132,7 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: s
     Returns
     -------
     LookupResult
-        As :func:`~impactmaps.maps.read.lookup.lookup`, ``fmax_error`` the larger member band plus
+        A member's, ``fmax_error`` the larger member band plus
         the slenderness interpolation error at the nearest grid point, ``status`` the worse
         member status, ``map_name`` naming both members and the weight.
 
@@ -155,9 +150,9 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: s
             break
     weight = (inverse - x0) / (x1 - x0)
     if weight in (0.0, 1.0):  # a member itself
-        return _member_lookup(loss_factor, relative_stiffness, kind, theory, s1 if weight else s0, law)
-    low = _member_lookup(loss_factor, relative_stiffness, kind, theory, s0, law)
-    high = _member_lookup(loss_factor, relative_stiffness, kind, theory, s1, law)
+        return _member(read_member, theory, s1 if weight else s0)
+    low = _member(read_member, theory, s0)
+    high = _member(read_member, theory, s1)
     fmax = (1.0 - weight) * low.fmax_normalised + weight * high.fmax_normalised
     lam_grid, zeta_grid, errors = slenderness_error_grid(kind, theory, law)
     row = int(np.argmin(np.abs(lam_grid - np.log(relative_stiffness))))
@@ -172,3 +167,8 @@ def lookup_slenderness(loss_factor: float, relative_stiffness: float, *, kind: s
     status = answer_status(max(low.status, high.status, key=SEVERITY.__getitem__), band)
     name = f"{low.map_name} ×{1.0 - weight:.3g} + {high.map_name} ×{weight:.3g} (1/s)"
     return replace(low, fmax_normalised=float(fmax), fmax_error=band, status=status, map_name=name, theory=theory)
+
+
+def _member(read_member, theory: str, slenderness: float | None):
+    """One member read at the point: the classical theory's map for the thin limit (None)."""
+    return read_member(classical_theory(theory), None) if slenderness is None else read_member(theory, slenderness)
