@@ -50,8 +50,10 @@ MAX_CACHED_TILES = 256
 TILE_POINTS = 4
 #: Version of the tile files (part of the fingerprint): their layout and the point rules
 #: SOLVER_REVISION does not cover (2: patch-loaded points on a plate of the general Ritz
-#: basis share the basis resolving the cap, :mod:`impactmaps.targets.plates.shared_basis`).
+#: basis share the basis resolving the cap, :mod:`impactmaps.targets.plates.shared_basis`;
+#: a tile without a patch, whose points that rule does not touch, keeps format 1).
 _TILE_FORMAT = 2
+_POINT_LOAD_TILE_FORMAT = 1
 
 
 def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
@@ -112,7 +114,8 @@ class TileKey:
                 "zeta_index": self.zeta_index, "lambda_index": self.lambda_index,
                 "lattice": [lattice["zeta"], lattice["lambda_"]], **extra,
                 "points_per_axis": TILE_POINTS, "settings": asdict(self.settings), "accuracy": asdict(self.control),
-                "solver_revision": SOLVER_REVISION, "tile_format": _TILE_FORMAT}
+                "solver_revision": SOLVER_REVISION,
+                "tile_format": _TILE_FORMAT if self.patch is not None else _POINT_LOAD_TILE_FORMAT}
 
     @property
     def fingerprint(self) -> str:
