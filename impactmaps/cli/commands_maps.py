@@ -85,7 +85,7 @@ def cmd_sweep(args) -> dict:
         raise ValueError(f"{args.config}: output = {str(config.output)!r} is a file, not a directory")
     output = out_dir(f"{args.config}: output", config.output)
     with store_lock(output / "sweep.nc", f"{args.config}: output"):
-        return _run_sweep(args, config._replace(output=output))
+        return _run_sweep(args, replace(config, output=output))
 
 
 def _run_sweep(args, config) -> dict:

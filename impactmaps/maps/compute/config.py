@@ -9,20 +9,19 @@ from __future__ import annotations
 import itertools
 import math
 import tomllib
-from dataclasses import fields
+from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import NamedTuple
 
 import numpy as np
 
-from ..._checks import range_end_text, read_text_input
+from ..._checks import read_text_input
 from ..._files import written_atomically
 from ...solvers.modal_settings import ModalSettings
 from ...targets.options import default_theory
 from ..family.map_family import available_map_families, map_family
 from ..family.structures import MapStructure
 from .dataset import tidy_frame
-from .sweep import sweep, sweep_fingerprint
+from .sweep import SweepGrid, check_axis, run_sweep_grid, sweep_grid
 
 __all__ = ["SweepConfig", "load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
@@ -50,17 +49,11 @@ def _number(name, value, *, integer=False):
 MAX_AXIS_VALUES = 10**6
 
 
-def _grid(name, value, valid):
-    """The values of grid axis ``name`` from its table or list (each > 0), each inside ``valid``
-    (low, high) when given."""
-    values = _grid_values(name, value)
-    if valid is None:
-        return values
-    low, high = valid
-    if np.any(values < low) or np.any(values > high):
-        raise ValueError(f"grid.{name} = {value!r} is invalid: every value must be in [{range_end_text(low)}, {range_end_text(high)}] "
-                         "(beyond it the realised impactor's numbers under- or overflow)")
-    return values
+def _grid(family, name, value):
+    """The checked values of axis ``name`` of ``family`` from its [grid] table or list (key
+    ``lambda`` for the axis ``lambda_``)."""
+    key = "lambda" if name == "lambda_" else name
+    return check_axis(family, name, _grid_values(key, value), f"grid.{key}", value)
 
 
 def _grid_values(name, value):
@@ -148,16 +141,43 @@ def _structures(table, index):
     return out
 
 
-class SweepConfig(NamedTuple):
-    """A sweep file, parsed and checked (:func:`load_sweep_config`)."""
+@dataclass(frozen=True)
+class SweepConfig:
+    """A sweep file, parsed and checked (:func:`load_sweep_config`): its ``output`` directory,
+    ``law`` and checked ``grid``; it unpacks as ``structures, zetas, lambdas, settings,
+    output, law, axes``."""
 
-    structures: list
-    zetas: np.ndarray
-    lambdas: np.ndarray
-    settings: ModalSettings
     output: Path
     law: str
-    axes: dict
+    grid: SweepGrid
+
+    @property
+    def structures(self) -> list:
+        """The structures swept."""
+        return self.grid.structures
+
+    @property
+    def zetas(self) -> np.ndarray:
+        """The ζ grid [-]."""
+        return self.grid.axes["zeta"]
+
+    @property
+    def lambdas(self) -> np.ndarray:
+        """The λ grid [-]."""
+        return self.grid.axes["lambda_"]
+
+    @property
+    def settings(self) -> ModalSettings:
+        """The solver settings."""
+        return self.grid.settings
+
+    @property
+    def axes(self) -> dict:
+        """The grids of the law's other axes (name → values [-])."""
+        return {name: values for name, values in self.grid.axes.items() if name not in ("zeta", "lambda_")}
+
+    def __iter__(self):
+        return iter((self.structures, self.zetas, self.lambdas, self.settings, self.output, self.law, self.axes))
 
 
 def load_sweep_config(path) -> SweepConfig:
@@ -185,8 +205,8 @@ def load_sweep_config(path) -> SweepConfig:
     if not isinstance(law, str) or law not in available_map_families():
         raise ValueError(f"law = {law!r} is invalid: choose one of {', '.join(available_map_families())}")
     family = map_family(law)
-    zetas = _grid("zeta", grid["zeta"], family.axis_range("zeta"))
-    lambdas = _grid("lambda", grid["lambda"], family.axis_range("lambda_"))
+    zetas = _grid(family, "zeta", grid["zeta"])
+    lambdas = _grid(family, "lambda_", grid["lambda"])
     solver = config.get("solver", {})
     if not isinstance(solver, dict):
         raise ValueError(f"solver = {solver!r} is invalid: give a [solver] table")
@@ -215,9 +235,9 @@ def load_sweep_config(path) -> SweepConfig:
                          f"{sorted({'zeta', 'lambda', *extra})}")
     if not set(extra) <= set(grid):
         raise ValueError(f"{path}: [grid] of the {law} law needs {', '.join(repr(n) for n in ['zeta', 'lambda', *extra])}")
-    axes = {name: _grid(name, grid[name], family.axis_range(name)) for name in extra}
-    sweep_fingerprint(structures, zetas, lambdas, settings, law, axes)  # the sweep's own checks (its size)
-    return SweepConfig(structures, zetas, lambdas, settings, path.parent / output, law, axes)
+    axes = {name: _grid(family, name, grid[name]) for name in extra}
+    checked = sweep_grid(structures, family, axes | {"lambda_": lambdas, "zeta": zetas}, settings)  # and its size
+    return SweepConfig(path.parent / output, law, checked)
 
 
 def run_sweep_config(config, *, progress: bool = True, overwrite: bool = False, max_workers: int | None = None,
@@ -230,15 +250,15 @@ def run_sweep_config(config, *, progress: bool = True, overwrite: bool = False, 
     """
     if not isinstance(config, SweepConfig):
         config = load_sweep_config(config)
-    structures, zetas, lambdas, settings, output, law, axes = config
+    output = config.output
     if output.exists() and not output.is_dir():
         raise ValueError(f"output = {str(output)!r} is a file, not a directory")
     netcdf, csv = output / "sweep.nc", output / "sweep.csv"
     for path in (netcdf, csv):
         if path.is_dir():
             raise ValueError(f"output = {str(output)!r} holds a directory {path.name!r} where the sweep writes a file")
-    dataset = sweep(structures, zetas, lambdas, settings=settings, path=netcdf, progress=progress,
-                    overwrite=overwrite, max_workers=max_workers, executor=executor, law=law, axes=axes)
+    dataset = run_sweep_grid(config.grid, path=netcdf, progress=progress, overwrite=overwrite,
+                             max_workers=max_workers, executor=executor)
     with written_atomically(csv) as part:
         tidy_frame(dataset).to_csv(part, index=False)
     return {"netcdf": netcdf, "csv": csv}

@@ -20,7 +20,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 import xarray as xr
 
-from ..._checks import require_in_range, require_positive
+from ..._checks import range_end_text, require_in_range, require_positive
 from ...solvers.modal_settings import ModalSettings
 from ...solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
 from ...targets.options import point_load_diverges
@@ -39,7 +39,8 @@ from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_s
 from ..family.structures import MapStructure, warn_point_loaded_mindlin
 from .workers import MAX_WORKERS, init_worker
 
-__all__ = ["sweep", "sweep_fingerprint", "log_grid", "SweepTask", "SweepGrid", "Pacing", "MAP_COPIES", "require_map_fits"]
+__all__ = ["sweep", "sweep_fingerprint", "log_grid", "check_axis", "sweep_grid", "run_sweep_grid", "SweepTask",
+           "SweepGrid", "Pacing", "MAP_COPIES", "require_map_fits"]
 
 
 def log_grid(start: float, stop: float, count: int) -> np.ndarray:
@@ -68,13 +69,15 @@ class SweepTask(NamedTuple):
 
 
 class SweepGrid(NamedTuple):
-    """A checked sweep: its structures, family, axes (name → values), description and fingerprint."""
+    """A checked sweep (:func:`sweep_grid`): its structures, family, axes (name → values),
+    description, fingerprint and solver settings."""
 
     structures: list
     family: MapFamily
     axes: dict
     description: dict
     digest: str
+    settings: ModalSettings
 
 
 def sweep(
@@ -133,8 +136,24 @@ def sweep(
     if max_workers is not None:
         require_in_range("max_workers", max_workers, 1, MAX_WORKERS)
     grid = _prepare(structures, loss_factors, relative_stiffnesses, settings, law, axes)
+    return _run_grid(grid, path, executor, max_workers, progress, pacing, overwrite)
+
+
+def run_sweep_grid(grid: SweepGrid, *, path: str | os.PathLike | None = None, executor: Executor | None = None,
+                   max_workers: int | None = None, progress: bool = True, pacing: Pacing = Pacing(),
+                   overwrite: bool = False) -> xr.Dataset:
+    """Run a checked sweep (:func:`sweep_grid`) without checking its grid again; the other
+    parameters, the result and the errors are those of :func:`sweep`."""
+    if max_workers is not None:
+        require_in_range("max_workers", max_workers, 1, MAX_WORKERS)
+    return _run_grid(grid, path, executor, max_workers, progress, pacing, overwrite)
+
+
+def _run_grid(grid: SweepGrid, path, executor, max_workers, progress, pacing, overwrite) -> xr.Dataset:
+    """The sweep of a checked grid (:func:`sweep`, :func:`run_sweep_grid`; warnings name their caller)."""
+    settings = grid.settings
     if any(point_load_diverges(structure.theory) for structure in grid.structures):
-        warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=2)
+        warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=3)
     dataset, shipped = _resume(path, overwrite, grid)
     if shipped and progress:
         print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "
@@ -165,7 +184,7 @@ def _announce(points: int, executor: Executor | None, max_workers: int | None) -
         (max_workers or os.cpu_count() or 1)
     hint = (f"{points} points to compute on {workers} worker(s) at the linear plane's mean of "
             f"{SECONDS_PER_POINT * 1e3:.1f} ms a point; Hertz and elastic-plastic points cost more")
-    refuse_or_announce(RunBudget(0.0, points * SECONDS_PER_POINT / workers, "", hint), "this sweep", stacklevel=4)
+    refuse_or_announce(RunBudget(0.0, points * SECONDS_PER_POINT / workers, "", hint), "this sweep", stacklevel=5)
 
 
 def sweep_fingerprint(structures: Sequence[MapStructure], loss_factors, relative_stiffnesses,
@@ -180,9 +199,36 @@ def sweep_fingerprint(structures: Sequence[MapStructure], loss_factors, relative
 
 
 # -- the stages of a sweep -------------------------------------------------------------------
+#: The parameter of :func:`sweep` that gives each axis (another axis: its name in ``axes``).
+_PARAMETERS = {"zeta": "loss_factors", "lambda_": "relative_stiffnesses"}
+
+
+def check_axis(family: MapFamily, name: str, values, label: str | None = None, written=None) -> np.ndarray:
+    """The grid of axis ``name`` of ``family`` as a flat float array [-], checked: every value
+    finite and in the family's range for the axis (> 0 where it states none).
+
+    ``ValueError`` names ``label`` (default: the parameter of :func:`sweep`) and the value as
+    the user wrote it: ``written`` (a sweep file's table or list, then ``label`` is its key) or
+    ``values``.
+    """
+    grid = np.asarray(values, dtype=float).ravel()
+    if written is not None:  # a sweep file: its values are already finite and > 0
+        low, high = family.axis_range(name)
+        if np.any(grid < low) or np.any(grid > high):
+            raise ValueError(f"{label} = {written!r} is invalid: every value must be in [{range_end_text(low)}, "
+                             f"{range_end_text(high)}] (beyond it the realised impactor's numbers under- or overflow)")
+        return grid
+    label = label or _PARAMETERS.get(name, name)
+    if name in family.axis_ranges:
+        require_in_range(label, grid, *family.axis_ranges[name])
+    else:  # an axis whose family states no range: any positive value
+        require_positive(label, grid)
+    return grid
+
+
 def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSettings, law="linear",
              axes: dict | None = None) -> SweepGrid:
-    """Check the grid; return it with its description and fingerprint (what a stored result must match)."""
+    """The checked grid of :func:`sweep`'s arguments (:func:`check_axis`, :func:`sweep_grid`)."""
     family = map_family(law)
     structures = list(structures)
     if not structures:
@@ -192,15 +238,21 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
     if set(given) != extra:
         raise ValueError(f"axes = {sorted(given)} is invalid for the {family.name} maps: give "
                          + (f"the grids of {sorted(extra)}" if extra else "none (their axes are ζ and λ)"))
-    grids = {name: np.asarray(values, dtype=float).ravel() for name, values in given.items()}
-    grids["lambda_"] = np.asarray(relative_stiffnesses, dtype=float).ravel()
-    grids["zeta"] = np.asarray(loss_factors, dtype=float).ravel()
-    labels = {"zeta": "loss_factors", "lambda_": "relative_stiffnesses"}
-    for name in ("zeta", "lambda_", *sorted(extra)):
-        if name in family.axis_ranges:
-            require_in_range(labels.get(name, name), grids[name], *family.axis_ranges[name])
-        else:  # an axis whose family states no range: any positive value
-            require_positive(labels.get(name, name), grids[name])
+    given = {name: np.asarray(values, dtype=float).ravel() for name, values in given.items()}
+    given |= {"lambda_": np.asarray(relative_stiffnesses, dtype=float).ravel(),
+              "zeta": np.asarray(loss_factors, dtype=float).ravel()}
+    checked = {name: check_axis(family, name, given[name]) for name in ("zeta", "lambda_", *sorted(extra))}
+    return sweep_grid(structures, family, {name: checked[name] for name in given}, settings)
+
+
+def sweep_grid(structures: list, family: MapFamily, grids: dict, settings: ModalSettings) -> SweepGrid:
+    """The sweep of ``structures`` (non-empty) over ``grids`` (each axis of ``family`` → its
+    values, checked by :func:`check_axis`; the other axes first, then λ and ζ, the order the
+    memory refusal names them) with ``settings``: refused (``ValueError``) if an
+    axis is empty or the map would not fit in memory (:func:`require_map_fits`); else its
+    description and fingerprint (what a stored result must match).
+    """
+    extra = [name for name in grids if name not in ("zeta", "lambda_")]
     if any(values.size == 0 for values in grids.values()):
         sizes = " × ".join(f"{grids[name].size} {symbol}" for name, symbol in
                            (("zeta", "ζ"), ("lambda_", "λ"), *((name, name) for name in sorted(extra))))
@@ -215,7 +267,7 @@ def _prepare(structures, loss_factors, relative_stiffnesses, settings: ModalSett
     if family.law_revision != 1:  # a redefined law: no stored result of its old definition matches
         description["law_revision"] = family.law_revision
     axes_in_order = {name: grids[name] for name in family.axis_names}
-    return SweepGrid(structures, family, axes_in_order, description, fingerprint(description))
+    return SweepGrid(structures, family, axes_in_order, description, fingerprint(description), settings)
 
 
 #: Copies of the map a sweep holds at once: the dataset, the working arrays it fills, the
@@ -272,7 +324,7 @@ def _announce_discarded(path) -> None:
     count = "its finished points" if finished is None else f"{finished} finished point(s)"
     import warnings
 
-    warnings.warn(f"overwrite: {path} is replaced, discarding {count}", UserWarning, stacklevel=4)
+    warnings.warn(f"overwrite: {path} is replaced, discarding {count}", UserWarning, stacklevel=5)
 
 
 def _chunks(grid: SweepGrid, done: np.ndarray, chunk_size: int):
