@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import ModelValidityWarning
-from .contact.geometry import effective_modulus
+from .contact.geometry import contact_radius_function, effective_modulus
 from .contact.range_checks import law_warnings
 from .contact.plastic.epp import LARGEST_SPHERE_COMPLIANCE
 from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, thickness_shear_frequency
@@ -300,15 +300,10 @@ def _contact_radius(target, law, result):
 
     if getattr(target, "kind", None) != "plate" or not is_shear_deformable(getattr(target, "theory", "")):
         return None  # a shear-deformable (Mindlin) plate
-    alpha = max(float(result.max_indentation), 0.0)
-    # the contact radius as the modal solver's patch takes it (solvers.modal_settings.contact_radius_function,
-    # a layer above): the law's own loading radius (Stronge), else sqrt(R α) with the law's radius scale
-    if hasattr(law, "loading_contact_radius"):
-        radius = float(law.loading_contact_radius(alpha))
-    elif law.contact_radius_scale is not None:
-        radius = math.sqrt(float(law.contact_radius_scale) * alpha)
-    else:
+    radius_of = contact_radius_function(law)  # as the modal solver's patch takes it
+    if radius_of is None:
         return None
+    radius = radius_of(max(float(result.max_indentation), 0.0))
     if radius <= 0.5 * float(target.thickness):
         return None
     return (f"contact radius: {radius:.4g} m at the largest indentation exceeds half the plate thickness "

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from .numbers import case_dimensionless
 from ..closed_forms.hertz_similarity import hertz_numbers
-from ..solvers.modal_settings import uses_patch, contact_radius_function
+from ..contact.geometry import contact_radius_function
+from ..solvers.modal_settings import uses_patch
 from ..targets.map_structure import STRUCTURE_MATCH_RTOL
 from ..maps.family.accuracy import status_notes
 from ..maps.read.lookup import point_answer

@@ -6,7 +6,7 @@ import numpy as np
 
 from .._checks import require_in_range, require_positive
 
-__all__ = ["effective_modulus", "effective_radius", "require_positive_or_infinite"]
+__all__ = ["contact_radius_function", "effective_modulus", "effective_radius", "require_positive_or_infinite"]
 
 
 def require_positive_or_infinite(name: str, value, unit: str) -> np.ndarray:
@@ -39,3 +39,18 @@ def effective_radius(radius_1, radius_2=np.inf):
     require_positive("radius_1", radius_1, "m")
     r2 = require_positive_or_infinite("radius_2", radius_2, "m")
     return 1.0 / (1.0 / np.asarray(radius_1, float) + np.where(np.isinf(r2), 0.0, 1.0 / r2))
+
+
+def contact_radius_function(law, effective_radius: float | None = None):
+    """α [m] → contact radius a [m] of ``law``, or ``None`` when the law has no geometry.
+
+    A law's ``loading_contact_radius`` (Stronge), else ``a = sqrt(R α)`` with R the
+    ``effective_radius`` [m] or the law's ``contact_radius_scale``.
+    """
+    if hasattr(law, "loading_contact_radius"):
+        return lambda alpha: float(law.loading_contact_radius(alpha))
+    radius = effective_radius if effective_radius is not None else law.contact_radius_scale
+    if radius is None:
+        return None
+    require_positive("effective_radius", radius, "m")
+    return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))

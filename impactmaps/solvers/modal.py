@@ -43,8 +43,8 @@ from .modal_settings import (
     linear_stiffness,
     settings_dict,
     uses_patch,
-    contact_radius_function,
 )
+from ..contact.geometry import contact_radius_function
 from ..contact.contact_scale import reference_contact_stiffness
 from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, plan_basis
 from ..result import ImpactResult

@@ -8,14 +8,12 @@ from __future__ import annotations
 import functools
 from dataclasses import asdict, dataclass, replace
 
-import numpy as np
 
 from .._checks import require_choice, require_flag, require_in_range, require_positive, require_whole
 from ..contact.base import ContactLaw
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
-           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS",
-           "contact_radius_function"]
+           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS"]
 
 #: Loads the modal solver can apply: "auto" (the default) — the patch on shear-deformable
 #: targets that support it (Mindlin SSSS plates), the point load elsewhere; "point" — at
@@ -91,7 +89,7 @@ class ModalSettings:
     contact_patch : {"auto", "point", "hertz-peak"}
         ``"point"``: the force acts at the impact point. ``"hertz-peak"``: on targets
         that support it (SSSS plates) and with a contact law that has a geometry
-        (:func:`contact_radius_function`), a Hertz pressure over the contact disc of the
+        (:func:`impactmaps.contact.geometry.contact_radius_function`), a Hertz pressure over the contact disc of the
         peak indentation, found by fixed-point iteration (to :data:`PATCH_TOLERANCE`).
         ``"auto"`` (default): ``"hertz-peak"`` on Mindlin SSSS plates, whose point-load
         peak force never converges in the cut-off; the point load elsewhere
@@ -174,21 +172,6 @@ def linear_stiffness(law: ContactLaw) -> float:
     """K [N/m] if ``law`` is linear (the integrator then solves the contact in closed
     form), else 0. The one place that asks whether a law is linear."""
     return law.linear_stiffness or 0.0
-
-
-def contact_radius_function(law: ContactLaw, effective_radius: float | None = None):
-    """α [m] → contact radius a [m] of ``law``, or ``None`` when the law has no geometry.
-
-    A law's ``loading_contact_radius`` (Stronge), else ``a = sqrt(R α)`` with R the
-    ``effective_radius`` [m] or the law's ``contact_radius_scale``.
-    """
-    if hasattr(law, "loading_contact_radius"):
-        return lambda alpha: float(law.loading_contact_radius(alpha))
-    radius = effective_radius if effective_radius is not None else law.contact_radius_scale
-    if radius is None:
-        return None
-    require_positive("effective_radius", radius, "m")
-    return lambda alpha: float(np.sqrt(float(radius) * max(float(alpha), 0.0)))
 
 
 def uses_patch(target, contact_patch: str) -> bool:

@@ -12,7 +12,8 @@ import pytest
 
 from impactmaps.contact import HertzContact, LinearContact, Sphere, law_for_sphere
 from impactmaps.materials import material
-from impactmaps.solvers.modal_settings import ModalSettings, contact_radius_function
+from impactmaps.contact.geometry import contact_radius_function
+from impactmaps.solvers.modal_settings import ModalSettings
 from impactmaps.solvers.modal import simulate
 from impactmaps.targets.patch import (
     hertz_transform,
