@@ -204,18 +204,23 @@ def grid_shapes(blocks, grid_ids, keep):
 def run_solid(edges, ratio, density):
     n, nz = SOLID_MESHES[density]
     deck, meta, grid_ids = solid_deck(edges, ratio, n, nz)
-    job = f"solid_{edges}_{ratio}_{density}"
+    return _bending_modes(deck, f"solid_{edges}_{ratio}_{density}", "MID", grid_ids, dict(mesh=density, **meta))
+
+
+def _bending_modes(deck, job, node_set, grid_ids, labels):
+    """Run ``deck`` and keep its first N_BENDING bending modes (in-plane/uz rms < 0.05 on
+    ``node_set``): ``(entry, shapes)``, the entry labelled ``case=job`` and ``labels``."""
     dat, wall = ct.run_ccx(deck, job, WORKDIR)
     text = dat.read_text()
     omegas = ct.parse_eigenvalues(text)
-    blocks = ct.parse_node_prints(text, "MID")
+    blocks = ct.parse_node_prints(text, node_set)
     ratios = classify(blocks)
     bending = [k for k, r in enumerate(ratios) if r < 0.05]
     if len(bending) < N_BENDING:
         raise RuntimeError(f"{job}: only {len(bending)} bending modes among {len(omegas)}")
     keep = bending[:N_BENDING]
     shapes = grid_shapes(blocks, grid_ids, keep)
-    entry = dict(case=job, mesh=density, **meta,
+    entry = dict(case=job, **labels,
                  fe_bending_hz=[float(omegas[k] / (2 * np.pi)) for k in keep],
                  fe_bending_index=keep,
                  all_modes_hz=[float(w / (2 * np.pi)) for w in omegas],
@@ -312,23 +317,8 @@ def run_shell(layup, density):
     name, angles = LAYUPS[layup]
     nx, ny = SHELL_MESHES[density]
     deck, meta, grid_ids = shell_deck(angles, nx, ny)
-    job = f"shell_{layup}_{density}"
-    dat, wall = ct.run_ccx(deck, job, WORKDIR)
-    text = dat.read_text()
-    omegas = ct.parse_eigenvalues(text)
-    blocks = ct.parse_node_prints(text, "GRID")
-    ratios = classify(blocks)
-    bending = [k for k, r in enumerate(ratios) if r < 0.05]
-    if len(bending) < N_BENDING:
-        raise RuntimeError(f"{job}: only {len(bending)} bending modes among {len(omegas)}")
-    keep = bending[:N_BENDING]
-    shapes = grid_shapes(blocks, grid_ids, keep)
-    entry = dict(case=job, mesh=density, layup=name, **meta,
-                 fe_bending_hz=[float(omegas[k] / (2 * np.pi)) for k in keep],
-                 fe_bending_index=keep,
-                 all_modes_hz=[float(w / (2 * np.pi)) for w in omegas],
-                 inplane_to_uz_rms=ratios, wall_time_s=wall)
-    return entry, shapes
+    return _bending_modes(deck, f"shell_{layup}_{density}", "GRID", grid_ids,
+                          dict(mesh=density, layup=name, **meta))
 
 
 # --------------------------------------------------------------------------- bookkeeping
