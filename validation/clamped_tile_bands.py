@@ -17,6 +17,7 @@ cap) is counted as refused. Prints a Markdown table and a summary line; writes t
 ``--csv`` when given.
 
     python validation/clamped_tile_bands.py [--cases 12] [--inside 4] [--seed 39] [--csv FILE]
+    python validation/clamped_tile_bands.py --inside 8 CASE.toml …     # given cases instead of random ones
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ import warnings
 import numpy as np
 
 from impactmaps import lookup
-from impactmaps.cases import parse_case, run_case
+from impactmaps.cases import load_case, parse_case, run_case
 from impactmaps.cases.case_answer import case_map_law
 from impactmaps.cases.on_demand import _tile_settings, case_structure
 from impactmaps.maps.compute import tiles
@@ -85,6 +86,7 @@ def main() -> None:
     parser.add_argument("--inside", type=int, default=4)
     parser.add_argument("--seed", type=int, default=39)
     parser.add_argument("--csv")
+    parser.add_argument("case_files", nargs="*", help="case files (default: --cases random cases)")
     options = parser.parse_args()
     rng = np.random.default_rng(options.seed)
     lines, rows = [], []
@@ -92,8 +94,9 @@ def main() -> None:
     largest_band, largest_ratio = 0.0, 0.0
     with tempfile.TemporaryDirectory() as cache, warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for index in range(options.cases):
-            case = random_case(rng)
+        cases = ([load_case(path) for path in options.case_files] if options.case_files
+                 else (random_case(rng) for _ in range(options.cases)))
+        for index, case in enumerate(cases):
             target = case.target
             label = (f"{target.edges} {target.theory} {target.length_x * 1e3:.0f}×{target.length_y * 1e3:.0f}×"
                      f"{target.thickness * 1e3:.2f} mm, {case.law_name}, V0 {case.velocity:.2f} m/s")

@@ -171,9 +171,9 @@ def test_clamped_and_mixed_edge_mindlin_plates_within_3_percent_and_their_band_o
     of 6.3 % and 5.8 % from the 4 × 4 tile before; two impacts) and a 200 × 100 × 5 mm CFCF
     plate at 2 m/s: a band ≤ 3 % that holds ``simulate``'s peak force."""
     case = parse_case(text)
-    found = lookup(case=case, cache_dir=tmp_path)
-    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
+        warnings.simplefilter("ignore")  # the tile's points: mode-budget warnings of their finest cut-offs
+        found = lookup(case=case, cache_dir=tmp_path)
         _, summary = run_case(case)
+    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)
