@@ -20,7 +20,7 @@ from .._checks import (
 )
 from ..targets.beams.beam import Beam
 from .grid import beam_grid
-from .section import LayeredSection
+from .section import LayeredSection, Rectangle
 from .wide_section import constraint_parameters
 
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
@@ -38,7 +38,7 @@ _BEAM_OPTIONS = ("n_elements", "n_half_layers", "plastic", "hardening_modulus",
 # Beam definition
 # =====================================================================================
 @dataclass(frozen=True)
-class FDBeam:
+class FDBeam(Rectangle):
     """A uniform rectangular beam for the finite-difference solver (SI units).
 
     Parameters
@@ -172,16 +172,6 @@ class FDBeam:
             if self.width_constraint else (0.0, 0.0)
         return LayeredSection(self.width, self.height, self.youngs_modulus, self.yield_strength,
                               self.hardening_modulus, self.n_half_layers, saturation, rate)
-
-    @property
-    def area(self) -> float:
-        """A = b h [m²]."""
-        return self.width * self.height
-
-    @property
-    def second_moment(self) -> float:
-        """I = b h³/12 [m⁴]."""
-        return self.width * self.height**3 / 12.0
 
     @property
     def bending_stiffness(self) -> float:
