@@ -17,6 +17,7 @@ from .._checks import (
     require_in_range,
     require_nonnegative,
     require_positive,
+    require_positive_fields,
 )
 from ..targets.beams.beam import Beam
 from .grid import beam_grid
@@ -89,12 +90,8 @@ class FDBeam(Rectangle):
     width_constraint: bool = True
 
     def __post_init__(self):
-        require_positive("length", self.length, "m")
-        require_positive("width", self.width, "m")
-        require_positive("height", self.height, "m")
-        require_positive("youngs_modulus", self.youngs_modulus, "Pa")
-        require_positive("density", self.density, "kg/m^3")
-        require_positive("yield_strength", self.yield_strength, "Pa")
+        require_positive_fields(self, {"length": "m", "width": "m", "height": "m", "youngs_modulus": "Pa",
+                                       "density": "kg/m^3", "yield_strength": "Pa"})
         require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5,
                          low_inclusive=False, high_inclusive=False)
         supports = self.supports
