@@ -328,6 +328,23 @@ def _plastic_case(rng, kind, law="yigit-christoforou"):
                       f'[target]\n{table}\n[contact]\nlaw = "{law}"\n')
 
 
+def _assert_within_bands_of_simulate(found, case):
+    """The looked-up peak force, restitution and absorbed energy ``found`` of a plastic ``case`` hold
+    `simulate`'s within their stated bands plus the direct run's own ≤ 1e-3 normalised error."""
+    import warnings
+
+    from impactmaps.cases import run_case
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # validity warnings of the extreme cases some draws give
+        _, summary = run_case(case)
+    scale, energy = found["force_scale_N"], summary["impact_energy_J"]
+    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
+    assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
+    assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
+        found["absorbed_energy_error_J"] + 1e-3 * energy
+
+
 @pytest.mark.parametrize("kind, law, count, least", [
     ("beam", "yigit-christoforou", 40, 30), ("plate", "yigit-christoforou", 40, 30),
     ("beam", "stronge", 20, 12), ("plate", "stronge", 20, 12), ("timoshenko", "yigit-christoforou", 20, 10)])
@@ -336,9 +353,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     40 Stronge ones) gives the peak force, the restitution and the absorbed energy of
     `simulate` within its stated bands (plus the direct run's own ≤ 1e-3 normalised error),
     or refuses a case whose numbers lie outside the map — never a silent wrong number."""
-    import warnings
 
-    from impactmaps.cases import run_case
     from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
@@ -354,14 +369,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
             continue
         answered += 1
         assert found["law"] == ("yc" if law == "yigit-christoforou" else "stronge")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # validity warnings of the extreme cases some draws give
-            _, summary = run_case(case)
-        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
-        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
-        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
-        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
-            found["absorbed_energy_error_J"] + 1e-3 * energy
+        _assert_within_bands_of_simulate(found, case)
     assert answered >= least, answered
 
 
@@ -371,9 +379,7 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
     on the SS beam and SSSS plate answers from the shipped epp maps with the peak force, the
     restitution and the absorbed energy of `simulate` within its stated bands (plus the direct
     run's own ≤ 1e-3 normalised error), or refuses a case whose numbers lie outside the map."""
-    import warnings
 
-    from impactmaps.cases import run_case
     from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 61, "plate": 62}[kind])
@@ -388,14 +394,7 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
             continue
         answered += 1
         assert found["law"] == "epp" and found["map"].endswith("-epp")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            _, summary = run_case(case)
-        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
-        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
-        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
-        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
-            found["absorbed_energy_error_J"] + 1e-3 * energy
+        _assert_within_bands_of_simulate(found, case)
     assert answered >= least, answered
 
 
