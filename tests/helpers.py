@@ -48,6 +48,17 @@ HERTZ_BEAM_CASE = case_text("""
 """, radius=0.00635)
 
 
+#: A small sweep file for the ``sweep`` command: two ζ, one λ, one beam structure.
+SWEEP_CONFIG = """
+output = "out"
+[grid]
+zeta = {min = 0.2, max = 2.0, count = 2}
+lambda = [1.0]
+[[structure]]
+kind = "beam"
+"""
+
+
 def _refuse_constant(name):
     raise ValueError(f"not strict JSON: {name}")
 

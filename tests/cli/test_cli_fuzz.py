@@ -36,6 +36,10 @@ HEAVY = {"chart", "point", "classify", "sweep", "simulate", "fd", "lookup", "war
 BAD_NUMBERS = ("nan", "inf", "-inf", "-1", "0", "1e300", "-1e300", "abc", "")
 EDGE_NUMBERS = BAD_NUMBERS + ("1e-300", "1e-6", "0.5", "1", "2", "20", "1e6")
 
+#: The Hypothesis settings of every test here but the number of examples: the same draws every run.
+DERANDOMISED = dict(deadline=None, derandomize=True, database=None,
+                    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+
 HERTZ_BEAM = 'name = "fuzz"\n' + HERTZ_BEAM_CASE + "[solver]\nduration = 0.0005\n"
 
 FD_BEAM = HERTZ_BEAM.replace('law = "hertz"', 'law = "stronge"').replace(
@@ -227,8 +231,7 @@ def start_rss():
 
 @pytest.mark.parametrize("name", sorted(SUBCOMMANDS))
 @seed(20261126)
-@settings(max_examples=15, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@settings(max_examples=15, **DERANDOMISED)
 @given(data=st.data())
 def test_fuzz_every_subcommand_exits_0_or_2(name, data, files, capsys, start_rss):
     _fuzz(data, files, capsys, cheap=True, start_rss=start_rss, name=name)
@@ -237,8 +240,7 @@ def test_fuzz_every_subcommand_exits_0_or_2(name, data, files, capsys, start_rss
 @pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(SUBCOMMANDS))
 @seed(7)
-@settings(max_examples=8, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@settings(max_examples=8, **DERANDOMISED)
 @given(data=st.data())
 def test_fuzz_every_subcommand_with_computations(name, data, files, capsys, start_rss):
     _fuzz(data, files, capsys, cheap=False, start_rss=start_rss, name=name)
@@ -292,27 +294,27 @@ def case_files(draw):
     return _render(sections)
 
 
+def _run_case_file(text, files, capsys, start_rss, command, *options):
+    """``impactmaps COMMAND FILE OPTIONS --json`` on the case-file ``text``: the checks of :func:`_run`, memory bounded."""
+    path = files["root"] / "mutated.toml"
+    path.write_text(text)
+    _run([command, str(path), *options, "--json"], capsys, files["root"])
+    assert _rss_bytes() - start_rss < MEMORY_LIMIT_BYTES
+
+
 @seed(20261126)
-@settings(max_examples=120, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@settings(max_examples=120, **DERANDOMISED)
 @given(text=case_files())
 def test_fuzz_case_keys_check_exits_0_or_2(text, files, capsys, start_rss):
     """``impactmaps check`` (validation and derived numbers, no run) on mutated case files."""
-    path = files["root"] / "mutated.toml"
-    path.write_text(text)
-    _run(["check", str(path), "--json"], capsys, files["root"])
-    assert _rss_bytes() - start_rss < MEMORY_LIMIT_BYTES
+    _run_case_file(text, files, capsys, start_rss, "check")
 
 
 @pytest.mark.slow
 @seed(11)
-@settings(max_examples=40, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@settings(max_examples=40, **DERANDOMISED)
 @given(text=case_files())
 def test_fuzz_case_keys_simulate_exits_0_or_2(text, files, capsys, start_rss):
     """``impactmaps simulate`` on mutated (short) case files: runs or refuses, never a traceback."""
-    path = files["root"] / "mutated.toml"
-    path.write_text(text)
-    _run(["simulate", str(path), "--out", str(files["root"] / "sim"), "--json"], capsys, files["root"])
-    assert _rss_bytes() - start_rss < MEMORY_LIMIT_BYTES
+    _run_case_file(text, files, capsys, start_rss, "simulate", "--out", str(files["root"] / "sim"))
 
