@@ -23,13 +23,14 @@ VALIDATION = ROOT / "validation"
 #: Small data files of the tests (``tests/data/``).
 DATA = ROOT / "tests" / "data"
 
-def case_text(target: str, *, radius: float = 0.005, velocity: float = 1.0, law: str = "hertz", name: str = "",
-              after: str = "") -> str:
-    """Case-file text: a structural-steel sphere of ``radius`` [m] at ``velocity`` [m/s] on the ``[target]``
-    table of the lines ``target``, with contact ``law``; ``after``: the lines that follow (more contact keys,
-    then other tables); ``name``: the case's name, if any."""
+def case_text(target: str, *, radius: float = 0.005, velocity: float = 1.0, mass: float | None = None,
+              law: str = "hertz", name: str = "", after: str = "") -> str:
+    """Case-file text: a structural-steel sphere of ``radius`` [m] (and ``mass`` [kg], if given) at
+    ``velocity`` [m/s] on the ``[target]`` table of the lines ``target``, with contact ``law``; ``after``:
+    the lines that follow (more contact keys, then other tables); ``name``: the case's name, if any."""
     lines = [f'name = "{name}"'] if name else []
-    lines += ["[impactor]", f"radius = {radius!r}", 'material = "structural-steel"', f"velocity = {velocity!r}",
+    lines += ["[impactor]", f"radius = {radius!r}"] + ([f"mass = {mass!r}"] if mass is not None else [])
+    lines += ['material = "structural-steel"', f"velocity = {velocity!r}",
               "[target]", textwrap.dedent(target).strip(), "[contact]", f'law = "{law}"']
     return "\n".join(lines) + "\n" + textwrap.dedent(after).lstrip()
 
