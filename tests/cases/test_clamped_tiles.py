@@ -27,45 +27,35 @@ from impactmaps.maps.compute import tiles
 from impactmaps.maps.family.refinement import SURPLUS_SAFETY, refine
 from impactmaps.maps.family.structures import MapStructure
 
-#: A small clamped Kirchhoff plate struck by a 0.5 kg steel ball (one impact); its tile is
-#: committed (built by this very code; the slow test rebuilds it and compares bits).
-_SMALL_CLAMPED = """
-[impactor]
-radius = 0.01
-mass = 0.5
-material = "structural-steel"
-velocity = 1.0
-[target]
-type = "plate"
-length_x = 0.12
-length_y = 0.1
-thickness = 0.003
-material = "aluminium-6061-t6"
-theory = "{theory}"
-edges = "{edges}"
-[contact]
-law = "hertz"
-"""
+from ..helpers import case_text
+
+#: A small clamped Kirchhoff plate struck by a 0.5 kg steel ball at 1 m/s (one impact); its
+#: tile is committed (built by this very code; the slow test rebuilds it and compares bits).
+_SMALL_CLAMPED = case_text("""
+    type = "plate"
+    length_x = 0.12
+    length_y = 0.1
+    thickness = 0.003
+    material = "aluminium-6061-t6"
+    theory = "kirchhoff"
+    edges = "CCCC"
+""", radius=0.01, mass=0.5)
 _COMMITTED_TILE = Path(__file__).parents[1] / "data" / "tiles" / "tile-ff192978bc60a86509a00facfd7297f6.nc"
 
-#: The clamped plate of issue 39's benchmark (150 × 100 × 3 mm 6061-T6, 20 mm steel ball) as a
-#: Mindlin plate, at a speed and edges given.
-_BENCHMARK = """
-[impactor]
-radius = 0.01
-material = "structural-steel"
-velocity = {velocity}
-[target]
-type = "plate"
-length_x = 0.15
-length_y = 0.10
-thickness = 0.003
-material = "aluminium-6061-t6"
-theory = "mindlin"
-edges = "{edges}"
-[contact]
-law = "hertz"
-"""
+
+
+def _mindlin(velocity: float, edges: str = "CCCC", size=(0.15, 0.1, 0.003)) -> str:
+    """A Mindlin 6061-T6 plate (default: issue 39's clamped 150 × 100 × 3 mm benchmark plate) struck
+    at its centre by a 20 mm steel ball."""
+    return case_text(f"""
+        type = "plate"
+        length_x = {size[0]!r}
+        length_y = {size[1]!r}
+        thickness = {size[2]!r}
+        material = "aluminium-6061-t6"
+        theory = "mindlin"
+        edges = "{edges}"
+    """, radius=0.01, velocity=velocity)
 
 _CLAMPED = MapStructure(kind="plate", theory="kirchhoff", supports="CCCC", aspect_ratio=0.8)
 
@@ -134,7 +124,7 @@ def test_a_small_clamped_plate_is_answered_within_3_percent_and_within_its_band_
     """The committed tile of a 120 × 100 × 3 mm clamped Kirchhoff plate answers (nothing
     built): a band ≤ 3 % of the peak force that holds ``simulate``'s."""
     shutil.copy(_COMMITTED_TILE, tmp_path)
-    case = parse_case(_SMALL_CLAMPED.format(theory="kirchhoff", edges="CCCC"))
+    case = parse_case(_SMALL_CLAMPED)
     lines = []
     found = lookup(case=case, cache_dir=tmp_path, notify=lines.append)
     assert lines == [], "the committed tile answers: nothing is built"
@@ -150,7 +140,7 @@ def test_a_small_clamped_plate_is_answered_within_3_percent_and_within_its_band_
 @pytest.mark.slow
 def test_the_committed_clamped_tile_is_what_the_code_builds(tmp_path):
     """The committed tile, rebuilt: the same data, bit for bit."""
-    case = parse_case(_SMALL_CLAMPED.format(theory="kirchhoff", edges="CCCC"))
+    case = parse_case(_SMALL_CLAMPED)
     found = lookup(case=case, cache_dir=tmp_path)
     assert Path(found["cache_file"]).name == _COMMITTED_TILE.name
     with xr.open_dataset(found["cache_file"], engine="scipy") as built, \
@@ -159,13 +149,9 @@ def test_the_committed_clamped_tile_is_what_the_code_builds(tmp_path):
         assert built.attrs["fingerprint"] == committed.attrs["fingerprint"]
 
 
-_CFCF = _BENCHMARK.replace("0.15", "0.2").replace("0.10", "0.1").replace("0.003", "0.005")
-
-
 @pytest.mark.slow
-@pytest.mark.parametrize("text", [_BENCHMARK.format(velocity=5.4, edges="CCCC"),
-                                  _BENCHMARK.format(velocity=3.0, edges="CCCC"),
-                                  _CFCF.format(velocity=2.0, edges="CFCF")], ids=["CCCC-5.4", "CCCC-3.0", "CFCF"])
+@pytest.mark.parametrize("text", [_mindlin(5.4), _mindlin(3.0), _mindlin(2.0, "CFCF", (0.2, 0.1, 0.005))],
+                         ids=["CCCC-5.4", "CCCC-3.0", "CFCF"])
 def test_clamped_and_mixed_edge_mindlin_plates_within_3_percent_and_their_band_of_simulate(tmp_path, text):
     """The issue's clamped Mindlin plate (150 × 100 × 3 mm, 20 mm ball) at 5.4 and 3 m/s (bands
     of 6.3 % and 5.8 % from the 4 × 4 tile before; two impacts) and a 200 × 100 × 5 mm CFCF
