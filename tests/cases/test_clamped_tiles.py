@@ -137,6 +137,31 @@ def test_a_small_clamped_plate_is_answered_within_3_percent_and_within_its_band_
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)
 
 
+@pytest.mark.parametrize("status, value, error", [("unresolved", np.nan, np.nan), ("sensitive", None, 0.05)])
+def test_a_splitting_point_that_did_not_converge_is_said(tmp_path, status, value, error):
+    """The committed tile with its centre point (a corner of every leaf) made ``unresolved``
+    (no value) or ``sensitive`` (a wide band of its own), its digest recomputed: the lookup
+    refuses the case next to an unresolved point, or answers ``sensitive`` with at least
+    that band — never the converged band of the other points."""
+    from impactmaps.maps.family.accuracy import STATUSES
+
+    with xr.open_dataset(_COMMITTED_TILE, engine="scipy") as opened:
+        tile = opened.load()
+    centre = int(np.flatnonzero(tile["refinement_code"].values == 4)[0])  # (1, 1) of the 3 × 3 lattice
+    for name, new in (("fmax_normalised", value), ("fmax_error", error), ("status", STATUSES.index(status))):
+        if new is not None:
+            tile[f"refinement_{name}"].values[centre] = new
+    tile.attrs["data_digest"] = tiles._data_digest(tile)
+    tiles.save_atomic(tile, tmp_path / _COMMITTED_TILE.name)
+    case = parse_case(_SMALL_CLAMPED)
+    if status == "unresolved":
+        with pytest.raises(ValueError, match="holds no value next to it"):
+            lookup(case=case, cache_dir=tmp_path, build=True, notify=pytest.fail)
+        return
+    found = lookup(case=case, cache_dir=tmp_path, notify=pytest.fail)
+    assert found["status"] == "sensitive" and found["fmax_error"] >= error
+
+
 @pytest.mark.slow
 def test_the_committed_clamped_tile_is_what_the_code_builds(tmp_path):
     """The committed tile, rebuilt: the same data, bit for bit."""
