@@ -25,7 +25,7 @@ from ...targets.options import default_theory
 from ..family.accuracy import AccuracyControl, exact_point
 from ..family.builtin_families import HertzLayout
 from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
-from .points import PlanMethod, method_code, solve_map_points
+from .points import PlanMethod, capped_resolvable, method_code, solve_map_points
 from ..family.structures import BasisTable, MapStructure
 
 __all__ = [ "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
@@ -177,6 +177,8 @@ class HertzFamily(HertzLayout):
 
     variables = {name: spec[:3] + (HERTZ_DESCRIPTIONS.get(name, spec[3]),) for name, spec in RESULT_VARIABLES.items()}
 
+    capped_points = True
+
     def __init__(self, patch: float | None = None):
         self.patch = patch
 
@@ -214,8 +216,8 @@ class HertzFamily(HertzLayout):
                     and realised.reflection >= ends):
                 return PointPlan(PlanMethod.ASYMPTOTE,
                                  exact_point(infinite | {"method": method_code(PlanMethod.ASYMPTOTE)}))
-        if capped:  # its cut-off could not be refined: the map does not vouch for it
-            return PointPlan(None)
+        if capped:  # answered as simulate answers it (halving the cap checks it), or not vouched for
+            return PointPlan(PlanMethod.CAPPED if capped_resolvable(target, realised.omega, cap) else None)
         return PointPlan(PlanMethod.MODAL)
 
     def scaled(self, result, realised: _Realised) -> _HertzScaled:

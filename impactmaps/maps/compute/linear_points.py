@@ -41,6 +41,8 @@ class LinearFamily(LinearLayout):
     """The linear contact law's maps (module docstring); its layout (axes, shipped maps):
     :class:`~impactmaps.maps.family.builtin_families.LinearLayout`."""
 
+    capped_points = True
+
     def describes(self, law) -> bool:
         return law.linear_stiffness is not None
 
@@ -65,7 +67,7 @@ class LinearFamily(LinearLayout):
     def plan(self, target, realised: LinearImpact, point, cap: float, settings) -> PointPlan:
         zeta = float(point[0])
         plan = map_plan(target, realised.law, realised.mass, realised.omega, settings.cutoff_ratio * realised.omega,
-                        cap, zeta)
+                        cap, zeta, capped=True)
         if plan is None:
             return PointPlan(None)
         if plan.method == PlanMethod.ASYMPTOTE:

@@ -17,14 +17,14 @@ from enum import StrEnum
 from ...solvers.modal_settings import ModalSettings
 from ...solvers.mode_budget import METHODS as BUDGET_METHODS
 from ...solvers.mode_budget import ModeBudgetError, plan_basis
-from ...solvers.mode_budget import frequency_cap
+from ...solvers.mode_budget import MIN_CAPPED_CUTOFF_RATIO, frequency_cap
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import STATUSES, AccuracyControl, PointStatus, controlled_point
 from ..family.map_family import RESULT_VARIABLES
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
 
 __all__ = ["SOLVER_REVISION", "METHODS", "PlanMethod", "method_code", "basis_table",
-           "map_plan", "unresolved_point", "table_run_key", "table_runner", "solve_map_points"]
+           "map_cap", "capped_resolvable", "map_plan", "unresolved_point", "table_run_key", "table_runner", "solve_map_points"]
 
 SOLVER_REVISION = 8  # bump when a numerical change invalidates stored results (5: exact linear contact phase; 6: shear-deformable points beyond their theory unresolved, no classical asymptote for them; 7: sensitive bands from runs perturbed at the base settings, at least the tolerance wide; 8: degenerate modes merged, so the mode floor counts modes the impact point sees; free flight up to 1024 h; two-rate exact contact phase)
 
@@ -61,10 +61,38 @@ def basis_table(structure: MapStructure, min_modes: int) -> BasisTable:
         return BasisTable(structure.build(), frequency_cap(structure.build(), MAX_MODES), min_modes)
 
 
-def map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, zeta: float | None):
+def _resolves_below_cap(target) -> bool:
+    """A plate of bounded Ritz basis: its modes stop where its largest basis stops resolving."""
+    return getattr(target, "kind", None) == "plate" and bool(getattr(target, "bounded_modes", False))
+
+
+def map_cap(target) -> float:
+    """The cap [rad/s] on the cut-off of a point of a family with ``capped_points``:
+    :func:`~impactmaps.solvers.mode_budget.frequency_cap` at :data:`MAX_MODES`, and on a plate
+    of bounded Ritz basis no higher than what its largest basis resolves
+    (``resolution_limit``, the cap ``simulate`` holds a run to; ``frequency_cap`` stops at
+    the doubling past it)."""
+    cap = frequency_cap(target, MAX_MODES)
+    if _resolves_below_cap(target):
+        cap = min(cap, float(target.resolution_limit()))
+    return cap
+
+
+def capped_resolvable(target, omega: float, cap: float) -> bool:
+    """Whether a point of contact frequency ``omega`` [rad/s] whose cut-off lies above ``cap``
+    [rad/s] is answered as ``simulate`` answers it: on a plate of bounded Ritz basis whose
+    cap lies at least :data:`~impactmaps.solvers.mode_budget.MIN_CAPPED_CUTOFF_RATIO` ω up,
+    on the modes up to the cap with the residual compliance of the rest, its error measured
+    by halving the cap (:func:`solve_map_points`)."""
+    return _resolves_below_cap(target) and cap >= MIN_CAPPED_CUTOFF_RATIO * float(omega)
+
+
+def map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, zeta: float | None,
+             capped: bool = False):
     """The :class:`~impactmaps.solvers.mode_budget.BasisPlan` of one map point, or None
     (``unresolved``): ``omega`` [rad/s] beyond the target's shear theory, or the mode budget
-    answering only by capping the modes or not at all.
+    answering only by capping the modes (unless ``capped`` and :func:`capped_resolvable`)
+    or not at all.
     """
     if beyond_shear_theory(target, omega):
         return None
@@ -73,8 +101,10 @@ def map_plan(target, law, mass: float, omega: float, wanted: float, cap: float, 
     except ModeBudgetError:
         return None
     # a capped run cannot have its cut-off doubled, so its refinement would only halve the
-    # step and call it converged: the map does not vouch for it
-    return None if plan.method == PlanMethod.CAPPED else plan
+    # step and call it converged: the map vouches for it only where halving the cap checks it
+    if plan.method == PlanMethod.CAPPED and not (capped and capped_resolvable(target, omega, cap)):
+        return None
+    return plan
 
 
 def unresolved_point(row: dict) -> dict:
@@ -158,7 +188,7 @@ def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], s
     settings = settings or ModalSettings()
     target = structure.build()
     family.check(structure, target, settings)
-    cap = frequency_cap(structure.build(), MAX_MODES)
+    cap = map_cap(target) if family.capped_points else frequency_cap(target, MAX_MODES)
     if table is None and family.uses_table():
         table = basis_table(structure, settings.min_modes)
     rows = []
@@ -176,5 +206,27 @@ def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], s
             family, target, table, cap, point, realised, runs)
         answer = controlled_point(run, settings, control)
         companions = family.companion_errors(runs, answer["status"], int(control.max_refinements) + 1)
+        if plan.method == PlanMethod.CAPPED:
+            answer = _halved_cap(answer, runs[0], run, settings, control, cap / realised.omega,
+                                 getattr(family, "patch", None) is not None)
         rows.append(row | answer | companions | {"method": method_code(plan.method)})
     return rows
+
+
+def _halved_cap(answer: dict, base, run, settings: ModalSettings, control: AccuracyControl, cap_ratio: float,
+                patch: bool) -> dict:
+    """``answer`` of a capped point (its refinements could only halve the step) with the check
+    ``simulate`` makes of a capped run: the ``base`` run against one with the cap halved
+    (``cap_ratio`` = cap/ω [-]). The change widens the band; beyond the tolerance the point
+    has no converged value (``sensitive``, the band holding both runs)."""
+    half = 0.5 * cap_ratio
+    coarse = run(replace(settings, patch_cutoff_ratio=half) if patch else replace(settings, cutoff_ratio=half), 1.0)
+    change = abs(coarse.fmax_normalised - base.fmax_normalised)
+    fine = float(answer["fmax_normalised"])
+    error = max(float(answer["fmax_error"]), change)
+    low = min(float(answer["fmax_low"]), fine - error, coarse.fmax_normalised)
+    high = max(float(answer["fmax_high"]), fine + error, coarse.fmax_normalised)
+    if change <= control.tolerance and STATUSES[answer["status"]] != PointStatus.SENSITIVE:
+        return answer | {"fmax_error": error, "fmax_low": fine - error, "fmax_high": fine + error}
+    return answer | {"fmax_error": 0.5 * (high - low), "fmax_low": low, "fmax_high": high,
+                     "status": STATUSES.index(PointStatus.SENSITIVE)}

@@ -31,7 +31,7 @@ from ...solvers.modal_settings import ModalSettings
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
-from .points import SOLVER_REVISION, solve_map_points
+from .points import SOLVER_REVISION, capped_resolvable, map_cap, solve_map_points
 from ..family.map_family import map_family
 from ..family.accuracy import stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
@@ -61,8 +61,10 @@ TILE_POINTS = 4
 #: a tile without a patch, whose points that rule does not touch, keeps format 1).
 _TILE_FORMAT = 2
 _POINT_LOAD_TILE_FORMAT = 1
-#: Version of a refined-cell tile's file (:func:`refined_cell`; 3: the first).
-_CELL_TILE_FORMAT = 3
+#: Version of a refined-cell tile's file (:func:`refined_cell`; 3: the first; 4: a point whose
+#: cut-off the Ritz basis cannot resolve is answered as ``simulate`` answers it, on the modes up
+#: to the basis's resolved frequency, checked by halving that cap: :func:`~.points.capped_resolvable`).
+_CELL_TILE_FORMAT = 4
 #: Depth of a refined-cell tile's split (its leaves: 1/2 of its cell per axis).
 _CELL_LEVELS = 1
 #: Prefix of a refined-cell tile's refinement variables (dimension ``refinement_point``).
@@ -318,12 +320,14 @@ def _table(key: TileKey, points) -> BasisTable:
     compliance is finite; a point-loaded Mindlin plate keeps the sweep's table.
     """
     target = key.structure.build()
-    cap = frequency_cap(key.structure.build(), MAX_MODES)
-    omegas = [impact.omega for impact in _family(key).realise_points(target, points)]
+    family = _family(key)
+    cap = map_cap(target) if family.capped_points else frequency_cap(target, MAX_MODES)
+    omegas = [impact.omega for impact in family.realise_points(target, points)]
     p = key.control.perturbation  # the margin of the docstring
     finest = key.settings.cutoff_ratio * 2**key.control.max_refinements * (1.0 + p) / (1.0 - p)
-    wanted = [finest * omega for omega in omegas
-              if key.settings.cutoff_ratio * omega <= cap and not beyond_shear_theory(target, omega)]
+    # a capped point (its cut-off above the cap, answered as simulate answers it) uses the cap
+    wanted = [finest * omega for omega in omegas if not beyond_shear_theory(target, omega) and (
+        key.settings.cutoff_ratio * omega <= cap or (family.capped_points and capped_resolvable(target, omega, cap)))]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)  # as basis_table: a point's own cut-off is warned about
         return BasisTable(target, min(max(wanted, default=0.0), cap),

@@ -186,6 +186,11 @@ class MapFamily:
     def check(self, structure, target, settings) -> None:
         """Refuse a structure or settings the family cannot map (``ValueError``); default none."""
 
+    #: Whether a point whose cut-off a bounded Ritz plate cannot resolve is answered as
+    #: ``simulate`` answers it (:func:`impactmaps.maps.compute.points.capped_resolvable`):
+    #: on the modes up to what the basis resolves, checked by halving that cap.
+    capped_points = False
+
     def uses_table(self) -> bool:
         """Whether the points truncate the structure's basis table (default True)."""
         return True
