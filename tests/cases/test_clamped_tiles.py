@@ -188,3 +188,39 @@ def test_clamped_and_mixed_edge_mindlin_plates_within_3_percent_and_their_band_o
         _, summary = run_case(case)
     assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)
+
+
+#: A clamped/simply supported Kirchhoff plate and a linear-law point whose cut-off (40 ω) lies
+#: above what the largest Ritz basis resolves, but that resolution above 8 ω: ``simulate``
+#: answers such a run on the modes up to it (validation/clamped_tile_bands.py, seed 40, case 8).
+_CAPPED_STRUCTURE = MapStructure(kind="plate", theory="kirchhoff", supports="CCSS", aspect_ratio=1.5)
+_CAPPED_POINT = (27.0, 0.0019)
+
+
+def test_a_point_beyond_the_ritz_resolution_is_answered_as_simulate_answers_it():
+    """A tile point whose cut-off the largest Ritz basis cannot resolve (refused before): solved
+    on the modes up to the basis's resolved frequency (``modal+residual-capped``), its band
+    holding ``simulate``'s capped run of the same impact and the change ``simulate``'s own check
+    measures (the cap halved); ``sensitive`` where that check says "not converged"."""
+    from impactmaps.maps.compute.linear_points import LINEAR
+    from impactmaps.maps.compute.points import PlanMethod, map_cap, method_code, solve_map_points
+    from impactmaps.maps.family.accuracy import STATUSES
+    from impactmaps.solvers.modal import simulate
+    from impactmaps.solvers.modal_settings import ModalSettings
+
+    target = _CAPPED_STRUCTURE.build()
+    impact = LINEAR.realise(target, _CAPPED_POINT)
+    cap = map_cap(target)
+    assert cap == target.resolution_limit() and 8.0 * impact.omega <= cap < 40.0 * impact.omega
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the capped basis's mode-budget warning
+        (row,) = solve_map_points(LINEAR, _CAPPED_STRUCTURE, [_CAPPED_POINT])
+        direct = simulate(target, impact.law, impact.mass, impact.velocity, settings=ModalSettings(check_convergence=True),
+                          record=False)
+    assert row["method"] == method_code(PlanMethod.CAPPED) and direct.method == PlanMethod.CAPPED
+    status = STATUSES[row["status"]]
+    assert status != "unresolved" and np.isfinite(row["fmax_normalised"])
+    assert row["fmax_low"] <= direct.fmax_normalised <= row["fmax_high"]
+    assert abs(direct.fmax_normalised - row["fmax_normalised"]) <= row["fmax_error"]
+    if not direct.converged:  # simulate's "not converged" (halving the cap moved F̄max) is said
+        assert status == "sensitive", (status, direct.convergence_note)

@@ -204,13 +204,28 @@ def solve_map_points(family, structure: MapStructure, points: Sequence[tuple], s
         runs = []
         run = family.runner(target, table, cap, point, realised, runs) or table_runner(
             family, target, table, cap, point, realised, runs)
+        if plan.method == PlanMethod.CAPPED:  # keep its base run for the check of the cap
+            run, first = _remembering_first(run)
         answer = controlled_point(run, settings, control)
         companions = family.companion_errors(runs, answer["status"], int(control.max_refinements) + 1)
         if plan.method == PlanMethod.CAPPED:
-            answer = _halved_cap(answer, runs[0], run, settings, control, cap / realised.omega,
+            answer = _halved_cap(answer, first[0], run, settings, control, cap / realised.omega,
                                  getattr(family, "patch", None) is not None)
         rows.append(row | answer | companions | {"method": method_code(plan.method)})
     return rows
+
+
+def _remembering_first(run):
+    """(``run`` that keeps its first result, the list holding it)."""
+    first = []
+
+    def remembering(settings: ModalSettings, zeta_factor: float):
+        result = run(settings, zeta_factor)
+        if not first:
+            first.append(result)
+        return result
+
+    return remembering, first
 
 
 def _halved_cap(answer: dict, base, run, settings: ModalSettings, control: AccuracyControl, cap_ratio: float,
