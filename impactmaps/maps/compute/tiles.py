@@ -153,7 +153,7 @@ class TileKey:
         if self.patch is not None:  # the patch model's revision (1: 3D-consistent near field, near_field)
             extra["patch_model"] = PATCH_MODEL_REVISION
         tile_format = _TILE_FORMAT if self.patch is not None else _POINT_LOAD_TILE_FORMAT
-        if self.cell:  # a refined cell (format 3): its split and the safety on its surpluses
+        if self.cell:  # a refined cell (format 4): its split and the safety on its surpluses
             extra["refinement"] = {"levels": _CELL_LEVELS, "surplus_safety": SURPLUS_SAFETY}
             tile_format = _CELL_TILE_FORMAT
         return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
