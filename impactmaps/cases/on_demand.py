@@ -20,13 +20,17 @@ Everything else stays refused with the reason: a target the structure cannot wri
 inertia no rectangle of any Poisson ratio has), an elastic-plastic impact on a Mindlin
 plate (the sphere radius a fourth number), a tile point next to the case that is
 ``unresolved`` (beyond the structural theory's range, or more modes than the sweep's cap
-of :data:`~impactmaps.maps.family.structures.MAX_MODES` below its cut-off). Never the nearest map.
+of :data:`~impactmaps.maps.family.structures.MAX_MODES` below its cut-off; on a clamped or
+mixed-edge plate, a cut-off above what its largest Ritz basis resolves with that resolution
+below 8 contact frequencies: a point above the resolution but 8 ω up is answered as
+``simulate`` answers it, :func:`impactmaps.maps.compute.points.capped_resolvable`). Never the nearest map.
 """
 
 from __future__ import annotations
 
 from ..closed_forms.hertz_similarity import patch_number
 from ..solvers.modal_settings import ModalSettings
+from ..solvers.mode_budget import MIN_CAPPED_CUTOFF_RATIO
 from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
 from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from ..maps.read.lookup import read_map
@@ -136,11 +140,16 @@ def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
         raise NoMapError(case, f"{refusal.what}, and no on-demand map describes it: {error}") from None
     settings, built = _tile_settings(case, patch), {}
 
+    ritz = structure.kind == "plate" and structure.build().bounded_modes
+    cap = (f"more modes than the plate's largest Ritz basis resolves, that resolution lying less than "
+           f"{MIN_CAPPED_CUTOFF_RATIO:g} contact frequencies up (as simulate refuses it)," if ritz else
+           f"more modes than the sweep's cap of {MAX_MODES} modes")
+
     def unresolved(name, numbers):
         return NoMapError(case, f"{refusal.what}, and the {name} holds no value next to it, at "
                                 f"{numbers} (unresolved: the contact frequency lies beyond the range of the "
-                                f"{structure.theory} theory, or a point needs more modes than the sweep's cap of "
-                                f"{MAX_MODES} modes below its cut-off and no exact asymptote answers it)")
+                                f"{structure.theory} theory, or a point needs {cap} below its cut-off and no "
+                                "exact asymptote answers it)")
 
     def realisable(**numbers):  # a tile around numbers no map point can be realised at answers nothing
         for name, value in numbers.items():
