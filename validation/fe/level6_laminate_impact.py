@@ -97,6 +97,18 @@ def law_for(layup, mass):
                                      laminate(layup))
 
 
+def cluster_duration(intervals, gap=0.01):
+    """Duration [s] of the first contact with the contacts that follow it after a separation
+    shorter than ``gap`` × the contact so far merged in (a graze: the force touches zero for a
+    moment, which turns one contact into two on a rounding of the force)."""
+    start, end = intervals[0]
+    for s, e in intervals[1:]:
+        if s - end > gap * (end - start):
+            break
+        end = e
+    return float(end - start)
+
+
 def toolkit(layup, mass, couplings=True):
     """First contact of ``simulate`` on the toolkit plate: peak, duration, contact radius."""
     law = law_for(layup, mass)
@@ -114,6 +126,7 @@ def toolkit(layup, mass, couplings=True):
     return dict(couplings=couplings, D16_N_m=target.D16, D26_N_m=target.D26,
                 peak_force_N=float(res.peak_force), first_peak_N=first,
                 first_contact_s=float(iv[0, 1] - iv[0, 0]), impacts=int(len(iv)),
+                contact_intervals_s=iv.tolist(), first_contact_merged_s=cluster_duration(iv),
                 restitution=float(res.restitution), end_time_s=float(res.end_time),
                 n_modes=int(res.n_modes),
                 contact_radius_at_peak_m=float(np.sqrt(law.effective_radius * alpha)),
@@ -333,6 +346,7 @@ def fe_spring(tag, k, law, mass, duration, step, n_modes=None):
                 residual_compliance_m_per_N=residual, peak_force_N=run.peak_force,
                 first_peak_N=float(run.force[inside].max()),
                 first_contact_s=float(iv[0, 1] - iv[0, 0]), impacts=int(len(iv)),
+                contact_intervals_s=iv.tolist(), first_contact_merged_s=cluster_duration(iv),
                 restitution=run.restitution)
 
 
@@ -340,7 +354,7 @@ def patch_compliance(target, radius):
     """The toolkit plate's static compliance under the Hertz patch [m/N]."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        basis = target.modes(4e6, contact_radius=radius)
+        basis = target.modes(1e5, contact_radius=radius)
     return float(basis.retained_compliance + basis.residual_compliance)
 
 
@@ -356,10 +370,16 @@ def impact():
     for layup, (name, _, (lx, ly)) in LAYUPS.items():
         ref, coarse = f"{layup}_{REFERENCE}", f"{layup}_{COARSE}"
         meta = json.loads((ct.RESULTS / f"level6_laminate_modes_{ref}.json").read_text())
+        coarse_meta = json.loads((ct.RESULTS / f"level6_laminate_modes_{coarse}.json").read_text())
         full, bare = plate(layup), plate(layup, couplings=False)
         entry = dict(layup=name, length_x_m=lx, length_y_m=ly, D16_N_m=full.D16,
                      D26_N_m=full.D26, D11_N_m=full.D11, D22_N_m=full.D22,
+                     fe_meshes={m["tag"]: {k: m[k] for k in (
+                         "elements", "element_size_centre_m", "element_size_far_m", "growth_ratio",
+                         "n_nodes", "n_modes", "highest_frequency_hz", "ccx_wall_time_s", "command")}
+                         for m in (meta, coarse_meta)},
                      frequencies_hz=dict(fe_fine_lowest=meta["lowest_frequencies_hz"],
+                                         fe_coarse_lowest=coarse_meta["lowest_frequencies_hz"],
                                          toolkit=full.natural_frequencies_hz(8).tolist(),
                                          toolkit_without_D16_D26=bare.natural_frequencies_hz(8).tolist()),
                      static=[], cases=[])
@@ -377,7 +397,8 @@ def impact():
             duration, step = 1.05 * tk["end_time_s"], tk["first_contact_s"] / 2000
             fe = {"reference": fe_spring(ref, k, law, mass, duration, step),
                   "half_step": fe_spring(ref, k, law, mass, duration, step / 2),
-                  "half_modes": fe_spring(ref, k, law, mass, duration, step, n_modes=N_MODES // 2),
+                  "half_modes": fe_spring(ref, k, law, mass, duration, step,
+                                          n_modes=meta["n_modes"] // 2),
                   coarse: fe_spring(coarse, k, law, mass, duration, step)}
             entry["cases"].append(dict(mass_kg=mass, toolkit=tk, toolkit_without_D16_D26=tk0, fe=fe))
             r = fe["reference"]
