@@ -125,8 +125,8 @@ def test_laminate_impact_vs_composite_shell(layup, case):
     Hertz patch) within 3 % of the composite-shell FE spring model in first-contact peak and
     duration. Where the FE's first contact ends in a graze (the force touches zero for < 1 % of
     the contact and the contact resumes: ``qi0`` at 1 kg, a 16 µs gap at 4.70 ms) the strict
-    first-contact duration is ill-conditioned — the toolkit's force dips to a few newtons there
-    without reaching zero, so its first contact is the merged one (+4.1 % on the strict
+    first-contact duration is ill-conditioned — the toolkit's force dips to 1.6 N there without
+    reaching zero, so its first contact is the merged one (+4.1 % on the strict
     duration) — and the durations compared are the graze-merged ones."""
     peak, _, intervals = _first_contact(layup, case["mass_kg"])
     ref = case["fe"]["reference"]
