@@ -90,8 +90,8 @@ def main(argv=None):
                           velocity_m_s=l3d.VELOCITY, edges="CCCC (3D: side faces fully held)",
                           material=dict(E_Pa=STEEL.youngs_modulus, nu=STEEL.poisson_ratio,
                                         rho_kg_m3=STEEL.density)),
-           "command": "python validation/fe/level6_impact.py " + " ".join(
-               argv if argv is not None else sys.argv[1:]),
+           "command": ("python validation/fe/level6_impact.py " + " ".join(
+               argv if argv is not None else sys.argv[1:])).rstrip(),
            "modes": modes, "reference": reference,
            "static_patch_compliance_m_per_N": {t: m["static_compliance_m_per_N"]
                                                for t, m in modes.items()},
