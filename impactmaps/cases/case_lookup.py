@@ -90,7 +90,7 @@ def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = No
                          "(leave them out)")
     return _case_answer(case, build=build, cache_dir=cache_dir, notify=notify, progress=progress)
 
-def map_for_case(case) -> tuple[str, str]:
+def map_for_case(case, law: str | None = None) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
 
     A shipped map stands for a structure family (the targets of one map structure) with a
@@ -106,6 +106,8 @@ def map_for_case(case) -> tuple[str, str]:
     Parameters
     ----------
     case : impactmaps.cases.Case
+    law : str, optional
+        The case's map law when already known (default :func:`case_map_law` of the case).
 
     Returns
     -------
@@ -128,7 +130,7 @@ def map_for_case(case) -> tuple[str, str]:
     def same(value, wanted) -> bool:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
 
-    law = case_map_law(case)
+    law = case_map_law(case) if law is None else law
     if case.solver_kind != "modal":
         refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
                "and Rayleigh theory; the maps are of elastic structures solved modally)")
@@ -254,7 +256,7 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
                                "impactor's radius) so that the force spreads over the contact patch, or use "
                                "theory = \"kirchhoff\"")
     try:
-        structure, theory = map_for_case(case)
+        structure, theory = map_for_case(case, law)
     except NoMapError as refusal:
         if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either

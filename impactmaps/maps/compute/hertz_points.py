@@ -180,9 +180,6 @@ class HertzFamily(HertzLayout):
     def __init__(self, patch: float | None = None):
         self.patch = patch
 
-    def describes(self, law) -> bool:
-        return law.hertzian_stiffness is not None
-
     def with_patch(self, patch: float | None) -> "HertzFamily":
         """The Hertz map family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""
         return HertzFamily(patch)

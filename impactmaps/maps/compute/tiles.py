@@ -28,6 +28,7 @@ from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, solve_map_points
 from ..family.map_family import map_family
+from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
 
@@ -241,11 +242,12 @@ def tile_path(key: TileKey, cache_dir=None) -> Path:
     return cache_directory(cache_dir) / f"tile-{key.fingerprint[:32]}.nc"
 
 
-def _read(path: Path, key: TileKey) -> xr.Dataset | None:
-    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None."""
+def _read(path: Path, key: TileKey) -> MapArrays | None:
+    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None. Read with
+    NumPy alone (:func:`~impactmaps.maps.files.data_io.read_netcdf_arrays`: the same values as
+    xarray, without importing dask)."""
     try:
-        with xr.open_dataset(path, engine="scipy") as opened:
-            dataset = opened.load()
+        dataset = read_netcdf_arrays(path)
     except Exception:  # missing, truncated, not NetCDF: rebuilt
         return None
     if dataset.attrs.get("fingerprint") != key.fingerprint or dataset.attrs.get("data_digest") != _data_digest(dataset):
@@ -253,8 +255,8 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
     return dataset
 
 
-def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
-    """The tile of ``key`` and its cache file (None when it could not be written), from the
+def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset | MapArrays, Path | None]:
+    """The tile of ``key`` (read from the cache as :class:`~impactmaps.maps.files.data_io.MapArrays`) and its cache file (None when it could not be written), from the
     cache ``cache_dir`` (default :func:`cache_directory`) or built and cached; ``notify``
     gets one line before a build, ``progress(done, total)`` the build's points.
     """
