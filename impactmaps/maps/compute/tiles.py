@@ -16,9 +16,9 @@ import os
 import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from ... import _files
 from ...jsonio import dumps
@@ -31,6 +31,9 @@ from ..family.map_family import map_family
 from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 #: Revision of the contact-patch model in a patch tile's key (absent before 1: the Mindlin near
 #: field of :mod:`impactmaps.targets.plates.near_field`), so a cached tile never answers for
@@ -195,6 +198,8 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
             data[f"log_{name}"] = (dims, np.log(values))
     coords = {"structure": [key.structure.name], **{axis.name: values for axis, values in
                                                      zip(family.extra_axes, extra)}, "lambda_": lambdas, "zeta": zetas}
+    import xarray as xr  # building a tile; reading one takes NumPy alone
+
     dataset = xr.Dataset(data, coords=coords)
     dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
                           "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
