@@ -33,11 +33,12 @@ MAX_CASE_LOOKUP_MODULES = 34
 MAX_CASE_MODULES = 43
 
 
-def trace(argv: list[str]) -> tuple[list[str], list[str]]:
-    """The package modules ``impactmaps ARGV`` calls into, in the order of their first call, and
-    those it calls after ``cases/case.py``'s ``load_case`` returned (empty without a case)."""
+def trace(argv: list[str]) -> tuple[list[str], list[str], int]:
+    """The package modules ``impactmaps ARGV`` calls into, in the order of their first call; those it
+    calls after ``cases/case.py``'s ``load_case`` returned (empty without a case); and how many
+    of the first were called before that."""
     seen, after, top = {}, {}, sys._getframe()
-    built = [False]
+    built = [None]
 
     def importing(frame) -> bool:  # a module body between the call and this function: an import
         while frame is not None and frame is not top:
@@ -51,10 +52,10 @@ def trace(argv: list[str]) -> tuple[list[str], list[str]]:
             return
         module = "impactmaps" + frame.f_code.co_filename[len(ROOT):]
         if event == "return" and module == "impactmaps/cases/case.py" and frame.f_code.co_name == "load_case":
-            built[0] = True
+            built[0] = len(seen)
         elif event == "call" and not importing(frame):
             seen.setdefault(module, None)
-            if built[0]:
+            if built[0] is not None:
                 after.setdefault(module, None)
 
     sys.setprofile(profile)
@@ -63,13 +64,13 @@ def trace(argv: list[str]) -> tuple[list[str], list[str]]:
             main(argv)
     finally:
         sys.setprofile(None)
-    return list(seen), list(after)
+    return list(seen), list(after), len(seen) if built[0] is None else built[0]
 
 
 def test_a_point_lookup_walks_few_modules_and_no_build_module(monkeypatch):
     monkeypatch.setenv("IMPACTMAPS_NO_BACKGROUND_WARMUP", "1")
     argv = ["lookup", "--kind", "plate", "--theory", "kirchhoff", "--zeta", "1.198", "--lambda", "0.425"]
-    modules, _ = trace(argv)
+    modules, _, _ = trace(argv)
     print(f"\n$ impactmaps {' '.join(argv)}: {len(modules)} package modules\n  " + "\n  ".join(modules))
     assert "impactmaps/maps/read/lookup.py" in modules and "impactmaps/maps/read/reader.py" in modules
     assert not [module for module in modules if module.startswith(("impactmaps/maps/compute/", "impactmaps/cases/",
@@ -86,11 +87,13 @@ def test_a_case_lookup_walks_few_modules_after_building_its_case(monkeypatch, tm
     case_file.write_text((EXAMPLES / "aluminium_beam_linear.toml").read_text(encoding="utf-8")
                          .replace('theory = "timoshenko"', 'theory = "euler"'), encoding="utf-8")
     argv = ["lookup", "--case", str(case_file), "--no-build", "--json"]
-    modules, lookup = trace(argv)
-    building = [module for module in modules if module not in lookup]
+    modules, lookup, built = trace(argv)
+    building = modules[:built]
     print(f"\n$ impactmaps lookup --case CASE.toml --no-build: {len(modules)} package modules\n"
-          f"building the case (and the command before it): {len(building)}\n  " + "\n  ".join(building) +
-          f"\nthe lookup, after the case is built: {len(lookup)}\n  " + "\n  ".join(lookup))
+          f"the command and building the case (first called before load_case returned): {len(building)}\n  "
+          + "\n  ".join(building) + f"\nthe lookup (called after the case is built): {len(lookup)}, "
+          f"{len([m for m in lookup if m not in building])} of them not called before\n  "
+          + "\n  ".join(m + ("" if m not in building else "   (also building the case)") for m in lookup))
     assert "impactmaps/cases/case_lookup.py" in lookup and "impactmaps/maps/read/reader.py" in lookup
     assert not [module for module in modules if module.startswith(("impactmaps/maps/compute/", "impactmaps/_compile/"))]
     assert len(lookup) <= MAX_CASE_LOOKUP_MODULES and len(modules) <= MAX_CASE_MODULES
