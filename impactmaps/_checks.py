@@ -17,6 +17,7 @@ __all__ = [
     "ModelValidityWarning",
     "range_end_text",
     "require_positive",
+    "require_positive_fields",
     "require_nonnegative",
     "require_in_range",
     "require_choice",
@@ -74,6 +75,12 @@ def require_positive(name: str, value, unit: str = "") -> None:
         raise ValueError(
             f"{name} = {_describe(value)} is invalid: valid range is (0, inf){_unit(unit)}"
         )
+
+
+def require_positive_fields(instance, units: dict) -> None:
+    """:func:`require_positive` on each field of ``instance`` named in ``units`` (field → unit), in order."""
+    for name, unit in units.items():
+        require_positive(name, getattr(instance, name), unit)
 
 
 def require_nonnegative(name: str, value, unit: str = "") -> None:

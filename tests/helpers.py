@@ -11,6 +11,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import sys
+import textwrap
 from pathlib import Path
 
 #: The repository checkout the tests run from.
@@ -22,23 +23,40 @@ VALIDATION = ROOT / "validation"
 #: Small data files of the tests (``tests/data/``).
 DATA = ROOT / "tests" / "data"
 
+def case_text(target: str, *, radius: float = 0.005, velocity: float = 1.0, mass: float | None = None,
+              law: str = "hertz", name: str = "", after: str = "") -> str:
+    """Case-file text: a structural-steel sphere of ``radius`` [m] (and ``mass`` [kg], if given) at
+    ``velocity`` [m/s] on the ``[target]`` table of the lines ``target``, with contact ``law``; ``after``:
+    the lines that follow (more contact keys, then other tables); ``name``: the case's name, if any."""
+    lines = [f'name = "{name}"'] if name else []
+    lines += ["[impactor]", f"radius = {radius!r}"] + ([f"mass = {mass!r}"] if mass is not None else [])
+    lines += ['material = "structural-steel"', f"velocity = {velocity!r}",
+              "[target]", textwrap.dedent(target).strip(), "[contact]", f'law = "{law}"']
+    return "\n".join(lines) + "\n" + textwrap.dedent(after).lstrip()
+
+
 #: A Hertz impact of a 12.7 mm steel ball at 1 m/s on a simply supported 500 × 20 × 20 mm
 #: aluminium Euler beam struck at mid-span (case-file text, no name): the family of the
 #: shipped Hertz beam map, so ``lookup`` answers from it.
-HERTZ_BEAM_CASE = """[impactor]
-radius = 0.00635
-material = "structural-steel"
-velocity = 1.0
-[target]
-type = "beam"
-length = 0.5
-width = 0.02
-height = 0.02
-supports = "ss"
-theory = "euler"
-material = "aluminium-6061-t6"
-[contact]
-law = "hertz"
+HERTZ_BEAM_CASE = case_text("""
+    type = "beam"
+    length = 0.5
+    width = 0.02
+    height = 0.02
+    supports = "ss"
+    theory = "euler"
+    material = "aluminium-6061-t6"
+""", radius=0.00635)
+
+
+#: A small sweep file for the ``sweep`` command: two ζ, one λ, one beam structure.
+SWEEP_CONFIG = """
+output = "out"
+[grid]
+zeta = {min = 0.2, max = 2.0, count = 2}
+lambda = [1.0]
+[[structure]]
+kind = "beam"
 """
 
 

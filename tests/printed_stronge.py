@@ -21,6 +21,7 @@ import numba
 import numpy as np
 
 from impactmaps.contact import ContactLaw, StrongeContact
+from impactmaps.contact.plastic.stronge import hertz_unloading
 
 
 @numba.njit(cache=False)
@@ -52,12 +53,7 @@ def _printed_kernel(alpha, alpha_max, params):
         return force, stiffness
     peak_force, _k, peak_radius = _printed_loading(alpha_max, params)
     recovery = 3.0 * peak_force / (4.0 * params[0] * peak_radius)  # may exceed δ_m: δ_r < 0
-    gap = alpha - (alpha_max - recovery)
-    if gap <= 0.0:
-        return 0.0, 0.0
-    scale = peak_force / (recovery * math.sqrt(recovery))
-    root = math.sqrt(gap)
-    return scale * gap * root, 1.5 * scale * root
+    return hertz_unloading(alpha, alpha_max, peak_force, recovery)
 
 
 @dataclass(frozen=True)

@@ -17,10 +17,17 @@ Each script's ``main(argv=None)`` takes the command-line arguments as a list.
 from __future__ import annotations
 
 import argparse
+import os
 import tempfile
 from pathlib import Path
 
 SMOKE_HELP = "tiny run (seconds) to check the script works; numbers not meaningful; writes to a temporary directory"
+
+
+def one_blas_thread() -> None:
+    """One BLAS thread a process (OpenBLAS, OpenMP, MKL) unless the environment sets them: call it before NumPy loads."""
+    for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(name, "1")
 
 
 def parse(description: str, argv=None, *, default_out: Path, add_arguments=None) -> argparse.Namespace:

@@ -30,8 +30,9 @@ import warnings
 from pathlib import Path
 
 if __name__ == "__main__":  # one BLAS thread, set before NumPy loads
-    for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(_name, "1")
+    from _script_options import one_blas_thread
+
+    one_blas_thread()
 
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402

@@ -224,6 +224,20 @@ LAW_STUDIES = {
 }
 
 
+def _save(fig, path, title, fontsize, dpi=150):
+    """Title ``fig``, lay it out, write it to ``path`` and close it."""
+    fig.suptitle(title, fontsize=fontsize)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
+def _print_columns(table, x):
+    """Print the sweep's column ``x`` with the peak force, contacts, timings and energy columns."""
+    print(table[[x, "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
+                 "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
+
+
 def law_comparison(size: Size, out: pathlib.Path) -> pd.DataFrame:
     """The mass, velocity and location sweeps with each law of :func:`contact_laws`; CSV and figure in ``out``."""
     studies = {
@@ -262,11 +276,9 @@ def law_comparison(size: Size, out: pathlib.Path) -> pd.DataFrame:
             ax.set_ylabel(ylabel, fontsize=8)
             ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=8)
-    fig.suptitle("Seed-000 FD beam with three elastic-plastic contact laws (squares: runs with sub-impacts)",
-                 fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out / "fd_parametric_laws.png", dpi=90)
-    plt.close(fig)
+    _save(fig, out / "fd_parametric_laws.png",
+          "Seed-000 FD beam with three elastic-plastic contact laws (squares: runs with sub-impacts)",
+          fontsize=10, dpi=90)
     return table
 
 
@@ -312,10 +324,8 @@ def stronge_study(size: Size, out: pathlib.Path) -> None:
     early.set_title("first 1.5 ms; dashed: wave-return time $t_r$", fontsize=9)
     late.set_title("whole record: sub-impacts when the beam swings back", fontsize=9)
     early.legend(fontsize=8)
-    fig.suptitle("SS steel beam 780 mm, V0 = 2 m/s at mid-span, refined Stronge contact", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out / "fd_force_histories.png", dpi=150)
-    plt.close(fig)
+    _save(fig, out / "fd_force_histories.png",
+          "SS steel beam 780 mm, V0 = 2 m/s at mid-span, refined Stronge contact", fontsize=10)
 
     # -- impactor mass ---------------------------------------------------------------------
     masses = np.geomspace(0.05, 5.0, size.masses)
@@ -326,13 +336,10 @@ def stronge_study(size: Size, out: pathlib.Path) -> None:
     for ax in axes.ravel():
         ax.set_xscale("log")
     axes[0, 1].legend(fontsize=8)
-    fig.suptitle("Effect of impactor mass (V0 = 2 m/s, mid-span). Squares: sub-impacts; "
-                 "dash-dot: first run with sub-impacts; dotted: first contact > $t_r$", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out / "fd_mass_effect.png", dpi=150)
-    plt.close(fig)
-    print(table[["mass_kg", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
-                 "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
+    _save(fig, out / "fd_mass_effect.png",
+          "Effect of impactor mass (V0 = 2 m/s, mid-span). Squares: sub-impacts; "
+          "dash-dot: first run with sub-impacts; dotted: first contact > $t_r$", fontsize=9)
+    _print_columns(table, "mass_kg")
 
     # -- velocity and beam plasticity --------------------------------------------------------
     velocities = np.linspace(0.5, 7.0, size.velocities)
@@ -348,11 +355,9 @@ def stronge_study(size: Size, out: pathlib.Path) -> None:
     ax.plot(velocities, tables[True]["plastic_work_fraction"], "k:", lw=1)
     ax.set_ylabel("beam plastic work / impact energy (dotted)")
     axes[0, 0].legend(fontsize=8)
-    fig.suptitle(f"Effect of impact velocity and beam plasticity (m = {PLASTICITY_MASS:g} kg, mid-span, Stronge "
-                 "contact in both); squares: sub-impacts; dashed: $t_r$", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out / "fd_velocity_effect.png", dpi=150)
-    plt.close(fig)
+    _save(fig, out / "fd_velocity_effect.png",
+          f"Effect of impact velocity and beam plasticity (m = {PLASTICITY_MASS:g} kg, mid-span, Stronge "
+          "contact in both); squares: sub-impacts; dashed: $t_r$", fontsize=9)
     print(pd.DataFrame({
         "V0": velocities,
         "F_plastic": tables[True]["peak_force_N"], "F_elastic": tables[False]["peak_force_N"],
@@ -368,13 +373,10 @@ def stronge_study(size: Size, out: pathlib.Path) -> None:
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
     _panels(axes, table, "x_over_L", "impact position x0 / L")
     axes[0, 1].legend(fontsize=8)
-    fig.suptitle("Effect of impact location (m = 1 kg, V0 = 2 m/s); $t_r$ = 2 d / $c_g$ with "
-                 "d the distance to the nearest support; squares: sub-impacts", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out / "fd_location_effect.png", dpi=150)
-    plt.close(fig)
-    print(table[["x_over_L", "peak_force_N", "impacts", "first_contact_s", "wave_return_s",
-                 "energy_loss_fraction", "restitution"]].to_string(float_format=lambda v: f"{v:.4g}"))
+    _save(fig, out / "fd_location_effect.png",
+          "Effect of impact location (m = 1 kg, V0 = 2 m/s); $t_r$ = 2 d / $c_g$ with "
+          "d the distance to the nearest support; squares: sub-impacts", fontsize=9)
+    _print_columns(table, "x_over_L")
 
 
 if __name__ == "__main__":

@@ -32,8 +32,9 @@ import time
 import warnings
 
 if __name__ == "__main__":  # one BLAS thread, set before NumPy loads (not when a test imports this)
-    for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(_name, "1")
+    from _script_options import one_blas_thread
+
+    one_blas_thread()
 
 import numpy as np  # noqa: E402  (after the BLAS thread limits)
 

@@ -38,6 +38,18 @@ def _unit(unit: str) -> str:
     return f" [{unit}]" if unit else ""
 
 
+_MISSING = object()
+
+
+def _given(data, key, name, required, unit=""):
+    """``data[key]``; if the key is missing, a ValueError naming ``name`` when ``required``, else ``_MISSING``."""
+    if key in data:
+        return data[key]
+    if required:
+        raise ValueError(f"{name} is required{_unit(unit)}")
+    return _MISSING
+
+
 def table(value, path: str) -> dict:
     """``value`` if it is a TOML table, else a ValueError naming ``[path]``."""
     if not isinstance(value, dict):
@@ -73,11 +85,9 @@ def number(data, key, path, unit="", *, default=None, required=False, low=0.0, h
     if high == math.inf and unit in UNIT_LIMITS:
         high = UNIT_LIMITS[unit]
     name = _join(path, key)
-    if key not in data:
-        if required:
-            raise ValueError(f"{name} is required{_unit(unit)}")
+    value = _given(data, key, name, required, unit)
+    if value is _MISSING:
         return default
-    value = data[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError(f"{name} = {value!r} is not a number{_unit(unit)}")
     if integer and isinstance(value, float) and not value.is_integer():  # NaN, ±inf too
@@ -90,11 +100,9 @@ def number(data, key, path, unit="", *, default=None, required=False, low=0.0, h
 def string(data, key, path, *, choices=None, default=None, required=False):
     """A string from ``data[key]``, optionally one of ``choices``."""
     name = _join(path, key)
-    if key not in data:
-        if required:
-            raise ValueError(f"{name} is required")
+    value = _given(data, key, name, required)
+    if value is _MISSING:
         return default
-    value = data[key]
     if not isinstance(value, str):
         raise ValueError(f"{name} = {value!r} is not a string")
     if choices is not None:

@@ -30,6 +30,15 @@ material = "bearing-steel-52100"   # a hardened steel ball; catalogue name, or a
 velocity = {velocity}                  # approach velocity V0 [m/s]
 """
 
+#: The tail of the plate templates: Hertz contact and the run's time limit.
+_HERTZ_RUN = """
+[contact]
+law = "hertz"
+
+[solver]
+duration = {duration}                # time limit [s]
+"""
+
 CASE_TEMPLATES = {
     "beam": ("a steel ball on a simply supported aluminium beam (Hertz contact)", "simulate", _IMPACTOR.format(
         velocity="1.0") + """
@@ -62,13 +71,7 @@ edges = "SSSS"                  # one letter per edge: S (simply supported), C (
 # edges = "CCCC"                # a clamped plate: any edges with either theory
 theory = "kirchhoff"            # "kirchhoff" or "mindlin"
 impact_point = [0.125, 0.125]   # [x0, y0] [m] (here the centre)
-
-[contact]
-law = "hertz"
-
-[solver]
-duration = 0.005                # time limit [s]
-"""),
+""" + _HERTZ_RUN.format(duration="0.005")),
     "laminate": ("a steel ball on a simply supported cross-ply graphite/epoxy plate (Hertz contact)", "simulate",
                  _IMPACTOR.format(velocity="3.0") + """
 [target]
@@ -82,13 +85,7 @@ impact_point = [0.1, 0.1]       # [m]
 # the stacking sequence (D16, D26 kept; an unsymmetric layup, B ≠ 0, is refused): a catalogue ply, its angles [deg], mirrored when symmetric
 layup = { ply = "t300-934", angles_deg = [0, 90, 0, 90, 0], symmetric = true, ply_thickness = 0.000269 }
 # yield_strength = 3.0e8        # the laminate's contact strength [Pa], for the plastic laws
-
-[contact]
-law = "hertz"
-
-[solver]
-duration = 0.002                # time limit [s]
-"""),
+""" + _HERTZ_RUN.format(duration="0.002")),
     "fd": ("a steel ball on a simply supported steel beam, finite-difference elastic-plastic beam", "fd",
            _IMPACTOR.format(velocity="0.5") + """
 [target]

@@ -17,10 +17,11 @@ from .._checks import (
     require_in_range,
     require_nonnegative,
     require_positive,
+    require_positive_fields,
 )
 from ..targets.beams.beam import Beam
 from .grid import beam_grid
-from .section import LayeredSection
+from .section import LayeredSection, Rectangle
 from .wide_section import constraint_parameters
 
 __all__ = ["FDBeam", "FDSettings", "SUPPORT_ENDS", "require_stride"]
@@ -38,7 +39,7 @@ _BEAM_OPTIONS = ("n_elements", "n_half_layers", "plastic", "hardening_modulus",
 # Beam definition
 # =====================================================================================
 @dataclass(frozen=True)
-class FDBeam:
+class FDBeam(Rectangle):
     """A uniform rectangular beam for the finite-difference solver (SI units).
 
     Parameters
@@ -89,12 +90,8 @@ class FDBeam:
     width_constraint: bool = True
 
     def __post_init__(self):
-        require_positive("length", self.length, "m")
-        require_positive("width", self.width, "m")
-        require_positive("height", self.height, "m")
-        require_positive("youngs_modulus", self.youngs_modulus, "Pa")
-        require_positive("density", self.density, "kg/m^3")
-        require_positive("yield_strength", self.yield_strength, "Pa")
+        require_positive_fields(self, {"length": "m", "width": "m", "height": "m", "youngs_modulus": "Pa",
+                                       "density": "kg/m^3", "yield_strength": "Pa"})
         require_in_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5,
                          low_inclusive=False, high_inclusive=False)
         supports = self.supports
@@ -172,16 +169,6 @@ class FDBeam:
             if self.width_constraint else (0.0, 0.0)
         return LayeredSection(self.width, self.height, self.youngs_modulus, self.yield_strength,
                               self.hardening_modulus, self.n_half_layers, saturation, rate)
-
-    @property
-    def area(self) -> float:
-        """A = b h [m²]."""
-        return self.width * self.height
-
-    @property
-    def second_moment(self) -> float:
-        """I = b h³/12 [m⁴]."""
-        return self.width * self.height**3 / 12.0
 
     @property
     def bending_stiffness(self) -> float:

@@ -22,6 +22,7 @@ from .._checks import (
 
 __all__ = [
     "LayeredSection",
+    "Rectangle",
     "SectionState",
     "stress_update",
     "rectangular_moment_curvature",
@@ -142,8 +143,22 @@ class SectionState:
     constraint_stress: np.ndarray
 
 
+class Rectangle:
+    """Area and second moment of a ``width`` × ``height`` rectangle [m] (for the beam and its section)."""
+
+    @property
+    def area(self) -> float:
+        """A = b h [m²]."""
+        return self.width * self.height
+
+    @property
+    def second_moment(self) -> float:
+        """Exact I = b h³ / 12 [m⁴]."""
+        return self.width * self.height**3 / 12.0
+
+
 @dataclass(frozen=True)
-class LayeredSection:
+class LayeredSection(Rectangle):
     """Rectangular cross-section made of ``2 N_h`` elastic-plastic layers.
 
     Parameters
@@ -203,16 +218,6 @@ class LayeredSection:
         """Mid-plane coordinates z_i [m], from the impacted face (−h/2) downwards."""
         dz = self.layer_thickness
         return -0.5 * self.height + (np.arange(self.n_layers) + 0.5) * dz
-
-    @property
-    def area(self) -> float:
-        """A = b h [m²]."""
-        return self.width * self.height
-
-    @property
-    def second_moment(self) -> float:
-        """Exact I = b h³ / 12 [m⁴]."""
-        return self.width * self.height**3 / 12.0
 
     @property
     def layered_second_moment(self) -> float:

@@ -1,12 +1,12 @@
-"""Shared constants and the scalar check of the material classes."""
+"""Shared constants and the scalar checks of the material classes."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .._checks import require_finite
+from .._checks import require_finite, require_positive
 
-__all__ = ["DEFAULT_PLY_THICKNESS", "SPECIALLY_ORTHOTROPIC_RTOL", "require_scalar"]
+__all__ = ["DEFAULT_PLY_THICKNESS", "SPECIALLY_ORTHOTROPIC_RTOL", "optional_yield_strength", "require_scalar"]
 
 #: Default cured ply thickness [m]: 0.125 mm, the nominal thickness of standard
 #: carbon/epoxy unidirectional prepreg (used e.g. with AS4/3501-6 in Anand, Kamrin &
@@ -26,3 +26,12 @@ def require_scalar(name: str, value, unit: str = "") -> float:
     if array.ndim != 0:
         raise ValueError(f"{name} must be a scalar, got an array of shape {array.shape}")
     return float(array)
+
+
+def optional_yield_strength(value) -> float | None:
+    """``None``, or the yield strength ``value`` [Pa] as a float > 0 (``ValueError`` naming ``yield_strength``)."""
+    if value is None:
+        return None
+    strength = require_scalar("yield_strength", value, "Pa")
+    require_positive("yield_strength", strength, "Pa")
+    return strength

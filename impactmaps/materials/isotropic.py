@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .._checks import require_in_range, require_positive
-from ._common import require_scalar
+from ._common import optional_yield_strength, require_scalar
 from .ply import Ply
 
 __all__ = ["IsotropicMaterial"]
@@ -49,10 +49,7 @@ class IsotropicMaterial:
         object.__setattr__(self, "youngs_modulus", youngs)
         object.__setattr__(self, "poisson_ratio", poisson)
         object.__setattr__(self, "density", density)
-        if self.yield_strength is not None:
-            strength = require_scalar("yield_strength", self.yield_strength, "Pa")
-            require_positive("yield_strength", strength, "Pa")
-            object.__setattr__(self, "yield_strength", strength)
+        object.__setattr__(self, "yield_strength", optional_yield_strength(self.yield_strength))
 
     @property
     def shear_modulus(self) -> float:

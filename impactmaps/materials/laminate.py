@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._checks import require_finite, require_positive
-from ._common import SPECIALLY_ORTHOTROPIC_RTOL, require_scalar
+from .._checks import require_finite
+from ._common import SPECIALLY_ORTHOTROPIC_RTOL, optional_yield_strength
 from .isotropic import IsotropicMaterial
 from .ply import Ply
 
@@ -62,10 +62,7 @@ class Laminate:
             if not isinstance(ply, Ply):
                 raise ValueError(f"plies[{index}] = {ply!r} is not a Ply")
         object.__setattr__(self, "plies", plies)
-        if self.yield_strength is not None:
-            strength = require_scalar("yield_strength", self.yield_strength, "Pa")
-            require_positive("yield_strength", strength, "Pa")
-            object.__setattr__(self, "yield_strength", strength)
+        object.__setattr__(self, "yield_strength", optional_yield_strength(self.yield_strength))
 
     # -- constructors -------------------------------------------------------------------
     @classmethod

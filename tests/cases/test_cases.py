@@ -9,7 +9,6 @@ closed-form stiffnesses and the dimensionless definitions of seed 001.
 from __future__ import annotations
 
 import math
-import textwrap
 import warnings
 from dataclasses import replace
 
@@ -29,7 +28,7 @@ from impactmaps.cases import (
 from impactmaps.materials import material
 from impactmaps.solvers.modal_settings import ConvergenceWarning
 
-from ..helpers import EXAMPLES, strict_json_loads
+from ..helpers import EXAMPLES, case_text, strict_json_loads
 
 MODAL_EXAMPLES = ["steel_plate_hertz.toml", "aluminium_beam_linear.toml",
                   "composite_plate_sun_chen.toml"]
@@ -172,27 +171,17 @@ def test_halfspace_hertz_case_matches_hertz_theory():
     assert summary["first_contact_duration_s"] == pytest.approx(2.0 * alpha_m / 2.0 * integral, rel=2e-4)
 
 
-PLATE = """
-name = "test plate"
-[impactor]
-radius = 0.005
-material = "structural-steel"
-velocity = 1.0
-
-[target]
-type = "plate"
-length_x = 0.3
-length_y = 0.3
-thickness = 0.003
-material = "aluminium-6061-t6"
-edges = "SSSS"
-
-[contact]
-law = "{law}"
-
-[solver]
-cutoff_ratio = 6
-"""
+PLATE = case_text("""
+    type = "plate"
+    length_x = 0.3
+    length_y = 0.3
+    thickness = 0.003
+    material = "aluminium-6061-t6"
+    edges = "SSSS"
+""", law="{law}", name="test plate", after="""
+    [solver]
+    cutoff_ratio = 6
+""")
 
 
 def test_dimensionless_numbers_of_a_plate_case():
@@ -254,19 +243,12 @@ def test_solver_duration_is_the_time_limit():
 
 def test_layup_and_plies_describe_the_same_laminate():
     """A layup table and the equivalent explicit ply list give identical plates."""
-    base = textwrap.dedent("""
-        [impactor]
-        radius = 0.00635
-        material = "structural-steel"
-        velocity = 3.0
-        [target]
+    base = case_text("""
         type = "plate"
         length_x = 0.2
         length_y = 0.2
         {laminate}
-        [contact]
-        law = "hertz"
-    """)
+    """, radius=0.00635, velocity=3.0)
     layup = 'layup = { ply = "t300-934", angles_deg = [0, 90], symmetric = true, ply_thickness = 0.0002 }'
     plies = ("plies = [" + ", ".join(
         f'{{ material = "t300-934", angle_deg = {a}, thickness = 0.0002 }}' for a in (0, 90, 90, 0)
@@ -281,22 +263,13 @@ def test_layup_and_plies_describe_the_same_laminate():
 # -------------------------------------------------------------------------------------
 # Validation: bad keys and values name the key path
 # -------------------------------------------------------------------------------------
-GOOD = textwrap.dedent("""
-    [impactor]
-    radius = 0.005
-    material = "structural-steel"
-    velocity = 1.0
-
-    [target]
+GOOD = case_text("""
     type = "plate"
     length_x = 0.3
     length_y = 0.2
     thickness = 0.003
     material = "aluminium-6061-t6"
     impact_point = [0.15, 0.1]
-
-    [contact]
-    law = "hertz"
 """)
 
 
@@ -367,18 +340,11 @@ def test_bad_keys_and_values_name_the_key(old, new, expected):
 )
 def test_bad_laminate_descriptions_name_the_key(laminate, expected):
     """Laminate tables are validated like the rest (key path in the message)."""
-    text = textwrap.dedent("""
-        [impactor]
-        radius = 0.005
-        material = "structural-steel"
-        velocity = 1.0
-        [target]
+    text = case_text("""
         type = "plate"
         length_x = 0.2
         length_y = 0.2
         {laminate}
-        [contact]
-        law = "hertz"
     """).format(laminate=laminate)
     with pytest.raises(ValueError) as info:
         parse_case(text)
@@ -399,19 +365,13 @@ def test_load_case_errors_name_the_file(tmp_path):
         load_case(tmp_path / "missing.toml")
 
 
-FD_GOOD = textwrap.dedent("""
-    [impactor]
-    radius = 0.01
-    material = "structural-steel"
-    velocity = 1.0
-    [target]
+FD_GOOD = case_text("""
     type = "beam"
     length = 0.5
     width = 0.02
     height = 0.01
     material = "structural-steel"
-    [contact]
-    law = "hertz"
+""", radius=0.01, after="""
     [solver]
     duration = 0.001
     [fd]
@@ -526,19 +486,12 @@ def test_beam_cases_isotropic_and_laminated():
     k_static = 1.0 / (length**3 / (48 * al.youngs_modulus * inertia) + length / (4 * shear))
     assert numbers["static_stiffness_N_m"] == pytest.approx(k_static, rel=1e-9)
     assert numbers["lambda"] * numbers["contact_stiffness_N_m"] == pytest.approx(k_static, rel=1e-9)
-    text = textwrap.dedent("""
-        [impactor]
-        radius = 0.005
-        material = "structural-steel"
-        velocity = 1.0
-        [target]
+    text = case_text("""
         type = "beam"
         length = 0.3
         width = 0.02
         supports = "ss"
         layup = { ply = "t300-934", angles_deg = [0, 90, 0], symmetric = true }
-        [contact]
-        law = "hertz"
     """)
     laminated = parse_case(text)
     laminate = laminated.target_material
@@ -564,12 +517,7 @@ def test_cantilever_tip_impact_is_a_valid_case():
     """Bug fixed by deriving the schema from the constructors: the case reader refused
     x0 = L, which :class:`Beam` accepts for a cantilever (a tip impact); the beam now
     checks its own impact point, and a supported end stays refused with the key path."""
-    text = textwrap.dedent("""
-        [impactor]
-        radius = 0.005
-        material = "structural-steel"
-        velocity = 1.0
-        [target]
+    text = case_text("""
         type = "beam"
         length = 0.3
         width = 0.02
@@ -577,8 +525,6 @@ def test_cantilever_tip_impact_is_a_valid_case():
         material = "structural-steel"
         supports = "cf"
         impact_position = 0.3
-        [contact]
-        law = "hertz"
     """)
     case = parse_case(text)
     assert case.target.impact_position == pytest.approx(0.3)

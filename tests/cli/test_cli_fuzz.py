@@ -36,6 +36,18 @@ HEAVY = {"chart", "point", "classify", "sweep", "simulate", "fd", "lookup", "war
 BAD_NUMBERS = ("nan", "inf", "-inf", "-1", "0", "1e300", "-1e300", "abc", "")
 EDGE_NUMBERS = BAD_NUMBERS + ("1e-300", "1e-6", "0.5", "1", "2", "20", "1e6")
 
+
+def derandomised(seed_value: int, examples: int, **strategies):
+    """The Hypothesis decorators of every test here: ``examples`` draws of ``strategies`` from a fixed
+    seed (the same draws every run), no deadline, no example database."""
+    def decorate(test):
+        fuzzed = given(**strategies)(test)
+        fuzzed = settings(max_examples=examples, deadline=None, derandomize=True, database=None,
+                          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])(fuzzed)
+        return seed(seed_value)(fuzzed)
+    return decorate
+
+
 HERTZ_BEAM = 'name = "fuzz"\n' + HERTZ_BEAM_CASE + "[solver]\nduration = 0.0005\n"
 
 FD_BEAM = HERTZ_BEAM.replace('law = "hertz"', 'law = "stronge"').replace(
@@ -226,20 +238,14 @@ def start_rss():
 
 
 @pytest.mark.parametrize("name", sorted(SUBCOMMANDS))
-@seed(20261126)
-@settings(max_examples=15, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-@given(data=st.data())
+@derandomised(20261126, 15, data=st.data())
 def test_fuzz_every_subcommand_exits_0_or_2(name, data, files, capsys, start_rss):
     _fuzz(data, files, capsys, cheap=True, start_rss=start_rss, name=name)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(SUBCOMMANDS))
-@seed(7)
-@settings(max_examples=8, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-@given(data=st.data())
+@derandomised(7, 8, data=st.data())
 def test_fuzz_every_subcommand_with_computations(name, data, files, capsys, start_rss):
     _fuzz(data, files, capsys, cheap=False, start_rss=start_rss, name=name)
 
@@ -292,27 +298,23 @@ def case_files(draw):
     return _render(sections)
 
 
-@seed(20261126)
-@settings(max_examples=120, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-@given(text=case_files())
-def test_fuzz_case_keys_check_exits_0_or_2(text, files, capsys, start_rss):
-    """``impactmaps check`` (validation and derived numbers, no run) on mutated case files."""
+def _run_case_file(text, files, capsys, start_rss, command, *options):
+    """``impactmaps COMMAND FILE OPTIONS --json`` on the case-file ``text``: the checks of :func:`_run`, memory bounded."""
     path = files["root"] / "mutated.toml"
     path.write_text(text)
-    _run(["check", str(path), "--json"], capsys, files["root"])
+    _run([command, str(path), *options, "--json"], capsys, files["root"])
     assert _rss_bytes() - start_rss < MEMORY_LIMIT_BYTES
+
+
+@derandomised(20261126, 120, text=case_files())
+def test_fuzz_case_keys_check_exits_0_or_2(text, files, capsys, start_rss):
+    """``impactmaps check`` (validation and derived numbers, no run) on mutated case files."""
+    _run_case_file(text, files, capsys, start_rss, "check")
 
 
 @pytest.mark.slow
-@seed(11)
-@settings(max_examples=40, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
-@given(text=case_files())
+@derandomised(11, 40, text=case_files())
 def test_fuzz_case_keys_simulate_exits_0_or_2(text, files, capsys, start_rss):
     """``impactmaps simulate`` on mutated (short) case files: runs or refuses, never a traceback."""
-    path = files["root"] / "mutated.toml"
-    path.write_text(text)
-    _run(["simulate", str(path), "--out", str(files["root"] / "sim"), "--json"], capsys, files["root"])
-    assert _rss_bytes() - start_rss < MEMORY_LIMIT_BYTES
+    _run_case_file(text, files, capsys, start_rss, "simulate", "--out", str(files["root"] / "sim"))
 

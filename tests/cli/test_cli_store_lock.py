@@ -12,14 +12,7 @@ import pytest
 from impactmaps.cli import main
 from impactmaps.maps.files.store_lock import StoreLockedError, lock_path, store_lock
 
-SWEEP_CONFIG = """
-output = "out"
-[grid]
-zeta = {min = 0.2, max = 2.0, count = 2}
-lambda = [1.0]
-[[structure]]
-kind = "beam"
-"""
+from ..helpers import SWEEP_CONFIG
 
 
 def _dead_pid() -> int:

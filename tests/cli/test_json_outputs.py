@@ -13,17 +13,7 @@ import pytest
 
 from impactmaps.cli import build_parser, main
 
-from ..helpers import EXAMPLES, strict_json_loads
-
-
-SWEEP_CONFIG = """
-output = "out"
-[grid]
-zeta = {min = 0.2, max = 2.0, count = 2}
-lambda = [1.0]
-[[structure]]
-kind = "beam"
-"""
+from ..helpers import EXAMPLES, SWEEP_CONFIG, strict_json_loads
 
 
 COMMANDS = ("chart", "point", "asymptote", "classify", "lookup", "sweep", "simulate", "fd", "halfspace",

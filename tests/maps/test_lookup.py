@@ -222,9 +222,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
     any size and material), with a linear or a Hertz contact law, gives the peak force of
     `simulate` within its stated band (plus the direct run's own ≤ 1e-3 normalised error),
     or refuses a case whose ζ or λ lies outside the map — never a silent wrong number."""
-    import warnings
 
-    from impactmaps.cases import run_case
     from impactmaps import lookup
 
     build, seeds, count, least = _RANDOM_CASES[law]
@@ -239,9 +237,7 @@ def test_lookup_case_is_right_or_refuses(kind, law):
             continue
         answered += 1
         assert found["law"] == law
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # validity warnings of the extreme cases some draws give
-            _, summary = run_case(case)
+        summary = _simulated(case)
         scale = found["peak_force_N"] / found["fmax_normalised"]
         assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
     assert answered >= least
@@ -288,9 +284,8 @@ def test_lookup_case_builds_what_no_shipped_map_describes(old, new, tmp_path):
     """The same clamped, off-centre and thick (span/height 6.25) beams are answered by default from an
     on-demand map tile of exactly their structure, within the answer's band of `simulate` (the thick beam
     struck by a 20 mm ball: the 5 mm one, ζ = 6.6e-4, lies beyond the Timoshenko theory and is refused)."""
-    import warnings
 
-    from impactmaps.cases import parse_case, run_case
+    from impactmaps.cases import parse_case
     from impactmaps import lookup
 
     text = _REFUSED_CASE.replace(old, new, 1)
@@ -302,9 +297,7 @@ def test_lookup_case_builds_what_no_shipped_map_describes(old, new, tmp_path):
     case = parse_case(text)
     found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile") and found["cache_file"].startswith(str(tmp_path))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        _, summary = run_case(case)
+    summary = _simulated(case)
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= \
         found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]
 
@@ -328,6 +321,29 @@ def _plastic_case(rng, kind, law="yigit-christoforou"):
                       f'[target]\n{table}\n[contact]\nlaw = "{law}"\n')
 
 
+def _simulated(case) -> dict:
+    """The summary of `simulate` on ``case``, its model-validity warnings silenced (the extreme
+    cases some random draws give)."""
+    import warnings
+
+    from impactmaps.cases import run_case
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return run_case(case)[1]
+
+
+def _assert_within_bands_of_simulate(found, case):
+    """The looked-up peak force, restitution and absorbed energy ``found`` of a plastic ``case`` hold
+    `simulate`'s within their stated bands plus the direct run's own ≤ 1e-3 normalised error."""
+    summary = _simulated(case)
+    scale, energy = found["force_scale_N"], summary["impact_energy_J"]
+    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
+    assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
+    assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
+        found["absorbed_energy_error_J"] + 1e-3 * energy
+
+
 @pytest.mark.parametrize("kind, law, count, least", [
     ("beam", "yigit-christoforou", 40, 30), ("plate", "yigit-christoforou", 40, 30),
     ("beam", "stronge", 20, 12), ("plate", "stronge", 20, 12), ("timoshenko", "yigit-christoforou", 20, 10)])
@@ -336,9 +352,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
     40 Stronge ones) gives the peak force, the restitution and the absorbed energy of
     `simulate` within its stated bands (plus the direct run's own ≤ 1e-3 normalised error),
     or refuses a case whose numbers lie outside the map — never a silent wrong number."""
-    import warnings
 
-    from impactmaps.cases import run_case
     from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 31, "plate": 32, "timoshenko": 33}[kind] + (10 if law == "stronge" else 0))
@@ -354,14 +368,7 @@ def test_plastic_lookup_case_is_right_or_refuses(kind, law, count, least):
             continue
         answered += 1
         assert found["law"] == ("yc" if law == "yigit-christoforou" else "stronge")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # validity warnings of the extreme cases some draws give
-            _, summary = run_case(case)
-        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
-        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
-        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
-        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
-            found["absorbed_energy_error_J"] + 1e-3 * energy
+        _assert_within_bands_of_simulate(found, case)
     assert answered >= least, answered
 
 
@@ -371,9 +378,7 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
     on the SS beam and SSSS plate answers from the shipped epp maps with the peak force, the
     restitution and the absorbed energy of `simulate` within its stated bands (plus the direct
     run's own ≤ 1e-3 normalised error), or refuses a case whose numbers lie outside the map."""
-    import warnings
 
-    from impactmaps.cases import run_case
     from impactmaps import lookup
 
     rng = np.random.default_rng({"beam": 61, "plate": 62}[kind])
@@ -388,14 +393,7 @@ def test_epp_lookup_case_is_right_or_refuses(kind, count, least):
             continue
         answered += 1
         assert found["law"] == "epp" and found["map"].endswith("-epp")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            _, summary = run_case(case)
-        scale, energy = found["force_scale_N"], summary["impact_energy_J"]
-        assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * scale
-        assert abs(found["restitution"] - summary["restitution"]) <= found["restitution_error"] + 1e-3
-        assert abs(found["absorbed_energy_J"] - summary["contact_dissipation_J"]) <= \
-            found["absorbed_energy_error_J"] + 1e-3 * energy
+        _assert_within_bands_of_simulate(found, case)
     assert answered >= least, answered
 
 
@@ -470,9 +468,8 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
     """A case of a shipped family whose numbers lie beyond its map (a Hertz beam impact at
     λ_h = 60, the map stops at 20) is answered from an on-demand tile of the same structure,
     within its band of simulate; with build=False it is refused as before."""
-    import warnings
 
-    from impactmaps.cases import parse_case, run_case
+    from impactmaps.cases import parse_case
     from impactmaps.closed_forms.hertz_similarity import realise_hertz
     from impactmaps import lookup
 
@@ -486,9 +483,7 @@ def test_lookup_case_beyond_a_shipped_map_is_answered_from_a_tile(tmp_path):
         lookup(case=case, build=False)
     found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile beam-ss-euler-hertz")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        _, summary = run_case(case)
+    summary = _simulated(case)
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"] + 1e-3 * found["force_scale_N"]
 
 
@@ -497,9 +492,8 @@ def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tm
     steel Timoshenko beam (Hertz) lies next to points the shipped slenderness member (L/h = 20)
     could not resolve, and was refused although simulate answers; a tile of the case's own
     structure (L/h = 25) resolves it, within its band of simulate. build=False still refuses."""
-    import warnings
 
-    from impactmaps.cases import parse_case, run_case
+    from impactmaps.cases import parse_case
     from impactmaps import lookup
 
     case = parse_case('[impactor]\nradius = 0.00635\nmaterial = "structural-steel"\nvelocity = 1.0\n'
@@ -509,9 +503,7 @@ def test_a_case_next_to_an_unresolved_map_point_is_answered_from_its_own_tile(tm
         lookup(case=case, build=False)
     found = lookup(case=case, cache_dir=tmp_path)
     assert found["map"].startswith("on-demand tile beam-ss-timoshenko-s25-hertz")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        _, summary = run_case(case)
+    summary = _simulated(case)
     assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"]
 
 

@@ -15,6 +15,8 @@ from impactmaps.maps.family.structures import structure_from_name
 from impactmaps.maps.compute.linear_points import solve_points
 from impactmaps.solvers.modal_settings import ModalSettings
 
+from ..helpers import case_text
+
 FAMILIES = [("beam", "timoshenko", "linear"), ("beam", "timoshenko", "hertz"), ("plate", "mindlin", "linear")]
 
 
@@ -78,24 +80,16 @@ def test_lookup_case_at_slenderness_30_matches_simulate():
     from impactmaps.cases import parse_case, run_case
     from impactmaps import lookup
 
-    text = """
-name = "steel ball on a 0.6 m, 20 x 20 mm Timoshenko beam, linear contact"
-[impactor]
-radius = 0.01
-material = "structural-steel"
-velocity = 1.0
-[target]
-type = "beam"
-length = 0.6
-width = 0.02
-height = 0.02
-material = "structural-steel"
-theory = "timoshenko"
-supports = "ss"
-[contact]
-law = "linear"
-stiffness = 2e7
-"""
+    text = case_text("""
+        type = "beam"
+        length = 0.6
+        width = 0.02
+        height = 0.02
+        material = "structural-steel"
+        theory = "timoshenko"
+        supports = "ss"
+    """, radius=0.01, law="linear", after="stiffness = 2e7\n",
+                     name="steel ball on a 0.6 m, 20 x 20 mm Timoshenko beam, linear contact")
     case = parse_case(text)
     answer = lookup(case=case)
     with warnings.catch_warnings():

@@ -20,6 +20,8 @@ from impactmaps.targets.plates import plate_any_edges, plate_general, plate_navi
 from impactmaps.targets.patch import hertz_transform
 from impactmaps.targets.plates.plate import Plate
 
+from ..helpers import case_text
+
 ALUMINIUM = material("aluminium-6061-t6")
 PLY = material("as4-3501-6")
 
@@ -185,35 +187,23 @@ def test_patch_residual_closes_the_static_patch_compliance():
 
 
 # -- impacts -----------------------------------------------------------------------------------
-_CASE = """
-[impactor]
-radius = {radius}
-mass = {mass}
-material = "structural-steel"
-velocity = {velocity}
-[target]
-type = "plate"
-length_x = {a}
-length_y = {b}
-thickness = {h}
-material = "aluminium-6061-t6"
-theory = "{theory}"
-edges = "{edges}"
-[contact]
-law = "hertz"
-[solver]
-check_convergence = false
-{duration}
-"""
-
-
-def _run(**values):
+def _run(*, radius, mass, velocity, a, b, h, theory, edges, duration=""):
+    """Run the Hertz impact of a steel ball (``radius`` [m], ``mass`` [kg], ``velocity`` [m/s]) on an
+    ``a`` × ``b`` × ``h`` [m] aluminium plate of ``theory`` and ``edges``; ``duration``: a [solver] line."""
     from impactmaps.cases import parse_case, run_case
 
-    values.setdefault("duration", "")
+    text = case_text(f"""
+        type = "plate"
+        length_x = {a!r}
+        length_y = {b!r}
+        thickness = {h!r}
+        material = "aluminium-6061-t6"
+        theory = "{theory}"
+        edges = "{edges}"
+    """, radius=radius, mass=mass, velocity=velocity, after=f"[solver]\ncheck_convergence = false\n{duration}\n")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return run_case(parse_case(_CASE.format(**values)))
+        return run_case(parse_case(text))
 
 
 @pytest.mark.slow

@@ -146,6 +146,18 @@ def claim(case) -> bool:
     return True
 
 
+def _largest(cases) -> dict:
+    """The last of ``cases`` (the deepest, in sweep order) of each material (Y/E*, ν, E ratio)."""
+    return {(case.y_over_estar, case.nu_flat, case.stiffness_ratio): case for case in cases}
+
+
+def _append(case, rec, curve, largest) -> None:
+    """Append a finished run's row, and its curve if it is its material's deepest case."""
+    append_row(rec)
+    if case is largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)]:
+        append_curve(case, curve)
+
+
 def rebuild():
     """Rewrite the CSVs from the runs already on disk (no ccx): every sweep's cases whose
     run finished are re-read and re-summarised."""
@@ -153,9 +165,7 @@ def rebuild():
         path.unlink(missing_ok=True)
     for name in ("base", "nu", "equal", "deep"):
         cases = list(sweep_cases(name))
-        largest = {}
-        for case in cases:
-            largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)] = case
+        largest = _largest(cases)
         for case in cases:
             if not (WORK / f"{job_name(case)}.log").exists():
                 continue
@@ -164,17 +174,13 @@ def rebuild():
             except RuntimeError as err:
                 print(f"FAILED {job_name(case)}: {str(err).splitlines()[0]}", flush=True)
                 continue
-            append_row(rec)
-            if case is largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)]:
-                append_curve(case, curve)
+            _append(case, rec, curve, largest)
 
 
 def sweep(name, reverse=False):
     ct.RESULTS.mkdir(parents=True, exist_ok=True)
     cases = list(sweep_cases(name))
-    largest = {}
-    for case in cases:
-        largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)] = case
+    largest = _largest(cases)
     for case in (cases[::-1] if reverse else cases):
         if not case.nlgeom and case.delta_m > SMALL_STRAIN_DEPTH * case.radius:
             continue        # the deep sweep runs it with NLGEOM
@@ -185,9 +191,7 @@ def sweep(name, reverse=False):
         except RuntimeError as err:
             print(f"FAILED {job_name(case)}: {str(err)[-300:]}", flush=True)
             continue
-        append_row(rec)
-        if case is largest[(case.y_over_estar, case.nu_flat, case.stiffness_ratio)]:
-            append_curve(case, curve)
+        _append(case, rec, curve, largest)
         print(json.dumps({k: rec.get(k) for k in COLUMNS}), flush=True)
 
 

@@ -130,10 +130,7 @@ def build_mesh(case: Case):
             fields.append(tag + 1)
         gmsh.model.mesh.field.add("Min", 9)
         gmsh.model.mesh.field.setNumbers(9, "FieldsList", fields)
-        gmsh.model.mesh.field.setAsBackgroundMesh(9)
-        for name in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
-                     "MeshSizeFromCurvature"):
-            gmsh.option.setNumber(f"Mesh.{name}", 0)
+        ct.use_background_field(gmsh, 9)
         gmsh.option.setNumber("Mesh.Algorithm", 8)
         gmsh.option.setNumber("Mesh.RecombineAll", 1)
         gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 3)

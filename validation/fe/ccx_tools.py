@@ -106,13 +106,67 @@ def collect_indexed(gmsh, gmsh_type, order, element_type) -> tuple[Mesh, np.ndar
     etypes, _, enodes = gmsh.model.mesh.getElements(3)
     k = list(etypes).index(gmsh_type)
     conn = np.asarray(enodes[k], dtype=np.int64).reshape(-1, len(order))[:, order]
+    coords, index = renumber_nodes(tags, xyz, conn)
+    return Mesh(coords=coords, elements=index[conn], element_type=element_type), index
+
+
+def renumber_nodes(tags, xyz, conn) -> tuple[np.ndarray, np.ndarray]:
+    """The nodes the elements ``conn`` (gmsh tags) use, numbered 1..n in tag order: their
+    coordinates (n, 3) [m] and ``index`` (gmsh tag -> node id, 0 for an unused tag), from
+    gmsh's node ``tags`` and coordinates ``xyz`` (len(tags), 3)."""
     used = np.unique(conn)
     index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     index[used] = np.arange(1, used.size + 1)
     lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     lookup[tags.astype(np.int64)] = np.arange(tags.size)
-    coords = xyz[lookup[used]]
-    return Mesh(coords=coords, elements=index[conn], element_type=element_type), index
+    return xyz[lookup[used]], index
+
+
+def use_background_field(gmsh, field) -> None:
+    """Size the elements by the gmsh size field ``field`` alone (not from boundaries, points or curvature)."""
+    gmsh.model.mesh.field.setAsBackgroundMesh(field)
+    for name in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
+                 "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{name}", 0)
+
+
+def quarter_contact_mesh(gmsh, sphere_volume, target, size, far_sizes):
+    """The C3D10 mesh of the quarter models (levels 2, 4): the sphere (OCC volume dim-tag
+    ``sphere_volume``) on the volume ``target`` whose top face lies in z = 0, in the
+    current gmsh model, synchronised.
+
+    Element size ``size.format(far=far)`` [m] (a gmsh MathEval formula) in each volume,
+    ``far_sizes`` = (sphere's far, target's far); quadratic, optimised tetrahedra.
+    Returns the mesh, ``index`` (:func:`collect_indexed`) and the 6-node triangles (mesh
+    node ids) of the sphere's curved surface (``"slave"``) and the target's top
+    (``"master"``).
+    """
+    curved = [t for d, t in gmsh.model.getBoundary([sphere_volume], oriented=False)
+              if gmsh.model.getType(2, t) == "Sphere"]
+    top = [t for d, t in gmsh.model.getBoundary([(3, target)], oriented=False)
+           if np.allclose(gmsh.model.getBoundingBox(2, t)[2::3], 0.0, atol=1e-6)]
+    if len(curved) != 1 or len(top) != 1:
+        raise RuntimeError(f"contact surfaces not found: {curved}, {top}")
+    field = gmsh.model.mesh.field
+    for k, (volume, far) in enumerate(((sphere_volume[1], far_sizes[0]), (target, far_sizes[1]))):
+        field.add("MathEval", 2 * k + 1)
+        field.setString(2 * k + 1, "F", size.format(far=far))
+        field.add("Restrict", 2 * k + 2)
+        field.setNumber(2 * k + 2, "InField", 2 * k + 1)
+        field.setNumbers(2 * k + 2, "VolumesList", [volume])
+    field.add("Min", 5)
+    field.setNumbers(5, "FieldsList", [2, 4])
+    use_background_field(gmsh, 5)
+    gmsh.option.setNumber("Mesh.ElementOrder", 2)
+    gmsh.option.setNumber("Mesh.Optimize", 1)
+    gmsh.model.mesh.generate(3)
+    mesh, index = collect_indexed(gmsh, 11, TET10_GMSH_TO_CCX, "C3D10")
+    tris = {}
+    for key, surface in (("slave", curved[0]), ("master", top[0])):
+        etypes, _, enodes = gmsh.model.mesh.getElements(2, surface)
+        tri = np.asarray(enodes[list(etypes).index(9)], dtype=np.int64).reshape(-1, 6)
+        tris[key] = index[tri]
+    return mesh, index, tris
 
 
 # Faces of a C3D10 element (Abaqus labels S1..S4) by their corner nodes (0-based).
@@ -333,3 +387,16 @@ def write_quarter_contact(f, mesh: Mesh, faces, slope, tol=1e-9):
     f.write("*CONTACT PAIR, INTERACTION=SI1, TYPE=SURFACE TO SURFACE\nSSPH,STGT\n"
             "*SURFACE INTERACTION, NAME=SI1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
             f"{slope:.6e}\n")
+
+
+class Deck:
+    """A ccx deck being written: ``write`` appends a card's text; ``text(heading)`` is the deck."""
+
+    def __init__(self):
+        self.parts = []
+
+    def write(self, text: str) -> None:
+        self.parts.append(text)
+
+    def text(self, heading: str) -> str:
+        return f"*HEADING\n{heading}\n" + "".join(self.parts)

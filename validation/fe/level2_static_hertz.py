@@ -108,39 +108,8 @@ def build_mesh(case, h0, r_fine, far_size, block_side, preload=0.0):
         else:
             target = occ.addBox(0, 0, -block_side, block_side, block_side, block_side)
         occ.synchronize()
-        curved = [t for d, t in gmsh.model.getBoundary([sphere_vol], oriented=False)
-                  if gmsh.model.getType(2, t) == "Sphere"]
-        top = [t for d, t in gmsh.model.getBoundary([(3, target)], oriented=False)
-               if np.allclose(gmsh.model.getBoundingBox(2, t)[2::3], 0.0, atol=1e-6)]
-        if len(curved) != 1 or len(top) != 1:
-            raise RuntimeError(f"contact surfaces not found: {curved}, {top}")
-        expr = (f"Min({h0} + {GROWTH}*Max(Sqrt(x*x+y*y+z*z) - {r_fine}, 0), "
-                f"{{far}})")
-        gmsh.model.mesh.field.add("MathEval", 1)
-        gmsh.model.mesh.field.setString(1, "F", expr.format(far=RADIUS / 3))
-        gmsh.model.mesh.field.add("Restrict", 2)
-        gmsh.model.mesh.field.setNumber(2, "InField", 1)
-        gmsh.model.mesh.field.setNumbers(2, "VolumesList", [sphere_vol[1]])
-        gmsh.model.mesh.field.add("MathEval", 3)
-        gmsh.model.mesh.field.setString(3, "F", expr.format(far=far_size))
-        gmsh.model.mesh.field.add("Restrict", 4)
-        gmsh.model.mesh.field.setNumber(4, "InField", 3)
-        gmsh.model.mesh.field.setNumbers(4, "VolumesList", [target])
-        gmsh.model.mesh.field.add("Min", 5)
-        gmsh.model.mesh.field.setNumbers(5, "FieldsList", [2, 4])
-        gmsh.model.mesh.field.setAsBackgroundMesh(5)
-        for name in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
-                     "MeshSizeFromCurvature"):
-            gmsh.option.setNumber(f"Mesh.{name}", 0)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.Optimize", 1)
-        gmsh.model.mesh.generate(3)
-        mesh, index = ct.collect_indexed(gmsh, 11, ct.TET10_GMSH_TO_CCX, "C3D10")
-        tris = {}
-        for key, surface in (("slave", curved[0]), ("master", top[0])):
-            etypes, _, enodes = gmsh.model.mesh.getElements(2, surface)
-            tri = np.asarray(enodes[list(etypes).index(9)], dtype=np.int64).reshape(-1, 6)
-            tris[key] = index[tri]
+        size = f"Min({h0} + {GROWTH}*Max(Sqrt(x*x+y*y+z*z) - {r_fine}, 0), {{far}})"
+        mesh, _, tris = ct.quarter_contact_mesh(gmsh, sphere_vol, target, size, (RADIUS / 3, far_size))
     finally:
         gmsh.finalize()
     return mesh, tris
@@ -168,11 +137,8 @@ def build_deck(case, mesh, faces, h0, times, delta, block_side, preload=0.0):
     """The ccx deck: mesh, sets, contact pair, one *STATIC step of len(times) increments."""
     x, y, z = mesh.coords.T
     tol = 1e-9
-    parts = []
-
-    class F:
-        write = staticmethod(parts.append)
-    w = parts.append
+    F = ct.Deck()
+    w = F.write
     ct.write_mesh(F, mesh, STEEL)
     ct.write_nset(F, "STOP", mesh.nodes_where(np.isclose(z, RADIUS - preload, atol=tol)))
     target = np.zeros(len(z), dtype=bool)
@@ -193,7 +159,7 @@ def build_deck(case, mesh, faces, h0, times, delta, block_side, preload=0.0):
     w(f"*STEP, INC=1000\n*STATIC, DIRECT\n{times[0]:.10f},1.0\n")
     w(f"*BOUNDARY, AMPLITUDE=RAMP\nSTOP,3,3,{-delta[-1]:.12e}\n")
     w("*NODE PRINT, NSET=STOP, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=AXIS\nU\n*END STEP\n")
-    return "*HEADING\nlevel 2 static Hertz\n" + "".join(parts)
+    return F.text("level 2 static Hertz")
 
 
 def parse_totals(dat_text, nset):

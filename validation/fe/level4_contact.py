@@ -184,38 +184,11 @@ def build_mesh(h0, r_fine, far_size):
         target = occ.addBox(0, 0, -BEAM["height"], BEAM["length"] / 2, BEAM["width"] / 2,
                             BEAM["height"])
         occ.synchronize()
-        curved = [t for d, t in gmsh.model.getBoundary([sphere_vol], oriented=False)
-                  if gmsh.model.getType(2, t) == "Sphere"]
-        top = [t for d, t in gmsh.model.getBoundary([(3, target)], oriented=False)
-               if np.allclose(gmsh.model.getBoundingBox(2, t)[2::3], 0.0, atol=1e-6)]
-        if len(curved) != 1 or len(top) != 1:
-            raise RuntimeError(f"contact surfaces not found: {curved}, {top}")
-        expr = f"Min({h0} + {GROWTH}*Max(Sqrt(x*x+y*y+z*z) - {r_fine}, 0), {{far}})"
-        field = gmsh.model.mesh.field
-        for k, (vol, far) in enumerate(((sphere_vol[1], RADIUS / 3), (target, far_size))):
-            field.add("MathEval", 2 * k + 1)
-            field.setString(2 * k + 1, "F", expr.format(far=far))
-            field.add("Restrict", 2 * k + 2)
-            field.setNumber(2 * k + 2, "InField", 2 * k + 1)
-            field.setNumbers(2 * k + 2, "VolumesList", [vol])
-        field.add("Min", 5)
-        field.setNumbers(5, "FieldsList", [2, 4])
-        field.setAsBackgroundMesh(5)
-        for name in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
-                     "MeshSizeFromCurvature"):
-            gmsh.option.setNumber(f"Mesh.{name}", 0)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.Optimize", 1)
-        gmsh.model.mesh.generate(3)
+        size = f"Min({h0} + {GROWTH}*Max(Sqrt(x*x+y*y+z*z) - {r_fine}, 0), {{far}})"
+        mesh, _, tris = ct.quarter_contact_mesh(gmsh, sphere_vol, target, size, (RADIUS / 3, far_size))
         _, sphere_tags, _ = gmsh.model.mesh.getElements(3, sphere_vol[1])
-        mesh, index = ct.collect_indexed(gmsh, 11, ct.TET10_GMSH_TO_CCX, "C3D10")
         all_tags = gmsh.model.mesh.getElements(3)[1][0]
         in_sphere = np.isin(all_tags, sphere_tags[0])
-        tris = {}
-        for key, surface in (("slave", curved[0]), ("master", top[0])):
-            etypes, _, enodes = gmsh.model.mesh.getElements(2, surface)
-            tri = np.asarray(enodes[list(etypes).index(9)], dtype=np.int64).reshape(-1, 6)
-            tris[key] = index[tri]
     finally:
         gmsh.finalize()
     return mesh, tris, in_sphere
@@ -225,11 +198,8 @@ def build_deck(case, mesh, faces, in_sphere, h0, step, end_time):
     """The ccx deck: two parts, symmetry + support, contact pair, one *DYNAMIC step."""
     x, y, z = mesh.coords.T
     tol = 1e-9
-    parts = []
-
-    class F:
-        write = staticmethod(parts.append)
-    w = parts.append
+    F = ct.Deck()
+    w = F.write
     target_yield = STEEL.yield_strength if case == "plastic" else None
     ct.write_mesh_parts(F, mesh, [
         ("SPH", in_sphere, "BALL", ct.material_cards(SPHERE_MATERIAL)),
@@ -245,7 +215,7 @@ def build_deck(case, mesh, faces, in_sphere, h0, step, end_time):
     w(f"*INITIAL CONDITIONS, TYPE=VELOCITY\nSPHN,3,{-VELOCITY:.6e}\n")
     w(f"*STEP, INC=1000000\n*DYNAMIC, DIRECT\n{step:.6e},{end_time:.6e}\n")
     w("*NODE PRINT, NSET=SPHN\nV\n*NODE PRINT, NSET=AXIS\nU\n*END STEP\n")
-    return "*HEADING\nlevel 4 full contact dynamics\n" + "".join(parts)
+    return F.text("level 4 full contact dynamics")
 
 
 def parse_velocity_blocks(dat_text, nset):

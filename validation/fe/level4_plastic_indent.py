@@ -65,11 +65,8 @@ def build_deck(mesh, faces, h0, delta_max, n_load, n_unload):
     tol = 1e-9
     corners = mesh.elements[:, :4] - 1
     in_sphere = z[corners].mean(axis=1) > 0
-    parts = []
-
-    class F:
-        write = staticmethod(parts.append)
-    w = parts.append
+    F = ct.Deck()
+    w = F.write
     ct.write_mesh_parts(F, mesh, [
         ("SPH", in_sphere, "BALL", ct.material_cards(l4.SPHERE_MATERIAL)),
         ("TGT", ~in_sphere, "BLOCK", ct.material_cards(l4.STEEL, l4.STEEL.yield_strength))])
@@ -85,7 +82,7 @@ def build_deck(mesh, faces, h0, delta_max, n_load, n_unload):
     for n, value in ((n_load, -delta_max), (n_unload, 0.0)):
         w(f"*STEP, INC=1000\n*STATIC\n{1 / n:.8f},1.0,{1e-3 / n:.3e},{1 / n:.8f}\n"
           f"*BOUNDARY\nSTOP,3,3,{value:.12e}\n" + prints)
-    return "*HEADING\nlevel 4 plastic indentation\n" + "".join(parts)
+    return F.text("level 4 plastic indentation")
 
 
 def run_key(mesh_name, n_load, n_unload):

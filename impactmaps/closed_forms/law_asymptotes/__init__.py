@@ -45,12 +45,8 @@ def asymptote(kind: str, target, law, impactor_mass, velocity) -> AsymptoteResul
     target : Plate, Beam or None
         Plate for ``"infinite-plate"``, Beam for ``"infinite-beam"``, any target for
         ``"quasi-static"``; ignored for ``"half-space"``.
-    law : ContactLaw
-        A single registered contact law.
-    impactor_mass : float
-        m > 0 [kg].
-    velocity : float
-        V0 > 0 [m/s].
+    law, impactor_mass, velocity
+        One registered contact law, the impactor mass m [kg] and the speed V0 [m/s], both > 0.
 
     Returns
     -------

@@ -177,6 +177,13 @@ def _stronge_kernel(alpha, alpha_max, params):
         return force, stiffness
     peak_force, _k, peak_radius = _stronge_loading(alpha_max, params)
     recovery = min(3.0 * peak_force / (4.0 * params[0] * peak_radius), alpha_max)  # δ_m − δ_r
+    return hertz_unloading(alpha, alpha_max, peak_force, recovery)
+
+
+@numba.njit(cache=True)
+def hertz_unloading(alpha, alpha_max, peak_force, recovery):
+    """(force [N], stiffness [N/m]) at δ = ``alpha`` on the Hertzian unloading curve from the peak
+    (δ_m = ``alpha_max``, F_m = ``peak_force``) that recovers ``recovery`` = δ_m − δ_r [m]; zero below δ_r."""
     gap = alpha - (alpha_max - recovery)
     if gap <= 0.0:
         return 0.0, 0.0

@@ -27,6 +27,7 @@ from ..._checks import (
     require_isotropic_material,
     require_nonnegative,
     require_positive,
+    require_positive_fields,
 )
 from ...dimensionless import (
     effective_plate_stiffness,
@@ -111,12 +112,8 @@ class Plate(Target):
     A45: float = 0.0  # noqa: N815
 
     def __post_init__(self):
-        require_positive("length_x", self.length_x, "m")
-        require_positive("length_y", self.length_y, "m")
-        require_positive("thickness", self.thickness, "m")
-        require_positive("D11", self.D11, "N·m")
-        require_positive("D22", self.D22, "N·m")
-        require_positive("D66", self.D66, "N·m")
+        require_positive_fields(self, {"length_x": "m", "length_y": "m", "thickness": "m",
+                                       "D11": "N·m", "D22": "N·m", "D66": "N·m"})
         bound = math.sqrt(self.D11 * self.D22)
         require_in_range("D12", self.D12, max(-bound, -2.0 * self.D66), bound,
                          low_inclusive=False, high_inclusive=False, unit="N·m")

@@ -116,10 +116,8 @@ def navier_static_compliance(length_x, length_y, D11, D22, D12, D66, impact_poin
 
     Parameters
     ----------
-    length_x, length_y : float
-        Plate sides a, b [m].
-    D11, D22, D12, D66 : float
-        Bending stiffnesses [N·m].
+    length_x, length_y, D11, D22, D12, D66 : float
+        Plate sides a, b [m] and bending stiffnesses [N·m], as in :class:`~impactmaps.targets.plates.plate.Plate`.
     impact_point : tuple of float
         Load and observation point (x0, y0) [m], inside the plate.
     terms : int, optional

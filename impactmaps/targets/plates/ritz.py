@@ -242,12 +242,8 @@ def ritz_basis_size(max_frequency, length_x, length_y, D11, D22, D12, D66, mass_
     ----------
     max_frequency : float
         Highest natural frequency to resolve [rad/s].
-    length_x, length_y : float
-        Plate sides a, b [m].
-    D11, D22, D12, D66 : float
-        Bending stiffnesses [N·m].
-    mass_per_area : float
-        ρh [kg/m²].
+    length_x, length_y, D11, D22, D12, D66, mass_per_area
+        As in :func:`solve_ritz_plate`.
 
     Returns
     -------
@@ -378,16 +374,10 @@ def ritz_static_compliance(length_x, length_y, D11, D22, D12, D66, edges, point,
 
     Parameters
     ----------
-    length_x, length_y : float
-        Plate sides a, b [m].
-    D11, D22, D12, D66 : float
-        Bending stiffnesses [N·m].
-    edges : str
-        Edge code (x = 0, y = 0, x = a, y = b).
+    length_x, length_y, D11, D22, D12, D66, edges, n_x, n_y
+        As in :func:`solve_ritz_plate`.
     point : tuple of float
         Load and observation point (x0, y0) [m].
-    n_x, n_y : int
-        Number of one-dimensional functions per direction.
     """
     _validate(length_x, length_y, D11, D22, D12, D66, 1.0, edges, n_x, n_y)
     import scipy.linalg
