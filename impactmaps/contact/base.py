@@ -200,7 +200,8 @@ class ContactLaw(ABC):
     def python_kernel(self):
         """:attr:`kernel` run as Python, for scalar calls from Python code (an asymptote's rates,
         a bisection): the same operations, the same bits (IEEE arithmetic and libm in both), and
-        no compiled code loaded (the first call of a compiled kernel in a process costs ~0.2 s)."""
+        the kernel itself not compiled or loaded (the first compiled call in a process costs
+        ~0.2 s; compiled helpers a kernel calls, as the plastic laws' loading curves, still are)."""
         return getattr(self.kernel, "py_func", self.kernel)
 
     def force(self, indentation, max_indentation=0.0):
