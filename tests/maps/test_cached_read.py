@@ -59,8 +59,8 @@ def test_hertz_asymptote_peaks_are_kept_on_disk_bit_for_bit(tmp_path, monkeypatc
     hertz_points._asymptote_peak.cache_clear()
     zeta = np.array([0.7, 2.4796057354841206])
     integrated = hertz_points.hertz_asymptote_peak("infinite", "plate", zeta_h=zeta)
-    path = tmp_path / hertz_points.STORED_PEAKS_FILE.format(revision=hertz_points.SOLVER_REVISION)
-    assert path.exists()
+    path = hertz_points.stored_peaks_path()
+    assert path.parent == tmp_path and path.exists()
     hertz_points._stored.clear()  # a new process: nothing in memory
     hertz_points._asymptote_peak.cache_clear()
     monkeypatch.setattr(hertz_points, "_asymptote_peak", None)  # nothing may be integrated now

@@ -149,13 +149,20 @@ def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> fl
 
 
 #: The Hertz asymptote peaks computed before, in a file of the cache directory (beside the
-#: on-demand tiles; :func:`impactmaps._files.cache_directory`) named by the solver revision:
+#: on-demand tiles; :func:`impactmaps._files.cache_directory`) named by the solver revision and
+#: the Hertz law's (:func:`stored_peaks_path`):
 #: a lookup of a case whose tile is cached reads the peaks of its regime instead of integrating
 #: them again in every process (~0.1 s). The floats are stored exactly (the same bits); at most
 #: :data:`STORED_PEAKS_MAX`, the newest, are kept.
 STORED_PEAKS_FILE = "hertz-asymptote-peaks-r{revision}.json"
 STORED_PEAKS_MAX = 4096
 _stored = {}  # file → {key: peak}, read once per process
+
+
+def stored_peaks_path() -> Path:
+    """The file of the stored Hertz asymptote peaks (:data:`STORED_PEAKS_FILE`)."""
+    revision = f"{SOLVER_REVISION}.{HertzContact.revision}"
+    return _files.cache_directory() / STORED_PEAKS_FILE.format(revision=revision)
 
 
 def _stored_peaks(path: Path) -> dict:
@@ -197,7 +204,7 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
     # the asymptote depends on one number: pin the other, so the cache sees few keys
     keys = np.stack([zeta, np.ones_like(zeta)] if which == "infinite" else [np.ones_like(lam), lam], axis=-1)
     unique, inverse = np.unique(keys.reshape(-1, 2), axis=0, return_inverse=True)
-    path = _files.cache_directory() / STORED_PEAKS_FILE.format(revision=SOLVER_REVISION)
+    path = stored_peaks_path()
     stored, values, computed = _stored_peaks(path), [], False
     for z, l in unique:
         key = f"{name} {kind} {float(z)!r} {float(l)!r}"
