@@ -89,10 +89,13 @@ def read_netcdf_arrays(path):
     """
     from scipy.io import netcdf_file
 
-    with netcdf_file(path, "r", mmap=False) as opened:
-        raw = {name: (variable.dimensions, variable.data, dict(variable._attributes))
-               for name, variable in opened.variables.items()}
-        attrs = {key: _netcdf_attr(value) for key, value in opened._attributes.items()}
+    try:
+        with netcdf_file(path, "r", mmap=False) as opened:
+            raw = {name: (variable.dimensions, variable.data, dict(variable._attributes))
+                   for name, variable in opened.variables.items()}
+            attrs = {key: _netcdf_attr(value) for key, value in opened._attributes.items()}
+    except AttributeError:  # SciPy's reader without the attribute tables xarray reads too
+        return _read_netcdf(Path(path))
     if any(not _plain_netcdf(values, variable_attrs) for _, values, variable_attrs in raw.values()):
         return _read_netcdf(Path(path))
     variables, coords = {}, []
