@@ -11,7 +11,9 @@ Stronge, default ``epp``; read as the shipped plastic maps,
 :func:`impactmaps.maps.read.lookup.read_plastic`). A Hertz impact that ``simulate``
 loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
 patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.closed_forms.hertz_similarity`); its tile is of
-that P.
+that P. The tile of a plate with a clamped or free edge is one cell of the shipped maps' grid
+density split into four (:func:`impactmaps.maps.compute.tiles.refined_cell`): its band is
+measured from the points that split it, as in the shipped maps' refinements.
 
 Everything else stays refused with the reason: a target the structure cannot write
 (orthotropic or laminated, structural damping, a beam section whose shear or rotary
@@ -32,7 +34,7 @@ from ..maps.read.lookup import read_plastic
 from ..maps.family.structures import MAX_MODES
 from ..maps.family.map_family import map_family
 from ..maps.family.structures import MapStructure
-from ..maps.compute.tiles import cached_tile, tile_for
+from ..maps.compute.tiles import cached_tile, tile_for, tile_refinement
 
 __all__ = ["case_structure", "answer_on_demand"]
 
@@ -166,7 +168,7 @@ def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
                 return read_map(dataset, zeta, lam, kind=structure.kind, theory=structure.theory, name=key.name,
-                                law=law)
+                                law=law, refinement=tile_refinement(dataset))
             except ValueError:  # next to an unresolved point
                 raise unresolved(key.name, f"(ζ, λ) = ({zeta:.4g}, {lam:.4g})") from None
 

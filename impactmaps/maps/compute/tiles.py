@@ -2,7 +2,12 @@
 
 A tile is 4 points a side of its family's global log lattice
 (:attr:`~impactmaps.maps.family.map_family.MapFamily.tile_lattice`) around a point, for one
-structure and law, solved and read exactly as the shipped maps. A tile is a pure function
+structure and law, solved and read exactly as the shipped maps. The tile of a plate with an
+edge that is not simply supported (:func:`refined_cell`) is instead one cell of the lattice
+twice as fine (the shipped maps' grid, 40 ζ and 20 λ per decade), split into four by points
+at its centre and the middles of its edges as the shipped maps' refinements split a cell:
+its interpolation error is measured (the surpluses of those points), not modelled from
+second differences (docs/accuracy.rst). A tile is a pure function
 of its :class:`TileKey`; the cache keeps one verified NetCDF file per key (at most
 :data:`MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
 """
@@ -28,6 +33,8 @@ from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, solve_map_points
 from ..family.map_family import map_family
+from ..family.accuracy import stated_error
+from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
 from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
@@ -41,7 +48,7 @@ if TYPE_CHECKING:
 PATCH_MODEL_REVISION = 1
 
 __all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
-           "lattice_steps", "tile_for", "build_tile", "cached_tile"]
+           "lattice_steps", "refined_cell", "tile_for", "build_tile", "tile_refinement", "cached_tile"]
 
 #: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
 LATTICE_STEPS = (0.05, 0.1)
@@ -58,12 +65,25 @@ TILE_POINTS = 4
 #: a tile without a patch, whose points that rule does not touch, keeps format 1).
 _TILE_FORMAT = 2
 _POINT_LOAD_TILE_FORMAT = 1
+#: Version of a refined-cell tile's file (:func:`refined_cell`; 3: the first).
+_CELL_TILE_FORMAT = 3
+#: Depth of a refined-cell tile's split (its leaves: 1/2 of its cell per axis).
+_CELL_LEVELS = 1
+#: Prefix of a refined-cell tile's refinement variables (dimension ``refinement_point``).
+_REFINED = "refinement_"
 
 
 def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
     """The tile cache: ``cache_dir`` if given, else ``$IMPACTMAPS_CACHE_DIR``, else
     ``$XDG_CACHE_HOME/impactmaps``, else ``~/.cache/impactmaps`` (:func:`impactmaps._files.cache_directory`)."""
     return _files.cache_directory(cache_dir)
+
+
+def refined_cell(structure: MapStructure, law: str) -> bool:
+    """Whether the tiles of ``structure`` and ``law`` are refined cells (module docstring): a
+    plate with an edge other than simply supported, under a (ζ, λ) law. (The tiles of beams,
+    of SSSS plates and of the elastic-plastic laws keep the 4 × 4 points of their lattice.)"""
+    return structure.kind == "plate" and structure.supports != "SSSS" and not map_family(law).extra_axes
 
 
 def lattice_steps() -> tuple[float, float]:
@@ -78,7 +98,8 @@ class TileKey:
     """Everything that determines a tile: ``structure``, ``law`` (the map family), ``patch``
     (P = sqrt(R α_m)/h [-] of a patch-loaded Hertz tile; None: point load), ``zeta_index``,
     ``lambda_index`` and ``extra_indices`` (lattice indices of its first values, ``log10 ζ =
-    zeta_index · Δζ``), ``settings`` and ``control``.
+    zeta_index · Δζ``), ``settings``, ``control`` and ``cell`` (a refined cell of the lattice
+    twice as fine, :func:`refined_cell`).
     """
 
     structure: MapStructure
@@ -89,13 +110,32 @@ class TileKey:
     settings: ModalSettings = ModalSettings()
     control: AccuracyControl = AccuracyControl()
     extra_indices: tuple = ()
+    cell: bool = False
+
+    @property
+    def lattice(self) -> dict:
+        """Axis name → Δ log10 of the tile's lattice: the family's, halved for a refined cell."""
+        steps = _family(self).tile_lattice
+        return {name: step / 2.0 for name, step in steps.items()} if self.cell else dict(steps)
+
+    @property
+    def points_per_axis(self) -> int:
+        """Lattice points per axis (:data:`TILE_POINTS`; 2 for a refined cell)."""
+        return 2 if self.cell else TILE_POINTS
+
+    @property
+    def point_count(self) -> int:
+        """The points a build solves (a refined cell: its 4 corners and 5 splitting points)."""
+        if self.cell:
+            return 4 + 5
+        return TILE_POINTS ** (2 + len(self.extra_indices))
 
     @property
     def axes(self) -> tuple[np.ndarray, np.ndarray]:
-        """The tile's ζ and λ values [-], ascending."""
-        steps = _family(self).tile_lattice
-        return tuple(_values(steps[name], start) for name, start in (("zeta", self.zeta_index),
-                                                                      ("lambda_", self.lambda_index)))
+        """The tile's ζ and λ lattice values [-], ascending."""
+        steps = self.lattice
+        return tuple(_values(steps[name], start, self.points_per_axis)
+                     for name, start in (("zeta", self.zeta_index), ("lambda_", self.lambda_index)))
 
     @property
     def extra_axes(self) -> tuple[np.ndarray, ...]:
@@ -106,7 +146,7 @@ class TileKey:
 
     def description(self) -> dict:
         """JSON-ready description (the fingerprint's input; stored in the tile)."""
-        lattice = _family(self).tile_lattice
+        lattice = self.lattice
         extra = {}
         if self.extra_indices:  # (a (ζ, λ) tile's description predates the extra axes)
             extra = {"extra_indices": {axis.name: index for axis, index in
@@ -114,12 +154,15 @@ class TileKey:
                      "extra_lattice": {axis.name: lattice[axis.name] for axis in _family(self).extra_axes}}
         if self.patch is not None:  # the patch model's revision (1: 3D-consistent near field, near_field)
             extra["patch_model"] = PATCH_MODEL_REVISION
+        tile_format = _TILE_FORMAT if self.patch is not None else _POINT_LOAD_TILE_FORMAT
+        if self.cell:  # a refined cell (format 3): its split and the safety on its surpluses
+            extra["refinement"] = {"levels": _CELL_LEVELS, "surplus_safety": SURPLUS_SAFETY}
+            tile_format = _CELL_TILE_FORMAT
         return {"structure": self.structure.as_dict(), "law": self.law, "patch_number": self.patch,
                 "zeta_index": self.zeta_index, "lambda_index": self.lambda_index,
                 "lattice": [lattice["zeta"], lattice["lambda_"]], **extra,
-                "points_per_axis": TILE_POINTS, "settings": asdict(self.settings), "accuracy": asdict(self.control),
-                "solver_revision": SOLVER_REVISION,
-                "tile_format": _TILE_FORMAT if self.patch is not None else _POINT_LOAD_TILE_FORMAT}
+                "points_per_axis": self.points_per_axis, "settings": asdict(self.settings),
+                "accuracy": asdict(self.control), "solver_revision": SOLVER_REVISION, "tile_format": tile_format}
 
     @property
     def fingerprint(self) -> str:
@@ -144,28 +187,31 @@ class TileKey:
 _SYMBOLS = {"beta": "β"}
 
 
-def _values(step: float, start: int) -> np.ndarray:
-    """The :data:`TILE_POINTS` lattice values ``10^(step (start + i))`` [-]."""
-    return 10.0 ** (step * (start + np.arange(TILE_POINTS)))
+def _values(step: float, start: int, count: int = TILE_POINTS) -> np.ndarray:
+    """The ``count`` lattice values ``10^(step (start + i))`` [-]."""
+    return 10.0 ** (step * (start + np.arange(count)))
 
 
 def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor: float, relative_stiffness: float,
              settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl(),
              extra: tuple = ()) -> TileKey:
     """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)
-    and, for a family with more axes, their values ``extra`` (β …, in the family's order)."""
-    lattice = map_family(law).tile_lattice
+    and, for a family with more axes, their values ``extra`` (β …, in the family's order); a
+    refined cell's tile (:func:`refined_cell`): the cell of its lattice that holds them."""
+    cell = refined_cell(structure, law)
+    lattice = TileKey(structure, law, patch, 0, 0, cell=cell).lattice
     names = [axis.name for axis in map_family(law).extra_axes]
     if len(extra) != len(names):
         raise ValueError(f"extra = {tuple(extra)!r}: the {law} tiles need a value of each of {names}")
-    first = [_first_index(value, lattice[name]) for value, name in
+    points = 2 if cell else TILE_POINTS
+    first = [_first_index(value, lattice[name], points) for value, name in
              zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
-    return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]))
+    return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]), cell)
 
 
-def _first_index(value: float, step: float) -> int:
-    """Lattice index of the first of :data:`TILE_POINTS` values whose middle cell holds ``value``."""
-    return math.floor(math.log10(float(value)) / step) - (TILE_POINTS // 2 - 1)
+def _first_index(value: float, step: float, points: int = TILE_POINTS) -> int:
+    """Lattice index of the first of ``points`` values whose middle cell holds ``value``."""
+    return math.floor(math.log10(float(value)) / step) - (points // 2 - 1)
 
 
 def build_tile(key: TileKey, progress=None) -> xr.Dataset:
@@ -173,8 +219,9 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
 
     The dataset has the family's variables over (``structure``, its extra axes,
     ``lambda_``, ``zeta``), as the shipped maps, and the attributes ``fingerprint``,
-    ``description``, ``data_digest`` and ``contact_law``. ``progress(done, total)``, if
-    given, is called after each (λ, ζ) plane of points.
+    ``description``, ``data_digest`` and ``contact_law``; a refined cell's tile also its
+    refinement (:func:`tile_refinement`). ``progress(done, total)``, if given, is called
+    after each (λ, ζ) plane of points (a refined cell: after its corners and after its split).
     """
     zetas, lambdas = key.axes
     extra = key.extra_axes
@@ -182,12 +229,14 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
               for values in itertools.product(*extra) for lam in lambdas for zeta in zetas]
     family = _family(key)
     # None: the sweep's own table; patch-loaded points build their modes under each patch
-    table = _table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
-    rows, chunk = [], TILE_POINTS**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
+    splitting = _splitting_points(key) if key.cell else []
+    table = (_table(key, points + splitting) if key.structure.build().bounded_modes and family.uses_table()
+             else None)
+    rows, chunk = [], key.points_per_axis**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
     for start in range(0, len(points), chunk):
         rows += solve_map_points(family, key.structure, points[start:start + chunk], key.settings, table, key.control)
         if progress is not None:
-            progress(len(rows), len(points))
+            progress(len(rows), key.point_count)
     shape = (1, *(values.size for values in extra), lambdas.size, zetas.size)
     dims = ("structure", *(axis.name for axis in family.extra_axes), "lambda_", "zeta")
     data = {name: (dims, np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
@@ -201,10 +250,71 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
     import xarray as xr  # building a tile; reading one takes NumPy alone
 
     dataset = xr.Dataset(data, coords=coords)
+    if key.cell:
+        dataset = dataset.assign(_split_cell(key, family, table, data, progress))
     dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
                           "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
                           "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
     return dataset
+
+
+def _cell_coordinates(key: TileKey, row, col) -> tuple[np.ndarray, np.ndarray]:
+    """(ζ, λ) [-] at fractional positions of a refined cell's tile (``row`` along λ, ``col``
+    along ζ, in its lattice steps)."""
+    steps = key.lattice
+    return (10.0 ** (steps["zeta"] * (key.zeta_index + np.asarray(col, float))),
+            10.0 ** (steps["lambda_"] * (key.lambda_index + np.asarray(row, float))))
+
+
+def _splitting_points(key: TileKey) -> list[tuple[float, float]]:
+    """(ζ, λ) of the 5 points that split a refined cell: its centre and its edges' middles."""
+    zetas, lambdas = _cell_coordinates(key, [0.5, 0.5, 0.5, 0.0, 1.0], [0.5, 0.0, 1.0, 0.5, 0.5])
+    return [(float(zeta), float(lam)) for zeta, lam in zip(zetas, lambdas)]
+
+
+def _split_cell(key: TileKey, family, table, data: dict, progress=None) -> dict:
+    """The variables of a refined cell's split (:func:`impactmaps.maps.family.refinement.refine`
+    of its one cell, split whatever its band: its leaves' error is the measured surplus of the
+    splitting points), each over ``refinement_point``: the lattice code, the
+    :data:`~impactmaps.maps.family.refinement.REFINEMENT_VARIABLES` and each point's ``impacts``
+    (its error's floor, :func:`~impactmaps.maps.family.accuracy.stated_error`)."""
+    base = {name: np.asarray(data[name][1])[0] for name in ("fmax_normalised", "fmax_error", "status")}
+    solved = {}
+
+    def solve(zetas, lambdas):
+        points = [(float(zeta), float(lam)) for zeta, lam in zip(zetas, lambdas)]
+        rows = solve_map_points(family, key.structure, points, key.settings, table, key.control)
+        solved.update(zip(points, rows))
+        return rows
+
+    refinement = refine(base, np.zeros(base["fmax_normalised"].shape), lambda row, col: _cell_coordinates(key, row, col),
+                        solve, max_level=_CELL_LEVELS, split_first=True)
+    if progress is not None:
+        progress(key.point_count, key.point_count)
+    u, v = refinement.position(refinement.codes)
+    zetas, lambdas = _cell_coordinates(key, u / refinement.scale, v / refinement.scale)
+    impacts = np.array([solved[(float(zeta), float(lam))].get("impacts", np.nan) for zeta, lam in zip(zetas, lambdas)],
+                       float)
+    dims = ("refinement_point",)
+    variables = {f"{_REFINED}{name}": (dims, np.asarray(values, REFINEMENT_VARIABLES[name]))
+                 for name, values in refinement.values.items()}
+    return variables | {f"{_REFINED}code": (dims, refinement.codes.astype(np.int32)),
+                        f"{_REFINED}impacts": (dims, impacts)}
+
+
+def tile_refinement(dataset: xr.Dataset) -> Refinement | None:
+    """The split of a refined cell's tile as a :class:`~impactmaps.maps.family.refinement.Refinement`
+    to read it with (:func:`impactmaps.maps.read.lookup.read_map`), each point's ``fmax_error``
+    stated with its floor for its impacts (:func:`~impactmaps.maps.family.accuracy.stated_error`);
+    None for a tile of the 4 × 4 points."""
+    if f"{_REFINED}code" not in dataset:
+        return None
+    values = {name: np.asarray(dataset[f"{_REFINED}{name}"].values, dtype) for name, dtype in REFINEMENT_VARIABLES.items()}
+    values["fmax_error"] = np.asarray(stated_error(values["fmax_error"], values["status"],
+                                                   dataset[f"{_REFINED}impacts"].values),
+                                      REFINEMENT_VARIABLES["fmax_error"])
+    shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
+    return Refinement(shape, np.asarray(dataset[f"{_REFINED}code"].values, np.int64), values, _CELL_LEVELS)
 
 
 def _table(key: TileKey, points) -> BasisTable:
@@ -274,7 +384,7 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tup
             pass
         return dataset, path
     if notify is not None:
-        notify(f"building an on-demand map tile of {TILE_POINTS ** (2 + len(key.extra_indices))} points for {key.name[len('on-demand tile '):]} "
+        notify(f"building an on-demand map tile of {key.point_count} points for {key.name[len('on-demand tile '):]} "
                f"…; cached in {path}")
     dataset = build_tile(key, progress)
     try:

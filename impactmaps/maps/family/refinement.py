@@ -327,7 +327,7 @@ def _surplus_at(refinement: Refinement, u: np.ndarray, v: np.ndarray) -> np.ndar
 
 def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: Callable, *,
            tolerance: float = 1e-3, max_level: int = MAX_LEVEL, max_points: int | None = None,
-           progress: Callable | None = None) -> Refinement:
+           progress: Callable | None = None, split_first: bool = False) -> Refinement:
     """Split the map's cells until linear interpolation is within ``tolerance`` everywhere it can be.
 
     Parameters
@@ -348,6 +348,10 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
         Cost cap on the points added (the largest bands are split first).
     progress : callable, optional
         ``progress(round, new_points, total_points)`` after each round.
+    split_first : bool
+        Split every grid cell in the first round, whatever its band and its corners'
+        statuses (an on-demand tile of one cell: its interpolation error measured, never
+        modelled; :mod:`impactmaps.maps.compute.tiles`).
     """
     shape = base["fmax_normalised"].shape
     refinement = Refinement.empty(shape, max_level)
@@ -359,6 +363,8 @@ def refine(base: dict, base_estimate: np.ndarray, coordinates: Callable, solve: 
     round_number = 0
     while True:
         priority = _split_priority(refinement, base, base_estimate, leaves, tolerance)
+        if split_first and round_number == 0:
+            priority = np.where(leaves.side > 1, np.inf, 0.0)
         split = priority > 0
         if max_points is not None:
             split = _within_budget(priority, max_points - refinement.codes.size)
