@@ -41,9 +41,6 @@ class LinearFamily(LinearLayout):
     """The linear contact law's maps (module docstring); its layout (axes, shipped maps):
     :class:`~impactmaps.maps.family.builtin_families.LinearLayout`."""
 
-    def describes(self, law) -> bool:
-        return law.linear_stiffness is not None
-
     def realise_points(self, target, points) -> list:
         zetas = np.array([p[0] for p in points], dtype=float)
         lambdas = np.array([p[1] for p in points], dtype=float)
