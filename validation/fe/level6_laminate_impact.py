@@ -241,19 +241,7 @@ def deck(layup, mesh, loads, n_modes):
     ct.write_nset(f, "EDGE", np.flatnonzero(edge) + 1)
     patch = sorted(set().union(*(set(ids.tolist()) for ids, _ in loads)))
     ct.write_nset(f, "PATCH", patch)
-    e1, e2, g12, nu12 = (PLY.longitudinal_modulus, PLY.transverse_modulus, PLY.shear_modulus,
-                         PLY.poisson_ratio)
-    parts.append("*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=ENGINEERING CONSTANTS\n"
-                 f"{e1:.6e},{e2:.6e},{e2:.6e},{nu12},{nu12},{NU23},{g12:.6e},"
-                 f"{PLY.transverse_shear_modulus_13:.6e},\n"
-                 f"{PLY.transverse_shear_modulus_23:.6e}\n*DENSITY\n{PLY.density}\n")
-    for ang in sorted(set(full)):
-        c, s = np.cos(np.radians(ang)), np.sin(np.radians(ang))
-        parts.append(f"*ORIENTATION, NAME=OR{ang + 90:.0f}, SYSTEM=RECTANGULAR\n"
-                     f"{c:.12f},{s:.12f},0.,{-s:.12f},{c:.12f},0.\n")
-    parts.append("*SHELL SECTION, ELSET=PLATE, COMPOSITE\n")
-    for ang in full:
-        parts.append(f"{PLY_THICKNESS:.6e},,PLY,OR{ang + 90:.0f}\n")
+    parts.append(ct.composite_shell_cards(PLY, full, PLY_THICKNESS, NU23))
     parts.append("*BOUNDARY\nEDGE,1,6\n")
     parts.append(f"*STEP\n*FREQUENCY\n{n_modes}\n*NODE PRINT, NSET=PATCH\nU\n*END STEP\n")
     for ids, forces in loads:
