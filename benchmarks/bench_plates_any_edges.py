@@ -12,9 +12,11 @@ already in their cache):
   built), again (the tile cached), and at another speed (a new tile of the same plate: its
   basis read from the disk cache); each a fresh process (interpreter and imports
   included), and in one process after its imports: the first lookup call and the next
-  ones (the tile cached on disk).
+  ones (the tile cached on disk), with the heavy packages and compiled contact kernels the
+  calls load; the imports of a fresh cached ``lookup --case`` (``python -X importtime``)
+  beside a bare ``import numpy, scipy.linalg``.
 
-Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT]  (writes
+Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT] [--lookup-only]  (writes
 nothing; prints Markdown for benchmarks/RESULTS_plates_any_edges.md; ``--root`` times
 another checkout, e.g. main before a change). Wall-clock times depend on the machine's
 load: the load average is printed before and after.
@@ -61,14 +63,21 @@ _IN_PROCESS = textwrap.dedent("""
     from impactmaps.cli import main
     import impactmaps.cases.case_lookup, impactmaps.cases.on_demand  # the lookup's own imports
     t1 = time.perf_counter()
-    calls = []
+    calls, before = [], set(sys.modules)
     for _ in range(3):
         start = time.perf_counter()
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
             main(["lookup", "--case", sys.argv[1], "--json"])
         calls.append(time.perf_counter() - start)
-    print(f"{t1 - t0:.3f} " + " ".join(f"{t:.4f}" for t in calls))
+    new = set(sys.modules) - before
+    heavy = [name for name in ("dask", "xarray", "pandas", "scipy.integrate") if name in new] or ["none"]
+    from impactmaps.contact import available_contact_laws, contact_law_class
+    compiled = [name for name in available_contact_laws() if contact_law_class(name).kernel.signatures] or ["none"]
+    print(f"{t1 - t0:.3f} " + " ".join(f"{t:.4f}" for t in calls) + " " + ",".join(heavy) + " " + ",".join(compiled))
 """)
+
+#: The packages whose import the fresh ``lookup --case`` process is checked for.
+_HEAVY = ("numba", "scipy.special", "scipy.integrate", "pandas", "xarray", "dask")
 
 _RUN_TWICE = textwrap.dedent("""
     import sys, time, warnings
@@ -132,6 +141,32 @@ def _lookup(root: Path, case: Path, cache: Path) -> tuple[float, str]:
         return seconds, "refused: " + (done.stderr.strip().splitlines() or ["?"])[-1][:120]
 
 
+def _import_profile(root: Path, case: Path, cache: Path) -> str:
+    """``python -X importtime`` of a fresh ``lookup --case`` (tile cached): the summed import time of
+    the process's top-level imports and the cumulative time of each heavy package it imports."""
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "impactmaps.cli", "lookup", "--case", str(case),
+                           "--json"], capture_output=True, text=True, cwd=root,
+                          env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache)))
+    total, heavy = 0, {}
+    for line in done.stderr.splitlines():
+        if not line.startswith("import time:") or "cumulative" in line:
+            continue
+        _, cumulative, name = (part.rstrip() for part in line[len("import time:"):].split("|"))
+        if not name.startswith("  "):  # a top-level import (its cumulative time holds its children)
+            total += int(cumulative)
+        if name.strip() in _HEAVY:
+            heavy[name.strip()] = heavy.get(name.strip(), 0) + int(cumulative)
+    shown = ", ".join(f"{name} {heavy[name] / 1e6:.2f}" for name in _HEAVY if name in heavy)
+    return f"imports {total / 1e6:.2f} s in all; of them {shown or 'none'} s (cumulative)"
+
+
+def _bare() -> float:
+    """Wall time [s] of a fresh ``python -c "import numpy, scipy.linalg"`` (the floor of any command)."""
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-c", "import numpy, scipy.linalg"], check=True)
+    return time.perf_counter() - start
+
+
 def _load() -> str:
     return " ".join(f"{value:.1f}" for value in os.getloadavg())
 
@@ -139,7 +174,9 @@ def _load() -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", type=Path, default=ROOT, help="the checkout to time (default: this one)")
-    root = parser.parse_args().root.resolve()
+    parser.add_argument("--lookup-only", action="store_true", help="time the lookups only (not simulate)")
+    options = parser.parse_args()
+    root = options.root.resolve()
     example = root / "examples" / "drop_weight_quasi_isotropic.toml"
     before = _load()
     with tempfile.TemporaryDirectory() as folder:
@@ -149,8 +186,8 @@ def main() -> None:
         twin = folder / "twin.toml"
         twin.write_text(_twin(example.read_text()))
         rows = []
-        for label, path in (("clamped Mindlin [45/0/-45/90]2s (general basis)", example),
-                            ("SSSS Mindlin [0/90]4s (Navier)", twin)):
+        for label, path in () if options.lookup_only else (
+                ("clamped Mindlin [45/0/-45/90]2s (general basis)", example), ("SSSS Mindlin [0/90]4s (Navier)", twin)):
             first, second, peak, modes, method = _run(root, _RUN_TWICE, str(path), str(warm),
                                                       IMPACTMAPS_CACHE_DIR=str(folder / "simulate-cache")).split()
             rows.append(f"| {label} | {float(first):.2f} | {float(second):.3f} | {peak} | {modes} | {method} |")
@@ -161,17 +198,23 @@ def main() -> None:
         lookups = [("new plate, empty cache (basis and tile built)", *_lookup(root, case, cache)),
                    ("again (tile cached)", *_lookup(root, case, cache)),
                    ("same plate at 3.0 m/s (a new tile; the basis on disk)", *_lookup(root, other, cache))]
-        imports, *calls = _run(root, _IN_PROCESS, str(case), IMPACTMAPS_CACHE_DIR=str(cache)).split()
+        imports, *calls, heavy, compiled = _run(root, _IN_PROCESS, str(case), IMPACTMAPS_CACHE_DIR=str(cache)).split()
+        profile = _import_profile(root, case, cache)
+    bare = _bare()
     after = _load()
     print(f"load average (1, 5, 15 min) before: {before}; after: {after} ({os.cpu_count()} cores, shared)\n")
-    print("| case | simulate, warm incl. basis [s] | simulate, basis cached [s] | peak [N] | modes | method |")
-    print("|---|---|---|---|---|---|")
-    print("\n".join(rows))
+    if rows:
+        print("| case | simulate, warm incl. basis [s] | simulate, basis cached [s] | peak [N] | modes | method |")
+        print("|---|---|---|---|---|---|")
+        print("\n".join(rows))
     print("\n| lookup --case, clamped Mindlin 150 × 100 × 3 mm (fresh process each) | wall [s] | answer |")
     print("|---|---|---|")
     print("\n".join(f"| {label} | {seconds:.2f} | {answer} |" for label, seconds, answer in lookups))
     print(f"\nIn one process (tile cached on disk): imports {float(imports):.2f} s; lookup calls "
-          + ", ".join(f"{float(t):.3f}" for t in calls) + " s (first, second, third)")
+          + ", ".join(f"{float(t):.3f}" for t in calls) + " s (first, second, third); imported by the calls: "
+          + heavy.replace(",", ", ") + "; compiled contact kernels loaded: " + compiled.replace(",", ", "))
+    print(f"\nA fresh `lookup --case` (tile cached), `python -X importtime`: {profile}; a bare "
+          f"`python -c 'import numpy, scipy.linalg'`: {bare:.2f} s wall")
 
 
 if __name__ == "__main__":

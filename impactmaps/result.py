@@ -7,10 +7,12 @@ Every solver returns :class:`ImpactResult`; what only one solver knows travels i
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["ImpactResult", "HISTORY_COLUMNS", "energy_balance_error"]
 
@@ -212,6 +214,8 @@ class ImpactResult:
         """Histories in the normalised variables τ = ωt, F̄ = F/(m_iV0ω), x̄ = x/α*."""
         if self.history is None:
             raise ValueError("this result kept no history (run with record=True)")
+        import pandas as pd  # a history is a DataFrame: pandas is loaded with the first one
+
         alpha_star = self.velocity / self.contact_frequency
         h = self.history
         return pd.DataFrame(

@@ -93,16 +93,16 @@ def force_answer(law, impactor_mass: float, velocity: float, peak_force: float |
     """
     from .closed_forms.halfspace import single_law_parameters
 
-    params = single_law_parameters(law)
+    params, kernel = single_law_parameters(law), law.python_kernel
     bound = float(law.indentation_for_energy(0.5 * float(impactor_mass) * float(velocity) ** 2))
     if peak_force is None:
-        return ForceAnswer(float(law.kernel(bound, bound, params)[0]), bound, float(velocity), "half-space bound")
+        return ForceAnswer(float(kernel(bound, bound, params)[0]), bound, float(velocity), "half-space bound")
     low, high = 0.0, bound
-    while float(law.kernel(high, high, params)[0]) < peak_force and high < 1e6 * bound:
+    while float(kernel(high, high, params)[0]) < peak_force and high < 1e6 * bound:
         high *= 2.0
     for _ in range(80):
         middle = 0.5 * (low + high)
-        low, high = (middle, high) if float(law.kernel(middle, middle, params)[0]) < peak_force else (low, middle)
+        low, high = (middle, high) if float(kernel(middle, middle, params)[0]) < peak_force else (low, middle)
     return ForceAnswer(float(peak_force), high, float(velocity), "map")
 
 

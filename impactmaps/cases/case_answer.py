@@ -16,8 +16,8 @@ from ..solvers.modal_settings import uses_patch
 from ..targets.map_structure import STRUCTURE_MATCH_RTOL
 from ..maps.family.accuracy import status_notes
 from ..maps.read.lookup import point_answer
-from ..maps.family.map_family import available_map_families, map_family
-from ..maps.compute.plastic_points import plastic_numbers
+from ..maps.family.builtin_families import family_layout
+from ..maps.family.map_family import available_map_families
 from ..maps.read.reader import OutsideMapError, UnresolvedPointError
 
 __all__ = ["CASE_MATCH_RTOL", "NoMapError", "case_map_law", "case_loads_a_patch", "scaled_answer",
@@ -55,7 +55,7 @@ def case_map_law(case) -> str:
     reason = f"contact law {case.law_name!r}"
     try:
         for name in available_map_families():
-            if map_family(name).describes(case.law):
+            if family_layout(name).describes(case.law):  # a built-in family's layout: its point solver not loaded
                 return name
     except ValueError as near_miss:  # a family's law with other constants
         reason = str(near_miss)
@@ -135,6 +135,8 @@ def plastic_answer(case, law: str, read) -> dict:
     from ``read(β, ζ, λ) -> PlasticLookup``, a reading of a plastic map (shipped or a tile) at
     the case's numbers (:func:`impactmaps.maps.compute.plastic_points.plastic_numbers`), scaled to
     newtons and joules."""
+    from ..maps.compute.plastic_points import plastic_numbers  # the plastic numbers: loaded for a plastic case
+
     numbers = plastic_numbers(case.target, case.law, case.impactor_mass, case.velocity)
     found = read(numbers.impact_number, numbers.loss_factor, numbers.relative_stiffness)
     scale, energy = numbers.force_scale, 0.5 * case.impactor_mass * case.velocity**2

@@ -16,8 +16,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from .._renamed import renamed_keyword
-from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS
-from ..maps.family.map_family import map_family
+from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS, family_layout
 from ..maps.files.shipped import SHIPPED_SLENDERNESS
 from ..maps.read.lookup import point_answer
 from ..maps.read.reader import OutsideMapError, UnresolvedPointError
@@ -90,7 +89,7 @@ def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = No
                          "(leave them out)")
     return _case_answer(case, build=build, cache_dir=cache_dir, notify=notify, progress=progress)
 
-def map_for_case(case) -> tuple[str, str]:
+def map_for_case(case, law: str | None = None) -> tuple[str, str]:
     """The shipped map that describes ``case`` exactly, as ``(structure, theory)``.
 
     A shipped map stands for a structure family (the targets of one map structure) with a
@@ -106,6 +105,8 @@ def map_for_case(case) -> tuple[str, str]:
     Parameters
     ----------
     case : impactmaps.cases.Case
+    law : str, optional
+        The case's map law when already known (default :func:`case_map_law` of the case).
 
     Returns
     -------
@@ -128,7 +129,7 @@ def map_for_case(case) -> tuple[str, str]:
     def same(value, wanted) -> bool:
         return abs(float(value) - wanted) <= CASE_MATCH_RTOL * abs(wanted)
 
-    law = case_map_law(case)
+    law = case_map_law(case) if law is None else law
     if case.solver_kind != "modal":
         refuse(f"solver.kind = {case.solver_kind!r} (the finite-difference beam has a plastic cross-section "
                "and Rayleigh theory; the maps are of elastic structures solved modally)")
@@ -136,7 +137,7 @@ def map_for_case(case) -> tuple[str, str]:
     key = target.map_structure()
     if key is None:
         refuse(target.map_structure_refusal())
-    maps = map_family(law).shipped
+    maps = family_layout(law).shipped  # the layout: the family's point solver not loaded
     shipped = [structure_from_name(name) for (kind, _), name in maps.items() if kind == key.kind]
     if not shipped:
         refuse(f"target type {key.kind!r} (maps for the {law} law: " + ", ".join(sorted({k for k, _ in maps})) + ")")
@@ -153,7 +154,7 @@ def map_for_case(case) -> tuple[str, str]:
     if (key.kind, key.theory) not in maps:
         refuse(f"{key.kind} theory {key.theory!r} (maps{'' if law in PLANE_LAWS else f' for the {law} law'}: "
                + ", ".join(t for s, t in maps if s == key.kind) + ")")
-    if map_family(law).patch_loadable and case_loads_a_patch(case):
+    if family_layout(law).patch_loadable and case_loads_a_patch(case):
         refuse(f"a Hertz impact on a {key.theory.capitalize()} plate, which simulate loads over the contact patch "
                "(the maps are point-loaded, and the patch radius is a third number, the patch number P = sqrt(R α_m)/h)")
     slenderness = key.slenderness
@@ -238,7 +239,6 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
         unresolved point (the message names them and suggests ``impactmaps simulate``).
     """
     from .case_answer import CASE_MATCH_RTOL, NoMapError, case_map_law, plastic_case_answer, scaled_answer
-    from .on_demand import answer_on_demand  # builds tiles: the build side of the maps, loaded when needed
 
     law = case_map_law(case)
     if law in PLANE_LAWS and _point_loaded_mindlin(case):
@@ -254,11 +254,11 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
                                "impactor's radius) so that the force spreads over the contact patch, or use "
                                "theory = \"kirchhoff\"")
     try:
-        structure, theory = map_for_case(case)
+        structure, theory = map_for_case(case, law)
     except NoMapError as refusal:
         if not build or case.solver_kind != "modal" or case.target.map_structure_refusal() is not None:
             raise  # what no on-demand map can describe either
-        return answer_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
+        return _answer_on_demand(case, law, refusal, cache_dir=cache_dir, notify=notify, progress=progress)
     if law in PLASTIC_LAWS:
         try:
             return plastic_case_answer(case, structure, theory, law)
@@ -268,7 +268,7 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
             # beyond the shipped plastic map, or next to a point it could not resolve: a tile answers or refuses
             beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} {law} map or next "
                                       f"to a point it could not resolve ({error.what})")
-        return answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
+        return _answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
     slenderness = case_slenderness(case)
     if slenderness is None or abs(slenderness - SHIPPED_SLENDERNESS) <= CASE_MATCH_RTOL * SHIPPED_SLENDERNESS:
         slenderness = None  # the shipped map
@@ -285,6 +285,12 @@ def _case_answer(case, build: bool = True, cache_dir=None, notify=None, progress
         # answers (its points solved exactly as the shipped map's) or refuses in turn
         beyond = NoMapError(case, f"its numbers lie outside the shipped {structure} {theory} map or next to a point "
                                   f"it could not resolve ({error})")
-    return answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
+    return _answer_on_demand(case, law, beyond, cache_dir=cache_dir, notify=notify, progress=progress)
 
 
+def _answer_on_demand(case, law: str, refusal, **options) -> dict:
+    """:func:`impactmaps.cases.on_demand.answer_on_demand`, imported when a case needs a tile (it
+    reaches the build side of the maps: tiles, point solvers)."""
+    from .on_demand import answer_on_demand
+
+    return answer_on_demand(case, law, refusal, **options)

@@ -68,7 +68,8 @@ def case_dimensionless(case: Case) -> dict:
 def _plastic(case: Case):
     """``plastic_numbers`` of the case, or None when its law is not a plastic map law."""
     try:
-        from ..maps.compute.plastic_points import plastic_law_of, plastic_numbers
+        from ..maps.compute.plastic_points import plastic_numbers
+        from ..maps.family.builtin_families import plastic_law_of
 
         plastic_law_of(case.law)
     except (ImportError, ValueError):

@@ -54,6 +54,7 @@ from .commands_cases import (
     cmd_restitution,
     cmd_simulate,
 )
+from .commands_modes import cmd_modes
 from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
 from .plot import cmd_plot
 from .commands_maps import (
@@ -289,9 +290,10 @@ def _tool_parsers(add) -> None:
                    help="processes compiling at once (default 2; 1 compiles in this process)")
 
     add("materials", "the material catalogue with its values (SI) and sources", cmd_materials)
-    from .commands_modes import add_modes_command
-
-    add_modes_command(add)
+    p = add("modes", "a target's natural frequencies in Hz, lowest first, with labels ((m, n) half-waves "
+            "for a simply supported plate), the basis size and the frequency it resolves", cmd_modes)
+    p.add_argument("case", help="the case file (TOML)")
+    p.add_argument("--count", type=int, default=10, help="how many modes (default 10)")
     add("laws", "the registered contact laws with their options and sources", cmd_laws)
 
 
@@ -376,11 +378,16 @@ def _sweep_interrupted() -> type[Exception]:
 
 def _background_warm_up(args) -> None:
     """Start compiling the solver in the background if its cache is cold
-    (:mod:`impactmaps._compile.background_warm_up`; about a millisecond here), unless turned off."""
-    if not args.no_background_warm_up and args.command != "warm-up":
-        from .._compile import background_warm_up
+    (:mod:`impactmaps._compile.background_warm_up`; about a millisecond here), unless turned off
+    by ``--no-background-warm-up`` or :data:`~impactmaps._compile.compile_helper.DISABLE_ENV`
+    (read here too: a command with the warm-up off never enters the compile plumbing)."""
+    from .._compile.compile_helper import DISABLE_ENV
 
-        background_warm_up.start_background()
+    if args.no_background_warm_up or args.command == "warm-up" or os.environ.get(DISABLE_ENV, "") not in ("", "0"):
+        return
+    from .._compile import background_warm_up
+
+    background_warm_up.start_background()
 
 
 def _main(argv) -> int:

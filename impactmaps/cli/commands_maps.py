@@ -357,32 +357,13 @@ def cmd_classify(args) -> dict:
 
 
 def cmd_lookup(args) -> dict:
-    from ..cases.case_lookup import lookup
+    """``impactmaps lookup``: a point of a shipped map (:func:`~impactmaps.maps.read.lookup.point_answer`,
+    straight to the reader), or a case (:func:`_lookup_case`)."""
     from ..maps.family.accuracy import status_notes
+    from ..maps.read.lookup import point_answer
 
     if args.case is not None:
-        import sys
-        import time
-
-        from ..cases.case import load_case
-        from ..cases.case_answer import case_map_law
-
-        refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
-               "with --case (the case gives its numbers)")
-        case = load_case(args.case)
-        for option, given, wanted in (("--kind", args.kind, case.target_type),
-                                      ("--theory", args.theory, getattr(case.target, "theory", None)),
-                                      ("--law", args.law, case_map_law(case))):
-            if given is not None and given != wanted:
-                raise ValueError(f"{option} = {given} contradicts the case ({wanted}); leave it out: "
-                                 "the case says which map describes it")
-        notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
-        start = time.perf_counter()
-        progress = None if args.quiet else (lambda done, total: print(
-            f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
-        found = lookup(case=case, build=not args.no_build, notify=notify, progress=progress)
-        found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
-        return found | case_model_warnings(case, found.get("peak_force_N"))
+        return _lookup_case(args)
     refuse(args, {"--no-build": "no_build", "--quiet": "quiet"}, "without --case (only the lookup of a case builds map tiles)")
     if args.zeta is None or args.lambda_ is None or args.kind is None:
         raise ValueError("give --kind, --zeta and --lambda (and --theory: default the classical one, euler or "
@@ -395,7 +376,7 @@ def cmd_lookup(args) -> dict:
 
     if args.law in PLASTIC_LAWS:
         refuse(args, {"--slenderness": "slenderness"}, "with an elastic-plastic law (its maps are at slenderness 20)")
-        return _lookup_plastic_numbers(args, lookup)
+        return _lookup_plastic_numbers(args, point_answer)
     refuse(args, {"--beta": "beta"}, f"with the {args.law or 'linear'} law (β is a number of the {', '.join(PLASTIC_LAWS)} maps)")
     check("--zeta", args.zeta, what="the loss factor ζ")
     check("--lambda", args.lambda_, what="the relative stiffness λ")
@@ -405,7 +386,8 @@ def cmd_lookup(args) -> dict:
         check("--slenderness", slenderness, 10.0, what="span/thickness (the thickest slenderness member is 10)",
               low_inclusive=True)
     try:
-        found = lookup(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law, slenderness=slenderness)
+        found = point_answer(args.zeta, args.lambda_, kind=args.kind, theory=args.theory, law=law,
+                             slenderness=slenderness)
     except ValueError as error:  # name the options as the user typed them
         raise ValueError(str(error).replace("loss_factor", "--zeta").replace("relative_stiffness", "--lambda")) \
             from None
@@ -414,6 +396,34 @@ def cmd_lookup(args) -> dict:
     return announce_wide_band(values, "fmax_normalised", "fmax_error",
                               f"impactmaps point --zeta {args.zeta:g} --lambda {args.lambda_:g} --target {args.kind}-… "
                               f"--theory {args.theory}, or impactmaps simulate on a case file")
+
+
+def _lookup_case(args) -> dict:
+    """``lookup --case CASE.toml``: the case built from its file, then answered by
+    :func:`impactmaps.lookup` (its shipped map or an on-demand tile), with its model warnings."""
+    import sys
+    import time
+
+    from ..cases.case import load_case
+    from ..cases.case_answer import case_map_law
+    from ..cases.case_lookup import lookup
+
+    refuse(args, {"--zeta": "zeta", "--lambda": "lambda_", "--beta": "beta", "--slenderness": "slenderness"},
+           "with --case (the case gives its numbers)")
+    case = load_case(args.case)
+    for option, given, wanted in (("--kind", args.kind, lambda: case.target_type),
+                                  ("--theory", args.theory, lambda: getattr(case.target, "theory", None)),
+                                  ("--law", args.law, lambda: case_map_law(case))):
+        if given is not None and given != wanted():
+            raise ValueError(f"{option} = {given} contradicts the case ({wanted()}); leave it out: "
+                             "the case says which map describes it")
+    notify = None if args.quiet else (lambda line: print(line, file=sys.stderr))
+    start = time.perf_counter()
+    progress = None if args.quiet else (lambda done, total: print(
+        f"  {done}/{total} points ({time.perf_counter() - start:.0f} s)", file=sys.stderr))
+    found = lookup(case=case, build=not args.no_build, notify=notify, progress=progress)
+    found = announce_wide_band(found, "peak_force_N", "peak_force_error_N", f"impactmaps simulate {args.case}")
+    return found | case_model_warnings(case, found.get("peak_force_N"))
 
 
 def _lookup_plastic_numbers(args, lookup) -> dict:

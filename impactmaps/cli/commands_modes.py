@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["add_modes_command", "cmd_modes"]
+__all__ = ["cmd_modes"]
 
 #: Most modes ``--count`` may ask for.
 MAX_COUNT = 2000
@@ -50,11 +50,3 @@ def cmd_modes(args) -> dict:
         values = {k: v for k, v in values.items() if k not in ("frequencies_hz", "labels")}
         values["modes"] = rows
     return values
-
-
-def add_modes_command(add) -> None:
-    """Register ``modes`` with the CLI's ``add(name, help, handler)``."""
-    p = add("modes", "a target's natural frequencies in Hz, lowest first, with labels ((m, n) half-waves "
-            "for a simply supported plate), the basis size and the frequency it resolves", cmd_modes)
-    p.add_argument("case", help="the case file (TOML)")
-    p.add_argument("--count", type=int, default=10, help="how many modes (default 10)")

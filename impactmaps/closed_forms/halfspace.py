@@ -10,8 +10,6 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-import pandas as pd
-from scipy.integrate import solve_ivp
 from scipy.special import beta as beta_function
 
 from .._checks import require_positive
@@ -203,6 +201,8 @@ def halfspace_impact(law: ContactLaw, impactor_mass, velocity, *, time_step=None
     turning_point.terminal = True
     turning_point.direction = -1.0
 
+    from scipy.integrate import solve_ivp  # the integrators: imported where an impact is integrated
+
     options = dict(method="DOP853", rtol=_RELATIVE_TOLERANCE, atol=_ABSOLUTE_TOLERANCE, dense_output=True)
     first = solve_ivp(compression, (0.0, time_limit), (0.0, 1.0), events=turning_point, **options)
     _raise_on_failure(first)
@@ -277,6 +277,8 @@ def _restitution(kernel, params, scale, force_factor, alpha_max, final, x_max, t
 
     separation.terminal = True
     separation.direction = -1.0
+    from scipy.integrate import solve_ivp
+
     second = solve_ivp(restitution_phase, (tau_max, time_limit), (x_max, 0.0), events=separation, **options)
     _raise_on_failure(second)
     if second.t_events[0].size > 0:
@@ -301,6 +303,8 @@ def _sample_history(first, second, kernel, params, scale, speed, time_unit, tau_
     alpha = scale * state[0]
     history_max = np.where(loading, alpha, alpha_max)
     force = evaluate_kernel(kernel, params, alpha, history_max)[0]
+    import pandas as pd
+
     return pd.DataFrame({
         "time_s": tau * time_unit,
         "force_N": force,

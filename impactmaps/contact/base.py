@@ -196,6 +196,14 @@ class ContactLaw(ABC):
         )
 
     # -- evaluation -------------------------------------------------------------
+    @property
+    def python_kernel(self):
+        """:attr:`kernel` run as Python, for scalar calls from Python code (an asymptote's rates,
+        a bisection): the same operations, the same bits (IEEE arithmetic and libm in both), and
+        the kernel itself not compiled or loaded (the first compiled call in a process costs
+        ~0.2 s; compiled helpers a kernel calls, as the plastic laws' loading curves, still are)."""
+        return getattr(self.kernel, "py_func", self.kernel)
+
     def force(self, indentation, max_indentation=0.0):
         """Contact force [N] at indentation α [m] with history α_max [m] (default: virgin)."""
         return evaluate_kernel(self.kernel, self.kernel_parameters, indentation, max_indentation)[0]

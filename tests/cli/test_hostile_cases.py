@@ -280,7 +280,7 @@ def test_a_lookup_band_wider_than_a_tenth_of_its_value_says_simulate_it(tmp_path
 
 
 def test_a_normalised_lookup_with_a_wide_band_says_simulate_it(monkeypatch, capsys):
-    from impactmaps.cases import case_lookup as lookup_module
+    from impactmaps.maps.read import lookup as lookup_module  # the command reads a point there
 
     real = lookup_module.point_answer
 

@@ -89,7 +89,7 @@ def test_a_physical_case_is_realised_by_its_numbers():
 def test_numbers_refuse_other_laws():
     from impactmaps.contact.hertz import HertzContact
     from impactmaps.contact.plastic.stronge import StrongeContact
-    from impactmaps.maps.compute.plastic_points import plastic_law_of
+    from impactmaps.maps.family.builtin_families import plastic_law_of
 
     assert plastic_law_of(StrongeContact(1e11, 0.01, 3e8)) == "stronge"
     with pytest.raises(ValueError, match="plastic_pressure_factor"):
@@ -379,7 +379,8 @@ def test_epp_maps_describe_only_their_options(option, value):
     from impactmaps.contact.plastic.epp import EppContact
     from impactmaps.contact.plastic.stronge import StrongeContact
     from impactmaps import lookup
-    from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS, plastic_law_of
+    from impactmaps.maps.compute.plastic_points import EPP_MAP_OPTIONS
+    from impactmaps.maps.family.builtin_families import plastic_law_of
     from impactmaps.maps.family.map_family import map_family
 
     assert EPP_MAP_OPTIONS == {"poisson_ratio": 0.3, "sphere_compliance": 0.0}

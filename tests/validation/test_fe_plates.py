@@ -358,3 +358,69 @@ def test_mindlin_cccc_impact_vs_3d(case):
     ref = case["fe"]["reference"]
     assert peak == pytest.approx(ref["first_peak_N"], rel=0.03)
     assert end - start == pytest.approx(ref["first_contact_s"], rel=0.03)
+
+
+# --------------------------------------------------------------------------- CCCC impact, a/h = 10
+IMPACT_THICK = RESULTS / "level6_impact_h20.json"
+# Mindlin (near field) − 3D structural patch compliance of the thick CCCC plate, measured: +2.09 %
+# (the fine mesh; the coarse mesh's structural part is 0.78 % lower, so the FE's is converged to
+# about that and the difference would shrink with a finer mesh). The test holds it to ± 0.5 %.
+THICK_STATIC_DIFFERENCE = 0.0209
+_skip_no_thick = pytest.mark.skipif(not IMPACT_THICK.exists(), reason="level6_impact_h20.json not committed")
+
+
+def _thick():
+    return json.loads(IMPACT_THICK.read_text())
+
+
+def _thick_params():
+    if not IMPACT_THICK.exists():
+        return []
+    # the light spheres need large bases (15–60 s cold): slow; 10 and 100 × run by default
+    return [pytest.param(c, id=f"cccc-h20-mass×{c['mass_factor']:g}",
+                         marks=() if c["mass_factor"] >= 10 else (pytest.mark.slow,))
+            for c in _thick()["cases"]]
+
+
+@_skip_no_thick
+def test_fe_cccc_thick_static_patch_compliance():
+    """The thick (a/h = 10, 200 × 200 × 20 mm) 3D CCCC plate's patch compliance (a_c = 0.7 mm): two
+    meshes within 0.3 % (observed 0.24 %); the CCCC Mindlin plate with the 3D-consistent near field
+    against its structural part (FE minus the half-space compliance of the patch, a third of the
+    whole here) within the measured difference ± 0.5 % (observed +2.09 %; the issue's 2 % is met
+    at a/h = 20, +0.57 %; the structural part moves by 0.78 % between the two meshes)."""
+    data = _thick()
+    c = data["static_patch_compliance_m_per_N"]
+    assert abs(c["cccc_h20_a070_coarse"] / c["cccc_h20_a070_fine"] - 1) < 3e-3
+    plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.02, STEEL, theory="mindlin", edges="CCCC")
+    fe = data["structural_patch_compliance_m_per_N"][data["reference"]]
+    diff = _patch_compliance(plate) / fe - 1
+    assert THICK_STATIC_DIFFERENCE - 5e-3 < diff < THICK_STATIC_DIFFERENCE + 5e-3, diff
+
+
+@pytest.mark.parametrize("case", _thick_params())
+def test_fe_cccc_thick_impact_converged(case):
+    """FE spring model of the thick plate: mesh, step and modes move the first-contact peak and
+    duration by ≤ 1 %."""
+    for quantity in ("first_peak_N", "first_contact_s"):
+        assert _spread(case["fe"], quantity) <= 0.01
+
+
+@pytest.mark.parametrize("case", _thick_params())
+def test_mindlin_cccc_thick_impact_vs_3d(case):
+    """Issue 39 and the near field (``targets/plates/near_field.py``) checked dynamically where it
+    moves the answer most: the thick CCCC Mindlin plate (steel 200 × 200 × 20 mm, a/h = 10, R 10 mm
+    steel sphere at 1 m/s, 0.1–100 × the solid sphere's mass) within 3 % of the 3D FE spring model
+    in first-contact peak and duration."""
+    sphere = impactmaps.Sphere(0.01, STEEL, mass=case["mass_kg"])
+    law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
+    plate = impactmaps.Plate.isotropic(0.2, 0.2, 0.02, STEEL, theory="mindlin", edges="CCCC")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = impactmaps.simulate(plate, law, case["mass_kg"], 1.0)
+    start, end = res.contact_intervals[0]
+    h = res.history
+    peak = h[(h["time_s"] >= start) & (h["time_s"] <= end)]["force_N"].max()
+    ref = case["fe"]["reference"]
+    assert peak == pytest.approx(ref["first_peak_N"], rel=0.03)
+    assert end - start == pytest.approx(ref["first_contact_s"], rel=0.03)

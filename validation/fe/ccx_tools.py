@@ -400,3 +400,21 @@ class Deck:
 
     def text(self, heading: str) -> str:
         return f"*HEADING\n{heading}\n" + "".join(self.parts)
+
+
+def composite_shell_cards(ply, angles, ply_thickness: float, nu23: float, elset: str = "PLATE") -> str:
+    """The ``*MATERIAL`` (engineering constants of ``ply``, an impactmaps ply), one ``*ORIENTATION``
+    per ply angle [deg] and the ``*SHELL SECTION, COMPOSITE`` of ``elset`` with one line per ply
+    of ``angles`` (bottom to top), each ``ply_thickness`` [m] thick; ``nu23`` is the ply's
+    transverse Poisson ratio (not in the catalogue)."""
+    e1, e2, g12, nu12 = ply.longitudinal_modulus, ply.transverse_modulus, ply.shear_modulus, ply.poisson_ratio
+    text = ["*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=ENGINEERING CONSTANTS\n"
+            f"{e1:.6e},{e2:.6e},{e2:.6e},{nu12},{nu12},{nu23},{g12:.6e},{ply.transverse_shear_modulus_13:.6e},\n"
+            f"{ply.transverse_shear_modulus_23:.6e}\n*DENSITY\n{ply.density}\n"]
+    for ang in sorted(set(angles)):
+        c, s = np.cos(np.radians(ang)), np.sin(np.radians(ang))
+        text.append(f"*ORIENTATION, NAME=OR{ang + 90:.0f}, SYSTEM=RECTANGULAR\n"
+                    f"{c:.12f},{s:.12f},0.,{-s:.12f},{c:.12f},0.\n")
+    text.append(f"*SHELL SECTION, ELSET={elset}, COMPOSITE\n")
+    text.extend(f"{ply_thickness:.6e},,PLY,OR{ang + 90:.0f}\n" for ang in angles)
+    return "".join(text)

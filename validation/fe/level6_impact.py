@@ -13,8 +13,18 @@ radius of these impacts) from
 
 then ``python validation/fe/level6_impact.py`` → ``results/level6_impact.json`` (seconds, no
 ccx): the FE spring model (``spring_integrator.py``, as level 3) per mass on both meshes, with
-half the step and half the modes, and the toolkit's plate where it has one (CCCC Kirchhoff now;
-CCCC Mindlin once issue 39's plates exist).
+half the step and half the modes, and the toolkit's CCCC Kirchhoff and Mindlin plates.
+
+The thick plate (a/h = 10, h = 20 mm; the same plate, sphere and masses), which checks the
+3D-consistent near field of ``impactmaps/targets/plates/near_field.py`` where it moves the answer
+most::
+
+    OMP_NUM_THREADS=2 FE_THREADS=2 nice -n 10 python validation/fe/level3_modes.py --plate --clamped \
+        --tag cccc_h20_a070_coarse --length 0.2 --width 0.2 --height 0.02 --patch-radius 0.0007 \
+        --refine 3 --far-size 0.005 --modes 60
+    ... --tag cccc_h20_a070_fine ... --refine 5 --far-size 0.0033 --modes 60
+    python validation/fe/level6_impact.py --thickness 0.02 --prefix cccc_h20 \
+        --out validation/fe/results/level6_impact_h20.json
 """
 
 from __future__ import annotations
@@ -34,15 +44,14 @@ import impactmaps  # noqa: E402
 STEEL = l3d.STEEL
 SIDE, THICKNESS = 0.2, 0.01
 MASS_FACTORS = (0.1, 1.0, 10.0, 100.0)
-REFERENCE, COARSE = "cccc_a070_fine", "cccc_a070_coarse"
 
 
-def toolkit(mass, theory):
+def toolkit(mass, theory, thickness=THICKNESS):
     """First-contact peak and duration of the toolkit's CCCC plate, or the reason it has none."""
     sphere = impactmaps.Sphere(l3d.RADIUS, STEEL, mass=mass)
     law = impactmaps.law_for_sphere("hertz", sphere, STEEL)
     try:
-        plate = impactmaps.Plate.isotropic(SIDE, SIDE, THICKNESS, STEEL, theory=theory, edges="CCCC")
+        plate = impactmaps.Plate.isotropic(SIDE, SIDE, thickness, STEEL, theory=theory, edges="CCCC")
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             t0 = time.perf_counter()
@@ -65,20 +74,29 @@ def toolkit(mass, theory):
                           wall_time_s=wall)
 
 
-def main():
-    modes = {t: l3d.load_modes(t)[3] for t in (REFERENCE, COARSE)
+def main(argv=None):
+    import argparse
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--thickness", type=float, default=THICKNESS, help="plate thickness [m]")
+    parser.add_argument("--prefix", default="cccc", help="modes tags <prefix>_a070_fine/_coarse")
+    parser.add_argument("--out", default=str(ct.RESULTS / "level6_impact.json"))
+    args = parser.parse_args(argv)
+    thickness = args.thickness
+    ref_tag, coarse_tag = f"{args.prefix}_a070_fine", f"{args.prefix}_a070_coarse"
+    modes = {t: l3d.load_modes(t)[3] for t in (ref_tag, coarse_tag)
              if (ct.RESULTS / f"level3_modes_{t}.npz").exists()}
-    reference = REFERENCE if REFERENCE in modes else COARSE
-    out = {"inputs": dict(side_m=SIDE, thickness_m=THICKNESS, sphere_radius_m=l3d.RADIUS,
+    reference = ref_tag if ref_tag in modes else coarse_tag
+    out = {"inputs": dict(side_m=SIDE, thickness_m=thickness, sphere_radius_m=l3d.RADIUS,
                           velocity_m_s=l3d.VELOCITY, edges="CCCC (3D: side faces fully held)",
                           material=dict(E_Pa=STEEL.youngs_modulus, nu=STEEL.poisson_ratio,
                                         rho_kg_m3=STEEL.density)),
-           "command": "python validation/fe/level6_impact.py",
+           "command": ("python validation/fe/level6_impact.py " + " ".join(
+               argv if argv is not None else sys.argv[1:])).rstrip(),
            "modes": modes, "reference": reference,
            "static_patch_compliance_m_per_N": {t: m["static_compliance_m_per_N"]
                                                for t, m in modes.items()},
            "cases": []}
-    kirchhoff = impactmaps.Plate.isotropic(SIDE, SIDE, THICKNESS, STEEL, theory="kirchhoff",
+    kirchhoff = impactmaps.Plate.isotropic(SIDE, SIDE, thickness, STEEL, theory="kirchhoff",
                                            edges="CCCC")
     out["toolkit_kirchhoff_point_compliance_m_per_N"] = kirchhoff.static_compliance()
     # the 3D patch compliance includes the local indentation of the uniform-pressure disc,
@@ -89,15 +107,15 @@ def main():
         t: m["static_compliance_m_per_N"] - local for t, m in modes.items()}
     for factor in MASS_FACTORS:
         mass = factor * l3d.SOLID_MASS
-        law, res, kir = toolkit(mass, "kirchhoff")
-        _, _, mind = toolkit(mass, "mindlin")
+        law, res, kir = toolkit(mass, "kirchhoff", thickness)
+        _, _, mind = toolkit(mass, "mindlin", thickness)
         t_c = kir["first_contact_s"]
         duration, step = 1.05 * kir["end_time_s"], t_c / 1000
         fe = {"reference": l3d.fe_run(reference, law, mass, duration, step)[1],
               "half_step": l3d.fe_run(reference, law, mass, duration, step / 2)[1],
               "half_modes": l3d.fe_run(reference, law, mass, duration, step, n_modes=30)[1]}
-        if reference != COARSE and COARSE in modes:
-            fe[COARSE] = l3d.fe_run(COARSE, law, mass, duration, step)[1]
+        if reference != coarse_tag and coarse_tag in modes:
+            fe[coarse_tag] = l3d.fe_run(coarse_tag, law, mass, duration, step)[1]
         entry = dict(mass_kg=mass, mass_factor=factor, toolkit_kirchhoff=kir,
                      toolkit_mindlin=mind, fe=fe)
         out["cases"].append(entry)
@@ -106,7 +124,7 @@ def main():
         for k, v in fe.items():
             print("   ", k, {q: v[q] for q in ("first_peak_N", "peak_force_N", "first_contact_s",
                                                "impacts", "restitution")}, flush=True)
-        (ct.RESULTS / "level6_impact.json").write_text(json.dumps(out, indent=1))
+        Path(args.out).write_text(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":

@@ -255,12 +255,7 @@ def shell_deck(angles, nx, ny):
         conn = np.asarray(enodes[k], dtype=np.int64).reshape(-1, 8)
     finally:
         gmsh.finalize()
-    used = np.unique(conn)
-    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-    index[used] = np.arange(1, used.size + 1)
-    lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-    lookup[tags.astype(np.int64)] = np.arange(tags.size)
-    coords = xyz[lookup[used]]
+    coords, index = ct.renumber_nodes(tags, xyz, conn)
     elements = index[conn]                 # gmsh and Abaqus 8-node quad orders agree
     # all elements with normal +z
     p = coords[elements[:, :3] - 1]
@@ -284,20 +279,7 @@ def shell_deck(angles, nx, ny):
     gy = np.isclose((y / (ly / 8)) % 1, 0, atol=1e-6) | np.isclose((y / (ly / 8)) % 1, 1, atol=1e-6)
     grid = gx & gy
     ct.write_nset(f, "GRID", np.flatnonzero(grid) + 1)
-    e1, e2, g12, nu12 = (PLY.longitudinal_modulus, PLY.transverse_modulus, PLY.shear_modulus,
-                         PLY.poisson_ratio)
-    g13 = PLY.transverse_shear_modulus_13
-    g23 = PLY.transverse_shear_modulus_23
-    f.write("*MATERIAL, NAME=PLY\n*ELASTIC, TYPE=ENGINEERING CONSTANTS\n"
-            f"{e1:.6e},{e2:.6e},{e2:.6e},{nu12},{nu12},{NU23},{g12:.6e},{g13:.6e},\n"
-            f"{g23:.6e}\n*DENSITY\n{PLY.density}\n")
-    for ang in sorted(set(full)):
-        c, s = np.cos(np.radians(ang)), np.sin(np.radians(ang))
-        f.write(f"*ORIENTATION, NAME=OR{ang + 90:.0f}, SYSTEM=RECTANGULAR\n"
-                f"{c:.12f},{s:.12f},0.,{-s:.12f},{c:.12f},0.\n")
-    f.write("*SHELL SECTION, ELSET=PLATE, COMPOSITE\n")
-    for ang in full:
-        f.write(f"{PLY_THICKNESS:.6e},,PLY,OR{ang + 90:.0f}\n")
+    f.write(ct.composite_shell_cards(PLY, full, PLY_THICKNESS, NU23))
     f.write("*BOUNDARY\nEDGE,1,6\n")
     f.write(f"*STEP\n*FREQUENCY\n{N_EIGEN}\n*NODE PRINT, NSET=GRID\nU\n*END STEP\n")
     gids = np.flatnonzero(grid) + 1
@@ -307,8 +289,10 @@ def shell_deck(angles, nx, ny):
                 plies=len(full), ply_thickness_m=PLY_THICKNESS, stacking_full=full,
                 edges="CCCC", elements=[nx, ny], element_type="S8R (ccx expands to C3D20R)",
                 n_nodes=len(coords), n_elements=len(elements), edge_dofs_held="1-6",
-                ply=dict(E1_Pa=e1, E2_Pa=e2, E3_Pa=e2, nu12=nu12, nu13=nu12, nu23=NU23,
-                         G12_Pa=g12, G13_Pa=g13, G23_Pa=g23, rho_kg_m3=PLY.density,
+                ply=dict(E1_Pa=PLY.longitudinal_modulus, E2_Pa=PLY.transverse_modulus, E3_Pa=PLY.transverse_modulus,
+                         nu12=PLY.poisson_ratio, nu13=PLY.poisson_ratio, nu23=NU23, G12_Pa=PLY.shear_modulus,
+                         G13_Pa=PLY.transverse_shear_modulus_13, G23_Pa=PLY.transverse_shear_modulus_23,
+                         rho_kg_m3=PLY.density,
                          source="impactmaps/materials/catalogue.py 'as4-3501-6'"))
     return f.text, meta, grid_ids
 

@@ -100,7 +100,7 @@ def _two_phase_impact(law, impactor_mass, velocity, method, indentation_rate, di
     require_positive("impactor_mass", impactor_mass, "kg")
     require_positive("velocity", velocity, "m/s")
     params = single_law_parameters(law)
-    kernel = law.kernel
+    kernel = law.python_kernel  # called from Python: compiled code would gain nothing
     mass, speed = float(impactor_mass), float(velocity)
     scale = float(law.indentation_for_energy(0.5 * mass * speed**2))  # α_scale [m]
     time_unit = scale / speed

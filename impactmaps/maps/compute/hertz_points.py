@@ -10,11 +10,15 @@ same numbers (:mod:`impactmaps.closed_forms.hertz_similarity`). :class:`HertzFam
 from __future__ import annotations
 
 import functools
+import json
+import math
 from collections.abc import Sequence
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
+from ... import _files
 from ...contact.hertz import HertzContact
 from ...closed_forms.hertz_similarity import radius_for_patch_number, realise_hertz, unit_speed_stiffness
 from ...contact.contact_scale import reference_contact_stiffness
@@ -25,7 +29,7 @@ from ...targets.options import default_theory
 from ..family.accuracy import AccuracyControl, exact_point
 from ..family.builtin_families import HertzLayout
 from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
-from .points import PlanMethod, capped_resolvable, method_code, solve_map_points
+from .points import SOLVER_REVISION, PlanMethod, capped_resolvable, method_code, solve_map_points
 from ..family.structures import BasisTable, MapStructure
 
 __all__ = [ "HERTZ_DESCRIPTIONS", "HERTZ_TIME_KEYS", "HertzFamily", "HERTZ", "hertz_asymptote_peak",
@@ -144,10 +148,50 @@ def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> fl
     return float(_asymptote_row(which, target, zeta_h, lambda_h)["fmax_normalised"])
 
 
+#: The Hertz asymptote peaks computed before, in a file of the cache directory (beside the
+#: on-demand tiles; :func:`impactmaps._files.cache_directory`) named by the solver revision and
+#: the Hertz law's (:func:`stored_peaks_path`):
+#: a lookup of a case whose tile is cached reads the peaks of its regime instead of integrating
+#: them again in every process (~0.1 s). The floats are stored exactly (the same bits); at most
+#: :data:`STORED_PEAKS_MAX`, the newest, are kept.
+STORED_PEAKS_FILE = "hertz-asymptote-peaks-r{revision}.json"
+STORED_PEAKS_MAX = 4096
+_stored = {}  # file → {key: peak}, read once per process
+
+
+def stored_peaks_path() -> Path:
+    """The file of the stored Hertz asymptote peaks (:data:`STORED_PEAKS_FILE`)."""
+    revision = f"{SOLVER_REVISION}.{HertzContact.revision}"
+    return _files.cache_directory() / STORED_PEAKS_FILE.format(revision=revision)
+
+
+def _stored_peaks(path: Path) -> dict:
+    """The peaks stored in ``path`` (none if it is missing or unreadable; only positive finite floats)."""
+    if path not in _stored:
+        try:
+            loaded = json.loads(path.read_text(encoding="utf-8"))
+            _stored[path] = {key: value for key, value in loaded.items()
+                             if isinstance(value, float) and math.isfinite(value) and value > 0.0}
+        except (OSError, ValueError, AttributeError):
+            _stored[path] = {}
+    return _stored[path]
+
+
+def _store_peaks(path: Path, peaks: dict) -> None:
+    """Write the newest :data:`STORED_PEAKS_MAX` of ``peaks`` to ``path`` (nothing on a write error)."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with _files.written_atomically(path) as temporary:
+            temporary.write_text(json.dumps(dict(list(peaks.items())[-STORED_PEAKS_MAX:])), encoding="utf-8")
+    except OSError:
+        pass
+
+
 def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
-    """F_max/F_hs [-] of a Hertz asymptote (vectorised, cached): ``which`` "infinite" (plate
-    or beam by ``kind``, a function of ``zeta_h``) or "quasi-static" (of ``lambda_h``:
-    ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``); Hertz numbers > 0.
+    """F_max/F_hs [-] of a Hertz asymptote (vectorised, cached in memory and on disk,
+    :data:`STORED_PEAKS_FILE`): ``which`` "infinite" (plate or beam by ``kind``, a function of
+    ``zeta_h``) or "quasi-static" (of ``lambda_h``: ``F̄^{5/3} + (25/16) F̄²/λ_h = 1``); Hertz
+    numbers > 0.
     """
     if which not in ("infinite", "quasi-static"):
         raise ValueError(f"which = {which!r} is invalid: choose 'infinite' or 'quasi-static'")
@@ -160,7 +204,16 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
     # the asymptote depends on one number: pin the other, so the cache sees few keys
     keys = np.stack([zeta, np.ones_like(zeta)] if which == "infinite" else [np.ones_like(lam), lam], axis=-1)
     unique, inverse = np.unique(keys.reshape(-1, 2), axis=0, return_inverse=True)
-    peaks = np.array([_asymptote_peak(name, kind, float(z), float(l)) for z, l in unique])
+    path = stored_peaks_path()
+    stored, values, computed = _stored_peaks(path), [], False
+    for z, l in unique:
+        key = f"{name} {kind} {float(z)!r} {float(l)!r}"
+        if key not in stored:
+            stored[key], computed = _asymptote_peak(name, kind, float(z), float(l)), True
+        values.append(stored[key])
+    if computed:
+        _store_peaks(path, stored)
+    peaks = np.array(values)
     out = peaks[np.ravel(inverse)].reshape(zeta.shape)
     return float(out) if out.ndim == 0 else out
 
@@ -181,9 +234,6 @@ class HertzFamily(HertzLayout):
 
     def __init__(self, patch: float | None = None):
         self.patch = patch
-
-    def describes(self, law) -> bool:
-        return law.hertzian_stiffness is not None
 
     def with_patch(self, patch: float | None) -> "HertzFamily":
         """The Hertz map family of points loaded over the Hertz patch of patch number ``patch`` (None: point load)."""

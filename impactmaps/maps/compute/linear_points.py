@@ -43,9 +43,6 @@ class LinearFamily(LinearLayout):
 
     capped_points = True
 
-    def describes(self, law) -> bool:
-        return law.linear_stiffness is not None
-
     def realise_points(self, target, points) -> list:
         zetas = np.array([p[0] for p in points], dtype=float)
         lambdas = np.array([p[1] for p in points], dtype=float)

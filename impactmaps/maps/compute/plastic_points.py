@@ -19,13 +19,13 @@ from ...dimensionless import realise
 from ...contact.contact_scale import reference_contact_stiffness
 from ...solvers.modal_settings import ModalSettings
 from ..family.accuracy import STATUSES, AccuracyControl, PointStatus
-from ..family.builtin_families import PLASTIC_ERROR_OF, PLASTIC_LAWS, PlasticLayout
+from ..family.builtin_families import PLASTIC_ERROR_OF, PLASTIC_LAWS, PlasticLayout, plastic_law_of
 from ..family.map_family import RESULT_VARIABLES, PointPlan, register_map_family
 from .points import PlanMethod, map_plan, method_code, solve_map_points
 from ..family.structures import BasisTable, MapStructure
 
 __all__ = [ "EPP_MAP_OPTIONS", "PLASTIC_VARIABLES", "PlasticNumbers", "PlasticFamily", "plastic_numbers", "realise_plastic",
-           "plastic_law_of", "solve_plastic_points"]
+           "solve_plastic_points"]
 
 #: The options of the ``epp`` law its maps are built at (the law's defaults: the flat's
 #: Poisson ratio 0.3, a rigid sphere); each changes the normalised response, so another
@@ -63,32 +63,6 @@ class PlasticNumbers:
     linearised_stiffness: float
     force_scale: float
     time_scale: float
-
-
-def plastic_law_of(law) -> str:
-    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to.
-
-    Raises ValueError for a law with other than its default options (another family), naming
-    the option, its value and the maps' value.
-    """
-    name = getattr(law, "name", None)
-    map_law = next((key for key, law_name in PLASTIC_LAWS.items() if law_name == name), None)
-    if map_law is None:
-        raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
-                         f"(valid: {', '.join(PLASTIC_LAWS.values())})")
-    defaults = law.options()
-    changed = [f"{option} = {_option_text(value)} (the maps' value: {float(defaults[option].default):g})"
-               for option, value in law.changed_options().items()]
-    if changed:
-        raise ValueError(f"contact law {name!r} with {', '.join(changed)}: the normalised response depends on "
-                         f"these options and the {map_law} maps are built at their defaults")
-    return map_law
-
-
-def _option_text(value) -> str:
-    """A law option's value as the user gave it (a number, or an array's values)."""
-    values = np.unique(np.asarray(value, float))
-    return f"{values[0]:g}" if values.size == 1 else "[" + ", ".join(f"{v:g}" for v in values) + "]"
 
 
 def plastic_numbers(target, law, mass, velocity) -> PlasticNumbers:
@@ -277,9 +251,6 @@ class PlasticFamily(PlasticLayout):
     @property
     def law_revision(self) -> int:
         return contact_law_class(PLASTIC_LAWS[self.name]).revision
-
-    def describes(self, law) -> bool:
-        return getattr(law, "name", None) == PLASTIC_LAWS[self.name] and plastic_law_of(law) == self.name
 
     def realise(self, target, point) -> PlasticRealisation:
         beta, zeta, lam = (float(value) for value in point)

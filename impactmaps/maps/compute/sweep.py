@@ -37,7 +37,7 @@ from ..files.data_io import read_dataset
 from ..files.shipped import load_shipped_result
 from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
 from ..family.structures import MapStructure, warn_point_loaded_mindlin
-from .workers import MAX_WORKERS, init_worker
+from .workers import MAX_WORKERS, end_workers, init_worker
 
 __all__ = ["sweep", "sweep_fingerprint", "log_grid", "check_axis", "sweep_grid", "run_sweep_grid", "SweepTask",
            "SweepGrid", "Pacing", "MAP_COPIES", "require_map_fits"]
@@ -392,8 +392,8 @@ class _Results:
 def _run(tasks, n_tasks: int, settings: ModalSettings, executor: Executor | None, max_workers: int | None,
          results: _Results, family) -> bool:
     """Solve the chunks (an iterable of ``n_tasks`` tasks), absorbing and saving as they finish
-    (and at the end, even if a chunk fails); True if Ctrl-C stopped the run (the chunk in hand
-    finishes first)."""
+    (and at the end, even if a chunk fails); True if Ctrl-C stopped the run (inline, the chunk in
+    hand finishes first; the sweep's own workers are ended at once, their chunks left for the resume)."""
     own_executor = None
     stop = []
     previous = _defer_interrupts(stop)
@@ -419,6 +419,8 @@ def _run(tasks, n_tasks: int, settings: ModalSettings, executor: Executor | None
             signal.signal(signal.SIGINT, previous)
         results.bar.close()
         if own_executor is not None:
+            if stop or sys.exc_info()[0] is not None:  # stopped or failed: the chunks in hand are not waited for
+                end_workers(own_executor)
             own_executor.shutdown(wait=False, cancel_futures=True)
         results.save(final=True)
     return bool(stop)

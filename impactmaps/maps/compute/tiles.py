@@ -21,9 +21,9 @@ import os
 import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from ... import _files
 from ...jsonio import dumps
@@ -35,8 +35,12 @@ from .points import SOLVER_REVISION, capped_resolvable, map_cap, solve_map_point
 from ..family.map_family import map_family
 from ..family.accuracy import stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
+from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 #: Revision of the contact-patch model in a patch tile's key (absent before 1: the Mindlin near
 #: field of :mod:`impactmaps.targets.plates.near_field`), so a cached tile never answers for
@@ -245,6 +249,8 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
             data[f"log_{name}"] = (dims, np.log(values))
     coords = {"structure": [key.structure.name], **{axis.name: values for axis, values in
                                                      zip(family.extra_axes, extra)}, "lambda_": lambdas, "zeta": zetas}
+    import xarray as xr  # building a tile; reading one takes NumPy alone
+
     dataset = xr.Dataset(data, coords=coords)
     if key.cell:
         dataset = dataset.assign(_split_cell(key, family, table, data, progress))
@@ -355,11 +361,12 @@ def tile_path(key: TileKey, cache_dir=None) -> Path:
     return cache_directory(cache_dir) / f"tile-{key.fingerprint[:32]}.nc"
 
 
-def _read(path: Path, key: TileKey) -> xr.Dataset | None:
-    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None."""
+def _read(path: Path, key: TileKey) -> MapArrays | None:
+    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None. Read with
+    NumPy alone (:func:`~impactmaps.maps.files.data_io.read_netcdf_arrays`: the same values as
+    xarray, without importing dask)."""
     try:
-        with xr.open_dataset(path, engine="scipy") as opened:
-            dataset = opened.load()
+        dataset = read_netcdf_arrays(path)
     except Exception:  # missing, truncated, not NetCDF: rebuilt
         return None
     if dataset.attrs.get("fingerprint") != key.fingerprint or dataset.attrs.get("data_digest") != _data_digest(dataset):
@@ -367,8 +374,8 @@ def _read(path: Path, key: TileKey) -> xr.Dataset | None:
     return dataset
 
 
-def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset, Path | None]:
-    """The tile of ``key`` and its cache file (None when it could not be written), from the
+def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset | MapArrays, Path | None]:
+    """The tile of ``key`` (read from the cache as :class:`~impactmaps.maps.files.data_io.MapArrays`) and its cache file (None when it could not be written), from the
     cache ``cache_dir`` (default :func:`cache_directory`) or built and cached; ``notify``
     gets one line before a build, ``progress(done, total)`` the build's points.
     """

@@ -6,6 +6,7 @@ to the parent.
 from __future__ import annotations
 
 import signal
+from concurrent.futures import ProcessPoolExecutor
 
 from ..._compile.compile_helper import end_with_parent
 
@@ -35,3 +36,15 @@ def init_worker(ignore_interrupts: bool = True) -> None:
         # into a KeyboardInterrupt its task loop survives (then the parent's death could not end it)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         end_with_parent(signal.SIGTERM)  # a parent killed outright cannot stop its workers otherwise
+
+
+def end_workers(executor: ProcessPoolExecutor) -> None:
+    """End the worker processes of a sweep's own pool now (SIGTERM), not after their chunks in hand.
+
+    At exit Python joins a process pool's workers, so a stopped sweep would otherwise wait for
+    the longest chunk in flight (minutes for a cold worker compiling its kernels on a loaded
+    machine); the parent keeps only saved points, so nothing a worker holds is lost.
+    """
+    for process in list((getattr(executor, "_processes", None) or {}).values()):
+        if process.is_alive():
+            process.terminate()

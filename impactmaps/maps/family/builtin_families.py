@@ -12,11 +12,13 @@ family itself is first asked for.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..._checks import require_choice
 from .map_family import Axis, Interpolation, MapFamily, map_family
 
 __all__ = ["SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
-           "LinearLayout", "HertzLayout", "PlasticLayout", "LAYOUTS", "PLANE_LAWS", "CUBE_LAWS", "family_layout"]
+           "LinearLayout", "HertzLayout", "PlasticLayout", "LAYOUTS", "PLANE_LAWS", "CUBE_LAWS", "family_layout", "plastic_law_of"]
 
 #: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike (the names
 #: of :data:`impactmaps.maps.family.structures.DEFAULT_STRUCTURES`, checked there).
@@ -42,6 +44,32 @@ PLASTIC_ERROR_OF = {"fmax_normalised": "fmax_error", "restitution": "restitution
                     "absorbed_energy_fraction": "absorbed_energy_error"}
 
 
+def plastic_law_of(law) -> str:
+    """The plastic map law (key of :data:`PLASTIC_LAWS`) a contact law belongs to.
+
+    Raises ValueError for a law with other than its default options (another family), naming
+    the option, its value and the maps' value.
+    """
+    name = getattr(law, "name", None)
+    map_law = next((key for key, law_name in PLASTIC_LAWS.items() if law_name == name), None)
+    if map_law is None:
+        raise ValueError(f"law = {type(law).__name__} is not an elastic-plastic law of the maps "
+                         f"(valid: {', '.join(PLASTIC_LAWS.values())})")
+    defaults = law.options()
+    changed = [f"{option} = {_option_text(value)} (the maps' value: {float(defaults[option].default):g})"
+               for option, value in law.changed_options().items()]
+    if changed:
+        raise ValueError(f"contact law {name!r} with {', '.join(changed)}: the normalised response depends on "
+                         f"these options and the {map_law} maps are built at their defaults")
+    return map_law
+
+
+def _option_text(value) -> str:
+    """A law option's value as the user gave it (a number, or an array's values)."""
+    values = np.unique(np.asarray(value, float))
+    return f"{values[0]:g}" if values.size == 1 else "[" + ", ".join(f"{v:g}" for v in values) + "]"
+
+
 class LinearLayout(MapFamily):
     """The linear contact law's maps over (ζ, λ) (:class:`~impactmaps.maps.compute.linear_points.LinearFamily`)."""
 
@@ -59,6 +87,9 @@ class LinearLayout(MapFamily):
               "table": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
                        "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
                        "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n"}
+
+    def describes(self, law) -> bool:
+        return law.linear_stiffness is not None
 
 
 class HertzLayout(MapFamily):
@@ -83,6 +114,9 @@ class HertzLayout(MapFamily):
                        "Hertz contact F = K_h α^1.5, impact at the centre, simply supported; rows λ_h, columns ζ_h "
                        "(impactmaps.closed_forms.hertz_similarity); nearest computed grid point.\n"
                        "Peak force in newtons: F̄max · K_h α_m^1.5 with α_m = (5 m_i V0²/(4 K_h))^0.4.\n\n"}
+
+    def describes(self, law) -> bool:
+        return law.hertzian_stiffness is not None
 
 
 class PlasticLayout(MapFamily):
@@ -130,6 +164,9 @@ class PlasticLayout(MapFamily):
 
     def __reduce__(self):
         return (type(self), (self.name,))
+
+    def describes(self, law) -> bool:
+        return getattr(law, "name", None) == PLASTIC_LAWS[self.name] and plastic_law_of(law) == self.name
 
 
 #: The built-in families' layouts by map law, in registration order.

@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     import xarray as xr
 
 __all__ = ["MapVariable", "MapArrays", "PACKED_SUFFIX", "DERIVED", "read_dataset", "write_dataset", "pack", "unpack", "unpack_arrays",
-           "read_resource", "read_arrays", "read_resource_arrays"]
+           "read_resource", "read_arrays", "read_resource_arrays", "read_netcdf_arrays"]
 
 #: Suffix of a packed dataset (a NumPy ``.npz`` archive with a JSON header).
 PACKED_SUFFIX = ".npz"
@@ -79,6 +79,56 @@ def read_arrays(path):
     if path.suffix == PACKED_SUFFIX:
         return unpack_arrays(_packed_arrays(path))
     return _read_netcdf(path)
+
+
+def read_netcdf_arrays(path):
+    """The NetCDF3 map in ``path`` as :class:`MapArrays`, read with SciPy alone (no xarray,
+    whose opening imports dask): the values, dtypes and attributes ``xarray.open_dataset``
+    decodes, for a file whose variables need no CF decoding beyond byte order and text
+    (an on-demand tile); any other file through xarray (an ``xarray.Dataset``).
+    """
+    from scipy.io import netcdf_file
+
+    try:
+        with netcdf_file(path, "r", mmap=False) as opened:
+            raw = {name: (variable.dimensions, variable.data, dict(variable._attributes))
+                   for name, variable in opened.variables.items()}
+            attrs = {key: _netcdf_attr(value) for key, value in opened._attributes.items()}
+    except AttributeError:  # SciPy's reader without the attribute tables xarray reads too
+        return _read_netcdf(Path(path))
+    if any(not _plain_netcdf(values, variable_attrs) for _, values, variable_attrs in raw.values()):
+        return _read_netcdf(Path(path))
+    variables, coords = {}, []
+    for name, (dims, values, variable_attrs) in raw.items():
+        encoding = variable_attrs.pop("_Encoding", None)
+        if values.dtype.kind == "S":  # characters along the last dimension: one text each
+            text = np.array([b"".join(row).decode(_netcdf_attr(encoding or b"utf-8")) for row in
+                             values.reshape(-1, values.shape[-1])], dtype=object)
+            values, dims = text.reshape(values.shape[:-1]), dims[:-1]
+        else:
+            values = values.astype(values.dtype.newbyteorder("="))
+        if variable_attrs.get("_FillValue") is not None:  # a NaN fill: nothing masked (as xarray)
+            variable_attrs.pop("_FillValue")
+        variables[name] = MapVariable(tuple(dims), values, {k: _netcdf_attr(v) for k, v in variable_attrs.items()})
+        if dims == (name,):
+            coords.append(name)
+    return MapArrays(variables, attrs, tuple(coords))
+
+
+def _plain_netcdf(values: np.ndarray, attrs: dict) -> bool:
+    """Whether a NetCDF variable reads as its stored values (no scaling, offset, mask or time
+    decoding; a NaN ``_FillValue`` masks nothing)."""
+    if {"scale_factor", "add_offset", "missing_value", "calendar"} & set(attrs):
+        return False
+    if "since" in str(_netcdf_attr(attrs.get("units", ""))):
+        return False
+    fill = attrs.get("_FillValue")
+    return fill is None or (values.dtype.kind == "f" and bool(np.isnan(fill)))
+
+
+def _netcdf_attr(value):
+    """A NetCDF attribute as xarray gives it (text as ``str``)."""
+    return value.decode("utf-8") if isinstance(value, bytes) else value
 
 
 def _packed_arrays(path: Path) -> dict:
@@ -165,6 +215,11 @@ class MapArrays:
         return MapArrays({name: variable.isel(**{dim: position for dim, position in indexers.items()
                                                   if dim in variable.dims})
                           for name, variable in self.variables.items()}, self.attrs, self.coord_names)
+
+    @property
+    def data_vars(self) -> tuple:
+        """The names of the variables that are not coordinates."""
+        return tuple(name for name in self.variables if name not in self.coord_names)
 
     def drop_vars(self, name: str) -> MapArrays:
         """The same arrays without the variable ``name``."""

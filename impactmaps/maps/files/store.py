@@ -11,12 +11,15 @@ import hashlib
 import json
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import xarray as xr
 
 from ..._files import written_atomically
 from ...jsonio import dumps
 from .data_io import PACKED_SUFFIX, read_dataset, write_dataset
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["fingerprint", "save_atomic", "load_matching", "remove_stale_temporaries",
            "StoreMismatchError", "SweepInterrupted"]

@@ -48,7 +48,14 @@ from .interpolator import interpolation_error, slice_estimates
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = [ "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "band_grid"]
+__all__ = ["first_structure", "OutsideMapError", "UnresolvedPointError", "Reading", "PreparedMap", "prepare_map", "read_values", "band_grid"]
+
+
+def first_structure(dataset, name: str) -> np.ndarray:
+    """The values of the variable ``name`` of a map's first structure: NumPy indexing of its
+    values (an xarray ``isel`` would import dask), the same numbers."""
+    variable = dataset[name]
+    return np.asarray(variable.values)[(slice(None),) * variable.dims.index("structure") + (0,)]
 
 
 def _grid_position(grid: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -92,8 +99,8 @@ class Reading(NamedTuple):
 def band_grid(dataset: xr.Dataset, family, variable: str) -> np.ndarray:
     """Per grid point of a map with more than two axes: the own error of ``variable`` plus its
     second-difference interpolation estimate (NaN where missing) [-]."""
-    values = dataset[variable].isel(structure=0).values
-    own = dataset[family.errors[variable]].isel(structure=0).values
+    values = first_structure(dataset, variable)
+    own = first_structure(dataset, family.errors[variable])
     settings = family.interpolation
     return own + interpolation_error(values, reach=settings.reach, safety=settings.safety)
 
@@ -153,11 +160,11 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefi
     grids = {axis: np.log(values) for axis, values in coordinates.items()}
     if len(axes) == 2:
         times = tuple(name for name in ("log_peak_time", "log_reflection_time") if name in dataset)
-        tables = {name: np.array(dataset[name].isel(structure=0).values)
+        tables = {name: np.array(first_structure(dataset, name))
                   for name in ["fmax_normalised", *times, "fmax_error", "status"]}
         # a map stored before the error floor states its points' bare change: floored here (idempotent)
         tables["fmax_error"] = stated_error(tables["fmax_error"], tables["status"],
-                                            dataset["impacts"].isel(structure=0).values if "impacts" in dataset else None)
+                                            first_structure(dataset, "impacts") if "impacts" in dataset else None)
         if refinement is not None and refinement.codes.size:
             refinement = dataclasses.replace(refinement, values=refinement.values | {"fmax_error": stated_error(
                 refinement.values["fmax_error"], refinement.values["status"])})
@@ -165,12 +172,12 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefi
             error_grid = interpolation_error(tables["fmax_normalised"])
         plane = PlaneInterpolator({name: tables[name] for name in ("fmax_normalised", "fmax_error", "status")},
                                   error_grid, refinement)
-        lines = {name: (axis, np.array(dataset[name].isel(structure=0).values, float))
+        lines = {name: (axis, np.array(first_structure(dataset, name), float))
                  for name, (axis, _units, _text) in ASYMPTOTE_PEAK_VARIABLES.items() if name in dataset}
         lines = {name: (axis, values, np.log(values)) for name, (axis, values) in lines.items()}
         return PreparedMap(axes, ranges, grids, tables, plane, times, lines, {})
     names = {*family.errors, "status"}
-    tables = {name: np.array(dataset[name].isel(structure=0).values) for name in names}
+    tables = {name: np.array(first_structure(dataset, name)) for name in names}
     if band_grids is None:
         band_grids = {variable: band_grid(dataset, family, variable) for variable in family.errors}
     if refinement is None:
@@ -187,7 +194,7 @@ def _slice_planes(dataset: xr.Dataset, tables: dict, family, refinement: SlicedR
         raise ValueError(f"refinement: a map of grid {fmax.shape} takes a SlicedRefinement of that grid, "
                          f"not {getattr(refinement, 'shape', refinement)}")
     plane, extra = slice_estimates(fmax, family)
-    own = stated_error(np.asarray(dataset[family.errors["fmax_normalised"]].isel(structure=0).values), tables["status"])
+    own = stated_error(np.asarray(first_structure(dataset, family.errors["fmax_normalised"])), tables["status"])
     flat = {name: np.reshape(values, (-1, *fmax.shape[-2:]))
             for name, values in (("fmax_normalised", fmax), ("fmax_error", own), ("status", tables["status"]))}
     plane = np.reshape(plane, (-1, *fmax.shape[-2:]))

@@ -32,6 +32,7 @@ from ..family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS
 from ..family.map_family import map_family
 from ..files.shipped import load_shipped_map
 from ..family.accuracy import SEVERITY, answer_status
+from .reader import first_structure
 
 __all__ = ["slenderness_members", "read_slenderness", "slenderness_error_grid", "shipped_for"]
 
@@ -71,7 +72,7 @@ def _member_values(kind: str, theory: str, slenderness: float | None, law: str):
     else:
         dataset = load_shipped_map(kind, theory, law, slenderness=slenderness)
     return (np.log(dataset["lambda_"].values), np.log(dataset["zeta"].values),
-            dataset["fmax_normalised"].isel(structure=0).values)
+            first_structure(dataset, "fmax_normalised"))
 
 
 def _on_grid(member, grid) -> np.ndarray:
