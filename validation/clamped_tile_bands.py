@@ -18,15 +18,17 @@ cap) is counted as refused. Prints a Markdown table and a summary line; writes t
 
     python validation/clamped_tile_bands.py [--cases 12] [--inside 4] [--seed 39] [--csv FILE]
     python validation/clamped_tile_bands.py --inside 8 CASE.toml …     # given cases instead of random ones
+    python validation/clamped_tile_bands.py --smoke                    # one case, one cell point (seconds)
 """
 
 from __future__ import annotations
 
-import argparse
 import tempfile
+from pathlib import Path
 import warnings
 
 import numpy as np
+from _script_options import parse
 
 from impactmaps import lookup
 from impactmaps.cases import load_case, parse_case, run_case
@@ -36,6 +38,8 @@ from impactmaps.maps.compute import tiles
 from impactmaps.maps.compute.points import solve_map_points
 from impactmaps.maps.read.lookup import read_map
 
+#: The seed of --smoke: its first random case is a CSCS Kirchhoff plate with the Hertz law (answered in seconds).
+SMOKE_SEED = 24
 EDGES = ("CCCC", "CCSS", "CSCS", "SCSC", "CFCF", "CCCF", "CCFF")
 
 
@@ -80,14 +84,19 @@ def inside_cell(case, cache_dir, count: int, rng) -> list[tuple[float, float, fl
     return out
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cases", type=int, default=12)
-    parser.add_argument("--inside", type=int, default=4)
-    parser.add_argument("--seed", type=int, default=39)
-    parser.add_argument("--csv")
-    parser.add_argument("case_files", nargs="*", help="case files (default: --cases random cases)")
-    options = parser.parse_args()
+def main(argv=None) -> None:
+    def arguments(parser):
+        parser.add_argument("--cases", type=int, default=12)
+        parser.add_argument("--inside", type=int, default=4)
+        parser.add_argument("--seed", type=int, default=39)
+        parser.add_argument("--csv")
+        parser.add_argument("case_files", nargs="*", help="case files (default: --cases random cases)")
+
+    options = parse(__doc__.splitlines()[0], argv, default_out=Path(__file__).resolve().parent,
+                    add_arguments=arguments)
+    if options.smoke:  # one random case (a Kirchhoff plate), one point inside its cell, the CSV in --out-dir
+        options.cases, options.inside, options.seed = 1, 1, SMOKE_SEED
+        options.csv = options.csv or str(options.out_dir / "clamped_tile_bands.csv")
     rng = np.random.default_rng(options.seed)
     lines, rows = [], []
     answered = refused = cell_points = cell_inside = case_inside = 0
