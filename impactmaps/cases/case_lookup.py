@@ -121,6 +121,7 @@ def map_for_case(case, law: str | None = None) -> tuple[str, str]:
         a ``ValueError`` for a contact law no map describes (:func:`case_map_law`).
     """
     from ..maps.family.structures import structure_from_name  # the targets: loaded for a case
+    from ..targets.map_structure import isotropic_refusal
     from .case_answer import CASE_MATCH_RTOL, NoMapError, case_loads_a_patch, case_map_law
 
     def refuse(what: str):
@@ -137,6 +138,8 @@ def map_for_case(case, law: str | None = None) -> tuple[str, str]:
     key = target.map_structure()
     if key is None:
         refuse(target.map_structure_refusal())
+    if key.stiffness is not None:  # an orthotropic or laminated plate: its own on-demand tile only
+        refuse(isotropic_refusal(target))
     maps = family_layout(law).shipped  # the layout: the family's point solver not loaded
     shipped = [structure_from_name(name) for (kind, _), name in maps.items() if kind == key.kind]
     if not shipped:

@@ -3,7 +3,8 @@
 The shipped maps cover a few structure families (:func:`impactmaps.lookup`). A
 case whose target names a reference structure (:meth:`Target.map_structure
 <impactmaps.targets.base.Target.map_structure>`: an isotropic, undamped beam or plate of
-any supports, impact point, aspect ratio, slenderness and Poisson ratio;
+any supports, impact point, aspect ratio, slenderness and Poisson ratio, or an undamped
+orthotropic or symmetric laminated plate, whose reference carries its stiffness ratios;
 :func:`case_structure`) is answered from a small tile of the map of exactly that structure
 around the case's numbers, built once and cached (:mod:`impactmaps.maps.compute.tiles`): (ζ, λ) for
 a linear or Hertz law, (β, ζ, λ) for an elastic-plastic one (Yigit–Christoforou, default
@@ -11,12 +12,12 @@ Stronge, default ``epp``; read as the shipped plastic maps,
 :func:`impactmaps.maps.read.lookup.read_plastic`). A Hertz impact that ``simulate``
 loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
 patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.closed_forms.hertz_similarity`); its tile is of
-that P. The tile of a plate with a clamped or free edge is one cell of the shipped maps' grid
+that P. The tile of a plate with a clamped or free edge, or with D16, D26 or A45, is one cell of the shipped maps' grid
 density split into four (:func:`impactmaps.maps.compute.tiles.refined_cell`): its band is
 measured from the points that split it, as in the shipped maps' refinements.
 
 Everything else stays refused with the reason: a target the structure cannot write
-(orthotropic or laminated, structural damping, a beam section whose shear or rotary
+(structural damping, a beam section whose shear or rotary
 inertia no rectangle of any Poisson ratio has), an elastic-plastic impact on a Mindlin
 plate (the sphere radius a fourth number), a tile point next to the case that is
 ``unresolved`` (beyond the structural theory's range, or more modes than the sweep's cap
@@ -96,7 +97,8 @@ def case_structure(case, law: str) -> tuple[MapStructure, float | None]:
                              impact_fraction=tuple(_rounded(f) for f in key.impact_fraction),
                              slenderness=REFERENCE_SLENDERNESS if key.slenderness is None else _rounded(key.slenderness),
                              poisson_ratio=REFERENCE_POISSON if key.poisson_ratio is None
-                             else _rounded(key.poisson_ratio))
+                             else _rounded(key.poisson_ratio),
+                             stiffness=None if key.stiffness is None else tuple(_rounded(r) for r in key.stiffness))
     number = None
     if patch:
         number = _rounded(patch_number(target, case.law, case.impactor_mass, case.velocity))

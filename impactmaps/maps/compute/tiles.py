@@ -3,7 +3,7 @@
 A tile is 4 points a side of its family's global log lattice
 (:attr:`~impactmaps.maps.family.map_family.MapFamily.tile_lattice`) around a point, for one
 structure and law, solved and read exactly as the shipped maps. The tile of a plate with an
-edge that is not simply supported (:func:`refined_cell`) is instead one cell of the lattice
+edge that is not simply supported or with a D16, D26 or A45 coupling (:func:`refined_cell`) is instead one cell of the lattice
 twice as fine (the shipped maps' grid, 40 ζ and 20 λ per decade), split into four by points
 at its centre and the middles of its edges as the shipped maps' refinements split a cell:
 its interpolation error is measured (the surpluses of those points), not modelled from
@@ -83,9 +83,13 @@ def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
 
 def refined_cell(structure: MapStructure, law: str) -> bool:
     """Whether the tiles of ``structure`` and ``law`` are refined cells (module docstring): a
-    plate with an edge other than simply supported, under a (ζ, λ) law. (The tiles of beams,
-    of SSSS plates and of the elastic-plastic laws keep the 4 × 4 points of their lattice.)"""
-    return structure.kind == "plate" and structure.supports != "SSSS" and not map_family(law).extra_axes
+    plate of a bounded (Ritz) basis, with an edge other than simply supported or a D16, D26 or
+    A45 coupling, under a (ζ, λ) law. (The tiles of beams, of the Navier SSSS plates and of
+    the elastic-plastic laws keep the 4 × 4 points of their lattice.)"""
+    coupled = structure.stiffness is not None and any(structure.stiffness[i] for i in (3, 4, 7)
+                                                      if i < len(structure.stiffness))
+    return (structure.kind == "plate" and (structure.supports != "SSSS" or coupled)
+            and not map_family(law).extra_axes)
 
 
 def lattice_steps() -> tuple[float, float]:

@@ -7,6 +7,7 @@ stands for them all; :class:`BasisTable` holds its modes for many impactors.
 
 from __future__ import annotations
 
+import hashlib
 import warnings
 from dataclasses import asdict, dataclass, replace
 
@@ -15,7 +16,7 @@ import numpy as np
 from ..._checks import require_choice, require_in_range
 from ...targets.base import ModalBasis, Target, dropped_compliance_sums
 from ...targets.beams.beam import MIN_SLENDERNESS, Beam
-from ...targets.map_structure import reference_target
+from ...targets.map_structure import STIFFNESS_RATIOS, reference_target
 from ...targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ...targets.plates.plate import Plate
 from ..._checks import ModelValidityWarning
@@ -46,6 +47,11 @@ class MapStructure:
         Impact point as a fraction of the span(s): (x0/L,) or (x0/a, y0/b).
     poisson_ratio : float
         Poisson ratio of the reference material [-].
+    stiffness : tuple of float, optional
+        An orthotropic or laminated plate's stiffness ratios
+        (:data:`~impactmaps.targets.map_structure.STIFFNESS_RATIOS`: 5 for Kirchhoff, 9 for
+        Mindlin) [-], carried by the reference instead of the isotropic ones; None (default):
+        the isotropic reference.
     """
 
     kind: str = "plate"
@@ -55,6 +61,7 @@ class MapStructure:
     slenderness: float = 20.0
     impact_fraction: tuple = (0.5, 0.5)
     poisson_ratio: float = 0.3
+    stiffness: tuple | None = None
 
     def __post_init__(self):
         require_choice("kind", self.kind, STRUCTURE_KINDS)
@@ -77,6 +84,13 @@ class MapStructure:
             object.__setattr__(self, "supports", self.supports.upper())
         else:
             object.__setattr__(self, "supports", self.supports.lower())
+        if self.stiffness is not None:
+            count = len(STIFFNESS_RATIOS) if self.theory == "mindlin" else 5
+            values = tuple(float(v) for v in self.stiffness)
+            if self.kind != "plate" or len(values) != count or not all(np.isfinite(values)):
+                raise ValueError(f"stiffness = {self.stiffness!r} is invalid: a {self.theory} plate's "
+                                 f"{count} finite ratios {STIFFNESS_RATIOS[:count]}")
+            object.__setattr__(self, "stiffness", values)
 
     @property
     def name(self) -> str:
@@ -90,15 +104,21 @@ class MapStructure:
         centre = (0.5,) if self.kind == "beam" else (0.5, 0.5)
         if self.impact_fraction != centre:
             extras.append("x" + "-".join(f"{f:g}" for f in self.impact_fraction))
+        if self.stiffness is not None:  # a laminate: its ratios, shortened to a digest
+            extras.append("lam" + hashlib.sha256(repr(self.stiffness).encode()).hexdigest()[:8])
         return "-".join([base, *extras])
 
     def as_dict(self) -> dict:
-        """Plain dict of the fields (for provenance attributes)."""
-        return asdict(self)
+        """Plain dict of the fields (for provenance attributes; ``stiffness`` only where given,
+        so that an isotropic structure's dict, and every fingerprint of it, is unchanged)."""
+        fields = asdict(self)
+        if self.stiffness is None:
+            del fields["stiffness"]
+        return fields
 
     def build(self) -> Target:
-        """The concrete reference target: unit span, steel-like, thickness = span/slenderness (a
-        new, equal target each call).
+        """The concrete reference target: unit span, steel-like, thickness = span/slenderness,
+        carrying ``stiffness`` where given (a new, equal target each call).
         """
         return reference_target(Beam if self.kind == "beam" else Plate, self)
 
