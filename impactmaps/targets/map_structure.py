@@ -192,7 +192,7 @@ def _isotropic_structure(target, patch_loaded: bool) -> tuple[StructureKey | Non
             name_of = f"the isotropic, undamped {key.kind} of its shape"
             if target.kind == "plate" and name != "damping_ratio":
                 return key, (f"{name} = {value:.6g} where {name_of} has {reference:.6g} (an orthotropic or laminated "
-                             "plate: the shipped maps are of isotropic plates)")
-            return None, (f"{name} = {value:.6g} where {name_of} has {reference:.6g} (another beam section or "
-                          "structural damping is not a map structure)")
+                             "plate: the shipped maps are of isotropic plates; its own on-demand tile describes it)")
+            return None, (f"{name} = {value:.6g} where {name_of} has {reference:.6g} (an orthotropic or laminated "
+                          "plate, another beam section or structural damping is not a map structure)")
     return key, None

@@ -204,14 +204,15 @@ def test_nearby_cases_share_a_tile_of_the_global_lattice():
     ('type = "plate"\nlength_x = 0.2\nlength_y = 0.3\nthickness = 0.004\nmaterial = "structural-steel"\n'
      'theory = "kirchhoff"\ndamping_ratio = 0.01', "linear", "damping_ratio = 0.01"),
     ('type = "plate"\nlength_x = 0.2\nlength_y = 0.3\ntheory = "mindlin"\nlayup = { ply = "t300-934", '
-     'angles_deg = [0, 90, 0, 90, 0], symmetric = true, ply_thickness = 0.000269 }', "hertz", "D22/D11"),
+     'angles_deg = [0, 90, 0, 90, 0], symmetric = true, ply_thickness = 0.000269 }\ndamping_ratio = 0.01', "hertz",
+     "damping_ratio = 0.01"),
     ('type = "plate"\nlength_x = 0.2\nlength_y = 0.3\nthickness = 0.01\nmaterial = "structural-steel"\n'
      'theory = "mindlin"', "yigit-christoforou", "fourth number"),
     ('type = "halfspace"\nmaterial = "structural-steel"', "hertz", "target type 'halfspace'"),
 ])
 def test_what_no_map_structure_describes_is_still_refused(target, law, expected):
-    """Structural damping, an orthotropic laminate (other shape than the shipped maps), an
-    elastic-plastic law on a Mindlin plate (the sphere radius a fourth number: its clamped beam
+    """Structural damping (on an isotropic plate and on a laminate: an undamped laminate is
+    answered from its own tile, tests/cases/test_laminate_tiles.py), an elastic-plastic law on a Mindlin plate (the sphere radius a fourth number: its clamped beam
     is answered from a plastic tile, tests/maps/test_plastic_tiles.py) and a half-space stay
     refused, naming why and pointing to simulate."""
     case = _case(target, law)
