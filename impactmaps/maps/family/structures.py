@@ -85,7 +85,7 @@ class MapStructure:
         else:
             object.__setattr__(self, "supports", self.supports.lower())
         if self.stiffness is not None:
-            count = len(STIFFNESS_RATIOS) if self.theory == "mindlin" else 5
+            count = len(STIFFNESS_RATIOS) if is_shear_deformable(self.theory) else 5
             values = tuple(float(v) for v in self.stiffness)
             if self.kind != "plate" or len(values) != count or not all(np.isfinite(values)):
                 raise ValueError(f"stiffness = {self.stiffness!r} is invalid: a {self.theory} plate's "
