@@ -83,3 +83,25 @@ def repository_module(relative_path: str):
         sys.modules[name] = module
         spec.loader.exec_module(module)
     return sys.modules[name]
+
+
+def assert_committed_tile_answers(tile: Path, case, cache_dir: Path, map_prefix: str) -> None:
+    """The committed on-demand ``tile`` answers ``case`` from ``cache_dir`` with nothing built,
+    from a map named ``map_prefix``…, with a band ≤ 3 % of the peak force that holds ``simulate``'s."""
+    import shutil
+    import warnings
+
+    from impactmaps import lookup
+    from impactmaps.cases import run_case
+
+    shutil.copy(tile, cache_dir)
+    lines = []
+    found = lookup(case=case, cache_dir=cache_dir, notify=lines.append)
+    assert lines == [], "the committed tile answers: nothing is built"
+    assert found["cache_file"] == str(cache_dir / tile.name)
+    assert found["map"].startswith(map_prefix), found["map"]
+    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # validity warnings
+        _, summary = run_case(case)
+    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)

@@ -15,7 +15,6 @@ the Ritz resolution) answered within its band of ``simulate``.
 
 from __future__ import annotations
 
-import shutil
 import warnings
 from pathlib import Path
 
@@ -29,7 +28,7 @@ from impactmaps.maps.compute import tiles
 from impactmaps.maps.family.refinement import SURPLUS_SAFETY, refine
 from impactmaps.maps.family.structures import MapStructure
 
-from ..helpers import case_text
+from ..helpers import assert_committed_tile_answers, case_text
 
 #: A small clamped Kirchhoff plate struck by a 0.5 kg steel ball at 1 m/s (one impact); its
 #: tile is committed (built by this very code; the slow test rebuilds it and compares bits).
@@ -126,18 +125,7 @@ def test_the_split_cell_band_is_the_own_error_plus_three_times_the_largest_surpl
 def test_a_small_clamped_plate_is_answered_within_3_percent_and_within_its_band_of_simulate(tmp_path):
     """The committed tile of a 120 × 100 × 3 mm clamped Kirchhoff plate answers (nothing
     built): a band ≤ 3 % of the peak force that holds ``simulate``'s."""
-    shutil.copy(_COMMITTED_TILE, tmp_path)
-    case = parse_case(_SMALL_CLAMPED)
-    lines = []
-    found = lookup(case=case, cache_dir=tmp_path, notify=lines.append)
-    assert lines == [], "the committed tile answers: nothing is built"
-    assert found["cache_file"] == str(tmp_path / _COMMITTED_TILE.name)
-    assert found["map"].startswith("on-demand tile plate-cccc-kirchhoff")
-    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # validity warnings
-        _, summary = run_case(case)
-    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)
+    assert_committed_tile_answers(_COMMITTED_TILE, parse_case(_SMALL_CLAMPED), tmp_path, "on-demand tile plate-cccc-kirchhoff")
 
 
 @pytest.mark.parametrize("status, value, error", [("unresolved", np.nan, np.nan), ("sensitive", None, 0.05)])

@@ -13,7 +13,6 @@ example (a clamped Mindlin quasi-isotropic laminate with D16/D26) within its ban
 from __future__ import annotations
 
 import math
-import shutil
 import warnings
 from pathlib import Path
 
@@ -30,7 +29,7 @@ from impactmaps.maps.family.structures import MapStructure
 from impactmaps.maps.compute import tiles
 from impactmaps.targets.map_structure import STIFFNESS_RATIOS
 
-from ..helpers import case_text
+from ..helpers import assert_committed_tile_answers, case_text
 
 _ROOT = Path(__file__).parents[2]
 
@@ -107,18 +106,7 @@ def test_isotropic_structures_keep_their_keys_and_dicts():
 def test_a_small_clamped_laminate_is_answered_within_3_percent_and_within_its_band_of_simulate(tmp_path):
     """The committed tile of the small clamped [0/90]s plate answers (nothing built): a band
     ≤ 3 % of the peak force that holds ``simulate``'s."""
-    shutil.copy(_COMMITTED_TILE, tmp_path)
-    case = parse_case(_SMALL_LAMINATE)
-    lines = []
-    found = lookup(case=case, cache_dir=tmp_path, notify=lines.append)
-    assert lines == [], "the committed tile answers: nothing is built"
-    assert found["cache_file"] == str(tmp_path / _COMMITTED_TILE.name)
-    assert found["map"].startswith("on-demand tile plate-cccc-kirchhoff-ar0.833333-lam")
-    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # validity warnings
-        _, summary = run_case(case)
-    assert abs(found["peak_force_N"] - summary["peak_force_N"]) <= found["peak_force_error_N"], (found, summary)
+    assert_committed_tile_answers(_COMMITTED_TILE, parse_case(_SMALL_LAMINATE), tmp_path, "on-demand tile plate-cccc-kirchhoff-ar0.833333-lam")
 
 
 @pytest.mark.slow
