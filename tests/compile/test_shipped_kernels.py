@@ -18,6 +18,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -50,7 +51,11 @@ def _environment() -> dict:
 
 
 def _run(code: str, *args: str) -> str:
-    done = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, env=_environment())
+    # not from the checkout: ``python -c`` puts its working directory first on sys.path, so run
+    # from the test session's working directory it imported the checkout's package (whose numba cache
+    # the other tests fill as they go), not the installed one (CI failed when one variant was there yet)
+    done = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, env=_environment(),
+                          cwd=tempfile.gettempdir())
     assert done.returncode == 0, done.stderr
     return done.stdout
 
