@@ -101,6 +101,10 @@ def similarity_groups(target, poisson: bool = False) -> dict:
         for name in ("A44", "A55"):
             groups[f"k {name} a²/D11"] = target.shear_correction * getattr(target, name) * side**2 / target.D11
         groups["rotary inertia/(ρh a²)"] = target.rotary_inertia_per_area / (target.mass_per_area * side**2)
+    # the couplings (bending–twisting, in-plane shear): none on an isotropic plate
+    groups["D16/D11"] = target.D16 / target.D11
+    groups["D26/D11"] = target.D26 / target.D11
+    groups["k A45 a²/D11"] = target.shear_correction * target.A45 * target.length_x**2 / target.D11
     return groups
 
 
@@ -182,12 +186,8 @@ def _isotropic_structure(target, patch_loaded: bool) -> tuple[StructureKey | Non
             "(no isotropic rectangle has it)")
     poisson = key.poisson_ratio is not None
     wanted = similarity_groups(reference_target(type(target), key), poisson)
-    groups = similarity_groups(target, poisson)
-    if target.kind == "plate":  # couplings: none on the isotropic reference
-        groups.update(zip(("D16/D11", "D26/D11"), (target.D16 / target.D11, target.D26 / target.D11)))
-        groups["k A45 a²/D11"] = target.shear_correction * target.A45 * target.length_x**2 / target.D11
-    for name, value in groups.items():
-        reference = wanted.get(name, 0.0)
+    for name, value in similarity_groups(target, poisson).items():
+        reference = wanted[name]
         if not (abs(value - reference) <= STRUCTURE_MATCH_RTOL * abs(reference) if reference else value == 0.0):
             name_of = f"the isotropic, undamped {key.kind} of its shape"
             if target.kind == "plate" and name != "damping_ratio":
