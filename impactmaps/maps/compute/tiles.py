@@ -38,6 +38,7 @@ from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement
 from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
+from ...targets.map_structure import STIFFNESS_RATIOS
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -73,6 +74,8 @@ _CELL_TILE_FORMAT = 4
 _CELL_LEVELS = 1
 #: Prefix of a refined-cell tile's refinement variables (dimension ``refinement_point``).
 _REFINED = "refinement_"
+#: The stiffness ratios of a plate's couplings (bending–twisting, in-plane shear).
+_COUPLINGS = ("D16/D11", "D26/D11", "k A45 a²/D11")
 
 
 def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
@@ -86,8 +89,7 @@ def refined_cell(structure: MapStructure, law: str) -> bool:
     plate of a bounded (Ritz) basis, with an edge other than simply supported or a D16, D26 or
     A45 coupling, under a (ζ, λ) law. (The tiles of beams, of the Navier SSSS plates and of
     the elastic-plastic laws keep the 4 × 4 points of their lattice.)"""
-    coupled = structure.stiffness is not None and any(structure.stiffness[i] for i in (3, 4, 7)
-                                                      if i < len(structure.stiffness))
+    coupled = any(ratio for name, ratio in zip(STIFFNESS_RATIOS, structure.stiffness or ()) if name in _COUPLINGS)
     return (structure.kind == "plate" and (structure.supports != "SSSS" or coupled)
             and not map_family(law).extra_axes)
 
@@ -205,11 +207,11 @@ def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor
     and, for a family with more axes, their values ``extra`` (β …, in the family's order); a
     refined cell's tile (:func:`refined_cell`): the cell of its lattice that holds them."""
     cell = refined_cell(structure, law)
-    lattice = TileKey(structure, law, patch, 0, 0, cell=cell).lattice
+    shape = TileKey(structure, law, patch, 0, 0, cell=cell)  # the lattice and its points per axis
+    lattice, points = shape.lattice, shape.points_per_axis
     names = [axis.name for axis in map_family(law).extra_axes]
     if len(extra) != len(names):
         raise ValueError(f"extra = {tuple(extra)!r}: the {law} tiles need a value of each of {names}")
-    points = 2 if cell else TILE_POINTS
     first = [_first_index(value, lattice[name], points) for value, name in
              zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
     return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]), cell)
