@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import NamedTuple
 
-__all__ = ["REFERENCE_SLENDERNESS", "REFERENCE_POISSON", "STRUCTURE_MATCH_RTOL", "STIFFNESS_RATIOS", "StructureKey",
+__all__ = ["REFERENCE_SLENDERNESS", "REFERENCE_POISSON", "STRUCTURE_MATCH_RTOL", "STIFFNESS_RATIOS", "KIRCHHOFF_RATIO_COUNT", "StructureKey",
            "ReferenceMaterial", "reference_target", "similarity_groups", "describing_structure", "isotropic_refusal"]
 
 #: Slenderness (span/thickness) of a reference whose response does not depend on it [-].
@@ -28,7 +28,8 @@ STRUCTURE_MATCH_RTOL = 1e-6
 #: plate's key holds the first five (its response does not depend on the rest).
 STIFFNESS_RATIOS = ("D22/D11", "D12/D11", "D66/D11", "D16/D11", "D26/D11", "k A44 a²/D11", "k A55 a²/D11",
                     "k A45 a²/D11", "rotary inertia/(ρh a²)")
-_KIRCHHOFF_RATIOS = 5
+#: How many of :data:`STIFFNESS_RATIOS` a Kirchhoff plate's key holds (the bending ones).
+KIRCHHOFF_RATIO_COUNT = 5
 
 
 class StructureKey(NamedTuple):
@@ -73,8 +74,8 @@ def reference_target(target_class, key):
     if stiffness is None:
         return plate
     d = plate.D11  # the laminate's ratios on the isotropic reference's D11, ρh and thickness
-    values = dict(zip(("D22", "D12", "D66", "D16", "D26"), (r * d for r in stiffness[:_KIRCHHOFF_RATIOS])))
-    if len(stiffness) > _KIRCHHOFF_RATIOS:
+    values = dict(zip(("D22", "D12", "D66", "D16", "D26"), (r * d for r in stiffness[:KIRCHHOFF_RATIO_COUNT])))
+    if len(stiffness) > KIRCHHOFF_RATIO_COUNT:
         shear = d / (plate.shear_correction * span**2)
         values.update(A44=stiffness[5] * shear, A55=stiffness[6] * shear, A45=stiffness[7] * shear,
                       rotary_inertia_per_area=stiffness[8] * plate.mass_per_area * span**2)

@@ -16,7 +16,7 @@ import numpy as np
 from ..._checks import require_choice, require_in_range
 from ...targets.base import ModalBasis, Target, dropped_compliance_sums
 from ...targets.beams.beam import MIN_SLENDERNESS, Beam
-from ...targets.map_structure import STIFFNESS_RATIOS, reference_target
+from ...targets.map_structure import KIRCHHOFF_RATIO_COUNT, STIFFNESS_RATIOS, reference_target
 from ...targets.options import PLATE_ASPECT_RANGE, STRUCTURE_KINDS, depends_on_slenderness, is_shear_deformable, theories
 from ...targets.plates.plate import Plate
 from ..._checks import ModelValidityWarning
@@ -85,7 +85,7 @@ class MapStructure:
         else:
             object.__setattr__(self, "supports", self.supports.lower())
         if self.stiffness is not None:
-            count = len(STIFFNESS_RATIOS) if is_shear_deformable(self.theory) else 5
+            count = len(STIFFNESS_RATIOS) if is_shear_deformable(self.theory) else KIRCHHOFF_RATIO_COUNT
             values = tuple(float(v) for v in self.stiffness)
             if self.kind != "plate" or len(values) != count or not all(np.isfinite(values)):
                 raise ValueError(f"stiffness = {self.stiffness!r} is invalid: a {self.theory} plate's "
