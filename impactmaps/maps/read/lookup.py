@@ -32,7 +32,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._checks import require_positive
-from ..._renamed import renamed_keyword
 from ...targets.options import point_load_diverges
 from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
 from ..family.map_family import ASYMPTOTE_PEAKS
@@ -395,7 +394,6 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, kin
     return LookupResult(fmax, regime, kind, theory, name, error, status, law)
 
 
-@renamed_keyword("structure", "kind")
 def design_formula(loss_factor, relative_stiffness, kind: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
