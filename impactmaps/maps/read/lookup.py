@@ -32,8 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._checks import require_positive
-from ...targets.options import point_load_diverges
-from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
+from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, POINT_LOADED_DIVERGENT_THEORIES, family_layout
 from ..family.map_family import ASYMPTOTE_PEAKS
 from ..family.refinement import Refinement
 from ..family.regimes import classify, infinite_structure_peak, quasi_static_peak
@@ -249,7 +248,7 @@ def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: 
 
 def _plane_answer(loss_factor, relative_stiffness, kind, theory, law, slenderness, tolerance, local_tolerance):
     """The shipped (ζ, λ) map of (kind, theory, law), at a slenderness member, read at (ζ, λ)."""
-    if point_load_diverges(theory):
+    if theory in POINT_LOADED_DIVERGENT_THEORIES:
         from ..family.structures import warn_point_loaded_mindlin  # the Mindlin maps' warning names the sweep's mode cap
 
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=4)
