@@ -35,6 +35,19 @@ def case_text(target: str, *, radius: float = 0.005, velocity: float = 1.0, mass
     return "\n".join(lines) + "\n" + textwrap.dedent(after).lstrip()
 
 
+#: The ``[target]`` lines of a clamped (CCCC) 120 × 100 × 3 mm aluminium Kirchhoff plate: the
+#: isotropic plate of the clamped and the laminate tile tests.
+CLAMPED_PLATE_TARGET = """
+    type = "plate"
+    length_x = 0.12
+    length_y = 0.1
+    thickness = 0.003
+    material = "aluminium-6061-t6"
+    theory = "kirchhoff"
+    edges = "CCCC"
+"""
+
+
 #: A Hertz impact of a 12.7 mm steel ball at 1 m/s on a simply supported 500 × 20 × 20 mm
 #: aluminium Euler beam struck at mid-span (case-file text, no name): the family of the
 #: shipped Hertz beam map, so ``lookup`` answers from it.

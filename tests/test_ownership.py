@@ -199,9 +199,9 @@ def test_load_shipped_map_names_a_plastic_map_by_its_family():
 
 
 def test_one_word_for_beam_or_plate_and_the_old_spellings_still_work(capsys):
-    """``kind`` is beam or plate everywhere (docs/architecture.rst, "Words"); ``structure=``,
-    ``LookupResult.structure``, ``Target.structure`` and ``--structure`` are its old spellings:
-    the same answer, with a FutureWarning in Python."""
+    """``kind`` is beam or plate everywhere (docs/architecture.rst, "Words"); ``LookupResult.structure``,
+    ``Target.structure`` and ``--structure`` are its old spellings: the same answer, with a
+    FutureWarning in Python. The old keyword ``structure=`` is gone (a ``TypeError``)."""
     import json
 
     import impactmaps as im
@@ -210,15 +210,12 @@ def test_one_word_for_beam_or_plate_and_the_old_spellings_still_work(capsys):
 
     new = im.lookup(1.198, 0.425, kind="plate", theory="kirchhoff")
     assert new.kind == "plate"
-    with pytest.warns(FutureWarning, match=r"lookup\(structure=\.\.\.\) is now lookup\(kind=\.\.\.\)"):
-        old = im.lookup(1.198, 0.425, structure="plate", theory="kirchhoff")
-    assert old == new
     with pytest.warns(FutureWarning, match="LookupResult.structure is now LookupResult.kind"):
         assert new.structure == "plate"
-    with pytest.raises(TypeError, match="both 'kind' and its old name 'structure'"):
-        im.lookup(1.198, 0.425, kind="plate", structure="plate")
-    with pytest.warns(FutureWarning):
-        assert classify(0.5, 1.0, 1.0, structure="beam") == classify(0.5, 1.0, 1.0, "beam")
+    with pytest.raises(TypeError, match="structure"):
+        im.lookup(1.198, 0.425, structure="plate", theory="kirchhoff")
+    with pytest.raises(TypeError, match="structure"):
+        classify(0.5, 1.0, 1.0, structure="beam")
     plate = im.Plate.isotropic(0.3, 0.3, 0.004, im.IsotropicMaterial(210e9, 0.3, 7800.0))
     with pytest.warns(FutureWarning, match="Plate.structure is now .kind"):
         assert plate.structure == plate.kind == "plate"

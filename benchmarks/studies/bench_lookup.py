@@ -155,10 +155,10 @@ def first_lookup(law: str, structure: str, theory: str, env: dict) -> float:
     """Seconds of the first lookup in a fresh process (imports, map and refinement read)."""
     if law in ("linear", "hertz"):
         imports = "from impactmaps import lookup"
-        call = f"lookup(1.0, 0.1, structure={structure!r}, theory={theory!r}, law={law!r})"
+        call = f"lookup(1.0, 0.1, kind={structure!r}, theory={theory!r}, law={law!r})"
     else:
         imports = "from impactmaps import lookup"
-        call = f"lookup(1.0, 1.0, 1.0, structure={structure!r}, theory={theory!r}, law={law!r})"
+        call = f"lookup(1.0, 1.0, 1.0, kind={structure!r}, theory={theory!r}, law={law!r})"
     script = FIRST.format(imports=imports, call=call)
     result = subprocess.run([sys.executable, "-c", script], check=False, capture_output=True, text=True, env=env,
                             cwd="/")

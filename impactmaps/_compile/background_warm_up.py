@@ -15,14 +15,12 @@ import os
 import sys
 from pathlib import Path
 
+from .._compile_switch import switched_off
 from . import compile_helper
 
-__all__ = ["DISABLE_ENV", "state_directory", "installation_key", "is_warm", "is_running", "start_background",
+__all__ = ["state_directory", "installation_key", "is_warm", "is_running", "start_background",
            "mark_warm", "hold_lock"]
 
-#: Environment variable that turns the background warm-up off (any value but "" and "0"),
-#: and the compile helper of the first cold run (:mod:`impactmaps._compile.compile_helper`).
-DISABLE_ENV = compile_helper.DISABLE_ENV
 #: The sources whose modification times key the marker (numba caches per source file).
 _KERNEL_PACKAGES = ("solvers", "solvers/integrator", "contact", "contact/plastic", "closed_forms",
                     "closed_forms/law_asymptotes")
@@ -38,8 +36,8 @@ except ImportError:  # pragma: no cover (Windows)
 
 
 def disabled() -> bool:
-    """Whether the background warm-up is off (:data:`DISABLE_ENV`, or no ``fcntl``)."""
-    return fcntl is None or compile_helper.switched_off()
+    """Whether the background warm-up is off (:data:`~impactmaps._compile_switch.DISABLE_ENV`, or no ``fcntl``)."""
+    return fcntl is None or switched_off()
 
 
 def state_directory() -> Path:

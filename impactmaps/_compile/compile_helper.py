@@ -15,12 +15,11 @@ import threading
 import time
 from pathlib import Path
 
-__all__ = ["DISABLE_ENV", "WAIT_S", "start", "await_variant", "enabled", "switched_off", "child_environment",
+from .._compile_switch import DISABLE_ENV, switched_off
+
+__all__ = ["WAIT_S", "start", "await_variant", "enabled", "child_environment",
            "variant_cached", "register_integrator", "end_with_parent", "seed_user_cache", "copy_shipped_cache"]
 
-#: Environment variable that turns the helper off (any value but "" and "0"), and the
-#: background warm-up (:data:`impactmaps._compile.background_warm_up.DISABLE_ENV`, the same).
-DISABLE_ENV = "IMPACTMAPS_NO_BACKGROUND_WARMUP"
 #: The longest wait for a helper [s], from its start; then this process compiles itself.
 WAIT_S = 120.0
 #: The polling interval of the wait [s].
@@ -45,15 +44,9 @@ def register_integrator(kernel, callee_signatures, module: str) -> None:
     _integrator.update(kernel=kernel, callees=callee_signatures, module=module)
 
 
-def switched_off() -> bool:
-    """Whether :data:`DISABLE_ENV` turns off the compiling in other processes (the helper
-    and the background warm-up): set to anything but "" and "0"."""
-    return os.environ.get(DISABLE_ENV, "") not in ("", "0")
-
-
 def child_environment() -> tuple[dict, str]:
     """``(env, cwd)`` of a ``python -c`` child that imports this very package and starts no
-    compiling process of its own (:data:`DISABLE_ENV` set, the package's parent first).
+    compiling process of its own (:data:`~impactmaps._compile_switch.DISABLE_ENV` set, the package's parent first).
     """
     package_parent = str(Path(__file__).resolve().parents[2])
     env = dict(os.environ, **{DISABLE_ENV: "1"})

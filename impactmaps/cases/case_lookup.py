@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .._renamed import renamed_keyword
 from ..maps.family.builtin_families import MEMBER_SLENDERNESSES, PLANE_LAWS, PLASTIC_LAWS, family_layout
 from ..maps.files.shipped import SHIPPED_SLENDERNESS
 from ..maps.read.lookup import point_answer
@@ -26,7 +25,6 @@ from ..targets.options import default_theory
 __all__ = ["lookup", "case_slenderness", "map_for_case"]
 
 
-@renamed_keyword("structure", "kind")
 def lookup(*numbers, case=None, kind: str | None = None, theory: str | None = None, law: str | None = None,
            slenderness: float | None = None, tolerance: float = 0.1, local_tolerance: float = 0.1,
            build: bool = True, cache_dir=None, notify=None, progress=None):

@@ -379,11 +379,11 @@ def _sweep_interrupted() -> type[Exception]:
 def _background_warm_up(args) -> None:
     """Start compiling the solver in the background if its cache is cold
     (:mod:`impactmaps._compile.background_warm_up`; about a millisecond here), unless turned off
-    by ``--no-background-warm-up`` or :data:`~impactmaps._compile.compile_helper.DISABLE_ENV`
-    (read here too: a command with the warm-up off never enters the compile plumbing)."""
-    from .._compile.compile_helper import DISABLE_ENV
+    by ``--no-background-warm-up`` or :data:`~impactmaps._compile_switch.DISABLE_ENV`
+    (asked here: a command with the warm-up off never enters the compile plumbing)."""
+    from .._compile_switch import switched_off
 
-    if args.no_background_warm_up or args.command == "warm-up" or os.environ.get(DISABLE_ENV, "") not in ("", "0"):
+    if args.no_background_warm_up or args.command == "warm-up" or switched_off():
         return
     from .._compile import background_warm_up
 

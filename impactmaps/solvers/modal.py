@@ -46,7 +46,7 @@ from .modal_settings import (
 )
 from ..contact.geometry import contact_radius_function
 from ..contact.contact_scale import reference_contact_stiffness
-from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, plan_basis
+from .mode_budget import METHODS, ModeBudgetWarning, asymptote_result, halved_cap_change, plan_basis
 from ..result import ImpactResult
 
 __all__ = [
@@ -262,9 +262,8 @@ def _checked(result: ImpactResult, fine: ImpactResult, tolerance: float, cap, ru
     if cap is not None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the coarse run's own warnings say nothing new
-            coarse = run(False, 0.5 * cap)
-        changes.append((abs(coarse.fmax_normalised - result.fmax_normalised),
-                        f"the capped basis (modes up to {cap:.4g} rad/s, "
+            change, _ = halved_cap_change(result, cap, functools.partial(run, False))
+        changes.append((change, f"the capped basis (modes up to {cap:.4g} rad/s, "
                         f"{cap / result.contact_frequency:.3g} ω) was halved"))
     failed = [f"F̄max changed by {change:.2e} (> tolerance {tolerance:g}) when {how}"
               for change, how in changes if not change <= tolerance]

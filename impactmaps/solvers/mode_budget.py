@@ -47,7 +47,7 @@ if TYPE_CHECKING:
 
 __all__ = ["MEMORY_BUDGET_BYTES", "BASELINE_BYTES", "BYTES_PER_MODE", "MAX_MODES",
            "ASYMPTOTE_REFLECTION_FACTOR", "MIN_CAPPED_CUTOFF_RATIO", "METHODS", "BasisPlan",
-           "budget_cutoff", "frequency_cap", "plan_basis", "asymptote_result", "ModeBudgetWarning",
+           "budget_cutoff", "frequency_cap", "plan_basis", "halved_cap_change", "asymptote_result", "ModeBudgetWarning",
            "ModeBudgetError", "AsymptoteDetails"]
 
 #: Memory one run may use [B].
@@ -295,6 +295,28 @@ def plan_basis(target, law, impactor_mass: float, velocity: float, max_frequency
                f"({contact_end:.3g} s) the infinite-structure solution needs")
     raise ModeBudgetError(f"its contact frequency {omega:.4g} rad/s is too high ({many}, and {why})",
                           impactor_mass, highest, stiffness)
+
+
+def halved_cap_change(base: ImpactResult, cap: float, run_at) -> tuple[float, ImpactResult]:
+    """The check of a capped basis (``"modal+residual-capped"``): the run with the cap halved.
+
+    Parameters
+    ----------
+    base : ImpactResult
+        The run at the cap.
+    cap : float
+        The cap, in the unit ``run_at`` takes (rad/s for :func:`~impactmaps.solvers.modal.simulate`,
+        a ratio to ω for a map point).
+    run_at : callable
+        ``run_at(cap / 2) -> ImpactResult``: the same run with the cap halved.
+
+    Returns
+    -------
+    tuple
+        The change of F̄max [-] from ``base`` to the halved run, and that run.
+    """
+    coarse = run_at(0.5 * cap)
+    return abs(coarse.fmax_normalised - base.fmax_normalised), coarse
 
 
 def _replace(plan: BasisPlan, method: str, message: str) -> BasisPlan:

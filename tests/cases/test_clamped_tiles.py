@@ -28,19 +28,11 @@ from impactmaps.maps.compute import tiles
 from impactmaps.maps.family.refinement import SURPLUS_SAFETY, refine
 from impactmaps.maps.family.structures import MapStructure
 
-from ..helpers import assert_committed_tile_answers, case_text
+from ..helpers import CLAMPED_PLATE_TARGET, assert_committed_tile_answers, case_text
 
 #: A small clamped Kirchhoff plate struck by a 0.5 kg steel ball at 1 m/s (one impact); its
 #: tile is committed (built by this very code; the slow test rebuilds it and compares bits).
-_SMALL_CLAMPED = case_text("""
-    type = "plate"
-    length_x = 0.12
-    length_y = 0.1
-    thickness = 0.003
-    material = "aluminium-6061-t6"
-    theory = "kirchhoff"
-    edges = "CCCC"
-""", radius=0.01, mass=0.5)
+_SMALL_CLAMPED = case_text(CLAMPED_PLATE_TARGET, radius=0.01, mass=0.5)
 _COMMITTED_TILE = Path(__file__).parents[1] / "data" / "tiles" / "tile-af17a17757578f4e3eeac08305c1ae7a.nc"
 
 

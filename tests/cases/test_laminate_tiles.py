@@ -29,7 +29,7 @@ from impactmaps.maps.family.structures import MapStructure
 from impactmaps.maps.compute import tiles
 from impactmaps.targets.map_structure import STIFFNESS_RATIOS
 
-from ..helpers import assert_committed_tile_answers, case_text
+from ..helpers import CLAMPED_PLATE_TARGET, assert_committed_tile_answers, case_text
 
 _ROOT = Path(__file__).parents[2]
 
@@ -90,15 +90,7 @@ def test_isotropic_structures_keep_their_keys_and_dicts():
     """An isotropic target's key has no stiffness, and a structure without one has the dict
     (and so the tile fingerprints) it had."""
     assert "stiffness" not in MapStructure().as_dict()
-    iso = parse_case(case_text("""
-        type = "plate"
-        length_x = 0.12
-        length_y = 0.1
-        thickness = 0.003
-        material = "aluminium-6061-t6"
-        theory = "kirchhoff"
-        edges = "CCCC"
-    """))
+    iso = parse_case(case_text(CLAMPED_PLATE_TARGET))
     assert iso.target.map_structure().stiffness is None
     assert case_structure(iso, "hertz")[0].stiffness is None
 

@@ -25,7 +25,7 @@ import pytest
 
 import impactmaps
 from impactmaps._compile import compile_helper
-from impactmaps._compile.background_warm_up import DISABLE_ENV
+from impactmaps._compile_switch import DISABLE_ENV
 
 PACKAGE_ROOT = str(Path(impactmaps.__file__).resolve().parents[1])
 

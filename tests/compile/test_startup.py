@@ -22,6 +22,7 @@ from pathlib import Path
 import pytest
 
 import impactmaps
+from impactmaps._compile_switch import DISABLE_ENV
 from impactmaps.cli import main
 
 from ..helpers import EXAMPLES
@@ -199,7 +200,7 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
     nothing starts again."""
     from impactmaps._compile import background_warm_up as background
 
-    monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    monkeypatch.delenv(DISABLE_ENV, raising=False)
     assert background.start_background(tmp_path, ["--sleep", "1.5"])
     assert _until(lambda: background.is_running(tmp_path), 30)  # the child holds the lock
     assert not background.start_background(tmp_path, ["--sleep", "1.5"])  # one at a time
@@ -213,7 +214,7 @@ def test_background_warm_up_starts_once_and_leaves_a_marker(tmp_path, monkeypatc
 def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch):
     from impactmaps._compile import background_warm_up as background
 
-    monkeypatch.delenv(background.DISABLE_ENV, raising=False)
+    monkeypatch.delenv(DISABLE_ENV, raising=False)
     assert background.start_background(tmp_path, ["--sleep", "-1"])
     assert _until(lambda: list(tmp_path.glob("*.failed")), 60)
     assert _until(lambda: not background.is_running(tmp_path), 30)
@@ -224,12 +225,12 @@ def test_a_failed_background_warm_up_is_not_started_again(tmp_path, monkeypatch)
 def test_background_warm_up_is_off_by_environment_or_option(tmp_path, monkeypatch):
     from impactmaps._compile import background_warm_up as background
 
-    monkeypatch.setenv(background.DISABLE_ENV, "1")
+    monkeypatch.setenv(DISABLE_ENV, "1")
     assert not background.start_background(tmp_path, ["--sleep", "0"])
     assert list(tmp_path.iterdir()) == []
     started = []
     monkeypatch.setattr(background, "start_background", lambda *a, **k: started.append(1))
-    monkeypatch.delenv(background.DISABLE_ENV)
+    monkeypatch.delenv(DISABLE_ENV)
     assert main(["materials"]) == 0 and started == [1]  # any command starts it, after its output
     assert main(["--no-background-warm-up", "materials"]) == 0 and started == [1]
     assert main(["materials", "--bad-option"]) == 2 and started == [1]  # a command line refused: nothing

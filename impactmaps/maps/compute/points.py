@@ -16,7 +16,7 @@ from enum import StrEnum
 
 from ...solvers.modal_settings import ModalSettings
 from ...solvers.mode_budget import METHODS as BUDGET_METHODS
-from ...solvers.mode_budget import ModeBudgetError, plan_basis
+from ...solvers.mode_budget import ModeBudgetError, halved_cap_change, plan_basis
 from ...solvers.mode_budget import MIN_CAPPED_CUTOFF_RATIO, frequency_cap
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import STATUSES, AccuracyControl, PointStatus, controlled_point
@@ -234,9 +234,8 @@ def _halved_cap(answer: dict, base, run, settings: ModalSettings, control: Accur
     ``simulate`` makes of a capped run: the ``base`` run against one with the cap halved
     (``cap_ratio`` = cap/ω [-]). The change widens the band; beyond the tolerance the point
     has no converged value (``sensitive``, the band holding both runs)."""
-    half = 0.5 * cap_ratio
-    coarse = run(replace(settings, patch_cutoff_ratio=half) if patch else replace(settings, cutoff_ratio=half), 1.0)
-    change = abs(coarse.fmax_normalised - base.fmax_normalised)
+    change, coarse = halved_cap_change(base, cap_ratio, lambda half: run(
+        replace(settings, patch_cutoff_ratio=half) if patch else replace(settings, cutoff_ratio=half), 1.0))
     fine = float(answer["fmax_normalised"])
     error = max(float(answer["fmax_error"]), change)
     low = min(float(answer["fmax_low"]), fine - error, coarse.fmax_normalised)

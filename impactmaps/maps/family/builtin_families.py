@@ -4,8 +4,9 @@ A lookup reads a shipped map by its family's *layout* — its axes, the quantiti
 errors it stores, how it interpolates, which maps ship — and never solves a point. The
 families themselves (:mod:`.linear_points`, :mod:`.hertz_points`, :mod:`.plastic_points`)
 subclass the layouts defined here and add the point solver, importing the contact laws,
-targets and integrators (numba, SciPy, pandas: ~0.8 s). This module imports only NumPy and
-:mod:`.map_family`, so reading a shipped map (:func:`family_layout`) costs none of that;
+targets and integrators (numba, SciPy, pandas: ~0.8 s). This module imports only NumPy, the
+targets' named choices and :mod:`.map_family`, so reading a shipped map (:func:`family_layout`)
+costs none of that;
 :func:`impactmaps.maps.family.map_family.map_family` imports a built-in family's module when the
 family itself is first asked for.
 """
@@ -15,9 +16,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..._checks import require_choice
+from ...targets.options import point_load_diverges
 from .map_family import Axis, Interpolation, MapFamily, map_family
 
-__all__ = ["SHIPPED_PLANE_MAPS", "MEMBER_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
+__all__ = ["SHIPPED_PLANE_MAPS", "POINT_LOADED_DIVERGENT_THEORIES", "MEMBER_SLENDERNESSES", "HERTZ_AXES", "PLASTIC_LAWS", "PLASTIC_ERROR_OF",
            "LinearLayout", "HertzLayout", "PlasticLayout", "LAYOUTS", "PLANE_LAWS", "CUBE_LAWS", "family_layout", "plastic_law_of"]
 
 #: (kind, theory) → structure name of the shipped (ζ, λ) maps, linear and Hertz alike (the names
@@ -28,6 +30,10 @@ SHIPPED_PLANE_MAPS = {
     ("plate", "kirchhoff"): "plate-ssss-kirchhoff",
     ("plate", "mindlin"): "plate-ssss-mindlin-s20",
 }
+
+#: The theories of the shipped (ζ, λ) maps struck at a point where the point-load deflection diverges
+#: (Mindlin): their F̄max depends on the sweep's mode cap, and a reading of them says so.
+POINT_LOADED_DIVERGENT_THEORIES = frozenset(theory for _, theory in SHIPPED_PLANE_MAPS if point_load_diverges(theory))
 
 #: Slendernesses (span/thickness) of the slenderness members of the shipped shear-deformable maps; the
 #: classical (Euler/Kirchhoff) map is their thin limit, 1/slenderness = 0.

@@ -10,7 +10,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..._checks import require_choice, require_in_range, require_positive
-from ..._renamed import renamed_keyword
 from ...targets.options import STRUCTURE_KINDS
 from .builtin_families import PLANE_LAWS
 from .map_family import available_map_families, map_family
@@ -32,7 +31,6 @@ def quasi_static_peak(relative_stiffness, law: str = "linear"):
     return _classifying(law).quasi_static_peak(relative_stiffness)
 
 
-@renamed_keyword("structure", "kind")
 def infinite_structure_peak(loss_factor, kind: str, law: str = "linear"):
     """Normalised peak force of the infinite plate (eq 32) or beam (eq 36) [-]; ``kind``:
     ``"beam"`` or ``"plate"``. With ``law="hertz"``, F_max/F_hs at ζ_h.
@@ -49,7 +47,6 @@ def _classifying(law):
     return map_family(law)
 
 
-@renamed_keyword("structure", "kind")
 def classify(
     fmax,
     loss_factor,

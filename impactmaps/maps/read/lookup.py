@@ -32,9 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._checks import require_positive
-from ..._renamed import renamed_keyword
-from ...targets.options import point_load_diverges
-from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, family_layout
+from ..family.builtin_families import LAYOUTS, PLASTIC_LAWS, POINT_LOADED_DIVERGENT_THEORIES, family_layout
 from ..family.map_family import ASYMPTOTE_PEAKS
 from ..family.refinement import Refinement
 from ..family.regimes import classify, infinite_structure_peak, quasi_static_peak
@@ -250,7 +248,7 @@ def point_answer(*numbers, kind: str = "plate", theory: str = "kirchhoff", law: 
 
 def _plane_answer(loss_factor, relative_stiffness, kind, theory, law, slenderness, tolerance, local_tolerance):
     """The shipped (ζ, λ) map of (kind, theory, law), at a slenderness member, read at (ζ, λ)."""
-    if point_load_diverges(theory):
+    if theory in POINT_LOADED_DIVERGENT_THEORIES:
         from ..family.structures import warn_point_loaded_mindlin  # the Mindlin maps' warning names the sweep's mode cap
 
         warn_point_loaded_mindlin("the shipped Mindlin maps strike", stacklevel=4)
@@ -395,7 +393,6 @@ def read_map(dataset: xr.Dataset | None, loss_factor, relative_stiffness, *, kin
     return LookupResult(fmax, regime, kind, theory, name, error, status, law)
 
 
-@renamed_keyword("structure", "kind")
 def design_formula(loss_factor, relative_stiffness, kind: str, law: str = "linear"):
     """Closed-form design estimate F̄max ≈ max(F̄∞(ζ), sqrt(λ/(1+λ))) [-].
 
