@@ -36,7 +36,7 @@ def test_site_builds_without_warnings(site):
 
 def test_every_case_key_is_documented(site):
     from impactmaps.cases import case as case_module
-    from impactmaps.cases import _materials
+    from impactmaps.materials import _tables as _materials
     from impactmaps.fd import FDSettings
     from impactmaps.contact.plastic.stronge import StrongeContact  # noqa: F401 (its options are listed)
 
