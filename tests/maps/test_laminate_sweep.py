@@ -94,24 +94,41 @@ def test_an_unsymmetric_layup_says_why():
         _structures({"layup": {"ply": "as4-3501-6", "angles_deg": [0, 90], "symmetric": False}}, 1)
 
 
-def test_a_tiny_laminate_sweep_is_the_simulated_case(tmp_path):
-    """One point of an SSSS Kirchhoff [0/90]s laminate, aspect 0.8 (specially orthotropic:
-    Navier modes, so it runs in the default suite): F̄max in [0, 1] with the linear law, and
-    within its band plus 1e-3 (the sweep's refinement tolerance) of ``simulate`` of a
-    160 × 128 mm plate of the same layup at the same (ζ, λ), converged in its cut-off."""
+def test_a_tiny_laminate_sweep_is_the_simulated_case_and_charts(tmp_path):
+    """One point of two SSSS Kirchhoff laminates, [0/90]s and [0]2s, aspect 0.8 (specially
+    orthotropic: Navier modes, so it runs in the default suite): F̄max in [0, 1] with the linear
+    law, the [0/90]s point within its band plus 1e-3 (the sweep's refinement tolerance) of
+    ``simulate`` of a 160 × 128 mm plate of that layup at the same (ζ, λ), converged in its
+    cut-off; the chart draws each laminate with its own line and name (``ax=None``: new Axes)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from impactmaps.plotting.map_charts import plot_fmax_chart
+
     path = write(tmp_path, 'theory = "kirchhoff"\nsupports = "SSSS"\naspect_ratio = 0.8\n'
-                           'layup = { ply = "as4-3501-6", angles_deg = [0, 90] }', zeta="[0.3]", lambdas="[0.5]")
+                           'layup = [{ ply = "as4-3501-6", angles_deg = [0, 90] }, { ply = "as4-3501-6", angles_deg = [0] }]',
+                 zeta="[0.3]", lambdas="[0.5]")
     config = load_sweep_config(path)
     run_sweep_config(config, progress=False, max_workers=1)
     with xr.open_dataset(config.output / "sweep.nc") as dataset:
-        point = dataset.isel(structure=0, lambda_=0, zeta=0)
-        fmax, error = float(point["fmax_normalised"]), float(point["fmax_error"])
-    assert 0.0 < fmax <= 1.0 and math.isfinite(error)
+        dataset = dataset.load()
+    values = dataset["fmax_normalised"].values
+    assert np.all((values > 0.0) & (values <= 1.0))
+    point = dataset.isel(structure=0, lambda_=0, zeta=0)
+    fmax, error = float(point["fmax_normalised"]), float(point["fmax_error"])
+    assert math.isfinite(error)
     case = linear_case('type = "plate"\nlength_x = 0.16\nlength_y = 0.128\n'
                        'layup = { ply = "as4-3501-6", angles_deg = [0, 90] }', 0.3, 0.5)
     result = simulate(case.target, case.law, case.impactor_mass, case.velocity,
                       settings=case.settings.refined().refined())
     assert abs(result.fmax_normalised - fmax) <= error + 1e-3
+    ax = plot_fmax_chart(dataset, ax=None)
+    labels = ax.get_legend_handles_labels()[1]
+    named = [label for label in labels if "laminate" in label]
+    assert len(named) == 2 and len(set(named)) == 2
+    styles = {line.get_linestyle() for line in ax.get_lines() if line.get_label() in named}
+    assert len(styles) == 2
+    matplotlib.pyplot.close(ax.figure)
 
 
 @pytest.mark.slow
