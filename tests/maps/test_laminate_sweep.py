@@ -107,7 +107,7 @@ def test_a_tiny_laminate_sweep_is_the_simulated_case_and_charts(tmp_path):
 
     path = write(tmp_path, 'theory = "kirchhoff"\nsupports = "SSSS"\naspect_ratio = 0.8\n'
                            'layup = [{ ply = "as4-3501-6", angles_deg = [0, 90] }, { ply = "as4-3501-6", angles_deg = [0] }]',
-                 zeta="[0.3]", lambdas="[0.5]")
+                 zeta="[0.3, 3.0]", lambdas="[0.5]")
     config = load_sweep_config(path)
     run_sweep_config(config, progress=False, max_workers=1)
     with xr.open_dataset(config.output / "sweep.nc") as dataset:
