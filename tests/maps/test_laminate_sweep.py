@@ -153,7 +153,12 @@ def test_clamped_and_free_edge_sweep_points_are_the_simulated_cases(tmp_path, st
     """Sweep points of a CCCC Mindlin laminate and a CFCF plate against ``simulate`` of the
     dimensional case at the same (ζ, λ) with cutoff_ratio = 160 (measured: 9e-6, 2e-6 and 4e-7)."""
     config = load_sweep_config(write(tmp_path, structure, zeta=f"[{zeta}]", lambdas=f"[{lambda_}]"))
-    run_sweep_config(config, progress=False, max_workers=1)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run_sweep_config(config, progress=False, max_workers=1)
+    said = [str(w.message) for w in caught if str(w.message).startswith("point load")]
+    # a Mindlin point load says so, and that the Ritz plate's points stop at its largest basis
+    assert bool(said) == ("mindlin" in structure) and all("Ritz basis" in message for message in said)
     with xr.open_dataset(config.output / "sweep.nc") as dataset:
         point = dataset.isel(structure=0, lambda_=0, zeta=0)
         fmax, error = float(point["fmax_normalised"]), float(point["fmax_error"])
