@@ -197,8 +197,8 @@ def warn_point_loaded_mindlin(who: str, stacklevel: int = 2, ritz: bool = False)
     have the Ritz basis (edges other than SSSS, D16/D26), whose points stop at its largest basis.
     """
     cap = f"the sweep's cap of {MAX_MODES} modes" + (
-        " (on a plate of the Ritz basis — edges other than SSSS, D16/D26 — the modes its largest basis resolves: "
-        "method modal+residual-capped)" if ritz else "")
+        " (on a plate of the Ritz basis — edges other than SSSS, D16/D26 — no further than its largest basis "
+        "resolves: method modal+residual-capped where it stops there)" if ritz else "")
     warnings.warn(f"point load: {who} the plate at a point, whose deflection diverges; the map's F̄max holds the "
                   f"shear of every mode up to {cap} and has no converged value, and "
                   "its error is that of the integration at the cap: simulate, which cuts the shear at its own "
