@@ -114,7 +114,27 @@ def case_warnings(case, result=None, peak_force: float | None = None) -> list[st
     if result is None:
         result = force_answer(case.law, case.impactor_mass, case.velocity, peak_force)
     target = None if case.target_type == "halfspace" else case.target
-    return validity_warnings(case.sphere, case.target_material, case.law, target, result)
+    borrowed = _borrowed_yield_strength(case)
+    return validity_warnings(case.sphere, case.target_material, case.law, target, result) + (
+        [borrowed] if borrowed else [])
+
+
+def _borrowed_yield_strength(case) -> str | None:
+    """A plastic law left to yield at the impactor's strength [Pa] because the target has none
+    (a laminate, a brittle solid) while the impactor is the stiffer body, so that which body
+    yields first cannot be told (:func:`_softer_body`); None otherwise or when
+    ``contact.yield_strength`` is given."""
+    impactor, target = case.sphere.material, case.target_material
+    if case.law.elastic or "yield_strength" in case.contact_options \
+            or getattr(target, "yield_strength", None) is not None or impactor.yield_strength is None \
+            or _softer_body(impactor, target) is not None:
+        return None
+    key = "target.yield_strength" if hasattr(target, "plies") else "contact.yield_strength"
+    return (f"yield strength: the {case.law_name} law yields at the impactor's S_y = {float(impactor.yield_strength):.4g} Pa "
+            f"({impactor.name}) because the target has none, although the impactor is the stiffer body (a dent in "
+            f"the ball, not in the target); give the target's own strength in {key} (for a laminate, Christoforou "
+            "& Yigit 1998 take S_y = 2 S_u, S_u the shear strength of the fibres: docs/contact_laws.rst) or "
+            "contact.yield_strength")
 
 
 def target_warnings(target, result) -> list[str]:

@@ -36,7 +36,7 @@ def test_site_builds_without_warnings(site):
 
 def test_every_case_key_is_documented(site):
     from impactmaps.cases import case as case_module
-    from impactmaps.cases import _materials
+    from impactmaps.materials import _tables as _materials
     from impactmaps.fd import FDSettings
     from impactmaps.contact.plastic.stronge import StrongeContact  # noqa: F401 (its options are listed)
 
@@ -58,7 +58,7 @@ def test_every_sweep_key_is_documented(site):
     from impactmaps.solvers.modal_settings import ModalSettings
 
     text = _text(site, "sweeps.html")
-    keys = set(config._TOP_KEYS) | {"zeta", "lambda", "min", "max", "count"}
+    keys = set(config._TOP_KEYS) | set(config._LAMINATE_KEYS) | {"zeta", "lambda", "min", "max", "count"}
     keys |= {f.name for f in fields(MapStructure)} | {f.name for f in fields(ModalSettings)}
     missing = sorted(key for key in keys if key not in text)
     assert not missing, f"sweep keys not documented: {missing}"

@@ -11,7 +11,7 @@ from __future__ import annotations
 import warnings
 
 from ..targets.options import FD_BEAM_THEORY
-from ._toml import check_keys, key_path, keyword_options, read_options, string, table
+from .._toml import check_keys, key_path, keyword_options, read_options, string, table
 
 __all__ = ["check_fd_target", "fd_settings"]
 

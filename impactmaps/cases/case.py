@@ -23,8 +23,8 @@ from ..materials import Laminate
 from ..solvers.modal_settings import ModalSettings
 from ..contact.contact_scale import reference_contact_stiffness
 from ..targets.halfspace import HalfSpace
-from ._materials import isotropic_material, target_material
-from ._toml import (
+from ..materials._tables import isotropic_material, target_material
+from .._toml import (
     check_keys,
     key_path,
     keyword_options,

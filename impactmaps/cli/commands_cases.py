@@ -52,7 +52,7 @@ def cmd_halfspace(args) -> dict:
         refuse(args, {"--youngs-modulus": "youngs_modulus", "--poisson-ratio": "poisson_ratio",
                        "--density": "density"},
                 "with both --material and --target-material (explicit values stand for a body without a name)")
-    from ..cases._toml import UNIT_LIMITS
+    from .._toml import UNIT_LIMITS
     from ..cases.case import IMPACTOR_RANGES
 
     for option, value, key, what in (("--radius", args.radius, "radius", "the sphere radius [m]"),

@@ -69,6 +69,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     asymptotes = asymptotes and family.closed_form_asymptotes
     structures, lambda_values = _selection(dataset, structures, lambdas)
     kinds = {name: str(dataset["kind"].sel(structure=name).item()) for name in structures}
+    styles = _structure_styles(kinds)
     zeta = dataset["zeta"].values
     colours, markers = _lambda_styles(len(lambda_values))
     if shade_regimes:
@@ -94,11 +95,15 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
             kind = kinds[name]
             curve = dataset.sel(structure=name).sel(lambda_=lam, method="nearest")
             values = _draw_sensitive_bands(ax, zeta, curve, colour, kind)
-            ax.plot(zeta, values, color=colour, ls="-" if kind == "plate" else "--", lw=1.6, zorder=2,
+            ax.plot(zeta, values, color=colour, ls=styles[name], lw=1.6, zorder=2,
                     marker=marker, markevery=marks, ms=4, mfc="white" if kind == "beam" else colour)
         ax.plot([], [], color=colour, lw=2.0, marker=marker, ms=4, label=f"λ = {lam:g}")
+    several = len(set(kinds.values())) < len(kinds)
+    if several:  # several structures of a kind (laminates, edges): each named by its line
+        for name in structures:
+            ax.plot([], [], color="k", ls=styles[name], lw=1.6, label=structure_label(dataset, name))
     for kind, style in (("plate", "-"), ("beam", "--")):
-        if kind in kinds.values():
+        if kind in kinds.values() and not several:
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
     if asymptotes:
         ax.plot([], [], color="k", ls=":", lw=0.9, label=r"quasi-static $\sqrt{\lambda/(1+\lambda)}$")
@@ -112,7 +117,7 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     ax.set_ylim(0.0, max(1.05, 1.05 * top))
     ax.set_xlabel(family.labels["zeta"])
     ax.set_ylabel(family.labels["fmax"])
-    ax.set_title("Normalised maximum impact force: plates solid, beams dashed"
+    ax.set_title("Normalised maximum impact force" + ("" if several else ": plates solid, beams dashed")
                  + ("; quasi-static dotted" if asymptotes else ""))
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
@@ -168,6 +173,24 @@ def _draw_sensitive_bands(ax, zeta, curve, colour, kind="plate"):
             color=colour, zorder=3)
     values[sensitive] = np.nan
     return values
+
+
+#: Line styles of the plate and the beam structures of one chart, the first of each kind solid
+#: (plates) or dashed (beams).
+_LINE_STYLES = {"plate": ("-", "-.", (0, (1, 1)), (0, (5, 1, 1, 1, 1, 1))),
+                "beam": ("--", (0, (6, 2)), (0, (3, 1, 1, 1)), (0, (2, 3)))}
+
+
+def _structure_styles(kinds: dict) -> dict:
+    """Structure name → line style: solid plates and dashed beams, and where a kind has several
+    structures (a sweep of laminates or edges) each its own style, cycling."""
+    styles, seen = {}, {"plate": 0, "beam": 0}
+    for name, kind in kinds.items():
+        options = _LINE_STYLES[kind]
+        count = sum(1 for other in kinds.values() if other == kind)
+        styles[name] = options[seen[kind] % len(options)] if count > 1 else options[0]
+        seen[kind] += 1
+    return styles
 
 
 def _lambda_styles(count):
@@ -288,6 +311,8 @@ def structure_label(dataset, structure) -> str:
         extra.append("square" if ratio == 1.0 else f"aspect ratio {ratio:g}")
     if depends_on_slenderness(theory) and "slenderness" in one.coords:
         extra.append(f"{'L' if kind == 'beam' else 'a'}/h = {float(one['slenderness'].item()):g}")
+    if "-lam" in str(structure):  # a laminate's stiffness ratios (MapStructure.name: their digest)
+        extra.append("laminate " + str(structure).rpartition("-lam")[2])
     return " ".join(words) + (f" ({', '.join(extra)})" if extra else "")
 
 

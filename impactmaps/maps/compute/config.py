@@ -9,15 +9,17 @@ from __future__ import annotations
 import itertools
 import math
 import tomllib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
 
 from ..._checks import read_text_input
 from ..._files import written_atomically
+from ...materials._tables import laminate
 from ...solvers.modal_settings import ModalSettings
 from ...targets.options import default_theory
+from ...targets.plates.plate import Plate
 from ..family.map_family import available_map_families, map_family
 from ..family.structures import MapStructure
 from .dataset import tidy_frame
@@ -26,7 +28,10 @@ from .sweep import SweepGrid, check_axis, run_sweep_grid, sweep_grid
 __all__ = ["SweepConfig", "load_sweep_config", "run_sweep_config", "KIND_DEFAULTS"]
 
 _TOP_KEYS = {"output", "law", "grid", "solver", "structure"}
-_STRUCTURE_KEYS = {f.name for f in fields(MapStructure)}
+#: The [[structure]] keys that give a laminated plate as a case file's [target] does (a layup of a
+#: catalogue ply, or a list of ply tables); its stiffness ratios then come from the laminate.
+_LAMINATE_KEYS = ("layup", "plies")
+_STRUCTURE_KEYS = {f.name for f in fields(MapStructure)} | set(_LAMINATE_KEYS)
 _SOLVER_KEYS = {f.name for f in fields(ModalSettings)}
 
 #: Defaults of a ``[[structure]]`` table that depend on its ``kind``.
@@ -110,6 +115,31 @@ def _require_structure_value(path: str, key: str, value) -> None:
         raise ValueError(f"{path} = {value!r} is invalid: give a number")
 
 
+def _laminated(structure: MapStructure, key: str, value, where: str) -> MapStructure:
+    """``structure`` carrying the stiffness ratios of the laminate ``value`` given as ``key``
+    (``layup`` or ``plies``, read as a case file reads them) at the structure's slenderness:
+    the plate of span ``slenderness`` × the plies' thickness and the structure's aspect ratio,
+    edges, theory and impact point (:meth:`~impactmaps.targets.base.Target.map_structure`).
+    """
+    if structure.kind != "plate":
+        raise ValueError(f"{where}.{key} is invalid for a {structure.kind}: a laminate is given for kind = 'plate'")
+    built = laminate({key: value}, where)
+    span = structure.slenderness * float(built.thickness)
+    width = span * structure.aspect_ratio
+    point = (structure.impact_fraction[0] * span, structure.impact_fraction[1] * width)
+    try:
+        plate = Plate.from_laminate(span, width, built, theory=structure.theory, edges=structure.supports,
+                                    impact_point=point)
+    except ValueError as error:
+        raise ValueError(f"{where}.{key}: {error}") from None
+    found = plate.map_structure()
+    if found is None:
+        raise ValueError(f"{where}.{key}: no map structure describes this laminate: {plate.map_structure_refusal()}")
+    if found.stiffness is None:  # a laminate isotropic in bending (one isotropic ply): its Poisson ratio
+        return replace(structure, poisson_ratio=float(found.poisson_ratio or structure.poisson_ratio))
+    return replace(structure, stiffness=found.stiffness)
+
+
 def _structures(table, index):
     where = f"[[structure]] #{index + 1}"
     if not isinstance(table, dict):
@@ -117,12 +147,21 @@ def _structures(table, index):
     unknown = set(table) - _STRUCTURE_KEYS
     if unknown:
         raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}: allowed keys are {sorted(_STRUCTURE_KEYS)}")
-    swept = {k: (v if isinstance(v, list) else [v]) for k, v in table.items() if k != "impact_fraction"}
+    given = [key for key in _LAMINATE_KEYS if key in table]
+    if len(given) > 1:
+        raise ValueError(f"{where}.layup and {where}.plies are exclusive: give the laminate once")
+    for key in ("stiffness", "poisson_ratio"):
+        if given and key in table:
+            raise ValueError(f"{where}.{key} = {table[key]!r} is set by the laminate {where}.{given[0]}: remove it")
+    swept = {k: (v if isinstance(v, list) else [v]) for k, v in table.items() if k not in ("impact_fraction", "plies")}
+    if "plies" in table:  # a list of ply tables is one laminate
+        swept["plies"] = [table["plies"]]
     if "impact_fraction" in table:
         swept["impact_fraction"] = _impact_fractions(table["impact_fraction"], where)
     out = []
     for combination in itertools.product(*swept.values()):
         values = dict(zip(swept, combination))
+        layers = {key: values.pop(key) for key in given}
         for key, value in values.items():
             _require_structure_value(f"{where}.{key}", key, value)
         kind = values.get("kind", "plate")
@@ -134,6 +173,11 @@ def _structures(table, index):
         values = KIND_DEFAULTS[kind] | values
         try:
             structure = MapStructure(**values)
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"{where}: {error}") from None
+        for key, value in layers.items():
+            structure = _laminated(structure, key, value, where)
+        try:
             structure.build()  # supports and theory are checked by the target: fail before any output
         except (TypeError, ValueError) as error:
             raise ValueError(f"{where}: {error}") from None

@@ -152,8 +152,10 @@ def run_sweep_grid(grid: SweepGrid, *, path: str | os.PathLike | None = None, ex
 def _run_grid(grid: SweepGrid, path, executor, max_workers, progress, pacing, overwrite) -> xr.Dataset:
     """The sweep of a checked grid (:func:`sweep`, :func:`run_sweep_grid`; warnings name their caller)."""
     settings = grid.settings
-    if any(point_load_diverges(structure.theory) for structure in grid.structures):
-        warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=3)
+    diverging = [structure for structure in grid.structures if point_load_diverges(structure.theory)]
+    if diverging:
+        warn_point_loaded_mindlin("the Mindlin points of this sweep strike", stacklevel=3,
+                                  ritz=any(not structure.build().uses_navier for structure in diverging))
     dataset, shipped = _resume(path, overwrite, grid)
     if shipped and progress:
         print(f"impact map: all {dataset['done'].size} points from the result shipped for this sweep "

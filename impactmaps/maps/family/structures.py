@@ -191,12 +191,16 @@ class BasisTable:
         return self.basis.head(count, float(self._dropped_sums[self.basis.size - 1 - count]))
 
 
-def warn_point_loaded_mindlin(who: str, stacklevel: int = 2) -> None:
+def warn_point_loaded_mindlin(who: str, stacklevel: int = 2, ritz: bool = False) -> None:
     """Warn that a map of a Mindlin plate is a point load, whose answer depends on its cut-off
-    (``docs/contact_patch.rst``); ``who`` is the sentence's subject.
+    (``docs/contact_patch.rst``); ``who`` is the sentence's subject; ``ritz``: some of its plates
+    have the Ritz basis (edges other than SSSS, D16/D26), whose points stop at its largest basis.
     """
+    cap = f"the sweep's cap of {MAX_MODES} modes" + (
+        " (on a plate of the Ritz basis — edges other than SSSS, D16/D26 — no further than its largest basis "
+        "resolves: method modal+residual-capped where it stops there)" if ritz else "")
     warnings.warn(f"point load: {who} the plate at a point, whose deflection diverges; the map's F̄max holds the "
-                  f"shear of every mode up to the sweep's cap of {MAX_MODES} modes and has no converged value, and "
+                  f"shear of every mode up to {cap} and has no converged value, and "
                   "its error is that of the integration at the cap: simulate, which cuts the shear at its own "
                   "cut-off, differs by 0.07 % (median) to 5 % with one impact and by 5 % (median) to 22 % with "
                   "re-impacts (validation/mindlin_point_load.md); a sphere's Hertz impact spread over its contact "

@@ -1,4 +1,5 @@
-"""Materials in case files: catalogue names, inline isotropic tables, plies and laminates.
+"""Materials read from TOML tables (case files and sweep files): catalogue names, inline
+isotropic tables, plies and laminates.
 
 Inline isotropic material table: ``youngs_modulus`` [Pa], ``poisson_ratio`` [-],
 ``density`` [kg/m³], optional ``yield_strength`` [Pa] and ``name``. A ply table is
@@ -15,8 +16,11 @@ import math
 from dataclasses import replace
 
 from .._checks import require_choice
-from ..materials import IsotropicMaterial, Laminate, Ply, available_materials, material
-from ._toml import boolean, check_keys, key_path, number, number_list, string, table
+from .catalogue import available_materials, material
+from .isotropic import IsotropicMaterial
+from .laminate import Laminate
+from .ply import Ply
+from .._toml import boolean, check_keys, key_path, number, number_list, string, table
 
 __all__ = ["isotropic_material", "ply", "laminate", "target_material"]
 

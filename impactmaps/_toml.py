@@ -13,7 +13,7 @@ import math
 import re
 import typing
 
-from .._checks import require_choice, require_in_range
+from ._checks import require_choice, require_in_range
 
 __all__ = [
     "table",
