@@ -214,3 +214,16 @@ def test_the_static_factor_uses_the_eigenproblems_stiffness_bits():
     assert not kept.flags.writeable
     assert np.array_equal(kept, plate_general.stiffness_matrix(*inputs[:4], np.array(inputs[4]), np.array(inputs[5]),
                                                                10, 10))
+
+
+def test_the_classical_compliance_of_a_coupled_plate_is_kept_on_disk(tmp_path, monkeypatch):
+    """A coupled plate's classical compliance (a cached lookup asks for it) is stored with the
+    plate bases and read back with the computed bits."""
+    monkeypatch.setenv("IMPACTMAPS_CACHE_DIR", str(tmp_path))
+    plate = Plate(length_x=0.12, length_y=0.08, thickness=0.002, D11=40.0, D22=25.0, D12=10.0, D66=12.0, D16=3.0,
+                  D26=2.0, A44=2e7, A55=3e7, mass_per_area=3.2, rotary_inertia_per_area=1e-6, edges="CCCC")
+    computed = plate_any_edges._classical_compliance(plate, plate_any_edges.max_functions("kirchhoff", (
+        (0, 0), (1, 1))), ((0, 0), (1, 1)))
+    assert plate_any_edges.classical_compliance.__wrapped__(plate) == computed
+    assert list((tmp_path / basis_cache.SUBDIRECTORY).glob("classical-compliance-*.npz"))
+    assert plate_any_edges.classical_compliance.__wrapped__(plate) == computed

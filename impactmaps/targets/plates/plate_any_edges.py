@@ -13,7 +13,7 @@ import warnings
 
 import numpy as np
 
-from . import near_field, ritz
+from . import basis_cache, near_field, ritz
 from ..._checks import require_in_range
 from .plate_general import (
     MAX_FUNCTIONS,
@@ -237,11 +237,22 @@ def classical_compliance(plate) -> float:
     """Classical (Kirchhoff) point compliance [m/N] of a plate with D16/D26, any edges:
     ``C_Ritz(edges, full D) + [C_Navier(SSSS) − C_Ritz(SSSS)]`` (D16, D26 left out of the
     bracket), in the largest Kirchhoff basis of the impact classes (it contains every modal
-    basis, so the residual compliance is never negative)."""
-    from .plate_static import navier_static_compliance
-
+    basis, so the residual compliance is never negative). Kept on disk with the plate bases
+    (:mod:`.basis_cache`, the same bits): a cached lookup of the plate asks for it (its patch
+    number) and need not factor the two stiffness matrices again."""
     classes = class_groups(plate)[0]
     n = max_functions("kirchhoff", classes)
+    inputs = {"length_x": plate.length_x, "length_y": plate.length_y, "edges": plate.edges, "D": _inputs(plate)[4],
+              "impact_point": tuple(plate.impact_point), "n": n, "classes": classes}
+    stored = basis_cache.cached_arrays("classical-compliance", inputs,
+                                       lambda: {"compliance": np.array(_classical_compliance(plate, n, classes))})
+    return float(stored["compliance"])
+
+
+def _classical_compliance(plate, n: int, classes) -> float:
+    """:func:`classical_compliance` computed in the ``n × n`` Kirchhoff basis of ``classes``."""
+    from .plate_static import navier_static_compliance
+
     a, b = plate.length_x, plate.length_y
     unit = ((1.0, 0.0), (0.0, 1.0))
 
