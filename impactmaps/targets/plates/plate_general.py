@@ -173,12 +173,37 @@ def _factors(kept, n_y):
     return None
 
 
+def _parity_parts(kept, n_y):
+    """Kept flat indices ``i n_y + l`` split by the parities of (i, l): [(their positions in
+    ``kept``, x indices, y indices)], when each part is a product set (a union of symmetry
+    classes), else None."""
+    ix, iy = np.divmod(kept, n_y)
+    parts = []
+    for p in (0, 1):
+        for q in (0, 1):
+            where = np.flatnonzero((ix % 2 == p) & (iy % 2 == q))
+            factors = _factors(kept[where], n_y) if where.size else ()
+            if factors is None:
+                return None
+            if where.size:
+                parts.append((where, *factors))
+    return parts
+
+
 def _product_block(gx, gy, kept_s, kept_t, n_y):
     """``gx[i_s, i_t] gy[l_s, l_t]`` over the kept rows and columns: a Kronecker product when
-    both are product sets (the same products, no gathering of the full block), else gathered."""
+    both are product sets, one per pair of parity parts when both are unions of symmetry classes
+    (the same products, no gathering of the full block), else gathered."""
     rows, columns = _factors(kept_s, n_y), _factors(kept_t, n_y)
     if rows is not None and columns is not None:
         return np.kron(gx[np.ix_(rows[0], columns[0])], gy[np.ix_(rows[1], columns[1])])
+    row_parts, column_parts = _parity_parts(kept_s, n_y), _parity_parts(kept_t, n_y)
+    if row_parts is not None and column_parts is not None:  # symmetry classes: a product block per pair of parts
+        block = np.empty((kept_s.size, kept_t.size))
+        for where_s, xs, ys in row_parts:
+            for where_t, xt, yt in column_parts:
+                block[np.ix_(where_s, where_t)] = np.kron(gx[np.ix_(xs, xt)], gy[np.ix_(ys, yt)])
+        return block
     ix_s, iy_s = np.divmod(kept_s, n_y)
     ix_t, iy_t = np.divmod(kept_t, n_y)
     return gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
