@@ -15,9 +15,15 @@ already in their cache):
   included), and in one process after its imports: the first lookup call and the next
   ones (the tile cached on disk), with the heavy packages and compiled contact kernels the
   calls load; the imports of a fresh cached ``lookup --case`` (``python -X importtime``)
-  beside a bare ``import numpy, scipy.linalg``.
+  beside a bare ``import numpy, scipy.linalg``;
+* ``lookup --case`` of the drop-weight example itself (a clamped Mindlin quasi-isotropic
+  laminate with D16/D26: its own tile, :data:`impactmaps.maps.compute.tiles`) with an empty
+  cache and again, each a fresh process, with the CPU time of the process beside the wall
+  time (less sensitive to the machine's load); with ``--cold-numba`` the first one also with
+  an empty numba cache (its kernels compiled in the run, as a user's first run without the
+  shipped kernels).
 
-Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT] [--lookup-only]  (writes
+Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT] [--lookup-only] [--cold-numba]  (writes
 nothing; prints Markdown for benchmarks/RESULTS_plates_any_edges.md; ``--root`` times
 another checkout, e.g. main before a change). Wall-clock times depend on the machine's
 load: the load average is printed before and after.
@@ -28,6 +34,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -119,18 +126,22 @@ def _run(root: Path, code: str, *args: str, **extra) -> str:
                           env=_environment(root, **extra), check=True).stdout.strip()
 
 
-def _lookup(root: Path, case: Path, cache: Path) -> tuple[float, str]:
-    """(wall time [s], peak force answer) of ``impactmaps lookup --case`` in a fresh process."""
+def _lookup(root: Path, case: Path, cache: Path, **extra) -> tuple[float, str, float]:
+    """(wall time [s], peak force answer, CPU time of the process [s]) of ``impactmaps lookup --case``
+    in a fresh process."""
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "impactmaps.cli", "lookup", "--case", str(case), "--json"],
                           capture_output=True, text=True, cwd=root,  # -m and -c import from the working directory
-                          env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache)))
+                          env=_environment(root, IMPACTMAPS_CACHE_DIR=str(cache), **extra))
     seconds = time.perf_counter() - start
+    now = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (now.ru_utime - used.ru_utime) + (now.ru_stime - used.ru_stime)
     try:
         answer = json.loads(done.stdout)
-        return seconds, f"{answer['peak_force_N']:.2f} ± {answer['peak_force_error_N']:.1f} N"
+        return seconds, f"{answer['peak_force_N']:.2f} ± {answer['peak_force_error_N']:.1f} N", cpu
     except (ValueError, KeyError):
-        return seconds, "refused: " + (done.stderr.strip().splitlines() or ["?"])[-1][:120]
+        return seconds, "refused: " + (done.stderr.strip().splitlines() or ["?"])[-1][:120], cpu
 
 
 def _import_profile(root: Path, case: Path, cache: Path) -> str:
@@ -167,6 +178,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", type=Path, default=ROOT, help="the checkout to time (default: this one)")
     parser.add_argument("--lookup-only", action="store_true", help="time the lookups only (not simulate)")
+    parser.add_argument("--cold-numba", action="store_true",
+                        help="time the drop-weight example's first lookup with an empty numba cache too")
     options = parser.parse_args()
     root = options.root.resolve()
     example = root / "examples" / "drop_weight_quasi_isotropic.toml"
@@ -193,6 +206,12 @@ def main() -> None:
         lookups = [("new plate, empty cache (basis and tile built)", *_lookup(root, case, cache)),
                    ("again (tile cached)", *_lookup(root, case, cache)),
                    ("same plate at 3.0 m/s (a new tile; the basis on disk)", *_lookup(root, other, cache))]
+        laminate_cache = folder / "laminate-cache"
+        lookups += [("drop-weight example (clamped Mindlin laminate), empty cache", *_lookup(root, example, laminate_cache)),
+                    ("drop-weight example again (tile cached)", *_lookup(root, example, laminate_cache))]
+        if options.cold_numba:
+            lookups.append(("drop-weight example, empty cache and empty numba cache",
+                            *_lookup(root, example, folder / "cold-cache", NUMBA_CACHE_DIR=str(folder / "numba"))))
         imports, *calls, heavy, compiled = _run(root, _IN_PROCESS, str(case), IMPACTMAPS_CACHE_DIR=str(cache)).split()
         profile = _import_profile(root, case, cache)
     bare = _bare()
@@ -202,9 +221,9 @@ def main() -> None:
         print("| case | simulate, warm incl. basis: wall (CPU) [s] | simulate, basis cached [s] | peak [N] | modes | method |")
         print("|---|---|---|---|---|---|")
         print("\n".join(rows))
-    print("\n| lookup --case, clamped Mindlin 150 × 100 × 3 mm (fresh process each) | wall [s] | answer |")
-    print("|---|---|---|")
-    print("\n".join(f"| {label} | {seconds:.2f} | {answer} |" for label, seconds, answer in lookups))
+    print("\n| lookup --case (fresh process each) | wall [s] | CPU [s] | answer |")
+    print("|---|---|---|---|")
+    print("\n".join(f"| {label} | {seconds:.2f} | {cpu:.2f} | {answer} |" for label, seconds, answer, cpu in lookups))
     print(f"\nIn one process (tile cached on disk): imports {float(imports):.2f} s; lookup calls "
           + ", ".join(f"{float(t):.3f}" for t in calls) + " s (first, second, third); imported by the calls: "
           + heavy.replace(",", ", ") + "; compiled contact kernels loaded: " + compiled.replace(",", ", "))

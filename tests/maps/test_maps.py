@@ -48,6 +48,21 @@ def test_published_cases_are_classified_as_in_seed_001(structure):
     assert list(regimes) == ["quasi-static", "local", "transition"]
 
 
+def test_classify_needs_no_infinite_peak_after_the_reflection(monkeypatch):
+    """Points that all peak after their first reflection are classified without the infinite
+    structure's peak (it decides nothing there), as with it; one peaking before asks for it."""
+    from impactmaps.maps.family import regimes
+
+    fmax, zeta, lam = [0.2, 0.95, 0.5], [50.0, 0.01, 1.0], [0.05, 0.05, 4.0]
+    late = dict(peak_time=[3.0, 3.0, 3.0], reflection_time=[1.0, 1.0, 1.0])
+    expected = classify(fmax, zeta, lam, "plate", **late)
+    asked = []
+    monkeypatch.setattr(regimes, "infinite_structure_peak", lambda *args: asked.append(args) or 0.5)
+    assert list(classify(fmax, zeta, lam, "plate", **late)) == list(expected) and not asked
+    classify(fmax, zeta, lam, "plate", peak_time=[0.5, 3.0, 3.0], reflection_time=[1.0, 1.0, 1.0])
+    assert asked
+
+
 def test_classify_limits_and_validation():
     """Exact asymptote values classify as their regime; bad input is a ValueError."""
     lam = 0.425

@@ -185,3 +185,45 @@ def test_simulate_from_cold_and_disk_cache_same_bits(tmp_path, monkeypatch):
     assert list((tmp_path / basis_cache.SUBDIRECTORY).glob("general-modes-*.npz"))
     again = run()
     assert again.peak_force == cold.peak_force and again.peak_time == cold.peak_time
+
+
+def test_patch_weights_and_loads_have_the_bits_of_the_direct_evaluation():
+    """The patch quadrature's w functions kept for a run (plate_any_edges._disc_basis) give the
+    bits of evaluating them directly: the modal weights (mode shapes at the nodes) and the static
+    load of a clamped plate and of its simply supported twin (the same w functions on Mindlin)."""
+    plate = _plate(edges="CCCC")
+    result = plate_any_edges.solution(plate, 12)
+    point, radius = plate.impact_point, 7.5e-4
+    offsets, weights = plate_general.disc_quadrature(radius)
+    nodes = np.asarray(point)[None, :] + offsets
+    direct = weights @ result.mode_shapes(nodes, 5)
+    assert np.array_equal(plate_any_edges.patch_weights(result, point, radius, 5), direct)
+    twin = plate_general.GeneralPlateSolution(result.length_x, result.length_y, "mindlin", "SSSS", 12, 12,
+                                              np.zeros(0), np.zeros((0, 0)), 0.0, None)
+    for solution in (result, twin):
+        assert np.array_equal(plate_any_edges._patch_load(solution, point, radius),
+                              weights @ solution.deflection_basis(nodes))
+
+
+def test_the_static_factor_uses_the_eigenproblems_stiffness_bits():
+    """The stiffness matrix kept for a basis (plate_general._last_stiffness) is stiffness_matrix's,
+    read-only: the eigenproblem and the static factor of one basis assemble it once."""
+    plate = _plate(edges="CCCC")
+    inputs = plate_any_edges._inputs(plate)
+    kept = plate_general._last_stiffness(*inputs[:6], 10, 10, None)
+    assert not kept.flags.writeable
+    assert np.array_equal(kept, plate_general.stiffness_matrix(*inputs[:4], np.array(inputs[4]), np.array(inputs[5]),
+                                                               10, 10))
+
+
+def test_the_classical_compliance_of_a_coupled_plate_is_kept_on_disk(tmp_path, monkeypatch):
+    """A coupled plate's classical compliance (a cached lookup asks for it) is stored with the
+    plate bases and read back with the computed bits."""
+    monkeypatch.setenv("IMPACTMAPS_CACHE_DIR", str(tmp_path))
+    plate = Plate(length_x=0.12, length_y=0.08, thickness=0.002, D11=40.0, D22=25.0, D12=10.0, D66=12.0, D16=3.0,
+                  D26=2.0, A44=2e7, A55=3e7, mass_per_area=3.2, rotary_inertia_per_area=1e-6, edges="CCCC")
+    computed = plate_any_edges._classical_compliance(plate, plate_any_edges.max_functions("kirchhoff", (
+        (0, 0), (1, 1))), ((0, 0), (1, 1)))
+    assert plate_any_edges.classical_compliance.__wrapped__(plate) == computed
+    assert list((tmp_path / basis_cache.SUBDIRECTORY).glob("classical-compliance-*.npz"))
+    assert plate_any_edges.classical_compliance.__wrapped__(plate) == computed

@@ -93,14 +93,17 @@ def classify(
         raise ValueError("fmax contains NaN or inf: classify computed points only")
     require_positive("loss_factor", zeta)
     require_positive("relative_stiffness", lam)
-    if peaks is None:
-        peaks = (infinite_structure_peak(zeta, kind, law), quasi_static_peak(lam, law))
-    infinite, quasi = (_shaped(peak, fmax.shape) for peak in peaks)
-    distance_infinite = np.abs(fmax - infinite) / infinite
-    distance_quasi = np.abs(fmax - quasi) / quasi
     before_reflection = True
     if peak_time is not None and reflection_time is not None:
         before_reflection = _shaped(np.asarray(peak_time) < np.asarray(reflection_time), fmax.shape)
+    if peaks is None:  # no peak before its reflection: the infinite structure's peak decides nothing
+        needed = np.any(before_reflection)
+        peaks = (infinite_structure_peak(zeta, kind, law) if needed else np.full(fmax.shape, np.nan),
+                 quasi_static_peak(lam, law))
+    infinite, quasi = (_shaped(peak, fmax.shape) for peak in peaks)
+    with np.errstate(invalid="ignore"):
+        distance_infinite = np.abs(fmax - infinite) / infinite
+    distance_quasi = np.abs(fmax - quasi) / quasi
     known_before = False
     if peak_time is not None and reflection_time is not None:
         known_before = before_reflection

@@ -13,7 +13,7 @@ import warnings
 
 import numpy as np
 
-from . import near_field, ritz
+from . import basis_cache, near_field, ritz
 from ..._checks import require_in_range
 from .plate_general import (
     MAX_FUNCTIONS,
@@ -21,7 +21,9 @@ from .plate_general import (
     RESOLUTION_FACTOR,
     RESOLUTION_MARGIN,
     GeneralPlateSolution,
+    deflection_functions,
     disc_quadrature,
+    field_exponents,
     general_static_compliance,
     solve_general_plate,
 )
@@ -87,10 +89,12 @@ def max_functions(theory: str, classes=None) -> int:
     return 2 * int(math.sqrt(cap / (fields * fraction)) / 2)
 
 
+@functools.lru_cache(maxsize=256)
 def resolved_frequency(plate, n_x: int, n_y: int) -> float:
     """Highest frequency [rad/s] an ``n_x × n_y`` basis resolves: the simply supported
     frequency (same theory, couplings left out) of the mode with
-    ``(n − RESOLUTION_MARGIN)/RESOLUTION_FACTOR`` half-waves in the poorer direction."""
+    ``(n − RESOLUTION_MARGIN)/RESOLUTION_FACTOR`` half-waves in the poorer direction
+    (cached: every run's basis size probes it)."""
     if plate.theory == "kirchhoff":
         return ritz._resolved_frequency(n_x, n_y, plate.length_x, plate.length_y, plate.D11, plate.D22,
                                         plate.D12, plate.D66, plate.mass_per_area)
@@ -166,15 +170,35 @@ def patch_weights(result: GeneralPlateSolution, point, contact_radius: float, co
     shape; the point value when the radius is 0)."""
     if contact_radius <= 0.0:
         return result.mode_shapes(np.array([point]), count)[0]
-    offsets, weights = disc_quadrature(float(contact_radius))
-    return weights @ result.mode_shapes(np.asarray(point)[None, :] + offsets, count)
+    _, weights = disc_quadrature(float(contact_radius))
+    basis = _disc_basis(result, point, float(contact_radius))
+    return weights @ (basis @ result.coefficients[:basis.shape[1], :int(count)])
 
 
 def _patch_load(result: GeneralPlateSolution, point, contact_radius: float) -> np.ndarray:
     if contact_radius <= 0.0:
         return result.deflection_basis(np.array([point]))[0]
-    offsets, weights = disc_quadrature(float(contact_radius))
-    return weights @ result.deflection_basis(np.asarray(point)[None, :] + offsets)
+    _, weights = disc_quadrature(float(contact_radius))
+    return weights @ _disc_basis(result, point, float(contact_radius))
+
+
+def _disc_basis(result: GeneralPlateSolution, point, contact_radius: float) -> np.ndarray:
+    """The w basis functions of ``result`` at the quadrature nodes of the patch (:func:`disc_quadrature`)
+    centred at ``point`` [m] (its :meth:`~.plate_general.GeneralPlateSolution.deflection_basis`,
+    the same bits): kept for the last few patches, as a run's modal weights and both static loads
+    of its patch (:func:`patch_static_compliance`) evaluate the same functions."""
+    w_exponents = field_exponents(result.theory, result.edges)[0]
+    return _disc_basis_of(result.length_x, result.length_y, result.theory, w_exponents, result.n_x, result.n_y,
+                          result.classes, tuple(float(x) for x in point), contact_radius)
+
+
+@functools.lru_cache(maxsize=4)
+def _disc_basis_of(length_x, length_y, theory, w_exponents, n_x, n_y, classes, point, contact_radius):
+    offsets, _ = disc_quadrature(contact_radius)
+    basis = deflection_functions(length_x, length_y, theory, w_exponents, n_x, n_y, classes,
+                                 np.asarray(point)[None, :] + offsets)
+    basis.setflags(write=False)
+    return basis
 
 
 @functools.lru_cache(maxsize=32)
@@ -213,11 +237,22 @@ def classical_compliance(plate) -> float:
     """Classical (Kirchhoff) point compliance [m/N] of a plate with D16/D26, any edges:
     ``C_Ritz(edges, full D) + [C_Navier(SSSS) − C_Ritz(SSSS)]`` (D16, D26 left out of the
     bracket), in the largest Kirchhoff basis of the impact classes (it contains every modal
-    basis, so the residual compliance is never negative)."""
-    from .plate_static import navier_static_compliance
-
+    basis, so the residual compliance is never negative). Kept on disk with the plate bases
+    (:mod:`.basis_cache`, the same bits): a cached lookup of the plate asks for it (its patch
+    number) and need not factor the two stiffness matrices again."""
     classes = class_groups(plate)[0]
     n = max_functions("kirchhoff", classes)
+    inputs = {"length_x": plate.length_x, "length_y": plate.length_y, "edges": plate.edges, "D": _inputs(plate)[4],
+              "impact_point": tuple(plate.impact_point), "n": n, "classes": classes}
+    stored = basis_cache.cached_arrays("classical-compliance", inputs,
+                                       lambda: {"compliance": np.array(_classical_compliance(plate, n, classes))})
+    return float(stored["compliance"])
+
+
+def _classical_compliance(plate, n: int, classes) -> float:
+    """:func:`classical_compliance` computed in the ``n × n`` Kirchhoff basis of ``classes``."""
+    from .plate_static import navier_static_compliance
+
     a, b = plate.length_x, plate.length_y
     unit = ((1.0, 0.0), (0.0, 1.0))
 

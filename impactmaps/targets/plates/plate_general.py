@@ -42,7 +42,7 @@ from numpy.polynomial import legendre
 
 from . import basis_cache, ritz
 
-__all__ = ["GeneralPlateSolution", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
+__all__ = ["GeneralPlateSolution", "deflection_functions", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
            "general_static_compliance", "disc_quadrature", "RESOLUTION_FACTOR", "RESOLUTION_MARGIN",
            "MIN_FUNCTIONS", "MAX_FUNCTIONS"]
 
@@ -173,12 +173,37 @@ def _factors(kept, n_y):
     return None
 
 
+def _parity_parts(kept, n_y):
+    """Kept flat indices ``i n_y + l`` split by the parities of (i, l): [(their positions in
+    ``kept``, x indices, y indices)], when each part is a product set (a union of symmetry
+    classes), else None."""
+    ix, iy = np.divmod(kept, n_y)
+    parts = []
+    for p in (0, 1):
+        for q in (0, 1):
+            where = np.flatnonzero((ix % 2 == p) & (iy % 2 == q))
+            factors = _factors(kept[where], n_y) if where.size else ()
+            if factors is None:
+                return None
+            if where.size:
+                parts.append((where, *factors))
+    return parts
+
+
 def _product_block(gx, gy, kept_s, kept_t, n_y):
     """``gx[i_s, i_t] gy[l_s, l_t]`` over the kept rows and columns: a Kronecker product when
-    both are product sets (the same products, no gathering of the full block), else gathered."""
+    both are product sets, one per pair of parity parts when both are unions of symmetry classes
+    (the same products, no gathering of the full block), else gathered."""
     rows, columns = _factors(kept_s, n_y), _factors(kept_t, n_y)
     if rows is not None and columns is not None:
         return np.kron(gx[np.ix_(rows[0], columns[0])], gy[np.ix_(rows[1], columns[1])])
+    row_parts, column_parts = _parity_parts(kept_s, n_y), _parity_parts(kept_t, n_y)
+    if row_parts is not None and column_parts is not None:  # symmetry classes: a product block per pair of parts
+        block = np.empty((kept_s.size, kept_t.size))
+        for where_s, xs, ys in row_parts:
+            for where_t, xt, yt in column_parts:
+                block[np.ix_(where_s, where_t)] = np.kron(gx[np.ix_(xs, xt)], gy[np.ix_(ys, yt)])
+        return block
     ix_s, iy_s = np.divmod(kept_s, n_y)
     ix_t, iy_t = np.divmod(kept_t, n_y)
     return gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
@@ -190,6 +215,18 @@ def _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia, ke
     if theory != "kirchhoff":
         parts += [np.full(k.size, rotary_inertia * area) for k in kept[1:]]
     return np.concatenate(parts)
+
+
+def deflection_functions(length_x, length_y, theory, w_exponents, n_x, n_y, classes, points) -> np.ndarray:
+    """The kept w functions ``X_i(x/a) Y_l(y/b)`` of an ``n_x × n_y`` basis whose w edge exponents are
+    ``w_exponents`` ((ex0, ex1), (ey0, ey1), :func:`field_exponents`) at ``points`` (n_points, 2) [m],
+    shape (n_points, kept w functions)."""
+    points = np.atleast_2d(np.asarray(points, dtype=float))
+    (ex, ey) = w_exponents
+    xv = _deflection_values(points[:, 0] / length_x, n_x, *ex)
+    yv = _deflection_values(points[:, 1] / length_y, n_y, *ey)
+    i, l = np.divmod(selection(theory, n_x, n_y, classes)[0], n_y)
+    return xv[:, i] * yv[:, l]  # the kept columns of the products X_i Y_l
 
 
 @dataclass(frozen=True)
@@ -225,12 +262,8 @@ class GeneralPlateSolution:
 
     def deflection_basis(self, points) -> np.ndarray:
         """w basis functions at ``points`` (n_points, 2) [m] → (n_points, kept w functions)."""
-        points = np.atleast_2d(np.asarray(points, dtype=float))
-        (ex, ey) = field_exponents(self.theory, self.edges)[0]
-        xv = _deflection_values(points[:, 0] / self.length_x, self.n_x, *ex)
-        yv = _deflection_values(points[:, 1] / self.length_y, self.n_y, *ey)
-        i, l = np.divmod(selection(self.theory, self.n_x, self.n_y, self.classes)[0], self.n_y)
-        return xv[:, i] * yv[:, l]  # the kept columns of the products X_i Y_l
+        return deflection_functions(self.length_x, self.length_y, self.theory, field_exponents(self.theory, self.edges)[0],
+                                    self.n_x, self.n_y, self.classes, points)
 
     def mode_shapes(self, points, count=None) -> np.ndarray:
         """Mass-normalised deflections w_j at ``points`` [kg^-1/2], shape (n_points, count)."""
@@ -239,9 +272,19 @@ class GeneralPlateSolution:
         return basis @ self.coefficients[:basis.shape[1], :count]
 
 
+@functools.lru_cache(maxsize=1)
+def _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes):
+    """:func:`stiffness_matrix` of hashable inputs (``D``, ``shear`` as tuples), read-only; the
+    last one kept, so that the eigenproblem and the static factor of one basis (the same
+    inputs, one after the other) assemble it once."""
+    stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y, classes)
+    stiffness.setflags(write=False)
+    return stiffness
+
+
 def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
                       classes=None):
-    stiffness = stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
+    stiffness = _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
     mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
                           selection(theory, n_x, n_y, classes))
     scale = 1.0 / np.sqrt(mass)
@@ -291,8 +334,8 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
     :func:`solve_general_plate` (the dense eigenproblem: the expensive part)."""
     import scipy.linalg
 
-    matrix, scale = _standard_problem(length_x, length_y, theory, edges, np.array(D), np.array(shear),
-                                      mass_per_area, rotary_inertia, n_x, n_y, classes)
+    matrix, scale = _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
+                                      n_x, n_y, classes)
     upper = float(resolved_frequency) ** 2
     eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_value=(-np.inf, upper), driver="evr")
     if eigenvalues.size == 0:
@@ -308,7 +351,7 @@ def _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, cla
     """Cholesky factor of the stiffness matrix (cached: one per plate and basis)."""
     import scipy.linalg
 
-    stiffness = stiffness_matrix(length_x, length_y, theory, edges, np.array(D), np.array(shear), n_x, n_y, classes)
+    stiffness = _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
     return scipy.linalg.cho_factor(stiffness), stiffness.shape[0]
 
 
