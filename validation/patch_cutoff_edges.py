@@ -16,7 +16,12 @@ CCCC and SSSS edges; isotropic 6061-T6 at a/h = 100, 75 and 10 and a [0/90]4s
 AS4/3501-6 laminate at a/h = 75 and 10. Writes ``validation/patch_cutoff_edges.csv`` and
 prints the table of docs/plates_any_edges.rst.
 
+With ``--scan``: the impactor mass scan on the SSSS plate (Navier, nothing capped), 10 … 160 ω
+against 320 ω, under the patch and, for the Kirchhoff twin, the point load
+(``validation/patch_cutoff_scan.csv``).
+
     python validation/patch_cutoff_edges.py              # full (≈ 30–60 min on a loaded 2-core machine)
+    python validation/patch_cutoff_edges.py --scan       # the mass scan (≈ 1 min)
     python validation/patch_cutoff_edges.py --smoke      # one SSSS plate, two cut-offs
 """
 
@@ -111,13 +116,40 @@ def table(frame: pd.DataFrame, cutoffs=CUTOFFS) -> str:
     return "\n".join(lines)
 
 
+SCAN_MASSES = (0.0084, 0.03, 0.1, 0.3, 1.0, 3.0)
+SCAN_CUTOFFS = (10, 20, 40, 80, 160, 320)
+
+
+def scan(masses=SCAN_MASSES, cutoffs=SCAN_CUTOFFS) -> pd.DataFrame:
+    """Peak force [N] against the cut-off on the SSSS 150 × 100 × 2 mm plate: Mindlin under the
+    patch (``patch_cutoff_ratio``) and Kirchhoff under the point load (``cutoff_ratio``)."""
+    rows = []
+    for theory, key in (("mindlin", "patch_cutoff_ratio"), ("kirchhoff", "cutoff_ratio")):
+        for mass in masses:
+            case = parse_case(case_text("SSSS", PLATES[1][1], mass).replace('"mindlin"', f'"{theory}"'))
+            stiffness = reference_contact_stiffness(case.law, case.impactor_mass, case.velocity)
+            item = {"theory": theory, "mass_kg": mass,
+                    "zeta_p": float(case.target.loss_factor(case.impactor_mass, stiffness))}
+            for ratio in cutoffs:
+                result, _ = _peak(case, replace(case.settings, **{key: float(ratio)}), corner_cutoff=False)
+                item[f"F{ratio}_N"] = result.peak_force
+            rows.append(item)
+            print(" ".join(f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}" for k, v in item.items()), flush=True)
+    return pd.DataFrame(rows)
+
+
 def _options(parser) -> None:
+    parser.add_argument("--scan", action="store_true", help="the impactor mass scan on the SSSS plate")
     parser.add_argument("--edges", nargs="*", default=EDGES, help="edge sets to run (default: all)")
     parser.add_argument("--plates", nargs="*", type=int, default=None, help="indices into PLATES (default: all)")
 
 
 def main(argv=None) -> None:
     args = parse(__doc__.splitlines()[0], argv, default_out=HERE, add_arguments=_options)
+    if args.scan:
+        frame = scan((0.0084, 0.3), (10, 20)) if args.smoke else scan()
+        frame.to_csv(Path(args.out_dir) / "patch_cutoff_scan.csv", index=False, float_format="%.8g")
+        return
     if args.smoke:
         rows, cutoffs = [row(PLATES[1][0], "SSSS", PLATES[1][1], cutoffs=(20, 40))], (20, 40)
     else:
@@ -130,7 +162,9 @@ def main(argv=None) -> None:
                 print(table(pd.DataFrame(rows[-1:]), cutoffs).splitlines()[-1], flush=True)
     frame = pd.DataFrame(rows)
     frame.to_csv(Path(args.out_dir) / "patch_cutoff_edges.csv", index=False, float_format="%.8g")
-    print(table(frame, cutoffs))
+    text = table(frame, cutoffs)
+    (Path(args.out_dir) / "patch_cutoff_edges.txt").write_text(text + "\n")
+    print(text)
 
 
 if __name__ == "__main__":
