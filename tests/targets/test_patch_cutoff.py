@@ -4,7 +4,7 @@ line (issue 39, items 2–3; docs/plates_any_edges.rst, "The patch cut-off of he
 A heavy impactor on a plate makes a contact force whose content reaches the corner frequency
 ``K/c = 2 ζ_p ω`` of the contact spring against the plate's local impedance; the default
 patch cut-off (20 ω) was below it on every plate with ζ_p ≳ 10, free edges or not (measured:
-``validation/patch_cutoff_edges.py``), and ``simulate`` rose the cut-off to 2 K/c since.
+``validation/patch_cutoff_edges.py``), and ``simulate`` now raises the cut-off to 2 K/c.
 """
 
 from __future__ import annotations
