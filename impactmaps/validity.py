@@ -21,6 +21,7 @@ from .targets.shear_range import SHEAR_VALIDITY_FRACTION, beyond_shear_theory, t
 
 __all__ = [
     "DEFLECTION_RATIO_LIMIT",
+    "NEAR_FIELD_SHARE_LIMIT",
     "SPEED_RATIO_LIMIT",
     "YIELD_PRESSURE_FACTOR",
     "ForceAnswer",
@@ -35,6 +36,11 @@ YIELD_PRESSURE_FACTOR = 1.6  # mean contact pressure at yield / S_y of the softe
 SPEED_RATIO_LIMIT = 0.01  # V0 / sqrt(E/ρ) of the target
 DEFLECTION_RATIO_LIMIT = 0.5  # plate deflection / thickness
 INFINITE_STRUCTURE_METHODS = ("infinite-plate", "infinite-beam")
+#: Estimated near-field compliance of a plate without a 3D-consistent near field (a laminate) over
+#: the contact's secant compliance at the peak force, above which a run warns
+#: (:func:`impactmaps.targets.plates.near_field.near_field_estimate`; on isotropic plates the
+#: near field moved the peak force by up to 0.7 times this share, docs/contact_patch.rst).
+NEAR_FIELD_SHARE_LIMIT = 0.03
 
 
 def hertz_peak_pressure(force, effective_modulus, radius):
@@ -67,7 +73,7 @@ def validity_warnings(sphere, target_material, law, target, result) -> list[str]
               *law_warnings(law, result, radius=sphere.radius),
               _speed(target_material, result), _deflection(target, result),
               _structural_theory(target, result), _point_load(target, result), _support_distance(target),
-              _contact_radius(target, law, result), _reflections(target, result))
+              _contact_radius(target, law, result), _reflections(target, result), _near_field(target, result))
     return [message for message in checks if message]
 
 
@@ -139,10 +145,12 @@ def _borrowed_yield_strength(case) -> str | None:
 
 def target_warnings(target, result) -> list[str]:
     """The checks that need only the structure and the run (its ``contact_intervals`` [s],
-    ``method``, ``settings``): a first contact beyond the shear theory's range, and a
-    non-converging Mindlin point load. Empty when none fails.
+    ``method``, ``settings``): a first contact beyond the shear theory's range, a
+    non-converging Mindlin point load and a patch-loaded plate without a near field. Empty
+    when none fails.
     """
-    return [message for message in (_structural_theory(target, result), _point_load(target, result)) if message]
+    checks = (_structural_theory(target, result), _point_load(target, result), _near_field(target, result))
+    return [message for message in checks if message]
 
 
 def warn_if_invalid(sphere, target_material, law, target, result, *, stacklevel=2) -> list[str]:
@@ -347,3 +355,21 @@ def _reflections(target, result):
     return (f"reflections: flexural waves reflected {distance:.4g} m away return after "
             f"{round_trip:.4g} s, before the contact ends ({contact:.4g} s): the infinite-"
             f"{target.kind} asymptote does not hold; simulate the finite {target.kind}")
+
+
+def _near_field(target, result):
+    from .targets.plates import near_field
+
+    radius = (getattr(result, "settings", None) or {}).get("contact_radius_m")
+    if not radius or getattr(target, "kind", None) != "plate" or not getattr(target, "point_load_diverges", False):
+        return None  # a Mindlin plate under the contact patch
+    if near_field.isotropic_constants(target) is not None or not result.peak_force > 0.0:
+        return None  # isotropic: its near field is built
+    contact = float(result.max_indentation) / float(result.peak_force)  # secant compliance at the peak [m/N]
+    share = near_field.near_field_estimate(target, float(radius)) / contact
+    if share <= NEAR_FIELD_SHARE_LIMIT:
+        return None
+    return (f"near field: this plate has no 3D-consistent near field under the contact patch (built for isotropic "
+            f"plates only), and the isotropic kernel estimates that Mindlin theory counts {share:.0%} of the contact's "
+            f"own compliance at the peak force twice there, so the peak force is likely low (on the isotropic plates "
+            f"measured, by up to 0.7 times that share): check it against a 3D model (docs/contact_patch.rst)")

@@ -43,6 +43,7 @@ from .modal_settings import (
     linear_stiffness,
     settings_dict,
     uses_patch,
+    with_corner_cutoff,
 )
 from ..contact.geometry import contact_radius_function
 from ..contact.contact_scale import reference_contact_stiffness
@@ -71,6 +72,7 @@ def simulate(
     record: bool = True,
     time_step: float | None = None,
     effective_radius: float | None = None,
+    corner_cutoff: bool = True,
 ) -> ImpactResult:
     """Simulate a sphere striking a modal target, through every re-impact.
 
@@ -95,6 +97,12 @@ def simulate(
     effective_radius : float, optional
         Effective radius R [m] for the contact patch when the law carries none; ignored
         for point loads.
+    corner_cutoff : bool
+        Under the contact patch, raise ``settings.patch_cutoff_ratio`` to
+        :func:`~impactmaps.solvers.modal_settings.patch_cutoff_ratio_for` (a heavy impactor's
+        force reaches far above the contact frequency); ``result.settings`` holds the ratio
+        used. ``False``: the settings' ratio as given (map points, which refine their
+        cut-off themselves).
 
     Returns
     -------
@@ -131,8 +139,11 @@ def simulate(
         radius_of = contact_radius_function(law, effective_radius)
     plan = None
     if isinstance(target, Target):  # the budget of the cut-off the run will use
+        stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
+        if radius_of is not None and corner_cutoff:
+            settings = with_corner_cutoff(settings, target, impactor_mass, stiffness)
         ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
-        contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
+        contact_frequency = np.sqrt(stiffness / impactor_mass)
         plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
         if plan.method == METHODS[2]:
             warnings.warn(plan.message, ModeBudgetWarning, stacklevel=2)
@@ -147,7 +158,7 @@ def simulate(
         result = replace(result, method=METHODS[1])
     if settings.check_convergence:
         fine = simulate(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
-                        effective_radius=effective_radius)
+                        effective_radius=effective_radius, corner_cutoff=False)  # its ratio: twice the one used
         run = functools.partial(_run_at, target, law, params, impactor_mass, velocity, settings, time_step,
                                 radius_of)
         result = _checked(result, fine, settings.tolerance, cap, run)
@@ -200,7 +211,7 @@ def _plan(target: Target, law, impactor_mass: float, velocity: float, wanted: fl
 
 def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float, *,
                  settings: ModalSettings | None = None, record: bool = True,
-                 time_step: float | None = None) -> dict:
+                 time_step: float | None = None, corner_cutoff: bool = True) -> dict:
     """What :func:`simulate` would integrate and what it would cost, without integrating
     (arguments as for :func:`simulate`).
 
@@ -221,8 +232,11 @@ def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float,
     if radius_of is not None:
         radius = radius_of(law.indentation_for_energy(0.5 * impactor_mass * velocity**2))
     if isinstance(target, Target):
+        stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
+        if radius_of is not None and corner_cutoff:
+            settings = with_corner_cutoff(settings, target, impactor_mass, stiffness)
         ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
-        contact_frequency = np.sqrt(reference_contact_stiffness(law, impactor_mass, velocity) / impactor_mass)
+        contact_frequency = np.sqrt(stiffness / impactor_mass)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the run says these; an estimate only counts
             plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency), estimate=True)
@@ -239,7 +253,7 @@ def estimate_run(target, law: ContactLaw, impactor_mass: float, velocity: float,
            "memory_bytes": float(setup.budget.memory_bytes), "seconds": float(setup.budget.seconds), "runs": 1}
     if settings.check_convergence:
         fine = estimate_run(target, law, impactor_mass, velocity, settings=settings.refined(), record=False,
-                            time_step=time_step)
+                            time_step=time_step, corner_cutoff=False)
         out.update(runs=2, memory_bytes=out["memory_bytes"] + fine["memory_bytes"],
                    seconds=out["seconds"] + fine["seconds"])
     return out

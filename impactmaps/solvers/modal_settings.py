@@ -13,7 +13,8 @@ from .._checks import require_choice, require_flag, require_in_range, require_po
 from ..contact.base import ContactLaw
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
-           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS"]
+           "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "CORNER_MULTIPLE",
+           "patch_cutoff_ratio_for", "with_corner_cutoff"]
 
 #: Loads the modal solver can apply: "auto" (the default) — the patch on shear-deformable
 #: targets that support it (Mindlin SSSS plates), the point load elsewhere; "point" — at
@@ -30,6 +31,11 @@ MAX_CUTOFF_RATIO = 1e4
 MAX_MIN_MODES = 100_000
 #: Largest ``max_events``: the kernel allocates the contact-interval table whole (16 B each).
 MAX_EVENTS = 10_000_000
+#: The patch cut-off is never below this many times the contact's corner frequency
+#: ``K/c = 2 ζ_p ω`` (the contact spring against the plate's local impedance ``c = 8 sqrt(ρh D*)``;
+#: :func:`patch_cutoff_ratio_for`; measured in docs/plates_any_edges.rst, "The patch cut-off of
+#: heavy impactors").
+CORNER_MULTIPLE = 2.0
 
 @dataclass(frozen=True)
 class ModalDetails:
@@ -60,7 +66,10 @@ class ModalSettings:
         (0, :data:`MAX_CUTOFF_RATIO`].
     patch_cutoff_ratio : float
         The same for a run under the contact patch (``contact_patch``), whose modal
-        transform suppresses the high modes (convergence: ``docs/contact_patch.rst``).
+        transform suppresses the high modes (convergence: ``docs/contact_patch.rst``);
+        :func:`~impactmaps.solvers.modal.simulate` raises it on a plate struck by a heavy
+        impactor, whose contact force holds frequencies far above ω
+        (:func:`patch_cutoff_ratio_for`).
     min_modes : int
         Integrate at least this many participating modes; in [0, :data:`MAX_MIN_MODES`].
     residual_flexibility : bool
@@ -181,3 +190,30 @@ def uses_patch(target, contact_patch: str) -> bool:
     if contact_patch == "auto":  # where the point load has no converged answer (a Mindlin plate)
         return bool(getattr(target, "point_load_diverges", False))
     return contact_patch == "hertz-peak"
+
+
+def patch_cutoff_ratio_for(settings: ModalSettings, target, impactor_mass: float, contact_stiffness: float) -> float:
+    """The cut-off ratio [-] of a run under the contact patch on ``target``:
+    ``max(patch_cutoff_ratio, CORNER_MULTIPLE · ω_c/ω)`` (at most :data:`MAX_CUTOFF_RATIO`).
+
+    ``ω_c = K/c`` is the corner frequency of the contact stiffness ``contact_stiffness`` K [N/m]
+    against the local impedance ``c = 8 sqrt(ρh D*)`` of a plate, ``ω_c/ω = 2 ζ_p`` with ζ_p the
+    plate loss factor for ``impactor_mass`` [kg] (:meth:`Plate.loss_factor
+    <impactmaps.targets.plates.plate.Plate.loss_factor>`): a heavy impactor (ζ_p ≫ 1) makes a
+    force whose content reaches far above ω, and a cut-off below ω_c leaves it to the static
+    residual (docs/plates_any_edges.rst, "The patch cut-off of heavy impactors"). Targets other
+    than plates (none takes a patch) keep ``patch_cutoff_ratio``. A ratio this returns gives
+    itself again (and so does twice it, the convergence check's).
+    """
+    ratio = float(settings.patch_cutoff_ratio)
+    if getattr(target, "kind", None) != "plate":
+        return ratio
+    corner = 2.0 * float(target.loss_factor(impactor_mass, contact_stiffness))
+    return max(ratio, min(CORNER_MULTIPLE * corner, MAX_CUTOFF_RATIO))
+
+
+def with_corner_cutoff(settings: ModalSettings, target, impactor_mass: float, contact_stiffness: float) -> ModalSettings:
+    """``settings`` with ``patch_cutoff_ratio`` raised to :func:`patch_cutoff_ratio_for` (the same
+    object where the rule does not raise it)."""
+    ratio = patch_cutoff_ratio_for(settings, target, impactor_mass, contact_stiffness)
+    return settings if ratio == settings.patch_cutoff_ratio else replace(settings, patch_cutoff_ratio=ratio)

@@ -313,7 +313,8 @@ def _patch_runner(family: HertzFamily, target, cap: float, point, realised: _Rea
     def run(settings: ModalSettings, zeta_factor: float):
         impact = realised if zeta_factor == 1.0 else family.realise(target, family.moved(point, zeta_factor))
         clipped = replace(settings, patch_cutoff_ratio=min(settings.patch_cutoff_ratio, cap / impact.omega))
-        result = simulate(target, impact.law, impact.mass, impact.velocity, settings=clipped, record=False)
+        result = simulate(target, impact.law, impact.mass, impact.velocity, settings=clipped, record=False,
+                          corner_cutoff=False)  # the point's accuracy control refines its cut-off
         return _HertzScaled(result, impact.numbers)
 
     return run

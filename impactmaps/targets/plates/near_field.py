@@ -21,7 +21,8 @@ its diaphragm supports). ``ρ → 1`` for k h → 0 (the low modes keep their Mi
 participation), ``ρ → 0`` for k h ≫ 1.
 
 Only isotropic plates: the layer kernel of a laminate is not built (their ρ is 1, the Mindlin
-patch model as before).
+patch model as before). :func:`near_field_estimate` estimates what it would remove from a
+laminate's compliance under the patch, and :mod:`impactmaps.validity` warns when that is large.
 """
 
 from __future__ import annotations
@@ -29,12 +30,15 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["isotropic_constants", "layer_excess_compliance", "near_field_factor", "flexural_wavenumber",
-           "residual_change"]
+           "residual_change", "isotropic_factor", "near_field_estimate", "ESTIMATE_POISSON_RATIO"]
 
 #: Relative tolerance of the isotropy test on a plate's stiffnesses.
 _ISOTROPY_RTOL = 1e-9
 #: Below this u = 2t the differences sinh u − u use their Taylor series.
 _SERIES_LIMIT = 0.5
+#: Poisson ratio of the isotropic weight :func:`near_field_estimate` applies to a laminate
+#: (the estimate moves by ±6 % of itself for 0.2–0.4, docs/contact_patch.rst).
+ESTIMATE_POISSON_RATIO = 0.3
 
 
 def _sinh_minus(u):
@@ -92,6 +96,16 @@ def isotropic_constants(plate):
     return E, nu
 
 
+def isotropic_factor(k, thickness, poisson_ratio, shear_correction):
+    """The weight ``ρ(k)`` [-] of an isotropic Mindlin plate of ``thickness`` h [m], Poisson ratio
+    ν and shear correction k_s at wavenumber ``k`` [1/m]: ``(C_layer − C_hs)/(1/(D k⁴) + 1/(k_s G h k²))``
+    (Young's modulus cancels, so ρ depends on k h, ν and k_s only)."""
+    k = np.asarray(k, dtype=float)
+    h, nu = float(thickness), float(poisson_ratio)
+    mindlin = 12.0 * (1.0 - nu**2) / (h**3 * k**4) + 2.0 * (1.0 + nu) / (shear_correction * h * k**2)
+    return layer_excess_compliance(k, h, 1.0, nu) / mindlin
+
+
 def near_field_factor(plate, k):
     """The weight ``ρ(k)`` [-] of a Mindlin half-wave pair of wavenumber ``k`` [1/m] under the
     contact patch: the 3D layer's compliance beyond the half-space over the Mindlin plate's,
@@ -147,3 +161,28 @@ def residual_change(plate, contact_radius: float, wavenumber: float) -> float:
     weighted = navier_patch_residual(*args, mean_square=mean_square_transform,
                                      factor=lambda k: near_field_factor(plate, k))
     return weighted - navier_patch_residual(*args, mean_square=mean_square_transform)
+
+
+def near_field_estimate(plate, contact_radius: float, poisson_ratio: float = ESTIMATE_POISSON_RATIO) -> float:
+    """Estimated compliance [m/N] that a 3D-consistent near field would remove from a Mindlin
+    plate's static compliance under the Hertz patch of ``contact_radius`` [m], for a plate that
+    has none (a laminate): the isotropic weight :func:`isotropic_factor` (``poisson_ratio``, the
+    plate's thickness and shear correction) applied to the plate's own half-wave pairs of its
+    simply supported twin, ``Σ (1 − ρ) C T² (4/(ab)) s_m² s_n²`` (:func:`navier_patch_residual
+    <impactmaps.targets.plates.plate_static.navier_patch_residual>` over every pair: the part
+    removed lies at k h ≳ 1, where the edges do not matter). An estimate: the layer kernel of
+    an anisotropic, layered plate is not built; on an isotropic plate with its own ν it is that
+    plate's near-field correction (SSSS).
+    """
+    from ..patch import hertz_transform, mean_square_transform
+    from .plate_static import navier_patch_residual
+
+    stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66,
+                   plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
+    none = np.zeros(0, dtype=np.int64)
+    args = (plate.length_x, plate.length_y, stiffnesses, plate.impact_point, float(contact_radius), hertz_transform,
+            none, none)
+    whole = navier_patch_residual(*args, mean_square=mean_square_transform)
+    weighted = navier_patch_residual(*args, mean_square=mean_square_transform, factor=lambda k: isotropic_factor(
+        k, plate.thickness, poisson_ratio, plate.shear_correction))
+    return float(whole - weighted)

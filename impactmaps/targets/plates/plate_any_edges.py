@@ -30,7 +30,7 @@ from .plate_general import (
 
 __all__ = ["uses_general_basis", "class_groups", "max_functions", "resolved_frequency", "basis_size", "solution",
            "grown_solution", "resolved_count", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
-           "general_plate_modes", "check_couplings", "laminate_couplings", "mode_table", "MAX_UNKNOWNS", "STATIC_EXTRA_FUNCTIONS"]
+           "general_plate_modes", "symmetry_lines", "check_couplings", "laminate_couplings", "mode_table", "MAX_UNKNOWNS", "STATIC_EXTRA_FUNCTIONS"]
 
 
 def uses_general_basis(plate) -> bool:
@@ -59,24 +59,38 @@ STATIC_EXTRA_FUNCTIONS = 8
 MAX_UNKNOWNS = 3 * MAX_FUNCTIONS**2
 
 
+def symmetry_lines(plate) -> tuple[bool, bool]:
+    """(about x = a/2, about y = b/2): whether the plate is symmetric about each centre line
+    (the same edge on the two sides it separates) and struck on it."""
+    x0, y0 = plate.impact_point
+    on_x = abs(x0 - 0.5 * plate.length_x) <= 1e-12 * plate.length_x
+    on_y = abs(y0 - 0.5 * plate.length_y) <= 1e-12 * plate.length_y
+    return on_x and plate.edges[0] == plate.edges[2], on_y and plate.edges[1] == plate.edges[3]
+
+
 def is_symmetric(plate) -> bool:
     """True when the plate is symmetric about both centre lines (same edge on opposite
     sides) and struck at the centre: its modes split into symmetry classes."""
-    x0, y0 = plate.impact_point
-    centred = (abs(x0 - 0.5 * plate.length_x) <= 1e-12 * plate.length_x
-               and abs(y0 - 0.5 * plate.length_y) <= 1e-12 * plate.length_y)
-    return centred and plate.edges[0] == plate.edges[2] and plate.edges[1] == plate.edges[3]
+    return all(symmetry_lines(plate))
 
 
 def class_groups(plate) -> list:
     """The symmetry classes that do not couple, as groups (all modes = their union); the
-    first holds the modes a centre impact excites. D16, D26 and A45 couple (p, q) with
-    (1 − p, 1 − q) (the plate keeps its symmetry under a half turn only)."""
-    if not is_symmetric(plate):
+    first holds the modes the impact excites. Both centre lines: four classes; D16, D26 and
+    A45 couple (p, q) with (1 − p, 1 − q) (the plate keeps its symmetry under a half turn
+    only). One centre line (e.g. CFFF or SCSF struck on it), without those couplings: the two
+    parities about it, every function across it."""
+    about_x, about_y = symmetry_lines(plate)
+    coupled = plate.D16 != 0.0 or plate.D26 != 0.0 or plate.A45 != 0.0
+    if about_x and about_y:
+        if coupled:
+            return [((0, 0), (1, 1)), ((0, 1), (1, 0))]
+        return [((0, 0),), ((0, 1),), ((1, 0),), ((1, 1),)]
+    if coupled or not (about_x or about_y):
         return [None]
-    if plate.D16 != 0.0 or plate.D26 != 0.0 or plate.A45 != 0.0:
-        return [((0, 0), (1, 1)), ((0, 1), (1, 0))]
-    return [((0, 0),), ((0, 1),), ((1, 0),), ((1, 1),)]
+    if about_y:  # even and odd in y, any function in x
+        return [((0, 0), (1, 0)), ((0, 1), (1, 1))]
+    return [((0, 0), (0, 1)), ((1, 0), (1, 1))]
 
 
 def max_functions(theory: str, classes=None) -> int:
