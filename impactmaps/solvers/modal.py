@@ -43,6 +43,8 @@ from .modal_settings import (
     linear_stiffness,
     settings_dict,
     uses_patch,
+    CORNER_MAX_MODES,
+    corner_ratios,
     with_corner_cutoff,
 )
 from ..contact.geometry import contact_radius_function
@@ -141,6 +143,13 @@ def simulate(
     if isinstance(target, Target):  # the budget of the cut-off the run will use
         stiffness = reference_contact_stiffness(law, impactor_mass, velocity)
         if radius_of is not None and corner_cutoff:
+            used, wanted = corner_ratios(settings, target, impactor_mass, stiffness)
+            if used < wanted:
+                warnings.warn(f"the heavy impactor's contact force reaches {wanted:.3g} × the contact frequency "
+                              f"(twice its corner against the plate's local impedance); the patch cut-off is "
+                              f"raised only to {used:.3g} × (the budget of {CORNER_MAX_MODES} modes): the peak "
+                              f"force may be off by a few per cent (docs/plates_any_edges.rst); set [solver] "
+                              f"patch_cutoff_ratio to go further", ConvergenceWarning, stacklevel=2)
             settings = with_corner_cutoff(settings, target, impactor_mass, stiffness)
         ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
         contact_frequency = np.sqrt(stiffness / impactor_mass)

@@ -14,7 +14,8 @@ from ..contact.base import ContactLaw
 
 __all__ = ["ModalSettings", "ModalDetails", "ConvergenceWarning", "DEFAULT_SETTINGS", "CONTACT_PATCHES",
            "CONTACT_PHASES", "MAX_CUTOFF_RATIO", "MAX_MIN_MODES", "MAX_EVENTS", "CORNER_MULTIPLE",
-           "patch_cutoff_ratio_for", "with_corner_cutoff"]
+           "CORNER_MAX_MODES", "corner_ratios", "patch_cutoff_ratio_for",
+           "with_corner_cutoff"]
 
 #: Loads the modal solver can apply: "auto" (the default) — the patch on shear-deformable
 #: targets that support it (Mindlin SSSS plates), the point load elsewhere; "point" — at
@@ -36,6 +37,13 @@ MAX_EVENTS = 10_000_000
 #: :func:`patch_cutoff_ratio_for`; measured in docs/plates_any_edges.rst, "The patch cut-off of
 #: heavy impactors").
 CORNER_MULTIPLE = 2.0
+#: Most modes (all of the plate's, not only those the impact excites: a centre impact on a
+#: symmetric plate excites about a quarter) the heavy-impactor rule raises a patch cut-off to:
+#: beyond, the cut-off stops on a
+#: fixed ladder below the corner's (ratios ``wanted · 2^(−k/4)``) and the run warns
+#: (:func:`corner_ratios`); a very thin plate under a heavy impactor would otherwise integrate
+#: tens of thousands of modes for minutes.
+CORNER_MAX_MODES = 20_000
 
 @dataclass(frozen=True)
 class ModalDetails:
@@ -205,11 +213,29 @@ def patch_cutoff_ratio_for(settings: ModalSettings, target, impactor_mass: float
     than plates (none takes a patch) keep ``patch_cutoff_ratio``. A ratio this returns gives
     itself again (and so does twice it, the convergence check's).
     """
+    return corner_ratios(settings, target, impactor_mass, contact_stiffness)[0]
+
+
+def corner_ratios(settings: ModalSettings, target, impactor_mass: float, contact_stiffness: float) -> tuple:
+    """(the patch cut-off ratio a run uses, the one the corner asks for) [-]: the second is
+    ``max(patch_cutoff_ratio, CORNER_MULTIPLE · ω_c/ω)`` (at most :data:`MAX_CUTOFF_RATIO`);
+    the first equals it unless ``target`` has more than :data:`CORNER_MAX_MODES` modes below
+    it, then the largest of ``wanted · 2^(−k/4)`` within that count (never below
+    ``patch_cutoff_ratio``)."""
+    import math
+
     ratio = float(settings.patch_cutoff_ratio)
     if getattr(target, "kind", None) != "plate":
-        return ratio
+        return ratio, ratio
     corner = 2.0 * float(target.loss_factor(impactor_mass, contact_stiffness))
-    return max(ratio, min(CORNER_MULTIPLE * corner, MAX_CUTOFF_RATIO))
+    wanted = max(ratio, min(CORNER_MULTIPLE * corner, MAX_CUTOFF_RATIO))
+    omega = math.sqrt(contact_stiffness / impactor_mass)
+    used = wanted
+    for k in range(200):
+        used = wanted * 2.0 ** (-k / 4)
+        if used <= ratio or target.mode_count(used * omega, limit=CORNER_MAX_MODES) <= CORNER_MAX_MODES:
+            break
+    return max(ratio, used), wanted
 
 
 def with_corner_cutoff(settings: ModalSettings, target, impactor_mass: float, contact_stiffness: float) -> ModalSettings:
