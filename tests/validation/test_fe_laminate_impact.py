@@ -56,13 +56,13 @@ def _plate(layup, couplings=True):
     return (p if couplings else dataclasses.replace(p, D16=0.0, D26=0.0)), lam
 
 
-def _first_contact(layup, mass, couplings=True):
+def _first_contact(layup, mass, couplings=True, corner_cutoff=True):
     """(first-contact peak [N], first-contact duration [s], contact intervals) of ``simulate``."""
     plate, lam = _plate(layup, couplings)
     law = impactmaps.law_for_sphere("hertz", impactmaps.Sphere(0.008, STEEL, mass=mass), lam)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")       # the deflection/validity warnings of a 2 mm plate
-        res = impactmaps.simulate(plate, law, mass, _data()["inputs"]["velocity_m_s"])
+        res = impactmaps.simulate(plate, law, mass, _data()["inputs"]["velocity_m_s"], corner_cutoff=corner_cutoff)
     start, end = res.contact_intervals[0]
     h = res.history
     peak = h[(h["time_s"] >= start) & (h["time_s"] <= end)]["force_N"].max()
@@ -142,6 +142,7 @@ def test_d16_d26_quantified(layup, case):
     peak by +1.7 … +2.3 % on the worked example's [45/0/−45/90]2s 125 × 75 mm (D16 = 0.116
     sqrt(D11 D22)), against the shell +1.15 … +4.30 % (with them −1.16 … +2.52 %), and moves it by
     −0.2 … +1.2 % on [0/45/−45/90]2s 150 × 100 mm (0.050; against the shell +0.02 … +1.50 %, with
-    them −0.53 … +1.23 %); the durations by ≤ 0.54 %."""
-    peak, _, _ = _first_contact(layup, case["mass_kg"], couplings=False)
+    them −0.53 … +1.23 %); the durations by ≤ 0.54 %. The committed values were computed at the
+    patch cut-off of their day, 20 ω (before simulate's heavy-impactor rule): they are compared at it."""
+    peak, _, _ = _first_contact(layup, case["mass_kg"], couplings=False, corner_cutoff=False)
     assert peak == pytest.approx(case["toolkit_without_D16_D26"]["first_peak_N"], rel=3e-3)
