@@ -21,23 +21,18 @@ from impactmaps.targets.plates import near_field
 from impactmaps.targets.plates.plate import Plate
 from impactmaps.validity import NEAR_FIELD_SHARE_LIMIT
 
+from ..helpers import case_text
+
 ALUMINIUM = material("aluminium-6061-t6")
 
-_LAMINATE = """name = "cross-ply"
-[impactor]
-radius = 0.00635
-mass = 0.01
-material = "structural-steel"
-velocity = 2.0
-[target]
-type = "plate"
-length_x = 0.15
-length_y = 0.10
-theory = "mindlin"
-edges = "SSSS"
-layup = {{ ply = "as4-3501-6", angles_deg = [0, 90, 0, 90, 0, 90, 0, 90], symmetric = true, ply_thickness = {ply} }}
-[contact]
-law = "hertz"
+#: The [target] lines of a 150 × 100 mm SSSS Mindlin [0/90]4s AS4/3501-6 plate of ply thickness {ply}.
+_LAMINATE_TARGET = """
+    type = "plate"
+    length_x = 0.15
+    length_y = 0.10
+    theory = "mindlin"
+    edges = "SSSS"
+    layup = {{ ply = "as4-3501-6", angles_deg = [0, 90, 0, 90, 0, 90, 0, 90], symmetric = true, ply_thickness = {ply} }}
 """
 
 
@@ -71,7 +66,8 @@ def test_a_laminate_under_the_patch_warns_with_its_estimated_share():
     """A thin cross-ply plate struck by a light ball: the estimated near field is ≈ 20 % of the
     contact's compliance at the peak force, above the limit: one ModelValidityWarning naming the
     share. The isotropic plate of the same size (near field built) and a point load do not."""
-    case = parse_case(_LAMINATE.format(ply=0.000125))
+    case = parse_case(case_text(_LAMINATE_TARGET.format(ply=0.000125), radius=0.00635, mass=0.01, velocity=2.0,
+                                   name="cross-ply"))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = simulate(case.target, case.law, case.impactor_mass, case.velocity, record=False)
