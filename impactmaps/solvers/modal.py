@@ -150,7 +150,8 @@ def simulate(
                               f"raised only to {used:.3g} × (the budget of {CORNER_MAX_MODES} modes): the peak "
                               f"force may be off by a few per cent (docs/plates_any_edges.rst); set [solver] "
                               f"patch_cutoff_ratio to go further", ConvergenceWarning, stacklevel=2)
-            settings = with_corner_cutoff(settings, target, impactor_mass, stiffness)
+            if used != settings.patch_cutoff_ratio:  # with_corner_cutoff's settings, its ratios computed once
+                settings = replace(settings, patch_cutoff_ratio=used)
         ratio = settings.cutoff_ratio if radius_of is None else settings.patch_cutoff_ratio
         contact_frequency = np.sqrt(stiffness / impactor_mass)
         plan = _plan(target, law, impactor_mass, velocity, float(ratio * contact_frequency))
