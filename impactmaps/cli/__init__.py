@@ -24,10 +24,15 @@ import os
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
+from . import _signals
+
+# Ctrl-C and SIGTERM end the program with status 130 and one line from here on, also during the
+# imports below (NumPy, the commands: about half a second), before main() takes them over
+if _signals.started_as_program():
+    _signals.install_early_handlers()
+
 import argparse
-import contextlib
 import importlib
-import signal
 import sys
 import warnings
 from collections.abc import Sequence
@@ -37,7 +42,6 @@ from ..jsonio import dumps
 from ._common import (
     EXIT_BAD_INPUT,
     EXIT_FAILED,
-    EXIT_INTERRUPTED,
     EXIT_OK,
     Parser,
     UsageError,
@@ -55,6 +59,7 @@ from .commands_cases import (
     cmd_simulate,
 )
 from .commands_modes import cmd_modes
+from ._signals import EXIT_INTERRUPTED
 from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
 from .plot import cmd_plot
 from .commands_maps import (
@@ -329,29 +334,20 @@ def main(argv=None) -> int:
     does: the rest of the output is dropped quietly), 2 on bad input (one line on
     stderr; with ``--json`` also ``{"error": …}`` on stdout), 1 when a computation fails
     on input the checks let through (one line: a range check is missing — please report
-    it), 130 when interrupted (Ctrl-C).
+    it), 130 when interrupted (Ctrl-C or SIGTERM, at any moment: :mod:`._signals`).
     """
+    _signals.note_output(False)
     try:
-        status = _main(argv)
+        with _signals.signals_as_interrupts():
+            status = _main(argv)
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_OK
+    except KeyboardInterrupt:  # outside a command's own handling: reading the options, after the output
+        status = _signals.say_interrupted(sys.argv[1:] if argv is None else [str(a) for a in argv])
     if status == EXIT_INTERRUPTED and argv is None:  # the program itself, not a call from Python
-        _exit_now(status)
+        _signals.exit_now(status)
     return status
-
-
-def _exit_now(status: int) -> None:
-    """End the interrupted program at once: run the exit handlers and flush the output, but skip
-    the interpreter's teardown of numba, pandas and xarray (about a second on a busy machine),
-    so that a signal ends every command within a second."""
-    import atexit
-
-    atexit._run_exitfuncs()
-    for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(Exception):
-            stream.flush()
-    os._exit(status)
 
 
 def _silence_stdout() -> None:
@@ -422,24 +418,6 @@ def _interrupted(args, text: str) -> int:
     return EXIT_INTERRUPTED
 
 
-@contextlib.contextmanager
-def _terminate_as_interrupt():
-    """SIGTERM (``kill``) ends a command as Ctrl-C does: a sweep saves what is done and stops its
-    workers instead of leaving them behind, its lock removed."""
-    def interrupt(*_):
-        raise KeyboardInterrupt
-
-    try:
-        previous = signal.signal(signal.SIGTERM, interrupt)
-    except ValueError:  # not the main thread: leave SIGTERM alone
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def _run(args) -> int:
     """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught, shown = [], set()
@@ -449,7 +427,7 @@ def _run(args) -> int:
 
     status = None
     try:
-        with warnings.catch_warnings(), _terminate_as_interrupt():
+        with warnings.catch_warnings():
             warnings.simplefilter("always")
             warnings.showwarning = collect
             values = args.handler(args)
@@ -481,4 +459,5 @@ def _run(args) -> int:
         print(f"impactmaps {args.command}: error: {message}", file=sys.stderr)
         return status
     emit(values, args.json)
+    _signals.note_output()
     return EXIT_OK
