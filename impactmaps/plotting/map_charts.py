@@ -268,12 +268,13 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     ax = axes_or_new(ax)
     structures, lambda_values = _selection(dataset, structures, lambdas)
     rows, labels = [], []
-    for name in structures:
-        kind = str(dataset["kind"].sel(structure=name).item())
+    kinds = [str(dataset["kind"].sel(structure=name).item()) for name in structures]
+    for name, kind in zip(structures, kinds):
+        shown = name if kinds.count(kind) > 1 else kind  # several of a kind: each by its name
         for lam in lambda_values:
             regimes = dataset["regime"].sel(structure=name).sel(lambda_=lam, method="nearest").values
             rows.append(_regime_codes(regimes))
-            labels.append(f"{kind} λ={lam:g}")
+            labels.append(f"{shown} λ={lam:g}")
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     ax.pcolormesh(dataset["zeta"].values, np.arange(len(rows)), np.array(rows), cmap=cmap, vmin=-0.5,
                   vmax=len(REGIMES) - 0.5, shading="nearest")
@@ -319,7 +320,8 @@ def structure_label(dataset, structure) -> str:
 def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     """Regimes of the structure named ``structure`` on the (ζ, λ) plane (log axes), from a
     sweep result with a ``regime`` variable; ``smooth``: classify on a dense grid
-    interpolated as a lookup does (when every point is computed), else one block per point.
+    interpolated as a lookup does (when every point is computed and resolved), else one block per
+    point (an ``unresolved`` point, whose F̄max is NaN, blank).
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -328,7 +330,8 @@ def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
     one = dataset.sel(structure=structure)
-    complete = bool(one["done"].values.all()) if "done" in one else False
+    complete = bool(one["done"].values.all() and np.isfinite(one["fmax_normalised"].values).all()) \
+        if "done" in one else False
     if smooth and complete and len(zeta) > 1 and len(lam) > 1:
         dense = [_log_dense(zeta, lam, one[name].values)
                  for name in ("fmax_normalised", "peak_time_normalised", "reflection_time_normalised")]
