@@ -101,7 +101,8 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     several = len(set(kinds.values())) < len(kinds)
     if several:  # several structures of a kind (laminates, edges): each named by its line
         for name in structures:
-            ax.plot([], [], color="k", ls=styles[name], lw=1.6, label=structure_label(dataset, name))
+            label = structure_label(dataset, name)  # its details on a second line: the legend stays narrow
+            ax.plot([], [], color="k", ls=styles[name], lw=1.6, label=label.replace(" (", "\n(", 1))
     for kind, style in (("plate", "-"), ("beam", "--")):
         if kind in kinds.values() and not several:
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
@@ -269,8 +270,9 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     structures, lambda_values = _selection(dataset, structures, lambdas)
     rows, labels = [], []
     kinds = [str(dataset["kind"].sel(structure=name).item()) for name in structures]
+    short = _short_names(dataset, structures)
     for name, kind in zip(structures, kinds):
-        shown = name if kinds.count(kind) > 1 else kind  # several of a kind: each by its name
+        shown = short[name] if kinds.count(kind) > 1 else kind  # several of a kind: each named
         for lam in lambda_values:
             regimes = dataset["regime"].sel(structure=name).sel(lambda_=lam, method="nearest").values
             rows.append(_regime_codes(regimes))
@@ -286,6 +288,20 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=7, ncol=4,
               loc="upper center", bbox_to_anchor=(0.5, -0.22), frameon=False)
     return ax
+
+
+def _short_names(dataset, structures) -> dict:
+    """Structure name → a short row label (``CCCC mindlin laminate``), or the names themselves
+    where the short labels of two structures would be the same."""
+    short = {}
+    for name in structures:
+        one = dataset.sel(structure=name)
+        try:
+            words = [str(one["supports"].item()), str(one["theory"].item())]
+        except (KeyError, ValueError):
+            return {name: str(name) for name in structures}
+        short[name] = " ".join(words + (["laminate"] if "-lam" in str(name) else []))
+    return short if len(set(short.values())) == len(short) else {name: str(name) for name in structures}
 
 
 _SUPPORTS = {"ss": "simply supported", "cc": "clamped–clamped", "cs": "clamped–simply supported",
