@@ -162,35 +162,7 @@ def build_parser() -> argparse.ArgumentParser:
         p.set_defaults(handler=handler)
         return p
 
-    p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
-    p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
-    p.add_argument("--zeta-range", nargs=2, type=float, default=_ZETA_RANGE, metavar=("A", "B"))
-    p.add_argument("--zeta-count", type=int, default=None,
-                   help="log-spaced ζ values per curve (≥ 2; default 200, with --case or --target 20)")
-    p.add_argument("--lambdas", nargs="+", type=float, default=None,
-                   help="λ values (default 0.05 … 20, 8 values; with --case or --target 0.05 0.2 1 5)")
-    p.add_argument("--case", type=Path, default=None, metavar="CASE.toml",
-                   help="also draw the curves of this case's structure (its target: a beam or plate of any "
-                   "supports or edges, theory, aspect ratio, impact point, or a laminate), computed by a resumable "
-                   "sweep beside the simply supported structure of its kind")
-    p.add_argument("--target", default=None, metavar="KIND-SUPPORTS",
-                   help="also draw the curves of this structure, e.g. plate-cccc, plate-cfcf, beam-cc (with "
-                   "--theory, --aspect, --slenderness, --position, --position-y)")
-    p.add_argument("--theory", default=None, help="of --target: euler|rayleigh|timoshenko or kirchhoff|mindlin")
-    p.add_argument("--aspect", type=float, default=None, help="of a plate --target: b/a (default 1)")
-    p.add_argument("--slenderness", type=float, default=None, help="of --target: span/thickness (default 20)")
-    p.add_argument("--position", type=float, default=None, help="of --target: impact point x0/L or x0/a (default 0.5)")
-    p.add_argument("--position-y", type=float, default=None, help="of a plate --target: y0/b (default 0.5)")
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
-    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-    _deferred_choices(p.add_argument(
-        "--law", default="linear",
-        help="map law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
-        "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
-        "from the shipped maps); default linear"), _MAP_LAWS)
-    p.add_argument("--betas", nargs="+", type=float, default=None,
-                   help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
+    _chart_parser(add)
 
     p = add("point", "simulate one (ζ, λ) point on a beam or plate", cmd_point)
     _point_arguments(p)
@@ -275,6 +247,40 @@ def build_parser() -> argparse.ArgumentParser:
     _plot_parser(add)
     _tool_parsers(add)
     return parser
+
+
+def _chart_parser(add) -> None:
+    """The ``chart`` subcommand: the shipped chart, or another structure's beside it."""
+    p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table; with --case or "
+            "--target another beam or plate beside it", cmd_chart)
+    p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
+    p.add_argument("--zeta-range", nargs=2, type=float, default=_ZETA_RANGE, metavar=("A", "B"))
+    p.add_argument("--zeta-count", type=int, default=None,
+                   help="log-spaced ζ values per curve (≥ 2; default 200, with --case or --target 20)")
+    p.add_argument("--lambdas", nargs="+", type=float, default=None,
+                   help="λ values (default 0.05 … 20, 8 values; with --case or --target 0.05 0.2 1 5)")
+    p.add_argument("--case", type=Path, default=None, metavar="CASE.toml",
+                   help="also draw the curves of this case's structure (its target: a beam or plate of any "
+                   "supports or edges, theory, aspect ratio, impact point, or a laminate), computed by a resumable "
+                   "sweep beside the simply supported structure of its kind")
+    p.add_argument("--target", default=None, metavar="KIND-SUPPORTS",
+                   help="also draw the curves of this structure, e.g. plate-cccc, plate-cfcf, beam-cc (with "
+                   "--theory, --aspect, --slenderness, --position, --position-y)")
+    p.add_argument("--theory", default=None, help="of --target: euler|rayleigh|timoshenko or kirchhoff|mindlin")
+    p.add_argument("--aspect", type=float, default=None, help="of a plate --target: b/a (default 1)")
+    p.add_argument("--slenderness", type=float, default=None, help="of --target: span/thickness (default 20)")
+    p.add_argument("--position", type=float, default=None, help="of --target: impact point x0/L or x0/a (default 0.5)")
+    p.add_argument("--position-y", type=float, default=None, help="of a plate --target: y0/b (default 0.5)")
+    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
+    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    _deferred_choices(p.add_argument(
+        "--law", default="linear",
+        help="map law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
+        "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
+        "from the shipped maps); default linear"), _MAP_LAWS)
+    p.add_argument("--betas", nargs="+", type=float, default=None,
+                   help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
 
 
 def _plot_parser(add) -> None:

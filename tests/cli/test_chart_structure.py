@@ -120,3 +120,14 @@ def test_a_half_space_case_has_no_chart(tmp_path, capsys):
     status = main(["chart", "--case", str(case), "--out", str(tmp_path / "out")])
     err = capsys.readouterr().err.strip().splitlines()
     assert status == 2 and len(err) == 1 and "beam or a plate" in err[0]
+
+
+def test_the_cost_said_first_counts_a_ritz_basis_and_its_points():
+    """The estimate before a sweep: a Ritz plate's points at 0.2 CPU-s and its basis once (30
+    CPU-s), a beam's or a Navier plate's at the plane's 2.9 ms; nothing for a structure done."""
+    from impactmaps.solvers.run_budget import (RITZ_BASIS_SECONDS, SECONDS_PER_MAP_POINT,
+                                               SECONDS_PER_RITZ_MAP_POINT, map_sweep_seconds)
+
+    assert map_sweep_seconds([80, 80], [False, True]) == pytest.approx(
+        80 * SECONDS_PER_MAP_POINT + 80 * SECONDS_PER_RITZ_MAP_POINT + RITZ_BASIS_SECONDS)
+    assert map_sweep_seconds([80, 0], [False, True]) == pytest.approx(80 * SECONDS_PER_MAP_POINT)

@@ -22,10 +22,10 @@ import xarray as xr
 
 from ..._checks import range_end_text, require_in_range, require_positive
 from ...solvers.modal_settings import ModalSettings
-from ...solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
+from ...solvers.run_budget import (MEMORY_LIMIT_BYTES, SECONDS_PER_MAP_POINT, RunBudget, map_sweep_seconds,
+                                   refuse_or_announce)
 from ...targets.options import point_load_diverges
 from ..family.map_family import ASYMPTOTE_PEAKS
-from .cost import SECONDS_PER_POINT, sweep_seconds
 from .dataset import classify_dataset, empty_dataset, with_asymptote_peaks
 from ..family.map_family import RESULT_VARIABLES, MapFamily
 from .points import (
@@ -168,8 +168,9 @@ def _run_grid(grid: SweepGrid, path, executor, max_workers, progress, pacing, ov
     missing_per_row = done.shape[-1] - np.count_nonzero(done, axis=-1)
     remaining = int(missing_per_row.sum())
     n_tasks = int(np.ceil(missing_per_row / chunk_size).sum())
-    _announce(remaining, executor, max_workers, progress=progress,
-              seconds=sweep_seconds(grid.structures, missing_per_row.reshape(len(grid.structures), -1).sum(axis=1)))
+    ritz = [s.kind == "plate" and not s.build().uses_navier for s in grid.structures]  # Ritz bases cost more
+    _announce(remaining, executor, max_workers, progress=progress, seconds=map_sweep_seconds(
+        missing_per_row.reshape(len(grid.structures), -1).sum(axis=1), ritz))
     results = _Results(dataset, path, pacing.save_interval, remaining, progress, grid.family.variables)
     # the tasks are made as they are submitted: a list of them took ~165 B a point (1.5 GB for 9·10⁶)
     stopped = _run(_chunks(grid, done, chunk_size), n_tasks, settings, executor, max_workers, results, grid.family)
@@ -180,10 +181,10 @@ def _announce(points: int, executor: Executor | None, max_workers: int | None, s
               progress: bool = False) -> None:
     """Say (``progress``: one line on stderr) and announce (:class:`~impactmaps.solvers.run_budget.LongRunWarning`,
     above a minute) the cost of the ``points`` to compute, ``seconds`` of CPU (default at the linear
-    plane's mean, :data:`~.cost.SECONDS_PER_POINT`), before the sweep starts."""
+    plane's mean, :data:`~impactmaps.solvers.run_budget.SECONDS_PER_MAP_POINT`), before the sweep starts."""
     workers = (getattr(executor, "_max_workers", None) or 1) if executor is not None else \
         (max_workers or os.cpu_count() or 1)
-    seconds = points * SECONDS_PER_POINT if seconds is None else seconds
+    seconds = points * SECONDS_PER_MAP_POINT if seconds is None else seconds
     if progress and points:
         print(f"impact map: {points} points to compute on {workers} worker(s), about {seconds / workers:.0f} s "
               f"({seconds:.0f} CPU-s)", file=sys.stderr)
