@@ -24,10 +24,15 @@ import os
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
+from . import _signals
+
+# Ctrl-C and SIGTERM end the program with status 130 and one line from here on, also during the
+# imports below (NumPy, the commands: about half a second), before main() takes them over
+if _signals.started_as_program():
+    _signals.install_early_handlers()
+
 import argparse
-import contextlib
 import importlib
-import signal
 import sys
 import warnings
 from collections.abc import Sequence
@@ -37,7 +42,6 @@ from ..jsonio import dumps
 from ._common import (
     EXIT_BAD_INPUT,
     EXIT_FAILED,
-    EXIT_INTERRUPTED,
     EXIT_OK,
     Parser,
     UsageError,
@@ -55,6 +59,7 @@ from .commands_cases import (
     cmd_simulate,
 )
 from .commands_modes import cmd_modes
+from ._signals import EXIT_INTERRUPTED
 from .commands_tools import CASE_TEMPLATES, cmd_check, cmd_init, cmd_warm_up
 from .plot import cmd_plot
 from .commands_maps import (
@@ -157,21 +162,7 @@ def build_parser() -> argparse.ArgumentParser:
         p.set_defaults(handler=handler)
         return p
 
-    p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table", cmd_chart)
-    p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
-    p.add_argument("--zeta-range", nargs=2, type=float, default=_ZETA_RANGE, metavar=("A", "B"))
-    p.add_argument("--zeta-count", type=int, default=200, help="log-spaced ζ values per curve (≥ 2, default 200)")
-    p.add_argument("--lambdas", nargs="+", type=float, default=None, help="λ values (default 0.05 … 20, 8 values)")
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
-    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-    _deferred_choices(p.add_argument(
-        "--law", default="linear",
-        help="map law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
-        "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
-        "from the shipped maps); default linear"), _MAP_LAWS)
-    p.add_argument("--betas", nargs="+", type=float, default=None,
-                   help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
+    _chart_parser(add)
 
     p = add("point", "simulate one (ζ, λ) point on a beam or plate", cmd_point)
     _point_arguments(p)
@@ -258,6 +249,40 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _chart_parser(add) -> None:
+    """The ``chart`` subcommand: the shipped chart, or another structure's beside it."""
+    p = add("chart", "the normalised max-force chart (Figure 2), its data and lookup table; with --case or "
+            "--target another beam or plate beside it", cmd_chart)
+    p.add_argument("--out", default="impactmaps-output", help="output directory (default ./impactmaps-output)")
+    p.add_argument("--zeta-range", nargs=2, type=float, default=_ZETA_RANGE, metavar=("A", "B"))
+    p.add_argument("--zeta-count", type=int, default=None,
+                   help="log-spaced ζ values per curve (≥ 2; default 200, with --case or --target 20)")
+    p.add_argument("--lambdas", nargs="+", type=float, default=None,
+                   help="λ values (default 0.05 … 20, 8 values; with --case or --target 0.05 0.2 1 5)")
+    p.add_argument("--case", type=Path, default=None, metavar="CASE.toml",
+                   help="also draw the curves of this case's structure (its target: a beam or plate of any "
+                   "supports or edges, theory, aspect ratio, impact point, or a laminate), computed by a resumable "
+                   "sweep beside the simply supported structure of its kind")
+    p.add_argument("--target", default=None, metavar="KIND-SUPPORTS",
+                   help="also draw the curves of this structure, e.g. plate-cccc, plate-cfcf, beam-cc (with "
+                   "--theory, --aspect, --slenderness, --position, --position-y)")
+    p.add_argument("--theory", default=None, help="of --target: euler|rayleigh|timoshenko or kirchhoff|mindlin")
+    p.add_argument("--aspect", type=float, default=None, help="of a plate --target: b/a (default 1)")
+    p.add_argument("--slenderness", type=float, default=None, help="of --target: span/thickness (default 20)")
+    p.add_argument("--position", type=float, default=None, help="of --target: impact point x0/L or x0/a (default 0.5)")
+    p.add_argument("--position-y", type=float, default=None, help="of a plate --target: y0/b (default 0.5)")
+    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all cores)")
+    p.add_argument("--overwrite", action="store_true", help="replace an fmax_map.nc made with another grid or law")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    _deferred_choices(p.add_argument(
+        "--law", default="linear",
+        help="map law: linear (axes ζ, λ, F/(m V0 ω)), hertz (axes ζ_h, λ_h, F/F_hs), or the "
+        "elastic-plastic yc / stronge / epp (F̄max, restitution and absorbed energy against ζ at several β, "
+        "from the shipped maps); default linear"), _MAP_LAWS)
+    p.add_argument("--betas", nargs="+", type=float, default=None,
+                   help="impact numbers β of an elastic-plastic chart (default 1 10 100 1000)")
+
+
 def _plot_parser(add) -> None:
     """The ``plot`` subcommand: a user's study or sweep drawn."""
     p = add("plot", "draw a parameter study (simulate --vary) or a sweep or chart result", cmd_plot)
@@ -329,29 +354,20 @@ def main(argv=None) -> int:
     does: the rest of the output is dropped quietly), 2 on bad input (one line on
     stderr; with ``--json`` also ``{"error": …}`` on stdout), 1 when a computation fails
     on input the checks let through (one line: a range check is missing — please report
-    it), 130 when interrupted (Ctrl-C).
+    it), 130 when interrupted (Ctrl-C or SIGTERM, at any moment: :mod:`._signals`).
     """
+    _signals.note_output(False)
     try:
-        status = _main(argv)
+        with _signals.signals_as_interrupts():
+            status = _main(argv)
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_OK
+    except KeyboardInterrupt:  # outside a command's own handling: reading the options, after the output
+        status = _signals.say_interrupted(sys.argv[1:] if argv is None else [str(a) for a in argv])
     if status == EXIT_INTERRUPTED and argv is None:  # the program itself, not a call from Python
-        _exit_now(status)
+        _signals.exit_now(status)
     return status
-
-
-def _exit_now(status: int) -> None:
-    """End the interrupted program at once: run the exit handlers and flush the output, but skip
-    the interpreter's teardown of numba, pandas and xarray (about a second on a busy machine),
-    so that a signal ends every command within a second."""
-    import atexit
-
-    atexit._run_exitfuncs()
-    for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(Exception):
-            stream.flush()
-    os._exit(status)
 
 
 def _silence_stdout() -> None:
@@ -422,24 +438,6 @@ def _interrupted(args, text: str) -> int:
     return EXIT_INTERRUPTED
 
 
-@contextlib.contextmanager
-def _terminate_as_interrupt():
-    """SIGTERM (``kill``) ends a command as Ctrl-C does: a sweep saves what is done and stops its
-    workers instead of leaving them behind, its lock removed."""
-    def interrupt(*_):
-        raise KeyboardInterrupt
-
-    try:
-        previous = signal.signal(signal.SIGTERM, interrupt)
-    except ValueError:  # not the main thread: leave SIGTERM alone
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def _run(args) -> int:
     """Run the parsed command: print its output, or one line for an error; its exit status."""
     caught, shown = [], set()
@@ -449,7 +447,7 @@ def _run(args) -> int:
 
     status = None
     try:
-        with warnings.catch_warnings(), _terminate_as_interrupt():
+        with warnings.catch_warnings():
             warnings.simplefilter("always")
             warnings.showwarning = collect
             values = args.handler(args)
@@ -481,4 +479,5 @@ def _run(args) -> int:
         print(f"impactmaps {args.command}: error: {message}", file=sys.stderr)
         return status
     emit(values, args.json)
+    _signals.note_output()
     return EXIT_OK

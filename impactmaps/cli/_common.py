@@ -18,8 +18,7 @@ EXIT_OK = 0
 EXIT_FAILED = 1
 #: Exit status of bad input (a command line argparse refuses, or a ``ValueError``).
 EXIT_BAD_INPUT = 2
-#: Exit status after Ctrl-C (128 + SIGINT, as a shell reports it).
-EXIT_INTERRUPTED = 130
+# (130 after Ctrl-C or SIGTERM: EXIT_INTERRUPTED, with the signal handlers in ._signals)
 
 
 # -- output --------------------------------------------------------------------------------

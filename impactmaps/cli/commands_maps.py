@@ -30,30 +30,44 @@ SIMULATED_RANGE = MapFamily.axis_ranges["lambda_"]
 
 
 def cmd_chart(args) -> dict:
-    from ..plotting.chart import check_chart_grid, make_chart
+    from ..plotting.chart import (DEFAULT_STRUCTURE_LAMBDAS, DEFAULT_STRUCTURE_ZETA_COUNT, DEFAULT_ZETA_COUNT,
+                                  chart_structures, check_chart_grid, make_chart)
     from ..maps.family.builtin_families import PLASTIC_LAWS, family_layout
     from ..maps.files.store_lock import store_lock
+    from .chart_structure import STRUCTURE_OPTIONS, chart_structure
 
     if args.law in PLASTIC_LAWS:
+        refuse(args, {"--case": "case", "--target": "target", **STRUCTURE_OPTIONS},
+               "with an elastic-plastic --law (its chart is drawn from the shipped maps of the simply supported "
+               "structures)")
         return _plastic_chart(args)
     refuse(args, {"--betas": "betas"}, f"with --law {args.law} (β is a number of the elastic-plastic laws "
            f"{', '.join(PLASTIC_LAWS)})")
+    structure = chart_structure(args)  # None: the shipped chart
+    structures = chart_structures(structure)
+    zeta_count = args.zeta_count if args.zeta_count is not None else \
+        (DEFAULT_ZETA_COUNT if structure is None else DEFAULT_STRUCTURE_ZETA_COUNT)
+    lambdas = args.lambdas if args.lambdas is not None or structure is None else list(DEFAULT_STRUCTURE_LAMBDAS)
     family = family_layout(args.law)
-    if args.lambdas is not None and family.chart_lambda_min > 0.0:
-        for value in args.lambdas:
+    if lambdas is not None and family.chart_lambda_min > 0.0:
+        for value in lambdas:
             check("--lambdas", value, family.chart_lambda_min, what=f"each {family.labels['lambda_name']}",
                   low_inclusive=True)
     check("--zeta-range", args.zeta_range[1], high=family.chart_zeta_max,
           what=f"the largest {family.labels['zeta_name']}", high_inclusive=True)
     check("--workers", args.workers, 1, MAX_WORKERS, "the number of worker processes",
           low_inclusive=True, high_inclusive=True)
-    check_chart_grid(args.zeta_range, args.zeta_count, args.lambdas, args.law)
+    check_chart_grid(args.zeta_range, zeta_count, lambdas, args.law, len(structures))
     out = out_dir("--out", args.out)
     with store_lock(out / "fmax_map.nc", "--out"):
-        paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=args.zeta_count,
-                           lambdas=args.lambdas, progress=not args.quiet, max_workers=args.workers,
-                           overwrite=args.overwrite, law=args.law)
-    return {key: str(value) for key, value in paths.items()}
+        paths = make_chart(out_dir=out, zeta_range=tuple(args.zeta_range), zeta_count=zeta_count,
+                           lambdas=lambdas, structures=structures, progress=not args.quiet,
+                           max_workers=args.workers, overwrite=args.overwrite, law=args.law)
+    values = {key: str(value) for key, value in paths.items()}
+    if structure is not None:
+        values |= {"structures": [s.name for s in structures], "structure": structure.name,
+                   "reference": structures[0].name}
+    return values
 
 
 def _plastic_chart(args) -> dict:

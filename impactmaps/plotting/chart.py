@@ -23,7 +23,8 @@ from ..maps.family.structures import MapStructure
 from ..maps.compute.sweep import log_grid, require_map_fits, sweep
 
 __all__ = ["CHART_STRUCTURES", "DEFAULT_CHART_LAMBDAS", "DEFAULT_ZETA_RANGE", "DEFAULT_ZETA_COUNT", "DEFAULT_PLASTIC_BETAS",
-           "DEFAULT_PLASTIC_LAMBDA", "check_chart_grid", "make_chart", "make_plastic_chart"]
+           "DEFAULT_PLASTIC_LAMBDA", "DEFAULT_STRUCTURE_ZETA_COUNT", "DEFAULT_STRUCTURE_LAMBDAS", "chart_structures",
+           "check_chart_grid", "make_chart", "make_plastic_chart"]
 
 CHART_STRUCTURES = (
     MapStructure(kind="beam", theory="euler", supports="ss", impact_fraction=(0.5,)),
@@ -35,6 +36,23 @@ DEFAULT_ZETA_RANGE = (0.005, 100.0)
 #: ζ points per curve of the default chart: enough that the re-impact peaks of F̄max(ζ)
 #: are resolved, not jagged (issue 12).
 DEFAULT_ZETA_COUNT = 200
+#: ζ points per curve of the chart of another structure (``chart --case``/``--target``): 20 ζ × 4 λ
+#: of a clamped plate or the drop-weight laminate took 14–25 CPU-s with its Ritz basis built, 18–46 s
+#: of wall time on 2 loaded cores (docs/chart.rst).
+DEFAULT_STRUCTURE_ZETA_COUNT = 20
+#: λ of the chart of another structure: four of the shipped chart's, so its reference curves are
+#: the shipped ones.
+DEFAULT_STRUCTURE_LAMBDAS = (0.05, 0.2, 1.0, 5.0)
+
+
+def chart_structures(structure: MapStructure | None = None) -> tuple:
+    """The structures of a chart: the shipped ones (:data:`CHART_STRUCTURES`) for None, else the
+    shipped simply supported structure of ``structure``'s kind (the reference its curves are drawn
+    beside) and ``structure`` (alone when it is that one)."""
+    if structure is None:
+        return CHART_STRUCTURES
+    reference = next(s for s in CHART_STRUCTURES if s.kind == structure.kind)
+    return (reference,) if structure == reference else (reference, structure)
 
 
 def check_chart_grid(zeta_range, zeta_count, lambdas, law: str = "linear",
@@ -73,7 +91,8 @@ def make_chart(
     overwrite: bool = False,
     law: str = "linear",
 ) -> dict:
-    """Compute and draw the F̄max(ζ, λ) chart for SS beams and square plates.
+    """Compute and draw the F̄max(ζ, λ) chart of ``structures`` (default the SS beam and square
+    plate; :func:`chart_structures` for another structure beside its simply supported reference).
 
     Writes into ``out_dir``: ``fmax_map.nc`` (the resumable sweep result), ``fmax_map.csv``,
     ``fmax_chart.png`` and ``.svg``, ``regime_map_<structure>.png`` and ``lookup_table.md``;
@@ -89,6 +108,7 @@ def make_chart(
     lambdas : sequence of float, optional
         Relative stiffnesses λ (default :data:`DEFAULT_CHART_LAMBDAS`).
     structures : sequence of MapStructure
+        The structures swept and drawn (several of a kind: each its line style, named in the legend).
     settings : ModalSettings, optional
     progress : bool
     max_workers : int, optional
@@ -146,11 +166,16 @@ def make_chart(
         _save_png(figure, paths[f"regime_map_{name}"], dpi=120)
         plt.close(figure)
 
-    coarse_zetas = [z for z in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100) if zetas[0] <= z <= zetas[-1]]
+    coarse = [z for z in (0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100) if zetas[0] <= z <= zetas[-1]]
+    # each column once: the nearest grid ζ of a coarse grid may be that of two coarse values
+    coarse_zetas = sorted({float(zetas[np.argmin(np.abs(np.log(zetas / z)))]) for z in coarse})
     tables = [markdown_table(dataset, str(name), zetas=coarse_zetas) for name in dataset["structure"].values]
+    heading = family.labels["table"]
+    if any(structure not in CHART_STRUCTURES for structure in structures):  # not only the shipped ones
+        heading = heading.replace("impact at the centre, simply supported", "each structure as its name says")
     paths["markdown"] = out / "lookup_table.md"
     with written_atomically(paths["markdown"]) as part:
-        part.write_text(family.labels["table"] + "\n\n".join(tables) + "\n")
+        part.write_text(heading + "\n\n".join(tables) + "\n")
     return paths
 
 

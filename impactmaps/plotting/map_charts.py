@@ -101,7 +101,8 @@ def plot_fmax_chart(dataset, *, structures=None, lambdas=None, asymptotes=True, 
     several = len(set(kinds.values())) < len(kinds)
     if several:  # several structures of a kind (laminates, edges): each named by its line
         for name in structures:
-            ax.plot([], [], color="k", ls=styles[name], lw=1.6, label=structure_label(dataset, name))
+            label = structure_label(dataset, name)  # its details on a second line: the legend stays narrow
+            ax.plot([], [], color="k", ls=styles[name], lw=1.6, label=label.replace(" (", "\n(", 1))
     for kind, style in (("plate", "-"), ("beam", "--")):
         if kind in kinds.values() and not several:
             ax.plot([], [], color="k", ls=style, lw=1.6, label=f"{kind}s")
@@ -268,12 +269,14 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     ax = axes_or_new(ax)
     structures, lambda_values = _selection(dataset, structures, lambdas)
     rows, labels = [], []
-    for name in structures:
-        kind = str(dataset["kind"].sel(structure=name).item())
+    kinds = [str(dataset["kind"].sel(structure=name).item()) for name in structures]
+    short = _short_names(dataset, structures)
+    for name, kind in zip(structures, kinds):
+        shown = short[name] if kinds.count(kind) > 1 else kind  # several of a kind: each named
         for lam in lambda_values:
             regimes = dataset["regime"].sel(structure=name).sel(lambda_=lam, method="nearest").values
             rows.append(_regime_codes(regimes))
-            labels.append(f"{kind} λ={lam:g}")
+            labels.append(f"{shown} λ={lam:g}")
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     ax.pcolormesh(dataset["zeta"].values, np.arange(len(rows)), np.array(rows), cmap=cmap, vmin=-0.5,
                   vmax=len(REGIMES) - 0.5, shading="nearest")
@@ -285,6 +288,20 @@ def plot_regime_strip(dataset, *, structures=None, lambdas=None, ax=None):
     ax.legend(handles=[Patch(color=REGIME_COLOURS[n], label=n) for n in REGIMES], fontsize=7, ncol=4,
               loc="upper center", bbox_to_anchor=(0.5, -0.22), frameon=False)
     return ax
+
+
+def _short_names(dataset, structures) -> dict:
+    """Structure name → a short row label (``CCCC mindlin laminate``), or the names themselves
+    where the short labels of two structures would be the same."""
+    short = {}
+    for name in structures:
+        one = dataset.sel(structure=name)
+        try:
+            words = [str(one["supports"].item()), str(one["theory"].item())]
+        except (KeyError, ValueError):
+            return {name: str(name) for name in structures}
+        short[name] = " ".join(words + (["laminate"] if "-lam" in str(name) else []))
+    return short if len(set(short.values())) == len(short) else {name: str(name) for name in structures}
 
 
 _SUPPORTS = {"ss": "simply supported", "cc": "clamped–clamped", "cs": "clamped–simply supported",
@@ -319,7 +336,8 @@ def structure_label(dataset, structure) -> str:
 def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     """Regimes of the structure named ``structure`` on the (ζ, λ) plane (log axes), from a
     sweep result with a ``regime`` variable; ``smooth``: classify on a dense grid
-    interpolated as a lookup does (when every point is computed), else one block per point.
+    interpolated as a lookup does (when every point is computed and resolved), else one block per
+    point (an ``unresolved`` point, whose F̄max is NaN, blank).
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -328,7 +346,8 @@ def plot_regime_map(dataset, structure, *, smooth=True, ax=None):
     cmap = ListedColormap([REGIME_COLOURS[name] for name in REGIMES])
     zeta, lam = dataset["zeta"].values, dataset["lambda_"].values
     one = dataset.sel(structure=structure)
-    complete = bool(one["done"].values.all()) if "done" in one else False
+    complete = bool(one["done"].values.all() and np.isfinite(one["fmax_normalised"].values).all()) \
+        if "done" in one else False
     if smooth and complete and len(zeta) > 1 and len(lam) > 1:
         dense = [_log_dense(zeta, lam, one[name].values)
                  for name in ("fmax_normalised", "peak_time_normalised", "reflection_time_normalised")]

@@ -14,7 +14,8 @@ from typing import NamedTuple
 __all__ = ["MEMORY_LIMIT_BYTES", "LONG_RUN_SECONDS", "HISTORY_ROW_BYTES", "HISTORY_ROW_CAP", "INTERVAL_BYTES",
            "BYTES_PER_MODE",
            "SECONDS_PER_MODE_STEP", "EXPECTED_RUN_RATIO", "MAX_STEPS", "LongRunWarning", "RunBudget",
-           "refuse_or_announce", "modal_run_budget"]
+           "refuse_or_announce", "modal_run_budget", "SECONDS_PER_MAP_POINT", "SECONDS_PER_RITZ_MAP_POINT",
+           "RITZ_BASIS_SECONDS", "map_sweep_seconds"]
 
 #: Memory one run may take [B].
 MEMORY_LIMIT_BYTES = 1 << 30
@@ -122,3 +123,32 @@ def modal_run_budget(n_modes: int, time_step: float, max_time: float, contact_fr
               f"{rows * time_step:.3g} s, time limit {max_time:.3g} s); use {knob}, or run without the "
               "history (record=False)")
     return RunBudget(float(memory), float(seconds), advice, hint)
+
+
+# -- map sweeps ---------------------------------------------------------------------------------
+# CPU of the linear law's map points by the modal basis of the structure, said before a sweep
+# starts (impactmaps.maps.compute.sweep): a point of a beam or a Navier plate (SSSS, specially
+# orthotropic) is cheap; a plate of the Ritz basis (a clamped or free edge, D16/D26) first builds
+# its basis (a dense eigenproblem, kept on disk afterwards: impactmaps.targets.plates.basis_cache),
+# then integrates more modes a point. Hertz and elastic-plastic points cost more. For planning,
+# not a bound: the basis is counted as not yet cached.
+
+#: CPU of a map point on a beam or a Navier plate [s]: the mean of the linear plane (200 × 50,
+#: beam and plate: 58 CPU-s for 20 000 points, ``benchmarks/studies/RESULTS_plane.md``).
+SECONDS_PER_MAP_POINT = 2.9e-3
+#: CPU of a map point on a plate of the Ritz basis, its basis built [s]: the largest mean measured
+#: on 20 ζ from 0.005 to 100 × λ = 0.05, 0.2, 1, 5 (one process, 2 cores at load 7–8): CCCC
+#: Kirchhoff 0.14–0.20, CFCF Kirchhoff (b/a 0.667) 0.07, CCCC Mindlin (a/h 20) and the CCCC
+#: Mindlin [45/0/−45/90]2s laminate of the drop-weight example 0.002–0.003 (their points stop
+#: where the basis resolves no more); a beam or a Navier plate 0.01 on that grid.
+SECONDS_PER_RITZ_MAP_POINT = 0.2
+#: CPU of building a Ritz basis, once per structure while it is not cached [s]: the largest
+#: measured, the drop-weight laminate's (about 33 s; CCCC Mindlin 16, CFCF Kirchhoff 11).
+RITZ_BASIS_SECONDS = 30.0
+
+
+def map_sweep_seconds(points, ritz) -> float:
+    """The CPU of a map sweep [s] computing ``points[k]`` points of the k-th structure, a plate of
+    the Ritz basis where ``ritz[k]`` (then with its basis's build, :data:`RITZ_BASIS_SECONDS`)."""
+    return float(sum(count * SECONDS_PER_RITZ_MAP_POINT + RITZ_BASIS_SECONDS if on_ritz
+                     else count * SECONDS_PER_MAP_POINT for count, on_ritz in zip(points, ritz) if count))

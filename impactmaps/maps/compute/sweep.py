@@ -22,7 +22,8 @@ import xarray as xr
 
 from ..._checks import range_end_text, require_in_range, require_positive
 from ...solvers.modal_settings import ModalSettings
-from ...solvers.run_budget import MEMORY_LIMIT_BYTES, RunBudget, refuse_or_announce
+from ...solvers.run_budget import (MEMORY_LIMIT_BYTES, SECONDS_PER_MAP_POINT, RunBudget, map_sweep_seconds,
+                                   refuse_or_announce)
 from ...targets.options import point_load_diverges
 from ..family.map_family import ASYMPTOTE_PEAKS
 from .dataset import classify_dataset, empty_dataset, with_asymptote_peaks
@@ -167,26 +168,29 @@ def _run_grid(grid: SweepGrid, path, executor, max_workers, progress, pacing, ov
     missing_per_row = done.shape[-1] - np.count_nonzero(done, axis=-1)
     remaining = int(missing_per_row.sum())
     n_tasks = int(np.ceil(missing_per_row / chunk_size).sum())
-    _announce(remaining, executor, max_workers)
+    ritz = [s.kind == "plate" and not s.build().uses_navier for s in grid.structures]  # Ritz bases cost more
+    _announce(remaining, executor, max_workers, progress=progress, seconds=map_sweep_seconds(
+        missing_per_row.reshape(len(grid.structures), -1).sum(axis=1), ritz))
     results = _Results(dataset, path, pacing.save_interval, remaining, progress, grid.family.variables)
     # the tasks are made as they are submitted: a list of them took ~165 B a point (1.5 GB for 9·10⁶)
     stopped = _run(_chunks(grid, done, chunk_size), n_tasks, settings, executor, max_workers, results, grid.family)
     return _finish(results, stopped, grid.family)
 
 
-#: CPU of a map point [s], for the announcement of a long sweep: the mean of the linear plane
-#: (200 × 50, beam and plate: 58 CPU-s for 20 000 points, ``benchmarks/studies/RESULTS_plane.md``).
-SECONDS_PER_POINT = 2.9e-3
-
-
-def _announce(points: int, executor: Executor | None, max_workers: int | None) -> None:
-    """Announce (:class:`~impactmaps.solvers.run_budget.LongRunWarning`) a sweep whose points
-    to compute would take longer than a minute at :data:`SECONDS_PER_POINT`, before it starts."""
+def _announce(points: int, executor: Executor | None, max_workers: int | None, seconds: float | None = None,
+              progress: bool = False) -> None:
+    """Say (``progress``: one line on stderr) and announce (:class:`~impactmaps.solvers.run_budget.LongRunWarning`,
+    above a minute) the cost of the ``points`` to compute, ``seconds`` of CPU (default at the linear
+    plane's mean, :data:`~impactmaps.solvers.run_budget.SECONDS_PER_MAP_POINT`), before the sweep starts."""
     workers = (getattr(executor, "_max_workers", None) or 1) if executor is not None else \
         (max_workers or os.cpu_count() or 1)
-    hint = (f"{points} points to compute on {workers} worker(s) at the linear plane's mean of "
-            f"{SECONDS_PER_POINT * 1e3:.1f} ms a point; Hertz and elastic-plastic points cost more")
-    refuse_or_announce(RunBudget(0.0, points * SECONDS_PER_POINT / workers, "", hint), "this sweep", stacklevel=5)
+    seconds = points * SECONDS_PER_MAP_POINT if seconds is None else seconds
+    if progress and points:
+        print(f"impact map: {points} points to compute on {workers} worker(s), about {seconds / workers:.0f} s "
+              f"({seconds:.0f} CPU-s)", file=sys.stderr)
+    hint = (f"{points} points to compute on {workers} worker(s) at {seconds / max(points, 1) * 1e3:.1f} ms a point "
+            "(docs/sweeps.rst); Hertz and elastic-plastic points cost more")
+    refuse_or_announce(RunBudget(0.0, seconds / workers, "", hint), "this sweep", stacklevel=5)
 
 
 def sweep_fingerprint(structures: Sequence[MapStructure], loss_factors, relative_stiffnesses,
