@@ -36,6 +36,8 @@ from ..targets.map_structure import REFERENCE_POISSON, REFERENCE_SLENDERNESS
 from .case_answer import NoMapError, case_loads_a_patch, plastic_answer, scaled_answer
 from ..maps.read.lookup import read_map
 from ..maps.read.lookup import read_plastic
+from ..maps.read.reader import prepare_map
+from ..maps.family.builtin_families import family_layout
 from ..maps.family.structures import MAX_MODES
 from ..maps.family.map_family import map_family
 from ..maps.family.structures import MapStructure
@@ -177,9 +179,11 @@ def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
             realisable(zeta=zeta, lambda_=lam)
             key = tile_for(structure, law, patch, zeta, lam, settings)
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
+            refinement = tile_refinement(dataset)  # a refined cell: its re-impact floor relative to F̄max
             try:
+                prepared = prepare_map(dataset, family_layout(law), refinement, relative_floor=refinement is not None)
                 return read_map(dataset, zeta, lam, kind=structure.kind, theory=structure.theory, name=key.name,
-                                law=law, refinement=tile_refinement(dataset))
+                                law=law, prepared=prepared)
             except ValueError:  # next to an unresolved point
                 raise unresolved(key.name, f"(ζ, λ) = ({zeta:.4g}, {lam:.4g})") from None
 

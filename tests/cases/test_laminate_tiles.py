@@ -8,8 +8,8 @@ frequency and static compliance equal), isotropic keys and dicts unchanged, and 
 committed tile, nothing built — a small clamped Kirchhoff [0/90]s plate answered within 3 %
 and within its band of ``simulate``; slow: the tile rebuilt bit for bit, the drop-weight
 example (a clamped Mindlin quasi-isotropic laminate with D16/D26) within its band, and an SSSS
-[45/0/−45/90]2s plate whose converged points give a band holding the converged ``simulate``,
-wider than 3 % by no more than its points' re-impact floor (docs/lookup.rst).
+[45/0/−45/90]2s plate whose converged points give a band ≤ 3 % holding the converged ``simulate``
+(docs/lookup.rst).
 """
 
 from __future__ import annotations
@@ -143,16 +143,13 @@ _SSSS_LAMINATE = case_text("""
 @pytest.mark.slow
 def test_a_converged_ssss_laminate_band_holds_the_converged_simulate(tmp_path):
     """The SSSS [45/0/−45/90]2s plate (F̄max ≈ 0.055, heavy impactor): its band holds the converged
-    ``simulate`` (cut-off ×4: ``patch_cutoff_ratio`` 80, ``cutoff_ratio`` 160), and exceeds 3 % of
-    the answer by no more than the re-impact floor of its points' stated error (1e-3 of the force
-    scale: 1.8 % here), which no interpolation narrows."""
-    from impactmaps.maps.family.accuracy import REIMPACT_ERROR_FLOOR
-
+    ``simulate`` (cut-off ×4: ``patch_cutoff_ratio`` 80, ``cutoff_ratio`` 160) and is ≤ 3 % of the
+    answer (2.4 %: its re-impacting points' floor is 1 % of their F̄max, not 1e-3 of the force
+    scale, 1.8 % here, tests/cases/test_laminate_bands.py)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # validity warnings (large deflection)
         found = lookup(case=parse_case(_SSSS_LAMINATE), cache_dir=tmp_path)
         _, fine = run_case(parse_case(_SSSS_LAMINATE + "[solver]\ncutoff_ratio = 160\npatch_cutoff_ratio = 80\n"))
-    assert found["status"] in ("converged", "interpolated")
+    assert found["status"] in ("converged", "refined", "interpolated")
     assert abs(found["peak_force_N"] - fine["peak_force_N"]) <= found["peak_force_error_N"], (found, fine)
-    assert found["peak_force_error_N"] <= (0.03 * found["peak_force_N"]
-                                           + REIMPACT_ERROR_FLOOR * found["force_scale_N"])
+    assert found["peak_force_error_N"] <= 0.03 * found["peak_force_N"]

@@ -313,13 +313,13 @@ def _split_cell(key: TileKey, family, table, data: dict, progress=None) -> dict:
 def tile_refinement(dataset: xr.Dataset) -> Refinement | None:
     """The split of a refined cell's tile as a :class:`~impactmaps.maps.family.refinement.Refinement`
     to read it with (:func:`impactmaps.maps.read.lookup.read_map`), each point's ``fmax_error``
-    stated with its floor for its impacts (:func:`~impactmaps.maps.family.accuracy.stated_error`);
-    None for a tile of the 4 × 4 points."""
+    stated with its floor for its impacts and F̄max (:func:`~impactmaps.maps.family.accuracy.stated_error`
+    with ``fmax``: the re-impact floor relative to F̄max); None for a tile of the 4 × 4 points."""
     if f"{_REFINED}code" not in dataset:
         return None
     values = {name: np.asarray(dataset[f"{_REFINED}{name}"].values, dtype) for name, dtype in REFINEMENT_VARIABLES.items()}
     values["fmax_error"] = np.asarray(stated_error(values["fmax_error"], values["status"],
-                                                   dataset[f"{_REFINED}impacts"].values),
+                                                   dataset[f"{_REFINED}impacts"].values, values["fmax_normalised"]),
                                       REFINEMENT_VARIABLES["fmax_error"])
     shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
     return Refinement(shape, np.asarray(dataset[f"{_REFINED}code"].values, np.int64), values, _CELL_LEVELS)

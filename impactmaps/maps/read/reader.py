@@ -149,10 +149,12 @@ class PreparedMap(NamedTuple):
 
 def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefinement | None = None,
                 error_grid: np.ndarray | None = None,
-                band_grids: dict | None = None) -> PreparedMap:
+                band_grids: dict | None = None, relative_floor: bool = False) -> PreparedMap:
     """A map of ``family`` (one structure) prepared for :func:`read_values` (:class:`PreparedMap`).
 
     Parameters are those of :func:`read_values`; the result reads exactly as the dataset.
+    ``relative_floor``: its points' re-impact error floor is relative to their F̄max (a
+    refined-cell tile's, :func:`impactmaps.maps.family.accuracy.stated_error` with ``fmax``).
     """
     axes = (*(axis.name for axis in family.extra_axes), "zeta", "lambda_")
     coordinates = {axis: np.asarray(dataset[axis].values, float) for axis in axes}
@@ -164,7 +166,8 @@ def prepare_map(dataset: xr.Dataset, family, refinement: Refinement | SlicedRefi
                   for name in ["fmax_normalised", *times, "fmax_error", "status"]}
         # a map stored before the error floor states its points' bare change: floored here (idempotent)
         tables["fmax_error"] = stated_error(tables["fmax_error"], tables["status"],
-                                            first_structure(dataset, "impacts") if "impacts" in dataset else None)
+                                            first_structure(dataset, "impacts") if "impacts" in dataset else None,
+                                            tables["fmax_normalised"] if relative_floor else None)
         if refinement is not None and refinement.codes.size:
             refinement = dataclasses.replace(refinement, values=refinement.values | {"fmax_error": stated_error(
                 refinement.values["fmax_error"], refinement.values["status"])})
