@@ -221,7 +221,10 @@ def corner_ratios(settings: ModalSettings, target, impactor_mass: float, contact
     ``max(patch_cutoff_ratio, CORNER_MULTIPLE · ω_c/ω)`` (at most :data:`MAX_CUTOFF_RATIO`);
     the first equals it unless ``target`` has more than :data:`CORNER_MAX_MODES` modes below
     it, then the largest of ``wanted · 2^(−k/4)`` within that count (never below
-    ``patch_cutoff_ratio``)."""
+    ``patch_cutoff_ratio``). A target that can never have more than :data:`CORNER_MAX_MODES`
+    modes (:meth:`~impactmaps.targets.base.Target.mode_count_bound`: the Ritz plates, whose
+    largest basis has at most 3468 unknowns) is not counted: counting took the eigen-solution of
+    its largest basis."""
     import math
 
     ratio = float(settings.patch_cutoff_ratio)
@@ -229,6 +232,9 @@ def corner_ratios(settings: ModalSettings, target, impactor_mass: float, contact
         return ratio, ratio
     corner = 2.0 * float(target.loss_factor(impactor_mass, contact_stiffness))
     wanted = max(ratio, min(CORNER_MULTIPLE * corner, MAX_CUTOFF_RATIO))
+    bound = getattr(target, "mode_count_bound", lambda: math.inf)()
+    if bound <= CORNER_MAX_MODES:  # never more modes than the budget: the loop below stops at k = 0
+        return wanted, wanted
     omega = math.sqrt(contact_stiffness / impactor_mass)
     used = wanted
     for k in range(200):

@@ -276,6 +276,11 @@ class Target(ABC):
         limit = self.resolution_limit()
         return int(self.mode_count(limit)) if math.isfinite(limit) else 0
 
+    def mode_count_bound(self) -> float:
+        """An upper bound [-] of every :meth:`mode_count` of the target, known without counting:
+        ``inf`` by default (no bound); a model of bounded size gives its number of unknowns."""
+        return math.inf
+
     def mode_count(self, max_frequency: float, limit: int | None = None) -> int:
         """Number of modes with ω_j ≤ ``max_frequency`` [rad/s], participating or not.
 

@@ -134,6 +134,31 @@ def test_patch_residual_against_the_brute_force_lattice_sum():
     assert value == pytest.approx(float(np.sum(terms)), rel=1e-7)
 
 
+def test_patch_residual_has_the_same_bits_from_a_kept_lattice():
+    """The pairs' compliances are kept per plate (plate_static._lattice, grown as a smaller patch
+    asks for more pairs): a residual computed on a lattice kept from another radius (larger, or
+    grown from a smaller one) equals the one computed on a fresh lattice, bit for bit — Mindlin and
+    Kirchhoff, with pairs retained and with a weight factor (not kept)."""
+    from impactmaps.targets.plates import plate_static
+
+    D, nu = 1.0, 0.3
+    kirchhoff = (D, 1.3 * D, nu * D, 0.4 * D)
+    radii = (0.02, 0.005, 0.011, 0.003, 0.02)
+    for stiffnesses in (kirchhoff, kirchhoff + (50.0, 70.0)):
+        for options in ({}, {"retained_m": [1, 2, 5], "retained_n": [1, 3, 2]}, {"factor": lambda k: 1 / (1 + k)}):
+            def residual(radius):
+                return navier_patch_residual(1.0, 0.7, stiffnesses, (0.4, 0.3), radius, hertz_transform,
+                                             mean_square=mean_square_transform, **options)
+
+            fresh = []
+            for radius in radii:
+                plate_static._lattices.clear()
+                fresh.append(residual(radius))
+            plate_static._lattices.clear()
+            assert [residual(radius) for radius in radii] == fresh, (stiffnesses, options)
+            assert plate_static._lattices or "factor" in options
+
+
 def test_kirchhoff_patch_residual_tends_to_the_point_residual():
     """a → 0: the Kirchhoff static patch compliance tends to the closed-form point value
     (1e-9), and it falls by O((a/L)² ln) for a finite patch."""

@@ -20,9 +20,11 @@ from impactmaps.contact.contact_scale import reference_contact_stiffness
 from impactmaps.materials import material
 from impactmaps.solvers.modal import estimate_run, simulate
 from impactmaps.solvers.modal_settings import (
+    CORNER_MAX_MODES,
     CORNER_MULTIPLE,
     DEFAULT_SETTINGS,
     ModalSettings,
+    corner_ratios,
     patch_cutoff_ratio_for,
     with_corner_cutoff,
 )
@@ -59,6 +61,56 @@ def test_the_rule_raises_the_patch_cutoff_to_twice_the_corner_frequency():
         assert (raised is DEFAULT_SETTINGS) == (zeta <= 5.0)
     beam = Beam.rectangular(0.5, 0.02, 0.02, ALUMINIUM)
     assert patch_cutoff_ratio_for(DEFAULT_SETTINGS, beam, 3.0, 1e8) == DEFAULT_SETTINGS.patch_cutoff_ratio
+
+
+def _ritz_plates():
+    """One plate of each Ritz kind, each with its largest basis and the classes it counts in."""
+    steel = material("structural-steel")
+    laminate = Plate.isotropic(0.3, 0.2, 0.003, ALUMINIUM, edges="CCCC", D16=0.05 * _plate().D11)
+    return {"Mindlin CCCC, one class of four": _plate("CCCC"),
+            "Mindlin CCCC with D16: two classes (a half turn)": replace(_plate("CCCC"), D16=0.1 * _plate().D11),
+            "Mindlin CFFF off the centre: every function": Plate.isotropic(0.2, 0.1, 0.004, steel, theory="mindlin",
+                                                                           edges="CFFF", impact_point=(0.12, 0.03)),
+            "Kirchhoff CCCC with D16 (general basis)": replace(laminate, D16=0.1 * laminate.D11),
+            "Kirchhoff CCCC (Ritz)": Plate.isotropic(0.3, 0.2, 0.003, ALUMINIUM, edges="CCCC")}
+
+
+def test_no_ritz_plate_has_more_modes_than_the_corner_budget():
+    """corner_ratios counts no Ritz plate's modes (an eigen-solution of its largest basis): its
+    bound, the unknowns of that basis, is at most :data:`plate_any_edges.MAX_UNKNOWNS` (3468) or
+    40² (Kirchhoff Ritz), below CORNER_MAX_MODES; were either cap raised past the budget, this
+    fails before the shortcut could change a cut-off silently. The bound is the basis's size
+    (the rows of its eigenvectors, Kirchhoff general basis: cheap to solve)."""
+    for label, plate in _ritz_plates().items():
+        bound = plate.mode_count_bound()
+        assert bound <= min(plate_any_edges.MAX_UNKNOWNS, CORNER_MAX_MODES), label
+        if plate_any_edges.uses_general_basis(plate):
+            classes = plate_any_edges.class_groups(plate)[0]
+            n = plate_any_edges.max_functions(plate.theory, classes)
+            assert bound == sum(k.size for k in plate_general.selection(plate.theory, n, n, classes)), label
+    kirchhoff = _ritz_plates()["Kirchhoff CCCC with D16 (general basis)"]
+    classes = plate_any_edges.class_groups(kirchhoff)[0]
+    largest = plate_any_edges.solution(kirchhoff, plate_any_edges.max_functions("kirchhoff", classes), classes)
+    assert kirchhoff.mode_count_bound() == largest.coefficients.shape[0] >= kirchhoff.mode_count(1e12)
+    assert _plate().mode_count_bound() == np.inf  # SSSS: Navier, no bound (counted)
+    assert Beam.rectangular(0.5, 0.02, 0.02, ALUMINIUM).mode_count_bound() == np.inf
+
+
+def test_the_corner_ratios_of_a_ritz_plate_are_those_the_count_gives(monkeypatch):
+    """The shortcut gives the ratios the count gave (its loop stops at k = 0, the wanted ratio),
+    bit for bit, and asks for no count; a heavy impactor (the wanted ratio far above 20)."""
+    plate = _ritz_plates()["Kirchhoff CCCC with D16 (general basis)"]
+    mass = 3.0
+    stiffness = reference_contact_stiffness(BALL, mass, 2.0)
+    counted = []
+    original = Plate.mode_count
+    monkeypatch.setattr(Plate, "mode_count", lambda self, *a, **k: counted.append(a) or original(self, *a, **k))
+    shortcut = corner_ratios(DEFAULT_SETTINGS, plate, mass, stiffness)
+    assert counted == []
+    monkeypatch.setattr(Plate, "mode_count_bound", lambda self: np.inf)
+    before = corner_ratios(DEFAULT_SETTINGS, plate, mass, stiffness)
+    assert len(counted) == 1 and shortcut == before
+    assert shortcut[0] == shortcut[1] > 4 * DEFAULT_SETTINGS.patch_cutoff_ratio
 
 
 def test_a_light_impactor_keeps_its_cutoff_and_its_bits():

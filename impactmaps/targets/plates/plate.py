@@ -408,6 +408,10 @@ class Plate(Target):
             return plate_any_edges.resolved_count(self, float(max_frequency))
         return super().mode_count(max_frequency, limit)
 
+    def mode_count_bound(self) -> float:
+        """An upper bound [-] of every :meth:`mode_count` (:func:`plate_any_edges.mode_count_bound`)."""
+        return plate_any_edges.mode_count_bound(self)
+
     @property
     def bounded_modes(self) -> bool:
         """True for the Ritz plates (all but the Navier ones): a basis of bounded size."""

@@ -25,11 +25,12 @@ from .plate_general import (
     disc_quadrature,
     field_exponents,
     general_static_compliance,
+    selection,
     solve_general_plate,
 )
 
 __all__ = ["uses_general_basis", "class_groups", "max_functions", "resolved_frequency", "basis_size", "solution",
-           "grown_solution", "resolved_count", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
+           "grown_solution", "resolved_count", "mode_count_bound", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
            "general_plate_modes", "symmetry_lines", "check_couplings", "laminate_couplings", "mode_table", "MAX_UNKNOWNS", "STATIC_EXTRA_FUNCTIONS"]
 
 
@@ -161,6 +162,21 @@ def resolved_count(plate, max_frequency: float) -> int:
     result = solution(plate, max_functions(plate.theory, classes), classes)
     top = min(float(max_frequency), result.resolved_frequency)
     return int(np.searchsorted(result.frequencies, top, side="right"))
+
+
+def mode_count_bound(plate) -> float:
+    """An upper bound [-] of every :meth:`Plate.mode_count <impactmaps.targets.plates.plate.Plate.mode_count>`,
+    known without an eigen-solution: ``inf`` for SSSS (Navier: no bound); for a Ritz plate the
+    unknowns of its largest basis, which no count exceeds — the general basis: of the classes
+    :func:`resolved_count` counts in (Mindlin at most :data:`MAX_UNKNOWNS`); the Kirchhoff Ritz
+    basis: ``ritz.MAX_FUNCTIONS²``."""
+    if plate.uses_navier:
+        return math.inf
+    if not uses_general_basis(plate):
+        return float(ritz.MAX_FUNCTIONS**2)
+    classes = class_groups(plate)[0]
+    n = max_functions(plate.theory, classes)
+    return float(sum(kept.size for kept in selection(plate.theory, n, n, classes)))
 
 
 def all_modes(plate, count: int) -> tuple:

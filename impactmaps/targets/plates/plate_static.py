@@ -11,6 +11,7 @@ the singularity correction of the Ritz value for other edges). Conventions as in
 from __future__ import annotations
 
 import math
+import threading
 
 import numpy as np
 import scipy.special
@@ -243,6 +244,11 @@ def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact
             return pair_static_compliance(p, q, *stiffnesses)
         return pair_static_compliance(p, q, *stiffnesses) * factor(np.hypot(p, q))
 
+    def lattice_compliance(rows, p, q):  # the pairs' compliances: radius-free, kept per plate (the same bits)
+        if factor is not None:
+            return compliance(np.broadcast_to(p, (p.shape[0], q.size)), np.broadcast_to(q[None, :], (p.shape[0], q.size)))
+        return _lattice(a, b, tuple(float(v) for v in stiffnesses), int(rows[-1]), q.size)[rows[0] - 1:rows[-1], :]
+
     cap = _PATCH_LATTICE_TERMS * math.pi / max(a, b)
     k_lattice = min(_PATCH_LATTICE_KA / radius, cap)
     if retained_m.size:
@@ -260,11 +266,44 @@ def navier_patch_residual(length_x, length_y, stiffnesses, impact_point, contact
         p = m * math.pi / a
         k = np.hypot(p, q[None, :])
         keep = (k <= k_lattice) & ~np.isin(m * (n_count + 1) + n[None, :], retained_keys)
-        terms = sin_pi(m * x0 / a) ** 2 * weight_n[None, :] * transform(k * radius) ** 2 * compliance(
-            np.broadcast_to(p, k.shape), np.broadcast_to(q[None, :], k.shape))
+        terms = sin_pi(m * x0 / a) ** 2 * weight_n[None, :] * transform(k * radius) ** 2 * lattice_compliance(
+            m[:, 0], p, q)
         total += float(np.sum(np.where(keep, terms, 0.0)))
     tail = _patch_tail(k_lattice * radius, radius, compliance, transform, mean_square or transform)
     return 4.0 / (a * b) * total + tail
+
+
+#: The lattices of :func:`_lattice` kept (the most recently used).
+_LATTICES_KEPT = 4
+_lattices: dict = {}
+_lattices_lock = threading.Lock()
+
+
+def _lattice(a, b, stiffnesses, m_count, n_count):
+    """:func:`pair_static_compliance` of the pairs m ≤ ``m_count``, n ≤ ``n_count`` [m³/N], shape
+    (m, n) or larger: one lattice per plate, grown as a smaller patch asks for more pairs. Every
+    element is the value a call on any array holding the pair gives (elementwise arithmetic), so
+    :func:`navier_patch_residual` keeps its bits; its patch iterations and tile points, which move
+    the radius only, stop recomputing it (~250 calls in a laminate's first ``lookup --case``)."""
+    with _lattices_lock:
+        return _kept_lattice((a, b, stiffnesses), m_count, n_count)[:, :n_count]
+
+
+def _kept_lattice(key, m_count, n_count):
+    a, b, stiffnesses = key
+    kept = _lattices.pop(key, None)
+    if kept is None or kept.shape[0] < m_count or kept.shape[1] < n_count:
+        rows = max(m_count, 0 if kept is None else kept.shape[0])
+        columns = max(n_count, 0 if kept is None else kept.shape[1])
+        p = np.arange(1, rows + 1, dtype=np.int64)[:, None] * math.pi / a
+        q = np.arange(1, columns + 1, dtype=np.int64) * math.pi / b
+        kept = pair_static_compliance(np.broadcast_to(p, (rows, columns)), np.broadcast_to(q[None, :], (rows, columns)),
+                                      *stiffnesses)
+        kept.setflags(write=False)
+    _lattices[key] = kept
+    while len(_lattices) > _LATTICES_KEPT:
+        _lattices.pop(next(iter(_lattices)))
+    return kept
 
 
 def _patch_tail(x_start, radius, compliance, transform, mean_square):
