@@ -187,7 +187,9 @@ def test_the_default_charts_integrate_no_asymptote(monkeypatch, tmp_path):
         written = make_chart(tmp_path / law, law=law, progress=False)
         assert written
         # the same chart, the same bytes: matplotlib's SVG carries a date and random clip ids unless told
+        # (one writer for every law: drawn again for the linear chart only, 4 s a chart)
         svg = written["svg"].read_text()
         assert "<dc:date>" not in svg and "clip-path" in svg
-        written["svg"].unlink()
-        assert make_chart(tmp_path / law, law=law, progress=False)["svg"].read_text() == svg
+        if law == "linear":
+            written["svg"].unlink()
+            assert make_chart(tmp_path / law, law=law, progress=False)["svg"].read_text() == svg
