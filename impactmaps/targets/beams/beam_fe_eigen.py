@@ -7,6 +7,7 @@ import numba
 import numpy as np
 import scipy.linalg
 import scipy.sparse.linalg
+from ..._blas import single_blas_thread
 
 __all__ = ["eigenpairs_below", "count_below"]
 
@@ -17,6 +18,7 @@ _DENSE_LIMIT = 1500
 _SLICE_SIZE = 48
 
 
+@single_blas_thread
 def eigenpairs_below(K, M, upper, width, reference, singular):
     """Eigenpairs (λ [rad²/s²], M-normalised vectors) of ``K x = λ M x`` with λ < ``upper``, ascending.
 

@@ -41,6 +41,7 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from . import basis_cache, ritz
+from ..._blas import single_blas_thread
 
 __all__ = ["GeneralPlateSolution", "deflection_functions", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
            "general_static_compliance", "disc_quadrature", "RESOLUTION_FACTOR", "RESOLUTION_MARGIN",
@@ -273,6 +274,7 @@ class GeneralPlateSolution:
 
 
 @functools.lru_cache(maxsize=1)
+@single_blas_thread
 def _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes):
     """:func:`stiffness_matrix` of hashable inputs (``D``, ``shear`` as tuples), read-only; the
     last one kept, so that the eigenproblem and the static factor of one basis (the same
@@ -328,6 +330,7 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
                                 frequencies, vectors, float(resolved_frequency), classes)
 
 
+@single_blas_thread
 def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
                     resolved_frequency, classes) -> dict:
     """{"frequencies": ω_j [rad/s], "coefficients": mass-normalised eigenvectors} of
@@ -347,6 +350,7 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
 
 
 @functools.lru_cache(maxsize=8)
+@single_blas_thread
 def _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes):
     """Cholesky factor of the stiffness matrix (cached: one per plate and basis)."""
     import scipy.linalg
@@ -355,6 +359,7 @@ def _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, cla
     return scipy.linalg.cho_factor(stiffness), stiffness.shape[0]
 
 
+@single_blas_thread
 def general_static_compliance(length_x, length_y, theory, edges, D, shear, n_x, n_y, load, classes=None) -> float:
     """``fᵀ K⁻¹ f`` [m/N]: static compliance in the basis for the generalised load ``f`` of
     the w block (``load``; the other fields unloaded). The factor of K is cached."""

@@ -47,6 +47,7 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from ..._checks import require_choice, require_in_range, require_positive
+from ..._blas import single_blas_thread
 
 __all__ = [
     "EDGE_CODES",
@@ -317,6 +318,7 @@ def _validate(length_x, length_y, D11, D22, D12, D66, mass_per_area, edges, n_x,
 
 
 @functools.lru_cache(maxsize=4)
+@single_blas_thread
 def solve_ritz_plate(length_x, length_y, D11, D22, D12, D66, mass_per_area, edges, n_x, n_y) -> RitzPlateSolution:
     """Solve the Kirchhoff plate eigenproblem in an ``n_x × n_y`` Ritz basis (cached).
 
@@ -365,6 +367,7 @@ def solve_ritz_plate(length_x, length_y, D11, D22, D12, D66, mass_per_area, edge
     )
 
 
+@single_blas_thread
 def ritz_static_compliance(length_x, length_y, D11, D22, D12, D66, edges, point, n_x, n_y) -> float:
     """Point compliance [m/N] at ``point`` from a static solve ``K u = f`` in the Ritz basis.
 
