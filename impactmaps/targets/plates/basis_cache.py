@@ -33,8 +33,10 @@ from ..._files import cache_directory, written_atomically
 __all__ = ["BASIS_REVISION", "MAX_CACHED_BASES", "MAX_BASIS_BYTES", "SUBDIRECTORY", "basis_path", "cached_arrays"]
 
 #: Revision of the code computing the cached arrays (part of every key): bump on any change
-#: of their bits (plate_general's matrices and eigen-solution, the static compliances).
-BASIS_REVISION = 1
+#: of their bits (plate_general's matrices and eigen-solution, the static compliances). 2: computed
+#: with one BLAS thread (:mod:`impactmaps._blas`); a basis a Python session computed with several
+#: threads before holds other bits and is not read.
+BASIS_REVISION = 2
 #: Most files kept (the least recently used beyond it are removed).
 MAX_CACHED_BASES = 64
 #: Largest set of arrays written [bytes] (a larger one is recomputed each time).
