@@ -81,6 +81,22 @@ def refuse(args, options: dict, reason: str) -> None:
         raise ValueError(f"{', '.join(given)} cannot be used {reason}")
 
 
+def target_kind_and_supports(args, target: str) -> tuple[str, str]:
+    """(kind, supports) of ``--target KIND-SUPPORTS`` (``plate-ss`` is SSSS); a beam target refuses
+    ``--aspect`` and ``--position-y``; ``ValueError`` naming ``--target`` as typed."""
+    from ..targets.options import STRUCTURE_KINDS
+
+    kind, _, supports = target.partition("-")
+    if kind not in STRUCTURE_KINDS or not supports:
+        raise ValueError(f"--target = {target!r} is not known: use beam-SUPPORTS (e.g. beam-ss, beam-cc, beam-cf) "
+                         "or plate-EDGES (e.g. plate-ss, plate-ssss, plate-cccc, plate-cfcf)")
+    if kind == "beam":
+        refuse(args, {"--aspect": "aspect", "--position-y": "position_y"}, "with a beam --target")
+    if kind == "plate" and supports.lower() == "ss":
+        supports = "SSSS"
+    return kind, supports
+
+
 def out_dir(option: str, value) -> Path:
     """The output directory of ``option``, checked writable before anything is computed.
 

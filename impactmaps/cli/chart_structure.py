@@ -5,7 +5,7 @@ one of its kind.
 
 from __future__ import annotations
 
-from ._common import check, refuse
+from ._common import check, refuse, target_kind_and_supports
 
 __all__ = ["STRUCTURE_OPTIONS", "chart_structure"]
 
@@ -51,16 +51,9 @@ def _case_structure(path):
 def _target_structure(args, target: str):
     """The structure ``--target KIND-SUPPORTS`` (``plate-cccc``, ``beam-cf``; ``plate-ss`` is SSSS)."""
     from ..maps.family.structures import MapStructure
-    from ..targets.options import STRUCTURE_KINDS, default_theory
+    from ..targets.options import default_theory
 
-    kind, _, supports = target.partition("-")
-    if kind not in STRUCTURE_KINDS or not supports:
-        raise ValueError(f"--target = {target!r} is not known: use beam-SUPPORTS (e.g. beam-cc, beam-cf) or "
-                         "plate-EDGES (e.g. plate-cccc, plate-cfcf, plate-ssss)")
-    if kind == "beam":
-        refuse(args, {"--aspect": "aspect", "--position-y": "position_y"}, "with a beam --target")
-    if kind == "plate" and supports.lower() == "ss":
-        supports = "SSSS"
+    kind, supports = target_kind_and_supports(args, target)
     _check_shape(args)
     theory = getattr(args, "theory", None) or default_theory(kind)
     values = {"aspect_ratio": getattr(args, "aspect", None), "slenderness": getattr(args, "slenderness", None)}

@@ -12,7 +12,8 @@ from dataclasses import replace
 from ..maps.family.map_family import MapFamily
 from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ..maps.compute.workers import MAX_WORKERS
-from ._common import announce_wide_band, case_model_warnings, check, out_dir, plot_file, refuse, save_figure, text_file
+from ._common import (announce_wide_band, case_model_warnings, check, out_dir, plot_file, refuse, save_figure,
+                      target_kind_and_supports, text_file)
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -147,16 +148,9 @@ def _point_defaults(args) -> None:
 
 def _structure_from_args(args):
     from ..maps.family.structures import MapStructure
-    from ..targets.options import STRUCTURE_KINDS, default_theory
+    from ..targets.options import default_theory
 
-    kind, _, supports = args.target.partition("-")
-    if kind not in STRUCTURE_KINDS or not supports:
-        raise ValueError(f"--target = {args.target!r} is not known: use beam-SUPPORTS (e.g. beam-ss, beam-cc) "
-                         "or plate-EDGES (e.g. plate-ss, plate-ssss, plate-cccc)")
-    if kind == "beam":
-        refuse(args, {"--aspect": "aspect", "--position-y": "position_y"}, "with a beam --target")
-    if kind == "plate" and supports.lower() == "ss":
-        supports = "SSSS"
+    kind, supports = target_kind_and_supports(args, args.target)
     _point_defaults(args)
     theory = args.theory or default_theory(kind)
     fractions = (args.position,) if kind == "beam" else (args.position, args.position_y)
