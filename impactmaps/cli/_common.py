@@ -81,6 +81,22 @@ def refuse(args, options: dict, reason: str) -> None:
         raise ValueError(f"{', '.join(given)} cannot be used {reason}")
 
 
+def check_shape_options(args) -> None:
+    """Refuse ``--aspect``, ``--slenderness``, ``--position`` or ``--position-y`` of a structure
+    given on the command line (``point``, ``chart --target``) outside its range, as typed."""
+    from ..targets.beams.beam import MIN_SLENDERNESS
+    from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
+
+    check("--aspect", getattr(args, "aspect", None), *PLATE_ASPECT_RANGE, what="the plate aspect ratio b/a",
+          low_inclusive=True, high_inclusive=True)
+    check("--slenderness", getattr(args, "slenderness", None), MIN_SLENDERNESS, what="span/thickness",
+          low_inclusive=True)
+    for option, name, what in (("--position", "position", "the impact point x0/L"),
+                               ("--position-y", "position_y", "the impact point y0/b")):
+        check(option, getattr(args, name, None), MIN_SUPPORT_DISTANCE, 1.0 - MIN_SUPPORT_DISTANCE, what,
+              low_inclusive=True, high_inclusive=True, note="1e-6 of the span from a support")
+
+
 def target_kind_and_supports(args, target: str) -> tuple[str, str]:
     """(kind, supports) of ``--target KIND-SUPPORTS`` (``plate-ss`` is SSSS); a beam target refuses
     ``--aspect`` and ``--position-y``; ``ValueError`` naming ``--target`` as typed."""

@@ -5,7 +5,7 @@ one of its kind.
 
 from __future__ import annotations
 
-from ._common import check, refuse, target_kind_and_supports
+from ._common import check_shape_options, refuse, target_kind_and_supports
 
 __all__ = ["STRUCTURE_OPTIONS", "chart_structure"]
 
@@ -54,7 +54,7 @@ def _target_structure(args, target: str):
     from ..targets.options import default_theory
 
     kind, supports = target_kind_and_supports(args, target)
-    _check_shape(args)
+    check_shape_options(args)
     theory = getattr(args, "theory", None) or default_theory(kind)
     values = {"aspect_ratio": getattr(args, "aspect", None), "slenderness": getattr(args, "slenderness", None)}
     x, y = (getattr(args, name, None) for name in ("position", "position_y"))
@@ -67,15 +67,3 @@ def _target_structure(args, target: str):
         raise ValueError(f"--target {target} --theory {theory}: {error}") from None
     return structure
 
-
-def _check_shape(args) -> None:
-    """Refuse ``--aspect``, ``--slenderness``, ``--position`` or ``--position-y`` outside its range."""
-    from ..targets.beams.beam import MIN_SLENDERNESS
-    from ..targets.options import PLATE_ASPECT_RANGE
-
-    check("--aspect", getattr(args, "aspect", None), *PLATE_ASPECT_RANGE, what="the plate aspect ratio b/a",
-          low_inclusive=True, high_inclusive=True)
-    check("--slenderness", getattr(args, "slenderness", None), MIN_SLENDERNESS, what="span/thickness",
-          low_inclusive=True)
-    for option, name in (("--position", "position"), ("--position-y", "position_y")):
-        check(option, getattr(args, name, None), 0.0, 1.0, "the impact point as a fraction of the span")

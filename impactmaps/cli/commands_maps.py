@@ -10,10 +10,9 @@ import warnings
 from dataclasses import replace
 
 from ..maps.family.map_family import MapFamily
-from ..targets.options import MIN_SUPPORT_DISTANCE, PLATE_ASPECT_RANGE
 from ..maps.compute.workers import MAX_WORKERS
-from ._common import (announce_wide_band, case_model_warnings, check, out_dir, plot_file, refuse, save_figure,
-                      target_kind_and_supports, text_file)
+from ._common import (announce_wide_band, case_model_warnings, check, check_shape_options, out_dir, plot_file,
+                      refuse, save_figure, target_kind_and_supports, text_file)
 
 __all__ = ["cmd_chart", "cmd_sweep", "cmd_point", "cmd_classify", "cmd_lookup", "cmd_asymptote",
            "SCHEDULER_TIMEOUT_S"]
@@ -131,13 +130,7 @@ def _point_defaults(args) -> None:
           high_inclusive=True)
     check("--lambda", args.lambda_, *SIMULATED_RANGE, "the relative stiffness λ", low_inclusive=True,
           high_inclusive=True)
-    check("--aspect", args.aspect, *PLATE_ASPECT_RANGE, what="the plate aspect ratio b/a", low_inclusive=True,
-          high_inclusive=True)
-    check("--slenderness", args.slenderness, 2.0, what="span/thickness", low_inclusive=True)
-    check("--position", args.position, MIN_SUPPORT_DISTANCE, 1.0 - MIN_SUPPORT_DISTANCE, "the impact point x0/L",
-          low_inclusive=True, high_inclusive=True, note="1e-6 of the span from a support")
-    check("--position-y", args.position_y, MIN_SUPPORT_DISTANCE, 1.0 - MIN_SUPPORT_DISTANCE, "the impact point y0/b",
-          low_inclusive=True, high_inclusive=True, note="1e-6 of the span from a support")
+    check_shape_options(args)
     check("--cutoff-ratio", args.cutoff_ratio, what="the mode cut-off / contact frequency")
     check("--time-step-ratio", args.time_step_ratio, what="the bound of ω Δt")
     for name, default in (("aspect", 1.0), ("slenderness", 20.0), ("position", 0.5), ("position_y", 0.5),
