@@ -2,13 +2,12 @@
 
 LAPACK's eigen-solvers and factorisations give different bits with a different number of
 BLAS threads (a threaded matrix–vector product sums in another order): the drop-weight
-example's peak force was 4054.856386609983 N with OpenBLAS's two threads (a library call
-on 2 cores) and 4054.856386129993 N with one (the command line, the tests and the sweep
-workers run one BLAS thread each), and a basis kept on disk carried the bits of whichever
-computed it first. :func:`single_blas_thread` runs a computation with one BLAS thread, so
+example's peak force differed in its 13th digit between a library call on 2 cores (two
+OpenBLAS threads) and the command line, the tests and the sweep workers (one each), and a
+basis kept on disk carried the bits of whichever computed it first (docs/plates_any_edges.rst). :func:`single_blas_thread` runs a computation with one BLAS thread, so
 an answer is the same bits from Python, the command line, a sweep worker and the cache.
-One thread costs little here: the matrices are at most a few thousand unknowns, and the
-command line already runs this way (``impactmaps/cli/__init__.py``).
+The command line already ran this way (``impactmaps/cli/__init__.py``); what one thread costs a
+Python session on several cores is measured in docs/plates_any_edges.rst.
 """
 
 from __future__ import annotations

@@ -36,9 +36,9 @@ DEFAULT_ZETA_RANGE = (0.005, 100.0)
 #: ζ points per curve of the default chart: enough that the re-impact peaks of F̄max(ζ)
 #: are resolved, not jagged (issue 12).
 DEFAULT_ZETA_COUNT = 200
-#: ζ points per curve of the chart of another structure (``chart --case``/``--target``): 20 ζ × 4 λ
-#: of a clamped plate or the drop-weight laminate took 14–25 CPU-s with its Ritz basis built, 18–46 s
-#: of wall time on 2 loaded cores (docs/chart.rst).
+#: ζ points per curve of the chart of another structure (``chart --case``/``--target``): with
+#: :data:`DEFAULT_STRUCTURE_LAMBDAS`, a chart of a clamped plate or a laminate in under a minute on
+#: 2 cores (measured in docs/chart.rst).
 DEFAULT_STRUCTURE_ZETA_COUNT = 20
 #: λ of the chart of another structure: four of the shipped chart's, so its reference curves are
 #: the shipped ones.
