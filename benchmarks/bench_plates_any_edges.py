@@ -23,7 +23,7 @@ already in their cache):
   an empty numba cache (its kernels compiled in the run, as a user's first run without the
   shipped kernels).
 
-Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT] [--lookup-only] [--cold-numba]  (writes
+Run:  PYTHONPATH=. python benchmarks/bench_plates_any_edges.py [--root CHECKOUT] [--lookup-only | --simulate-only] [--cold-numba]  (writes
 nothing; prints Markdown for benchmarks/RESULTS_plates_any_edges.md; ``--root`` times
 another checkout, e.g. main before a change). Wall-clock times depend on the machine's
 load: the load average is printed before and after.
@@ -178,6 +178,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", type=Path, default=ROOT, help="the checkout to time (default: this one)")
     parser.add_argument("--lookup-only", action="store_true", help="time the lookups only (not simulate)")
+    parser.add_argument("--simulate-only", action="store_true", help="time simulate only (not the lookups)")
     parser.add_argument("--cold-numba", action="store_true",
                         help="time the drop-weight example's first lookup with an empty numba cache too")
     options = parser.parse_args()
@@ -199,6 +200,12 @@ def main() -> None:
                                                            IMPACTMAPS_CACHE_DIR=str(folder / "simulate-cache")).split()
             rows.append(f"| {label} | {float(first):.2f} ({float(cpu):.2f}) | {float(second):.3f} | {peak} | {modes} "
                         f"| {method} |")
+        if options.simulate_only:
+            print(f"load average (1, 5, 15 min) before: {before}; after: {_load()} ({os.cpu_count()} cores, shared)\n")
+            print("| case | simulate, warm incl. basis: wall (CPU) [s] | simulate, basis cached [s] | peak [N] | modes | method |")
+            print("|---|---|---|---|---|---|")
+            print("\n".join(rows))
+            return
         case, other = folder / "case.toml", folder / "other.toml"
         case.write_text(LOOKUP_CASE.format(velocity=5.4))
         other.write_text(LOOKUP_CASE.format(velocity=3.0))

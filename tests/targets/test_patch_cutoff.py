@@ -86,8 +86,8 @@ def test_no_ritz_plate_has_more_modes_than_the_corner_budget():
         assert bound <= min(plate_any_edges.MAX_UNKNOWNS, CORNER_MAX_MODES), label
         if plate_any_edges.uses_general_basis(plate):
             classes = plate_any_edges.class_groups(plate)[0]
-            n = plate_any_edges.max_functions(plate.theory, classes)
-            assert bound == sum(k.size for k in plate_general.selection(plate.theory, n, n, classes)), label
+            n_x, n_y = plate_any_edges.functions(plate, plate_any_edges.max_functions(plate.theory, classes))
+            assert bound == sum(k.size for k in plate_general.selection(plate.theory, n_x, n_y, classes)), label
     kirchhoff = _ritz_plates()["Kirchhoff CCCC with D16 (general basis)"]
     classes = plate_any_edges.class_groups(kirchhoff)[0]
     largest = plate_any_edges.solution(kirchhoff, plate_any_edges.max_functions("kirchhoff", classes), classes)

@@ -113,7 +113,7 @@ def test_pinned_basis_is_pure_and_truncates_one_basis(tmp_path, monkeypatch):
 
         _plate_modes.cache_clear()
         out = {cut: pinned.modes(cut, contact_radius=0.001) for cut in order}
-        return out, plate_any_edges.grown_solution(pinned, low, 1).n_x
+        return out, plate_any_edges.grown_solution(pinned, low, 1).n
 
     first, n_low = answers((low, high))
     second, _ = answers((high, low))

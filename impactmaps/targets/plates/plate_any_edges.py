@@ -29,7 +29,7 @@ from .plate_general import (
     solve_general_plate,
 )
 
-__all__ = ["uses_general_basis", "class_groups", "max_functions", "resolved_frequency", "basis_size", "solution",
+__all__ = ["uses_general_basis", "class_groups", "max_functions", "resolved_frequency", "basis_size", "functions", "solution",
            "grown_solution", "resolved_count", "mode_count_bound", "all_modes", "patch_weights", "patch_static_compliance", "classical_compliance",
            "general_plate_modes", "symmetry_lines", "check_couplings", "laminate_couplings", "mode_table", "MAX_UNKNOWNS", "STATIC_EXTRA_FUNCTIONS"]
 
@@ -63,10 +63,27 @@ MAX_UNKNOWNS = 3 * MAX_FUNCTIONS**2
 def symmetry_lines(plate) -> tuple[bool, bool]:
     """(about x = a/2, about y = b/2): whether the plate is symmetric about each centre line
     (the same edge on the two sides it separates) and struck on it."""
-    x0, y0 = plate.impact_point
-    on_x = abs(x0 - 0.5 * plate.length_x) <= 1e-12 * plate.length_x
-    on_y = abs(y0 - 0.5 * plate.length_y) <= 1e-12 * plate.length_y
+    on_x, on_y = _on_centre_lines(plate)
     return on_x and plate.edges[0] == plate.edges[2], on_y and plate.edges[1] == plate.edges[3]
+
+
+def _on_centre_lines(plate) -> tuple[bool, bool]:
+    """(on x = a/2, on y = b/2): whether the impact point lies on each centre line."""
+    x0, y0 = plate.impact_point
+    return (abs(x0 - 0.5 * plate.length_x) <= 1e-12 * plate.length_x,
+            abs(y0 - 0.5 * plate.length_y) <= 1e-12 * plate.length_y)
+
+
+def _twin_classes(plate):
+    """The symmetry classes a load at the impact point excites on the plate's simply supported
+    twin without couplings (:func:`class_groups` of that twin, first group): its static
+    compliance needs no other (a centred load is orthogonal to them)."""
+    on_x, on_y = _on_centre_lines(plate)
+    if on_x and on_y:
+        return ((0, 0),)
+    if on_y:
+        return ((0, 0), (1, 0))
+    return ((0, 0), (0, 1)) if on_x else None
 
 
 def is_symmetric(plate) -> bool:
@@ -110,32 +127,57 @@ def resolved_frequency(plate, n_x: int, n_y: int) -> float:
     frequency (same theory, couplings left out) of the mode with
     ``(n − RESOLUTION_MARGIN)/RESOLUTION_FACTOR`` half-waves in the poorer direction
     (cached: every run's basis size probes it)."""
+    return min(_direction_frequencies(plate, n_x, n_y))
+
+
+def _direction_frequencies(plate, n_x: int, n_y: int) -> tuple:
+    """(along x, along y) [rad/s]: what ``n_x`` functions resolve along x, ``n_y`` along y."""
     if plate.theory == "kirchhoff":
-        return ritz._resolved_frequency(n_x, n_y, plate.length_x, plate.length_y, plate.D11, plate.D22,
-                                        plate.D12, plate.D66, plate.mass_per_area)
+        return ritz._direction_frequencies(n_x, n_y, plate.length_x, plate.length_y, plate.D11, plate.D22,
+                                           plate.D12, plate.D66, plate.mass_per_area)
     from .plate_navier import mindlin_flexural
 
     m_x = max((n_x - RESOLUTION_MARGIN) / RESOLUTION_FACTOR, 1.0)
     m_y = max((n_y - RESOLUTION_MARGIN) / RESOLUTION_FACTOR, 1.0)
     omega, _ = mindlin_flexural(plate, np.array([m_x, 1.0]), np.array([1.0, m_y]))
-    return float(np.min(omega))
+    return float(omega[0]), float(omega[1])
 
 
-def basis_size(plate, max_frequency: float, classes=None) -> tuple[int, int, bool]:
-    """(n_x, n_y, enough): the smallest square basis resolving ``max_frequency`` [rad/s],
-    clipped to :func:`max_functions`; ``enough`` is False when even the largest does not."""
+@functools.lru_cache(maxsize=256)
+def functions(plate, n: int) -> tuple[int, int]:
+    """(n_x, n_y): the basis of size ``n``: ``n`` functions per field along the direction it
+    resolves worse, along the other the fewest (``n − 2k``, at least the smallest basis) that
+    resolve at least as high. Its resolved frequency is that of the ``n × n`` basis; a
+    rectangular plate needs fewer functions across its short side (docs/plates_any_edges.rst,
+    "The eigen-solution of a large basis")."""
+    n = int(n)
+    along_x, along_y = _direction_frequencies(plate, n, n)
+    poorer = min(along_x, along_y)
+    smallest = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
+    other = n
+    while other - 2 >= smallest:
+        candidate = (n, other - 2) if along_x <= along_y else (other - 2, n)
+        if min(_direction_frequencies(plate, *candidate)) < poorer:
+            break
+        other -= 2
+    return (n, other) if along_x <= along_y else (other, n)
+
+
+def basis_size(plate, max_frequency: float, classes=None) -> tuple[int, bool]:
+    """(n, enough): the size (:func:`functions`) of the smallest basis resolving ``max_frequency``
+    [rad/s], clipped to :func:`max_functions`; ``enough`` is False when even the largest does not."""
     cap = max_functions(plate.theory, classes)
     n = MIN_FUNCTIONS if plate.theory == "mindlin" else ritz.MIN_FUNCTIONS
     while n < cap and resolved_frequency(plate, n, n) < max_frequency:
         n += 2
     n = min(n, cap)
-    return n, n, resolved_frequency(plate, n, n) >= max_frequency
+    return n, resolved_frequency(plate, n, n) >= max_frequency
 
 
 def solution(plate, n: int, classes=None) -> GeneralPlateSolution:
-    """The cached general solution of ``plate`` with ``n × n`` functions (the kept classes)."""
-    top = resolved_frequency(plate, n, n)
-    return solve_general_plate(*_inputs(plate), n, n, top, classes)
+    """The cached general solution of ``plate`` of size ``n`` (:func:`functions`; the kept classes)."""
+    n_x, n_y = functions(plate, n)
+    return solve_general_plate(*_inputs(plate), n_x, n_y, resolved_frequency(plate, n_x, n_y), classes)
 
 
 def grown_solution(plate, max_frequency: float, min_modes: int, classes="impact") -> GeneralPlateSolution:
@@ -144,7 +186,7 @@ def grown_solution(plate, max_frequency: float, min_modes: int, classes="impact"
     smaller than a pinned plate's ``basis_functions`` (:mod:`.shared_basis`)."""
     if classes == "impact":
         classes = class_groups(plate)[0]
-    n, _, _ = basis_size(plate, max_frequency, classes)
+    n, _ = basis_size(plate, max_frequency, classes)
     cap = max_functions(plate.theory, classes)
     n = max(n, min(getattr(plate, "basis_functions", 0), cap))  # a pinned basis (shared_basis.PinnedBasisPlate)
     while True:
@@ -175,8 +217,8 @@ def mode_count_bound(plate) -> float:
     if not uses_general_basis(plate):
         return float(ritz.MAX_FUNCTIONS**2)
     classes = class_groups(plate)[0]
-    n = max_functions(plate.theory, classes)
-    return float(sum(kept.size for kept in selection(plate.theory, n, n, classes)))
+    n_x, n_y = functions(plate, max_functions(plate.theory, classes))
+    return float(sum(kept.size for kept in selection(plate.theory, n_x, n_y, classes)))
 
 
 def all_modes(plate, count: int) -> tuple:
@@ -242,18 +284,18 @@ def patch_static_compliance(plate, n: int, contact_radius: float, classes=None) 
     quasi-isotropic laminate of the worked example, patch radius 0.5 and 2 mm): n = 12
     is within 3e-4 of n = 48, n = 24 within 3e-5."""
     n_static = -(-(int(n) + STATIC_EXTRA_FUNCTIONS) // 8) * 8  # a multiple of 8: few factors per plate
-    n = min(n_static, max(int(n), max_functions(plate.theory, classes)))
+    n_x, n_y = functions(plate, min(n_static, max(int(n), max_functions(plate.theory, classes))))
     from ..patch import hertz_transform, mean_square_transform
     from .plate_static import navier_patch_residual
 
-    def load_for(edges):
-        stand_in = GeneralPlateSolution(plate.length_x, plate.length_y, plate.theory, edges, n, n,
-                                        np.zeros(0), np.zeros((0, 0)), 0.0, classes)
+    def load_for(edges, kept):
+        stand_in = GeneralPlateSolution(plate.length_x, plate.length_y, plate.theory, edges, n_x, n_y,
+                                        np.zeros(0), np.zeros((0, 0)), 0.0, kept)
         return _patch_load(stand_in, plate.impact_point, contact_radius)
 
-    full = general_static_compliance(*_inputs(plate)[:6], n, n, load_for(plate.edges), classes)
-    ssss = _inputs(plate, "SSSS", coupled=False)
-    basis_ssss = general_static_compliance(*ssss[:6], n, n, load_for("SSSS"), classes)
+    full = general_static_compliance(*_inputs(plate)[:6], n_x, n_y, load_for(plate.edges, classes), classes)
+    ssss, twin = _inputs(plate, "SSSS", coupled=False), _twin_classes(plate)
+    basis_ssss = general_static_compliance(*ssss[:6], n_x, n_y, load_for("SSSS", twin), twin)
     stiffnesses = (plate.D11, plate.D22, plate.D12, plate.D66)
     if plate.theory == "mindlin":
         stiffnesses += (plate.shear_correction * plate.A55, plate.shear_correction * plate.A44)
@@ -286,17 +328,18 @@ def _classical_compliance(plate, n: int, classes) -> float:
     a, b = plate.length_x, plate.length_y
     unit = ((1.0, 0.0), (0.0, 1.0))
 
-    def load_for(edges):
+    def load_for(edges, kept):
         stand_in = GeneralPlateSolution(a, b, "kirchhoff", edges, n, n, np.zeros(0), np.zeros((0, 0)),
-                                        0.0, classes)
+                                        0.0, kept)
         return stand_in.deflection_basis(np.array([plate.impact_point]))[0]
 
     full = general_static_compliance(a, b, "kirchhoff", plate.edges, _inputs(plate)[4], unit, n, n,
-                                     load_for(plate.edges), classes)
+                                     load_for(plate.edges, classes), classes)
     orth = (plate.D11, plate.D22, plate.D12, plate.D66)
     navier = navier_static_compliance(a, b, *orth, plate.impact_point)
+    twin = _twin_classes(plate)
     basis_ssss = general_static_compliance(a, b, "kirchhoff", "SSSS", _inputs(plate, "SSSS", coupled=False)[4],
-                                           unit, n, n, load_for("SSSS"), classes)
+                                           unit, n, n, load_for("SSSS", twin), twin)
     return full + (navier - basis_ssss)
 
 
@@ -315,7 +358,7 @@ def general_plate_modes(plate, max_frequency: float, min_modes: int, contact_rad
     participation = patch_weights(result, plate.impact_point, contact_radius, count)
     damping = np.full(omega.shape, float(plate.damping_ratio))
     if contact_radius > 0.0:
-        static = patch_static_compliance(plate, result.n_x, float(contact_radius), result.classes)
+        static = patch_static_compliance(plate, result.n, float(contact_radius), result.classes)
         residual = max(static - float(np.sum(participation**2 / omega**2)), 0.0)
         if plate.theory == "mindlin" and near_field.isotropic_constants(plate) is not None:
             # the 3D-consistent near field (near_field): each retained mode weighted by ρ(k) at
@@ -410,7 +453,7 @@ def mode_table(plate, count: int) -> dict:
                 "resolved_frequency_hz": math.inf, "resolved": True}
     if uses_general_basis(plate):
         frequencies, results = all_modes(plate, count)
-        n_x = n_y = max(r.n_x for r in results)
+        n_x, n_y = results[0].n_x, results[0].n_y  # one size for every class
         top = min(r.resolved_frequency for r in results)
         method = f"Ritz, general basis ({plate.theory}, w{', ψx, ψy' if plate.theory == 'mindlin' else ''})"
     else:

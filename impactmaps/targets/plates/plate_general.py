@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import legendre
 
-from . import basis_cache, ritz
+from . import basis_cache, ritz, ritz_eigen
 from ..._blas import single_blas_thread
 
 __all__ = ["GeneralPlateSolution", "deflection_functions", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
@@ -148,7 +148,7 @@ def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, clas
     offsets = np.concatenate([[0], np.cumsum([k.size for k in kept])])
     strains = _strains(theory)
     material = _material_matrix(theory, D, shear)
-    stiffness = np.zeros((offsets[-1], offsets[-1]))
+    groups = {}  # (field, field) → [(scale, x Gram, y Gram)] of the upper block triangle
     for s, strain_s in enumerate(strains):
         for t, strain_t in enumerate(strains):
             c = material[s, t]
@@ -159,9 +159,38 @@ def stiffness_matrix(length_x, length_y, theory, edges, D, shear, n_x, n_y, clas
                     gx = _gram(n_x, exponents[fs][0], exponents[ft][0], pxs, pxt)
                     gy = _gram(n_y, exponents[fs][1], exponents[ft][1], pys, pyt)
                     scale = c * cs * ct * a ** (1 - pxs - pxt) * b ** (1 - pys - pyt)
-                    block = _product_block(gx, gy, kept[fs], kept[ft], n_y)
-                    stiffness[offsets[fs]:offsets[fs + 1], offsets[ft]:offsets[ft + 1]] += scale * block
-    return 0.5 * (stiffness + stiffness.T)
+                    if fs <= ft:  # a term of a lower block is the transpose of one of the upper block
+                        groups.setdefault((fs, ft), []).append((scale, gx, gy))
+    stiffness = np.zeros((offsets[-1], offsets[-1]))
+    for (fs, ft), terms in groups.items():
+        block = _kron_sum(terms, kept[fs], kept[ft], n_y)
+        rows, columns = slice(offsets[fs], offsets[fs + 1]), slice(offsets[ft], offsets[ft + 1])
+        if fs == ft:
+            stiffness[rows, columns] = 0.5 * (block + block.T)
+        else:
+            stiffness[rows, columns] = block
+            stiffness[columns, rows] = block.T
+    return stiffness
+
+
+def _kron_sum(terms, kept_s, kept_t, n_y):
+    """``Σ scale · gx[i_s, i_t] gy[l_s, l_t]`` over ``terms`` [(scale, gx, gy)] on the kept rows
+    and columns: one matrix product per pair of parity parts (:func:`_parity_parts`; a product set
+    is one part) instead of a Kronecker product per term, else gathered term by term."""
+    row_parts, column_parts = _parity_parts(kept_s, n_y), _parity_parts(kept_t, n_y)
+    if row_parts is None or column_parts is None:
+        return sum(scale * _product_block(gx, gy, kept_s, kept_t, n_y) for scale, gx, gy in terms)
+    block = np.empty((kept_s.size, kept_t.size))
+    for where_s, xs, ys in row_parts:
+        for where_t, xt, yt in column_parts:
+            x = np.stack([scale * gx[np.ix_(xs, xt)] for scale, gx, _ in terms]).reshape(len(terms), -1)
+            y = np.stack([gy[np.ix_(ys, yt)] for _, _, gy in terms]).reshape(len(terms), -1)
+            part = (x.T @ y).reshape(xs.size, xt.size, ys.size, yt.size).transpose(0, 2, 1, 3)
+            part = part.reshape(xs.size * ys.size, xt.size * yt.size)
+            if len(row_parts) == 1 and len(column_parts) == 1:
+                return np.ascontiguousarray(part)
+            block[np.ix_(where_s, where_t)] = part
+    return block
 
 
 def _factors(kept, n_y):
@@ -261,6 +290,12 @@ class GeneralPlateSolution:
     resolved_frequency: float
     classes: tuple | None = None
 
+    @property
+    def n(self) -> int:
+        """The basis's size: its functions per field along the direction it resolves worse
+        (:func:`impactmaps.targets.plates.plate_any_edges.functions`)."""
+        return max(self.n_x, self.n_y)
+
     def deflection_basis(self, points) -> np.ndarray:
         """w basis functions at ``points`` (n_points, 2) [m] → (n_points, kept w functions)."""
         return deflection_functions(self.length_x, self.length_y, self.theory, field_exponents(self.theory, self.edges)[0],
@@ -334,15 +369,33 @@ def solve_general_plate(length_x, length_y, theory, edges, D, shear, mass_per_ar
 def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
                     resolved_frequency, classes) -> dict:
     """{"frequencies": ω_j [rad/s], "coefficients": mass-normalised eigenvectors} of
-    :func:`solve_general_plate` (the dense eigenproblem: the expensive part)."""
+    :func:`solve_general_plate` (the expensive part): dense below
+    :data:`~.ritz_eigen.KRYLOV_MIN_UNKNOWNS` unknowns, else shift-invert block Krylov on the
+    stiffness's Cholesky factor (:mod:`.ritz_eigen`; dense if it does not converge)."""
     import scipy.linalg
 
-    matrix, scale = _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
-                                      n_x, n_y, classes)
     upper = float(resolved_frequency) ** 2
-    eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_value=(-np.inf, upper), driver="evr")
-    if eigenvalues.size == 0:
-        eigenvalues, vectors = scipy.linalg.eigh(matrix, subset_by_index=(0, 0), driver="evr")
+    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
+                          selection(theory, n_x, n_y, classes))
+    scale = 1.0 / np.sqrt(mass)
+    found = None
+    if mass.size >= ritz_eigen.KRYLOV_MIN_UNKNOWNS:
+        try:
+            factor, _ = _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
+        except np.linalg.LinAlgError:  # not positive definite: the dense solution says so
+            factor = None
+        if factor is not None:
+            def apply_inverse(x):  # A = S K S, A⁻¹ x = S⁻¹ K⁻¹ S⁻¹ x
+                return scipy.linalg.cho_solve(factor, x / scale[:, None], check_finite=False) / scale[:, None]
+
+            found = ritz_eigen.lowest_by_krylov(apply_inverse, mass.size, upper)
+    if found is None:
+        matrix, scale = _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
+                                          n_x, n_y, classes)
+        found = scipy.linalg.eigh(matrix, subset_by_value=(-np.inf, upper), driver="evr")
+        if found[0].size == 0:
+            found = scipy.linalg.eigh(matrix, subset_by_index=(0, 0), driver="evr")
+    eigenvalues, vectors = found
     if eigenvalues[0] <= 0:
         raise RuntimeError(f"Ritz plate stiffness is not positive definite (lowest eigenvalue "
                            f"{eigenvalues[0]:.3e}); the edges leave rigid-body motion")

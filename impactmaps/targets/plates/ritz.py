@@ -86,14 +86,22 @@ def _edge_factor(xi, e0: int, e1: int):
 def _raw_polynomials(xi, n_functions: int, e0: int, e1: int):
     """Edge factor times Legendre P_k(2ξ − 1), k < n, and ξ-derivatives; shape (len(xi), n)."""
     t = 2.0 * np.asarray(xi, dtype=float) - 1.0
-    eye = np.eye(n_functions)
     p0 = legendre.legvander(t, n_functions - 1)
     # d/dξ = 2 d/dt
-    p1 = 2.0 * legendre.legval(t, legendre.legder(eye, 1, axis=0)).T if n_functions > 1 else np.zeros_like(p0)
-    p2 = 4.0 * legendre.legval(t, legendre.legder(eye, 2, axis=0)).T if n_functions > 2 else np.zeros_like(p0)
+    p1 = 2.0 * legendre.legval(t, _legendre_derivatives(n_functions, 1)).T if n_functions > 1 else np.zeros_like(p0)
+    p2 = 4.0 * legendre.legval(t, _legendre_derivatives(n_functions, 2)).T if n_functions > 2 else np.zeros_like(p0)
     g0, g1, g2 = _edge_factor(np.asarray(xi, dtype=float), e0, e1)
     g0, g1, g2 = g0[:, None], g1[:, None], g2[:, None]
     return g0 * p0, g1 * p0 + g0 * p1, g2 * p0 + 2.0 * g1 * p1 + g0 * p2
+
+
+@functools.lru_cache(maxsize=64)
+def _legendre_derivatives(n_functions: int, order: int) -> np.ndarray:
+    """Legendre coefficients (rows) of the ``order``-th t-derivative of P_k, k < n, per column
+    (cached: NumPy's ``legder`` loops over the degrees in Python)."""
+    coefficients = legendre.legder(np.eye(n_functions), order, axis=0)
+    coefficients.setflags(write=False)
+    return coefficients
 
 
 @functools.lru_cache(maxsize=64)
@@ -275,8 +283,14 @@ def _max_half_waves(frequency, length, other_length, D_along, D_across, H, mass_
 
 def _resolved_frequency(n_x, n_y, length_x, length_y, D11, D22, D12, D66, mass_per_area) -> float:
     """SS Kirchhoff frequency of the highest mode resolved by an n_x × n_y basis [rad/s]."""
+    return min(_direction_frequencies(n_x, n_y, length_x, length_y, D11, D22, D12, D66, mass_per_area))
+
+
+def _direction_frequencies(n_x, n_y, length_x, length_y, D11, D22, D12, D66, mass_per_area) -> tuple:
+    """(along x, along y) [rad/s]: the SS Kirchhoff frequency of the mode with
+    ``(n − RESOLUTION_MARGIN)/RESOLUTION_FACTOR`` half-waves along each direction (one across)."""
     H = D12 + 2.0 * D66
-    result = math.inf
+    result = []
     for n, D_along, D_across, length, other in (
         (n_x, D11, D22, length_x, length_y),
         (n_y, D22, D11, length_y, length_x),
@@ -284,9 +298,8 @@ def _resolved_frequency(n_x, n_y, length_x, length_y, D11, D22, D12, D66, mass_p
         m = (n - RESOLUTION_MARGIN) / RESOLUTION_FACTOR
         k2 = (m * math.pi / length) ** 2
         q2 = (math.pi / other) ** 2
-        omega = math.sqrt((D_along * k2**2 + 2.0 * H * k2 * q2 + D_across * q2**2) / mass_per_area)
-        result = min(result, omega)
-    return result
+        result.append(math.sqrt((D_along * k2**2 + 2.0 * H * k2 * q2 + D_across * q2**2) / mass_per_area))
+    return tuple(result)
 
 
 def largest_resolved_frequency(length_x, length_y, D11, D22, D12, D66, mass_per_area) -> float:

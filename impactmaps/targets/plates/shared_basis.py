@@ -44,6 +44,6 @@ def shared_basis(target, frequency: float):
     truncation) or is pinned already."""
     if not isinstance(target, Plate) or isinstance(target, PinnedBasisPlate) or not uses_general_basis(target):
         return target
-    n, _, _ = basis_size(target, float(frequency), class_groups(target)[0])
+    n, _ = basis_size(target, float(frequency), class_groups(target)[0])
     return PinnedBasisPlate(**{f.name: getattr(target, f.name) for f in fields(target) if f.init},
                             basis_functions=int(n))
