@@ -36,7 +36,7 @@ __all__ = ["BASIS_REVISION", "MAX_CACHED_BASES", "MAX_BASIS_BYTES", "SUBDIRECTOR
 #: of their bits (plate_general's matrices and eigen-solution, the static compliances). 2: computed
 #: with one BLAS thread (:mod:`impactmaps._blas`); a basis a Python session computed with several
 #: threads before holds other bits and is not read. 3: the bases of a rectangular plate have fewer
-#: functions across its short side, large bases are solved by block Krylov (:mod:`.ritz_eigen`).
+#: functions across its short side, large bases are solved by block Krylov (:mod:`impactmaps._krylov`).
 BASIS_REVISION = 3
 #: Most files kept (the least recently used beyond it are removed).
 MAX_CACHED_BASES = 64

@@ -40,7 +40,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import legendre
 
-from . import basis_cache, ritz, ritz_eigen
+from . import basis_cache, ritz
+from ... import _krylov
 from ..._blas import single_blas_thread
 
 __all__ = ["GeneralPlateSolution", "deflection_functions", "field_exponents", "selection", "stiffness_matrix", "solve_general_plate",
@@ -370,8 +371,8 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
                     resolved_frequency, classes) -> dict:
     """{"frequencies": ω_j [rad/s], "coefficients": mass-normalised eigenvectors} of
     :func:`solve_general_plate` (the expensive part): dense below
-    :data:`~.ritz_eigen.KRYLOV_MIN_UNKNOWNS` unknowns, else shift-invert block Krylov on the
-    stiffness's Cholesky factor (:mod:`.ritz_eigen`; dense if it does not converge)."""
+    :data:`~impactmaps._krylov.KRYLOV_MIN_UNKNOWNS` unknowns, else shift-invert block Krylov on the
+    stiffness's Cholesky factor (:mod:`impactmaps._krylov`; dense if it does not converge)."""
     import scipy.linalg
 
     upper = float(resolved_frequency) ** 2
@@ -379,7 +380,7 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
                           selection(theory, n_x, n_y, classes))
     scale = 1.0 / np.sqrt(mass)
     found = None
-    if mass.size >= ritz_eigen.KRYLOV_MIN_UNKNOWNS:
+    if mass.size >= _krylov.KRYLOV_MIN_UNKNOWNS:
         try:
             factor, _ = _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
         except np.linalg.LinAlgError:  # not positive definite: the dense solution says so
@@ -388,7 +389,7 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
             def apply_inverse(x):  # A = S K S, A⁻¹ x = S⁻¹ K⁻¹ S⁻¹ x
                 return scipy.linalg.cho_solve(factor, x / scale[:, None], check_finite=False) / scale[:, None]
 
-            found = ritz_eigen.lowest_by_krylov(apply_inverse, mass.size, upper)
+            found = _krylov.lowest_by_krylov(apply_inverse, mass.size, upper)
     if found is None:
         matrix, scale = _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
                                           n_x, n_y, classes)

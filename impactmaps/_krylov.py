@@ -1,14 +1,14 @@
-"""The lowest eigenpairs of a Ritz plate's mass-scaled stiffness matrix: dense for a small
-basis, shift-invert block Krylov on the stiffness's Cholesky factor for a large one.
+"""The lowest eigenpairs of a large symmetric positive definite matrix: shift-invert block Krylov.
 
-A large basis (thousands of unknowns) is solved for its lowest hundred modes or so: the dense
-solution spends its time reducing the whole matrix to tridiagonal form, while the modes wanted
-are the largest eigenvalues of the inverse, which a Krylov space of a few times their number
-holds to the working accuracy. The Cholesky factor the Krylov space is built with is the one
-the plate's static compliance uses anyway (:func:`impactmaps.targets.plates.plate_general.general_static_compliance`).
-Measured on the drop-weight example's largest basis and the convergence of the method in
-docs/plates_any_edges.rst ("The eigen-solution of a large basis"). Deterministic: the start
-block is drawn from a fixed seed, so the same matrix gives the same bits.
+A large Ritz basis of a plate (thousands of unknowns) is solved for its lowest hundred modes or
+so. The dense solution spends its time reducing the whole matrix to tridiagonal form, while the
+modes wanted are the largest eigenvalues of the inverse, which a Krylov space of a few times
+their number holds to the working accuracy. :func:`lowest_by_krylov` takes the inverse as a
+function (a plate applies it with the Cholesky factor its static compliance uses anyway,
+:func:`impactmaps.targets.plates.plate_general.general_static_compliance`). Measured on the
+drop-weight example's largest basis in docs/plates_any_edges.rst ("The eigen-solution of a
+large basis"). Deterministic: the start block is drawn from a fixed seed, so the same matrix
+gives the same bits.
 """
 
 from __future__ import annotations
