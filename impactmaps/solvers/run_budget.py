@@ -142,9 +142,12 @@ SECONDS_PER_MAP_POINT = 2.9e-3
 #: Mindlin [45/0/−45/90]2s laminate of the drop-weight example 0.002–0.003 (their points stop
 #: where the basis resolves no more); a beam or a Navier plate 0.01 on that grid.
 SECONDS_PER_RITZ_MAP_POINT = 0.2
-#: CPU of building a Ritz basis, once per structure while it is not cached [s]: the largest
-#: measured, the drop-weight laminate's (about 33 s; CCCC Mindlin 16, CFCF Kirchhoff 11).
-RITZ_BASIS_SECONDS = 30.0
+#: CPU of building a Ritz basis, once per structure while it is not cached [s]: the largest basis
+#: (the map's cap, :func:`impactmaps.solvers.mode_budget.frequency_cap`) of the drop-weight laminate
+#: took 1.4 s, of a 150 × 100 × 3 mm CCCC Mindlin plate 1.6 s (2026-12-03, the block Krylov
+#: eigen-solution and rectangular bases; about 33 and 16 s before); rounded up for the static factors
+#: the points add.
+RITZ_BASIS_SECONDS = 5.0
 
 
 def map_sweep_seconds(points, ritz) -> float:
