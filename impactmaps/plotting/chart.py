@@ -170,9 +170,9 @@ def make_chart(
     # each column once: the nearest grid ζ of a coarse grid may be that of two coarse values
     coarse_zetas = sorted({float(zetas[np.argmin(np.abs(np.log(zetas / z)))]) for z in coarse})
     tables = [markdown_table(dataset, str(name), zetas=coarse_zetas) for name in dataset["structure"].values]
-    heading = family.labels["table"]
-    if any(structure not in CHART_STRUCTURES for structure in structures):  # not only the shipped ones
-        heading = heading.replace("impact at the centre, simply supported", "each structure as its name says")
+    shipped = all(structure in CHART_STRUCTURES for structure in structures)
+    heading = family.labels["table"].format(
+        structures=family.labels["structures"] if shipped else "each structure as its name says")
     paths["markdown"] = out / "lookup_table.md"
     with written_atomically(paths["markdown"]) as part:
         part.write_text(heading + "\n\n".join(tables) + "\n")

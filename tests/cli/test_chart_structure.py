@@ -50,6 +50,8 @@ def test_a_clamped_beam_chart_is_drawn_beside_the_simply_supported_one_and_resum
         assert np.all((fmax > 0) & (fmax <= 1))  # a linear law: F̄max in (0, 1]
         assert not np.array_equal(fmax[0], fmax[1])  # the clamped beam is another structure
     first = (tmp_path / "fmax_map.csv").read_text()
+    heading = (tmp_path / "lookup_table.md").read_text().splitlines()[2]
+    assert heading.startswith("Linear contact, each structure as its name says;")  # not the shipped maps' words
 
     def solved(*_args, **_kw):
         raise AssertionError("a point was computed again")

@@ -91,7 +91,7 @@ class LinearLayout(MapFamily):
     labels = MapFamily.labels | {"zeta": "loss factor ζ", "lambda": "relative stiffness λ", "contact": "",
               "fmax": r"normalised maximum force $\bar{F}_{max} = F_{max} / (m_i V_0 \omega)$",
               "table": "# Normalised maximum force F̄max = Fmax/(m_i V0 ω)\n\n"
-                       "Linear contact, impact at the centre, simply supported; nearest computed grid point.\n"
+                       "Linear contact, {structures}; nearest computed grid point.\n"
                        "Peak force in newtons: F̄max · m_i · V0 · sqrt(K/m_i).\n\n"}
 
     def describes(self, law) -> bool:
@@ -117,7 +117,7 @@ class HertzLayout(MapFamily):
               "quasi_static": r"quasi-static $\bar{F}^{5/3} + (25/16)\bar{F}^2/\lambda_h = 1$",
               "fmax": r"$\bar{F}_{max} = F_{max}/F_{hs}$, $F_{hs} = K_h \alpha_m^{3/2}$ (Hertz half-space peak)",
               "table": "# Normalised maximum force F̄max = Fmax/F_hs, Hertz contact\n\n"
-                       "Hertz contact F = K_h α^1.5, impact at the centre, simply supported; rows λ_h, columns ζ_h "
+                       "Hertz contact F = K_h α^1.5, {structures}; rows λ_h, columns ζ_h "
                        "(impactmaps.closed_forms.hertz_similarity); nearest computed grid point.\n"
                        "Peak force in newtons: F̄max · K_h α_m^1.5 with α_m = (5 m_i V0²/(4 K_h))^0.4.\n\n"}
 

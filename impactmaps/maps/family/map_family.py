@@ -150,7 +150,9 @@ class MapFamily:
         "zeta": "loss factor ζ", "lambda": "relative stiffness λ", "contact": "", "quasi_static": "quasi-static",
         "zeta_name": "loss factor ζ", "lambda_name": "relative stiffness λ",
         "fmax": r"normalised maximum force $\bar{F}_{max}$",
-        "table": "# Normalised maximum force F̄max\n\nNearest computed grid point.\n\n"}
+        "table": "# Normalised maximum force F̄max\n\nNearest computed grid point.\n\n",
+        # what the shipped maps' structures are, where "table" says it ({structures})
+        "structures": "impact at the centre, simply supported"}
 
     def axis_range(self, name: str) -> tuple[float, float]:
         """The closed range (low, high) a point can be realised at on axis ``name``
