@@ -3,11 +3,13 @@
 A tile is 4 points a side of its family's global log lattice
 (:attr:`~impactmaps.maps.family.map_family.MapFamily.tile_lattice`) around a point, for one
 structure and law, solved and read exactly as the shipped maps. The tile of a plate with an
-edge that is not simply supported or with a D16, D26 or A45 coupling (:func:`refined_cell`) is instead one cell of the lattice
+edge that is not simply supported, or of an orthotropic or laminated plate (:func:`refined_cell`),
+is instead one cell of the lattice
 twice as fine (the shipped maps' grid, 40 ζ and 20 λ per decade), split into four by points
 at its centre and the middles of its edges as the shipped maps' refinements split a cell:
 its interpolation error is measured (the surpluses of those points), not modelled from
-second differences (docs/accuracy.rst). A tile is a pure function
+second differences (docs/accuracy.rst); a patch-loaded cell's points follow ``simulate``'s
+heavy-impactor cut-off (:func:`with_corner_cutoff`). A tile is a pure function
 of its :class:`TileKey`; the cache keeps one verified NetCDF file per key (at most
 :data:`MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
 """
@@ -354,7 +356,10 @@ def tile_refinement(dataset: xr.Dataset) -> Refinement | None:
     """The split of a refined cell's tile as a :class:`~impactmaps.maps.family.refinement.Refinement`
     to read it with (:func:`impactmaps.maps.read.lookup.read_map`), each point's ``fmax_error``
     stated with its floor for its impacts and F̄max (:func:`~impactmaps.maps.family.accuracy.stated_error`
-    with ``fmax``: the re-impact floor relative to F̄max); None for a tile of the 4 × 4 points."""
+    with ``fmax``: the re-impact floor relative to F̄max) and each ``surplus`` less the share of
+    it the spread of sensitive points carries (:func:`_sensitive_share`; never below 0); None
+    for a tile of the 4 × 4 points. (Applied when the tile is read: the file stores the
+    surpluses as measured.)"""
     if f"{_REFINED}code" not in dataset:
         return None
     values = {name: np.asarray(dataset[f"{_REFINED}{name}"].values, dtype) for name, dtype in REFINEMENT_VARIABLES.items()}
