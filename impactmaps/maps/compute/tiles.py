@@ -380,10 +380,11 @@ def _sensitive_share(refinement: Refinement, dataset) -> np.ndarray:
     interpolation weighs it (1/2 an edge's end, 1/4 a centre's corner).
 
     A sensitive point has no converged value (its number is one of the values seen, its band
-    holds them all), so a surplus measured against it is curvature only beyond that share
-    (:func:`tile_refinement` states the rest; the shipped maps' refinement never splits a
-    cell with a sensitive corner, and its surplus safety was calibrated without them;
-    docs/accuracy.rst, "Bands of laminate tiles").
+    holds them all), so a surplus measured against it cannot tell curvature from that spread
+    (the shipped maps' refinement never splits a cell with a sensitive corner, and its surplus
+    safety was calibrated without one). Discounting it is not a bound — where the sensitive
+    point is in fact accurate the share is real curvature, covered by that point's own error
+    in the leaves it is a corner of — but measured: docs/accuracy.rst, "Bands of laminate tiles".
     """
     base = {name: np.asarray(dataset[name].values)[0] for name in ("fmax_error", "status")}
     sensitive = STATUSES.index("sensitive")
