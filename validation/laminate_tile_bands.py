@@ -8,6 +8,9 @@ Kirchhoff; [45/0/−45/90]s and 2s, [0/90]4s, quasi-isotropic [0/45/90/−45]2s;
 * ``simulate`` at its defaults and converged: the settings refined three times
   (:meth:`~impactmaps.solvers.modal_settings.ModalSettings.refined`: cut-offs ×8 — the heavy-impactor
   corner rule on top —, the mode floor ×8, the step /8);
+* with ``--inside N``: N random (ζ, λ) inside the case's tile cell (seeded by the case), each
+  solved as a map point of the tile (its structure, settings and accuracy control) against the
+  tile read there exactly as ``lookup --case`` reads it — the interpolation and its band;
 * with ``--points``: each point of the tile against a reference four refinement levels above
   the base run (the tile's own structure and runner), the calibration of the relative
   re-impact floor (:data:`impactmaps.maps.family.accuracy.TILE_REIMPACT_RELATIVE_FLOOR`).
@@ -15,7 +18,7 @@ Kirchhoff; [45/0/−45/90]s and 2s, [0/90]4s, quasi-isotropic [0/45/90/−45]2s;
 Prints a Markdown table (case, lookup ± band, status, converged simulate, error, error/band)
 and a summary line; ``--csv FILE`` writes the rows.
 
-    python validation/laminate_tile_bands.py [--cases NAME,NAME] [--points] [--csv FILE]
+    python validation/laminate_tile_bands.py [--cases NAME,NAME] [--inside N] [--points] [--csv FILE]
     python validation/laminate_tile_bands.py --smoke      # one small case, simulate refined once
 """
 
@@ -33,7 +36,10 @@ from impactmaps.cases import parse_case, run_case
 from impactmaps.cases.case_answer import case_map_law
 from impactmaps.cases.on_demand import _tile_settings, case_structure
 from impactmaps.maps.compute import tiles
-from impactmaps.maps.compute.points import map_cap, table_runner
+from impactmaps.maps.compute.points import map_cap, solve_map_points, table_runner
+from impactmaps.maps.family.builtin_families import family_layout
+from impactmaps.maps.read.lookup import read_map
+from impactmaps.maps.read.reader import prepare_map
 from impactmaps.maps.family.structures import MAX_MODES
 from impactmaps.solvers.mode_budget import frequency_cap
 
@@ -122,6 +128,42 @@ def case_row(name: str, cache_dir, levels: int = CONVERGED_LEVELS) -> dict:
             "error_over_band": abs(error) / found["peak_force_error_N"], "map": found["map"]}
 
 
+def inside_errors(name: str, cache_dir, count: int) -> list[dict]:
+    """``count`` random (ζ, λ) inside the cell of the case's tile (log-uniform, seeded by the
+    case's name), each solved as a map point of the tile against the tile read there as
+    ``lookup --case`` reads it (:func:`impactmaps.cases.on_demand.answer_on_demand`)."""
+    case = parse_case(CASES[name][1])
+    law = case_map_law(case)
+    structure, patch = case_structure(case, law)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        found = lookup(case=case, cache_dir=cache_dir)
+    key = tiles.tile_for(structure, law, patch, found["zeta"], found["lambda"], _tile_settings(case, patch))
+    dataset, _ = tiles.cached_tile(key, cache_dir)
+    zetas, lambdas = key.axes
+    if not key.cell:  # a 4 × 4 tile: its middle cell
+        zetas, lambdas = zetas[1:3], lambdas[1:3]
+    rng = np.random.default_rng(sum(name.encode()))
+    points = [(float(zetas[0] * (zetas[-1] / zetas[0]) ** a), float(lambdas[0] * (lambdas[-1] / lambdas[0]) ** b))
+              for a, b in rng.random((count, 2))]
+    family = tiles._family(key)
+    table = tiles._table(key, points) if key.structure.build().bounded_modes and family.uses_table() else None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        solved = solve_map_points(family, key.structure, points, key.settings, table, key.control)
+    refinement = tiles.tile_refinement(dataset)
+    prepared = prepare_map(dataset, family_layout(law), refinement, relative_floor=refinement is not None)
+    rows = []
+    for (zeta, lam), row in zip(points, solved):
+        read = read_map(dataset, zeta, lam, kind=structure.kind, theory=structure.theory, name=key.name, law=law,
+                        prepared=prepared)
+        error = abs(read.fmax_normalised - row["fmax_normalised"])
+        rows.append({"name": name, "zeta": zeta, "lambda": lam, "tile": read.fmax_normalised, "band": read.fmax_error,
+                     "point": row["fmax_normalised"], "point_status": int(row["status"]),
+                     "error_over_band": error / read.fmax_error, "band_percent": 100 * read.fmax_error / read.fmax_normalised})
+    return rows
+
+
 def point_errors(name: str, cache_dir, levels: int = 4) -> list[dict]:
     """Each point of the case's tile against a reference ``levels`` refinement levels above the base run."""
     case = parse_case(CASES[name][1])
@@ -186,6 +228,7 @@ def main(argv=None) -> None:
     def options(parser):
         parser.add_argument("--cases", default=",".join(CASES), help="comma-separated case names (default: all)")
         parser.add_argument("--points", action="store_true", help="also each tile point against a finer reference")
+        parser.add_argument("--inside", type=int, default=0, help="random points inside each case's tile cell")
         parser.add_argument("--csv", default=None, help="write the case rows to this CSV file")
 
     from _script_options import parse  # the script's folder (a test imports this module by its path)
@@ -195,6 +238,14 @@ def main(argv=None) -> None:
     with tempfile.TemporaryDirectory(prefix="laminate-bands-") as cache_dir:
         rows = [case_row(name, cache_dir, levels=1 if args.smoke else CONVERGED_LEVELS) for name in names]
         text = table(rows)
+        if args.inside:
+            inside = [row for name in names for row in inside_errors(name, cache_dir, args.inside)]
+            worst = max(inside, key=lambda row: row["error_over_band"])
+            text += (f"\n\n{len(inside)} random points inside the {len(names)} tile cells, each solved as a map point: "
+                     f"{sum(row['error_over_band'] <= 1.0 for row in inside)} within the band the tile states there "
+                     f"(largest error/band {worst['error_over_band']:.2f}, {worst['name']}; largest error "
+                     f"{max(100 * abs(r['tile'] - r['point']) / r['point'] for r in inside):.3f} % of F̄max; "
+                     f"bands {min(r['band_percent'] for r in inside):.2f}–{max(r['band_percent'] for r in inside):.2f} %)")
         if args.points:
             points = [row for name in names for row in point_errors(name, cache_dir, levels=1 if args.smoke else 4)]
             settled = [row for row in points if row["status"] in (0, 1)]
@@ -209,6 +260,8 @@ def main(argv=None) -> None:
         import pandas as pd
 
         pd.DataFrame(rows).to_csv(args.csv, index=False)
+        if args.inside:  # beside it: the points inside the cells
+            pd.DataFrame(inside).to_csv(Path(args.csv).with_name(Path(args.csv).stem + "_inside.csv"), index=False)
 
 if __name__ == "__main__":
     main()

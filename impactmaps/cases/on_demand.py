@@ -12,9 +12,13 @@ Stronge, default ``epp``; read as the shipped plastic maps,
 :func:`impactmaps.maps.read.lookup.read_plastic`). A Hertz impact that ``simulate``
 loads over the contact patch (Mindlin SSSS plates by default) has a third number, the
 patch number ``P = sqrt(R α_m)/h`` (:mod:`impactmaps.closed_forms.hertz_similarity`); its tile is of
-that P. The tile of a plate with a clamped or free edge, or with D16, D26 or A45, is one cell of the shipped maps' grid
+that P. The tile of a plate with a clamped or free edge, or of an orthotropic or laminated
+plate, is one cell of the shipped maps' grid
 density split into four (:func:`impactmaps.maps.compute.tiles.refined_cell`): its band is
-measured from the points that split it, as in the shipped maps' refinements.
+measured from the points that split it, as in the shipped maps' refinements (less the share
+of a sensitive point's spread, :func:`impactmaps.maps.compute.tiles.tile_refinement`), and its
+points of a heavy impactor use ``simulate``'s patch cut-off
+(:func:`impactmaps.maps.compute.tiles.with_corner_cutoff`).
 
 Everything else stays refused with the reason: a target the structure cannot write
 (structural damping, a beam section whose shear or rotary

@@ -3,11 +3,13 @@
 A tile is 4 points a side of its family's global log lattice
 (:attr:`~impactmaps.maps.family.map_family.MapFamily.tile_lattice`) around a point, for one
 structure and law, solved and read exactly as the shipped maps. The tile of a plate with an
-edge that is not simply supported or with a D16, D26 or A45 coupling (:func:`refined_cell`) is instead one cell of the lattice
+edge that is not simply supported, or of an orthotropic or laminated plate (:func:`refined_cell`),
+is instead one cell of the lattice
 twice as fine (the shipped maps' grid, 40 ζ and 20 λ per decade), split into four by points
 at its centre and the middles of its edges as the shipped maps' refinements split a cell:
 its interpolation error is measured (the surpluses of those points), not modelled from
-second differences (docs/accuracy.rst). A tile is a pure function
+second differences (docs/accuracy.rst); a patch-loaded cell's points follow ``simulate``'s
+heavy-impactor cut-off (:func:`with_corner_cutoff`). A tile is a pure function
 of its :class:`TileKey`; the cache keeps one verified NetCDF file per key (at most
 :data:`MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
 """
@@ -19,7 +21,7 @@ import itertools
 import math
 import os
 import warnings
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -27,18 +29,18 @@ import numpy as np
 
 from ... import _files
 from ...jsonio import dumps
-from ...solvers.modal_settings import ModalSettings
+from ...contact.contact_scale import reference_contact_stiffness
+from ...solvers.modal_settings import ModalSettings, corner_ratios
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, capped_resolvable, map_cap, solve_map_points
 from ..family.map_family import map_family
-from ..family.accuracy import stated_error
+from ..family.accuracy import STATUSES, stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
 from ..files.data_io import MapArrays, read_netcdf_arrays
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
-from ...targets.map_structure import STIFFNESS_RATIOS
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -49,7 +51,7 @@ if TYPE_CHECKING:
 PATCH_MODEL_REVISION = 1
 
 __all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
-           "lattice_steps", "refined_cell", "tile_for", "build_tile", "tile_refinement", "cached_tile"]
+           "lattice_steps", "refined_cell", "tile_for", "with_corner_cutoff", "build_tile", "tile_refinement", "cached_tile"]
 
 #: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
 LATTICE_STEPS = (0.05, 0.1)
@@ -74,8 +76,6 @@ _CELL_TILE_FORMAT = 4
 _CELL_LEVELS = 1
 #: Prefix of a refined-cell tile's refinement variables (dimension ``refinement_point``).
 _REFINED = "refinement_"
-#: The stiffness ratios of a plate's couplings (bending–twisting, in-plane shear).
-_COUPLINGS = ("D16/D11", "D26/D11", "k A45 a²/D11")
 
 
 def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
@@ -86,11 +86,12 @@ def cache_directory(cache_dir: str | os.PathLike | None = None) -> Path:
 
 def refined_cell(structure: MapStructure, law: str) -> bool:
     """Whether the tiles of ``structure`` and ``law`` are refined cells (module docstring): a
-    plate of a bounded (Ritz) basis, with an edge other than simply supported or a D16, D26 or
-    A45 coupling, under a (ζ, λ) law. (The tiles of beams, of the Navier SSSS plates and of
-    the elastic-plastic laws keep the 4 × 4 points of their lattice.)"""
-    coupled = any(ratio for name, ratio in zip(STIFFNESS_RATIOS, structure.stiffness or ()) if name in _COUPLINGS)
-    return (structure.kind == "plate" and (structure.supports != "SSSS" or coupled)
+    plate with an edge other than simply supported, or orthotropic or laminated (its
+    ``stiffness`` ratios given: a Navier SSSS laminate too, whose 4 × 4 tile's second-difference
+    band was 6.8 % where the points had converged, docs/accuracy.rst), under a (ζ, λ) law. (The
+    tiles of beams, of the isotropic SSSS plates and of the elastic-plastic laws keep the
+    4 × 4 points of their lattice.)"""
+    return (structure.kind == "plate" and (structure.supports != "SSSS" or structure.stiffness is not None)
             and not map_family(law).extra_axes)
 
 
@@ -214,7 +215,48 @@ def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor
         raise ValueError(f"extra = {tuple(extra)!r}: the {law} tiles need a value of each of {names}")
     first = [_first_index(value, lattice[name], points) for value, name in
              zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
-    return TileKey(structure, law, patch, first[-2], first[-1], settings, control, tuple(first[:-2]), cell)
+    return with_corner_cutoff(TileKey(structure, law, patch, first[-2], first[-1], settings, control,
+                                      tuple(first[:-2]), cell))
+
+
+def with_corner_cutoff(key: TileKey) -> TileKey:
+    """``key`` with the patch cut-off of its points raised by ``simulate``'s heavy-impactor rule.
+
+    A patch-loaded tile's points run under the patch up to ``patch_cutoff_ratio`` ω and refine
+    it (×2, ×4), where ``simulate`` integrates up to the corner of the contact against the
+    plate's local impedance, 4 ζ_p ω (:func:`~impactmaps.solvers.modal_settings.corner_ratios`;
+    docs/plates_any_edges.rst, "The patch cut-off of heavy impactors"): at 20–80 ω a heavy
+    impactor's points read up to 1.2 % low (docs/accuracy.rst). The ratio becomes the largest
+    any of the tile's points asks for (its corners and, for a refined cell, its splitting
+    points), rounded up to two significant digits, but no higher than the cut-off the plate's
+    basis resolves for every point that the base ratio leaves uncapped (rounded down): the
+    raise turns no point into a capped one. Refined cells only (:func:`refined_cell`, where it
+    was measured): a key of a 4 × 4 tile (an isotropic SSSS plate's), of a point-load tile, or
+    whose points ask for no more, is returned as given (the same tile, the same bits).
+    """
+    if key.patch is None or not key.cell:
+        return key
+    settings, target, family = key.settings, key.structure.build(), _family(key)
+    zetas, lambdas = key.axes
+    points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas] + _splitting_points(key)
+    realised = [impact for impact in family.realise_points(target, points)
+                if not beyond_shear_theory(target, impact.omega)]
+    base = settings.patch_cutoff_ratio
+    wanted = max((corner_ratios(settings, target, impact.mass,
+                                reference_contact_stiffness(impact.law, impact.mass, impact.velocity))[0]
+                  for impact in realised), default=base)
+    if wanted <= base:
+        return key
+    cap = map_cap(target) if family.capped_points else frequency_cap(target, MAX_MODES)
+    resolved = min((cap / impact.omega for impact in realised if cap >= base * impact.omega), default=base)
+    ratio = min(_two_digits(wanted, math.ceil), _two_digits(resolved, math.floor))
+    return key if ratio <= base else replace(key, settings=replace(settings, patch_cutoff_ratio=ratio))
+
+
+def _two_digits(value: float, rounding) -> float:
+    """``value`` (> 0) rounded to two significant digits by ``rounding`` (``math.ceil``, ``math.floor``)."""
+    scale = 10.0 ** (math.floor(math.log10(value)) - 1)
+    return float(rounding(value / scale) * scale)
 
 
 def _first_index(value: float, step: float, points: int = TILE_POINTS) -> int:
@@ -314,15 +356,53 @@ def tile_refinement(dataset: xr.Dataset) -> Refinement | None:
     """The split of a refined cell's tile as a :class:`~impactmaps.maps.family.refinement.Refinement`
     to read it with (:func:`impactmaps.maps.read.lookup.read_map`), each point's ``fmax_error``
     stated with its floor for its impacts and F̄max (:func:`~impactmaps.maps.family.accuracy.stated_error`
-    with ``fmax``: the re-impact floor relative to F̄max); None for a tile of the 4 × 4 points."""
+    with ``fmax``: the re-impact floor relative to F̄max) and each ``surplus`` less the share of
+    it the spread of sensitive points carries (:func:`_sensitive_share`; never below 0); None
+    for a tile of the 4 × 4 points. (Applied when the tile is read: the file stores the
+    surpluses as measured.)"""
     if f"{_REFINED}code" not in dataset:
         return None
     values = {name: np.asarray(dataset[f"{_REFINED}{name}"].values, dtype) for name, dtype in REFINEMENT_VARIABLES.items()}
+    shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
+    measured = Refinement(shape, np.asarray(dataset[f"{_REFINED}code"].values, np.int64), dict(values), _CELL_LEVELS)
+    values["surplus"] = np.asarray(np.maximum(values["surplus"] - _sensitive_share(measured, dataset), 0.0),
+                                   REFINEMENT_VARIABLES["surplus"])
     values["fmax_error"] = np.asarray(stated_error(values["fmax_error"], values["status"],
                                                    dataset[f"{_REFINED}impacts"].values, values["fmax_normalised"]),
                                       REFINEMENT_VARIABLES["fmax_error"])
-    shape = (dataset.sizes["lambda_"], dataset.sizes["zeta"])
-    return Refinement(shape, np.asarray(dataset[f"{_REFINED}code"].values, np.int64), values, _CELL_LEVELS)
+    return Refinement(shape, measured.codes, values, _CELL_LEVELS)
+
+
+def _sensitive_share(refinement: Refinement, dataset) -> np.ndarray:
+    """Per splitting point of a refined cell: how much of its surplus the spread of ``sensitive``
+    points can carry [-], the half-spread (``fmax_error``) of the point itself if it is
+    sensitive plus that of each sensitive end it was interpolated from, weighted as the
+    interpolation weighs it (1/2 an edge's end, 1/4 a centre's corner).
+
+    A sensitive point has no converged value (its number is one of the values seen, its band
+    holds them all), so a surplus measured against it cannot tell curvature from that spread
+    (the shipped maps' refinement never splits a cell with a sensitive corner, and its surplus
+    safety was calibrated without one). Discounting it is not a bound — where the sensitive
+    point is in fact accurate the share is real curvature, covered by that point's own error
+    in the leaves it is a corner of — but measured: docs/accuracy.rst, "Bands of laminate tiles".
+    """
+    base = {name: np.asarray(dataset[name].values)[0] for name in ("fmax_error", "status")}
+    sensitive = STATUSES.index("sensitive")
+    u, v = refinement.position(refinement.codes)
+    half = refinement.scale >> refinement.creation_level(u, v)
+
+    def spread(where, du, dv):
+        cu, cv = u[where] + du * half[where], v[where] + dv * half[where]
+        status = refinement.values_at(base, cu, cv, "status")
+        return np.where(status == sensitive, refinement.values_at(base, cu, cv, "fmax_error"), 0.0)
+
+    everywhere = np.ones(u.shape, bool)
+    share = spread(everywhere, 0, 0)
+    centre_u, centre_v = u % (2 * half) == half, v % (2 * half) == half
+    for where, ends in ((centre_u & centre_v, ((-1, -1), (1, -1), (-1, 1), (1, 1))),
+                        (centre_u & ~centre_v, ((-1, 0), (1, 0))), (~centre_u & centre_v, ((0, -1), (0, 1)))):
+        share[where] += sum(spread(where, du, dv) for du, dv in ends) / len(ends)
+    return share
 
 
 def _table(key: TileKey, points) -> BasisTable:
