@@ -11,7 +11,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import threading
 import time
 import warnings
 from pathlib import Path
@@ -59,6 +58,7 @@ def test_a_tile_solved_on_two_workers_is_the_serial_tile_bit_for_bit(law, number
     monkeypatch.setattr(tile_pool, "_on_workers", lambda count, *args, solve=tile_pool._on_workers: (
         pools.append(count) or solve(count, *args)))
     monkeypatch.setattr(tile_pool, "available_cores", lambda: 2)
+    monkeypatch.setattr(tile_pool, "_can_fork", lambda: True)  # whatever threads the test session runs
     parallel = tiles.build_tile(key, workers=2)
     assert pools == [2]
     serial = tiles.build_tile(key, workers=1)
@@ -82,6 +82,7 @@ def test_the_rows_come_in_the_points_order_with_progress_and_the_points_warnings
     warning shown by the parent in the points' order."""
     monkeypatch.setattr(tile_pool, "solve_map_points", _fake_solve)
     monkeypatch.setattr(tile_pool, "available_cores", lambda: 2)
+    monkeypatch.setattr(tile_pool, "_can_fork", lambda: True)
     calls = []
     points = [(float(k), 1.0) for k in range(12)]
     with warnings.catch_warnings(record=True) as caught:
@@ -95,8 +96,8 @@ def test_the_rows_come_in_the_points_order_with_progress_and_the_points_warnings
 
 
 def test_serial_when_nested_on_one_core_or_short_of_memory(monkeypatch):
-    """No pool inside a worker process (a sweep's, Dask's) nor with one core; the memory: as many
-    workers as ``memory // worker_bytes`` allows, at least 1 (serial)."""
+    """No pool with one core, while another thread runs, nor inside a worker process (a sweep's,
+    Dask's); the memory: as many workers as ``memory // worker_bytes`` allows, at least 1 (serial)."""
     monkeypatch.setattr(tile_pool, "solve_map_points", _fake_solve)
 
     def no_pool(*args, **kwargs):
@@ -109,6 +110,9 @@ def test_serial_when_nested_on_one_core_or_short_of_memory(monkeypatch):
         monkeypatch.setattr(tile_pool, "available_cores", lambda: 1)
         assert {row["pid"] for row in tile_pool.solve_tile_points(None, None, points, None, None, None)} == {os.getpid()}
         monkeypatch.setattr(tile_pool, "available_cores", lambda: 8)
+        monkeypatch.setattr(tile_pool.threading, "active_count", lambda: 2)  # another thread runs
+        assert {row["pid"] for row in tile_pool.solve_tile_points(None, None, points, None, None, None)} == {os.getpid()}
+        monkeypatch.setattr(tile_pool.threading, "active_count", lambda: 1)
         monkeypatch.setattr(multiprocessing, "parent_process", lambda: object())
         assert {row["pid"] for row in tile_pool.solve_tile_points(None, None, points, None, None, None)} == {os.getpid()}
     assert tile_pool.point_workers(9, 1e9, cores=2, memory=64e9) == 2
@@ -126,25 +130,27 @@ def _slow_solve(family, structure, points, *rest):
 
 @needs_fork
 def test_ctrl_c_ends_the_workers_at_once(monkeypatch):
-    """Ctrl-C (a KeyboardInterrupt in the parent) while the workers solve: the interrupt reaches
-    the caller without waiting for the points in hand, and the workers are gone."""
+    """Ctrl-C (a KeyboardInterrupt in the parent, raised here by a timer's signal) while the workers
+    solve: the interrupt reaches the caller without waiting for the points in hand, and the workers
+    are gone."""
     monkeypatch.setattr(tile_pool, "solve_map_points", _slow_solve)
     monkeypatch.setattr(tile_pool, "available_cores", lambda: 2)
+    monkeypatch.setattr(tile_pool, "_can_fork", lambda: True)
     workers = []
 
-    def interrupt():
-        deadline = time.monotonic() + 30
-        while len(workers) < 2 and time.monotonic() < deadline:
-            workers[:] = [child.pid for child in multiprocessing.active_children()]
-            time.sleep(0.05)
-        os.kill(os.getpid(), signal.SIGINT)
+    def interrupt(*_):
+        workers[:] = [child.pid for child in multiprocessing.active_children()]
+        raise KeyboardInterrupt
 
-    timer = threading.Thread(target=interrupt)
-    timer.start()
+    previous = signal.signal(signal.SIGALRM, interrupt)
     start = time.monotonic()
-    with pytest.raises(KeyboardInterrupt):
-        tile_pool.solve_tile_points(None, None, [(0.0, 1.0)] + [(1.0, 1.0)] * 4, None, None, None, workers=2)
-    timer.join()
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 1.0)
+        with pytest.raises(KeyboardInterrupt):
+            tile_pool.solve_tile_points(None, None, [(0.0, 1.0)] + [(1.0, 1.0)] * 4, None, None, None, workers=2)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, previous)
     assert len(workers) == 2 and time.monotonic() - start < 30  # not the minute of a point
     deadline = time.monotonic() + 10
     while any(_alive(pid) for pid in workers) and time.monotonic() < deadline:

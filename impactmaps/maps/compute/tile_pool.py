@@ -17,9 +17,10 @@ The workers are those of a sweep (:func:`~impactmaps.maps.compute.workers.init_w
 BLAS thread each, Ctrl-C left to the parent, ended with it); on Ctrl-C or SIGTERM (a
 ``KeyboardInterrupt`` in the parent) or a failure they are ended at once
 (:func:`~impactmaps.maps.compute.workers.end_workers`). The points are solved serially in the
-calling process when it has one core, when ``fork`` is not available, when the process is
-itself a worker (a sweep's, Dask's: no nested pools), or when the workers would not fit in the
-memory available (:func:`point_workers`).
+calling process when it has one core, when ``fork`` is not available or another thread runs
+(a Jupyter kernel's: a fork copies the locks they hold), when the process is itself a worker (a
+sweep's, Dask's: no nested pools), or when the workers would not fit in the memory available
+(:func:`point_workers`).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ import multiprocessing
 import os
 import resource
 import sys
+import threading
 import warnings
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -74,6 +76,12 @@ def nested_process() -> bool:
     """Whether this process is itself a worker (a process of :mod:`multiprocessing`, as a
     sweep's and Dask's workers are, or a daemon): its tile's points are solved in it."""
     return multiprocessing.parent_process() is not None or multiprocessing.current_process().daemon
+
+
+def _can_fork() -> bool:
+    """Whether workers may be forked here: ``fork`` exists and no other thread runs (a fork copies
+    the locks another thread holds; the command line has none when it builds a tile)."""
+    return "fork" in multiprocessing.get_all_start_methods() and threading.active_count() == 1
 
 
 def _peak_resident_bytes() -> float:
@@ -141,7 +149,7 @@ def solve_tile_points(family, structure, points: list, settings, table, control,
         progress(1, total)
     rest = points[1:]
     count = min(len(rest), workers or len(rest))
-    if count > 1 and not nested_process() and "fork" in multiprocessing.get_all_start_methods():
+    if count > 1 and not nested_process() and _can_fork():
         count = point_workers(len(rest), _peak_resident_bytes(), min(available_cores(), count))
     else:  # a worker's own tile, or nothing to share: here
         count = 1
