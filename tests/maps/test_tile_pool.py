@@ -92,6 +92,15 @@ def test_the_rows_come_in_the_points_order_with_progress_and_the_points_warnings
     assert [row["point"] for row in rows] == [point[0] for point in points]
     assert rows[0]["pid"] == os.getpid() and os.getpid() not in {row["pid"] for row in rows[1:]}
     assert calls == [(k, 12) for k in range(1, 13)]
+    calls.clear()  # a report each chunk of points (a plane of a tile), on the workers as serially
+    for workers in (2, 1):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            again = tile_pool.solve_tile_points(None, None, points, None, None, None, lambda *a: calls.append(a),
+                                                chunk=5, workers=workers)
+        assert [row["point"] for row in again] == [point[0] for point in points]
+        assert calls == [(5, 12), (10, 12), (12, 12)]
+        calls.clear()
     assert [str(w.message) for w in caught] == [f"point {float(k)}" for k in range(12)]
 
 

@@ -127,10 +127,11 @@ def solve_tile_points(family, structure, points: list, settings, table, control,
     family, structure, points, settings, table, control
         As :func:`~impactmaps.maps.compute.points.solve_map_points`.
     progress : callable, optional
-        ``progress(done, total)`` [points]: after the first point, then after each point on the
-        workers (serially: after each ``chunk``).
+        ``progress(done, total)`` [points], each time ``done`` reaches a multiple of ``chunk``
+        and at the end.
     chunk : int, optional
-        Points per call when solved serially (default all).
+        Points per progress report and per call when solved serially (default 1 on the
+        workers, all serially).
     workers : int, optional
         Most worker processes (default one per core; 1: serially).
 
@@ -141,12 +142,18 @@ def solve_tile_points(family, structure, points: list, settings, table, control,
     """
     points = list(points)
     total = len(points)
+    step = chunk or 1
+
+    def report(done: int) -> None:
+        if progress is not None and (done % step == 0 or done == total):
+            progress(done, total)
+
     # the first point here: what every point shares (the target, its cap, the table, the Ritz
     # eigen-solution) and what a first run loads (its solver's modules and compiled kernels, the
     # plate's static factors) are built once, and the workers forked below inherit them
     rows = solve_map_points(family, structure, points[:1], settings, table, control)
-    if progress is not None and rows:
-        progress(1, total)
+    if rows:
+        report(len(rows))
     rest = points[1:]
     count = min(len(rest), workers or len(rest))
     if count > 1 and not nested_process() and _can_fork():
@@ -155,21 +162,20 @@ def solve_tile_points(family, structure, points: list, settings, table, control,
         count = 1
     if count > 1:
         return rows + _on_workers(count, dict(family=family, structure=structure, points=rest, settings=settings,
-                                              table=table, control=control), progress, total)
-    step = chunk or max(len(rest), 1)
-    for start in range(0, len(rest), step):
-        rows += solve_map_points(family, structure, rest[start:start + step], settings, table, control)
-        if progress is not None:
-            progress(len(rows), total)
+                                              table=table, control=control), report, len(rows))
+    step = chunk or max(total, 1)
+    while len(rows) < total:  # the calls end where the reports fall (the chunks of all the points)
+        end = min((len(rows) // step + 1) * step, total)
+        rows += solve_map_points(family, structure, points[len(rows):end], settings, table, control)
+        report(len(rows))
     return rows
 
 
-def _on_workers(count: int, job: dict, progress, total: int) -> list[dict]:
-    """The rows of ``job``'s points solved one a task on ``count`` forked workers, in order; each
-    point's warnings shown again here, in the points' order, after all are solved; ``progress``
-    counts them after the ``total − len(points)`` solved before."""
+def _on_workers(count: int, job: dict, report, before: int) -> list[dict]:
+    """The rows of ``job``'s points solved one a task on ``count`` forked workers, in order;
+    ``report(done)`` after each, counting the ``before`` points solved already; each point's
+    warnings shown again here, in the points' order, after all are solved."""
     results = [None] * len(job["points"])
-    before = total - len(results)
     _JOB.update(job)  # read by the workers forked below (the fork copies it; nothing is pickled)
     executor = ProcessPoolExecutor(max_workers=count, mp_context=multiprocessing.get_context("fork"),
                                    initializer=init_worker)
@@ -182,8 +188,7 @@ def _on_workers(count: int, job: dict, progress, total: int) -> list[dict]:
             for future in sorted(ready, key=futures.get):
                 results[futures[future]] = future.result()
                 done += 1
-                if progress is not None:
-                    progress(done, total)
+                report(done)
         finished = True
     finally:
         _JOB.clear()

@@ -232,8 +232,8 @@ def build_tile(key: TileKey, progress=None, workers: int | None = None) -> xr.Da
     family's variables over (``structure``, its extra axes, ``lambda_``, ``zeta``), as the
     shipped maps, and the attributes ``fingerprint``, ``description``, ``data_digest`` and
     ``contact_law``; a refined cell's tile also its refinement (:func:`tile_refinement`).
-    ``progress(done, total)``, if given, is called after each point (serially: after each
-    (λ, ζ) plane of points).
+    ``progress(done, total)``, if given, is called after each (λ, ζ) plane of points (a refined
+    cell: after each 4 points and at the end).
     """
     zetas, lambdas = key.axes
     extra = key.extra_axes
@@ -244,7 +244,7 @@ def build_tile(key: TileKey, progress=None, workers: int | None = None) -> xr.Da
     splitting = _splitting_points(key) if key.cell else []
     table = (_table(key, points + splitting) if key.structure.build().bounded_modes and family.uses_table()
              else None)
-    # serially in chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
+    # progress (and a serial call) per (λ, ζ) plane (a point is a pure function of its inputs)
     rows = solve_tile_points(family, key.structure, points + splitting, key.settings, table, key.control, progress,
                              chunk=key.points_per_axis**2, workers=workers)
     rows, presolved = rows[:len(points)], dict(zip(splitting, rows[len(points):]))
