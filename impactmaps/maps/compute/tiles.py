@@ -297,7 +297,8 @@ def _split_cell(key: TileKey, family, table, data: dict, presolved: dict) -> dic
     def solve(zetas, lambdas):
         points = [(float(zeta), float(lam)) for zeta, lam in zip(zetas, lambdas)]
         missing = [point for point in points if point not in presolved]
-        rows = dict(zip(missing, solve_map_points(family, key.structure, missing, key.settings, table, key.control)))
+        rows = dict(zip(missing, solve_map_points(family, key.structure, missing, key.settings, table, key.control)
+                        if missing else []))
         rows = [presolved[point] if point in presolved else rows[point] for point in points]
         solved.update(zip(points, rows))
         return rows
