@@ -35,6 +35,7 @@ from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, capped_resolvable, map_cap, solve_map_points
+from .tile_pool import solve_tile_points
 from ..family.map_family import map_family
 from ..family.accuracy import STATUSES, stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
@@ -264,14 +265,17 @@ def _first_index(value: float, step: float, points: int = TILE_POINTS) -> int:
     return math.floor(math.log10(float(value)) / step) - (points // 2 - 1)
 
 
-def build_tile(key: TileKey, progress=None) -> xr.Dataset:
-    """Solve the tile's points (serially) and return it as a one-structure map dataset.
+def build_tile(key: TileKey, progress=None, workers: int | None = None) -> xr.Dataset:
+    """Solve the tile's points and return it as a one-structure map dataset.
 
-    The dataset has the family's variables over (``structure``, its extra axes,
-    ``lambda_``, ``zeta``), as the shipped maps, and the attributes ``fingerprint``,
-    ``description``, ``data_digest`` and ``contact_law``; a refined cell's tile also its
-    refinement (:func:`tile_refinement`). ``progress(done, total)``, if given, is called
-    after each (λ, ζ) plane of points (a refined cell: after its corners and after its split).
+    The points (a refined cell: its corners and its 5 splitting points) are solved together,
+    on one worker process per core (at most ``workers``; :func:`~.tile_pool.solve_tile_points`:
+    forked after what they share is built, the same bits as serially). The dataset has the
+    family's variables over (``structure``, its extra axes, ``lambda_``, ``zeta``), as the
+    shipped maps, and the attributes ``fingerprint``, ``description``, ``data_digest`` and
+    ``contact_law``; a refined cell's tile also its refinement (:func:`tile_refinement`).
+    ``progress(done, total)``, if given, is called after each (λ, ζ) plane of points (a refined
+    cell: after each 4 points and at the end).
     """
     zetas, lambdas = key.axes
     extra = key.extra_axes
@@ -282,11 +286,10 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
     splitting = _splitting_points(key) if key.cell else []
     table = (_table(key, points + splitting) if key.structure.build().bounded_modes and family.uses_table()
              else None)
-    rows, chunk = [], key.points_per_axis**2  # chunks of one (λ, ζ) plane (a point is a pure function of its inputs)
-    for start in range(0, len(points), chunk):
-        rows += solve_map_points(family, key.structure, points[start:start + chunk], key.settings, table, key.control)
-        if progress is not None:
-            progress(len(rows), key.point_count)
+    # progress (and a serial call) per (λ, ζ) plane (a point is a pure function of its inputs)
+    rows = solve_tile_points(family, key.structure, points + splitting, key.settings, table, key.control, progress,
+                             chunk=key.points_per_axis**2, workers=workers)
+    rows, presolved = rows[:len(points)], dict(zip(splitting, rows[len(points):]))
     shape = (1, *(values.size for values in extra), lambdas.size, zetas.size)
     dims = ("structure", *(axis.name for axis in family.extra_axes), "lambda_", "zeta")
     data = {name: (dims, np.array([row[name] for row in rows], dtype=spec[0]).reshape(shape), {"units": spec[2]})
@@ -301,7 +304,7 @@ def build_tile(key: TileKey, progress=None) -> xr.Dataset:
 
     dataset = xr.Dataset(data, coords=coords)
     if key.cell:
-        dataset = dataset.assign(_split_cell(key, family, table, data, progress))
+        dataset = dataset.assign(_split_cell(key, family, table, data, presolved))
     dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
                           "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
                           "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
@@ -322,25 +325,28 @@ def _splitting_points(key: TileKey) -> list[tuple[float, float]]:
     return [(float(zeta), float(lam)) for zeta, lam in zip(zetas, lambdas)]
 
 
-def _split_cell(key: TileKey, family, table, data: dict, progress=None) -> dict:
+def _split_cell(key: TileKey, family, table, data: dict, presolved: dict) -> dict:
     """The variables of a refined cell's split (:func:`impactmaps.maps.family.refinement.refine`
     of its one cell, split whatever its band: its leaves' error is the measured surplus of the
     splitting points), each over ``refinement_point``: the lattice code, the
     :data:`~impactmaps.maps.family.refinement.REFINEMENT_VARIABLES` and each point's ``impacts``
-    (its error's floor, :func:`~impactmaps.maps.family.accuracy.stated_error`)."""
+    (its error's floor, :func:`~impactmaps.maps.family.accuracy.stated_error`). The splitting
+    points' rows are ``presolved`` ((ζ, λ) → row, :func:`_splitting_points`, solved with the
+    corners); a point the split asks for that is not among them is solved here."""
     base = {name: np.asarray(data[name][1])[0] for name in ("fmax_normalised", "fmax_error", "status")}
     solved = {}
 
     def solve(zetas, lambdas):
         points = [(float(zeta), float(lam)) for zeta, lam in zip(zetas, lambdas)]
-        rows = solve_map_points(family, key.structure, points, key.settings, table, key.control)
+        missing = [point for point in points if point not in presolved]
+        rows = dict(zip(missing, solve_map_points(family, key.structure, missing, key.settings, table, key.control)
+                        if missing else []))
+        rows = [presolved[point] if point in presolved else rows[point] for point in points]
         solved.update(zip(points, rows))
         return rows
 
     refinement = refine(base, np.zeros(base["fmax_normalised"].shape), lambda row, col: _cell_coordinates(key, row, col),
                         solve, max_level=_CELL_LEVELS, split_first=True)
-    if progress is not None:
-        progress(key.point_count, key.point_count)
     u, v = refinement.position(refinement.codes)
     zetas, lambdas = _cell_coordinates(key, u / refinement.scale, v / refinement.scale)
     impacts = np.array([solved[(float(zeta), float(lam))].get("impacts", np.nan) for zeta, lam in zip(zetas, lambdas)],
