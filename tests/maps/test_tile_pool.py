@@ -1,4 +1,4 @@
-"""A tile's points solved on the machine's cores (impactmaps.maps.compute.tile_pool, issue 39
+"""A tile's points solved on the machine's cores (impactmaps.maps.compute.workers, issue 39
 item 7): the same bits as the serial solve, in the points' order, with progress and the points'
 warnings; the workers gone when the parent is interrupted (Ctrl-C, SIGTERM: exit 130); serial
 in a worker process, on one core, or when the workers would not fit in memory."""
@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from impactmaps.maps.compute import tile_pool, tiles
+from impactmaps.maps.compute import tiles
+from impactmaps.maps.compute import workers as tile_pool
 from impactmaps.maps.family.structures import MapStructure
 
 from ..helpers import case_text
@@ -177,7 +178,7 @@ def test_a_signal_ends_a_lookup_building_its_tile_with_130_and_no_worker_left(tm
     case.write_text(case_text(_CLAMPED_BEAM, radius=0.01))
     program = textwrap.dedent(f"""
         import sys, time
-        from impactmaps.maps.compute import tile_pool
+        from impactmaps.maps.compute import workers as tile_pool
         def slow(family, structure, points, *rest, solve=tile_pool.solve_map_points):
             if points and tile_pool.nested_process():  # a worker's point (the parent's first: solved)
                 time.sleep(60)

@@ -35,7 +35,7 @@ from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
 from .points import SOLVER_REVISION, capped_resolvable, map_cap, solve_map_points
-from .tile_pool import solve_tile_points
+from .workers import solve_tile_points
 from ..family.map_family import map_family
 from ..family.accuracy import STATUSES, stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
@@ -269,7 +269,7 @@ def build_tile(key: TileKey, progress=None, workers: int | None = None) -> xr.Da
     """Solve the tile's points and return it as a one-structure map dataset.
 
     The points (a refined cell: its corners and its 5 splitting points) are solved together,
-    on one worker process per core (at most ``workers``; :func:`~.tile_pool.solve_tile_points`:
+    on one worker process per core (at most ``workers``; :func:`~.workers.solve_tile_points`:
     forked after what they share is built, the same bits as serially). The dataset has the
     family's variables over (``structure``, its extra axes, ``lambda_``, ``zeta``), as the
     shipped maps, and the attributes ``fingerprint``, ``description``, ``data_digest`` and
