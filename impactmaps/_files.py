@@ -10,17 +10,21 @@ through it too (:func:`impactmaps.maps.files.store.save_atomic`).
 
 :func:`cache_directory` is the one cache directory of the package: the on-demand map tiles
 (:mod:`impactmaps.maps.compute.tiles`) and the plate bases
-(:mod:`impactmaps.targets.plates.basis_cache`) are kept there.
+(:mod:`impactmaps.targets.plates.basis_cache`) are kept there; :func:`stored_floats` keeps there
+the values of pure functions that cost more to compute than to read (the Hertz asymptote peaks,
+the patch cut-off of a tile's points).
 """
 
 from __future__ import annotations
 
 import contextlib
+import json
+import math
 import os
 import secrets
 from pathlib import Path
 
-__all__ = ["CACHE_ENV", "cache_directory", "written_atomically"]
+__all__ = ["CACHE_ENV", "cache_directory", "written_atomically", "stored_floats"]
 
 #: Environment variable naming the cache directory (tiles, plate bases).
 CACHE_ENV = "IMPACTMAPS_CACHE_DIR"
@@ -49,3 +53,31 @@ def written_atomically(path):
     finally:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(temporary)
+
+
+_stored: dict = {}  # file → {key: value}, read once per process
+
+
+def stored_floats(path, keys, compute, most: int = 4096) -> list[float]:
+    """The values of a pure function ``compute(key)`` (positive, finite floats) for ``keys``
+    (texts): read from the JSON file ``path`` (once per process; the floats exactly, the same
+    bits), the missing ones computed and written there with the others (atomically, the newest
+    ``most``; nothing on a write error). A value is what ``compute`` gives, so the file never
+    changes an answer; name the file by the revisions of the code that computes the values."""
+    path = Path(path)
+    if path not in _stored:
+        try:
+            loaded = json.loads(path.read_text(encoding="utf-8"))
+            _stored[path] = {key: value for key, value in loaded.items()
+                             if isinstance(value, float) and math.isfinite(value) and value > 0.0}
+        except (OSError, ValueError, AttributeError):
+            _stored[path] = {}
+    stored, missing = _stored[path], [key for key in dict.fromkeys(keys) if key not in _stored[path]]
+    for key in missing:
+        stored[key] = float(compute(key))
+    if missing:
+        with contextlib.suppress(OSError):
+            path.parent.mkdir(parents=True, exist_ok=True)
+            with written_atomically(path) as temporary:
+                temporary.write_text(json.dumps(dict(list(stored.items())[-most:])), encoding="utf-8")
+    return [stored[key] for key in keys]

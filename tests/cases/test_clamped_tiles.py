@@ -25,6 +25,7 @@ import xarray as xr
 from impactmaps import lookup
 from impactmaps.cases import parse_case, run_case
 from impactmaps.maps.compute import tiles
+from impactmaps.maps.files import tile_files
 from impactmaps.maps.family.refinement import SURPLUS_SAFETY, refine
 from impactmaps.maps.family.structures import MapStructure
 
@@ -134,7 +135,7 @@ def test_a_splitting_point_that_did_not_converge_is_said(tmp_path, status, value
     for name, new in (("fmax_normalised", value), ("fmax_error", error), ("status", STATUSES.index(status))):
         if new is not None:
             tile[f"refinement_{name}"].values[centre] = new
-    tile.attrs["data_digest"] = tiles._data_digest(tile)
+    tile.attrs["data_digest"] = tile_files.data_digest(tile)
     tiles.save_atomic(tile, tmp_path / _COMMITTED_TILE.name)
     case = parse_case(_SMALL_CLAMPED)
     if status == "unresolved":

@@ -45,8 +45,8 @@ _TILES = Path(__file__).parents[1] / "data" / "tiles"
 #: ``study.converged_simulate``, measured 2026-12-03; the defaults give 209.29, 1708.96 and 705.92 N).
 #: The third: the [0/90]4s SSSS plate, a Navier 4 × 4 tile before (705.1 ± 48.1 N, 6.8 %).
 _COMMITTED = {
-    "ssss-qi-1kg": ("tile-e307263c112b76563c84fe43aa0c4783.nc", 210.455),
-    "ssss-qi2-5.5kg": ("tile-bbc54135ead421c9dd85235ec415fe48.nc", 1709.105),
+    "ssss-qi-1kg": ("tile-80807baec6e4e7f9c0a1da1b2754de31.nc", 210.455),
+    "ssss-qi2-5.5kg": ("tile-f81dbc1736d06959668febf87742e4ef.nc", 1709.105),
     "ssss-cp4-5kg": ("tile-c7e949d2197d45f29acf76f0f99c54b1.nc", 705.920),
 }
 

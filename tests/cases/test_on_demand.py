@@ -19,6 +19,7 @@ import pytest
 
 from impactmaps.cases import parse_case, run_case
 from impactmaps.maps.compute import tiles
+from impactmaps.maps.files import tile_files
 from impactmaps import lookup
 from impactmaps.maps.family.structures import MapStructure
 
@@ -170,7 +171,7 @@ def test_a_corrupted_or_foreign_cache_file_is_rebuilt_not_used(tmp_path):
 
 
 def test_the_cache_is_bounded_and_found_where_the_environment_says(tmp_path, monkeypatch):
-    monkeypatch.setattr(tiles, "MAX_CACHED_TILES", 2)
+    monkeypatch.setattr(tile_files, "MAX_CACHED_TILES", 2)
     for supports in ("cc", "cs", "cf"):
         lookup(case=_case(_CLAMPED_BEAM.replace('"cc"', f'"{supports}"'), "linear"), cache_dir=tmp_path)
     assert len(list(tmp_path.glob("tile-*.nc"))) == 2

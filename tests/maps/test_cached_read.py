@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from impactmaps import _files
 from impactmaps.maps.compute import hertz_points
 from impactmaps.maps.files.data_io import MapArrays, read_netcdf_arrays
 from impactmaps.maps.files.store import save_atomic
@@ -61,7 +62,7 @@ def test_hertz_asymptote_peaks_are_kept_on_disk_bit_for_bit(tmp_path, monkeypatc
     integrated = hertz_points.hertz_asymptote_peak("infinite", "plate", zeta_h=zeta)
     path = hertz_points.stored_peaks_path()
     assert path.parent == tmp_path and path.exists()
-    hertz_points._stored.clear()  # a new process: nothing in memory
+    _files._stored.clear()  # a new process: nothing in memory
     hertz_points._asymptote_peak.cache_clear()
     monkeypatch.setattr(hertz_points, "_asymptote_peak", None)  # nothing may be integrated now
     read = hertz_points.hertz_asymptote_peak("infinite", "plate", zeta_h=zeta)

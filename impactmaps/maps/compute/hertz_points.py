@@ -10,8 +10,6 @@ same numbers (:mod:`impactmaps.closed_forms.hertz_similarity`). :class:`HertzFam
 from __future__ import annotations
 
 import functools
-import json
-import math
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -156,35 +154,12 @@ def _asymptote_peak(which: str, kind: str, zeta_h: float, lambda_h: float) -> fl
 #: :data:`STORED_PEAKS_MAX`, the newest, are kept.
 STORED_PEAKS_FILE = "hertz-asymptote-peaks-r{revision}.json"
 STORED_PEAKS_MAX = 4096
-_stored = {}  # file → {key: peak}, read once per process
 
 
 def stored_peaks_path() -> Path:
     """The file of the stored Hertz asymptote peaks (:data:`STORED_PEAKS_FILE`)."""
     revision = f"{SOLVER_REVISION}.{HertzContact.revision}"
     return _files.cache_directory() / STORED_PEAKS_FILE.format(revision=revision)
-
-
-def _stored_peaks(path: Path) -> dict:
-    """The peaks stored in ``path`` (none if it is missing or unreadable; only positive finite floats)."""
-    if path not in _stored:
-        try:
-            loaded = json.loads(path.read_text(encoding="utf-8"))
-            _stored[path] = {key: value for key, value in loaded.items()
-                             if isinstance(value, float) and math.isfinite(value) and value > 0.0}
-        except (OSError, ValueError, AttributeError):
-            _stored[path] = {}
-    return _stored[path]
-
-
-def _store_peaks(path: Path, peaks: dict) -> None:
-    """Write the newest :data:`STORED_PEAKS_MAX` of ``peaks`` to ``path`` (nothing on a write error)."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with _files.written_atomically(path) as temporary:
-            temporary.write_text(json.dumps(dict(list(peaks.items())[-STORED_PEAKS_MAX:])), encoding="utf-8")
-    except OSError:
-        pass
 
 
 def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
@@ -204,16 +179,9 @@ def hertz_asymptote_peak(which: str, kind: str, zeta_h=1.0, lambda_h=1.0):
     # the asymptote depends on one number: pin the other, so the cache sees few keys
     keys = np.stack([zeta, np.ones_like(zeta)] if which == "infinite" else [np.ones_like(lam), lam], axis=-1)
     unique, inverse = np.unique(keys.reshape(-1, 2), axis=0, return_inverse=True)
-    path = stored_peaks_path()
-    stored, values, computed = _stored_peaks(path), [], False
-    for z, l in unique:
-        key = f"{name} {kind} {float(z)!r} {float(l)!r}"
-        if key not in stored:
-            stored[key], computed = _asymptote_peak(name, kind, float(z), float(l)), True
-        values.append(stored[key])
-    if computed:
-        _store_peaks(path, stored)
-    peaks = np.array(values)
+    numbers = {f"{name} {kind} {float(z)!r} {float(l)!r}": (float(z), float(l)) for z, l in unique}
+    peaks = np.array(_files.stored_floats(stored_peaks_path(), list(numbers),
+                                          lambda key: _asymptote_peak(name, kind, *numbers[key]), STORED_PEAKS_MAX))
     out = peaks[np.ravel(inverse)].reshape(zeta.shape)
     return float(out) if out.ndim == 0 else out
 

@@ -25,15 +25,9 @@ from ...solvers.modal_settings import ModalSettings
 from ...solvers.run_budget import (MEMORY_LIMIT_BYTES, SECONDS_PER_MAP_POINT, RunBudget, map_sweep_seconds,
                                    refuse_or_announce)
 from ...targets.options import point_load_diverges
-from ..family.map_family import ASYMPTOTE_PEAKS
+from ..family.map_family import ASYMPTOTE_PEAKS, RESULT_VARIABLES, MapFamily, map_family
 from .dataset import classify_dataset, empty_dataset, with_asymptote_peaks
-from ..family.map_family import RESULT_VARIABLES, MapFamily
-from .points import (
-    METHODS,
-    SOLVER_REVISION,
-    solve_map_points,
-)
-from ..family.map_family import map_family
+from .points import METHODS, SOLVER_REVISION, solve_map_points
 from ..files.data_io import read_dataset
 from ..files.shipped import load_shipped_result
 from ..files.store import SweepInterrupted, fingerprint, load_matching, remove_stale_temporaries, save_atomic
@@ -272,6 +266,8 @@ def sweep_grid(structures: list, family: MapFamily, grids: dict, settings: Modal
         description["law"] = family.name
     if family.law_revision != 1:  # a redefined law: no stored result of its old definition matches
         description["law_revision"] = family.law_revision
+    if revisions := {s.name: r for s in structures if (r := s.model_revisions())}:  # a Ritz plate's basis
+        description["model_revisions"] = revisions
     axes_in_order = {name: grids[name] for name in family.axis_names}
     return SweepGrid(structures, family, axes_in_order, description, fingerprint(description), settings)
 

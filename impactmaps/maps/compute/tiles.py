@@ -11,12 +11,11 @@ its interpolation error is measured (the surpluses of those points), not modelle
 second differences (docs/accuracy.rst); a patch-loaded cell's points follow ``simulate``'s
 heavy-impactor cut-off (:func:`with_corner_cutoff`). A tile is a pure function
 of its :class:`TileKey`; the cache keeps one verified NetCDF file per key (at most
-:data:`MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
+:data:`~impactmaps.maps.files.tile_files.MAX_CACHED_TILES`, least recently used removed), giving the same bits as a fresh tile.
 """
 
 from __future__ import annotations
 
-import hashlib
 import itertools
 import math
 import os
@@ -30,7 +29,7 @@ import numpy as np
 from ... import _files
 from ...jsonio import dumps
 from ...contact.contact_scale import reference_contact_stiffness
-from ...solvers.modal_settings import ModalSettings, corner_ratios
+from ...solvers.modal_settings import CORNER_MAX_MODES, CORNER_MULTIPLE, ModalSettings, corner_ratios
 from ...targets.shear_range import beyond_shear_theory
 from ..family.accuracy import AccuracyControl
 from ...solvers.mode_budget import frequency_cap
@@ -39,7 +38,8 @@ from .workers import solve_tile_points
 from ..family.map_family import map_family
 from ..family.accuracy import STATUSES, stated_error
 from ..family.refinement import REFINEMENT_VARIABLES, SURPLUS_SAFETY, Refinement, refine
-from ..files.data_io import MapArrays, read_netcdf_arrays
+from ..files.data_io import MapArrays
+from ..files.tile_files import data_digest, prune_tiles, read_tile
 from ..files.store import fingerprint, save_atomic
 from ..family.structures import MAX_MODES, BasisTable, MapStructure
 
@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 #: another model.
 PATCH_MODEL_REVISION = 1
 
-__all__ = ["LATTICE_STEPS", "CACHE_ENV", "MAX_CACHED_TILES", "TILE_POINTS", "TileKey", "cache_directory",
+__all__ = ["LATTICE_STEPS", "CACHE_ENV", "TILE_POINTS", "TileKey", "cache_directory",
            "lattice_steps", "refined_cell", "tile_for", "with_corner_cutoff", "build_tile", "tile_refinement", "cached_tile"]
 
 #: (Δ log10 ζ, Δ log10 λ) of the tiles' lattice (:func:`lattice_steps`).
@@ -59,8 +59,6 @@ LATTICE_STEPS = (0.05, 0.1)
 
 #: Environment variable naming the cache directory of the tiles.
 CACHE_ENV = _files.CACHE_ENV
-#: Most tiles the cache keeps (the least recently used beyond it are removed).
-MAX_CACHED_TILES = 256
 #: Lattice points per axis of a tile.
 TILE_POINTS = 4
 #: Version of the tile files (part of the fingerprint): their layout and the point rules
@@ -164,6 +162,7 @@ class TileKey:
                      "extra_lattice": {axis.name: lattice[axis.name] for axis in _family(self).extra_axes}}
         if self.patch is not None:  # the patch model's revision (1: 3D-consistent near field, near_field)
             extra["patch_model"] = PATCH_MODEL_REVISION
+        extra |= self.structure.model_revisions()
         tile_format = _TILE_FORMAT if self.patch is not None else _POINT_LOAD_TILE_FORMAT
         if self.cell:  # a refined cell (format 4): its split and the safety on its surpluses
             extra["refinement"] = {"levels": _CELL_LEVELS, "surplus_safety": SURPLUS_SAFETY}
@@ -237,6 +236,16 @@ def with_corner_cutoff(key: TileKey) -> TileKey:
     """
     if key.patch is None or not key.cell:
         return key
+    rule = f"r{SOLVER_REVISION}-{CORNER_MULTIPLE:g}-{CORNER_MAX_MODES}-{MAX_MODES}"  # the file: the rule's revision
+    ratio, = _files.stored_floats(cache_directory() / f"tile-cutoff-ratios-{rule}.json", [key.fingerprint],
+                                  lambda _: _corner_ratio(key))
+    return key if ratio <= key.settings.patch_cutoff_ratio else replace(
+        key, settings=replace(key.settings, patch_cutoff_ratio=ratio))
+
+
+def _corner_ratio(key: TileKey) -> float:
+    """The patch cut-off ratio [-] of :func:`with_corner_cutoff` (kept on disk: counting a Navier
+    plate's modes for it took 0.38 s of every cached lookup)."""
     settings, target, family = key.settings, key.structure.build(), _family(key)
     zetas, lambdas = key.axes
     points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas] + _splitting_points(key)
@@ -247,11 +256,10 @@ def with_corner_cutoff(key: TileKey) -> TileKey:
                                 reference_contact_stiffness(impact.law, impact.mass, impact.velocity))[0]
                   for impact in realised), default=base)
     if wanted <= base:
-        return key
+        return base
     cap = map_cap(target) if family.capped_points else frequency_cap(target, MAX_MODES)
     resolved = min((cap / impact.omega for impact in realised if cap >= base * impact.omega), default=base)
-    ratio = min(_two_digits(wanted, math.ceil), _two_digits(resolved, math.floor))
-    return key if ratio <= base else replace(key, settings=replace(settings, patch_cutoff_ratio=ratio))
+    return min(_two_digits(wanted, math.ceil), _two_digits(resolved, math.floor))
 
 
 def _two_digits(value: float, rounding) -> float:
@@ -307,7 +315,7 @@ def build_tile(key: TileKey, progress=None, workers: int | None = None) -> xr.Da
         dataset = dataset.assign(_split_cell(key, family, table, data, presolved))
     dataset.attrs.update({"title": "impactmaps on-demand map tile", "fingerprint": key.fingerprint,
                           "description": dumps(key.description(), sort_keys=True), "contact_law": key.law,
-                          "solver_revision": SOLVER_REVISION, "data_digest": _data_digest(dataset)})
+                          "solver_revision": SOLVER_REVISION, "data_digest": data_digest(dataset)})
     return dataset
 
 
@@ -438,32 +446,9 @@ def _family(key: TileKey):
     return family if key.patch is None else family.with_patch(key.patch)
 
 
-def _data_digest(dataset: xr.Dataset) -> str:
-    """SHA-256 of the tile's coordinates and variables (names, dtypes and bytes)."""
-    digest = hashlib.sha256()
-    for name in ("zeta", "lambda_", *sorted(dataset.data_vars)):
-        values = np.ascontiguousarray(dataset[name].values)
-        digest.update(f"{name}:{values.dtype.str}:{values.shape}".encode())
-        digest.update(values.tobytes())
-    return digest.hexdigest()
-
-
 def tile_path(key: TileKey, cache_dir=None) -> Path:
     """The cache file of a tile [path]."""
     return cache_directory(cache_dir) / f"tile-{key.fingerprint[:32]}.nc"
-
-
-def _read(path: Path, key: TileKey) -> MapArrays | None:
-    """The tile stored at ``path`` if it is the tile of ``key``, intact; else None. Read with
-    NumPy alone (:func:`~impactmaps.maps.files.data_io.read_netcdf_arrays`: the same values as
-    xarray, without importing dask)."""
-    try:
-        dataset = read_netcdf_arrays(path)
-    except Exception:  # missing, truncated, not NetCDF: rebuilt
-        return None
-    if dataset.attrs.get("fingerprint") != key.fingerprint or dataset.attrs.get("data_digest") != _data_digest(dataset):
-        return None
-    return dataset
 
 
 def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tuple[xr.Dataset | MapArrays, Path | None]:
@@ -472,7 +457,7 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tup
     gets one line before a build, ``progress(done, total)`` the build's points.
     """
     path = tile_path(key, cache_dir)
-    dataset = _read(path, key)
+    dataset = read_tile(path, key.fingerprint)
     if dataset is not None:
         try:
             os.utime(path)  # recently used: kept longest
@@ -485,16 +470,9 @@ def cached_tile(key: TileKey, cache_dir=None, notify=None, progress=None) -> tup
     dataset = build_tile(key, progress)
     try:
         save_atomic(dataset, path)
-        _prune(path.parent)
+        prune_tiles(path.parent)
     except OSError as error:
         if notify is not None:
             notify(f"the tile could not be cached ({error}); answering from it all the same")
         return dataset, None
     return dataset, path
-
-
-def _prune(directory: Path) -> None:
-    """Remove the least recently used tiles beyond :data:`MAX_CACHED_TILES`."""
-    tiles = sorted(directory.glob("tile-*.nc"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
-    for stale in tiles[MAX_CACHED_TILES:]:
-        stale.unlink(missing_ok=True)

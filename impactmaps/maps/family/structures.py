@@ -122,6 +122,18 @@ class MapStructure:
         """
         return reference_target(Beam if self.kind == "beam" else Plate, self)
 
+    def model_revisions(self) -> dict:
+        """The revisions of the models its points depend on beyond the solver's, for the
+        fingerprints of its sweeps and tiles: ``{"plate_basis": BASIS_REVISION}`` for a plate of
+        the general Ritz basis (:mod:`impactmaps.targets.plates.basis_cache`: its modes' bits
+        change with that code), else empty (every other fingerprint stays what it was)."""
+        if self.kind != "plate":
+            return {}
+        from ...targets.plates.basis_cache import BASIS_REVISION
+        from ...targets.plates.plate_any_edges import uses_general_basis
+
+        return {"plate_basis": BASIS_REVISION} if uses_general_basis(self.build()) else {}
+
 
 def structure_from_name(name: str) -> MapStructure:
     """Parse the short names of the shipped maps (``beam-ss-euler`` …)."""
