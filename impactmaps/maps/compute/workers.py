@@ -38,7 +38,6 @@ import warnings
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
 from ..._compile.compile_helper import end_with_parent
-from .points import solve_map_points
 
 __all__ = ["init_worker", "end_workers", "MAX_WORKERS", "available_cores", "available_memory", "nested_process",
            "point_workers", "solve_tile_points"]
@@ -89,6 +88,14 @@ _JOB: dict = {}
 _REGISTRIES: dict = {}
 #: Seconds between the parent's checks of its workers (a signal interrupts the wait anyway).
 _POLL_SECONDS = 0.25
+
+
+def solve_map_points(*args, **kwargs) -> list:
+    """:func:`impactmaps.maps.compute.points.solve_map_points`, imported when first called (the
+    command line reads :data:`MAX_WORKERS` here without loading the solver)."""
+    from .points import solve_map_points as solve
+
+    return solve(*args, **kwargs)
 
 
 def available_cores() -> int:
