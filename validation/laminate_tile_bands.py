@@ -128,10 +128,8 @@ def case_row(name: str, cache_dir, levels: int = CONVERGED_LEVELS) -> dict:
             "error_over_band": abs(error) / found["peak_force_error_N"], "map": found["map"]}
 
 
-def inside_errors(name: str, cache_dir, count: int) -> list[dict]:
-    """``count`` random (ζ, λ) inside the cell of the case's tile (log-uniform, seeded by the
-    case's name), each solved as a map point of the tile against the tile read there as
-    ``lookup --case`` reads it (:func:`impactmaps.cases.on_demand.answer_on_demand`)."""
+def _case_tile(name: str, cache_dir):
+    """(structure, law, tile key, tile) of the case ``name`` as ``lookup --case`` finds them."""
     case = parse_case(CASES[name][1])
     law = case_map_law(case)
     structure, patch = case_structure(case, law)
@@ -140,6 +138,14 @@ def inside_errors(name: str, cache_dir, count: int) -> list[dict]:
         found = lookup(case=case, cache_dir=cache_dir)
     key = tiles.tile_for(structure, law, patch, found["zeta"], found["lambda"], _tile_settings(case, patch))
     dataset, _ = tiles.cached_tile(key, cache_dir)
+    return structure, law, key, dataset
+
+
+def inside_errors(name: str, cache_dir, count: int) -> list[dict]:
+    """``count`` random (ζ, λ) inside the cell of the case's tile (log-uniform, seeded by the
+    case's name), each solved as a map point of the tile against the tile read there as
+    ``lookup --case`` reads it (:func:`impactmaps.cases.on_demand.answer_on_demand`)."""
+    structure, law, key, dataset = _case_tile(name, cache_dir)
     zetas, lambdas = key.axes
     if not key.cell:  # a 4 × 4 tile: its middle cell
         zetas, lambdas = zetas[1:3], lambdas[1:3]
@@ -166,14 +172,7 @@ def inside_errors(name: str, cache_dir, count: int) -> list[dict]:
 
 def point_errors(name: str, cache_dir, levels: int = 4) -> list[dict]:
     """Each point of the case's tile against a reference ``levels`` refinement levels above the base run."""
-    case = parse_case(CASES[name][1])
-    law = case_map_law(case)
-    structure, patch = case_structure(case, law)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        found = lookup(case=case, cache_dir=cache_dir)
-    key = tiles.tile_for(structure, law, patch, found["zeta"], found["lambda"], _tile_settings(case, patch))
-    dataset, _ = tiles.cached_tile(key, cache_dir)
+    structure, law, key, dataset = _case_tile(name, cache_dir)
     zetas, lambdas = key.axes
     points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas]
     names = ("fmax_normalised", "fmax_error", "status", "impacts")
