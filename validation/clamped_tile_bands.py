@@ -67,7 +67,8 @@ def inside_cell(case, cache_dir, count: int, rng) -> list[tuple[float, float, fl
     law = case_map_law(case)
     structure, patch = case_structure(case, law)
     answer = lookup(case=case, cache_dir=cache_dir)
-    key = tiles.tile_for(structure, law, patch, answer["zeta"], answer["lambda"], _tile_settings(case, patch))
+    key = tiles.tile_for(structure, law, patch, answer["zeta"], answer["lambda"], _tile_settings(case, patch),
+                         cache_dir=cache_dir)
     dataset, _ = tiles.cached_tile(key, cache_dir)
     zetas, lambdas = key.axes
     fractions = rng.random((count, 2))

@@ -136,7 +136,8 @@ def _case_tile(name: str, cache_dir):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         found = lookup(case=case, cache_dir=cache_dir)
-    key = tiles.tile_for(structure, law, patch, found["zeta"], found["lambda"], _tile_settings(case, patch))
+    key = tiles.tile_for(structure, law, patch, found["zeta"], found["lambda"], _tile_settings(case, patch),
+                         cache_dir=cache_dir)
     dataset, _ = tiles.cached_tile(key, cache_dir)
     return structure, law, key, dataset
 

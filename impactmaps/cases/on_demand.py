@@ -170,7 +170,7 @@ def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     if map_family(law).extra_axes:  # an elastic-plastic family: (β, ζ, λ)
         def read(beta, zeta, lam):
             realisable(beta=beta, zeta=zeta, lambda_=lam)
-            key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,))
+            key = tile_for(structure, law, None, zeta, lam, settings, extra=(beta,), cache_dir=cache_dir)
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             try:
                 return read_plastic(dataset, law, (beta, zeta, lam), name=key.name, where=key.name)
@@ -181,7 +181,7 @@ def answer_on_demand(case, law: str, refusal: NoMapError, cache_dir=None, notify
     else:
         def read(zeta, lam):
             realisable(zeta=zeta, lambda_=lam)
-            key = tile_for(structure, law, patch, zeta, lam, settings)
+            key = tile_for(structure, law, patch, zeta, lam, settings, cache_dir=cache_dir)
             dataset, built["path"] = cached_tile(key, cache_dir, notify=notify, progress=progress)
             refinement = tile_refinement(dataset)  # a refined cell: its re-impact floor relative to F̄max
             try:

@@ -203,10 +203,12 @@ def _values(step: float, start: int, count: int = TILE_POINTS) -> np.ndarray:
 
 def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor: float, relative_stiffness: float,
              settings: ModalSettings = ModalSettings(), control: AccuracyControl = AccuracyControl(),
-             extra: tuple = ()) -> TileKey:
+             extra: tuple = (), cache_dir=None) -> TileKey:
     """The key of the tile whose middle cell holds (ζ, λ) = (``loss_factor``, ``relative_stiffness``)
     and, for a family with more axes, their values ``extra`` (β …, in the family's order); a
-    refined cell's tile (:func:`refined_cell`): the cell of its lattice that holds them."""
+    refined cell's tile (:func:`refined_cell`): the cell of its lattice that holds them.
+    ``cache_dir``: the tile cache (:func:`cache_directory`), where :func:`with_corner_cutoff` keeps
+    its ratios."""
     cell = refined_cell(structure, law)
     shape = TileKey(structure, law, patch, 0, 0, cell=cell)  # the lattice and its points per axis
     lattice, points = shape.lattice, shape.points_per_axis
@@ -216,10 +218,10 @@ def tile_for(structure: MapStructure, law: str, patch: float | None, loss_factor
     first = [_first_index(value, lattice[name], points) for value, name in
              zip((*extra, loss_factor, relative_stiffness), (*names, "zeta", "lambda_"))]
     return with_corner_cutoff(TileKey(structure, law, patch, first[-2], first[-1], settings, control,
-                                      tuple(first[:-2]), cell))
+                                      tuple(first[:-2]), cell), cache_dir)
 
 
-def with_corner_cutoff(key: TileKey) -> TileKey:
+def with_corner_cutoff(key: TileKey, cache_dir=None) -> TileKey:
     """``key`` with the patch cut-off of its points raised by ``simulate``'s heavy-impactor rule.
 
     A patch-loaded tile's points run under the patch up to ``patch_cutoff_ratio`` ω and refine
@@ -232,12 +234,13 @@ def with_corner_cutoff(key: TileKey) -> TileKey:
     basis resolves for every point that the base ratio leaves uncapped (rounded down): the
     raise turns no point into a capped one. Refined cells only (:func:`refined_cell`, where it
     was measured): a key of a 4 × 4 tile (an isotropic SSSS plate's), of a point-load tile, or
-    whose points ask for no more, is returned as given (the same tile, the same bits).
+    whose points ask for no more, is returned as given (the same tile, the same bits). The ratio
+    of a key is computed once and kept in the tile cache ``cache_dir`` (:func:`cache_directory`).
     """
     if key.patch is None or not key.cell:
         return key
     rule = f"r{SOLVER_REVISION}-{CORNER_MULTIPLE:g}-{CORNER_MAX_MODES}-{MAX_MODES}"  # the file: the rule's revision
-    ratio, = _files.stored_floats(cache_directory() / f"tile-cutoff-ratios-{rule}.json", [key.fingerprint],
+    ratio, = _files.stored_floats(cache_directory(cache_dir) / f"tile-cutoff-ratios-{rule}.json", [key.fingerprint],
                                   lambda _: _corner_ratio(key))
     return key if ratio <= key.settings.patch_cutoff_ratio else replace(
         key, settings=replace(key.settings, patch_cutoff_ratio=ratio))
