@@ -78,12 +78,7 @@ def _twin_classes(plate):
     """The symmetry classes a load at the impact point excites on the plate's simply supported
     twin without couplings (:func:`class_groups` of that twin, first group): its static
     compliance needs no other (a centred load is orthogonal to them)."""
-    on_x, on_y = _on_centre_lines(plate)
-    if on_x and on_y:
-        return ((0, 0),)
-    if on_y:
-        return ((0, 0), (1, 0))
-    return ((0, 0), (0, 1)) if on_x else None
+    return _groups(*_on_centre_lines(plate), coupled=False)[0]
 
 
 def is_symmetric(plate) -> bool:
@@ -98,8 +93,13 @@ def class_groups(plate) -> list:
     A45 couple (p, q) with (1 − p, 1 − q) (the plate keeps its symmetry under a half turn
     only). One centre line (e.g. CFFF or SCSF struck on it), without those couplings: the two
     parities about it, every function across it."""
-    about_x, about_y = symmetry_lines(plate)
     coupled = plate.D16 != 0.0 or plate.D26 != 0.0 or plate.A45 != 0.0
+    return _groups(*symmetry_lines(plate), coupled)
+
+
+def _groups(about_x: bool, about_y: bool, coupled: bool) -> list:
+    """:func:`class_groups` of a plate symmetric about the centre lines it is said to be, with or
+    without the couplings of a half turn."""
     if about_x and about_y:
         if coupled:
             return [((0, 0), (1, 1)), ((0, 1), (1, 0))]
