@@ -180,7 +180,7 @@ def _kron_sum(terms, kept_s, kept_t, n_y):
     is one part) instead of a Kronecker product per term, else gathered term by term."""
     row_parts, column_parts = _parity_parts(kept_s, n_y), _parity_parts(kept_t, n_y)
     if row_parts is None or column_parts is None:
-        return sum(scale * _product_block(gx, gy, kept_s, kept_t, n_y) for scale, gx, gy in terms)
+        return sum(scale * _gathered_block(gx, gy, kept_s, kept_t, n_y) for scale, gx, gy in terms)
     block = np.empty((kept_s.size, kept_t.size))
     for where_s, xs, ys in row_parts:
         for where_t, xt, yt in column_parts:
@@ -221,20 +221,9 @@ def _parity_parts(kept, n_y):
     return parts
 
 
-def _product_block(gx, gy, kept_s, kept_t, n_y):
-    """``gx[i_s, i_t] gy[l_s, l_t]`` over the kept rows and columns: a Kronecker product when
-    both are product sets, one per pair of parity parts when both are unions of symmetry classes
-    (the same products, no gathering of the full block), else gathered."""
-    rows, columns = _factors(kept_s, n_y), _factors(kept_t, n_y)
-    if rows is not None and columns is not None:
-        return np.kron(gx[np.ix_(rows[0], columns[0])], gy[np.ix_(rows[1], columns[1])])
-    row_parts, column_parts = _parity_parts(kept_s, n_y), _parity_parts(kept_t, n_y)
-    if row_parts is not None and column_parts is not None:  # symmetry classes: a product block per pair of parts
-        block = np.empty((kept_s.size, kept_t.size))
-        for where_s, xs, ys in row_parts:
-            for where_t, xt, yt in column_parts:
-                block[np.ix_(where_s, where_t)] = np.kron(gx[np.ix_(xs, xt)], gy[np.ix_(ys, yt)])
-        return block
+def _gathered_block(gx, gy, kept_s, kept_t, n_y):
+    """``gx[i_s, i_t] gy[l_s, l_t]`` over kept rows and columns that are no union of symmetry
+    classes (:func:`_kron_sum` builds the others as matrix products), gathered."""
     ix_s, iy_s = np.divmod(kept_s, n_y)
     ix_t, iy_t = np.divmod(kept_t, n_y)
     return gx[ix_s[:, None], ix_t[None, :]] * gy[iy_s[:, None], iy_t[None, :]]
@@ -320,12 +309,17 @@ def _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, class
     return stiffness
 
 
+def _mass_scale(length_x, length_y, theory, mass_per_area, rotary_inertia, n_x, n_y, classes=None):
+    """S = M^(−1/2) of the basis's diagonal mass matrix [kg^(−1/2)]."""
+    return 1.0 / np.sqrt(_mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
+                                        selection(theory, n_x, n_y, classes)))
+
+
 def _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia, n_x, n_y,
                       classes=None):
+    """(S K S, S): the mass-scaled stiffness of the standard eigenproblem and the scale S."""
     stiffness = _last_stiffness(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
-    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
-                          selection(theory, n_x, n_y, classes))
-    scale = 1.0 / np.sqrt(mass)
+    scale = _mass_scale(length_x, length_y, theory, mass_per_area, rotary_inertia, n_x, n_y, classes)
     return stiffness * scale[:, None] * scale[None, :], scale
 
 
@@ -376,11 +370,9 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
     import scipy.linalg
 
     upper = float(resolved_frequency) ** 2
-    mass = _mass_diagonal(length_x, length_y, theory, mass_per_area, rotary_inertia,
-                          selection(theory, n_x, n_y, classes))
-    scale = 1.0 / np.sqrt(mass)
+    scale = _mass_scale(length_x, length_y, theory, mass_per_area, rotary_inertia, n_x, n_y, classes)
     found = None
-    if mass.size >= _krylov.KRYLOV_MIN_UNKNOWNS:
+    if scale.size >= _krylov.KRYLOV_MIN_UNKNOWNS:
         try:
             factor, _ = _stiffness_factor(length_x, length_y, theory, edges, D, shear, n_x, n_y, classes)
         except np.linalg.LinAlgError:  # not positive definite: the dense solution says so
@@ -389,7 +381,7 @@ def _eigen_solution(length_x, length_y, theory, edges, D, shear, mass_per_area, 
             def apply_inverse(x):  # A = S K S, A⁻¹ x = S⁻¹ K⁻¹ S⁻¹ x
                 return scipy.linalg.cho_solve(factor, x / scale[:, None], check_finite=False) / scale[:, None]
 
-            found = _krylov.lowest_by_krylov(apply_inverse, mass.size, upper)
+            found = _krylov.lowest_by_krylov(apply_inverse, scale.size, upper)
     if found is None:
         matrix, scale = _standard_problem(length_x, length_y, theory, edges, D, shear, mass_per_area, rotary_inertia,
                                           n_x, n_y, classes)
