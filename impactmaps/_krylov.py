@@ -136,5 +136,5 @@ def _converged_pairs(basis, images, projected, upper):
 def _stagnated(residuals, worst: float) -> bool:
     """True when the worst residual is at the floor of applying A⁻¹ in floating point: at most
     :data:`KRYLOV_FLOOR` and less than halved since the previous check (a plate whose lowest
-    mode lies far below the resolved frequency, a cantilever's, reaches ~1.2e-10 and no lower)."""
+    mode lies far below the resolved frequency, a cantilever's: docs/plates_any_edges.rst)."""
     return bool(residuals) and worst <= KRYLOV_FLOOR and worst > 0.5 * residuals[-1][1]

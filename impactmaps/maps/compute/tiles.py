@@ -247,8 +247,8 @@ def with_corner_cutoff(key: TileKey, cache_dir=None) -> TileKey:
 
 
 def _corner_ratio(key: TileKey) -> float:
-    """The patch cut-off ratio [-] of :func:`with_corner_cutoff` (kept on disk: counting a Navier
-    plate's modes for it took 0.38 s of every cached lookup)."""
+    """The patch cut-off ratio [-] of :func:`with_corner_cutoff` (kept on disk: it counts a Navier
+    plate's modes, a cost measured in docs/plates_any_edges.rst)."""
     settings, target, family = key.settings, key.structure.build(), _family(key)
     zetas, lambdas = key.axes
     points = [(float(zeta), float(lam)) for lam in lambdas for zeta in zetas] + _splitting_points(key)

@@ -9,8 +9,8 @@ frequency cap and its modes: on a plate of the general Ritz basis the largest ei
 seconds of one BLAS thread (kept in the process's lru caches and on disk,
 :mod:`impactmaps.targets.plates.basis_cache`). :func:`solve_tile_points` solves the first point
 in the parent, which builds these and what a first run loads (the solver's modules and compiled
-kernels, the plate's static stiffness factors: about 3 s of the drop-weight laminate's first
-point, each worker would repeat it), then forks one worker per core (the *fork* start method: a
+kernels, the plate's static stiffness factors, which each worker would repeat; measured in
+docs/plates_any_edges.rst), then forks one worker per core (the *fork* start method: a
 worker inherits the parent's memory and caches, sharing its pages copy-on-write, and never
 recomputes them) and hands each worker one of the other points at a time. A point is a pure
 function of its inputs, so the rows are the same bits as the serial solve, returned in the
